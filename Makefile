@@ -1,0 +1,66 @@
+# clothode: particle cloth as a stiff ODE, integrators side by side.
+#   make demo    install missing packages, build, run `hang`, draw plots/demo.png
+#   make test    install missing packages, build, run the test suite
+#   make SAN=1 test   the same under AddressSanitizer + UndefinedBehaviorSanitizer
+
+CC      ?= cc
+SAN     ?= 0
+BUILD   := build$(if $(filter 1,$(SAN)),-san,)
+
+CPPFLAGS := -Isrc -I/usr/include/suitesparse -D_POSIX_C_SOURCE=200809L
+CFLAGS   := -std=c11 -Wall -Wextra -Werror -g
+ifeq ($(SAN),1)
+CFLAGS  += -O1 -fsanitize=address,undefined -fno-omit-frame-pointer \
+           -fno-sanitize-recover=undefined
+LDFLAGS += -fsanitize=address,undefined
+else
+CFLAGS  += -O2
+endif
+LDLIBS := -lsundials_cvode -lsundials_ida -lsundials_kinsol \
+          -lsundials_nvecserial -lsundials_sunmatrixsparse \
+          -lsundials_sunmatrixdense -lsundials_sunlinsoldense \
+          -lsundials_sunlinsolklu -lsundials_sunlinsolspgmr \
+          -lsundials_sunlinsolpcg -lklu -lamd -lcolamd -lbtf \
+          -lsuitesparseconfig -lgsl -lgslcblas -linih -lm
+
+LIB_SRC  := $(filter-out src/cli/main.c,$(wildcard src/*/*.c))
+LIB_OBJ  := $(LIB_SRC:%.c=$(BUILD)/%.o)
+CLI_OBJ  := $(BUILD)/src/cli/main.o
+TEST_SRC := $(wildcard tests/test_*.c)
+TEST_OBJ := $(TEST_SRC:%.c=$(BUILD)/%.o)
+BIN      := $(BUILD)/clothode
+TESTBIN  := $(BUILD)/clothode-tests
+JOBS     ?= 2
+
+.PHONY: all deps demo test clean
+
+all: $(BIN)
+
+deps:
+	@scripts/install-deps.sh
+
+$(BUILD)/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) $(CFLAGS) -MMD -MP -c $< -o $@
+
+$(BUILD)/libclothode.a: $(LIB_OBJ)
+	ar rcs $@ $^
+
+$(BIN): $(CLI_OBJ) $(BUILD)/libclothode.a
+	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
+
+$(TESTBIN): $(TEST_OBJ) $(BUILD)/libclothode.a
+	$(CC) $(LDFLAGS) $^ -lcriterion $(LDLIBS) -o $@
+
+demo: deps
+	$(MAKE) $(BIN)
+	scripts/demo.sh $(BIN)
+
+test: deps
+	$(MAKE) $(BIN) $(TESTBIN)
+	CLOTHODE=$(BIN) $(TESTBIN) --jobs $(JOBS)
+
+clean:
+	rm -rf build build-san
+
+-include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d) $(TEST_OBJ:.o=.d)

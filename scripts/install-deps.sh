@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Install the Debian packages clothode needs, if any are missing.
+# Runs apt-get update once, only when something has to be installed.
+set -euo pipefail
+
+pkgs=(build-essential libsundials-dev libsuitesparse-dev libgsl-dev
+      gnuplot-nox libinih-dev libcriterion-dev)
+
+missing=()
+for p in "${pkgs[@]}"; do
+    status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+    [[ $status == "install ok installed" ]] || missing+=("$p")
+done
+((${#missing[@]})) || exit 0
+
+echo "install-deps: installing ${missing[*]}"
+sudo=()
+if [[ $(id -u) -ne 0 ]]; then
+    command -v sudo >/dev/null || {
+        echo "install-deps: need root (or sudo) to install: ${missing[*]}" >&2
+        exit 1
+    }
+    sudo=(sudo)
+fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo[@]}" apt-get update -q
+"${sudo[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"

@@ -1,0 +1,57 @@
+/* The force-term interface.  A force model (Choi-Ko Type1, Type2, damping,
+ * gravity, ...) is one file defining a cl_term_type and one row in the
+ * registry table of forces/registry.c; nothing else changes.
+ *
+ * A term reads its own INI section in `create` and returns *state = NULL if
+ * it is switched off.  It works on full-particle arrays (all particles,
+ * pinned ones included, 3*np), so it never knows which particles are free or
+ * which integrator runs it.  Jacobian blocks go into the slots of a
+ * cl_bpattern that the term looks up once in `bind`. */
+#ifndef CL_TERM_H
+#define CL_TERM_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "core/error.h"
+#include "io/config.h"
+#include "linalg/bpattern.h"
+#include "model/cloth.h"
+
+/* Options shared by every term (SPEC 3.1: jacobian.transverse). */
+typedef struct {
+    bool clamp_transverse; /* drop (s/d)(I - uu^T) where s < 0 */
+} cl_term_opts;
+
+typedef struct {
+    double t;
+    const double *x;  /* positions, 3*np */
+    const double *v;  /* velocities, 3*np */
+    double *f;        /* forces are added here (3*np), or NULL */
+    double *dfdx;     /* blocks added into pattern slots, or NULL */
+    double *dfdv;     /* likewise for the velocity Jacobian, or NULL */
+    bool want_energy;
+    double energy;    /* out (if want_energy): this term's potential energy */
+    double power;     /* out (if want_energy): sum of f . v over particles */
+} cl_eval;
+
+typedef struct {
+    const char *name;   /* also the energy column and INI section */
+    const char *doc;    /* one line for `clothode list` */
+    bool conservative;  /* energy is a potential (else: dissipative power) */
+    cl_status (*create)(cl_config *cfg, const cl_cloth *cloth,
+                        const cl_term_opts *opts, void **state,
+                        cl_error *err);
+    /* Particle pairs whose blocks this term writes (may be 0). */
+    size_t (*couplings)(const void *state, const int (**pairs)[2]);
+    /* Look up block slots in the pattern (called once per pattern). */
+    cl_status (*bind)(void *state, const cl_bpattern *pat, const int *dof,
+                      cl_error *err);
+    void (*eval)(void *state, cl_eval *ev);
+    void (*free)(void *state);
+} cl_term_type;
+
+/* Registry (forces/registry.c), NULL-terminated, in evaluation order. */
+extern const cl_term_type *const cl_term_registry[];
+
+#endif

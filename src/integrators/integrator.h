@@ -1,0 +1,71 @@
+/* The integrator interface (SPEC 5): one file per method, one row in the
+ * registry of integrators/registry.c.  An integrator sees only a cl_system.
+ *
+ * Fixed-step methods take steps of exactly opts->dt; the time after step k is
+ * k*dt (no accumulated round-off), and `advance` must be given output times
+ * that are multiples of dt (cl_fixed_steps_to checks this).  Adaptive
+ * methods (CVODE, ...) return the state interpolated at t_out. */
+#ifndef CL_INTEGRATOR_H
+#define CL_INTEGRATOR_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "core/error.h"
+#include "model/system.h"
+
+typedef struct {
+    double dt;        /* fixed step, or initial step hint (0: solver's own) */
+    double rtol;      /* relative tolerance (adaptive methods) */
+    double atol;      /* absolute tolerance (adaptive methods) */
+    long max_steps;   /* per advance call, 0 for the solver's default */
+} cl_integrator_opts;
+
+/* The statistics every integrator reports (SPEC 5). Counters a method does
+ * not have stay 0. */
+typedef struct {
+    long steps;
+    long rhs_evals;
+    long jac_evals;
+    long lin_setups;     /* matrix factorisations or preconditioner setups */
+    long lin_solves;
+    long lin_iters;      /* Krylov iterations */
+    long nonlin_iters;
+    long nonlin_fails;   /* nonlinear convergence failures */
+    long err_fails;      /* local error test failures */
+    long symbolic_facts; /* symbolic factorisations (KLU analyse) */
+    double wall;         /* seconds spent inside advance (wall clock) */
+    double cpu;          /* seconds spent inside advance (process CPU) */
+} cl_stats;
+
+typedef struct {
+    const char *name;
+    const char *doc;     /* one line for `clothode list` */
+    bool fixed_step;     /* true: needs dt; false: uses rtol/atol */
+    cl_status (*create)(const cl_system *sys, const cl_integrator_opts *o,
+                        double t0, const double *x0, const double *v0,
+                        void **state, cl_error *err);
+    /* Advance to t_out; x and v (sys->n each) receive the state there. */
+    cl_status (*advance)(void *state, double t_out, double *x, double *v,
+                         cl_error *err);
+    /* Counters so far (wall and cpu are filled by the caller). */
+    void (*stats)(const void *state, cl_stats *s);
+    void (*free)(void *state);
+} cl_integrator_type;
+
+extern const cl_integrator_type *const cl_integrator_registry[];
+
+/* Registry lookup by name; NULL if unknown. */
+const cl_integrator_type *cl_integrator_find(const char *name);
+
+/* Number of fixed steps of size dt that lead from step `done` to t_out.
+ * CL_EINVAL if t_out is not a multiple of dt (to 1e-9 relative) or lies
+ * behind step `done`. */
+cl_status cl_fixed_steps_to(double t_out, double dt, long done, long *nsteps,
+                            cl_error *err);
+
+/* Write the statistics as "name,value" CSV rows (and a human summary when
+ * `human` is true). */
+void cl_stats_print(const cl_stats *s, FILE *fp, bool human);
+
+#endif

@@ -1,0 +1,45 @@
+/* Pair connection sets on a grid cloth (SPEC 2), each unordered pair once.
+ *
+ *  Choi-Ko Type1 (sequential): (i,j)-(i+-1,j), (i,j+-1), (i+-1,j+-1);
+ *    count 2(n-1)(2n-1) on an n x n grid.
+ *  Choi-Ko Type2 (interlaced): (i,j)-(i+-2,j), (i,j+-2), (i+-2,j+-2);
+ *    count 4(n-1)(n-2).
+ * Rest lengths come from cl_dist on the rest positions: the same expression
+ * that forces use for current lengths, so that d == L bit for bit at rest. */
+#ifndef CL_PAIRS_H
+#define CL_PAIRS_H
+
+#include <math.h>
+#include <stddef.h>
+
+#include "core/error.h"
+#include "model/cloth.h"
+
+typedef struct {
+    int a, b;       /* particle indices, a < b */
+    double rest;    /* rest length L */
+} cl_pair;
+
+typedef struct {
+    size_t n;
+    cl_pair *pair;
+} cl_pairset;
+
+/* Offsets (di, dj) with di > 0 or (di == 0 and dj > 0) generate each
+ * unordered pair once. */
+cl_status cl_pairs_from_offsets(const cl_cloth *c, size_t noff,
+                                const int (*off)[2], cl_pairset *s,
+                                cl_error *err);
+cl_status cl_pairs_type1(const cl_cloth *c, cl_pairset *s, cl_error *err);
+cl_status cl_pairs_type2(const cl_cloth *c, cl_pairset *s, cl_error *err);
+void cl_pairs_free(cl_pairset *s);
+
+/* |x_b - x_a|: the one distance expression used for rest and current
+ * lengths. */
+static inline double cl_dist(const double *xa, const double *xb)
+{
+    double dx = xb[0] - xa[0], dy = xb[1] - xa[1], dz = xb[2] - xa[2];
+    return sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+#endif

@@ -1,0 +1,46 @@
+/* The system interface: everything an integrator may know about the cloth.
+ *
+ * The unknowns are the positions x and velocities v of the free particles
+ * (3*nfree each); M is diagonal.  The ODE is x' = v, M v' = f(t, x, v)
+ * (SPEC 1).  Jacobians are given as 3x3-block values in a fixed pattern
+ * (`pattern`, block rows = free particles), so an integrator assembles
+ * whatever matrix its linear solver wants from precomputed maps.
+ * Modelled on SUNDIALS' user-data pattern and GSL's gsl_odeiv2_system. */
+#ifndef CL_SYSTEM_H
+#define CL_SYSTEM_H
+
+#include <stddef.h>
+
+#include "core/error.h"
+#include "linalg/bpattern.h"
+
+#define CL_MAX_ENERGY_TERMS 16
+
+typedef struct {
+    size_t nterm;
+    const char *name[CL_MAX_ENERGY_TERMS]; /* potential terms, by term name */
+    double value[CL_MAX_ENERGY_TERMS];
+    double kinetic;
+    double potential;  /* sum of value[] */
+    double total;      /* kinetic + potential */
+    double power_diss; /* power of the non-conservative forces (<= 0) */
+} cl_energy;
+
+typedef struct cl_system {
+    size_t n;                    /* 3 * free particles */
+    const double *mass;          /* n diagonal masses */
+    const cl_bpattern *pattern;  /* blocks over free particles */
+    void *data;
+    /* f(t, x, v) on the free particles (n entries). */
+    cl_status (*force)(void *data, double t, const double *x,
+                       const double *v, double *f);
+    /* Block values of df/dx and df/dv (9 * pattern->nnzb each); the callee
+     * zeroes and fills them, and may also return f (or NULL). */
+    cl_status (*jacobian)(void *data, double t, const double *x,
+                          const double *v, double *f, double *dfdx,
+                          double *dfdv);
+    cl_status (*energy)(void *data, double t, const double *x,
+                        const double *v, cl_energy *e);
+} cl_system;
+
+#endif
