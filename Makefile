@@ -7,7 +7,7 @@ CC      ?= cc
 SAN     ?= 0
 BUILD   := build$(if $(filter 1,$(SAN)),-san,)
 
-CPPFLAGS := -Isrc -I/usr/include/suitesparse -D_POSIX_C_SOURCE=200809L
+CPPFLAGS := -Isrc -I/usr/include/suitesparse -D_XOPEN_SOURCE=700
 CFLAGS   := -std=c11 -Wall -Wextra -Werror -g
 ifeq ($(SAN),1)
 CFLAGS  += -O1 -fsanitize=address,undefined -fno-omit-frame-pointer \

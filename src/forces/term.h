@@ -32,7 +32,8 @@ typedef struct {
     double *dfdv;     /* likewise for the velocity Jacobian, or NULL */
     bool want_energy;
     double energy;    /* out (if want_energy): this term's potential energy */
-    double power;     /* out (if want_energy): sum of f . v over particles */
+    double power;     /* out (if want_energy): sum of f . v of a dissipative
+                       * term (damping); 0 for conservative terms */
 } cl_eval;
 
 typedef struct {

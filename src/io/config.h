@@ -19,15 +19,23 @@ typedef struct cl_config cl_config;
 cl_config *cl_config_alloc(void);
 void cl_config_free(cl_config *cfg);
 
-/* Parse an INI file; later entries override earlier ones.  Malformed lines
- * give CL_EPARSE with file and line; a missing file gives CL_EIO. */
+/* Parse an INI file; later entries override earlier ones (also across
+ * several files).  Sections and keys are case-sensitive and trimmed.
+ * Malformed lines give CL_EPARSE with file and line, as do indented lines
+ * that inih would read as the continuation of the previous value and lines
+ * too long for inih's buffer; a missing or unreadable file gives CL_EIO.
+ * After a failure cfg may hold part of the file. */
 cl_status cl_config_load(cl_config *cfg, const char *path, cl_error *err);
 
-/* Apply "section.key=value" (as given to --set).  Keys not present in the
- * file are accepted here and checked by cl_config_check_unused(). */
+/* Apply "section.key=value" (as given to --set): split at the first '=' and
+ * at the first '.' before it; parts are trimmed and the value may be empty.
+ * Keys not present in the file are accepted here and checked by
+ * cl_config_check_unused().  CL_EINVAL for a malformed assignment or names
+ * and values that could not be written back as INI (e.g. "a.b:c=1"). */
 cl_status cl_config_set(cl_config *cfg, const char *assignment, cl_error *err);
 
-/* The file name given to cl_config_load (for messages and outputs). */
+/* The file name given to the first cl_config_load (for messages and
+ * outputs), or NULL if no file was loaded. */
 const char *cl_config_path(const cl_config *cfg);
 
 /* Typed getters.  If the key is absent, *out = def and CL_OK.  A present
@@ -49,20 +57,28 @@ cl_status cl_config_choice(cl_config *cfg, const char *sec, const char *key,
  * "0, -9.81, 0".  If absent, out is left untouched. */
 cl_status cl_config_vector(cl_config *cfg, const char *sec, const char *key,
                            size_t count, double *out, cl_error *err);
-/* Raw string, or def if absent (pointer valid while cfg lives). */
+/* Raw string, or def if absent (pointer valid until the entry is set again
+ * or cfg is freed). */
 const char *cl_config_string(cl_config *cfg, const char *sec, const char *key,
                              const char *def);
-/* Where an entry came from, "file:line" or "--set", for messages built by
- * callers that validate values themselves (e.g. cross-key checks). */
+/* Where an entry came from, "file:line" or "--set" ("(default)" if absent),
+ * for messages built by callers that validate values themselves (e.g.
+ * cross-key checks).  Written to buf (truncated to len); returns buf. */
 const char *cl_config_origin(const cl_config *cfg, const char *sec,
                              const char *key, char *buf, size_t len);
 
 /* CL_EINVAL naming the first entry no getter asked for, with the list of
- * keys known in its section if that section is known at all. */
+ * keys known in its section if that section is known at all (names count as
+ * known once a getter asked for them, present in the file or not). */
 cl_status cl_config_check_unused(const cl_config *cfg, cl_error *err);
 
-/* Write every entry as INI (sorted by section, in file order) so that a run
- * records the exact configuration it used. */
+/* Count every entry now in section `sec` as used, for commands that
+ * deliberately do not read that section. */
+void cl_config_ignore_section(cl_config *cfg, const char *sec);
+
+/* Write every entry as INI (final values, grouped by section in order of
+ * first appearance) so that a run records the exact configuration it used.
+ * Atomic: written to "path.tmp.XXXXXX" and renamed onto path. */
 cl_status cl_config_write(const cl_config *cfg, const char *path,
                           cl_error *err);
 

@@ -1,0 +1,273 @@
+/* One simulation run: schedule of output times, integration, time series,
+ * frames, final state, statistics. */
+#include "analysis/simulate.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "analysis/diagnostics.h"
+#include "io/atomic.h"
+#include "io/frames.h"
+#include "io/series.h"
+#include "io/state.h"
+
+typedef struct {
+    cl_model *m;
+    const cl_cloth *c;
+    const cl_system *sys;
+    const cl_sim_opts *so;
+    cl_pairset type1;       /* neighbours, for the stretch diagnostic */
+    double *x, *v;          /* free state */
+    double *xf, *vf;        /* full-particle state */
+    unsigned char *pinned;
+    cl_series *series;
+    double *row;
+    long frame_index;
+} sim;
+
+/* ---- output schedule -------------------------------------------------- */
+
+typedef struct {
+    long nticks;   /* output times are tick * dt_tick */
+    double dt_tick;
+} schedule;
+
+static cl_status make_schedule(const cl_integrator_type *type,
+                               const cl_integrator_opts *o,
+                               const cl_sim_opts *so, schedule *s,
+                               cl_error *err)
+{
+    if (!type->fixed_step) {
+        s->nticks = so->samples * (so->frames > 0 ? so->frames : 1);
+        s->dt_tick = so->t_end / (double)s->nticks;
+        return CL_OK;
+    }
+    double steps = so->t_end / o->dt;
+    s->nticks = (long)llround(steps);
+    s->dt_tick = o->dt;
+    if (s->nticks < 1 || fabs(steps - (double)s->nticks) > 1e-9 * steps)
+        return cl_error_set(err, CL_EINVAL,
+                            "t_end = %g is not a whole number of steps "
+                            "dt = %g (t_end/dt = %.12g); choose t_end or dt "
+                            "so that it is",
+                            so->t_end, o->dt, steps);
+    return CL_OK;
+}
+
+/* Tick of the k-th of `count` evenly spread outputs (k = 1..count). */
+static long tick_of(long k, long count, long nticks)
+{
+    return (long)llround((double)k * (double)nticks / (double)count);
+}
+
+/* ---- outputs ---------------------------------------------------------- */
+
+static cl_status open_series(sim *s, cl_error *err)
+{
+    cl_energy e;
+    const char *names[CL_MAX_ENERGY_TERMS + 8];
+    size_t n = 0;
+    s->sys->energy(s->sys->data, 0.0, s->x, s->v, &e);
+    names[n++] = "t";
+    names[n++] = "kinetic";
+    for (size_t k = 0; k < e.nterm; k++)
+        names[n++] = e.name[k];
+    names[n++] = "potential";
+    names[n++] = "total";
+    names[n++] = "power_diss";
+    names[n++] = "max_stretch";
+    names[n++] = "max_offplane";
+    s->row = malloc(n * sizeof *s->row);
+    if (!s->row)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (series row)");
+    char path[4096];
+    snprintf(path, sizeof path, "%s/series.csv", s->so->outdir);
+    return cl_series_open(path, n, names, &s->series, err);
+}
+
+/* Energies and diagnostics at time t; one series row. */
+static cl_status sample(sim *s, double t, cl_sim_result *res, cl_error *err)
+{
+    cl_energy e;
+    cl_cloth_scatter(s->c, t, s->x, s->v, s->xf, s->vf);
+    cl_status rc = s->sys->energy(s->sys->data, t, s->x, s->v, &e);
+    double stretch = cl_max_stretch(&s->type1, s->xf);
+    double offplane = cl_max_offplane(s->c, s->xf);
+    if (rc || !(stretch <= s->so->max_stretch))
+        return cl_error_set(err, CL_EBLOWUP,
+                            "blow-up at t = %g: %s (max stretch d/L = %g, "
+                            "limit %g)",
+                            t, rc ? "energy is not finite" : "runaway stretch",
+                            stretch, s->so->max_stretch);
+    size_t n = 0;
+    s->row[n++] = t;
+    s->row[n++] = e.kinetic;
+    for (size_t k = 0; k < e.nterm; k++)
+        s->row[n++] = e.value[k];
+    s->row[n++] = e.potential;
+    s->row[n++] = e.total;
+    s->row[n++] = e.power_diss;
+    s->row[n++] = stretch;
+    s->row[n++] = offplane;
+    if ((rc = cl_series_row(s->series, s->row, err)))
+        return rc;
+    res->t_reached = t;
+    res->e1 = e;
+    res->max_stretch = stretch;
+    res->max_offplane = offplane;
+    res->rows++;
+    memcpy(res->xfinal, s->xf, 3 * s->c->np * sizeof *s->xf);
+    return CL_OK;
+}
+
+static cl_status write_frame(sim *s, double t, cl_sim_result *res,
+                             cl_error *err)
+{
+    cl_frame f = {s->c->nu, s->c->nv, s->xf, s->vf, s->pinned, t};
+    char path[4096];
+    cl_status rc = CL_OK;
+    if (s->so->vtk &&
+        (!(rc = cl_frame_path(s->so->outdir, s->frame_index, "vtk", path,
+                              sizeof path, err))))
+        rc = cl_frame_write_vtk(path, &f, err);
+    if (!rc && s->so->obj &&
+        (!(rc = cl_frame_path(s->so->outdir, s->frame_index, "obj", path,
+                              sizeof path, err))))
+        rc = cl_frame_write_obj(path, &f, err);
+    if (!rc) {
+        s->frame_index++;
+        res->frames++;
+    }
+    return rc;
+}
+
+static cl_status write_stats(const sim *s, const cl_stats *st, cl_error *err)
+{
+    char path[4096];
+    cl_afile af;
+    snprintf(path, sizeof path, "%s/stats.csv", s->so->outdir);
+    cl_status rc = cl_afile_open(&af, path, err);
+    if (rc)
+        return rc;
+    cl_stats_print(st, af.fp, false);
+    return cl_afile_commit(&af, err);
+}
+
+/* ---- the run ---------------------------------------------------------- */
+
+static double seconds(clockid_t id)
+{
+    struct timespec ts;
+    clock_gettime(id, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static cl_status sim_alloc(sim *s, cl_error *err)
+{
+    size_t n = s->sys->n, np = s->c->np;
+    s->x = malloc(n * sizeof *s->x);
+    s->v = calloc(n, sizeof *s->v);
+    s->xf = malloc(3 * np * sizeof *s->xf);
+    s->vf = calloc(3 * np, sizeof *s->vf);
+    s->pinned = calloc(np, 1);
+    if (!s->x || !s->v || !s->xf || !s->vf || !s->pinned)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (run)");
+    for (size_t p = 0; p < np; p++)
+        s->pinned[p] = s->c->dof[p] < 0;
+    cl_cloth_gather(s->c, s->c->X0, s->x);
+    return cl_pairs_type1(s->c, &s->type1, err);
+}
+
+static void sim_free(sim *s)
+{
+    cl_pairs_free(&s->type1);
+    free(s->x);
+    free(s->v);
+    free(s->xf);
+    free(s->vf);
+    free(s->pinned);
+    free(s->row);
+}
+
+/* Integrate over the schedule, sampling and writing frames. */
+static cl_status integrate(sim *s, const cl_integrator_type *type,
+                           void *state, const schedule *sch,
+                           cl_sim_result *res, cl_error *err)
+{
+    const cl_sim_opts *so = s->so;
+    long ks = 1, kf = 1;
+    long nf = so->frames;
+    cl_status rc = CL_OK;
+    while (rc == CL_OK && ks <= so->samples) {
+        long ts = tick_of(ks, so->samples, sch->nticks);
+        long tf = kf <= nf ? tick_of(kf, nf, sch->nticks) : ts + 1;
+        long tick = ts < tf ? ts : tf;
+        double t = tick == sch->nticks && !type->fixed_step
+                       ? so->t_end : (double)tick * sch->dt_tick;
+        double w0 = seconds(CLOCK_MONOTONIC);
+        double c0 = seconds(CLOCK_PROCESS_CPUTIME_ID);
+        rc = type->advance(state, t, s->x, s->v, err);
+        res->stats.wall += seconds(CLOCK_MONOTONIC) - w0;
+        res->stats.cpu += seconds(CLOCK_PROCESS_CPUTIME_ID) - c0;
+        if (!rc)
+            rc = sample(s, t, res, err);
+        if (!rc && tick == tf && kf <= nf)
+            rc = write_frame(s, t, res, err);
+        ks += tick == ts;
+        kf += tick == tf;
+        if (so->progress)
+            so->progress(so->progress_ctx, t / so->t_end);
+    }
+    return rc;
+}
+
+cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
+                      const cl_integrator_opts *iopts, const cl_sim_opts *so,
+                      cl_sim_result *res, cl_error *err)
+{
+    sim s = {.m = m, .c = cl_model_cloth(m), .sys = cl_model_system(m),
+             .so = so};
+    schedule sch;
+    void *state = NULL;
+    memset(res, 0, sizeof *res);
+    res->xfinal = malloc(3 * s.c->np * sizeof *res->xfinal);
+    cl_status rc = res->xfinal ? CL_OK
+                               : cl_error_set(err, CL_ENOMEM, "out of memory");
+    if (!rc && !(rc = make_schedule(type, iopts, so, &sch, err)) &&
+        !(rc = cl_mkdir_p(so->outdir, err)) && !(rc = sim_alloc(&s, err)) &&
+        !(rc = open_series(&s, err)) && !(rc = sample(&s, 0.0, res, err))) {
+        res->e0 = res->e1;
+        if (so->frames > 0)
+            rc = write_frame(&s, 0.0, res, err);
+        if (!rc)
+            rc = type->create(s.sys, iopts, 0.0, s.x, s.v, &state, err);
+        if (!rc)
+            rc = integrate(&s, type, state, &sch, res, err);
+    }
+    if (state) {
+        double wall = res->stats.wall, cpu = res->stats.cpu;
+        type->stats(state, &res->stats);
+        res->stats.wall = wall;
+        res->stats.cpu = cpu;
+        type->free(state);
+    }
+    /* What was computed is published even after a failure. */
+    cl_error later;
+    cl_status rc2 = cl_series_close(s.series, rc ? &later : err);
+    if (!rc)
+        rc = rc2;
+    if (!rc) {
+        char path[4096];
+        snprintf(path, sizeof path, "%s/final.csv", so->outdir);
+        rc = cl_state_write(path, s.c->np, s.xf, s.vf, err);
+    }
+    if (s.x && (rc == CL_OK || state))
+        rc2 = write_stats(&s, &res->stats, rc ? &later : err);
+    if (!rc)
+        rc = rc2;
+    sim_free(&s);
+    return rc;
+}

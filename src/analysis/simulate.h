@@ -1,0 +1,48 @@
+/* One simulation run: integrate a model with a chosen integrator to t_end,
+ * writing into an output directory
+ *   series.csv   t, kinetic, each potential term, potential, total,
+ *                power_diss, max_stretch, max_offplane (one row per sample,
+ *                flushed as it is written, so a failed run keeps its rows)
+ *   frame_NNNNN.vtk / .obj   cloth frames (ParaView / Blender)
+ *   final.csv    the final state (p,x,y,z,vx,vy,vz, all particles)
+ *   stats.csv    the integrator statistics (name,value)
+ * Fixed-step integrators are sampled on their own step grid; t_end must be a
+ * multiple of dt. */
+#ifndef CL_SIMULATE_H
+#define CL_SIMULATE_H
+
+#include <stdbool.h>
+
+#include "integrators/integrator.h"
+#include "model/model.h"
+
+typedef struct {
+    double t_end;
+    long samples;        /* time-series rows after t = 0 */
+    long frames;         /* frames after t = 0 (0: none) */
+    bool vtk, obj;       /* frame formats */
+    const char *outdir;
+    double max_stretch;  /* a larger max d/L counts as a blow-up */
+    void (*progress)(void *ctx, double fraction);
+    void *progress_ctx;
+} cl_sim_opts;
+
+typedef struct {
+    cl_stats stats;
+    double t_reached;    /* last time with a good state */
+    cl_energy e0, e1;    /* energies at t = 0 and at t_reached */
+    double max_stretch;  /* at t_reached */
+    double max_offplane; /* at t_reached */
+    long rows;           /* time-series rows written (incl. t = 0) */
+    long frames;         /* frames written */
+    double *xfinal;      /* full-particle positions at t_reached (3*np);
+                          * owned by the caller after the call: free() */
+} cl_sim_result;
+
+/* On failure (e.g. CL_EBLOWUP) the series and frames written so far are in
+ * place and `res` describes the last good sample. */
+cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
+                      const cl_integrator_opts *iopts, const cl_sim_opts *so,
+                      cl_sim_result *res, cl_error *err);
+
+#endif

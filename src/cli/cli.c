@@ -1,0 +1,92 @@
+/* Shared pieces of the clothode subcommands. */
+#include "cli/cli.h"
+
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+int cl_cli_fail(const cl_error *err)
+{
+    fprintf(stderr, "clothode: %s\n", err->msg[0] ? err->msg
+                                                  : cl_status_name(err->code));
+    return 1;
+}
+
+int cl_cli_usage_error(const char *cmd, const char *fmt, ...)
+{
+    va_list ap;
+    fprintf(stderr, "clothode %s: ", cmd);
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fprintf(stderr, "\n(see 'clothode %s --help')\n", cmd);
+    return 2;
+}
+
+const char *cl_cli_problem_path(const char *arg, char *buf, size_t len)
+{
+    struct stat st;
+    if (strchr(arg, '/') || strstr(arg, ".ini") || stat(arg, &st) == 0)
+        return arg;
+    const char *dir = getenv("CLOTHODE_PROBLEMS");
+    snprintf(buf, len, "%s/%s.ini", dir && *dir ? dir : "problems", arg);
+    return buf;
+}
+
+int cl_cli_sets_add(cl_cli_sets *s, const char *key, const char *val)
+{
+    size_t len = (key ? strlen(key) : 0) + strlen(val) + 2;
+    char *a = malloc(len);
+    char **grown = realloc(s->v, (size_t)(s->n + 1) * sizeof *grown);
+    if (grown)
+        s->v = grown;
+    if (!a || !grown) {
+        free(a);
+        return -1;
+    }
+    snprintf(a, len, "%s%s%s", key ? key : "", key ? "=" : "", val);
+    s->v[s->n++] = a;
+    return 0;
+}
+
+void cl_cli_sets_free(cl_cli_sets *s)
+{
+    for (int k = 0; k < s->n; k++)
+        free(s->v[k]);
+    free(s->v);
+    s->v = NULL;
+    s->n = 0;
+}
+
+cl_status cl_cli_load(cl_config *cfg, const char *problem,
+                      const cl_cli_sets *sets, cl_error *err)
+{
+    cl_status rc = cl_config_load(cfg, problem, err);
+    for (int k = 0; rc == CL_OK && k < sets->n; k++)
+        rc = cl_config_set(cfg, sets->v[k], err);
+    return rc;
+}
+
+void cl_cli_default_out(const char *problem, char *buf, size_t len)
+{
+    const char *base = strrchr(problem, '/');
+    base = base ? base + 1 : problem;
+    size_t n = strcspn(base, ".");
+    snprintf(buf, len, "out/%.*s", (int)n, base);
+}
+
+void cl_cli_progress(void *ctx, double fraction)
+{
+    (void)ctx;
+    if (!isatty(STDERR_FILENO))
+        return;
+    int width = 40, done = (int)(fraction * width + 0.5);
+    fprintf(stderr, "\r[%.*s%*s] %3.0f%%", done,
+            "########################################", width - done, "",
+            100.0 * fraction);
+    if (fraction >= 1.0)
+        fputc('\n', stderr);
+    fflush(stderr);
+}

@@ -1,0 +1,46 @@
+/* Shared pieces of the clothode subcommands. */
+#ifndef CL_CLI_H
+#define CL_CLI_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "io/config.h"
+
+typedef struct {
+    const char *name;
+    int (*main)(int argc, char **argv);
+    const char *summary;
+} cl_command;
+
+/* Print "clothode: message" to stderr and return the exit status 1; the
+ * form every subcommand uses to fail. */
+int cl_cli_fail(const cl_error *err);
+int cl_cli_usage_error(const char *cmd, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+
+/* A problem given as a path or as a bare name (NAME -> problems/NAME.ini,
+ * looked up under $CLOTHODE_PROBLEMS if set). */
+const char *cl_cli_problem_path(const char *arg, char *buf, size_t len);
+
+/* "section.key=value" assignments collected from the command line. */
+typedef struct {
+    char **v;
+    int n;
+} cl_cli_sets;
+
+/* Append "key=val", or val itself when key is NULL; -1 if out of memory. */
+int cl_cli_sets_add(cl_cli_sets *s, const char *key, const char *val);
+void cl_cli_sets_free(cl_cli_sets *s);
+
+/* Load a problem file and apply the assignments. */
+cl_status cl_cli_load(cl_config *cfg, const char *problem,
+                      const cl_cli_sets *sets, cl_error *err);
+
+/* Directory where a problem's outputs go by default: out/BASENAME. */
+void cl_cli_default_out(const char *problem, char *buf, size_t len);
+
+/* Progress bar on stderr (only when stderr is a terminal). */
+void cl_cli_progress(void *ctx, double fraction);
+
+#endif

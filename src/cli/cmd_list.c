@@ -1,0 +1,76 @@
+/* clothode list: problems, integrators and force terms. */
+#include <dirent.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli/cli.h"
+#include "cli/commands.h"
+#include "forces/term.h"
+#include "integrators/integrator.h"
+
+/* First comment line of a problem file: its one-line description. */
+static void describe(const char *dir, const char *file)
+{
+    char path[4096], line[512] = "";
+    snprintf(path, sizeof path, "%s/%s", dir, file);
+    FILE *fp = fopen(path, "r");
+    if (fp) {
+        while (fgets(line, sizeof line, fp) && line[0] != ';' &&
+               line[0] != '#')
+            line[0] = '\0';
+        fclose(fp);
+    }
+    char *text = line + strspn(line, ";# ");
+    text[strcspn(text, "\n")] = '\0';
+    printf("  %-20.*s %s\n", (int)(strlen(file) - 4), file, text);
+}
+
+static int by_name(const struct dirent **a, const struct dirent **b)
+{
+    return strcmp((*a)->d_name, (*b)->d_name);
+}
+
+static int is_ini(const struct dirent *d)
+{
+    size_t n = strlen(d->d_name);
+    return n > 4 && !strcmp(d->d_name + n - 4, ".ini");
+}
+
+static void list_problems(void)
+{
+    const char *dir = getenv("CLOTHODE_PROBLEMS");
+    struct dirent **names;
+    dir = dir && *dir ? dir : "problems";
+    int n = scandir(dir, &names, is_ini, by_name);
+    printf("problems (%s/):\n", dir);
+    if (n < 0) {
+        printf("  (cannot read %s)\n", dir);
+        return;
+    }
+    for (int k = 0; k < n; k++) {
+        describe(dir, names[k]->d_name);
+        free(names[k]);
+    }
+    free(names);
+}
+
+int cl_cmd_list(int argc, char **argv)
+{
+    if (argc > 1 && !strcmp(argv[1], "--help")) {
+        puts("usage: clothode list\nNames the problems (problems/*.ini or "
+             "$CLOTHODE_PROBLEMS), the integrators and the force terms.");
+        return 0;
+    }
+    if (argc > 1)
+        return cl_cli_usage_error("list", "takes no arguments");
+    list_problems();
+    printf("integrators:\n");
+    for (size_t k = 0; cl_integrator_registry[k]; k++)
+        printf("  %-20s %s\n", cl_integrator_registry[k]->name,
+               cl_integrator_registry[k]->doc);
+    printf("force terms:\n");
+    for (size_t k = 0; cl_term_registry[k]; k++)
+        printf("  %-20s %s\n", cl_term_registry[k]->name,
+               cl_term_registry[k]->doc);
+    return 0;
+}

@@ -1,0 +1,234 @@
+/* clothode run PROBLEM: integrate one problem and write its outputs. */
+#include <getopt.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analysis/simulate.h"
+#include "cli/cli.h"
+#include "cli/commands.h"
+
+static const char run_help[] =
+    "usage: clothode run PROBLEM [options]\n"
+    "Integrate PROBLEM (a .ini file, or a name under problems/) and write\n"
+    "series.csv, frames, final.csv and stats.csv into the output directory.\n"
+    "\n"
+    "  --integrator NAME  integrator (clothode list); [run] integrator\n"
+    "  --dt H             fixed step for fixed-step integrators (s)\n"
+    "  --rtol R --atol A  tolerances for adaptive integrators\n"
+    "  --t-end T          final time (s); [run] t_end\n"
+    "  --samples S        time-series rows after t = 0 (default 200)\n"
+    "  --frames K         frames after t = 0 (default 10, 0 for none)\n"
+    "  --format LIST      frame formats among csv,vtk,obj (default vtk,obj;\n"
+    "                     csv: the time series only)\n"
+    "  --out DIR          output directory (default out/PROBLEM)\n"
+    "  --set SEC.KEY=VAL  override any problem key (repeatable)\n"
+    "  --quiet            no summary on stdout\n"
+    "  --help             this text\n"
+    "Every option is also a key of the [run] section (t_end, dt, rtol, atol,\n"
+    "samples, frames, format, integrator, max_stretch).\n";
+
+typedef struct {
+    cl_cli_sets sets;
+    const char *out;
+    bool quiet;
+} run_args;
+
+/* Options -> [run] assignments; returns the index of PROBLEM or -1/-2. */
+static int parse_args(int argc, char **argv, run_args *a)
+{
+    static const struct option opts[] = {
+        {"integrator", required_argument, 0, 'i'},
+        {"dt", required_argument, 0, 'd'},
+        {"rtol", required_argument, 0, 'r'},
+        {"atol", required_argument, 0, 'a'},
+        {"t-end", required_argument, 0, 't'},
+        {"samples", required_argument, 0, 'S'},
+        {"frames", required_argument, 0, 'f'},
+        {"format", required_argument, 0, 'F'},
+        {"out", required_argument, 0, 'o'},
+        {"set", required_argument, 0, 's'},
+        {"quiet", no_argument, 0, 'q'},
+        {"help", no_argument, 0, 'h'},
+        {0, 0, 0, 0}};
+    static const char *const key[128] = {
+        ['i'] = "run.integrator", ['d'] = "run.dt", ['r'] = "run.rtol",
+        ['a'] = "run.atol", ['t'] = "run.t_end", ['S'] = "run.samples",
+        ['f'] = "run.frames", ['F'] = "run.format"};
+    int c, rc = 0;
+    optind = 1;
+    opterr = 0;
+    while (rc == 0 && (c = getopt_long(argc, argv, "", opts, NULL)) != -1) {
+        if (c == 'h') {
+            fputs(run_help, stdout);
+            return -2;
+        } else if (c == 'o') {
+            a->out = optarg;
+        } else if (c == 'q') {
+            a->quiet = true;
+        } else if (c == 's') {
+            rc = cl_cli_sets_add(&a->sets, NULL, optarg);
+        } else if (c > 0 && c < 128 && key[c]) {
+            rc = cl_cli_sets_add(&a->sets, key[c], optarg);
+        } else {
+            cl_cli_usage_error("run", "unknown or incomplete option '%s'",
+                               argv[optind - 1]);
+            return -1;
+        }
+    }
+    if (rc)
+        return -1;
+    if (optind != argc - 1) {
+        cl_cli_usage_error("run", "expected exactly one PROBLEM, got %d",
+                           argc - optind);
+        return -1;
+    }
+    return optind;
+}
+
+typedef struct {
+    const cl_integrator_type *type;
+    cl_integrator_opts io;
+    cl_sim_opts so;
+} run_setup;
+
+static cl_status read_formats(cl_config *cfg, cl_sim_opts *so, cl_error *err)
+{
+    const char *fmt = cl_config_string(cfg, "run", "format", "vtk,obj");
+    char where[256];
+    so->vtk = so->obj = false;
+    for (const char *p = fmt; *p;) {
+        size_t n = strcspn(p, ", ");
+        if (n == 3 && !strncmp(p, "vtk", 3))
+            so->vtk = true;
+        else if (n == 3 && !strncmp(p, "obj", 3))
+            so->obj = true;
+        else if (n && !(n == 3 && !strncmp(p, "csv", 3)))
+            return cl_error_set(err, CL_EINVAL,
+                                "%s: [run] format = \"%s\": expected a list "
+                                "of csv, vtk, obj",
+                                cl_config_origin(cfg, "run", "format", where,
+                                                 sizeof where), fmt);
+        p += n;
+        p += strspn(p, ", ");
+    }
+    return CL_OK;
+}
+
+static cl_status read_integrator(cl_config *cfg, run_setup *r, cl_error *err)
+{
+    const char *names[64];
+    int n = 0, k;
+    for (; cl_integrator_registry[n] && n < 63; n++)
+        names[n] = cl_integrator_registry[n]->name;
+    names[n] = NULL;
+    cl_status rc = cl_config_choice(cfg, "run", "integrator", names, 0, &k,
+                                    err);
+    if (rc)
+        return rc;
+    r->type = cl_integrator_registry[k];
+    if ((rc = cl_config_double(cfg, "run", "dt", 0.0, 0.0, INFINITY,
+                               &r->io.dt, err)) ||
+        (rc = cl_config_double(cfg, "run", "rtol", 1e-6, 1e-15, 1.0,
+                               &r->io.rtol, err)) ||
+        (rc = cl_config_double(cfg, "run", "atol", 1e-8, 1e-300, INFINITY,
+                               &r->io.atol, err)) ||
+        (rc = cl_config_long(cfg, "run", "max_steps", 0, 0, 1L << 40,
+                             &r->io.max_steps, err)))
+        return rc;
+    char where[256];
+    if (r->type->fixed_step && !(r->io.dt > 0))
+        return cl_error_set(err, CL_EINVAL,
+                            "%s: [run] dt = %g: integrator %s takes fixed "
+                            "steps and needs dt > 0 (--dt H)",
+                            cl_config_origin(cfg, "run", "dt", where,
+                                             sizeof where),
+                            r->io.dt, r->type->name);
+    return CL_OK;
+}
+
+static cl_status read_run(cl_config *cfg, run_setup *r, cl_error *err)
+{
+    cl_status rc;
+    if ((rc = read_integrator(cfg, r, err)) ||
+        (rc = cl_config_double(cfg, "run", "t_end", 2.0, 1e-300, INFINITY,
+                               &r->so.t_end, err)) ||
+        (rc = cl_config_long(cfg, "run", "samples", 200, 1, 100000000,
+                             &r->so.samples, err)) ||
+        (rc = cl_config_long(cfg, "run", "frames", 10, 0, 1000000,
+                             &r->so.frames, err)) ||
+        (rc = cl_config_double(cfg, "run", "max_stretch", 10.0, 1.0,
+                               INFINITY, &r->so.max_stretch, err)))
+        return rc;
+    return read_formats(cfg, &r->so, err);
+}
+
+static void print_summary(const char *problem, const run_setup *r,
+                          const cl_model *m, const cl_sim_result *res)
+{
+    const cl_cloth *c = cl_model_cloth(m);
+    printf("problem      %s (%d x %d particles, %zu free)\n", problem,
+           c->nu, c->nv, c->nfree);
+    printf("integrator   %s", r->type->name);
+    if (r->type->fixed_step)
+        printf(" (dt = %g)\n", r->io.dt);
+    else
+        printf(" (rtol = %g, atol = %g)\n", r->io.rtol, r->io.atol);
+    printf("time         %g of %g s\n", res->t_reached, r->so.t_end);
+    printf("energy       %.10g -> %.10g J (kinetic %.6g)\n", res->e0.total,
+           res->e1.total, res->e1.kinetic);
+    for (size_t k = 0; k < res->e1.nterm; k++)
+        printf("  %-10s %.10g J\n", res->e1.name[k], res->e1.value[k]);
+    printf("shape        max stretch d/L = %.6f, max out-of-plane %.6g m\n",
+           res->max_stretch, res->max_offplane);
+    cl_stats_print(&res->stats, stdout, true);
+    printf("output       %s (series.csv, %ld frames, final.csv, stats.csv)\n",
+           r->so.outdir, res->frames);
+}
+
+static int run_problem(const char *problem, run_args *a)
+{
+    cl_error err = {0};
+    cl_config *cfg = cl_config_alloc();
+    cl_model *m = NULL;
+    run_setup r = {0};
+    cl_sim_result res = {0};
+    char outbuf[4096];
+    cl_status rc = cfg ? CL_OK : cl_error_set(&err, CL_ENOMEM, "no memory");
+    if (!rc && !(rc = cl_cli_load(cfg, problem, &a->sets, &err)) &&
+        !(rc = read_run(cfg, &r, &err)) &&
+        !(rc = cl_model_create(cfg, &m, &err)) &&
+        !(rc = cl_config_check_unused(cfg, &err))) {
+        if (!a->out)
+            cl_cli_default_out(problem, outbuf, sizeof outbuf);
+        r.so.outdir = a->out ? a->out : outbuf;
+        r.so.progress = cl_cli_progress;
+        rc = cl_simulate(m, r.type, &r.io, &r.so, &res, &err);
+        if (!a->quiet && res.rows > 0)
+            print_summary(problem, &r, m, &res);
+        if (res.rows > 0) {
+            char path[4200];
+            cl_error ignored;
+            snprintf(path, sizeof path, "%s/config.ini", r.so.outdir);
+            cl_config_write(cfg, path, &ignored);
+        }
+    }
+    free(res.xfinal);
+    cl_model_free(m);
+    cl_config_free(cfg);
+    return rc ? cl_cli_fail(&err) : 0;
+}
+
+int cl_cmd_run(int argc, char **argv)
+{
+    run_args a = {0};
+    int at = parse_args(argc, argv, &a);
+    char buf[4096];
+    int status = at == -2 ? 0
+                 : at < 0 ? 2
+                          : run_problem(cl_cli_problem_path(argv[at], buf,
+                                                            sizeof buf),
+                                        &a);
+    cl_cli_sets_free(&a.sets);
+    return status;
+}

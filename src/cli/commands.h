@@ -1,0 +1,10 @@
+/* The clothode subcommands; each is `int main`-like. */
+#ifndef CL_COMMANDS_H
+#define CL_COMMANDS_H
+
+int cl_cmd_run(int argc, char **argv);
+int cl_cmd_eval(int argc, char **argv);
+int cl_cmd_counts(int argc, char **argv);
+int cl_cmd_list(int argc, char **argv);
+
+#endif

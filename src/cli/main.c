@@ -1,0 +1,37 @@
+/* clothode: particle cloth as a stiff ODE, integrators side by side.
+ * One program, subcommands (SPEC 7). */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli/cli.h"
+#include "cli/commands.h"
+
+static const cl_command commands[] = {
+    {"run", cl_cmd_run, "integrate a problem, write series, frames, stats"},
+    {"eval", cl_cmd_eval, "forces, energies and Jacobians at a given state"},
+    {"counts", cl_cmd_counts, "connection counts beside the seed's formulas"},
+    {"list", cl_cmd_list, "problems, integrators and force terms"},
+};
+
+static int usage(FILE *fp)
+{
+    fprintf(fp, "usage: clothode COMMAND [options]   (COMMAND --help for "
+                "more)\ncommands:\n");
+    for (size_t k = 0; k < sizeof commands / sizeof *commands; k++)
+        fprintf(fp, "  %-8s %s\n", commands[k].name, commands[k].summary);
+    return fp == stdout ? 0 : 2;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2)
+        return usage(stderr);
+    if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") ||
+        !strcmp(argv[1], "help"))
+        return usage(stdout);
+    for (size_t k = 0; k < sizeof commands / sizeof *commands; k++)
+        if (!strcmp(argv[1], commands[k].name))
+            return commands[k].main(argc - 1, argv + 1);
+    fprintf(stderr, "clothode: unknown command '%s'\n", argv[1]);
+    return usage(stderr);
+}

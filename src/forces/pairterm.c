@@ -1,0 +1,128 @@
+/* Central pair forces: loop over pairs, scalar law, blocks (SPEC 3.1). */
+#include "forces/pairterm.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+cl_status cl_pairterm_init(cl_pairterm *pt, cl_pairset set, cl_pairlaw_fn law,
+                           const void *params, bool clamp_transverse,
+                           cl_error *err)
+{
+    memset(pt, 0, sizeof *pt);
+    pt->set = set;
+    pt->law = law;
+    pt->params = params;
+    pt->clamp_transverse = clamp_transverse;
+    pt->couple = malloc((set.n + 1) * sizeof *pt->couple);
+    if (!pt->couple)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (pair couplings)");
+    for (size_t k = 0; k < set.n; k++) {
+        pt->couple[k][0] = set.pair[k].a;
+        pt->couple[k][1] = set.pair[k].b;
+    }
+    return CL_OK;
+}
+
+void cl_pairterm_free(cl_pairterm *pt)
+{
+    cl_pairs_free(&pt->set);
+    free(pt->couple);
+    free(pt->slot);
+    memset(pt, 0, sizeof *pt);
+}
+
+void cl_pair_block(const double u[3], double d, double s, double ds,
+                   bool clamp_transverse, double K[9])
+{
+    double t = (clamp_transverse && s < 0) ? 0.0 : s / d;
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++)
+            K[3 * r + c] = (ds - t) * u[r] * u[c] + (r == c ? t : 0.0);
+}
+
+cl_status cl_pair_slots(const cl_pairset *set, const cl_bpattern *pat,
+                        const int *dof, long **slot, cl_error *err)
+{
+    free(*slot);
+    *slot = malloc((4 * set->n + 1) * sizeof **slot);
+    if (!*slot)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (pair slots)");
+    for (size_t k = 0; k < set->n; k++) {
+        long a = dof[set->pair[k].a], b = dof[set->pair[k].b];
+        long *s = *slot + 4 * k;
+        s[0] = cl_bpattern_find(pat, a, a);
+        s[1] = cl_bpattern_find(pat, b, b);
+        s[2] = cl_bpattern_find(pat, a, b);
+        s[3] = cl_bpattern_find(pat, b, a);
+    }
+    return CL_OK;
+}
+
+void cl_block_add(double *vals, long slot, double sign, const double B[9])
+{
+    if (slot < 0)
+        return;
+    double *dst = vals + 9 * slot;
+    for (int i = 0; i < 9; i++)
+        dst[i] += sign * B[i];
+}
+
+size_t cl_pairterm_couplings(const void *state, const int (**pairs)[2])
+{
+    const cl_pairterm *pt = state;
+    *pairs = (const int (*)[2])pt->couple;
+    return pt->set.n;
+}
+
+cl_status cl_pairterm_bind(void *state, const cl_bpattern *pat,
+                           const int *dof, cl_error *err)
+{
+    cl_pairterm *pt = state;
+    return cl_pair_slots(&pt->set, pat, dof, &pt->slot, err);
+}
+
+/* Add the four blocks +-K of one pair into vals. */
+static void add_pair_blocks(double *vals, const long *s, const double K[9])
+{
+    cl_block_add(vals, s[0], -1.0, K);
+    cl_block_add(vals, s[1], -1.0, K);
+    cl_block_add(vals, s[2], 1.0, K);
+    cl_block_add(vals, s[3], 1.0, K);
+}
+
+void cl_pairterm_eval(void *state, cl_eval *ev)
+{
+    cl_pairterm *pt = state;
+    double energy = 0.0;
+    for (size_t k = 0; k < pt->set.n; k++) {
+        const cl_pair *pr = &pt->set.pair[k];
+        const double *xa = ev->x + 3 * pr->a, *xb = ev->x + 3 * pr->b;
+        double d = cl_dist(xa, xb);
+        cl_pairlaw law;
+        pt->law(pt->params, k, d, pr->rest, ev->want_energy, &law);
+        energy += law.e;
+        /* Coincident particles have no direction: no force, isotropic K. */
+        double u[3] = {0.0, 0.0, 0.0};
+        if (d > 0)
+            for (int i = 0; i < 3; i++)
+                u[i] = (xb[i] - xa[i]) / d;
+        if (ev->f)
+            for (int i = 0; i < 3; i++) {
+                ev->f[3 * pr->a + i] += law.s * u[i];
+                ev->f[3 * pr->b + i] -= law.s * u[i];
+            }
+        if (ev->dfdx) {
+            double K[9];
+            if (d > 0)
+                cl_pair_block(u, d, law.s, law.ds, pt->clamp_transverse, K);
+            else
+                for (int i = 0; i < 9; i++)
+                    K[i] = (i % 4 == 0) ? law.ds : 0.0;
+            add_pair_blocks(ev->dfdx, pt->slot + 4 * k, K);
+        }
+    }
+    if (ev->want_energy) {
+        ev->energy = energy;
+        ev->power = 0.0; /* conservative: its power is -dE/dt, not dissipated */
+    }
+}

@@ -1,0 +1,89 @@
+/* Choi-Ko Type1 interaction (seed 000, eqs. 1-3; SPEC 3.2): sequential
+ * pairs (i+-1, j), (i, j+-1), (i+-1, j+-1), tension only:
+ *     s(d) = ks (d - L)  for d >= L,   0 for d < L,
+ *     E(d) = ks (d - L)^2 / 2 for d >= L, 0 otherwise.
+ * The seed's eq. (1) reads ">= L" in both cases; the second means d < L.
+ * With compression = spring the law is ks (d - L) on both sides: a plain
+ * linear spring without the kink at d = L (for convergence and energy
+ * studies).
+ *
+ * INI section [type1]: enabled (true), ks (N/m, >= 0), compression
+ * (none|spring). */
+#include <stdlib.h>
+
+#include "forces/choiko.h"
+#include "forces/pairterm.h"
+
+typedef struct {
+    cl_pairterm pt; /* first member: the pairterm hooks use it */
+    double ks;
+    bool linear;    /* compression = spring */
+} type1_state;
+
+static void type1_law(const void *params, size_t k, double d, double L,
+                      bool want_energy, cl_pairlaw *out)
+{
+    (void)k;
+    const type1_state *st = params;
+    double stretch = d - L;
+    if (stretch >= 0 || st->linear) {
+        out->s = st->ks * stretch;
+        out->ds = st->ks;
+        out->e = want_energy ? 0.5 * st->ks * stretch * stretch : 0.0;
+    } else {
+        out->s = out->ds = out->e = 0.0;
+    }
+}
+
+static void type1_free(void *state)
+{
+    type1_state *st = state;
+    if (st)
+        cl_pairterm_free(&st->pt);
+    free(st);
+}
+
+static cl_status type1_create(cl_config *cfg, const cl_cloth *cloth,
+                              const cl_term_opts *opts, void **state,
+                              cl_error *err)
+{
+    static const char *const compression[] = {"none", "spring", NULL};
+    bool enabled;
+    double ks;
+    int ck;
+    cl_status rc;
+    *state = NULL;
+    if ((rc = cl_config_bool(cfg, "type1", "enabled", true, &enabled, err)) ||
+        (rc = cl_choiko_ks(cfg, &ks, err)) ||
+        (rc = cl_config_choice(cfg, "type1", "compression", compression, 0,
+                               &ck, err)))
+        return rc;
+    if (!enabled)
+        return CL_OK;
+    type1_state *st = calloc(1, sizeof *st);
+    if (!st)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (type1)");
+    st->ks = ks;
+    st->linear = ck == 1;
+    cl_pairset set;
+    if ((rc = cl_pairs_type1(cloth, &set, err)) ||
+        (rc = cl_pairterm_init(&st->pt, set, type1_law, st,
+                               opts->clamp_transverse, err))) {
+        type1_free(st);
+        return rc;
+    }
+    *state = st;
+    return CL_OK;
+}
+
+const cl_term_type cl_term_type1 = {
+    .name = "type1",
+    .doc = "Choi-Ko Type1: tension-only springs on sequential pairs "
+           "(axis and diagonal neighbours)",
+    .conservative = true,
+    .create = type1_create,
+    .couplings = cl_pairterm_couplings,
+    .bind = cl_pairterm_bind,
+    .eval = cl_pairterm_eval,
+    .free = type1_free,
+};

@@ -1,0 +1,348 @@
+/* Choi-Ko Type2 interaction: buckling of interlaced pairs (seed 000,
+ * eqs. 8-13; SPEC 3.2).  Pairs (i+-2, j), (i, j+-2), (i+-2, j+-2).
+ *
+ * Compression, d < L: the pair is taken to bend into a circular arc of
+ * length L and chord d, with curvature kappa = (2/L) asinc(d/L) (eq. 8).
+ * Writing t = kappa L / 2,
+ *     f_b(d) = kb kappa^2 / (cos t - sinc t) = (4 kb / L^2) t^2 / D(t)  (9)
+ * with D(t) = cos t - sinc t = (1 - sinc t) - 2 sin^2(t/2) (no cancellation).
+ * f_b -> -12 kb/L^2 as d -> L and -4 pi^2 kb/L^2 as d -> 0, and
+ * f_b <= -12 kb/L^2.  Imperfection (eq. 10): s(d) = max(f_b(d), cb (d - L)).
+ * s'(d) = (4 kb/L^2) G'(t) dt/dd, G = t^2/D, dt/dd = -1/(L d(1-sinc)/dt).
+ * Energy of the f_b branch: E_b = kb L kappa^2 / 2 = 2 kb t^2 / L
+ * (dE_b/dd = f_b); the full energy integral_L^d s(r) dr is summed over the
+ * branch segments, whose crossing points are found once per rest length.
+ *
+ * Tension, d >= L: type2.tension = spring gives ks (d - L) (ks of [type1]),
+ * none gives 0 (the seed author's code).
+ *
+ * Reproductions of the seed author's code (each measurable on its own):
+ *   asinc = seed-poly: t = p(d/L) with the fifth-order polynomial of seed
+ *     section 4.6, which fits the *normalised* inverse sinc, i.e. ~asinc/pi;
+ *   fb_sinc = normalised: D(t) = cos t - sin(pi t)/(pi t) (numpy's sinc).
+ * With either, f_b is no longer the gradient of E_b; the energy is then
+ * integrated numerically (GSL QAGS) from the force.
+ *
+ * INI section [type2]: enabled (true), kb (N m), cb (N/m), tension
+ * (spring|none), asinc (exact|seed-poly), fb_sinc (exact|normalised). */
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
+#include <gsl/gsl_roots.h>
+#include <math.h>
+#include <stdlib.h>
+
+#include "forces/asinc.h"
+#include "forces/choiko.h"
+#include "forces/pairterm.h"
+
+#define CROSS_SAMPLES 512
+#define MAX_CROSS 8
+#define QUAD_LIMIT 200
+
+typedef enum { TENSION_SPRING, TENSION_NONE } tension_kind;
+typedef enum { ASINC_EXACT, ASINC_SEED_POLY } asinc_kind;
+typedef enum { FBSINC_EXACT, FBSINC_NORMALISED } fbsinc_kind;
+
+typedef struct {
+    double L;
+    int ncross;
+    double cross[MAX_CROSS]; /* crossings of f_b and cb (d - L), ascending */
+} rest_length;
+
+typedef struct {
+    cl_pairterm pt; /* first member: the pairterm hooks use it */
+    double kb, cb, ks;
+    tension_kind tension;
+    asinc_kind asinc;
+    fbsinc_kind fbsinc;
+    double poly[6];
+    size_t nlen;
+    rest_length *len;      /* distinct rest lengths */
+    size_t *len_of;        /* pair -> index into len */
+    gsl_integration_workspace *quad;
+} type2_state;
+
+/* t = kappa L/2 at distance d < L, and dt/dd. */
+static double curvature_t(const type2_state *st, double d, double L,
+                          double *dt_dd)
+{
+    if (st->asinc == ASINC_SEED_POLY) {
+        double dp;
+        double t = cl_seed_poly_eval(st->poly, d / L, &dp);
+        *dt_dd = dp / L;
+        return t;
+    }
+    double t = cl_asinc_1m((L - d) / L);
+    *dt_dd = -1.0 / (L * cl_one_minus_sinc_deriv(t));
+    return t;
+}
+
+/* D(t) = cos t - S(t), S the chosen sinc, and D'(t). */
+static double denominator(const type2_state *st, double t, double *dD)
+{
+    double h = sin(0.5 * t);
+    if (st->fbsinc == FBSINC_NORMALISED) {
+        *dD = M_PI * cl_one_minus_sinc_deriv(M_PI * t) - sin(t);
+        return cl_one_minus_sinc(M_PI * t) - 2.0 * h * h;
+    }
+    *dD = cl_one_minus_sinc_deriv(t) - sin(t);
+    return cl_one_minus_sinc(t) - 2.0 * h * h;
+}
+
+/* f_b(d) and df_b/dd (eq. 9 and its derivative). */
+static double buckling_force(const type2_state *st, double d, double L,
+                             double *dfb)
+{
+    double dt_dd, t = curvature_t(st, d, L, &dt_dd);
+    double c = 4.0 * st->kb / (L * L);
+    if (fabs(t) < 1e-8) {
+        /* G(t) = t^2/D(t) is even with G(0) = 1/(D''(0)/2). */
+        double d2 = st->fbsinc == FBSINC_NORMALISED
+                        ? M_PI * M_PI / 6.0 - 0.5 : -1.0 / 3.0;
+        *dfb = 0.0;
+        return c / d2;
+    }
+    double dD, D = denominator(st, t, &dD);
+    double G = t * t / D, dG = (2.0 * t * D - t * t * dD) / (D * D);
+    *dfb = c * dG * dt_dd;
+    return c * G;
+}
+
+/* The compressive law s = max(f_b, cb (d - L)) and s' (eq. 10). */
+static void compression_law(const type2_state *st, double d, double L,
+                            double *s, double *ds)
+{
+    double lin = st->cb * (d - L);
+    /* Exact f_b never exceeds -12 kb/L^2: skip asinc where cb wins. */
+    if (st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT &&
+        lin >= -12.0 * st->kb / (L * L)) {
+        *s = lin;
+        *ds = st->cb;
+        return;
+    }
+    double dfb, fb = buckling_force(st, d, L, &dfb);
+    if (lin >= fb) {
+        *s = lin;
+        *ds = st->cb;
+    } else {
+        *s = fb;
+        *ds = dfb;
+    }
+}
+
+static double fb_only(double d, void *params)
+{
+    const type2_state *st = ((void **)params)[0];
+    double L = *(const double *)((void **)params)[1], dfb;
+    return buckling_force(st, d, L, &dfb);
+}
+
+static double cross_fn(double d, void *params)
+{
+    const type2_state *st = ((void **)params)[0];
+    double L = *(const double *)((void **)params)[1];
+    return st->cb * (d - L) - fb_only(d, params);
+}
+
+/* Integral of f_b over [a, b]: closed form for the exact model, else QAGS. */
+static double fb_integral(type2_state *st, double a, double b, double L)
+{
+    if (st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT) {
+        double dt, ta = curvature_t(st, a, L, &dt);
+        double tb = curvature_t(st, b, L, &dt);
+        return 2.0 * st->kb * (tb * tb - ta * ta) / L;
+    }
+    void *par[2] = {st, &L};
+    gsl_function F = {fb_only, par};
+    double val, abserr;
+    gsl_integration_qags(&F, a, b, 0.0, 1e-12, QUAD_LIMIT, st->quad, &val,
+                         &abserr);
+    return val;
+}
+
+/* integral_L^d s(r) dr for d < L, segment by segment between crossings. */
+static double compression_energy(type2_state *st, const rest_length *rl,
+                                 double d)
+{
+    double L = rl->L, e = 0.0, hi = L;
+    for (int k = rl->ncross - 1; k >= -1; k--) {
+        double lo = k >= 0 ? rl->cross[k] * L : d;
+        if (lo < d)
+            lo = d;
+        if (lo >= hi)
+            continue;
+        double s, ds, mid = 0.5 * (lo + hi);
+        compression_law(st, mid, L, &s, &ds);
+        if (s == st->cb * (mid - L))
+            e -= 0.5 * st->cb * ((hi - L) * (hi - L) - (lo - L) * (lo - L));
+        else
+            e -= fb_integral(st, lo, hi, L);
+        hi = lo;
+        if (lo <= d)
+            break;
+    }
+    return e;
+}
+
+static void type2_law(const void *params, size_t k, double d, double L,
+                      bool want_energy, cl_pairlaw *out)
+{
+    type2_state *st = (type2_state *)params;
+    out->e = 0.0;
+    if (d >= L) { /* the rest state d == L takes this branch */
+        double ks = st->tension == TENSION_SPRING ? st->ks : 0.0;
+        out->s = ks * (d - L);
+        out->ds = ks;
+        if (want_energy)
+            out->e = 0.5 * ks * (d - L) * (d - L);
+        return;
+    }
+    compression_law(st, d, L, &out->s, &out->ds);
+    if (want_energy)
+        out->e = compression_energy(st, &st->len[st->len_of[k]], d);
+}
+
+/* Sign changes of cb (d - L) - f_b(d) on [0, L], refined by Brent. */
+static cl_status find_crossings(type2_state *st, rest_length *rl,
+                                cl_error *err)
+{
+    void *par[2] = {st, &rl->L};
+    gsl_function F = {cross_fn, par};
+    gsl_root_fsolver *rs = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    if (!rs)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (root solver)");
+    rl->ncross = 0;
+    double L = rl->L, a = 0.0, fa = cross_fn(0.0, par);
+    for (int i = 1; i <= CROSS_SAMPLES; i++) {
+        double b = L * i / CROSS_SAMPLES, fbv = cross_fn(b, par);
+        if ((fa < 0) != (fbv < 0) && rl->ncross < MAX_CROSS) {
+            gsl_root_fsolver_set(rs, &F, a, b);
+            double lo = a, hi = b;
+            for (int it = 0; it < 200 && hi - lo > 1e-15 * L; it++) {
+                gsl_root_fsolver_iterate(rs);
+                lo = gsl_root_fsolver_x_lower(rs);
+                hi = gsl_root_fsolver_x_upper(rs);
+            }
+            rl->cross[rl->ncross++] = gsl_root_fsolver_root(rs) / L;
+        }
+        a = b;
+        fa = fbv;
+    }
+    gsl_root_fsolver_free(rs);
+    return CL_OK;
+}
+
+/* Distinct rest lengths (to 1e-12 relative) and their crossings. */
+static cl_status build_lengths(type2_state *st, cl_error *err)
+{
+    const cl_pairset *set = &st->pt.set;
+    st->len = malloc((set->n + 1) * sizeof *st->len);
+    st->len_of = malloc((set->n + 1) * sizeof *st->len_of);
+    if (!st->len || !st->len_of)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (type2)");
+    for (size_t k = 0; k < set->n; k++) {
+        double L = set->pair[k].rest;
+        size_t j = 0;
+        while (j < st->nlen && fabs(st->len[j].L - L) > 1e-12 * L)
+            j++;
+        if (j == st->nlen) {
+            st->len[j].L = L;
+            cl_status rc = find_crossings(st, &st->len[j], err);
+            if (rc)
+                return rc;
+            st->nlen++;
+        }
+        st->len_of[k] = j;
+    }
+    return CL_OK;
+}
+
+static void type2_free(void *state)
+{
+    type2_state *st = state;
+    if (!st)
+        return;
+    cl_pairterm_free(&st->pt);
+    free(st->len);
+    free(st->len_of);
+    if (st->quad)
+        gsl_integration_workspace_free(st->quad);
+    free(st);
+}
+
+static cl_status read_params(cl_config *cfg, type2_state *st, cl_error *err)
+{
+    static const char *const tension[] = {"spring", "none", NULL};
+    static const char *const asinc[] = {"exact", "seed-poly", NULL};
+    static const char *const fbsinc[] = {"exact", "normalised", NULL};
+    int tk, ak, fk;
+    cl_status rc;
+    if ((rc = cl_choiko_ks(cfg, &st->ks, err)) ||
+        (rc = cl_config_double(cfg, "type2", "kb", 5e-6, 0.0, INFINITY,
+                               &st->kb, err)) ||
+        (rc = cl_config_double(cfg, "type2", "cb", st->ks, 0.0, INFINITY,
+                               &st->cb, err)) ||
+        (rc = cl_config_choice(cfg, "type2", "tension", tension, 0, &tk,
+                               err)) ||
+        (rc = cl_config_choice(cfg, "type2", "asinc", asinc, 0, &ak, err)) ||
+        (rc = cl_config_choice(cfg, "type2", "fb_sinc", fbsinc, 0, &fk,
+                               err)))
+        return rc;
+    st->tension = (tension_kind)tk;
+    st->asinc = (asinc_kind)ak;
+    st->fbsinc = (fbsinc_kind)fk;
+    return CL_OK;
+}
+
+static cl_status type2_setup(type2_state *st, const cl_cloth *cloth,
+                             const cl_term_opts *opts, cl_error *err)
+{
+    cl_status rc;
+    cl_pairset set;
+    if (st->asinc == ASINC_SEED_POLY &&
+        (rc = cl_seed_poly_coeffs(st->poly, err)))
+        return rc;
+    st->quad = gsl_integration_workspace_alloc(QUAD_LIMIT);
+    if (!st->quad)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (quadrature)");
+    if ((rc = cl_pairs_type2(cloth, &set, err)) ||
+        (rc = cl_pairterm_init(&st->pt, set, type2_law, st,
+                               opts->clamp_transverse, err)))
+        return rc;
+    return build_lengths(st, err);
+}
+
+static cl_status type2_create(cl_config *cfg, const cl_cloth *cloth,
+                              const cl_term_opts *opts, void **state,
+                              cl_error *err)
+{
+    bool enabled;
+    cl_status rc;
+    *state = NULL;
+    if ((rc = cl_choiko_type2_enabled(cfg, &enabled, err)))
+        return rc;
+    type2_state *st = calloc(1, sizeof *st);
+    if (!st)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (type2)");
+    /* Parameters are read even when disabled, so that they are validated
+     * and not reported as unknown keys. */
+    if ((rc = read_params(cfg, st, err)) || !enabled ||
+        (rc = type2_setup(st, cloth, opts, err))) {
+        type2_free(st);
+        return rc;
+    }
+    *state = st;
+    return CL_OK;
+}
+
+const cl_term_type cl_term_type2 = {
+    .name = "type2",
+    .doc = "Choi-Ko Type2: buckling f_b = kb kappa^2/(cos - sinc) with "
+           "imperfection max(f_b, cb (d-L)) on interlaced pairs",
+    .conservative = true,
+    .create = type2_create,
+    .couplings = cl_pairterm_couplings,
+    .bind = cl_pairterm_bind,
+    .eval = cl_pairterm_eval,
+    .free = type2_free,
+};

@@ -1,0 +1,105 @@
+/* Integrator registry lookup, fixed-step bookkeeping and statistics output
+ * (SPEC 5).
+ *
+ * Fixed-step methods count steps, never accumulate time: the time after step
+ * k is t0 + k dt, and an output time must be a whole number of steps from t0
+ * (to 1e-9 relative), so a run to T in steps of dt takes exactly T/dt steps
+ * whatever the number of output times in between. */
+#include "integrators/integrator.h"
+
+#include <limits.h>
+#include <math.h>
+#include <string.h>
+
+const cl_integrator_type *cl_integrator_find(const char *name)
+{
+    if (!name)
+        return NULL;
+    for (size_t i = 0; cl_integrator_registry[i]; i++) {
+        if (strcmp(cl_integrator_registry[i]->name, name) == 0)
+            return cl_integrator_registry[i];
+    }
+    return NULL;
+}
+
+cl_status cl_fixed_steps_to(double t_out, double dt, long done, long *nsteps,
+                            cl_error *err)
+{
+    if (!isfinite(dt) || !(dt > 0.0))
+        return cl_error_set(err, CL_EINVAL,
+                            "fixed step dt = %g: must be finite and > 0", dt);
+    if (!isfinite(t_out))
+        return cl_error_set(err, CL_EINVAL, "output time %g is not finite",
+                            t_out);
+    double q = t_out / dt;
+    if (!(fabs(q) < (double)(LONG_MAX / 2)))
+        return cl_error_set(err, CL_EINVAL,
+                            "output time %g is %g steps of dt = %g: too many",
+                            t_out, q, dt);
+    double k = nearbyint(q);
+    if (fabs(q - k) > 1e-9 * fmax(1.0, fabs(q)))
+        return cl_error_set(err, CL_EINVAL,
+                            "output time %.17g is not a multiple of the fixed "
+                            "step dt = %.17g (%.12g steps)", t_out, dt, q);
+    if ((long)k < done)
+        return cl_error_set(err, CL_EINVAL,
+                            "output time %.17g (step %ld) lies behind the "
+                            "current step %ld (dt = %g)", t_out, (long)k,
+                            done, dt);
+    *nsteps = (long)k - done;
+    return CL_OK;
+}
+
+typedef struct {
+    const char *csv;   /* CSV name */
+    const char *human; /* label in the human block */
+} cl_stat_name;
+
+static const cl_stat_name cl_counter_names[] = {
+    {"steps", "steps"},
+    {"rhs_evals", "RHS evaluations"},
+    {"jac_evals", "Jacobian evaluations"},
+    {"lin_setups", "linear setups"},
+    {"lin_solves", "linear solves"},
+    {"lin_iters", "linear (Krylov) iterations"},
+    {"nonlin_iters", "nonlinear iterations"},
+    {"nonlin_fails", "nonlinear conv. failures"},
+    {"err_fails", "error test failures"},
+    {"symbolic_facts", "symbolic factorisations"},
+};
+
+static void stats_counters(const cl_stats *s, long out[10])
+{
+    out[0] = s->steps;
+    out[1] = s->rhs_evals;
+    out[2] = s->jac_evals;
+    out[3] = s->lin_setups;
+    out[4] = s->lin_solves;
+    out[5] = s->lin_iters;
+    out[6] = s->nonlin_iters;
+    out[7] = s->nonlin_fails;
+    out[8] = s->err_fails;
+    out[9] = s->symbolic_facts;
+}
+
+/* human: one aligned block "label  value"; otherwise one "name,value" row
+ * per counter (no header row), then wall and cpu in seconds. */
+void cl_stats_print(const cl_stats *s, FILE *fp, bool human)
+{
+    enum { NC = sizeof cl_counter_names / sizeof cl_counter_names[0] };
+    long c[NC];
+    stats_counters(s, c);
+    for (size_t i = 0; i < NC; i++) {
+        if (human)
+            fprintf(fp, "  %-28s %14ld\n", cl_counter_names[i].human, c[i]);
+        else
+            fprintf(fp, "%s,%ld\n", cl_counter_names[i].csv, c[i]);
+    }
+    if (human) {
+        fprintf(fp, "  %-28s %14.6f\n", "wall time [s]", s->wall);
+        fprintf(fp, "  %-28s %14.6f\n", "cpu time [s]", s->cpu);
+    } else {
+        fprintf(fp, "wall,%.9g\n", s->wall);
+        fprintf(fp, "cpu,%.9g\n", s->cpu);
+    }
+}

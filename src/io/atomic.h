@@ -1,0 +1,45 @@
+/* Atomic output files and output directories.
+ *
+ * Every output file is first written to a temporary file "PATH.tmp.XXXXXX"
+ * in the same directory and only renamed onto PATH once it is complete and
+ * synced to disk, so a reader never sees a half-written PATH and a crash
+ * leaves the previous PATH (if any) intact.
+ *
+ *   cl_afile af;
+ *   if (cl_afile_open(&af, path, err)) return err->code;
+ *   if (fprintf(af.fp, ...) < 0) { cl_afile_abort(&af); return ...; }
+ *   return cl_afile_commit(&af, err);
+ *
+ * After commit (successful or not) or abort the cl_afile is reset, so a
+ * second abort is a harmless no-op. */
+#ifndef CL_ATOMIC_H
+#define CL_ATOMIC_H
+
+#include <stdio.h>
+
+#include "core/error.h"
+
+typedef struct {
+    FILE *fp;       /* write here; NULL when nothing is open */
+    char *path;     /* final name */
+    char *tmp;      /* temporary name */
+} cl_afile;
+
+/* Create the temporary file (mode 0666 minus umask) and open af->fp on it.
+ * CL_EIO with the path and the system's reason if it cannot be created. */
+cl_status cl_afile_open(cl_afile *af, const char *path, cl_error *err);
+
+/* Check for earlier write errors, then fflush, fsync, fclose and rename the
+ * temporary file onto the final path.  On any failure the temporary file is
+ * removed and CL_EIO names the path and the reason. */
+cl_status cl_afile_commit(cl_afile *af, cl_error *err);
+
+/* Close and remove the temporary file; the final path is not touched. */
+void cl_afile_abort(cl_afile *af);
+
+/* Create directory `dir` and any missing parents (mode 0777 minus umask).
+ * An existing directory is fine; CL_EIO if a component exists as something
+ * other than a directory or cannot be created; CL_EINVAL for "". */
+cl_status cl_mkdir_p(const char *dir, cl_error *err);
+
+#endif

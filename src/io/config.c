@@ -1,0 +1,822 @@
+/* Problem configuration: INI files read with inih, `--set` overrides, strict
+ * typed getters, detection of unused keys and atomic write-back.
+ *
+ * Storage is a flat array of entries (section, key, value, origin) in order
+ * of first appearance; a later occurrence of the same section and key
+ * replaces the value and the origin but keeps the position.  Configurations
+ * are small, so lookups are linear.
+ *
+ * Line numbers: Debian's inih is built without INI_HANDLER_LINENO, so the
+ * file is fed through our own reader, which counts lines; the handler then
+ * knows the line of every entry.  A line that does not fit inih's line buffer
+ * stops the parse and is reported instead of being split silently.
+ *
+ * inih treats an indented line after a key as a continuation of that key's
+ * value (python-configparser style) and calls the handler again with the
+ * same name.  Such a value would silently replace the earlier one, so
+ * continuation lines are rejected with a message saying why.
+ *
+ * Every getter records the (section, key) it asked for, present or not;
+ * cl_config_check_unused() uses those names both to decide what is unused
+ * and to list the known keys/sections in its message. */
+#include "io/config.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <unistd.h>
+
+#include <ini.h>
+
+typedef struct {
+    char *sec, *key, *value;
+    const char *file; /* interned in cl_config.files; NULL for --set */
+    long line;        /* 1-based; 0 for --set */
+    bool used;
+} cl_entry;
+
+typedef struct {
+    char *sec, *key;
+} cl_name;
+
+struct cl_config {
+    cl_entry *ent;
+    size_t nent, cap_ent;
+    cl_name *asked; /* names some getter asked for, in first-ask order */
+    size_t nasked, cap_asked;
+    char **files;   /* every path given to cl_config_load */
+    size_t nfiles, cap_files;
+};
+
+/* Room for an origin: never truncates more than the message holding it. */
+typedef char cl_origin_buf[sizeof ((cl_error *)0)->msg];
+
+/* ---------------------------------------------------------------- storage */
+
+static bool cl_grow(void **arr, size_t *cap, size_t need, size_t elem)
+{
+    if (need <= *cap)
+        return true;
+    size_t ncap = *cap ? *cap : 8;
+    while (ncap < need) {
+        if (ncap > SIZE_MAX / 2 / elem)
+            return false;
+        ncap *= 2;
+    }
+    void *p = realloc(*arr, ncap * elem);
+    if (!p)
+        return false;
+    *arr = p;
+    *cap = ncap;
+    return true;
+}
+
+cl_config *cl_config_alloc(void)
+{
+    return calloc(1, sizeof(cl_config));
+}
+
+void cl_config_free(cl_config *cfg)
+{
+    if (!cfg)
+        return;
+    for (size_t i = 0; i < cfg->nent; i++) {
+        free(cfg->ent[i].sec);
+        free(cfg->ent[i].key);
+        free(cfg->ent[i].value);
+    }
+    for (size_t i = 0; i < cfg->nasked; i++) {
+        free(cfg->asked[i].sec);
+        free(cfg->asked[i].key);
+    }
+    for (size_t i = 0; i < cfg->nfiles; i++)
+        free(cfg->files[i]);
+    free(cfg->ent);
+    free(cfg->asked);
+    free(cfg->files);
+    free(cfg);
+}
+
+static cl_entry *cl_find(const cl_config *cfg, const char *sec,
+                         const char *key)
+{
+    for (size_t i = 0; i < cfg->nent; i++)
+        if (!strcmp(cfg->ent[i].sec, sec) && !strcmp(cfg->ent[i].key, key))
+            return &cfg->ent[i];
+    return NULL;
+}
+
+static bool cl_was_asked(const cl_config *cfg, const char *sec,
+                         const char *key)
+{
+    for (size_t i = 0; i < cfg->nasked; i++)
+        if (!strcmp(cfg->asked[i].sec, sec) &&
+            (!key || !strcmp(cfg->asked[i].key, key)))
+            return true;
+    return false;
+}
+
+/* Set (sec, key) = value, replacing an earlier value and its origin. */
+static cl_status cl_put(cl_config *cfg, const char *sec, const char *key,
+                        const char *value, const char *file, long line)
+{
+    char *v = strdup(value);
+    if (!v)
+        return CL_ENOMEM;
+    cl_entry *e = cl_find(cfg, sec, key);
+    if (!e) {
+        char *s = strdup(sec), *k = strdup(key);
+        if (!s || !k ||
+            !cl_grow((void **)&cfg->ent, &cfg->cap_ent, cfg->nent + 1,
+                     sizeof *cfg->ent)) {
+            free(s);
+            free(k);
+            free(v);
+            return CL_ENOMEM;
+        }
+        e = &cfg->ent[cfg->nent++];
+        *e = (cl_entry){.sec = s, .key = k};
+    }
+    free(e->value);
+    e->value = v;
+    e->file = file;
+    e->line = line;
+    return CL_OK;
+}
+
+/* Remember that a getter asked for (sec, key).  Only the messages of
+ * cl_config_check_unused depend on this list, so running out of memory here
+ * is not an error: the entry itself is still marked used. */
+static void cl_note_asked(cl_config *cfg, const char *sec, const char *key)
+{
+    if (cl_was_asked(cfg, sec, key))
+        return;
+    char *s = strdup(sec), *k = strdup(key);
+    if (!s || !k ||
+        !cl_grow((void **)&cfg->asked, &cfg->cap_asked, cfg->nasked + 1,
+                 sizeof *cfg->asked)) {
+        free(s);
+        free(k);
+        return;
+    }
+    cfg->asked[cfg->nasked++] = (cl_name){.sec = s, .key = k};
+}
+
+static cl_entry *cl_lookup(cl_config *cfg, const char *sec, const char *key)
+{
+    cl_note_asked(cfg, sec, key);
+    cl_entry *e = cl_find(cfg, sec, key);
+    if (e)
+        e->used = true;
+    return e;
+}
+
+static void cl_origin_of(const cl_entry *e, char *buf, size_t len)
+{
+    if (e->file)
+        snprintf(buf, len, "%s:%ld", e->file, e->line);
+    else
+        snprintf(buf, len, "--set");
+}
+
+const char *cl_config_path(const cl_config *cfg)
+{
+    return cfg->nfiles ? cfg->files[0] : NULL;
+}
+
+const char *cl_config_origin(const cl_config *cfg, const char *sec,
+                             const char *key, char *buf, size_t len)
+{
+    if (!buf || !len)
+        return NULL;
+    const cl_entry *e = cl_find(cfg, sec, key);
+    if (e)
+        cl_origin_of(e, buf, len);
+    else
+        snprintf(buf, len, "(default)");
+    return buf;
+}
+
+/* ---------------------------------------------------------------- loading */
+
+/* Copy of s[0..n) without leading and trailing white space. */
+static char *cl_dup_trim(const char *s, size_t n)
+{
+    while (n && isspace((unsigned char)*s)) {
+        s++;
+        n--;
+    }
+    while (n && isspace((unsigned char)s[n - 1]))
+        n--;
+    return strndup(s, n);
+}
+
+typedef struct {
+    FILE *fp;
+    cl_config *cfg;
+    const char *file;
+    long line;       /* line of the chunk inih is parsing */
+    const char *buf; /* inih's line buffer, as last handed to the reader */
+    size_t lead;     /* leading white space of that line */
+    long long_line;  /* line too long for inih's buffer, or 0 */
+    int read_errno;  /* errno of a read error, or 0 */
+    cl_error herr;   /* first error raised in the handler ... */
+    long herr_line;  /* ... and its line, or 0 */
+} cl_reader;
+
+/* A full buffer without '\n' is a complete line only if the line ends
+ * right there; the '\n' is consumed so the next call starts a new line. */
+static bool cl_line_fits(FILE *fp)
+{
+    int c = getc(fp);
+    if (c == '\n' || c == EOF)
+        return true;
+    ungetc(c, fp);
+    return false;
+}
+
+/* fgets-style reader for ini_parse_stream: one call per line. */
+static char *cl_ini_read(char *str, int num, void *stream)
+{
+    cl_reader *r = stream;
+    if (r->long_line || !fgets(str, num, r->fp)) {
+        if (ferror(r->fp) && !r->read_errno)
+            r->read_errno = errno ? errno : EIO;
+        return NULL;
+    }
+    r->line++;
+    size_t len = strlen(str);
+    if (num > 1 && len == (size_t)num - 1 && str[len - 1] != '\n' &&
+        !cl_line_fits(r->fp)) {
+        r->long_line = r->line; /* stop before inih parses half a line */
+        return NULL;
+    }
+    r->buf = str;
+    r->lead = 0;
+    while (str[r->lead] && isspace((unsigned char)str[r->lead]))
+        r->lead++;
+    return str;
+}
+
+static int cl_handler_error(cl_reader *r, cl_status code, const char *sec,
+                            const char *name)
+{
+    if (r->herr_line)
+        return 0;
+    r->herr_line = r->line;
+    if (code == CL_ENOMEM)
+        cl_error_set(&r->herr, CL_ENOMEM, "%s:%ld: out of memory", r->file,
+                     r->line);
+    else
+        cl_error_set(&r->herr, code,
+                     "%s:%ld: indented line continues the value of [%s] %s;"
+                     " multi-line values are not supported (remove the"
+                     " indentation)",
+                     r->file, r->line, sec, name);
+    return 0;
+}
+
+static int cl_ini_entry(void *user, const char *sec, const char *name,
+                        const char *value)
+{
+    cl_reader *r = user;
+    /* inih passes a continuation's text starting at the first non-blank
+     * character of the indented line; an ordinary value starts after '='. */
+    if (r->lead > 0 && value == r->buf + r->lead)
+        return cl_handler_error(r, CL_EPARSE, sec, name);
+    /* inih trims keys and values but not "[ section ]" */
+    char *s = cl_dup_trim(sec, strlen(sec));
+    cl_status rc =
+        s ? cl_put(r->cfg, s, name, value, r->file, r->line) : CL_ENOMEM;
+    free(s);
+    if (rc != CL_OK)
+        return cl_handler_error(r, CL_ENOMEM, sec, name);
+    return 1;
+}
+
+static const char *cl_intern_file(cl_config *cfg, const char *path)
+{
+    char *p = strdup(path);
+    if (!p || !cl_grow((void **)&cfg->files, &cfg->cap_files,
+                       cfg->nfiles + 1, sizeof *cfg->files)) {
+        free(p);
+        return NULL;
+    }
+    cfg->files[cfg->nfiles++] = p;
+    return p;
+}
+
+/* Pick the first problem found while parsing (by line). */
+static cl_status cl_parse_result(const cl_reader *r, int rc, cl_error *err)
+{
+    if (rc == -2 || (r->herr_line && r->herr.code == CL_ENOMEM))
+        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", r->file);
+    if (rc > 0 && (!r->herr_line || rc < r->herr_line))
+        return cl_error_set(err, CL_EPARSE,
+                            "%s:%d: malformed line (expected [section],"
+                            " key = value or a ; comment)",
+                            r->file, rc);
+    if (r->herr_line) {
+        if (err)
+            *err = r->herr;
+        return r->herr.code;
+    }
+    if (r->long_line)
+        return cl_error_set(err, CL_EPARSE,
+                            "%s:%ld: line too long for the INI parser",
+                            r->file, r->long_line);
+    if (r->read_errno)
+        return cl_error_set(err, CL_EIO, "cannot read %s: %s", r->file,
+                            strerror(r->read_errno));
+    return CL_OK;
+}
+
+cl_status cl_config_load(cl_config *cfg, const char *path, cl_error *err)
+{
+    FILE *fp = fopen(path, "r");
+    if (!fp)
+        return cl_error_set(err, CL_EIO, "cannot open %s: %s", path,
+                            strerror(errno));
+    cl_reader r = {.fp = fp, .cfg = cfg, .file = cl_intern_file(cfg, path)};
+    if (!r.file) {
+        fclose(fp);
+        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", path);
+    }
+    int rc = ini_parse_stream(cl_ini_read, &r, cl_ini_entry, &r);
+    fclose(fp);
+    return cl_parse_result(&r, rc, err);
+}
+
+/* ------------------------------------------------------------------ --set */
+
+/* Names and values must survive cl_config_write and a reload unchanged. */
+static const char *cl_set_problem(const char *sec, const char *key,
+                                  const char *value)
+{
+    if (!*sec)
+        return "empty section name";
+    if (!*key)
+        return "empty key name";
+    if (strpbrk(sec, "];\n\r"))
+        return "section name may not contain ']' or ';'";
+    if (strpbrk(key, ":;\n\r") || strchr("[#", key[0]))
+        return "key name may not contain ':' or ';' nor start with"
+               " '[' or '#'";
+    if (strpbrk(value, "\n\r"))
+        return "value may not contain a line break";
+    for (const char *p = strchr(value, ';'); p; p = strchr(p + 1, ';'))
+        if (p > value && isspace((unsigned char)p[-1]))
+            return "value may not contain ' ;', which starts a comment";
+    return NULL;
+}
+
+static cl_status cl_set_split(cl_config *cfg, const char *a, const char *dot,
+                              const char *eq, cl_error *err)
+{
+    char *sec = cl_dup_trim(a, (size_t)(dot - a));
+    char *key = cl_dup_trim(dot + 1, (size_t)(eq - dot - 1));
+    char *value = cl_dup_trim(eq + 1, strlen(eq + 1));
+    cl_status rc = CL_OK;
+    const char *why;
+    if (!sec || !key || !value)
+        rc = cl_error_set(err, CL_ENOMEM, "--set \"%s\": out of memory", a);
+    else if ((why = cl_set_problem(sec, key, value)))
+        rc = cl_error_set(err, CL_EINVAL,
+                          "--set \"%s\": %s (expected section.key=value)",
+                          a, why);
+    else if (cl_put(cfg, sec, key, value, NULL, 0) != CL_OK)
+        rc = cl_error_set(err, CL_ENOMEM, "--set \"%s\": out of memory", a);
+    free(sec);
+    free(key);
+    free(value);
+    return rc;
+}
+
+cl_status cl_config_set(cl_config *cfg, const char *assignment, cl_error *err)
+{
+    const char *eq = strchr(assignment, '=');
+    if (!eq)
+        return cl_error_set(err, CL_EINVAL,
+                            "--set \"%s\": missing '=' (expected"
+                            " section.key=value)",
+                            assignment);
+    const char *dot = memchr(assignment, '.', (size_t)(eq - assignment));
+    if (!dot)
+        return cl_error_set(err, CL_EINVAL,
+                            "--set \"%s\": missing '.' between section and"
+                            " key (expected section.key=value)",
+                            assignment);
+    return cl_set_split(cfg, assignment, dot, eq, err);
+}
+
+/* ---------------------------------------------------------- value parsing */
+
+static bool cl_only_space(const char *s)
+{
+    while (isspace((unsigned char)*s))
+        s++;
+    return *s == '\0';
+}
+
+static bool cl_parse_double(const char *s, double *out)
+{
+    char *end;
+    errno = 0;
+    double x = strtod(s, &end);
+    if (end == s || !cl_only_space(end) || !isfinite(x))
+        return false;
+    *out = x;
+    return true;
+}
+
+static bool cl_parse_long(const char *s, long *out)
+{
+    char *end;
+    errno = 0;
+    long x = strtol(s, &end, 10);
+    if (end == s || !cl_only_space(end) || errno == ERANGE)
+        return false;
+    *out = x;
+    return true;
+}
+
+/* Shortest "%.*g" of x that reads back as x. */
+static void cl_fmt_double(char *buf, size_t len, double x)
+{
+    for (int prec = 6; prec < 17; prec++) {
+        snprintf(buf, len, "%.*g", prec, x);
+        if (strtod(buf, NULL) == x)
+            return;
+    }
+    snprintf(buf, len, "%.17g", x);
+}
+
+static void cl_range_text(char *buf, size_t len, const char *noun,
+                          const char *lo, const char *hi)
+{
+    if (lo && hi)
+        snprintf(buf, len, "%s in [%s, %s]", noun, lo, hi);
+    else if (lo)
+        snprintf(buf, len, "%s >= %s", noun, lo);
+    else if (hi)
+        snprintf(buf, len, "%s <= %s", noun, hi);
+    else
+        snprintf(buf, len, "%s", noun);
+}
+
+/* "a number >= 0", "a number in [0.1, 1]", "a finite number". */
+static void cl_double_range(char *buf, size_t len, double lo, double hi)
+{
+    char l[32], h[32];
+    bool has_lo = lo > -INFINITY, has_hi = hi < INFINITY;
+    if (has_lo)
+        cl_fmt_double(l, sizeof l, lo);
+    if (has_hi)
+        cl_fmt_double(h, sizeof h, hi);
+    cl_range_text(buf, len, has_lo || has_hi ? "a number" : "a finite number",
+                  has_lo ? l : NULL, has_hi ? h : NULL);
+}
+
+static void cl_long_range(char *buf, size_t len, long lo, long hi)
+{
+    char l[32], h[32];
+    snprintf(l, sizeof l, "%ld", lo);
+    snprintf(h, sizeof h, "%ld", hi);
+    cl_range_text(buf, len, "an integer", lo > LONG_MIN ? l : NULL,
+                  hi < LONG_MAX ? h : NULL);
+}
+
+/* "<origin>: [sec] key = "value": expected <what>" */
+static cl_status cl_bad_value(const cl_entry *e, const char *what,
+                              cl_error *err)
+{
+    cl_origin_buf origin;
+    cl_origin_of(e, origin, sizeof origin);
+    return cl_error_set(err, CL_EINVAL, "%s: [%s] %s = \"%s\": expected %s",
+                        origin, e->sec, e->key, e->value, what);
+}
+
+/* Parse `count` finite numbers separated by commas and/or white space into
+ * out (if not NULL). */
+static bool cl_parse_vector(const char *s, size_t count, double *out)
+{
+    for (size_t i = 0; i < count; i++) {
+        while (isspace((unsigned char)*s))
+            s++;
+        if (i > 0 && *s == ',') {
+            s++;
+            while (isspace((unsigned char)*s))
+                s++;
+        }
+        char *end;
+        double x = strtod(s, &end);
+        if (end == s || !isfinite(x) ||
+            (*end && *end != ',' && !isspace((unsigned char)*end)))
+            return false;
+        if (out)
+            out[i] = x;
+        s = end;
+    }
+    return cl_only_space(s);
+}
+
+/* ---------------------------------------------------------------- getters */
+
+cl_status cl_config_double(cl_config *cfg, const char *sec, const char *key,
+                           double def, double lo, double hi, double *out,
+                           cl_error *err)
+{
+    const cl_entry *e = cl_lookup(cfg, sec, key);
+    double x = def;
+    if (e && (!cl_parse_double(e->value, &x) || !(x >= lo && x <= hi))) {
+        char what[128];
+        cl_double_range(what, sizeof what, lo, hi);
+        return cl_bad_value(e, what, err);
+    }
+    *out = x;
+    return CL_OK;
+}
+
+cl_status cl_config_long(cl_config *cfg, const char *sec, const char *key,
+                         long def, long lo, long hi, long *out, cl_error *err)
+{
+    const cl_entry *e = cl_lookup(cfg, sec, key);
+    long x = def;
+    if (e && (!cl_parse_long(e->value, &x) || x < lo || x > hi)) {
+        char what[128];
+        cl_long_range(what, sizeof what, lo, hi);
+        return cl_bad_value(e, what, err);
+    }
+    *out = x;
+    return CL_OK;
+}
+
+cl_status cl_config_bool(cl_config *cfg, const char *sec, const char *key,
+                         bool def, bool *out, cl_error *err)
+{
+    static const char *const names[] = {"true", "false", "yes", "no",
+                                        "on",   "off",   "1",   "0"};
+    const cl_entry *e = cl_lookup(cfg, sec, key);
+    if (!e) {
+        *out = def;
+        return CL_OK;
+    }
+    for (size_t i = 0; i < sizeof names / sizeof *names; i++)
+        if (!strcasecmp(e->value, names[i])) {
+            *out = i % 2 == 0;
+            return CL_OK;
+        }
+    return cl_bad_value(e, "true/false, yes/no, on/off or 1/0", err);
+}
+
+/* "one of a, b, c" in a malloc'd string, or NULL. */
+static char *cl_choice_text(const char *const *choices)
+{
+    char *text = NULL;
+    size_t size = 0;
+    FILE *f = open_memstream(&text, &size);
+    if (!f)
+        return NULL;
+    fputs("one of ", f);
+    for (size_t i = 0; choices[i]; i++)
+        fprintf(f, "%s%s", i ? ", " : "", choices[i]);
+    if (fclose(f) != 0) {
+        free(text);
+        return NULL;
+    }
+    return text;
+}
+
+cl_status cl_config_choice(cl_config *cfg, const char *sec, const char *key,
+                           const char *const *choices, int def, int *out,
+                           cl_error *err)
+{
+    const cl_entry *e = cl_lookup(cfg, sec, key);
+    if (!e) {
+        *out = def;
+        return CL_OK;
+    }
+    for (int i = 0; choices[i]; i++)
+        if (!strcmp(e->value, choices[i])) {
+            *out = i;
+            return CL_OK;
+        }
+    char *what = cl_choice_text(choices);
+    if (!what)
+        return cl_error_set(err, CL_ENOMEM, "[%s] %s: out of memory", sec,
+                            key);
+    cl_status rc = cl_bad_value(e, what, err);
+    free(what);
+    return rc;
+}
+
+cl_status cl_config_vector(cl_config *cfg, const char *sec, const char *key,
+                           size_t count, double *out, cl_error *err)
+{
+    const cl_entry *e = cl_lookup(cfg, sec, key);
+    if (!e)
+        return CL_OK;
+    if (!cl_parse_vector(e->value, count, NULL)) {
+        char what[128];
+        snprintf(what, sizeof what,
+                 "%zu finite number%s separated by commas or spaces", count,
+                 count == 1 ? "" : "s");
+        return cl_bad_value(e, what, err);
+    }
+    cl_parse_vector(e->value, count, out);
+    return CL_OK;
+}
+
+const char *cl_config_string(cl_config *cfg, const char *sec, const char *key,
+                             const char *def)
+{
+    const cl_entry *e = cl_lookup(cfg, sec, key);
+    return e ? e->value : def;
+}
+
+/* ----------------------------------------------------------- unused keys */
+
+/* Whether asked[i]'s section already occurs in asked[0..i-1]. */
+static bool cl_seen_section(const cl_config *cfg, size_t i)
+{
+    for (size_t j = 0; j < i; j++)
+        if (!strcmp(cfg->asked[j].sec, cfg->asked[i].sec))
+            return true;
+    return false;
+}
+
+/* Asked-for keys of `sec` (or, if sec is NULL, the asked-for sections),
+ * comma-separated, in a malloc'd string; NULL if out of memory. */
+static char *cl_known_text(const cl_config *cfg, const char *sec)
+{
+    char *text = NULL;
+    size_t size = 0;
+    FILE *f = open_memstream(&text, &size);
+    if (!f)
+        return NULL;
+    const char *sep = "";
+    for (size_t i = 0; i < cfg->nasked; i++) {
+        const cl_name *n = &cfg->asked[i];
+        if (sec ? strcmp(n->sec, sec) != 0 : cl_seen_section(cfg, i))
+            continue;
+        fprintf(f, sec ? "%s%s" : "%s[%s]", sep, sec ? n->key : n->sec);
+        sep = ", ";
+    }
+    if (!*sep)
+        fputs("none", f);
+    if (fclose(f) != 0) {
+        free(text);
+        return NULL;
+    }
+    return text;
+}
+
+static cl_status cl_report_unused(const cl_config *cfg, const cl_entry *e,
+                                  cl_error *err)
+{
+    bool known_sec = cl_was_asked(cfg, e->sec, NULL);
+    char *known = cl_known_text(cfg, known_sec ? e->sec : NULL);
+    if (!known)
+        return cl_error_set(err, CL_ENOMEM, "out of memory");
+    cl_origin_buf origin;
+    cl_origin_of(e, origin, sizeof origin);
+    cl_status rc;
+    if (known_sec)
+        rc = cl_error_set(err, CL_EINVAL,
+                          "%s: unknown key [%s] %s (known keys in [%s]: %s)",
+                          origin, e->sec, e->key, e->sec, known);
+    else if (!*e->sec)
+        rc = cl_error_set(err, CL_EINVAL,
+                          "%s: unknown key %s outside any section (known"
+                          " sections: %s)",
+                          origin, e->key, known);
+    else
+        rc = cl_error_set(err, CL_EINVAL,
+                          "%s: unknown section [%s] (known sections: %s)",
+                          origin, e->sec, known);
+    free(known);
+    return rc;
+}
+
+cl_status cl_config_check_unused(const cl_config *cfg, cl_error *err)
+{
+    for (size_t i = 0; i < cfg->nent; i++) {
+        const cl_entry *e = &cfg->ent[i];
+        if (!e->used && !cl_was_asked(cfg, e->sec, e->key))
+            return cl_report_unused(cfg, e, err);
+    }
+    return CL_OK;
+}
+
+void cl_config_ignore_section(cl_config *cfg, const char *sec)
+{
+    for (size_t i = 0; i < cfg->nent; i++)
+        if (!strcmp(cfg->ent[i].sec, sec))
+            cfg->ent[i].used = true;
+}
+
+/* ---------------------------------------------------------------- writing */
+
+/* The first entry of section `sec`, or NULL. */
+static const cl_entry *cl_find_section(const cl_config *cfg, const char *sec)
+{
+    for (size_t i = 0; i < cfg->nent; i++)
+        if (!strcmp(cfg->ent[i].sec, sec))
+            return &cfg->ent[i];
+    return NULL;
+}
+
+static void cl_write_section(const cl_config *cfg, const cl_entry *first,
+                             FILE *f)
+{
+    if (*first->sec)
+        fprintf(f, "%s[%s]\n", first > cfg->ent ? "\n" : "", first->sec);
+    for (const cl_entry *e = first; e < cfg->ent + cfg->nent; e++) {
+        if (strcmp(e->sec, first->sec) != 0)
+            continue;
+        if (*e->value)
+            fprintf(f, "%s = %s\n", e->key, e->value);
+        else
+            fprintf(f, "%s =\n", e->key);
+    }
+}
+
+/* Keys before any header (section "") must come first, without a header;
+ * then every section in order of first appearance. */
+static void cl_write_entries(const cl_config *cfg, FILE *f)
+{
+    const cl_entry *top = cl_find_section(cfg, "");
+    if (top)
+        cl_write_section(cfg, top, f);
+    for (const cl_entry *e = cfg->ent; e < cfg->ent + cfg->nent; e++)
+        if (*e->sec && cl_find_section(cfg, e->sec) == e)
+            cl_write_section(cfg, e, f);
+}
+
+/* mkstemp in the directory of `path`, with the usual 0666 & ~umask mode. */
+static FILE *cl_open_tmp(char *tmp)
+{
+    int fd = mkstemp(tmp);
+    if (fd < 0)
+        return NULL;
+    mode_t mask = umask(077); /* umask can only be read by setting it */
+    umask(mask);
+    FILE *f = NULL;
+    if (fchmod(fd, (mode_t)(0666 & ~mask)) == 0)
+        f = fdopen(fd, "w");
+    if (!f) {
+        int e = errno;
+        close(fd);
+        unlink(tmp);
+        errno = e;
+    }
+    return f;
+}
+
+/* Write, flush, sync and close; false with errno set on any failure. */
+static bool cl_write_close(const cl_config *cfg, FILE *f)
+{
+    cl_write_entries(cfg, f);
+    bool ok = fflush(f) == 0 && !ferror(f) && fsync(fileno(f)) == 0;
+    int e = errno;
+    if (fclose(f) != 0) {
+        e = ok ? errno : e;
+        ok = false;
+    }
+    if (!ok)
+        errno = e ? e : EIO;
+    return ok;
+}
+
+cl_status cl_config_write(const cl_config *cfg, const char *path,
+                          cl_error *err)
+{
+    static const char suffix[] = ".tmp.XXXXXX";
+    size_t n = strlen(path);
+    char *tmp = malloc(n + sizeof suffix);
+    if (!tmp)
+        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", path);
+    memcpy(tmp, path, n);
+    memcpy(tmp + n, suffix, sizeof suffix);
+    cl_status rc = CL_OK;
+    FILE *f = cl_open_tmp(tmp);
+    if (!f)
+        rc = cl_error_set(err, CL_EIO, "cannot create %s: %s", path,
+                          strerror(errno));
+    else if (!cl_write_close(cfg, f) || rename(tmp, path) != 0) {
+        rc = cl_error_set(err, CL_EIO, "cannot write %s: %s", path,
+                          strerror(errno));
+        unlink(tmp);
+    }
+    free(tmp);
+    return rc;
+}

@@ -1,0 +1,92 @@
+/* CSV time-series writer on top of atomic output files. */
+#include "io/series.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/atomic.h"
+
+struct cl_series {
+    cl_afile af;
+    size_t ncol;
+};
+
+static cl_status write_fail(cl_series *s, cl_error *err)
+{
+    int e = errno;
+    return cl_error_set(err, CL_EIO, "cannot write '%s': %s", s->af.path,
+                        strerror(e ? e : EIO));
+}
+
+cl_status cl_series_open(const char *path, size_t ncol,
+                         const char *const *names, cl_series **out,
+                         cl_error *err)
+{
+    *out = NULL;
+    if (ncol == 0 || !names)
+        return cl_error_set(err, CL_EINVAL, "%s: a series needs at least "
+                            "one column", path);
+    for (size_t k = 0; k < ncol; k++)
+        if (!names[k] || !names[k][0] || strpbrk(names[k], ",\"\r\n"))
+            return cl_error_set(err, CL_EINVAL,
+                                "%s: column %zu name \"%.40s\" is empty or "
+                                "contains ',', '\"' or a line break", path,
+                                k + 1, names[k] ? names[k] : "");
+
+    cl_series *s = malloc(sizeof *s);
+    if (!s)
+        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", path);
+    s->ncol = ncol;
+    cl_status st = cl_afile_open(&s->af, path, err);
+    if (st) {
+        free(s);
+        return st;
+    }
+    for (size_t k = 0; k < ncol; k++) {
+        if (fprintf(s->af.fp, "%s%s", k ? "," : "", names[k]) < 0) {
+            st = write_fail(s, err);
+            break;
+        }
+    }
+    if (st == CL_OK && (fputc('\n', s->af.fp) == EOF ||
+                        fflush(s->af.fp) != 0))
+        st = write_fail(s, err);
+    if (st) {
+        cl_series_discard(s);
+        return st;
+    }
+    *out = s;
+    return CL_OK;
+}
+
+cl_status cl_series_row(cl_series *s, const double *values, cl_error *err)
+{
+    if (!s || !s->af.fp || !values)
+        return cl_error_set(err, CL_EINVAL, "series row without a series "
+                            "or values");
+    for (size_t k = 0; k < s->ncol; k++)
+        if (fprintf(s->af.fp, "%s%.10g", k ? "," : "", values[k]) < 0)
+            return write_fail(s, err);
+    if (fputc('\n', s->af.fp) == EOF || fflush(s->af.fp) != 0)
+        return write_fail(s, err);
+    return CL_OK;
+}
+
+cl_status cl_series_close(cl_series *s, cl_error *err)
+{
+    if (!s)
+        return CL_OK;
+    cl_status st = cl_afile_commit(&s->af, err);
+    free(s);
+    return st;
+}
+
+void cl_series_discard(cl_series *s)
+{
+    if (!s)
+        return;
+    cl_afile_abort(&s->af);
+    free(s);
+}

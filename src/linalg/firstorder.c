@@ -1,0 +1,190 @@
+/* First-order Jacobian J = [[0, I], [M^-1 df/dx, M^-1 df/dv]] in CSC.
+ *
+ * Column j < n (a position unknown) holds the explicit zero J(j, j) and, for
+ * every stored block (bi, bj = j / 3), the three entries M^-1 df/dx at rows
+ * n + 3 bi + r.  Column n + j (a velocity unknown) holds the identity entry
+ * at row j and the entries M^-1 df/dv at rows n + 3 bi + r.  Rows ascend in
+ * every column because j < n and block rows are visited in ascending order
+ * (block column lists are built by a counting transpose of the block CSR). */
+#include "linalg/firstorder.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Block-column view of the block-CSR pattern: for block column bj, the
+ * blocks (bi, k) with k the block index, bi ascending. */
+typedef struct {
+    size_t *ptr; /* nb + 1 */
+    size_t *row; /* nnzb: block row bi */
+    size_t *blk; /* nnzb: block index k into the value arrays */
+} cl_bcols;
+
+static void bcols_free(cl_bcols *bc)
+{
+    free(bc->ptr);
+    free(bc->row);
+    free(bc->blk);
+}
+
+static cl_status bcols_build(const cl_bpattern *pat, cl_bcols *bc,
+                             cl_error *err)
+{
+    size_t nb = pat->nb, nnzb = pat->nnzb;
+    bc->ptr = calloc(nb + 1, sizeof *bc->ptr);
+    bc->row = malloc((nnzb ? nnzb : 1) * sizeof *bc->row);
+    bc->blk = malloc((nnzb ? nnzb : 1) * sizeof *bc->blk);
+    size_t *next = malloc((nb ? nb : 1) * sizeof *next);
+    if (!bc->ptr || !bc->row || !bc->blk || !next) {
+        free(next);
+        bcols_free(bc);
+        return cl_error_set(err, CL_ENOMEM,
+                            "out of memory (first-order Jacobian pattern)");
+    }
+    for (size_t k = 0; k < nnzb; k++)
+        bc->ptr[pat->col[k] + 1]++;
+    for (size_t j = 0; j < nb; j++) {
+        bc->ptr[j + 1] += bc->ptr[j];
+        next[j] = bc->ptr[j];
+    }
+    for (size_t bi = 0; bi < nb; bi++) {
+        for (size_t k = pat->rowptr[bi]; k < pat->rowptr[bi + 1]; k++) {
+            size_t slot = next[pat->col[k]]++;
+            bc->row[slot] = bi;
+            bc->blk[slot] = k;
+        }
+    }
+    free(next);
+    return CL_OK;
+}
+
+/* Append the leading entry (row `lead`, source `first`) and the 3 entries of
+ * every block in block column bj, component c, offsetting sources by base. */
+static sunindextype fill_column(cl_firstorder *fo, const cl_bcols *bc,
+                                size_t bj, size_t c, sunindextype pos,
+                                sunindextype lead, long first, size_t base)
+{
+    fo->rowval[pos] = lead;
+    fo->src[pos++] = first;
+    for (size_t q = bc->ptr[bj]; q < bc->ptr[bj + 1]; q++) {
+        for (size_t r = 0; r < 3; r++) {
+            fo->rowval[pos] = (sunindextype)(fo->n + 3 * bc->row[q] + r);
+            fo->src[pos++] = (long)(base + 9 * bc->blk[q] + 3 * r + c);
+        }
+    }
+    return pos;
+}
+
+static void build_columns(cl_firstorder *fo, const cl_bcols *bc)
+{
+    size_t n = fo->n;
+    sunindextype pos = 0;
+    for (size_t j = 0; j < n; j++) {
+        fo->colptr[j] = pos;
+        pos = fill_column(fo, bc, j / 3, j % 3, pos, (sunindextype)j,
+                          CL_FO_ZERO, 0);
+    }
+    for (size_t j = 0; j < n; j++) {
+        fo->colptr[n + j] = pos;
+        pos = fill_column(fo, bc, j / 3, j % 3, pos, (sunindextype)j,
+                          CL_FO_ONE, fo->nval);
+    }
+    fo->colptr[2 * n] = pos;
+}
+
+static cl_status check_masses(const double *mass, size_t n, cl_error *err)
+{
+    for (size_t i = 0; i < n; i++) {
+        if (!isfinite(mass[i]) || !(mass[i] > 0.0))
+            return cl_error_set(err, CL_EINVAL,
+                                "first-order Jacobian: mass[%zu] = %g, "
+                                "must be finite and > 0", i, mass[i]);
+    }
+    return CL_OK;
+}
+
+static cl_status alloc_arrays(cl_firstorder *fo, cl_error *err)
+{
+    size_t nnz = (size_t)fo->nnz;
+    fo->colptr = malloc(((size_t)fo->size + 1) * sizeof *fo->colptr);
+    fo->rowval = malloc((nnz ? nnz : 1) * sizeof *fo->rowval);
+    fo->src = malloc((nnz ? nnz : 1) * sizeof *fo->src);
+    fo->inv_mass = malloc((fo->n ? fo->n : 1) * sizeof *fo->inv_mass);
+    if (!fo->colptr || !fo->rowval || !fo->src || !fo->inv_mass)
+        return cl_error_set(err, CL_ENOMEM,
+                            "out of memory (first-order Jacobian, %zu entries)",
+                            nnz);
+    return CL_OK;
+}
+
+cl_status cl_firstorder_create(const cl_bpattern *pat, const double *mass,
+                               cl_firstorder *fo, cl_error *err)
+{
+    memset(fo, 0, sizeof *fo);
+    fo->n = 3 * pat->nb;
+    fo->nval = 9 * pat->nnzb;
+    fo->size = (sunindextype)(2 * fo->n);
+    fo->nnz = (sunindextype)(2 * fo->n + 2 * fo->nval);
+    cl_status st = check_masses(mass, fo->n, err);
+    if (st == CL_OK)
+        st = alloc_arrays(fo, err);
+    cl_bcols bc = {0};
+    if (st == CL_OK)
+        st = bcols_build(pat, &bc, err);
+    if (st != CL_OK) {
+        cl_firstorder_free(fo);
+        return st;
+    }
+    build_columns(fo, &bc);
+    bcols_free(&bc);
+    for (size_t i = 0; i < fo->n; i++)
+        fo->inv_mass[i] = 1.0 / mass[i];
+    return CL_OK;
+}
+
+void cl_firstorder_free(cl_firstorder *fo)
+{
+    free(fo->colptr);
+    free(fo->rowval);
+    free(fo->src);
+    free(fo->inv_mass);
+    memset(fo, 0, sizeof *fo);
+}
+
+void cl_firstorder_fill_arrays(const cl_firstorder *fo, const double *dfdx,
+                               const double *dfdv, sunindextype *colptr,
+                               sunindextype *rowval, sunrealtype *val)
+{
+    size_t nnz = (size_t)fo->nnz;
+    long nval = (long)fo->nval;
+    sunindextype n = (sunindextype)fo->n;
+    memcpy(colptr, fo->colptr, ((size_t)fo->size + 1) * sizeof *colptr);
+    memcpy(rowval, fo->rowval, nnz * sizeof *rowval);
+    for (size_t k = 0; k < nnz; k++) {
+        long s = fo->src[k];
+        if (s >= 0) {
+            double b = s < nval ? dfdx[s] : dfdv[s - nval];
+            val[k] = b * fo->inv_mass[fo->rowval[k] - n];
+        } else {
+            val[k] = s == CL_FO_ONE ? 1.0 : 0.0;
+        }
+    }
+}
+
+cl_status cl_firstorder_fill(const cl_firstorder *fo, const double *dfdx,
+                             const double *dfdv, SUNMatrix J, cl_error *err)
+{
+    if (SUNMatGetID(J) != SUNMATRIX_SPARSE ||
+        SUNSparseMatrix_SparseType(J) != CSC_MAT ||
+        SUNSparseMatrix_Rows(J) != fo->size ||
+        SUNSparseMatrix_Columns(J) != fo->size ||
+        SUNSparseMatrix_NNZ(J) < fo->nnz)
+        return cl_error_set(err, CL_EINVAL,
+                            "first-order Jacobian: matrix is not a %ld x %ld "
+                            "CSC sparse matrix with room for %ld entries",
+                            (long)fo->size, (long)fo->size, (long)fo->nnz);
+    cl_firstorder_fill_arrays(fo, dfdx, dfdv, SUNSparseMatrix_IndexPointers(J),
+                              SUNSparseMatrix_IndexValues(J),
+                              SUNSparseMatrix_Data(J));
+    return CL_OK;
+}

@@ -1,0 +1,334 @@
+/* A cloth problem as a cl_system: scatter the free state to full-particle
+ * arrays (pins prescribed), let every force term add its share, gather. */
+#include "model/model.h"
+
+#include <gsl/gsl_errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAX_TERMS CL_MAX_ENERGY_TERMS
+
+struct cl_model {
+    cl_cloth cloth;
+    cl_term_opts opts;
+    size_t nterm;
+    const cl_term_type *type[MAX_TERMS];
+    void *state[MAX_TERMS];
+    cl_bpattern pattern;  /* blocks over free particles */
+    double *mass3;        /* 3 * nfree */
+    double *xf, *vf, *ff; /* full-particle work arrays, 3 * np */
+    cl_system sys;
+};
+
+/* ---- configuration ---------------------------------------------------- */
+
+static cl_status read_grid(cl_config *cfg, cl_cloth *c, cl_error *err)
+{
+    long n, nu, nv;
+    double size, su, sv, mass, pmass;
+    cl_status rc;
+    if ((rc = cl_config_long(cfg, "cloth", "n", 16, 2, 4096, &n, err)) ||
+        (rc = cl_config_long(cfg, "cloth", "nu", n, 2, 4096, &nu, err)) ||
+        (rc = cl_config_long(cfg, "cloth", "nv", n, 2, 4096, &nv, err)) ||
+        (rc = cl_config_double(cfg, "cloth", "size", 1.0, 1e-300, INFINITY,
+                               &size, err)) ||
+        (rc = cl_config_double(cfg, "cloth", "su", size, 1e-300, INFINITY,
+                               &su, err)) ||
+        (rc = cl_config_double(cfg, "cloth", "sv", size, 1e-300, INFINITY,
+                               &sv, err)) ||
+        (rc = cl_config_double(cfg, "cloth", "mass", 0.1, 1e-300, INFINITY,
+                               &mass, err)) ||
+        (rc = cl_config_double(cfg, "cloth", "particle_mass",
+                               mass / (double)(nu * nv), 1e-300, INFINITY,
+                               &pmass, err)))
+        return rc;
+    return cl_cloth_grid((int)nu, (int)nv, su, sv, pmass, c, err);
+}
+
+/* "i,j i,j ..." */
+static cl_status read_pins(cl_config *cfg, cl_cloth *c, cl_error *err)
+{
+    double w[3] = {0.0, 0.0, 0.0};
+    cl_status rc = cl_config_vector(cfg, "pins", "velocity", 3, w, err);
+    if (rc)
+        return rc;
+    const char *s = cl_config_string(cfg, "pins", "at", "0,0 0,-1");
+    char where[256];
+    for (;;) {
+        int i, j, used = 0;
+        while (*s == ' ' || *s == '\t')
+            s++;
+        if (!*s)
+            return CL_OK;
+        if (sscanf(s, "%d , %d%n", &i, &j, &used) != 2 ||
+            (s[used] && s[used] != ' ' && s[used] != '\t'))
+            return cl_error_set(err, CL_EINVAL,
+                                "%s: [pins] at: cannot read \"%s\": expected "
+                                "pairs i,j separated by spaces, e.g. "
+                                "\"0,0 0,-1\"",
+                                cl_config_origin(cfg, "pins", "at", where,
+                                                 sizeof where), s);
+        if ((rc = cl_cloth_pin(c, i, j, w, err)))
+            return rc;
+        s += used;
+    }
+}
+
+static cl_status read_opts(cl_config *cfg, cl_term_opts *o, cl_error *err)
+{
+    static const char *const transverse[] = {"full", "clamp", NULL};
+    int k;
+    cl_status rc = cl_config_choice(cfg, "jacobian", "transverse", transverse,
+                                    0, &k, err);
+    o->clamp_transverse = k == 1;
+    return rc;
+}
+
+/* ---- terms and pattern ------------------------------------------------ */
+
+static cl_status create_terms(cl_config *cfg, cl_model *m, cl_error *err)
+{
+    for (size_t k = 0; cl_term_registry[k]; k++) {
+        void *st = NULL;
+        cl_status rc = cl_term_registry[k]->create(cfg, &m->cloth, &m->opts,
+                                                   &st, err);
+        if (rc)
+            return rc;
+        if (!st)
+            continue;
+        if (m->nterm == MAX_TERMS) {
+            cl_term_registry[k]->free(st);
+            return cl_error_set(err, CL_EUNSUPPORTED, "too many force terms");
+        }
+        m->type[m->nterm] = cl_term_registry[k];
+        m->state[m->nterm++] = st;
+    }
+    return CL_OK;
+}
+
+/* Pattern over the particles with dof[p] >= 0, bound to every term. */
+static cl_status build_pattern(cl_model *m, const int *dof, size_t nb,
+                               cl_bpattern *pat, cl_error *err)
+{
+    size_t total = 0;
+    for (size_t k = 0; k < m->nterm; k++) {
+        const int(*pairs)[2];
+        total += m->type[k]->couplings(m->state[k], &pairs);
+    }
+    int(*all)[2] = malloc((total + 1) * sizeof *all);
+    if (!all)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (couplings)");
+    size_t at = 0;
+    for (size_t k = 0; k < m->nterm; k++) {
+        const int(*pairs)[2];
+        size_t n = m->type[k]->couplings(m->state[k], &pairs);
+        if (n)
+            memcpy(all + at, pairs, n * sizeof *pairs);
+        at += n;
+    }
+    cl_status rc = cl_bpattern_build(m->cloth.np, dof, nb, total,
+                                     (const int(*)[2])all, pat, err);
+    free(all);
+    for (size_t k = 0; rc == CL_OK && k < m->nterm; k++)
+        rc = m->type[k]->bind(m->state[k], pat, dof, err);
+    return rc;
+}
+
+/* ---- evaluation ------------------------------------------------------- */
+
+/* Run every term on the full arrays m->xf, m->vf. */
+static void eval_terms(cl_model *m, double t, double *f, double *dfdx,
+                       double *dfdv, cl_energy *e)
+{
+    if (f)
+        memset(f, 0, 3 * m->cloth.np * sizeof *f);
+    if (e)
+        memset(e, 0, sizeof *e);
+    for (size_t k = 0; k < m->nterm; k++) {
+        cl_eval ev = {.t = t, .x = m->xf, .v = m->vf, .f = f,
+                      .dfdx = dfdx, .dfdv = dfdv, .want_energy = e != NULL};
+        m->type[k]->eval(m->state[k], &ev);
+        if (!e)
+            continue;
+        if (m->type[k]->conservative) {
+            e->name[e->nterm] = m->type[k]->name;
+            e->value[e->nterm++] = ev.energy;
+            e->potential += ev.energy;
+        } else {
+            e->power_diss += ev.power;
+        }
+    }
+}
+
+static bool all_finite(const double *a, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(a[i]))
+            return false;
+    return true;
+}
+
+static cl_status sys_force(void *data, double t, const double *x,
+                           const double *v, double *f)
+{
+    cl_model *m = data;
+    cl_cloth_scatter(&m->cloth, t, x, v, m->xf, m->vf);
+    eval_terms(m, t, m->ff, NULL, NULL, NULL);
+    cl_cloth_gather(&m->cloth, m->ff, f);
+    return all_finite(f, 3 * m->cloth.nfree) ? CL_OK : CL_EBLOWUP;
+}
+
+static cl_status sys_jacobian(void *data, double t, const double *x,
+                              const double *v, double *f, double *dfdx,
+                              double *dfdv)
+{
+    cl_model *m = data;
+    size_t nval = 9 * m->pattern.nnzb;
+    memset(dfdx, 0, nval * sizeof *dfdx);
+    memset(dfdv, 0, nval * sizeof *dfdv);
+    cl_cloth_scatter(&m->cloth, t, x, v, m->xf, m->vf);
+    eval_terms(m, t, f ? m->ff : NULL, dfdx, dfdv, NULL);
+    if (f)
+        cl_cloth_gather(&m->cloth, m->ff, f);
+    return all_finite(dfdx, nval) && all_finite(dfdv, nval) ? CL_OK
+                                                            : CL_EBLOWUP;
+}
+
+static double kinetic_free(const cl_cloth *c, const double *vfull)
+{
+    double ke = 0.0;
+    for (size_t k = 0; k < c->nfree; k++) {
+        const double *v = vfull + 3 * (size_t)c->free_p[k];
+        ke += 0.5 * c->mass[c->free_p[k]] * (v[0] * v[0] + v[1] * v[1] +
+                                             v[2] * v[2]);
+    }
+    return ke;
+}
+
+static cl_status sys_energy(void *data, double t, const double *x,
+                            const double *v, cl_energy *e)
+{
+    cl_model *m = data;
+    cl_cloth_scatter(&m->cloth, t, x, v, m->xf, m->vf);
+    eval_terms(m, t, NULL, NULL, NULL, e);
+    e->kinetic = kinetic_free(&m->cloth, m->vf);
+    e->total = e->kinetic + e->potential;
+    return isfinite(e->total) ? CL_OK : CL_EBLOWUP;
+}
+
+/* ---- life cycle ------------------------------------------------------- */
+
+static cl_status alloc_work(cl_model *m, cl_error *err)
+{
+    size_t n3 = 3 * m->cloth.np, nf3 = 3 * m->cloth.nfree;
+    m->xf = calloc(n3, sizeof *m->xf);
+    m->vf = calloc(n3, sizeof *m->vf);
+    m->ff = calloc(n3, sizeof *m->ff);
+    m->mass3 = malloc(nf3 * sizeof *m->mass3);
+    if (!m->xf || !m->vf || !m->ff || !m->mass3)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (model)");
+    for (size_t k = 0; k < nf3; k++)
+        m->mass3[k] = m->cloth.mass[m->cloth.free_p[k / 3]];
+    return CL_OK;
+}
+
+cl_status cl_model_create(cl_config *cfg, cl_model **model, cl_error *err)
+{
+    cl_status rc;
+    cl_model *m = calloc(1, sizeof *m);
+    *model = NULL;
+    if (!m)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (model)");
+    gsl_set_error_handler_off(); /* GSL reports through return codes */
+    if ((rc = read_grid(cfg, &m->cloth, err)) ||
+        (rc = read_pins(cfg, &m->cloth, err)) ||
+        (rc = cl_cloth_finalize(&m->cloth, err)) ||
+        (rc = read_opts(cfg, &m->opts, err)) ||
+        (rc = create_terms(cfg, m, err)) ||
+        (rc = build_pattern(m, m->cloth.dof, m->cloth.nfree, &m->pattern,
+                            err)) ||
+        (rc = alloc_work(m, err))) {
+        cl_model_free(m);
+        return rc;
+    }
+    m->sys = (cl_system){.n = 3 * m->cloth.nfree, .mass = m->mass3,
+                         .pattern = &m->pattern, .data = m,
+                         .force = sys_force, .jacobian = sys_jacobian,
+                         .energy = sys_energy};
+    *model = m;
+    return CL_OK;
+}
+
+void cl_model_free(cl_model *m)
+{
+    if (!m)
+        return;
+    for (size_t k = 0; k < m->nterm; k++)
+        m->type[k]->free(m->state[k]);
+    cl_bpattern_free(&m->pattern);
+    cl_cloth_free(&m->cloth);
+    free(m->mass3);
+    free(m->xf);
+    free(m->vf);
+    free(m->ff);
+    free(m);
+}
+
+const cl_system *cl_model_system(cl_model *m) { return &m->sys; }
+
+const cl_cloth *cl_model_cloth(const cl_model *m) { return &m->cloth; }
+
+size_t cl_model_terms(const cl_model *m, const char **names, size_t max)
+{
+    size_t n = m->nterm < max ? m->nterm : max;
+    for (size_t k = 0; k < n; k++)
+        names[k] = m->type[k]->name;
+    return m->nterm;
+}
+
+cl_status cl_model_eval_full(cl_model *m, double t, const double *x,
+                             const double *v, double *f, cl_energy *e,
+                             cl_error *err)
+{
+    size_t n3 = 3 * m->cloth.np;
+    memcpy(m->xf, x, n3 * sizeof *x);
+    memcpy(m->vf, v, n3 * sizeof *v);
+    eval_terms(m, t, f, NULL, NULL, e);
+    e->kinetic = kinetic_free(&m->cloth, v);
+    e->total = e->kinetic + e->potential;
+    if (!all_finite(f, n3) || !isfinite(e->total))
+        return cl_error_set(err, CL_EBLOWUP,
+                            "forces or energy are not finite at this state");
+    return CL_OK;
+}
+
+cl_status cl_model_jacobian_full(cl_model *m, double t, const double *x,
+                                 const double *v, cl_bpattern *pat,
+                                 double **dfdx, double **dfdv, cl_error *err)
+{
+    size_t np = m->cloth.np;
+    int *all = malloc(np * sizeof *all);
+    if (!all)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (dof map)");
+    for (size_t p = 0; p < np; p++)
+        all[p] = (int)p;
+    cl_status rc = build_pattern(m, all, np, pat, err);
+    free(all);
+    *dfdx = rc ? NULL : calloc(9 * pat->nnzb + 1, sizeof **dfdx);
+    *dfdv = rc ? NULL : calloc(9 * pat->nnzb + 1, sizeof **dfdv);
+    if (!rc && (!*dfdx || !*dfdv))
+        rc = cl_error_set(err, CL_ENOMEM, "out of memory (jacobian)");
+    if (!rc) {
+        memcpy(m->xf, x, 3 * np * sizeof *x);
+        memcpy(m->vf, v, 3 * np * sizeof *v);
+        eval_terms(m, t, NULL, *dfdx, *dfdv, NULL);
+    }
+    /* Terms go back to the free-particle pattern the system uses. */
+    cl_error ignored;
+    for (size_t k = 0; k < m->nterm; k++)
+        if (m->type[k]->bind(m->state[k], &m->pattern, m->cloth.dof,
+                             &ignored) && rc == CL_OK)
+            rc = cl_error_set(err, CL_ENOMEM, "out of memory (rebind)");
+    return rc;
+}

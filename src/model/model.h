@@ -1,0 +1,45 @@
+/* A cloth problem: the grid, its pins and its force terms, presented to the
+ * integrators as a cl_system (SPEC 1).
+ *
+ * INI sections read here:
+ *   [cloth]    n (particles per side, default 16) or nu, nv; size (m,
+ *              default 1) or su, sv; mass (total kg, default 0.1) or
+ *              particle_mass (kg, overrides mass)
+ *   [pins]     at = "i,j i,j ..." (negative counts from the far edge,
+ *              default "0,0 0,-1"); velocity = prescribed pin velocity
+ *              (vector, default 0,0,0)
+ *   [jacobian] transverse = full|clamp (SPEC 3.1)
+ * plus each force term's own section (forces/registry.c). */
+#ifndef CL_MODEL_H
+#define CL_MODEL_H
+
+#include "forces/term.h"
+#include "io/config.h"
+#include "model/cloth.h"
+#include "model/system.h"
+
+typedef struct cl_model cl_model;
+
+cl_status cl_model_create(cl_config *cfg, cl_model **model, cl_error *err);
+void cl_model_free(cl_model *m);
+
+const cl_system *cl_model_system(cl_model *m);
+const cl_cloth *cl_model_cloth(const cl_model *m);
+
+/* Names of the active force terms, in evaluation order. */
+size_t cl_model_terms(const cl_model *m, const char **names, size_t max);
+
+/* Forces on every particle (pinned ones included) and the energies for
+ * full-particle positions and velocities (3*np each). */
+cl_status cl_model_eval_full(cl_model *m, double t, const double *x,
+                             const double *v, double *f, cl_energy *e,
+                             cl_error *err);
+
+/* df/dx and df/dv over all particles (pinned ones included): fills pat (the
+ * caller frees it with cl_bpattern_free) and allocates *dfdx and *dfdv
+ * (9 * pat->nnzb each; the caller frees them). */
+cl_status cl_model_jacobian_full(cl_model *m, double t, const double *x,
+                                 const double *v, cl_bpattern *pat,
+                                 double **dfdx, double **dfdv, cl_error *err);
+
+#endif

@@ -1,0 +1,238 @@
+/* cvode-bdf against closed-form solutions: damped/undamped oscillators, the
+ * coupled pair, a stiff overdamped set; statistics, one KLU symbolic
+ * analysis over many advance calls, blow-up and error reporting, options. */
+#include <criterion/criterion.h>
+
+#include <math.h>
+
+#include "integrators/integrator.h"
+#include "testsys.h"
+
+static const cl_integrator_type *cvb(void)
+{
+    const cl_integrator_type *t = cl_integrator_find("cvode-bdf");
+    cr_assert_not_null(t);
+    return t;
+}
+
+/* Integrate from 0 to T with nout outputs; max error in x and v over the
+ * outputs, statistics at the end. */
+static double run(ts_sys *ts, const cl_integrator_opts *o, double T,
+                  int nout, cl_stats *s)
+{
+    double x0[12], v0[12], x[12], v[12], xe[12], ve[12], e = 0;
+    ts_initial(ts, x0, v0);
+    void *st;
+    cl_error err;
+    cr_assert_eq(cvb()->create(&ts->sys, o, 0.0, x0, v0, &st, &err), CL_OK,
+                 "%s", err.msg);
+    for (int i = 1; i <= nout; i++) {
+        double t = T * i / nout;
+        cr_assert_eq(cvb()->advance(st, t, x, v, &err), CL_OK, "%s", err.msg);
+        ts_exact(ts, x0, v0, t, xe, ve);
+        e = fmax(e, fmax(ts_maxdiff(x, xe, ts->n), ts_maxdiff(v, ve, ts->n)));
+    }
+    if (s)
+        cvb()->stats(st, s);
+    cvb()->free(st);
+    return e;
+}
+
+Test(cvode_bdf, oscillators_match_exact)
+{
+    ts_sys ts;
+    cr_assert_eq(ts_oscillators(&ts, 3), 0);
+    cl_integrator_opts o = {.rtol = 1e-6, .atol = 1e-8};
+    double e = run(&ts, &o, 10.0, 20, NULL);
+    cr_log_info("cvode-bdf oscillators rtol 1e-6: max error %.3e", e);
+    cr_assert_lt(e, 100 * o.rtol);
+    o.rtol = 1e-9;
+    o.atol = 1e-11;
+    double e2 = run(&ts, &o, 10.0, 20, NULL);
+    cr_log_info("cvode-bdf oscillators rtol 1e-9: max error %.3e", e2);
+    cr_assert_lt(e2, 100 * o.rtol);
+    cr_assert_lt(e2, e);
+    ts_free(&ts);
+}
+
+Test(cvode_bdf, coupled_pair_matches_exact)
+{
+    ts_sys ts;
+    cr_assert_eq(ts_pair(&ts, 2.0, 3.0, 1.5), 0);
+    cl_integrator_opts o = {.rtol = 1e-6, .atol = 1e-8};
+    double e = run(&ts, &o, 10.0, 25, NULL);
+    cr_log_info("cvode-bdf coupled pair rtol 1e-6: max error %.3e", e);
+    cr_assert_lt(e, 100 * o.rtol);
+    ts_free(&ts);
+}
+
+Test(cvode_bdf, default_tolerances)
+{
+    ts_sys ts;
+    cr_assert_eq(ts_oscillators(&ts, 1), 0);
+    cl_integrator_opts o = {0};
+    double e = run(&ts, &o, 5.0, 5, NULL);
+    cr_assert_lt(e, 100 * 1e-6);
+    ts_free(&ts);
+}
+
+/* Fast modes at -1e6 and -1e4, slow ones at ~-1: an explicit method would
+ * need h < 2e-6; BDF's step follows the slow dynamics. */
+Test(cvode_bdf, stiff_overdamped)
+{
+    ts_sys ts;
+    cr_assert_eq(ts_oscillators(&ts, 2), 0);
+    for (int r = 0; r < 3; r++) {
+        ts.mass[r] = 1.0;
+        ts.k[r] = 1e6;
+        ts.c[r] = 1e6 + 1.0;
+        ts.k[3 + r] = 1e4 * (r + 1);
+        ts.c[3 + r] = 1e4 * (r + 1) + 3.0;
+        ts.mass[3 + r] = 1.0;
+    }
+    cl_integrator_opts o = {.rtol = 1e-6, .atol = 1e-8};
+    cl_stats s;
+    double e = run(&ts, &o, 10.0, 10, &s);
+    cr_log_info("cvode-bdf stiff: max error %.3e in %ld steps", e, s.steps);
+    cr_assert_lt(e, 100 * o.rtol);
+    cr_assert_lt(s.steps, 5000);
+    ts_free(&ts);
+}
+
+Test(cvode_bdf, statistics_and_one_symbolic_analysis)
+{
+    ts_sys ts;
+    cr_assert_eq(ts_pair(&ts, 1.0, 2.0, 4.0), 0);
+    cl_integrator_opts o = {.rtol = 1e-7, .atol = 1e-9, .dt = 1e-4};
+    cl_stats s;
+    run(&ts, &o, 20.0, 40, &s);
+    cr_log_info("cvode-bdf stats: steps %ld rhs %ld jac %ld setups %ld "
+                "solves %ld newton %ld ncf %ld etf %ld symbolic %ld",
+                s.steps, s.rhs_evals, s.jac_evals, s.lin_setups,
+                s.lin_solves, s.nonlin_iters, s.nonlin_fails, s.err_fails,
+                s.symbolic_facts);
+    cr_assert_gt(s.steps, 10);
+    cr_assert_geq(s.rhs_evals, s.steps);
+    cr_assert_gt(s.jac_evals, 0);
+    cr_assert_gt(s.lin_setups, 1);
+    cr_assert_geq(s.lin_setups, s.jac_evals);
+    cr_assert_gt(s.nonlin_iters, 0);
+    cr_assert_eq(s.lin_solves, s.nonlin_iters);
+    cr_assert_eq(s.lin_iters, 0);
+    cr_assert_geq(s.err_fails, 0);
+    cr_assert_eq(s.symbolic_facts, 1);
+    ts_free(&ts);
+}
+
+Test(cvode_bdf, output_times)
+{
+    ts_sys ts;
+    cr_assert_eq(ts_oscillators(&ts, 1), 0);
+    double x0[3], v0[3], x[3], v[3], x2[3], v2[3];
+    ts_initial(&ts, x0, v0);
+    cl_integrator_opts o = {0};
+    void *st;
+    cl_error err;
+    cr_assert_eq(cvb()->create(&ts.sys, &o, 0.0, x0, v0, &st, &err), CL_OK);
+    cr_assert_eq(cvb()->advance(st, 0.0, x, v, &err), CL_OK, "%s", err.msg);
+    cr_assert_eq(ts_maxdiff(x, x0, 3) + ts_maxdiff(v, v0, 3), 0.0);
+    cr_assert_eq(cvb()->advance(st, 1.0, x, v, &err), CL_OK, "%s", err.msg);
+    cr_assert_eq(cvb()->advance(st, 1.0, x2, v2, &err), CL_OK);
+    cr_assert_eq(ts_maxdiff(x, x2, 3) + ts_maxdiff(v, v2, 3), 0.0);
+    cr_assert_eq(cvb()->advance(st, 0.5, x, v, &err), CL_EINVAL);
+    cr_assert_eq(cvb()->advance(st, NAN, x, v, &err), CL_EINVAL);
+    cvb()->free(st);
+    ts_free(&ts);
+}
+
+Test(cvode_bdf, max_steps_is_a_solver_failure)
+{
+    ts_sys ts;
+    cr_assert_eq(ts_oscillators(&ts, 1), 0);
+    double x[3], v[3];
+    ts_initial(&ts, x, v);
+    cl_integrator_opts o = {.max_steps = 5};
+    void *st;
+    cl_error err;
+    cr_assert_eq(cvb()->create(&ts.sys, &o, 0.0, x, v, &st, &err), CL_OK);
+    cr_assert_eq(cvb()->advance(st, 100.0, x, v, &err), CL_ESOLVER);
+    cr_assert_not_null(strstr(err.msg, "CV_TOO_MUCH_WORK"), "%s", err.msg);
+    cr_assert_not_null(strstr(err.msg, "t = "), "%s", err.msg);
+    cvb()->free(st);
+    ts_free(&ts);
+}
+
+/* A force failing from t_bad on: advance to 0.5 succeeds when t_bad > 0.5,
+ * the advance to 3 reports `want`. */
+static void expect_failure(int fail, double t_bad, cl_status sys_status,
+                           cl_status want)
+{
+    ts_sys ts;
+    cr_assert_eq(ts_oscillators(&ts, 1), 0);
+    ts.fail = fail;
+    ts.t_bad = t_bad;
+    ts.fail_status = sys_status;
+    double x[3], v[3];
+    ts_initial(&ts, x, v);
+    cl_integrator_opts o = {0};
+    void *st;
+    cl_error err;
+    cl_status got = cvb()->create(&ts.sys, &o, 0.0, x, v, &st, &err);
+    cr_assert_eq(got, CL_OK, "%s", err.msg);
+    if (t_bad > 0.5)
+        cr_assert_eq(cvb()->advance(st, 0.5, x, v, &err), CL_OK, "%s",
+                     err.msg);
+    got = cvb()->advance(st, 3.0, x, v, &err);
+    cr_log_info("cvode-bdf failure: %s", err.msg);
+    cr_assert_eq(got, want, "%s: %s", cl_status_name(got), err.msg);
+    cr_assert_not_null(strstr(err.msg, "t = "), "%s", err.msg);
+    cvb()->free(st);
+    ts_free(&ts);
+}
+
+Test(cvode_bdf, nan_from_the_start_is_blowup)
+{
+    expect_failure(TS_FAIL_NAN, -1.0, CL_OK, CL_EBLOWUP);
+}
+
+Test(cvode_bdf, nan_later_is_blowup)
+{
+    expect_failure(TS_FAIL_NAN, 1.0, CL_OK, CL_EBLOWUP);
+}
+
+Test(cvode_bdf, blowup_status_is_blowup)
+{
+    expect_failure(TS_FAIL_STATUS, 1.0, CL_EBLOWUP, CL_EBLOWUP);
+}
+
+Test(cvode_bdf, system_error_passed_on)
+{
+    expect_failure(TS_FAIL_STATUS, 1.0, CL_EINVAL, CL_EINVAL);
+}
+
+Test(cvode_bdf, rejects_bad_options)
+{
+    ts_sys ts;
+    cr_assert_eq(ts_oscillators(&ts, 1), 0);
+    double x[3] = {0}, v[3] = {0};
+    const cl_integrator_opts bad[] = {
+        {.rtol = -1e-6}, {.atol = NAN}, {.dt = -1.0}, {.max_steps = -3},
+        {.rtol = INFINITY}};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        void *st = (void *)1;
+        cl_error err;
+        cr_assert_eq(cvb()->create(&ts.sys, &bad[i], 0.0, x, v, &st, &err),
+                     CL_EINVAL, "case %zu", i);
+        cr_assert_null(st);
+    }
+    cl_system empty = ts.sys;
+    empty.n = 0;
+    void *st;
+    cl_error err;
+    cl_integrator_opts o = {0};
+    cr_assert_eq(cvb()->create(&empty, &o, 0.0, x, v, &st, &err), CL_EINVAL);
+    cl_system nojac = ts.sys;
+    nojac.jacobian = NULL;
+    cr_assert_eq(cvb()->create(&nojac, &o, 0.0, x, v, &st, &err), CL_EINVAL);
+    ts_free(&ts);
+}

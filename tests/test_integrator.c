@@ -1,0 +1,138 @@
+/* Integrator registry, fixed-step bookkeeping (cl_fixed_steps_to) and the
+ * statistics output (CSV rows parsed back, human block). */
+#include <criterion/criterion.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "integrators/integrator.h"
+
+Test(integrator, find_by_name)
+{
+    const cl_integrator_type *a = cl_integrator_find("cvode-bdf");
+    const cl_integrator_type *b = cl_integrator_find("symplectic-euler");
+    cr_assert_not_null(a);
+    cr_assert_not_null(b);
+    cr_assert_str_eq(a->name, "cvode-bdf");
+    cr_assert_not(a->fixed_step);
+    cr_assert(b->fixed_step);
+    cr_assert_null(cl_integrator_find("no-such-method"));
+    cr_assert_null(cl_integrator_find(""));
+    cr_assert_null(cl_integrator_find(NULL));
+}
+
+Test(integrator, registry_rows_complete_and_unique)
+{
+    size_t n = 0;
+    for (; cl_integrator_registry[n]; n++) {
+        const cl_integrator_type *t = cl_integrator_registry[n];
+        cr_assert(t->name && t->name[0] && t->doc && t->doc[0]);
+        cr_assert(t->create && t->advance && t->stats && t->free, "%s",
+                  t->name);
+        cr_assert_eq(cl_integrator_find(t->name), t, "%s", t->name);
+        for (size_t j = 0; j < n; j++)
+            cr_assert_str_neq(cl_integrator_registry[j]->name, t->name);
+    }
+    cr_assert_geq(n, 2);
+}
+
+Test(integrator, fixed_steps_accepts_multiples)
+{
+    long k = -1;
+    cl_error err;
+    cr_assert_eq(cl_fixed_steps_to(0.3, 0.1, 0, &k, &err), CL_OK);
+    cr_assert_eq(k, 3);
+    cr_assert_eq(cl_fixed_steps_to(0.3, 0.1, 1, &k, &err), CL_OK);
+    cr_assert_eq(k, 2);
+    cr_assert_eq(cl_fixed_steps_to(0.3, 0.1, 3, &k, &err), CL_OK);
+    cr_assert_eq(k, 0);
+    cr_assert_eq(cl_fixed_steps_to(0.0, 5e-4, 0, &k, &err), CL_OK);
+    cr_assert_eq(k, 0);
+    cr_assert_eq(cl_fixed_steps_to(1000.0, 1e-3, 0, &k, &err), CL_OK);
+    cr_assert_eq(k, 1000000);
+    /* 7 * 0.7 accumulated by repeated addition is not 4.9 exactly. */
+    double t = 0;
+    for (int i = 0; i < 7; i++)
+        t += 0.7;
+    cr_assert_eq(cl_fixed_steps_to(t, 0.7, 2, &k, &err), CL_OK);
+    cr_assert_eq(k, 5);
+}
+
+Test(integrator, fixed_steps_rejects_non_multiples_backwards_bad_dt)
+{
+    long k = 99;
+    cl_error err;
+    cr_assert_eq(cl_fixed_steps_to(0.25, 0.1, 0, &k, &err), CL_EINVAL);
+    cr_assert_not_null(strstr(err.msg, "multiple"), "%s", err.msg);
+    cr_assert_eq(cl_fixed_steps_to(1.0 + 1e-6, 0.1, 0, &k, &err), CL_EINVAL);
+    cr_assert_eq(cl_fixed_steps_to(0.1, 0.1, 2, &k, &err), CL_EINVAL);
+    cr_assert_not_null(strstr(err.msg, "behind"), "%s", err.msg);
+    cr_assert_eq(cl_fixed_steps_to(-0.2, 0.1, 0, &k, &err), CL_EINVAL);
+    cr_assert_eq(cl_fixed_steps_to(1.0, 0.0, 0, &k, &err), CL_EINVAL);
+    cr_assert_eq(cl_fixed_steps_to(1.0, -0.1, 0, &k, &err), CL_EINVAL);
+    cr_assert_eq(cl_fixed_steps_to(1.0, NAN, 0, &k, &err), CL_EINVAL);
+    cr_assert_eq(cl_fixed_steps_to(INFINITY, 0.1, 0, &k, &err), CL_EINVAL);
+    cr_assert_eq(cl_fixed_steps_to(1e300, 1e-300, 0, &k, &err), CL_EINVAL);
+    cr_assert_eq(k, 99, "nsteps must be untouched on failure");
+}
+
+static cl_stats sample_stats(void)
+{
+    return (cl_stats){.steps = 11, .rhs_evals = 22, .jac_evals = 3,
+                      .lin_setups = 4, .lin_solves = 15, .lin_iters = 0,
+                      .nonlin_iters = 15, .nonlin_fails = 1, .err_fails = 2,
+                      .symbolic_facts = 1, .wall = 0.5, .cpu = 0.25};
+}
+
+Test(integrator, stats_csv_rows_parse_back)
+{
+    cl_stats s = sample_stats();
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *fp = open_memstream(&buf, &len);
+    cr_assert_not_null(fp);
+    cl_stats_print(&s, fp, false);
+    fclose(fp);
+    const struct { const char *name; double value; } want[] = {
+        {"steps", 11}, {"rhs_evals", 22}, {"jac_evals", 3},
+        {"lin_setups", 4}, {"lin_solves", 15}, {"lin_iters", 0},
+        {"nonlin_iters", 15}, {"nonlin_fails", 1}, {"err_fails", 2},
+        {"symbolic_facts", 1}, {"wall", 0.5}, {"cpu", 0.25}};
+    size_t nw = sizeof want / sizeof want[0], rows = 0;
+    for (char *line = strtok(buf, "\n"); line; line = strtok(NULL, "\n")) {
+        char *comma = strchr(line, ',');
+        cr_assert_not_null(comma, "row without comma: %s", line);
+        *comma = '\0';
+        size_t i = 0;
+        while (i < nw && strcmp(want[i].name, line) != 0)
+            i++;
+        cr_assert_lt(i, nw, "unexpected row %s", line);
+        cr_assert_float_eq(strtod(comma + 1, NULL), want[i].value, 1e-12,
+                           "%s", line);
+        rows++;
+    }
+    cr_assert_eq(rows, nw);
+    free(buf);
+}
+
+Test(integrator, stats_human_block_one_line_per_counter)
+{
+    cl_stats s = sample_stats();
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *fp = open_memstream(&buf, &len);
+    cr_assert_not_null(fp);
+    cl_stats_print(&s, fp, true);
+    fclose(fp);
+    size_t lines = 0, width = 0;
+    for (char *line = strtok(buf, "\n"); line; line = strtok(NULL, "\n")) {
+        cr_assert_null(strchr(line, ','), "%s", line);
+        if (lines++ == 0)
+            width = strlen(line);
+        cr_assert_eq(strlen(line), width, "not aligned: '%s'", line);
+    }
+    cr_assert_eq(lines, 12);
+    free(buf);
+}
