@@ -13,7 +13,9 @@
  * both are solved in A's eigenbasis.
  *
  * Failure injection: from time t_bad on, the force (and Jacobian) return NaN
- * values (TS_FAIL_NAN) or a status (TS_FAIL_STATUS, fail_status). */
+ * values (TS_FAIL_NAN) or a status (TS_FAIL_STATUS, fail_status); or the
+ * first fail_left force calls at t >= t_bad return NaN values and later ones
+ * are exact (TS_FAIL_TRANSIENT: a trial state a solver can retry). */
 #ifndef CL_TESTSYS_H
 #define CL_TESTSYS_H
 
@@ -24,7 +26,7 @@
 #include "linalg/bpattern.h"
 #include "model/system.h"
 
-enum { TS_FAIL_NONE, TS_FAIL_NAN, TS_FAIL_STATUS };
+enum { TS_FAIL_NONE, TS_FAIL_NAN, TS_FAIL_STATUS, TS_FAIL_TRANSIENT };
 
 typedef struct {
     size_t nb, n;
@@ -34,6 +36,7 @@ typedef struct {
     int fail;             /* TS_FAIL_* */
     double t_bad;
     cl_status fail_status;
+    int fail_left;        /* TS_FAIL_TRANSIENT: failures still to inject */
     long *diag_blk;       /* nb: block index of (i, i) */
     long blk01, blk10;    /* coupling blocks of the pair */
     cl_bpattern pat;
@@ -42,17 +45,19 @@ typedef struct {
 
 static const double ts_A[9] = {2, 1, 0, 1, 2, 0, 0, 0, 1};
 
-static inline cl_status ts_failing(const ts_sys *ts, double t)
+static inline cl_status ts_failing(ts_sys *ts, double t)
 {
     if (ts->fail == TS_FAIL_NONE || t < ts->t_bad)
         return CL_OK;
+    if (ts->fail == TS_FAIL_TRANSIENT)
+        return ts->fail_left > 0 ? (ts->fail_left--, CL_EBLOWUP) : CL_OK;
     return ts->fail == TS_FAIL_STATUS ? ts->fail_status : CL_EBLOWUP;
 }
 
 static inline cl_status ts_force(void *data, double t, const double *x,
                                  const double *v, double *f)
 {
-    const ts_sys *ts = data;
+    ts_sys *ts = data;
     cl_status st = ts_failing(ts, t);
     if (st != CL_OK && ts->fail == TS_FAIL_STATUS)
         return st;
@@ -83,8 +88,8 @@ static inline cl_status ts_jacobian(void *data, double t, const double *x,
                                     const double *v, double *f, double *dfdx,
                                     double *dfdv)
 {
-    const ts_sys *ts = data;
-    cl_status st = ts_failing(ts, t);
+    ts_sys *ts = data;
+    cl_status st = ts->fail == TS_FAIL_TRANSIENT ? CL_OK : ts_failing(ts, t);
     if (st != CL_OK && ts->fail == TS_FAIL_STATUS)
         return st;
     size_t nval = 9 * ts->pat.nnzb;

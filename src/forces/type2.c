@@ -312,6 +312,30 @@ static cl_status type2_setup(type2_state *st, const cl_cloth *cloth,
     return build_lengths(st, err);
 }
 
+/* The key that set the short side: nu or nv if given, else n. */
+static const char *grid_key(cl_config *cfg, const cl_cloth *cloth)
+{
+    const char *side = cloth->nu < 3 ? "nu" : "nv";
+    return cl_config_string(cfg, "cloth", side, NULL) ? side : "n";
+}
+
+/* Interlaced pairs span two spacings: a side of fewer than 3 particles has
+ * none, which would silently switch the term off. */
+static cl_status check_grid(cl_config *cfg, const cl_cloth *cloth,
+                            cl_error *err)
+{
+    if (cloth->nu >= 3 && cloth->nv >= 3)
+        return CL_OK;
+    char where[256];
+    return cl_error_set(err, CL_EINVAL,
+                        "%s: [cloth] grid %d x %d: Type2 (interlaced) pairs "
+                        "need at least 3 particles per side; use n >= 3 or "
+                        "set type2.enabled = false",
+                        cl_config_origin(cfg, "cloth", grid_key(cfg, cloth),
+                                         where, sizeof where),
+                        cloth->nu, cloth->nv);
+}
+
 static cl_status type2_create(cl_config *cfg, const cl_cloth *cloth,
                               const cl_term_opts *opts, void **state,
                               cl_error *err)
@@ -327,6 +351,7 @@ static cl_status type2_create(cl_config *cfg, const cl_cloth *cloth,
     /* Parameters are read even when disabled, so that they are validated
      * and not reported as unknown keys. */
     if ((rc = read_params(cfg, st, err)) || !enabled ||
+        (rc = check_grid(cfg, cloth, err)) ||
         (rc = type2_setup(st, cloth, opts, err))) {
         type2_free(st);
         return rc;

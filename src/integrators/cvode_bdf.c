@@ -16,9 +16,12 @@
  * naming the function, its flag, and the time reached.  A force or
  * Jacobian that is not finite (or a system call returning CL_EBLOWUP) makes
  * the RHS / Jacobian function return 1 (recoverable: CVODE retries with a
- * smaller step); any other system error returns -1 (unrecoverable).  If
- * CVODE then gives up, advance reports CL_EBLOWUP (or the system's status)
- * with the time reached, not a generic solver failure.
+ * smaller step), unless CVODE has warned "t + h = t" during this advance
+ * (the step has collapsed to round-off; retrying would crawl towards the
+ * singularity until max_steps), then -1; any other system error returns -1
+ * (unrecoverable).  If CVODE gives up, advance reports CL_EBLOWUP (or the
+ * system's status) with the times reached, not a generic solver failure.
+ * CVODE's own messages are captured (CVodeSetErrHandlerFn), never printed.
  *
  * Statistics (cl_stats): steps, nonlin_iters, nonlin_fails, err_fails,
  * jac_evals, lin_setups (= KLU factor or refactor calls), lin_iters (0 for
@@ -26,10 +29,12 @@
  * evaluations plus the linear solver's (0 with an analytic Jacobian).  The
  * KLU solver is wrapped in a thin counting SUNLinearSolver that forwards
  * every operation: lin_solves = solve calls (one per Newton iteration) and
- * symbolic_facts = setups that ran KLU's symbolic analysis, i.e. setups
- * entered with KLU's first_factorize flag set or after which the symbolic
- * object changed (sunlinsol_klu.c 6.4.1 analyses only then; refactor and the
- * rcond-triggered re-factor are numeric only).  With a fixed pattern it is
+ * symbolic_facts = setups that ran KLU's symbolic analysis successfully,
+ * i.e. setups entered with KLU's first_factorize flag set that left a
+ * symbolic object, or after which the symbolic object changed (in
+ * sunlinsol_klu.c only the first setup after initialisation or
+ * SUNLinSol_KLUReInit analyses; later setups refactor numerically, or
+ * factor numerically again when rcond is tiny).  With a fixed pattern it is
  * 1 for the whole run. */
 #include "integrators/integrator.h"
 
@@ -72,7 +77,9 @@ typedef struct {
     double t_last;          /* last output time */
     cl_status fail_rhs;     /* status of the last failed RHS call, or OK */
     cl_status fail_jac;     /* same for the Jacobian */
+    bool collapsed;         /* CVODE warned t + h = t in this advance */
     double fail_t;          /* time of that failure */
+    bool fail_nonfinite;    /* it was our finiteness check that failed */
     char cvmsg[512];        /* last message of CVODE's error handler */
 } cl_cvbdf;
 
@@ -101,8 +108,8 @@ static int cnt_setup(SUNLinearSolver S, SUNMatrix A)
     int analyse = k->first_factorize;
     void *sym = SUNLinSol_KLUGetSymbolic(c->klu);
     int ret = SUNLinSolSetup(c->klu, A);
-    if (ret == SUNLS_SUCCESS &&
-        (analyse || (void *)SUNLinSol_KLUGetSymbolic(c->klu) != sym))
+    void *now = SUNLinSol_KLUGetSymbolic(c->klu);
+    if (analyse ? now != NULL : now != sym)
         c->analyses++;
     return ret;
 }
@@ -184,14 +191,23 @@ static void cvb_errhandler(int code, const char *module, const char *function,
     (void)module;
     if (code < 0)
         snprintf(s->cvmsg, sizeof s->cvmsg, "%s: %s", function, msg);
+    else if (strstr(msg, "t + h = t"))
+        s->collapsed = true;
 }
 
-/* Record a failed system call; 1 (recoverable) for a blow-up, else -1. */
-static int cvb_sysfail(cl_cvbdf *s, cl_status *slot, cl_status st, double t)
+/* Record a failed system call.  A blow-up is recoverable (1: CVODE retries
+ * with a smaller step, which cures a trial state that went too far) unless
+ * CVODE has already shrunk its step to round-off (its "t + h = t" warning):
+ * then the force fails however small the step, as at a singularity in time
+ * or state, and retrying would only crawl towards it until max_steps.  Any
+ * other system error is unrecoverable (-1). */
+static int cvb_sysfail(cl_cvbdf *s, cl_status *slot, cl_status st, double t,
+                       bool nonfinite)
 {
     *slot = st;
     s->fail_t = t;
-    return st == CL_EBLOWUP ? 1 : -1;
+    s->fail_nonfinite = nonfinite;
+    return st == CL_EBLOWUP && !s->collapsed ? 1 : -1;
 }
 
 static bool cvb_finite(const double *a, size_t n)
@@ -213,12 +229,12 @@ static int cvb_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *data)
     double *xd = N_VGetArrayPointer(ydot), *vd = xd + n;
     cl_status st = s->sys->force(s->sys->data, t, x, v, vd);
     if (st != CL_OK)
-        return cvb_sysfail(s, &s->fail_rhs, st, t);
+        return cvb_sysfail(s, &s->fail_rhs, st, t, false);
     memcpy(xd, v, n * sizeof *xd);
     for (size_t i = 0; i < n; i++)
         vd[i] *= s->fo.inv_mass[i];
     if (!cvb_finite(xd, 2 * n))
-        return cvb_sysfail(s, &s->fail_rhs, CL_EBLOWUP, t);
+        return cvb_sysfail(s, &s->fail_rhs, CL_EBLOWUP, t, true);
     s->fail_rhs = CL_OK;
     return 0;
 }
@@ -233,9 +249,9 @@ static int cvb_jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J,
     cl_status st = s->sys->jacobian(s->sys->data, t, x, v, NULL, s->dfdx,
                                     s->dfdv);
     if (st != CL_OK)
-        return cvb_sysfail(s, &s->fail_jac, st, t);
+        return cvb_sysfail(s, &s->fail_jac, st, t, false);
     if (!cvb_finite(s->dfdx, s->fo.nval) || !cvb_finite(s->dfdv, s->fo.nval))
-        return cvb_sysfail(s, &s->fail_jac, CL_EBLOWUP, t);
+        return cvb_sysfail(s, &s->fail_jac, CL_EBLOWUP, t, true);
     if (cl_firstorder_fill(&s->fo, s->dfdx, s->dfdv, J, NULL) != CL_OK)
         return -1;
     s->fail_jac = CL_OK;
@@ -419,11 +435,11 @@ static cl_status cvb_advance_fail(cl_cvbdf *s, int flag, double t_out,
     char *name = CVodeGetReturnFlagName(flag);
     cl_status st = cl_error_set(
         err, sys_st,
-        "cvode-bdf: %s %s at t = %.9g (state reached t = %.9g on the way to "
-        "%.9g; CVode gave up with %s)",
-        s->fail_rhs != CL_OK ? "force" : "Jacobian",
-        sys_st == CL_EBLOWUP ? "not finite (blow-up)" : cl_status_name(sys_st),
-        s->fail_t, (double)t, t_out, name ? name : "?");
+        "cvode-bdf: %s evaluation failed (%s%s) at t = %.9g; state reached "
+        "t = %.9g on the way to %.9g; CVode gave up with %s",
+        s->fail_rhs != CL_OK ? "force" : "Jacobian", cl_status_name(sys_st),
+        s->fail_nonfinite ? ": values not finite" : "", s->fail_t, (double)t,
+        t_out, name ? name : "?");
     free(name);
     return st;
 }
@@ -438,6 +454,7 @@ static cl_status cvb_advance(void *state, double t_out, double *x, double *v,
                             s->t_last);
     if (t_out > s->t_last) {
         s->fail_rhs = s->fail_jac = CL_OK;
+        s->collapsed = false;
         s->cvmsg[0] = '\0';
         sunrealtype tret;
         int flag = CVode(s->mem, t_out, s->y, &tret, CV_NORMAL);

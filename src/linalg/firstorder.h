@@ -11,11 +11,12 @@
  * sorted row indices, and for every stored value the place its number comes
  * from (a block-value index into df/dx or df/dv, the identity's 1, or an
  * explicit 0).  Every diagonal entry of J is stored, including the x-block's
- * structural zeros (SUNDIALS-NOTES 4), so that CVODE's I - gamma J keeps the
- * pattern.  Filling copies the index arrays (SUNMatZero wipes them before
- * every Jacobian call, SUNDIALS-NOTES 2) and writes the values, scaled by
- * 1/mass of their row: no search, no allocation.  No symmetry of df/dx or
- * df/dv is assumed. */
+ * structural zeros, so that CVODE's I - gamma J (SUNMatScaleAddI, which in
+ * SUNDIALS 6.4.1 rebuilds the matrix on a slow path when a diagonal entry is
+ * missing) keeps the storage and the pattern KLU analysed.  Filling copies
+ * the index arrays (CVODE's SUNMatZero wipes them before every Jacobian
+ * call) and writes the values, scaled by 1/mass of their row: no search, no
+ * allocation.  No symmetry of df/dx or df/dv is assumed. */
 #ifndef CL_FIRSTORDER_H
 #define CL_FIRSTORDER_H
 
