@@ -21,6 +21,8 @@
  * and to list the known keys/sections in its message. */
 #include "io/config.h"
 
+#include "io/atomic.h"
+
 #include <ctype.h>
 #include <errno.h>
 #include <limits.h>
@@ -762,61 +764,13 @@ static void cl_write_entries(const cl_config *cfg, FILE *f)
             cl_write_section(cfg, e, f);
 }
 
-/* mkstemp in the directory of `path`, with the usual 0666 & ~umask mode. */
-static FILE *cl_open_tmp(char *tmp)
-{
-    int fd = mkstemp(tmp);
-    if (fd < 0)
-        return NULL;
-    mode_t mask = umask(077); /* umask can only be read by setting it */
-    umask(mask);
-    FILE *f = NULL;
-    if (fchmod(fd, (mode_t)(0666 & ~mask)) == 0)
-        f = fdopen(fd, "w");
-    if (!f) {
-        int e = errno;
-        close(fd);
-        unlink(tmp);
-        errno = e;
-    }
-    return f;
-}
-
-/* Write, flush, sync and close; false with errno set on any failure. */
-static bool cl_write_close(const cl_config *cfg, FILE *f)
-{
-    cl_write_entries(cfg, f);
-    bool ok = fflush(f) == 0 && !ferror(f) && fsync(fileno(f)) == 0;
-    int e = errno;
-    if (fclose(f) != 0) {
-        e = ok ? errno : e;
-        ok = false;
-    }
-    if (!ok)
-        errno = e ? e : EIO;
-    return ok;
-}
-
 cl_status cl_config_write(const cl_config *cfg, const char *path,
                           cl_error *err)
 {
-    static const char suffix[] = ".tmp.XXXXXX";
-    size_t n = strlen(path);
-    char *tmp = malloc(n + sizeof suffix);
-    if (!tmp)
-        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", path);
-    memcpy(tmp, path, n);
-    memcpy(tmp + n, suffix, sizeof suffix);
-    cl_status rc = CL_OK;
-    FILE *f = cl_open_tmp(tmp);
-    if (!f)
-        rc = cl_error_set(err, CL_EIO, "cannot create %s: %s", path,
-                          strerror(errno));
-    else if (!cl_write_close(cfg, f) || rename(tmp, path) != 0) {
-        rc = cl_error_set(err, CL_EIO, "cannot write %s: %s", path,
-                          strerror(errno));
-        unlink(tmp);
-    }
-    free(tmp);
-    return rc;
+    cl_afile af;
+    cl_status rc = cl_afile_open(&af, path, err);
+    if (rc)
+        return rc;
+    cl_write_entries(cfg, af.fp);
+    return cl_afile_commit(&af, err);
 }
