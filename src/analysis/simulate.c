@@ -177,7 +177,7 @@ static cl_status sim_alloc(sim *s, cl_error *err)
         return cl_error_set(err, CL_ENOMEM, "out of memory (run)");
     for (size_t p = 0; p < np; p++)
         s->pinned[p] = s->c->dof[p] < 0;
-    cl_cloth_gather(s->c, s->c->X0, s->x);
+    cl_model_initial_state(s->m, s->x, s->v);
     return cl_pairs_type1(s->c, &s->type1, err);
 }
 

@@ -19,6 +19,15 @@ typedef struct {
     double rtol;      /* relative tolerance (adaptive methods) */
     double atol;      /* absolute tolerance (adaptive methods) */
     long max_steps;   /* per advance call, 0 for the solver's default */
+    const char *linsol;  /* linear solver name (--linsol); NULL or "" for
+                          * the method's default */
+    double newton_tol;   /* nonlinear solve tolerance, fixed-step implicit
+                          * methods (0: method default) */
+    long newton_maxit;   /* Newton iterations per step (0: method default) */
+    double lin_tol;      /* iterative linear solver tolerance (0: default) */
+    long lin_maxit;      /* iterative linear solver iterations (0: default) */
+    double vdamp;        /* Verlet velocity damping factor in [0, 1)
+                          * (seed 004; 0: none) */
 } cl_integrator_opts;
 
 /* The statistics every integrator reports (SPEC 5). Counters a method does
@@ -64,8 +73,8 @@ const cl_integrator_type *cl_integrator_find(const char *name);
 cl_status cl_fixed_steps_to(double t_out, double dt, long done, long *nsteps,
                             cl_error *err);
 
-/* Write the statistics as "name,value" CSV rows (and a human summary when
- * `human` is true). */
+/* Write the statistics as an aligned human-readable block (human = true) or
+ * as "name,value" CSV rows without header (human = false). */
 void cl_stats_print(const cl_stats *s, FILE *fp, bool human);
 
 #endif

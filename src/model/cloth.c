@@ -10,9 +10,10 @@ cl_status cl_cloth_grid(int nu, int nv, double su, double sv,
                         double particle_mass, cl_cloth *c, cl_error *err)
 {
     memset(c, 0, sizeof *c);
-    if (nu < 2 || nv < 2)
+    if (nu < 1 || nv < 1 || (long)nu * nv < 2)
         return cl_error_set(err, CL_EINVAL,
-                            "cloth grid %d x %d: need at least 2 x 2", nu, nv);
+                            "cloth grid %d x %d: need at least two particles "
+                            "(a 1 x n grid is a chain)", nu, nv);
     if (!(su > 0) || !(sv > 0) || !isfinite(su) || !isfinite(sv))
         return cl_error_set(err, CL_EINVAL,
                             "cloth size %g x %g: need positive, finite sides",
@@ -24,8 +25,8 @@ cl_status cl_cloth_grid(int nu, int nv, double su, double sv,
     c->nu = nu;
     c->nv = nv;
     c->np = (size_t)nu * (size_t)nv;
-    c->hu = su / (nu - 1);
-    c->hv = sv / (nv - 1);
+    c->hu = nu > 1 ? su / (nu - 1) : 0.0;
+    c->hv = nv > 1 ? sv / (nv - 1) : 0.0;
     c->X0 = malloc(3 * c->np * sizeof *c->X0);
     c->mass = malloc(c->np * sizeof *c->mass);
     if (!c->X0 || !c->mass) {

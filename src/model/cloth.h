@@ -2,7 +2,8 @@
  *
  * A grid has nu x nv particles; particle (i, j) has index i*nv + j and rest
  * position (i*hu, 0, j*hv) in the default horizontal x-z plane, with
- * hu = Su/(nu-1), hv = Sv/(nv-1).  Pinned particles are not part of the ODE
+ * hu = Su/(nu-1), hv = Sv/(nv-1) (a side of one particle, a chain, has
+ * spacing 0 along it).  Pinned particles are not part of the ODE
  * state: their position and velocity are prescribed functions of time (here
  * X0 + w t, w = 0 for a fixed pin).  Free particles are numbered 0..nfree-1
  * in particle order; dof[p] is that number, or -1 for a pinned particle. */

@@ -11,6 +11,7 @@
 
 struct cl_model {
     cl_cloth cloth;
+    double v0[3];         /* initial velocity of the free particles */
     cl_term_opts opts;
     size_t nterm;
     const cl_term_type *type[MAX_TERMS];
@@ -29,8 +30,8 @@ static cl_status read_grid(cl_config *cfg, cl_cloth *c, cl_error *err)
     double size, su, sv, mass, pmass;
     cl_status rc;
     if ((rc = cl_config_long(cfg, "cloth", "n", 16, 2, 4096, &n, err)) ||
-        (rc = cl_config_long(cfg, "cloth", "nu", n, 2, 4096, &nu, err)) ||
-        (rc = cl_config_long(cfg, "cloth", "nv", n, 2, 4096, &nv, err)) ||
+        (rc = cl_config_long(cfg, "cloth", "nu", n, 1, 4096, &nu, err)) ||
+        (rc = cl_config_long(cfg, "cloth", "nv", n, 1, 4096, &nv, err)) ||
         (rc = cl_config_double(cfg, "cloth", "size", 1.0, 1e-300, INFINITY,
                                &size, err)) ||
         (rc = cl_config_double(cfg, "cloth", "su", size, 1e-300, INFINITY,
@@ -73,6 +74,11 @@ static cl_status read_pins(cl_config *cfg, cl_cloth *c, cl_error *err)
             return rc;
         s += used;
     }
+}
+
+static cl_status read_init(cl_config *cfg, cl_model *m, cl_error *err)
+{
+    return cl_config_vector(cfg, "init", "velocity", 3, m->v0, err);
 }
 
 static cl_status read_opts(cl_config *cfg, cl_term_opts *o, cl_error *err)
@@ -243,6 +249,7 @@ cl_status cl_model_create(cl_config *cfg, cl_model **model, cl_error *err)
     gsl_set_error_handler_off(); /* GSL reports through return codes */
     if ((rc = read_grid(cfg, &m->cloth, err)) ||
         (rc = read_pins(cfg, &m->cloth, err)) ||
+        (rc = read_init(cfg, m, err)) ||
         (rc = cl_cloth_finalize(&m->cloth, err)) ||
         (rc = read_opts(cfg, &m->opts, err)) ||
         (rc = create_terms(cfg, m, err)) ||
@@ -278,6 +285,13 @@ void cl_model_free(cl_model *m)
 const cl_system *cl_model_system(cl_model *m) { return &m->sys; }
 
 const cl_cloth *cl_model_cloth(const cl_model *m) { return &m->cloth; }
+
+void cl_model_initial_state(const cl_model *m, double *x, double *v)
+{
+    cl_cloth_gather(&m->cloth, m->cloth.X0, x);
+    for (size_t k = 0; k < 3 * m->cloth.nfree; k++)
+        v[k] = m->v0[k % 3];
+}
 
 size_t cl_model_terms(const cl_model *m, const char **names, size_t max)
 {

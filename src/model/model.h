@@ -8,6 +8,8 @@
  *   [pins]     at = "i,j i,j ..." (negative counts from the far edge,
  *              default "0,0 0,-1"); velocity = prescribed pin velocity
  *              (vector, default 0,0,0)
+ *   [init]     velocity = initial velocity of every free particle (vector,
+ *              default 0,0,0); positions start at rest
  *   [jacobian] transverse = full|clamp (SPEC 3.1)
  * plus each force term's own section (forces/registry.c). */
 #ifndef CL_MODEL_H
@@ -25,6 +27,10 @@ void cl_model_free(cl_model *m);
 
 const cl_system *cl_model_system(cl_model *m);
 const cl_cloth *cl_model_cloth(const cl_model *m);
+
+/* Initial state of the free particles (3*nfree each): rest positions and
+ * the [init] velocity. */
+void cl_model_initial_state(const cl_model *m, double *x, double *v);
 
 /* Names of the active force terms, in evaluation order. */
 size_t cl_model_terms(const cl_model *m, const char **names, size_t max);
