@@ -16,6 +16,7 @@ static const char run_help[] =
     "  --integrator NAME  integrator (clothode list); [run] integrator\n"
     "  --dt H             fixed step for fixed-step integrators (s)\n"
     "  --rtol R --atol A  tolerances for adaptive integrators\n"
+    "  --linsol NAME      linear solver of implicit integrators (klu, pcg, ...)\n"
     "  --t-end T          final time (s); [run] t_end\n"
     "  --samples S        time-series rows after t = 0 (default 200)\n"
     "  --frames K         frames after t = 0 (default 10, 0 for none)\n"
@@ -26,7 +27,9 @@ static const char run_help[] =
     "  --quiet            no summary on stdout\n"
     "  --help             this text\n"
     "Every option is also a key of the [run] section (t_end, dt, rtol, atol,\n"
-    "samples, frames, format, integrator, max_stretch).\n";
+    "linsol, samples, frames, format, integrator, max_stretch); [run] also\n"
+    "takes newton_tol, newton_maxit (fixed-step implicit methods), lin_tol,\n"
+    "lin_maxit (iterative linear solvers) and verlet_damping (seed 004).\n";
 
 typedef struct {
     cl_cli_sets sets;
@@ -42,6 +45,7 @@ static int parse_args(int argc, char **argv, run_args *a)
         {"dt", required_argument, 0, 'd'},
         {"rtol", required_argument, 0, 'r'},
         {"atol", required_argument, 0, 'a'},
+        {"linsol", required_argument, 0, 'l'},
         {"t-end", required_argument, 0, 't'},
         {"samples", required_argument, 0, 'S'},
         {"frames", required_argument, 0, 'f'},
@@ -53,7 +57,7 @@ static int parse_args(int argc, char **argv, run_args *a)
         {0, 0, 0, 0}};
     static const char *const key[128] = {
         ['i'] = "run.integrator", ['d'] = "run.dt", ['r'] = "run.rtol",
-        ['a'] = "run.atol", ['t'] = "run.t_end", ['S'] = "run.samples",
+        ['a'] = "run.atol", ['l'] = "run.linsol", ['t'] = "run.t_end", ['S'] = "run.samples",
         ['f'] = "run.frames", ['F'] = "run.format"};
     int c, rc = 0;
     optind = 1;
@@ -134,8 +138,27 @@ static cl_status read_integrator(cl_config *cfg, run_setup *r, cl_error *err)
         (rc = cl_config_double(cfg, "run", "atol", 1e-8, 1e-300, INFINITY,
                                &r->io.atol, err)) ||
         (rc = cl_config_long(cfg, "run", "max_steps", 0, 0, 1L << 40,
-                             &r->io.max_steps, err)))
+                             &r->io.max_steps, err)) ||
+        (rc = cl_config_double(cfg, "run", "newton_tol", 0.0, 0.0, 1.0,
+                               &r->io.newton_tol, err)) ||
+        (rc = cl_config_long(cfg, "run", "newton_maxit", 0, 0, 1000000,
+                             &r->io.newton_maxit, err)) ||
+        (rc = cl_config_double(cfg, "run", "lin_tol", 0.0, 0.0, 1.0,
+                               &r->io.lin_tol, err)) ||
+        (rc = cl_config_long(cfg, "run", "lin_maxit", 0, 0, 100000000,
+                             &r->io.lin_maxit, err)) ||
+        (rc = cl_config_double(cfg, "run", "verlet_damping", 0.0, 0.0,
+                               0.999999, &r->io.vdamp, err)))
         return rc;
+    r->io.linsol = cl_config_string(cfg, "run", "linsol", "");
+    char where[256];
+    if (*r->io.linsol && !r->type->takes_linsol)
+        return cl_error_set(err, CL_EINVAL,
+                            "%s: [run] linsol = \"%s\": integrator %s has no "
+                            "choice of linear solver",
+                            cl_config_origin(cfg, "run", "linsol", where,
+                                             sizeof where),
+                            r->io.linsol, r->type->name);
     char where[256];
     if (r->type->fixed_step && !(r->io.dt > 0))
         return cl_error_set(err, CL_EINVAL,

@@ -51,6 +51,7 @@ typedef struct {
     const char *name;
     const char *doc;     /* one line for `clothode list` */
     bool fixed_step;     /* true: needs dt; false: uses rtol/atol */
+    bool takes_linsol;   /* accepts opts->linsol (cl_linsol registry) */
     cl_status (*create)(const cl_system *sys, const cl_integrator_opts *o,
                         double t0, const double *x0, const double *v0,
                         void **state, cl_error *err);

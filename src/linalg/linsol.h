@@ -1,0 +1,50 @@
+/* Linear solvers for the half-size ("reduced") Newton matrix of the
+ * second-order form (SPEC 1, 5):
+ *     A = M - a df/dv - b df/dx        (3 unknowns per free particle)
+ * with method-dependent a, b (backward Euler: a = h, b = h^2; BDF2 as in
+ * the seed's eq. 15: a = 2h/3, b = 4h^2/9; ...).  The blocks of df/dx and
+ * df/dv come in the fixed cl_bpattern of the system.
+ *
+ * Each solver is one file defining a cl_linsol_type plus one row in the
+ * registry (linalg/linsol.c), selectable by name with --linsol:
+ *   klu   sparse LU (KLU, AMD ordering): symbolic analysis once, numeric
+ *         refactorisation at every setup;
+ *   pcg   SUNDIALS' SUNLinSol_PCG with a matrix-free product and a Jacobi
+ *         or 3x3 block-Jacobi preconditioner (A must be symmetric positive
+ *         definite; a breakdown is reported, not hidden). */
+#ifndef CL_LINSOL_H
+#define CL_LINSOL_H
+
+#include "core/error.h"
+#include "integrators/integrator.h"
+#include "linalg/bpattern.h"
+
+typedef struct {
+    const char *name;
+    const char *doc;
+    /* opts: lin_tol, lin_maxit (0: solver defaults). */
+    cl_status (*create)(const cl_bpattern *pat, const double *mass,
+                        const cl_integrator_opts *opts, void **state,
+                        cl_error *err);
+    /* Assemble A = M - a dfdv - b dfdx from block values (9 * nnzb each)
+     * and factorise / set up the preconditioner. */
+    cl_status (*setup)(void *state, double a, double b, const double *dfdx,
+                       const double *dfdv, cl_error *err);
+    /* Solve A x = rhs (3 * nb entries each). */
+    cl_status (*solve)(void *state, const double *rhs, double *x,
+                       cl_error *err);
+    /* Add this solver's counters: lin_setups, lin_solves, lin_iters,
+     * symbolic_facts. */
+    void (*stats)(const void *state, cl_stats *s);
+    void (*free)(void *state);
+} cl_linsol_type;
+
+extern const cl_linsol_type *const cl_linsol_registry[];
+
+/* By name; NULL or "" gives the first (default) solver; NULL if unknown. */
+const cl_linsol_type *cl_linsol_find(const char *name);
+
+/* "klu, pcg": the names, for messages. */
+const char *cl_linsol_names(char *buf, size_t len);
+
+#endif
