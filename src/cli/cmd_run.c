@@ -159,7 +159,6 @@ static cl_status read_integrator(cl_config *cfg, run_setup *r, cl_error *err)
                             cl_config_origin(cfg, "run", "linsol", where,
                                              sizeof where),
                             r->io.linsol, r->type->name);
-    char where[256];
     if (r->type->fixed_step && !(r->io.dt > 0))
         return cl_error_set(err, CL_EINVAL,
                             "%s: [run] dt = %g: integrator %s takes fixed "
