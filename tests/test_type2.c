@@ -459,6 +459,51 @@ Test(type2, limit_at_rest_length)
     cl_model_free(m);
 }
 
+/* df_b/dd of the isolated pair (rest length 1) from the analytic Jacobian:
+ * the (x, x) entry of df_1/dx_7 = K = s' u u^T + (s/d)(I - u u^T), u = x. */
+static double pair_stiffness(cl_model *m, double d)
+{
+    size_t n = fd_n(m);
+    double *x = fd_vec(n), *v = fd_vec(n), *Jx = fd_vec(n * n),
+           *Jv = fd_vec(n * n);
+    memcpy(x, cl_model_cloth(m)->X0, n * sizeof *x);
+    x[3 * PB] = x[3 * PA] + d;
+    fd_jacobian(m, x, v, Jx, Jv);
+    double ds = Jx[(3 * PA) * n + 3 * PB];
+    free(x);
+    free(v);
+    free(Jx);
+    free(Jv);
+    return ds;
+}
+
+/* df_b/dd -> 7.2 kb/L^3 as d -> L: ratio 1 + 48e/35 + 52e^2/35 + O(e^3).
+ * The f_b branch reaches e ~ 1e-13 with kb = 1e-12; 2 t D - t^2 D' loses
+ * ~10 eps/t^2 there unless summed as a series (regression: 1e-4 relative
+ * error at e = 1e-11 before). */
+Test(type2, buckling_stiffness_near_rest_length)
+{
+    cl_model *m = pair_model((const char *const[]){"type2.kb=1e-12", NULL});
+    for (double e = 1e-4; e > 5e-13; e /= 10) {
+        double ratio = pair_stiffness(m, 1.0 - e) / (7.2e-12);
+        double series = 1 + e * (48.0 / 35 + e * 52.0 / 35);
+        cr_assert(fabs(ratio - series) < 2 * e * e * e + 1e-12,
+                  "e=%g: f_b'/(7.2 kb/L^3) = %.17g, series %.17g", e, ratio,
+                  series);
+    }
+    cl_model_free(m);
+    /* Normalised sinc: no closed form here, but s' must be smooth as
+     * d -> L (f_b > 0 is the active branch all the way). */
+    m = pair_model((const char *const[]){"type2.fb_sinc=normalised", NULL});
+    double ref = pair_stiffness(m, 1.0 - 1e-8);
+    for (double e = 1e-9; e > 5e-14; e /= 10) {
+        double ds = pair_stiffness(m, 1.0 - e);
+        cr_assert(fabs(ds - ref) < 1e-7 * fabs(ref),
+                  "normalised: s'(1 - %g) = %.17g vs %.17g", e, ds, ref);
+    }
+    cl_model_free(m);
+}
+
 /* f_b -> -4 pi^2 kb/L^2 as d -> 0: ratio 1 - 3y + (6 + pi^2/2) y^2
  * - (10 + 10 pi^2/3) y^3 + O(y^4), y = d/L. */
 Test(type2, limit_at_full_compression)

@@ -192,34 +192,47 @@ static void sim_free(sim *s)
     free(s->row);
 }
 
-/* Integrate over the schedule, sampling and writing frames. */
+/* Advance to tick `tick` (unless already there) and sample it. */
+static cl_status reach(sim *s, const cl_integrator_type *type, void *state,
+                       const schedule *sch, long tick, cl_sim_result *res,
+                       cl_error *err)
+{
+    double t = tick == sch->nticks && !type->fixed_step
+                   ? s->so->t_end : (double)tick * sch->dt_tick;
+    double w0 = seconds(CLOCK_MONOTONIC);
+    double c0 = seconds(CLOCK_PROCESS_CPUTIME_ID);
+    cl_status rc = type->advance(state, t, s->x, s->v, err);
+    res->stats.wall += seconds(CLOCK_MONOTONIC) - w0;
+    res->stats.cpu += seconds(CLOCK_PROCESS_CPUTIME_ID) - c0;
+    return rc ? rc : sample(s, t, res, err);
+}
+
+/* Integrate over the schedule, sampling and writing frames.  Samples and
+ * frames that round to the same tick (more outputs than fixed steps) are
+ * produced once. */
 static cl_status integrate(sim *s, const cl_integrator_type *type,
                            void *state, const schedule *sch,
                            cl_sim_result *res, cl_error *err)
 {
     const cl_sim_opts *so = s->so;
-    long ks = 1, kf = 1;
-    long nf = so->frames;
+    long ks = 1, kf = 1, nf = so->frames, last = 0, last_frame = 0;
     cl_status rc = CL_OK;
     while (rc == CL_OK && ks <= so->samples) {
         long ts = tick_of(ks, so->samples, sch->nticks);
         long tf = kf <= nf ? tick_of(kf, nf, sch->nticks) : ts + 1;
         long tick = ts < tf ? ts : tf;
-        double t = tick == sch->nticks && !type->fixed_step
-                       ? so->t_end : (double)tick * sch->dt_tick;
-        double w0 = seconds(CLOCK_MONOTONIC);
-        double c0 = seconds(CLOCK_PROCESS_CPUTIME_ID);
-        rc = type->advance(state, t, s->x, s->v, err);
-        res->stats.wall += seconds(CLOCK_MONOTONIC) - w0;
-        res->stats.cpu += seconds(CLOCK_PROCESS_CPUTIME_ID) - c0;
-        if (!rc)
-            rc = sample(s, t, res, err);
-        if (!rc && tick == tf && kf <= nf)
-            rc = write_frame(s, t, res, err);
+        if (tick > last) {
+            rc = reach(s, type, state, sch, tick, res, err);
+            last = tick;
+        }
+        if (!rc && tick == tf && tick > last_frame) {
+            rc = write_frame(s, res->t_reached, res, err);
+            last_frame = tick;
+        }
         ks += tick == ts;
         kf += tick == tf;
         if (so->progress)
-            so->progress(so->progress_ctx, t / so->t_end);
+            so->progress(so->progress_ctx, res->t_reached / so->t_end);
     }
     return rc;
 }

@@ -35,18 +35,24 @@ const char *cl_cli_problem_path(const char *arg, char *buf, size_t len)
     return buf;
 }
 
-int cl_cli_sets_add(cl_cli_sets *s, const char *key, const char *val)
+int cl_cli_sets_add(cl_cli_sets *s, const char *key, const char *val,
+                    const char *label)
 {
     size_t len = (key ? strlen(key) : 0) + strlen(val) + 2;
     char *a = malloc(len);
     char **grown = realloc(s->v, (size_t)(s->n + 1) * sizeof *grown);
     if (grown)
         s->v = grown;
-    if (!a || !grown) {
+    const char **lgrown = realloc(s->label, (size_t)(s->n + 1) *
+                                                sizeof *lgrown);
+    if (lgrown)
+        s->label = lgrown;
+    if (!a || !grown || !lgrown) {
         free(a);
         return -1;
     }
     snprintf(a, len, "%s%s%s", key ? key : "", key ? "=" : "", val);
+    s->label[s->n] = key ? label : NULL;
     s->v[s->n++] = a;
     return 0;
 }
@@ -56,7 +62,9 @@ void cl_cli_sets_free(cl_cli_sets *s)
     for (int k = 0; k < s->n; k++)
         free(s->v[k]);
     free(s->v);
+    free(s->label);
     s->v = NULL;
+    s->label = NULL;
     s->n = 0;
 }
 
@@ -65,7 +73,7 @@ cl_status cl_cli_load(cl_config *cfg, const char *problem,
 {
     cl_status rc = cl_config_load(cfg, problem, err);
     for (int k = 0; rc == CL_OK && k < sets->n; k++)
-        rc = cl_config_set(cfg, sets->v[k], err);
+        rc = cl_config_set_as(cfg, sets->v[k], sets->label[k], err);
     return rc;
 }
 

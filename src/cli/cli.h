@@ -26,11 +26,14 @@ const char *cl_cli_problem_path(const char *arg, char *buf, size_t len);
 /* "section.key=value" assignments collected from the command line. */
 typedef struct {
     char **v;
+    const char **label; /* the option each came from, NULL for --set */
     int n;
 } cl_cli_sets;
 
-/* Append "key=val", or val itself when key is NULL; -1 if out of memory. */
-int cl_cli_sets_add(cl_cli_sets *s, const char *key, const char *val);
+/* Append "key=val" (an option standing for a key, reported in messages as
+ * `label`), or val itself when key is NULL (--set); -1 if out of memory. */
+int cl_cli_sets_add(cl_cli_sets *s, const char *key, const char *val,
+                    const char *label);
 void cl_cli_sets_free(cl_cli_sets *s);
 
 /* Load a problem file and apply the assignments. */

@@ -57,7 +57,7 @@ static int parse_args(int argc, char **argv, eval_args *a)
         case 'V': a->jac_v = optarg; break;
         case 'o': a->out = optarg; break;
         case 's':
-            if (cl_cli_sets_add(&a->sets, NULL, optarg))
+            if (cl_cli_sets_add(&a->sets, NULL, optarg, NULL))
                 return -1;
             break;
         case 't':

@@ -59,6 +59,10 @@ static int parse_args(int argc, char **argv, run_args *a)
         ['i'] = "run.integrator", ['d'] = "run.dt", ['r'] = "run.rtol",
         ['a'] = "run.atol", ['l'] = "run.linsol", ['t'] = "run.t_end", ['S'] = "run.samples",
         ['f'] = "run.frames", ['F'] = "run.format"};
+    static const char *const label[128] = {
+        ['i'] = "--integrator", ['d'] = "--dt", ['r'] = "--rtol",
+        ['a'] = "--atol", ['l'] = "--linsol", ['t'] = "--t-end",
+        ['S'] = "--samples", ['f'] = "--frames", ['F'] = "--format"};
     int c, rc = 0;
     optind = 1;
     opterr = 0;
@@ -71,9 +75,9 @@ static int parse_args(int argc, char **argv, run_args *a)
         } else if (c == 'q') {
             a->quiet = true;
         } else if (c == 's') {
-            rc = cl_cli_sets_add(&a->sets, NULL, optarg);
+            rc = cl_cli_sets_add(&a->sets, NULL, optarg, NULL);
         } else if (c > 0 && c < 128 && key[c]) {
-            rc = cl_cli_sets_add(&a->sets, key[c], optarg);
+            rc = cl_cli_sets_add(&a->sets, key[c], optarg, label[c]);
         } else {
             cl_cli_usage_error("run", "unknown or incomplete option '%s'",
                                argv[optind - 1]);

@@ -184,10 +184,10 @@ static cl_entry *cl_lookup(cl_config *cfg, const char *sec, const char *key)
 
 static void cl_origin_of(const cl_entry *e, char *buf, size_t len)
 {
-    if (e->file)
+    if (e->file && e->line >= 0)
         snprintf(buf, len, "%s:%ld", e->file, e->line);
     else
-        snprintf(buf, len, "--set");
+        snprintf(buf, len, "%s", e->file ? e->file : "--set");
 }
 
 const char *cl_config_path(const cl_config *cfg)
@@ -382,7 +382,8 @@ static const char *cl_set_problem(const char *sec, const char *key,
 }
 
 static cl_status cl_set_split(cl_config *cfg, const char *a, const char *dot,
-                              const char *eq, cl_error *err)
+                              const char *eq, const char *label,
+                              cl_error *err)
 {
     char *sec = cl_dup_trim(a, (size_t)(dot - a));
     char *key = cl_dup_trim(dot + 1, (size_t)(eq - dot - 1));
@@ -395,7 +396,9 @@ static cl_status cl_set_split(cl_config *cfg, const char *a, const char *dot,
         rc = cl_error_set(err, CL_EINVAL,
                           "--set \"%s\": %s (expected section.key=value)",
                           a, why);
-    else if (cl_put(cfg, sec, key, value, NULL, 0) != CL_OK)
+    else if (cl_put(cfg, sec, key, value,
+                    label ? cl_intern_file(cfg, label) : NULL,
+                    label ? -1 : 0) != CL_OK)
         rc = cl_error_set(err, CL_ENOMEM, "--set \"%s\": out of memory", a);
     free(sec);
     free(key);
@@ -404,6 +407,12 @@ static cl_status cl_set_split(cl_config *cfg, const char *a, const char *dot,
 }
 
 cl_status cl_config_set(cl_config *cfg, const char *assignment, cl_error *err)
+{
+    return cl_config_set_as(cfg, assignment, NULL, err);
+}
+
+cl_status cl_config_set_as(cl_config *cfg, const char *assignment,
+                           const char *label, cl_error *err)
 {
     const char *eq = strchr(assignment, '=');
     if (!eq)
@@ -417,7 +426,7 @@ cl_status cl_config_set(cl_config *cfg, const char *assignment, cl_error *err)
                             "--set \"%s\": missing '.' between section and"
                             " key (expected section.key=value)",
                             assignment);
-    return cl_set_split(cfg, assignment, dot, eq, err);
+    return cl_set_split(cfg, assignment, dot, eq, label, err);
 }
 
 /* ---------------------------------------------------------- value parsing */

@@ -33,6 +33,10 @@ cl_status cl_config_load(cl_config *cfg, const char *path, cl_error *err);
  * cl_config_check_unused().  CL_EINVAL for a malformed assignment or names
  * and values that could not be written back as INI (e.g. "a.b:c=1"). */
 cl_status cl_config_set(cl_config *cfg, const char *assignment, cl_error *err);
+/* The same, with the entry's origin reported as `label` (e.g. "--dt" for a
+ * command-line option that stands for a key); NULL means "--set". */
+cl_status cl_config_set_as(cl_config *cfg, const char *assignment,
+                           const char *label, cl_error *err);
 
 /* The file name given to the first cl_config_load (for messages and
  * outputs), or NULL if no file was loaded. */

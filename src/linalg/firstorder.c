@@ -5,7 +5,9 @@
  * n + 3 bi + r.  Column n + j (a velocity unknown) holds the identity entry
  * at row j and the entries M^-1 df/dv at rows n + 3 bi + r.  Rows ascend in
  * every column because j < n and block rows are visited in ascending order
- * (block column lists are built by a counting transpose of the block CSR). */
+ * (block column lists are built by a counting transpose of the block CSR).
+ * The position of every diagonal entry is recorded once for the implicit
+ * (IDA) matrix, which shares pattern and value map (see the header). */
 #include "linalg/firstorder.h"
 
 #include <math.h>
@@ -92,6 +94,17 @@ static void build_columns(cl_firstorder *fo, const cl_bcols *bc)
     fo->colptr[2 * n] = pos;
 }
 
+/* Position of (i, i) in every column (each column holds it exactly once). */
+static void find_diagonal(cl_firstorder *fo)
+{
+    for (sunindextype j = 0; j < fo->size; j++) {
+        for (sunindextype k = fo->colptr[j]; k < fo->colptr[j + 1]; k++) {
+            if (fo->rowval[k] == j)
+                fo->diag[j] = k;
+        }
+    }
+}
+
 static cl_status check_masses(const double *mass, size_t n, cl_error *err)
 {
     for (size_t i = 0; i < n; i++) {
@@ -110,7 +123,10 @@ static cl_status alloc_arrays(cl_firstorder *fo, cl_error *err)
     fo->rowval = malloc((nnz ? nnz : 1) * sizeof *fo->rowval);
     fo->src = malloc((nnz ? nnz : 1) * sizeof *fo->src);
     fo->inv_mass = malloc((fo->n ? fo->n : 1) * sizeof *fo->inv_mass);
-    if (!fo->colptr || !fo->rowval || !fo->src || !fo->inv_mass)
+    fo->mass = malloc((fo->n ? fo->n : 1) * sizeof *fo->mass);
+    fo->diag = malloc(((size_t)fo->size + 1) * sizeof *fo->diag);
+    if (!fo->colptr || !fo->rowval || !fo->src || !fo->inv_mass ||
+        !fo->mass || !fo->diag)
         return cl_error_set(err, CL_ENOMEM,
                             "out of memory (first-order Jacobian, %zu entries)",
                             nnz);
@@ -137,8 +153,11 @@ cl_status cl_firstorder_create(const cl_bpattern *pat, const double *mass,
     }
     build_columns(fo, &bc);
     bcols_free(&bc);
-    for (size_t i = 0; i < fo->n; i++)
+    find_diagonal(fo);
+    for (size_t i = 0; i < fo->n; i++) {
+        fo->mass[i] = mass[i];
         fo->inv_mass[i] = 1.0 / mass[i];
+    }
     return CL_OK;
 }
 
@@ -148,12 +167,17 @@ void cl_firstorder_free(cl_firstorder *fo)
     free(fo->rowval);
     free(fo->src);
     free(fo->inv_mass);
+    free(fo->mass);
+    free(fo->diag);
     memset(fo, 0, sizeof *fo);
 }
 
-void cl_firstorder_fill_arrays(const cl_firstorder *fo, const double *dfdx,
-                               const double *dfdv, sunindextype *colptr,
-                               sunindextype *rowval, sunrealtype *val)
+/* Copy the pattern and write every value: block values times vscale[row]
+ * (v rows) when vscale is given, else times sign; identity entries sign. */
+static void fill_values(const cl_firstorder *fo, const double *dfdx,
+                        const double *dfdv, const double *vscale, double sign,
+                        sunindextype *colptr, sunindextype *rowval,
+                        sunrealtype *val)
 {
     size_t nnz = (size_t)fo->nnz;
     long nval = (long)fo->nval;
@@ -164,15 +188,34 @@ void cl_firstorder_fill_arrays(const cl_firstorder *fo, const double *dfdx,
         long s = fo->src[k];
         if (s >= 0) {
             double b = s < nval ? dfdx[s] : dfdv[s - nval];
-            val[k] = b * fo->inv_mass[fo->rowval[k] - n];
+            val[k] = vscale ? b * vscale[fo->rowval[k] - n] : sign * b;
         } else {
-            val[k] = s == CL_FO_ONE ? 1.0 : 0.0;
+            val[k] = s == CL_FO_ONE ? sign : 0.0;
         }
     }
 }
 
-cl_status cl_firstorder_fill(const cl_firstorder *fo, const double *dfdx,
-                             const double *dfdv, SUNMatrix J, cl_error *err)
+void cl_firstorder_fill_arrays(const cl_firstorder *fo, const double *dfdx,
+                               const double *dfdv, sunindextype *colptr,
+                               sunindextype *rowval, sunrealtype *val)
+{
+    fill_values(fo, dfdx, dfdv, fo->inv_mass, 1.0, colptr, rowval, val);
+}
+
+void cl_firstorder_fill_implicit_arrays(const cl_firstorder *fo,
+                                        const double *dfdx, const double *dfdv,
+                                        double cj, sunindextype *colptr,
+                                        sunindextype *rowval, sunrealtype *val)
+{
+    fill_values(fo, dfdx, dfdv, NULL, -1.0, colptr, rowval, val);
+    for (size_t i = 0; i < fo->n; i++) {
+        val[fo->diag[i]] += cj;
+        val[fo->diag[fo->n + i]] += cj * fo->mass[i];
+    }
+}
+
+static cl_status check_matrix(const cl_firstorder *fo, SUNMatrix J,
+                              cl_error *err)
 {
     if (SUNMatGetID(J) != SUNMATRIX_SPARSE ||
         SUNSparseMatrix_SparseType(J) != CSC_MAT ||
@@ -183,8 +226,30 @@ cl_status cl_firstorder_fill(const cl_firstorder *fo, const double *dfdx,
                             "first-order Jacobian: matrix is not a %ld x %ld "
                             "CSC sparse matrix with room for %ld entries",
                             (long)fo->size, (long)fo->size, (long)fo->nnz);
-    cl_firstorder_fill_arrays(fo, dfdx, dfdv, SUNSparseMatrix_IndexPointers(J),
-                              SUNSparseMatrix_IndexValues(J),
-                              SUNSparseMatrix_Data(J));
     return CL_OK;
+}
+
+cl_status cl_firstorder_fill(const cl_firstorder *fo, const double *dfdx,
+                             const double *dfdv, SUNMatrix J, cl_error *err)
+{
+    cl_status st = check_matrix(fo, J, err);
+    if (st == CL_OK)
+        cl_firstorder_fill_arrays(fo, dfdx, dfdv,
+                                  SUNSparseMatrix_IndexPointers(J),
+                                  SUNSparseMatrix_IndexValues(J),
+                                  SUNSparseMatrix_Data(J));
+    return st;
+}
+
+cl_status cl_firstorder_fill_implicit(const cl_firstorder *fo,
+                                      const double *dfdx, const double *dfdv,
+                                      double cj, SUNMatrix G, cl_error *err)
+{
+    cl_status st = check_matrix(fo, G, err);
+    if (st == CL_OK)
+        cl_firstorder_fill_implicit_arrays(fo, dfdx, dfdv, cj,
+                                           SUNSparseMatrix_IndexPointers(G),
+                                           SUNSparseMatrix_IndexValues(G),
+                                           SUNSparseMatrix_Data(G));
+    return st;
 }

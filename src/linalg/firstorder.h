@@ -16,7 +16,19 @@
  * missing) keeps the storage and the pattern KLU analysed.  Filling copies
  * the index arrays (CVODE's SUNMatZero wipes them before every Jacobian
  * call) and writes the values, scaled by 1/mass of their row: no search, no
- * allocation.  No symmetry of df/dx or df/dv is assumed. */
+ * allocation.  No symmetry of df/dx or df/dv is assumed.
+ *
+ * The implicit form F(t, y, y') = [x' - v ; M v' - f(t, x, v)] = 0 (IDA)
+ * has the iteration matrix
+ *
+ *       G = dF/dy + c_j dF/dy' = [ c_j I       -I              ]
+ *                                [ -df/dx      c_j M - df/dv   ]
+ *                              = c_j diag(I, M) - diag(I, M) J,
+ *
+ * with exactly the pattern of J (every diagonal entry is stored), so the
+ * same pattern and value map serve it: cl_firstorder_fill_implicit writes
+ * the negated unscaled block values and adds c_j (x rows) or c_j m_i
+ * (v rows) at the recorded position of each diagonal entry. */
 #ifndef CL_FIRSTORDER_H
 #define CL_FIRSTORDER_H
 
@@ -43,6 +55,8 @@ typedef struct {
      * or CL_FO_ZERO / CL_FO_ONE. */
     long *src;
     double *inv_mass;      /* n: 1 / mass, indexed by the v-row minus n */
+    double *mass;          /* n: the masses, same indexing */
+    sunindextype *diag;    /* size: position of entry (i, i) in column i */
 } cl_firstorder;
 
 /* Build the pattern and the value map for the blocks of `pat` and the n
@@ -61,5 +75,15 @@ void cl_firstorder_fill_arrays(const cl_firstorder *fo, const double *dfdx,
  * with room for nnz entries (CL_EINVAL otherwise). */
 cl_status cl_firstorder_fill(const cl_firstorder *fo, const double *dfdx,
                              const double *dfdv, SUNMatrix J, cl_error *err);
+
+/* The implicit-form iteration matrix G (c_j as IDA passes it) into caller
+ * arrays, resp. into a SUNDIALS sparse matrix (same checks as above). */
+void cl_firstorder_fill_implicit_arrays(const cl_firstorder *fo,
+                                        const double *dfdx, const double *dfdv,
+                                        double cj, sunindextype *colptr,
+                                        sunindextype *rowval, sunrealtype *val);
+cl_status cl_firstorder_fill_implicit(const cl_firstorder *fo,
+                                      const double *dfdx, const double *dfdv,
+                                      double cj, SUNMatrix G, cl_error *err);
 
 #endif

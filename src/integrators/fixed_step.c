@@ -1,0 +1,161 @@
+/* Shared state, create/advance/stats/free and the finite-state check of the
+ * explicit fixed-step integrators (see fixed_step.h).
+ *
+ * Each method file states its own update formulas; here a step is only
+ *   (x_k, v_k) -> method->step -> (x_{k+1}, v_{k+1}),  t_k = t0 + k h,
+ * followed by the check that x_{k+1} and v_{k+1} are finite. */
+#include "integrators/fixed_step.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void cl_fixed_free(void *state)
+{
+    cl_fixed *s = state;
+    if (!s)
+        return;
+    free(s->x);
+    free(s->v);
+    free(s->inv_mass);
+    for (size_t k = 0; k < CL_FIXED_MAXWORK; k++)
+        free(s->w[k]);
+    free(s);
+}
+
+static cl_status fixed_check_args(const cl_fixed_method *m,
+                                  const cl_system *sys,
+                                  const cl_integrator_opts *o, double t0,
+                                  cl_error *err)
+{
+    if (!isfinite(o->dt) || !(o->dt > 0.0))
+        return cl_error_set(err, CL_EINVAL,
+                            "%s: step dt = %g, must be finite and > 0",
+                            m->name, o->dt);
+    if (!isfinite(t0))
+        return cl_error_set(err, CL_EINVAL, "%s: initial time %g", m->name,
+                            t0);
+    for (size_t i = 0; i < sys->n; i++) {
+        if (!isfinite(sys->mass[i]) || !(sys->mass[i] > 0.0))
+            return cl_error_set(err, CL_EINVAL,
+                                "%s: mass[%zu] = %g, must be finite and > 0",
+                                m->name, i, sys->mass[i]);
+    }
+    return CL_OK;
+}
+
+/* The state with all its arrays, or NULL when out of memory. */
+static cl_fixed *fixed_alloc(const cl_fixed_method *m, size_t n)
+{
+    cl_fixed *s = calloc(1, sizeof *s);
+    size_t bytes = (n ? n : 1) * sizeof(double);
+    if (!s)
+        return NULL;
+    s->x = malloc(bytes);
+    s->v = malloc(bytes);
+    s->inv_mass = malloc(bytes);
+    bool ok = s->x && s->v && s->inv_mass;
+    for (size_t k = 0; k < m->nwork; k++)
+        ok = (s->w[k] = calloc(n ? n : 1, sizeof(double))) != NULL && ok;
+    if (!ok) {
+        cl_fixed_free(s);
+        return NULL;
+    }
+    return s;
+}
+
+cl_status cl_fixed_create(const cl_fixed_method *m, const cl_system *sys,
+                          const cl_integrator_opts *o, double t0,
+                          const double *x0, const double *v0, void **state,
+                          cl_error *err)
+{
+    *state = NULL;
+    if (m->nwork > CL_FIXED_MAXWORK)
+        return cl_error_set(err, CL_EINVAL, "%s: %zu work arrays, at most "
+                            "%d", m->name, m->nwork, CL_FIXED_MAXWORK);
+    cl_status st = fixed_check_args(m, sys, o, t0, err);
+    if (st != CL_OK)
+        return st;
+    size_t n = sys->n;
+    cl_fixed *s = fixed_alloc(m, n);
+    if (!s)
+        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", m->name);
+    s->method = m;
+    s->sys = sys;
+    s->n = n;
+    s->t0 = t0;
+    s->dt = o->dt;
+    memcpy(s->x, x0, n * sizeof *s->x);
+    memcpy(s->v, v0, n * sizeof *s->v);
+    for (size_t i = 0; i < n; i++)
+        s->inv_mass[i] = 1.0 / sys->mass[i];
+    st = m->setup ? m->setup(s, o, err) : CL_OK;
+    if (st != CL_OK) {
+        cl_fixed_free(s);
+        return st;
+    }
+    *state = s;
+    return CL_OK;
+}
+
+cl_status cl_fixed_accel(cl_fixed *s, double t, const double *x,
+                         const double *v, double *a, cl_error *err)
+{
+    const cl_system *sys = s->sys;
+    cl_status st = sys->force(sys->data, t, x, v, a);
+    s->nrhs++;
+    if (st != CL_OK)
+        return cl_error_set(err, st, "%s: force evaluation failed (%s) at "
+                            "t = %.9g (step %ld, dt = %g)", s->method->name,
+                            cl_status_name(st), t, s->done, s->dt);
+    for (size_t i = 0; i < s->n; i++)
+        a[i] *= s->inv_mass[i];
+    return CL_OK;
+}
+
+static bool fixed_finite(const double *a, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        if (!isfinite(a[i]))
+            return false;
+    }
+    return true;
+}
+
+/* One step from step `done`, then the finite-state check. */
+static cl_status fixed_step(cl_fixed *s, cl_error *err)
+{
+    double h = s->dt, t = s->t0 + (double)s->done * h;
+    cl_status st = s->method->step(s, t, h, err);
+    if (st != CL_OK)
+        return st;
+    s->done++;
+    if (!fixed_finite(s->x, s->n) || !fixed_finite(s->v, s->n))
+        return cl_error_set(err, CL_EBLOWUP,
+                            "%s: state not finite at t = %.9g (step %ld, "
+                            "dt = %g)", s->method->name,
+                            s->t0 + (double)s->done * h, s->done, h);
+    return CL_OK;
+}
+
+cl_status cl_fixed_advance(void *state, double t_out, double *x, double *v,
+                           cl_error *err)
+{
+    cl_fixed *s = state;
+    long nsteps = 0;
+    cl_status st = cl_fixed_steps_to(t_out - s->t0, s->dt, s->done, &nsteps,
+                                     err);
+    for (long k = 0; st == CL_OK && k < nsteps; k++)
+        st = fixed_step(s, err);
+    memcpy(x, s->x, s->n * sizeof *x);
+    memcpy(v, s->v, s->n * sizeof *v);
+    return st;
+}
+
+void cl_fixed_stats(const void *state, cl_stats *out)
+{
+    const cl_fixed *s = state;
+    memset(out, 0, sizeof *out);
+    out->steps = s->done;
+    out->rhs_evals = s->nrhs;
+}

@@ -1,0 +1,93 @@
+/* Shared plumbing of the explicit fixed-step integrators (SPEC 5): fe,
+ * symplectic-euler, symplectic-euler-x, verlet, velocity-verlet, rk4.
+ *
+ * A method supplies a cl_fixed_method: its name, how many work arrays of n
+ * doubles it needs (its extra state, allocated once in create), an optional
+ * setup hook that checks and takes method options, and its step function,
+ * which updates the current state s->x, s->v in place from
+ * t_k = t0 + k h to t_{k+1} (h = opts->dt > 0).  This module does the rest
+ * for every method alike:
+ *
+ *   - create: checks dt, t0 and the masses (finite, > 0; CL_EINVAL),
+ *     allocates the state and the work arrays, computes 1/mass;
+ *   - advance: takes exactly the steps that lead to t_out, which must be a
+ *     whole number of steps from t0 (cl_fixed_steps_to; the time after step
+ *     k is t0 + k h, never accumulated); after every step the state is
+ *     checked to be finite, CL_EBLOWUP with the time and the step otherwise;
+ *     x and v receive the current state (also after a failure);
+ *   - statistics: steps, and rhs_evals = force evaluations made through
+ *     cl_fixed_accel; every other counter is 0;
+ *   - forces: cl_fixed_accel evaluates a = M^-1 f(t, x, v), counts it, and
+ *     turns a failing force into its status with the time and step.
+ *
+ * Nothing is allocated in the per-step path. */
+#ifndef CL_FIXED_STEP_H
+#define CL_FIXED_STEP_H
+
+#include "integrators/integrator.h"
+
+#define CL_FIXED_MAXWORK 6
+
+typedef struct cl_fixed cl_fixed;
+
+typedef struct {
+    const char *name;   /* registry name, used in messages */
+    size_t nwork;       /* work arrays of n doubles, <= CL_FIXED_MAXWORK */
+    /* Check and take method-specific options (NULL: none). */
+    cl_status (*setup)(cl_fixed *s, const cl_integrator_opts *o,
+                       cl_error *err);
+    /* One step of size h from time t = t0 + done h, in place; a step that
+     * fails (a force error) leaves x and v at step `done`. */
+    cl_status (*step)(cl_fixed *s, double t, double h, cl_error *err);
+} cl_fixed_method;
+
+struct cl_fixed {
+    const cl_fixed_method *method;
+    const cl_system *sys;
+    size_t n;          /* sys->n */
+    double t0, dt;
+    long done;         /* steps taken */
+    long nrhs;         /* force evaluations */
+    double param;      /* method parameter set by setup (verlet: vdamp) */
+    double *x, *v;     /* current state (n each) */
+    double *inv_mass;  /* 1 / mass (n) */
+    double *w[CL_FIXED_MAXWORK]; /* the method's work arrays (n each) */
+};
+
+cl_status cl_fixed_create(const cl_fixed_method *m, const cl_system *sys,
+                          const cl_integrator_opts *o, double t0,
+                          const double *x0, const double *v0, void **state,
+                          cl_error *err);
+cl_status cl_fixed_advance(void *state, double t_out, double *x, double *v,
+                           cl_error *err);
+void cl_fixed_stats(const void *state, cl_stats *out);
+void cl_fixed_free(void *state);
+
+/* a = M^-1 f(t, x, v) (n entries), counted in rhs_evals.  A force that
+ * fails returns its status with a message naming the method, the time and
+ * the step. */
+cl_status cl_fixed_accel(cl_fixed *s, double t, const double *x,
+                         const double *v, double *a, cl_error *err);
+
+/* Define the integrator table `ident` (and its create function) for the
+ * fixed-step method `method`, whose name is the string literal name_. */
+#define CL_FIXED_INTEGRATOR(ident, method, name_, doc_)                     \
+    static cl_status ident##_create(const cl_system *sys,                   \
+                                    const cl_integrator_opts *o, double t0, \
+                                    const double *x0, const double *v0,     \
+                                    void **state, cl_error *err)            \
+    {                                                                       \
+        return cl_fixed_create(&(method), sys, o, t0, x0, v0, state, err);  \
+    }                                                                       \
+    const cl_integrator_type ident = {                                      \
+        .name = (name_),                                                    \
+        .doc = (doc_),                                                      \
+        .fixed_step = true,                                                 \
+        .takes_linsol = false,                                              \
+        .create = ident##_create,                                           \
+        .advance = cl_fixed_advance,                                        \
+        .stats = cl_fixed_stats,                                            \
+        .free = cl_fixed_free,                                              \
+    }
+
+#endif

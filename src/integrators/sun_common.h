@@ -1,0 +1,161 @@
+/* Shared plumbing of the SUNDIALS integrators (SPEC 5): cvode-bdf,
+ * cvode-bdf-dense, cvode-bdf-gmres, cvode-adams (CVODE) and ida (IDA).
+ *
+ * All of them integrate y = (x, v), 2n unknowns, in a serial N_Vector
+ * under one SUNContext, and share:
+ *
+ * - options: scalar tolerances opts->rtol, opts->atol (defaults when 0:
+ *   rtol 1e-6, atol 1e-8), at most opts->max_steps internal steps per
+ *   advance (default 10^7), initial step opts->dt when > 0; output by
+ *   interpolation at t_out (CV_NORMAL / IDA_NORMAL);
+ * - failures: every SUNDIALS call is checked; a failure returns CL_ESOLVER
+ *   naming the function, its flag and the time reached.  The solver's own
+ *   messages are captured (its error handler), never printed;
+ * - the blow-up policy: a force or Jacobian that is not finite (or a system
+ *   call returning CL_EBLOWUP) makes the user function return 1
+ *   (recoverable: the solver retries with a smaller step, which cures a
+ *   trial state that went too far) unless CVODE has warned "t + h = t"
+ *   during this advance (the step has collapsed to round-off; retrying
+ *   would crawl towards the singularity until max_steps), then -1; any
+ *   other system error returns -1 (unrecoverable).  If the solver gives up,
+ *   advance reports CL_EBLOWUP (or the system's status) with the times
+ *   reached, not a generic solver failure;
+ * - statistics (cl_stats): steps, nonlin_iters, nonlin_fails, err_fails,
+ *   jac_evals, lin_setups, lin_iters are the solver's counters; rhs_evals
+ *   = its RHS / residual evaluations plus the linear solver's (difference
+ *   quotients) plus force evaluations made outside the solver (s->own_rhs);
+ *   with a direct solver wrapped by cl_lscount, lin_solves = solve calls
+ *   (one per Newton iteration) and symbolic_facts = KLU analyses.
+ *
+ * Usage: an integrator's state struct has a cl_sun as its FIRST member, so
+ * the one pointer the solver passes to every callback (user data and error
+ * handler data) is both.  create: cl_sun_alloc (argument checks, state,
+ * masses, context, vectors), then cl_sun_cvode_start (CVODE) or the
+ * integrator's own memory creation with cl_sun_created + its Init +
+ * cl_sun_configure (IDA), then the solvers, stored in s->A, s->ls,
+ * s->inner, s->nls so that cl_sun_free releases everything in order. */
+#ifndef CL_SUN_COMMON_H
+#define CL_SUN_COMMON_H
+
+#include <stdbool.h>
+
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sundials/sundials_linearsolver.h>
+#include <sundials/sundials_nonlinearsolver.h>
+
+#include "integrators/integrator.h"
+#include "integrators/lscount.h"
+
+typedef struct cl_sun cl_sun;
+
+typedef void (*cl_sun_errfn)(int code, const char *module,
+                             const char *function, char *msg, void *data);
+typedef int (*cl_sun_getter)(void *mem, long *value);
+
+/* The solver package: CVODE and IDA name their functions alike and give
+ * them the same signatures. */
+typedef struct {
+    const char *pkg;        /* "CVode" / "IDA": prefix of the names below */
+    const char *solve_name; /* "CVode" / "IDASolve" */
+    bool has_yp;            /* the solver needs y' (IDA) */
+    int (*set_err_handler)(void *mem, cl_sun_errfn fn, void *data);
+    int (*set_user_data)(void *mem, void *data);
+    int (*sstolerances)(void *mem, sunrealtype rtol, sunrealtype atol);
+    int (*set_max_num_steps)(void *mem, long mxsteps);
+    int (*set_init_step)(void *mem, sunrealtype h);
+    int (*set_linear_solver)(void *mem, SUNLinearSolver ls, SUNMatrix A);
+    int (*get_current_time)(void *mem, sunrealtype *t);
+    char *(*flag_name)(long flag);
+    void (*free_mem)(void **mem);
+    int (*solve)(cl_sun *s, double t_out); /* one advance to t_out */
+    /* counters (a getter that fails, e.g. without a linear solver, leaves
+     * its counter 0) */
+    cl_sun_getter steps, rhs, lin_rhs, jac, setups, lin_iters, nl_iters,
+        nl_fails, err_fails;
+} cl_sun_api;
+
+extern const cl_sun_api cl_sun_cvode_api;
+
+struct cl_sun {
+    const char *name;        /* integrator name: prefix of every message */
+    const cl_sun_api *api;
+    const cl_system *sys;
+    SUNContext ctx;
+    N_Vector y;              /* (x, v) */
+    N_Vector yp;             /* (x', v') when api->has_yp, else NULL */
+    void *mem;               /* CVODE or IDA memory */
+    SUNMatrix A;             /* NULL: matrix-free or no linear solver */
+    SUNLinearSolver ls;      /* attached to mem (NULL: none) */
+    SUNLinearSolver inner;   /* direct solver wrapped by ls, or NULL */
+    SUNNonlinearSolver nls;  /* own nonlinear solver, or NULL */
+    cl_lscount cnt;          /* counters of the wrapper */
+    double *inv_mass;        /* n */
+    double *dfdx, *dfdv;     /* block values, 9 nnzb each (need_jac) */
+    size_t nval;             /* 9 nnzb */
+    long njac;               /* system Jacobian evaluations */
+    long own_rhs;            /* force evaluations outside the solver */
+    double t_last;           /* last output time */
+    cl_status fail_rhs;      /* status of the last failed force call, or OK */
+    cl_status fail_jac;      /* same for the Jacobian */
+    bool collapsed;          /* CVODE warned t + h = t in this advance */
+    double fail_t;           /* time of that failure */
+    bool fail_nonfinite;     /* it was our finiteness check that failed */
+    char msg[512];           /* last error message of the solver */
+};
+
+/* Check the arguments, allocate a zeroed state of `size` bytes (a struct
+ * starting with a cl_sun), masses, block-value arrays (need_jac), context
+ * and vectors y = (x0, v0) (and y' = 0 for IDA).  On failure *out is NULL
+ * and everything is freed. */
+cl_status cl_sun_alloc(size_t size, const char *name, const cl_sun_api *api,
+                       const cl_system *sys, const cl_integrator_opts *o,
+                       double t0, const double *x0, const double *v0,
+                       bool need_jac, cl_sun **out, cl_error *err);
+
+/* Store freshly created solver memory (fn names the creator for the
+ * message if mem is NULL) and install the error handler. */
+cl_status cl_sun_created(cl_sun *s, void *mem, const char *fn,
+                         cl_error *err);
+
+/* User data, tolerances, max steps, initial step (after the Init call). */
+cl_status cl_sun_configure(cl_sun *s, const cl_integrator_opts *o,
+                           cl_error *err);
+
+/* CVODE with multistep method lmm (CV_BDF, CV_ADAMS): create, error
+ * handler, CVodeInit with cl_sun_cvode_rhs, cl_sun_configure. */
+cl_status cl_sun_cvode_start(cl_sun *s, int lmm, const cl_integrator_opts *o,
+                             double t0, cl_error *err);
+
+/* Attach matrix A and direct solver `inner` (both owned by s from now on,
+ * even on failure) through a counting wrapper. */
+cl_status cl_sun_attach_direct(cl_sun *s, SUNMatrix A, SUNLinearSolver inner,
+                               cl_error *err);
+
+/* A solver call returned flag < 0 (fn: the full function name). */
+cl_status cl_sun_fail(cl_sun *s, const char *fn, int flag, cl_error *err);
+/* A constructor returned NULL (flag 0) or a SUNLinSol/SUNMat call a flag. */
+cl_status cl_sun_sunfail(const cl_sun *s, const char *fn, int flag,
+                         cl_error *err);
+
+/* The system's force f(t, x, v): 0, or the user-function return code
+ * (1 recoverable, -1 not) after recording the failure. */
+int cl_sun_force(cl_sun *s, double t, const double *x, const double *v,
+                 double *f);
+/* Finiteness of a user function's output: 0 (and the last force failure
+ * is forgotten), or the blow-up return code. */
+int cl_sun_rhs_finite(cl_sun *s, const double *out, size_t len, double t);
+/* The system's block Jacobians at (t, x, v) into s->dfdx, s->dfdv: 0 or
+ * the user-function return code; counts s->njac. */
+int cl_sun_jacobian(cl_sun *s, double t, const double *x, const double *v);
+
+/* CVODE's right-hand side y' = (v, M^-1 f(t, x, v)). */
+int cl_sun_cvode_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *data);
+
+/* The integrator-table entries (state: a struct starting with cl_sun). */
+cl_status cl_sun_advance(void *state, double t_out, double *x, double *v,
+                         cl_error *err);
+void cl_sun_stats(const void *state, cl_stats *out);
+void cl_sun_free(void *state);
+
+#endif

@@ -1,0 +1,50 @@
+/* The linear solvers for the reduced matrix A = M - a df/dv - b df/dx
+ * (SPEC 5, linalg/linsol.h), selectable by name with --linsol:
+ *
+ *   klu         sparse LU by KLU (AMD ordering), symbolic analysis once,
+ *               numeric refactorisation at every setup (the default)
+ *   pcg         SUNDIALS' PCG, matrix-free product, 3x3 block-Jacobi
+ *               preconditioner
+ *   pcg-jacobi  the same with the point-Jacobi (diagonal) preconditioner */
+#include "linalg/linsol.h"
+
+#include <stdio.h>
+#include <string.h>
+
+extern const cl_linsol_type cl_linsol_klu;
+extern const cl_linsol_type cl_linsol_pcg;
+extern const cl_linsol_type cl_linsol_pcg_jacobi;
+
+const cl_linsol_type *const cl_linsol_registry[] = {
+    &cl_linsol_klu,
+    &cl_linsol_pcg,
+    &cl_linsol_pcg_jacobi,
+    NULL,
+};
+
+const cl_linsol_type *cl_linsol_find(const char *name)
+{
+    if (!name || !name[0])
+        return cl_linsol_registry[0];
+    for (size_t i = 0; cl_linsol_registry[i]; i++) {
+        if (strcmp(cl_linsol_registry[i]->name, name) == 0)
+            return cl_linsol_registry[i];
+    }
+    return NULL;
+}
+
+const char *cl_linsol_names(char *buf, size_t len)
+{
+    size_t used = 0;
+    if (len == 0)
+        return buf;
+    buf[0] = '\0';
+    for (size_t i = 0; cl_linsol_registry[i] && used < len; i++) {
+        int w = snprintf(buf + used, len - used, "%s%s", i ? ", " : "",
+                         cl_linsol_registry[i]->name);
+        if (w < 0)
+            break;
+        used += (size_t)w;
+    }
+    return buf;
+}

@@ -1,0 +1,1061 @@
+/* End-to-end tests of the clothode command line: the program ($CLOTHODE,
+ * default build/clothode) is run as a separate process on the problems in
+ * problems/, and its exit status, messages and output files are checked.
+ * Run from the repository root. */
+#include <criterion/criterion.h>
+#include <criterion/logging.h>
+
+#include <dirent.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/config.h"
+#include "io/mtx.h"
+#include "io/state.h"
+#include "model/model.h"
+#include "runcli.h"
+
+/* ---- fixture: one scratch directory per test -------------------------- */
+
+static char tmp[512];
+
+static void setup(void)
+{
+    cli_mkdtemp(tmp, sizeof tmp);
+}
+
+static void teardown(void)
+{
+    cli_rm_rf(tmp);
+}
+
+TestSuite(cli, .init = setup, .fini = teardown, .timeout = 900);
+
+/* A path inside the scratch directory. */
+static const char *in_tmp(char *buf, const char *name)
+{
+    snprintf(buf, 1024, "%s/%s", tmp, name);
+    return buf;
+}
+
+/* ---- the model, built in-process, for rest positions and masses ------ */
+
+static cl_config *model_cfg; /* the configuration of the loaded model */
+
+/* problems/NAME.ini (or under $CLOTHODE_PROBLEMS) with assignments, as the
+ * program builds it; free with free_model. */
+static cl_model *load_model(const char *name, const char *const *sets)
+{
+    const char *dir = getenv("CLOTHODE_PROBLEMS");
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s.ini", dir && *dir ? dir : "problems",
+             name);
+    cl_error err = {0};
+    cl_config *cfg = cl_config_alloc();
+    cr_assert_not_null(cfg);
+    cl_status rc = cl_config_load(cfg, path, &err);
+    for (; !rc && sets && *sets; sets++)
+        rc = cl_config_set(cfg, *sets, &err);
+    cl_model *m = NULL;
+    if (!rc)
+        rc = cl_model_create(cfg, &m, &err);
+    cr_assert_eq(rc, CL_OK, "%s: %s", path, err.msg);
+    model_cfg = cfg;
+    return m;
+}
+
+static void free_model(cl_model *m)
+{
+    cl_model_free(m);
+    cl_config_free(model_cfg);
+    model_cfg = NULL;
+}
+
+static void write_state(const char *path, size_t np, const double *x,
+                        const double *v)
+{
+    cl_error err = {0};
+    cr_assert_eq(cl_state_write(path, np, x, v, &err), CL_OK, "%s", err.msg);
+}
+
+/* Deterministic numbers in [0, 1). */
+static double uniform(unsigned long long *s)
+{
+    *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
+    return (double)(*s >> 11) / 9007199254740992.0;
+}
+
+/* Free particles moved by up to 0.1 h per coordinate and given velocities
+ * up to 0.25 m/s per component; pinned ones at rest where they belong. */
+static void perturbed_state(const cl_cloth *c, double *x, double *v)
+{
+    unsigned long long s = 12345;
+    for (size_t p = 0; p < c->np; p++)
+        for (int d = 0; d < 3; d++) {
+            double ux = uniform(&s) - 0.5, uv = uniform(&s) - 0.5;
+            bool pinned = c->dof[p] < 0;
+            x[3 * p + d] = c->X0[3 * p + d] + (pinned ? 0 : 0.2 * c->hu * ux);
+            v[3 * p + d] = pinned ? 0 : 0.5 * uv;
+        }
+}
+
+/* ---- reading outputs -------------------------------------------------- */
+
+/* forces.csv of np particles into f[3*np]. */
+static void read_forces(const char *path, size_t np, double *f)
+{
+    cli_lines L;
+    cli_read_lines(path, &L);
+    cr_assert(L.n >= 1, "%s is empty", path);
+    cr_assert_str_eq(L.line[0], "p,fx,fy,fz", "%s: header", path);
+    cr_assert_eq(L.n, np + 1, "%s: %zu rows, expected %zu", path, L.n - 1, np);
+    for (size_t k = 1; k < L.n; k++) {
+        double row[4];
+        cli_parse_row(L.line[k], row, 4, path);
+        cr_assert_eq(row[0], (double)(k - 1), "%s: row %zu is particle %g",
+                     path, k, row[0]);
+        memcpy(f + 3 * (k - 1), row + 1, 3 * sizeof *f);
+    }
+    cli_lines_free(&L);
+}
+
+/* energy.csv: the terms in order and their values. */
+typedef struct {
+    size_t n;
+    char name[16][32];
+    double value[16];
+} energies;
+
+static void read_energy(const char *path, energies *e)
+{
+    cli_lines L;
+    cli_read_lines(path, &L);
+    cr_assert(L.n >= 1, "%s is empty", path);
+    cr_assert_str_eq(L.line[0], "term,value", "%s: header", path);
+    e->n = 0;
+    for (size_t k = 1; k < L.n; k++) {
+        char *comma = strchr(L.line[k], ',');
+        cr_assert(comma && e->n < 16, "%s: bad row \"%s\"", path, L.line[k]);
+        snprintf(e->name[e->n], sizeof e->name[0], "%.*s",
+                 (int)(comma - L.line[k]), L.line[k]);
+        cli_parse_row(comma + 1, &e->value[e->n], 1, path);
+        e->n++;
+    }
+    cli_lines_free(&L);
+}
+
+static double energy_of(const energies *e, const char *name)
+{
+    for (size_t k = 0; k < e->n; k++)
+        if (!strcmp(e->name[k], name))
+            return e->value[k];
+    cr_assert_fail("energy.csv has no row \"%s\"", name);
+    return NAN;
+}
+
+/* series.csv: header and rows of numbers. */
+typedef struct {
+    char header[1024];
+    size_t ncol, nrow;
+    double *v; /* nrow x ncol */
+} series;
+
+static void read_series(const char *path, series *s)
+{
+    cli_lines L;
+    cli_read_lines(path, &L);
+    cr_assert(L.n >= 1, "%s is empty", path);
+    snprintf(s->header, sizeof s->header, "%s", L.line[0]);
+    s->ncol = 1;
+    for (const char *p = L.line[0]; *p; p++)
+        s->ncol += *p == ',';
+    s->nrow = L.n - 1;
+    s->v = malloc((s->nrow ? s->nrow : 1) * s->ncol * sizeof *s->v);
+    cr_assert_not_null(s->v);
+    for (size_t k = 0; k < s->nrow; k++)
+        cli_parse_row(L.line[k + 1], s->v + k * s->ncol, s->ncol, path);
+    cli_lines_free(&L);
+}
+
+/* A "name,value" statistic of stats.csv. */
+static double stat_of(const char *path, const char *name)
+{
+    cli_lines L;
+    cli_read_lines(path, &L);
+    size_t len = strlen(name);
+    for (size_t k = 0; k < L.n; k++)
+        if (!strncmp(L.line[k], name, len) && L.line[k][len] == ',') {
+            double v;
+            cli_parse_row(L.line[k] + len + 1, &v, 1, path);
+            cli_lines_free(&L);
+            return v;
+        }
+    cr_assert_fail("%s has no \"%s\" row", path, name);
+    return NAN;
+}
+
+/* Names in dir that start with prefix; the first found into `first`. */
+static int count_prefixed(const char *dir, const char *prefix, char *first,
+                          size_t len)
+{
+    DIR *d = opendir(dir);
+    cr_assert_not_null(d, "cannot open directory %s", dir);
+    int n = 0;
+    for (struct dirent *e; (e = readdir(d));)
+        if (!strncmp(e->d_name, prefix, strlen(prefix))) {
+            if (!n && first)
+                snprintf(first, len, "%s", e->d_name);
+            n++;
+        }
+    closedir(d);
+    return n;
+}
+
+/* No temporary file of an unfinished atomic write is left in dir. */
+static void assert_no_temporaries(const char *dir)
+{
+    DIR *d = opendir(dir);
+    cr_assert_not_null(d, "cannot open directory %s", dir);
+    for (struct dirent *e; (e = readdir(d));)
+        cr_assert(!strstr(e->d_name, ".tmp"), "%s: leftover temporary %s",
+                  dir, e->d_name);
+    closedir(d);
+}
+
+/* The time a VTK frame carries (field data TIME). */
+static double vtk_time(const char *path)
+{
+    cli_lines L;
+    cli_read_lines(path, &L);
+    for (size_t k = 0; k + 1 < L.n; k++)
+        if (!strncmp(L.line[k], "TIME ", 5)) {
+            double t;
+            cli_parse_row(L.line[k + 1], &t, 1, path);
+            cli_lines_free(&L);
+            return t;
+        }
+    cr_assert_fail("%s: no TIME field", path);
+    return NAN;
+}
+
+/* A Matrix Market file as a dense n x n matrix. */
+static double *read_dense(const char *path, size_t n)
+{
+    cl_triplets t = {0};
+    cl_error err = {0};
+    cr_assert_eq(cl_mtx_read(path, &t, &err), CL_OK, "%s", err.msg);
+    cr_assert(t.nrows == n && t.ncols == n, "%s: %zu x %zu, expected %zu^2",
+              path, t.nrows, t.ncols, n);
+    cr_assert(t.nnz > 0, "%s: no entries", path);
+    double *a = calloc(n * n, sizeof *a);
+    cr_assert_not_null(a);
+    for (size_t k = 0; k < t.nnz; k++)
+        a[t.row[k] * n + t.col[k]] += t.val[k];
+    cl_triplets_free(&t);
+    return a;
+}
+
+static double max_abs(const double *a, size_t n)
+{
+    double m = 0;
+    for (size_t k = 0; k < n; k++)
+        m = fmax(m, fabs(a[k]));
+    return m;
+}
+
+/* ======================================================================
+ * 1. Bad input: one message line "clothode...", non-zero exit, no crash.
+ * ====================================================================== */
+
+Test(cli, missing_problem_file)
+{
+    char out[1024];
+    cli_result r;
+    cli_run(&r, "run", "problems/no-such-problem.ini", "--out",
+            in_tmp(out, "o"), NULL);
+    cli_assert_error(&r, 0, "no-such-problem.ini", NULL);
+    cli_result_free(&r);
+}
+
+Test(cli, missing_problem_by_name)
+{
+    char out[1024];
+    cli_result r;
+    cli_run(&r, "run", "no-such-problem", "--out", in_tmp(out, "o"), NULL);
+    cli_assert_error(&r, 0, "no-such-problem", NULL);
+    cli_result_free(&r);
+}
+
+Test(cli, malformed_ini_names_file_and_line)
+{
+    char ini[1024], out[1024], where[1100];
+    cli_write_text(in_tmp(ini, "broken.ini"),
+                   "; a problem with a broken line\n"
+                   "[cloth]\n"
+                   "n = 6\n"
+                   "this line is not an assignment\n"
+                   "size = 1.0\n");
+    snprintf(where, sizeof where, "%s:4", ini);
+    cli_result r;
+    cli_run(&r, "run", ini, "--out", in_tmp(out, "o"), NULL);
+    cli_assert_error(&r, 0, where, NULL);
+    cli_result_free(&r);
+}
+
+Test(cli, unknown_key_is_named)
+{
+    char out[1024];
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "type1.kss=1", "--out",
+            in_tmp(out, "o"), NULL);
+    cli_assert_error(&r, 0, "kss", NULL);
+    cli_result_free(&r);
+}
+
+Test(cli, unknown_key_in_file_is_named_with_line)
+{
+    char ini[1024], out[1024], where[1100];
+    cli_write_text(in_tmp(ini, "typo.ini"),
+                   "[cloth]\nn = 6\n[type1]\nks = 200\nkz = 3\n");
+    snprintf(where, sizeof where, "%s:5", ini);
+    cli_result r;
+    cli_run(&r, "run", ini, "--out", in_tmp(out, "o"), NULL);
+    cli_assert_error(&r, 0, where, "kz", NULL);
+    cli_result_free(&r);
+}
+
+Test(cli, non_numeric_value)
+{
+    char out[1024];
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "type1.ks=abc", "--out",
+            in_tmp(out, "o"), NULL);
+    cli_assert_error(&r, 0, "ks", "abc", NULL);
+    cli_result_free(&r);
+}
+
+Test(cli, nan_value)
+{
+    char out[1024];
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "type1.ks=nan", "--out",
+            in_tmp(out, "o"), NULL);
+    cli_assert_error(&r, 0, "ks", "nan", NULL);
+    cli_result_free(&r);
+}
+
+Test(cli, grid_too_small_for_type2)
+{
+    char out[1024];
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "cloth.n=2", "--set",
+            "type2.enabled=true", "--out", in_tmp(out, "o"), NULL);
+    cli_assert_error(&r, 0, "2 x 2", "3", NULL);
+    cli_result_free(&r);
+}
+
+Test(cli, dt_zero)
+{
+    char out[1024];
+    cli_result r;
+    cli_run(&r, "run", "hang", "--integrator", "symplectic-euler", "--dt",
+            "0", "--t-end", "0.01", "--out", in_tmp(out, "o"), NULL);
+    cli_assert_error(&r, 0, "dt", NULL);
+    cli_result_free(&r);
+}
+
+Test(cli, dt_negative)
+{
+    char out[1024];
+    cli_result r;
+    cli_run(&r, "run", "hang", "--integrator", "symplectic-euler", "--dt",
+            "-1", "--t-end", "0.01", "--out", in_tmp(out, "o"), NULL);
+    cli_assert_error(&r, 0, "dt", "-1", NULL);
+    cli_result_free(&r);
+}
+
+Test(cli, fixed_step_without_dt)
+{
+    char out[1024];
+    cli_result r;
+    cli_run(&r, "run", "hang", "--integrator", "symplectic-euler",
+            "--t-end", "0.01", "--out", in_tmp(out, "o"), NULL);
+    cli_assert_error(&r, 0, "dt", "symplectic-euler", NULL);
+    cli_result_free(&r);
+}
+
+Test(cli, unknown_integrator_lists_the_allowed)
+{
+    char out[1024];
+    cli_result r;
+    cli_run(&r, "run", "hang", "--integrator", "rk4-magic", "--out",
+            in_tmp(out, "o"), NULL);
+    cli_assert_error(&r, 0, "rk4-magic", "cvode-bdf", "symplectic-euler",
+                     NULL);
+    cli_result_free(&r);
+}
+
+Test(cli, unknown_subcommand)
+{
+    cli_result r;
+    cli_run(&r, "frobnicate", "hang", NULL);
+    cli_assert_error(&r, 1, "frobnicate", NULL);
+    cli_result_free(&r);
+}
+
+Test(cli, unknown_option)
+{
+    char out[1024];
+    cli_result r;
+    cli_run(&r, "run", "hang", "--frobnicate", "--out", in_tmp(out, "o"),
+            NULL);
+    cli_assert_error(&r, 1, "--frobnicate", NULL);
+    cli_result_free(&r);
+    cli_run(&r, "eval", "hang", "--state", "x.csv", "--frobnicate", NULL);
+    cli_assert_error(&r, 1, "--frobnicate", NULL);
+    cli_result_free(&r);
+    cli_run(&r, "counts", "--frobnicate", NULL);
+    cli_assert_error(&r, 1, "--frobnicate", NULL);
+    cli_result_free(&r);
+}
+
+Test(cli, option_without_its_value)
+{
+    cli_result r;
+    cli_run(&r, "run", "hang", "--dt", NULL);
+    cli_assert_error(&r, 1, "--dt", NULL);
+    cli_result_free(&r);
+}
+
+Test(cli, t_end_not_a_multiple_of_dt)
+{
+    char out[1024];
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "cloth.n=6", "--integrator",
+            "symplectic-euler", "--dt", "3e-4", "--t-end", "0.05", "--out",
+            in_tmp(out, "o"), NULL);
+    cli_assert_error(&r, 0, "t_end", "0.05", "dt", NULL);
+    cli_result_free(&r);
+}
+
+Test(cli, pin_outside_the_grid)
+{
+    char out[1024];
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "pins.at=0,99", "--out",
+            in_tmp(out, "o"), NULL);
+    cli_assert_error(&r, 0, "99", NULL);
+    cli_result_free(&r);
+}
+
+Test(cli, eval_without_state)
+{
+    char out[1024];
+    cli_result r;
+    cli_run(&r, "eval", "hang", "--out", in_tmp(out, "o"), NULL);
+    cli_assert_error(&r, 1, "--state", NULL);
+    cli_result_free(&r);
+}
+
+/* A valid rest state of hang at n = 6 as CSV text, for corrupting. */
+static char *rest_state_text(void)
+{
+    const char *sets[] = {"cloth.n=6", NULL};
+    cl_model *m = load_model("hang", sets);
+    const cl_cloth *c = cl_model_cloth(m);
+    char path[1024];
+    double *v = calloc(3 * c->np, sizeof *v);
+    write_state(in_tmp(path, "rest.csv"), c->np, c->X0, v);
+    free(v);
+    free_model(m);
+    FILE *fp = fopen(path, "r");
+    cr_assert_not_null(fp);
+    char *text = cli_slurp_fp(fp);
+    fclose(fp);
+    return text;
+}
+
+/* Run eval of hang (n = 6) on a state file written from `text`. */
+static void eval_text(cli_result *r, const char *text, char *state)
+{
+    char out[1024];
+    cli_write_text(in_tmp(state, "state.csv"), text);
+    cli_run(r, "eval", "hang", "--set", "cloth.n=6", "--state", state,
+            "--out", in_tmp(out, "eval"), NULL);
+}
+
+Test(cli, eval_state_wrong_header)
+{
+    char *text = rest_state_text(), state[1024], where[1100];
+    char *body = strchr(text, '\n');
+    char *bad = malloc(strlen(text) + 32);
+    sprintf(bad, "p,x,y,z,vx,vy%s", body);
+    cli_result r;
+    eval_text(&r, bad, state);
+    snprintf(where, sizeof where, "%s:1", state);
+    cli_assert_error(&r, 0, where, NULL);
+    cli_result_free(&r);
+    free(bad);
+    free(text);
+}
+
+Test(cli, eval_state_missing_particle)
+{
+    char *text = rest_state_text(), state[1024];
+    /* drop the row of particle 7 (line 9) */
+    char *row = strstr(text, "\n7,");
+    cr_assert_not_null(row);
+    char *next = strchr(row + 1, '\n');
+    memmove(row, next, strlen(next) + 1);
+    cli_result r;
+    eval_text(&r, text, state);
+    cli_assert_error(&r, 0, state, "particle 7", NULL);
+    cli_result_free(&r);
+    free(text);
+}
+
+Test(cli, eval_state_non_numeric)
+{
+    char *text = rest_state_text(), state[1024], where[1100];
+    /* particle 9 is on line 11; its x becomes "abc" */
+    char *row = strstr(text, "\n9,");
+    cr_assert_not_null(row);
+    char *x = row + 3, *end = strchr(x, ',');
+    cr_assert_not_null(end);
+    char *bad = malloc(strlen(text) + 8);
+    sprintf(bad, "%.*sabc%s", (int)(x - text), text, end);
+    cli_result r;
+    eval_text(&r, bad, state);
+    free(bad);
+    snprintf(where, sizeof where, "%s:11", state);
+    cli_assert_error(&r, 0, where, "abc", NULL);
+    cli_result_free(&r);
+    free(text);
+}
+
+Test(cli, eval_state_missing_file)
+{
+    char state[1024], out[1024];
+    cli_result r;
+    cli_run(&r, "eval", "hang", "--state", in_tmp(state, "none.csv"),
+            "--out", in_tmp(out, "eval"), NULL);
+    cli_assert_error(&r, 0, "none.csv", NULL);
+    cli_result_free(&r);
+}
+
+/* ======================================================================
+ * 2. A small run and its outputs.
+ * ====================================================================== */
+
+#define RUN_N 6
+#define RUN_NP (RUN_N * RUN_N)
+
+Test(cli, run_writes_its_outputs)
+{
+    char out[1024], path[1200];
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "cloth.n=6", "--t-end", "0.05",
+            "--integrator", "symplectic-euler", "--dt", "1e-4", "--frames",
+            "2", "--out", in_tmp(out, "run"), NULL);
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "symplectic-euler"), "summary:\n%s", r.out);
+    cli_result_free(&r);
+
+    /* series.csv: t = 0 and 200 samples (the default), 0 .. t_end */
+    series s;
+    snprintf(path, sizeof path, "%s/series.csv", out);
+    read_series(path, &s);
+    cr_assert(!strncmp(s.header, "t,kinetic", 9), "header \"%s\"", s.header);
+    cr_assert_eq(s.nrow, 201, "series.csv has %zu rows, expected 201",
+                 s.nrow);
+    cr_assert_eq(s.v[0], 0.0);
+    cr_assert(fabs(s.v[(s.nrow - 1) * s.ncol] - 0.05) < 1e-12,
+              "last sample at t = %g", s.v[(s.nrow - 1) * s.ncol]);
+    for (size_t k = 1; k < s.nrow; k++)
+        cr_assert_gt(s.v[k * s.ncol], s.v[(k - 1) * s.ncol],
+                     "series.csv: t not increasing at row %zu", k + 1);
+    free(s.v);
+
+    /* final.csv: every particle; the pinned ones where they were put */
+    const char *sets[] = {"cloth.n=6", NULL};
+    cl_model *m = load_model("hang", sets);
+    const cl_cloth *c = cl_model_cloth(m);
+    cr_assert_eq(c->np, RUN_NP);
+    double x[3 * RUN_NP], v[3 * RUN_NP];
+    snprintf(path, sizeof path, "%s/final.csv", out);
+    cli_read_state(path, RUN_NP, x, v);
+    size_t npinned = 0;
+    double fall = 0;
+    for (size_t p = 0; p < RUN_NP; p++) {
+        if (c->dof[p] >= 0) {
+            fall = fmax(fall, -x[3 * p + 1]);
+            continue;
+        }
+        npinned++;
+        for (int d = 0; d < 3; d++) {
+            cr_assert_eq(x[3 * p + d], c->X0[3 * p + d],
+                         "pinned particle %zu moved: x[%d] = %.17g, rest "
+                         "%.17g", p, d, x[3 * p + d], c->X0[3 * p + d]);
+            cr_assert_eq(v[3 * p + d], 0.0, "pinned particle %zu moves", p);
+        }
+    }
+    cr_assert_eq(npinned, 2);
+    cr_assert(fall > 1e-3, "the cloth did not fall (max drop %g m)", fall);
+    free_model(m);
+
+    /* stats.csv: 0.05 / 1e-4 steps */
+    snprintf(path, sizeof path, "%s/stats.csv", out);
+    cr_assert_eq(stat_of(path, "steps"), 500.0);
+
+    /* frames 0, 1, 2 in both formats, no more */
+    for (int k = 0; k <= 2; k++)
+        for (int f = 0; f < 2; f++) {
+            snprintf(path, sizeof path, "%s/frame_%05d.%s", out, k,
+                     f ? "obj" : "vtk");
+            cr_assert(cli_exists(path), "missing or empty %s", path);
+        }
+    cr_assert_eq(count_prefixed(out, "frame_", NULL, 0), 6);
+    for (int k = 0; k <= 2; k++) {
+        snprintf(path, sizeof path, "%s/frame_%05d.vtk", out, k);
+        double t = vtk_time(path);
+        cr_assert(fabs(t - 0.025 * k) < 1e-12, "frame %d at t = %g", k, t);
+    }
+    snprintf(path, sizeof path, "%s/config.ini", out);
+    cr_assert(cli_exists(path), "missing or empty %s", path);
+    assert_no_temporaries(out);
+}
+
+/* config.ini is the problem as run: running it again gives the same final
+ * state, bit for bit. */
+Test(cli, run_config_ini_reproduces_the_run)
+{
+    char out[1024], again[1024], path[1200];
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "cloth.n=6", "--t-end", "0.01",
+            "--integrator", "symplectic-euler", "--dt", "1e-4", "--frames",
+            "0", "--set", "type1.ks=150", "--out", in_tmp(out, "first"),
+            "--quiet", NULL);
+    cli_assert_ok(&r);
+    cr_assert_str_empty(r.out, "--quiet printed:\n%s", r.out);
+    cli_result_free(&r);
+    snprintf(path, sizeof path, "%s/config.ini", out);
+    cli_run(&r, "run", path, "--out", in_tmp(again, "again"), "--quiet",
+            NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+
+    cli_lines a, b;
+    snprintf(path, sizeof path, "%s/final.csv", out);
+    cli_read_lines(path, &a);
+    snprintf(path, sizeof path, "%s/final.csv", again);
+    cli_read_lines(path, &b);
+    cr_assert_eq(a.n, b.n);
+    for (size_t k = 0; k < a.n; k++)
+        cr_assert_str_eq(a.line[k], b.line[k], "final.csv line %zu differs",
+                         k + 1);
+    cli_lines_free(&a);
+    cli_lines_free(&b);
+}
+
+Test(cli, run_format_csv_writes_no_frames)
+{
+    char out[1024], path[1200], first[256] = "";
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "cloth.n=6", "--t-end", "0.01",
+            "--integrator", "symplectic-euler", "--dt", "1e-4", "--frames",
+            "2", "--format", "csv", "--out", in_tmp(out, "csv"), NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    cr_assert_eq(count_prefixed(out, "frame_", first, sizeof first), 0,
+                 "--format csv wrote %s", first);
+    const char *want[] = {"series.csv", "final.csv", "stats.csv"};
+    for (int k = 0; k < 3; k++) {
+        snprintf(path, sizeof path, "%s/%s", out, want[k]);
+        cr_assert(cli_exists(path), "missing or empty %s", path);
+    }
+}
+
+Test(cli, run_bad_format)
+{
+    char out[1024];
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "cloth.n=6", "--format", "vtk,png",
+            "--out", in_tmp(out, "o"), NULL);
+    cli_assert_error(&r, 0, "format", NULL);
+    cli_result_free(&r);
+}
+
+/* ======================================================================
+ * 3. A blow-up: reported with its time, the rows before it published.
+ * ====================================================================== */
+
+Test(cli, blow_up_is_reported_and_the_series_kept)
+{
+    const double dt = 0.01, t_end = 1.0;
+    char out[1024], path[1200];
+    cli_result r;
+    /* one sample per step, so every computed step has its row */
+    cli_run(&r, "run", "hang", "--set", "cloth.n=6", "--integrator",
+            "symplectic-euler", "--dt", "0.01", "--t-end", "1", "--samples",
+            "100", "--frames", "0", "--out", in_tmp(out, "blow"), NULL);
+    cli_assert_no_crash(&r);
+    cr_assert_neq(r.status, 0, "a blow-up exited 0");
+    cr_assert_eq(cli_count_lines(r.err), 1, "stderr:\n%s", r.err);
+    cr_assert(!strncmp(r.err, "clothode", 8), "stderr:\n%s", r.err);
+    const char *at = strstr(r.err, "blow-up at t = ");
+    cr_assert_not_null(at, "no \"blow-up at t = \" in\n%s", r.err);
+    double tb = strtod(at + strlen("blow-up at t = "), NULL);
+    cr_assert(tb > 0 && tb < t_end, "blow-up time %g", tb);
+    cli_result_free(&r);
+
+    series s;
+    snprintf(path, sizeof path, "%s/series.csv", out);
+    read_series(path, &s);
+    cr_assert(!strncmp(s.header, "t,kinetic", 9), "header \"%s\"", s.header);
+    cr_assert(s.nrow >= 2, "series.csv has %zu rows", s.nrow);
+    double last = s.v[(s.nrow - 1) * s.ncol];
+    cr_assert(fabs(last - (tb - dt)) < 1e-9,
+              "last row at t = %g, the blow-up at t = %g", last, tb);
+    cr_assert_eq(s.nrow, (size_t)llround(tb / dt),
+                 "%zu rows for a blow-up at t = %g with dt = %g", s.nrow, tb,
+                 dt);
+    for (size_t k = 0; k < s.nrow * s.ncol; k++)
+        cr_assert(isfinite(s.v[k]), "series.csv: non-finite value");
+    for (size_t k = 1; k < s.nrow; k++)
+        cr_assert_gt(s.v[k * s.ncol], s.v[(k - 1) * s.ncol]);
+    free(s.v);
+    snprintf(path, sizeof path, "%s/stats.csv", out);
+    cr_assert(cli_exists(path), "missing %s", path);
+    assert_no_temporaries(out);
+}
+
+/* More samples requested than there are fixed steps: every step is one row
+ * at most; time must not repeat. */
+Test(cli, series_time_never_repeats)
+{
+    char out[1024], path[1200];
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "cloth.n=6", "--integrator",
+            "symplectic-euler", "--dt", "1e-3", "--t-end", "0.05",
+            "--samples", "200", "--frames", "0", "--out", in_tmp(out, "s"),
+            "--quiet", NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    series s;
+    snprintf(path, sizeof path, "%s/series.csv", out);
+    read_series(path, &s);
+    cr_assert(s.nrow >= 2);
+    for (size_t k = 1; k < s.nrow; k++)
+        cr_assert_gt(s.v[k * s.ncol], s.v[(k - 1) * s.ncol],
+                     "series.csv data rows %zu and %zu at t = %g and %g",
+                     k, k + 1, s.v[(k - 1) * s.ncol], s.v[k * s.ncol]);
+    cr_assert(fabs(s.v[(s.nrow - 1) * s.ncol] - 0.05) < 1e-12);
+    free(s.v);
+}
+
+/* The same for frames: more frames requested than there are steps. */
+Test(cli, frame_time_never_repeats)
+{
+    char out[1024], path[1200];
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "cloth.n=3", "--integrator",
+            "symplectic-euler", "--dt", "1e-3", "--t-end", "0.005",
+            "--samples", "5", "--frames", "10", "--format", "vtk", "--out",
+            in_tmp(out, "f"), "--quiet", NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    int n = count_prefixed(out, "frame_", NULL, 0);
+    cr_assert(n >= 2, "%d frames", n);
+    double prev = -1;
+    for (int k = 0; k < n; k++) {
+        snprintf(path, sizeof path, "%s/frame_%05d.vtk", out, k);
+        double t = vtk_time(path);
+        cr_assert_gt(t, prev, "frame %d at t = %g, frame %d at t = %g", k - 1,
+                     prev, k, t);
+        prev = t;
+    }
+    cr_assert(fabs(prev - 0.005) < 1e-12, "last frame at t = %g", prev);
+}
+
+/* ======================================================================
+ * 4. eval: forces, energies, Jacobians.
+ * ====================================================================== */
+
+/* eval of hang at n = 6 (extra assignments in `set`, or NULL) at the state
+ * x, v; outputs under tmp/eval, Jacobians tmp/J.mtx and tmp/V.mtx. */
+static void run_eval(const cl_cloth *c, const double *x, const double *v,
+                     const char *set)
+{
+    char state[1024], out[1024], jx[1024], jv[1024];
+    write_state(in_tmp(state, "state.csv"), c->np, x, v);
+    cli_result r;
+    const char *args[] = {"eval", "hang", "--set", "cloth.n=6", "--state",
+                          state, "--out", in_tmp(out, "eval"), "--jacobian",
+                          in_tmp(jx, "J.mtx"), "--jacobian-v",
+                          in_tmp(jv, "V.mtx"), set ? "--set" : NULL, set,
+                          NULL};
+    cli_runv(&r, args);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+}
+
+Test(cli, eval_forces_and_energies)
+{
+    const char *sets[] = {"cloth.n=6", NULL};
+    cl_model *m = load_model("hang", sets);
+    const cl_cloth *c = cl_model_cloth(m);
+    double x[3 * RUN_NP], v[3 * RUN_NP], f[3 * RUN_NP];
+    perturbed_state(c, x, v);
+    run_eval(c, x, v, NULL);
+
+    char path[1024];
+    read_forces(in_tmp(path, "eval/forces.csv"), c->np, f);
+    for (size_t k = 0; k < 3 * c->np; k++)
+        cr_assert(isfinite(f[k]));
+    energies e;
+    read_energy(in_tmp(path, "eval/energy.csv"), &e);
+    const char *names[] = {"kinetic", "type1", "type2", "gravity", "total"};
+    cr_assert_eq(e.n, 5, "energy.csv has %zu rows", e.n);
+    for (int k = 0; k < 5; k++)
+        cr_assert_str_eq(e.name[k], names[k]);
+    double sum = 0, scale = 0;
+    for (int k = 0; k < 4; k++) {
+        sum += e.value[k];
+        scale += fabs(e.value[k]);
+    }
+    double total = energy_of(&e, "total");
+    cr_assert(fabs(total - sum) <= 1e-12 * scale,
+              "total %.17g != kinetic + potentials %.17g", total, sum);
+
+    /* kinetic 1/2 m v^2 and gravity energy m g y (g = -9.81 along y),
+     * from the state itself */
+    double kin = 0, grav = 0;
+    for (size_t p = 0; p < c->np; p++) {
+        for (int d = 0; d < 3; d++)
+            kin += 0.5 * c->mass[p] * v[3 * p + d] * v[3 * p + d];
+        grav += c->mass[p] * 9.81 * x[3 * p + 1];
+    }
+    double ek = energy_of(&e, "kinetic"), eg = energy_of(&e, "gravity");
+    cr_assert(fabs(ek - kin) <= 1e-12 * kin, "kinetic %.17g, expected %.17g",
+              ek, kin);
+    cr_assert(fabs(eg - grav) <= 1e-12 * c->np * fabs(grav) + 1e-300,
+              "gravity energy %.17g, expected %.17g", eg, grav);
+    cr_assert_gt(energy_of(&e, "type1"), 0.0, "a stretched cloth");
+    free_model(m);
+}
+
+Test(cli, eval_rest_state_without_gravity_has_no_force)
+{
+    const char *sets[] = {"cloth.n=6", NULL};
+    cl_model *m = load_model("hang", sets);
+    const cl_cloth *c = cl_model_cloth(m);
+    double v[3 * RUN_NP] = {0}, f[3 * RUN_NP];
+    run_eval(c, c->X0, v, "gravity.g=0,0,0");
+    char path[1024];
+    read_forces(in_tmp(path, "eval/forces.csv"), c->np, f);
+    for (size_t k = 0; k < 3 * c->np; k++)
+        cr_assert_eq(f[k], 0.0, "force on particle %zu [%zu] = %.17g at rest",
+                     k / 3, k % 3, f[k]);
+    energies e;
+    read_energy(in_tmp(path, "eval/energy.csv"), &e);
+    for (size_t k = 0; k < e.n; k++)
+        cr_assert_eq(e.value[k], 0.0, "energy %s = %.17g at rest",
+                     e.name[k], e.value[k]);
+    free_model(m);
+}
+
+Test(cli, eval_internal_forces_sum_to_zero)
+{
+    const char *sets[] = {"cloth.n=6", NULL};
+    cl_model *m = load_model("hang", sets);
+    const cl_cloth *c = cl_model_cloth(m);
+    double x[3 * RUN_NP], v[3 * RUN_NP], f[3 * RUN_NP];
+    perturbed_state(c, x, v);
+    run_eval(c, x, v, "gravity.g=0,0,0");
+    char path[1024];
+    read_forces(in_tmp(path, "eval/forces.csv"), c->np, f);
+    double fmax = max_abs(f, 3 * c->np);
+    cr_assert_gt(fmax, 0.0);
+    for (int d = 0; d < 3; d++) {
+        double s = 0;
+        for (size_t p = 0; p < c->np; p++)
+            s += f[3 * p + d];
+        cr_assert(fabs(s) <= 1e-12 * fmax,
+                  "sum of forces [%d] = %.3g, max force %.3g", d, s, fmax);
+    }
+    free_model(m);
+}
+
+Test(cli, eval_jacobians)
+{
+    const char *sets[] = {"cloth.n=6", NULL};
+    cl_model *m = load_model("hang", sets);
+    const cl_cloth *c = cl_model_cloth(m);
+    double x[3 * RUN_NP], v[3 * RUN_NP];
+    perturbed_state(c, x, v);
+    run_eval(c, x, v, NULL);
+    const size_t n = 3 * c->np;
+    char path[1024];
+    double *J = read_dense(in_tmp(path, "J.mtx"), n);
+    double *V = read_dense(in_tmp(path, "V.mtx"), n);
+    double jmax = max_abs(J, n * n), vmax = max_abs(V, n * n);
+    cr_assert(jmax > 0 && vmax > 0, "zero Jacobian");
+    /* conservative pair forces: df/dx is a Hessian, symmetric; linear pair
+     * damping: df/dv symmetric too */
+    for (size_t i = 0; i < n; i++)
+        for (size_t j = 0; j < i; j++) {
+            cr_assert(fabs(J[i * n + j] - J[j * n + i]) <= 1e-12 * jmax,
+                      "df/dx(%zu,%zu) = %.17g but (%zu,%zu) = %.17g", i, j,
+                      J[i * n + j], j, i, J[j * n + i]);
+            cr_assert(fabs(V[i * n + j] - V[j * n + i]) <= 1e-12 * vmax,
+                      "df/dv(%zu,%zu) = %.17g but (%zu,%zu) = %.17g", i, j,
+                      V[i * n + j], j, i, V[j * n + i]);
+        }
+    /* forces depend on differences only: moving (or speeding up) every
+     * particle alike changes nothing, so each row sums to 0 per component */
+    for (size_t i = 0; i < n; i++)
+        for (size_t b = 0; b < 3; b++) {
+            double sj = 0, sv = 0;
+            for (size_t p = 0; p < c->np; p++) {
+                sj += J[i * n + 3 * p + b];
+                sv += V[i * n + 3 * p + b];
+            }
+            cr_assert(fabs(sj) <= 1e-12 * jmax,
+                      "df/dx row %zu, component %zu sums to %.3g", i, b, sj);
+            cr_assert(fabs(sv) <= 1e-12 * vmax,
+                      "df/dv row %zu, component %zu sums to %.3g", i, b, sv);
+        }
+    free(J);
+    free(V);
+    free_model(m);
+}
+
+/* ======================================================================
+ * 5. The two integrators agree.
+ * ====================================================================== */
+
+Test(cli, cvode_and_symplectic_euler_agree)
+{
+    enum { N = 8, NP = N * N };
+    char a[1024], b[1024], path[1200];
+    double t0 = cli_now();
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "cloth.n=8", "--t-end", "0.2",
+            "--integrator", "cvode-bdf", "--rtol", "1e-8", "--atol", "1e-10",
+            "--samples", "10", "--frames", "0", "--quiet", "--out",
+            in_tmp(a, "cvode"), NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    double t1 = cli_now();
+    cli_run(&r, "run", "hang", "--set", "cloth.n=8", "--t-end", "0.2",
+            "--integrator", "symplectic-euler", "--dt", "2e-5", "--samples",
+            "10", "--frames", "0", "--quiet", "--out", in_tmp(b, "symp"),
+            NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    double t2 = cli_now();
+
+    static double xa[3 * NP], va[3 * NP], xb[3 * NP], vb[3 * NP];
+    snprintf(path, sizeof path, "%s/final.csv", a);
+    cli_read_state(path, NP, xa, va);
+    snprintf(path, sizeof path, "%s/final.csv", b);
+    cli_read_state(path, NP, xb, vb);
+    double diff = 0, fall = 0;
+    for (size_t p = 0; p < NP; p++) {
+        double d2 = 0;
+        for (int d = 0; d < 3; d++)
+            d2 += (xa[3 * p + d] - xb[3 * p + d]) *
+                  (xa[3 * p + d] - xb[3 * p + d]);
+        diff = fmax(diff, sqrt(d2));
+        fall = fmax(fall, -xa[3 * p + 1]);
+    }
+    cr_log_info("cvode-bdf vs symplectic-euler, hang n = 8 to t = 0.2 s: "
+                "max position difference %.3g m (max drop %.3g m; %.1f s + "
+                "%.1f s)", diff, fall, t1 - t0, t2 - t1);
+    cr_assert(fall > 0.05, "the cloth barely moved (max drop %g m)", fall);
+    cr_assert_lt(diff, 1e-3, "final positions differ by %g m", diff);
+}
+
+/* ======================================================================
+ * 6. counts, list, help.
+ * ====================================================================== */
+
+Test(cli, counts_match_their_formulas)
+{
+    cli_result r;
+    cli_run(&r, "counts", "--csv", "--n-max", "40", NULL);
+    cli_assert_ok(&r);
+    char *save, *line = strtok_r(r.out, "\n", &save);
+    cr_assert_not_null(line);
+    cr_assert_str_eq(line,
+                     "n,type1,type1_formula,type2,type2_formula,ck,ck_formula");
+    long expect_n = 3;
+    while ((line = strtok_r(NULL, "\n", &save))) {
+        double k[7];
+        cli_parse_row(line, k, 7, "counts --csv");
+        long n = (long)k[0];
+        cr_assert_eq(n, expect_n, "row for n = %ld, expected %ld", n,
+                     expect_n);
+        double t1 = 2.0 * (n - 1) * (2 * n - 1), t2 = 4.0 * (n - 1) * (n - 2);
+        double ck = 8.0 * n * n - 18.0 * n + 10;
+        cr_assert_eq(k[2], t1, "n = %ld: type1 formula %g", n, k[2]);
+        cr_assert_eq(k[4], t2, "n = %ld: type2 formula %g", n, k[4]);
+        cr_assert_eq(k[6], ck, "n = %ld: CK formula %g", n, k[6]);
+        cr_assert_eq(k[1], t1, "n = %ld: %g Type1 pairs, formula %g", n,
+                     k[1], t1);
+        cr_assert_eq(k[3], t2, "n = %ld: %g Type2 pairs, formula %g", n,
+                     k[3], t2);
+        cr_assert_eq(k[5], ck, "n = %ld: CK count %g, formula %g", n, k[5],
+                     ck);
+        expect_n++;
+    }
+    cr_assert_eq(expect_n, 41, "rows for n = 3..%ld only", expect_n - 1);
+    cli_result_free(&r);
+}
+
+Test(cli, list_names_problems_integrators_terms)
+{
+    cli_result r;
+    cli_run(&r, "list", NULL);
+    cli_assert_ok(&r);
+    const char *names[] = {"hang", "hang-smooth", "jiao", "cvode-bdf",
+                           "symplectic-euler", "type1", "type2"};
+    for (size_t k = 0; k < sizeof names / sizeof *names; k++) {
+        char want[64];
+        snprintf(want, sizeof want, "\n  %s ", names[k]);
+        cr_assert(strstr(r.out, want), "list does not name %s:\n%s",
+                  names[k], r.out);
+    }
+    cli_result_free(&r);
+}
+
+Test(cli, help_on_every_subcommand)
+{
+    const char *cmds[] = {"run", "eval", "counts", "list"};
+    cli_result r;
+    for (size_t k = 0; k < 4; k++) {
+        cli_run(&r, cmds[k], "--help", NULL);
+        cli_assert_ok(&r);
+        cr_assert(strstr(r.out, "usage"), "%s --help:\n%s", cmds[k], r.out);
+        cli_result_free(&r);
+    }
+    cli_run(&r, "--help", NULL);
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "usage"), "--help:\n%s", r.out);
+    for (size_t k = 0; k < 4; k++)
+        cr_assert(strstr(r.out, cmds[k]), "--help does not list %s",
+                  cmds[k]);
+    cli_result_free(&r);
+}
+
+Test(cli, no_command_is_a_usage_error)
+{
+    cli_result r;
+    cli_run(&r, NULL);
+    cli_assert_no_crash(&r);
+    cr_assert_neq(r.status, 0);
+    cr_assert(strstr(r.err, "usage"), "stderr:\n%s", r.err);
+    cli_result_free(&r);
+}

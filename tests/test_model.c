@@ -1,0 +1,477 @@
+/* The cloth model as a cl_system (SPEC 1): free-particle numbering with pins
+ * (negative pin indices), scatter/gather with moving pins, mass per degree
+ * of freedom, system force = gathered full force, the system Jacobian
+ * against finite differences of the system force on the hang defaults, the
+ * free-particle pattern against the full-particle Jacobian, exact zeros at
+ * rest, and configuration errors. */
+#include <criterion/criterion.h>
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fdcheck.h"
+
+/* ---- numbering, scatter, gather, mass ---------------------------------- */
+
+Test(model, free_numbering_with_negative_pins)
+{
+    cl_model *m = FD_MODEL("cloth.n=4", "pins.at=0,0 0,-1 -1,-1 2,1 -4,2");
+    const cl_cloth *c = cl_model_cloth(m);
+    /* (0,0)=0, (0,3)=3, (3,3)=15, (2,1)=9, (-4,2)=(0,2)=2 */
+    static const int pinned[] = {0, 3, 15, 9, 2};
+    cr_assert_eq(c->npin, 5);
+    for (size_t k = 0; k < 5; k++)
+        cr_assert_eq(c->pins[k].p, pinned[k], "pin %zu at %d", k,
+                     c->pins[k].p);
+    cr_assert_eq(c->nfree, 11);
+    cr_assert_eq(cl_model_system(m)->n, 33);
+    int next = 0;
+    for (int p = 0; p < 16; p++) {
+        bool is_pinned = false;
+        for (size_t k = 0; k < 5; k++)
+            is_pinned |= pinned[k] == p;
+        if (is_pinned) {
+            cr_assert_eq(c->dof[p], -1, "particle %d", p);
+        } else {
+            cr_assert_eq(c->dof[p], next, "particle %d", p);
+            cr_assert_eq(c->free_p[next], p);
+            next++;
+        }
+    }
+    cl_model_free(m);
+}
+
+Test(model, scatter_gather_with_moving_pins)
+{
+    cl_model *m = FD_MODEL("cloth.n=3", "pins.at=0,0 2,-1",
+                           "pins.velocity=0.5,-1,0.25");
+    const cl_cloth *c = cl_model_cloth(m);
+    size_t n = fd_n(m), nf = 3 * c->nfree;
+    cr_assert_eq(nf, 21);
+    double *x = fd_vec(nf), *v = fd_vec(nf), *xf = fd_vec(n), *vf = fd_vec(n),
+           *back = fd_vec(nf);
+    fd_rng r = {71};
+    fd_random_vec(&r, 1.0, x, nf);
+    fd_random_vec(&r, 1.0, v, nf);
+    const double t = 2.5, w[3] = {0.5, -1, 0.25};
+    cl_cloth_scatter(c, t, x, v, xf, vf);
+    for (size_t k = 0; k < c->nfree; k++)
+        for (int i = 0; i < 3; i++) {
+            cr_assert_eq(xf[3 * c->free_p[k] + i], x[3 * k + i]);
+            cr_assert_eq(vf[3 * c->free_p[k] + i], v[3 * k + i]);
+        }
+    static const int pinned[] = {0, 8};
+    for (int k = 0; k < 2; k++)
+        for (int i = 0; i < 3; i++) {
+            int p = pinned[k];
+            cr_assert_eq(xf[3 * p + i], c->X0[3 * p + i] + w[i] * t);
+            cr_assert_eq(vf[3 * p + i], w[i]);
+        }
+    cl_cloth_gather(c, xf, back);
+    cr_assert_eq(memcmp(back, x, nf * sizeof *x), 0);
+    cl_cloth_gather(c, vf, back);
+    cr_assert_eq(memcmp(back, v, nf * sizeof *v), 0);
+    /* v may be NULL: positions only. */
+    memset(vf, 0, n * sizeof *vf);
+    cl_cloth_scatter(c, t, x, NULL, xf, NULL);
+    cr_assert_eq(xf[3 * 8 + 1], c->X0[3 * 8 + 1] - t);
+    free(x);
+    free(v);
+    free(xf);
+    free(vf);
+    free(back);
+    cl_model_free(m);
+}
+
+Test(model, mass_per_dof)
+{
+    cl_model *m = FD_MODEL("cloth.nu=4", "cloth.nv=5", "cloth.mass=0.4",
+                           "pins.at=0,0 -1,-1");
+    const cl_system *sys = cl_model_system(m);
+    const cl_cloth *c = cl_model_cloth(m);
+    cr_assert_eq(sys->n, 3 * 18);
+    for (size_t k = 0; k < sys->n; k++)
+        cr_assert_eq(sys->mass[k], 0.4 / 20.0, "mass[%zu] = %g", k,
+                     sys->mass[k]);
+    for (size_t p = 0; p < c->np; p++)
+        cr_assert_eq(c->mass[p], 0.4 / 20.0);
+    cl_model_free(m);
+    m = FD_MODEL("cloth.n=3", "cloth.particle_mass=0.003");
+    sys = cl_model_system(m);
+    for (size_t k = 0; k < sys->n; k++)
+        cr_assert_eq(sys->mass[k], 0.003);
+    cl_model_free(m);
+}
+
+/* ---- system force, energy, Jacobian ------------------------------------ */
+
+/* The hang defaults (pins at two corners of one edge, gravity, Type1 and
+ * Type2 at default parameters) on a 6 x 6 grid, plus extra settings. */
+#define HANG(...) FD_MODEL("cloth.n=6", __VA_ARGS__)
+
+/* A state away from every kink: x stretched 3% (Type1 axis-x taut, Type2
+ * axis-x in tension), z compressed 5% (axis-z: Type1 slack, Type2 f_b),
+ * diagonals ~0.9% compressed (Type1 slack, Type2 f_b; the default f_b/cb
+ * crossover is within 3e-6 L of L).  Free particles only. */
+static void hang_state(const cl_model *m, fd_rng *r, double *x, double *v)
+{
+    const cl_cloth *c = cl_model_cloth(m);
+    size_t n = fd_n(m);
+    double *xf = fd_vec(n), A[9];
+    fd_scale(1.03, 0.95, A);
+    fd_deform(m, A, 0.001, 0.02, r, xf);
+    /* Pins stay where they are prescribed; the pairs at pin (0,-1) are then
+     * stretched further (kink_margin checks every pair). */
+    cl_cloth_gather(c, xf, x);
+    fd_random_vec(r, 0.3, v, 3 * c->nfree);
+    free(xf);
+}
+
+/* Smallest |d/L - 1| over Type1 and Type2 pairs at the free state x. */
+static double kink_margin(const cl_model *m, const double *x, double t)
+{
+    const cl_cloth *c = cl_model_cloth(m);
+    size_t n = fd_n(m);
+    double *xf = fd_vec(n), margin = INFINITY;
+    cl_cloth_scatter(c, t, x, NULL, xf, NULL);
+    for (int type = 1; type <= 2; type++) {
+        cl_pairset s;
+        cl_error err;
+        cr_assert_eq(type == 1 ? cl_pairs_type1(c, &s, &err)
+                               : cl_pairs_type2(c, &s, &err),
+                     CL_OK);
+        for (size_t k = 0; k < s.n; k++) {
+            const cl_pair *p = &s.pair[k];
+            double e = cl_dist(xf + 3 * p->a, xf + 3 * p->b) / p->rest - 1;
+            margin = fmin(margin, fabs(e));
+        }
+        cl_pairs_free(&s);
+    }
+    free(xf);
+    return margin;
+}
+
+/* Dense (3 nfree)^2 matrices from the system's block values. */
+static void sys_dense(const cl_system *sys, const double *bx, const double *bv,
+                      double *Jx, double *Jv)
+{
+    size_t n = sys->n;
+    const cl_bpattern *pat = sys->pattern;
+    cr_assert_eq(pat->nb * 3, n);
+    memset(Jx, 0, n * n * sizeof *Jx);
+    memset(Jv, 0, n * n * sizeof *Jv);
+    for (size_t bi = 0; bi < pat->nb; bi++)
+        for (size_t k = pat->rowptr[bi]; k < pat->rowptr[bi + 1]; k++)
+            for (size_t r = 0; r < 3; r++)
+                for (size_t c = 0; c < 3; c++) {
+                    size_t at = (3 * bi + r) * n + 3 * pat->col[k] + c;
+                    Jx[at] = bx[9 * k + 3 * r + c];
+                    Jv[at] = bv[9 * k + 3 * r + c];
+                }
+}
+
+/* Central differences of sys->force w.r.t. x or v. */
+static void sys_fd(const cl_system *sys, double t, const double *x,
+                   const double *v, bool wrt_v, double h, double *J)
+{
+    size_t n = sys->n;
+    double *xx = fd_vec(n), *vv = fd_vec(n), *fp = fd_vec(n), *fm = fd_vec(n);
+    memcpy(xx, x, n * sizeof *x);
+    memcpy(vv, v, n * sizeof *v);
+    double *z = wrt_v ? vv : xx;
+    for (size_t c = 0; c < n; c++) {
+        double z0 = z[c], zp = z0 + h, zm = z0 - h;
+        z[c] = zp;
+        cr_assert_eq(sys->force(sys->data, t, xx, vv, fp), CL_OK);
+        z[c] = zm;
+        cr_assert_eq(sys->force(sys->data, t, xx, vv, fm), CL_OK);
+        z[c] = z0;
+        for (size_t r = 0; r < n; r++)
+            J[r * n + c] = (fp[r] - fm[r]) / (zp - zm);
+    }
+    free(xx);
+    free(vv);
+    free(fp);
+    free(fm);
+}
+
+static void check_system_jacobian(cl_model *m, double t, fd_rng *r,
+                                  const char *label)
+{
+    const cl_system *sys = cl_model_system(m);
+    size_t n = sys->n, nb = 9 * sys->pattern->nnzb;
+    double *x = fd_vec(n), *v = fd_vec(n), *f = fd_vec(n), *f2 = fd_vec(n),
+           *bx = fd_vec(nb), *bv = fd_vec(nb), *Jx = fd_vec(n * n),
+           *Jv = fd_vec(n * n), *Fx = fd_vec(n * n), *Fv = fd_vec(n * n);
+    hang_state(m, r, x, v);
+    double margin = kink_margin(m, x, t);
+    cr_assert_gt(margin, 0.005, "%s: kink margin %g", label, margin);
+    /* Values are overwritten, not accumulated: fill with garbage first. */
+    for (size_t k = 0; k < nb; k++)
+        bx[k] = bv[k] = 1e300;
+    cr_assert_eq(sys->jacobian(sys->data, t, x, v, f, bx, bv), CL_OK);
+    cr_assert_eq(sys->force(sys->data, t, x, v, f2), CL_OK);
+    cr_assert_eq(memcmp(f, f2, n * sizeof *f), 0,
+                 "%s: jacobian's f differs from force", label);
+    sys_dense(sys, bx, bv, Jx, Jv);
+    sys_fd(sys, t, x, v, false, 2e-7, Fx);
+    sys_fd(sys, t, x, v, true, 1e-6, Fv);
+    double ex = fd_relerr(Fx, Jx, n * n), ev = fd_relerr(Fv, Jv, n * n);
+    char buf[128];
+    snprintf(buf, sizeof buf, "%s system df/dx", label);
+    fd_report(buf, ex);
+    snprintf(buf, sizeof buf, "%s system df/dv", label);
+    fd_report(buf, ev);
+    cr_assert_lt(ex, 1e-6, "%s: system df/dx vs FD %g", label, ex);
+    cr_assert_lt(ev, 1e-6, "%s: system df/dv vs FD %g", label, ev);
+    free(x);
+    free(v);
+    free(f);
+    free(f2);
+    free(bx);
+    free(bv);
+    free(Jx);
+    free(Jv);
+    free(Fx);
+    free(Fv);
+}
+
+Test(model, system_jacobian_fd_hang_defaults)
+{
+    cl_model *m = HANG("type1.enabled=true");
+    fd_rng r = {72};
+    check_system_jacobian(m, 0.0, &r, "hang");
+    cl_model_free(m);
+}
+
+Test(model, system_jacobian_fd_hang_damped_moving_pins)
+{
+    cl_model *m = HANG("damping.kd=0.05", "pins.velocity=0,0,0.001",
+                       "jacobian.transverse=full");
+    fd_rng r = {73};
+    check_system_jacobian(m, 0.5, &r, "hang damped");
+    cl_model_free(m);
+}
+
+/* The system force is the full force gathered to the free particles, with
+ * the pins at their prescribed place; energies agree too. */
+Test(model, system_force_equals_gathered_full_force)
+{
+    cl_model *m = HANG("damping.kd=0.05", "pins.at=0,0 0,-1 -1,2",
+                       "pins.velocity=0.01,0.02,-0.03");
+    const cl_system *sys = cl_model_system(m);
+    const cl_cloth *c = cl_model_cloth(m);
+    size_t n = sys->n, nf = fd_n(m);
+    double *x = fd_vec(n), *v = fd_vec(n), *f = fd_vec(n), *g = fd_vec(n),
+           *xf = fd_vec(nf), *vf = fd_vec(nf), *ff = fd_vec(nf);
+    fd_rng r = {74};
+    const double t = 0.75;
+    hang_state(m, &r, x, v);
+    cr_assert_eq(sys->force(sys->data, t, x, v, f), CL_OK);
+    cl_cloth_scatter(c, t, x, v, xf, vf);
+    cl_energy ef = fd_eval(m, xf, vf, ff);
+    cl_cloth_gather(c, ff, g);
+    cr_assert_eq(memcmp(f, g, n * sizeof *f), 0);
+    /* The pinned particles feel forces the system does not report. */
+    cr_assert_neq(ff[3 * c->pins[0].p + 1], 0.0);
+    cl_energy es;
+    cr_assert_eq(sys->energy(sys->data, t, x, v, &es), CL_OK);
+    cr_assert_eq(es.nterm, ef.nterm);
+    for (size_t k = 0; k < es.nterm; k++) {
+        cr_assert_str_eq(es.name[k], ef.name[k]);
+        cr_assert_eq(es.value[k], ef.value[k]);
+    }
+    cr_assert_eq(es.potential, ef.potential);
+    cr_assert_eq(es.power_diss, ef.power_diss);
+    double ke = 0.0;
+    for (size_t k = 0; k < n; k++)
+        ke += 0.5 * sys->mass[k] * v[k] * v[k];
+    cr_assert(fabs(es.kinetic - ke) <= 1e-14 * ke, "kinetic %g vs %g",
+              es.kinetic, ke);
+    cr_assert(fabs(es.total - (es.kinetic + es.potential)) <=
+              1e-15 * fabs(es.total));
+    free(x);
+    free(v);
+    free(f);
+    free(g);
+    free(xf);
+    free(vf);
+    free(ff);
+    cl_model_free(m);
+}
+
+/* The free-particle blocks of the system Jacobian equal the corresponding
+ * blocks of the full-particle Jacobian (same state, pins in place). */
+Test(model, system_jacobian_is_restriction_of_full)
+{
+    cl_model *m = HANG("damping.kd=0.05", "pins.at=0,0 0,-1 3,3");
+    const cl_system *sys = cl_model_system(m);
+    const cl_cloth *c = cl_model_cloth(m);
+    size_t n = sys->n, nf = fd_n(m), nb = 9 * sys->pattern->nnzb;
+    double *x = fd_vec(n), *v = fd_vec(n), *bx = fd_vec(nb), *bv = fd_vec(nb),
+           *Jx = fd_vec(n * n), *Jv = fd_vec(n * n), *xf = fd_vec(nf),
+           *vf = fd_vec(nf), *Kx = fd_vec(nf * nf), *Kv = fd_vec(nf * nf);
+    fd_rng r = {75};
+    hang_state(m, &r, x, v);
+    cr_assert_eq(sys->jacobian(sys->data, 0.0, x, v, NULL, bx, bv), CL_OK);
+    sys_dense(sys, bx, bv, Jx, Jv);
+    cl_cloth_scatter(c, 0.0, x, v, xf, vf);
+    fd_jacobian(m, xf, vf, Kx, Kv);
+    for (size_t a = 0; a < c->nfree; a++)
+        for (size_t b = 0; b < c->nfree; b++)
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 3; j++) {
+                    size_t pa = (size_t)c->free_p[a], pb = (size_t)c->free_p[b];
+                    size_t s = (3 * a + i) * n + 3 * b + j;
+                    size_t t = (3 * pa + i) * nf + 3 * pb + j;
+                    cr_assert_eq(Jx[s], Kx[t]);
+                    cr_assert_eq(Jv[s], Kv[t]);
+                }
+    /* And the system pattern still works after the full-Jacobian call. */
+    double *bx2 = fd_vec(nb), *bv2 = fd_vec(nb);
+    cr_assert_eq(sys->jacobian(sys->data, 0.0, x, v, NULL, bx2, bv2), CL_OK);
+    cr_assert_eq(memcmp(bx, bx2, nb * sizeof *bx), 0);
+    cr_assert_eq(memcmp(bv, bv2, nb * sizeof *bv), 0);
+    free(bx2);
+    free(bv2);
+    free(x);
+    free(v);
+    free(bx);
+    free(bv);
+    free(Jx);
+    free(Jv);
+    free(xf);
+    free(vf);
+    free(Kx);
+    free(Kv);
+    cl_model_free(m);
+}
+
+/* Pattern: every diagonal block, symmetric structure, no duplicate blocks,
+ * and no block touching a pinned particle. */
+Test(model, pattern_structure)
+{
+    cl_model *m = HANG("pins.at=0,0 0,-1 2,2");
+    const cl_bpattern *pat = cl_model_system(m)->pattern;
+    cr_assert_eq(pat->nb, 33);
+    for (size_t i = 0; i < pat->nb; i++) {
+        cr_assert_eq(pat->col[pat->diag[i]], i);
+        for (size_t k = pat->rowptr[i]; k < pat->rowptr[i + 1]; k++) {
+            if (k > pat->rowptr[i])
+                cr_assert_lt(pat->col[k - 1], pat->col[k]);
+            cr_assert_geq(cl_bpattern_find(pat, (long)pat->col[k], (long)i),
+                          0);
+        }
+    }
+    cl_model_free(m);
+}
+
+/* At rest (pins fixed), every term at once: forces exactly zero. */
+Test(model, rest_state_forces_exactly_zero)
+{
+    static const char *const grids[][3] = {
+        {"cloth.n=7", "cloth.size=0.7", "cloth.mass=0.1"},
+        {"cloth.nu=5", "cloth.nv=9", "cloth.su=1.3"},
+        {"cloth.nu=11", "cloth.nv=3", "cloth.sv=0.1"},
+    };
+    for (size_t g = 0; g < 3; g++) {
+        cl_model *m = FD_MODEL(grids[g][0], grids[g][1], grids[g][2],
+                               "gravity.g=0,0,0", "damping.kd=0.1",
+                               "pins.at=0,0 -1,-1");
+        const cl_system *sys = cl_model_system(m);
+        size_t n = sys->n, nf = fd_n(m);
+        double *x = fd_vec(n), *v = fd_vec(n), *f = fd_vec(n),
+               *vf = fd_vec(nf), *ff = fd_vec(nf);
+        cl_model_initial_state(m, x, v);
+        cr_assert_eq(sys->force(sys->data, 0.0, x, v, f), CL_OK);
+        cr_assert_eq(fd_maxabs(f, n), 0.0, "grid %zu: system force at rest",
+                     g);
+        cl_energy e = fd_eval(m, cl_model_cloth(m)->X0, vf, ff);
+        cr_assert_eq(fd_maxabs(ff, nf), 0.0);
+        cr_assert_eq(e.potential, 0.0);
+        free(x);
+        free(v);
+        free(f);
+        free(vf);
+        free(ff);
+        cl_model_free(m);
+    }
+}
+
+Test(model, default_terms)
+{
+    cl_model *m = FD_MODEL("cloth.n=4");
+    const char *names[8];
+    size_t n = cl_model_terms(m, names, 8);
+    cr_assert_eq(n, 3);
+    cr_assert_str_eq(names[0], "type1");
+    cr_assert_str_eq(names[1], "type2");
+    cr_assert_str_eq(names[2], "gravity");
+    /* Default pins: two corners of the edge i = 0. */
+    const cl_cloth *c = cl_model_cloth(m);
+    cr_assert_eq(c->npin, 2);
+    cr_assert_eq(c->pins[0].p, 0);
+    cr_assert_eq(c->pins[1].p, 3);
+    cl_model_free(m);
+}
+
+/* ---- configuration errors ---------------------------------------------- */
+
+static void expect_error(const char *const *sets, const char *needle)
+{
+    cl_model *m = NULL;
+    cl_error err;
+    memset(&err, 0, sizeof err);
+    cl_status rc = fd_model_try(sets, &m, &err);
+    cr_assert_eq(rc, CL_EINVAL, "expected CL_EINVAL, got %d (%s)", rc,
+                 err.msg);
+    cr_assert_null(m);
+    cr_assert_not_null(strstr(err.msg, needle), "message \"%s\" lacks \"%s\"",
+                       err.msg, needle);
+}
+
+Test(model, error_pin_outside_grid)
+{
+    expect_error(FD_SETS("cloth.n=5", "pins.at=0,5"), "outside");
+    expect_error(FD_SETS("cloth.n=5", "pins.at=5,0"), "outside");
+    expect_error(FD_SETS("cloth.n=5", "pins.at=-6,0"), "outside");
+    expect_error(FD_SETS("cloth.n=5", "pins.at=0,0 0,-6"), "outside");
+}
+
+Test(model, error_pin_twice)
+{
+    expect_error(FD_SETS("cloth.n=5", "pins.at=1,1 1,1"), "twice");
+    /* The same particle through a negative index. */
+    expect_error(FD_SETS("cloth.n=5", "pins.at=0,-1 0,4"), "twice");
+    expect_error(FD_SETS("cloth.n=5", "pins.at=-5,-5 0,0"), "twice");
+}
+
+Test(model, error_everything_pinned)
+{
+    expect_error(FD_SETS("cloth.n=2", "type2.enabled=false",
+                         "pins.at=0,0 0,1 1,0 1,1"),
+                 "pinned");
+    expect_error(FD_SETS("cloth.n=3", "pins.at=0,0 0,1 0,2 1,0 1,1 1,2 2,0 "
+                                      "2,1 2,2"),
+                 "pinned");
+}
+
+Test(model, error_malformed_pins)
+{
+    expect_error(FD_SETS("cloth.n=4", "pins.at=0;0"), "pins");
+    expect_error(FD_SETS("cloth.n=4", "pins.at=0,0,1"), "pins");
+    expect_error(FD_SETS("cloth.n=4", "pins.at=a,b"), "pins");
+}
+
+/* n = 2 has no interlaced pairs: Type2 refuses it rather than silently
+ * doing nothing; with Type2 off the grid is fine. */
+Test(model, n2_with_type2)
+{
+    expect_error(FD_SETS("cloth.n=2"), "Type2");
+    expect_error(FD_SETS("cloth.nu=2", "cloth.nv=7"), "Type2");
+    cl_model *m = FD_MODEL("cloth.n=2", "type2.enabled=false");
+    cr_assert(!fd_has_term(m, "type2"));
+    cr_assert_eq(cl_model_cloth(m)->nfree, 2);
+    cl_model_free(m);
+}
