@@ -341,6 +341,31 @@ static inline double fd_check_energy(cl_model *m, const double *x,
     return d / s;
 }
 
+/* Structure of df/dx of a conservative pair term: symmetric (a Hessian) and
+ * every block row summing to zero (translation invariance).  Returns the
+ * larger deviation relative to max |J|. */
+static inline double fd_check_structure(cl_model *m, const double *x,
+                                        const double *v)
+{
+    size_t n = fd_n(m);
+    double *Jx = fd_vec(n * n), *Jv = fd_vec(n * n);
+    fd_jacobian(m, x, v, Jx, Jv);
+    double scale = fd_maxabs(Jx, n * n), asym = 0.0, rowsum = 0.0;
+    for (size_t r = 0; r < n; r++) {
+        double sum[3] = {0.0, 0.0, 0.0};
+        for (size_t c = 0; c < n; c++) {
+            asym = fmax(asym, fabs(Jx[r * n + c] - Jx[c * n + r]));
+            sum[c % 3] += Jx[r * n + c];
+        }
+        for (int i = 0; i < 3; i++)
+            rowsum = fmax(rowsum, fabs(sum[i]));
+    }
+    free(Jx);
+    free(Jv);
+    cr_assert_gt(scale, 0.0);
+    return fmax(asym, rowsum) / scale;
+}
+
 /* ---- rigid motions ----------------------------------------------------- */
 
 /* Rotation matrix from a random unit quaternion (row-major). */

@@ -469,8 +469,12 @@ Test(model, error_malformed_pins)
 Test(model, n2_with_type2)
 {
     expect_error(FD_SETS("cloth.n=2"), "Type2");
-    expect_error(FD_SETS("cloth.nu=2", "cloth.nv=7"), "Type2");
-    cl_model *m = FD_MODEL("cloth.n=2", "type2.enabled=false");
+    expect_error(FD_SETS("cloth.nu=2", "cloth.nv=1"), "Type2");
+    /* One side of 3 or more has interlaced pairs along it. */
+    cl_model *m = FD_MODEL("cloth.nu=2", "cloth.nv=7");
+    cr_assert(fd_has_term(m, "type2"));
+    cl_model_free(m);
+    m = FD_MODEL("cloth.n=2", "type2.enabled=false");
     cr_assert(!fd_has_term(m, "type2"));
     cr_assert_eq(cl_model_cloth(m)->nfree, 2);
     cl_model_free(m);

@@ -1,5 +1,6 @@
 /* Verification of the Choi-Ko Type1 term (SPEC 3.2, 3.5): tension-only
- * springs s(d) = ks (d - L) for d >= L, 0 for d < L, on sequential pairs.
+ * springs s(d) = ks (d - L) for d >= L, 0 for d < L, on sequential pairs
+ * (type1.compression = spring: ks (d - L) on both sides).
  *
  * Every check runs Type1 alone (type2 off, no damping, no gravity, no pins)
  * on full-particle states: the analytic df/dx, df/dv against central
@@ -103,6 +104,8 @@ Test(type1, jacobian_fd_half_slack)
                           "type1 half-slack", &ex, &ev);
         cr_assert_lt(ex, 1e-6, "type1 df/dx vs FD: rel err %g", ex);
         cr_assert_eq(ev, 0.0);
+        double st = fd_check_structure(m, x, v);
+        cr_assert_lt(st, 1e-13, "df/dx not symmetric / row sums %g", st);
     }
     free(x);
     free(v);
@@ -177,8 +180,7 @@ Test(type1, rigid_motion_invariance)
 
 /* Uniform stretch by lambda: every pair at d = lambda L.  Energy
  * 0.5 ks (lambda-1)^2 sum L^2; corner (0,0) pulled by its three neighbours,
- * f = ks (lambda-1) (hu + hu, 0, hv + hv)... written out below; every
- * interior particle balanced. */
+ * f = ks (lambda-1) (2 hu, 0, 2 hv); every interior particle balanced. */
 Test(type1, law_on_uniform_stretch)
 {
     const int nu = 4, nv = 5;
@@ -301,4 +303,101 @@ Test(type1, enabled_switch)
     cr_assert(!fd_has_term(off, "type1"));
     cl_model_free(on);
     cl_model_free(off);
+}
+
+/* ---- compression = spring: a linear spring on both sides --------------- */
+
+Test(type1, compression_spring_jacobian_and_energy)
+{
+    cl_model *m = TYPE1_ONLY("cloth.nu=5", "cloth.nv=4", "cloth.su=1.2",
+                             "cloth.sv=0.9", "type1.compression=spring");
+    size_t n = fd_n(m), taut, slack;
+    double *x = fd_vec(n), *v = fd_vec(n);
+    fd_rng r = {19};
+    for (int trial = 0; trial < 2; trial++) {
+        state_mixed(m, &r, x);
+        cr_assert(type1_margin(m, x, &taut, &slack) > 0.005 && taut > 0 &&
+                  slack > 0);
+        double ex, ev;
+        fd_check_jacobian(m, x, v, 1e-6 * 0.3, 1e-6, false,
+                          "type1 compression=spring", &ex, &ev);
+        cr_assert_lt(ex, 1e-6, "df/dx vs FD: rel err %g", ex);
+        cr_assert_eq(ev, 0.0);
+        double ee = fd_check_energy(m, x, v, 1e-6 * 0.3,
+                                    "type1 compression=spring");
+        cr_assert_lt(ee, 1e-6, "f vs -dE/dx: rel err %g", ee);
+    }
+    /* Uniform compression: E = 0.5 ks (lambda - 1)^2 sum L^2 (3x3 grid of
+     * side 1: 12 axis pairs of 0.5, 8 diagonals of 0.5 sqrt 2). */
+    cl_model_free(m);
+    m = TYPE1_ONLY("cloth.n=3", "type1.compression=spring", "type1.ks=10");
+    n = fd_n(m);
+    double A[9], *f = fd_vec(n);
+    fd_scale(0.9, 0.9, A);
+    fd_deform(m, A, 0.0, 0.0, &r, x);
+    cl_energy e = fd_eval(m, x, v, f);
+    double want = 0.5 * 10 * 0.01 * (12 * 0.25 + 8 * 0.5);
+    cr_assert(fabs(fd_term_energy(&e, "type1") - want) <= 1e-13 * want);
+    /* corner pushed outwards: f = ks (lambda-1) (2 h, 0, 2 h), h = 0.5 */
+    cr_assert(fabs(f[0] - 10 * -0.1 * 1.0) <= 1e-13);
+    cr_assert(fabs(f[2] - 10 * -0.1 * 1.0) <= 1e-13);
+    free(f);
+    free(x);
+    free(v);
+    cl_model_free(m);
+}
+
+/* With compression = spring s < 0 on compressed pairs: clamp must drop
+ * exactly (s/d)(I - u u^T), s = ks (d - L), there and nowhere else. */
+Test(type1, clamp_drops_compressive_transverse_term)
+{
+    const double ks = 200.0;
+    cl_model *full = TYPE1_ONLY("cloth.n=3", "type1.compression=spring");
+    cl_model *clamp = TYPE1_ONLY("cloth.n=3", "type1.compression=spring",
+                                 "jacobian.transverse=clamp");
+    size_t n = fd_n(full);
+    double *x = fd_vec(n), *v = fd_vec(n), *J1 = fd_vec(n * n),
+           *J2 = fd_vec(n * n), *W = fd_vec(n * n);
+    fd_rng r = {20};
+    size_t taut, slack;
+    state_mixed(full, &r, x);
+    cr_assert(type1_margin(full, x, &taut, &slack) > 0.005 && taut > 0 &&
+              slack > 0);
+    fd_jacobian(full, x, v, J1, W);
+    fd_jacobian(clamp, x, v, J2, W);
+    /* Expected clamp = full + T on the aa, bb blocks, - T on ab, ba. */
+    cl_pairset set;
+    cl_error err;
+    cr_assert_eq(cl_pairs_type1(cl_model_cloth(full), &set, &err), CL_OK);
+    double dropped = 0.0;
+    for (size_t k = 0; k < set.n; k++) {
+        const cl_pair *p = &set.pair[k];
+        double d = cl_dist(x + 3 * p->a, x + 3 * p->b), s = ks * (d - p->rest);
+        if (s >= 0)
+            continue;
+        double u[3];
+        for (int i = 0; i < 3; i++)
+            u[i] = (x[3 * p->b + i] - x[3 * p->a + i]) / d;
+        const int q[2] = {p->a, p->b};
+        for (int bi = 0; bi < 2; bi++)
+            for (int bj = 0; bj < 2; bj++)
+                for (int i = 0; i < 3; i++)
+                    for (int j = 0; j < 3; j++) {
+                        double T = (s / d) * ((i == j) - u[i] * u[j]);
+                        J1[(3 * (size_t)q[bi] + i) * n + 3 * (size_t)q[bj] +
+                           j] += bi == bj ? T : -T;
+                        dropped = fmax(dropped, fabs(T));
+                    }
+    }
+    cl_pairs_free(&set);
+    cr_assert_gt(dropped, 1e-3);
+    double dev = fd_relerr(J2, J1, n * n);
+    cr_assert_lt(dev, 1e-14, "clamp vs full - T: rel dev %g", dev);
+    free(x);
+    free(v);
+    free(J1);
+    free(J2);
+    free(W);
+    cl_model_free(full);
+    cl_model_free(clamp);
 }

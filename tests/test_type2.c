@@ -136,6 +136,37 @@ static double find_crossover(cl_model *m, double cb, double lo, double hi)
     return 0.5 * (lo + hi);
 }
 
+/* Every branch change in (1e-3, 1 - 1e-12), ascending: a scan of 400
+ * points plus one next to L, each change bisected to the last bit. */
+static size_t find_crossovers(cl_model *m, double cb, double *cross,
+                              size_t max)
+{
+    size_t nc = 0;
+    double dprev = 1e-3;
+    bool prev = on_cb_branch(m, cb, dprev);
+    for (int i = 1; i <= 400; i++) {
+        double d = i < 400 ? 1e-3 + 0.999 * i / 400.0 : 1.0 - 1e-12;
+        bool cur = on_cb_branch(m, cb, d);
+        if (cur != prev) {
+            double lo = dprev, hi = d;
+            for (int it = 0; it < 200; it++) {
+                double mid = 0.5 * (lo + hi);
+                if (mid <= lo || mid >= hi)
+                    break;
+                if (on_cb_branch(m, cb, mid) == prev)
+                    lo = mid;
+                else
+                    hi = mid;
+            }
+            cr_assert_lt(nc, max);
+            cross[nc++] = 0.5 * (lo + hi);
+        }
+        prev = cur;
+        dprev = d;
+    }
+    return nc;
+}
+
 /* integral_a^b s(r) dr by 5-point Gauss-Legendre on nsub panels. */
 static double law_integral(cl_model *m, double a, double b, int nsub)
 {
@@ -181,6 +212,9 @@ static double jac_case(cl_model *m, const double A[9], double jit_plane,
     double ex, ev;
     fd_check_jacobian(m, x, v, hx, 1e-6, false, label, &ex, &ev);
     cr_assert_lt(ex, 1e-6, "%s: df/dx vs FD rel err %g", label, ex);
+    double st = fd_check_structure(m, x, v);
+    cr_assert_lt(st, 1e-13, "%s: df/dx not symmetric / row sums %g", label,
+                 st);
     cr_assert_eq(ev, 0.0, "%s: Type2 does not depend on v", label);
     free(x);
     free(v);
@@ -338,23 +372,31 @@ Test(type2, jacobian_fd_seed_variants)
 Test(type2, force_is_minus_energy_gradient)
 {
     static const struct {
-        double sx, sz, jit, h;
-        const char *kb, *label;
+        double sx, sz, jit, h, kb;
+        const char *kbset, *label;
     } cases[] = {
-        {0.94, 0.95, 0.01, 2.5e-7, "type2.kb=5e-6", "type2 E f_b"},
-        {0.993, 0.994, 0.001, 2.5e-7, "type2.kb=0.1", "type2 E cb (wide)"},
-        {1.04, 0.93, 0.0005, 2.5e-7, "type2.kb=0.1", "type2 E all branches"},
-        {1.05, 1.06, 0.01, 2.5e-7, "type2.kb=5e-6", "type2 E tension"},
-        {1.0 - 4e-7, 1.0 - 4e-7, 2e-8, 1e-9, "type2.kb=5e-6",
+        {0.94, 0.95, 0.01, 2.5e-7, KB_DEF, "type2.kb=5e-6", "type2 E f_b"},
+        {0.993, 0.994, 0.001, 2.5e-7, KB_WIDE, "type2.kb=0.1",
+         "type2 E cb (wide)"},
+        {1.04, 0.93, 0.0002, 2.5e-7, KB_WIDE, "type2.kb=0.1",
+         "type2 E all branches"},
+        {1.05, 1.06, 0.01, 2.5e-7, KB_DEF, "type2.kb=5e-6",
+         "type2 E tension"},
+        {1.0 - 4e-7, 1.0 - 4e-7, 2e-8, 1e-9, KB_DEF, "type2.kb=5e-6",
          "type2 E cb (default)"},
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
-        cl_model *m = TYPE2_ONLY("cloth.n=5", cases[k].kb);
+        /* Unequal spacings: three distinct Type2 rest lengths. */
+        cl_model *m = TYPE2_ONLY("cloth.nu=5", "cloth.nv=6", "cloth.su=1",
+                                 "cloth.sv=1.4", cases[k].kbset);
         size_t n = fd_n(m);
         double *x = fd_vec(n), *v = fd_vec(n), A[9];
         fd_rng r = {31 + k};
         fd_scale(cases[k].sx, cases[k].sz, A);
         fd_deform(m, A, cases[k].jit, cases[k].jit * 10, &r, x);
+        branches b = classify(m, x, cases[k].kb, KS_DEF);
+        cr_assert_gt(b.margin, 100 * cases[k].h, "%s: kink margin %g",
+                     cases[k].label, b.margin);
         double e = fd_check_energy(m, x, v, cases[k].h, cases[k].label);
         cr_assert_lt(e, 1e-6, "%s: rel err %g", cases[k].label, e);
         free(x);
@@ -363,45 +405,54 @@ Test(type2, force_is_minus_energy_gradient)
     }
 }
 
-/* E(d) = integral_L^d s(r) dr (pieces split at the crossover found from the
- * code's own branch choice), for the exact law with default and wide
- * parameters and for the seed variants (energy by quadrature there). */
+/* E(d) = integral_L^d s(r) dr (pieces split at the crossovers found from
+ * the code's own branch choice), for the exact law with default and wide
+ * parameters, with kb = 1, cb = 35 (two crossovers: cb near d = 0 and near
+ * L, f_b in between), and for the seed variants (energy by quadrature). */
 Test(type2, energy_is_integral_of_law)
 {
-    /* dmin: the normalised sinc makes cos t - sinc(pi t) vanish near
-     * d = 0.58 L (a pole of f_b), so those cases stay above it. */
+    /* dmin: the normalised sinc makes cos t - sinc(pi t) vanish at
+     * d = 0.5767 L (a pole of f_b), so those cases stay above it and are not
+     * scanned for crossovers. */
     static const struct {
         const char *set[3];
-        bool has_cross;
+        double cb;
+        size_t ncross;
         double dmin;
     } cases[] = {
-        {{"type2.kb=5e-6", NULL, NULL}, true, 0.0},
-        {{"type2.kb=0.1", NULL, NULL}, true, 0.0},
-        {{"type2.asinc=seed-poly", NULL, NULL}, true, 0.0},
-        {{"type2.fb_sinc=normalised", NULL, NULL}, false, 0.7},
-        {{"type2.asinc=seed-poly", "type2.fb_sinc=normalised", NULL}, false,
-         0.0},
+        {{"type2.kb=5e-6", NULL, NULL}, KS_DEF, 1, 0.0},
+        {{"type2.kb=0.1", NULL, NULL}, KS_DEF, 1, 0.0},
+        {{"type2.kb=1", "type2.cb=35", NULL}, 35.0, 2, 0.0},
+        {{"type2.asinc=seed-poly", NULL, NULL}, KS_DEF, 1, 0.0},
+        {{"type2.fb_sinc=normalised", NULL, NULL}, KS_DEF, 0, 0.7},
+        {{"type2.asinc=seed-poly", "type2.fb_sinc=normalised", NULL}, KS_DEF,
+         0, 0.0},
     };
-    static const double ds[] = {0.9999, 0.999, 0.98, 0.9, 0.75, 0.62, 0.3};
+    static const double ds[] = {0.9999, 0.999, 0.98, 0.9,  0.75,
+                                0.62,   0.3,   0.1,  0.02, 0.005};
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         cl_model *m = pair_model(cases[k].set);
-        double cross = 1.0;
-        if (cases[k].has_cross)
-            cross = find_crossover(m, KS_DEF, 0.5, 1.0 - 1e-12);
+        double cross[8];
+        size_t nc = 0;
+        if (cases[k].ncross)
+            nc = find_crossovers(m, cases[k].cb, cross, 8);
         else
-            cr_assert(!on_cb_branch(m, KS_DEF, 1.0 - 1e-9));
+            cr_assert(!on_cb_branch(m, cases[k].cb, 1.0 - 1e-9));
+        cr_assert_eq(nc, cases[k].ncross, "case %zu: %zu crossovers", k, nc);
         for (size_t i = 0; i < sizeof ds / sizeof ds[0]; i++) {
             double E, d = ds[i];
             if (d < cases[k].dmin)
                 continue;
             pair_law(m, d, &E);
-            /* integral_L^d s = -(integral_d^L), split at the crossover. */
-            double want;
-            if (d < cross)
-                want = -law_integral(m, d, cross, 40) -
-                       law_integral(m, cross, 1.0, 4);
-            else
-                want = -law_integral(m, d, 1.0, 4);
+            /* integral_L^d s = -(integral_d^L), split at the crossovers. */
+            double want = 0.0, lo = d;
+            for (size_t c = 0; c <= nc; c++) {
+                double hi = c < nc ? cross[c] : 1.0;
+                if (hi <= lo)
+                    continue;
+                want -= law_integral(m, lo, hi, 40);
+                lo = hi;
+            }
             cr_assert(fabs(E - want) <= 1e-9 * fabs(want),
                       "case %zu d=%g: E %.17g vs integral %.17g", k, d, E,
                       want);
@@ -432,6 +483,35 @@ Test(type2, energy_continuous_at_kinks)
         cr_assert_lt(fabs(Ep), 1e-9 * 1e-9 * KS_DEF);
         cl_model_free(m);
     }
+}
+
+/* fb_sinc = normalised: cos t - sinc(pi t) vanishes at t = 1.71580, i.e.
+ * d = 0.576704 L, where f_b has a pole (f_b > 0 above it, < 0 below).
+ * Below the pole the energy integral diverges: the model must report a
+ * non-finite energy (CL_EBLOWUP), not a number (regression: the quadrature
+ * status was ignored and a divergent integral came back as a value). */
+Test(type2, normalised_sinc_pole_has_no_energy)
+{
+    cl_model *m = pair_model(
+        (const char *const[]){"type2.fb_sinc=normalised", NULL});
+    double E;
+    cr_assert_gt(pair_law(m, 0.58, &E), 0.0);
+    cr_assert(isfinite(E) && E < 0);
+    cr_assert_gt(pair_law(m, 0.5768, NULL), 1e3 * KB_DEF);
+    const cl_cloth *c = cl_model_cloth(m);
+    double x[27], v[27] = {0}, f[27];
+    cl_energy e;
+    cl_error err;
+    for (double d = 0.5766; d > 0.05; d -= 0.1) {
+        memcpy(x, c->X0, sizeof x);
+        x[3 * PB] = x[3 * PA] + d;
+        cl_status rc = cl_model_eval_full(m, 0.0, x, v, f, &e, &err);
+        cr_assert_eq(rc, CL_EBLOWUP, "d=%g: energy %g accepted", d,
+                     e.potential);
+        cr_assert(isfinite(f[3 * PA]) && f[3 * PA] < 0, "d=%g: s = %g", d,
+                  f[3 * PA]);
+    }
+    cl_model_free(m);
 }
 
 /* ---- the law itself ---------------------------------------------------- */

@@ -13,3 +13,8 @@ cl_status cl_choiko_type2_enabled(cl_config *cfg, bool *on, cl_error *err)
 {
     return cl_config_bool(cfg, "type2", "enabled", true, on, err);
 }
+
+cl_status cl_choiko_type1_enabled(cl_config *cfg, bool *on, cl_error *err)
+{
+    return cl_config_bool(cfg, "type1", "enabled", true, on, err);
+}

@@ -9,7 +9,8 @@
 
 /* [type1] ks (N/m): Type1 stiffness, also the Type2 tension spring. */
 cl_status cl_choiko_ks(cl_config *cfg, double *ks, cl_error *err);
-/* [type2] enabled. */
+/* [type1] enabled, [type2] enabled. */
+cl_status cl_choiko_type1_enabled(cl_config *cfg, bool *on, cl_error *err);
 cl_status cl_choiko_type2_enabled(cl_config *cfg, bool *on, cl_error *err);
 
 extern const cl_term_type cl_term_type1;

@@ -53,7 +53,7 @@ static cl_status type1_create(cl_config *cfg, const cl_cloth *cloth,
     int ck;
     cl_status rc;
     *state = NULL;
-    if ((rc = cl_config_bool(cfg, "type1", "enabled", true, &enabled, err)) ||
+    if ((rc = cl_choiko_type1_enabled(cfg, &enabled, err)) ||
         (rc = cl_choiko_ks(cfg, &ks, err)) ||
         (rc = cl_config_choice(cfg, "type1", "compression", compression, 0,
                                &ck, err)))

@@ -180,8 +180,13 @@ static double fb_integral(type2_state *st, double a, double b, double L)
     void *par[2] = {st, &L};
     gsl_function F = {fb_only, par};
     double val, abserr;
-    gsl_integration_qags(&F, a, b, 0.0, 1e-12, QUAD_LIMIT, st->quad, &val,
-                         &abserr);
+    int status = gsl_integration_qags(&F, a, b, 0.0, 1e-12, QUAD_LIMIT,
+                                      st->quad, &val, &abserr);
+    /* A failed quadrature (e.g. divergent: with fb_sinc = normalised, f_b
+     * has a pole near d = 0.578 L) gives no energy rather than a wrong one;
+     * the model then reports a non-finite energy. */
+    if (status != GSL_SUCCESS && !(abserr <= 1e-9 * fabs(val)))
+        return NAN;
     return val;
 }
 
@@ -337,26 +342,25 @@ static cl_status type2_setup(type2_state *st, const cl_cloth *cloth,
     return build_lengths(st, err);
 }
 
-/* The key that set the short side: nu or nv if given, else n. */
-static const char *grid_key(cl_config *cfg, const cl_cloth *cloth)
+/* The key that set the grid: nu if given, else n. */
+static const char *grid_key(cl_config *cfg)
 {
-    const char *side = cloth->nu < 3 ? "nu" : "nv";
-    return cl_config_string(cfg, "cloth", side, NULL) ? side : "n";
+    return cl_config_string(cfg, "cloth", "nu", NULL) ? "nu" : "n";
 }
 
-/* Interlaced pairs span two spacings: a side of fewer than 3 particles has
- * none, which would silently switch the term off. */
+/* Interlaced pairs span two spacings: a grid with fewer than 3 particles
+ * along both sides has none, which would silently switch the term off. */
 static cl_status check_grid(cl_config *cfg, const cl_cloth *cloth,
                             cl_error *err)
 {
-    if (cloth->nu >= 3 && cloth->nv >= 3)
+    if (cloth->nu >= 3 || cloth->nv >= 3)
         return CL_OK;
     char where[256];
     return cl_error_set(err, CL_EINVAL,
                         "%s: [cloth] grid %d x %d: Type2 (interlaced) pairs "
-                        "need at least 3 particles per side; use n >= 3 or "
+                        "need at least 3 particles along one side; use n >= 3 or "
                         "set type2.enabled = false",
-                        cl_config_origin(cfg, "cloth", grid_key(cfg, cloth),
+                        cl_config_origin(cfg, "cloth", grid_key(cfg),
                                          where, sizeof where),
                         cloth->nu, cloth->nv);
 }
