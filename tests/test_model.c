@@ -469,7 +469,7 @@ Test(model, error_malformed_pins)
 Test(model, n2_with_type2)
 {
     expect_error(FD_SETS("cloth.n=2"), "Type2");
-    expect_error(FD_SETS("cloth.nu=2", "cloth.nv=1"), "Type2");
+    expect_error(FD_SETS("cloth.nu=2", "cloth.nv=2", "pins.at=0,0"), "Type2");
     /* One side of 3 or more has interlaced pairs along it. */
     cl_model *m = FD_MODEL("cloth.nu=2", "cloth.nv=7");
     cr_assert(fd_has_term(m, "type2"));

@@ -66,6 +66,21 @@ void cl_gslode_free(void *state)
     free(s);
 }
 
+/* The method's size limit and Jacobian requirement. */
+static cl_status gslode_check_system(const cl_gslode_method *m,
+                                     const cl_system *sys, cl_error *err)
+{
+    if (m->max_n && sys->n > m->max_n)
+        return cl_error_set(err, CL_EUNSUPPORTED, "%s: %zu unknowns (%zu "
+                            "free particles) exceed its limit of %zu (%s)",
+                            m->name, sys->n, sys->n / 3, m->max_n,
+                            m->max_n_why);
+    if (m->jacobian && (!sys->jacobian || !sys->pattern))
+        return cl_error_set(err, CL_EINVAL, "%s: the system has no "
+                            "Jacobian", m->name);
+    return CL_OK;
+}
+
 static cl_status gslode_check_args(const char *name, const cl_system *sys,
                                    const cl_integrator_opts *o, double t0,
                                    cl_error *err)
@@ -97,13 +112,14 @@ static cl_status gslode_check_args(const char *name, const cl_system *sys,
 /* The state's arrays; false when out of memory. */
 static bool gslode_alloc(cl_gslode *s, bool jac)
 {
-    size_t n = s->n, nval = 9 * s->sys->pattern->nnzb;
+    size_t n = s->n;
     s->y = malloc(2 * n * sizeof *s->y);
     s->inv_mass = malloc(n * sizeof *s->inv_mass);
     if (!s->y || !s->inv_mass)
         return false;
     if (!jac)
         return true;
+    size_t nval = 9 * s->sys->pattern->nnzb;
     s->f = malloc(n * sizeof *s->f);
     s->ft = malloc(n * sizeof *s->ft);
     s->dfdx = malloc((nval ? nval : 1) * sizeof *s->dfdx);
@@ -145,7 +161,9 @@ cl_status cl_gslode_create(const cl_gslode_method *m, const cl_system *sys,
 {
     *state = NULL;
     gsl_set_error_handler_off();
-    cl_status st = gslode_check_args(m->name, sys, o, t0, err);
+    cl_status st = gslode_check_system(m, sys, err);
+    if (st == CL_OK)
+        st = gslode_check_args(m->name, sys, o, t0, err);
     if (st != CL_OK)
         return st;
     cl_gslode *s = calloc(1, sizeof *s);
@@ -204,7 +222,8 @@ cl_status cl_gslode_advance(void *state, double t_out, double *x, double *v,
     s->fail = CL_OK;
     if (t_out > s->t) {
         rc = gsl_odeiv2_driver_apply(s->drv, &s->t, t_out, s->y);
-        s->steps += (long)s->drv->n;
+        /* the driver's n misses the step that exceeded nmax */
+        s->steps += (long)s->drv->n + (rc == GSL_EMAXITER);
     }
     memcpy(x, s->y, s->n * sizeof *x);
     memcpy(v, s->y + s->n, s->n * sizeof *v);

@@ -9,13 +9,15 @@
  * of the local error estimate must stay below atol + rtol |y_i|) and
  * gsl_odeiv2_driver_apply, which steps adaptively and stops exactly at
  * t_out (no interpolation).  A method supplies a cl_gslode_method: its
- * name, the GSL step type and, for implicit steppers, the Jacobian
- * function of the gsl_odeiv2_system (the block Jacobians are then
- * allocated here).
+ * name, the GSL step type, for implicit steppers the Jacobian function of
+ * the gsl_odeiv2_system (the block Jacobians are then allocated here, and
+ * a system without a Jacobian is refused), and an optional size limit
+ * (larger systems: CL_EUNSUPPORTED).
  *
  * Options: opts->rtol, opts->atol (>= 0, finite; 0 selects the defaults
  * rtol 1e-6, atol 1e-8, as cvode-bdf), opts->dt the initial step (0: 1e-6),
- * opts->max_steps steps per advance (0: 10^7).
+ * opts->max_steps the driver's nmax per advance (0: 10^7; GSL fails once
+ * an advance needs more than nmax + 1 steps).
  *
  * Failures: GSL's abort-on-error handler is switched off
  * (gsl_set_error_handler_off) and every return is checked.  A force that
@@ -46,6 +48,8 @@ typedef struct {
     /* gsl_odeiv2_system's Jacobian (params: the cl_gslode), or NULL */
     int (*jacobian)(double t, const double y[], double *dfdy, double dfdt[],
                     void *params);
+    size_t max_n;          /* largest sys->n accepted (0: no limit) ... */
+    const char *max_n_why; /* ... and why, for the CL_EUNSUPPORTED message */
 } cl_gslode_method;
 
 typedef struct {
@@ -81,15 +85,22 @@ int cl_gslode_failed(cl_gslode *s, cl_status st, double t);
 /* true if all n values are finite */
 bool cl_gslode_finite(const double *a, size_t n);
 
-/* Define the integrator table `ident` for the GSL method `method`, whose
- * name is the string literal name_; create_ is its create function. */
-#define CL_GSLODE_INTEGRATOR(ident, name_, doc_, create_)                   \
+/* Define the integrator table `ident` (and its create function) for the
+ * GSL method `method`, whose name is the string literal name_. */
+#define CL_GSLODE_INTEGRATOR(ident, method, name_, doc_)                    \
+    static cl_status ident##_create(const cl_system *sys,                   \
+                                    const cl_integrator_opts *o, double t0, \
+                                    const double *x0, const double *v0,     \
+                                    void **state, cl_error *err)            \
+    {                                                                       \
+        return cl_gslode_create(&(method), sys, o, t0, x0, v0, state, err); \
+    }                                                                       \
     const cl_integrator_type ident = {                                      \
         .name = (name_),                                                    \
         .doc = (doc_),                                                      \
         .fixed_step = false,                                                \
         .takes_linsol = false,                                              \
-        .create = (create_),                                                \
+        .create = ident##_create,                                           \
         .advance = cl_gslode_advance,                                       \
         .stats = cl_gslode_stats,                                           \
         .free = cl_gslode_free,                                             \

@@ -14,10 +14,15 @@
  * - the blow-up policy: a force or Jacobian that is not finite (or a system
  *   call returning CL_EBLOWUP) makes the user function return 1
  *   (recoverable: the solver retries with a smaller step, which cures a
- *   trial state that went too far) unless CVODE has warned "t + h = t"
- *   during this advance (the step has collapsed to round-off; retrying
- *   would crawl towards the singularity until max_steps), then -1; any
- *   other system error returns -1 (unrecoverable).  If the solver gives up,
+ *   trial state that went too far) unless the step has collapsed to
+ *   round-off during this advance (CVODE warned "t + h = t", or the
+ *   solver's current step is below 100 ulp of t): then retrying would only
+ *   crawl towards the singularity until max_steps, and it returns -1; any
+ *   other system error returns -1 (unrecoverable).  After a -1 every later
+ *   force and Jacobian call of the same advance returns -1 at once without
+ *   evaluating (SUNDIALS' fixed-point solver passes a -1 back to CVODE as
+ *   a recoverable failure; latched, CVODE stops after its limit of
+ *   convergence failures instead of crawling).  If the solver gives up,
  *   advance reports CL_EBLOWUP (or the system's status) with the times
  *   reached, not a generic solver failure;
  * - statistics (cl_stats): steps, nonlin_iters, nonlin_fails, err_fails,
@@ -29,11 +34,12 @@
  *
  * Usage: an integrator's state struct has a cl_sun as its FIRST member, so
  * the one pointer the solver passes to every callback (user data and error
- * handler data) is both.  create: cl_sun_alloc (argument checks, state,
- * masses, context, vectors), then cl_sun_cvode_start (CVODE) or the
+ * handler data) is both.  create: cl_sun_cvode_create (CVODE), or
+ * cl_sun_alloc (argument checks, state, masses, context, vectors) and the
  * integrator's own memory creation with cl_sun_created + its Init +
- * cl_sun_configure (IDA), then the solvers, stored in s->A, s->ls,
- * s->inner, s->nls so that cl_sun_free releases everything in order. */
+ * cl_sun_configure (IDA); then the solvers, stored in s->A, s->ls,
+ * s->inner, s->nls so that cl_sun_free releases everything in order; then
+ * cl_sun_finish. */
 #ifndef CL_SUN_COMMON_H
 #define CL_SUN_COMMON_H
 
@@ -66,6 +72,7 @@ typedef struct {
     int (*set_init_step)(void *mem, sunrealtype h);
     int (*set_linear_solver)(void *mem, SUNLinearSolver ls, SUNMatrix A);
     int (*get_current_time)(void *mem, sunrealtype *t);
+    int (*get_current_step)(void *mem, sunrealtype *h);
     char *(*flag_name)(long flag);
     void (*free_mem)(void **mem);
     int (*solve)(cl_sun *s, double t_out); /* one advance to t_out */
@@ -99,6 +106,7 @@ struct cl_sun {
     cl_status fail_rhs;      /* status of the last failed force call, or OK */
     cl_status fail_jac;      /* same for the Jacobian */
     bool collapsed;          /* CVODE warned t + h = t in this advance */
+    bool fatal;              /* a user function returned -1 (latched) */
     double fail_t;           /* time of that failure */
     bool fail_nonfinite;     /* it was our finiteness check that failed */
     char msg[512];           /* last error message of the solver */
@@ -122,15 +130,31 @@ cl_status cl_sun_created(cl_sun *s, void *mem, const char *fn,
 cl_status cl_sun_configure(cl_sun *s, const cl_integrator_opts *o,
                            cl_error *err);
 
-/* CVODE with multistep method lmm (CV_BDF, CV_ADAMS): create, error
- * handler, CVodeInit with cl_sun_cvode_rhs, cl_sun_configure. */
-cl_status cl_sun_cvode_start(cl_sun *s, int lmm, const cl_integrator_opts *o,
-                             double t0, cl_error *err);
+/* cl_sun_alloc, then CVODE with multistep method lmm (CV_BDF, CV_ADAMS):
+ * create, error handler, CVodeInit with cl_sun_cvode_rhs,
+ * cl_sun_configure.  If the allocation succeeded, *out is the state even
+ * when a later call failed (for cl_sun_finish to free). */
+cl_status cl_sun_cvode_create(size_t size, const char *name, int lmm,
+                              bool need_jac, const cl_system *sys,
+                              const cl_integrator_opts *o, double t0,
+                              const double *x0, const double *v0,
+                              cl_sun **out, cl_error *err);
+
+/* End of an integrator's create: on success *state = s, otherwise s (if
+ * any) is released by free_fn and *state stays NULL; returns st. */
+cl_status cl_sun_finish(cl_sun *s, cl_status st, void (*free_fn)(void *),
+                        void **state);
 
 /* Attach matrix A and direct solver `inner` (both owned by s from now on,
  * even on failure) through a counting wrapper. */
 cl_status cl_sun_attach_direct(cl_sun *s, SUNMatrix A, SUNLinearSolver inner,
                                cl_error *err);
+
+/* A size x size CSC matrix with room for nnz entries and SUNLinSol_KLU on
+ * it with AMD ordering (SUNLinSol_KLUSetOrdering(LS, 0)), attached by
+ * cl_sun_attach_direct. */
+cl_status cl_sun_attach_klu(cl_sun *s, sunindextype size, sunindextype nnz,
+                            cl_error *err);
 
 /* A solver call returned flag < 0 (fn: the full function name). */
 cl_status cl_sun_fail(cl_sun *s, const char *fn, int flag, cl_error *err);

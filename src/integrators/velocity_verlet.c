@@ -2,7 +2,8 @@
  *
  *   v_{k+1/2} = v_k + h/2 a_k
  *   x_{k+1}   = x_k + h v_{k+1/2}
- *   a_{k+1}   = M^-1 f(t_{k+1}, x_{k+1}, v*_{k+1}),  v*_{k+1} = v_{k+1/2} + h/2 a_k
+ *   v*_{k+1}  = v_{k+1/2} + h/2 a_k          (= v_k + h a_k, predictor)
+ *   a_{k+1}   = M^-1 f(t_{k+1}, x_{k+1}, v*_{k+1})
  *   v_{k+1}   = v_{k+1/2} + h/2 a_{k+1}
  *
  * h = opts->dt, t_k = t0 + k h, a_0 = M^-1 f(t0, x0, v0).  The

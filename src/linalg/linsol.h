@@ -7,11 +7,21 @@
  *
  * Each solver is one file defining a cl_linsol_type plus one row in the
  * registry (linalg/linsol.c), selectable by name with --linsol:
- *   klu   sparse LU (KLU, AMD ordering): symbolic analysis once, numeric
- *         refactorisation at every setup;
- *   pcg   SUNDIALS' SUNLinSol_PCG with a matrix-free product and a Jacobi
- *         or 3x3 block-Jacobi preconditioner (A must be symmetric positive
- *         definite; a breakdown is reported, not hidden). */
+ *   klu         sparse LU (KLU, AMD ordering): symbolic analysis once,
+ *               numeric refactorisation at every setup (linsol_klu.c);
+ *   pcg         SUNDIALS' SUNLinSol_PCG with a matrix-free product and a
+ *               3x3 block-Jacobi preconditioner; A must be symmetric
+ *               positive definite, and a breakdown (p^T A p <= 0), an
+ *               indefinite diagonal block or no convergence within
+ *               lin_maxit is reported as CL_ESOLVER, not hidden; stops at
+ *               |b - A x|_2 <= lin_tol |b|_2 (linsol_pcg.c);
+ *   pcg-jacobi  the same with the point-Jacobi preconditioner.
+ *
+ * Usage: create once (the pattern must outlive the solver; mass is
+ * copied), then per Newton matrix one setup and any number of solves; a
+ * solve after a failed setup gives CL_EINVAL.  Nothing is allocated by
+ * setup or solve (except KLU's rare fresh factorisation after a bad
+ * refactorisation).  All messages start with the solver's name. */
 #ifndef CL_LINSOL_H
 #define CL_LINSOL_H
 
@@ -30,7 +40,7 @@ typedef struct {
      * and factorise / set up the preconditioner. */
     cl_status (*setup)(void *state, double a, double b, const double *dfdx,
                        const double *dfdv, cl_error *err);
-    /* Solve A x = rhs (3 * nb entries each). */
+    /* Solve A x = rhs (3 * nb entries each; x may be rhs). */
     cl_status (*solve)(void *state, const double *rhs, double *x,
                        cl_error *err);
     /* Add this solver's counters: lin_setups, lin_solves, lin_iters,

@@ -93,7 +93,10 @@ static cl_status lklu_create(const cl_bpattern *pat, const double *mass,
     cl_klu *s = calloc(1, sizeof *s);
     if (!s)
         return cl_error_set(err, CL_ENOMEM, "klu: out of memory");
-    cl_status st = cl_reduced_create(pat, mass, &s->red, err);
+    cl_error inner = {0};
+    cl_status st = cl_reduced_create(pat, mass, &s->red, &inner);
+    if (st != CL_OK)
+        cl_error_set(err, st, "klu: %s", inner.msg);
     if (st == CL_OK) {
         s->val = malloc((size_t)s->red.nnz * sizeof *s->val);
         if (!s->val)

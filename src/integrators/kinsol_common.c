@@ -1,0 +1,569 @@
+/* KINSOL plumbing of kinsol-be, kinsol-bdf2, kinsol-midpoint (see
+ * kinsol_common.h for the equations, the predictor, the tolerance and
+ * iteration-cap rules and the failure policy).
+ *
+ * Per step:  the scheme fills vb, ve0, x1b, the predictor p and c, alpha,
+ * beta, alpha1, te;  u (the KINSOL unknown) starts at p;  the scales are
+ * set from v_ref = max(1, max |v_n|);  KINSol(KIN_NONE) solves
+ *     R(u) = M (u - vb) - c f(te, x_n + alpha (u - p), ve0 + beta u) = 0
+ * with Newton matrix M - (c beta) df/dv - (c alpha) df/dx from cl_linsol;
+ * then x1 = x1b + alpha1 u, v1 = u, and the history shifts. */
+#include "integrators/kinsol_common.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <kinsol/kinsol.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sundials/sundials_linearsolver.h>
+#include <sundials/sundials_matrix.h>
+
+#include "linalg/linsol.h"
+
+_Static_assert(sizeof(sunrealtype) == sizeof(double),
+               "clothode needs SUNDIALS built in double precision");
+
+#define CL_KIN_TOL 1e-10
+#define CL_KIN_MAXIT 50L
+#define CL_KIN_VREF_MIN 1.0 /* m/s: floor of the velocity scale */
+#define CL_KIN_STEP_FLOOR (10 * DBL_EPSILON) /* update test: round-off */
+
+typedef struct {
+    const cl_kin_scheme *sc;
+    const cl_system *sys;
+    size_t n;
+    double t0, h;
+    long done;              /* steps completed */
+    long maxit;             /* Newton iterations per step */
+    double tol;             /* newton_tol (or DBL_MIN in one-step mode) */
+    double *x, *v, *xp, *vp, *x1;     /* history and new position */
+    double *vb, *ve0, *x1b, *pred;    /* scheme data of the step */
+    double *xe, *ve, *f;              /* evaluation point and force */
+    double *dfdx, *dfdv;              /* block values, 9 nnzb each */
+    cl_kin_step step;                 /* the scheme's view of the step */
+    /* this step: t_n and the scheme's scalars (times h where due) */
+    double t, c, alpha, beta, alpha1, te;
+    /* SUNDIALS */
+    SUNContext ctx;
+    N_Vector u, uscale, fscale;
+    SUNMatrix J;            /* shell: the matrix lives in the linear solver */
+    SUNLinearSolver ls;     /* custom solver calling cl_linsol */
+    void *mem;              /* KINSOL memory */
+    /* linear solver */
+    const cl_linsol_type *lt;
+    void *lstate;
+    /* counters */
+    long nrhs, njac, nni, nfail;
+    /* failure bookkeeping of the current step */
+    cl_status sys_st;       /* failed force / Jacobian evaluation, or OK */
+    bool sys_jac;           /* ... it was the Jacobian */
+    bool sys_nonfinite;     /* ... it returned non-finite values */
+    cl_status lin_st;       /* failed linear setup / solve, or OK */
+    cl_error lin_err;
+    double rmax;            /* scaled max-norm of the last residual */
+    char kmsg[512];         /* last error message of KINSOL */
+} cl_kin;
+
+static bool kin_finite(const double *a, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        if (!isfinite(a[i]))
+            return false;
+    }
+    return true;
+}
+
+/* ---- evaluation point and the user functions -------------------------- */
+
+/* xe = x_n + alpha (u - p) (exactly x_n at the predictor), ve = ve0 +
+ * beta u. */
+static void kin_point(cl_kin *s, const double *u)
+{
+    for (size_t i = 0; i < s->n; i++) {
+        s->xe[i] = s->x[i] + s->alpha * (u[i] - s->pred[i]);
+        s->ve[i] = s->ve0[i] + s->beta * u[i];
+    }
+}
+
+/* A failed system call: remember it and stop KINSOL (-1, unrecoverable). */
+static int kin_sysfail(cl_kin *s, cl_status st, bool jac, bool nonfinite)
+{
+    s->sys_st = st;
+    s->sys_jac = jac;
+    s->sys_nonfinite = nonfinite;
+    return -1;
+}
+
+static int kin_residual(N_Vector uv, N_Vector rv, void *data)
+{
+    cl_kin *s = data;
+    const double *u = N_VGetArrayPointer(uv), *m = s->sys->mass;
+    const double *fs = N_VGetArrayPointer(s->fscale);
+    double *r = N_VGetArrayPointer(rv), c = s->c, rmax = 0.0;
+    kin_point(s, u);
+    cl_status st = s->sys->force(s->sys->data, s->te, s->xe, s->ve,
+                                 s->f);
+    s->nrhs++;
+    if (st != CL_OK)
+        return kin_sysfail(s, st, false, false);
+    for (size_t i = 0; i < s->n; i++) {
+        r[i] = m[i] * (u[i] - s->vb[i]) - c * s->f[i];
+        rmax = fmax(rmax, fabs(r[i]) * fs[i]);
+    }
+    if (!kin_finite(r, s->n))
+        return kin_sysfail(s, CL_EBLOWUP, false, true);
+    s->rmax = rmax;
+    return 0;
+}
+
+static int kin_jac(N_Vector uv, N_Vector fu, SUNMatrix J, void *data,
+                   N_Vector t1, N_Vector t2)
+{
+    cl_kin *s = data;
+    const cl_system *sys = s->sys;
+    size_t nval = 9 * sys->pattern->nnzb;
+    (void)fu, (void)J, (void)t1, (void)t2;
+    kin_point(s, N_VGetArrayPointer(uv));
+    cl_status st = sys->jacobian(sys->data, s->te, s->xe, s->ve, NULL,
+                                 s->dfdx, s->dfdv);
+    s->njac++;
+    if (st != CL_OK)
+        return kin_sysfail(s, st, true, false);
+    if (!kin_finite(s->dfdx, nval) || !kin_finite(s->dfdv, nval))
+        return kin_sysfail(s, CL_EBLOWUP, true, true);
+    return 0;
+}
+
+static void kin_errhandler(int code, const char *module, const char *function,
+                           char *msg, void *data)
+{
+    cl_kin *s = data;
+    (void)module;
+    if (code < 0)
+        snprintf(s->kmsg, sizeof s->kmsg, "%s: %s", function, msg);
+}
+
+/* ---- shell matrix and the cl_linsol SUNLinearSolver -------------------- */
+
+static SUNMatrix_ID shell_getid(SUNMatrix A)
+{
+    (void)A;
+    return SUNMATRIX_CUSTOM;
+}
+
+/* KINSOL zeroes a direct solver's matrix before each Jacobian call; the
+ * shell holds no values. */
+static int shell_zero(SUNMatrix A)
+{
+    (void)A;
+    return 0;
+}
+
+static void shell_destroy(SUNMatrix A)
+{
+    if (A) {
+        A->content = NULL;
+        SUNMatFreeEmpty(A);
+    }
+}
+
+static SUNLinearSolver_Type ls_gettype(SUNLinearSolver S)
+{
+    (void)S;
+    return SUNLINEARSOLVER_DIRECT;
+}
+
+static SUNLinearSolver_ID ls_getid(SUNLinearSolver S)
+{
+    (void)S;
+    return SUNLINEARSOLVER_CUSTOM;
+}
+
+static int ls_initialize(SUNLinearSolver S)
+{
+    (void)S;
+    return SUNLS_SUCCESS;
+}
+
+/* A = M - (c beta) df/dv - (c alpha) df/dx at the iterate of kin_jac. */
+static int ls_setup(SUNLinearSolver S, SUNMatrix A)
+{
+    cl_kin *s = S->content;
+    (void)A;
+    s->lin_st = s->lt->setup(s->lstate, s->c * s->beta, s->c * s->alpha,
+                             s->dfdx, s->dfdv, &s->lin_err);
+    return s->lin_st == CL_OK ? SUNLS_SUCCESS : SUNLS_PACKAGE_FAIL_UNREC;
+}
+
+static int ls_solve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b,
+                    sunrealtype tol)
+{
+    cl_kin *s = S->content;
+    double *xd = N_VGetArrayPointer(x);
+    (void)A, (void)tol;
+    s->lin_st = s->lt->solve(s->lstate, N_VGetArrayPointer(b), xd,
+                             &s->lin_err);
+    if (s->lin_st == CL_OK && !kin_finite(xd, s->n))
+        s->lin_st = cl_error_set(&s->lin_err, CL_EBLOWUP, "%s solve: "
+                                 "Newton step not finite", s->lt->name);
+    return s->lin_st == CL_OK ? SUNLS_SUCCESS : SUNLS_PACKAGE_FAIL_UNREC;
+}
+
+static int ls_free(SUNLinearSolver S)
+{
+    if (S) {
+        S->content = NULL;
+        SUNLinSolFreeEmpty(S);
+    }
+    return SUNLS_SUCCESS;
+}
+
+/* ---- create / free ------------------------------------------------------ */
+
+void cl_kin_free(void *state)
+{
+    cl_kin *s = state;
+    if (!s)
+        return;
+    if (s->mem)
+        KINFree(&s->mem);
+    if (s->ls)
+        SUNLinSolFree(s->ls);
+    if (s->J)
+        SUNMatDestroy(s->J);
+    if (s->lstate)
+        s->lt->free(s->lstate);
+    N_Vector vec[] = {s->u, s->uscale, s->fscale};
+    for (size_t k = 0; k < 3; k++) {
+        if (vec[k])
+            N_VDestroy(vec[k]);
+    }
+    if (s->ctx)
+        SUNContext_Free(&s->ctx);
+    double *arr[] = {s->x, s->v, s->xp, s->vp, s->x1, s->vb, s->ve0,
+                     s->x1b, s->pred, s->xe, s->ve, s->f, s->dfdx, s->dfdv};
+    for (size_t k = 0; k < sizeof arr / sizeof arr[0]; k++)
+        free(arr[k]);
+    free(s);
+}
+
+static cl_status kin_check_args(const cl_kin_scheme *sc, const cl_system *sys,
+                                const cl_integrator_opts *o, double t0,
+                                cl_error *err)
+{
+    if (sys->n == 0 || !sys->pattern || 3 * sys->pattern->nb != sys->n ||
+        !sys->force || !sys->jacobian)
+        return cl_error_set(err, CL_EINVAL, "%s: system needs n = 3 nb > 0 "
+                            "unknowns (has %zu), a block pattern, a force and "
+                            "an analytic Jacobian", sc->name, sys->n);
+    if (!isfinite(o->dt) || !(o->dt > 0.0) || !isfinite(t0))
+        return cl_error_set(err, CL_EINVAL, "%s: step dt = %g and initial "
+                            "time %g must be finite, dt > 0", sc->name, o->dt,
+                            t0);
+    if (!isfinite(o->newton_tol) || o->newton_tol < 0.0 ||
+        o->newton_maxit < 0)
+        return cl_error_set(err, CL_EINVAL, "%s: newton_tol = %g, "
+                            "newton_maxit = %ld (need finite >= 0, >= 0; 0: "
+                            "default)", sc->name, o->newton_tol,
+                            o->newton_maxit);
+    for (size_t i = 0; i < sys->n; i++) {
+        if (!isfinite(sys->mass[i]) || !(sys->mass[i] > 0.0))
+            return cl_error_set(err, CL_EINVAL, "%s: mass[%zu] = %g, must be "
+                                "finite and > 0", sc->name, i, sys->mass[i]);
+    }
+    return CL_OK;
+}
+
+static cl_status kin_alloc(cl_kin *s, cl_error *err)
+{
+    size_t n = s->n, nval = 9 * s->sys->pattern->nnzb;
+    double **arr[] = {&s->x, &s->v, &s->xp, &s->vp, &s->x1, &s->vb, &s->ve0,
+                      &s->x1b, &s->pred, &s->xe, &s->ve, &s->f};
+    bool ok = true;
+    for (size_t k = 0; k < sizeof arr / sizeof arr[0]; k++)
+        ok = (*arr[k] = calloc(n, sizeof(double))) != NULL && ok;
+    s->dfdx = calloc(nval ? nval : 1, sizeof(double));
+    s->dfdv = calloc(nval ? nval : 1, sizeof(double));
+    if (!ok || !s->dfdx || !s->dfdv)
+        return cl_error_set(err, CL_ENOMEM, "%s: out of memory",
+                            s->sc->name);
+    return CL_OK;
+}
+
+static cl_status kin_sunfail(const cl_kin *s, const char *fn, int flag,
+                             cl_error *err)
+{
+    return cl_error_set(err, CL_ESOLVER, "%s: %s failed (flag %d)%s%s",
+                        s->sc->name, fn, flag, s->kmsg[0] ? ": " : "",
+                        s->kmsg);
+}
+
+static cl_status kin_vectors(cl_kin *s, cl_error *err)
+{
+    int flag = SUNContext_Create(NULL, &s->ctx);
+    if (flag != 0)
+        return kin_sunfail(s, "SUNContext_Create", flag, err);
+    sunindextype n = (sunindextype)s->n;
+    s->u = N_VNew_Serial(n, s->ctx);
+    s->uscale = N_VNew_Serial(n, s->ctx);
+    s->fscale = N_VNew_Serial(n, s->ctx);
+    if (!s->u || !s->uscale || !s->fscale)
+        return kin_sunfail(s, "N_VNew_Serial", 0, err);
+    return CL_OK;
+}
+
+static cl_status kin_linsol(cl_kin *s, const cl_integrator_opts *o,
+                            cl_error *err)
+{
+    char names[256];
+    s->lt = cl_linsol_find(o->linsol);
+    if (!s->lt)
+        return cl_error_set(err, CL_EINVAL, "%s: unknown linear solver "
+                            "\"%s\" (known: %s)", s->sc->name, o->linsol,
+                            cl_linsol_names(names, sizeof names));
+    cl_status st = s->lt->create(s->sys->pattern, s->sys->mass, o,
+                                 &s->lstate, err);
+    if (st != CL_OK)
+        return st;
+    s->J = SUNMatNewEmpty(s->ctx);
+    s->ls = SUNLinSolNewEmpty(s->ctx);
+    if (!s->J || !s->ls)
+        return kin_sunfail(s, s->J ? "SUNLinSolNewEmpty" : "SUNMatNewEmpty",
+                           0, err);
+    s->J->content = s;
+    s->J->ops->getid = shell_getid;
+    s->J->ops->zero = shell_zero;
+    s->J->ops->destroy = shell_destroy;
+    s->ls->content = s;
+    s->ls->ops->gettype = ls_gettype;
+    s->ls->ops->getid = ls_getid;
+    s->ls->ops->initialize = ls_initialize;
+    s->ls->ops->setup = ls_setup;
+    s->ls->ops->solve = ls_solve;
+    s->ls->ops->free = ls_free;
+    return CL_OK;
+}
+
+/* KINSOL's tolerances and cap (kinsol_common.h): one-step mode for
+ * newton_maxit = 1, convergence mode otherwise. */
+static cl_status kin_options(cl_kin *s, const cl_integrator_opts *o,
+                             cl_error *err)
+{
+    int flag;
+    s->maxit = o->newton_maxit > 0 ? o->newton_maxit : CL_KIN_MAXIT;
+    s->tol = o->newton_tol > 0 ? o->newton_tol : CL_KIN_TOL;
+    if (s->maxit == 1)
+        s->tol = DBL_MIN;
+    if ((flag = KINSetNumMaxIters(s->mem, s->maxit)) < 0)
+        return kin_sunfail(s, "KINSetNumMaxIters", flag, err);
+    if ((flag = KINSetFuncNormTol(s->mem, s->tol)) < 0)
+        return kin_sunfail(s, "KINSetFuncNormTol", flag, err);
+    if ((flag = KINSetScaledStepTol(s->mem, s->maxit == 1 ? s->tol :
+                                    fmax(s->tol, CL_KIN_STEP_FLOOR))) < 0)
+        return kin_sunfail(s, "KINSetScaledStepTol", flag, err);
+    if ((flag = KINSetMaxSetupCalls(s->mem, 1)) < 0)
+        return kin_sunfail(s, "KINSetMaxSetupCalls", flag, err);
+    if ((flag = KINSetNoResMon(s->mem, SUNTRUE)) < 0)
+        return kin_sunfail(s, "KINSetNoResMon", flag, err);
+    if ((flag = KINSetMaxNewtonStep(s->mem, DBL_MAX)) < 0)
+        return kin_sunfail(s, "KINSetMaxNewtonStep", flag, err);
+    return CL_OK;
+}
+
+static cl_status kin_kinsol(cl_kin *s, const cl_integrator_opts *o,
+                            cl_error *err)
+{
+    int flag;
+    s->mem = KINCreate(s->ctx);
+    if (!s->mem)
+        return kin_sunfail(s, "KINCreate", 0, err);
+    if ((flag = KINSetErrHandlerFn(s->mem, kin_errhandler, s)) < 0)
+        return kin_sunfail(s, "KINSetErrHandlerFn", flag, err);
+    if ((flag = KINInit(s->mem, kin_residual, s->u)) < 0)
+        return kin_sunfail(s, "KINInit", flag, err);
+    if ((flag = KINSetUserData(s->mem, s)) < 0)
+        return kin_sunfail(s, "KINSetUserData", flag, err);
+    cl_status st = kin_options(s, o, err);
+    if (st != CL_OK)
+        return st;
+    if ((st = kin_linsol(s, o, err)) != CL_OK)
+        return st;
+    if ((flag = KINSetLinearSolver(s->mem, s->ls, s->J)) < 0)
+        return kin_sunfail(s, "KINSetLinearSolver", flag, err);
+    if ((flag = KINSetJacFn(s->mem, kin_jac)) < 0)
+        return kin_sunfail(s, "KINSetJacFn", flag, err);
+    return CL_OK;
+}
+
+cl_status cl_kin_create(const cl_kin_scheme *sc, const cl_system *sys,
+                        const cl_integrator_opts *o, double t0,
+                        const double *x0, const double *v0, void **state,
+                        cl_error *err)
+{
+    *state = NULL;
+    cl_status st = kin_check_args(sc, sys, o, t0, err);
+    if (st != CL_OK)
+        return st;
+    cl_kin *s = calloc(1, sizeof *s);
+    if (!s)
+        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", sc->name);
+    s->sc = sc;
+    s->sys = sys;
+    s->n = sys->n;
+    s->t0 = t0;
+    s->h = o->dt;
+    st = kin_alloc(s, err);
+    if (st == CL_OK)
+        st = kin_vectors(s, err);
+    if (st == CL_OK)
+        st = kin_kinsol(s, o, err);
+    if (st != CL_OK) {
+        cl_kin_free(s);
+        return st;
+    }
+    memcpy(s->x, x0, s->n * sizeof *s->x);
+    memcpy(s->v, v0, s->n * sizeof *s->v);
+    *state = s;
+    return CL_OK;
+}
+
+/* ---- one step ----------------------------------------------------------- */
+
+/* The step's scheme (the start scheme for the first step), scalars and
+ * vectors; u starts at the predictor. */
+static void kin_scheme(cl_kin *s)
+{
+    const cl_kin_scheme *sc = s->done == 0 && s->sc->start ? s->sc->start
+                                                           : s->sc;
+    double h = s->h;
+    s->t = s->t0 + (double)s->done * h;
+    s->c = sc->c * h;
+    s->alpha = sc->alpha * h;
+    s->beta = sc->beta;
+    s->alpha1 = sc->alpha1 * h;
+    s->te = s->t + sc->te * h;
+    s->step = (cl_kin_step){
+        .n = s->n, .h = h, .x = s->x, .v = s->v, .xp = s->xp, .vp = s->vp,
+        .vb = s->vb, .ve0 = s->ve0, .x1b = s->x1b, .pred = s->pred,
+    };
+    sc->prepare(&s->step);
+    memcpy(N_VGetArrayPointer(s->u), s->pred, s->n * sizeof *s->pred);
+}
+
+/* The scales of v_ref = max(1 m/s, max |v_n|) (kinsol_common.h). */
+static void kin_scales(cl_kin *s)
+{
+    double vref = CL_KIN_VREF_MIN;
+    for (size_t i = 0; i < s->n; i++)
+        vref = fmax(vref, fabs(s->v[i]));
+    double *us = N_VGetArrayPointer(s->uscale);
+    double *fs = N_VGetArrayPointer(s->fscale);
+    for (size_t i = 0; i < s->n; i++) {
+        us[i] = 1.0 / vref;
+        fs[i] = 1.0 / (s->sys->mass[i] * vref);
+    }
+}
+
+static bool kin_flag_ok(const cl_kin *s, int flag)
+{
+    return flag == KIN_SUCCESS || flag == KIN_INITIAL_GUESS_OK ||
+           flag == KIN_STEP_LT_STPTOL ||
+           (flag == KIN_MAXITER_REACHED && s->maxit == 1);
+}
+
+/* The step failed with KINSol flag `flag` after nni iterations. */
+static cl_status kin_stepfail(cl_kin *s, int flag, long nni, cl_error *err)
+{
+    double t = s->t, t1 = t + s->h;
+    const char *name = s->sc->name;
+    s->nfail++;
+    if (s->sys_st != CL_OK)
+        return cl_error_set(err, s->sys_st, "%s: %s evaluation failed "
+                            "(%s%s) at t = %.9g in step %ld (t = %.9g -> "
+                            "%.9g, dt = %g), Newton iteration %ld", name,
+                            s->sys_jac ? "Jacobian" : "force",
+                            cl_status_name(s->sys_st),
+                            s->sys_nonfinite ? ": values not finite" : "",
+                            s->te, s->done + 1, t, t1, s->h, nni);
+    if (s->lin_st != CL_OK)
+        return cl_error_set(err, s->lin_st, "%s: linear solver failed in "
+                            "step %ld (t = %.9g -> %.9g, dt = %g), Newton "
+                            "iteration %ld: %s", name, s->done + 1, t, t1,
+                            s->h, nni, s->lin_err.msg);
+    char *fname = KINGetReturnFlagName(flag);
+    cl_status st = cl_error_set(
+        err, CL_ESOLVER, "%s: Newton solve failed in step %ld (t = %.9g -> "
+        "%.9g, dt = %g): %s (%d) after %ld iterations (cap %ld), scaled "
+        "residual %.3g, tolerance %.3g%s%s", name, s->done + 1, t, t1, s->h,
+        fname ? fname : "?", flag, nni, s->maxit, s->rmax, s->tol,
+        s->kmsg[0] ? "; " : "", s->kmsg);
+    free(fname);
+    return st;
+}
+
+/* x1 = x1b + alpha1 v1; the history moves one step on. */
+static void kin_commit(cl_kin *s)
+{
+    const double *u = N_VGetArrayPointer(s->u);
+    for (size_t i = 0; i < s->n; i++)
+        s->x1[i] = s->x1b[i] + s->alpha1 * u[i];
+    double *tx = s->xp, *tv = s->vp;
+    s->xp = s->x;
+    s->x = s->x1;
+    s->x1 = tx;
+    s->vp = s->v;
+    s->v = tv;
+    memcpy(s->v, u, s->n * sizeof *s->v);
+    s->done++;
+}
+
+static cl_status kin_step(cl_kin *s, cl_error *err)
+{
+    kin_scheme(s);
+    kin_scales(s);
+    s->sys_st = s->lin_st = CL_OK;
+    s->kmsg[0] = '\0';
+    int flag = KINSol(s->mem, s->u, KIN_NONE, s->uscale, s->fscale);
+    long nni = 0;
+    int gflag = KINGetNumNonlinSolvIters(s->mem, &nni);
+    s->nni += nni;
+    if (!kin_flag_ok(s, flag))
+        return kin_stepfail(s, flag, nni, err);
+    if (gflag < 0)
+        return kin_sunfail(s, "KINGetNumNonlinSolvIters", gflag, err);
+    kin_commit(s);
+    if (!kin_finite(s->x, s->n) || !kin_finite(s->v, s->n))
+        return cl_error_set(err, CL_EBLOWUP, "%s: state not finite at t = "
+                            "%.9g (step %ld, dt = %g)", s->sc->name,
+                            s->t0 + (double)s->done * s->h, s->done, s->h);
+    return CL_OK;
+}
+
+cl_status cl_kin_advance(void *state, double t_out, double *x, double *v,
+                         cl_error *err)
+{
+    cl_kin *s = state;
+    long nsteps = 0;
+    cl_status st = cl_fixed_steps_to(t_out - s->t0, s->h, s->done, &nsteps,
+                                     err);
+    for (long k = 0; st == CL_OK && k < nsteps; k++)
+        st = kin_step(s, err);
+    memcpy(x, s->x, s->n * sizeof *x);
+    memcpy(v, s->v, s->n * sizeof *v);
+    return st;
+}
+
+void cl_kin_stats(const void *state, cl_stats *out)
+{
+    const cl_kin *s = state;
+    memset(out, 0, sizeof *out);
+    out->steps = s->done;
+    out->rhs_evals = s->nrhs;
+    out->jac_evals = s->njac;
+    out->nonlin_iters = s->nni;
+    out->nonlin_fails = s->nfail;
+    s->lt->stats(s->lstate, out);
+}

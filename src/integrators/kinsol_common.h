@@ -1,0 +1,146 @@
+/* Shared plumbing of the fixed-step fully implicit integrators solved by
+ * KINSOL (SPEC 1, 5): kinsol-be, kinsol-bdf2, kinsol-midpoint.
+ *
+ * Reduced velocity form.  For x' = v, M v' = f(t, x, v) each step from
+ * t_n to t_{n+1} = t_n + h solves for the new velocity v1 (3 per free
+ * particle) the nonlinear system
+ *
+ *     R(v1) = M (v1 - vb) - c f(te, xe, ve0 + beta v1) = 0,
+ *     xe = x_n + alpha (v1 - p)        (p: the predictor, below)
+ *
+ * and then sets x1 = x1b + alpha1 v1.  Its exact Newton matrix is
+ *
+ *     dR/dv1 = M - a df/dv - b df/dx,     a = c beta,  b = c alpha,
+ *
+ * the half-size matrix of linalg/linsol.h, evaluated at the current Newton
+ * iterate.  A method (a cl_kin_scheme) gives the scalars c, alpha, beta,
+ * alpha1 and te - t_n (in units of h where they are times), the scheme of
+ * its first step, and how to fill vb, ve0, x1b and the predictor p from
+ * the history (x_n, v_n and, once one step is done, x_{n-1}, v_{n-1});
+ * each method file states its own formulas.  If the method evaluates f at
+ * the position xe0 + alpha v1, its p is (x_n - xe0)/alpha.
+ *
+ * Newton.  KINSOL with the KIN_NONE strategy: plain full Newton steps, no
+ * line search, no step-length cap (KINSetMaxNewtonStep = DBL_MAX), the
+ * Jacobian and the factorisation renewed at every iteration
+ * (KINSetMaxSetupCalls = 1), so that iteration counts compare directly with
+ * the semi-implicit methods and one iteration is exactly one Newton step.
+ * KINSOL sees a custom "direct" SUNLinearSolver and a shell SUNMatrix: its
+ * Jacobian callback evaluates df/dx, df/dv at the iterate (the system's
+ * block values), the solver's setup calls cl_linsol setup with (a, b) and
+ * its solve calls cl_linsol solve (opts->linsol, default klu).
+ *
+ * Predictor.  Newton starts from the v1 = p that leaves the evaluation
+ * position at x_n, i.e. from "the cloth does not move": f and its Jacobian
+ * are first evaluated at x_n -- bit for bit, since xe is computed as
+ * x_n + alpha (v1 - p), so that pairs sitting exactly on a kink (d = L at
+ * rest, SPEC 3.5) see the same branch as the semi-implicit methods do.
+ * Then one Newton iteration is the linearly implicit method obtained by
+ * linearising f about (x_n, v_n) -- backward Euler: Baraff-Witkin's step;
+ * BDF2: the seed's eq. (15) -- exactly whenever f is affine in v with a
+ * df/dx that does not depend on v (no damping, Choi-Ko pair damping,
+ * linear drag), and on every linear model.  (The predictor v1 = v_n would
+ * linearise about x_n + alpha v_n instead and give that equivalence only
+ * on linear models.)
+ *
+ * Tolerance and iteration cap (opts->newton_tol, default 1e-10;
+ * opts->newton_maxit, default 50).  With v_ref = max(1 m/s, max |v_n|):
+ *  - the residual is measured in velocity units relative to v_ref: KINSOL's
+ *    fscale_i = 1 / (m_i v_ref), so max_i |R_i| / (m_i v_ref) is the
+ *    relative velocity defect of the step; uscale_i = 1 / v_ref;
+ *  - a step converges when that defect is <= newton_tol (KIN_SUCCESS), or
+ *    when the last Newton update is <= newton_tol relative
+ *    (max_i |dv_i| / (v_ref + |v1_i|), KINSetScaledStepTol, reported as
+ *    KIN_STEP_LT_STPTOL: with full steps and the exact Jacobian this is the
+ *    usual update test, and the one that still works for stiff forces whose
+ *    round-off in R exceeds the defect tolerance; its threshold is never
+ *    below 10 DBL_EPSILON, where an update is round-off and the iterate
+ *    cannot improve), or when the predictor already satisfies the system
+ *    (KIN_INITIAL_GUESS_OK);
+ *  - newton_maxit = 1 is the linearly implicit mode: exactly one full
+ *    Newton step from the predictor, whatever its residual (newton_tol is
+ *    ignored; both KINSOL tolerances are set to DBL_MIN so that it neither
+ *    stops before nor reports after), and the cap KINSOL then reports
+ *    (KIN_MAXITER_REACHED) is a valid outcome.  The one exception: a
+ *    predictor with an exactly zero residual takes no step (its Newton
+ *    step would be exactly zero);
+ *  - newton_maxit >= 2 (or 0: the default 50) asks for convergence: the
+ *    cap reached without it is a failure.
+ *
+ * Failures.  Fixed-step methods do not retry: a step whose Newton solve
+ * fails stops the run (x, v keep the last completed step), counted in
+ * nonlin_fails, with a message naming the method, the step, its times and
+ * KINSOL's flag: CL_ESOLVER for a Newton or KINSOL failure, the linear
+ * solver's status and message when it failed, the system's status
+ * (CL_EBLOWUP for non-finite values) when a force or Jacobian evaluation
+ * failed (the residual and Jacobian callbacks then return -1:
+ * unrecoverable, so KINSOL never silently halves a step).  KINSOL's own
+ * messages are captured (KINSetErrHandlerFn), never printed.
+ *
+ * Statistics: steps; rhs_evals = force evaluations (residuals); jac_evals
+ * = system Jacobian evaluations; lin_setups, lin_solves, lin_iters,
+ * symbolic_facts from the linear solver's counters; nonlin_iters = the sum
+ * of KINGetNumNonlinSolvIters over the steps; nonlin_fails = steps whose
+ * solve failed.  Output times must be whole multiples of h from t0
+ * (cl_fixed_steps_to); the time after step k is t0 + k h.  Everything is
+ * allocated in create; a step allocates nothing. */
+#ifndef CL_KINSOL_COMMON_H
+#define CL_KINSOL_COMMON_H
+
+#include "integrators/integrator.h"
+
+/* One step's vectors.  Inputs (filled by the common code): n, h, x, v
+ * (x_n, v_n) and xp, vp (x_{n-1}, v_{n-1}).  Outputs (n each, filled by
+ * the scheme): vb, ve0, x1b and pred (the predictor p of v1). */
+typedef struct {
+    size_t n;
+    double h;
+    const double *x, *v, *xp, *vp;
+    double *vb, *ve0, *x1b, *pred;
+} cl_kin_step;
+
+typedef struct cl_kin_scheme {
+    const char *name;  /* registry name, for messages */
+    double c;          /* R = M (v1 - vb) - (c h) f(te, xe, ve) */
+    double alpha;      /* xe = x_n + (alpha h)(v1 - pred) */
+    double beta;       /* ve = ve0 + beta v1 */
+    double alpha1;     /* x1 = x1b + (alpha1 h) v1 */
+    double te;         /* f is evaluated at t_n + te h */
+    /* scheme of the first step (no x_{-1}, v_{-1} yet); NULL: this one */
+    const struct cl_kin_scheme *start;
+    void (*prepare)(cl_kin_step *st); /* fill the outputs of st */
+} cl_kin_scheme;
+
+cl_status cl_kin_create(const cl_kin_scheme *sc, const cl_system *sys,
+                        const cl_integrator_opts *o, double t0,
+                        const double *x0, const double *v0, void **state,
+                        cl_error *err);
+cl_status cl_kin_advance(void *state, double t_out, double *x, double *v,
+                         cl_error *err);
+void cl_kin_stats(const void *state, cl_stats *out);
+void cl_kin_free(void *state);
+
+/* Backward Euler (kinsol-be, and kinsol-bdf2's first step). */
+extern const cl_kin_scheme cl_kin_scheme_be;
+
+/* Define the integrator table `ident` for the scheme `scheme`. */
+#define CL_KIN_INTEGRATOR(ident, scheme, name_, doc_)                       \
+    static cl_status ident##_create(const cl_system *sys,                   \
+                                    const cl_integrator_opts *o, double t0, \
+                                    const double *x0, const double *v0,     \
+                                    void **state, cl_error *err)            \
+    {                                                                       \
+        return cl_kin_create(&(scheme), sys, o, t0, x0, v0, state, err);    \
+    }                                                                       \
+    const cl_integrator_type ident = {                                      \
+        .name = (name_),                                                    \
+        .doc = (doc_),                                                      \
+        .fixed_step = true,                                                 \
+        .takes_linsol = true,                                               \
+        .create = ident##_create,                                           \
+        .advance = cl_kin_advance,                                          \
+        .stats = cl_kin_stats,                                              \
+        .free = cl_kin_free,                                                \
+    }
+
+#endif

@@ -1,0 +1,73 @@
+/* Shared machinery of the semi-implicit (linearised) integrators semi-be
+ * and semi-bdf2 (SPEC 5): the state, the force/Jacobian evaluation, the
+ * reduced linear system
+ *
+ *     (M - a df/dv - b df/dx) y = rhs        (linalg/linsol.h)
+ *
+ * solved by the solver named in opts->linsol, fixed-step bookkeeping
+ * (time after step k is t0 + k h, cl_fixed_steps_to), statistics, and the
+ * Baraff-Witkin linearised backward-Euler step, which is semi-be's step and
+ * semi-bdf2's first step:
+ *
+ *     (M - h df/dv - h^2 df/dx) dv = h (f0 + h df/dx v0),
+ *     v1 = v0 + dv,   x1 = x0 + h v1,
+ *
+ * f0 = f(t0, x0, v0) and the Jacobians at (t0, x0, v0) (Baraff & Witkin
+ * 1998, section 2.3; SPEC 5).  Every array is allocated at creation; a step
+ * allocates nothing (the KLU fall-back refactorisation excepted, see
+ * linalg/linsol_klu.c). */
+#ifndef CL_SEMI_COMMON_H
+#define CL_SEMI_COMMON_H
+
+#include "integrators/integrator.h"
+#include "linalg/linsol.h"
+
+typedef struct {
+    const char *name;           /* method name, for messages */
+    const cl_system *sys;
+    const cl_linsol_type *lst;  /* linear solver type */
+    void *ls;                   /* its state */
+    size_t n;                   /* 3 * free particles */
+    double t0, h;
+    long done;                  /* steps taken */
+    long nlin;                  /* force + Jacobian evaluations */
+    double *x, *v;              /* state after `done` steps */
+    double *f;                  /* force at the last linearisation */
+    double *dfdx, *dfdv;        /* its Jacobians (9 nnzb each) */
+    double *rhs, *sol, *work;   /* n each */
+} cl_semi;
+
+/* Check the arguments (dt > 0, finite t0, n = 3 nb, force and Jacobian
+ * present, masses finite > 0), pick the linear solver by opts->linsol
+ * (CL_EINVAL naming the known ones if unknown), allocate and copy the
+ * initial state.  On failure everything is released. */
+cl_status cl_semi_init(cl_semi *s, const char *name, const cl_system *sys,
+                       const cl_integrator_opts *o, double t0,
+                       const double *x0, const double *v0, cl_error *err);
+void cl_semi_release(cl_semi *s);
+
+/* f, df/dx, df/dv at (t, s->x, s->v); CL_EBLOWUP if not finite, or the
+ * system's own failure, with time and step in the message. */
+cl_status cl_semi_linearise(cl_semi *s, double t, cl_error *err);
+
+/* Set up the solver for a, b with the current Jacobians and solve for
+ * s->sol from s->rhs; a solver failure (CL_ESOLVER, ...) is passed on with
+ * the method, time and step prefixed. */
+cl_status cl_semi_solve(cl_semi *s, double a, double b, cl_error *err);
+
+/* One linearised backward-Euler step of x, v in place (done unchanged). */
+cl_status cl_semi_be_step(cl_semi *s, cl_error *err);
+
+/* After a step: done++, and CL_EBLOWUP if x or v is not finite. */
+cl_status cl_semi_finish_step(cl_semi *s, cl_error *err);
+
+/* Take the steps up to t_out with `step` (one step of x, v in place,
+ * given `state`), then copy x, v out (also on failure: the last state). */
+typedef cl_status (*cl_semi_step_fn)(void *state, cl_error *err);
+cl_status cl_semi_advance(cl_semi *s, void *state, cl_semi_step_fn step,
+                          double t_out, double *x, double *v, cl_error *err);
+
+/* steps, rhs_evals, jac_evals and the linear solver's counters. */
+void cl_semi_stats(const cl_semi *s, cl_stats *out);
+
+#endif

@@ -1,0 +1,487 @@
+/* Shared plumbing of the SUNDIALS integrators (see sun_common.h): state
+ * and vectors, CVODE set-up, error capture, the blow-up policy of the user
+ * functions, advance, statistics, release in dependency order. */
+#include "integrators/sun_common.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cvode/cvode.h>
+#include <sunlinsol/sunlinsol_klu.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
+_Static_assert(sizeof(sunrealtype) == sizeof(double),
+               "clothode needs SUNDIALS built in double precision");
+
+#define CL_SUN_RTOL 1e-6
+#define CL_SUN_ATOL 1e-8
+#define CL_SUN_MAX_STEPS 10000000L
+
+/* ---- CVODE's entry in the package table -------------------------------- */
+
+static int cv_solve(cl_sun *s, double t_out)
+{
+    sunrealtype tret;
+    return CVode(s->mem, t_out, s->y, &tret, CV_NORMAL);
+}
+
+const cl_sun_api cl_sun_cvode_api = {
+    .pkg = "CVode",
+    .solve_name = "CVode",
+    .has_yp = false,
+    .set_err_handler = CVodeSetErrHandlerFn,
+    .set_user_data = CVodeSetUserData,
+    .sstolerances = CVodeSStolerances,
+    .set_max_num_steps = CVodeSetMaxNumSteps,
+    .set_init_step = CVodeSetInitStep,
+    .set_linear_solver = CVodeSetLinearSolver,
+    .get_current_time = CVodeGetCurrentTime,
+    .get_current_step = CVodeGetCurrentStep,
+    .flag_name = CVodeGetReturnFlagName,
+    .free_mem = CVodeFree,
+    .solve = cv_solve,
+    .steps = CVodeGetNumSteps,
+    .rhs = CVodeGetNumRhsEvals,
+    .lin_rhs = CVodeGetNumLinRhsEvals,
+    .jac = CVodeGetNumJacEvals,
+    .setups = CVodeGetNumLinSolvSetups,
+    .lin_iters = CVodeGetNumLinIters,
+    .nl_iters = CVodeGetNumNonlinSolvIters,
+    .nl_fails = CVodeGetNumNonlinSolvConvFails,
+    .err_fails = CVodeGetNumErrTestFails,
+};
+
+/* ---- errors ------------------------------------------------------------ */
+
+cl_status cl_sun_fail(cl_sun *s, const char *fn, int flag, cl_error *err)
+{
+    sunrealtype t = s->t_last;
+    if (s->mem)
+        s->api->get_current_time(s->mem, &t);
+    char *name = s->api->flag_name(flag);
+    cl_status st = cl_error_set(err, CL_ESOLVER,
+                                "%s: %s failed with %s (%d) at t = %.9g%s%s",
+                                s->name, fn, name ? name : "?", flag,
+                                (double)t, s->msg[0] ? ": " : "", s->msg);
+    free(name);
+    return st;
+}
+
+cl_status cl_sun_sunfail(const cl_sun *s, const char *fn, int flag,
+                         cl_error *err)
+{
+    return cl_error_set(err, CL_ESOLVER, "%s: %s failed (flag %d)", s->name,
+                        fn, flag);
+}
+
+/* The solver's messages: errors are kept for the report, the "t + h = t"
+ * warning marks a collapsed step (see the blow-up policy). */
+static void sun_errhandler(int code, const char *module, const char *function,
+                           char *msg, void *data)
+{
+    cl_sun *s = data;
+    (void)module;
+    if (code < 0)
+        snprintf(s->msg, sizeof s->msg, "%s: %s", function, msg);
+    else if (strstr(msg, "t + h = t"))
+        s->collapsed = true;
+}
+
+/* Calls a package setter `s->api->field(s->mem, ...)` and returns the
+ * failure naming pkg + suffix. */
+#define CL_SUN_SET(s, err, field, suffix, ...)                               \
+    do {                                                                     \
+        int flag_ = (s)->api->field((s)->mem, __VA_ARGS__);                  \
+        if (flag_ < 0) {                                                     \
+            char fn_[64];                                                    \
+            snprintf(fn_, sizeof fn_, "%s%s", (s)->api->pkg, suffix);        \
+            return cl_sun_fail((s), fn_, flag_, (err));                      \
+        }                                                                    \
+    } while (0)
+
+/* ---- the blow-up policy ------------------------------------------------ */
+
+/* The solver's step has shrunk to round-off at time t (a step of 0 means
+ * none chosen yet). */
+static bool sun_collapsed(const cl_sun *s, double t)
+{
+    sunrealtype h = 0;
+    if (s->collapsed)
+        return true;
+    if (!s->mem || s->api->get_current_step(s->mem, &h) < 0)
+        return false;
+    return h != 0 && fabs(h) <= 100 * DBL_EPSILON * fabs(t);
+}
+
+/* Record a failed system call.  A blow-up is recoverable (1) unless the
+ * step has already shrunk to round-off: then the force fails however small
+ * the step, as at a singularity in time or state.  Any other system error
+ * is unrecoverable (-1), and -1 is latched (see the header). */
+static int sun_sysfail(cl_sun *s, cl_status *slot, cl_status st, double t,
+                       bool nonfinite)
+{
+    *slot = st;
+    s->fail_t = t;
+    s->fail_nonfinite = nonfinite;
+    if (st == CL_EBLOWUP && !sun_collapsed(s, t))
+        return 1;
+    s->fatal = true;
+    return -1;
+}
+
+static bool sun_finite(const double *a, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        if (!isfinite(a[i]))
+            return false;
+    }
+    return true;
+}
+
+int cl_sun_force(cl_sun *s, double t, const double *x, const double *v,
+                 double *f)
+{
+    if (s->fatal)
+        return -1;
+    cl_status st = s->sys->force(s->sys->data, t, x, v, f);
+    return st == CL_OK ? 0 : sun_sysfail(s, &s->fail_rhs, st, t, false);
+}
+
+int cl_sun_rhs_finite(cl_sun *s, const double *out, size_t len, double t)
+{
+    if (!sun_finite(out, len))
+        return sun_sysfail(s, &s->fail_rhs, CL_EBLOWUP, t, true);
+    s->fail_rhs = CL_OK;
+    return 0;
+}
+
+int cl_sun_jacobian(cl_sun *s, double t, const double *x, const double *v)
+{
+    if (s->fatal)
+        return -1;
+    s->njac++;
+    cl_status st = s->sys->jacobian(s->sys->data, t, x, v, NULL, s->dfdx,
+                                    s->dfdv);
+    if (st != CL_OK)
+        return sun_sysfail(s, &s->fail_jac, st, t, false);
+    if (!sun_finite(s->dfdx, s->nval) || !sun_finite(s->dfdv, s->nval))
+        return sun_sysfail(s, &s->fail_jac, CL_EBLOWUP, t, true);
+    s->fail_jac = CL_OK;
+    return 0;
+}
+
+int cl_sun_cvode_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *data)
+{
+    cl_sun *s = data;
+    size_t n = s->sys->n;
+    const double *x = N_VGetArrayPointer(y), *v = x + n;
+    double *xd = N_VGetArrayPointer(ydot), *vd = xd + n;
+    int ret = cl_sun_force(s, t, x, v, vd);
+    if (ret != 0)
+        return ret;
+    memcpy(xd, v, n * sizeof *xd);
+    for (size_t i = 0; i < n; i++)
+        vd[i] *= s->inv_mass[i];
+    return cl_sun_rhs_finite(s, xd, 2 * n, t);
+}
+
+/* ---- create / free ----------------------------------------------------- */
+
+static cl_status sun_check(const char *name, const cl_system *sys,
+                           const cl_integrator_opts *o, double t0,
+                           bool need_jac, cl_error *err)
+{
+    if (sys->n == 0 || !sys->pattern || 3 * sys->pattern->nb != sys->n)
+        return cl_error_set(err, CL_EINVAL,
+                            "%s: system has %zu unknowns and a block pattern "
+                            "of %zu rows (need n = 3 nb > 0)", name, sys->n,
+                            sys->pattern ? sys->pattern->nb : 0);
+    if (!sys->force || !sys->mass || (need_jac && !sys->jacobian))
+        return cl_error_set(err, CL_EINVAL, "%s: system needs masses, a "
+                            "force%s", name,
+                            need_jac ? " and an analytic Jacobian" : "");
+    if (!isfinite(t0) || !(o->rtol >= 0.0) || !(o->atol >= 0.0) ||
+        !isfinite(o->rtol) || !isfinite(o->atol) || !(o->dt >= 0.0) ||
+        !isfinite(o->dt) || o->max_steps < 0)
+        return cl_error_set(err, CL_EINVAL,
+                            "%s: bad options t0 = %g, rtol = %g, atol = %g, "
+                            "dt = %g, max_steps = %ld (need finite, >= 0)",
+                            name, t0, o->rtol, o->atol, o->dt, o->max_steps);
+    return CL_OK;
+}
+
+static cl_status sun_arrays(cl_sun *s, bool need_jac, cl_error *err)
+{
+    size_t n = s->sys->n;
+    for (size_t i = 0; i < n; i++) {
+        if (!isfinite(s->sys->mass[i]) || !(s->sys->mass[i] > 0.0))
+            return cl_error_set(err, CL_EINVAL, "%s: mass[%zu] = %g, must "
+                                "be finite and > 0", s->name, i,
+                                s->sys->mass[i]);
+    }
+    s->inv_mass = malloc(n * sizeof *s->inv_mass);
+    if (!s->inv_mass)
+        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
+    for (size_t i = 0; i < n; i++)
+        s->inv_mass[i] = 1.0 / s->sys->mass[i];
+    if (!need_jac)
+        return CL_OK;
+    s->nval = 9 * s->sys->pattern->nnzb;
+    s->dfdx = calloc(s->nval ? s->nval : 1, sizeof *s->dfdx);
+    s->dfdv = calloc(s->nval ? s->nval : 1, sizeof *s->dfdv);
+    if (!s->dfdx || !s->dfdv)
+        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
+    return CL_OK;
+}
+
+static cl_status sun_vectors(cl_sun *s, const double *x0, const double *v0,
+                             cl_error *err)
+{
+    int flag = SUNContext_Create(NULL, &s->ctx);
+    if (flag != 0)
+        return cl_sun_sunfail(s, "SUNContext_Create", flag, err);
+    size_t n = s->sys->n;
+    s->y = N_VNew_Serial((sunindextype)(2 * n), s->ctx);
+    if (!s->y)
+        return cl_sun_sunfail(s, "N_VNew_Serial", 0, err);
+    double *y = N_VGetArrayPointer(s->y);
+    memcpy(y, x0, n * sizeof *y);
+    memcpy(y + n, v0, n * sizeof *y);
+    if (!s->api->has_yp)
+        return CL_OK;
+    s->yp = N_VClone(s->y);
+    if (!s->yp)
+        return cl_sun_sunfail(s, "N_VClone", 0, err);
+    N_VConst(0.0, s->yp);
+    return CL_OK;
+}
+
+cl_status cl_sun_alloc(size_t size, const char *name, const cl_sun_api *api,
+                       const cl_system *sys, const cl_integrator_opts *o,
+                       double t0, const double *x0, const double *v0,
+                       bool need_jac, cl_sun **out, cl_error *err)
+{
+    *out = NULL;
+    cl_status st = sun_check(name, sys, o, t0, need_jac, err);
+    if (st != CL_OK)
+        return st;
+    cl_sun *s = calloc(1, size);
+    if (!s)
+        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", name);
+    s->name = name;
+    s->api = api;
+    s->sys = sys;
+    s->t_last = t0;
+    st = sun_arrays(s, need_jac, err);
+    if (st == CL_OK)
+        st = sun_vectors(s, x0, v0, err);
+    if (st != CL_OK) {
+        cl_sun_free(s);
+        return st;
+    }
+    *out = s;
+    return CL_OK;
+}
+
+cl_status cl_sun_created(cl_sun *s, void *mem, const char *fn, cl_error *err)
+{
+    if (!mem)
+        return cl_sun_sunfail(s, fn, 0, err);
+    s->mem = mem;
+    CL_SUN_SET(s, err, set_err_handler, "SetErrHandlerFn", sun_errhandler, s);
+    return CL_OK;
+}
+
+cl_status cl_sun_configure(cl_sun *s, const cl_integrator_opts *o,
+                           cl_error *err)
+{
+    double rtol = o->rtol > 0 ? o->rtol : CL_SUN_RTOL;
+    double atol = o->atol > 0 ? o->atol : CL_SUN_ATOL;
+    long mxs = o->max_steps > 0 ? o->max_steps : CL_SUN_MAX_STEPS;
+    CL_SUN_SET(s, err, set_user_data, "SetUserData", s);
+    CL_SUN_SET(s, err, sstolerances, "SStolerances", rtol, atol);
+    CL_SUN_SET(s, err, set_max_num_steps, "SetMaxNumSteps", mxs);
+    if (o->dt > 0)
+        CL_SUN_SET(s, err, set_init_step, "SetInitStep", o->dt);
+    return CL_OK;
+}
+
+cl_status cl_sun_cvode_create(size_t size, const char *name, int lmm,
+                              bool need_jac, const cl_system *sys,
+                              const cl_integrator_opts *o, double t0,
+                              const double *x0, const double *v0,
+                              cl_sun **out, cl_error *err)
+{
+    cl_status st = cl_sun_alloc(size, name, &cl_sun_cvode_api, sys, o, t0, x0,
+                                v0, need_jac, out, err);
+    if (st != CL_OK)
+        return st;
+    cl_sun *s = *out;
+    st = cl_sun_created(s, CVodeCreate(lmm, s->ctx), "CVodeCreate", err);
+    if (st != CL_OK)
+        return st;
+    int flag = CVodeInit(s->mem, cl_sun_cvode_rhs, t0, s->y);
+    if (flag < 0)
+        return cl_sun_fail(s, "CVodeInit", flag, err);
+    return cl_sun_configure(s, o, err);
+}
+
+cl_status cl_sun_finish(cl_sun *s, cl_status st, void (*free_fn)(void *),
+                        void **state)
+{
+    if (st != CL_OK) {
+        free_fn(s);
+        return st;
+    }
+    *state = s;
+    return CL_OK;
+}
+
+cl_status cl_sun_attach_direct(cl_sun *s, SUNMatrix A, SUNLinearSolver inner,
+                               cl_error *err)
+{
+    s->A = A;
+    s->inner = inner;
+    if (!A)
+        return cl_sun_sunfail(s, "matrix constructor", 0, err);
+    if (!inner)
+        return cl_sun_sunfail(s, "linear solver constructor", 0, err);
+    s->cnt.inner = inner;
+    s->ls = cl_lscount_create(&s->cnt, s->ctx);
+    if (!s->ls)
+        return cl_sun_sunfail(s, "SUNLinSolNewEmpty", 0, err);
+    CL_SUN_SET(s, err, set_linear_solver, "SetLinearSolver", s->ls, s->A);
+    return CL_OK;
+}
+
+cl_status cl_sun_attach_klu(cl_sun *s, sunindextype size, sunindextype nnz,
+                            cl_error *err)
+{
+    SUNMatrix A = SUNSparseMatrix(size, size, nnz, CSC_MAT, s->ctx);
+    SUNLinearSolver klu = A ? SUNLinSol_KLU(s->y, A, s->ctx) : NULL;
+    cl_status st = cl_sun_attach_direct(s, A, klu, err);
+    if (st != CL_OK)
+        return st;
+    int flag = SUNLinSol_KLUSetOrdering(klu, 0);
+    if (flag != SUNLS_SUCCESS)
+        return cl_sun_sunfail(s, "SUNLinSol_KLUSetOrdering", flag, err);
+    return CL_OK;
+}
+
+/* Solver memory first (it refers to the solvers), the context last. */
+void cl_sun_free(void *state)
+{
+    cl_sun *s = state;
+    if (!s)
+        return;
+    if (s->mem)
+        s->api->free_mem(&s->mem);
+    if (s->ls)
+        SUNLinSolFree(s->ls);
+    if (s->inner)
+        SUNLinSolFree(s->inner);
+    if (s->nls)
+        SUNNonlinSolFree(s->nls);
+    if (s->A)
+        SUNMatDestroy(s->A);
+    if (s->y)
+        N_VDestroy(s->y);
+    if (s->yp)
+        N_VDestroy(s->yp);
+    if (s->ctx)
+        SUNContext_Free(&s->ctx);
+    free(s->inv_mass);
+    free(s->dfdx);
+    free(s->dfdv);
+    free(s);
+}
+
+/* ---- advance ----------------------------------------------------------- */
+
+static void sun_copy_out(const cl_sun *s, double *x, double *v)
+{
+    size_t n = s->sys->n;
+    const double *y = N_VGetArrayPointer(s->y);
+    memcpy(x, y, n * sizeof *x);
+    memcpy(v, y + n, n * sizeof *v);
+}
+
+/* The solver returned flag < 0: a blow-up of the system, its own error, or
+ * a solver failure. */
+static cl_status sun_advance_fail(cl_sun *s, int flag, double t_out,
+                                  cl_error *err)
+{
+    cl_status sys_st = s->fail_rhs != CL_OK ? s->fail_rhs : s->fail_jac;
+    if (sys_st == CL_OK)
+        return cl_sun_fail(s, s->api->solve_name, flag, err);
+    sunrealtype t = s->t_last;
+    s->api->get_current_time(s->mem, &t);
+    char *name = s->api->flag_name(flag);
+    cl_status st = cl_error_set(
+        err, sys_st,
+        "%s: %s evaluation failed (%s%s) at t = %.9g; state reached t = %.9g "
+        "on the way to %.9g; %s gave up with %s", s->name,
+        s->fail_rhs != CL_OK ? "force" : "Jacobian", cl_status_name(sys_st),
+        s->fail_nonfinite ? ": values not finite" : "", s->fail_t, (double)t,
+        t_out, s->api->solve_name, name ? name : "?");
+    free(name);
+    return st;
+}
+
+cl_status cl_sun_advance(void *state, double t_out, double *x, double *v,
+                         cl_error *err)
+{
+    cl_sun *s = state;
+    if (!isfinite(t_out) || t_out < s->t_last)
+        return cl_error_set(err, CL_EINVAL, "%s: output time %.17g lies "
+                            "behind the last one, %.17g", s->name, t_out,
+                            s->t_last);
+    if (t_out > s->t_last) {
+        s->fail_rhs = s->fail_jac = CL_OK;
+        s->collapsed = s->fatal = false;
+        s->msg[0] = '\0';
+        int flag = s->api->solve(s, t_out);
+        sun_copy_out(s, x, v);
+        if (flag < 0)
+            return sun_advance_fail(s, flag, t_out, err);
+        s->t_last = t_out;
+    } else {
+        sun_copy_out(s, x, v);
+    }
+    if (!sun_finite(N_VGetArrayPointer(s->y), 2 * s->sys->n))
+        return cl_error_set(err, CL_EBLOWUP, "%s: state not finite at "
+                            "t = %.9g", s->name, t_out);
+    return CL_OK;
+}
+
+/* ---- statistics -------------------------------------------------------- */
+
+static long sun_count(const cl_sun *s, cl_sun_getter get)
+{
+    long v = 0;
+    if (get(s->mem, &v) < 0)
+        return 0;
+    return v;
+}
+
+void cl_sun_stats(const void *state, cl_stats *out)
+{
+    const cl_sun *s = state;
+    const cl_sun_api *a = s->api;
+    memset(out, 0, sizeof *out);
+    out->steps = sun_count(s, a->steps);
+    out->rhs_evals = sun_count(s, a->rhs) + s->own_rhs;
+    out->lin_setups = sun_count(s, a->setups);
+    if (s->ls) { /* the linear-solver getters fail (and say so) without */
+        out->rhs_evals += sun_count(s, a->lin_rhs);
+        out->jac_evals = sun_count(s, a->jac);
+        out->lin_iters = sun_count(s, a->lin_iters);
+    }
+    out->nonlin_iters = sun_count(s, a->nl_iters);
+    out->nonlin_fails = sun_count(s, a->nl_fails);
+    out->err_fails = sun_count(s, a->err_fails);
+    out->lin_solves = s->cnt.solves;
+    out->symbolic_facts = s->cnt.analyses;
+}

@@ -1,0 +1,410 @@
+/* pcg, pcg-jacobi: preconditioned conjugate gradients on the reduced matrix
+ * A = M - a df/dv - b df/dx (SPEC 1, 5), Baraff-Witkin's choice of solver,
+ * by SUNDIALS' SUNLinSol_PCG (no hand-written Krylov loop):
+ *
+ *  - matrix-free product (SUNLinSolSetATimes): y = A p from A's 3x3 block
+ *    values, formed at every setup (linalg/reduced.h: cl_reduced_blocks,
+ *    cl_bmatvec);
+ *  - preconditioner (SUNLinSolSetPreconditioner, applied as z = P^-1 r):
+ *      pcg         3x3 block-Jacobi, P = blockdiag(S_ii), S_ii the
+ *                  symmetric part of A's diagonal block i, inverted
+ *                  explicitly after Sylvester's test (leading minors > 0);
+ *      pcg-jacobi  point Jacobi, P = diag(A_ii), every A_ii > 0.
+ *    P is set up in the PCG's Psetup callback, called by SUNLinSolSetup.
+ *
+ * Tolerance.  SUNDIALS' PCG (6.4.1, sunlinsol_pcg.c) stops when
+ *     || s .* r_k ||_2 <= delta,     r_k = b - A x_k,
+ * the residual of the *unpreconditioned* system as updated by the CG
+ * recurrence, weighted componentwise by the scaling vector s; the
+ * preconditioner does not enter the test.  We set s = ones (so the test is
+ * on the plain 2-norm of the residual) and pass delta = lin_tol ||b||_2
+ * (opts->lin_tol, default 1e-10): a relative residual test.  The iteration
+ * starts from x_0 = 0 (SUNLinSolSetZeroGuess).  At most opts->lin_maxit
+ * iterations per solve (default max(1000, 2n)).
+ *
+ * Failures are reported as CL_ESOLVER, never hidden:
+ *  - CG needs A symmetric positive definite.  SUNDIALS' PCG does not check
+ *    the curvature p^T A p of its search directions; our product callback
+ *    does, and stops the iteration (returning -1, SUNLS_ATIMES_FAIL_UNREC)
+ *    when p^T A p <= 0 (or is not finite): A is not positive definite;
+ *  - a preconditioner block that is not positive definite fails the setup;
+ *  - no convergence within the iteration cap (SUNLS_RES_REDUCED or
+ *    SUNLS_CONV_FAIL): the message gives the residual reached and delta.
+ * A is assumed symmetric (the Choi-Ko and spring Jacobians are); with a
+ * nonsymmetric A, CG may fail to converge, which is then reported.
+ *
+ * Statistics: lin_setups (setups), lin_solves (solves), lin_iters (PCG
+ * iterations, SUNLinSolNumIters summed over solves). */
+#include "linalg/linsol.h"
+
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_pcg.h>
+
+#include "linalg/reduced.h"
+
+#define CL_PCG_TOL 1e-10
+#define CL_PCG_MAXIT_MIN 1000L
+
+typedef struct {
+    const char *name;
+    const cl_bpattern *pat;  /* borrowed: the system's pattern */
+    size_t n;
+    bool block;              /* block-Jacobi (else point Jacobi) */
+    double *mass;            /* n */
+    double *ablk;            /* 9 nnzb: A's block values */
+    double *pinv;            /* 9 nb (block) or n (point): P^-1 */
+    double tol;
+    int maxit;
+    SUNContext ctx;
+    N_Vector b, x, ones;
+    SUNLinearSolver ls;
+    int nprod;               /* products in the current solve */
+    char why[256];           /* what a callback found wrong */
+    bool ready;              /* a setup succeeded */
+    long setups, solves, iters;
+} cl_pcg;
+
+/* ---- SUNDIALS callbacks ------------------------------------------------ */
+
+/* z = A v, with the curvature check v^T A v > 0. */
+static int pcg_atimes(void *data, N_Vector v, N_Vector z)
+{
+    cl_pcg *s = data;
+    const double *vp = N_VGetArrayPointer(v);
+    double *zp = N_VGetArrayPointer(z), curv = 0.0, vv = 0.0;
+    cl_bmatvec(s->pat, s->ablk, vp, zp);
+    s->nprod++;
+    for (size_t i = 0; i < s->n; i++) {
+        curv += vp[i] * zp[i];
+        vv += vp[i] * vp[i];
+    }
+    if (curv > 0.0 && isfinite(curv))
+        return 0;
+    snprintf(s->why, sizeof s->why, "the matrix M - a df/dv - b df/dx is "
+             "not positive definite: p^T A p = %.6g (|p|^2 = %.6g) for the "
+             "search direction of iteration %d", curv, vv, s->nprod);
+    return -1;
+}
+
+/* Inverse of the symmetric part of the 3x3 block B if it is positive
+ * definite (leading minors > 0); false otherwise. */
+static bool pcg_inv3(const double *B, double *inv, double minor[3])
+{
+    double s00 = B[0], s11 = B[4], s22 = B[8];
+    double s01 = 0.5 * (B[1] + B[3]), s02 = 0.5 * (B[2] + B[6]);
+    double s12 = 0.5 * (B[5] + B[7]);
+    double c00 = s11 * s22 - s12 * s12, c01 = s02 * s12 - s01 * s22;
+    double c02 = s01 * s12 - s02 * s11, c11 = s00 * s22 - s02 * s02;
+    double c12 = s01 * s02 - s00 * s12, c22 = s00 * s11 - s01 * s01;
+    minor[0] = s00;
+    minor[1] = c22;
+    minor[2] = s00 * c00 + s01 * c01 + s02 * c02;
+    if (!(minor[0] > 0.0) || !(minor[1] > 0.0) || !(minor[2] > 0.0) ||
+        !isfinite(minor[2]))
+        return false;
+    double d = 1.0 / minor[2];
+    const double c[9] = {c00, c01, c02, c01, c11, c12, c02, c12, c22};
+    for (int q = 0; q < 9; q++)
+        inv[q] = c[q] * d;
+    return true;
+}
+
+static int pcg_psetup_block(cl_pcg *s)
+{
+    for (size_t i = 0; i < s->pat->nb; i++) {
+        double minor[3];
+        if (!pcg_inv3(s->ablk + 9 * s->pat->diag[i], s->pinv + 9 * i,
+                      minor)) {
+            snprintf(s->why, sizeof s->why, "the matrix M - a df/dv - b "
+                     "df/dx is not positive definite: its diagonal block "
+                     "%zu is not (leading minors %.6g, %.6g, %.6g; no "
+                     "block-Jacobi preconditioner)", i, minor[0], minor[1],
+                     minor[2]);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+static int pcg_psetup_point(cl_pcg *s)
+{
+    for (size_t i = 0; i < s->n; i++) {
+        double d = s->ablk[9 * s->pat->diag[i / 3] + 4 * (i % 3)];
+        if (!(d > 0.0) || !isfinite(d)) {
+            snprintf(s->why, sizeof s->why, "the matrix M - a df/dv - b "
+                     "df/dx is not positive definite: its diagonal entry "
+                     "%zu is %.6g (no Jacobi preconditioner)", i, d);
+            return -1;
+        }
+        s->pinv[i] = 1.0 / d;
+    }
+    return 0;
+}
+
+static int pcg_psetup(void *data)
+{
+    cl_pcg *s = data;
+    return s->block ? pcg_psetup_block(s) : pcg_psetup_point(s);
+}
+
+/* z = P^-1 r */
+static int pcg_psolve(void *data, N_Vector r, N_Vector z, sunrealtype tol,
+                      int lr)
+{
+    cl_pcg *s = data;
+    const double *rp = N_VGetArrayPointer(r);
+    double *zp = N_VGetArrayPointer(z);
+    (void)tol, (void)lr;
+    if (!s->block) {
+        for (size_t i = 0; i < s->n; i++)
+            zp[i] = s->pinv[i] * rp[i];
+        return 0;
+    }
+    for (size_t i = 0; i < s->pat->nb; i++) {
+        const double *P = s->pinv + 9 * i, *r3 = rp + 3 * i;
+        for (size_t q = 0; q < 3; q++)
+            zp[3 * i + q] = P[3 * q] * r3[0] + P[3 * q + 1] * r3[1] +
+                            P[3 * q + 2] * r3[2];
+    }
+    return 0;
+}
+
+/* ---- create / free ----------------------------------------------------- */
+
+static void pcg_free(void *state)
+{
+    cl_pcg *s = state;
+    if (!s)
+        return;
+    if (s->ls)
+        SUNLinSolFree(s->ls);
+    if (s->b)
+        N_VDestroy(s->b);
+    if (s->x)
+        N_VDestroy(s->x);
+    if (s->ones)
+        N_VDestroy(s->ones);
+    if (s->ctx)
+        SUNContext_Free(&s->ctx);
+    free(s->mass);
+    free(s->ablk);
+    free(s->pinv);
+    free(s);
+}
+
+static cl_status pcg_sunfail(const cl_pcg *s, const char *fn, int flag,
+                             cl_error *err)
+{
+    return cl_error_set(err, CL_ESOLVER, "%s: %s failed (flag %d)", s->name,
+                        fn, flag);
+}
+
+static cl_status pcg_check_opts(const char *name, const cl_bpattern *pat,
+                                const cl_integrator_opts *o, cl_error *err)
+{
+    if (!pat || pat->nb == 0)
+        return cl_error_set(err, CL_EINVAL, "%s: empty system (no free "
+                            "particles)", name);
+    if (!isfinite(o->lin_tol) || o->lin_tol < 0.0 || o->lin_maxit < 0)
+        return cl_error_set(err, CL_EINVAL, "%s: lin_tol = %g, lin_maxit = "
+                            "%ld: need finite >= 0 (0: defaults)", name,
+                            o->lin_tol, o->lin_maxit);
+    return CL_OK;
+}
+
+static cl_status pcg_alloc(cl_pcg *s, const double *mass, cl_error *err)
+{
+    size_t nval = 9 * s->pat->nnzb;
+    s->mass = malloc(s->n * sizeof *s->mass);
+    s->ablk = calloc(nval, sizeof *s->ablk);
+    s->pinv = calloc(s->block ? 9 * s->pat->nb : s->n, sizeof *s->pinv);
+    if (!s->mass || !s->ablk || !s->pinv)
+        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
+    for (size_t i = 0; i < s->n; i++) {
+        if (!isfinite(mass[i]) || !(mass[i] > 0.0))
+            return cl_error_set(err, CL_EINVAL, "%s: mass[%zu] = %g, must "
+                                "be finite and > 0", s->name, i, mass[i]);
+        s->mass[i] = mass[i];
+    }
+    return CL_OK;
+}
+
+static cl_status pcg_sundials(cl_pcg *s, cl_error *err)
+{
+    int flag = SUNContext_Create(NULL, &s->ctx);
+    if (flag != 0)
+        return pcg_sunfail(s, "SUNContext_Create", flag, err);
+    sunindextype n = (sunindextype)s->n;
+    s->b = N_VNew_Serial(n, s->ctx);
+    s->x = s->b ? N_VNew_Serial(n, s->ctx) : NULL;
+    s->ones = s->x ? N_VNew_Serial(n, s->ctx) : NULL;
+    if (!s->ones)
+        return pcg_sunfail(s, "N_VNew_Serial", 0, err);
+    N_VConst(1.0, s->ones);
+    s->ls = SUNLinSol_PCG(s->x, SUN_PREC_LEFT, s->maxit, s->ctx);
+    if (!s->ls)
+        return pcg_sunfail(s, "SUNLinSol_PCG", 0, err);
+    if ((flag = SUNLinSolSetATimes(s->ls, s, pcg_atimes)) != 0)
+        return pcg_sunfail(s, "SUNLinSolSetATimes", flag, err);
+    if ((flag = SUNLinSolSetPreconditioner(s->ls, s, pcg_psetup,
+                                           pcg_psolve)) != 0)
+        return pcg_sunfail(s, "SUNLinSolSetPreconditioner", flag, err);
+    if ((flag = SUNLinSolSetScalingVectors(s->ls, s->ones, NULL)) != 0)
+        return pcg_sunfail(s, "SUNLinSolSetScalingVectors", flag, err);
+    if ((flag = SUNLinSolInitialize(s->ls)) != 0)
+        return pcg_sunfail(s, "SUNLinSolInitialize", flag, err);
+    return CL_OK;
+}
+
+/* opts->lin_maxit, or max(1000, 2n) when 0; at most INT_MAX. */
+static int pcg_maxit(long lin_maxit, size_t n)
+{
+    long m = lin_maxit;
+    if (m == 0)
+        m = (long)(2 * n) > CL_PCG_MAXIT_MIN ? (long)(2 * n)
+                                             : CL_PCG_MAXIT_MIN;
+    return m < INT_MAX ? (int)m : INT_MAX;
+}
+
+static cl_status pcg_create_named(const char *name, bool block,
+                                  const cl_bpattern *pat, const double *mass,
+                                  const cl_integrator_opts *o, void **state,
+                                  cl_error *err)
+{
+    *state = NULL;
+    cl_status st = pcg_check_opts(name, pat, o, err);
+    if (st != CL_OK)
+        return st;
+    cl_pcg *s = calloc(1, sizeof *s);
+    if (!s)
+        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", name);
+    s->name = name;
+    s->pat = pat;
+    s->n = 3 * pat->nb;
+    s->block = block;
+    s->tol = o->lin_tol > 0.0 ? o->lin_tol : CL_PCG_TOL;
+    s->maxit = pcg_maxit(o->lin_maxit, s->n);
+    st = pcg_alloc(s, mass, err);
+    if (st == CL_OK)
+        st = pcg_sundials(s, err);
+    if (st != CL_OK) {
+        pcg_free(s);
+        return st;
+    }
+    *state = s;
+    return CL_OK;
+}
+
+static cl_status pcg_create_block(const cl_bpattern *pat, const double *mass,
+                                  const cl_integrator_opts *o, void **state,
+                                  cl_error *err)
+{
+    return pcg_create_named("pcg", true, pat, mass, o, state, err);
+}
+
+static cl_status pcg_create_point(const cl_bpattern *pat, const double *mass,
+                                  const cl_integrator_opts *o, void **state,
+                                  cl_error *err)
+{
+    return pcg_create_named("pcg-jacobi", false, pat, mass, o, state, err);
+}
+
+/* ---- setup / solve ----------------------------------------------------- */
+
+static cl_status pcg_setup(void *state, double a, double b,
+                           const double *dfdx, const double *dfdv,
+                           cl_error *err)
+{
+    cl_pcg *s = state;
+    cl_reduced_blocks(s->pat, s->mass, a, b, dfdx, dfdv, s->ablk);
+    s->why[0] = '\0';
+    s->ready = false;
+    int flag = SUNLinSolSetup(s->ls, NULL);
+    if (flag != 0)
+        return s->why[0] ? cl_error_set(err, CL_ESOLVER, "%s: %s", s->name,
+                                        s->why)
+                         : pcg_sunfail(s, "SUNLinSolSetup", flag, err);
+    s->ready = true;
+    s->setups++;
+    return CL_OK;
+}
+
+static cl_status pcg_solve_fail(const cl_pcg *s, int flag, double delta,
+                                double bnorm, cl_error *err)
+{
+    int nli = SUNLinSolNumIters(s->ls);
+    double res = SUNLinSolResNorm(s->ls);
+    if (s->why[0])
+        return cl_error_set(err, CL_ESOLVER, "%s: %s", s->name, s->why);
+    if (flag == SUNLS_RES_REDUCED || flag == SUNLS_CONV_FAIL)
+        return cl_error_set(err, CL_ESOLVER,
+                            "%s: no convergence in %d iterations: residual "
+                            "|b - A x| = %.6g > %.6g (lin_tol %g x |b| %.6g)",
+                            s->name, nli, res, delta, s->tol, bnorm);
+    return pcg_sunfail(s, "SUNLinSolSolve", flag, err);
+}
+
+static cl_status pcg_solve(void *state, const double *rhs, double *x,
+                           cl_error *err)
+{
+    cl_pcg *s = state;
+    if (!s->ready)
+        return cl_error_set(err, CL_EINVAL, "%s: solve without a successful "
+                            "setup", s->name);
+    double *bp = N_VGetArrayPointer(s->b);
+    memcpy(bp, rhs, s->n * sizeof *bp);
+    double bnorm = sqrt(N_VDotProd(s->b, s->b)), delta = s->tol * bnorm;
+    if (!isfinite(bnorm))
+        return cl_error_set(err, CL_ESOLVER, "%s: right-hand side not "
+                            "finite", s->name);
+    N_VConst(0.0, s->x);
+    int flag = SUNLinSolSetZeroGuess(s->ls, SUNTRUE);
+    if (flag != 0)
+        return pcg_sunfail(s, "SUNLinSolSetZeroGuess", flag, err);
+    s->why[0] = '\0';
+    s->nprod = 0;
+    flag = SUNLinSolSolve(s->ls, NULL, s->x, s->b, delta);
+    s->solves++;
+    s->iters += SUNLinSolNumIters(s->ls);
+    if (flag != SUNLS_SUCCESS)
+        return pcg_solve_fail(s, flag, delta, bnorm, err);
+    memcpy(x, N_VGetArrayPointer(s->x), s->n * sizeof *x);
+    return CL_OK;
+}
+
+static void pcg_stats(const void *state, cl_stats *out)
+{
+    const cl_pcg *s = state;
+    out->lin_setups += s->setups;
+    out->lin_solves += s->solves;
+    out->lin_iters += s->iters;
+}
+
+const cl_linsol_type cl_linsol_pcg = {
+    .name = "pcg",
+    .doc = "SUNDIALS PCG, matrix-free, 3x3 block-Jacobi preconditioner "
+           "(A must be SPD)",
+    .create = pcg_create_block,
+    .setup = pcg_setup,
+    .solve = pcg_solve,
+    .stats = pcg_stats,
+    .free = pcg_free,
+};
+
+const cl_linsol_type cl_linsol_pcg_jacobi = {
+    .name = "pcg-jacobi",
+    .doc = "SUNDIALS PCG, matrix-free, point Jacobi preconditioner "
+           "(A must be SPD)",
+    .create = pcg_create_point,
+    .setup = pcg_setup,
+    .solve = pcg_solve,
+    .stats = pcg_stats,
+    .free = pcg_free,
+};

@@ -1,0 +1,150 @@
+/* Shared code of the semi-be and semi-bdf2 tests: spring2 (tests/spring2.h)
+ * with overridden keys, its closed form with a pin moving at constant
+ * velocity, observed convergence orders for a given linear solver, and the
+ * reduced `hang` run whose statistics both methods must give.
+ *
+ * spring2 with the pin moving along x at velocity w ([pins] velocity):
+ * y = x - w t - L obeys y'' = -W^2 y, y(0) = 0, y'(0) = v0 - w, so
+ *   x(t) = L + w t + ((v0 - w)/W) sin(W t),  v(t) = w + (v0 - w) cos(W t).
+ * Header only, included after <criterion/criterion.h>. */
+#ifndef CL_TESTS_SEMITEST_H
+#define CL_TESTS_SEMITEST_H
+
+#include <criterion/criterion.h>
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "integrators/integrator.h"
+#include "spring2.h"
+
+/* spring2 with "section.key=value" overrides (NULL-terminated, or NULL). */
+static inline void st_load(s2_problem *p, const char *const *sets)
+{
+    cl_error err = {0};
+    p->cfg = cl_config_alloc();
+    cr_assert_not_null(p->cfg);
+    cr_assert_eq(cl_config_load(p->cfg, "problems/spring2.ini", &err), CL_OK,
+                 "%s", err.msg);
+    for (size_t k = 0; sets && sets[k]; k++)
+        cr_assert_eq(cl_config_set(p->cfg, sets[k], &err), CL_OK, "%s",
+                     err.msg);
+    cr_assert_eq(cl_model_create(p->cfg, &p->m, &err), CL_OK, "%s", err.msg);
+    p->sys = cl_model_system(p->m);
+    cr_assert_eq(p->sys->n, 3, "spring2 has one free particle");
+    cl_model_initial_state(p->m, p->x0, p->v0);
+}
+
+/* Error at T of `name` with linear solver `linsol` in steps of dt, against
+ * the closed form with pin velocity w: max(|x - x_e|, |v - v_e| / W). */
+static inline double st_error(const s2_problem *p, const char *name,
+                              const char *linsol, double w, double dt,
+                              double T)
+{
+    const cl_integrator_type *it = cl_integrator_find(name);
+    cr_assert_not_null(it, "integrator %s not registered", name);
+    cl_integrator_opts o = {.dt = dt, .linsol = linsol};
+    double x[3], v[3];
+    void *st = NULL;
+    cl_error err = {0};
+    cr_assert_eq(it->create(p->sys, &o, 0.0, p->x0, p->v0, &st, &err), CL_OK,
+                 "%s: %s", name, err.msg);
+    cr_assert_eq(it->advance(st, T, x, v, &err), CL_OK, "%s: %s", name,
+                 err.msg);
+    it->free(st);
+    double s = sin(S2_W * T), c = cos(S2_W * T);
+    double xe = S2_L + w * T + (S2_V0 - w) / S2_W * s;
+    double ve = w + (S2_V0 - w) * c;
+    double e = fmax(fabs(x[0] - xe), fabs(v[0] - ve) / S2_W);
+    return fmax(e, fmax(fmax(fabs(x[1]), fabs(x[2])),
+                        fmax(fabs(v[1]), fabs(v[2])) / S2_W));
+}
+
+/* Least-squares order over dt0, dt0/2, ... (npts points) on spring2 with
+ * overrides `sets` (pin velocity w). */
+static inline double st_order(const char *name, const char *linsol,
+                              const char *const *sets, double w, double dt0,
+                              int npts, double T)
+{
+    s2_problem p;
+    double h[8], e[8];
+    cr_assert_leq(npts, 8);
+    st_load(&p, sets);
+    for (int k = 0; k < npts; k++) {
+        h[k] = dt0 / (double)(1 << k);
+        e[k] = st_error(&p, name, linsol, w, h[k], T);
+        cr_log_info("%s/%s w=%g dt=%g: error %.4e%s", name, linsol, w, h[k],
+                    e[k], k ? "" : " (first)");
+        if (k)
+            cr_log_info("  ratio %.4f", e[k - 1] / e[k]);
+    }
+    s2_free(&p);
+    double q = s2_slope(h, e, npts);
+    cr_log_info("%s/%s w=%g: least-squares order %.4f", name, linsol, w, q);
+    return q;
+}
+
+/* problems/hang.ini with n = 8, 0.2 s in steps of 1e-3 by `name` with
+ * `linsol`; statistics to *s; the cloth must have fallen (some y < 0) and
+ * stay finite. */
+static inline void st_hang(const char *name, const char *linsol, cl_stats *s)
+{
+    cl_error err = {0};
+    cl_config *cfg = cl_config_alloc();
+    cl_model *m = NULL;
+    cr_assert_not_null(cfg);
+    cr_assert_eq(cl_config_load(cfg, "problems/hang.ini", &err), CL_OK, "%s",
+                 err.msg);
+    cr_assert_eq(cl_config_set(cfg, "cloth.n=8", &err), CL_OK, "%s",
+                 err.msg);
+    cr_assert_eq(cl_model_create(cfg, &m, &err), CL_OK, "%s", err.msg);
+    const cl_system *sys = cl_model_system(m);
+    double *x = malloc(sys->n * sizeof *x), *v = malloc(sys->n * sizeof *v);
+    cr_assert(x && v);
+    cl_model_initial_state(m, x, v);
+    const cl_integrator_type *it = cl_integrator_find(name);
+    cr_assert_not_null(it);
+    cl_integrator_opts o = {.dt = 1e-3, .linsol = linsol};
+    void *st = NULL;
+    cr_assert_eq(it->create(sys, &o, 0.0, x, v, &st, &err), CL_OK, "%s",
+                 err.msg);
+    cr_assert_eq(it->advance(st, 0.1, x, v, &err), CL_OK, "%s", err.msg);
+    cr_assert_eq(it->advance(st, 0.2, x, v, &err), CL_OK, "%s", err.msg);
+    it->stats(st, s);
+    it->free(st);
+    double ymin = 0;
+    for (size_t i = 0; i < sys->n; i++) {
+        cr_assert(isfinite(x[i]) && isfinite(v[i]));
+        if (i % 3 == 1)
+            ymin = fmin(ymin, x[i]);
+    }
+    cr_log_info("%s/%s hang n=8: lowest y %.4f m after 0.2 s; %ld steps, "
+                "%ld setups, %ld solves, %ld Krylov iterations, %ld symbolic",
+                name, linsol, ymin, s->steps, s->lin_setups, s->lin_solves,
+                s->lin_iters, s->symbolic_facts);
+    cr_assert_lt(ymin, -0.05, "the cloth did not fall: %g", ymin);
+    free(x);
+    free(v);
+    cl_model_free(m);
+    cl_config_free(cfg);
+}
+
+/* The statistics of a 200-step run with one linear solve per step. */
+static inline void st_check_hang_stats(const cl_stats *s, const char *linsol)
+{
+    cr_assert_eq(s->steps, 200);
+    cr_assert_eq(s->lin_setups, 200);
+    cr_assert_eq(s->lin_solves, 200);
+    cr_assert_eq(s->jac_evals, 200);
+    cr_assert_eq(s->rhs_evals, 200);
+    if (strcmp(linsol, "klu") == 0) {
+        cr_assert_eq(s->symbolic_facts, 1);
+        cr_assert_eq(s->lin_iters, 0);
+    } else {
+        cr_assert_eq(s->symbolic_facts, 0);
+        cr_assert_geq(s->lin_iters, 200);
+    }
+}
+
+#endif
