@@ -48,6 +48,17 @@ static inline void ri_start(const ts_sys *ts, double *x0, double *v0,
     memcpy(v, v0, ts->n * sizeof *v);
 }
 
+/* k steps of `name` with dt = h from ts_initial at t = 0: the initial
+ * state into x0, v0 and the state after k steps into x, v. */
+static inline void ri_steps(const char *name, const ts_sys *ts, double h,
+                            int k, double *x0, double *v0, double *x,
+                            double *v)
+{
+    cl_integrator_opts o = {.dt = h};
+    ri_start(ts, x0, v0, x, v);
+    ri_run(name, &ts->sys, &o, 0.0, k * h, x, v, NULL);
+}
+
 /* Max error at T from ts_initial of the positions (*ex) and velocities
  * (*ev) against the exact solution, in steps of dt. */
 static inline void ri_error(const char *name, ts_sys *ts, double dt,
@@ -174,6 +185,27 @@ static inline void ri_energy_drift(const char *name, double h, int periods,
     ts_free(&ts);
     cr_log_info("%s energy error h=%g: first 10 periods %.3e, last 10 %.3e",
                 name, h, *first, *last);
+}
+
+/* ri_energy_drift over 1000 periods: the energy error stays below bound
+ * and does not drift (last 10 periods within 1.1 x the first 10). */
+static inline void ri_expect_bounded_energy(const char *name, double h,
+                                            double bound)
+{
+    double first, last;
+    ri_energy_drift(name, h, 1000, &first, &last);
+    cr_expect_lt(first, bound, "%s: energy error %g", name, first);
+    cr_expect_lt(last, 1.1 * first, "%s: energy drifts: %g -> %g", name,
+                 first, last);
+}
+
+/* |a_i - b_i| <= tol for all i < n (what names the array in messages). */
+static inline void ri_expect_near(const double *a, const double *b, size_t n,
+                                  double tol, const char *what)
+{
+    for (size_t i = 0; i < n; i++)
+        cr_expect(fabs(a[i] - b[i]) <= tol, "%s[%zu] = %.17g, expected "
+                  "%.17g", what, i, a[i], b[i]);
 }
 
 #endif

@@ -2,16 +2,18 @@
  * (global error at T = 1 below 2000 tol for tol = 1e-6 .. 1e-10, shrinking
  * at least 10-fold per 100-fold tighter tol; measured 40, 300, 1300 tol,
  * cvode-bdf 160 to 700 tol: the local error control does not bound the
- * global error, which accumulates over the 100-300 steps), the dense first-order
- * Jacobian against central differences of the RHS (coupled pair with
- * damping and distinct masses), dfdt = 0 for an autonomous system, the
- * size limit (CL_EUNSUPPORTED above 1728 unknowns), and its advantage on a
- * stiff problem: far fewer steps than gsl-rk8pd.  Options and failures:
- * test_gslode.c. */
+ * global error, which accumulates over the 100-300 steps), the dense
+ * first-order Jacobian against central differences of the RHS (coupled
+ * pair with damping and distinct masses), dfdt = 0 for an autonomous
+ * system, the size limit (CL_EUNSUPPORTED above 1728 unknowns), its
+ * advantage on a stiff problem (far fewer steps than gsl-rk8pd), and
+ * agreement with a tight cvode-bdf run on the hang cloth.  Options and
+ * failures: test_gslode.c. */
 #include <criterion/criterion.h>
 
 #include "integrators/gslode.h"
 #include "runint.h"
+#include "runsun.h"
 #include "spring2.h"
 
 Test(gsl_msbdf, reaches_tolerance_on_spring2)
@@ -116,4 +118,37 @@ Test(gsl_msbdf, stiff_problem_few_steps)
     cr_expect_lt(5 * steps[0], steps[1], "msbdf %ld steps, rk8pd %ld",
                  steps[0], steps[1]);
     ts_free(&ts);
+}
+
+/* The cloth: hang with n = 5 (69 unknowns, as in test_agreement.c but
+ * smaller: GSL's dense LU makes n = 10 to T = 0.5 take about 10 minutes)
+ * to T = 0.5; gsl-msbdf at rtol 1e-6, atol 1e-8 against cvode-bdf at
+ * rtol 1e-10, atol 1e-12: final positions within 10 (rtol max|x| + atol). */
+Test(gsl_msbdf, agrees_with_tight_cvode_on_hang, .timeout = 120)
+{
+    rs_hang h;
+    rs_hang_load(&h, 5);
+    size_t n = h.sys->n;
+    double *x[2], *v = malloc(n * sizeof *v), xmax = 0, d = 0;
+    const char *names[2] = {"gsl-msbdf", "cvode-bdf"};
+    const double tol[2] = {1e-6, 1e-10};
+    cr_assert_not_null(v);
+    for (int k = 0; k < 2; k++) {
+        cl_integrator_opts o = {.rtol = tol[k], .atol = tol[k] / 100};
+        x[k] = malloc(n * sizeof *x[k]);
+        cr_assert_not_null(x[k]);
+        memcpy(x[k], h.x0, n * sizeof *x[k]);
+        memcpy(v, h.v0, n * sizeof *v);
+        ri_run(names[k], h.sys, &o, 0.0, 0.5, x[k], v, NULL);
+    }
+    for (size_t i = 0; i < n; i++) {
+        xmax = fmax(xmax, fabs(x[1][i]));
+        d = fmax(d, fabs(x[0][i] - x[1][i]));
+    }
+    cr_log_info("gsl-msbdf vs tight cvode-bdf on hang n = 5: %.3e", d);
+    cr_expect_leq(d, 10 * (1e-6 * xmax + 1e-8), "%.3e", d);
+    free(x[0]);
+    free(x[1]);
+    free(v);
+    rs_hang_free(&h);
 }

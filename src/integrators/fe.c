@@ -24,11 +24,6 @@ static cl_status fe_step(cl_fixed *s, double t, double h, cl_error *err)
     return CL_OK;
 }
 
-static const cl_fixed_method fe_method = {
-    .name = "fe",
-    .nwork = 1,
-    .step = fe_step,
-};
-
-CL_FIXED_INTEGRATOR(cl_integrator_fe, fe_method, "fe",
-                    "forward Euler, fixed step dt");
+CL_FIXED_INTEGRATOR(cl_integrator_fe, "fe",
+                    "forward Euler, fixed step dt",
+                    1, NULL, fe_step);

@@ -1,9 +1,10 @@
 /* Shared plumbing of the explicit fixed-step integrators (SPEC 5): fe,
  * symplectic-euler, symplectic-euler-x, verlet, velocity-verlet, rk4.
  *
- * A method supplies a cl_fixed_method: its name, how many work arrays of n
- * doubles it needs (its extra state, allocated once in create), an optional
- * setup hook that checks and takes method options, and its step function,
+ * A method supplies a cl_fixed_method (CL_FIXED_INTEGRATOR below defines it
+ * with the integrator table): its name, how many work arrays of n doubles
+ * it needs (its extra state, allocated once in create), an optional setup
+ * hook that checks and takes method options, and its step function,
  * which updates the current state s->x, s->v in place from
  * t_k = t0 + k h to t_{k+1} (h = opts->dt > 0).  This module does the rest
  * for every method alike:
@@ -24,6 +25,7 @@
 #ifndef CL_FIXED_STEP_H
 #define CL_FIXED_STEP_H
 
+#include "integrators/define.h"
 #include "integrators/integrator.h"
 
 #define CL_FIXED_MAXWORK 6
@@ -69,25 +71,18 @@ void cl_fixed_free(void *state);
 cl_status cl_fixed_accel(cl_fixed *s, double t, const double *x,
                          const double *v, double *a, cl_error *err);
 
-/* Define the integrator table `ident` (and its create function) for the
- * fixed-step method `method`, whose name is the string literal name_. */
-#define CL_FIXED_INTEGRATOR(ident, method, name_, doc_)                     \
-    static cl_status ident##_create(const cl_system *sys,                   \
-                                    const cl_integrator_opts *o, double t0, \
-                                    const double *x0, const double *v0,     \
-                                    void **state, cl_error *err)            \
-    {                                                                       \
-        return cl_fixed_create(&(method), sys, o, t0, x0, v0, state, err);  \
-    }                                                                       \
-    const cl_integrator_type ident = {                                      \
+/* Define the fixed-step method (registry name name_, nwork_ work arrays,
+ * setup hook setup_ or NULL, step function step_) and its integrator table
+ * `ident`, with its create function. */
+#define CL_FIXED_INTEGRATOR(ident, name_, doc_, nwork_, setup_, step_)      \
+    static const cl_fixed_method ident##_method = {                         \
         .name = (name_),                                                    \
-        .doc = (doc_),                                                      \
-        .fixed_step = true,                                                 \
-        .takes_linsol = false,                                              \
-        .create = ident##_create,                                           \
-        .advance = cl_fixed_advance,                                        \
-        .stats = cl_fixed_stats,                                            \
-        .free = cl_fixed_free,                                              \
-    }
+        .nwork = (nwork_),                                                  \
+        .setup = (setup_),                                                  \
+        .step = (step_),                                                    \
+    };                                                                      \
+    CL_INTEGRATOR_DEFINE(ident, ident##_method, cl_fixed_create, name_,     \
+                         doc_, true, cl_fixed_advance, cl_fixed_stats,      \
+                         cl_fixed_free)
 
 #endif

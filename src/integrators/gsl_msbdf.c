@@ -96,15 +96,10 @@ static int msbdf_jacobian(double t, const double y[], double *dfdy,
     return msbdf_dfdt(s, t, y, dfdt);
 }
 
-static const cl_gslode_method msbdf_method = {
-    .name = "gsl-msbdf",
-    .type = &gsl_odeiv2_step_msbdf,
-    .jacobian = msbdf_jacobian,
-    .max_n = CL_MSBDF_MAX_N,
-    .max_n_why = "24 x 24 free particles: GSL's msbdf factorises a dense "
-                 "2n x 2n Newton matrix; use cvode-bdf for larger cloths",
-};
-
-CL_GSLODE_INTEGRATOR(cl_integrator_gsl_msbdf, msbdf_method, "gsl-msbdf",
+CL_GSLODE_INTEGRATOR(cl_integrator_gsl_msbdf, "gsl-msbdf",
                      "GSL odeiv2 msbdf, BDF orders 1-5 with dense Jacobian "
-                     "(n <= 1728), rtol/atol");
+                     "(n <= 1728), rtol/atol",
+                     &gsl_odeiv2_step_msbdf, msbdf_jacobian, CL_MSBDF_MAX_N,
+                     "24 x 24 free particles: GSL's msbdf factorises a "
+                     "dense 2n x 2n Newton matrix; use cvode-bdf for larger "
+                     "cloths");

@@ -11,11 +11,7 @@
  * (jac_evals = 0): integrators/gslode.h. */
 #include "integrators/gslode.h"
 
-static const cl_gslode_method rk8pd_method = {
-    .name = "gsl-rk8pd",
-    .type = &gsl_odeiv2_step_rk8pd,
-};
-
-CL_GSLODE_INTEGRATOR(cl_integrator_gsl_rk8pd, rk8pd_method, "gsl-rk8pd",
+CL_GSLODE_INTEGRATOR(cl_integrator_gsl_rk8pd, "gsl-rk8pd",
                      "GSL odeiv2 rk8pd, explicit adaptive Runge-Kutta (8,9), "
-                     "rtol/atol");
+                     "rtol/atol",
+                     &gsl_odeiv2_step_rk8pd, NULL, 0, NULL);

@@ -8,7 +8,8 @@
  * with gsl_odeiv2_driver_alloc_y_new (error control on y: every component
  * of the local error estimate must stay below atol + rtol |y_i|) and
  * gsl_odeiv2_driver_apply, which steps adaptively and stops exactly at
- * t_out (no interpolation).  A method supplies a cl_gslode_method: its
+ * t_out (no interpolation).  A method supplies a cl_gslode_method
+ * (CL_GSLODE_INTEGRATOR below defines it with the integrator table): its
  * name, the GSL step type, for implicit steppers the Jacobian function of
  * the gsl_odeiv2_system (the block Jacobians are then allocated here, and
  * a system without a Jacobian is refused), and an optional size limit
@@ -23,7 +24,7 @@
  * (gsl_set_error_handler_off) and every return is checked.  A force that
  * is not finite or returns CL_EBLOWUP makes the RHS return GSL_FAILURE,
  * which GSL treats as recoverable (the step is halved and retried); when
- * the step can shrink no further advance reports CL_EBLOWUP with the time
+ * the step can shrink no further, advance reports CL_EBLOWUP with the time
  * of the failing call and the time reached.  Any other system status makes
  * the RHS return GSL_EBADFUNC (GSL stops at once) and is passed on.  Too
  * many steps: CL_ESOLVER.
@@ -39,6 +40,7 @@
 
 #include <gsl/gsl_odeiv2.h>
 
+#include "integrators/define.h"
 #include "integrators/integrator.h"
 
 typedef struct {
@@ -85,25 +87,20 @@ int cl_gslode_failed(cl_gslode *s, cl_status st, double t);
 /* true if all n values are finite */
 bool cl_gslode_finite(const double *a, size_t n);
 
-/* Define the integrator table `ident` (and its create function) for the
- * GSL method `method`, whose name is the string literal name_. */
-#define CL_GSLODE_INTEGRATOR(ident, method, name_, doc_)                    \
-    static cl_status ident##_create(const cl_system *sys,                   \
-                                    const cl_integrator_opts *o, double t0, \
-                                    const double *x0, const double *v0,     \
-                                    void **state, cl_error *err)            \
-    {                                                                       \
-        return cl_gslode_create(&(method), sys, o, t0, x0, v0, state, err); \
-    }                                                                       \
-    const cl_integrator_type ident = {                                      \
+/* Define the GSL method (registry name name_, step type type_ such as
+ * &gsl_odeiv2_step_rk8pd, Jacobian function jac_ or NULL, size limit
+ * max_n_ (0: none) and its reason why_) and its integrator table `ident`,
+ * with its create function. */
+#define CL_GSLODE_INTEGRATOR(ident, name_, doc_, type_, jac_, max_n_, why_) \
+    static const cl_gslode_method ident##_method = {                        \
         .name = (name_),                                                    \
-        .doc = (doc_),                                                      \
-        .fixed_step = false,                                                \
-        .takes_linsol = false,                                              \
-        .create = ident##_create,                                           \
-        .advance = cl_gslode_advance,                                       \
-        .stats = cl_gslode_stats,                                           \
-        .free = cl_gslode_free,                                             \
-    }
+        .type = (type_),                                                    \
+        .jacobian = (jac_),                                                 \
+        .max_n = (max_n_),                                                  \
+        .max_n_why = (why_),                                                \
+    };                                                                      \
+    CL_INTEGRATOR_DEFINE(ident, ident##_method, cl_gslode_create, name_,    \
+                         doc_, false, cl_gslode_advance, cl_gslode_stats,   \
+                         cl_gslode_free)
 
 #endif

@@ -48,11 +48,6 @@ static cl_status rk4_step(cl_fixed *s, double t, double h, cl_error *err)
     return CL_OK;
 }
 
-static const cl_fixed_method rk4_method = {
-    .name = "rk4",
-    .nwork = 5,
-    .step = rk4_step,
-};
-
-CL_FIXED_INTEGRATOR(cl_integrator_rk4, rk4_method, "rk4",
-                    "classical Runge-Kutta 4, fixed step dt");
+CL_FIXED_INTEGRATOR(cl_integrator_rk4, "rk4",
+                    "classical Runge-Kutta 4, fixed step dt",
+                    5, NULL, rk4_step);

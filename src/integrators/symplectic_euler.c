@@ -27,13 +27,7 @@ static cl_status se_step(cl_fixed *s, double t, double h, cl_error *err)
     return CL_OK;
 }
 
-static const cl_fixed_method se_method = {
-    .name = "symplectic-euler",
-    .nwork = 1,
-    .step = se_step,
-};
-
-CL_FIXED_INTEGRATOR(cl_integrator_symplectic_euler, se_method,
-                    "symplectic-euler",
+CL_FIXED_INTEGRATOR(cl_integrator_symplectic_euler, "symplectic-euler",
                     "symplectic Euler, v first then x (seed 000), fixed "
-                    "step dt");
+                    "step dt",
+                    1, NULL, se_step);

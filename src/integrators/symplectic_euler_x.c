@@ -33,13 +33,7 @@ static cl_status sex_step(cl_fixed *s, double t, double h, cl_error *err)
     return CL_OK;
 }
 
-static const cl_fixed_method sex_method = {
-    .name = "symplectic-euler-x",
-    .nwork = 2,
-    .step = sex_step,
-};
-
-CL_FIXED_INTEGRATOR(cl_integrator_symplectic_euler_x, sex_method,
-                    "symplectic-euler-x",
+CL_FIXED_INTEGRATOR(cl_integrator_symplectic_euler_x, "symplectic-euler-x",
                     "symplectic Euler, x first then v (seed 003), fixed "
-                    "step dt");
+                    "step dt",
+                    2, NULL, sex_step);

@@ -47,12 +47,6 @@ static cl_status vv_step(cl_fixed *s, double t, double h, cl_error *err)
     return CL_OK;
 }
 
-static const cl_fixed_method vv_method = {
-    .name = "velocity-verlet",
-    .nwork = 5,
-    .step = vv_step,
-};
-
-CL_FIXED_INTEGRATOR(cl_integrator_velocity_verlet, vv_method,
-                    "velocity-verlet",
-                    "velocity Verlet (kick-drift-kick), fixed step dt");
+CL_FIXED_INTEGRATOR(cl_integrator_velocity_verlet, "velocity-verlet",
+                    "velocity Verlet (kick-drift-kick), fixed step dt",
+                    5, NULL, vv_step);

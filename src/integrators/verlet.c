@@ -66,13 +66,7 @@ static cl_status verlet_setup(cl_fixed *s, const cl_integrator_opts *o,
     return CL_OK;
 }
 
-static const cl_fixed_method verlet_method = {
-    .name = "verlet",
-    .nwork = 3,
-    .setup = verlet_setup,
-    .step = verlet_step,
-};
-
-CL_FIXED_INTEGRATOR(cl_integrator_verlet, verlet_method, "verlet",
+CL_FIXED_INTEGRATOR(cl_integrator_verlet, "verlet",
                     "position Verlet with velocity damping vdamp (seed 004), "
-                    "fixed step dt");
+                    "fixed step dt",
+                    3, verlet_setup, verlet_step);

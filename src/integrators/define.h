@@ -1,0 +1,36 @@
+/* Integrator tables for methods built on a shared module (fixed_step.h,
+ * gslode.h): the module provides create(method, ...), advance, stats and
+ * free; a method file provides a method description `method` and gets
+ *
+ *   static create function  ident_create(sys, opts, t0, x0, v0, state, err)
+ *                           = module_create(&method, sys, ...)
+ *   const cl_integrator_type ident = {name_, doc_, fixed_, takes_linsol =
+ *                           false, ident_create, advance_, stats_, free_}
+ *
+ * for one row of the registry (integrators/registry.c). */
+#ifndef CL_DEFINE_H
+#define CL_DEFINE_H
+
+#include "integrators/integrator.h"
+
+#define CL_INTEGRATOR_DEFINE(ident, method, create_, name_, doc_, fixed_,   \
+                             advance_, stats_, free_)                       \
+    static cl_status ident##_create(const cl_system *sys,                   \
+                                    const cl_integrator_opts *o, double t0, \
+                                    const double *x0, const double *v0,     \
+                                    void **state, cl_error *err)            \
+    {                                                                       \
+        return create_(&(method), sys, o, t0, x0, v0, state, err);          \
+    }                                                                       \
+    const cl_integrator_type ident = {                                      \
+        .name = (name_),                                                    \
+        .doc = (doc_),                                                      \
+        .fixed_step = (fixed_),                                             \
+        .takes_linsol = false,                                              \
+        .create = ident##_create,                                           \
+        .advance = (advance_),                                              \
+        .stats = (stats_),                                                  \
+        .free = (free_),                                                    \
+    }
+
+#endif
