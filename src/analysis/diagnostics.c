@@ -1,6 +1,8 @@
 /* Shape diagnostics of a cloth state. */
 #include "analysis/diagnostics.h"
 
+#include <math.h>
+
 double cl_max_stretch(const cl_pairset *set, const double *xfull)
 {
     double r = 0.0;
@@ -22,4 +24,26 @@ double cl_max_offplane(const cl_cloth *c, const double *xfull)
             m = d;
     }
     return m;
+}
+
+long cl_wrinkles(const cl_cloth *c, const double *xfull)
+{
+    int j = c->nv / 2;
+    double amp = 0.0;
+    for (int i = 0; i < c->nu; i++) {
+        size_t p = (size_t)cl_cloth_index(c, i, j);
+        amp = fmax(amp, fabs(xfull[3 * p + 1] - c->X0[3 * p + 1]));
+    }
+    long changes = 0;
+    int last = 0;
+    for (int i = 0; i < c->nu; i++) {
+        size_t p = (size_t)cl_cloth_index(c, i, j);
+        double y = xfull[3 * p + 1] - c->X0[3 * p + 1];
+        if (fabs(y) < 0.05 * amp || y == 0.0)
+            continue;
+        int sign = y > 0 ? 1 : -1;
+        changes += last && sign != last;
+        last = sign;
+    }
+    return changes;
 }

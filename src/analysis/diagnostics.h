@@ -11,4 +11,10 @@ double cl_max_stretch(const cl_pairset *set, const double *xfull);
  * plane (the grid lies in y = 0, SPEC 2). */
 double cl_max_offplane(const cl_cloth *c, const double *xfull);
 
+/* Wrinkles along the centre line j = nv/2 of the grid: the number of sign
+ * changes of the out-of-plane displacement y - Y0 along i, ignoring points
+ * whose |y - Y0| is below 5% of the line's largest (so noise near zero does
+ * not count).  0 for a flat or single-signed line. */
+long cl_wrinkles(const cl_cloth *c, const double *xfull);
+
 #endif

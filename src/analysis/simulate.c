@@ -80,6 +80,7 @@ static cl_status open_series(sim *s, cl_error *err)
     names[n++] = "power_diss";
     names[n++] = "max_stretch";
     names[n++] = "max_offplane";
+    names[n++] = "wrinkles";
     s->row = malloc(n * sizeof *s->row);
     if (!s->row)
         return cl_error_set(err, CL_ENOMEM, "out of memory (series row)");
@@ -112,6 +113,7 @@ static cl_status sample(sim *s, double t, cl_sim_result *res, cl_error *err)
     s->row[n++] = e.power_diss;
     s->row[n++] = stretch;
     s->row[n++] = offplane;
+    s->row[n++] = (double)cl_wrinkles(s->c, s->xf);
     if ((rc = cl_series_row(s->series, s->row, err)))
         return rc;
     res->t_reached = t;
@@ -177,7 +179,8 @@ static cl_status sim_alloc(sim *s, cl_error *err)
         return cl_error_set(err, CL_ENOMEM, "out of memory (run)");
     for (size_t p = 0; p < np; p++)
         s->pinned[p] = s->c->dof[p] < 0;
-    cl_model_initial_state(s->m, s->x, s->v);
+    if (cl_model_initial_state(s->m, s->x, s->v))
+        return cl_error_set(err, CL_ENOMEM, "out of memory (initial state)");
     return cl_pairs_type1(s->c, &s->type1, err);
 }
 

@@ -1,8 +1,9 @@
 /* One simulation run: integrate a model with a chosen integrator to t_end,
  * writing into an output directory
  *   series.csv   t, kinetic, each potential term, potential, total,
- *                power_diss, max_stretch, max_offplane (one row per sample,
- *                flushed as it is written, so a failed run keeps its rows)
+ *                power_diss, max_stretch, max_offplane, wrinkles (one row
+ *                per sample, flushed as it is written, so a failed run keeps
+ *                its rows)
  *   frame_NNNNN.vtk / .obj   cloth frames (ParaView / Blender)
  *   final.csv    the final state (p,x,y,z,vx,vy,vz, all particles)
  *   stats.csv    the integrator statistics (name,value)

@@ -3,6 +3,7 @@
 #include "model/cloth.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -46,7 +47,7 @@ cl_status cl_cloth_grid(int nu, int nv, double su, double sv,
 }
 
 cl_status cl_cloth_pin(cl_cloth *c, int i, int j, const double w[3],
-                       cl_error *err)
+                       double t_stop, cl_error *err)
 {
     int ii = i < 0 ? c->nu + i : i, jj = j < 0 ? c->nv + j : j;
     if (ii < 0 || ii >= c->nu || jj < 0 || jj >= c->nv)
@@ -65,6 +66,7 @@ cl_status cl_cloth_pin(cl_cloth *c, int i, int j, const double w[3],
     c->pins = np;
     c->pins[c->npin].p = p;
     memcpy(c->pins[c->npin].w, w, 3 * sizeof *w);
+    c->pins[c->npin].t_stop = t_stop;
     c->npin++;
     return CL_OK;
 }
@@ -114,10 +116,12 @@ void cl_cloth_scatter(const cl_cloth *c, double t, const double *x,
     }
     for (size_t k = 0; k < c->npin; k++) {
         const cl_pin *pin = &c->pins[k];
+        bool moving = t < pin->t_stop;
+        double tm = moving ? t : pin->t_stop;
         for (int d = 0; d < 3; d++) {
-            xfull[3 * pin->p + d] = c->X0[3 * pin->p + d] + pin->w[d] * t;
+            xfull[3 * pin->p + d] = c->X0[3 * pin->p + d] + pin->w[d] * tm;
             if (v)
-                vfull[3 * pin->p + d] = pin->w[d];
+                vfull[3 * pin->p + d] = moving ? pin->w[d] : 0.0;
         }
     }
 }

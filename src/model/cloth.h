@@ -16,7 +16,8 @@
 
 typedef struct {
     int p;          /* particle index */
-    double w[3];    /* prescribed velocity (m/s); position is X0 + w t */
+    double w[3];    /* prescribed velocity (m/s) until t_stop */
+    double t_stop;  /* time the motion stops (INFINITY: never) */
 } cl_pin;
 
 typedef struct {
@@ -39,7 +40,7 @@ cl_status cl_cloth_grid(int nu, int nv, double su, double sv,
 /* Pin particle (i, j); negative indices count from the far edge (-1 is the
  * last row/column).  Pinning the same particle twice is an error. */
 cl_status cl_cloth_pin(cl_cloth *c, int i, int j, const double w[3],
-                       cl_error *err);
+                       double t_stop, cl_error *err);
 
 /* Build the free-particle numbering; call once after all pins. */
 cl_status cl_cloth_finalize(cl_cloth *c, cl_error *err);

@@ -2,16 +2,24 @@
  * arrays (pins prescribed), let every force term add its share, gather. */
 #include "model/model.h"
 
+#include "model/pins.h"
+
 #include <gsl/gsl_errno.h>
+#include <gsl/gsl_rng.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "core/check.h"
 
 #define MAX_TERMS CL_MAX_ENERGY_TERMS
 
 struct cl_model {
     cl_cloth cloth;
     double v0[3];         /* initial velocity of the free particles */
+    double perturb;       /* amplitude of the initial out-of-plane noise */
+    long seed;            /* its random seed */
     cl_term_opts opts;
     size_t nterm;
     const cl_term_type *type[MAX_TERMS];
@@ -47,38 +55,16 @@ static cl_status read_grid(cl_config *cfg, cl_cloth *c, cl_error *err)
     return cl_cloth_grid((int)nu, (int)nv, su, sv, pmass, c, err);
 }
 
-/* "i,j i,j ..." */
-static cl_status read_pins(cl_config *cfg, cl_cloth *c, cl_error *err)
-{
-    double w[3] = {0.0, 0.0, 0.0};
-    cl_status rc = cl_config_vector(cfg, "pins", "velocity", 3, w, err);
-    if (rc)
-        return rc;
-    const char *s = cl_config_string(cfg, "pins", "at", "0,0 0,-1");
-    char where[256];
-    for (;;) {
-        int i, j, used = 0;
-        while (*s == ' ' || *s == '\t')
-            s++;
-        if (!*s)
-            return CL_OK;
-        if (sscanf(s, "%d , %d%n", &i, &j, &used) != 2 ||
-            (s[used] && s[used] != ' ' && s[used] != '\t'))
-            return cl_error_set(err, CL_EINVAL,
-                                "%s: [pins] at: cannot read \"%s\": expected "
-                                "pairs i,j separated by spaces, e.g. "
-                                "\"0,0 0,-1\"",
-                                cl_config_origin(cfg, "pins", "at", where,
-                                                 sizeof where), s);
-        if ((rc = cl_cloth_pin(c, i, j, w, err)))
-            return rc;
-        s += used;
-    }
-}
-
 static cl_status read_init(cl_config *cfg, cl_model *m, cl_error *err)
 {
-    return cl_config_vector(cfg, "init", "velocity", 3, m->v0, err);
+    cl_status rc;
+    if ((rc = cl_config_vector(cfg, "init", "velocity", 3, m->v0, err)) ||
+        (rc = cl_config_double(cfg, "init", "perturb", 0.0, 0.0, INFINITY,
+                               &m->perturb, err)) ||
+        (rc = cl_config_long(cfg, "init", "seed", 1, 0, LONG_MAX, &m->seed,
+                             err)))
+        return rc;
+    return CL_OK;
 }
 
 static cl_status read_opts(cl_config *cfg, cl_term_opts *o, cl_error *err)
@@ -167,14 +153,6 @@ static void eval_terms(cl_model *m, double t, double *f, double *dfdx,
     }
 }
 
-static bool all_finite(const double *a, size_t n)
-{
-    for (size_t i = 0; i < n; i++)
-        if (!isfinite(a[i]))
-            return false;
-    return true;
-}
-
 static cl_status sys_force(void *data, double t, const double *x,
                            const double *v, double *f)
 {
@@ -182,7 +160,7 @@ static cl_status sys_force(void *data, double t, const double *x,
     cl_cloth_scatter(&m->cloth, t, x, v, m->xf, m->vf);
     eval_terms(m, t, m->ff, NULL, NULL, NULL);
     cl_cloth_gather(&m->cloth, m->ff, f);
-    return all_finite(f, 3 * m->cloth.nfree) ? CL_OK : CL_EBLOWUP;
+    return cl_all_finite(f, 3 * m->cloth.nfree) ? CL_OK : CL_EBLOWUP;
 }
 
 static cl_status sys_jacobian(void *data, double t, const double *x,
@@ -197,7 +175,7 @@ static cl_status sys_jacobian(void *data, double t, const double *x,
     eval_terms(m, t, f ? m->ff : NULL, dfdx, dfdv, NULL);
     if (f)
         cl_cloth_gather(&m->cloth, m->ff, f);
-    return all_finite(dfdx, nval) && all_finite(dfdv, nval) ? CL_OK
+    return cl_all_finite(dfdx, nval) && cl_all_finite(dfdv, nval) ? CL_OK
                                                             : CL_EBLOWUP;
 }
 
@@ -248,7 +226,7 @@ cl_status cl_model_create(cl_config *cfg, cl_model **model, cl_error *err)
         return cl_error_set(err, CL_ENOMEM, "out of memory (model)");
     gsl_set_error_handler_off(); /* GSL reports through return codes */
     if ((rc = read_grid(cfg, &m->cloth, err)) ||
-        (rc = read_pins(cfg, &m->cloth, err)) ||
+        (rc = cl_pins_read(cfg, &m->cloth, err)) ||
         (rc = read_init(cfg, m, err)) ||
         (rc = cl_cloth_finalize(&m->cloth, err)) ||
         (rc = read_opts(cfg, &m->opts, err)) ||
@@ -286,11 +264,26 @@ const cl_system *cl_model_system(cl_model *m) { return &m->sys; }
 
 const cl_cloth *cl_model_cloth(const cl_model *m) { return &m->cloth; }
 
-void cl_model_initial_state(const cl_model *m, double *x, double *v)
+/* Out-of-plane (y) noise, uniform in [-perturb, perturb], reproducible
+ * from the seed (GSL's MT19937). */
+static cl_status perturb_positions(const cl_model *m, double *x)
+{
+    gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+    if (!r)
+        return CL_ENOMEM;
+    gsl_rng_set(r, (unsigned long)m->seed);
+    for (size_t k = 0; k < m->cloth.nfree; k++)
+        x[3 * k + 1] += m->perturb * (2.0 * gsl_rng_uniform(r) - 1.0);
+    gsl_rng_free(r);
+    return CL_OK;
+}
+
+cl_status cl_model_initial_state(const cl_model *m, double *x, double *v)
 {
     cl_cloth_gather(&m->cloth, m->cloth.X0, x);
     for (size_t k = 0; k < 3 * m->cloth.nfree; k++)
         v[k] = m->v0[k % 3];
+    return m->perturb > 0 ? perturb_positions(m, x) : CL_OK;
 }
 
 size_t cl_model_terms(const cl_model *m, const char **names, size_t max)
@@ -311,7 +304,7 @@ cl_status cl_model_eval_full(cl_model *m, double t, const double *x,
     eval_terms(m, t, f, NULL, NULL, e);
     e->kinetic = kinetic_free(&m->cloth, v);
     e->total = e->kinetic + e->potential;
-    if (!all_finite(f, n3) || !isfinite(e->total))
+    if (!cl_all_finite(f, n3) || !isfinite(e->total))
         return cl_error_set(err, CL_EBLOWUP,
                             "forces or energy are not finite at this state");
     return CL_OK;

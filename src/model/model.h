@@ -5,11 +5,11 @@
  *   [cloth]    n (particles per side, default 16) or nu, nv; size (m,
  *              default 1) or su, sv; mass (total kg, default 0.1) or
  *              particle_mass (kg, overrides mass)
- *   [pins]     at = "i,j i,j ..." (negative counts from the far edge,
- *              default "0,0 0,-1"); velocity = prescribed pin velocity
- *              (vector, default 0,0,0)
+ *   [pins] .. [pins4]  pinned particles and their motion (model/pins.h)
  *   [init]     velocity = initial velocity of every free particle (vector,
- *              default 0,0,0); positions start at rest
+ *              default 0,0,0); perturb = amplitude (m) of a uniform random
+ *              out-of-plane displacement of the free particles (default 0:
+ *              positions start at rest); seed = its random seed (default 1)
  *   [jacobian] transverse = full|clamp (SPEC 3.1)
  * plus each force term's own section (forces/registry.c). */
 #ifndef CL_MODEL_H
@@ -28,9 +28,10 @@ void cl_model_free(cl_model *m);
 const cl_system *cl_model_system(cl_model *m);
 const cl_cloth *cl_model_cloth(const cl_model *m);
 
-/* Initial state of the free particles (3*nfree each): rest positions and
- * the [init] velocity. */
-void cl_model_initial_state(const cl_model *m, double *x, double *v);
+/* Initial state of the free particles (3*nfree each): rest positions plus
+ * the [init] out-of-plane noise, and the [init] velocity.  CL_ENOMEM is the
+ * only failure. */
+cl_status cl_model_initial_state(const cl_model *m, double *x, double *v);
 
 /* Names of the active force terms, in evaluation order. */
 size_t cl_model_terms(const cl_model *m, const char **names, size_t max);
