@@ -56,10 +56,16 @@ cl_status cl_cloth_pin(cl_cloth *c, int i, int j, const double w[3],
                             "(allowed: 0..%d, 0..%d, or negative from the end)",
                             i, j, c->nu, c->nv, c->nu - 1, c->nv - 1);
     int p = cl_cloth_index(c, ii, jj);
-    for (size_t k = 0; k < c->npin; k++)
-        if (c->pins[k].p == p)
-            return cl_error_set(err, CL_EINVAL,
-                                "pin (%d, %d) is given twice", ii, jj);
+    for (size_t k = 0; k < c->npin; k++) {
+        const cl_pin *q = &c->pins[k];
+        if (q->p != p)
+            continue;
+        if (q->t_stop == t_stop && !memcmp(q->w, w, 3 * sizeof *w))
+            return CL_OK; /* the same pin again (a row meeting a column) */
+        return cl_error_set(err, CL_EINVAL,
+                            "pin (%d, %d) is given twice with different "
+                            "motions", ii, jj);
+    }
     cl_pin *np = realloc(c->pins, (c->npin + 1) * sizeof *np);
     if (!np)
         return cl_error_set(err, CL_ENOMEM, "out of memory (pins)");

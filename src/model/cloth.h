@@ -38,7 +38,8 @@ cl_status cl_cloth_grid(int nu, int nv, double su, double sv,
                         double particle_mass, cl_cloth *c, cl_error *err);
 
 /* Pin particle (i, j); negative indices count from the far edge (-1 is the
- * last row/column).  Pinning the same particle twice is an error. */
+ * last row/column).  Pinning a particle again with the same motion does
+ * nothing; with a different motion it is an error. */
 cl_status cl_cloth_pin(cl_cloth *c, int i, int j, const double w[3],
                        double t_stop, cl_error *err);
 
