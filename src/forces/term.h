@@ -18,9 +18,12 @@
 #include "linalg/bpattern.h"
 #include "model/cloth.h"
 
-/* Options shared by every term (SPEC 3.1: jacobian.transverse). */
+/* Options shared by every term (SPEC 3.1: jacobian.transverse; SPEC 3.4:
+ * tearing). */
 typedef struct {
     bool clamp_transverse; /* drop (s/d)(I - uu^T) where s < 0 */
+    double tear_cut;       /* [tear] cut: a connection breaks when
+                            * d > cut L; 0 for no tearing */
 } cl_term_opts;
 
 typedef struct {
@@ -49,6 +52,17 @@ typedef struct {
     cl_status (*bind)(void *state, const cl_bpattern *pat, const int *dof,
                       cl_error *err);
     void (*eval)(void *state, cl_eval *ev);
+    /* Optional (NULL if not needed): */
+    /* Project full-particle positions onto the term's position-based
+     * constraints (seed 004); dof[p] < 0 marks particles that must not
+     * move (pinned). */
+    void (*project)(void *state, double *x, const int *dof);
+    /* After an accepted step: irreversible updates (tearing: a pair breaks
+     * when d > cut L); returns the number of newly broken connections. */
+    size_t (*step_done)(void *state, const double *x, const double *v);
+    /* Connections (particle pairs) broken so far, for leaving torn
+     * triangles out of frames. */
+    size_t (*broken)(const void *state, const int (**pairs)[2]);
     void (*free)(void *state);
 } cl_term_type;
 

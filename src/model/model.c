@@ -2,12 +2,14 @@
  * arrays (pins prescribed), let every force term add its share, gather. */
 #include "model/model.h"
 
+#include "io/frames.h"
 #include "model/pins.h"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_rng.h>
 #include <limits.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -27,6 +29,7 @@ struct cl_model {
     cl_bpattern pattern;  /* blocks over free particles */
     double *mass3;        /* 3 * nfree */
     double *xf, *vf, *ff; /* full-particle work arrays, 3 * np */
+    size_t nbroken;       /* connections torn so far */
     cl_system sys;
 };
 
@@ -74,6 +77,17 @@ static cl_status read_opts(cl_config *cfg, cl_term_opts *o, cl_error *err)
     cl_status rc = cl_config_choice(cfg, "jacobian", "transverse", transverse,
                                     0, &k, err);
     o->clamp_transverse = k == 1;
+    if (rc)
+        return rc;
+    rc = cl_config_double(cfg, "tear", "cut", 0.0, 0.0, INFINITY,
+                          &o->tear_cut, err);
+    char where[256];
+    if (rc == CL_OK && o->tear_cut != 0.0 && o->tear_cut <= 1.0)
+        return cl_error_set(err, CL_EINVAL,
+                            "%s: [tear] cut = %g: expected 0 (no tearing) or "
+                            "a number > 1 (a connection breaks when d > cut L)",
+                            cl_config_origin(cfg, "tear", "cut", where,
+                                             sizeof where), o->tear_cut);
     return rc;
 }
 
@@ -201,6 +215,41 @@ static cl_status sys_energy(void *data, double t, const double *x,
     return isfinite(e->total) ? CL_OK : CL_EBLOWUP;
 }
 
+/* Position-based constraints of every term that has them. */
+static cl_status sys_project(void *data, double t, double *x)
+{
+    cl_model *m = data;
+    cl_cloth_scatter(&m->cloth, t, x, NULL, m->xf, NULL);
+    for (size_t k = 0; k < m->nterm; k++)
+        if (m->type[k]->project)
+            m->type[k]->project(m->state[k], m->xf, m->cloth.dof);
+    cl_cloth_gather(&m->cloth, m->xf, x);
+    return cl_all_finite(x, 3 * m->cloth.nfree) ? CL_OK : CL_EBLOWUP;
+}
+
+/* Tearing and other irreversible updates after an accepted step. */
+static cl_status sys_step_done(void *data, double t, const double *x,
+                               const double *v, bool *changed)
+{
+    cl_model *m = data;
+    size_t broken = 0;
+    cl_cloth_scatter(&m->cloth, t, x, v, m->xf, m->vf);
+    for (size_t k = 0; k < m->nterm; k++)
+        if (m->type[k]->step_done)
+            broken += m->type[k]->step_done(m->state[k], m->xf, m->vf);
+    m->nbroken += broken;
+    *changed = broken > 0;
+    return CL_OK;
+}
+
+static bool any_hook(const cl_model *m, size_t offset)
+{
+    for (size_t k = 0; k < m->nterm; k++)
+        if (*(void *const *)((const char *)m->type[k] + offset))
+            return true;
+    return false;
+}
+
 /* ---- life cycle ------------------------------------------------------- */
 
 static cl_status alloc_work(cl_model *m, cl_error *err)
@@ -237,10 +286,14 @@ cl_status cl_model_create(cl_config *cfg, cl_model **model, cl_error *err)
         cl_model_free(m);
         return rc;
     }
-    m->sys = (cl_system){.n = 3 * m->cloth.nfree, .mass = m->mass3,
-                         .pattern = &m->pattern, .data = m,
-                         .force = sys_force, .jacobian = sys_jacobian,
-                         .energy = sys_energy};
+    m->sys = (cl_system){
+        .n = 3 * m->cloth.nfree, .mass = m->mass3, .pattern = &m->pattern,
+        .data = m, .force = sys_force, .jacobian = sys_jacobian,
+        .energy = sys_energy,
+        .project = any_hook(m, offsetof(cl_term_type, project)) ? sys_project
+                                                                 : NULL,
+        .step_done = any_hook(m, offsetof(cl_term_type, step_done))
+                         ? sys_step_done : NULL};
     *model = m;
     return CL_OK;
 }
@@ -338,4 +391,66 @@ cl_status cl_model_jacobian_full(cl_model *m, double t, const double *x,
                              &ignored) && rc == CL_OK)
             rc = cl_error_set(err, CL_ENOMEM, "out of memory (rebind)");
     return rc;
+}
+
+size_t cl_model_broken(const cl_model *m) { return m->nbroken; }
+
+static int cmp_pair(const void *a, const void *b)
+{
+    const int *p = a, *q = b;
+    return p[0] != q[0] ? (p[0] > q[0]) - (p[0] < q[0])
+                        : (p[1] > q[1]) - (p[1] < q[1]);
+}
+
+/* Unordered pairs as sorted (min, max) rows of all terms' broken lists. */
+static int (*broken_pairs(const cl_model *m, size_t *n))[2]
+{
+    size_t total = 0;
+    for (size_t k = 0; k < m->nterm; k++) {
+        const int(*p)[2];
+        if (m->type[k]->broken)
+            total += m->type[k]->broken(m->state[k], &p);
+    }
+    int(*all)[2] = malloc((total + 1) * sizeof *all);
+    if (!all)
+        return NULL;
+    *n = 0;
+    for (size_t k = 0; k < m->nterm; k++) {
+        const int(*p)[2];
+        size_t c = m->type[k]->broken ? m->type[k]->broken(m->state[k], &p)
+                                      : 0;
+        for (size_t i = 0; i < c; i++, (*n)++) {
+            all[*n][0] = p[i][0] < p[i][1] ? p[i][0] : p[i][1];
+            all[*n][1] = p[i][0] < p[i][1] ? p[i][1] : p[i][0];
+        }
+    }
+    qsort(all, *n, sizeof *all, cmp_pair);
+    return all;
+}
+
+static bool edge_broken(int (*set)[2], size_t n, int a, int b)
+{
+    int key[2] = {a < b ? a : b, a < b ? b : a};
+    return bsearch(key, set, n, sizeof *set, cmp_pair) != NULL;
+}
+
+cl_status cl_model_triangles(const cl_model *m, int (*tri)[3], size_t *ntri,
+                             cl_error *err)
+{
+    size_t nb = 0, kept = 0;
+    int(*set)[2] = broken_pairs(m, &nb);
+    size_t all = cl_grid_triangles(m->cloth.nu, m->cloth.nv, tri);
+    if (!set)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (triangles)");
+    for (size_t t = 0; t < all; t++) {
+        const int *v = tri[t];
+        if (edge_broken(set, nb, v[0], v[1]) ||
+            edge_broken(set, nb, v[1], v[2]) ||
+            edge_broken(set, nb, v[2], v[0]))
+            continue;
+        memmove(tri[kept++], v, sizeof tri[0]);
+    }
+    free(set);
+    *ntri = kept;
+    return CL_OK;
 }

@@ -11,6 +11,8 @@
  *              out-of-plane displacement of the free particles (default 0:
  *              positions start at rest); seed = its random seed (default 1)
  *   [jacobian] transverse = full|clamp (SPEC 3.1)
+ *   [tear]     cut = a connection breaks for good when d > cut L (0, the
+ *              default: no tearing; SPEC 3.4)
  * plus each force term's own section (forces/registry.c). */
 #ifndef CL_MODEL_H
 #define CL_MODEL_H
@@ -32,6 +34,14 @@ const cl_cloth *cl_model_cloth(const cl_model *m);
  * the [init] out-of-plane noise, and the [init] velocity.  CL_ENOMEM is the
  * only failure. */
 cl_status cl_model_initial_state(const cl_model *m, double *x, double *v);
+
+/* Connections torn so far (SPEC 3.4). */
+size_t cl_model_broken(const cl_model *m);
+
+/* The grid's triangles (cl_grid_triangles order) without those that have a
+ * torn edge: tri must hold 2 (nu-1)(nv-1) rows; *ntri is the number kept. */
+cl_status cl_model_triangles(const cl_model *m, int (*tri)[3], size_t *ntri,
+                             cl_error *err);
 
 /* Names of the active force terms, in evaluation order. */
 size_t cl_model_terms(const cl_model *m, const char **names, size_t max);

@@ -9,6 +9,7 @@
 #ifndef CL_SYSTEM_H
 #define CL_SYSTEM_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "core/error.h"
@@ -41,6 +42,17 @@ typedef struct cl_system {
                           double *dfdv);
     cl_status (*energy)(void *data, double t, const double *x,
                         const double *v, cl_energy *e);
+    /* Position-based constraints (seed 004), NULL if the model has none:
+     * move the positions x (n entries) toward satisfying the constraints,
+     * in place.  Used by position-based integrators (verlet-pbd) only. */
+    cl_status (*project)(void *data, double t, double *x);
+    /* Irreversible changes of the model after an accepted step (tearing),
+     * NULL if the model has none.  *changed is set when the force law
+     * changed, so that multistep and adaptive methods restart from (t, x,
+     * v).  Fixed-step integrators call it after every step; adaptive ones
+     * at every output time. */
+    cl_status (*step_done)(void *data, double t, const double *x,
+                           const double *v, bool *changed);
 } cl_system;
 
 #endif
