@@ -1,8 +1,9 @@
 /* Shared helpers of the force-model verification tests (SPEC 3.5): models set
  * up through the config API, full-particle evaluation, dense Jacobians from
  * the block pattern, central finite differences of forces and energies,
- * random rigid motions and an independent reference of the Choi-Ko Type2
- * buckling law.  Header only (static inline), included by tests/test_*.c
+ * random rigid motions, an independent reference of the Choi-Ko Type2
+ * buckling law, and the exact-zero rest-state check of the pair terms.
+ * Header only (static inline), included by tests/test_*.c
  * after <criterion/criterion.h>.
  *
  * Conventions: a state is the full-particle arrays x, v (3*np, pinned
@@ -549,6 +550,34 @@ static inline double fd_type2_ref(double kb, double cb, double L, double d)
 {
     double fb = fd_fb_ref(kb, L, d), lin = cb * (d - L);
     return fb > lin ? fb : lin;
+}
+
+/* The pair term `term` alone (`off` disables the other pair term; no
+ * damping, gravity or pins) at rest on three grids of awkward spacings:
+ * every pair sits exactly on d = L (rest lengths computed with the same
+ * expression), so the force and the term's energy are exactly zero. */
+static inline void fd_expect_rest_exactly_zero(const char *term,
+                                               const char *off)
+{
+    static const char *const grids[][4] = {
+        {"cloth.nu=7", "cloth.nv=7", "cloth.su=0.7", "cloth.sv=0.7"},
+        {"cloth.nu=5", "cloth.nv=9", "cloth.su=1.3", "cloth.sv=0.37"},
+        {"cloth.nu=11", "cloth.nv=3", "cloth.su=3.1", "cloth.sv=0.1"},
+    };
+    for (size_t g = 0; g < sizeof grids / sizeof grids[0]; g++) {
+        cl_model *m = FD_MODEL(off, "damping.kd=0", "gravity.g=0,0,0",
+                               "pins.at=", grids[g][0], grids[g][1],
+                               grids[g][2], grids[g][3]);
+        size_t n = fd_n(m);
+        double *v = fd_vec(n), *f = fd_vec(n);
+        cl_energy e = fd_eval(m, cl_model_cloth(m)->X0, v, f);
+        cr_assert_eq(fd_maxabs(f, n), 0.0, "grid %zu: force at rest", g);
+        cr_assert_eq(fd_term_energy(&e, term), 0.0, "grid %zu: %s energy",
+                     g, term);
+        free(v);
+        free(f);
+        cl_model_free(m);
+    }
 }
 
 #endif

@@ -12,7 +12,6 @@
 
 #include <errno.h>
 #include <fcntl.h>
-#include <ftw.h>
 #include <math.h>
 #include <signal.h>
 #include <spawn.h>
@@ -24,6 +23,8 @@
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
+
+#include "tmpdir.h"
 
 extern char **environ;
 
@@ -181,11 +182,12 @@ static inline size_t cli_count_lines(const char *s)
 
 /* A refused input: non-zero exit, nothing on stdout, and on stderr one
  * message line starting "clothode" that contains every string of the
- * NULL-terminated list.  With `usage_lines` the message may be followed by
- * lines of usage help (none of them another "clothode..." message);
- * otherwise it must be the only line. */
-static inline void cli_assert_error(const cli_result *r, int usage_lines,
-                                    ...)
+ * NULL-terminated list `want`.  With `usage_lines` the message may be
+ * followed by lines of usage help (none of them another "clothode..."
+ * message); otherwise it must be the only line. */
+static inline void cli_assert_error_list(const cli_result *r,
+                                         int usage_lines,
+                                         const char *const *want)
 {
     cli_assert_no_crash(r);
     cr_assert_neq(r->status, 0, "%s: exit status 0 for a bad input", r->cmd);
@@ -206,54 +208,40 @@ static inline void cli_assert_error(const cli_result *r, int usage_lines,
                       "%s: a second message on stderr:\n%s", r->cmd, r->err);
             cr_assert_not_null(strchr(p, '\n'));
         }
+    for (size_t k = 0; want[k]; k++) {
+        const char *at = strstr(r->err, want[k]);
+        cr_assert(at && at < r->err + len,
+                  "%s: message lacks \"%s\":\n%s", r->cmd, want[k], r->err);
+    }
+}
+
+/* The same with the strings as arguments: cli_assert_error(&r, 0, "dt",
+ * NULL). */
+static inline void cli_assert_error(const cli_result *r, int usage_lines,
+                                    ...)
+{
+    const char *want[CLI_MAX_ARGS + 1];
+    size_t n = 0;
     va_list ap;
     va_start(ap, usage_lines);
-    for (const char *want; (want = va_arg(ap, const char *));) {
-        const char *at = strstr(r->err, want);
-        cr_assert(at && at < r->err + len,
-                  "%s: message lacks \"%s\":\n%s", r->cmd, want, r->err);
+    for (const char *a; (a = va_arg(ap, const char *));) {
+        cr_assert(n < CLI_MAX_ARGS, "too many strings");
+        want[n++] = a;
     }
     va_end(ap);
+    want[n] = NULL;
+    cli_assert_error_list(r, usage_lines, want);
 }
 
 /* ---- scratch directories ---------------------------------------------- */
 
-static inline int cli_rm_entry(const char *path, const struct stat *st,
-                               int flag, struct FTW *ftw)
-{
-    (void)st;
-    (void)flag;
-    (void)ftw;
-    remove(path);
-    return 0;
-}
-
-/* A fresh directory under $TMPDIR (or /tmp). */
-static inline void cli_mkdtemp(char *buf, size_t len)
-{
-    const char *tmp = getenv("TMPDIR");
-    snprintf(buf, len, "%s/clothode-cli-XXXXXX", tmp && *tmp ? tmp : "/tmp");
-    cr_assert_not_null(mkdtemp(buf), "mkdtemp %s: %s", buf, strerror(errno));
-}
-
-static inline void cli_rm_rf(const char *dir)
-{
-    if (dir && *dir)
-        nftw(dir, cli_rm_entry, 16, FTW_DEPTH | FTW_PHYS);
-}
+/* Made by tmp_mkdtemp(buf, len, "cli"), written with tmp_put, removed by
+ * tmp_rm_rf (tmpdir.h). */
 
 static inline int cli_exists(const char *path)
 {
     struct stat st;
     return stat(path, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0;
-}
-
-static inline void cli_write_text(const char *path, const char *text)
-{
-    FILE *fp = fopen(path, "w");
-    cr_assert_not_null(fp, "cannot write %s: %s", path, strerror(errno));
-    cr_assert(fputs(text, fp) >= 0);
-    cr_assert_eq(fclose(fp), 0);
 }
 
 /* ---- CSV -------------------------------------------------------------- */

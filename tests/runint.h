@@ -117,18 +117,26 @@ static inline void ri_expect_orders_osc_pair(const char *name, double dt,
     ts_free(&ts);
 }
 
-/* One oscillator particle whose force fails from t = 1 on: kind fail
+/* One oscillator particle whose force fails from t_bad on: kind fail
  * (TS_FAIL_*), status st for TS_FAIL_STATUS, 3 failures for
  * TS_FAIL_TRANSIENT; initial state into x, v (3 each). */
-static inline void ri_failing_oscillator(ts_sys *ts, int fail, cl_status st,
-                                         double *x, double *v)
+static inline void ri_failing_oscillator_at(ts_sys *ts, int fail,
+                                            cl_status st, double t_bad,
+                                            double *x, double *v)
 {
     cr_assert_eq(ts_oscillators(ts, 1), 0);
     ts->fail = fail;
-    ts->t_bad = 1.0;
+    ts->t_bad = t_bad;
     ts->fail_status = st;
     ts->fail_left = 3;
     ts_initial(ts, x, v);
+}
+
+/* The same failing from t = 1 on. */
+static inline void ri_failing_oscillator(ts_sys *ts, int fail, cl_status st,
+                                         double *x, double *v)
+{
+    ri_failing_oscillator_at(ts, fail, st, 1.0, x, v);
 }
 
 /* One particle, m = 1, stiffness k on all three components, no damping. */

@@ -139,12 +139,8 @@ static inline void rs_expect_failure(const char *name, int fail, double t_bad,
 {
     const cl_integrator_type *it = ri_find(name);
     ts_sys ts;
-    cr_assert_eq(ts_oscillators(&ts, 1), 0);
-    ts.fail = fail;
-    ts.t_bad = t_bad;
-    ts.fail_status = sys_status;
     double x[3], v[3];
-    ts_initial(&ts, x, v);
+    ri_failing_oscillator_at(&ts, fail, sys_status, t_bad, x, v);
     cl_integrator_opts o = {0};
     void *st = NULL;
     cl_error err = {0};
@@ -156,11 +152,16 @@ static inline void rs_expect_failure(const char *name, int fail, double t_bad,
             cr_assert_eq(it->advance(st, 0.5, x, v, &err), CL_OK, "%s: %s",
                          name, err.msg);
         got = it->advance(st, 3.0, x, v, &err);
+        cl_stats s;
+        it->stats(st, &s);
+        cr_log_info("%s failure after %ld steps: %s", name, s.steps,
+                    err.msg);
         cr_assert_eq(got, want, "%s: %s: %s", name, cl_status_name(got),
                      err.msg);
         it->free(st);
+    } else {
+        cr_log_info("%s failure: %s", name, err.msg);
     }
-    cr_log_info("%s failure: %s", name, err.msg);
     cr_assert_not_null(strstr(err.msg, "t = "), "%s", err.msg);
     ts_free(&ts);
 }

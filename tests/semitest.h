@@ -1,7 +1,8 @@
 /* Shared code of the semi-be and semi-bdf2 tests: spring2 (tests/spring2.h)
  * with overridden keys, its closed form with a pin moving at constant
  * velocity, observed convergence orders for a given linear solver, and the
- * reduced `hang` run whose statistics both methods must give.
+ * reduced `hang` run whose statistics both methods must give, and the
+ * checks of error ratios, registry row and refused options they share.
  *
  * spring2 with the pin moving along x at velocity w ([pins] velocity):
  * y = x - w t - L obeys y'' = -W^2 y, y(0) = 0, y'(0) = v0 - w, so
@@ -17,6 +18,7 @@
 #include <string.h>
 
 #include "integrators/integrator.h"
+#include "runint.h"
 #include "spring2.h"
 
 /* spring2 with "section.key=value" overrides (NULL-terminated, or NULL). */
@@ -85,6 +87,16 @@ static inline double st_order(const char *name, const char *linsol,
     return q;
 }
 
+/* st_order over dt0, dt0/2, ..., dt0/16 to T = 1 must be `want` to
+ * within 0.2. */
+static inline void st_expect_order(const char *name, const char *linsol,
+                                   const char *const *sets, double w,
+                                   double dt0, double want)
+{
+    double q = st_order(name, linsol, sets, w, dt0, 5, 1.0);
+    cr_assert(fabs(q - want) < 0.2, "%s/%s: order %g", name, linsol, q);
+}
+
 /* problems/hang.ini with n = 8, 0.2 s in steps of 1e-3 by `name` with
  * `linsol`; statistics to *s; the cloth must have fallen (some y < 0) and
  * stay finite. */
@@ -145,6 +157,78 @@ static inline void st_check_hang_stats(const cl_stats *s, const char *linsol)
         cr_assert_eq(s->symbolic_facts, 0);
         cr_assert_geq(s->lin_iters, 200);
     }
+}
+
+/* st_hang with `linsol`, then st_check_hang_stats. */
+static inline void st_expect_hang_stats(const char *name, const char *linsol)
+{
+    cl_stats s = {0};
+    st_hang(name, linsol, &s);
+    st_check_hang_stats(&s, linsol);
+}
+
+/* Error ratios e(dt) / e(dt/2) at T = 2 of positions and velocities, both
+ * strictly between lo and hi, on the two damped oscillator particles
+ * (ts_oscillators(2)) and on the undamped coupled pair (ts_pair(2, 3,
+ * 1.5)). */
+static inline void st_expect_ratios_osc_pair(const char *name, double dt,
+                                             double lo, double hi)
+{
+    ts_sys ts;
+    double rx, rv;
+    for (int sys = 0; sys < 2; sys++) {
+        cr_assert_eq(sys == 0 ? ts_oscillators(&ts, 2)
+                              : ts_pair(&ts, 2.0, 3.0, 1.5), 0);
+        ri_ratios(name, &ts, dt, 2.0, &rx, &rv);
+        cr_assert(rx > lo && rx < hi && rv > lo && rv < hi, "ratios %g %g",
+                  rx, rv);
+        ts_free(&ts);
+    }
+}
+
+/* A fixed-step method that takes --linsol. */
+static inline void st_expect_registry_row(const char *name)
+{
+    const cl_integrator_type *t = ri_find(name);
+    cr_assert(t->fixed_step);
+    cr_assert(t->takes_linsol);
+}
+
+/* create with options o on one oscillator particle fails with CL_EINVAL,
+ * leaves no state, and (if given) names `want` in its message. */
+static inline void st_expect_refused(const char *name,
+                                     const cl_integrator_opts *o,
+                                     const char *want, cl_error *err)
+{
+    ts_sys ts;
+    cr_assert_eq(ts_oscillators(&ts, 1), 0);
+    double x[3] = {0}, v[3] = {0};
+    void *st = (void *)1;
+    cr_assert_eq(ri_find(name)->create(&ts.sys, o, 0.0, x, v, &st, err),
+                 CL_EINVAL, "dt = %g, linsol %s", o->dt,
+                 o->linsol ? o->linsol : "(default)");
+    cr_assert_null(st);
+    if (want)
+        cr_assert_not_null(strstr(err->msg, want), "%s", err->msg);
+    ts_free(&ts);
+}
+
+/* A step dt that is not finite and > 0 is refused. */
+static inline void st_expect_bad_dt(const char *name, double dt)
+{
+    cl_integrator_opts o = {.dt = dt};
+    cl_error err = {0};
+    st_expect_refused(name, &o, NULL, &err);
+}
+
+/* An unknown linear solver is refused, naming it and the known ones. */
+static inline void st_expect_unknown_linsol(const char *name,
+                                            const char *linsol)
+{
+    cl_integrator_opts o = {.dt = 0.01, .linsol = linsol};
+    cl_error err = {0};
+    st_expect_refused(name, &o, linsol, &err);
+    cr_assert_not_null(strstr(err.msg, "klu, pcg"), "%s", err.msg);
 }
 
 #endif

@@ -1,93 +1,24 @@
 /* Tests for atomic output files and cl_mkdir_p. */
 #include <criterion/criterion.h>
 
-#include <dirent.h>
 #include <stdio.h>
-#include <stdlib.h>
-#include <signal.h>
 #include <string.h>
-#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include "io/atomic.h"
+#include "tmpdir.h"
 
 static char dir[64];
 
-static void rm_rf(const char *path)
-{
-    struct stat st;
-    if (lstat(path, &st) != 0)
-        return;
-    if (S_ISDIR(st.st_mode)) {
-        DIR *d = opendir(path);
-        if (d) {
-            struct dirent *e;
-            while ((e = readdir(d))) {
-                if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, ".."))
-                    continue;
-                char sub[1024];
-                snprintf(sub, sizeof sub, "%s/%s", path, e->d_name);
-                rm_rf(sub);
-            }
-            closedir(d);
-        }
-        rmdir(path);
-    } else {
-        unlink(path);
-    }
-}
-
 static void setup(void)
 {
-    strcpy(dir, "/tmp/clothode-atomic-XXXXXX");
-    cr_assert_not_null(mkdtemp(dir));
+    tmp_mkdtemp(dir, sizeof dir, "atomic");
 }
 
 static void teardown(void)
 {
-    rm_rf(dir);
-}
-
-static size_t count_entries(const char *path)
-{
-    DIR *d = opendir(path);
-    cr_assert_not_null(d);
-    size_t n = 0;
-    struct dirent *e;
-    while ((e = readdir(d)))
-        if (strcmp(e->d_name, ".") && strcmp(e->d_name, ".."))
-            n++;
-    closedir(d);
-    return n;
-}
-
-static void slurp(const char *path, char *buf, size_t len)
-{
-    FILE *fp = fopen(path, "r");
-    cr_assert_not_null(fp, "cannot open %s", path);
-    size_t n = fread(buf, 1, len - 1, fp);
-    buf[n] = '\0';
-    fclose(fp);
-}
-
-static void put(const char *path, const char *text)
-{
-    FILE *fp = fopen(path, "w");
-    cr_assert_not_null(fp);
-    cr_assert(fputs(text, fp) >= 0);
-    cr_assert_eq(fclose(fp), 0);
-}
-
-/* Make writes beyond `bytes` fail with EFBIG (instead of SIGXFSZ); each
- * test runs in its own process, so the limit does not leak. */
-static void limit_file_size(rlim_t bytes)
-{
-    cr_assert_neq(signal(SIGXFSZ, SIG_IGN), SIG_ERR);
-    struct rlimit rl;
-    cr_assert_eq(getrlimit(RLIMIT_FSIZE, &rl), 0);
-    rl.rlim_cur = bytes;
-    cr_assert_eq(setrlimit(RLIMIT_FSIZE, &rl), 0);
+    tmp_rm_rf(dir);
 }
 
 TestSuite(atomic, .init = setup, .fini = teardown);
@@ -104,13 +35,13 @@ Test(atomic, commit_publishes_file)
     cr_assert(strstr(af.tmp, "out.txt.tmp.") != NULL);
     /* Nothing at the final path yet, only the temporary file. */
     cr_assert_neq(access(path, F_OK), 0);
-    cr_assert_eq(count_entries(dir), 1);
+    cr_assert_eq(tmp_list_dir(dir, NULL, 0), 1);
     cr_assert(fprintf(af.fp, "hello\n") > 0);
     cr_assert_eq(cl_afile_commit(&af, &err), CL_OK, "%s", err.msg);
     cr_assert_null(af.fp);
-    slurp(path, buf, sizeof buf);
+    tmp_slurp(path, buf, sizeof buf);
     cr_assert_str_eq(buf, "hello\n");
-    cr_assert_eq(count_entries(dir), 1);
+    cr_assert_eq(tmp_list_dir(dir, NULL, 0), 1);
     cl_afile_abort(&af);   /* no-op after commit */
     cr_assert_eq(access(path, F_OK), 0);
 }
@@ -119,18 +50,18 @@ Test(atomic, commit_replaces_existing_file)
 {
     char path[256], buf[256];
     snprintf(path, sizeof path, "%s/out.txt", dir);
-    put(path, "old contents\n");
+    tmp_put(path, "old contents\n");
     cl_afile af;
     cl_error err;
     cr_assert_eq(cl_afile_open(&af, path, &err), CL_OK);
     cr_assert(fprintf(af.fp, "new\n") > 0);
     /* Until commit the old file is untouched. */
-    slurp(path, buf, sizeof buf);
+    tmp_slurp(path, buf, sizeof buf);
     cr_assert_str_eq(buf, "old contents\n");
     cr_assert_eq(cl_afile_commit(&af, &err), CL_OK, "%s", err.msg);
-    slurp(path, buf, sizeof buf);
+    tmp_slurp(path, buf, sizeof buf);
     cr_assert_str_eq(buf, "new\n");
-    cr_assert_eq(count_entries(dir), 1);
+    cr_assert_eq(tmp_list_dir(dir, NULL, 0), 1);
 }
 
 Test(atomic, file_mode_follows_umask)
@@ -152,16 +83,16 @@ Test(atomic, abort_removes_temporary_and_keeps_old)
 {
     char path[256], buf[256];
     snprintf(path, sizeof path, "%s/out.txt", dir);
-    put(path, "keep\n");
+    tmp_put(path, "keep\n");
     cl_afile af;
     cl_error err;
     cr_assert_eq(cl_afile_open(&af, path, &err), CL_OK);
     cr_assert(fprintf(af.fp, "discard\n") > 0);
-    cr_assert_eq(count_entries(dir), 2);
+    cr_assert_eq(tmp_list_dir(dir, NULL, 0), 2);
     cl_afile_abort(&af);
     cr_assert_null(af.fp);
-    cr_assert_eq(count_entries(dir), 1);
-    slurp(path, buf, sizeof buf);
+    cr_assert_eq(tmp_list_dir(dir, NULL, 0), 1);
+    tmp_slurp(path, buf, sizeof buf);
     cr_assert_str_eq(buf, "keep\n");
     cl_afile_abort(&af);   /* second abort is harmless */
     cl_afile_abort(NULL);
@@ -200,11 +131,11 @@ Test(atomic, commit_failure_removes_temporary)
     cl_error err;
     cr_assert_eq(cl_afile_open(&af, path, &err), CL_OK);
     cr_assert(fprintf(af.fp, "x\n") > 0);
-    cr_assert_eq(count_entries(dir), 2);
+    cr_assert_eq(tmp_list_dir(dir, NULL, 0), 2);
     cr_assert_eq(cl_afile_commit(&af, &err), CL_EIO);
     cr_assert(strstr(err.msg, path) != NULL, "%s", err.msg);
     cr_assert(strstr(err.msg, "rename") != NULL, "%s", err.msg);
-    cr_assert_eq(count_entries(dir), 1);
+    cr_assert_eq(tmp_list_dir(dir, NULL, 0), 1);
     cr_assert_null(af.fp);
     cl_afile_abort(&af);
 }
@@ -254,7 +185,7 @@ Test(atomic, mkdir_p_over_file)
     char file[256], path[300];
     cl_error err;
     snprintf(file, sizeof file, "%s/plain", dir);
-    put(file, "x");
+    tmp_put(file, "x");
     cr_assert_eq(cl_mkdir_p(file, &err), CL_EIO);
     cr_assert(strstr(err.msg, "not a directory") != NULL, "%s", err.msg);
     cr_assert(strstr(err.msg, file) != NULL, "%s", err.msg);
@@ -278,7 +209,7 @@ Test(atomic, write_error_blocks_commit)
     cl_afile af;
     cl_error err;
     cr_assert_eq(cl_afile_open(&af, path, &err), CL_OK);
-    limit_file_size(100);
+    tmp_limit_file_size(100);
     for (int k = 0; k < 1000; k++)
         if (fprintf(af.fp, "%d\n", k) < 0)
             break;
@@ -286,5 +217,5 @@ Test(atomic, write_error_blocks_commit)
     cr_assert(strstr(err.msg, path) != NULL, "%s", err.msg);
     cr_assert(strstr(err.msg, "write error") != NULL, "%s", err.msg);
     cr_assert_eq(access(path, F_OK), -1);
-    cr_assert_eq(count_entries(dir), 0);
+    cr_assert_eq(tmp_list_dir(dir, NULL, 0), 0);
 }

@@ -23,12 +23,12 @@ static char tmp[512];
 
 static void setup(void)
 {
-    cli_mkdtemp(tmp, sizeof tmp);
+    tmp_mkdtemp(tmp, sizeof tmp, "cli");
 }
 
 static void teardown(void)
 {
-    cli_rm_rf(tmp);
+    tmp_rm_rf(tmp);
 }
 
 TestSuite(cli, .init = setup, .fini = teardown, .timeout = 900);
@@ -269,34 +269,51 @@ static double max_abs(const double *a, size_t n)
  * 1. Bad input: one message line "clothode...", non-zero exit, no crash.
  * ====================================================================== */
 
-Test(cli, missing_problem_file)
+/* A NULL-terminated list of strings. */
+#define LIST(...) ((const char *const[]){__VA_ARGS__, NULL})
+
+/* `clothode ARGS --out <scratch>/o` is refused: cli_assert_error with
+ * usage_lines and the strings of want. */
+static void expect_refused(const char *const *args, int usage_lines,
+                           const char *const *want)
 {
     char out[1024];
+    const char *argv[CLI_MAX_ARGS + 1];
+    size_t n = 0;
+    for (; args[n]; n++) {
+        cr_assert(n + 2 < CLI_MAX_ARGS, "too many arguments");
+        argv[n] = args[n];
+    }
+    argv[n++] = "--out";
+    argv[n++] = in_tmp(out, "o");
+    argv[n] = NULL;
     cli_result r;
-    cli_run(&r, "run", "problems/no-such-problem.ini", "--out",
-            in_tmp(out, "o"), NULL);
-    cli_assert_error(&r, 0, "no-such-problem.ini", NULL);
+    cli_runv(&r, argv);
+    cli_assert_error_list(&r, usage_lines, want);
     cli_result_free(&r);
+}
+
+Test(cli, missing_problem_file)
+{
+    expect_refused(LIST("run", "problems/no-such-problem.ini"), 0,
+                   LIST("no-such-problem.ini"));
 }
 
 Test(cli, missing_problem_by_name)
 {
-    char out[1024];
-    cli_result r;
-    cli_run(&r, "run", "no-such-problem", "--out", in_tmp(out, "o"), NULL);
-    cli_assert_error(&r, 0, "no-such-problem", NULL);
-    cli_result_free(&r);
+    expect_refused(LIST("run", "no-such-problem"), 0,
+                   LIST("no-such-problem"));
 }
 
 Test(cli, malformed_ini_names_file_and_line)
 {
     char ini[1024], out[1024], where[1100];
-    cli_write_text(in_tmp(ini, "broken.ini"),
-                   "; a problem with a broken line\n"
-                   "[cloth]\n"
-                   "n = 6\n"
-                   "this line is not an assignment\n"
-                   "size = 1.0\n");
+    tmp_put(in_tmp(ini, "broken.ini"),
+            "; a problem with a broken line\n"
+            "[cloth]\n"
+            "n = 6\n"
+            "this line is not an assignment\n"
+            "size = 1.0\n");
     snprintf(where, sizeof where, "%s:4", ini);
     cli_result r;
     cli_run(&r, "run", ini, "--out", in_tmp(out, "o"), NULL);
@@ -306,19 +323,15 @@ Test(cli, malformed_ini_names_file_and_line)
 
 Test(cli, unknown_key_is_named)
 {
-    char out[1024];
-    cli_result r;
-    cli_run(&r, "run", "hang", "--set", "type1.kss=1", "--out",
-            in_tmp(out, "o"), NULL);
-    cli_assert_error(&r, 0, "kss", NULL);
-    cli_result_free(&r);
+    expect_refused(LIST("run", "hang", "--set", "type1.kss=1"), 0,
+                   LIST("kss"));
 }
 
 Test(cli, unknown_key_in_file_is_named_with_line)
 {
     char ini[1024], out[1024], where[1100];
-    cli_write_text(in_tmp(ini, "typo.ini"),
-                   "[cloth]\nn = 6\n[type1]\nks = 200\nkz = 3\n");
+    tmp_put(in_tmp(ini, "typo.ini"),
+            "[cloth]\nn = 6\n[type1]\nks = 200\nkz = 3\n");
     snprintf(where, sizeof where, "%s:5", ini);
     cli_result r;
     cli_run(&r, "run", ini, "--out", in_tmp(out, "o"), NULL);
@@ -328,73 +341,48 @@ Test(cli, unknown_key_in_file_is_named_with_line)
 
 Test(cli, non_numeric_value)
 {
-    char out[1024];
-    cli_result r;
-    cli_run(&r, "run", "hang", "--set", "type1.ks=abc", "--out",
-            in_tmp(out, "o"), NULL);
-    cli_assert_error(&r, 0, "ks", "abc", NULL);
-    cli_result_free(&r);
+    expect_refused(LIST("run", "hang", "--set", "type1.ks=abc"), 0,
+                   LIST("ks", "abc"));
 }
 
 Test(cli, nan_value)
 {
-    char out[1024];
-    cli_result r;
-    cli_run(&r, "run", "hang", "--set", "type1.ks=nan", "--out",
-            in_tmp(out, "o"), NULL);
-    cli_assert_error(&r, 0, "ks", "nan", NULL);
-    cli_result_free(&r);
+    expect_refused(LIST("run", "hang", "--set", "type1.ks=nan"), 0,
+                   LIST("ks", "nan"));
 }
 
 Test(cli, grid_too_small_for_type2)
 {
-    char out[1024];
-    cli_result r;
-    cli_run(&r, "run", "hang", "--set", "cloth.n=2", "--set",
-            "type2.enabled=true", "--out", in_tmp(out, "o"), NULL);
-    cli_assert_error(&r, 0, "2 x 2", "3", NULL);
-    cli_result_free(&r);
+    expect_refused(LIST("run", "hang", "--set", "cloth.n=2", "--set",
+                        "type2.enabled=true"), 0,
+                   LIST("2 x 2", "3"));
 }
 
 Test(cli, dt_zero)
 {
-    char out[1024];
-    cli_result r;
-    cli_run(&r, "run", "hang", "--integrator", "symplectic-euler", "--dt",
-            "0", "--t-end", "0.01", "--out", in_tmp(out, "o"), NULL);
-    cli_assert_error(&r, 0, "dt", NULL);
-    cli_result_free(&r);
+    expect_refused(LIST("run", "hang", "--integrator", "symplectic-euler",
+                        "--dt", "0", "--t-end", "0.01"), 0,
+                   LIST("dt"));
 }
 
 Test(cli, dt_negative)
 {
-    char out[1024];
-    cli_result r;
-    cli_run(&r, "run", "hang", "--integrator", "symplectic-euler", "--dt",
-            "-1", "--t-end", "0.01", "--out", in_tmp(out, "o"), NULL);
-    cli_assert_error(&r, 0, "dt", "-1", NULL);
-    cli_result_free(&r);
+    expect_refused(LIST("run", "hang", "--integrator", "symplectic-euler",
+                        "--dt", "-1", "--t-end", "0.01"), 0,
+                   LIST("dt", "-1"));
 }
 
 Test(cli, fixed_step_without_dt)
 {
-    char out[1024];
-    cli_result r;
-    cli_run(&r, "run", "hang", "--integrator", "symplectic-euler",
-            "--t-end", "0.01", "--out", in_tmp(out, "o"), NULL);
-    cli_assert_error(&r, 0, "dt", "symplectic-euler", NULL);
-    cli_result_free(&r);
+    expect_refused(LIST("run", "hang", "--integrator", "symplectic-euler",
+                        "--t-end", "0.01"), 0,
+                   LIST("dt", "symplectic-euler"));
 }
 
 Test(cli, unknown_integrator_lists_the_allowed)
 {
-    char out[1024];
-    cli_result r;
-    cli_run(&r, "run", "hang", "--integrator", "rk4-magic", "--out",
-            in_tmp(out, "o"), NULL);
-    cli_assert_error(&r, 0, "rk4-magic", "cvode-bdf", "symplectic-euler",
-                     NULL);
-    cli_result_free(&r);
+    expect_refused(LIST("run", "hang", "--integrator", "rk4-magic"), 0,
+                   LIST("rk4-magic", "cvode-bdf", "symplectic-euler"));
 }
 
 Test(cli, unknown_subcommand)
@@ -407,12 +395,9 @@ Test(cli, unknown_subcommand)
 
 Test(cli, unknown_option)
 {
-    char out[1024];
+    expect_refused(LIST("run", "hang", "--frobnicate"), 1,
+                   LIST("--frobnicate"));
     cli_result r;
-    cli_run(&r, "run", "hang", "--frobnicate", "--out", in_tmp(out, "o"),
-            NULL);
-    cli_assert_error(&r, 1, "--frobnicate", NULL);
-    cli_result_free(&r);
     cli_run(&r, "eval", "hang", "--state", "x.csv", "--frobnicate", NULL);
     cli_assert_error(&r, 1, "--frobnicate", NULL);
     cli_result_free(&r);
@@ -431,32 +416,22 @@ Test(cli, option_without_its_value)
 
 Test(cli, t_end_not_a_multiple_of_dt)
 {
-    char out[1024];
-    cli_result r;
-    cli_run(&r, "run", "hang", "--set", "cloth.n=6", "--integrator",
-            "symplectic-euler", "--dt", "3e-4", "--t-end", "0.05", "--out",
-            in_tmp(out, "o"), NULL);
-    cli_assert_error(&r, 0, "t_end", "0.05", "dt", NULL);
-    cli_result_free(&r);
+    expect_refused(LIST("run", "hang", "--set", "cloth.n=6", "--integrator",
+                        "symplectic-euler", "--dt", "3e-4", "--t-end",
+                        "0.05"), 0,
+                   LIST("t_end", "0.05", "dt"));
 }
 
 Test(cli, pin_outside_the_grid)
 {
-    char out[1024];
-    cli_result r;
-    cli_run(&r, "run", "hang", "--set", "pins.at=0,99", "--out",
-            in_tmp(out, "o"), NULL);
-    cli_assert_error(&r, 0, "99", NULL);
-    cli_result_free(&r);
+    expect_refused(LIST("run", "hang", "--set", "pins.at=0,99"), 0,
+                   LIST("99"));
 }
 
 Test(cli, eval_without_state)
 {
-    char out[1024];
-    cli_result r;
-    cli_run(&r, "eval", "hang", "--out", in_tmp(out, "o"), NULL);
-    cli_assert_error(&r, 1, "--state", NULL);
-    cli_result_free(&r);
+    expect_refused(LIST("eval", "hang"), 1,
+                   LIST("--state"));
 }
 
 /* A valid rest state of hang at n = 6 as CSV text, for corrupting. */
@@ -481,7 +456,7 @@ static char *rest_state_text(void)
 static void eval_text(cli_result *r, const char *text, char *state)
 {
     char out[1024];
-    cli_write_text(in_tmp(state, "state.csv"), text);
+    tmp_put(in_tmp(state, "state.csv"), text);
     cli_run(r, "eval", "hang", "--set", "cloth.n=6", "--state", state,
             "--out", in_tmp(out, "eval"), NULL);
 }

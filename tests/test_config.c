@@ -3,6 +3,7 @@
 #include <criterion/criterion.h>
 
 #include <limits.h>
+#include <stdarg.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -248,6 +249,25 @@ Test(config, set_overrides_file_and_adds_keys)
 
 /* ------------------------------------------------------- loading errors */
 
+/* Loading `text` fails with CL_EPARSE, the message naming "<file>:<line>:"
+ * and containing each string of the NULL-terminated argument list. */
+static void expect_parse_error(const char *text, int line, ...)
+{
+    char path[64], want[96];
+    cl_error err = {0};
+    cl_config *cfg = cl_config_alloc();
+    cr_assert_eq(load_text(cfg, text, path, &err), CL_EPARSE);
+    cr_assert_eq(err.code, CL_EPARSE);
+    snprintf(want, sizeof want, "%s:%d:", path, line);
+    assert_msg_has(err, want);
+    va_list ap;
+    va_start(ap, line);
+    for (const char *sub; (sub = va_arg(ap, const char *));)
+        assert_msg_has(err, sub);
+    va_end(ap);
+    cl_config_free(cfg);
+}
+
 Test(config, missing_file_is_eio)
 {
     cl_config *cfg = cl_config_alloc();
@@ -271,44 +291,20 @@ Test(config, directory_is_eio)
 
 Test(config, malformed_line_reports_its_line)
 {
-    char path[64], want[96];
-    cl_error err = {0};
-    cl_config *cfg = cl_config_alloc();
-    cr_assert_eq(load_text(cfg, "; comment\n[run]\ndt = 1\n"
-                                "this line has no equals sign\nx = 2\n"
-                                "another bad line\n", path, &err),
-                 CL_EPARSE);
-    cr_assert_eq(err.code, CL_EPARSE);
-    snprintf(want, sizeof want, "%s:4:", path);
-    assert_msg_has(err, want);
-    assert_msg_has(err, "malformed");
-    cl_config_free(cfg);
+    expect_parse_error("; comment\n[run]\ndt = 1\n"
+                       "this line has no equals sign\nx = 2\n"
+                       "another bad line\n", 4, "malformed", NULL);
 }
 
 Test(config, malformed_section_header)
 {
-    char path[64], want[96];
-    cl_error err = {0};
-    cl_config *cfg = cl_config_alloc();
-    cr_assert_eq(load_text(cfg, "[run]\ndt = 1\n[broken\n", path, &err),
-                 CL_EPARSE);
-    snprintf(want, sizeof want, "%s:3:", path);
-    assert_msg_has(err, want);
-    cl_config_free(cfg);
+    expect_parse_error("[run]\ndt = 1\n[broken\n", 3, NULL);
 }
 
 Test(config, indented_continuation_is_rejected)
 {
-    char path[64], want[96];
-    cl_error err = {0};
-    cl_config *cfg = cl_config_alloc();
-    cr_assert_eq(load_text(cfg, "[cloth]\nnx = 10\n  ny = 10\n", path,
-                           &err), CL_EPARSE);
-    snprintf(want, sizeof want, "%s:3:", path);
-    assert_msg_has(err, want);
-    assert_msg_has(err, "[cloth] nx");
-    assert_msg_has(err, "indent");
-    cl_config_free(cfg);
+    expect_parse_error("[cloth]\nnx = 10\n  ny = 10\n", 3, "[cloth] nx",
+                       "indent", NULL);
 }
 
 Test(config, indented_key_after_header_is_fine)
@@ -327,15 +323,8 @@ Test(config, long_line_is_reported_not_split)
     size_t len = strlen(text);
     memset(text + len, 'a', n);
     strcpy(text + len + n, "\nx = 1\n");
-    char path[64], want[96];
-    cl_error err = {0};
-    cl_config *cfg = cl_config_alloc();
-    cr_assert_eq(load_text(cfg, text, path, &err), CL_EPARSE);
-    snprintf(want, sizeof want, "%s:3:", path);
-    assert_msg_has(err, want);
-    assert_msg_has(err, "too long");
+    expect_parse_error(text, 3, "too long", NULL);
     free(text);
-    cl_config_free(cfg);
 }
 
 Test(config, last_line_without_newline_and_crlf)

@@ -6,39 +6,21 @@
 #include <math.h>
 
 #include "integrators/integrator.h"
+#include "runsun.h"
 #include "testsys.h"
 
 static const cl_integrator_type *cvb(void)
 {
-    const cl_integrator_type *t = cl_integrator_find("cvode-bdf");
-    cr_assert_not_null(t);
-    return t;
+    return ri_find("cvode-bdf");
 }
 
 /* Integrate from 0 to T with nout outputs; max error in x and v over the
- * outputs relative to the solution's size (max |x_i|, |v_i| over the
- * outputs, at least 1); statistics at the end. */
+ * outputs relative to the solution's size; statistics at the end
+ * (rs_exact_error). */
 static double run(ts_sys *ts, const cl_integrator_opts *o, double T,
                   int nout, cl_stats *s)
 {
-    double x0[12], v0[12], x[12], v[12], xe[12], ve[12], e = 0, amp = 1;
-    ts_initial(ts, x0, v0);
-    void *st;
-    cl_error err;
-    cr_assert_eq(cvb()->create(&ts->sys, o, 0.0, x0, v0, &st, &err), CL_OK,
-                 "%s", err.msg);
-    for (int i = 1; i <= nout; i++) {
-        double t = T * i / nout;
-        cr_assert_eq(cvb()->advance(st, t, x, v, &err), CL_OK, "%s", err.msg);
-        ts_exact(ts, x0, v0, t, xe, ve);
-        e = fmax(e, fmax(ts_maxdiff(x, xe, ts->n), ts_maxdiff(v, ve, ts->n)));
-        for (size_t j = 0; j < ts->n; j++)
-            amp = fmax(amp, fmax(fabs(xe[j]), fabs(ve[j])));
-    }
-    if (s)
-        cvb()->stats(st, s);
-    cvb()->free(st);
-    return e / amp;
+    return rs_exact_error("cvode-bdf", ts, o, T, nout, s);
 }
 
 Test(cvode_bdf, oscillators_match_exact)
@@ -165,34 +147,13 @@ Test(cvode_bdf, max_steps_is_a_solver_failure)
     ts_free(&ts);
 }
 
-/* A force failing from t_bad on: advance to 0.5 succeeds when t_bad > 0.5,
- * the advance to 3 reports `want`. */
+/* A force failing from t_bad on: create succeeds, the advance to 0.5
+ * succeeds when t_bad > 0.5, the advance to 3 reports `want` with the
+ * time (rs_expect_failure). */
 static void expect_failure(int fail, double t_bad, cl_status sys_status,
                            cl_status want)
 {
-    ts_sys ts;
-    cr_assert_eq(ts_oscillators(&ts, 1), 0);
-    ts.fail = fail;
-    ts.t_bad = t_bad;
-    ts.fail_status = sys_status;
-    double x[3], v[3];
-    ts_initial(&ts, x, v);
-    cl_integrator_opts o = {0};
-    void *st;
-    cl_error err;
-    cl_status got = cvb()->create(&ts.sys, &o, 0.0, x, v, &st, &err);
-    cr_assert_eq(got, CL_OK, "%s", err.msg);
-    if (t_bad > 0.5)
-        cr_assert_eq(cvb()->advance(st, 0.5, x, v, &err), CL_OK, "%s",
-                     err.msg);
-    got = cvb()->advance(st, 3.0, x, v, &err);
-    cl_stats s;
-    cvb()->stats(st, &s);
-    cr_log_info("cvode-bdf failure after %ld steps: %s", s.steps, err.msg);
-    cr_assert_eq(got, want, "%s: %s", cl_status_name(got), err.msg);
-    cr_assert_not_null(strstr(err.msg, "t = "), "%s", err.msg);
-    cvb()->free(st);
-    ts_free(&ts);
+    rs_expect_failure("cvode-bdf", fail, t_bad, sys_status, CL_OK, want);
 }
 
 Test(cvode_bdf, nan_from_the_start_is_blowup)

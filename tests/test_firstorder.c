@@ -13,10 +13,8 @@
 
 #include "linalg/firstorder.h"
 
-/* Five particles, particle 2 pinned (no unknowns): 4 block rows. */
-#define NP 5
-#define NB 4
-#define N (3 * NB)
+#include "blockcase.h" /* last: defines NP, NB, N */
+
 #define NN (2 * N)
 
 typedef struct {
@@ -26,30 +24,15 @@ typedef struct {
     cl_firstorder fo;
 } fo_case;
 
-static double lcg(unsigned long *s)
-{
-    *s = *s * 6364136223846793005UL + 1442695040888963407UL;
-    return (double)(*s >> 11) / 9007199254740992.0 * 2.0 - 1.0;
-}
-
 static void case_init(fo_case *c)
 {
-    const int dof[NP] = {0, 1, -1, 2, 3};
-    const int pairs[][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 4}, {4, 0}, {1, 3},
-                            {1, 0}};
     memset(c, 0, sizeof *c);
-    cr_assert_eq(cl_bpattern_build(NP, dof, NB, 7, pairs, &c->pat, NULL),
-                 CL_OK);
+    bc_init(&c->pat, c->mass, &c->dfdx, &c->dfdv);
     unsigned long seed = 12345;
-    for (size_t i = 0; i < N; i++)
-        c->mass[i] = 0.5 + 0.25 * (double)i;
     size_t nval = 9 * c->pat.nnzb;
-    c->dfdx = malloc(nval * sizeof *c->dfdx);
-    c->dfdv = malloc(nval * sizeof *c->dfdv);
-    cr_assert(c->dfdx && c->dfdv);
     for (size_t k = 0; k < nval; k++) {
-        c->dfdx[k] = lcg(&seed) + (lcg(&seed) > 0 ? 2.0 : -2.0);
-        c->dfdv[k] = lcg(&seed) + (lcg(&seed) > 0 ? 2.0 : -2.0);
+        c->dfdx[k] = bc_rand(&seed) + (bc_rand(&seed) > 0 ? 2.0 : -2.0);
+        c->dfdv[k] = bc_rand(&seed) + (bc_rand(&seed) > 0 ? 2.0 : -2.0);
     }
     cl_error err;
     cr_assert_eq(cl_firstorder_create(&c->pat, c->mass, &c->fo, &err), CL_OK,
@@ -59,9 +42,7 @@ static void case_init(fo_case *c)
 static void case_free(fo_case *c)
 {
     cl_firstorder_free(&c->fo);
-    cl_bpattern_free(&c->pat);
-    free(c->dfdx);
-    free(c->dfdv);
+    bc_free(&c->pat, c->dfdx, c->dfdv);
 }
 
 /* Dense reference, row-major NN x NN, from the block CSR directly. */

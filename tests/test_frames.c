@@ -1,64 +1,26 @@
 /* Tests for the grid triangulation and VTK / OBJ frame output. */
 #include <criterion/criterion.h>
 
-#include <dirent.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <signal.h>
 #include <string.h>
-#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include "io/frames.h"
+#include "tmpdir.h"
 
 static char dir[64];
 
-static void rm_rf(const char *p)
-{
-    struct stat st;
-    if (lstat(p, &st) != 0)
-        return;
-    if (S_ISDIR(st.st_mode)) {
-        DIR *d = opendir(p);
-        if (d) {
-            struct dirent *e;
-            while ((e = readdir(d))) {
-                if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, ".."))
-                    continue;
-                char sub[1024];
-                snprintf(sub, sizeof sub, "%s/%s", p, e->d_name);
-                rm_rf(sub);
-            }
-            closedir(d);
-        }
-        rmdir(p);
-    } else {
-        unlink(p);
-    }
-}
-
 static void setup(void)
 {
-    strcpy(dir, "/tmp/clothode-frames-XXXXXX");
-    cr_assert_not_null(mkdtemp(dir));
+    tmp_mkdtemp(dir, sizeof dir, "frames");
 }
 
 static void teardown(void)
 {
-    rm_rf(dir);
-}
-
-/* Make writes beyond `bytes` fail with EFBIG (instead of SIGXFSZ); each
- * test runs in its own process, so the limit does not leak. */
-static void limit_file_size(rlim_t bytes)
-{
-    cr_assert_neq(signal(SIGXFSZ, SIG_IGN), SIG_ERR);
-    struct rlimit rl;
-    cr_assert_eq(getrlimit(RLIMIT_FSIZE, &rl), 0);
-    rl.rlim_cur = bytes;
-    cr_assert_eq(setrlimit(RLIMIT_FSIZE, &rl), 0);
+    tmp_rm_rf(dir);
 }
 
 TestSuite(frames, .init = setup, .fini = teardown);
@@ -383,19 +345,13 @@ Test(frames, write_error_leaves_nothing)
     cl_frame f = {20, 20, g.x, g.v, g.pinned, 0};
     char path[256];
     snprintf(path, sizeof path, "%s/big.vtk", dir);
-    limit_file_size(2000);
+    tmp_limit_file_size(2000);
     cl_error err;
     cr_assert_eq(cl_frame_write_vtk(path, &f, &err), CL_EIO);
     cr_assert(strstr(err.msg, path) != NULL, "%s", err.msg);
     snprintf(path, sizeof path, "%s/big.obj", dir);
     cr_assert_eq(cl_frame_write_obj(path, &f, &err), CL_EIO);
     cr_assert(strstr(err.msg, path) != NULL, "%s", err.msg);
-    DIR *d = opendir(dir);
-    int n = 0;
-    struct dirent *e;
-    while ((e = readdir(d)))
-        n += e->d_name[0] != '.';
-    closedir(d);
-    cr_assert_eq(n, 0);
+    cr_assert_eq(tmp_list_dir(dir, NULL, 0), 0);
     free_grid(&g);
 }

@@ -147,6 +147,33 @@ static void ls_rhs(unsigned long seed, double *rhs)
         rhs[i] = ls_rand(&seed);
 }
 
+/* Solver t on c's pattern and masses with options o (must succeed). */
+static void *ls_create(const cl_linsol_type *t, const ls_case *c,
+                       const cl_integrator_opts *o)
+{
+    void *st = NULL;
+    cl_error err = {0};
+    cr_assert_eq(t->create(&c->pat, c->mass, o, &st, &err), CL_OK, "%s: %s",
+                 t->name, err.msg);
+    return st;
+}
+
+/* Set t up for A(a, b) with c's Jacobians and solve for the right-hand
+ * side ls_rhs(seed) into rhs, x; both must succeed.  Returns the true
+ * relative residual. */
+static double ls_setup_solve(const cl_linsol_type *t, void *st,
+                             const ls_case *c, double a, double b,
+                             unsigned long seed, double *rhs, double *x)
+{
+    cl_error err = {0};
+    cr_assert_eq(t->setup(st, a, b, c->dfdx, c->dfdv, &err), CL_OK, "%s: %s",
+                 t->name, err.msg);
+    ls_rhs(seed, rhs);
+    cr_assert_eq(t->solve(st, rhs, x, &err), CL_OK, "%s: %s", t->name,
+                 err.msg);
+    return ls_residual(c, a, b, rhs, x);
+}
+
 Test(linsol, registry)
 {
     char buf[128];
@@ -165,21 +192,14 @@ static void ls_solve_spd(const char *name)
     ls_case c;
     ls_init(&c, 2024);
     const cl_linsol_type *t = ls_find(name);
-    cl_integrator_opts o = {0};
-    void *st = NULL;
-    cl_error err = {0};
-    cr_assert_eq(t->create(&c.pat, c.mass, &o, &st, &err), CL_OK, "%s",
-                 err.msg);
+    void *st = ls_create(t, &c, &(cl_integrator_opts){0});
     const double h = 1e-2, ab[][2] = {{h, h * h},
                                       {2 * h / 3, 4 * h * h / 9},
                                       {0.1, 0.01}};
     double rhs[LS_N], x[LS_N];
     for (size_t k = 0; k < 3; k++) {
-        cr_assert_eq(t->setup(st, ab[k][0], ab[k][1], c.dfdx, c.dfdv, &err),
-                     CL_OK, "%s", err.msg);
-        ls_rhs(100 + k, rhs);
-        cr_assert_eq(t->solve(st, rhs, x, &err), CL_OK, "%s", err.msg);
-        double res = ls_residual(&c, ab[k][0], ab[k][1], rhs, x);
+        double res = ls_setup_solve(t, st, &c, ab[k][0], ab[k][1], 100 + k,
+                                    rhs, x);
         cr_log_info("%s: a = %g, b = %g: relative residual %.3e", name,
                     ab[k][0], ab[k][1], res);
         cr_assert_leq(res, 1e-10, "%s: residual %g", name, res);
@@ -214,16 +234,9 @@ Test(linsol, klu_solves_nonsymmetric)
     for (size_t q = 0; q < nval; q++)
         c.dfdx[q] += 10.0 * ls_rand(&seed);
     const cl_linsol_type *t = ls_find("klu");
-    cl_integrator_opts o = {0};
-    void *st = NULL;
-    cl_error err = {0};
+    void *st = ls_create(t, &c, &(cl_integrator_opts){0});
     double rhs[LS_N], x[LS_N];
-    cr_assert_eq(t->create(&c.pat, c.mass, &o, &st, &err), CL_OK);
-    cr_assert_eq(t->setup(st, 0.01, 1e-4, c.dfdx, c.dfdv, &err), CL_OK, "%s",
-                 err.msg);
-    ls_rhs(9, rhs);
-    cr_assert_eq(t->solve(st, rhs, x, &err), CL_OK, "%s", err.msg);
-    cr_assert_leq(ls_residual(&c, 0.01, 1e-4, rhs, x), 1e-12);
+    cr_assert_leq(ls_setup_solve(t, st, &c, 0.01, 1e-4, 9, rhs, x), 1e-12);
     t->free(st);
     ls_free(&c);
 }
@@ -233,21 +246,15 @@ Test(linsol, klu_analyses_once_over_many_setups)
     ls_case c;
     ls_init(&c, 31);
     const cl_linsol_type *t = ls_find("klu");
-    cl_integrator_opts o = {0};
-    void *st = NULL;
-    cl_error err = {0};
+    void *st = ls_create(t, &c, &(cl_integrator_opts){0});
     double rhs[LS_N], x[LS_N];
-    cr_assert_eq(t->create(&c.pat, c.mass, &o, &st, &err), CL_OK);
     const int nset = 60;
     for (int k = 0; k < nset; k++) {
         double h = 1e-3 * (1.0 + k % 7);
         ls_fill(&c, 1000 + (unsigned long)k, 1.0);
-        cr_assert_eq(t->setup(st, h, h * h, c.dfdx, c.dfdv, &err), CL_OK,
-                     "%s", err.msg);
-        ls_rhs(k, rhs);
         x[0] = NAN;
-        cr_assert_eq(t->solve(st, rhs, x, &err), CL_OK, "%s", err.msg);
-        cr_assert_leq(ls_residual(&c, h, h * h, rhs, x), 1e-12);
+        cr_assert_leq(ls_setup_solve(t, st, &c, h, h * h, (unsigned long)k,
+                                     rhs, x), 1e-12);
     }
     cl_stats s = {0};
     t->stats(st, &s);
@@ -267,9 +274,8 @@ static void ls_indefinite_diag(const char *name)
     ls_fill(&c, 8, -1.0);
     const cl_linsol_type *t = ls_find(name);
     cl_integrator_opts o = {0};
-    void *st = NULL;
     cl_error err = {0};
-    cr_assert_eq(t->create(&c.pat, c.mass, &o, &st, &err), CL_OK);
+    void *st = ls_create(t, &c, &o);
     cr_assert_eq(t->setup(st, 0.0, 1.0, c.dfdx, c.dfdv, &err), CL_ESOLVER);
     cr_assert_not_null(strstr(err.msg, "not positive definite"), "%s",
                        err.msg);
@@ -308,10 +314,9 @@ static void ls_indefinite_coupling(const char *name)
     }
     const cl_linsol_type *t = ls_find(name);
     cl_integrator_opts o = {0};
-    void *st = NULL;
     cl_error err = {0};
     double rhs[LS_N], x[LS_N];
-    cr_assert_eq(t->create(&c.pat, c.mass, &o, &st, &err), CL_OK);
+    void *st = ls_create(t, &c, &o);
     cr_assert_eq(t->setup(st, 0.0, 1.0, c.dfdx, c.dfdv, &err), CL_OK, "%s",
                  err.msg);
     ls_rhs(3, rhs);
@@ -322,11 +327,8 @@ static void ls_indefinite_coupling(const char *name)
     cr_assert_not_null(strstr(err.msg, "p^T A p"), "%s", err.msg);
     /* KLU solves the same (nonsingular, indefinite) matrix */
     const cl_linsol_type *k = ls_find("klu");
-    void *kst = NULL;
-    cr_assert_eq(k->create(&c.pat, c.mass, &o, &kst, &err), CL_OK);
-    cr_assert_eq(k->setup(kst, 0.0, 1.0, c.dfdx, c.dfdv, &err), CL_OK);
-    cr_assert_eq(k->solve(kst, rhs, x, &err), CL_OK, "%s", err.msg);
-    cr_assert_leq(ls_residual(&c, 0.0, 1.0, rhs, x), 1e-12);
+    void *kst = ls_create(k, &c, &o);
+    cr_assert_leq(ls_setup_solve(k, kst, &c, 0.0, 1.0, 3, rhs, x), 1e-12);
     k->free(kst);
     t->free(st);
     ls_free(&c);
@@ -344,10 +346,9 @@ Test(linsol, pcg_iteration_cap_reported)
     ls_init(&c, 12);
     const cl_linsol_type *t = ls_find("pcg-jacobi");
     cl_integrator_opts o = {.lin_maxit = 2};
-    void *st = NULL;
     cl_error err = {0};
     double rhs[LS_N], x[LS_N];
-    cr_assert_eq(t->create(&c.pat, c.mass, &o, &st, &err), CL_OK);
+    void *st = ls_create(t, &c, &o);
     cr_assert_eq(t->setup(st, 0.1, 0.01, c.dfdx, c.dfdv, &err), CL_OK);
     ls_rhs(4, rhs);
     cr_assert_eq(t->solve(st, rhs, x, &err), CL_ESOLVER);
@@ -368,15 +369,9 @@ Test(linsol, pcg_tolerance_option)
     double rhs[LS_N], x[LS_N], res[2];
     long iters[2];
     const double tol[2] = {1e-4, 1e-11};
-    ls_rhs(6, rhs);
     for (int k = 0; k < 2; k++) {
-        cl_integrator_opts o = {.lin_tol = tol[k]};
-        void *st = NULL;
-        cl_error err = {0};
-        cr_assert_eq(t->create(&c.pat, c.mass, &o, &st, &err), CL_OK);
-        cr_assert_eq(t->setup(st, 0.1, 0.01, c.dfdx, c.dfdv, &err), CL_OK);
-        cr_assert_eq(t->solve(st, rhs, x, &err), CL_OK, "%s", err.msg);
-        res[k] = ls_residual(&c, 0.1, 0.01, rhs, x);
+        void *st = ls_create(t, &c, &(cl_integrator_opts){.lin_tol = tol[k]});
+        res[k] = ls_setup_solve(t, st, &c, 0.1, 0.01, 6, rhs, x);
         cl_stats s = {0};
         t->stats(st, &s);
         iters[k] = s.lin_iters;
@@ -395,12 +390,11 @@ Test(linsol, pcg_zero_rhs_gives_zero)
     ls_init(&c, 14);
     const cl_linsol_type *t = ls_find("pcg");
     cl_integrator_opts o = {0};
-    void *st = NULL;
     cl_error err = {0};
     double rhs[LS_N] = {0}, x[LS_N];
     for (size_t i = 0; i < LS_N; i++)
         x[i] = 1.0;
-    cr_assert_eq(t->create(&c.pat, c.mass, &o, &st, &err), CL_OK);
+    void *st = ls_create(t, &c, &o);
     cr_assert_eq(t->setup(st, 0.1, 0.01, c.dfdx, c.dfdv, &err), CL_OK);
     cr_assert_eq(t->solve(st, rhs, x, &err), CL_OK, "%s", err.msg);
     for (size_t i = 0; i < LS_N; i++)
@@ -419,10 +413,9 @@ Test(linsol, klu_bad_refactor_falls_back)
     ls_init(&c, 17);
     const cl_linsol_type *t = ls_find("klu");
     cl_integrator_opts o = {0};
-    void *st = NULL;
     cl_error err = {0};
     double rhs[LS_N], x[LS_N];
-    cr_assert_eq(t->create(&c.pat, c.mass, &o, &st, &err), CL_OK);
+    void *st = ls_create(t, &c, &o);
     cr_assert_eq(t->setup(st, 0.01, 1e-4, c.dfdx, c.dfdv, &err), CL_OK);
     unsigned long seed = 17;
     size_t nval = 9 * c.pat.nnzb;
@@ -433,11 +426,7 @@ Test(linsol, klu_bad_refactor_falls_back)
         for (int q = 0; q < 9; q++)
             c.dfdx[9 * c.pat.diag[i] + q] = q % 4 == 0 ? c.mass[3 * i + q / 4]
                                                        : 0.0;
-    cr_assert_eq(t->setup(st, 0.0, 1.0, c.dfdx, c.dfdv, &err), CL_OK, "%s",
-                 err.msg);
-    ls_rhs(17, rhs);
-    cr_assert_eq(t->solve(st, rhs, x, &err), CL_OK, "%s", err.msg);
-    double res = ls_residual(&c, 0.0, 1.0, rhs, x);
+    double res = ls_setup_solve(t, st, &c, 0.0, 1.0, 17, rhs, x);
     cr_log_info("klu after fall-back: relative residual %.3e", res);
     cr_assert_leq(res, 1e-10);
     cl_stats s = {0};
@@ -462,9 +451,8 @@ Test(linsol, klu_singular_reported)
                                                        : 0.0;
     const cl_linsol_type *t = ls_find("klu");
     cl_integrator_opts o = {0};
-    void *st = NULL;
     cl_error err = {0};
-    cr_assert_eq(t->create(&c.pat, c.mass, &o, &st, &err), CL_OK);
+    void *st = ls_create(t, &c, &o);
     cr_assert_eq(t->setup(st, 0.0, 1.0, c.dfdx, c.dfdv, &err), CL_ESOLVER);
     cr_assert_not_null(strstr(err.msg, "singular"), "%s", err.msg);
     /* a regular matrix afterwards factorises again */

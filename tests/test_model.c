@@ -441,10 +441,19 @@ Test(model, error_pin_outside_grid)
 
 Test(model, error_pin_twice)
 {
-    expect_error(FD_SETS("cloth.n=5", "pins.at=1,1 1,1"), "twice");
-    /* The same particle through a negative index. */
-    expect_error(FD_SETS("cloth.n=5", "pins.at=0,-1 0,4"), "twice");
-    expect_error(FD_SETS("cloth.n=5", "pins.at=-5,-5 0,0"), "twice");
+    /* Twice with different motions (a group moving, another fixed); the
+     * same particle also through a negative index. */
+    expect_error(FD_SETS("cloth.n=5", "pins.at=1,1", "pins2.at=1,1",
+                         "pins2.velocity=0,1,0"), "twice");
+    expect_error(FD_SETS("cloth.n=5", "pins.at=0,-1", "pins.velocity=1,0,0",
+                         "pins2.at=0,4", "pins2.velocity=1,0,0",
+                         "pins2.stop=1"), "twice");
+    expect_error(FD_SETS("cloth.n=5", "pins.at=-5,-5", "pins2.at=0,0",
+                         "pins2.velocity=1,0,0"), "twice");
+    /* The same pin with the same motion again is no error. */
+    cl_model *m = FD_MODEL("cloth.n=5", "pins.at=1,1 1,1 i=1");
+    cr_assert_eq(cl_model_cloth(m)->npin, 5);
+    cl_model_free(m);
 }
 
 Test(model, error_everything_pinned)

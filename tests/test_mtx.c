@@ -1,68 +1,33 @@
 /* Tests for Matrix Market output of block matrices and the reader. */
 #include <criterion/criterion.h>
 
-#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <signal.h>
 #include <string.h>
-#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include "io/mtx.h"
+#include "tmpdir.h"
 
 static char dir[64];
 static char path[256];
 
-static void rm_rf(const char *p)
-{
-    struct stat st;
-    if (lstat(p, &st) != 0)
-        return;
-    if (S_ISDIR(st.st_mode)) {
-        DIR *d = opendir(p);
-        if (d) {
-            struct dirent *e;
-            while ((e = readdir(d))) {
-                if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, ".."))
-                    continue;
-                char sub[1024];
-                snprintf(sub, sizeof sub, "%s/%s", p, e->d_name);
-                rm_rf(sub);
-            }
-            closedir(d);
-        }
-        rmdir(p);
-    } else {
-        unlink(p);
-    }
-}
-
 static void setup(void)
 {
-    strcpy(dir, "/tmp/clothode-mtx-XXXXXX");
-    cr_assert_not_null(mkdtemp(dir));
+    tmp_mkdtemp(dir, sizeof dir, "mtx");
     snprintf(path, sizeof path, "%s/m.mtx", dir);
 }
 
 static void teardown(void)
 {
-    rm_rf(dir);
-}
-
-static void put(const char *text)
-{
-    FILE *fp = fopen(path, "w");
-    cr_assert_not_null(fp);
-    cr_assert(fputs(text, fp) >= 0);
-    cr_assert_eq(fclose(fp), 0);
+    tmp_rm_rf(dir);
 }
 
 static void expect_read(const char *text, cl_status code, const char *sub1,
                         const char *sub2)
 {
-    put(text);
+    tmp_put(path, text);
     cl_triplets t;
     cl_error err;
     cl_error_clear(&err);
@@ -76,17 +41,6 @@ static void expect_read(const char *text, cl_status code, const char *sub1,
     if (sub2)
         cr_assert(strstr(err.msg, sub2) != NULL, "'%s' not in: %s", sub2,
                   err.msg);
-}
-
-/* Make writes beyond `bytes` fail with EFBIG (instead of SIGXFSZ); each
- * test runs in its own process, so the limit does not leak. */
-static void limit_file_size(rlim_t bytes)
-{
-    cr_assert_neq(signal(SIGXFSZ, SIG_IGN), SIG_ERR);
-    struct rlimit rl;
-    cr_assert_eq(getrlimit(RLIMIT_FSIZE, &rl), 0);
-    rl.rlim_cur = bytes;
-    cr_assert_eq(setrlimit(RLIMIT_FSIZE, &rl), 0);
 }
 
 TestSuite(mtx, .init = setup, .fini = teardown);
@@ -177,13 +131,13 @@ Test(mtx, write_errors)
 
 Test(mtx, reader_accepts_comments_blanks_and_case)
 {
-    put("%%MatrixMarket MATRIX Coordinate Real General\n"
-        "% a comment\n"
-        "\n"
-        "2 3 2\n"
-        "% between entries\n"
-        "1 3 -2.5\n"
-        "  2 1   4e-3  \n");
+    tmp_put(path, "%%MatrixMarket MATRIX Coordinate Real General\n"
+                  "% a comment\n"
+                  "\n"
+                  "2 3 2\n"
+                  "% between entries\n"
+                  "1 3 -2.5\n"
+                  "  2 1   4e-3  \n");
     cl_triplets t;
     cl_error err;
     cr_assert_eq(cl_mtx_read(path, &t, &err), CL_OK, "%s", err.msg);
@@ -235,27 +189,27 @@ Test(mtx, reader_bad_size_line)
 
 Test(mtx, reader_bad_entries)
 {
-    const char *h = "%%MatrixMarket matrix coordinate real general\n"
-                    "3 3 2\n";
+    /* entries after the header of a 3 x 3 matrix with 2 entries, and what
+     * the message must contain */
+    static const struct {
+        const char *entries, *sub1, *sub2;
+    } bad[] = {
+        {"1 1 1\n1 x 2\n", "m.mtx:4:", "expected entry"},
+        {"1 1\n", ":3:", "expected entry"},
+        {"1 1 1 1\n", ":3:", "expected entry"},
+        {"1.5 1 1\n", ":3:", "expected entry"},
+        {"0 1 1\n", ":3:", "entry (0, 1) outside the 3 x 3"},
+        {"1 1 1\n2 4 1\n", ":4:", "entry (2, 4) outside"},
+        {"1 1 nan\n", ":3:", "not finite"},
+        {"1 1 1\n2 2 2\n3 3 3\n", ":5:", "more entries than the 2 announced"},
+        {"1 1 1\n", "2 entries announced, 1 found", NULL},
+    };
     char buf[256];
-    snprintf(buf, sizeof buf, "%s1 1 1\n1 x 2\n", h);
-    expect_read(buf, CL_EPARSE, "m.mtx:4:", "expected entry");
-    snprintf(buf, sizeof buf, "%s1 1\n", h);
-    expect_read(buf, CL_EPARSE, ":3:", "expected entry");
-    snprintf(buf, sizeof buf, "%s1 1 1 1\n", h);
-    expect_read(buf, CL_EPARSE, ":3:", "expected entry");
-    snprintf(buf, sizeof buf, "%s1.5 1 1\n", h);
-    expect_read(buf, CL_EPARSE, ":3:", "expected entry");
-    snprintf(buf, sizeof buf, "%s0 1 1\n", h);
-    expect_read(buf, CL_EPARSE, ":3:", "entry (0, 1) outside the 3 x 3");
-    snprintf(buf, sizeof buf, "%s1 1 1\n2 4 1\n", h);
-    expect_read(buf, CL_EPARSE, ":4:", "entry (2, 4) outside");
-    snprintf(buf, sizeof buf, "%s1 1 nan\n", h);
-    expect_read(buf, CL_EPARSE, ":3:", "not finite");
-    snprintf(buf, sizeof buf, "%s1 1 1\n2 2 2\n3 3 3\n", h);
-    expect_read(buf, CL_EPARSE, ":5:", "more entries than the 2 announced");
-    snprintf(buf, sizeof buf, "%s1 1 1\n", h);
-    expect_read(buf, CL_EPARSE, "2 entries announced, 1 found", NULL);
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        snprintf(buf, sizeof buf, "%%%%MatrixMarket matrix coordinate real "
+                 "general\n3 3 2\n%s", bad[k].entries);
+        expect_read(buf, CL_EPARSE, bad[k].sub1, bad[k].sub2);
+    }
 }
 
 Test(mtx, write_error_leaves_nothing)
@@ -263,16 +217,10 @@ Test(mtx, write_error_leaves_nothing)
     double val[63];
     for (int k = 0; k < 63; k++)
         val[k] = 1.0 / (k + 3);
-    limit_file_size(300);
+    tmp_limit_file_size(300);
     cl_error err;
     cr_assert_eq(cl_mtx_write_blocks(path, &pat, val, &err), CL_EIO);
     cr_assert(strstr(err.msg, path) != NULL, "%s", err.msg);
     cr_assert_eq(access(path, F_OK), -1);
-    DIR *d = opendir(dir);
-    int n = 0;
-    struct dirent *e;
-    while ((e = readdir(d)))
-        n += e->d_name[0] != '.';
-    closedir(d);
-    cr_assert_eq(n, 0);
+    cr_assert_eq(tmp_list_dir(dir, NULL, 0), 0);
 }

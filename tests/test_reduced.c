@@ -12,10 +12,7 @@
 
 #include "linalg/reduced.h"
 
-/* Five particles, particle 2 pinned (no unknowns): 4 block rows. */
-#define NP 5
-#define NB 4
-#define N (3 * NB)
+#include "blockcase.h" /* last: defines NP, NB, N */
 
 typedef struct {
     cl_bpattern pat;
@@ -23,37 +20,20 @@ typedef struct {
     double *dfdx, *dfdv;
 } rd_case;
 
-static double rd_rand(unsigned long *s)
-{
-    *s = *s * 6364136223846793005UL + 1442695040888963407UL;
-    return (double)(*s >> 11) / 9007199254740992.0 * 2.0 - 1.0;
-}
-
 static void rd_init(rd_case *c, unsigned long seed)
 {
-    const int dof[NP] = {0, 1, -1, 2, 3};
-    const int pairs[][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 4}, {4, 0}, {1, 3},
-                            {1, 0}};
     memset(c, 0, sizeof *c);
-    cr_assert_eq(cl_bpattern_build(NP, dof, NB, 7, pairs, &c->pat, NULL),
-                 CL_OK);
-    for (size_t i = 0; i < N; i++)
-        c->mass[i] = 0.5 + 0.25 * (double)i;
+    bc_init(&c->pat, c->mass, &c->dfdx, &c->dfdv);
     size_t nval = 9 * c->pat.nnzb;
-    c->dfdx = malloc(nval * sizeof *c->dfdx);
-    c->dfdv = malloc(nval * sizeof *c->dfdv);
-    cr_assert(c->dfdx && c->dfdv);
     for (size_t k = 0; k < nval; k++) {
-        c->dfdx[k] = 3.0 * rd_rand(&seed);
-        c->dfdv[k] = 2.0 * rd_rand(&seed);
+        c->dfdx[k] = 3.0 * bc_rand(&seed);
+        c->dfdv[k] = 2.0 * bc_rand(&seed);
     }
 }
 
 static void rd_free(rd_case *c)
 {
-    cl_bpattern_free(&c->pat);
-    free(c->dfdx);
-    free(c->dfdv);
+    bc_free(&c->pat, c->dfdx, c->dfdv);
 }
 
 /* Dense A, row-major N x N, straight from the block CSR. */
@@ -168,7 +148,7 @@ Test(reduced, block_views_match_dense_products)
     double D[N * N], p[N], y[N], yref[N], d3[9 * NB];
     unsigned long seed = 99;
     for (size_t i = 0; i < N; i++)
-        p[i] = rd_rand(&seed);
+        p[i] = bc_rand(&seed);
     rd_dense(&c, a, b, D);
     rd_dense_mv(D, p, yref);
     cl_reduced_matvec(&c.pat, c.mass, a, b, c.dfdx, c.dfdv, p, y);

@@ -1,82 +1,28 @@
 /* Tests for the CSV time-series writer. */
 #include <criterion/criterion.h>
 
-#include <dirent.h>
 #include <math.h>
-#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include "io/series.h"
+#include "tmpdir.h"
 
 static char dir[64];
 static char path[256];
 
-static void rm_rf(const char *p)
-{
-    struct stat st;
-    if (lstat(p, &st) != 0)
-        return;
-    if (S_ISDIR(st.st_mode)) {
-        DIR *d = opendir(p);
-        if (d) {
-            struct dirent *e;
-            while ((e = readdir(d))) {
-                if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, ".."))
-                    continue;
-                char sub[1024];
-                snprintf(sub, sizeof sub, "%s/%s", p, e->d_name);
-                rm_rf(sub);
-            }
-            closedir(d);
-        }
-        rmdir(p);
-    } else {
-        unlink(p);
-    }
-}
-
 static void setup(void)
 {
-    strcpy(dir, "/tmp/clothode-series-XXXXXX");
-    cr_assert_not_null(mkdtemp(dir));
+    tmp_mkdtemp(dir, sizeof dir, "series");
     snprintf(path, sizeof path, "%s/energy.csv", dir);
 }
 
 static void teardown(void)
 {
-    rm_rf(dir);
-}
-
-static void slurp(const char *p, char *buf, size_t len)
-{
-    FILE *fp = fopen(p, "r");
-    cr_assert_not_null(fp, "cannot open %s", p);
-    size_t n = fread(buf, 1, len - 1, fp);
-    buf[n] = '\0';
-    fclose(fp);
-}
-
-/* Names of the entries in dir (at most 4) and their number. */
-static size_t list_dir(char names[4][256])
-{
-    DIR *d = opendir(dir);
-    cr_assert_not_null(d);
-    size_t n = 0;
-    struct dirent *e;
-    while ((e = readdir(d))) {
-        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, ".."))
-            continue;
-        if (n < 4)
-            snprintf(names[n], 256, "%s", e->d_name);
-        n++;
-    }
-    closedir(d);
-    return n;
+    tmp_rm_rf(dir);
 }
 
 static const char *const cols[] = {"t", "kinetic", "potential"};
@@ -97,20 +43,20 @@ Test(series, rows_then_close)
     /* Not published yet, but every row is already in the temporary file. */
     cr_assert_eq(access(path, F_OK), -1);
     char names[4][256], tmp[600], buf[1024];
-    cr_assert_eq(list_dir(names), 1);
+    cr_assert_eq(tmp_list_dir(dir, names, 4), 1);
     cr_assert_eq(strncmp(names[0], "energy.csv.tmp.", 15), 0, "%s",
                  names[0]);
     snprintf(tmp, sizeof tmp, "%s/%s", dir, names[0]);
     const char *expect = "t,kinetic,potential\n"
                          "0,0.3333333333,-2.5e-12\n"
                          "0.01,1.23456789e+11,4\n";
-    slurp(tmp, buf, sizeof buf);
+    tmp_slurp(tmp, buf, sizeof buf);
     cr_assert_str_eq(buf, expect);
 
     cr_assert_eq(cl_series_close(s, &err), CL_OK, "%s", err.msg);
-    slurp(path, buf, sizeof buf);
+    tmp_slurp(path, buf, sizeof buf);
     cr_assert_str_eq(buf, expect);
-    cr_assert_eq(list_dir(names), 1);
+    cr_assert_eq(tmp_list_dir(dir, names, 4), 1);
 }
 
 Test(series, header_only_and_non_finite)
@@ -120,7 +66,7 @@ Test(series, header_only_and_non_finite)
     cr_assert_eq(cl_series_open(path, 1, cols, &s, &err), CL_OK);
     cr_assert_eq(cl_series_close(s, &err), CL_OK);
     char buf[256];
-    slurp(path, buf, sizeof buf);
+    tmp_slurp(path, buf, sizeof buf);
     cr_assert_str_eq(buf, "t\n");
 
     /* A blow-up row is recorded, then the series is closed as on any
@@ -129,7 +75,7 @@ Test(series, header_only_and_non_finite)
     double r[] = {1, NAN, -INFINITY};
     cr_assert_eq(cl_series_row(s, r, &err), CL_OK);
     cr_assert_eq(cl_series_close(s, &err), CL_OK);
-    slurp(path, buf, sizeof buf);
+    tmp_slurp(path, buf, sizeof buf);
     cr_assert(strstr(buf, "t,kinetic,potential\n1,") == buf, "%s", buf);
     cr_assert(strstr(buf, "nan") != NULL, "%s", buf);
     cr_assert(strstr(buf, ",-inf\n") != NULL, "%s", buf);
@@ -143,9 +89,9 @@ Test(series, close_null_and_discard)
     cl_series *s;
     cr_assert_eq(cl_series_open(path, 2, cols, &s, &err), CL_OK);
     char names[4][256];
-    cr_assert_eq(list_dir(names), 1);
+    cr_assert_eq(tmp_list_dir(dir, names, 4), 1);
     cl_series_discard(s);
-    cr_assert_eq(list_dir(names), 0);
+    cr_assert_eq(tmp_list_dir(dir, names, 4), 0);
 }
 
 Test(series, bad_columns)
@@ -169,7 +115,7 @@ Test(series, bad_columns)
     const char *const null_name[] = {"t", NULL};
     cr_assert_eq(cl_series_open(path, 2, null_name, &s, &err), CL_EINVAL);
     char names[4][256];
-    cr_assert_eq(list_dir(names), 0);
+    cr_assert_eq(tmp_list_dir(dir, names, 4), 0);
 }
 
 Test(series, open_in_missing_directory)
@@ -205,7 +151,7 @@ Test(series, close_failure_removes_temporary)
     cr_assert_eq(cl_series_close(s, &err), CL_EIO);
     cr_assert(strstr(err.msg, path) != NULL, "%s", err.msg);
     char names[4][256];
-    cr_assert_eq(list_dir(names), 1);
+    cr_assert_eq(tmp_list_dir(dir, names, 4), 1);
     cr_assert_str_eq(names[0], "energy.csv");
 }
 
@@ -213,11 +159,7 @@ Test(series, write_error_is_reported)
 {
     /* Limit the file size: a row eventually fails with EFBIG (the signal
      * that would kill the process is ignored). */
-    cr_assert_neq(signal(SIGXFSZ, SIG_IGN), SIG_ERR);
-    struct rlimit rl;
-    cr_assert_eq(getrlimit(RLIMIT_FSIZE, &rl), 0);
-    rl.rlim_cur = 200;
-    cr_assert_eq(setrlimit(RLIMIT_FSIZE, &rl), 0);
+    tmp_limit_file_size(200);
 
     cl_series *s;
     cl_error err;
@@ -238,5 +180,5 @@ Test(series, write_error_is_reported)
     cr_assert(strstr(err.msg, "write error") != NULL, "%s", err.msg);
     cr_assert_eq(access(path, F_OK), -1);
     char names[4][256];
-    cr_assert_eq(list_dir(names), 0);
+    cr_assert_eq(tmp_list_dir(dir, names, 4), 0);
 }

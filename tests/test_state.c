@@ -1,63 +1,28 @@
 /* Tests for the cloth state CSV reader and writer. */
 #include <criterion/criterion.h>
 
-#include <dirent.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <signal.h>
 #include <string.h>
-#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include "io/state.h"
+#include "tmpdir.h"
 
 static char dir[64];
 static char path[256];
 
-static void rm_rf(const char *p)
-{
-    struct stat st;
-    if (lstat(p, &st) != 0)
-        return;
-    if (S_ISDIR(st.st_mode)) {
-        DIR *d = opendir(p);
-        if (d) {
-            struct dirent *e;
-            while ((e = readdir(d))) {
-                if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, ".."))
-                    continue;
-                char sub[1024];
-                snprintf(sub, sizeof sub, "%s/%s", p, e->d_name);
-                rm_rf(sub);
-            }
-            closedir(d);
-        }
-        rmdir(p);
-    } else {
-        unlink(p);
-    }
-}
-
 static void setup(void)
 {
-    strcpy(dir, "/tmp/clothode-state-XXXXXX");
-    cr_assert_not_null(mkdtemp(dir));
+    tmp_mkdtemp(dir, sizeof dir, "state");
     snprintf(path, sizeof path, "%s/state.csv", dir);
 }
 
 static void teardown(void)
 {
-    rm_rf(dir);
-}
-
-static void put(const char *text)
-{
-    FILE *fp = fopen(path, "w");
-    cr_assert_not_null(fp);
-    cr_assert(fputs(text, fp) >= 0);
-    cr_assert_eq(fclose(fp), 0);
+    tmp_rm_rf(dir);
 }
 
 /* Read `text` as a state of np particles; expect `code` and, if given, a
@@ -65,7 +30,7 @@ static void put(const char *text)
 static void expect_read(const char *text, size_t np, cl_status code,
                         const char *sub1, const char *sub2)
 {
-    put(text);
+    tmp_put(path, text);
     double x[30], v[30];
     cl_error err;
     cl_error_clear(&err);
@@ -80,17 +45,6 @@ static void expect_read(const char *text, size_t np, cl_status code,
     if (sub2)
         cr_assert(strstr(err.msg, sub2) != NULL, "'%s' not in: %s", sub2,
                   err.msg);
-}
-
-/* Make writes beyond `bytes` fail with EFBIG (instead of SIGXFSZ); each
- * test runs in its own process, so the limit does not leak. */
-static void limit_file_size(rlim_t bytes)
-{
-    cr_assert_neq(signal(SIGXFSZ, SIG_IGN), SIG_ERR);
-    struct rlimit rl;
-    cr_assert_eq(getrlimit(RLIMIT_FSIZE, &rl), 0);
-    rl.rlim_cur = bytes;
-    cr_assert_eq(setrlimit(RLIMIT_FSIZE, &rl), 0);
 }
 
 TestSuite(state, .init = setup, .fini = teardown);
@@ -116,22 +70,16 @@ Test(state, round_trip_is_exact)
     cr_assert_not_null(fgets(line, sizeof line, fp));
     cr_assert_str_eq(line, "p,x,y,z,vx,vy,vz\n");
     fclose(fp);
-    DIR *d = opendir(dir);
-    int n = 0;
-    struct dirent *e;
-    while ((e = readdir(d)))
-        n += e->d_name[0] != '.';
-    closedir(d);
-    cr_assert_eq(n, 1);
+    cr_assert_eq(tmp_list_dir(dir, NULL, 0), 1);
 }
 
 Test(state, rows_in_any_order)
 {
-    put("p,x,y,z,vx,vy,vz\r\n"
-        "2,7,8,9,-7,-8,-9\r\n"
-        "\r\n"
-        "0, 1 ,2,3,-1,-2,-3\r\n"
-        "1,4,5,6e0,-4,-5,-6\r\n");
+    tmp_put(path, "p,x,y,z,vx,vy,vz\r\n"
+                  "2,7,8,9,-7,-8,-9\r\n"
+                  "\r\n"
+                  "0, 1 ,2,3,-1,-2,-3\r\n"
+                  "1,4,5,6e0,-4,-5,-6\r\n");
     double x[9], v[9];
     cl_error err;
     cr_assert_eq(cl_state_read(path, 3, x, v, &err), CL_OK, "%s", err.msg);
@@ -248,16 +196,10 @@ Test(state, write_error)
     enum { NP = 100 };
     double x[3 * NP] = {0}, v[3 * NP] = {0};
     x[0] = 1.0 / 3.0;
-    limit_file_size(1000);
+    tmp_limit_file_size(1000);
     cl_error err;
     cr_assert_eq(cl_state_write(path, NP, x, v, &err), CL_EIO);
     cr_assert(strstr(err.msg, path) != NULL, "%s", err.msg);
     cr_assert_eq(access(path, F_OK), -1);
-    DIR *d = opendir(dir);
-    int n = 0;
-    struct dirent *e;
-    while ((e = readdir(d)))
-        n += e->d_name[0] != '.';
-    closedir(d);
-    cr_assert_eq(n, 0);
+    cr_assert_eq(tmp_list_dir(dir, NULL, 0), 0);
 }

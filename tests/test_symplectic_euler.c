@@ -7,6 +7,7 @@
 #include <math.h>
 
 #include "integrators/integrator.h"
+#include "runint.h"
 #include "testsys.h"
 
 #define TWO_PI 6.283185307179586
@@ -158,12 +159,8 @@ Test(symplectic_euler, rejects_bad_dt)
 static void expect_blowup(int fail, double t_bad, cl_status want)
 {
     ts_sys ts;
-    cr_assert_eq(ts_oscillators(&ts, 1), 0);
-    ts.fail = fail;
-    ts.t_bad = t_bad;
-    ts.fail_status = want;
     double x[3], v[3];
-    ts_initial(&ts, x, v);
+    ri_failing_oscillator_at(&ts, fail, want, t_bad, x, v);
     cl_integrator_opts o = {.dt = 0.01};
     void *st;
     cl_error err;

@@ -59,6 +59,16 @@ static void state_mixed(const cl_model *m, fd_rng *r, double *x)
     fd_deform(m, A, 0.003, 0.03, r, x);
 }
 
+/* The state of trial k: stretched for even k, half-slack for odd k. */
+static void state_alternating(const cl_model *m, fd_rng *r, int trial,
+                              double *x)
+{
+    if (trial % 2)
+        state_mixed(m, r, x);
+    else
+        state_stretched(m, r, x);
+}
+
 Test(type1, jacobian_fd_stretched)
 {
     cl_model *m = TYPE1_ONLY("cloth.n=5", "type1.ks=173");
@@ -119,10 +129,7 @@ Test(type1, force_is_minus_energy_gradient)
     double *x = fd_vec(n), *v = fd_vec(n);
     fd_rng r = {13};
     for (int trial = 0; trial < 4; trial++) {
-        if (trial % 2)
-            state_mixed(m, &r, x);
-        else
-            state_stretched(m, &r, x);
+        state_alternating(m, &r, trial, x);
         double e = fd_check_energy(m, x, v, 1e-6 * 0.25, "type1");
         cr_assert_lt(e, 1e-6, "type1 f vs -dE/dx: rel err %g", e);
     }
@@ -138,10 +145,7 @@ Test(type1, newton_third_law_and_no_torque)
     double *x = fd_vec(n), *v = fd_vec(n), *f = fd_vec(n);
     fd_rng r = {14};
     for (int trial = 0; trial < 4; trial++) {
-        if (trial % 2)
-            state_mixed(m, &r, x);
-        else
-            state_stretched(m, &r, x);
+        state_alternating(m, &r, trial, x);
         fd_eval(m, x, v, f);
         double torque, net = fd_net_force(x, f, n / 3, &torque);
         cr_assert_lt(net, 1e-14, "net force %g", net);
@@ -165,10 +169,7 @@ Test(type1, rigid_motion_invariance)
         fd_rotation(&r, R);
         fd_random_vec(&r, 3.0, c, 3);
         fd_random_vec(&r, 1.0, w, 3);
-        if (trial % 2)
-            state_mixed(m, &r, x);
-        else
-            state_stretched(m, &r, x);
+        state_alternating(m, &r, trial, x);
         fd_random_vec(&r, 0.5, v, n);
         double e = fd_check_rigid(m, x, v, R, c, w, "type1");
         cr_assert_lt(e, 1e-11, "type1 rigid-motion deviation %g", e);
@@ -252,23 +253,7 @@ Test(type1, slack_under_compression_is_exactly_zero)
  * same expression): force and energy exactly zero, for awkward spacings. */
 Test(type1, rest_state_exactly_zero)
 {
-    static const char *const grids[][4] = {
-        {"cloth.nu=7", "cloth.nv=7", "cloth.su=0.7", "cloth.sv=0.7"},
-        {"cloth.nu=5", "cloth.nv=9", "cloth.su=1.3", "cloth.sv=0.37"},
-        {"cloth.nu=11", "cloth.nv=3", "cloth.su=3.1", "cloth.sv=0.1"},
-    };
-    for (size_t g = 0; g < sizeof grids / sizeof grids[0]; g++) {
-        cl_model *m = TYPE1_ONLY(grids[g][0], grids[g][1], grids[g][2],
-                                 grids[g][3]);
-        size_t n = fd_n(m);
-        double *v = fd_vec(n), *f = fd_vec(n);
-        cl_energy e = fd_eval(m, cl_model_cloth(m)->X0, v, f);
-        cr_assert_eq(fd_maxabs(f, n), 0.0, "grid %zu: force at rest", g);
-        cr_assert_eq(fd_term_energy(&e, "type1"), 0.0);
-        free(v);
-        free(f);
-        cl_model_free(m);
-    }
+    fd_expect_rest_exactly_zero("type1", "type2.enabled=false");
 }
 
 /* s >= 0 everywhere: jacobian.transverse = clamp changes nothing. */

@@ -720,23 +720,7 @@ Test(type2, rigid_motion_invariance)
 /* At rest every Type2 pair is exactly at d = L: zero force and energy. */
 Test(type2, rest_state_exactly_zero)
 {
-    static const char *const grids[][4] = {
-        {"cloth.nu=7", "cloth.nv=7", "cloth.su=0.7", "cloth.sv=0.7"},
-        {"cloth.nu=5", "cloth.nv=9", "cloth.su=1.3", "cloth.sv=0.37"},
-        {"cloth.nu=11", "cloth.nv=3", "cloth.su=3.1", "cloth.sv=0.1"},
-    };
-    for (size_t g = 0; g < 3; g++) {
-        cl_model *m = TYPE2_ONLY(grids[g][0], grids[g][1], grids[g][2],
-                                 grids[g][3]);
-        size_t n = fd_n(m);
-        double *v = fd_vec(n), *f = fd_vec(n);
-        cl_energy e = fd_eval(m, cl_model_cloth(m)->X0, v, f);
-        cr_assert_eq(fd_maxabs(f, n), 0.0, "grid %zu: force at rest", g);
-        cr_assert_eq(fd_term_energy(&e, "type2"), 0.0);
-        free(v);
-        free(f);
-        cl_model_free(m);
-    }
+    fd_expect_rest_exactly_zero("type2", "type1.enabled=false");
 }
 
 /* ---- jacobian.transverse = clamp --------------------------------------- */

@@ -1,8 +1,11 @@
-/* Choi-Ko linear damping (seed 000, eq. 14; SPEC 3.2) on every Type1 and
+/* Choi-Ko pair damping (seed 000, eq. 14; SPEC 3.2) on every Type1 and
  * Type2 pair:
  *     f_a = -kd (v_a - v_b),   f_b = -f_a,
  * so df_a/dv_a = df_b/dv_b = -kd I and df_a/dv_b = df_b/dv_a = kd I; no
  * position dependence.  Its power is -kd |v_a - v_b|^2 <= 0 per pair.
+ * model = axial (SPEC 3.2 option) damps only the stretching rate,
+ * f_a = kd (u . (v_b - v_a)) u (seed 004's "spring and friction"); both
+ * laws and their Jacobians are in forces/pairdamp.h.
  *
  * where = engaged reproduces the seed author's code, which damps a pair only
  * while its spring acts: a Type1 pair when d > L, a Type2 pair when d < L.
@@ -10,25 +13,23 @@
  * current branch.)
  *
  * INI section [damping]: kd (N s/m, >= 0; 0 switches the term off),
- * where (always|engaged). */
+ * where (always|engaged), model (linear|axial, default linear). */
 #include <stdlib.h>
 #include <string.h>
 
 #include "forces/choiko.h"
-#include "forces/pairterm.h"
+#include "forces/pairdamp.h"
 
 typedef struct {
-    cl_pairset set;     /* Type1 pairs first, then Type2 pairs */
+    cl_pairdamp pd;     /* first member; its pairs: Type1 first, then Type2 */
     size_t ntype1;
-    int (*couple)[2];
-    long *slot;
-    double kd;
     bool engaged_only;
 } damping_state;
 
-static bool engaged(const damping_state *st, size_t k, const double *x)
+static bool engaged(const void *ctx, size_t k, const double *x)
 {
-    const cl_pair *pr = &st->set.pair[k];
+    const damping_state *st = ctx;
+    const cl_pair *pr = &st->pd.pt.set.pair[k];
     double d = cl_dist(x + 3 * pr->a, x + 3 * pr->b);
     return k < st->ntype1 ? d > pr->rest : d < pr->rest;
 }
@@ -36,63 +37,22 @@ static bool engaged(const damping_state *st, size_t k, const double *x)
 static void damping_eval(void *state, cl_eval *ev)
 {
     damping_state *st = state;
-    static const double I3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-    double power = 0.0;
-    for (size_t k = 0; k < st->set.n; k++) {
-        if (st->engaged_only && !engaged(st, k, ev->x))
-            continue;
-        const cl_pair *pr = &st->set.pair[k];
-        const double *va = ev->v + 3 * pr->a, *vb = ev->v + 3 * pr->b;
-        for (int i = 0; i < 3; i++) {
-            double fa = -st->kd * (va[i] - vb[i]);
-            if (ev->f) {
-                ev->f[3 * pr->a + i] += fa;
-                ev->f[3 * pr->b + i] -= fa;
-            }
-            power += fa * (va[i] - vb[i]);
-        }
-        if (ev->dfdv) {
-            const long *s = st->slot + 4 * k;
-            cl_block_add(ev->dfdv, s[0], -st->kd, I3);
-            cl_block_add(ev->dfdv, s[1], -st->kd, I3);
-            cl_block_add(ev->dfdv, s[2], st->kd, I3);
-            cl_block_add(ev->dfdv, s[3], st->kd, I3);
-        }
-    }
-    if (ev->want_energy) {
-        ev->energy = 0.0;
-        ev->power = power;
-    }
-}
-
-static size_t damping_couplings(const void *state, const int (**pairs)[2])
-{
-    const damping_state *st = state;
-    *pairs = (const int (*)[2])st->couple;
-    return st->set.n;
-}
-
-static cl_status damping_bind(void *state, const cl_bpattern *pat,
-                              const int *dof, cl_error *err)
-{
-    damping_state *st = state;
-    return cl_pair_slots(&st->set, pat, dof, &st->slot, err);
+    cl_pairdamp_eval(&st->pd, ev, st->engaged_only ? engaged : NULL, st);
 }
 
 static void damping_free(void *state)
 {
     damping_state *st = state;
-    if (!st)
-        return;
-    cl_pairs_free(&st->set);
-    free(st->couple);
-    free(st->slot);
+    if (st)
+        cl_pairdamp_free(&st->pd);
     free(st);
 }
 
-/* Type1 pairs followed by Type2 pairs (if Type2 is on). */
+/* Type1 pairs followed by Type2 pairs (if Type2 is on); *ntype1 of them
+ * Type1. */
 static cl_status damping_pairs(cl_config *cfg, const cl_cloth *cloth,
-                               damping_state *st, cl_error *err)
+                               cl_pairset *set, size_t *ntype1,
+                               cl_error *err)
 {
     bool type2;
     cl_pairset t1 = {0}, t2 = {0};
@@ -103,23 +63,17 @@ static cl_status damping_pairs(cl_config *cfg, const cl_cloth *cloth,
         cl_pairs_free(&t1);
         return rc;
     }
-    st->ntype1 = t1.n;
-    st->set.n = t1.n + t2.n;
-    st->set.pair = realloc(t1.pair, (st->set.n + 1) * sizeof *t1.pair);
-    st->couple = malloc((st->set.n + 1) * sizeof *st->couple);
-    if (!st->set.pair || !st->couple) {
-        if (!st->set.pair)
-            free(t1.pair);
+    *ntype1 = t1.n;
+    set->n = t1.n + t2.n;
+    set->pair = realloc(t1.pair, (set->n + 1) * sizeof *t1.pair);
+    if (!set->pair) {
+        cl_pairs_free(&t1);
         cl_pairs_free(&t2);
         return cl_error_set(err, CL_ENOMEM, "out of memory (damping)");
     }
     if (t2.n)
-        memcpy(st->set.pair + t1.n, t2.pair, t2.n * sizeof *t2.pair);
+        memcpy(set->pair + t1.n, t2.pair, t2.n * sizeof *t2.pair);
     cl_pairs_free(&t2);
-    for (size_t k = 0; k < st->set.n; k++) {
-        st->couple[k][0] = st->set.pair[k].a;
-        st->couple[k][1] = st->set.pair[k].b;
-    }
     return CL_OK;
 }
 
@@ -130,21 +84,26 @@ static cl_status damping_create(cl_config *cfg, const cl_cloth *cloth,
     static const char *const where[] = {"always", "engaged", NULL};
     double kd;
     int wk;
+    cl_damp_model model;
     cl_status rc;
     (void)opts;
     *state = NULL;
     if ((rc = cl_config_double(cfg, "damping", "kd", 0.0, 0.0, INFINITY, &kd,
                                err)) ||
-        (rc = cl_config_choice(cfg, "damping", "where", where, 0, &wk, err)))
+        (rc = cl_config_choice(cfg, "damping", "where", where, 0, &wk,
+                               err)) ||
+        (rc = cl_pairdamp_read_model(cfg, "damping", CL_DAMP_LINEAR, &model,
+                                     err)))
         return rc;
     if (kd == 0.0)
         return CL_OK;
     damping_state *st = calloc(1, sizeof *st);
     if (!st)
         return cl_error_set(err, CL_ENOMEM, "out of memory (damping)");
-    st->kd = kd;
     st->engaged_only = wk == 1;
-    if ((rc = damping_pairs(cfg, cloth, st, err))) {
+    cl_pairset set;
+    if ((rc = damping_pairs(cfg, cloth, &set, &st->ntype1, err)) ||
+        (rc = cl_pairdamp_init(&st->pd, set, kd, model, err))) {
         damping_free(st);
         return rc;
     }
@@ -154,12 +113,12 @@ static cl_status damping_create(cl_config *cfg, const cl_cloth *cloth,
 
 const cl_term_type cl_term_damping = {
     .name = "damping",
-    .doc = "Choi-Ko linear pair damping -kd (v_i - v_j) on Type1 and Type2 "
-           "pairs (seed eq. 14)",
+    .doc = "Choi-Ko pair damping on Type1 and Type2 pairs: linear "
+           "-kd (v_i - v_j) (seed eq. 14) or axial",
     .conservative = false,
     .create = damping_create,
-    .couplings = damping_couplings,
-    .bind = damping_bind,
+    .couplings = cl_pairterm_couplings,
+    .bind = cl_pairterm_bind,
     .eval = damping_eval,
     .free = damping_free,
 };

@@ -1,11 +1,12 @@
 /* Integrator tables for methods built on a shared module (fixed_step.h,
- * gslode.h): the module provides create(method, ...), advance, stats and
- * free; a method file provides a method description `method` and gets
+ * gslode.h, kinsol_common.h): the module provides create(method, ...),
+ * advance, stats and free; a method file provides a method description
+ * `method` and gets
  *
  *   static create function  ident_create(sys, opts, t0, x0, v0, state, err)
  *                           = module_create(&method, sys, ...)
- *   const cl_integrator_type ident = {name_, doc_, fixed_, takes_linsol =
- *                           false, ident_create, advance_, stats_, free_}
+ *   const cl_integrator_type ident = {name_, doc_, fixed_, linsol_,
+ *                           ident_create, advance_, stats_, free_}
  *
  * for one row of the registry (integrators/registry.c). */
 #ifndef CL_DEFINE_H
@@ -14,7 +15,7 @@
 #include "integrators/integrator.h"
 
 #define CL_INTEGRATOR_DEFINE(ident, method, create_, name_, doc_, fixed_,   \
-                             advance_, stats_, free_)                       \
+                             linsol_, advance_, stats_, free_)              \
     static cl_status ident##_create(const cl_system *sys,                   \
                                     const cl_integrator_opts *o, double t0, \
                                     const double *x0, const double *v0,     \
@@ -26,7 +27,7 @@
         .name = (name_),                                                    \
         .doc = (doc_),                                                      \
         .fixed_step = (fixed_),                                             \
-        .takes_linsol = false,                                              \
+        .takes_linsol = (linsol_),                                          \
         .create = ident##_create,                                           \
         .advance = (advance_),                                              \
         .stats = (stats_),                                                  \

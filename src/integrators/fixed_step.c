@@ -1,5 +1,6 @@
-/* Shared state, create/advance/stats/free and the finite-state check of the
- * explicit fixed-step integrators (see fixed_step.h).
+/* Shared state, create/advance/stats/free of the explicit fixed-step
+ * integrators, and the step loop with its finite-state check that every
+ * fixed-step integrator uses (see fixed_step.h).
  *
  * Each method file states its own update formulas; here a step is only
  *   (x_k, v_k) -> method->step -> (x_{k+1}, v_{k+1}),  t_k = t0 + k h,
@@ -9,6 +10,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "core/check.h"
 
 void cl_fixed_free(void *state)
 {
@@ -35,13 +38,7 @@ static cl_status fixed_check_args(const cl_fixed_method *m,
     if (!isfinite(t0))
         return cl_error_set(err, CL_EINVAL, "%s: initial time %g", m->name,
                             t0);
-    for (size_t i = 0; i < sys->n; i++) {
-        if (!isfinite(sys->mass[i]) || !(sys->mass[i] > 0.0))
-            return cl_error_set(err, CL_EINVAL,
-                                "%s: mass[%zu] = %g, must be finite and > 0",
-                                m->name, i, sys->mass[i]);
-    }
-    return CL_OK;
+    return cl_check_masses(sys->mass, sys->n, m->name, err);
 }
 
 /* The state with all its arrays, or NULL when out of memory. */
@@ -113,43 +110,42 @@ cl_status cl_fixed_accel(cl_fixed *s, double t, const double *x,
     return CL_OK;
 }
 
-static bool fixed_finite(const double *a, size_t n)
+cl_status cl_fixed_run(const cl_fixed_clock *c, cl_fixed_step_fn step,
+                       void *state, double t_out, double *x_out,
+                       double *v_out, cl_error *err)
 {
-    for (size_t i = 0; i < n; i++) {
-        if (!isfinite(a[i]))
-            return false;
+    long nsteps = 0;
+    cl_status st = cl_fixed_steps_to(t_out - c->t0, c->h, *c->done, &nsteps,
+                                     err);
+    for (long k = 0; st == CL_OK && k < nsteps; k++) {
+        st = step(state, err);
+        if (st != CL_OK)
+            break;
+        long done = ++*c->done;
+        if (!cl_all_finite(*c->x, c->n) || !cl_all_finite(*c->v, c->n))
+            st = cl_error_set(err, CL_EBLOWUP, "%s: state not finite at "
+                              "t = %.9g (step %ld, dt = %g)", c->name,
+                              c->t0 + (double)done * c->h, done, c->h);
     }
-    return true;
+    memcpy(x_out, *c->x, c->n * sizeof *x_out);
+    memcpy(v_out, *c->v, c->n * sizeof *v_out);
+    return st;
 }
 
-/* One step from step `done`, then the finite-state check. */
-static cl_status fixed_step(cl_fixed *s, cl_error *err)
+/* The method's step from step `done`. */
+static cl_status fixed_step(void *state, cl_error *err)
 {
-    double h = s->dt, t = s->t0 + (double)s->done * h;
-    cl_status st = s->method->step(s, t, h, err);
-    if (st != CL_OK)
-        return st;
-    s->done++;
-    if (!fixed_finite(s->x, s->n) || !fixed_finite(s->v, s->n))
-        return cl_error_set(err, CL_EBLOWUP,
-                            "%s: state not finite at t = %.9g (step %ld, "
-                            "dt = %g)", s->method->name,
-                            s->t0 + (double)s->done * h, s->done, h);
-    return CL_OK;
+    cl_fixed *s = state;
+    return s->method->step(s, s->t0 + (double)s->done * s->dt, s->dt, err);
 }
 
 cl_status cl_fixed_advance(void *state, double t_out, double *x, double *v,
                            cl_error *err)
 {
     cl_fixed *s = state;
-    long nsteps = 0;
-    cl_status st = cl_fixed_steps_to(t_out - s->t0, s->dt, s->done, &nsteps,
-                                     err);
-    for (long k = 0; st == CL_OK && k < nsteps; k++)
-        st = fixed_step(s, err);
-    memcpy(x, s->x, s->n * sizeof *x);
-    memcpy(v, s->v, s->n * sizeof *v);
-    return st;
+    cl_fixed_clock c = {s->method->name, s->n, s->t0, s->dt, &s->done,
+                        &s->x, &s->v};
+    return cl_fixed_run(&c, fixed_step, s, t_out, x, v, err);
 }
 
 void cl_fixed_stats(const void *state, cl_stats *out)

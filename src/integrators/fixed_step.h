@@ -21,7 +21,12 @@
  *   - forces: cl_fixed_accel evaluates a = M^-1 f(t, x, v), counts it, and
  *     turns a failing force into its status with the time and step.
  *
- * Nothing is allocated in the per-step path. */
+ * Nothing is allocated in the per-step path.
+ *
+ * The step loop of advance (output times, step counting, the finite-state
+ * check, the copy-out) is cl_fixed_run, which the implicit fixed-step
+ * integrators (kinsol_common.c, semi_common.c) share with their own state,
+ * step function and statistics. */
 #ifndef CL_FIXED_STEP_H
 #define CL_FIXED_STEP_H
 
@@ -65,6 +70,31 @@ cl_status cl_fixed_advance(void *state, double t_out, double *x, double *v,
 void cl_fixed_stats(const void *state, cl_stats *out);
 void cl_fixed_free(void *state);
 
+/* ---- the step loop of every fixed-step integrator ---------------------- */
+
+/* One step from t0 + done h to t0 + (done + 1) h, in place; `done` is
+ * counted by cl_fixed_run after the step returns CL_OK. */
+typedef cl_status (*cl_fixed_step_fn)(void *state, cl_error *err);
+
+/* The clock and the current state of a fixed-step integrator. */
+typedef struct {
+    const char *name;   /* method name, used in messages */
+    size_t n;           /* entries of x and of v */
+    double t0, h;       /* time of step 0, step size */
+    long *done;         /* steps taken */
+    /* the current state (n each); a step may repoint it (history swap) */
+    double *const *x, *const *v;
+} cl_fixed_clock;
+
+/* Take the steps from *done to t_out, which must be a whole number of
+ * steps from t0 (cl_fixed_steps_to): call step(state), count it in *done
+ * and check that *x and *v are finite (CL_EBLOWUP with the time and the
+ * step otherwise), until t_out or a failure.  x_out and v_out receive the
+ * current state, also after a failure. */
+cl_status cl_fixed_run(const cl_fixed_clock *c, cl_fixed_step_fn step,
+                       void *state, double t_out, double *x_out,
+                       double *v_out, cl_error *err);
+
 /* a = M^-1 f(t, x, v) (n entries), counted in rhs_evals.  A force that
  * fails returns its status with a message naming the method, the time and
  * the step. */
@@ -82,7 +112,7 @@ cl_status cl_fixed_accel(cl_fixed *s, double t, const double *x,
         .step = (step_),                                                    \
     };                                                                      \
     CL_INTEGRATOR_DEFINE(ident, ident##_method, cl_fixed_create, name_,     \
-                         doc_, true, cl_fixed_advance, cl_fixed_stats,      \
-                         cl_fixed_free)
+                         doc_, true, false, cl_fixed_advance,               \
+                         cl_fixed_stats, cl_fixed_free)
 
 #endif

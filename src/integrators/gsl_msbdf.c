@@ -35,6 +35,8 @@
 
 #include <gsl/gsl_errno.h>
 
+#include "core/check.h"
+
 #define CL_MSBDF_MAX_N (3 * 24 * 24)
 
 /* Fill the dense 2n x 2n first-order Jacobian from the block values. */
@@ -74,7 +76,7 @@ static int msbdf_dfdt(cl_gslode *s, double t, const double *y, double *dfdt)
         dfdt[i] = 0.0;
         dfdt[n + i] = s->inv_mass[i] * (s->ft[i] - s->f[i]) / d;
     }
-    if (!cl_gslode_finite(dfdt + n, n))
+    if (!cl_all_finite(dfdt + n, n))
         return cl_gslode_failed(s, CL_EBLOWUP, t + d);
     return GSL_SUCCESS;
 }
@@ -89,8 +91,8 @@ static int msbdf_jacobian(double t, const double y[], double *dfdy,
     s->njac++;
     if (st != CL_OK)
         return cl_gslode_failed(s, st, t);
-    if (!cl_gslode_finite(s->dfdx, nval) || !cl_gslode_finite(s->dfdv, nval)
-        || !cl_gslode_finite(s->f, n))
+    if (!cl_all_finite(s->dfdx, nval) || !cl_all_finite(s->dfdv, nval)
+        || !cl_all_finite(s->f, n))
         return cl_gslode_failed(s, CL_EBLOWUP, t);
     msbdf_fill(s, dfdy);
     return msbdf_dfdt(s, t, y, dfdt);

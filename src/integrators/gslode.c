@@ -12,19 +12,12 @@
 
 #include <gsl/gsl_errno.h>
 
+#include "core/check.h"
+
 #define CL_GSL_RTOL 1e-6
 #define CL_GSL_ATOL 1e-8
 #define CL_GSL_HSTART 1e-6
 #define CL_GSL_MAX_STEPS 10000000L
-
-bool cl_gslode_finite(const double *a, size_t n)
-{
-    for (size_t i = 0; i < n; i++) {
-        if (!isfinite(a[i]))
-            return false;
-    }
-    return true;
-}
 
 int cl_gslode_failed(cl_gslode *s, cl_status st, double t)
 {
@@ -45,7 +38,7 @@ static int gslode_rhs(double t, const double y[], double dydt[], void *params)
     memcpy(dydt, y + n, n * sizeof *dydt);
     for (size_t i = 0; i < n; i++)
         dydt[n + i] *= s->inv_mass[i];
-    if (!cl_gslode_finite(dydt + n, n))
+    if (!cl_all_finite(dydt + n, n))
         return cl_gslode_failed(s, CL_EBLOWUP, t);
     return GSL_SUCCESS;
 }
@@ -101,12 +94,7 @@ static cl_status gslode_check_args(const char *name, const cl_system *sys,
     if (sys->n == 0)
         return cl_error_set(err, CL_EINVAL, "%s: the system has no "
                             "unknowns (no free particles)", name);
-    for (size_t i = 0; i < sys->n; i++) {
-        if (!isfinite(sys->mass[i]) || !(sys->mass[i] > 0.0))
-            return cl_error_set(err, CL_EINVAL, "%s: mass[%zu] = %g, must "
-                                "be finite and > 0", name, i, sys->mass[i]);
-    }
-    return CL_OK;
+    return cl_check_masses(sys->mass, sys->n, name, err);
 }
 
 /* The state's arrays; false when out of memory. */
@@ -229,7 +217,7 @@ cl_status cl_gslode_advance(void *state, double t_out, double *x, double *v,
     memcpy(v, s->y + s->n, s->n * sizeof *v);
     if (rc != GSL_SUCCESS)
         return gslode_error(s, rc, t_out, err);
-    if (!cl_gslode_finite(s->y, 2 * s->n))
+    if (!cl_all_finite(s->y, 2 * s->n))
         return cl_error_set(err, CL_EBLOWUP, "%s: state not finite at "
                             "t = %.9g", s->method->name, s->t);
     return CL_OK;

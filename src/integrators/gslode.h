@@ -84,9 +84,6 @@ void cl_gslode_free(void *state);
  * GSL_EBADFUNC. */
 int cl_gslode_failed(cl_gslode *s, cl_status st, double t);
 
-/* true if all n values are finite */
-bool cl_gslode_finite(const double *a, size_t n);
-
 /* Define the GSL method (registry name name_, step type type_ such as
  * &gsl_odeiv2_step_rk8pd, Jacobian function jac_ or NULL, size limit
  * max_n_ (0: none) and its reason why_) and its integrator table `ident`,
@@ -100,7 +97,7 @@ bool cl_gslode_finite(const double *a, size_t n);
         .max_n_why = (why_),                                                \
     };                                                                      \
     CL_INTEGRATOR_DEFINE(ident, ident##_method, cl_gslode_create, name_,    \
-                         doc_, false, cl_gslode_advance, cl_gslode_stats,   \
-                         cl_gslode_free)
+                         doc_, false, false, cl_gslode_advance,             \
+                         cl_gslode_stats, cl_gslode_free)
 
 #endif

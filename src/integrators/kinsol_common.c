@@ -7,7 +7,9 @@
  * set from v_ref = max(1, max |v_n|);  KINSol(KIN_NONE) solves
  *     R(u) = M (u - vb) - c f(te, x_n + alpha (u - p), ve0 + beta u) = 0
  * with Newton matrix M - (c beta) df/dv - (c alpha) df/dx from cl_linsol;
- * then x1 = x1b + alpha1 u, v1 = u, and the history shifts. */
+ * then x1 = x1b + alpha1 u, v1 = u, and the history shifts.  Output times,
+ * step counting and the finite-state check are the fixed-step loop
+ * (cl_fixed_run, fixed_step.h). */
 #include "integrators/kinsol_common.h"
 
 #include <float.h>
@@ -21,6 +23,8 @@
 #include <sundials/sundials_linearsolver.h>
 #include <sundials/sundials_matrix.h>
 
+#include "core/check.h"
+#include "integrators/fixed_step.h"
 #include "linalg/linsol.h"
 
 _Static_assert(sizeof(sunrealtype) == sizeof(double),
@@ -67,15 +71,6 @@ typedef struct {
     char kmsg[512];         /* last error message of KINSOL */
 } cl_kin;
 
-static bool kin_finite(const double *a, size_t n)
-{
-    for (size_t i = 0; i < n; i++) {
-        if (!isfinite(a[i]))
-            return false;
-    }
-    return true;
-}
-
 /* ---- evaluation point and the user functions -------------------------- */
 
 /* xe = x_n + alpha (u - p) (exactly x_n at the predictor), ve = ve0 +
@@ -113,7 +108,7 @@ static int kin_residual(N_Vector uv, N_Vector rv, void *data)
         r[i] = m[i] * (u[i] - s->vb[i]) - c * s->f[i];
         rmax = fmax(rmax, fabs(r[i]) * fs[i]);
     }
-    if (!kin_finite(r, s->n))
+    if (!cl_all_finite(r, s->n))
         return kin_sysfail(s, CL_EBLOWUP, false, true);
     s->rmax = rmax;
     return 0;
@@ -132,7 +127,7 @@ static int kin_jac(N_Vector uv, N_Vector fu, SUNMatrix J, void *data,
     s->njac++;
     if (st != CL_OK)
         return kin_sysfail(s, st, true, false);
-    if (!kin_finite(s->dfdx, nval) || !kin_finite(s->dfdv, nval))
+    if (!cl_all_finite(s->dfdx, nval) || !cl_all_finite(s->dfdv, nval))
         return kin_sysfail(s, CL_EBLOWUP, true, true);
     return 0;
 }
@@ -206,7 +201,7 @@ static int ls_solve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b,
     (void)A, (void)tol;
     s->lin_st = s->lt->solve(s->lstate, N_VGetArrayPointer(b), xd,
                              &s->lin_err);
-    if (s->lin_st == CL_OK && !kin_finite(xd, s->n))
+    if (s->lin_st == CL_OK && !cl_all_finite(xd, s->n))
         s->lin_st = cl_error_set(&s->lin_err, CL_EBLOWUP, "%s solve: "
                                  "Newton step not finite", s->lt->name);
     return s->lin_st == CL_OK ? SUNLS_SUCCESS : SUNLS_PACKAGE_FAIL_UNREC;
@@ -269,12 +264,7 @@ static cl_status kin_check_args(const cl_kin_scheme *sc, const cl_system *sys,
                             "newton_maxit = %ld (need finite >= 0, >= 0; 0: "
                             "default)", sc->name, o->newton_tol,
                             o->newton_maxit);
-    for (size_t i = 0; i < sys->n; i++) {
-        if (!isfinite(sys->mass[i]) || !(sys->mass[i] > 0.0))
-            return cl_error_set(err, CL_EINVAL, "%s: mass[%zu] = %g, must be "
-                                "finite and > 0", sc->name, i, sys->mass[i]);
-    }
-    return CL_OK;
+    return cl_check_masses(sys->mass, sys->n, sc->name, err);
 }
 
 static cl_status kin_alloc(cl_kin *s, cl_error *err)
@@ -504,7 +494,8 @@ static cl_status kin_stepfail(cl_kin *s, int flag, long nni, cl_error *err)
     return st;
 }
 
-/* x1 = x1b + alpha1 v1; the history moves one step on. */
+/* x1 = x1b + alpha1 v1; the history moves one step on (cl_fixed_run then
+ * counts the step). */
 static void kin_commit(cl_kin *s)
 {
     const double *u = N_VGetArrayPointer(s->u);
@@ -517,11 +508,11 @@ static void kin_commit(cl_kin *s)
     s->vp = s->v;
     s->v = tv;
     memcpy(s->v, u, s->n * sizeof *s->v);
-    s->done++;
 }
 
-static cl_status kin_step(cl_kin *s, cl_error *err)
+static cl_status kin_step(void *state, cl_error *err)
 {
+    cl_kin *s = state;
     kin_scheme(s);
     kin_scales(s);
     s->sys_st = s->lin_st = CL_OK;
@@ -535,10 +526,6 @@ static cl_status kin_step(cl_kin *s, cl_error *err)
     if (gflag < 0)
         return kin_sunfail(s, "KINGetNumNonlinSolvIters", gflag, err);
     kin_commit(s);
-    if (!kin_finite(s->x, s->n) || !kin_finite(s->v, s->n))
-        return cl_error_set(err, CL_EBLOWUP, "%s: state not finite at t = "
-                            "%.9g (step %ld, dt = %g)", s->sc->name,
-                            s->t0 + (double)s->done * s->h, s->done, s->h);
     return CL_OK;
 }
 
@@ -546,14 +533,9 @@ cl_status cl_kin_advance(void *state, double t_out, double *x, double *v,
                          cl_error *err)
 {
     cl_kin *s = state;
-    long nsteps = 0;
-    cl_status st = cl_fixed_steps_to(t_out - s->t0, s->h, s->done, &nsteps,
-                                     err);
-    for (long k = 0; st == CL_OK && k < nsteps; k++)
-        st = kin_step(s, err);
-    memcpy(x, s->x, s->n * sizeof *x);
-    memcpy(v, s->v, s->n * sizeof *v);
-    return st;
+    cl_fixed_clock c = {s->sc->name, s->n, s->t0, s->h, &s->done, &s->x,
+                        &s->v};
+    return cl_fixed_run(&c, kin_step, s, t_out, x, v, err);
 }
 
 void cl_kin_stats(const void *state, cl_stats *out)

@@ -87,6 +87,7 @@
 #ifndef CL_KINSOL_COMMON_H
 #define CL_KINSOL_COMMON_H
 
+#include "integrators/define.h"
 #include "integrators/integrator.h"
 
 /* One step's vectors.  Inputs (filled by the common code): n, h, x, v
@@ -125,22 +126,7 @@ extern const cl_kin_scheme cl_kin_scheme_be;
 
 /* Define the integrator table `ident` for the scheme `scheme`. */
 #define CL_KIN_INTEGRATOR(ident, scheme, name_, doc_)                       \
-    static cl_status ident##_create(const cl_system *sys,                   \
-                                    const cl_integrator_opts *o, double t0, \
-                                    const double *x0, const double *v0,     \
-                                    void **state, cl_error *err)            \
-    {                                                                       \
-        return cl_kin_create(&(scheme), sys, o, t0, x0, v0, state, err);    \
-    }                                                                       \
-    const cl_integrator_type ident = {                                      \
-        .name = (name_),                                                    \
-        .doc = (doc_),                                                      \
-        .fixed_step = true,                                                 \
-        .takes_linsol = true,                                               \
-        .create = ident##_create,                                           \
-        .advance = cl_kin_advance,                                          \
-        .stats = cl_kin_stats,                                              \
-        .free = cl_kin_free,                                                \
-    }
+    CL_INTEGRATOR_DEFINE(ident, scheme, cl_kin_create, name_, doc_, true,   \
+                         true, cl_kin_advance, cl_kin_stats, cl_kin_free)
 
 #endif

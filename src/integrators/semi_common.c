@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/check.h"
 #include "linalg/reduced.h"
 
 static cl_status semi_check_args(const char *name, const cl_system *sys,
@@ -31,12 +32,7 @@ static cl_status semi_check_args(const char *name, const cl_system *sys,
     if (!sys->force || !sys->jacobian)
         return cl_error_set(err, CL_EINVAL, "%s: system needs a force and "
                             "an analytic Jacobian", name);
-    for (size_t i = 0; i < sys->n; i++) {
-        if (!isfinite(sys->mass[i]) || !(sys->mass[i] > 0.0))
-            return cl_error_set(err, CL_EINVAL, "%s: mass[%zu] = %g, must "
-                                "be finite and > 0", name, i, sys->mass[i]);
-    }
-    return CL_OK;
+    return cl_check_masses(sys->mass, sys->n, name, err);
 }
 
 static cl_status semi_find_linsol(cl_semi *s, const cl_integrator_opts *o,
@@ -107,15 +103,6 @@ void cl_semi_release(cl_semi *s)
     memset(s, 0, sizeof *s);
 }
 
-static bool semi_finite(const double *a, size_t n)
-{
-    for (size_t i = 0; i < n; i++) {
-        if (!isfinite(a[i]))
-            return false;
-    }
-    return true;
-}
-
 cl_status cl_semi_linearise(cl_semi *s, double t, cl_error *err)
 {
     const cl_system *sys = s->sys;
@@ -123,8 +110,8 @@ cl_status cl_semi_linearise(cl_semi *s, double t, cl_error *err)
     cl_status st = sys->jacobian(sys->data, t, s->x, s->v, s->f, s->dfdx,
                                  s->dfdv);
     s->nlin++;
-    bool finite = st == CL_OK && semi_finite(s->f, s->n) &&
-                  semi_finite(s->dfdx, nval) && semi_finite(s->dfdv, nval);
+    bool finite = st == CL_OK && cl_all_finite(s->f, s->n) &&
+                  cl_all_finite(s->dfdx, nval) && cl_all_finite(s->dfdv, nval);
     if (st == CL_OK && !finite)
         st = CL_EBLOWUP;
     if (st != CL_OK)
@@ -169,30 +156,11 @@ cl_status cl_semi_be_step(cl_semi *s, cl_error *err)
     return CL_OK;
 }
 
-cl_status cl_semi_finish_step(cl_semi *s, cl_error *err)
-{
-    s->done++;
-    if (!semi_finite(s->x, s->n) || !semi_finite(s->v, s->n))
-        return cl_error_set(err, CL_EBLOWUP, "%s: state not finite at "
-                            "t = %.9g (step %ld, dt = %g)", s->name,
-                            s->t0 + (double)s->done * s->h, s->done, s->h);
-    return CL_OK;
-}
-
-cl_status cl_semi_advance(cl_semi *s, void *state, cl_semi_step_fn step,
+cl_status cl_semi_advance(cl_semi *s, void *state, cl_fixed_step_fn step,
                           double t_out, double *x, double *v, cl_error *err)
 {
-    long nsteps = 0;
-    cl_status st = cl_fixed_steps_to(t_out - s->t0, s->h, s->done, &nsteps,
-                                     err);
-    for (long k = 0; st == CL_OK && k < nsteps; k++) {
-        st = step(state, err);
-        if (st == CL_OK)
-            st = cl_semi_finish_step(s, err);
-    }
-    memcpy(x, s->x, s->n * sizeof *x);
-    memcpy(v, s->v, s->n * sizeof *v);
-    return st;
+    cl_fixed_clock c = {s->name, s->n, s->t0, s->h, &s->done, &s->x, &s->v};
+    return cl_fixed_run(&c, step, state, t_out, x, v, err);
 }
 
 void cl_semi_stats(const cl_semi *s, cl_stats *out)

@@ -5,9 +5,9 @@
  *     (M - a df/dv - b df/dx) y = rhs        (linalg/linsol.h)
  *
  * solved by the solver named in opts->linsol, fixed-step bookkeeping
- * (time after step k is t0 + k h, cl_fixed_steps_to), statistics, and the
- * Baraff-Witkin linearised backward-Euler step, which is semi-be's step and
- * semi-bdf2's first step:
+ * (time after step k is t0 + k h, the loop of cl_fixed_run), statistics,
+ * and the Baraff-Witkin linearised backward-Euler step, which is semi-be's
+ * step and semi-bdf2's first step:
  *
  *     (M - h df/dv - h^2 df/dx) dv = h (f0 + h df/dx v0),
  *     v1 = v0 + dv,   x1 = x0 + h v1,
@@ -19,6 +19,7 @@
 #ifndef CL_SEMI_COMMON_H
 #define CL_SEMI_COMMON_H
 
+#include "integrators/fixed_step.h"
 #include "integrators/integrator.h"
 #include "linalg/linsol.h"
 
@@ -58,13 +59,11 @@ cl_status cl_semi_solve(cl_semi *s, double a, double b, cl_error *err);
 /* One linearised backward-Euler step of x, v in place (done unchanged). */
 cl_status cl_semi_be_step(cl_semi *s, cl_error *err);
 
-/* After a step: done++, and CL_EBLOWUP if x or v is not finite. */
-cl_status cl_semi_finish_step(cl_semi *s, cl_error *err);
-
-/* Take the steps up to t_out with `step` (one step of x, v in place,
- * given `state`), then copy x, v out (also on failure: the last state). */
-typedef cl_status (*cl_semi_step_fn)(void *state, cl_error *err);
-cl_status cl_semi_advance(cl_semi *s, void *state, cl_semi_step_fn step,
+/* Take the steps up to t_out with `step` (one step of s->x, s->v in
+ * place, given `state`) through the fixed-step loop (cl_fixed_run: step
+ * counting, CL_EBLOWUP if x or v is not finite), then copy x, v out (also
+ * on failure: the last state). */
+cl_status cl_semi_advance(cl_semi *s, void *state, cl_fixed_step_fn step,
                           double t_out, double *x, double *v, cl_error *err);
 
 /* steps, rhs_evals, jac_evals and the linear solver's counters. */

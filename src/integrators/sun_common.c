@@ -12,6 +12,8 @@
 #include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
+#include "core/check.h"
+
 _Static_assert(sizeof(sunrealtype) == sizeof(double),
                "clothode needs SUNDIALS built in double precision");
 
@@ -131,15 +133,6 @@ static int sun_sysfail(cl_sun *s, cl_status *slot, cl_status st, double t,
     return -1;
 }
 
-static bool sun_finite(const double *a, size_t n)
-{
-    for (size_t i = 0; i < n; i++) {
-        if (!isfinite(a[i]))
-            return false;
-    }
-    return true;
-}
-
 int cl_sun_force(cl_sun *s, double t, const double *x, const double *v,
                  double *f)
 {
@@ -151,7 +144,7 @@ int cl_sun_force(cl_sun *s, double t, const double *x, const double *v,
 
 int cl_sun_rhs_finite(cl_sun *s, const double *out, size_t len, double t)
 {
-    if (!sun_finite(out, len))
+    if (!cl_all_finite(out, len))
         return sun_sysfail(s, &s->fail_rhs, CL_EBLOWUP, t, true);
     s->fail_rhs = CL_OK;
     return 0;
@@ -166,7 +159,7 @@ int cl_sun_jacobian(cl_sun *s, double t, const double *x, const double *v)
                                     s->dfdv);
     if (st != CL_OK)
         return sun_sysfail(s, &s->fail_jac, st, t, false);
-    if (!sun_finite(s->dfdx, s->nval) || !sun_finite(s->dfdv, s->nval))
+    if (!cl_all_finite(s->dfdx, s->nval) || !cl_all_finite(s->dfdv, s->nval))
         return sun_sysfail(s, &s->fail_jac, CL_EBLOWUP, t, true);
     s->fail_jac = CL_OK;
     return 0;
@@ -215,12 +208,9 @@ static cl_status sun_check(const char *name, const cl_system *sys,
 static cl_status sun_arrays(cl_sun *s, bool need_jac, cl_error *err)
 {
     size_t n = s->sys->n;
-    for (size_t i = 0; i < n; i++) {
-        if (!isfinite(s->sys->mass[i]) || !(s->sys->mass[i] > 0.0))
-            return cl_error_set(err, CL_EINVAL, "%s: mass[%zu] = %g, must "
-                                "be finite and > 0", s->name, i,
-                                s->sys->mass[i]);
-    }
+    cl_status st = cl_check_masses(s->sys->mass, n, s->name, err);
+    if (st != CL_OK)
+        return st;
     s->inv_mass = malloc(n * sizeof *s->inv_mass);
     if (!s->inv_mass)
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
@@ -450,7 +440,7 @@ cl_status cl_sun_advance(void *state, double t_out, double *x, double *v,
     } else {
         sun_copy_out(s, x, v);
     }
-    if (!sun_finite(N_VGetArrayPointer(s->y), 2 * s->sys->n))
+    if (!cl_all_finite(N_VGetArrayPointer(s->y), 2 * s->sys->n))
         return cl_error_set(err, CL_EBLOWUP, "%s: state not finite at "
                             "t = %.9g", s->name, t_out);
     return CL_OK;

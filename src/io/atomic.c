@@ -26,6 +26,19 @@ static char *dup_str(const char *s)
     return d;
 }
 
+/* Undo an open that failed after mkstemp (errno says why): close fd,
+ * remove the temporary file, reset; "cannot <verb> 'PATH': reason". */
+static cl_status open_fail(cl_afile *af, int fd, const char *verb,
+                           const char *path, cl_error *err)
+{
+    int e = errno;
+    (void)close(fd);
+    (void)unlink(af->tmp);
+    afile_reset(af);
+    return cl_error_set(err, CL_EIO, "cannot %s '%s': %s", verb, path,
+                        strerror(e));
+}
+
 cl_status cl_afile_open(cl_afile *af, const char *path, cl_error *err)
 {
     static const char suffix[] = ".tmp.XXXXXX";
@@ -57,23 +70,11 @@ cl_status cl_afile_open(cl_afile *af, const char *path, cl_error *err)
      * where files are written.) */
     mode_t mask = umask(077);
     umask(mask);
-    if (fchmod(fd, (mode_t)(0666 & ~mask)) != 0) {
-        int e = errno;
-        (void)close(fd);
-        (void)unlink(af->tmp);
-        afile_reset(af);
-        return cl_error_set(err, CL_EIO, "cannot create '%s': %s", path,
-                            strerror(e));
-    }
+    if (fchmod(fd, (mode_t)(0666 & ~mask)) != 0)
+        return open_fail(af, fd, "create", path, err);
     af->fp = fdopen(fd, "w");
-    if (!af->fp) {
-        int e = errno;
-        (void)close(fd);
-        (void)unlink(af->tmp);
-        afile_reset(af);
-        return cl_error_set(err, CL_EIO, "cannot open '%s': %s", path,
-                            strerror(e));
-    }
+    if (!af->fp)
+        return open_fail(af, fd, "open", path, err);
     return CL_OK;
 }
 
@@ -173,5 +174,19 @@ cl_status cl_mkdir_p(const char *dir, cl_error *err)
             break;
     }
     free(buf);
+    return st;
+}
+
+cl_status cl_afile_write_error(const cl_afile *af, cl_error *err)
+{
+    int e = errno;
+    return cl_error_set(err, CL_EIO, "cannot write '%s': %s", af->path,
+                        strerror(e ? e : EIO));
+}
+
+cl_status cl_afile_fail(cl_afile *af, cl_error *err)
+{
+    cl_status st = cl_afile_write_error(af, err);
+    cl_afile_abort(af);
     return st;
 }

@@ -7,7 +7,7 @@
  *
  *   cl_afile af;
  *   if (cl_afile_open(&af, path, err)) return err->code;
- *   if (fprintf(af.fp, ...) < 0) { cl_afile_abort(&af); return ...; }
+ *   if (fprintf(af.fp, ...) < 0) return cl_afile_fail(&af, err);
  *   return cl_afile_commit(&af, err);
  *
  * After commit (successful or not) or abort the cl_afile is reset, so a
@@ -36,6 +36,14 @@ cl_status cl_afile_commit(cl_afile *af, cl_error *err);
 
 /* Close and remove the temporary file; the final path is not touched. */
 void cl_afile_abort(cl_afile *af);
+
+/* A write to af->fp failed: CL_EIO "cannot write 'PATH': reason" with
+ * errno's reason (EIO's when errno is 0), read before anything else runs.
+ * The file stays open. */
+cl_status cl_afile_write_error(const cl_afile *af, cl_error *err);
+
+/* The same, then cl_afile_abort. */
+cl_status cl_afile_fail(cl_afile *af, cl_error *err);
 
 /* Create directory `dir` and any missing parents (mode 0777 minus umask).
  * An existing directory is fine; CL_EIO if a component exists as something

@@ -1,7 +1,6 @@
 /* Cloth frames: legacy VTK polydata and Wavefront OBJ. */
 #include "io/frames.h"
 
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -49,106 +48,106 @@ static cl_status frame_prepare(const char *path, const cl_frame *f,
     return CL_OK;
 }
 
-static cl_status frame_write_fail(cl_afile *af, const char *path,
-                                  int (*tri)[3], cl_error *err)
+/* One line "<prefix>a0 a1 a2" per point of the np 3-vectors a; nonzero on
+ * a write error. */
+static int write_points(FILE *fp, const char *prefix, const double *a,
+                        size_t np)
 {
-    int e = errno;
-    cl_afile_abort(af);
+    for (size_t p = 0; p < np; p++)
+        if (fprintf(fp, "%s%.17g %.17g %.17g\n", prefix, a[3 * p],
+                    a[3 * p + 1], a[3 * p + 2]) < 0)
+            return 1;
+    return 0;
+}
+
+/* One line "<prefix>i j k" per triangle, vertex numbers from `base`;
+ * nonzero on a write error. */
+static int write_triangles(FILE *fp, const char *prefix, int (*tri)[3],
+                           size_t ntri, int base)
+{
+    for (size_t k = 0; k < ntri; k++)
+        if (fprintf(fp, "%s%d %d %d\n", prefix, tri[k][0] + base,
+                    tri[k][1] + base, tri[k][2] + base) < 0)
+            return 1;
+    return 0;
+}
+
+/* The content of one file format: np points, ntri triangles; nonzero on a
+ * write error (errno says why). */
+typedef int (*frame_body)(FILE *fp, const cl_frame *f, size_t np,
+                          int (*tri)[3], size_t ntri);
+
+static int vtk_body(FILE *fp, const cl_frame *f, size_t np, int (*tri)[3],
+                    size_t ntri)
+{
+    int bad = fprintf(fp, "# vtk DataFile Version 3.0\n"
+                          "clothode frame t=%.17g nu=%d nv=%d\n"
+                          "ASCII\n"
+                          "DATASET POLYDATA\n"
+                          "FIELD FieldData 1\n"
+                          "TIME 1 1 double\n"
+                          "%.17g\n"
+                          "POINTS %zu double\n",
+                      f->t, f->nu, f->nv, f->t, np) < 0 ||
+              write_points(fp, "", f->x, np);
+    if (!bad && ntri > 0)
+        bad = fprintf(fp, "POLYGONS %zu %zu\n", ntri, 4 * ntri) < 0 ||
+              write_triangles(fp, "3 ", tri, ntri, 0);
+    if (!bad && (f->v || f->pinned))
+        bad = fprintf(fp, "POINT_DATA %zu\n", np) < 0;
+    if (!bad && f->v)
+        bad = fprintf(fp, "VECTORS velocity double\n") < 0 ||
+              write_points(fp, "", f->v, np);
+    if (!bad && f->pinned) {
+        bad = fprintf(fp, "SCALARS pinned int 1\n"
+                          "LOOKUP_TABLE default\n") < 0;
+        for (size_t p = 0; !bad && p < np; p++)
+            bad = fprintf(fp, "%d\n", f->pinned[p] ? 1 : 0) < 0;
+    }
+    return bad;
+}
+
+static int obj_body(FILE *fp, const cl_frame *f, size_t np, int (*tri)[3],
+                    size_t ntri)
+{
+    return fprintf(fp, "# clothode frame t=%.17g nu=%d nv=%d\n"
+                       "# %zu vertices, %zu triangles\n",
+                   f->t, f->nu, f->nv, np, ntri) < 0 ||
+           write_points(fp, "v ", f->x, np) ||
+           write_triangles(fp, "f ", tri, ntri, 1);
+}
+
+/* Validate the frame, write it with `body` to a temporary file and commit
+ * it onto path; after a write error the temporary file is removed and the
+ * message gives errno's reason. */
+static cl_status frame_write(const char *path, const cl_frame *f,
+                             frame_body body, cl_error *err)
+{
+    int (*tri)[3];
+    size_t ntri;
+    cl_status st = frame_prepare(path, f, &tri, &ntri, err);
+    if (st)
+        return st;
+    cl_afile af;
+    if ((st = cl_afile_open(&af, path, err)) == CL_OK) {
+        size_t np = (size_t)f->nu * (size_t)f->nv;
+        st = body(af.fp, f, np, tri, ntri) ? cl_afile_fail(&af, err)
+                                           : cl_afile_commit(&af, err);
+    }
     free(tri);
-    return cl_error_set(err, CL_EIO, "cannot write '%s': %s", path,
-                        strerror(e ? e : EIO));
+    return st;
 }
 
 cl_status cl_frame_write_vtk(const char *path, const cl_frame *f,
                              cl_error *err)
 {
-    int (*tri)[3];
-    size_t ntri;
-    cl_status st = frame_prepare(path, f, &tri, &ntri, err);
-    if (st)
-        return st;
-    cl_afile af;
-    if ((st = cl_afile_open(&af, path, err))) {
-        free(tri);
-        return st;
-    }
-    FILE *fp = af.fp;
-    size_t np = (size_t)f->nu * (size_t)f->nv;
-
-    if (fprintf(fp, "# vtk DataFile Version 3.0\n"
-                    "clothode frame t=%.17g nu=%d nv=%d\n"
-                    "ASCII\n"
-                    "DATASET POLYDATA\n"
-                    "FIELD FieldData 1\n"
-                    "TIME 1 1 double\n"
-                    "%.17g\n"
-                    "POINTS %zu double\n",
-                f->t, f->nu, f->nv, f->t, np) < 0)
-        return frame_write_fail(&af, path, tri, err);
-    for (size_t p = 0; p < np; p++)
-        if (fprintf(fp, "%.17g %.17g %.17g\n", f->x[3 * p], f->x[3 * p + 1],
-                    f->x[3 * p + 2]) < 0)
-            return frame_write_fail(&af, path, tri, err);
-    if (ntri > 0) {
-        if (fprintf(fp, "POLYGONS %zu %zu\n", ntri, 4 * ntri) < 0)
-            return frame_write_fail(&af, path, tri, err);
-        for (size_t k = 0; k < ntri; k++)
-            if (fprintf(fp, "3 %d %d %d\n", tri[k][0], tri[k][1],
-                        tri[k][2]) < 0)
-                return frame_write_fail(&af, path, tri, err);
-    }
-    if (f->v || f->pinned)
-        if (fprintf(fp, "POINT_DATA %zu\n", np) < 0)
-            return frame_write_fail(&af, path, tri, err);
-    if (f->v) {
-        if (fprintf(fp, "VECTORS velocity double\n") < 0)
-            return frame_write_fail(&af, path, tri, err);
-        for (size_t p = 0; p < np; p++)
-            if (fprintf(fp, "%.17g %.17g %.17g\n", f->v[3 * p],
-                        f->v[3 * p + 1], f->v[3 * p + 2]) < 0)
-                return frame_write_fail(&af, path, tri, err);
-    }
-    if (f->pinned) {
-        if (fprintf(fp, "SCALARS pinned int 1\nLOOKUP_TABLE default\n") < 0)
-            return frame_write_fail(&af, path, tri, err);
-        for (size_t p = 0; p < np; p++)
-            if (fprintf(fp, "%d\n", f->pinned[p] ? 1 : 0) < 0)
-                return frame_write_fail(&af, path, tri, err);
-    }
-    free(tri);
-    return cl_afile_commit(&af, err);
+    return frame_write(path, f, vtk_body, err);
 }
 
 cl_status cl_frame_write_obj(const char *path, const cl_frame *f,
                              cl_error *err)
 {
-    int (*tri)[3];
-    size_t ntri;
-    cl_status st = frame_prepare(path, f, &tri, &ntri, err);
-    if (st)
-        return st;
-    cl_afile af;
-    if ((st = cl_afile_open(&af, path, err))) {
-        free(tri);
-        return st;
-    }
-    FILE *fp = af.fp;
-    size_t np = (size_t)f->nu * (size_t)f->nv;
-
-    if (fprintf(fp, "# clothode frame t=%.17g nu=%d nv=%d\n"
-                    "# %zu vertices, %zu triangles\n",
-                f->t, f->nu, f->nv, np, ntri) < 0)
-        return frame_write_fail(&af, path, tri, err);
-    for (size_t p = 0; p < np; p++)
-        if (fprintf(fp, "v %.17g %.17g %.17g\n", f->x[3 * p],
-                    f->x[3 * p + 1], f->x[3 * p + 2]) < 0)
-            return frame_write_fail(&af, path, tri, err);
-    for (size_t k = 0; k < ntri; k++)
-        if (fprintf(fp, "f %d %d %d\n", tri[k][0] + 1, tri[k][1] + 1,
-                    tri[k][2] + 1) < 0)
-            return frame_write_fail(&af, path, tri, err);
-    free(tri);
-    return cl_afile_commit(&af, err);
+    return frame_write(path, f, obj_body, err);
 }
 
 cl_status cl_frame_path(const char *dir, long index, const char *ext,

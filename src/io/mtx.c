@@ -39,11 +39,8 @@ cl_status cl_mtx_write_blocks(const char *path, const cl_bpattern *pat,
                         goto write_fail;
     return cl_afile_commit(&af, err);
 
-write_fail:;
-    int e = errno;
-    cl_afile_abort(&af);
-    return cl_error_set(err, CL_EIO, "cannot write '%s': %s", path,
-                        strerror(e ? e : EIO));
+write_fail:
+    return cl_afile_fail(&af, err);
 }
 
 void cl_triplets_free(cl_triplets *t)

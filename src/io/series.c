@@ -1,7 +1,6 @@
 /* CSV time-series writer on top of atomic output files. */
 #include "io/series.h"
 
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,13 +11,6 @@ struct cl_series {
     cl_afile af;
     size_t ncol;
 };
-
-static cl_status write_fail(cl_series *s, cl_error *err)
-{
-    int e = errno;
-    return cl_error_set(err, CL_EIO, "cannot write '%s': %s", s->af.path,
-                        strerror(e ? e : EIO));
-}
 
 cl_status cl_series_open(const char *path, size_t ncol,
                          const char *const *names, cl_series **out,
@@ -46,13 +38,13 @@ cl_status cl_series_open(const char *path, size_t ncol,
     }
     for (size_t k = 0; k < ncol; k++) {
         if (fprintf(s->af.fp, "%s%s", k ? "," : "", names[k]) < 0) {
-            st = write_fail(s, err);
+            st = cl_afile_write_error(&s->af, err);
             break;
         }
     }
     if (st == CL_OK && (fputc('\n', s->af.fp) == EOF ||
                         fflush(s->af.fp) != 0))
-        st = write_fail(s, err);
+        st = cl_afile_write_error(&s->af, err);
     if (st) {
         cl_series_discard(s);
         return st;
@@ -68,9 +60,9 @@ cl_status cl_series_row(cl_series *s, const double *values, cl_error *err)
                             "or values");
     for (size_t k = 0; k < s->ncol; k++)
         if (fprintf(s->af.fp, "%s%.10g", k ? "," : "", values[k]) < 0)
-            return write_fail(s, err);
+            return cl_afile_write_error(&s->af, err);
     if (fputc('\n', s->af.fp) == EOF || fflush(s->af.fp) != 0)
-        return write_fail(s, err);
+        return cl_afile_write_error(&s->af, err);
     return CL_OK;
 }
 

@@ -35,11 +35,8 @@ cl_status cl_state_write(const char *path, size_t np, const double *x,
     }
     return cl_afile_commit(&af, err);
 
-write_fail:;
-    int e = errno;
-    cl_afile_abort(&af);
-    return cl_error_set(err, CL_EIO, "cannot write '%s': %s", path,
-                        strerror(e));
+write_fail:
+    return cl_afile_fail(&af, err);
 }
 
 /* Strip "\n" / "\r\n" in place; return the new length. */
@@ -65,11 +62,7 @@ static int parse_double(const char *s, double *out)
     char *end;
     errno = 0;
     double d = strtod(s, &end);
-    if (end == s)
-        return 0;
-    while (*end == ' ' || *end == '\t')
-        end++;
-    if (*end != '\0')
+    if (end == s || !is_blank(end))
         return 0;
     *out = d;   /* ERANGE: +-HUGE_VAL (caught as non-finite) or denormal */
     return 1;
@@ -80,11 +73,7 @@ static int parse_index(const char *s, long *out)
     char *end;
     errno = 0;
     long l = strtol(s, &end, 10);
-    if (end == s || errno == ERANGE)
-        return 0;
-    while (*end == ' ' || *end == '\t')
-        end++;
-    if (*end != '\0')
+    if (end == s || errno == ERANGE || !is_blank(end))
         return 0;
     *out = l;
     return 1;

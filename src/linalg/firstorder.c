@@ -4,92 +4,44 @@
  * every stored block (bi, bj = j / 3), the three entries M^-1 df/dx at rows
  * n + 3 bi + r.  Column n + j (a velocity unknown) holds the identity entry
  * at row j and the entries M^-1 df/dv at rows n + 3 bi + r.  Rows ascend in
- * every column because j < n and block rows are visited in ascending order
- * (block column lists are built by a counting transpose of the block CSR).
+ * every column because j < n and the block entries come in the ascending
+ * order of the block pattern's scalar CSC (linalg/csc.h).
  * The position of every diagonal entry is recorded once for the implicit
  * (IDA) matrix, which shares pattern and value map (see the header). */
 #include "linalg/firstorder.h"
 
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* Block-column view of the block-CSR pattern: for block column bj, the
- * blocks (bi, k) with k the block index, bi ascending. */
-typedef struct {
-    size_t *ptr; /* nb + 1 */
-    size_t *row; /* nnzb: block row bi */
-    size_t *blk; /* nnzb: block index k into the value arrays */
-} cl_bcols;
+#include "core/check.h"
+#include "linalg/csc.h"
 
-static void bcols_free(cl_bcols *bc)
+/* Append the leading entry (row j, source `first`) and the block entries of
+ * column j of the block CSC at rows n + row, offsetting sources by base. */
+static sunindextype fill_column(cl_firstorder *fo, const cl_csc_blocks *b,
+                                size_t j, sunindextype pos, long first,
+                                size_t base)
 {
-    free(bc->ptr);
-    free(bc->row);
-    free(bc->blk);
-}
-
-static cl_status bcols_build(const cl_bpattern *pat, cl_bcols *bc,
-                             cl_error *err)
-{
-    size_t nb = pat->nb, nnzb = pat->nnzb;
-    bc->ptr = calloc(nb + 1, sizeof *bc->ptr);
-    bc->row = malloc((nnzb ? nnzb : 1) * sizeof *bc->row);
-    bc->blk = malloc((nnzb ? nnzb : 1) * sizeof *bc->blk);
-    size_t *next = malloc((nb ? nb : 1) * sizeof *next);
-    if (!bc->ptr || !bc->row || !bc->blk || !next) {
-        free(next);
-        bcols_free(bc);
-        return cl_error_set(err, CL_ENOMEM,
-                            "out of memory (first-order Jacobian pattern)");
-    }
-    for (size_t k = 0; k < nnzb; k++)
-        bc->ptr[pat->col[k] + 1]++;
-    for (size_t j = 0; j < nb; j++) {
-        bc->ptr[j + 1] += bc->ptr[j];
-        next[j] = bc->ptr[j];
-    }
-    for (size_t bi = 0; bi < nb; bi++) {
-        for (size_t k = pat->rowptr[bi]; k < pat->rowptr[bi + 1]; k++) {
-            size_t slot = next[pat->col[k]]++;
-            bc->row[slot] = bi;
-            bc->blk[slot] = k;
-        }
-    }
-    free(next);
-    return CL_OK;
-}
-
-/* Append the leading entry (row `lead`, source `first`) and the 3 entries of
- * every block in block column bj, component c, offsetting sources by base. */
-static sunindextype fill_column(cl_firstorder *fo, const cl_bcols *bc,
-                                size_t bj, size_t c, sunindextype pos,
-                                sunindextype lead, long first, size_t base)
-{
-    fo->rowval[pos] = lead;
+    fo->rowval[pos] = (sunindextype)j;
     fo->src[pos++] = first;
-    for (size_t q = bc->ptr[bj]; q < bc->ptr[bj + 1]; q++) {
-        for (size_t r = 0; r < 3; r++) {
-            fo->rowval[pos] = (sunindextype)(fo->n + 3 * bc->row[q] + r);
-            fo->src[pos++] = (long)(base + 9 * bc->blk[q] + 3 * r + c);
-        }
+    for (size_t e = b->colptr[j]; e < b->colptr[j + 1]; e++) {
+        fo->rowval[pos] = (sunindextype)(fo->n + b->row[e]);
+        fo->src[pos++] = (long)(base + b->src[e]);
     }
     return pos;
 }
 
-static void build_columns(cl_firstorder *fo, const cl_bcols *bc)
+static void build_columns(cl_firstorder *fo, const cl_csc_blocks *b)
 {
     size_t n = fo->n;
     sunindextype pos = 0;
     for (size_t j = 0; j < n; j++) {
         fo->colptr[j] = pos;
-        pos = fill_column(fo, bc, j / 3, j % 3, pos, (sunindextype)j,
-                          CL_FO_ZERO, 0);
+        pos = fill_column(fo, b, j, pos, CL_FO_ZERO, 0);
     }
     for (size_t j = 0; j < n; j++) {
         fo->colptr[n + j] = pos;
-        pos = fill_column(fo, bc, j / 3, j % 3, pos, (sunindextype)j,
-                          CL_FO_ONE, fo->nval);
+        pos = fill_column(fo, b, j, pos, CL_FO_ONE, fo->nval);
     }
     fo->colptr[2 * n] = pos;
 }
@@ -103,17 +55,6 @@ static void find_diagonal(cl_firstorder *fo)
                 fo->diag[j] = k;
         }
     }
-}
-
-static cl_status check_masses(const double *mass, size_t n, cl_error *err)
-{
-    for (size_t i = 0; i < n; i++) {
-        if (!isfinite(mass[i]) || !(mass[i] > 0.0))
-            return cl_error_set(err, CL_EINVAL,
-                                "first-order Jacobian: mass[%zu] = %g, "
-                                "must be finite and > 0", i, mass[i]);
-    }
-    return CL_OK;
 }
 
 static cl_status alloc_arrays(cl_firstorder *fo, cl_error *err)
@@ -141,18 +82,18 @@ cl_status cl_firstorder_create(const cl_bpattern *pat, const double *mass,
     fo->nval = 9 * pat->nnzb;
     fo->size = (sunindextype)(2 * fo->n);
     fo->nnz = (sunindextype)(2 * fo->n + 2 * fo->nval);
-    cl_status st = check_masses(mass, fo->n, err);
+    cl_status st = cl_check_masses(mass, fo->n, "first-order Jacobian", err);
     if (st == CL_OK)
         st = alloc_arrays(fo, err);
-    cl_bcols bc = {0};
+    cl_csc_blocks b = {0};
     if (st == CL_OK)
-        st = bcols_build(pat, &bc, err);
+        st = cl_csc_from_blocks(pat, "first-order Jacobian", &b, err);
     if (st != CL_OK) {
         cl_firstorder_free(fo);
         return st;
     }
-    build_columns(fo, &bc);
-    bcols_free(&bc);
+    build_columns(fo, &b);
+    cl_csc_blocks_free(&b);
     find_diagonal(fo);
     for (size_t i = 0; i < fo->n; i++) {
         fo->mass[i] = mass[i];

@@ -47,6 +47,7 @@
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_pcg.h>
 
+#include "core/check.h"
 #include "linalg/reduced.h"
 
 #define CL_PCG_TOL 1e-10
@@ -227,13 +228,10 @@ static cl_status pcg_alloc(cl_pcg *s, const double *mass, cl_error *err)
     s->pinv = calloc(s->block ? 9 * s->pat->nb : s->n, sizeof *s->pinv);
     if (!s->mass || !s->ablk || !s->pinv)
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
-    for (size_t i = 0; i < s->n; i++) {
-        if (!isfinite(mass[i]) || !(mass[i] > 0.0))
-            return cl_error_set(err, CL_EINVAL, "%s: mass[%zu] = %g, must "
-                                "be finite and > 0", s->name, i, mass[i]);
-        s->mass[i] = mass[i];
-    }
-    return CL_OK;
+    cl_status st = cl_check_masses(mass, s->n, s->name, err);
+    if (st == CL_OK)
+        memcpy(s->mass, mass, s->n * sizeof *s->mass);
+    return st;
 }
 
 static cl_status pcg_sundials(cl_pcg *s, cl_error *err)

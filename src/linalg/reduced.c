@@ -1,10 +1,9 @@
 /* A = M - a df/dv - b df/dx (SPEC 1, 5) in CSC and as 3x3 blocks.
  *
- * CSC: column j = 3 bj + c holds, for every stored block (bi, bj) in
- * ascending bi, the three entries at rows 3 bi + r (r = 0, 1, 2), whose
- * value is entry (r, c) of the block: source index 9 k + 3 r + c for block
- * k.  Block columns come from a counting transpose of the block-CSR
- * pattern, visiting block rows in ascending order, so rows ascend within
+ * CSC: exactly the block pattern's scalar CSC (linalg/csc.h): column
+ * j = 3 bj + c holds, for every stored block (bi, bj) in ascending bi, the
+ * three entries at rows 3 bi + r (r = 0, 1, 2), whose value is entry (r, c)
+ * of the block: source index 9 k + 3 r + c for block k; rows ascend within
  * every column.  The diagonal blocks are always stored (cl_bpattern), hence
  * every diagonal entry is; its position is remembered so that the fill adds
  * the mass without a search:
@@ -12,82 +11,26 @@
  *     val[e] = -a dfdv[src[e]] - b dfdx[src[e]],   val[diagpos[i]] += m_i. */
 #include "linalg/reduced.h"
 
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* Counting transpose of the block pattern: for block column bj, the block
- * rows bi (ascending) and block indices k of its stored blocks. */
-typedef struct {
-    size_t *ptr; /* nb + 1 */
-    size_t *row; /* nnzb */
-    size_t *blk; /* nnzb */
-} red_bcols;
+#include "core/check.h"
+#include "linalg/csc.h"
 
-static void red_bcols_free(red_bcols *bc)
+/* Copy the block pattern's scalar CSC into r's index types and remember
+ * the position of every diagonal entry. */
+static void red_copy_pattern(cl_reduced *r, const cl_csc_blocks *b)
 {
-    free(bc->ptr);
-    free(bc->row);
-    free(bc->blk);
-}
-
-static cl_status red_bcols_build(const cl_bpattern *pat, red_bcols *bc,
-                                 cl_error *err)
-{
-    size_t nb = pat->nb, nnzb = pat->nnzb;
-    bc->ptr = calloc(nb + 1, sizeof *bc->ptr);
-    bc->row = malloc((nnzb ? nnzb : 1) * sizeof *bc->row);
-    bc->blk = malloc((nnzb ? nnzb : 1) * sizeof *bc->blk);
-    size_t *next = malloc((nb ? nb : 1) * sizeof *next);
-    if (!bc->ptr || !bc->row || !bc->blk || !next) {
-        free(next);
-        red_bcols_free(bc);
-        return cl_error_set(err, CL_ENOMEM,
-                            "out of memory (reduced matrix pattern)");
-    }
-    for (size_t k = 0; k < nnzb; k++)
-        bc->ptr[pat->col[k] + 1]++;
-    for (size_t j = 0; j < nb; j++) {
-        bc->ptr[j + 1] += bc->ptr[j];
-        next[j] = bc->ptr[j];
-    }
-    for (size_t bi = 0; bi < nb; bi++) {
-        for (size_t k = pat->rowptr[bi]; k < pat->rowptr[bi + 1]; k++) {
-            size_t slot = next[pat->col[k]]++;
-            bc->row[slot] = bi;
-            bc->blk[slot] = k;
+    for (size_t j = 0; j <= r->n; j++)
+        r->colptr[j] = (SuiteSparse_long)b->colptr[j];
+    for (size_t j = 0; j < r->n; j++) {
+        for (size_t e = b->colptr[j]; e < b->colptr[j + 1]; e++) {
+            if (b->row[e] == j)
+                r->diagpos[j] = (SuiteSparse_long)e;
+            r->rowind[e] = (SuiteSparse_long)b->row[e];
+            r->src[e] = b->src[e];
         }
     }
-    free(next);
-    return CL_OK;
-}
-
-/* Column j = 3 bj + c from position pos on; returns the next position. */
-static SuiteSparse_long red_column(cl_reduced *r, const red_bcols *bc,
-                                   size_t bj, size_t c, SuiteSparse_long pos)
-{
-    size_t j = 3 * bj + c;
-    for (size_t q = bc->ptr[bj]; q < bc->ptr[bj + 1]; q++) {
-        for (size_t row = 0; row < 3; row++) {
-            size_t i = 3 * bc->row[q] + row;
-            if (i == j)
-                r->diagpos[i] = pos;
-            r->rowind[pos] = (SuiteSparse_long)i;
-            r->src[pos++] = 9 * bc->blk[q] + 3 * row + c;
-        }
-    }
-    return pos;
-}
-
-static cl_status red_check_masses(const double *mass, size_t n, cl_error *err)
-{
-    for (size_t i = 0; i < n; i++) {
-        if (!isfinite(mass[i]) || !(mass[i] > 0.0))
-            return cl_error_set(err, CL_EINVAL,
-                                "reduced matrix: mass[%zu] = %g, must be "
-                                "finite and > 0", i, mass[i]);
-    }
-    return CL_OK;
 }
 
 static cl_status red_alloc(cl_reduced *r, cl_error *err)
@@ -113,23 +56,18 @@ cl_status cl_reduced_create(const cl_bpattern *pat, const double *mass,
     r->n = 3 * pat->nb;
     r->nval = 9 * pat->nnzb;
     r->nnz = (SuiteSparse_long)r->nval;
-    cl_status st = red_check_masses(mass, r->n, err);
+    cl_status st = cl_check_masses(mass, r->n, "reduced matrix", err);
     if (st == CL_OK)
         st = red_alloc(r, err);
-    red_bcols bc = {0};
+    cl_csc_blocks b = {0};
     if (st == CL_OK)
-        st = red_bcols_build(pat, &bc, err);
+        st = cl_csc_from_blocks(pat, "reduced matrix", &b, err);
     if (st != CL_OK) {
         cl_reduced_free(r);
         return st;
     }
-    SuiteSparse_long pos = 0;
-    for (size_t j = 0; j < r->n; j++) {
-        r->colptr[j] = pos;
-        pos = red_column(r, &bc, j / 3, j % 3, pos);
-    }
-    r->colptr[r->n] = pos;
-    red_bcols_free(&bc);
+    red_copy_pattern(r, &b);
+    cl_csc_blocks_free(&b);
     memcpy(r->mass, mass, r->n * sizeof *r->mass);
     return CL_OK;
 }

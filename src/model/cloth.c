@@ -60,7 +60,8 @@ cl_status cl_cloth_pin(cl_cloth *c, int i, int j, const double w[3],
         const cl_pin *q = &c->pins[k];
         if (q->p != p)
             continue;
-        if (q->t_stop == t_stop && !memcmp(q->w, w, 3 * sizeof *w))
+        bool still = !w[0] && !w[1] && !w[2];
+        if (!memcmp(q->w, w, 3 * sizeof *w) && (still || q->t_stop == t_stop))
             return CL_OK; /* the same pin again (a row meeting a column) */
         return cl_error_set(err, CL_EINVAL,
                             "pin (%d, %d) is given twice with different "
