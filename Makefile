@@ -22,7 +22,7 @@ LDLIBS := -lsundials_cvode -lsundials_ida -lsundials_kinsol \
           -lsundials_sunmatrixdense -lsundials_sunlinsoldense \
           -lsundials_sunlinsolklu -lsundials_sunlinsolspgmr \
           -lsundials_sunlinsolpcg -lsundials_sunnonlinsolfixedpoint \
-          -lklu -lamd -lcolamd -lbtf \
+          -lklu -lcholmod -lamd -lcolamd -lbtf \
           -lsuitesparseconfig -lgsl -lgslcblas -linih -lm
 
 LIB_SRC  := $(filter-out src/cli/main.c,$(wildcard src/*/*.c))

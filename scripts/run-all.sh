@@ -16,6 +16,7 @@ while read -r name _; do
     case $name in
         fe|symplectic-euler|symplectic-euler-x|verlet|velocity-verlet|rk4)
             step=(--dt 1e-5) ;;
+        verlet-pbd) step=(--dt 1e-5 --set pbd.enabled=true) ;;
         kinsol-*|semi-*) step=(--dt 1e-3) ;;
         *) step=() ;;
     esac
@@ -29,7 +30,8 @@ while read -r name _; do
         status=1
     fi
     stat() { awk -F, -v k="$1" '$1 == k { print $2 }' "$dir/stats.csv" 2>/dev/null; }
-    stretch=$(tail -1 "$dir/series.csv" 2>/dev/null | awk -F, '{ print $(NF-1) }')
+    stretch=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "max_stretch") c = i }
+        END { if (c) print $c }' "$dir/series.csv" 2>/dev/null)
     printf "%-20s %6s %8s %9s %8s %8s %9s %9.3f %s\n" "$name" "$ok" \
         "$(stat steps)" "$(stat rhs_evals)" "$(stat jac_evals)" \
         "$(stat lin_setups)" "$(stat nonlin_iters)" "$(stat cpu)" \

@@ -50,7 +50,8 @@ static inline bw_ref bw_ref_elements(const cl_model *m, int nv, int nc,
     cr_assert_not_null(r.vert);
     for (size_t e = 0; e < r.n; e++)
         memcpy(r.vert + e * (size_t)nv,
-               nv == 3 ? mesh.tri[e] : mesh.edge[e].v, (size_t)nv * sizeof(int));
+               nv == 3 ? mesh.tri[e] : mesh.edge[e].v,
+               (size_t)nv * sizeof(int));
     cl_mesh_free(&mesh);
     return r;
 }
@@ -80,6 +81,14 @@ static inline double bw_ref_w(const cl_cloth *cl, const int *v,
                       (xe[6 + i] - xe[i]) * inv[1][c];
     }
     return 0.5 * fabs(det);
+}
+
+/* fd_report of "<label> <what>". */
+static inline void bw_report(const char *label, const char *what, double v)
+{
+    char buf[160];
+    snprintf(buf, sizeof buf, "%s %s", label, what);
+    fd_report(buf, v);
 }
 
 static inline void bw_ref_gather(const bw_ref *r, size_t e, const double *x,
@@ -209,11 +218,8 @@ static inline bw_errors bw_check_potential(cl_model *m, const double *x,
     e.structure = fd_check_structure(m, x, v);
     fd_eval(m, x, v, f);
     e.net = fd_net_force(x, f, n / 3, &e.torque);
-    char buf[160];
-    snprintf(buf, sizeof buf, "%s structure", label);
-    fd_report(buf, e.structure);
-    snprintf(buf, sizeof buf, "%s net force", label);
-    fd_report(buf, e.net);
+    bw_report(label, "structure", e.structure);
+    bw_report(label, "net force", e.net);
     cr_assert_lt(e.jac_x, 1e-6, "%s: df/dx vs FD rel err %g", label, e.jac_x);
     cr_assert_eq(e.jac_v, 0.0, "%s: df/dv should vanish (%g)", label,
                  e.jac_v);
@@ -259,15 +265,10 @@ static inline double bw_check_damping(cl_model *m, const bw_ref *r,
         kept[i] = Jx[i] + dropped[i];
     double ex = fd_relerr(Fx, kept, nn);
     double share = fd_maxabs(dropped, nn) / fd_maxabs(Fx, nn);
-    char buf[160];
-    snprintf(buf, sizeof buf, "%s dd/dv vs FD", label);
-    fd_report(buf, ev);
-    snprintf(buf, sizeof buf, "%s dd/dx vs -kd C' d2C/dx2", label);
-    fd_report(buf, ek);
-    snprintf(buf, sizeof buf, "%s FD dd/dx vs kept + dropped", label);
-    fd_report(buf, ex);
-    snprintf(buf, sizeof buf, "%s dropped / max |FD dd/dx|", label);
-    fd_report(buf, share);
+    bw_report(label, "dd/dv vs FD", ev);
+    bw_report(label, "dd/dx vs -kd C' d2C/dx2", ek);
+    bw_report(label, "FD dd/dx vs kept + dropped", ex);
+    bw_report(label, "dropped / max |FD dd/dx|", share);
     cr_assert_lt(ev, 1e-6, "%s: dd/dv vs FD rel err %g", label, ev);
     cr_assert_lt(ek, 1e-6, "%s: dd/dx vs -kd C' d2C/dx2 rel err %g", label,
                  ek);
@@ -302,7 +303,7 @@ static inline void bw_state(const cl_model *m, const double A[9],
     fd_random_vec(r, vs, v, fd_n(m));
 }
 
-/* ---- repeated trials ------------------------------------------------------ */
+/* ---- repeated trials ---------------------------------------------------- */
 
 typedef void (*bw_state_fn)(const cl_model *m, fd_rng *r, double *x,
                             double *v);
@@ -333,9 +334,7 @@ static inline double bw_potential_trials(cl_model *m, const bw_ref *ref,
         cr_assert(fabs(Em - E) <= 1e-12 * E, "%s: energy %.17g vs %.17g",
                   label, Em, E);
     }
-    char buf[160];
-    snprintf(buf, sizeof buf, "%s worst df/dx", label);
-    fd_report(buf, worst);
+    bw_report(label, "worst df/dx", worst);
     free(x);
     free(v);
     free(f);
@@ -343,12 +342,33 @@ static inline double bw_potential_trials(cl_model *m, const bw_ref *ref,
     return worst;
 }
 
-/* bw_check_damping at `trials` random states; returns the worst error. */
-static inline double bw_damping_trials(cl_model *m, const bw_ref *ref,
-                                       const double kd[2], bw_state_fn state,
-                                       unsigned seed, int trials,
-                                       const char *label)
+/* Three random states of the model m, whose only part of condition `term`
+ * must be the potential (stiffness k), against the reference; frees the
+ * reference and m. */
+static inline void bw_potential_case(cl_model *m, bw_ref ref,
+                                     const double k[2], const char *term,
+                                     bw_state_fn state, unsigned seed,
+                                     const char *label)
 {
+    char damping[64];
+    snprintf(damping, sizeof damping, "%s-damping", term);
+    cr_assert(!fd_has_term(m, damping), "%s: %s is on", label, damping);
+    bw_potential_trials(m, &ref, k, term, state, seed, 3, 1e-5, label);
+    bw_ref_free(&ref);
+    cl_model_free(m);
+}
+
+/* bw_check_damping at `trials` random states of the model m, whose only
+ * part of condition `term` must be its damping; returns the worst error. */
+static inline double bw_damping_trials(cl_model *m, const char *term,
+                                       const bw_ref *ref, const double kd[2],
+                                       bw_state_fn state, unsigned seed,
+                                       int trials, const char *label)
+{
+    char damping[64];
+    snprintf(damping, sizeof damping, "%s-damping", term);
+    cr_assert(fd_has_term(m, damping), "%s: %s is off", label, damping);
+    cr_assert(!fd_has_term(m, term), "%s: %s is on", label, term);
     size_t n = fd_n(m);
     double *x = fd_vec(n), *v = fd_vec(n);
     fd_rng r = {seed};
@@ -358,12 +378,31 @@ static inline double bw_damping_trials(cl_model *m, const bw_ref *ref,
         worst = fmax(worst, bw_check_damping(m, ref, kd, x, v, label, NULL,
                                              NULL, NULL));
     }
-    char buf[160];
-    snprintf(buf, sizeof buf, "%s worst", label);
-    fd_report(buf, worst);
+    bw_report(label, "worst", worst);
     free(x);
     free(v);
     return worst;
+}
+
+/* fd_check_rigid at `trials` random states, rotations, translations and
+ * uniform velocities; every deviation must stay below tol. */
+static inline void bw_rigid_trials(cl_model *m, bw_state_fn state,
+                                   unsigned seed, int trials, double tol,
+                                   const char *label)
+{
+    size_t n = fd_n(m);
+    double *x = fd_vec(n), *v = fd_vec(n), R[9], c[3], w[3];
+    fd_rng r = {seed};
+    for (int trial = 0; trial < trials; trial++) {
+        state(m, &r, x, v);
+        fd_rotation(&r, R);
+        fd_random_vec(&r, 2.0, c, 3);
+        fd_random_vec(&r, 1.0, w, 3);
+        double e = fd_check_rigid(m, x, v, R, c, w, label);
+        cr_assert_lt(e, tol, "%s: rigid-motion deviation %g", label, e);
+    }
+    free(x);
+    free(v);
 }
 
 #endif

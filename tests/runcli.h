@@ -68,26 +68,15 @@ static inline double cli_now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* Run $CLOTHODE with the given arguments (a NULL-terminated array). */
-static inline void cli_runv(cli_result *r, const char *const *args)
+/* Run argv[0] (a path, or a name looked up in PATH) with argv
+ * (NULL-terminated), stdin from /dev/null, capturing its output. */
+static inline void cli_spawn(cli_result *r, char *const argv[])
 {
-    char *argv[CLI_MAX_ARGS + 2];
-    size_t argc = 0, len = 0;
+    size_t len = 0;
     memset(r, 0, sizeof *r);
-    argv[argc++] = (char *)cli_binary();
-    for (; args[argc - 1]; argc++) {
-        cr_assert(argc <= CLI_MAX_ARGS, "too many arguments");
-        argv[argc] = (char *)args[argc - 1];
-    }
-    argv[argc] = NULL;
-    for (size_t k = 0; k < argc && len < sizeof r->cmd; k++)
+    for (size_t k = 0; argv[k] && len < sizeof r->cmd; k++)
         len += (size_t)snprintf(r->cmd + len, sizeof r->cmd - len, "%s%s",
                                 k ? " " : "", argv[k]);
-
-    struct stat st;
-    cr_assert_eq(stat(argv[0], &st), 0,
-                 "program %s not found (build it, or set $CLOTHODE)",
-                 argv[0]);
     FILE *out = tmpfile(), *err = tmpfile();
     cr_assert(out && err, "tmpfile: %s", strerror(errno));
     posix_spawn_file_actions_t fa;
@@ -100,7 +89,7 @@ static inline void cli_runv(cli_result *r, const char *const *args)
     cr_assert_eq(posix_spawn_file_actions_adddup2(&fa, fileno(err),
                                                   STDERR_FILENO), 0);
     pid_t pid;
-    int rc = posix_spawn(&pid, argv[0], &fa, NULL, argv, environ);
+    int rc = posix_spawnp(&pid, argv[0], &fa, NULL, argv, environ);
     posix_spawn_file_actions_destroy(&fa);
     cr_assert_eq(rc, 0, "posix_spawn %s: %s", argv[0], strerror(rc));
 
@@ -126,6 +115,24 @@ static inline void cli_runv(cli_result *r, const char *const *args)
     r->err = cli_slurp_fp(err);
     fclose(out);
     fclose(err);
+}
+
+/* Run $CLOTHODE with the given arguments (a NULL-terminated array). */
+static inline void cli_runv(cli_result *r, const char *const *args)
+{
+    char *argv[CLI_MAX_ARGS + 2];
+    size_t argc = 0;
+    argv[argc++] = (char *)cli_binary();
+    for (; args[argc - 1]; argc++) {
+        cr_assert(argc <= CLI_MAX_ARGS, "too many arguments");
+        argv[argc] = (char *)args[argc - 1];
+    }
+    argv[argc] = NULL;
+    struct stat st;
+    cr_assert_eq(stat(argv[0], &st), 0,
+                 "program %s not found (build it, or set $CLOTHODE)",
+                 argv[0]);
+    cli_spawn(r, argv);
 }
 
 /* cli_run(&r, "run", "hang", ..., NULL) */
@@ -296,6 +303,25 @@ static inline void cli_parse_row(const char *line, double *v, size_t n,
                   "%s: \"%s\" does not have %zu fields", what, line, n);
         p = end + 1;
     }
+}
+
+/* forces.csv (header p,fx,fy,fz, rows in particle order) of np
+ * particles into f[3*np]. */
+static inline void cli_read_forces(const char *path, size_t np, double *f)
+{
+    cli_lines L;
+    cli_read_lines(path, &L);
+    cr_assert(L.n >= 1, "%s is empty", path);
+    cr_assert_str_eq(L.line[0], "p,fx,fy,fz", "%s: header", path);
+    cr_assert_eq(L.n, np + 1, "%s: %zu rows, expected %zu", path, L.n - 1, np);
+    for (size_t k = 1; k < L.n; k++) {
+        double row[4];
+        cli_parse_row(L.line[k], row, 4, path);
+        cr_assert_eq(row[0], (double)(k - 1), "%s: row %zu is particle %g",
+                     path, k, row[0]);
+        memcpy(f + 3 * (k - 1), row + 1, 3 * sizeof *f);
+    }
+    cli_lines_free(&L);
 }
 
 /* A state file (header p,x,y,z,vx,vy,vz) of np particles into x, v

@@ -250,3 +250,33 @@ Test(bw, energy_and_power_bookkeeping)
     free(f);
     cl_model_free(all);
 }
+
+/* problems/bw-hang.ini: every key known, the six Baraff-Witkin terms and
+ * gravity on, the Choi-Ko terms off; at rest only gravity acts. */
+Test(bw, bw_hang_problem)
+{
+    cl_config *cfg = cl_config_alloc();
+    cl_model *m = NULL;
+    cl_error err;
+    cr_assert_eq(cl_config_load(cfg, "problems/bw-hang.ini", &err), CL_OK,
+                 "%s", err.msg);
+    cl_config_ignore_section(cfg, "run");
+    cr_assert_eq(cl_model_create(cfg, &m, &err), CL_OK, "%s", err.msg);
+    cr_assert_eq(cl_config_check_unused(cfg, &err), CL_OK, "%s", err.msg);
+    for (size_t k = 0; k < NTERMS; k++)
+        cr_assert(fd_has_term(m, bw_terms[k]), "%s is off", bw_terms[k]);
+    cr_assert(fd_has_term(m, "gravity"));
+    cr_assert(!fd_has_term(m, "type1") && !fd_has_term(m, "type2") &&
+              !fd_has_term(m, "damping"));
+    const cl_cloth *c = cl_model_cloth(m);
+    size_t n = fd_n(m);
+    double *v = fd_vec(n), *f = fd_vec(n);
+    fd_eval(m, c->X0, v, f);
+    for (size_t p = 0; p < c->np; p++)
+        cr_assert(f[3 * p] == 0.0 && f[3 * p + 2] == 0.0 &&
+                  fabs(f[3 * p + 1] + 9.81 * c->mass[p]) <= 1e-15);
+    free(v);
+    free(f);
+    cl_model_free(m);
+    cl_config_free(cfg);
+}

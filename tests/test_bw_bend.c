@@ -262,36 +262,23 @@ static void state(const cl_model *m, fd_rng *r, double *x, double *v)
     bw_state(m, A, 0.1, 0.4, 1.0, r, x, v);
 }
 
-static void check_bend(const char *const *sets, cl_diagonal diag,
-                       double k, unsigned seed, const char *label)
-{
-    cl_model *m = fd_model(sets);
-    cr_assert(!fd_has_term(m, "bw-bend-damping"));
-    bw_ref ref = bend_ref(m, diag);
-    double kk[2] = {k, 0.0};
-    bw_potential_trials(m, &ref, kk, "bw-bend", state, seed, 3, 1e-5,
-                        label);
-    bw_ref_free(&ref);
-    cl_model_free(m);
-}
-
 Test(bw_bend, jacobian_fixed_diagonal)
 {
-    check_bend(FD_SETS("type1.enabled=false", "type2.enabled=false",
-                       "damping.kd=0", "gravity.g=0,0,0", "pins.at=",
-                       "cloth.n=4", "bw-bend.enabled=true",
-                       "bw-bend.k=3e-3"),
-               CL_DIAGONAL_FIXED, 3e-3, 202, "bw-bend fixed");
+    cl_model *m = BW_ONLY("cloth.n=4", "bw-bend.enabled=true",
+                          "bw-bend.k=3e-3");
+    bw_potential_case(m, bend_ref(m, CL_DIAGONAL_FIXED),
+                      (double[2]){3e-3, 0.0}, "bw-bend", state, 202,
+                      "bw-bend fixed");
 }
 
 Test(bw_bend, jacobian_alternate_diagonal)
 {
-    check_bend(FD_SETS("type1.enabled=false", "type2.enabled=false",
-                       "damping.kd=0", "gravity.g=0,0,0", "pins.at=",
-                       "cloth.nu=5", "cloth.nv=4", "cloth.su=1.2",
-                       "cloth.sv=0.7", "cloth.diagonal=alternate",
-                       "bw-bend.enabled=true", "bw-bend.k=7e-4"),
-               CL_DIAGONAL_ALTERNATE, 7e-4, 203, "bw-bend alternate");
+    cl_model *m = BW_ONLY("cloth.nu=5", "cloth.nv=4", "cloth.su=1.2",
+                          "cloth.sv=0.7", "cloth.diagonal=alternate",
+                          "bw-bend.enabled=true", "bw-bend.k=7e-4");
+    bw_potential_case(m, bend_ref(m, CL_DIAGONAL_ALTERNATE),
+                      (double[2]){7e-4, 0.0}, "bw-bend", state, 203,
+                      "bw-bend alternate");
 }
 
 /* Flat rest state: theta = theta0 on every hinge, no force, no energy. */
@@ -312,19 +299,7 @@ Test(bw_bend, rotation_invariance)
 {
     cl_model *m = BW_ONLY("cloth.n=4", "bw-bend.enabled=true",
                           "bw-bend.k=1e-3");
-    size_t n = fd_n(m);
-    double *x = fd_vec(n), *v = fd_vec(n), R[9], c[3], w[3];
-    fd_rng r = {204};
-    for (int trial = 0; trial < 3; trial++) {
-        state(m, &r, x, v);
-        fd_rotation(&r, R);
-        fd_random_vec(&r, 2.0, c, 3);
-        fd_random_vec(&r, 1.0, w, 3);
-        double e = fd_check_rigid(m, x, v, R, c, w, "bw-bend");
-        cr_assert_lt(e, 1e-10, "rigid-motion deviation %g", e);
-    }
-    free(x);
-    free(v);
+    bw_rigid_trials(m, state, 204, 3, 1e-10, "bw-bend");
     cl_model_free(m);
 }
 
@@ -333,11 +308,10 @@ Test(bw_bend, damping)
     cl_model *m = BW_ONLY("cloth.nu=4", "cloth.nv=3", "cloth.su=0.9",
                           "cloth.sv=0.6", "bw-bend.enabled=true",
                           "bw-bend.k=0", "bw-bend.kd=2e-3");
-    cr_assert(fd_has_term(m, "bw-bend-damping"));
-    cr_assert(!fd_has_term(m, "bw-bend"));
     bw_ref ref = bend_ref(m, CL_DIAGONAL_FIXED);
     double kd[2] = {2e-3, 0.0};
-    bw_damping_trials(m, &ref, kd, state, 205, 2, "bw-bend-damping");
+    bw_damping_trials(m, "bw-bend", &ref, kd, state, 205, 2,
+                      "bw-bend-damping");
     bw_ref_free(&ref);
     cl_model_free(m);
 }

@@ -41,36 +41,23 @@ static void state(const cl_model *m, fd_rng *r, double *x, double *v)
     bw_state(m, A, 0.1, 0.3, 1.0, r, x, v);
 }
 
-static void check_shear(const char *const *sets, cl_diagonal diag, double k,
-                        unsigned seed, const char *label)
-{
-    cl_model *m = fd_model(sets);
-    cr_assert(!fd_has_term(m, "bw-shear-damping"));
-    bw_ref ref = shear_ref(m, diag);
-    double kk[2] = {k, 0.0};
-    bw_potential_trials(m, &ref, kk, "bw-shear", state, seed, 3, 1e-5,
-                        label);
-    bw_ref_free(&ref);
-    cl_model_free(m);
-}
-
 Test(bw_shear, jacobian_fixed_diagonal)
 {
-    check_shear(FD_SETS("type1.enabled=false", "type2.enabled=false",
-                        "damping.kd=0", "gravity.g=0,0,0", "pins.at=",
-                        "cloth.n=4", "bw-shear.enabled=true",
-                        "bw-shear.k=2e5"),
-                CL_DIAGONAL_FIXED, 2e5, 301, "bw-shear fixed");
+    cl_model *m = BW_ONLY("cloth.n=4", "bw-shear.enabled=true",
+                          "bw-shear.k=2e5");
+    bw_potential_case(m, shear_ref(m, CL_DIAGONAL_FIXED),
+                      (double[2]){2e5, 0.0}, "bw-shear", state, 301,
+                      "bw-shear fixed");
 }
 
 Test(bw_shear, jacobian_alternate_rectangular)
 {
-    check_shear(FD_SETS("type1.enabled=false", "type2.enabled=false",
-                        "damping.kd=0", "gravity.g=0,0,0", "pins.at=",
-                        "cloth.nu=3", "cloth.nv=5", "cloth.su=0.6",
-                        "cloth.sv=1.4", "cloth.diagonal=alternate",
-                        "bw-shear.enabled=true", "bw-shear.k=5e4"),
-                CL_DIAGONAL_ALTERNATE, 5e4, 302, "bw-shear alternate");
+    cl_model *m = BW_ONLY("cloth.nu=3", "cloth.nv=5", "cloth.su=0.6",
+                          "cloth.sv=1.4", "cloth.diagonal=alternate",
+                          "bw-shear.enabled=true", "bw-shear.k=5e4");
+    bw_potential_case(m, shear_ref(m, CL_DIAGONAL_ALTERNATE),
+                      (double[2]){5e4, 0.0}, "bw-shear", state, 302,
+                      "bw-shear alternate");
 }
 
 /* x += s z: w_u = (1,0,0), w_v = (s,0,1), C = a s on every triangle:
@@ -108,19 +95,7 @@ Test(bw_shear, rotation_invariance)
 {
     cl_model *m = BW_ONLY("cloth.n=4", "bw-shear.enabled=true",
                           "bw-shear.k=1e5");
-    size_t n = fd_n(m);
-    double *x = fd_vec(n), *v = fd_vec(n), R[9], c[3], w[3];
-    fd_rng r = {304};
-    for (int trial = 0; trial < 3; trial++) {
-        state(m, &r, x, v);
-        fd_rotation(&r, R);
-        fd_random_vec(&r, 2.0, c, 3);
-        fd_random_vec(&r, 1.0, w, 3);
-        double e = fd_check_rigid(m, x, v, R, c, w, "bw-shear");
-        cr_assert_lt(e, 1e-11, "rigid-motion deviation %g", e);
-    }
-    free(x);
-    free(v);
+    bw_rigid_trials(m, state, 304, 3, 1e-11, "bw-shear");
     cl_model_free(m);
 }
 
@@ -129,11 +104,10 @@ Test(bw_shear, damping)
     cl_model *m = BW_ONLY("cloth.nu=4", "cloth.nv=3", "cloth.su=0.8",
                           "cloth.sv=0.7", "bw-shear.enabled=true",
                           "bw-shear.k=0", "bw-shear.kd=40");
-    cr_assert(fd_has_term(m, "bw-shear-damping"));
-    cr_assert(!fd_has_term(m, "bw-shear"));
     bw_ref ref = shear_ref(m, CL_DIAGONAL_FIXED);
     double kd[2] = {40.0, 0.0};
-    bw_damping_trials(m, &ref, kd, state, 305, 2, "bw-shear-damping");
+    bw_damping_trials(m, "bw-shear", &ref, kd, state, 305, 2,
+                      "bw-shear-damping");
     bw_ref_free(&ref);
     cl_model_free(m);
 }

@@ -51,53 +51,36 @@ static void state(const cl_model *m, fd_rng *r, double *x, double *v)
 
 /* ---- the potential part ------------------------------------------------- */
 
-static void check_potential(const char *const *sets, double ku, double kv,
-                            double bu, double bv, cl_diagonal diag,
-                            unsigned seed, const char *label)
-{
-    cl_model *m = fd_model(sets);
-    cr_assert(!fd_has_term(m, "bw-stretch-damping"));
-    bw_ref ref = stretch_ref(m, diag, bu, bv);
-    double k[2] = {ku, kv};
-    bw_potential_trials(m, &ref, k, "bw-stretch", state, seed, 3, 1e-5,
-                        label);
-    bw_ref_free(&ref);
-    cl_model_free(m);
-}
-
 Test(bw_stretch, stretch_u_alone)
 {
-    check_potential(FD_SETS("type1.enabled=false", "type2.enabled=false",
-                            "damping.kd=0", "gravity.g=0,0,0", "pins.at=",
-                            "cloth.n=4", "bw-stretch.enabled=true",
-                            "bw-stretch.k=3e5", "bw-stretch.kv=0"),
-                    3e5, 0.0, 1.0, 1.0, CL_DIAGONAL_FIXED, 101,
-                    "bw-stretch u");
+    cl_model *m = BW_ONLY("cloth.n=4", "bw-stretch.enabled=true",
+                          "bw-stretch.k=3e5", "bw-stretch.kv=0");
+    bw_potential_case(m, stretch_ref(m, CL_DIAGONAL_FIXED, 1.0, 1.0),
+                      (double[2]){3e5, 0.0}, "bw-stretch", state, 101,
+                      "bw-stretch u");
 }
 
 Test(bw_stretch, stretch_v_alone)
 {
-    check_potential(FD_SETS("type1.enabled=false", "type2.enabled=false",
-                            "damping.kd=0", "gravity.g=0,0,0", "pins.at=",
-                            "cloth.n=4", "bw-stretch.enabled=true",
-                            "bw-stretch.k=3e5", "bw-stretch.ku=0"),
-                    0.0, 3e5, 1.0, 1.0, CL_DIAGONAL_FIXED, 102,
-                    "bw-stretch v");
+    cl_model *m = BW_ONLY("cloth.n=4", "bw-stretch.enabled=true",
+                          "bw-stretch.k=3e5", "bw-stretch.ku=0");
+    bw_potential_case(m, stretch_ref(m, CL_DIAGONAL_FIXED, 1.0, 1.0),
+                      (double[2]){0.0, 3e5}, "bw-stretch", state, 102,
+                      "bw-stretch v");
 }
 
 /* Both, anisotropic, with targets bu, bv != 1, a rectangular grid and the
  * alternating diagonal. */
 Test(bw_stretch, stretch_uv_anisotropic)
 {
-    check_potential(FD_SETS("type1.enabled=false", "type2.enabled=false",
-                            "damping.kd=0", "gravity.g=0,0,0", "pins.at=",
-                            "cloth.nu=5", "cloth.nv=4", "cloth.su=1.3",
-                            "cloth.sv=0.8", "cloth.diagonal=alternate",
-                            "bw-stretch.enabled=true", "bw-stretch.ku=2e5",
-                            "bw-stretch.kv=7e5", "bw-stretch.bu=0.95",
-                            "bw-stretch.bv=1.02"),
-                    2e5, 7e5, 0.95, 1.02, CL_DIAGONAL_ALTERNATE, 103,
-                    "bw-stretch uv");
+    cl_model *m = BW_ONLY("cloth.nu=5", "cloth.nv=4", "cloth.su=1.3",
+                          "cloth.sv=0.8", "cloth.diagonal=alternate",
+                          "bw-stretch.enabled=true", "bw-stretch.ku=2e5",
+                          "bw-stretch.kv=7e5", "bw-stretch.bu=0.95",
+                          "bw-stretch.bv=1.02");
+    bw_potential_case(m, stretch_ref(m, CL_DIAGONAL_ALTERNATE, 0.95, 1.02),
+                      (double[2]){2e5, 7e5}, "bw-stretch", state, 103,
+                      "bw-stretch uv");
 }
 
 /* At rest w_u = (1,0,0), w_v = (0,0,1) exactly: no force, no energy. */
@@ -153,19 +136,7 @@ Test(bw_stretch, rotation_invariance)
     cl_model *m = BW_ONLY("cloth.n=4", "bw-stretch.enabled=true",
                           "bw-stretch.ku=2e5", "bw-stretch.kv=5e5",
                           "bw-stretch.bu=1.01");
-    size_t n = fd_n(m);
-    double *x = fd_vec(n), *v = fd_vec(n), R[9], c[3], w[3];
-    fd_rng r = {105};
-    for (int trial = 0; trial < 3; trial++) {
-        state(m, &r, x, v);
-        fd_rotation(&r, R);
-        fd_random_vec(&r, 2.0, c, 3);
-        fd_random_vec(&r, 1.0, w, 3);
-        double e = fd_check_rigid(m, x, v, R, c, w, "bw-stretch");
-        cr_assert_lt(e, 1e-11, "rigid-motion deviation %g", e);
-    }
-    free(x);
-    free(v);
+    bw_rigid_trials(m, state, 105, 3, 1e-11, "bw-stretch");
     cl_model_free(m);
 }
 
@@ -177,11 +148,9 @@ static void check_damping(const char *ku_set, const char *kv_set, double kdu,
     cl_model *m = BW_ONLY("cloth.nu=4", "cloth.nv=3", "cloth.su=0.9",
                           "cloth.sv=0.5", "bw-stretch.enabled=true",
                           "bw-stretch.k=0", ku_set, kv_set);
-    cr_assert(fd_has_term(m, "bw-stretch-damping"));
-    cr_assert(!fd_has_term(m, "bw-stretch"));
     bw_ref ref = stretch_ref(m, CL_DIAGONAL_FIXED, 1.0, 1.0);
     double kd[2] = {kdu, kdv};
-    bw_damping_trials(m, &ref, kd, state, seed, 2, label);
+    bw_damping_trials(m, "bw-stretch", &ref, kd, state, seed, 2, label);
     bw_ref_free(&ref);
     cl_model_free(m);
 }

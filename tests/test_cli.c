@@ -103,24 +103,6 @@ static void perturbed_state(const cl_cloth *c, double *x, double *v)
 
 /* ---- reading outputs -------------------------------------------------- */
 
-/* forces.csv of np particles into f[3*np]. */
-static void read_forces(const char *path, size_t np, double *f)
-{
-    cli_lines L;
-    cli_read_lines(path, &L);
-    cr_assert(L.n >= 1, "%s is empty", path);
-    cr_assert_str_eq(L.line[0], "p,fx,fy,fz", "%s: header", path);
-    cr_assert_eq(L.n, np + 1, "%s: %zu rows, expected %zu", path, L.n - 1, np);
-    for (size_t k = 1; k < L.n; k++) {
-        double row[4];
-        cli_parse_row(L.line[k], row, 4, path);
-        cr_assert_eq(row[0], (double)(k - 1), "%s: row %zu is particle %g",
-                     path, k, row[0]);
-        memcpy(f + 3 * (k - 1), row + 1, 3 * sizeof *f);
-    }
-    cli_lines_free(&L);
-}
-
 /* energy.csv: the terms in order and their values. */
 typedef struct {
     size_t n;
@@ -786,7 +768,7 @@ Test(cli, eval_forces_and_energies)
     run_eval(c, x, v, NULL);
 
     char path[1024];
-    read_forces(in_tmp(path, "eval/forces.csv"), c->np, f);
+    cli_read_forces(in_tmp(path, "eval/forces.csv"), c->np, f);
     for (size_t k = 0; k < 3 * c->np; k++)
         cr_assert(isfinite(f[k]));
     energies e;
@@ -829,7 +811,7 @@ Test(cli, eval_rest_state_without_gravity_has_no_force)
     double v[3 * RUN_NP] = {0}, f[3 * RUN_NP];
     run_eval(c, c->X0, v, "gravity.g=0,0,0");
     char path[1024];
-    read_forces(in_tmp(path, "eval/forces.csv"), c->np, f);
+    cli_read_forces(in_tmp(path, "eval/forces.csv"), c->np, f);
     for (size_t k = 0; k < 3 * c->np; k++)
         cr_assert_eq(f[k], 0.0, "force on particle %zu [%zu] = %.17g at rest",
                      k / 3, k % 3, f[k]);
@@ -850,7 +832,7 @@ Test(cli, eval_internal_forces_sum_to_zero)
     perturbed_state(c, x, v);
     run_eval(c, x, v, "gravity.g=0,0,0");
     char path[1024];
-    read_forces(in_tmp(path, "eval/forces.csv"), c->np, f);
+    cli_read_forces(in_tmp(path, "eval/forces.csv"), c->np, f);
     double fmax = max_abs(f, 3 * c->np);
     cr_assert_gt(fmax, 0.0);
     for (int d = 0; d < 3; d++) {

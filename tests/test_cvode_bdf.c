@@ -1,9 +1,10 @@
 /* cvode-bdf against closed-form solutions: damped/undamped oscillators, the
  * coupled pair, a stiff overdamped set; statistics, one KLU symbolic
- * analysis over many advance calls, blow-up and error reporting, options. */
+ * analysis over many advance calls (klu-full), the default solver's, blow-up and error reporting, options. */
 #include <criterion/criterion.h>
 
 #include <math.h>
+#include <string.h>
 
 #include "integrators/integrator.h"
 #include "runsun.h"
@@ -84,11 +85,13 @@ Test(cvode_bdf, stiff_overdamped)
     ts_free(&ts);
 }
 
+/* The baseline klu-full: KLU on the first-order matrix. */
 Test(cvode_bdf, statistics_and_one_symbolic_analysis)
 {
     ts_sys ts;
     cr_assert_eq(ts_pair(&ts, 1.0, 2.0, 4.0), 0);
-    cl_integrator_opts o = {.rtol = 1e-7, .atol = 1e-9, .dt = 1e-4};
+    cl_integrator_opts o = {.rtol = 1e-7, .atol = 1e-9, .dt = 1e-4,
+                            .linsol = "klu-full"};
     cl_stats s;
     run(&ts, &o, 20.0, 40, &s);
     cr_log_info("cvode-bdf stats: steps %ld rhs %ld jac %ld setups %ld "
@@ -106,6 +109,28 @@ Test(cvode_bdf, statistics_and_one_symbolic_analysis)
     cr_assert_eq(s.lin_iters, 0);
     cr_assert_geq(s.err_fails, 0);
     cr_assert_eq(s.symbolic_facts, 1);
+    cr_assert_str_eq(s.linsol, "klu-full");
+    ts_free(&ts);
+}
+
+/* The default half-size solver: at most one solve per Newton iteration
+ * (an iterative solve of a right-hand side already below CVODE's
+ * tolerance is skipped by CVODE), the solver named. */
+Test(cvode_bdf, statistics_default_linsol)
+{
+    ts_sys ts;
+    cr_assert_eq(ts_pair(&ts, 1.0, 2.0, 4.0), 0);
+    cl_integrator_opts o = {.rtol = 1e-7, .atol = 1e-9, .dt = 1e-4};
+    cl_stats s;
+    cr_assert_lt(run(&ts, &o, 20.0, 40, &s), 1000 * o.rtol);
+    cr_log_info("cvode-bdf default: %s, setups %ld solves %ld newton %ld "
+                "lin_iters %ld", s.linsol, s.lin_setups, s.lin_solves,
+                s.nonlin_iters, s.lin_iters);
+    cr_assert_gt(s.jac_evals, 0);
+    cr_assert_geq(s.lin_setups, s.jac_evals);
+    cr_assert_gt(s.lin_solves, 0);
+    cr_assert_leq(s.lin_solves, s.nonlin_iters);
+    cr_assert_eq(strncmp(s.linsol, "auto:", 5), 0, "%s", s.linsol);
     ts_free(&ts);
 }
 

@@ -1,5 +1,7 @@
 /* Every registered integrator runs the hang cloth (reduced to 6 x 6) for a
- * short time at a step it can take, and reports the common statistics. */
+ * short time at a step it can take, and reports the common statistics.
+ * The cloth carries position-based constraints (pbd.enabled) for
+ * verlet-pbd; every other method ignores them. */
 #include <criterion/criterion.h>
 
 #include <math.h>
@@ -14,7 +16,8 @@ static bool is_explicit(const char *name)
 {
     static const char *const names[] = {"fe", "symplectic-euler",
                                         "symplectic-euler-x", "verlet",
-                                        "velocity-verlet", "rk4", NULL};
+                                        "velocity-verlet", "rk4",
+                                        "verlet-pbd", NULL};
     for (size_t k = 0; names[k]; k++)
         if (!strcmp(name, names[k]))
             return true;
@@ -66,6 +69,7 @@ Test(every_integrator, runs_hang_and_counts)
     cr_assert_eq(cl_config_load(cfg, "problems/hang.ini", &err), CL_OK, "%s",
                  err.msg);
     cr_assert_eq(cl_config_set(cfg, "cloth.n=6", &err), CL_OK);
+    cr_assert_eq(cl_config_set(cfg, "pbd.enabled=true", &err), CL_OK);
     cr_assert_eq(cl_model_create(cfg, &m, &err), CL_OK, "%s", err.msg);
     const cl_system *sys = cl_model_system(m);
     double *x0 = malloc(sys->n * sizeof *x0), *v0 = malloc(sys->n * sizeof *v0);

@@ -185,7 +185,7 @@ Test(frames, vtk_full)
 {
     int nu = 4, nv = 5;
     grid g = make_grid(nu, nv, 0.1, 0.2);
-    cl_frame f = {nu, nv, g.x, g.v, g.pinned, 1.25};
+    cl_frame f = {nu, nv, g.x, g.v, g.pinned, 1.25, NULL, 0};
     char path[256];
     cl_error err;
     cr_assert_eq(cl_frame_path(dir, 42, "vtk", path, sizeof path, &err),
@@ -209,7 +209,7 @@ Test(frames, vtk_full)
 Test(frames, vtk_positions_only)
 {
     grid g = make_grid(3, 3, 1, 1);
-    cl_frame f = {3, 3, g.x, NULL, NULL, 0};
+    cl_frame f = {3, 3, g.x, NULL, NULL, 0, NULL, 0};
     char path[256];
     snprintf(path, sizeof path, "%s/a.vtk", dir);
     cl_error err;
@@ -234,7 +234,7 @@ Test(frames, vtk_positions_only)
 Test(frames, vtk_single_row_has_no_polygons)
 {
     grid g = make_grid(1, 4, 1, 1);
-    cl_frame f = {1, 4, g.x, g.v, NULL, 0};
+    cl_frame f = {1, 4, g.x, g.v, NULL, 0, NULL, 0};
     char path[256];
     snprintf(path, sizeof path, "%s/rope.vtk", dir);
     cl_error err;
@@ -250,7 +250,7 @@ Test(frames, obj_counts)
 {
     int nu = 3, nv = 6;
     grid g = make_grid(nu, nv, 0.1, 0.1);
-    cl_frame f = {nu, nv, g.x, g.v, g.pinned, 0.5};
+    cl_frame f = {nu, nv, g.x, g.v, g.pinned, 0.5, NULL, 0};
     char path[256];
     cl_error err;
     cr_assert_eq(cl_frame_path(dir, 7, "obj", path, sizeof path, &err),
@@ -319,7 +319,7 @@ Test(frames, frame_path)
 Test(frames, write_errors)
 {
     grid g = make_grid(2, 2, 1, 1);
-    cl_frame f = {2, 2, g.x, NULL, NULL, 0};
+    cl_frame f = {2, 2, g.x, NULL, NULL, 0, NULL, 0};
     char path[256];
     cl_error err;
     snprintf(path, sizeof path, "%s/missing/frame.vtk", dir);
@@ -330,10 +330,10 @@ Test(frames, write_errors)
     cr_assert(strstr(err.msg, path) != NULL, "%s", err.msg);
 
     snprintf(path, sizeof path, "%s/bad.vtk", dir);
-    cl_frame bad = {0, 2, g.x, NULL, NULL, 0};
+    cl_frame bad = {0, 2, g.x, NULL, NULL, 0, NULL, 0};
     cr_assert_eq(cl_frame_write_vtk(path, &bad, &err), CL_EINVAL);
     cr_assert(strstr(err.msg, "invalid frame") != NULL, "%s", err.msg);
-    bad = (cl_frame){2, 2, NULL, NULL, NULL, 0};
+    bad = (cl_frame){2, 2, NULL, NULL, NULL, 0, NULL, 0};
     cr_assert_eq(cl_frame_write_obj(path, &bad, &err), CL_EINVAL);
     cr_assert_eq(access(path, F_OK), -1);
     free_grid(&g);
@@ -342,7 +342,7 @@ Test(frames, write_errors)
 Test(frames, write_error_leaves_nothing)
 {
     grid g = make_grid(20, 20, 1.0 / 3.0, 1.0 / 7.0);
-    cl_frame f = {20, 20, g.x, g.v, g.pinned, 0};
+    cl_frame f = {20, 20, g.x, g.v, g.pinned, 0, NULL, 0};
     char path[256];
     snprintf(path, sizeof path, "%s/big.vtk", dir);
     tmp_limit_file_size(2000);

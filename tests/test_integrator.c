@@ -83,7 +83,8 @@ static cl_stats sample_stats(void)
     return (cl_stats){.steps = 11, .rhs_evals = 22, .jac_evals = 3,
                       .lin_setups = 4, .lin_solves = 15, .lin_iters = 0,
                       .nonlin_iters = 15, .nonlin_fails = 1, .err_fails = 2,
-                      .symbolic_facts = 1, .wall = 0.5, .cpu = 0.25};
+                      .symbolic_facts = 1, .lin_fallbacks = 2,
+                      .wall = 0.5, .cpu = 0.25};
 }
 
 Test(integrator, stats_csv_rows_parse_back)
@@ -99,7 +100,8 @@ Test(integrator, stats_csv_rows_parse_back)
         {"steps", 11}, {"rhs_evals", 22}, {"jac_evals", 3},
         {"lin_setups", 4}, {"lin_solves", 15}, {"lin_iters", 0},
         {"nonlin_iters", 15}, {"nonlin_fails", 1}, {"err_fails", 2},
-        {"symbolic_facts", 1}, {"wall", 0.5}, {"cpu", 0.25}};
+        {"symbolic_facts", 1}, {"lin_fallbacks", 2}, {"wall", 0.5},
+        {"cpu", 0.25}};
     size_t nw = sizeof want / sizeof want[0], rows = 0;
     for (char *line = strtok(buf, "\n"); line; line = strtok(NULL, "\n")) {
         char *comma = strchr(line, ',');
@@ -133,6 +135,25 @@ Test(integrator, stats_human_block_one_line_per_counter)
             width = strlen(line);
         cr_assert_eq(strlen(line), width, "not aligned: '%s'", line);
     }
-    cr_assert_eq(lines, 12);
+    cr_assert_eq(lines, 13);
     free(buf);
+}
+
+/* The name of the linear solver gets a row of its own when reported. */
+Test(integrator, stats_linsol_row_when_reported)
+{
+    cl_stats s = sample_stats();
+    snprintf(s.linsol, sizeof s.linsol, "auto:pcg");
+    for (int human = 0; human < 2; human++) {
+        char *buf = NULL;
+        size_t len = 0;
+        FILE *fp = open_memstream(&buf, &len);
+        cr_assert_not_null(fp);
+        cl_stats_print(&s, fp, human);
+        fclose(fp);
+        const char *want = human ? "linear solver" : "\nlinsol,auto:pcg\n";
+        cr_assert_not_null(strstr(buf, want), "%s", buf);
+        cr_assert_not_null(strstr(buf, "auto:pcg"), "%s", buf);
+        free(buf);
+    }
 }

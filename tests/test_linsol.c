@@ -11,177 +11,19 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "linalg/linsol.h"
-#include "linalg/reduced.h"
-
-#define LS_NB 40
-#define LS_N (3 * LS_NB)
-#define LS_MAXPAIRS 128
-
-typedef struct {
-    cl_bpattern pat;
-    double mass[LS_N];
-    double *dfdx, *dfdv;
-    int pairs[LS_MAXPAIRS][2];
-    size_t npairs;
-} ls_case;
-
-static double ls_rand(unsigned long *s)
-{
-    *s = *s * 6364136223846793005UL + 1442695040888963407UL;
-    return (double)(*s >> 11) / 9007199254740992.0 * 2.0 - 1.0;
-}
-
-/* A chain plus pairs (i, i + 7) and (i, i + 13): a banded, cloth-like
- * coupling. */
-static void ls_pairs(ls_case *c)
-{
-    c->npairs = 0;
-    for (int i = 0; i < LS_NB; i++) {
-        const int off[3] = {1, 7, 13};
-        for (int q = 0; q < 3; q++) {
-            if (i + off[q] < LS_NB) {
-                c->pairs[c->npairs][0] = i;
-                c->pairs[c->npairs][1] = i + off[q];
-                c->npairs++;
-            }
-        }
-    }
-}
-
-/* S = R R^T + eps I, a random SPD 3x3 scaled by s. */
-static void ls_spd3(unsigned long *seed, double s, double S[9])
-{
-    double R[9];
-    for (int q = 0; q < 9; q++)
-        R[q] = ls_rand(seed);
-    for (int r = 0; r < 3; r++)
-        for (int q = 0; q < 3; q++) {
-            S[3 * r + q] = 0.05 * (r == q);
-            for (int k = 0; k < 3; k++)
-                S[3 * r + q] += R[3 * r + k] * R[3 * q + k];
-            S[3 * r + q] *= s;
-        }
-}
-
-/* val: block values; the pair (i, j) adds the "spring" -S on the diagonal
- * blocks and +S on the coupling blocks (so -val is positive
- * semi-definite), times sign. */
-static void ls_add_pair(const ls_case *c, double *val, int i, int j,
-                        const double S[9], double sign)
-{
-    const long blk[4] = {cl_bpattern_find(&c->pat, i, i),
-                         cl_bpattern_find(&c->pat, j, j),
-                         cl_bpattern_find(&c->pat, i, j),
-                         cl_bpattern_find(&c->pat, j, i)};
-    for (int b = 0; b < 4; b++) {
-        cr_assert_geq(blk[b], 0);
-        for (int q = 0; q < 9; q++)
-            val[9 * blk[b] + q] += sign * (b < 2 ? -S[q] : S[q]);
-    }
-}
-
-static void ls_fill(ls_case *c, unsigned long seed, double sign)
-{
-    size_t nval = 9 * c->pat.nnzb;
-    memset(c->dfdx, 0, nval * sizeof *c->dfdx);
-    memset(c->dfdv, 0, nval * sizeof *c->dfdv);
-    for (size_t p = 0; p < c->npairs; p++) {
-        double K[9], D[9];
-        ls_spd3(&seed, 100.0 * (1.5 + ls_rand(&seed)), K);
-        ls_spd3(&seed, 0.1, D);
-        ls_add_pair(c, c->dfdx, c->pairs[p][0], c->pairs[p][1], K, sign);
-        ls_add_pair(c, c->dfdv, c->pairs[p][0], c->pairs[p][1], D, sign);
-    }
-}
-
-static void ls_init(ls_case *c, unsigned long seed)
-{
-    memset(c, 0, sizeof *c);
-    ls_pairs(c);
-    int dof[LS_NB];
-    for (int i = 0; i < LS_NB; i++)
-        dof[i] = i;
-    cr_assert_eq(cl_bpattern_build(LS_NB, dof, LS_NB, c->npairs,
-                                   (const int(*)[2])c->pairs, &c->pat, NULL),
-                 CL_OK);
-    for (size_t i = 0; i < LS_N; i++)
-        c->mass[i] = 1e-3 * (1.0 + 0.5 * ls_rand(&seed));
-    size_t nval = 9 * c->pat.nnzb;
-    c->dfdx = malloc(nval * sizeof *c->dfdx);
-    c->dfdv = malloc(nval * sizeof *c->dfdv);
-    cr_assert(c->dfdx && c->dfdv);
-    ls_fill(c, seed, 1.0);
-}
-
-static void ls_free(ls_case *c)
-{
-    cl_bpattern_free(&c->pat);
-    free(c->dfdx);
-    free(c->dfdv);
-}
-
-static const cl_linsol_type *ls_find(const char *name)
-{
-    const cl_linsol_type *t = cl_linsol_find(name);
-    cr_assert_not_null(t, "linear solver %s not registered", name);
-    return t;
-}
-
-/* True relative residual |b - A x| / |b|. */
-static double ls_residual(const ls_case *c, double a, double b,
-                          const double *rhs, const double *x)
-{
-    double y[LS_N], rr = 0, bb = 0;
-    cl_reduced_matvec(&c->pat, c->mass, a, b, c->dfdx, c->dfdv, x, y);
-    for (size_t i = 0; i < LS_N; i++) {
-        rr += (rhs[i] - y[i]) * (rhs[i] - y[i]);
-        bb += rhs[i] * rhs[i];
-    }
-    return sqrt(rr / bb);
-}
-
-static void ls_rhs(unsigned long seed, double *rhs)
-{
-    for (size_t i = 0; i < LS_N; i++)
-        rhs[i] = ls_rand(&seed);
-}
-
-/* Solver t on c's pattern and masses with options o (must succeed). */
-static void *ls_create(const cl_linsol_type *t, const ls_case *c,
-                       const cl_integrator_opts *o)
-{
-    void *st = NULL;
-    cl_error err = {0};
-    cr_assert_eq(t->create(&c->pat, c->mass, o, &st, &err), CL_OK, "%s: %s",
-                 t->name, err.msg);
-    return st;
-}
-
-/* Set t up for A(a, b) with c's Jacobians and solve for the right-hand
- * side ls_rhs(seed) into rhs, x; both must succeed.  Returns the true
- * relative residual. */
-static double ls_setup_solve(const cl_linsol_type *t, void *st,
-                             const ls_case *c, double a, double b,
-                             unsigned long seed, double *rhs, double *x)
-{
-    cl_error err = {0};
-    cr_assert_eq(t->setup(st, a, b, c->dfdx, c->dfdv, &err), CL_OK, "%s: %s",
-                 t->name, err.msg);
-    ls_rhs(seed, rhs);
-    cr_assert_eq(t->solve(st, rhs, x, &err), CL_OK, "%s: %s", t->name,
-                 err.msg);
-    return ls_residual(c, a, b, rhs, x);
-}
+#include "lscase.h"
 
 Test(linsol, registry)
 {
     char buf[128];
-    cr_assert_str_eq(cl_linsol_names(buf, sizeof buf), "klu, pcg, pcg-jacobi");
+    cr_assert_str_eq(cl_linsol_names(buf, sizeof buf),
+                     "klu, pcg, pcg-jacobi, cholmod, auto");
     cr_assert_str_eq(cl_linsol_find(NULL)->name, "klu");
     cr_assert_str_eq(cl_linsol_find("")->name, "klu");
     cr_assert_str_eq(ls_find("pcg")->name, "pcg");
     cr_assert_str_eq(ls_find("pcg-jacobi")->name, "pcg-jacobi");
+    cr_assert_str_eq(ls_find("cholmod")->name, "cholmod");
+    cr_assert_str_eq(ls_find("auto")->name, "auto");
     cr_assert_null(cl_linsol_find("lu"));
     char tiny[8];
     cr_assert_str_eq(cl_linsol_names(tiny, sizeof tiny), "klu, pc");
@@ -208,9 +50,11 @@ static void ls_solve_spd(const char *name)
     t->stats(st, &s);
     cr_assert_eq(s.lin_setups, 3);
     cr_assert_eq(s.lin_solves, 3);
-    if (strcmp(name, "klu") == 0) {
+    if (strcmp(name, "klu") == 0 || strcmp(name, "cholmod") == 0) {
         cr_assert_eq(s.symbolic_facts, 1);
         cr_assert_eq(s.lin_iters, 0);
+    } else if (strcmp(name, "auto") == 0) {
+        cr_log_info("auto: %s, %ld iterations", s.linsol, s.lin_iters);
     } else {
         cr_assert_eq(s.symbolic_facts, 0);
         cr_assert_gt(s.lin_iters, 3);
@@ -223,6 +67,87 @@ static void ls_solve_spd(const char *name)
 Test(linsol, klu_solves_spd) { ls_solve_spd("klu"); }
 Test(linsol, pcg_solves_spd) { ls_solve_spd("pcg"); }
 Test(linsol, pcg_jacobi_solves_spd) { ls_solve_spd("pcg-jacobi"); }
+Test(linsol, cholmod_solves_spd) { ls_solve_spd("cholmod"); }
+Test(linsol, auto_solves_spd) { ls_solve_spd("auto"); }
+
+/* solve_tol stops at ||w .* r||_2 <= delta, whatever lin_tol says. */
+Test(linsol, pcg_weighted_tolerance)
+{
+    ls_case c;
+    ls_init(&c, 21);
+    const cl_linsol_type *t = ls_find("pcg");
+    void *st = ls_create(t, &c, &(cl_integrator_opts){.lin_tol = 1e-14});
+    cl_error err = {0};
+    cr_assert_eq(t->setup(st, 0.1, 0.01, c.dfdx, c.dfdv, &err), CL_OK);
+    double rhs[LS_N], x[LS_N], y[LS_N], w[LS_N], wr = 0.0, wb = 0.0;
+    ls_rhs(22, rhs);
+    for (size_t i = 0; i < LS_N; i++) {
+        w[i] = 1.0 + (double)(i % 5);
+        wb += w[i] * w[i] * rhs[i] * rhs[i];
+    }
+    const double delta = 1e-3 * sqrt(wb);
+    cr_assert_eq(t->solve_tol(st, rhs, x, w, delta, &err), CL_OK, "%s",
+                 err.msg);
+    cl_reduced_matvec(&c.pat, c.mass, 0.1, 0.01, c.dfdx, c.dfdv, x, y);
+    for (size_t i = 0; i < LS_N; i++)
+        wr += w[i] * w[i] * (rhs[i] - y[i]) * (rhs[i] - y[i]);
+    cl_stats s = {0};
+    t->stats(st, &s);
+    cr_log_info("pcg weighted: |w r| = %.3e <= %.3e in %ld iterations",
+                sqrt(wr), delta, s.lin_iters);
+    cr_assert_leq(sqrt(wr), delta * 1.0001);
+    cr_assert_gt(sqrt(wr), 1e-9 * delta, "stopped at delta, not lin_tol");
+    cr_assert_null(ls_find("klu")->solve_tol);
+    cr_assert_null(ls_find("cholmod")->solve_tol);
+    t->free(st);
+    ls_free(&c);
+}
+
+/* auto: pcg for a diagonally dominant A (small a, b), cholmod otherwise;
+ * statistics name what was used. */
+Test(linsol, auto_picks_by_dominance)
+{
+    ls_case c;
+    ls_init(&c, 23);
+    const cl_linsol_type *t = ls_find("auto");
+    void *st = ls_create(t, &c, &(cl_integrator_opts){0});
+    double rhs[LS_N], x[LS_N];
+    cr_assert_leq(ls_setup_solve(t, st, &c, 1e-6, 1e-12, 1, rhs, x), 1e-10);
+    cl_stats s = {0};
+    t->stats(st, &s);
+    cr_assert_str_eq(s.linsol, "auto:pcg");
+    cr_assert_eq(s.symbolic_facts, 0);
+    cr_assert_leq(ls_setup_solve(t, st, &c, 0.1, 0.01, 2, rhs, x), 1e-10);
+    memset(&s, 0, sizeof s);
+    t->stats(st, &s);
+    cr_assert_str_eq(s.linsol, "auto:pcg+cholmod");
+    cr_assert_eq(s.lin_setups, 2);
+    cr_assert_eq(s.lin_solves, 2);
+    cr_assert_eq(s.symbolic_facts, 1);
+    cr_assert_eq(s.lin_fallbacks, 0);
+    t->free(st);
+    ls_free(&c);
+}
+
+/* A pcg solve that fails (iteration cap 1) is redone by the direct solver:
+ * the answer is exact and the fallback counted. */
+Test(linsol, auto_falls_back_when_pcg_fails)
+{
+    ls_case c;
+    ls_init(&c, 24);
+    const cl_linsol_type *t = ls_find("auto");
+    void *st = ls_create(t, &c, &(cl_integrator_opts){.lin_maxit = 1});
+    double rhs[LS_N], x[LS_N];
+    cr_assert_leq(ls_setup_solve(t, st, &c, 1e-4, 1e-8, 3, rhs, x), 1e-10);
+    cl_stats s = {0};
+    t->stats(st, &s);
+    cr_log_info("auto fallback: %s, %ld fallbacks", s.linsol,
+                s.lin_fallbacks);
+    cr_assert_str_eq(s.linsol, "auto:pcg+cholmod");
+    cr_assert_eq(s.lin_fallbacks, 1);
+    t->free(st);
+    ls_free(&c);
+}
 
 /* klu also solves a nonsymmetric A (pcg need not). */
 Test(linsol, klu_solves_nonsymmetric)

@@ -62,7 +62,7 @@ Test(semi_be, registry_row) { st_expect_registry_row(SBE); }
 
 Test(semi_be, rejects_unknown_linsol_and_bad_dt)
 {
-    st_expect_unknown_linsol(SBE, "cholmod");
+    st_expect_unknown_linsol(SBE, "umfpack");
     const double bad[] = {0.0, -1e-3, NAN, INFINITY};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++)
         st_expect_bad_dt(SBE, bad[i]);

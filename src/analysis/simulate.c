@@ -1,5 +1,11 @@
 /* One simulation run: schedule of output times, integration, time series,
- * frames, final state, statistics. */
+ * frames, final state, statistics.
+ *
+ * Tearing (a model with [tear] cut > 0, or with connections already torn):
+ * frames leave out the triangles with a torn edge (cl_model_triangles into
+ * a buffer allocated once per run), the max_stretch diagnostic and its
+ * blow-up limit look at intact neighbour pairs only, and the series'
+ * last column, broken, counts the torn connections (cl_model_broken). */
 #include "analysis/simulate.h"
 
 #include <math.h>
@@ -20,6 +26,10 @@ typedef struct {
     const cl_system *sys;
     const cl_sim_opts *so;
     cl_pairset type1;       /* neighbours, for the stretch diagnostic */
+    bool tearing;           /* the model can tear (see the header) */
+    cl_pairset intact;      /* type1 without torn pairs (tearing) */
+    size_t torn_seen;       /* cl_model_broken when intact was built */
+    int (*tri)[3];          /* frame triangles (tearing), 2 (nu-1)(nv-1) */
     double *x, *v;          /* free state */
     double *xf, *vf;        /* full-particle state */
     unsigned char *pinned;
@@ -81,6 +91,7 @@ static cl_status open_series(sim *s, cl_error *err)
     names[n++] = "max_stretch";
     names[n++] = "max_offplane";
     names[n++] = "wrinkles";
+    names[n++] = "broken";
     s->row = malloc(n * sizeof *s->row);
     if (!s->row)
         return cl_error_set(err, CL_ENOMEM, "out of memory (series row)");
@@ -89,13 +100,32 @@ static cl_status open_series(sim *s, cl_error *err)
     return cl_series_open(path, n, names, &s->series, err);
 }
 
+/* The neighbour pairs the stretch diagnostic looks at: all of them, or
+ * those not torn (rebuilt when more have torn). */
+static const cl_pairset *stretch_pairs(sim *s)
+{
+    size_t torn = s->tearing ? cl_model_broken(s->m) : 0;
+    if (torn == 0)
+        return &s->type1;
+    if (torn != s->torn_seen) {
+        s->intact.n = 0;
+        for (size_t k = 0; k < s->type1.n; k++) {
+            const cl_pair *p = &s->type1.pair[k];
+            if (!cl_model_is_broken(s->m, p->a, p->b))
+                s->intact.pair[s->intact.n++] = *p;
+        }
+        s->torn_seen = torn;
+    }
+    return &s->intact;
+}
+
 /* Energies and diagnostics at time t; one series row. */
 static cl_status sample(sim *s, double t, cl_sim_result *res, cl_error *err)
 {
     cl_energy e;
     cl_cloth_scatter(s->c, t, s->x, s->v, s->xf, s->vf);
     cl_status rc = s->sys->energy(s->sys->data, t, s->x, s->v, &e);
-    double stretch = cl_max_stretch(&s->type1, s->xf);
+    double stretch = cl_max_stretch(stretch_pairs(s), s->xf);
     double offplane = cl_max_offplane(s->c, s->xf);
     if (rc || !(stretch <= s->so->max_stretch))
         return cl_error_set(err, CL_EBLOWUP,
@@ -114,6 +144,7 @@ static cl_status sample(sim *s, double t, cl_sim_result *res, cl_error *err)
     s->row[n++] = stretch;
     s->row[n++] = offplane;
     s->row[n++] = (double)cl_wrinkles(s->c, s->xf);
+    s->row[n++] = (double)cl_model_broken(s->m);
     if ((rc = cl_series_row(s->series, s->row, err)))
         return rc;
     res->t_reached = t;
@@ -128,10 +159,12 @@ static cl_status sample(sim *s, double t, cl_sim_result *res, cl_error *err)
 static cl_status write_frame(sim *s, double t, cl_sim_result *res,
                              cl_error *err)
 {
-    cl_frame f = {s->c->nu, s->c->nv, s->xf, s->vf, s->pinned, t};
+    cl_frame f = {s->c->nu, s->c->nv, s->xf, s->vf, s->pinned, t, NULL, 0};
     char path[4096];
     cl_status rc = CL_OK;
-    if (s->so->vtk &&
+    if (s->tearing && !(rc = cl_model_triangles(s->m, s->tri, &f.ntri, err)))
+        f.tri = (const int(*)[3])s->tri;
+    if (!rc && s->so->vtk &&
         (!(rc = cl_frame_path(s->so->outdir, s->frame_index, "vtk", path,
                               sizeof path, err))))
         rc = cl_frame_write_vtk(path, &f, err);
@@ -181,12 +214,23 @@ static cl_status sim_alloc(sim *s, cl_error *err)
         s->pinned[p] = s->c->dof[p] < 0;
     if (cl_model_initial_state(s->m, s->x, s->v))
         return cl_error_set(err, CL_ENOMEM, "out of memory (initial state)");
-    return cl_pairs_type1(s->c, &s->type1, err);
+    cl_status rc = cl_pairs_type1(s->c, &s->type1, err);
+    s->tearing = s->sys->step_done != NULL || cl_model_broken(s->m) > 0;
+    if (rc || !s->tearing)
+        return rc;
+    s->intact.pair = malloc((s->type1.n + 1) * sizeof *s->intact.pair);
+    s->tri = malloc((cl_grid_triangles(s->c->nu, s->c->nv, NULL) + 1) *
+                    sizeof *s->tri);
+    if (!s->intact.pair || !s->tri)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (tearing)");
+    return CL_OK;
 }
 
 static void sim_free(sim *s)
 {
     cl_pairs_free(&s->type1);
+    cl_pairs_free(&s->intact);
+    free(s->tri);
     free(s->x);
     free(s->v);
     free(s->xf);

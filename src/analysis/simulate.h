@@ -1,10 +1,11 @@
 /* One simulation run: integrate a model with a chosen integrator to t_end,
  * writing into an output directory
  *   series.csv   t, kinetic, each potential term, potential, total,
- *                power_diss, max_stretch, max_offplane, wrinkles (one row
- *                per sample, flushed as it is written, so a failed run keeps
- *                its rows)
- *   frame_NNNNN.vtk / .obj   cloth frames (ParaView / Blender)
+ *                power_diss, max_stretch, max_offplane, wrinkles, broken
+ *                (connections torn so far) (one row per sample, flushed as
+ *                it is written, so a failed run keeps its rows)
+ *   frame_NNNNN.vtk / .obj   cloth frames (ParaView / Blender); with
+ *                tearing, without the triangles that have a torn edge
  *   final.csv    the final state (p,x,y,z,vx,vy,vz, all particles)
  *   stats.csv    the integrator statistics (name,value)
  * Fixed-step integrators are sampled on their own step grid; t_end must be a

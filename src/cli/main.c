@@ -11,6 +11,7 @@ static const cl_command commands[] = {
     {"eval", cl_cmd_eval, "forces, energies and Jacobians at a given state"},
     {"counts", cl_cmd_counts, "connection counts beside the seed's formulas"},
     {"list", cl_cmd_list, "problems, integrators and force terms"},
+    {"bench", cl_cmd_bench, "benchmark workloads against their goals"},
 };
 
 static int usage(FILE *fp)

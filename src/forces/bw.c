@@ -1,5 +1,6 @@
 /* Baraff-Witkin elements and the loops of their potential and damping parts
- * (BW98 sections 4.1, 4.5; SPEC 3.3); the equations are in forces/bw.h. */
+ * (BW98 section 4, condition functions and damping; SPEC 3.3); the
+ * equations are in forces/bw.h. */
 #include "forces/bw.h"
 
 #include <math.h>
@@ -53,16 +54,20 @@ void cl_bw_tri_w(const double *rest, const double *x, double wu[3],
 
 /* ---- building ------------------------------------------------------------ */
 
-static cl_status check_grid(const cl_cloth *cloth, const char *name,
-                            cl_error *err)
+/* A grid with a side of one particle (a chain) has no triangles. */
+static cl_status check_grid(cl_config *cfg, const cl_cloth *cloth,
+                            const char *section, cl_error *err)
 {
+    char where[256];
     if (cloth->nu >= 2 && cloth->nv >= 2)
         return CL_OK;
     return cl_error_set(err, CL_EINVAL,
-                        "[%s] enabled: the Baraff-Witkin model needs a grid "
-                        "of at least 2 x 2 particles, this one is %d x %d "
-                        "(a chain has no triangles)",
-                        name, cloth->nu, cloth->nv);
+                        "%s: [%s] enabled: the Baraff-Witkin model needs a "
+                        "grid of at least 2 x 2 particles, this one is "
+                        "%d x %d (a chain has no triangles)",
+                        cl_config_origin(cfg, section, "enabled", where,
+                                         sizeof where),
+                        section, cloth->nu, cloth->nv);
 }
 
 /* A copy of proto with room for nmax elements. */
@@ -105,7 +110,7 @@ static void add_triangles(const cl_cloth *cloth, const cl_mesh *mesh,
 {
     for (size_t k = 0; k < mesh->ntri; k++)
         if (cl_bw_tri_rest(cloth->X0, mesh->tri[k],
-                           t->rest + t->n * CL_BW_TRI_REST))
+                           t->rest + t->n * (size_t)t->nrest))
             memcpy(t->vert + 3 * t->n++, mesh->tri[k], 3 * sizeof(int));
 }
 
@@ -129,8 +134,7 @@ static cl_status build(const cl_cloth *cloth, cl_diagonal diag,
 {
     cl_mesh mesh;
     cl_status rc;
-    if ((rc = check_grid(cloth, spec->section, err)) ||
-        (rc = cl_mesh_grid(cloth->nu, cloth->nv, diag, &mesh, err)))
+    if ((rc = cl_mesh_grid(cloth->nu, cloth->nv, diag, &mesh, err)))
         return rc;
     cl_bw_term *t = new_term(proto, spec->hinge_rest ? mesh.nedge : mesh.ntri);
     if (!t) {
@@ -207,6 +211,8 @@ cl_status cl_bw_create(cl_config *cfg, const cl_cloth *cloth,
         any = any || proto.k[c] != 0.0;
     if (!enabled || !any)
         return CL_OK;
+    if ((rc = check_grid(cfg, cloth, spec->section, err)))
+        return rc;
     return build(cloth, d, spec, &proto, state, err);
 }
 

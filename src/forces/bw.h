@@ -4,10 +4,11 @@
  * the grid mesh for stretch and shear, the two triangles of an interior edge
  * for bend; model/mesh.h).
  *
- * Potential part (BW98 section 4.1), per element and component c:
+ * Potential part (BW98 section 4: condition energy), per element and
+ * component c:
  *     E = k/2 C^T C,   f = -k (dC/dx) C,
  *     df/dx = -k (dC/dx dC/dx^T + C d2C/dx2)          (exact).
- * Damping part (BW98 section 4.5), with C' = dC/dx^T v:
+ * Damping part (BW98 section 4: damping), with C' = dC/dx^T v:
  *     d = -kd (dC/dx) C',   dd/dv = -kd dC/dx dC/dx^T   (exact),
  *     dd/dx = -kd (C' d2C/dx2 + dC/dx (d2C/dx2 v)^T)
  *   of which only the symmetric -kd C' d2C/dx2 is assembled: the second
@@ -109,6 +110,33 @@ typedef struct {
 cl_status cl_bw_create(cl_config *cfg, const cl_cloth *cloth,
                        const cl_bw_spec *spec, bool damping, void **state,
                        cl_error *err);
+
+/* The two term types of a condition, cl_term_<var> (potential, named
+ * tname, described by tdoc) and cl_term_<var>_damping (tname "-damping",
+ * ddoc), both made by cl_bw_create from spec. */
+#define CL_BW_TERM_TYPES(var, tname, spec, tdoc, ddoc)                      \
+    static cl_status var##_create(cl_config *cfg, const cl_cloth *cloth,    \
+                                  const cl_term_opts *opts, void **state,   \
+                                  cl_error *err)                            \
+    {                                                                       \
+        (void)opts;                                                         \
+        return cl_bw_create(cfg, cloth, &spec, false, state, err);          \
+    }                                                                       \
+    static cl_status var##_damping_create(                                  \
+        cl_config *cfg, const cl_cloth *cloth, const cl_term_opts *opts,    \
+        void **state, cl_error *err)                                        \
+    {                                                                       \
+        (void)opts;                                                         \
+        return cl_bw_create(cfg, cloth, &spec, true, state, err);           \
+    }                                                                       \
+    const cl_term_type cl_term_##var = {                                    \
+        .name = tname, .doc = tdoc, .conservative = true,                   \
+        .create = var##_create, .couplings = cl_bw_couplings,               \
+        .bind = cl_bw_bind, .eval = cl_bw_eval, .free = cl_bw_free};        \
+    const cl_term_type cl_term_##var##_damping = {                          \
+        .name = tname "-damping", .doc = ddoc, .conservative = false,     \
+        .create = var##_damping_create, .couplings = cl_bw_couplings,       \
+        .bind = cl_bw_bind, .eval = cl_bw_eval, .free = cl_bw_free}
 
 /* cl_term_type hooks for a cl_bw_term state. */
 size_t cl_bw_couplings(const void *state, const int (**pairs)[2]);

@@ -1,7 +1,7 @@
-/* Baraff-Witkin bend (BW98 section 4.3; SPEC 3.3) on every interior edge of
- * the grid mesh (model/mesh.h): C = theta - theta0, the signed angle between
- * the normals of the edge's two triangles, theta0 its value on the rest
- * mesh (0 for the flat grid), wrapped to [-pi, pi].
+/* Baraff-Witkin bend (BW98 section 4, bend; SPEC 3.3) on every interior
+ * edge of the grid mesh (model/mesh.h): C = theta - theta0, the signed angle
+ * between the normals of the edge's two triangles, theta0 its value on the
+ * rest mesh (0 for the flat grid), wrapped to [-pi, pi].
  *
  * Hinge (x0, x1, x2, x3): edge e = x1 - x0 as it runs in the first triangle
  * (x0, x1, x2); x3 is the far vertex of the second, (x1, x0, x3).  With
@@ -32,13 +32,13 @@
  * Nothing is dropped: the potential Jacobian -k (g g^T + C H) is exact
  * (verified against finite differences in tests/test_bw_bend.c).  The
  * damping term (bw-bend-damping) keeps -kd C' H of dd/dx and drops
- * -kd g (H v)^T (BW98 section 4.5).  A hinge with a zero-length edge or a
- * zero-area triangle exerts no force.
+ * -kd g (H v)^T (BW98 section 4, damping).  A hinge with a zero-length edge
+ * or a zero-area triangle exerts no force.
  *
  * Units: C in rad, so k in J (N m) per rad^2 (about the bending stiffness
  * of the sheet, N m, on a regular grid) and kd in N m s.
  *
- * INI section [bw-bend]: enabled (false), k (N m, default 1e-4), kd (N m s,
+ * INI section [bw-bend]: enabled (false), k (N m, default 5e-5), kd (N m s,
  * default 0; the damping term runs when enabled and kd > 0). */
 #include <math.h>
 #include <string.h>
@@ -231,46 +231,12 @@ static const cl_bw_spec bend_spec = {
     .nc = 1,
     .nrest = 1,
     .cond = bend_cond,
-    .k_default = 1e-4,
+    .k_default = 5e-5,
     .kd_default = 0.0,
     .hinge_rest = bend_rest,
 };
 
-static cl_status bend_create(cl_config *cfg, const cl_cloth *cloth,
-                             const cl_term_opts *opts, void **state,
-                             cl_error *err)
-{
-    (void)opts;
-    return cl_bw_create(cfg, cloth, &bend_spec, false, state, err);
-}
-
-static cl_status bend_damping_create(cl_config *cfg, const cl_cloth *cloth,
-                                     const cl_term_opts *opts, void **state,
-                                     cl_error *err)
-{
-    (void)opts;
-    return cl_bw_create(cfg, cloth, &bend_spec, true, state, err);
-}
-
-const cl_term_type cl_term_bw_bend = {
-    .name = "bw-bend",
-    .doc = "Baraff-Witkin bend C = theta - theta0 on the interior edges "
-           "(exact Jacobian)",
-    .conservative = true,
-    .create = bend_create,
-    .couplings = cl_bw_couplings,
-    .bind = cl_bw_bind,
-    .eval = cl_bw_eval,
-    .free = cl_bw_free,
-};
-
-const cl_term_type cl_term_bw_bend_damping = {
-    .name = "bw-bend-damping",
-    .doc = "Baraff-Witkin bend damping -kd (dC/dx) C' ([bw-bend] kd)",
-    .conservative = false,
-    .create = bend_damping_create,
-    .couplings = cl_bw_couplings,
-    .bind = cl_bw_bind,
-    .eval = cl_bw_eval,
-    .free = cl_bw_free,
-};
+CL_BW_TERM_TYPES(bw_bend, "bw-bend", bend_spec,
+                 "Baraff-Witkin bend C = theta - theta0 on the interior "
+                 "edges (exact Jacobian)",
+                 "Baraff-Witkin bend damping -kd (dC/dx) C' ([bw-bend] kd)");

@@ -1,5 +1,5 @@
-/* Baraff-Witkin shear (BW98 section 4.3; SPEC 3.3) on every triangle of the
- * grid mesh, one component:
+/* Baraff-Witkin shear (BW98 section 4, shear; SPEC 3.3) on every triangle
+ * of the grid mesh, one component:
  *     C = a w_u . w_v
  * with a the rest area and w_u, w_v the stretch directions of forces/bw.h
  * (dw_u/dx_m = cu_m I, dw_v/dx_m = cv_m I, constant), so
@@ -7,12 +7,12 @@
  *     d2C/dx_m dx_n = a (cu_m cv_n + cv_m cu_n) I.
  * Energy, force and Jacobians as in forces/bw.h: the potential Jacobian is
  * exact; the damping term (bw-shear-damping) keeps -kd C' d2C/dx2 of dd/dx
- * and drops -kd dC/dx (d2C/dx2 v)^T (BW98 section 4.5).
+ * and drops -kd dC/dx (d2C/dx2 v)^T (BW98 section 4, damping).
  *
  * Units: C in m^2 (w_u . w_v ~ the shear angle), so k in N/m^3 (the
  * in-plane shear stiffness is about k a, in N/m) and kd in N s/m^3.
  *
- * INI section [bw-shear]: enabled (false), k (N/m^3, default 1e5),
+ * INI section [bw-shear]: enabled (false), k (N/m^3, default 2e5),
  * kd (N s/m^3, default 0; the damping term runs when enabled and kd > 0). */
 #include "forces/bw.h"
 
@@ -43,44 +43,10 @@ static const cl_bw_spec shear_spec = {
     .nc = 1,
     .nrest = CL_BW_TRI_REST,
     .cond = shear_cond,
-    .k_default = 1e5,
+    .k_default = 2e5,
     .kd_default = 0.0,
 };
 
-static cl_status shear_create(cl_config *cfg, const cl_cloth *cloth,
-                              const cl_term_opts *opts, void **state,
-                              cl_error *err)
-{
-    (void)opts;
-    return cl_bw_create(cfg, cloth, &shear_spec, false, state, err);
-}
-
-static cl_status shear_damping_create(cl_config *cfg, const cl_cloth *cloth,
-                                      const cl_term_opts *opts, void **state,
-                                      cl_error *err)
-{
-    (void)opts;
-    return cl_bw_create(cfg, cloth, &shear_spec, true, state, err);
-}
-
-const cl_term_type cl_term_bw_shear = {
-    .name = "bw-shear",
-    .doc = "Baraff-Witkin shear C = a w_u . w_v on the mesh triangles",
-    .conservative = true,
-    .create = shear_create,
-    .couplings = cl_bw_couplings,
-    .bind = cl_bw_bind,
-    .eval = cl_bw_eval,
-    .free = cl_bw_free,
-};
-
-const cl_term_type cl_term_bw_shear_damping = {
-    .name = "bw-shear-damping",
-    .doc = "Baraff-Witkin shear damping -kd (dC/dx) C' ([bw-shear] kd)",
-    .conservative = false,
-    .create = shear_damping_create,
-    .couplings = cl_bw_couplings,
-    .bind = cl_bw_bind,
-    .eval = cl_bw_eval,
-    .free = cl_bw_free,
-};
+CL_BW_TERM_TYPES(bw_shear, "bw-shear", shear_spec,
+                 "Baraff-Witkin shear C = a w_u . w_v on the mesh triangles",
+                 "Baraff-Witkin shear damping -kd (dC/dx) C' ([bw-shear] kd)");

@@ -1,5 +1,5 @@
-/* Baraff-Witkin stretch (BW98 section 4.2; SPEC 3.3) on every triangle of
- * the grid mesh, two components:
+/* Baraff-Witkin stretch (BW98 section 4, stretch; SPEC 3.3) on every
+ * triangle of the grid mesh, two components:
  *     C = a (|w_u| - bu, |w_v| - bv)
  * with a the rest area and w_u, w_v the stretch directions of forces/bw.h
  * (dw_u/dx_m = cu_m I, dw_v/dx_m = cv_m I, constant).  With
@@ -9,19 +9,18 @@
  * and likewise for C_v with cv, w_v.  Energy, force and Jacobians as in
  * forces/bw.h: the potential Jacobian is exact; the damping term
  * (bw-stretch-damping) keeps -kd C' d2C/dx2 of dd/dx and drops
- * -kd dC/dx (d2C/dx2 v)^T (BW98 section 4.5).  A triangle whose w_u (or
+ * -kd dC/dx (d2C/dx2 v)^T (BW98 section 4, damping).  A triangle whose w_u (or
  * w_v) vanishes has no direction: that component exerts no force there.
  *
  * Units: C in m^2, so k in N/m^3 (energy k a^2 eps^2 / 2 per triangle for a
  * strain eps: the membrane stiffness is k a, in N/m, and depends on the
  * mesh) and kd in N s/m^3.
  *
- * INI section [bw-stretch]: enabled (false), k (N/m^3, default 1e6),
+ * INI section [bw-stretch]: enabled (false), k (N/m^3, default 2e6),
  * ku, kv (default k: warp and weft may differ), bu, bv (target stretch,
  * default 1; < 1 shrinks), kd (N s/m^3, default 0), kdu, kdv (default kd).
  * The damping term runs when enabled and kd (or kdu, kdv) is not zero. */
 #include <math.h>
-#include <string.h>
 
 #include "forces/bw.h"
 
@@ -68,46 +67,13 @@ static const cl_bw_spec stretch_spec = {
     .nc = 2,
     .nrest = CL_BW_TRI_REST,
     .cond = stretch_cond,
-    .k_default = 1e6,
+    .k_default = 2e6,
     .kd_default = 0.0,
     .suffix = {"u", "v"},
 };
 
-static cl_status stretch_create(cl_config *cfg, const cl_cloth *cloth,
-                                const cl_term_opts *opts, void **state,
-                                cl_error *err)
-{
-    (void)opts;
-    return cl_bw_create(cfg, cloth, &stretch_spec, false, state, err);
-}
-
-static cl_status stretch_damping_create(cl_config *cfg, const cl_cloth *cloth,
-                                        const cl_term_opts *opts,
-                                        void **state, cl_error *err)
-{
-    (void)opts;
-    return cl_bw_create(cfg, cloth, &stretch_spec, true, state, err);
-}
-
-const cl_term_type cl_term_bw_stretch = {
-    .name = "bw-stretch",
-    .doc = "Baraff-Witkin stretch C = a (|w_u| - bu, |w_v| - bv) on the mesh "
-           "triangles",
-    .conservative = true,
-    .create = stretch_create,
-    .couplings = cl_bw_couplings,
-    .bind = cl_bw_bind,
-    .eval = cl_bw_eval,
-    .free = cl_bw_free,
-};
-
-const cl_term_type cl_term_bw_stretch_damping = {
-    .name = "bw-stretch-damping",
-    .doc = "Baraff-Witkin stretch damping -kd (dC/dx) C' ([bw-stretch] kd)",
-    .conservative = false,
-    .create = stretch_damping_create,
-    .couplings = cl_bw_couplings,
-    .bind = cl_bw_bind,
-    .eval = cl_bw_eval,
-    .free = cl_bw_free,
-};
+CL_BW_TERM_TYPES(bw_stretch, "bw-stretch", stretch_spec,
+                 "Baraff-Witkin stretch C = a (|w_u| - bu, |w_v| - bv) on "
+                 "the mesh triangles",
+                 "Baraff-Witkin stretch damping -kd (dC/dx) C' "
+                 "([bw-stretch] kd)");

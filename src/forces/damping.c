@@ -12,6 +12,10 @@
  * (The force then jumps where a pair engages; the Jacobian is that of the
  * current branch.)
  *
+ * Tearing ([tear] cut > 0, forces/pairterm.h): a pair breaks when
+ * d > cut L, the same test on the same d and L as its Type1 or Type2
+ * spring, so a torn connection is no longer damped either.
+ *
  * INI section [damping]: kd (N s/m, >= 0; 0 switches the term off),
  * where (always|engaged), model (linear|axial, default linear). */
 #include <stdlib.h>
@@ -86,7 +90,6 @@ static cl_status damping_create(cl_config *cfg, const cl_cloth *cloth,
     int wk;
     cl_damp_model model;
     cl_status rc;
-    (void)opts;
     *state = NULL;
     if ((rc = cl_config_double(cfg, "damping", "kd", 0.0, 0.0, INFINITY, &kd,
                                err)) ||
@@ -103,7 +106,8 @@ static cl_status damping_create(cl_config *cfg, const cl_cloth *cloth,
     st->engaged_only = wk == 1;
     cl_pairset set;
     if ((rc = damping_pairs(cfg, cloth, &set, &st->ntype1, err)) ||
-        (rc = cl_pairdamp_init(&st->pd, set, kd, model, err))) {
+        (rc = cl_pairdamp_init(&st->pd, set, kd, model, err)) ||
+        (rc = cl_pairterm_tear(&st->pd.pt, opts->tear_cut, err))) {
         damping_free(st);
         return rc;
     }
@@ -120,5 +124,7 @@ const cl_term_type cl_term_damping = {
     .couplings = cl_pairterm_couplings,
     .bind = cl_pairterm_bind,
     .eval = damping_eval,
+    .step_done = cl_pairterm_step_done,
+    .broken = cl_pairterm_broken,
     .free = damping_free,
 };

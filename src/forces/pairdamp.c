@@ -112,7 +112,8 @@ void cl_pairdamp_eval(cl_pairdamp *pd, cl_eval *ev, cl_pairdamp_keep keep,
 {
     double power = 0.0;
     for (size_t k = 0; k < pd->pt.set.n; k++) {
-        if (keep && !keep(ctx, k, ev->x))
+        if (cl_pairterm_is_torn(&pd->pt, k) ||
+            (keep && !keep(ctx, k, ev->x)))
             continue;
         const cl_pair *pr = &pd->pt.set.pair[k];
         const long *s = pd->pt.slot ? pd->pt.slot + 4 * k : NULL;

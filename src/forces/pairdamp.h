@@ -20,7 +20,9 @@
  *
  * The pair list, couplings and Jacobian slots are a cl_pairterm (its law is
  * unused), so a term whose state begins with a cl_pairdamp uses
- * cl_pairterm_couplings and cl_pairterm_bind as its hooks. */
+ * cl_pairterm_couplings and cl_pairterm_bind as its hooks, and for tearing
+ * (cl_pairterm_tear on pd->pt) cl_pairterm_step_done and cl_pairterm_broken:
+ * a broken pair is not damped. */
 #ifndef CL_PAIRDAMP_H
 #define CL_PAIRDAMP_H
 
@@ -47,8 +49,9 @@ cl_status cl_pairdamp_read_model(cl_config *cfg, const char *sec,
                                  cl_damp_model def, cl_damp_model *model,
                                  cl_error *err);
 
-/* Forces, df/dx, df/dv (whichever ev asks for) of every pair (those `keep`
- * accepts, if keep is not NULL); ev->energy = 0, ev->power = sum f.v. */
+/* Forces, df/dx, df/dv (whichever ev asks for) of every intact pair (those
+ * `keep` accepts, if keep is not NULL); ev->energy = 0, ev->power = sum
+ * f.v. */
 void cl_pairdamp_eval(cl_pairdamp *pd, cl_eval *ev, cl_pairdamp_keep keep,
                       const void *ctx);
 

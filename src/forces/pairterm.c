@@ -28,7 +28,46 @@ void cl_pairterm_free(cl_pairterm *pt)
     cl_pairs_free(&pt->set);
     free(pt->couple);
     free(pt->slot);
+    free(pt->torn);
+    free(pt->broken);
     memset(pt, 0, sizeof *pt);
+}
+
+cl_status cl_pairterm_tear(cl_pairterm *pt, double cut, cl_error *err)
+{
+    if (!(cut > 0))
+        return CL_OK;
+    pt->cut = cut;
+    pt->torn = calloc(pt->set.n + 1, sizeof *pt->torn);
+    pt->broken = malloc((pt->set.n + 1) * sizeof *pt->broken);
+    if (!pt->torn || !pt->broken)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (tearing)");
+    return CL_OK;
+}
+
+size_t cl_pairterm_step_done(void *state, const double *x, const double *v)
+{
+    cl_pairterm *pt = state;
+    size_t now = 0;
+    (void)v;
+    for (size_t k = 0; pt->torn && k < pt->set.n; k++) {
+        const cl_pair *pr = &pt->set.pair[k];
+        if (pt->torn[k] ||
+            !(cl_dist(x + 3 * pr->a, x + 3 * pr->b) > pt->cut * pr->rest))
+            continue;
+        pt->torn[k] = 1;
+        pt->broken[pt->nbroken][0] = pr->a;
+        pt->broken[pt->nbroken++][1] = pr->b;
+        now++;
+    }
+    return now;
+}
+
+size_t cl_pairterm_broken(const void *state, const int (**pairs)[2])
+{
+    const cl_pairterm *pt = state;
+    *pairs = (const int(*)[2])pt->broken;
+    return pt->nbroken;
 }
 
 void cl_pair_block(const double u[3], double d, double s, double ds,
@@ -95,6 +134,8 @@ void cl_pairterm_eval(void *state, cl_eval *ev)
     cl_pairterm *pt = state;
     double energy = 0.0;
     for (size_t k = 0; k < pt->set.n; k++) {
+        if (cl_pairterm_is_torn(pt, k))
+            continue; /* no force, energy or Jacobian values */
         const cl_pair *pr = &pt->set.pair[k];
         const double *xa = ev->x + 3 * pr->a, *xb = ev->x + 3 * pr->b;
         double d = cl_dist(xa, xb);

@@ -9,7 +9,15 @@
  * negative under compression and makes -df/dx indefinite; with
  * clamp_transverse it is dropped where s < 0 (jacobian.transverse = clamp).
  *
- * A model supplies the scalar law s, s', E through a cl_pairlaw_fn. */
+ * A model supplies the scalar law s, s', E through a cl_pairlaw_fn.
+ *
+ * Tearing (SPEC 3.4; seed 004's "cutting distance"): with cut > 0
+ * (cl_pairterm_tear, [tear] cut), a pair breaks for good, after an accepted
+ * step, once d > cut L.  A broken pair contributes no force, no energy and
+ * no Jacobian values: its blocks stay in the pattern and simply receive
+ * nothing (zeros), so the sparsity pattern and KLU's symbolic analysis are
+ * unchanged.  Every term decides on its own pairs with the same d and L, so
+ * a spring and the damper on the same pair break together. */
 #ifndef CL_PAIRTERM_H
 #define CL_PAIRTERM_H
 
@@ -35,6 +43,10 @@ typedef struct {
     cl_pairlaw_fn law;
     const void *params;
     bool clamp_transverse;
+    double cut;         /* tearing: a pair breaks when d > cut L (0: never) */
+    unsigned char *torn; /* per pair, nonzero once broken (NULL: no cut) */
+    int (*broken)[2];   /* broken pairs (a, b) in the order they broke */
+    size_t nbroken;
 } cl_pairterm;
 
 /* Takes ownership of `set`. */
@@ -42,6 +54,16 @@ cl_status cl_pairterm_init(cl_pairterm *pt, cl_pairset set, cl_pairlaw_fn law,
                            const void *params, bool clamp_transverse,
                            cl_error *err);
 void cl_pairterm_free(cl_pairterm *pt);
+
+/* Switch tearing on for cut > 0 (allocates the per-pair flags once); cut = 0
+ * leaves the term intact for ever. */
+cl_status cl_pairterm_tear(cl_pairterm *pt, double cut, cl_error *err);
+
+/* Whether pair k has broken. */
+static inline bool cl_pairterm_is_torn(const cl_pairterm *pt, size_t k)
+{
+    return pt->torn && pt->torn[k];
+}
 
 /* The block K of SPEC 3.1 (row-major 3x3) for direction u, distance d. */
 void cl_pair_block(const double u[3], double d, double s, double ds,
@@ -59,5 +81,10 @@ size_t cl_pairterm_couplings(const void *state, const int (**pairs)[2]);
 cl_status cl_pairterm_bind(void *state, const cl_bpattern *pat,
                            const int *dof, cl_error *err);
 void cl_pairterm_eval(void *state, cl_eval *ev);
+/* Tearing hooks for the same kind of state: step_done breaks every intact
+ * pair with d > cut L at full-particle positions x and returns how many
+ * broke now (0 without tearing); broken lists those broken so far. */
+size_t cl_pairterm_step_done(void *state, const double *x, const double *v);
+size_t cl_pairterm_broken(const void *state, const int (**pairs)[2]);
 
 #endif

@@ -3,6 +3,7 @@
 #include "forces/body.h"
 #include "forces/bw.h"
 #include "forces/choiko.h"
+#include "forces/pbd.h"
 #include "forces/springs.h"
 
 const cl_term_type *const cl_term_registry[] = {
@@ -18,5 +19,6 @@ const cl_term_type *const cl_term_registry[] = {
     &cl_term_bw_bend,
     &cl_term_bw_bend_damping,
     &cl_term_gravity,
+    &cl_term_pbd,
     NULL,
 };

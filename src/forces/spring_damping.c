@@ -44,7 +44,6 @@ static cl_status spring_damping_create(cl_config *cfg, const cl_cloth *cloth,
     double kd;
     cl_damp_model model;
     cl_status rc;
-    (void)opts;
     *state = NULL;
     if ((rc = cl_config_double(cfg, SEC, "kd", 0.0, 0.0, INFINITY, &kd,
                                err)) ||
@@ -61,7 +60,8 @@ static cl_status spring_damping_create(cl_config *cfg, const cl_cloth *cloth,
         return rc;
     }
     free(net.k); /* stiffness is the springs term's business */
-    if ((rc = cl_pairdamp_init(pd, net.set, kd, model, err))) {
+    if ((rc = cl_pairdamp_init(pd, net.set, kd, model, err)) ||
+        (rc = cl_pairterm_tear(&pd->pt, opts->tear_cut, err))) {
         spring_damping_free(pd);
         return rc;
     }
@@ -78,5 +78,7 @@ const cl_term_type cl_term_spring_damping = {
     .couplings = cl_pairterm_couplings,
     .bind = cl_pairterm_bind,
     .eval = spring_damping_eval,
+    .step_done = cl_pairterm_step_done,
+    .broken = cl_pairterm_broken,
     .free = spring_damping_free,
 };

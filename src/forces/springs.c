@@ -95,11 +95,8 @@ static size_t spring_offsets(const spring_opts *o, long levels,
                              int (*off)[2])
 {
     size_t n = 0;
-    if (o->levels) {
-        for (int l = 1; o->ks > 0 && l <= levels; l++)
-            n = add_offsets(off, add_offsets(off, n, l, false), l, true);
-        return n;
-    }
+    if (o->levels)
+        return o->ks > 0 ? cl_level_offsets(levels, off) : 0;
     if (o->ks > 0)
         n = add_offsets(off, n, 1, false);
     if (o->kshear > 0)
@@ -210,7 +207,8 @@ static cl_status springs_create(cl_config *cfg, const cl_cloth *cloth,
     }
     st->k = net.k;
     if ((rc = cl_pairterm_init(&st->pt, net.set, springs_law, st,
-                               opts->clamp_transverse, err))) {
+                               opts->clamp_transverse, err)) ||
+        (rc = cl_pairterm_tear(&st->pt, opts->tear_cut, err))) {
         springs_free(st);
         return rc;
     }
@@ -227,5 +225,7 @@ const cl_term_type cl_term_springs = {
     .couplings = cl_pairterm_couplings,
     .bind = cl_pairterm_bind,
     .eval = cl_pairterm_eval,
+    .step_done = cl_pairterm_step_done,
+    .broken = cl_pairterm_broken,
     .free = springs_free,
 };

@@ -68,7 +68,8 @@ static cl_status type1_create(cl_config *cfg, const cl_cloth *cloth,
     cl_pairset set;
     if ((rc = cl_pairs_type1(cloth, &set, err)) ||
         (rc = cl_pairterm_init(&st->pt, set, type1_law, st,
-                               opts->clamp_transverse, err))) {
+                               opts->clamp_transverse, err)) ||
+        (rc = cl_pairterm_tear(&st->pt, opts->tear_cut, err))) {
         type1_free(st);
         return rc;
     }
@@ -85,5 +86,7 @@ const cl_term_type cl_term_type1 = {
     .couplings = cl_pairterm_couplings,
     .bind = cl_pairterm_bind,
     .eval = cl_pairterm_eval,
+    .step_done = cl_pairterm_step_done,
+    .broken = cl_pairterm_broken,
     .free = type1_free,
 };

@@ -337,7 +337,8 @@ static cl_status type2_setup(type2_state *st, const cl_cloth *cloth,
         return cl_error_set(err, CL_ENOMEM, "out of memory (quadrature)");
     if ((rc = cl_pairs_type2(cloth, &set, err)) ||
         (rc = cl_pairterm_init(&st->pt, set, type2_law, st,
-                               opts->clamp_transverse, err)))
+                               opts->clamp_transverse, err)) ||
+        (rc = cl_pairterm_tear(&st->pt, opts->tear_cut, err)))
         return rc;
     return build_lengths(st, err);
 }
@@ -398,5 +399,7 @@ const cl_term_type cl_term_type2 = {
     .couplings = cl_pairterm_couplings,
     .bind = cl_pairterm_bind,
     .eval = cl_pairterm_eval,
+    .step_done = cl_pairterm_step_done,
+    .broken = cl_pairterm_broken,
     .free = type2_free,
 };

@@ -110,6 +110,23 @@ cl_status cl_fixed_accel(cl_fixed *s, double t, const double *x,
     return CL_OK;
 }
 
+/* The system's step_done hook after step `done` (tearing), if any. */
+static cl_status fixed_step_done(const cl_fixed_clock *c, long done,
+                                 cl_error *err)
+{
+    bool changed = false;
+    double t = c->t0 + (double)done * c->h;
+    if (!c->sys || !c->sys->step_done)
+        return CL_OK;
+    cl_status st = c->sys->step_done(c->sys->data, t, *c->x, *c->v,
+                                     &changed);
+    if (st != CL_OK)
+        return cl_error_set(err, st, "%s: update after the step failed "
+                            "(%s) at t = %.9g (step %ld)", c->name,
+                            cl_status_name(st), t, done);
+    return CL_OK;
+}
+
 cl_status cl_fixed_run(const cl_fixed_clock *c, cl_fixed_step_fn step,
                        void *state, double t_out, double *x_out,
                        double *v_out, cl_error *err)
@@ -126,6 +143,8 @@ cl_status cl_fixed_run(const cl_fixed_clock *c, cl_fixed_step_fn step,
             st = cl_error_set(err, CL_EBLOWUP, "%s: state not finite at "
                               "t = %.9g (step %ld, dt = %g)", c->name,
                               c->t0 + (double)done * c->h, done, c->h);
+        else
+            st = fixed_step_done(c, done, err);
     }
     memcpy(x_out, *c->x, c->n * sizeof *x_out);
     memcpy(v_out, *c->v, c->n * sizeof *v_out);
@@ -144,7 +163,7 @@ cl_status cl_fixed_advance(void *state, double t_out, double *x, double *v,
 {
     cl_fixed *s = state;
     cl_fixed_clock c = {s->method->name, s->n, s->t0, s->dt, &s->done,
-                        &s->x, &s->v};
+                        &s->x, &s->v, s->sys};
     return cl_fixed_run(&c, fixed_step, s, t_out, x, v, err);
 }
 

@@ -84,13 +84,23 @@ typedef struct {
     long *done;         /* steps taken */
     /* the current state (n each); a step may repoint it (history swap) */
     double *const *x, *const *v;
+    /* the system, for its step_done hook (tearing); NULL: not called */
+    const cl_system *sys;
 } cl_fixed_clock;
 
 /* Take the steps from *done to t_out, which must be a whole number of
  * steps from t0 (cl_fixed_steps_to): call step(state), count it in *done
  * and check that *x and *v are finite (CL_EBLOWUP with the time and the
- * step otherwise), until t_out or a failure.  x_out and v_out receive the
- * current state, also after a failure. */
+ * step otherwise), then call sys->step_done (when the clock has a system
+ * with that hook: tearing after every accepted step), until t_out or a
+ * failure.  x_out and v_out receive the current state, also after a
+ * failure.
+ *
+ * A change reported by step_done (a connection tore) does not restart
+ * anything: the multistep methods (verlet's x_{k-1}, semi-bdf2's and
+ * kinsol-bdf2's x^{n-1}, v^{n-1}) keep their history and step across the
+ * tear as across any non-smooth event, with a local error of the order of
+ * the jump in force over one step. */
 cl_status cl_fixed_run(const cl_fixed_clock *c, cl_fixed_step_fn step,
                        void *state, double t_out, double *x_out,
                        double *v_out, cl_error *err);

@@ -198,6 +198,23 @@ static cl_status gslode_error(const cl_gslode *s, int rc, double t_out,
                         name, s->t, t_out, gsl_strerror(rc), rc);
 }
 
+/* Tearing at an output time: the system's step_done, and a driver reset
+ * when the model changed. */
+static cl_status gslode_step_done(cl_gslode *s, cl_error *err)
+{
+    bool changed = false;
+    cl_status st = s->sys->step_done(s->sys->data, s->t, s->y, s->y + s->n,
+                                     &changed);
+    if (st != CL_OK)
+        return cl_error_set(err, st, "%s: update after t = %.9g failed (%s)",
+                            s->method->name, s->t, cl_status_name(st));
+    if (changed) {
+        s->failed_before += (long)s->drv->e->failed_steps;
+        gsl_odeiv2_driver_reset(s->drv);
+    }
+    return CL_OK;
+}
+
 cl_status cl_gslode_advance(void *state, double t_out, double *x, double *v,
                             cl_error *err)
 {
@@ -220,7 +237,7 @@ cl_status cl_gslode_advance(void *state, double t_out, double *x, double *v,
     if (!cl_all_finite(s->y, 2 * s->n))
         return cl_error_set(err, CL_EBLOWUP, "%s: state not finite at "
                             "t = %.9g", s->method->name, s->t);
-    return CL_OK;
+    return s->sys->step_done ? gslode_step_done(s, err) : CL_OK;
 }
 
 void cl_gslode_stats(const void *state, cl_stats *out)
@@ -230,5 +247,5 @@ void cl_gslode_stats(const void *state, cl_stats *out)
     out->steps = s->steps;
     out->rhs_evals = s->nrhs;
     out->jac_evals = s->njac;
-    out->err_fails = (long)s->drv->e->failed_steps;
+    out->err_fails = s->failed_before + (long)s->drv->e->failed_steps;
 }

@@ -34,7 +34,12 @@
  * Jacobian's time difference, jac_evals = Jacobian wrapper calls,
  * err_fails = GSL's evolve->failed_steps (steps rejected by the error test
  * plus step halvings after a failed stepper call).  Other counters 0: GSL
- * does not expose msbdf's Newton iterations or LU factorisations. */
+ * does not expose msbdf's Newton iterations or LU factorisations.
+ *
+ * Tearing (SPEC 3.4): the system's step_done hook is called at the end of
+ * every advance, i.e. at output times only (use many samples); when the
+ * model changed, gsl_odeiv2_driver_reset drops the stepper's history
+ * (msbdf) and the solver continues from the current state. */
 #ifndef CL_GSLODE_H
 #define CL_GSLODE_H
 
@@ -66,6 +71,7 @@ typedef struct {
     double *f, *ft;         /* n each: forces at t and t + dt (Jacobian) */
     double *dfdx, *dfdv;    /* 9 nnzb each (only with a Jacobian) */
     long steps, nrhs, njac;
+    long failed_before;     /* failed steps before driver resets (tearing) */
     cl_status fail;         /* last failing system status in this advance */
     double fail_t;          /* and the time of that call */
 } cl_gslode;

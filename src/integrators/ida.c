@@ -9,12 +9,19 @@
  *   G = dF/dy + c_j dF/dy' = [ c_j I       -I            ]
  *                            [ -df/dx      c_j M - df/dv ]
  *
- * solved by SUNLinSol_KLU with AMD ordering (SUNLinSol_KLUSetOrdering(LS,
- * 0)): G is assembled analytically in CSC from the pattern and value map of
- * the first-order Jacobian, built once (linalg/firstorder.h: the same
- * pattern, every diagonal entry stored; column pointers and row indices are
- * rewritten on every call because IDA's SUNMatZero wipes them), so KLU
- * analyses once and refactors numerically afterwards.
+ * solved by the linear solver named by opts->linsol (--linsol):
+ *
+ *   klu-full  SUNLinSol_KLU with AMD ordering (SUNLinSol_KLUSetOrdering(LS,
+ *             0)): G is assembled analytically in CSC from the pattern and
+ *             value map of the first-order Jacobian, built once
+ *             (linalg/firstorder.h: the same pattern, every diagonal entry
+ *             stored; column pointers and row indices are rewritten on every
+ *             call because IDA's SUNMatZero wipes them), so KLU analyses
+ *             once and refactors numerically afterwards: the baseline;
+ *   klu, pcg, pcg-jacobi, cholmod, auto (the default, as for cvode-bdf)
+ *             the half-size system (M - df/dv / c_j - df/dx / c_j^2) dx =
+ *             (rv + c_j M rx - df/dv rx) / c_j^2, dv = c_j dx - rx solved by
+ *             that cl_linsol (sun_reduced.h, linalg/linsol.h).
  *
  * dF/dy' = diag(I, M) is nonsingular: the system is an implicit ODE
  * (differential index 0, inside IDA's index-1 class) and every component
@@ -30,21 +37,24 @@
  *
  * Options, error capture, blow-up policy of the residual and Jacobian
  * functions and statistics as in sun_common.h (rhs_evals = residual
- * evaluations + 1; lin_setups = KLU factor or refactor calls; lin_solves =
- * KLU solve calls; symbolic_facts = KLU analyses, 1 with the fixed
- * pattern). */
+ * evaluations + 1; lin_setups = factor or refactor calls; klu-full:
+ * lin_solves = KLU solve calls, symbolic_facts = KLU analyses, 1 with the
+ * fixed pattern; half-size solvers: as in cvode_bdf.c). */
 #include "integrators/integrator.h"
 
+#include <stdio.h>
 #include <string.h>
 
 #include <ida/ida.h>
 
 #include "integrators/sun_common.h"
+#include "integrators/sun_reduced.h"
 #include "linalg/firstorder.h"
 
 typedef struct {
     cl_sun base; /* first: IDA's user data is the whole state */
-    cl_firstorder fo;
+    cl_firstorder fo; /* klu-full */
+    cl_sunred *red;   /* half-size solvers */
 } cl_ida;
 
 static int ida_solve(cl_sun *s, double t_out)
@@ -52,6 +62,8 @@ static int ida_solve(cl_sun *s, double t_out)
     sunrealtype tret;
     return IDASolve(s->mem, t_out, &tret, s->y, s->yp, IDA_NORMAL);
 }
+
+static cl_status ida_reinit(cl_sun *s, double t, cl_error *err);
 
 static const cl_sun_api ida_api = {
     .pkg = "IDA",
@@ -68,6 +80,7 @@ static const cl_sun_api ida_api = {
     .flag_name = IDAGetReturnFlagName,
     .free_mem = IDAFree,
     .solve = ida_solve,
+    .reinit = ida_reinit,
     .steps = IDAGetNumSteps,
     .rhs = IDAGetNumResEvals,
     .lin_rhs = IDAGetNumLinResEvals,
@@ -137,6 +150,17 @@ static cl_status ida_initial_yp(cl_sun *s, double t0, cl_error *err)
                         s->fail_nonfinite ? ": values not finite" : "", t0);
 }
 
+/* Restart after a change of the model (tearing, sun_common.h) from the
+ * current y with the consistent y' = (v, M^-1 f(t, x, v)). */
+static cl_status ida_reinit(cl_sun *s, double t, cl_error *err)
+{
+    cl_status st = ida_initial_yp(s, t, err);
+    if (st != CL_OK)
+        return st;
+    int flag = IDAReInit(s->mem, t, s->y, s->yp);
+    return flag < 0 ? cl_sun_fail(s, "IDAReInit", flag, err) : CL_OK;
+}
+
 static cl_status ida_memory(cl_sun *s, const cl_integrator_opts *o,
                             double t0, cl_error *err)
 {
@@ -159,10 +183,20 @@ static cl_status ida_memory(cl_sun *s, const cl_integrator_opts *o,
     return CL_OK;
 }
 
-static cl_status ida_linsol(cl_ida *s, cl_error *err)
+/* klu-full: the first-order pattern and KLU on it; otherwise the
+ * half-size solver (sun_reduced.h). */
+static cl_status ida_linsol(cl_ida *s, const cl_integrator_opts *o,
+                            cl_error *err)
 {
     cl_sun *b = &s->base;
-    cl_status st = cl_sun_attach_klu(b, s->fo.size, s->fo.nnz, err);
+    const cl_linsol_type *lt;
+    cl_status st = cl_sunred_choose(b, o->linsol, &lt, err);
+    if (st != CL_OK || lt)
+        return st != CL_OK ? st
+                           : cl_sunred_attach(b, lt, o, true, &s->red, err);
+    st = cl_firstorder_create(b->sys->pattern, b->sys->mass, &s->fo, err);
+    if (st == CL_OK)
+        st = cl_sun_attach_klu(b, s->fo.size, s->fo.nnz, err);
     if (st != CL_OK)
         return st;
     int flag = IDASetJacFn(b->mem, ida_jac);
@@ -172,8 +206,10 @@ static cl_status ida_linsol(cl_ida *s, cl_error *err)
 static void ida_free(void *state)
 {
     cl_ida *s = state;
-    if (s)
+    if (s) {
         cl_firstorder_free(&s->fo);
+        cl_sunred_free(s->red);
+    }
     cl_sun_free(state);
 }
 
@@ -187,24 +223,41 @@ static cl_status ida_create(const cl_system *sys, const cl_integrator_opts *o,
                                 x0, v0, true, &b, err);
     cl_ida *s = (cl_ida *)b;
     if (st == CL_OK)
-        st = cl_firstorder_create(sys->pattern, sys->mass, &s->fo, err);
-    if (st == CL_OK)
         st = ida_initial_yp(b, t0, err);
     if (st == CL_OK)
         st = ida_memory(b, o, t0, err);
     if (st == CL_OK)
-        st = ida_linsol(s, err);
+        st = ida_linsol(s, o, err);
     return cl_sun_finish(b, st, ida_free, state);
+}
+
+static cl_status ida_advance(void *state, double t_out, double *x, double *v,
+                             cl_error *err)
+{
+    cl_status st = cl_sun_advance(state, t_out, x, v, err);
+    if (st != CL_OK)
+        cl_sunred_explain(((cl_ida *)state)->red, err);
+    return st;
+}
+
+static void ida_stats(const void *state, cl_stats *out)
+{
+    const cl_ida *s = state;
+    cl_sun_stats(state, out);
+    if (s->red)
+        cl_sunred_stats(s->red, out);
+    else
+        snprintf(out->linsol, sizeof out->linsol, "klu-full");
 }
 
 const cl_integrator_type cl_integrator_ida = {
     .name = "ida",
-    .doc = "IDA on F = [x' - v; M v' - f] = 0, Newton, KLU (AMD) with the "
-           "analytic sparse iteration matrix",
+    .doc = "IDA on F = [x' - v; M v' - f] = 0, Newton, analytic Jacobian; "
+           "--linsol as cvode-bdf (default auto)",
     .fixed_step = false,
-    .takes_linsol = false,
+    .takes_linsol = true,
     .create = ida_create,
-    .advance = cl_sun_advance,
-    .stats = cl_sun_stats,
+    .advance = ida_advance,
+    .stats = ida_stats,
     .free = ida_free,
 };

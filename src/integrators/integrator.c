@@ -66,9 +66,10 @@ static const cl_stat_name cl_counter_names[] = {
     {"nonlin_fails", "nonlinear conv. failures"},
     {"err_fails", "error test failures"},
     {"symbolic_facts", "symbolic factorisations"},
+    {"lin_fallbacks", "linear solver fallbacks"},
 };
 
-static void stats_counters(const cl_stats *s, long out[10])
+static void stats_counters(const cl_stats *s, long out[11])
 {
     out[0] = s->steps;
     out[1] = s->rhs_evals;
@@ -80,10 +81,12 @@ static void stats_counters(const cl_stats *s, long out[10])
     out[7] = s->nonlin_fails;
     out[8] = s->err_fails;
     out[9] = s->symbolic_facts;
+    out[10] = s->lin_fallbacks;
 }
 
 /* human: one aligned block "label  value"; otherwise one "name,value" row
- * per counter (no header row), then wall and cpu in seconds. */
+ * per counter (no header row), then the linear solver's name (only when
+ * reported), then wall and cpu in seconds. */
 void cl_stats_print(const cl_stats *s, FILE *fp, bool human)
 {
     enum { NC = sizeof cl_counter_names / sizeof cl_counter_names[0] };
@@ -95,6 +98,10 @@ void cl_stats_print(const cl_stats *s, FILE *fp, bool human)
         else
             fprintf(fp, "%s,%ld\n", cl_counter_names[i].csv, c[i]);
     }
+    if (s->linsol[0] && human)
+        fprintf(fp, "  %-28s %14s\n", "linear solver", s->linsol);
+    else if (s->linsol[0])
+        fprintf(fp, "linsol,%s\n", s->linsol);
     if (human) {
         fprintf(fp, "  %-28s %14.6f\n", "wall time [s]", s->wall);
         fprintf(fp, "  %-28s %14.6f\n", "cpu time [s]", s->cpu);

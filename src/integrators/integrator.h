@@ -43,6 +43,12 @@ typedef struct {
     long nonlin_fails;   /* nonlinear convergence failures */
     long err_fails;      /* local error test failures */
     long symbolic_facts; /* symbolic factorisations (KLU analyse) */
+    long lin_fallbacks;  /* setups a linear solver handed to another one
+                          * (cholmod: matrix not SPD -> klu; auto: pcg
+                          * failed -> direct) */
+    char linsol[32];     /* linear solver(s) that did the work, '+'-joined
+                          * ("klu-full", "cholmod+klu", "auto:pcg"); "" if
+                          * none or not reported */
     double wall;         /* seconds spent inside advance (wall clock) */
     double cpu;          /* seconds spent inside advance (process CPU) */
 } cl_stats;

@@ -534,7 +534,7 @@ cl_status cl_kin_advance(void *state, double t_out, double *x, double *v,
 {
     cl_kin *s = state;
     cl_fixed_clock c = {s->sc->name, s->n, s->t0, s->h, &s->done, &s->x,
-                        &s->v};
+                        &s->v, s->sys};
     return cl_fixed_run(&c, kin_step, s, t_out, x, v, err);
 }
 

@@ -9,6 +9,7 @@
  *   symplectic-euler-x  x += h v; v += h M^-1 f(x, v) (seed 003)
  *   fe                forward Euler
  *   verlet            position Verlet with velocity damping (seed 004)
+ *   verlet-pbd        verlet + position-based constraints (seed 004)
  *   velocity-verlet   kick-drift-kick velocity Verlet
  *   rk4               classical Runge-Kutta 4
  *   gsl-rk8pd         GSL odeiv2 rk8pd, explicit adaptive reference
@@ -27,6 +28,7 @@ extern const cl_integrator_type cl_integrator_symplectic_euler;
 extern const cl_integrator_type cl_integrator_fe;
 extern const cl_integrator_type cl_integrator_symplectic_euler_x;
 extern const cl_integrator_type cl_integrator_verlet;
+extern const cl_integrator_type cl_integrator_verlet_pbd;
 extern const cl_integrator_type cl_integrator_velocity_verlet;
 extern const cl_integrator_type cl_integrator_rk4;
 extern const cl_integrator_type cl_integrator_gsl_rk8pd;
@@ -47,6 +49,7 @@ const cl_integrator_type *const cl_integrator_registry[] = {
     &cl_integrator_fe,
     &cl_integrator_symplectic_euler_x,
     &cl_integrator_verlet,
+    &cl_integrator_verlet_pbd,
     &cl_integrator_velocity_verlet,
     &cl_integrator_rk4,
     &cl_integrator_gsl_rk8pd,

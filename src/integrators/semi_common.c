@@ -159,7 +159,8 @@ cl_status cl_semi_be_step(cl_semi *s, cl_error *err)
 cl_status cl_semi_advance(cl_semi *s, void *state, cl_fixed_step_fn step,
                           double t_out, double *x, double *v, cl_error *err)
 {
-    cl_fixed_clock c = {s->name, s->n, s->t0, s->h, &s->done, &s->x, &s->v};
+    cl_fixed_clock c = {s->name, s->n, s->t0, s->h, &s->done, &s->x, &s->v,
+                        s->sys};
     return cl_fixed_run(&c, step, state, t_out, x, v, err);
 }
 

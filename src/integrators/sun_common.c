@@ -13,6 +13,7 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include "core/check.h"
+#include "linalg/nvec.h"
 
 _Static_assert(sizeof(sunrealtype) == sizeof(double),
                "clothode needs SUNDIALS built in double precision");
@@ -27,6 +28,12 @@ static int cv_solve(cl_sun *s, double t_out)
 {
     sunrealtype tret;
     return CVode(s->mem, t_out, s->y, &tret, CV_NORMAL);
+}
+
+static cl_status cv_reinit(cl_sun *s, double t, cl_error *err)
+{
+    int flag = CVodeReInit(s->mem, t, s->y);
+    return flag < 0 ? cl_sun_fail(s, "CVodeReInit", flag, err) : CL_OK;
 }
 
 const cl_sun_api cl_sun_cvode_api = {
@@ -44,6 +51,7 @@ const cl_sun_api cl_sun_cvode_api = {
     .flag_name = CVodeGetReturnFlagName,
     .free_mem = CVodeFree,
     .solve = cv_solve,
+    .reinit = cv_reinit,
     .steps = CVodeGetNumSteps,
     .rhs = CVodeGetNumRhsEvals,
     .lin_rhs = CVodeGetNumLinRhsEvals,
@@ -233,7 +241,7 @@ static cl_status sun_vectors(cl_sun *s, const double *x0, const double *v0,
     if (flag != 0)
         return cl_sun_sunfail(s, "SUNContext_Create", flag, err);
     size_t n = s->sys->n;
-    s->y = N_VNew_Serial((sunindextype)(2 * n), s->ctx);
+    s->y = cl_nvec_new((sunindextype)(2 * n), s->ctx); /* linalg/nvec.h */
     if (!s->y)
         return cl_sun_sunfail(s, "N_VNew_Serial", 0, err);
     double *y = N_VGetArrayPointer(s->y);
@@ -420,6 +428,28 @@ static cl_status sun_advance_fail(cl_sun *s, int flag, double t_out,
     return st;
 }
 
+static void sun_solver_counts(const cl_sun *s, cl_stats *out);
+static void sun_add_counts(cl_stats *to, const cl_stats *c);
+
+/* Tearing at the output time t (see the header): the system's step_done,
+ * and a restart of the solver when the model changed. */
+static cl_status sun_step_done(cl_sun *s, double t, cl_error *err)
+{
+    const cl_system *sys = s->sys;
+    const double *y = N_VGetArrayPointer(s->y);
+    bool changed = false;
+    cl_status st = sys->step_done(sys->data, t, y, y + sys->n, &changed);
+    if (st != CL_OK)
+        return cl_error_set(err, st, "%s: update after t = %.9g failed (%s)",
+                            s->name, t, cl_status_name(st));
+    if (!changed || !s->api->reinit)
+        return CL_OK;
+    cl_stats now;
+    sun_solver_counts(s, &now);
+    sun_add_counts(&s->before, &now);
+    return s->api->reinit(s, t, err);
+}
+
 cl_status cl_sun_advance(void *state, double t_out, double *x, double *v,
                          cl_error *err)
 {
@@ -443,7 +473,7 @@ cl_status cl_sun_advance(void *state, double t_out, double *x, double *v,
     if (!cl_all_finite(N_VGetArrayPointer(s->y), 2 * s->sys->n))
         return cl_error_set(err, CL_EBLOWUP, "%s: state not finite at "
                             "t = %.9g", s->name, t_out);
-    return CL_OK;
+    return s->sys->step_done ? sun_step_done(s, t_out, err) : CL_OK;
 }
 
 /* ---- statistics -------------------------------------------------------- */
@@ -456,13 +486,13 @@ static long sun_count(const cl_sun *s, cl_sun_getter get)
     return v;
 }
 
-void cl_sun_stats(const void *state, cl_stats *out)
+/* The solver's own counters (a re-initialisation resets them). */
+static void sun_solver_counts(const cl_sun *s, cl_stats *out)
 {
-    const cl_sun *s = state;
     const cl_sun_api *a = s->api;
     memset(out, 0, sizeof *out);
     out->steps = sun_count(s, a->steps);
-    out->rhs_evals = sun_count(s, a->rhs) + s->own_rhs;
+    out->rhs_evals = sun_count(s, a->rhs);
     out->lin_setups = sun_count(s, a->setups);
     if (s->ls) { /* the linear-solver getters fail (and say so) without */
         out->rhs_evals += sun_count(s, a->lin_rhs);
@@ -472,6 +502,26 @@ void cl_sun_stats(const void *state, cl_stats *out)
     out->nonlin_iters = sun_count(s, a->nl_iters);
     out->nonlin_fails = sun_count(s, a->nl_fails);
     out->err_fails = sun_count(s, a->err_fails);
+}
+
+static void sun_add_counts(cl_stats *to, const cl_stats *c)
+{
+    to->steps += c->steps;
+    to->rhs_evals += c->rhs_evals;
+    to->lin_setups += c->lin_setups;
+    to->jac_evals += c->jac_evals;
+    to->lin_iters += c->lin_iters;
+    to->nonlin_iters += c->nonlin_iters;
+    to->nonlin_fails += c->nonlin_fails;
+    to->err_fails += c->err_fails;
+}
+
+void cl_sun_stats(const void *state, cl_stats *out)
+{
+    const cl_sun *s = state;
+    sun_solver_counts(s, out);
+    sun_add_counts(out, &s->before);
+    out->rhs_evals += s->own_rhs;
     out->lin_solves = s->cnt.solves;
     out->symbolic_facts = s->cnt.analyses;
 }

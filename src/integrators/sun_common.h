@@ -30,7 +30,15 @@
  *   = its RHS / residual evaluations plus the linear solver's (difference
  *   quotients) plus force evaluations made outside the solver (s->own_rhs);
  *   with a direct solver wrapped by cl_lscount, lin_solves = solve calls
- *   (one per Newton iteration) and symbolic_facts = KLU analyses.
+ *   (one per Newton iteration) and symbolic_facts = KLU analyses;
+ * - tearing (SPEC 3.4): the system's step_done hook is called at the end
+ *   of every advance, i.e. at output times only (a run with tearing should
+ *   ask for many samples); when it reports a change, the solver is
+ *   re-initialised at t_out from the current state (api->reinit: CVodeReInit;
+ *   IDAReInit with a consistent y' = (v, M^-1 f)), which drops its history
+ *   and step size, and the pattern stays (a torn pair's blocks are zeros),
+ *   so KLU only analyses once more.  The solver's counters, which a
+ *   re-initialisation resets, are carried over in the statistics.
  *
  * Usage: an integrator's state struct has a cl_sun as its FIRST member, so
  * the one pointer the solver passes to every callback (user data and error
@@ -76,6 +84,8 @@ typedef struct {
     char *(*flag_name)(long flag);
     void (*free_mem)(void **mem);
     int (*solve)(cl_sun *s, double t_out); /* one advance to t_out */
+    /* restart at t from the current s->y (NULL: never restarted) */
+    cl_status (*reinit)(cl_sun *s, double t, cl_error *err);
     /* counters (a getter that fails, e.g. without a linear solver, leaves
      * its counter 0) */
     cl_sun_getter steps, rhs, lin_rhs, jac, setups, lin_iters, nl_iters,
@@ -110,6 +120,7 @@ struct cl_sun {
     double fail_t;           /* time of that failure */
     bool fail_nonfinite;     /* it was our finiteness check that failed */
     char msg[512];           /* last error message of the solver */
+    cl_stats before;         /* solver counters before re-initialisations */
 };
 
 /* Check the arguments, allocate a zeroed state of `size` bytes (a struct

@@ -31,12 +31,28 @@
  * error, no drift, for h below ~2/omega_max).  One force evaluation per
  * step (rhs_evals = steps).  State, output times and the finite-state
  * check: fixed_step.c. */
-#include "integrators/fixed_step.h"
+#include "integrators/verlet.h"
 
 #include <math.h>
 
+/* The positions x_{k+1} of the step onto the system's constraints at the
+ * time t_{k+1}. */
+static cl_status verlet_project(cl_fixed *s, double t, double *xn,
+                                cl_error *err)
+{
+    const cl_system *sys = s->sys;
+    cl_status st = sys->project(sys->data, t, xn);
+    if (st != CL_OK)
+        return cl_error_set(err, st, "%s: constraint projection failed (%s) "
+                            "at t = %.9g (step %ld, dt = %g)",
+                            s->method->name, cl_status_name(st), t,
+                            s->done + 1, s->dt);
+    return CL_OK;
+}
+
 /* w[0]: acceleration, w[1]: x_{k-1}, w[2]: x_{k+1} (n each) */
-static cl_status verlet_step(cl_fixed *s, double t, double h, cl_error *err)
+cl_status cl_verlet_step(cl_fixed *s, double t, double h, bool project,
+                         cl_error *err)
 {
     double *a = s->w[0], *xp = s->w[1], *xn = s->w[2], keep = 1.0 - s->param;
     cl_status st = cl_fixed_accel(s, t, s->x, s->v, a, err);
@@ -46,8 +62,11 @@ static cl_status verlet_step(cl_fixed *s, double t, double h, cl_error *err)
         for (size_t i = 0; i < s->n; i++)
             xp[i] = s->x[i] - h * s->v[i] + 0.5 * h * h * a[i];
     }
-    for (size_t i = 0; i < s->n; i++) {
+    for (size_t i = 0; i < s->n; i++)
         xn[i] = s->x[i] + keep * (s->x[i] - xp[i]) + h * h * a[i];
+    if (project && (st = verlet_project(s, t + h, xn, err)) != CL_OK)
+        return st;
+    for (size_t i = 0; i < s->n; i++) {
         s->v[i] = (xn[i] - s->x[i]) / h;
         xp[i] = s->x[i];
         s->x[i] = xn[i];
@@ -55,13 +74,18 @@ static cl_status verlet_step(cl_fixed *s, double t, double h, cl_error *err)
     return CL_OK;
 }
 
-static cl_status verlet_setup(cl_fixed *s, const cl_integrator_opts *o,
-                              cl_error *err)
+static cl_status verlet_step(cl_fixed *s, double t, double h, cl_error *err)
+{
+    return cl_verlet_step(s, t, h, false, err);
+}
+
+cl_status cl_verlet_setup(cl_fixed *s, const cl_integrator_opts *o,
+                          cl_error *err)
 {
     if (!isfinite(o->vdamp) || o->vdamp < 0.0 || !(o->vdamp < 1.0))
         return cl_error_set(err, CL_EINVAL,
-                            "verlet: velocity damping vdamp = %g, must lie "
-                            "in [0, 1)", o->vdamp);
+                            "%s: velocity damping vdamp = %g, must lie "
+                            "in [0, 1)", s->method->name, o->vdamp);
     s->param = o->vdamp;
     return CL_OK;
 }
@@ -69,4 +93,4 @@ static cl_status verlet_setup(cl_fixed *s, const cl_integrator_opts *o,
 CL_FIXED_INTEGRATOR(cl_integrator_verlet, "verlet",
                     "position Verlet with velocity damping vdamp (seed 004), "
                     "fixed step dt",
-                    3, verlet_setup, verlet_step);
+                    3, cl_verlet_setup, verlet_step);

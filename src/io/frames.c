@@ -28,22 +28,31 @@ size_t cl_grid_triangles(int nu, int nv, int (*tri)[3])
     return n;
 }
 
-/* Validate the frame and build its triangle list (*tri NULL if none). */
+/* Validate the frame and build its triangle list (*tri NULL if none) when
+ * the frame has none of its own (*own: the caller frees *tri). */
 static cl_status frame_prepare(const char *path, const cl_frame *f,
-                               int (**tri)[3], size_t *ntri, cl_error *err)
+                               const int (**tri)[3], size_t *ntri,
+                               int (**own)[3], cl_error *err)
 {
     *tri = NULL;
+    *own = NULL;
     *ntri = 0;
     if (!f || f->nu < 1 || f->nv < 1 || !f->x)
         return cl_error_set(err, CL_EINVAL, "%s: empty or invalid frame",
                             path);
+    if (f->tri) {
+        *tri = f->tri;
+        *ntri = f->ntri;
+        return CL_OK;
+    }
     size_t n = cl_grid_triangles(f->nu, f->nv, NULL);
     if (n == 0)
         return CL_OK;
-    *tri = malloc(n * sizeof **tri);
-    if (!*tri)
+    *own = malloc(n * sizeof **own);
+    if (!*own)
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", path);
-    cl_grid_triangles(f->nu, f->nv, *tri);
+    cl_grid_triangles(f->nu, f->nv, *own);
+    *tri = (const int(*)[3]) * own;
     *ntri = n;
     return CL_OK;
 }
@@ -62,8 +71,8 @@ static int write_points(FILE *fp, const char *prefix, const double *a,
 
 /* One line "<prefix>i j k" per triangle, vertex numbers from `base`;
  * nonzero on a write error. */
-static int write_triangles(FILE *fp, const char *prefix, int (*tri)[3],
-                           size_t ntri, int base)
+static int write_triangles(FILE *fp, const char *prefix,
+                           const int (*tri)[3], size_t ntri, int base)
 {
     for (size_t k = 0; k < ntri; k++)
         if (fprintf(fp, "%s%d %d %d\n", prefix, tri[k][0] + base,
@@ -75,10 +84,10 @@ static int write_triangles(FILE *fp, const char *prefix, int (*tri)[3],
 /* The content of one file format: np points, ntri triangles; nonzero on a
  * write error (errno says why). */
 typedef int (*frame_body)(FILE *fp, const cl_frame *f, size_t np,
-                          int (*tri)[3], size_t ntri);
+                          const int (*tri)[3], size_t ntri);
 
-static int vtk_body(FILE *fp, const cl_frame *f, size_t np, int (*tri)[3],
-                    size_t ntri)
+static int vtk_body(FILE *fp, const cl_frame *f, size_t np,
+                    const int (*tri)[3], size_t ntri)
 {
     int bad = fprintf(fp, "# vtk DataFile Version 3.0\n"
                           "clothode frame t=%.17g nu=%d nv=%d\n"
@@ -107,8 +116,8 @@ static int vtk_body(FILE *fp, const cl_frame *f, size_t np, int (*tri)[3],
     return bad;
 }
 
-static int obj_body(FILE *fp, const cl_frame *f, size_t np, int (*tri)[3],
-                    size_t ntri)
+static int obj_body(FILE *fp, const cl_frame *f, size_t np,
+                    const int (*tri)[3], size_t ntri)
 {
     return fprintf(fp, "# clothode frame t=%.17g nu=%d nv=%d\n"
                        "# %zu vertices, %zu triangles\n",
@@ -123,9 +132,10 @@ static int obj_body(FILE *fp, const cl_frame *f, size_t np, int (*tri)[3],
 static cl_status frame_write(const char *path, const cl_frame *f,
                              frame_body body, cl_error *err)
 {
-    int (*tri)[3];
+    const int(*tri)[3];
+    int(*own)[3];
     size_t ntri;
-    cl_status st = frame_prepare(path, f, &tri, &ntri, err);
+    cl_status st = frame_prepare(path, f, &tri, &ntri, &own, err);
     if (st)
         return st;
     cl_afile af;
@@ -134,7 +144,7 @@ static cl_status frame_write(const char *path, const cl_frame *f,
         st = body(af.fp, f, np, tri, ntri) ? cl_afile_fail(&af, err)
                                            : cl_afile_commit(&af, err);
     }
-    free(tri);
+    free(own);
     return st;
 }
 

@@ -2,7 +2,9 @@
  *
  * The surface is the grid's triangulation (cl_grid_triangles): each quad
  * (i, j)-(i+1, j+1) is split into (i,j),(i+1,j),(i+1,j+1) and
- * (i,j),(i+1,j+1),(i,j+1), particle (i, j) having index i*nv + j.
+ * (i,j),(i+1,j+1),(i,j+1), particle (i, j) having index i*nv + j; or, when
+ * the frame gives one, its own triangle list (a torn cloth: the grid's
+ * triangles without those with a torn edge, cl_model_triangles).
  * VTK frames carry the time as field data TIME (read by ParaView) and, when
  * given, point data "velocity" (vectors) and "pinned" (0/1 scalars).  OBJ
  * frames carry positions and faces only, the time in a comment.  Both are
@@ -20,6 +22,9 @@ typedef struct {
     const double *v;              /* velocities, 3*nu*nv, or NULL */
     const unsigned char *pinned;  /* per particle, nonzero = pinned, or NULL */
     double t;                     /* time */
+    const int (*tri)[3];          /* triangles (0-based particle indices),
+                                   * or NULL for all grid triangles */
+    size_t ntri;                  /* rows of tri */
 } cl_frame;
 
 /* Triangles of an nu x nv grid as 0-based particle indices; returns their

@@ -5,7 +5,10 @@
  *               numeric refactorisation at every setup (the default)
  *   pcg         SUNDIALS' PCG, matrix-free product, 3x3 block-Jacobi
  *               preconditioner
- *   pcg-jacobi  the same with the point-Jacobi (diagonal) preconditioner */
+ *   pcg-jacobi  the same with the point-Jacobi (diagonal) preconditioner
+ *   cholmod     supernodal sparse Cholesky (CHOLMOD), klu when A is not
+ *               symmetric positive definite
+ *   auto        pcg, cholmod or klu, chosen at every setup */
 #include "linalg/linsol.h"
 
 #include <stdio.h>
@@ -14,11 +17,15 @@
 extern const cl_linsol_type cl_linsol_klu;
 extern const cl_linsol_type cl_linsol_pcg;
 extern const cl_linsol_type cl_linsol_pcg_jacobi;
+extern const cl_linsol_type cl_linsol_cholmod;
+extern const cl_linsol_type cl_linsol_auto;
 
 const cl_linsol_type *const cl_linsol_registry[] = {
     &cl_linsol_klu,
     &cl_linsol_pcg,
     &cl_linsol_pcg_jacobi,
+    &cl_linsol_cholmod,
+    &cl_linsol_auto,
     NULL,
 };
 

@@ -15,7 +15,13 @@
  *               indefinite diagonal block or no convergence within
  *               lin_maxit is reported as CL_ESOLVER, not hidden; stops at
  *               |b - A x|_2 <= lin_tol |b|_2 (linsol_pcg.c);
- *   pcg-jacobi  the same with the point-Jacobi preconditioner.
+ *   pcg-jacobi  the same with the point-Jacobi preconditioner;
+ *   cholmod     supernodal sparse Cholesky (SuiteSparse CHOLMOD) for a
+ *               symmetric positive definite A, handing a setup whose A is
+ *               not (or not symmetric) to klu (linsol_cholmod.c);
+ *   auto        picks one of pcg, cholmod, klu at every setup from A's
+ *               diagonal dominance and falls back to a direct solver when
+ *               pcg fails (linsol_auto.c).
  *
  * Usage: create once (the pattern must outlive the solver; mass is
  * copied), then per Newton matrix one setup and any number of solves; a
@@ -43,8 +49,15 @@ typedef struct {
     /* Solve A x = rhs (3 * nb entries each; x may be rhs). */
     cl_status (*solve)(void *state, const double *rhs, double *x,
                        cl_error *err);
+    /* Iterative solvers only (NULL for direct ones, which always solve to
+     * rounding): the same, stopping once ||w .* (rhs - A x)||_2 <= delta
+     * (w: 3 nb positive weights) instead of at lin_tol: the test SUNDIALS'
+     * integrators ask of an iterative linear solver. */
+    cl_status (*solve_tol)(void *state, const double *rhs, double *x,
+                           const double *w, double delta, cl_error *err);
     /* Add this solver's counters: lin_setups, lin_solves, lin_iters,
-     * symbolic_facts. */
+     * symbolic_facts, lin_fallbacks; a solver that can hand work to
+     * another one also writes the names into linsol. */
     void (*stats)(const void *state, cl_stats *s);
     void (*free)(void *state);
 } cl_linsol_type;

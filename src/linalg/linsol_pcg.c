@@ -18,9 +18,11 @@
  * recurrence, weighted componentwise by the scaling vector s; the
  * preconditioner does not enter the test.  We set s = ones (so the test is
  * on the plain 2-norm of the residual) and pass delta = lin_tol ||b||_2
- * (opts->lin_tol, default 1e-10): a relative residual test.  The iteration
- * starts from x_0 = 0 (SUNLinSolSetZeroGuess).  At most opts->lin_maxit
- * iterations per solve (default max(1000, 2n)).
+ * (opts->lin_tol, default 1e-10): a relative residual test.  solve_tol
+ * instead takes the weights s = w and delta from the caller (CVODE and IDA
+ * pass their own, linear tolerance, integrators/sun_reduced.h).  The
+ * iteration starts from x_0 = 0 (SUNLinSolSetZeroGuess).  At most
+ * opts->lin_maxit iterations per solve (default max(1000, 2n)).
  *
  * Failures are reported as CL_ESOLVER, never hidden:
  *  - CG needs A symmetric positive definite.  SUNDIALS' PCG does not check
@@ -48,6 +50,7 @@
 #include <sunlinsol/sunlinsol_pcg.h>
 
 #include "core/check.h"
+#include "linalg/nvec.h"
 #include "linalg/reduced.h"
 
 #define CL_PCG_TOL 1e-10
@@ -64,7 +67,7 @@ typedef struct {
     double tol;
     int maxit;
     SUNContext ctx;
-    N_Vector b, x, ones;
+    N_Vector b, x, ones, w;  /* w: the caller's weights (solve_tol) */
     SUNLinearSolver ls;
     int nprod;               /* products in the current solve */
     char why[256];           /* what a callback found wrong */
@@ -192,6 +195,8 @@ static void pcg_free(void *state)
         N_VDestroy(s->x);
     if (s->ones)
         N_VDestroy(s->ones);
+    if (s->w)
+        N_VDestroy(s->w);
     if (s->ctx)
         SUNContext_Free(&s->ctx);
     free(s->mass);
@@ -240,11 +245,12 @@ static cl_status pcg_sundials(cl_pcg *s, cl_error *err)
     if (flag != 0)
         return pcg_sunfail(s, "SUNContext_Create", flag, err);
     sunindextype n = (sunindextype)s->n;
-    s->b = N_VNew_Serial(n, s->ctx);
-    s->x = s->b ? N_VNew_Serial(n, s->ctx) : NULL;
-    s->ones = s->x ? N_VNew_Serial(n, s->ctx) : NULL;
-    if (!s->ones)
-        return pcg_sunfail(s, "N_VNew_Serial", 0, err);
+    s->b = cl_nvec_new(n, s->ctx);
+    s->x = s->b ? cl_nvec_new(n, s->ctx) : NULL;
+    s->ones = s->x ? cl_nvec_new(n, s->ctx) : NULL;
+    s->w = s->ones ? cl_nvec_new(n, s->ctx) : NULL;
+    if (!s->w)
+        return pcg_sunfail(s, "cl_nvec_new", 0, err);
     N_VConst(1.0, s->ones);
     s->ls = SUNLinSol_PCG(s->x, SUN_PREC_LEFT, s->maxit, s->ctx);
     if (!s->ls)
@@ -254,8 +260,6 @@ static cl_status pcg_sundials(cl_pcg *s, cl_error *err)
     if ((flag = SUNLinSolSetPreconditioner(s->ls, s, pcg_psetup,
                                            pcg_psolve)) != 0)
         return pcg_sunfail(s, "SUNLinSolSetPreconditioner", flag, err);
-    if ((flag = SUNLinSolSetScalingVectors(s->ls, s->ones, NULL)) != 0)
-        return pcg_sunfail(s, "SUNLinSolSetScalingVectors", flag, err);
     if ((flag = SUNLinSolInitialize(s->ls)) != 0)
         return pcg_sunfail(s, "SUNLinSolInitialize", flag, err);
     return CL_OK;
@@ -334,8 +338,9 @@ static cl_status pcg_setup(void *state, double a, double b,
     return CL_OK;
 }
 
+/* `test` says what delta is, for the message. */
 static cl_status pcg_solve_fail(const cl_pcg *s, int flag, double delta,
-                                double bnorm, cl_error *err)
+                                const char *test, cl_error *err)
 {
     int nli = SUNLinSolNumIters(s->ls);
     double res = SUNLinSolResNorm(s->ls);
@@ -344,27 +349,21 @@ static cl_status pcg_solve_fail(const cl_pcg *s, int flag, double delta,
     if (flag == SUNLS_RES_REDUCED || flag == SUNLS_CONV_FAIL)
         return cl_error_set(err, CL_ESOLVER,
                             "%s: no convergence in %d iterations: residual "
-                            "|b - A x| = %.6g > %.6g (lin_tol %g x |b| %.6g)",
-                            s->name, nli, res, delta, s->tol, bnorm);
+                            "%.6g > %.6g (%s)", s->name, nli, res, delta,
+                            test);
     return pcg_sunfail(s, "SUNLinSolSolve", flag, err);
 }
 
-static cl_status pcg_solve(void *state, const double *rhs, double *x,
-                           cl_error *err)
+/* PCG from x = 0 on s->b (already filled) until ||scale .* r||_2 <= delta;
+ * the solution into x. */
+static cl_status pcg_run(cl_pcg *s, N_Vector scale, double delta,
+                         const char *test, double *x, cl_error *err)
 {
-    cl_pcg *s = state;
-    if (!s->ready)
-        return cl_error_set(err, CL_EINVAL, "%s: solve without a successful "
-                            "setup", s->name);
-    double *bp = N_VGetArrayPointer(s->b);
-    memcpy(bp, rhs, s->n * sizeof *bp);
-    double bnorm = sqrt(N_VDotProd(s->b, s->b)), delta = s->tol * bnorm;
-    if (!isfinite(bnorm))
-        return cl_error_set(err, CL_ESOLVER, "%s: right-hand side not "
-                            "finite", s->name);
-    N_VConst(0.0, s->x);
-    int flag = SUNLinSolSetZeroGuess(s->ls, SUNTRUE);
+    int flag = SUNLinSolSetScalingVectors(s->ls, scale, NULL);
     if (flag != 0)
+        return pcg_sunfail(s, "SUNLinSolSetScalingVectors", flag, err);
+    N_VConst(0.0, s->x);
+    if ((flag = SUNLinSolSetZeroGuess(s->ls, SUNTRUE)) != 0)
         return pcg_sunfail(s, "SUNLinSolSetZeroGuess", flag, err);
     s->why[0] = '\0';
     s->nprod = 0;
@@ -372,9 +371,47 @@ static cl_status pcg_solve(void *state, const double *rhs, double *x,
     s->solves++;
     s->iters += SUNLinSolNumIters(s->ls);
     if (flag != SUNLS_SUCCESS)
-        return pcg_solve_fail(s, flag, delta, bnorm, err);
+        return pcg_solve_fail(s, flag, delta, test, err);
     memcpy(x, N_VGetArrayPointer(s->x), s->n * sizeof *x);
     return CL_OK;
+}
+
+/* Copy rhs into s->b; CL_OK if a setup succeeded and rhs is finite. */
+static cl_status pcg_load(cl_pcg *s, const double *rhs, cl_error *err)
+{
+    if (!s->ready)
+        return cl_error_set(err, CL_EINVAL, "%s: solve without a successful "
+                            "setup", s->name);
+    memcpy(N_VGetArrayPointer(s->b), rhs, s->n * sizeof *rhs);
+    if (!cl_all_finite(rhs, s->n))
+        return cl_error_set(err, CL_ESOLVER, "%s: right-hand side not "
+                            "finite", s->name);
+    return CL_OK;
+}
+
+static cl_status pcg_solve(void *state, const double *rhs, double *x,
+                           cl_error *err)
+{
+    cl_pcg *s = state;
+    cl_status st = pcg_load(s, rhs, err);
+    if (st != CL_OK)
+        return st;
+    double bnorm = sqrt(N_VDotProd(s->b, s->b));
+    char test[96];
+    snprintf(test, sizeof test, "lin_tol %g x |b| %.6g", s->tol, bnorm);
+    return pcg_run(s, s->ones, s->tol * bnorm, test, x, err);
+}
+
+static cl_status pcg_solve_tol(void *state, const double *rhs, double *x,
+                               const double *w, double delta, cl_error *err)
+{
+    cl_pcg *s = state;
+    cl_status st = pcg_load(s, rhs, err);
+    if (st != CL_OK)
+        return st;
+    memcpy(N_VGetArrayPointer(s->w), w, s->n * sizeof *w);
+    return pcg_run(s, s->w, delta, "the integrator's weighted tolerance",
+                   x, err);
 }
 
 static void pcg_stats(const void *state, cl_stats *out)
@@ -392,6 +429,7 @@ const cl_linsol_type cl_linsol_pcg = {
     .create = pcg_create_block,
     .setup = pcg_setup,
     .solve = pcg_solve,
+    .solve_tol = pcg_solve_tol,
     .stats = pcg_stats,
     .free = pcg_free,
 };
@@ -403,6 +441,7 @@ const cl_linsol_type cl_linsol_pcg_jacobi = {
     .create = pcg_create_point,
     .setup = pcg_setup,
     .solve = pcg_solve,
+    .solve_tol = pcg_solve_tol,
     .stats = pcg_stats,
     .free = pcg_free,
 };

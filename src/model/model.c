@@ -29,7 +29,8 @@ struct cl_model {
     cl_bpattern pattern;  /* blocks over free particles */
     double *mass3;        /* 3 * nfree */
     double *xf, *vf, *ff; /* full-particle work arrays, 3 * np */
-    size_t nbroken;       /* connections torn so far */
+    int (*torn)[2];       /* distinct connections torn so far, sorted */
+    size_t ntorn;
     cl_system sys;
 };
 
@@ -227,7 +228,26 @@ static cl_status sys_project(void *data, double t, double *x)
     return cl_all_finite(x, 3 * m->cloth.nfree) ? CL_OK : CL_EBLOWUP;
 }
 
-/* Tearing and other irreversible updates after an accepted step. */
+static int (*broken_pairs(const cl_model *m, size_t *n))[2];
+
+/* m->torn = the distinct pairs of all terms' broken lists. */
+static cl_status update_torn(cl_model *m)
+{
+    size_t n = 0, kept = 0;
+    int(*all)[2] = broken_pairs(m, &n);
+    if (!all)
+        return CL_ENOMEM;
+    for (size_t i = 0; i < n; i++)
+        if (kept == 0 || memcmp(all[i], all[kept - 1], sizeof all[i]))
+            memmove(all[kept++], all[i], sizeof all[i]);
+    free(m->torn);
+    m->torn = all;
+    m->ntorn = kept;
+    return CL_OK;
+}
+
+/* Tearing after an accepted step (installed only with [tear] cut > 0).
+ * Allocates only on a step where something tore. */
 static cl_status sys_step_done(void *data, double t, const double *x,
                                const double *v, bool *changed)
 {
@@ -237,9 +257,8 @@ static cl_status sys_step_done(void *data, double t, const double *x,
     for (size_t k = 0; k < m->nterm; k++)
         if (m->type[k]->step_done)
             broken += m->type[k]->step_done(m->state[k], m->xf, m->vf);
-    m->nbroken += broken;
     *changed = broken > 0;
-    return CL_OK;
+    return broken > 0 ? update_torn(m) : CL_OK;
 }
 
 static bool any_hook(const cl_model *m, size_t offset)
@@ -292,7 +311,8 @@ cl_status cl_model_create(cl_config *cfg, cl_model **model, cl_error *err)
         .energy = sys_energy,
         .project = any_hook(m, offsetof(cl_term_type, project)) ? sys_project
                                                                  : NULL,
-        .step_done = any_hook(m, offsetof(cl_term_type, step_done))
+        .step_done = m->opts.tear_cut > 0 &&
+                             any_hook(m, offsetof(cl_term_type, step_done))
                          ? sys_step_done : NULL};
     *model = m;
     return CL_OK;
@@ -310,6 +330,7 @@ void cl_model_free(cl_model *m)
     free(m->xf);
     free(m->vf);
     free(m->ff);
+    free(m->torn);
     free(m);
 }
 
@@ -393,7 +414,7 @@ cl_status cl_model_jacobian_full(cl_model *m, double t, const double *x,
     return rc;
 }
 
-size_t cl_model_broken(const cl_model *m) { return m->nbroken; }
+size_t cl_model_broken(const cl_model *m) { return m->ntorn; }
 
 static int cmp_pair(const void *a, const void *b)
 {
@@ -428,29 +449,27 @@ static int (*broken_pairs(const cl_model *m, size_t *n))[2]
     return all;
 }
 
-static bool edge_broken(int (*set)[2], size_t n, int a, int b)
+bool cl_model_is_broken(const cl_model *m, int a, int b)
 {
     int key[2] = {a < b ? a : b, a < b ? b : a};
-    return bsearch(key, set, n, sizeof *set, cmp_pair) != NULL;
+    return m->ntorn &&
+           bsearch(key, m->torn, m->ntorn, sizeof *m->torn, cmp_pair);
 }
 
 cl_status cl_model_triangles(const cl_model *m, int (*tri)[3], size_t *ntri,
                              cl_error *err)
 {
-    size_t nb = 0, kept = 0;
-    int(*set)[2] = broken_pairs(m, &nb);
+    size_t kept = 0;
     size_t all = cl_grid_triangles(m->cloth.nu, m->cloth.nv, tri);
-    if (!set)
-        return cl_error_set(err, CL_ENOMEM, "out of memory (triangles)");
+    (void)err; /* nothing can fail: the torn set is kept by step_done */
     for (size_t t = 0; t < all; t++) {
         const int *v = tri[t];
-        if (edge_broken(set, nb, v[0], v[1]) ||
-            edge_broken(set, nb, v[1], v[2]) ||
-            edge_broken(set, nb, v[2], v[0]))
+        if (cl_model_is_broken(m, v[0], v[1]) ||
+            cl_model_is_broken(m, v[1], v[2]) ||
+            cl_model_is_broken(m, v[2], v[0]))
             continue;
         memmove(tri[kept++], v, sizeof tri[0]);
     }
-    free(set);
     *ntri = kept;
     return CL_OK;
 }

@@ -12,7 +12,9 @@
  *              positions start at rest); seed = its random seed (default 1)
  *   [jacobian] transverse = full|clamp (SPEC 3.1)
  *   [tear]     cut = a connection breaks for good when d > cut L (0, the
- *              default: no tearing; SPEC 3.4)
+ *              default: no tearing; SPEC 3.4).  The system's step_done hook
+ *              (tearing, checked after every accepted step or output time,
+ *              see model/system.h) is installed only when cut > 0.
  * plus each force term's own section (forces/registry.c). */
 #ifndef CL_MODEL_H
 #define CL_MODEL_H
@@ -35,8 +37,12 @@ const cl_cloth *cl_model_cloth(const cl_model *m);
  * only failure. */
 cl_status cl_model_initial_state(const cl_model *m, double *x, double *v);
 
-/* Connections torn so far (SPEC 3.4). */
+/* Connections torn so far (SPEC 3.4): distinct particle pairs, however many
+ * terms (a spring and its damper, ...) had a force on the pair. */
 size_t cl_model_broken(const cl_model *m);
+
+/* Whether the connection a-b (either order) has torn. */
+bool cl_model_is_broken(const cl_model *m, int a, int b);
 
 /* The grid's triangles (cl_grid_triangles order) without those that have a
  * torn edge: tri must hold 2 (nu-1)(nv-1) rows; *ntri is the number kept. */

@@ -38,6 +38,35 @@ cl_status cl_pairs_type2(const cl_cloth *c, cl_pairset *s, cl_error *err)
     return cl_pairs_from_offsets(c, 4, off, s, err);
 }
 
+size_t cl_level_offsets(long levels, int (*off)[2])
+{
+    size_t n = 0;
+    for (int l = 1; l <= levels; l++) {
+        static const int unit[4][2] = {{0, 1}, {1, 0}, {1, 1}, {1, -1}};
+        for (int k = 0; k < 4; k++, n++) {
+            off[n][0] = l * unit[k][0];
+            off[n][1] = l * unit[k][1];
+        }
+    }
+    return n;
+}
+
+cl_status cl_pairs_levels(const cl_cloth *c, long levels, cl_pairset *s,
+                          cl_error *err)
+{
+    long span = c->nu > c->nv ? c->nu : c->nv;
+    if (levels > span - 1)
+        levels = span - 1;
+    int(*off)[2] = malloc((4 * (size_t)(levels > 0 ? levels : 0) + 1) *
+                          sizeof *off);
+    if (!off)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (levels)");
+    cl_status rc = cl_pairs_from_offsets(c, cl_level_offsets(levels, off),
+                                         (const int(*)[2])off, s, err);
+    free(off);
+    return rc;
+}
+
 void cl_pairs_free(cl_pairset *s)
 {
     free(s->pair);

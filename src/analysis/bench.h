@@ -1,0 +1,104 @@
+/* Benchmarks (`clothode bench`, SPEC 7): cost of the integrators and
+ * linear solvers on the default problem, against goals.  Six workloads:
+ *
+ *   1  hang, cvode-bdf with the best linear solver against the scipy peer
+ *      (scripts/peers/hang_scipy.py: solve_ivp BDF, analytic sparse
+ *      Jacobian) at rtol 1e-4, at equal or better error: n = 16, T = 2 s
+ *      and n = 32, T = 0.5 s; goal >= 100x.  If clothode's error is larger
+ *      than the peer's, its rtol is tightened (10x at a time) until it is
+ *      not.  The peer runs in a child process, started first so that it
+ *      works on the second core while the rest runs (CPU times are
+ *      compared, not wall); it is stopped after a CPU budget, and then its
+ *      time is a lower bound.
+ *   2  hang, T = 2 s: the best solver against klu-full (KLU on the
+ *      first-order system, the plain design) at n = 32, goal >= 20x; the
+ *      best solver alone at n = 64 (goal <= 60 s CPU) and n = 128 (<= 300
+ *      s; skipped with a note when the n = 32 -> 64 growth predicts more
+ *      than the cap).
+ *   3  semi-bdf2, dt = 1e-3 and 1e-2, n = 16, 32, 64, 128: CPU time per
+ *      step for every registered linear solver (after two untimed steps),
+ *      the fitted exponent of time against unknowns (goal <= 1.2 for the
+ *      fastest solver at the largest n), and that solver against klu at
+ *      n = 64 (goal >= 30x).
+ *   4  force evaluations of hang at n = 64 on a perturbed state (Type2
+ *      buckling branch active), ns per pair (Type1 + Type2, damping and
+ *      gravity included): goal <= 10; the Jacobian's cost beside it.
+ *   5  explicit steps on a 30 x 30 cloth (seed 004's size): symplectic-
+ *      euler and verlet on problems/ms-hang.ini (springs; springs + axial
+ *      spring damping), verlet-pbd on problems/verlet-scene1.ini
+ *      (constraint level 2, 10 iterations): steps per CPU second, goal >=
+ *      25,000.
+ *   6  peak resident memory (ru_maxrss of a child `clothode run`) per
+ *      unknown (6 per free particle) for cvode-bdf at n = 128, best solver
+ *      beside klu-full.
+ *
+ * The best solver for cvode-bdf is picked once per run: every name of the
+ * linear-solver registry plus klu-full, timed on the first case of
+ * workload 1, the least CPU time wins (if cvode-bdf takes no --linsol,
+ * its default is used and a note says so).  Errors are the largest
+ * distance between final particle positions and those of a reference run
+ * (cvode-bdf, rtol 1e-10, atol 1e-12, same n and T), computed once per
+ * run.  Times are process CPU time (clock_gettime(CLOCK_PROCESS_CPUTIME_ID))
+ * of the timed work beside its wall time; children are measured by wait4.
+ * --quick runs a reduced set (smaller n and T) in about two minutes. */
+#ifndef CL_BENCH_H
+#define CL_BENCH_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "core/error.h"
+
+#define CL_BENCH_WORKLOADS 6
+
+typedef struct {
+    bool quick;
+    unsigned only;          /* bit w (1..6) selects workload w; 0: all */
+    const char *problems;   /* directory of the problem files */
+    const char *peer;       /* the peer script */
+    const char *self;       /* the clothode program, for child runs */
+    const char *scratch;    /* directory for child outputs (must exist) */
+    FILE *log;              /* progress lines, or NULL */
+} cl_bench_opts;
+
+/* One result line.  cpu_*, wall_* are seconds of the timed unit (a whole
+ * run; one step in workload 3; one evaluation in workload 4); ratio is the
+ * measured figure in `unit` (x for a speed-up, s, ns/pair, steps/s,
+ * B/unknown, or empty for an exponent), compared with target by goal
+ * (">=" or "<="; "" when there is none).  NaN where not measured. */
+typedef struct {
+    int workload;
+    char kase[48];
+    char side_a[64], side_b[64];
+    double cpu_a, cpu_b, wall_a, wall_b;
+    double error_a, error_b;   /* m, against the reference */
+    double ratio;
+    char unit[12];
+    char goal[3];
+    double target;
+    int met;                   /* 1 met, 0 not, -1 no goal or no figure */
+    char note[200];
+} cl_bench_row;
+
+typedef struct {
+    cl_bench_row *row;
+    size_t n, cap;
+} cl_bench_table;
+
+/* Run the selected workloads, appending rows to t (rows of a workload
+ * that cannot run carry a note instead of figures).  Fails only for
+ * CL_ENOMEM and bad options. */
+cl_status cl_bench_run(const cl_bench_opts *o, cl_bench_table *t,
+                       cl_error *err);
+
+/* The table as CSV (header workload,case,side_a,side_b,cpu_a,cpu_b,wall_a,
+ * wall_b,error_a,error_b,ratio,unit,goal,target,met,note), atomically. */
+cl_status cl_bench_write_csv(const char *path, const cl_bench_table *t,
+                             cl_error *err);
+
+/* The table for people: one line per row, notes below. */
+void cl_bench_print(const cl_bench_table *t, FILE *fp);
+
+void cl_bench_table_free(cl_bench_table *t);
+
+#endif

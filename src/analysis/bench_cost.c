@@ -1,0 +1,414 @@
+/* Benchmark workloads of cost per unit (analysis/bench.h): 3 (semi-bdf2
+ * per step, per linear solver, against size), 4 (force and Jacobian
+ * evaluations per pair) and 5 (explicit steps per second). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analysis/bench_impl.h"
+#include "analysis/counts.h"
+#include "linalg/linsol.h"
+
+#define W3_DTS 2
+#define W3_MAX_SOLVERS 16
+#define W3_WARM 2          /* untimed steps: semi-be start, first BDF2 */
+#define W3_MIN_STEPS 3
+#define W3_CASE_CAP 60.0   /* skip a case predicted to take longer (s) */
+#define W5_CHUNK 100       /* explicit steps per advance call */
+
+/* A timed stretch of fixed steps. */
+typedef struct {
+    cl_status rc;
+    char msg[200];
+    double cpu, wall;      /* of the timed steps */
+    long steps;
+} fixed_time;
+
+typedef struct {
+    long warm, chunk, min_steps;
+    double budget;         /* stop once the timed steps took this (s) */
+} fixed_plan;
+
+static cl_status timed_steps(void *state, const cl_integrator_type *type,
+                             double dt, const fixed_plan *fp, double *x,
+                             double *v, fixed_time *ft, cl_error *err)
+{
+    double c0, w0, c1, w1;
+    long k = fp->warm;
+    cl_status rc = k ? type->advance(state, k * dt, x, v, err) : CL_OK;
+    cl_bench_clock(&c0, &w0);
+    c1 = c0;
+    w1 = w0;
+    while (!rc && (k - fp->warm < fp->min_steps || c1 - c0 < fp->budget)) {
+        k += fp->chunk;
+        rc = type->advance(state, k * dt, x, v, err);
+        cl_bench_clock(&c1, &w1);
+    }
+    ft->cpu = c1 - c0;
+    ft->wall = w1 - w0;
+    ft->steps = k - fp->warm;
+    return rc;
+}
+
+/* Create the integrator on the model's initial state and time steps. */
+static void time_fixed(cl_model *m, const cl_integrator_type *type,
+                       const cl_integrator_opts *io, const fixed_plan *fp,
+                       fixed_time *ft)
+{
+    const cl_system *sys = cl_model_system(m);
+    double *x = malloc(sys->n * sizeof *x), *v = malloc(sys->n * sizeof *v);
+    void *state = NULL;
+    cl_error err = {0};
+    *ft = (fixed_time){.cpu = NAN, .wall = NAN};
+    cl_status rc = x && v ? cl_model_initial_state(m, x, v)
+                          : cl_error_set(&err, CL_ENOMEM, "out of memory");
+    if (!rc && !(rc = type->create(sys, io, 0.0, x, v, &state, &err)))
+        rc = timed_steps(state, type, io->dt, fp, x, v, ft, &err);
+    if (state)
+        type->free(state);
+    ft->rc = rc;
+    if (rc)
+        cl_bench_copy(ft->msg, sizeof ft->msg, err.msg);
+    free(x);
+    free(v);
+}
+
+/* ---- workload 3 ------------------------------------------------------- */
+
+typedef struct {
+    int nsolver;
+    const char *name[W3_MAX_SOLVERS];
+    double per_step[W3_MAX_SOLVERS][4];  /* NaN: not measured */
+    double unknowns[4];
+    bool stop[W3_MAX_SOLVERS];           /* failed or too slow: skip larger n */
+} w3_sweep;
+
+static void w3_case(cl_bctx *c, w3_sweep *s, double dt, int i, int j,
+                    cl_model *m)
+{
+    int n = c->plan.w3_n[i];
+    char kase[48];
+    snprintf(kase, sizeof kase, "dt=%g n=%d", dt, n);
+    cl_bench_row *row = cl_bench_row_add(c, 3, kase);
+    snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 %s", s->name[j]);
+    if (s->stop[j]) {
+        cl_bench_note(row, "skipped (failed or too slow at a smaller n)");
+        return;
+    }
+    cl_integrator_opts io = {.dt = dt, .linsol = s->name[j]};
+    fixed_plan fp = {W3_WARM, 1, W3_MIN_STEPS, c->plan.w3_budget};
+    fixed_time ft;
+    cl_bench_log(c, "  semi-bdf2 %s, dt = %g, n = %d ...", s->name[j], dt, n);
+    time_fixed(m, cl_integrator_find("semi-bdf2"), &io, &fp, &ft);
+    if (ft.rc) {
+        s->stop[j] = true;
+        cl_bench_note(row, "failed: %s", ft.msg);
+        cl_bench_log_row(c, row);
+        return;
+    }
+    row->cpu_a = ft.cpu / (double)ft.steps;
+    row->wall_a = ft.wall / (double)ft.steps;
+    s->per_step[j][i] = row->cpu_a;
+    cl_bench_note(row, "%ld timed steps; %.0f unknowns", ft.steps,
+                  s->unknowns[i]);
+    /* the next size has 4x the unknowns: 8x the time would be too slow */
+    s->stop[j] = 8.0 * row->cpu_a * (W3_WARM + W3_MIN_STEPS) > W3_CASE_CAP;
+    cl_bench_log_row(c, row);
+}
+
+/* Least-squares slope of log(time) against log(unknowns). */
+static double w3_exponent(const w3_sweep *s, int j, int nn, int *used)
+{
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    int k = 0;
+    for (int i = 0; i < nn; i++)
+        if (isfinite(s->per_step[j][i])) {
+            double lx = log(s->unknowns[i]), ly = log(s->per_step[j][i]);
+            sx += lx;
+            sy += ly;
+            sxx += lx * lx;
+            sxy += lx * ly;
+            k++;
+        }
+    *used = k;
+    return k < 2 ? NAN : (k * sxy - sx * sy) / (k * sxx - sx * sx);
+}
+
+/* The fastest solver at the largest size any solver reached, or -1. */
+static int w3_best(const w3_sweep *s, int nn, int *at)
+{
+    for (int i = nn - 1; i >= 0; i--) {
+        int best = -1;
+        for (int j = 0; j < s->nsolver; j++)
+            if (isfinite(s->per_step[j][i]) &&
+                (best < 0 || s->per_step[j][i] < s->per_step[best][i]))
+                best = j;
+        if (best >= 0) {
+            *at = i;
+            return best;
+        }
+    }
+    return -1;
+}
+
+static void w3_fits(cl_bctx *c, const w3_sweep *s, double dt, int best)
+{
+    char kase[48];
+    snprintf(kase, sizeof kase, "dt=%g fit", dt);
+    for (int j = 0; j < s->nsolver; j++) {
+        int used;
+        double e = w3_exponent(s, j, c->plan.w3_nn, &used);
+        cl_bench_row *row = cl_bench_row_add(c, 3, kase);
+        snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 %s",
+                 s->name[j]);
+        cl_bench_judge(row, e, "exponent", j == best ? "<=" : "", 1.2);
+        cl_bench_note(row, "time per step ~ unknowns^p over %d sizes%s",
+                      used, j == best ? "; fastest at the largest n" : "");
+        cl_bench_log_row(c, row);
+    }
+}
+
+static int find_solver(const w3_sweep *s, const char *name)
+{
+    for (int j = 0; j < s->nsolver; j++)
+        if (!strcmp(s->name[j], name))
+            return j;
+    return -1;
+}
+
+/* The fastest solver against klu at n = 64 (or the largest n with both). */
+static void w3_versus_klu(cl_bctx *c, const w3_sweep *s, double dt, int best)
+{
+    int klu = find_solver(s, "klu"), i = c->plan.w3_nn - 1;
+    while (i > 0 && (c->plan.w3_n[i] > 64 || klu < 0 ||
+                     !isfinite(s->per_step[klu][i]) ||
+                     !isfinite(s->per_step[best][i])))
+        i--;
+    char kase[48];
+    snprintf(kase, sizeof kase, "dt=%g n=%d", dt, c->plan.w3_n[i]);
+    cl_bench_row *row = cl_bench_row_add(c, 3, kase);
+    snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 %s", s->name[best]);
+    snprintf(row->side_b, sizeof row->side_b, "semi-bdf2 klu");
+    if (klu < 0) {
+        cl_bench_note(row, "no klu solver registered");
+        return;
+    }
+    row->cpu_a = s->per_step[best][i];
+    row->cpu_b = s->per_step[klu][i];
+    bool at64 = c->plan.w3_n[i] == 64;
+    cl_bench_judge(row, row->cpu_b / row->cpu_a, "x", at64 ? ">=" : "",
+                   30.0);
+    cl_bench_note(row, "per step%s", at64 ? "" : "; goal is at n = 64");
+    cl_bench_log_row(c, row);
+}
+
+static void w3_dt(cl_bctx *c, double dt)
+{
+    w3_sweep s = {0};
+    for (int j = 0; cl_linsol_registry[j] && j < W3_MAX_SOLVERS; j++)
+        s.name[s.nsolver++] = cl_linsol_registry[j]->name;
+    for (int i = 0; i < c->plan.w3_nn; i++) {
+        char nset[32];
+        snprintf(nset, sizeof nset, "cloth.n=%d", c->plan.w3_n[i]);
+        const char *sets[] = {nset, NULL};
+        cl_bmodel bm;
+        cl_error err = {0};
+        for (int j = 0; j < s.nsolver; j++)
+            s.per_step[j][i] = NAN;
+        if (cl_bench_model(c, "hang", sets, &bm, &err)) {
+            cl_bench_note(cl_bench_row_add(c, 3, nset), "%s", err.msg);
+            continue;
+        }
+        s.unknowns[i] = (double)cl_model_system(bm.m)->n;
+        for (int j = 0; j < s.nsolver; j++) {
+            w3_case(c, &s, dt, i, j, bm.m);
+            cl_bench_tick(c);
+        }
+        cl_bench_model_free(&bm);
+    }
+    int at, best = w3_best(&s, c->plan.w3_nn, &at);
+    if (best < 0)
+        return;
+    w3_fits(c, &s, dt, best);
+    w3_versus_klu(c, &s, dt, best);
+}
+
+void cl_bench_w3(cl_bctx *c)
+{
+    static const double dts[W3_DTS] = {1e-3, 1e-2};
+    if (!cl_integrator_find("semi-bdf2")) {
+        cl_bench_note(cl_bench_row_add(c, 3, "semi-bdf2"),
+                      "semi-bdf2 is not registered");
+        return;
+    }
+    for (int k = 0; k < W3_DTS; k++)
+        w3_dt(c, dts[k]);
+}
+
+/* ---- workload 4 ------------------------------------------------------- */
+
+/* Deterministic numbers in [-1, 1). */
+static double uniform(unsigned long long *s)
+{
+    *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
+    return 2.0 * ((double)(*s >> 11) / 9007199254740992.0) - 1.0;
+}
+
+/* Rest positions moved by up to 5 % of a spacing per coordinate (many
+ * Type2 pairs on the buckling branch), velocities up to 0.1 m/s. */
+static void perturb(const cl_model *m, double *x, double *v, size_t n)
+{
+    double h = cl_model_cloth(m)->hu;
+    unsigned long long s = 2024;
+    for (size_t k = 0; k < n; k++) {
+        x[k] += 0.05 * h * uniform(&s);
+        v[k] = 0.1 * uniform(&s);
+    }
+}
+
+/* Seconds (CPU, wall) per call of force (jac = false) or jacobian. */
+static cl_status time_eval(const cl_system *sys, bool jac, const double *x,
+                           const double *v, double budget, double *cpu,
+                           double *wall, long *calls)
+{
+    size_t nval = 9 * sys->pattern->nnzb;
+    double *f = malloc(sys->n * sizeof *f);
+    double *jx = jac ? malloc(nval * sizeof *jx) : NULL;
+    double *jv = jac ? malloc(nval * sizeof *jv) : NULL;
+    double c0, w0, c1, w1;
+    cl_status rc = f && (!jac || (jx && jv)) ? CL_OK : CL_ENOMEM;
+    long k = 0;
+    cl_bench_clock(&c0, &w0);
+    for (c1 = c0; !rc && (k < 10 || c1 - c0 < budget);) {
+        for (int r = 0; r < 8 && !rc; r++, k++)
+            rc = jac ? sys->jacobian(sys->data, 0.0, x, v, f, jx, jv)
+                     : sys->force(sys->data, 0.0, x, v, f);
+        cl_bench_clock(&c1, &w1);
+    }
+    *cpu = (c1 - c0) / (double)k;
+    *wall = (w1 - w0) / (double)k;
+    *calls = k;
+    free(f);
+    free(jx);
+    free(jv);
+    return rc;
+}
+
+static void w4_row(cl_bctx *c, const cl_system *sys, bool jac,
+                   const double *x, const double *v, long pairs)
+{
+    cl_bench_row *row = cl_bench_row_add(c, 4, "hang n=64");
+    snprintf(row->side_a, sizeof row->side_a, "%s",
+             jac ? "jacobian (df/dx, df/dv)" : "force");
+    long calls;
+    cl_status rc = time_eval(sys, jac, x, v, c->plan.eval_budget,
+                             &row->cpu_a, &row->wall_a, &calls);
+    if (rc) {
+        cl_bench_note(row, "failed: %s", cl_status_name(rc));
+    } else {
+        cl_bench_judge(row, 1e9 * row->cpu_a / (double)pairs, "ns/pair",
+                       jac ? "" : "<=", 10.0);
+        cl_bench_note(row, "%ld pairs, %ld calls", pairs, calls);
+    }
+    cl_bench_log_row(c, row);
+}
+
+void cl_bench_w4(cl_bctx *c)
+{
+    const char *sets[] = {"cloth.n=64", NULL};
+    cl_bmodel bm;
+    cl_counts counts;
+    cl_error err = {0};
+    if (cl_bench_model(c, "hang", sets, &bm, &err) ||
+        cl_counts_measure(64, &counts, &err)) {
+        cl_bench_note(cl_bench_row_add(c, 4, "hang n=64"), "%s", err.msg);
+        return;
+    }
+    const cl_system *sys = cl_model_system(bm.m);
+    double *x = malloc(sys->n * sizeof *x), *v = malloc(sys->n * sizeof *v);
+    if (x && v && !cl_model_initial_state(bm.m, x, v)) {
+        perturb(bm.m, x, v, sys->n);
+        w4_row(c, sys, false, x, v, counts.type1 + counts.type2);
+        w4_row(c, sys, true, x, v, counts.type1 + counts.type2);
+    } else {
+        c->nomem = true;
+    }
+    free(x);
+    free(v);
+    cl_bench_model_free(&bm);
+}
+
+/* ---- workload 5 ------------------------------------------------------- */
+
+typedef struct {
+    const char *integrator, *problem, *what;
+    const char *sets[4];   /* NULL-terminated */
+    double dt;             /* 0: the problem's [run] dt */
+} w5_case;
+
+/* [run] dt and verlet_damping of the problem (dt given: that one). */
+static cl_status w5_opts(cl_config *cfg, double dt, cl_integrator_opts *io,
+                         cl_error *err)
+{
+    cl_status rc = cl_config_double(cfg, "run", "dt", dt, 0.0, INFINITY,
+                                    &io->dt, err);
+    if (!rc && dt > 0)
+        io->dt = dt;
+    if (!rc)
+        rc = cl_config_double(cfg, "run", "verlet_damping", 0.0, 0.0,
+                              0.999999, &io->vdamp, err);
+    return rc;
+}
+
+static void w5_one(cl_bctx *c, const w5_case *wc)
+{
+    cl_bench_row *row = cl_bench_row_add(c, 5, "30x30 cloth");
+    snprintf(row->side_a, sizeof row->side_a, "%s", wc->integrator);
+    snprintf(row->side_b, sizeof row->side_b, "%s", wc->what);
+    const cl_integrator_type *type = cl_integrator_find(wc->integrator);
+    cl_bmodel bm;
+    cl_error err = {0};
+    cl_integrator_opts io = {0};
+    if (!type) {
+        cl_bench_note(row, "%s is not registered", wc->integrator);
+    } else if (cl_bench_model(c, wc->problem, wc->sets, &bm, &err)) {
+        cl_bench_note(row, "%s", err.msg);
+    } else {
+        fixed_plan fp = {10, W5_CHUNK, W5_CHUNK, c->plan.eval_budget};
+        fixed_time ft = {.rc = w5_opts(bm.cfg, wc->dt, &io, &err)};
+        if (!ft.rc)
+            time_fixed(bm.m, type, &io, &fp, &ft);
+        if (ft.rc)
+            cl_bench_note(row, "failed: %s", *ft.msg ? ft.msg : err.msg);
+        row->cpu_a = ft.cpu;
+        row->wall_a = ft.wall;
+        if (!ft.rc) {
+            cl_bench_judge(row, (double)ft.steps / ft.cpu, "steps/s", ">=",
+                           25000.0);
+            cl_bench_note(row, "%ld steps of %g s (%s)", ft.steps, io.dt,
+                          wc->problem);
+        }
+        cl_bench_model_free(&bm);
+    }
+    cl_bench_log_row(c, row);
+}
+
+void cl_bench_w5(cl_bctx *c)
+{
+    static const w5_case cases[] = {
+        {"symplectic-euler", "ms-hang", "springs",
+         {"cloth.n=30", "spring-damping.kd=0", NULL}, 2e-4},
+        {"verlet", "ms-hang", "springs",
+         {"cloth.n=30", "spring-damping.kd=0", NULL}, 2e-4},
+        {"symplectic-euler", "ms-hang", "springs + axial damping",
+         {"cloth.n=30", NULL, NULL}, 2e-4},
+        {"verlet", "ms-hang", "springs + axial damping",
+         {"cloth.n=30", NULL, NULL}, 2e-4},
+        {"verlet-pbd", "verlet-scene1", "PBD level 2, 10 iterations",
+         {"cloth.n=30", "pbd.levels=2", "pbd.iterations=10"}, 0.0},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+        w5_one(c, &cases[k]);
+        cl_bench_tick(c);
+    }
+}

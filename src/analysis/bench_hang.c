@@ -1,0 +1,455 @@
+/* Benchmark workloads on hang with cvode-bdf (analysis/bench.h): the choice
+ * of linear solver, 1 (against the scipy peer, run in the background), 2
+ * (against klu-full; large n) and 6 (peak memory of a child run). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analysis/bench_impl.h"
+#include "io/state.h"
+#include "linalg/linsol.h"
+
+#define RTOL 1e-4
+#define ATOL 1e-6
+#define REF_RTOL 1e-10
+#define REF_ATOL 1e-12
+#define TIGHTEST 1e-8     /* rtol limit when matching the peer's error */
+#define RSS_T_END 0.02    /* workload 6: long enough for the first setups */
+
+/* ---- the peer in the background ------------------------------------- */
+
+static void start_peer(cl_bctx *c, cl_bpeer *p)
+{
+    char problem[4096], nset[32], tset[48], budget[32];
+    snprintf(problem, sizeof problem, "%s/hang.ini", c->o->problems);
+    snprintf(nset, sizeof nset, "cloth.n=%d", p->n);
+    snprintf(tset, sizeof tset, "run.t_end=%.17g", p->t_end);
+    snprintf(budget, sizeof budget, "%g", c->plan.peer_budget);
+    char *argv[] = {c->python, (char *)c->o->peer, problem, "--set", nset,
+                    "--set", tset, "--set", "run.rtol=1e-4", "--set",
+                    "run.atol=1e-6", "--max-cpu", budget, "--out", p->state,
+                    NULL};
+    cl_error err = {0};
+    p->started = true;
+    cl_bench_log(c, "  scipy peer on hang n = %d, T = %g started in the "
+                 "background", p->n, p->t_end);
+    if (cl_child_start(&p->child, argv, p->stats, p->errlog, &err)) {
+        p->ended = true;
+        p->use = (cl_child_usage){.status = 127};
+        cl_bench_log(c, "    %s", err.msg);
+    }
+}
+
+void cl_bench_peers_start(cl_bctx *c)
+{
+    cl_error err = {0};
+    c->peers_on = true;
+    if (cl_child_python(c->python, sizeof c->python, &err)) {
+        cl_bench_copy(c->no_python, sizeof c->no_python, err.msg);
+        return;
+    }
+    for (int k = 0; k < c->plan.w1_cases; k++) {
+        cl_bpeer *p = &c->peer[k];
+        p->n = c->plan.w1_n[k];
+        p->t_end = c->plan.w1_t[k];
+        const char *dir = c->o->scratch;
+        snprintf(p->state, sizeof p->state, "%s/peer-%d.csv", dir, k);
+        snprintf(p->stats, sizeof p->stats, "%s/peer-%d.out", dir, k);
+        snprintf(p->errlog, sizeof p->errlog, "%s/peer-%d.err", dir, k);
+    }
+    cl_bench_tick(c);
+}
+
+void cl_bench_tick(cl_bctx *c)
+{
+    bool running = false;
+    for (int k = 0; k < c->plan.w1_cases; k++) {
+        cl_bpeer *p = &c->peer[k];
+        if (p->started && !p->ended) {
+            p->ended = cl_child_done(&p->child, &p->use);
+            running |= !p->ended;
+            if (p->ended)
+                cl_bench_log(c, "  scipy peer n = %d ended (%.3g s CPU)",
+                             p->n, p->use.cpu);
+        }
+    }
+    bool can = c->peers_on && !*c->no_python;
+    for (int k = 0; can && !running && k < c->plan.w1_cases; k++)
+        if (!c->peer[k].started) {
+            start_peer(c, &c->peer[k]);
+            running = true;
+        }
+}
+
+static void wait_peer(cl_bctx *c, cl_bpeer *p)
+{
+    while (!p->ended) {
+        cl_bench_tick(c);
+        if (p->started && !p->ended) {
+            cl_child_wait(&p->child, &p->use);
+            p->ended = true;
+        }
+    }
+    cl_bench_tick(c);
+}
+
+void cl_bench_peers_stop(cl_bctx *c)
+{
+    for (int k = 0; k < c->plan.w1_cases; k++)
+        if (c->peer[k].started && !c->peer[k].ended)
+            cl_child_wait(&c->peer[k].child, &c->peer[k].use);
+}
+
+/* The peer's "name,value" statistics. */
+typedef struct {
+    double cpu, wall, t;
+    long steps;
+    bool finished;
+} peer_stats;
+
+static bool read_peer_stats(const char *path, peer_stats *s)
+{
+    FILE *fp = fopen(path, "r");
+    char line[256], status[64] = "";
+    int got = 0;
+    *s = (peer_stats){NAN, NAN, NAN, 0, false};
+    if (!fp)
+        return false;
+    while (fgets(line, sizeof line, fp)) {
+        got += sscanf(line, "cpu,%lf", &s->cpu) == 1;
+        got += sscanf(line, "wall,%lf", &s->wall) == 1;
+        got += sscanf(line, "t,%lf", &s->t) == 1;
+        got += sscanf(line, "steps,%ld", &s->steps) == 1;
+        got += sscanf(line, "status,%63s", status) == 1;
+    }
+    fclose(fp);
+    s->finished = !strcmp(status, "finished");
+    return got == 5;
+}
+
+/* The last line of a file (the peer's message), into buf. */
+static void last_line(const char *path, char *buf, size_t len)
+{
+    FILE *fp = fopen(path, "r");
+    char line[512];
+    snprintf(buf, len, "no message");
+    while (fp && fgets(line, sizeof line, fp))
+        if (line[strspn(line, " \n")]) {
+            line[strcspn(line, "\n")] = '\0';
+            snprintf(buf, len, "%s", line);
+        }
+    if (fp)
+        fclose(fp);
+}
+
+/* Free positions of the peer's final state (3 nfree), or NULL. */
+static double *peer_positions(cl_bctx *c, const cl_bpeer *p, size_t nfree)
+{
+    char nset[32];
+    snprintf(nset, sizeof nset, "cloth.n=%d", p->n);
+    const char *sets[] = {nset, NULL};
+    cl_bmodel bm;
+    cl_error err = {0};
+    if (cl_bench_model(c, "hang", sets, &bm, &err))
+        return NULL;
+    const cl_cloth *cl = cl_model_cloth(bm.m);
+    double *x = malloc(3 * cl->np * sizeof *x);
+    double *v = malloc(3 * cl->np * sizeof *v);
+    double *xf = malloc(3 * nfree * sizeof *xf);
+    bool ok = x && v && xf && cl->nfree == nfree &&
+              cl_state_read(p->state, cl->np, x, v, &err) == CL_OK;
+    if (ok)
+        cl_cloth_gather(cl, x, xf);
+    free(x);
+    free(v);
+    cl_bench_model_free(&bm);
+    if (!ok) {
+        free(xf);
+        return NULL;
+    }
+    return xf;
+}
+
+/* ---- the best solver ------------------------------------------------- */
+
+static void choose_row(cl_bctx *c, const char *kase, const cl_brun *r)
+{
+    cl_bench_row *row = cl_bench_row_add(c, 0, kase);
+    cl_bench_side(row->side_a, sizeof row->side_a, r->linsol);
+    if (r->rc) {
+        cl_bench_note(row, "failed: %s", r->msg);
+        return;
+    }
+    row->cpu_a = r->cpu;
+    row->wall_a = r->wall;
+    cl_bench_note(row, "%ld steps", r->steps);
+    if (*r->used && strcmp(r->used, r->linsol))
+        cl_bench_note(row, "solver used: %s", r->used);
+}
+
+/* Time one candidate; keep it if it is the fastest so far. */
+static void choose_one(cl_bctx *c, const char *kase, const char *name,
+                       double *best_cpu)
+{
+    int k = c->plan.select;
+    const cl_brun *r = cl_bench_hang(c, c->plan.w1_n[k], c->plan.w1_t[k],
+                                     name, RTOL, ATOL);
+    if (!r)
+        return;
+    choose_row(c, kase, r);
+    if (!r->rc && r->cpu < *best_cpu) {
+        *best_cpu = r->cpu;
+        cl_bench_copy(c->best, sizeof c->best, name);
+    }
+}
+
+void cl_bench_choose(cl_bctx *c)
+{
+    int k = c->plan.select;
+    double best_cpu = INFINITY;
+    char kase[48], side[48];
+    snprintf(kase, sizeof kase, "choice n=%d T=%g", c->plan.w1_n[k],
+             c->plan.w1_t[k]);
+    c->linsol_ok = cl_integrator_find("cvode-bdf")->takes_linsol;
+    if (!c->linsol_ok) {
+        cl_bench_row *row = cl_bench_row_add(c, 0, kase);
+        cl_bench_side(row->side_a, sizeof row->side_a, "");
+        cl_bench_note(row, "cvode-bdf takes no --linsol: its default "
+                           "solver is used throughout");
+        return;
+    }
+    size_t first = c->t->n;
+    choose_one(c, kase, "klu-full", &best_cpu);
+    for (int j = 0; cl_linsol_registry[j]; j++)
+        choose_one(c, kase, cl_linsol_registry[j]->name, &best_cpu);
+    cl_bench_side(side, sizeof side, c->best);
+    for (size_t j = first; j < c->t->n; j++) {
+        cl_bench_row *row = &c->t->row[j];
+        cl_bench_judge(row, row->cpu_a / best_cpu, "x best", "", NAN);
+        if (!strcmp(row->side_a, side))
+            cl_bench_note(row, "best");
+        cl_bench_log_row(c, row);
+    }
+}
+
+/* ---- workload 1 ------------------------------------------------------- */
+
+/* Peer figures into the row; its final positions (NULL if it did not
+ * finish, or failed). */
+static double *w1_peer(cl_bctx *c, cl_bpeer *p, cl_bench_row *row,
+                       size_t nfree)
+{
+    peer_stats ps;
+    char msg[512];
+    if (*c->no_python) {
+        cl_bench_note(row, "no peer: %s", c->no_python);
+        return NULL;
+    }
+    wait_peer(c, p);
+    if (!p->use.exited || p->use.status || !read_peer_stats(p->stats, &ps)) {
+        last_line(p->errlog, msg, sizeof msg);
+        cl_bench_note(row, "peer failed: %s", msg);
+        return NULL;
+    }
+    row->cpu_b = ps.cpu;
+    row->wall_b = ps.wall;
+    cl_bench_note(row, "peer %ld steps, %.3g s CPU with start-up", ps.steps,
+                  p->use.cpu);
+    if (!ps.finished) {
+        cl_bench_note(row, "peer stopped by its %g s budget at t = %.3g s: "
+                      "its time and the ratio are lower bounds, errors not "
+                      "compared", c->plan.peer_budget, ps.t);
+        return NULL;
+    }
+    double *x = peer_positions(c, p, nfree);
+    if (!x)
+        cl_bench_note(row, "cannot read the peer's state %s", p->state);
+    return x;
+}
+
+/* clothode at rtol, tightened until its error is not above err_b. */
+static const cl_brun *w1_match(cl_bctx *c, int n, double T,
+                               const cl_brun *ref, double err_b,
+                               double *err_a)
+{
+    double rtol = RTOL;
+    const cl_brun *a = cl_bench_hang(c, n, T, c->best, rtol, ATOL);
+    while (a && !a->rc) {
+        *err_a = cl_bench_distance(a->x, ref->x, a->nfree);
+        if (!(*err_a > err_b) || rtol <= TIGHTEST * 1.01)
+            break;
+        rtol *= 0.1;
+        a = cl_bench_hang(c, n, T, c->best, rtol, ATOL * rtol / RTOL);
+    }
+    return a;
+}
+
+static void w1_case(cl_bctx *c, int k)
+{
+    int n = c->plan.w1_n[k];
+    double T = c->plan.w1_t[k], err_a = NAN;
+    char kase[48];
+    snprintf(kase, sizeof kase, "hang n=%d T=%g", n, T);
+    cl_bench_row *row = cl_bench_row_add(c, 1, kase);
+    snprintf(row->side_b, sizeof row->side_b, "scipy BDF rtol 1e-4");
+    const cl_brun *ref = cl_bench_hang(c, n, T, c->best, REF_RTOL, REF_ATOL);
+    if (!ref || ref->rc) {
+        cl_bench_note(row, "reference failed: %s", ref ? ref->msg : "");
+        return;
+    }
+    double *xb = w1_peer(c, &c->peer[k], row, ref->nfree);
+    if (xb)
+        row->error_b = cl_bench_distance(xb, ref->x, ref->nfree);
+    free(xb);
+    const cl_brun *a = w1_match(c, n, T, ref, row->error_b, &err_a);
+    if (!a || a->rc) {
+        cl_bench_note(row, "clothode failed: %s", a ? a->msg : "");
+        return;
+    }
+    snprintf(row->side_a, sizeof row->side_a, "cvode-bdf %s rtol %g",
+             *c->best ? c->best : "(default)", a->rtol);
+    row->cpu_a = a->cpu;
+    row->wall_a = a->wall;
+    row->error_a = err_a;
+    cl_bench_judge(row, row->cpu_b / row->cpu_a, "x", ">=", 100.0);
+    if (row->error_a > row->error_b) {
+        row->met = 0;
+        cl_bench_note(row, "error above the peer's at rtol %g", a->rtol);
+    }
+    if (*a->used && strcmp(a->used, a->linsol))
+        cl_bench_note(row, "solver used: %s", a->used);
+}
+
+void cl_bench_w1(cl_bctx *c)
+{
+    for (int k = 0; k < c->plan.w1_cases; k++) {
+        w1_case(c, k);
+        cl_bench_log_row(c, &c->t->row[c->t->n - 1]);
+    }
+}
+
+/* ---- workload 2 ------------------------------------------------------- */
+
+/* The best solver alone at n: CPU seconds against cap. */
+static const cl_brun *w2_alone(cl_bctx *c, int n, double T, double cap)
+{
+    char kase[48];
+    snprintf(kase, sizeof kase, "hang n=%d T=%g", n, T);
+    cl_bench_row *row = cl_bench_row_add(c, 2, kase);
+    cl_bench_side(row->side_a, sizeof row->side_a, c->best);
+    const cl_brun *a = cl_bench_hang(c, n, T, c->best, RTOL, ATOL);
+    if (a && !a->rc) {
+        row->cpu_a = a->cpu;
+        row->wall_a = a->wall;
+        cl_bench_judge(row, a->cpu, "s", "<=", cap);
+        cl_bench_note(row, "%ld steps", a->steps);
+    } else {
+        cl_bench_note(row, "failed: %s", a ? a->msg : "");
+    }
+    cl_bench_log_row(c, row);
+    return a && !a->rc ? a : NULL;
+}
+
+static const cl_brun *w2_ratio(cl_bctx *c, int n, double T)
+{
+    char kase[48];
+    snprintf(kase, sizeof kase, "hang n=%d T=%g", n, T);
+    cl_bench_row *row = cl_bench_row_add(c, 2, kase);
+    cl_bench_side(row->side_a, sizeof row->side_a, c->best);
+    cl_bench_side(row->side_b, sizeof row->side_b, "klu-full");
+    const cl_brun *a = cl_bench_hang(c, n, T, c->best, RTOL, ATOL);
+    const cl_brun *b = c->linsol_ok ? cl_bench_hang(c, n, T, "klu-full",
+                                                    RTOL, ATOL) : NULL;
+    if (!a || !b || a->rc || b->rc) {
+        cl_bench_note(row, "%s", !c->linsol_ok ? "cvode-bdf takes no "
+                      "--linsol: no klu-full to compare with" :
+                      a && a->rc ? a->msg : b && b->rc ? b->msg : "");
+        cl_bench_log_row(c, row);
+        return a && !a->rc ? a : NULL;
+    }
+    row->cpu_a = a->cpu;
+    row->cpu_b = b->cpu;
+    row->wall_a = a->wall;
+    row->wall_b = b->wall;
+    cl_bench_judge(row, b->cpu / a->cpu, "x", ">=", 20.0);
+    cl_bench_note(row, "%ld vs %ld steps, final positions %.2g m apart",
+                  a->steps, b->steps,
+                  cl_bench_distance(a->x, b->x, a->nfree));
+    cl_bench_log_row(c, row);
+    return a;
+}
+
+void cl_bench_w2(cl_bctx *c)
+{
+    double T = c->plan.w2_t;
+    const cl_brun *a32 = w2_ratio(c, c->plan.w2_n, T);
+    if (!c->plan.w2_large)
+        return;
+    const cl_brun *a64 = w2_alone(c, 2 * c->plan.w2_n, T, 60.0);
+    double predicted = a32 && a64 ? a64->cpu * (a64->cpu / a32->cpu) : NAN;
+    if (predicted <= c->plan.w2_cap) {
+        w2_alone(c, 4 * c->plan.w2_n, T, 300.0);
+        return;
+    }
+    char kase[48];
+    snprintf(kase, sizeof kase, "hang n=%d T=%g", 4 * c->plan.w2_n, T);
+    cl_bench_row *row = cl_bench_row_add(c, 2, kase);
+    cl_bench_side(row->side_a, sizeof row->side_a, c->best);
+    cl_bench_judge(row, NAN, "s", "<=", 300.0);
+    cl_bench_note(row, "skipped: n = %d -> %d growth predicts %.0f s CPU "
+                  "(cap %.0f s)", c->plan.w2_n, 2 * c->plan.w2_n, predicted,
+                  c->plan.w2_cap);
+    cl_bench_log_row(c, row);
+}
+
+/* ---- workload 6 ------------------------------------------------------- */
+
+static void w6_one(cl_bctx *c, int n, const char *linsol, size_t unknowns)
+{
+    char kase[48], problem[4096], nset[32], t_end[32], out[4096];
+    snprintf(kase, sizeof kase, "hang n=%d T=%g", n, RSS_T_END);
+    snprintf(problem, sizeof problem, "%s/hang.ini", c->o->problems);
+    snprintf(nset, sizeof nset, "cloth.n=%d", n);
+    snprintf(t_end, sizeof t_end, "%g", RSS_T_END);
+    snprintf(out, sizeof out, "%s/rss-%s", c->o->scratch,
+             *linsol ? linsol : "default");
+    cl_bench_row *row = cl_bench_row_add(c, 6, kase);
+    cl_bench_side(row->side_a, sizeof row->side_a, linsol);
+    char *argv[] = {(char *)c->o->self, "run", problem, "--set", nset,
+                    "--t-end", t_end, "--frames", "0", "--samples", "1",
+                    "--format", "csv", "--quiet", "--out", out,
+                    *linsol ? "--linsol" : NULL, (char *)linsol, NULL};
+    cl_child_usage u;
+    cl_error err = {0};
+    cl_bench_log(c, "  %s: child run for its peak memory ...", row->side_a);
+    if (cl_child_run(argv, NULL, NULL, &u, &err)) {
+        cl_bench_note(row, "%s", err.msg);
+    } else {
+        row->cpu_a = u.cpu;
+        row->wall_a = u.wall;
+        cl_bench_judge(row, 1024.0 * (double)u.maxrss_kb / (double)unknowns,
+                       "B/unknown", "", NAN);
+        cl_bench_note(row, "peak RSS %.1f MiB for %zu unknowns",
+                      u.maxrss_kb / 1024.0, unknowns);
+    }
+    cl_bench_log_row(c, row);
+}
+
+void cl_bench_w6(cl_bctx *c)
+{
+    int n = c->plan.w6_n;
+    char nset[32];
+    snprintf(nset, sizeof nset, "cloth.n=%d", n);
+    const char *sets[] = {nset, NULL};
+    cl_bmodel bm;
+    cl_error err = {0};
+    if (cl_bench_model(c, "hang", sets, &bm, &err)) {
+        cl_bench_note(cl_bench_row_add(c, 6, "hang"), "%s", err.msg);
+        return;
+    }
+    size_t unknowns = 6 * cl_model_cloth(bm.m)->nfree;
+    cl_bench_model_free(&bm);
+    w6_one(c, n, c->best, unknowns);
+    if (c->linsol_ok && strcmp(c->best, "klu-full"))
+        w6_one(c, n, "klu-full", unknowns);
+}

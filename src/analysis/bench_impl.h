@@ -1,0 +1,135 @@
+/* Internals shared by the benchmark files (analysis/bench*.c): the run
+ * context, the size plan of a full or quick run, cached timed runs of
+ * cvode-bdf on hang, rows, clocks.  Not part of the library's interface. */
+#ifndef CL_BENCH_IMPL_H
+#define CL_BENCH_IMPL_H
+
+#include "analysis/bench.h"
+#include "analysis/child.h"
+#include "integrators/integrator.h"
+#include "io/config.h"
+#include "model/model.h"
+
+/* Sizes and budgets of a run (full or --quick). */
+typedef struct {
+    int w1_cases;            /* workload 1: (n, T) cases */
+    int w1_n[2];
+    double w1_t[2];
+    int select;              /* the case of workload 1 that picks the solver */
+    double peer_budget;      /* CPU seconds per peer run */
+    int w2_n;                /* workload 2: best vs klu-full at n, T */
+    double w2_t;
+    bool w2_large;           /* n = 64 and 128 as well */
+    double w2_cap;           /* skip n = 128 when predicted above (s) */
+    int w3_nn;               /* workload 3: sizes */
+    int w3_n[4];
+    double w3_budget;        /* CPU seconds per (solver, n, dt) */
+    double eval_budget;      /* workloads 4 and 5: seconds per case */
+    int w6_n;
+} cl_bplan;
+
+/* A timed cvode-bdf run on hang, kept for the whole bench run. */
+typedef struct {
+    int n;
+    double t_end, rtol, atol;
+    char linsol[32];         /* as asked ("" for the default) */
+    cl_status rc;
+    char msg[240];           /* the failure, if rc */
+    double cpu, wall;        /* create + advance + free */
+    long steps;
+    char used[32];           /* the solver(s) that worked (cl_stats) */
+    size_t nfree;
+    double *x;               /* free positions at t_end, 3 nfree */
+} cl_brun;
+
+/* A peer run in the background. */
+typedef struct {
+    int n;
+    double t_end;
+    cl_child child;
+    bool started, ended;
+    cl_child_usage use;
+    char state[4096], stats[4096], errlog[4096];
+} cl_bpeer;
+
+typedef struct {
+    const cl_bench_opts *o;
+    cl_bplan plan;
+    cl_bench_table *t;
+    cl_bench_row spare;      /* written when the table cannot grow */
+    bool nomem;
+    cl_brun **runs;
+    size_t nrun;
+    bool linsol_ok;          /* cvode-bdf takes --linsol */
+    char best[32];           /* "" for cvode-bdf's default */
+    bool peers_on;           /* workload 1 runs its peers */
+    char python[512];
+    char no_python[400];     /* why there is no peer, or "" */
+    cl_bpeer peer[2];
+} cl_bctx;
+
+/* A problem with assignments, and its configuration (kept alive). */
+typedef struct {
+    cl_config *cfg;
+    cl_model *m;
+} cl_bmodel;
+
+/* ---- bench_runs.c --------------------------------------------------- */
+
+cl_status cl_bench_model(const cl_bctx *c, const char *problem,
+                         const char *const *sets, cl_bmodel *bm,
+                         cl_error *err);
+void cl_bench_model_free(cl_bmodel *bm);
+
+/* Process CPU and monotonic wall clocks (s). */
+void cl_bench_clock(double *cpu, double *wall);
+
+/* cvode-bdf on hang at n, t_end (linsol "" for the default), cached;
+ * NULL only when out of memory (c->nomem set).  A failed run has rc set. */
+const cl_brun *cl_bench_hang(cl_bctx *c, int n, double t_end,
+                             const char *linsol, double rtol, double atol);
+
+/* Largest distance between two sets of nfree positions. */
+double cl_bench_distance(const double *x, const double *y, size_t nfree);
+
+/* A new row (NaN figures, no goal), or c->spare if the table is full. */
+cl_bench_row *cl_bench_row_add(cl_bctx *c, int workload, const char *kase);
+
+/* Set the figure, its unit and goal, and whether it is met. */
+void cl_bench_judge(cl_bench_row *r, double ratio, const char *unit,
+                    const char *goal, double target);
+
+/* Copy src into dst[len], cut if need be. */
+void cl_bench_copy(char *dst, size_t len, const char *src);
+
+/* Append "; "-separated text to the row's note. */
+void cl_bench_note(cl_bench_row *r, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+
+/* Progress: a line on the log. */
+void cl_bench_log(const cl_bctx *c, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+void cl_bench_log_row(const cl_bctx *c, const cl_bench_row *r);
+
+/* Keep the background peers going (poll; start the next). */
+void cl_bench_tick(cl_bctx *c);
+
+/* "cvode-bdf LINSOL" or "cvode-bdf (default)". */
+void cl_bench_side(char *buf, size_t len, const char *linsol);
+
+/* ---- bench_hang.c: workloads 1, 2, 6 and the choice of solver -------- */
+
+void cl_bench_peers_start(cl_bctx *c);
+void cl_bench_choose(cl_bctx *c);
+void cl_bench_w1(cl_bctx *c);
+void cl_bench_w2(cl_bctx *c);
+void cl_bench_w6(cl_bctx *c);
+void cl_bench_peers_stop(cl_bctx *c);
+
+/* ---- bench_cost.c: workloads 3, 4, 5 -------------------------------- */
+
+void cl_bench_w3(cl_bctx *c);
+void cl_bench_w4(cl_bctx *c);
+void cl_bench_w5(cl_bctx *c);
+
+#endif

@@ -1,0 +1,230 @@
+/* Benchmark plumbing (analysis/bench_impl.h): problems, clocks, cached
+ * cvode-bdf runs on hang, rows and progress lines. */
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "analysis/bench_impl.h"
+
+cl_status cl_bench_model(const cl_bctx *c, const char *problem,
+                         const char *const *sets, cl_bmodel *bm,
+                         cl_error *err)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s.ini", c->o->problems, problem);
+    bm->m = NULL;
+    bm->cfg = cl_config_alloc();
+    cl_status rc = bm->cfg ? cl_config_load(bm->cfg, path, err)
+                           : cl_error_set(err, CL_ENOMEM, "out of memory");
+    for (; !rc && sets && *sets; sets++)
+        rc = cl_config_set(bm->cfg, *sets, err);
+    if (!rc)
+        rc = cl_model_create(bm->cfg, &bm->m, err);
+    if (rc)
+        cl_bench_model_free(bm);
+    return rc;
+}
+
+void cl_bench_model_free(cl_bmodel *bm)
+{
+    cl_model_free(bm->m);
+    cl_config_free(bm->cfg);
+    bm->m = NULL;
+    bm->cfg = NULL;
+}
+
+void cl_bench_clock(double *cpu, double *wall)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    *cpu = (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    *wall = (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void cl_bench_side(char *buf, size_t len, const char *linsol)
+{
+    snprintf(buf, len, "cvode-bdf %s", *linsol ? linsol : "(default)");
+}
+
+/* Integrate: create, advance to t_end, statistics, free; times around
+ * all of it. */
+static cl_status timed_cvode(cl_model *m, cl_brun *r, cl_error *err)
+{
+    const cl_system *sys = cl_model_system(m);
+    const cl_integrator_type *type = cl_integrator_find("cvode-bdf");
+    cl_integrator_opts io = {.rtol = r->rtol, .atol = r->atol,
+                             .linsol = r->linsol};
+    double *v = malloc(sys->n * sizeof *v);
+    r->x = malloc(sys->n * sizeof *r->x);
+    r->nfree = sys->n / 3;
+    if (!v || !r->x || !type) {
+        free(v);
+        return cl_error_set(err, CL_ENOMEM, "out of memory (bench)");
+    }
+    cl_status rc = cl_model_initial_state(m, r->x, v);
+    double c0, w0, c1, w1;
+    void *state = NULL;
+    cl_stats st = {0};
+    cl_bench_clock(&c0, &w0);
+    if (!rc && !(rc = type->create(sys, &io, 0.0, r->x, v, &state, err)))
+        rc = type->advance(state, r->t_end, r->x, v, err);
+    if (state) {
+        type->stats(state, &st);
+        type->free(state);
+    }
+    cl_bench_clock(&c1, &w1);
+    r->cpu = c1 - c0;
+    r->wall = w1 - w0;
+    r->steps = st.steps;
+    cl_bench_copy(r->used, sizeof r->used, st.linsol);
+    free(v);
+    return rc;
+}
+
+static const cl_brun *find_run(const cl_bctx *c, int n, double t_end,
+                               const char *linsol, double rtol)
+{
+    for (size_t k = 0; k < c->nrun; k++) {
+        const cl_brun *r = c->runs[k];
+        if (r->n == n && r->t_end == t_end && r->rtol == rtol &&
+            !strcmp(r->linsol, linsol))
+            return r;
+    }
+    return NULL;
+}
+
+static void run_hang(cl_bctx *c, cl_brun *r)
+{
+    char nset[32];
+    snprintf(nset, sizeof nset, "cloth.n=%d", r->n);
+    const char *sets[] = {nset, NULL};
+    cl_bmodel bm;
+    cl_error err = {0};
+    char side[64];
+    cl_bench_side(side, sizeof side, r->linsol);
+    cl_bench_log(c, "  %s on hang n = %d, T = %g, rtol %g ...", side, r->n,
+                 r->t_end, r->rtol);
+    r->rc = cl_bench_model(c, "hang", sets, &bm, &err);
+    if (!r->rc) {
+        r->rc = timed_cvode(bm.m, r, &err);
+        cl_bench_model_free(&bm);
+    }
+    if (r->rc)
+        cl_bench_copy(r->msg, sizeof r->msg, err.msg);
+    cl_bench_log(c, "    %s: %.3g s CPU, %ld steps%s%s", r->rc ? "failed" :
+                 "done", r->cpu, r->steps, r->rc ? ": " : "", r->msg);
+}
+
+const cl_brun *cl_bench_hang(cl_bctx *c, int n, double t_end,
+                             const char *linsol, double rtol, double atol)
+{
+    const cl_brun *have = find_run(c, n, t_end, linsol, rtol);
+    if (have)
+        return have;
+    cl_brun **grown = realloc(c->runs, (c->nrun + 1) * sizeof *grown);
+    cl_brun *r = calloc(1, sizeof *r);
+    if (grown)
+        c->runs = grown;
+    if (!grown || !r) {
+        free(r);
+        c->nomem = true;
+        return NULL;
+    }
+    *r = (cl_brun){.n = n, .t_end = t_end, .rtol = rtol, .atol = atol};
+    cl_bench_copy(r->linsol, sizeof r->linsol, linsol);
+    c->runs[c->nrun++] = r;
+    run_hang(c, r);
+    cl_bench_tick(c);
+    return r;
+}
+
+double cl_bench_distance(const double *x, const double *y, size_t nfree)
+{
+    double m = 0.0;
+    for (size_t p = 0; p < nfree; p++) {
+        double d0 = x[3 * p] - y[3 * p], d1 = x[3 * p + 1] - y[3 * p + 1];
+        double d2 = x[3 * p + 2] - y[3 * p + 2];
+        m = fmax(m, sqrt(d0 * d0 + d1 * d1 + d2 * d2));
+    }
+    return m;
+}
+
+cl_bench_row *cl_bench_row_add(cl_bctx *c, int workload, const char *kase)
+{
+    cl_bench_table *t = c->t;
+    cl_bench_row *r = &c->spare;
+    if (t->n == t->cap) {
+        size_t cap = t->cap ? 2 * t->cap : 64;
+        cl_bench_row *grown = realloc(t->row, cap * sizeof *grown);
+        if (grown) {
+            t->row = grown;
+            t->cap = cap;
+        }
+    }
+    if (t->n < t->cap)
+        r = &t->row[t->n++];
+    else
+        c->nomem = true;
+    *r = (cl_bench_row){.workload = workload, .met = -1};
+    cl_bench_copy(r->kase, sizeof r->kase, kase);
+    r->cpu_a = r->cpu_b = r->wall_a = r->wall_b = NAN;
+    r->error_a = r->error_b = r->ratio = r->target = NAN;
+    return r;
+}
+
+void cl_bench_judge(cl_bench_row *r, double ratio, const char *unit,
+                    const char *goal, double target)
+{
+    r->ratio = ratio;
+    snprintf(r->unit, sizeof r->unit, "%s", unit);
+    snprintf(r->goal, sizeof r->goal, "%s", goal);
+    r->target = *goal ? target : NAN;
+    if (!*goal || !isfinite(ratio))
+        r->met = -1;
+    else
+        r->met = goal[0] == '>' ? ratio >= target : ratio <= target;
+}
+
+void cl_bench_copy(char *dst, size_t len, const char *src)
+{
+    size_t n = strlen(src);
+    n = n < len ? n : len - 1;
+    memcpy(dst, src, n);
+    dst[n] = '\0';
+}
+
+void cl_bench_note(cl_bench_row *r, const char *fmt, ...)
+{
+    size_t len = strlen(r->note);
+    if (len && len + 2 < sizeof r->note) {
+        strcpy(r->note + len, "; ");
+        len += 2;
+    }
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(r->note + len, sizeof r->note - len, fmt, ap);
+    va_end(ap);
+}
+
+void cl_bench_log(const cl_bctx *c, const char *fmt, ...)
+{
+    if (!c->o->log)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    vfprintf(c->o->log, fmt, ap);
+    va_end(ap);
+    fputc('\n', c->o->log);
+    fflush(c->o->log);
+}
+
+void cl_bench_log_row(const cl_bctx *c, const cl_bench_row *r)
+{
+    cl_bench_log(c, "[%d] %s: %s %s%s -> %.4g %s%s%s%s", r->workload,
+                 r->kase, r->side_a, *r->side_b ? "vs " : "", r->side_b,
+                 r->ratio, r->unit, r->met == 1 ? " (met)" : r->met == 0 ?
+                 " (not met)" : "", *r->note ? "; " : "", r->note);
+}

@@ -1,0 +1,123 @@
+/* CVODE's and IDA's Newton systems solved through the half-size matrix
+ * (SPEC 1, 5): a SUNLinearSolver that eliminates one block of the 2n x 2n
+ * system and hands the n x n remainder (3 unknowns per free particle) to a
+ * cl_linsol (klu, pcg, pcg-jacobi, cholmod, auto; linalg/linsol.h).
+ *
+ * Notation: n = 3 (free particles), M = diag(mass), Kx = df/dx, Kv = df/dv
+ * (the system's block Jacobians, evaluated at the solver's request),
+ * r = (rx, rv) the right-hand side, z = (zx, zv) the solution.
+ *
+ * CVODE (y' = (v, M^-1 f)): the Newton matrix is I - gamma J with
+ * J = [[0, I], [M^-1 Kx, M^-1 Kv]]:
+ *
+ *     zx - gamma zv = rx
+ *     -gamma M^-1 Kx zx + zv - gamma M^-1 Kv zv = rv
+ *
+ * multiply the second row by M and put zx = rx + gamma zv into it:
+ *
+ *     (M - gamma Kv - gamma^2 Kx) zv = M rv + gamma Kx rx,
+ *     zx = rx + gamma zv,
+ *
+ * the cl_linsol matrix A = M - a Kv - b Kx with a = gamma, b = gamma^2.
+ *
+ * IDA (F = [x' - v; M v' - f]): the iteration matrix is
+ * G = [[cj I, -I], [-Kx, cj M - Kv]]:
+ *
+ *     cj zx - zv = rx
+ *     -Kx zx + (cj M - Kv) zv = rv
+ *
+ * with zv = cj zx - rx from the first row, the second gives
+ * (cj^2 M - cj Kv - Kx) zx = rv + (cj M - Kv) rx; divided by cj^2:
+ *
+ *     (M - Kv / cj - Kx / cj^2) zx = (rv + cj M rx - Kv rx) / cj^2,
+ *     zv = cj zx - rx,
+ *
+ * A with a = 1/cj, b = 1/cj^2.
+ *
+ * Residuals.  With the eliminated block satisfied exactly, the residual of
+ * the full system is (0, M^-1 rho) for CVODE and (0, cj^2 rho) for IDA,
+ * rho the residual of the half-size system.  An iterative cl_linsol is
+ * therefore asked for ||w_red .* rho||_2 <= delta with w_red = w_v / m
+ * (CVODE), w_red = cj^2 w_v (IDA), w_v the v-part of the integrator's
+ * weights and delta its tolerance: exactly the integrator's own test on
+ * the full system.
+ *
+ * How the integrators call it (SUNDIALS 6.4.1).  The matrix-embedded
+ * solver type (SUNLINEARSOLVER_MATRIX_EMBEDDED) exists in 6.4.1, but CVODE
+ * and IDA then never call the solver's setup (cvLsInitialize sets
+ * cv_lsetup = NULL; checked: 0 setups in 182 steps): the solver would have
+ * to guess at every solve when the Jacobian is stale and when gamma has
+ * moved, without CVODE's convergence-failure information, and a stale
+ * Jacobian could no longer be refreshed within a step (a failed Newton
+ * iteration costs a step reduction instead).  So the solver is attached
+ * as a matrix-based one with a *shell* SUNMatrix that holds no values (its
+ * zero, copy, scale-add-identity and clone operations do nothing but keep
+ * the shell), and CVODE's and IDA's own heuristics decide:
+ *
+ *  - the Jacobian function (CVodeSetJacFn / IDASetJacFn) evaluates Kx, Kv
+ *    at the solver's state; CVODE calls it only when it wants a new
+ *    Jacobian (its jok / jcur logic: every 51 steps, after a convergence
+ *    failure with a stale one); IDA at every setup;
+ *  - setup reads gamma (CVodeGetCurrentGamma) or cj (IDAGetCurrentCj),
+ *    assembles A from the stored Kx, Kv and sets the cl_linsol up
+ *    (factorises, or forms the preconditioner); CVODE calls it when gamma
+ *    has changed by more than 30 %, every 20 steps, or after a failure,
+ *    and scales the solutions in between by 2 / (1 + gamma / gamma_setup)
+ *    itself, as for KLU on the full matrix;
+ *  - solve uses the gamma / cj of the last setup, consistent with A.
+ * Nothing the size of the first-order matrix exists: no 2n x 2n values,
+ * no copies of them.
+ *
+ * The solver type is SUNLINEARSOLVER_DIRECT for direct cl_linsols (klu,
+ * cholmod) and SUNLINEARSOLVER_MATRIX_ITERATIVE for those with solve_tol
+ * (pcg, pcg-jacobi, auto), which then get the integrator's tolerance and
+ * weights as above; every solve is reported to CVODE and IDA as one
+ * iteration (IDA would take a residual vector for the solution after 0),
+ * the true counts come from the cl_linsol (cl_sunred_stats).
+ *
+ * Failures: a cl_linsol setup or solve failing with CL_ESOLVER (singular or
+ * indefinite A, no convergence) is a recoverable failure for the
+ * integrator, which retries with a fresh Jacobian or a smaller step; other
+ * failures are unrecoverable.  The last message is kept
+ * (cl_sunred_explain).
+ *
+ * Everything is allocated by cl_sunred_attach; setup and solve allocate
+ * nothing (beyond what the cl_linsol documents). */
+#ifndef CL_SUN_REDUCED_H
+#define CL_SUN_REDUCED_H
+
+#include "integrators/sun_common.h"
+#include "linalg/linsol.h"
+
+typedef struct cl_sunred cl_sunred;
+
+/* The linear solver of cvode-bdf and ida when --linsol is not given. */
+#define CL_SUNRED_DEFAULT "auto"
+
+/* --linsol `name` of integrator s: NULL or "" for CL_SUNRED_DEFAULT;
+ * "klu-full" (KLU on the full first-order matrix, the baseline) gives
+ * *lt = NULL; otherwise the cl_linsol of that name; CL_EINVAL naming the
+ * known ones if there is none. */
+cl_status cl_sunred_choose(const cl_sun *s, const char *name,
+                           const cl_linsol_type **lt, cl_error *err);
+
+/* The half-size solver with cl_linsol lt (options o: lin_tol, lin_maxit)
+ * on s (CVODE when ida is false, IDA otherwise; s->mem, s->dfdx, s->dfdv
+ * must exist): shell matrix into s->A, solver into s->ls (released by
+ * cl_sun_free), attached with the Jacobian function.  *out is the solver's
+ * state, to be freed with cl_sunred_free before cl_sun_free (also when
+ * this call failed). */
+cl_status cl_sunred_attach(cl_sun *s, const cl_linsol_type *lt,
+                           const cl_integrator_opts *o, bool ida,
+                           cl_sunred **out, cl_error *err);
+void cl_sunred_free(cl_sunred *r);
+
+/* Statistics of the half-size solver over those of cl_sun_stats: lin_solves,
+ * lin_iters, symbolic_facts, lin_fallbacks and linsol from the cl_linsol
+ * (steps, setups, Jacobian evaluations stay the integrator's). */
+void cl_sunred_stats(const cl_sunred *r, cl_stats *out);
+
+/* Append the last linear-solver failure, if any, to err's message. */
+void cl_sunred_explain(const cl_sunred *r, cl_error *err);
+
+#endif

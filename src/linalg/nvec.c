@@ -1,0 +1,345 @@
+/* Compiled vector operations for serial N_Vectors (see nvec.h).  Each
+ * function performs the arithmetic of its N_Vector_Serial counterpart in
+ * the same order:
+ *
+ *   linearsum  z = a x + b y, with the serial special cases: y += a x
+ *              (b = 1, z = y), x += b y (a = 1, z = x; axpy: +x for a
+ *              factor 1, -x for -1), x + y, x - y, a x + y, a x - y,
+ *              a (x + y), a (x - y);
+ *   scale      z = c x (x *= c in place; copy for c = 1; -x for c = -1);
+ *   wrmsnorm   sqrt(sum (x_i w_i)^2 / N), mask: only id_i > 0;
+ *   wl2norm    sqrt(sum (x_i w_i)^2);
+ *   the others elementwise, reductions in index order.
+ * Every loop reads entry i of each input before it writes entry i of the
+ * output, so any of the vectors may be the same. */
+#include "linalg/nvec.h"
+
+#include <math.h>
+#include <stdbool.h>
+
+#define NV_N(v) NV_LENGTH_S(v)
+#define NV_D(v) NV_DATA_S(v)
+
+/* ---- linear sums ------------------------------------------------------- */
+
+/* y <- a x + y */
+static void nv_axpy(sunrealtype a, N_Vector x, N_Vector y)
+{
+    sunindextype n = NV_N(x);
+    const sunrealtype *xd = NV_D(x);
+    sunrealtype *yd = NV_D(y);
+    if (a == 1.0) {
+        for (sunindextype i = 0; i < n; i++)
+            yd[i] += xd[i];
+    } else if (a == -1.0) {
+        for (sunindextype i = 0; i < n; i++)
+            yd[i] -= xd[i];
+    } else {
+        for (sunindextype i = 0; i < n; i++)
+            yd[i] += a * xd[i];
+    }
+}
+
+/* z = sx x + sy y for the sign patterns (+1, +1), (+1, -1) */
+static void nv_sum(N_Vector x, N_Vector y, N_Vector z, bool diff)
+{
+    sunindextype n = NV_N(x);
+    const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
+    sunrealtype *zd = NV_D(z);
+    if (diff) {
+        for (sunindextype i = 0; i < n; i++)
+            zd[i] = xd[i] - yd[i];
+    } else {
+        for (sunindextype i = 0; i < n; i++)
+            zd[i] = xd[i] + yd[i];
+    }
+}
+
+/* z = a x + y (plus) or a x - y */
+static void nv_lin(sunrealtype a, N_Vector x, N_Vector y, N_Vector z,
+                   bool plus)
+{
+    sunindextype n = NV_N(x);
+    const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
+    sunrealtype *zd = NV_D(z);
+    if (plus) {
+        for (sunindextype i = 0; i < n; i++)
+            zd[i] = (a * xd[i]) + yd[i];
+    } else {
+        for (sunindextype i = 0; i < n; i++)
+            zd[i] = (a * xd[i]) - yd[i];
+    }
+}
+
+/* z = c (x + y) (plus) or c (x - y) */
+static void nv_scalesum(sunrealtype c, N_Vector x, N_Vector y, N_Vector z,
+                        bool plus)
+{
+    sunindextype n = NV_N(x);
+    const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
+    sunrealtype *zd = NV_D(z);
+    if (plus) {
+        for (sunindextype i = 0; i < n; i++)
+            zd[i] = c * (xd[i] + yd[i]);
+    } else {
+        for (sunindextype i = 0; i < n; i++)
+            zd[i] = c * (xd[i] - yd[i]);
+    }
+}
+
+static void nv_linearsum(sunrealtype a, N_Vector x, sunrealtype b, N_Vector y,
+                         N_Vector z)
+{
+    if (b == 1.0 && z == y) {
+        nv_axpy(a, x, y);
+    } else if (a == 1.0 && z == x) {
+        nv_axpy(b, y, x);
+    } else if (a == 1.0 && b == 1.0) {
+        nv_sum(x, y, z, false);
+    } else if (a == 1.0 && b == -1.0) {
+        nv_sum(x, y, z, true);
+    } else if (a == -1.0 && b == 1.0) {
+        nv_sum(y, x, z, true);
+    } else if (a == 1.0 || b == 1.0) {
+        nv_lin(a == 1.0 ? b : a, a == 1.0 ? y : x, a == 1.0 ? x : y, z,
+               true);
+    } else if (a == -1.0 || b == -1.0) {
+        nv_lin(a == -1.0 ? b : a, a == -1.0 ? y : x, a == -1.0 ? x : y, z,
+               false);
+    } else if (a == b) {
+        nv_scalesum(a, x, y, z, true);
+    } else if (a == -b) {
+        nv_scalesum(a, x, y, z, false);
+    } else {
+        sunindextype n = NV_N(x);
+        const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
+        sunrealtype *zd = NV_D(z);
+        for (sunindextype i = 0; i < n; i++)
+            zd[i] = (a * xd[i]) + (b * yd[i]);
+    }
+}
+
+static void nv_scale(sunrealtype c, N_Vector x, N_Vector z)
+{
+    sunindextype n = NV_N(x);
+    const sunrealtype *xd = NV_D(x);
+    sunrealtype *zd = NV_D(z);
+    if (z == x) {
+        for (sunindextype i = 0; i < n; i++)
+            zd[i] *= c;
+    } else if (c == 1.0) {
+        for (sunindextype i = 0; i < n; i++)
+            zd[i] = xd[i];
+    } else if (c == -1.0) {
+        for (sunindextype i = 0; i < n; i++)
+            zd[i] = -xd[i];
+    } else {
+        for (sunindextype i = 0; i < n; i++)
+            zd[i] = c * xd[i];
+    }
+}
+
+/* ---- elementwise ------------------------------------------------------- */
+
+static void nv_const(sunrealtype c, N_Vector z)
+{
+    sunindextype n = NV_N(z);
+    sunrealtype *zd = NV_D(z);
+    for (sunindextype i = 0; i < n; i++)
+        zd[i] = c;
+}
+
+static void nv_prod(N_Vector x, N_Vector y, N_Vector z)
+{
+    sunindextype n = NV_N(x);
+    const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
+    sunrealtype *zd = NV_D(z);
+    for (sunindextype i = 0; i < n; i++)
+        zd[i] = xd[i] * yd[i];
+}
+
+static void nv_div(N_Vector x, N_Vector y, N_Vector z)
+{
+    sunindextype n = NV_N(x);
+    const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
+    sunrealtype *zd = NV_D(z);
+    for (sunindextype i = 0; i < n; i++)
+        zd[i] = xd[i] / yd[i];
+}
+
+static void nv_abs(N_Vector x, N_Vector z)
+{
+    sunindextype n = NV_N(x);
+    const sunrealtype *xd = NV_D(x);
+    sunrealtype *zd = NV_D(z);
+    for (sunindextype i = 0; i < n; i++)
+        zd[i] = fabs(xd[i]);
+}
+
+static void nv_inv(N_Vector x, N_Vector z)
+{
+    sunindextype n = NV_N(x);
+    const sunrealtype *xd = NV_D(x);
+    sunrealtype *zd = NV_D(z);
+    for (sunindextype i = 0; i < n; i++)
+        zd[i] = 1.0 / xd[i];
+}
+
+static void nv_addconst(N_Vector x, sunrealtype b, N_Vector z)
+{
+    sunindextype n = NV_N(x);
+    const sunrealtype *xd = NV_D(x);
+    sunrealtype *zd = NV_D(z);
+    for (sunindextype i = 0; i < n; i++)
+        zd[i] = xd[i] + b;
+}
+
+static void nv_compare(sunrealtype c, N_Vector x, N_Vector z)
+{
+    sunindextype n = NV_N(x);
+    const sunrealtype *xd = NV_D(x);
+    sunrealtype *zd = NV_D(z);
+    for (sunindextype i = 0; i < n; i++)
+        zd[i] = fabs(xd[i]) >= c ? 1.0 : 0.0;
+}
+
+static sunbooleantype nv_invtest(N_Vector x, N_Vector z)
+{
+    sunindextype n = NV_N(x);
+    const sunrealtype *xd = NV_D(x);
+    sunrealtype *zd = NV_D(z);
+    sunbooleantype no_zero = SUNTRUE;
+    for (sunindextype i = 0; i < n; i++) {
+        if (xd[i] == 0.0)
+            no_zero = SUNFALSE;
+        else
+            zd[i] = 1.0 / xd[i];
+    }
+    return no_zero;
+}
+
+/* ---- reductions -------------------------------------------------------- */
+
+static sunrealtype nv_dotprod(N_Vector x, N_Vector y)
+{
+    sunindextype n = NV_N(x);
+    const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
+    sunrealtype sum = 0.0;
+    for (sunindextype i = 0; i < n; i++)
+        sum += xd[i] * yd[i];
+    return sum;
+}
+
+static sunrealtype nv_maxnorm(N_Vector x)
+{
+    sunindextype n = NV_N(x);
+    const sunrealtype *xd = NV_D(x);
+    sunrealtype max = 0.0;
+    for (sunindextype i = 0; i < n; i++) {
+        if (fabs(xd[i]) > max)
+            max = fabs(xd[i]);
+    }
+    return max;
+}
+
+/* sum (x_i w_i)^2 over the entries with id_i > 0 (all if id is NULL) */
+static sunrealtype nv_wsqrsum(N_Vector x, N_Vector w, N_Vector id)
+{
+    sunindextype n = NV_N(x);
+    const sunrealtype *xd = NV_D(x), *wd = NV_D(w);
+    const sunrealtype *idd = id ? NV_D(id) : NULL;
+    sunrealtype sum = 0.0;
+    for (sunindextype i = 0; i < n; i++) {
+        if (idd && !(idd[i] > 0.0))
+            continue;
+        sunrealtype p = xd[i] * wd[i];
+        sum += p * p;
+    }
+    return sum;
+}
+
+static sunrealtype nv_wsqrsumlocal(N_Vector x, N_Vector w)
+{
+    return nv_wsqrsum(x, w, NULL);
+}
+
+static sunrealtype nv_wsqrsummasklocal(N_Vector x, N_Vector w, N_Vector id)
+{
+    return nv_wsqrsum(x, w, id);
+}
+
+static sunrealtype nv_wrmsnorm(N_Vector x, N_Vector w)
+{
+    return sqrt(nv_wsqrsum(x, w, NULL) / (sunrealtype)NV_N(x));
+}
+
+static sunrealtype nv_wrmsnormmask(N_Vector x, N_Vector w, N_Vector id)
+{
+    return sqrt(nv_wsqrsum(x, w, id) / (sunrealtype)NV_N(x));
+}
+
+static sunrealtype nv_wl2norm(N_Vector x, N_Vector w)
+{
+    return sqrt(nv_wsqrsum(x, w, NULL));
+}
+
+static sunrealtype nv_min(N_Vector x)
+{
+    sunindextype n = NV_N(x);
+    const sunrealtype *xd = NV_D(x);
+    sunrealtype min = n > 0 ? xd[0] : 0.0;
+    for (sunindextype i = 1; i < n; i++) {
+        if (xd[i] < min)
+            min = xd[i];
+    }
+    return min;
+}
+
+static sunrealtype nv_l1norm(N_Vector x)
+{
+    sunindextype n = NV_N(x);
+    const sunrealtype *xd = NV_D(x);
+    sunrealtype sum = 0.0;
+    for (sunindextype i = 0; i < n; i++)
+        sum += fabs(xd[i]);
+    return sum;
+}
+
+/* ---- installation ------------------------------------------------------ */
+
+void cl_nvec_fast(N_Vector v)
+{
+    N_Vector_Ops o = v->ops;
+    o->nvlinearsum = nv_linearsum;
+    o->nvconst = nv_const;
+    o->nvprod = nv_prod;
+    o->nvdiv = nv_div;
+    o->nvscale = nv_scale;
+    o->nvabs = nv_abs;
+    o->nvinv = nv_inv;
+    o->nvaddconst = nv_addconst;
+    o->nvdotprod = nv_dotprod;
+    o->nvmaxnorm = nv_maxnorm;
+    o->nvwrmsnorm = nv_wrmsnorm;
+    o->nvwrmsnormmask = nv_wrmsnormmask;
+    o->nvmin = nv_min;
+    o->nvwl2norm = nv_wl2norm;
+    o->nvl1norm = nv_l1norm;
+    o->nvcompare = nv_compare;
+    o->nvinvtest = nv_invtest;
+    o->nvdotprodlocal = nv_dotprod;
+    o->nvmaxnormlocal = nv_maxnorm;
+    o->nvminlocal = nv_min;
+    o->nvl1normlocal = nv_l1norm;
+    o->nvinvtestlocal = nv_invtest;
+    o->nvwsqrsumlocal = nv_wsqrsumlocal;
+    o->nvwsqrsummasklocal = nv_wsqrsummasklocal;
+}
+
+N_Vector cl_nvec_new(sunindextype n, SUNContext ctx)
+{
+    N_Vector v = N_VNew_Serial(n, ctx);
+    if (v)
+        cl_nvec_fast(v);
+    return v;
+}

@@ -1,0 +1,37 @@
+/* Serial N_Vectors with compiled vector operations.
+ *
+ * Debian's SUNDIALS 6.4.1 libraries are built without optimisation: the
+ * serial vector operations (N_VLinearSum_Serial, N_VWrmsNorm_Serial,
+ * N_VDotProd_Serial, ...) run at about 17-21 instructions per entry (the
+ * loop keeps every variable on the stack), and at CVODE's small steps on
+ * hang they were a third of all instructions of a cvode-bdf run (callgrind,
+ * n = 16, --linsol pcg).  cl_nvec_fast keeps a serial vector exactly as it
+ * is (content, N_VGetVectorID = SUNDIALS_NVEC_SERIAL, so NV_DATA_S and
+ * every solver that checks for a serial vector still work) and replaces
+ * its elementwise operations and reductions by the same arithmetic,
+ * operation for operation and in the same order (the special cases of
+ * N_VLinearSum and N_VScale included), compiled with our flags:
+ *
+ *     linearsum, const, prod, div, scale, abs, inv, addconst, dotprod,
+ *     maxnorm, wrmsnorm, wrmsnormmask, min, wl2norm, l1norm, compare,
+ *     invtest
+ *
+ * so results are bitwise those of N_Vector_Serial (no reassociation: the
+ * reductions sum in index order; no fused multiply-add on the default
+ * x86-64 target).  Clones inherit the operations (N_VClone_Serial copies
+ * the operation table).  Fused and vector-array operations stay disabled
+ * (NULL), as in N_VNew_Serial: SUNDIALS then composes them from the
+ * operations above. */
+#ifndef CL_NVEC_H
+#define CL_NVEC_H
+
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+
+/* Replace the operations of serial vector v (see above). */
+void cl_nvec_fast(N_Vector v);
+
+/* N_VNew_Serial(n, ctx) with cl_nvec_fast; NULL if out of memory. */
+N_Vector cl_nvec_new(sunindextype n, SUNContext ctx);
+
+#endif

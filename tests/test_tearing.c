@@ -1,0 +1,180 @@
+/* Tearing (SPEC 3.4): a connection breaks for good when d > cut L after an
+ * accepted step.  A broken pair gives no force, energy or Jacobian values
+ * in any pair term (Type1, damping, springs, spring-damping: the spring and
+ * its damper break together, counted once); the pulled hang cloth tears
+ * under a fixed-step and under adaptive integrators (solver restart at
+ * output times) without NaN; torn triangles leave cl_model_triangles and
+ * the frames; without [tear] cut nothing breaks. */
+#include <criterion/criterion.h>
+
+#include "io/frames.h"
+#include "pbdcheck.h"
+#include "runcli.h"
+
+/* A chain of two free particles joined by all four pair terms. */
+#define CHAIN_TERMS                                                        \
+    "cloth.nu=1", "cloth.nv=2", "pins.at=", "gravity.g=0,0,0",            \
+        "type2.enabled=false", "damping.kd=0.01", "springs.enabled=true", \
+        "spring-damping.kd=0.01"
+
+Test(tearing, broken_pair_gives_no_force_energy_or_jacobian)
+{
+    cl_model *m = FD_MODEL(CHAIN_TERMS, "tear.cut=1.5");
+    const char *terms[] = {"type1", "damping", "springs", "spring-damping"};
+    for (size_t k = 0; k < 4; k++)
+        cr_assert(fd_has_term(m, terms[k]), "%s missing", terms[k]);
+    const cl_system *sys = cl_model_system(m);
+    cr_assert_not_null(sys->step_done);
+    size_t nval = 9 * sys->pattern->nnzb;
+    double x[6] = {0, 0, 0, 0, 0.1, 2.0}, v[6] = {0.3, 0, 0, 0, 0, -0.2};
+    double f[6], *Jx = fd_vec(nval), *Jv = fd_vec(nval);
+    cl_energy e;
+    /* d = 2 L: stretched, moving apart, not yet torn (cut is tested after
+     * steps only) */
+    cr_assert_eq(sys->force(sys->data, 0.0, x, v, f), CL_OK);
+    cr_assert_gt(fd_maxabs(f, 6), 0.1);
+    bool changed = false;
+    cr_assert_eq(sys->step_done(sys->data, 0.0, x, v, &changed), CL_OK);
+    cr_assert(changed);
+    cr_assert_eq(cl_model_broken(m), 1, "one connection, counted once: %zu",
+                 cl_model_broken(m));
+    cr_assert(cl_model_is_broken(m, 1, 0) && cl_model_is_broken(m, 0, 1));
+    cr_assert_eq(sys->force(sys->data, 0.0, x, v, f), CL_OK);
+    cr_assert_eq(fd_maxabs(f, 6), 0.0);
+    cr_assert_eq(sys->jacobian(sys->data, 0.0, x, v, f, Jx, Jv), CL_OK);
+    cr_assert_eq(fd_maxabs(Jx, nval), 0.0);
+    cr_assert_eq(fd_maxabs(Jv, nval), 0.0);
+    cr_assert_eq(nval, 9 * sys->pattern->nnzb, "the pattern stays");
+    cr_assert_eq(sys->energy(sys->data, 0.0, x, v, &e), CL_OK);
+    cr_assert_eq(e.potential, 0.0);
+    cr_assert_eq(e.power_diss, 0.0);
+    /* torn for good: back at rest length it stays torn, nothing new */
+    double x0[6] = {0, 0, 0, 0, 0, 1.0};
+    cr_assert_eq(sys->step_done(sys->data, 0.0, x0, v, &changed), CL_OK);
+    cr_assert(!changed);
+    cr_assert_eq(cl_model_broken(m), 1);
+    free(Jx);
+    free(Jv);
+    cl_model_free(m);
+}
+
+Test(tearing, intact_pair_below_cut_is_kept)
+{
+    cl_model *m = FD_MODEL(CHAIN_TERMS, "tear.cut=1.5");
+    const cl_system *sys = cl_model_system(m);
+    double x[6] = {0, 0, 0, 0, 0, 1.49}, v[6] = {0}, f[6];
+    bool changed = true;
+    cr_assert_eq(sys->step_done(sys->data, 0.0, x, v, &changed), CL_OK);
+    cr_assert(!changed);
+    cr_assert_eq(cl_model_broken(m), 0);
+    cr_assert_eq(sys->force(sys->data, 0.0, x, v, f), CL_OK);
+    cr_assert_gt(fd_maxabs(f, 6), 1.0);
+    cl_model_free(m);
+}
+
+/* Every kept triangle has three intact edges, every dropped one a torn
+ * edge; returns the number kept. */
+static size_t check_triangles(const cl_model *m)
+{
+    const cl_cloth *c = cl_model_cloth(m);
+    size_t all = cl_grid_triangles(c->nu, c->nv, NULL), kept = 0, k = 0;
+    int(*grid)[3] = malloc(all * sizeof *grid);
+    int(*tri)[3] = malloc(all * sizeof *tri);
+    cl_error err = {0};
+    cr_assert(grid && tri);
+    cl_grid_triangles(c->nu, c->nv, grid);
+    cr_assert_eq(cl_model_triangles(m, tri, &kept, &err), CL_OK);
+    for (size_t t = 0; t < all; t++) {
+        const int *g = grid[t];
+        bool torn = cl_model_is_broken(m, g[0], g[1]) ||
+                    cl_model_is_broken(m, g[1], g[2]) ||
+                    cl_model_is_broken(m, g[2], g[0]);
+        bool listed = k < kept && !memcmp(tri[k], g, sizeof *g * 3);
+        cr_assert_eq(listed, !torn, "triangle %zu: torn %d, listed %d", t,
+                     torn, listed);
+        k += listed;
+    }
+    cr_assert_eq(k, kept);
+    free(grid);
+    free(tri);
+    return kept;
+}
+
+Test(tearing, pulled_cloth_tears_under_symplectic_euler)
+{
+    pb_case c = pb_open(FD_MODEL(PB_PULL, "damping.kd=1e-3", "tear.cut=1.5"));
+    cl_integrator_opts o = {.dt = 1e-4};
+    pb_integrate(&c, "symplectic-euler", &o, 0.5, 10, NULL, NULL);
+    size_t broken = cl_model_broken(c.m), kept = check_triangles(c.m);
+    cr_log_info("symplectic-euler: %zu connections torn, %zu of 98 "
+                "triangles kept", broken, kept);
+    cr_assert_gt(broken, 0);
+    cr_assert_lt(kept, 98);
+    pb_close(&c);
+}
+
+Test(tearing, without_cut_nothing_breaks)
+{
+    pb_case c = pb_open(FD_MODEL(PB_PULL, "damping.kd=1e-3"));
+    cr_assert_null(c.sys->step_done, "no tearing hook without [tear] cut");
+    cl_integrator_opts o = {.dt = 1e-4};
+    pb_integrate(&c, "symplectic-euler", &o, 0.5, 10, NULL, NULL);
+    cr_assert_eq(cl_model_broken(c.m), 0);
+    cr_assert_eq(check_triangles(c.m), 98);
+    pb_close(&c);
+}
+
+/* Adaptive methods see the tear at output times and restart there. */
+static void adaptive_run(const char *name)
+{
+    pb_case c = pb_open(FD_MODEL(PB_PULL, "damping.kd=1e-3", "tear.cut=1.5"));
+    cl_integrator_opts o = {.rtol = 1e-4, .atol = 1e-6};
+    pb_integrate(&c, name, &o, 0.5, 100, NULL, NULL);
+    size_t broken = cl_model_broken(c.m);
+    cr_log_info("%s: %zu connections torn, %ld steps", name, broken,
+                c.st.steps);
+    cr_assert_gt(broken, 0, "%s", name);
+    check_triangles(c.m);
+    pb_close(&c);
+}
+
+Test(tearing, cvode_bdf_continues_after_tearing)
+{
+    adaptive_run("cvode-bdf");
+}
+
+Test(tearing, ida_continues_after_tearing)
+{
+    adaptive_run("ida");
+}
+
+Test(tearing, frames_and_series_of_a_tearing_run)
+{
+    char dir[256], out[320], path[400];
+    tmp_mkdtemp(dir, sizeof dir, "tear");
+    snprintf(out, sizeof out, "%s/run", dir);
+    cli_result r;
+    cli_run(&r, "run", "verlet-scene3", "--t-end", "1.0", "--frames", "1",
+            "--format", "obj", "--out", out, "--quiet", NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    cli_lines L;
+    snprintf(path, sizeof path, "%s/series.csv", out);
+    cli_read_lines(path, &L);
+    const char *h = L.line[0];
+    cr_assert(strlen(h) > 7 && !strcmp(h + strlen(h) - 7, ",broken"),
+              "last column: %s", h);
+    const char *last = L.line[L.n - 1];
+    long broken = strtol(strrchr(last, ',') + 1, NULL, 10);
+    cr_assert_gt(broken, 0, "series: %s", last);
+    cli_lines_free(&L);
+    snprintf(path, sizeof path, "%s/frame_00001.obj", out);
+    cli_read_lines(path, &L);
+    size_t faces = 0;
+    for (size_t k = 0; k < L.n; k++)
+        faces += L.line[k][0] == 'f';
+    cr_assert_lt(faces, 2 * 29 * 29, "%zu faces", faces);
+    cr_assert_gt(faces, 2 * 29 * 29 - 100, "%zu faces", faces);
+    cli_lines_free(&L);
+    tmp_rm_rf(dir);
+}

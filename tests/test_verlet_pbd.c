@@ -1,0 +1,124 @@
+/* verlet-pbd (seed 004's loop: damped Verlet, projection, velocity from the
+ * projected positions; integrators/verlet_pbd.c): refused without
+ * position-based constraints; identical to verlet where no constraint is
+ * violated (a rigid fall); a hanging PBD cloth keeps its rest lengths to
+ * within 1 % at K = 1; a PBD cloth with [tear] cut tears when its pins are
+ * pulled apart; the command line runs ms-hang with pbd switched on. */
+#include <criterion/criterion.h>
+
+#include "pbdcheck.h"
+#include "runcli.h"
+
+Test(verlet_pbd, refused_without_constraints)
+{
+    pb_case c = pb_open(FD_MODEL("cloth.n=4"));
+    const cl_integrator_type *it = cl_integrator_find("verlet-pbd");
+    cr_assert_not_null(it);
+    cr_assert(it->fixed_step);
+    cl_integrator_opts o = {.dt = 1e-3};
+    void *st = NULL;
+    cl_error err = {0};
+    cr_assert_eq(it->create(c.sys, &o, 0.0, c.x, c.v, &st, &err), CL_EINVAL);
+    cr_assert_null(st);
+    cr_assert(strstr(err.msg, "pbd.enabled = true"), "%s", err.msg);
+    pb_close(&c);
+}
+
+Test(verlet_pbd, bad_velocity_damping_refused)
+{
+    pb_case c = pb_open(FD_MODEL("cloth.n=4", "pbd.enabled=true"));
+    const cl_integrator_type *it = cl_integrator_find("verlet-pbd");
+    cl_integrator_opts o = {.dt = 1e-3, .vdamp = 1.0};
+    void *st = NULL;
+    cl_error err = {0};
+    cr_assert_eq(it->create(c.sys, &o, 0.0, c.x, c.v, &st, &err), CL_EINVAL);
+    cr_assert(strstr(err.msg, "verlet-pbd") && strstr(err.msg, "vdamp"),
+              "%s", err.msg);
+    pb_close(&c);
+}
+
+/* A free cloth falling under gravity stays at its rest shape: the
+ * projection has nothing to correct (beyond round-off) and verlet-pbd
+ * follows verlet. */
+Test(verlet_pbd, rigid_fall_equals_verlet)
+{
+    const char *const sets[] = {"cloth.n=5", "pins.at=", "type1.ks=50",
+                                "type2.enabled=false", "pbd.enabled=true",
+                                "init.velocity=0.3,0.1,-0.2", NULL};
+    pb_case a = pb_open(fd_model(sets)), b = pb_open(fd_model(sets));
+    cl_integrator_opts o = {.dt = 1e-3, .vdamp = 0.01};
+    pb_integrate(&a, "verlet-pbd", &o, 0.2, 4, NULL, NULL);
+    pb_integrate(&b, "verlet", &o, 0.2, 4, NULL, NULL);
+    double dx = 0.0;
+    for (size_t i = 0; i < a.n; i++)
+        dx = fmax(dx, fabs(a.x[i] - b.x[i]));
+    cr_assert_lt(dx, 1e-12, "verlet-pbd - verlet: %g", dx);
+    cr_assert_lt(a.x[1], -0.1, "the cloth fell");
+    pb_close(&a);
+    pb_close(&b);
+}
+
+/* The largest violation of the level-1 pairs seen at the outputs. */
+typedef struct {
+    cl_pairset set;
+    double *xf;
+    double worst;
+} watch;
+
+static void watch_violation(pb_case *c, double t, void *ctx)
+{
+    watch *w = ctx;
+    pb_full(c, t, c->x, w->xf);
+    w->worst = fmax(w->worst, pb_violation(c->m, &w->set, w->xf));
+}
+
+Test(verlet_pbd, hanging_cloth_keeps_rest_lengths)
+{
+    pb_case c = pb_open(FD_MODEL("cloth.n=8", "type1.enabled=false",
+                                 "type2.enabled=false", "pbd.enabled=true",
+                                 "pbd.iterations=100"));
+    watch w = {.xf = fd_vec(3 * cl_model_cloth(c.m)->np)};
+    cl_error err = {0};
+    cr_assert_eq(cl_pairs_levels(cl_model_cloth(c.m), 1, &w.set, &err),
+                 CL_OK);
+    cl_integrator_opts o = {.dt = 1e-3, .vdamp = 0.01};
+    pb_integrate(&c, "verlet-pbd", &o, 0.5, 50, watch_violation, &w);
+    cr_log_info("verlet-pbd: max |d/L - 1| = %.3e over 0.5 s", w.worst);
+    cr_assert_lt(w.worst, 0.01);
+    double ymin = 0.0;
+    for (size_t i = 1; i < c.n; i += 3)
+        ymin = fmin(ymin, c.x[i]);
+    cr_assert_lt(ymin, -0.3, "the cloth hangs down: lowest y %g", ymin);
+    free(w.xf);
+    cl_pairs_free(&w.set);
+    pb_close(&c);
+}
+
+Test(verlet_pbd, pulled_pbd_cloth_tears)
+{
+    pb_case c = pb_open(FD_MODEL(PB_PULL, "type1.enabled=false",
+                                 "type2.enabled=false", "pbd.enabled=true",
+                                 "pbd.levels=2", "tear.cut=1.5"));
+    cl_integrator_opts o = {.dt = 1e-3, .vdamp = 0.01};
+    pb_integrate(&c, "verlet-pbd", &o, 0.5, 10, NULL, NULL);
+    cr_log_info("verlet-pbd: %zu constraints torn", cl_model_broken(c.m));
+    cr_assert_gt(cl_model_broken(c.m), 0);
+    pb_close(&c);
+}
+
+Test(verlet_pbd, command_line_on_ms_hang)
+{
+    char dir[256];
+    tmp_mkdtemp(dir, sizeof dir, "vpbd");
+    cli_result r;
+    cli_run(&r, "run", "ms-hang", "--integrator", "verlet-pbd", "--set",
+            "pbd.enabled=true", "--t-end", "0.1", "--frames", "0", "--out",
+            dir, "--quiet", NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    cli_run(&r, "run", "ms-hang", "--integrator", "verlet-pbd", "--t-end",
+            "0.1", "--frames", "0", "--out", dir, "--quiet", NULL);
+    cli_assert_error(&r, 0, "verlet-pbd", "pbd.enabled = true", NULL);
+    cli_result_free(&r);
+    tmp_rm_rf(dir);
+}
