@@ -2,6 +2,7 @@
 #   make demo    install missing packages, build, run `hang`, draw plots/demo.png
 #   make test    install missing packages, build, run the test suite
 #   make SAN=1 test   the same under AddressSanitizer + UndefinedBehaviorSanitizer
+#   make bench   build, run the benchmark workloads, write results/bench.csv
 
 CC      ?= cc
 SHELL   := /bin/bash
@@ -34,7 +35,7 @@ BIN      := $(BUILD)/clothode
 TESTBIN  := $(BUILD)/clothode-tests
 JOBS     ?= 2
 
-.PHONY: all deps demo test clean
+.PHONY: all deps demo test bench clean
 
 all: $(BIN)
 
@@ -66,6 +67,12 @@ test: deps
 	    tee $(BUILD)/test.log
 	@! grep -E "(Address|Leak|UndefinedBehavior)Sanitizer|runtime error:" \
 	    $(BUILD)/test.log || (echo "sanitizer reports above" >&2; exit 1)
+
+# Benchmarks (README "Benchmarks"): the full set, under 20 minutes on two
+# cores; table on stdout, results/bench.csv.
+bench: deps
+	$(MAKE) $(BIN)
+	$(BIN) bench
 
 clean:
 	rm -rf build build-san

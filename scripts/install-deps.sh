@@ -3,8 +3,10 @@
 # Runs apt-get update once, only when something has to be installed.
 set -euo pipefail
 
+# python3-numpy, python3-scipy: the scipy peer of the benchmarks
+# (scripts/peers/hang_scipy.py), which tests/test_peer.c checks.
 pkgs=(build-essential libsundials-dev libsuitesparse-dev libgsl-dev
-      gnuplot-nox libinih-dev libcriterion-dev)
+      gnuplot-nox libinih-dev libcriterion-dev python3-numpy python3-scipy)
 
 missing=()
 for p in "${pkgs[@]}"; do

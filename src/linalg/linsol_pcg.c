@@ -85,12 +85,12 @@ static int pcg_atimes(void *data, N_Vector v, N_Vector z)
     double *zp = N_VGetArrayPointer(z), curv = 0.0, vv = 0.0;
     cl_bmatvec(s->pat, s->ablk, vp, zp);
     s->nprod++;
-    for (size_t i = 0; i < s->n; i++) {
+    for (size_t i = 0; i < s->n; i++)
         curv += vp[i] * zp[i];
-        vv += vp[i] * vp[i];
-    }
     if (curv > 0.0 && isfinite(curv))
         return 0;
+    for (size_t i = 0; i < s->n; i++)
+        vv += vp[i] * vp[i];
     snprintf(s->why, sizeof s->why, "the matrix M - a df/dv - b df/dx is "
              "not positive definite: p^T A p = %.6g (|p|^2 = %.6g) for the "
              "search direction of iteration %d", curv, vv, s->nprod);
