@@ -103,9 +103,11 @@ Test(linsol, pcg_weighted_tolerance)
     ls_free(&c);
 }
 
-/* auto: pcg for a diagonally dominant A (small a, b), cholmod otherwise;
- * statistics name what was used. */
-Test(linsol, auto_picks_by_dominance)
+/* auto: pcg while its solves are cheap (small a, b: A close to M); after a
+ * setup whose 8 solves took many iterations (large a, b, lin_tol 1e-10),
+ * more than a factorisation and 8 direct solves cost, cholmod; statistics
+ * name what was used. */
+Test(linsol, auto_picks_by_cost)
 {
     ls_case c;
     ls_init(&c, 23);
@@ -117,14 +119,46 @@ Test(linsol, auto_picks_by_dominance)
     t->stats(st, &s);
     cr_assert_str_eq(s.linsol, "auto:pcg");
     cr_assert_eq(s.symbolic_facts, 0);
-    cr_assert_leq(ls_setup_solve(t, st, &c, 0.1, 0.01, 2, rhs, x), 1e-10);
-    memset(&s, 0, sizeof s);
-    t->stats(st, &s);
+    cl_error err = {0};
+    for (int k = 0; k < 2; k++) {
+        cr_assert_eq(t->setup(st, 0.1, 0.01, c.dfdx, c.dfdv, &err), CL_OK);
+        for (unsigned long q = 0; q < 8; q++) {
+            ls_rhs(q, rhs);
+            cr_assert_eq(t->solve(st, rhs, x, &err), CL_OK, "%s", err.msg);
+            cr_assert_leq(ls_residual(&c, 0.1, 0.01, rhs, x), 1e-10);
+        }
+        memset(&s, 0, sizeof s);
+        t->stats(st, &s);
+        cr_log_info("auto after hard setup %d: %s, %ld iterations", k,
+                    s.linsol, s.lin_iters);
+    }
+    cr_assert_gt(s.lin_iters, 20 * 8, "the hard A must be hard for pcg");
     cr_assert_str_eq(s.linsol, "auto:pcg+cholmod");
-    cr_assert_eq(s.lin_setups, 2);
-    cr_assert_eq(s.lin_solves, 2);
+    cr_assert_eq(s.lin_setups, 3);
+    cr_assert_eq(s.lin_solves, 17);
     cr_assert_eq(s.symbolic_facts, 1);
     cr_assert_eq(s.lin_fallbacks, 0);
+    t->free(st);
+    ls_free(&c);
+}
+
+/* With one solve per setup a factorisation does not pay: auto stays with
+ * pcg however many iterations (within reason) its solves take. */
+Test(linsol, auto_keeps_pcg_for_single_solves)
+{
+    ls_case c;
+    ls_init(&c, 25);
+    const cl_linsol_type *t = ls_find("auto");
+    void *st = ls_create(t, &c, &(cl_integrator_opts){.lin_tol = 1e-6});
+    double rhs[LS_N], x[LS_N];
+    for (unsigned long k = 0; k < 4; k++)
+        cr_assert_leq(ls_setup_solve(t, st, &c, 0.01, 1e-4, k, rhs, x),
+                      1e-6);
+    cl_stats s = {0};
+    t->stats(st, &s);
+    cr_log_info("auto single solves: %s, %ld iterations in 4 solves",
+                s.linsol, s.lin_iters);
+    cr_assert_str_eq(s.linsol, "auto:pcg");
     t->free(st);
     ls_free(&c);
 }

@@ -10,10 +10,10 @@
 #include "io/atomic.h"
 
 static const cl_bplan full_plan = {
-    .w1_cases = 2, .w1_n = {16, 32}, .w1_t = {2.0, 0.5}, .select = 1,
+    .w1_cases = 2, .w1_n = {16, 32}, .w1_t = {2.0, 0.5}, .select = 0,
     .peer_budget = 480.0,
     .w2_n = 32, .w2_t = 2.0, .w2_large = true, .w2_cap = 420.0,
-    .w3_nn = 4, .w3_n = {16, 32, 64, 128}, .w3_budget = 2.0,
+    .w3_nn = 4, .w3_n = {16, 32, 64, 128}, .w3_budget = 1.0,
     .eval_budget = 1.0, .w6_n = 128,
 };
 
@@ -42,15 +42,6 @@ static void sort_rows(cl_bench_table *t)
     }
 }
 
-static void free_runs(cl_bctx *c)
-{
-    for (size_t k = 0; k < c->nrun; k++) {
-        free(c->runs[k]->x);
-        free(c->runs[k]);
-    }
-    free(c->runs);
-}
-
 cl_status cl_bench_run(const cl_bench_opts *o, cl_bench_table *t,
                        cl_error *err)
 {
@@ -71,7 +62,7 @@ cl_status cl_bench_run(const cl_bench_opts *o, cl_bench_table *t,
     if (selected(&c, 1) && !c.nomem)
         cl_bench_w1(&c);
     cl_bench_peers_stop(&c);
-    free_runs(&c);
+    cl_bench_runs_free(&c);
     sort_rows(t);
     return c.nomem ? cl_error_set(err, CL_ENOMEM, "out of memory (bench)")
                    : CL_OK;

@@ -28,19 +28,23 @@
  *      spring damping), verlet-pbd on problems/verlet-scene1.ini
  *      (constraint level 2, 10 iterations): steps per CPU second, goal >=
  *      25,000.
- *   6  peak resident memory (ru_maxrss of a child `clothode run`) per
- *      unknown (6 per free particle) for cvode-bdf at n = 128, best solver
- *      beside klu-full.
+ *   6  peak resident memory per unknown (6 per free particle) of
+ *      cvode-bdf on hang at n = 128, T = 0.02 s (past the first
+ *      factorisations), best solver beside klu-full, each run in a child
+ *      process (`clothode bench --peak-memory`, which reports its own
+ *      VmHWM); the note gives the bytes per unknown above a run at n = 8
+ *      (program, libraries and fixed buffers taken out).
  *
  * The best solver for cvode-bdf is picked once per run: every name of the
  * linear-solver registry plus klu-full, timed on the first case of
- * workload 1, the least CPU time wins (if cvode-bdf takes no --linsol,
- * its default is used and a note says so).  Errors are the largest
- * distance between final particle positions and those of a reference run
- * (cvode-bdf, rtol 1e-10, atol 1e-12, same n and T), computed once per
- * run.  Times are process CPU time (clock_gettime(CLOCK_PROCESS_CPUTIME_ID))
- * of the timed work beside its wall time; children are measured by wait4.
- * --quick runs a reduced set (smaller n and T) in about two minutes. */
+ * workload 1 (rows of workload 0), the least CPU time wins (if cvode-bdf
+ * takes no --linsol, its default is used and a note says so).  Errors are
+ * the largest distance between final particle positions and those of a
+ * reference run (cvode-bdf, best solver, rtol 1e-8, atol 1e-10, same n
+ * and T; 1e-10 would take minutes), computed once per run.  Times are
+ * process CPU time (clock_gettime(CLOCK_PROCESS_CPUTIME_ID)) of the timed
+ * work beside its wall time; children are measured by wait4.  --quick
+ * runs a reduced set (smaller n and T) in about two minutes. */
 #ifndef CL_BENCH_H
 #define CL_BENCH_H
 
@@ -100,5 +104,12 @@ cl_status cl_bench_write_csv(const char *path, const cl_bench_table *t,
 void cl_bench_print(const cl_bench_table *t, FILE *fp);
 
 void cl_bench_table_free(cl_bench_table *t);
+
+/* Workload 6's child: cvode-bdf on hang at n with linsol ("" for the
+ * default) to T = 0.02 s in this process, then its peak resident memory
+ * (VmHWM, KiB). */
+cl_status cl_bench_peak_memory(const cl_bench_opts *o, int n,
+                               const char *linsol, long *peak_kb,
+                               cl_error *err);
 
 #endif

@@ -42,14 +42,13 @@ typedef struct {
     double *x;               /* free positions at t_end, 3 nfree */
 } cl_brun;
 
-/* A peer run in the background. */
+/* A peer run: its case, its files, its command line. */
 typedef struct {
     int n;
     double t_end;
-    cl_child child;
-    bool started, ended;
-    cl_child_usage use;
     char state[4096], stats[4096], errlog[4096];
+    char nset[32], tset[48];
+    char *argv[16];
 } cl_bpeer;
 
 typedef struct {
@@ -62,7 +61,9 @@ typedef struct {
     size_t nrun;
     bool linsol_ok;          /* cvode-bdf takes --linsol */
     char best[32];           /* "" for cvode-bdf's default */
-    bool peers_on;           /* workload 1 runs its peers */
+    cl_child peers;          /* runs the peers one after the other */
+    char problem[4096];      /* the peers' problem file */
+    char budget[32];
     char python[512];
     char no_python[400];     /* why there is no peer, or "" */
     cl_bpeer peer[2];
@@ -89,6 +90,9 @@ void cl_bench_clock(double *cpu, double *wall);
 const cl_brun *cl_bench_hang(cl_bctx *c, int n, double t_end,
                              const char *linsol, double rtol, double atol);
 
+/* Free the cached runs. */
+void cl_bench_runs_free(cl_bctx *c);
+
 /* Largest distance between two sets of nfree positions. */
 double cl_bench_distance(const double *x, const double *y, size_t nfree);
 
@@ -110,9 +114,6 @@ void cl_bench_note(cl_bench_row *r, const char *fmt, ...)
 void cl_bench_log(const cl_bctx *c, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 void cl_bench_log_row(const cl_bctx *c, const cl_bench_row *r);
-
-/* Keep the background peers going (poll; start the next). */
-void cl_bench_tick(cl_bctx *c);
 
 /* "cvode-bdf LINSOL" or "cvode-bdf (default)". */
 void cl_bench_side(char *buf, size_t len, const char *linsol);

@@ -137,8 +137,18 @@ const cl_brun *cl_bench_hang(cl_bctx *c, int n, double t_end,
     cl_bench_copy(r->linsol, sizeof r->linsol, linsol);
     c->runs[c->nrun++] = r;
     run_hang(c, r);
-    cl_bench_tick(c);
     return r;
+}
+
+void cl_bench_runs_free(cl_bctx *c)
+{
+    for (size_t k = 0; k < c->nrun; k++) {
+        free(c->runs[k]->x);
+        free(c->runs[k]);
+    }
+    free(c->runs);
+    c->runs = NULL;
+    c->nrun = 0;
 }
 
 double cl_bench_distance(const double *x, const double *y, size_t nfree)
@@ -223,8 +233,10 @@ void cl_bench_log(const cl_bctx *c, const char *fmt, ...)
 
 void cl_bench_log_row(const cl_bctx *c, const cl_bench_row *r)
 {
-    cl_bench_log(c, "[%d] %s: %s %s%s -> %.4g %s%s%s%s", r->workload,
-                 r->kase, r->side_a, *r->side_b ? "vs " : "", r->side_b,
-                 r->ratio, r->unit, r->met == 1 ? " (met)" : r->met == 0 ?
-                 " (not met)" : "", *r->note ? "; " : "", r->note);
+    double figure = isfinite(r->ratio) ? r->ratio : r->cpu_a;
+    cl_bench_log(c, "[%d] %s: %s%s%s -> %.4g %s%s%s%s", r->workload,
+                 r->kase, r->side_a, *r->side_b ? " vs " : "", r->side_b,
+                 figure, isfinite(r->ratio) ? r->unit : "s CPU",
+                 r->met == 1 ? " (met)" : r->met == 0 ? " (not met)" : "",
+                 *r->note ? "; " : "", r->note);
 }

@@ -32,6 +32,10 @@ static const char bench_help[] =
     "  --only LIST    only these workloads, e.g. --only 3,4\n"
     "  --out FILE     CSV file (default results/bench.csv)\n"
     "  --peer FILE    the peer script (default scripts/peers/hang_scipy.py)\n"
+    "  --peak-memory N:LINSOL\n"
+    "                 workload 6's child: cvode-bdf (LINSOL, empty for the\n"
+    "                 default) on hang at n = N to T = 0.02 s; prints\n"
+    "                 peak_kb,VALUE (its VmHWM) and nothing else\n"
     "  --help         this text\n"
     "The peer runs with $CLOTHODE_PYTHON, else the first of python3 on PATH\n"
     "and /usr/bin/python3 that has numpy and scipy.\n";
@@ -39,6 +43,7 @@ static const char bench_help[] =
 typedef struct {
     cl_bench_opts o;
     const char *out;
+    const char *peak;   /* --peak-memory N:LINSOL, or NULL */
 } bench_args;
 
 /* "1,3" -> bits 1 and 3; -1 if malformed. */
@@ -62,7 +67,9 @@ static int parse_args(int argc, char **argv, bench_args *a)
     static const struct option opts[] = {
         {"quick", no_argument, 0, 'q'}, {"only", required_argument, 0, 'w'},
         {"out", required_argument, 0, 'o'},
-        {"peer", required_argument, 0, 'p'}, {"help", no_argument, 0, 'h'},
+        {"peer", required_argument, 0, 'p'},
+        {"peak-memory", required_argument, 0, 'm'},
+        {"help", no_argument, 0, 'h'},
         {0, 0, 0, 0}};
     int c;
     optind = 1;
@@ -77,6 +84,8 @@ static int parse_args(int argc, char **argv, bench_args *a)
             a->out = optarg;
         } else if (c == 'p') {
             a->o.peer = optarg;
+        } else if (c == 'm') {
+            a->peak = optarg;
         } else if (c == 'w' && parse_only(optarg, &a->o.only)) {
             return cl_cli_usage_error("bench", "--only \"%s\": expected "
                                       "workload numbers 1..%d separated by "
@@ -161,6 +170,22 @@ static int bench(bench_args *a)
     return rc ? cl_cli_fail(&err) : 0;
 }
 
+/* --peak-memory N:LINSOL */
+static int peak_memory(bench_args *a)
+{
+    char *end;
+    long n = strtol(a->peak, &end, 10);
+    if (end == a->peak || *end != ':' || n < 3 || n > 4096)
+        return cl_cli_usage_error("bench", "--peak-memory \"%s\": expected "
+                                  "N:LINSOL with N >= 3", a->peak);
+    long kb;
+    cl_error err = {0};
+    if (cl_bench_peak_memory(&a->o, (int)n, end + 1, &kb, &err))
+        return cl_cli_fail(&err);
+    printf("peak_kb,%ld\n", kb);
+    return 0;
+}
+
 int cl_cmd_bench(int argc, char **argv)
 {
     const char *dir = getenv("CLOTHODE_PROBLEMS");
@@ -169,5 +194,5 @@ int cl_cmd_bench(int argc, char **argv)
                           .log = stderr},
                     .out = "results/bench.csv"};
     int rc = parse_args(argc, argv, &a);
-    return rc == -2 ? 0 : rc < 0 ? 2 : bench(&a);
+    return rc == -2 ? 0 : rc < 0 ? 2 : a.peak ? peak_memory(&a) : bench(&a);
 }

@@ -214,9 +214,10 @@ static cl_status red_solve_half(cl_sunred *r, double delta)
     size_t n = s->sys->n;
     if (!r->lt->solve_tol || !r->weight || !(delta > 0))
         return r->lt->solve(r->lstate, r->rhs, r->z, &r->err);
-    const double *wv = N_VGetArrayPointer(r->weight) + n, *m = s->sys->mass;
+    const double *wv = N_VGetArrayPointer(r->weight) + n;
+    const double *im = s->inv_mass, g2 = r->g * r->g;
     for (size_t i = 0; i < n; i++)
-        r->w[i] = r->ida ? r->g * r->g * wv[i] : wv[i] / m[i];
+        r->w[i] = r->ida ? g2 * wv[i] : wv[i] * im[i];
     return r->lt->solve_tol(r->lstate, r->rhs, r->z, r->w, delta, &r->err);
 }
 

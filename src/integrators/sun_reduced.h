@@ -49,7 +49,12 @@
  * to guess at every solve when the Jacobian is stale and when gamma has
  * moved, without CVODE's convergence-failure information, and a stale
  * Jacobian could no longer be refreshed within a step (a failed Newton
- * iteration costs a step reduction instead).  So the solver is attached
+ * iteration costs a step reduction instead).  Measured with a
+ * matrix-embedded prototype (pcg; Jacobian every 51 steps or after a
+ * convergence failure, preconditioner at every change of gamma) on hang,
+ * rtol 1e-4, T = 2 s: 1.5 Newton iterations per step instead of 1.06 and
+ * 38 % (n = 16) / 32 % (n = 32) more CPU time than the design below.
+ * So the solver is attached
  * as a matrix-based one with a *shell* SUNMatrix that holds no values (its
  * zero, copy, scale-add-identity and clone operations do nothing but keep
  * the shell), and CVODE's and IDA's own heuristics decide:

@@ -8,7 +8,7 @@
  *   pcg-jacobi  the same with the point-Jacobi (diagonal) preconditioner
  *   cholmod     supernodal sparse Cholesky (CHOLMOD), klu when A is not
  *               symmetric positive definite
- *   auto        pcg, cholmod or klu, chosen at every setup */
+ *   auto        pcg, or cholmod / klu where pcg costs more or fails */
 #include "linalg/linsol.h"
 
 #include <stdio.h>

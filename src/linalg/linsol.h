@@ -19,9 +19,10 @@
  *   cholmod     supernodal sparse Cholesky (SuiteSparse CHOLMOD) for a
  *               symmetric positive definite A, handing a setup whose A is
  *               not (or not symmetric) to klu (linsol_cholmod.c);
- *   auto        picks one of pcg, cholmod, klu at every setup from A's
- *               diagonal dominance and falls back to a direct solver when
- *               pcg fails (linsol_auto.c).
+ *   auto        pcg, and cholmod (or klu) for a while after a pcg setup
+ *               that a factorisation would have done cheaper or that
+ *               failed; a failed pcg solve is redone directly
+ *               (linsol_auto.c).
  *
  * Usage: create once (the pattern must outlive the solver; mass is
  * copied), then per Newton matrix one setup and any number of solves; a
@@ -55,6 +56,11 @@ typedef struct {
      * integrators ask of an iterative linear solver. */
     cl_status (*solve_tol)(void *state, const double *rhs, double *x,
                            const double *w, double delta, cl_error *err);
+    /* Optional (direct solvers): the flops of one setup (numeric
+     * factorisation) and of one solve, as the symbolic analysis predicts
+     * them; auto weighs them against pcg's iterations. */
+    void (*cost)(const void *state, double *setup_flops,
+                 double *solve_flops);
     /* Add this solver's counters: lin_setups, lin_solves, lin_iters,
      * symbolic_facts, lin_fallbacks; a solver that can hand work to
      * another one also writes the names into linsol. */

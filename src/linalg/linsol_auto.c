@@ -2,44 +2,55 @@
  *
  *     A = M - a df/dv - b df/dx
  *
- * at every setup from A's diagonal dominance
+ * setup by setup, by cost:
  *
- *     rho = max over scalar rows r of  sum_{c != r} |A_rc| / A_rr
+ *   pcg       (3x3 block-Jacobi, linsol_pcg.c) by default.  At CVODE's and
+ *             IDA's small steps A is close to M and a solve costs one or two
+ *             block products (1.0-1.2 iterations per solve on hang at n =
+ *             16..64 with the integrator's tolerance);
+ *   cholmod   (linsol_cholmod.c, which itself hands a setup whose A is not
+ *             symmetric positive definite to klu) for the next
+ *             CL_AUTO_DIRECT setups when the last pcg setup cost more than
+ *             a factorisation and the same number of direct solves would
+ *             have; then pcg is tried again.
  *
- * (one pass over the block values; rho = inf if a diagonal entry is not
- * positive):
+ * Costs are counted in products with A (18 flops per stored block): a pcg
+ * iteration CL_AUTO_ITER_COST products (the product, the preconditioner and
+ * SUNDIALS' vector operations); a CHOLMOD factorisation and solve their
+ * flops from the analysis (cl_linsol_type.cost) times CL_AUTO_FLOP_RATIO,
+ * CHOLMOD's flop rate with Debian's reference BLAS being about a quarter of
+ * the block product's (measured on hang: factorisation 0.7-1.4 GFlop/s,
+ * solves 1.0, products 4.4).  The comparison (pcg's iterations of the last
+ * setup against factorisation + as many direct solves as that setup had)
+ * is made once the last setup needed more than CL_AUTO_PROBE iterations per
+ * solve; CHOLMOD's analysis is run then, once.  On hang at n = 16 the
+ * break-even is ~34 iterations per solve with 20 solves per setup (CVODE at
+ * large steps) and ~350 with one solve per setup (semi-be).
  *
- *   rho <= 1   pcg (3x3 block-Jacobi, linsol_pcg.c).  A symmetric A with a
- *              positive diagonal that is diagonally dominant is positive
- *              definite, and the preconditioned system is well conditioned
- *              (kappa <= (1 + rho) / (1 - rho) for point Jacobi; block
- *              Jacobi does at least as well in practice): the small steps
- *              of an accuracy-limited CVODE or IDA run, where A is close to
- *              M and pcg needs one or two iterations per solve;
- *   otherwise  cholmod (linsol_cholmod.c), which itself hands a setup whose
- *              A is not symmetric positive definite to klu: the large steps
- *              of semi-implicit methods or stiff transients.
- *
- * A pcg setup or solve that fails (A not positive definite after all, no
- * convergence within lin_maxit) is not an error: the same A is factorised
- * by cholmod (or klu) and the solve repeated; such fallbacks are counted in
- * cl_stats.lin_fallbacks.  For this, dfdx and dfdv must keep their values
- * from a setup to the last solve of that setup (every integrator here only
- * re-evaluates them before a setup).
+ * A pcg setup or solve that fails (A not positive definite, no convergence
+ * within lin_maxit) is not an error: the same A is factorised by cholmod (or
+ * klu) and the solve repeated, and the next CL_AUTO_DIRECT setups go direct
+ * too; such fallbacks are counted in cl_stats.lin_fallbacks.  For this,
+ * dfdx and dfdv must keep their values from a setup to the last solve of
+ * that setup (every integrator here only re-evaluates them before a
+ * setup).  The choice depends on counts only, never on timings, so runs
+ * are reproducible.
  *
  * The solvers are created when first needed (pcg at create, cholmod at the
- * first direct setup: one allocation and one symbolic analysis in the life
- * of the solver) and kept.  Statistics are the sum of theirs; linsol says
- * what auto picked: "auto:pcg", "auto:pcg+cholmod", "auto:cholmod+klu", ...
- * in the order pcg, cholmod, klu. */
+ * first direct setup or cost comparison: one allocation and one symbolic
+ * analysis in the life of the solver) and kept.  Statistics are the sum of
+ * theirs; linsol says what auto used: "auto:pcg", "auto:pcg+cholmod",
+ * "auto:pcg+cholmod+klu" (in the order pcg, cholmod, klu). */
 #include "linalg/linsol.h"
 
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define CL_AUTO_RHO_PCG 1.0
+#define CL_AUTO_PROBE 20        /* iterations per solve: compare costs */
+#define CL_AUTO_ITER_COST 1.3   /* products with A per pcg iteration */
+#define CL_AUTO_FLOP_RATIO 4.0  /* CHOLMOD's flops cost this many of ours */
+#define CL_AUTO_DIRECT 16       /* direct setups before pcg is tried again */
 
 extern const cl_linsol_type cl_linsol_pcg;
 extern const cl_linsol_type cl_linsol_cholmod;
@@ -55,6 +66,8 @@ typedef struct {
     /* the current setup, for a fallback from a failed pcg solve */
     double a, b;
     const double *dfdx, *dfdv;
+    long direct_left;           /* setups still to go to the direct solver */
+    long solves0, iters0;       /* pcg's counters at the current setup */
     long fallbacks;
 } cl_auto;
 
@@ -98,29 +111,47 @@ static cl_status auto_create(const cl_bpattern *pat, const double *mass,
     return CL_OK;
 }
 
-/* rho of the header. */
-static double auto_dominance(const cl_auto *s, double a, double b,
-                             const double *dfdx, const double *dfdv)
+static cl_status auto_make_direct(cl_auto *s, cl_error *err)
 {
-    const cl_bpattern *p = s->pat;
-    double rho = 0.0;
-    for (size_t bi = 0; bi < p->nb; bi++) {
-        double off[3] = {0, 0, 0}, dia[3] = {0, 0, 0};
-        for (size_t k = p->rowptr[bi]; k < p->rowptr[bi + 1]; k++) {
-            for (size_t q = 0; q < 9; q++) {
-                double v = -a * dfdv[9 * k + q] - b * dfdx[9 * k + q];
-                if (k == p->diag[bi] && q % 4 == 0)
-                    dia[q / 4] = v + s->mass[3 * bi + q / 4];
-                else
-                    off[q / 3] += fabs(v);
-            }
-        }
-        for (size_t r = 0; r < 3; r++)
-            rho = dia[r] > 0.0 ? fmax(rho, off[r] / dia[r]) : INFINITY;
-        if (!(rho <= CL_AUTO_RHO_PCG))
-            return rho; /* decided */
-    }
-    return rho;
+    if (s->direct)
+        return CL_OK;
+    return cl_linsol_cholmod.create(s->pat, s->mass, &s->opts, &s->direct,
+                                    err);
+}
+
+/* Would the last pcg setup (solves solves, iters iterations) have been
+ * cheaper direct?  Costs in products with A (see the header). */
+static bool auto_direct_cheaper(const cl_auto *s, long solves, long iters)
+{
+    double fact, solve, product = 18.0 * (double)s->pat->nnzb;
+    cl_linsol_cholmod.cost(s->direct, &fact, &solve);
+    double direct = CL_AUTO_FLOP_RATIO * (fact + (double)solves * solve);
+    return direct / product < CL_AUTO_ITER_COST * (double)iters;
+}
+
+/* Close the books of the previous setup: if it was an expensive pcg one
+ * that a factorisation would have done cheaper, the next CL_AUTO_DIRECT
+ * setups go direct. */
+static cl_status auto_review(cl_auto *s, cl_error *err)
+{
+    cl_stats p = {0};
+    cl_linsol_pcg.stats(s->pcg, &p);
+    long solves = p.lin_solves - s->solves0, iters = p.lin_iters - s->iters0;
+    s->solves0 = p.lin_solves;
+    s->iters0 = p.lin_iters;
+    if (!s->use_pcg || solves == 0 || iters <= CL_AUTO_PROBE * solves)
+        return CL_OK;
+    cl_status st = auto_make_direct(s, err);
+    if (st == CL_OK && auto_direct_cheaper(s, solves, iters))
+        s->direct_left = CL_AUTO_DIRECT;
+    return st;
+}
+
+/* pcg failed on the current A: count it, and go direct for a while. */
+static void auto_fell_back(cl_auto *s)
+{
+    s->fallbacks++;
+    s->direct_left = CL_AUTO_DIRECT;
 }
 
 /* The current A goes to the direct solver. */
@@ -128,12 +159,9 @@ static cl_status auto_direct(cl_auto *s, cl_error *err)
 {
     s->use_pcg = false;
     s->used_direct = true;
-    if (!s->direct) {
-        cl_status st = cl_linsol_cholmod.create(s->pat, s->mass, &s->opts,
-                                                &s->direct, err);
-        if (st != CL_OK)
-            return st;
-    }
+    cl_status st = auto_make_direct(s, err);
+    if (st != CL_OK)
+        return st;
     return cl_linsol_cholmod.setup(s->direct, s->a, s->b, s->dfdx, s->dfdv,
                                    err);
 }
@@ -148,14 +176,21 @@ static cl_status auto_setup(void *state, double a, double b,
     s->dfdx = dfdx;
     s->dfdv = dfdv;
     s->ready = false;
-    cl_status st = CL_ESOLVER;
-    if (auto_dominance(s, a, b, dfdx, dfdv) <= CL_AUTO_RHO_PCG) {
+    cl_status st = auto_review(s, err);
+    if (st != CL_OK)
+        return st;
+    s->use_pcg = false;
+    st = CL_ESOLVER;
+    if (s->direct_left > 0) {
+        s->direct_left--;
+    } else {
         st = cl_linsol_pcg.setup(s->pcg, a, b, dfdx, dfdv, err);
         if (st != CL_OK && st != CL_ESOLVER)
             return st;
         s->use_pcg = st == CL_OK;
         s->used_pcg |= s->use_pcg;
-        s->fallbacks += st != CL_OK;
+        if (st != CL_OK)
+            auto_fell_back(s);
     }
     if (st != CL_OK)
         st = auto_direct(s, err);
@@ -177,7 +212,7 @@ static cl_status auto_solve_any(cl_auto *s, const double *rhs, double *x,
                          : cl_linsol_pcg.solve(s->pcg, rhs, x, err);
         if (st != CL_ESOLVER)
             return st;
-        s->fallbacks++;
+        auto_fell_back(s);
         if ((st = auto_direct(s, err)) != CL_OK) {
             s->ready = false;
             return st;
@@ -217,8 +252,8 @@ static void auto_stats(const void *state, cl_stats *out)
 
 const cl_linsol_type cl_linsol_auto = {
     .name = "auto",
-    .doc = "pcg when A is diagonally dominant, else cholmod (klu if not "
-           "SPD); falls back to direct when pcg fails",
+    .doc = "pcg, or cholmod (klu if not SPD) while a factorisation is "
+           "cheaper or after pcg failed",
     .create = auto_create,
     .setup = auto_setup,
     .solve = auto_solve,

@@ -1,0 +1,163 @@
+/* The benchmark harness (analysis/bench.h, analysis/child.h, `clothode
+ * bench`): its options, its CSV, the child-process helpers.  No timing is
+ * asserted; a short workload (4, --quick) runs for real. */
+#include <criterion/criterion.h>
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analysis/bench.h"
+#include "analysis/child.h"
+#include "runcli.h"
+
+static char tmp[512];
+
+static void setup(void)
+{
+    tmp_mkdtemp(tmp, sizeof tmp, "bench");
+}
+
+static void teardown(void)
+{
+    tmp_rm_rf(tmp);
+}
+
+TestSuite(bench, .init = setup, .fini = teardown, .timeout = 300);
+
+static const char *in_tmp(char *buf, const char *name)
+{
+    snprintf(buf, 1024, "%s/%s", tmp, name);
+    return buf;
+}
+
+Test(bench, help_and_bad_options)
+{
+    cli_result r;
+    cli_run(&r, "bench", "--help", NULL);
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "usage: clothode bench"), "%s", r.out);
+    cli_result_free(&r);
+    cli_run(&r, "bench", "--only", "7", NULL);
+    cli_assert_error(&r, 1, "--only", "7", NULL);
+    cli_result_free(&r);
+    cli_run(&r, "bench", "--only", "1,x", NULL);
+    cli_assert_error(&r, 1, "--only", NULL);
+    cli_result_free(&r);
+    cli_run(&r, "bench", "--frobnicate", NULL);
+    cli_assert_error(&r, 1, "--frobnicate", NULL);
+    cli_result_free(&r);
+    cli_run(&r, "bench", "extra", NULL);
+    cli_assert_error(&r, 1, "extra", NULL);
+    cli_result_free(&r);
+    cli_run(&r, "bench", "--peak-memory", "2:klu", NULL);
+    cli_assert_error(&r, 1, "--peak-memory", NULL);
+    cli_result_free(&r);
+    cli_run(&r, "bench", "--peak-memory", "6:no-such-solver", NULL);
+    cli_assert_error(&r, 0, "no-such-solver", NULL);
+    cli_result_free(&r);
+}
+
+/* Workload 6's child mode: one line, a positive peak in KiB. */
+Test(bench, peak_memory_child_prints_its_peak)
+{
+    cli_result r;
+    cli_run(&r, "bench", "--peak-memory", "6:", NULL);
+    cli_assert_ok(&r);
+    long kb = -1;
+    cr_assert_eq(sscanf(r.out, "peak_kb,%ld\n", &kb), 1, "%s", r.out);
+    cr_assert_gt(kb, 0);
+    cr_assert_eq(cli_count_lines(r.out), 1, "%s", r.out);
+    cli_result_free(&r);
+}
+
+/* Workload 4 in its quick form: a table on stdout, the CSV with its header
+ * and a force row whose figure is a positive time per pair. */
+Test(bench, quick_force_workload_writes_its_rows)
+{
+    char csv[1024];
+    cli_result r;
+    cli_run(&r, "bench", "--quick", "--only", "4", "--out",
+            in_tmp(csv, "sub/bench.csv"), NULL);
+    cli_assert_no_crash(&r);
+    cr_assert_eq(r.status, 0, "%s: status %d\n%s", r.cmd, r.status, r.err);
+    cr_assert(strstr(r.out, "ns/pair"), "table:\n%s", r.out);
+    cli_result_free(&r);
+    cli_lines L;
+    cli_read_lines(csv, &L);
+    cr_assert_str_eq(L.line[0], "workload,case,side_a,side_b,cpu_a,cpu_b,"
+                     "wall_a,wall_b,error_a,error_b,ratio,unit,goal,"
+                     "target,met,note");
+    cr_assert_eq(L.n, 3, "%zu rows", L.n - 1);
+    cr_assert(!strncmp(L.line[1], "4,hang n=64,force,,", 19), "%s",
+              L.line[1]);
+    const char *unit = strstr(L.line[1], ",ns/pair,<=,10,");
+    cr_assert_not_null(unit, "%s", L.line[1]);
+    const char *p = unit;
+    while (p > L.line[1] && p[-1] != ',')
+        p--;
+    double ns = strtod(p, NULL);
+    cr_assert(ns > 0 && isfinite(ns), "figure %g ns per pair", ns);
+    cli_lines_free(&L);
+}
+
+Test(bench, csv_quotes_text_and_leaves_missing_figures_empty)
+{
+    cl_bench_row row = {.workload = 2, .met = 0, .ratio = 3.5,
+                        .cpu_a = 1.25, .cpu_b = NAN, .wall_a = NAN,
+                        .wall_b = NAN, .error_a = NAN, .error_b = NAN,
+                        .target = 20};
+    strcpy(row.kase, "hang n=32");
+    strcpy(row.side_a, "a, b");
+    strcpy(row.unit, "x");
+    strcpy(row.goal, ">=");
+    strcpy(row.note, "said \"so\"");
+    cl_bench_table t = {&row, 1, 1};
+    char path[1024];
+    cl_error err = {0};
+    cr_assert_eq(cl_bench_write_csv(in_tmp(path, "t.csv"), &t, &err), CL_OK,
+                 "%s", err.msg);
+    cli_lines L;
+    cli_read_lines(path, &L);
+    cr_assert_eq(L.n, 2);
+    cr_assert_str_eq(L.line[1], "2,hang n=32,\"a, b\",,1.25,,,,,,3.5,x,>=,"
+                                "20,no,\"said \"\"so\"\"\"");
+    cli_lines_free(&L);
+}
+
+Test(bench, child_status_usage_and_output)
+{
+    char out[1024];
+    cl_child_usage u;
+    cl_error err = {0};
+    char *yes[] = {"sh", "-c", "echo hello; exit 0", NULL};
+    cr_assert_eq(cl_child_run(yes, in_tmp(out, "o.txt"), NULL, &u, &err),
+                 CL_OK, "%s", err.msg);
+    cr_assert(u.exited && u.status == 0 && u.maxrss_kb > 0);
+    cr_assert(u.cpu >= 0 && u.wall >= 0);
+    char text[64];
+    tmp_slurp(out, text, sizeof text);
+    cr_assert_str_eq(text, "hello\n");
+    char *no[] = {"sh", "-c", "exit 3", NULL};
+    cr_assert_eq(cl_child_run(no, NULL, NULL, &u, &err), CL_EIO);
+    cr_assert_eq(u.status, 3);
+    cr_assert(strstr(err.msg, "status 3"), "%s", err.msg);
+    char *missing[] = {"clothode-no-such-program", NULL};
+    cr_assert_eq(cl_child_run(missing, NULL, NULL, &u, &err), CL_EIO);
+    cr_assert(strstr(err.msg, "clothode-no-such-program"), "%s", err.msg);
+}
+
+Test(bench, child_poll_then_wait)
+{
+    cl_child c;
+    cl_child_usage u;
+    cl_error err = {0};
+    char *sleeper[] = {"sh", "-c", "sleep 0.3", NULL};
+    cr_assert_eq(cl_child_start(&c, sleeper, NULL, NULL, &err), CL_OK, "%s",
+                 err.msg);
+    cr_assert_not(cl_child_done(&c, &u), "a 0.3 s child ended at once");
+    cl_child_wait(&c, &u);
+    cr_assert(u.exited && u.status == 0);
+    cr_assert_eq(c.pid, 0);
+    cr_assert_not(cl_child_done(&c, &u), "a reaped child polled again");
+}
