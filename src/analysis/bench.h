@@ -29,11 +29,11 @@
  *      (constraint level 2, 10 iterations): steps per CPU second, goal >=
  *      25,000.
  *   6  peak resident memory per unknown (6 per free particle) of
- *      cvode-bdf on hang at n = 128, T = 0.02 s (past the first
- *      factorisations), best solver beside klu-full, each run in a child
- *      process (`clothode bench --peak-memory`, which reports its own
- *      VmHWM); the note gives the bytes per unknown above a run at n = 8
- *      (program, libraries and fixed buffers taken out).
+ *      cvode-bdf with the best solver on hang at n = 128, T = 0.02 s (past
+ *      the first factorisations), run in a child process (`clothode
+ *      bench --peak-memory`, which reports its own VmHWM); the note gives
+ *      the bytes per unknown above a run at n = 8 (program, libraries and
+ *      fixed buffers taken out).
  *
  * The best solver for cvode-bdf is picked once per run: every name of the
  * linear-solver registry plus klu-full, timed on the first case of

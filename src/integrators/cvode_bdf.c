@@ -15,9 +15,10 @@
  *             M rv + gamma df/dx rx, dx = rx + gamma dv solved by that
  *             cl_linsol (sun_reduced.h, linalg/linsol.h).
  *
- * Default, by measurement on hang (rtol 1e-4, atol 1e-6, T = 2 s, CPU
- * time): auto (pcg at CVODE's small steps) ran 9x faster than klu-full at
- * n = 16 and 38x at n = 32 (see sun_reduced.h for the numbers).
+ * Default auto, by measurement on hang (rtol 1e-4, atol 1e-6, T = 2 s,
+ * CPU time): it runs pcg at CVODE's small steps, 3.5x faster than
+ * klu-full at n = 16 and 14x at n = 32; the half-size direct solvers gain
+ * only 1.0-1.6x (the table is in sun_reduced.h).
  * SUNDIALS 6.x API (SUNContext, sunrealtype).
  *
  * Options (tolerances, max steps, initial step), error capture, the
@@ -31,8 +32,6 @@
  * cl_linsol.  linsol names the solver; rhs_evals = CVODE's RHS evaluations
  * (none for the Jacobian, which is analytic). */
 #include "integrators/integrator.h"
-
-#include <stdio.h>
 
 #include <cvode/cvode.h>
 
@@ -108,20 +107,12 @@ static cl_status cvb_create(const cl_system *sys, const cl_integrator_opts *o,
 static cl_status cvb_advance(void *state, double t_out, double *x, double *v,
                              cl_error *err)
 {
-    cl_status st = cl_sun_advance(state, t_out, x, v, err);
-    if (st != CL_OK)
-        cl_sunred_explain(((cl_cvbdf *)state)->red, err);
-    return st;
+    return cl_sunred_advance(state, ((cl_cvbdf *)state)->red, t_out, x, v, err);
 }
 
 static void cvb_stats(const void *state, cl_stats *out)
 {
-    const cl_cvbdf *s = state;
-    cl_sun_stats(state, out);
-    if (s->red)
-        cl_sunred_stats(s->red, out);
-    else
-        snprintf(out->linsol, sizeof out->linsol, "klu-full");
+    cl_sunred_stats(state, ((const cl_cvbdf *)state)->red, out);
 }
 
 const cl_integrator_type cl_integrator_cvode_bdf = {

@@ -42,7 +42,6 @@
  * fixed pattern; half-size solvers: as in cvode_bdf.c). */
 #include "integrators/integrator.h"
 
-#include <stdio.h>
 #include <string.h>
 
 #include <ida/ida.h>
@@ -234,20 +233,12 @@ static cl_status ida_create(const cl_system *sys, const cl_integrator_opts *o,
 static cl_status ida_advance(void *state, double t_out, double *x, double *v,
                              cl_error *err)
 {
-    cl_status st = cl_sun_advance(state, t_out, x, v, err);
-    if (st != CL_OK)
-        cl_sunred_explain(((cl_ida *)state)->red, err);
-    return st;
+    return cl_sunred_advance(state, ((cl_ida *)state)->red, t_out, x, v, err);
 }
 
 static void ida_stats(const void *state, cl_stats *out)
 {
-    const cl_ida *s = state;
-    cl_sun_stats(state, out);
-    if (s->red)
-        cl_sunred_stats(s->red, out);
-    else
-        snprintf(out->linsol, sizeof out->linsol, "klu-full");
+    cl_sunred_stats(state, ((const cl_ida *)state)->red, out);
 }
 
 const cl_integrator_type cl_integrator_ida = {

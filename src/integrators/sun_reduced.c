@@ -356,8 +356,13 @@ cl_status cl_sunred_choose(const cl_sun *s, const char *name,
                         cl_linsol_names(names, sizeof names));
 }
 
-void cl_sunred_stats(const cl_sunred *r, cl_stats *out)
+void cl_sunred_stats(const cl_sun *s, const cl_sunred *r, cl_stats *out)
 {
+    cl_sun_stats(s, out);
+    if (!r) {
+        snprintf(out->linsol, sizeof out->linsol, "klu-full");
+        return;
+    }
     cl_stats ls = {0};
     r->lt->stats(r->lstate, &ls);
     out->lin_solves = ls.lin_solves;
@@ -368,11 +373,14 @@ void cl_sunred_stats(const cl_sunred *r, cl_stats *out)
              ls.linsol[0] ? ls.linsol : r->lt->name);
 }
 
-void cl_sunred_explain(const cl_sunred *r, cl_error *err)
+cl_status cl_sunred_advance(cl_sun *s, const cl_sunred *r, double t_out,
+                            double *x, double *v, cl_error *err)
 {
-    if (!r || !r->err.msg[0] || !err)
-        return;
+    cl_status st = cl_sun_advance(s, t_out, x, v, err);
+    if (st == CL_OK || !r || !r->err.msg[0])
+        return st;
     size_t len = strlen(err->msg);
     snprintf(err->msg + len, sizeof err->msg - len,
              "; last linear-solver failure: %s", r->err.msg);
+    return st;
 }

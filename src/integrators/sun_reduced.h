@@ -73,6 +73,29 @@
  * Nothing the size of the first-order matrix exists: no 2n x 2n values,
  * no copies of them.
  *
+ * Measured (cvode-bdf on hang, rtol 1e-4, atol 1e-6, T = 2 s; CPU seconds
+ * of one run each on a shared machine, so +-10 %; iterations per solve):
+ *
+ *     n    linsol      CPU s   steps  setups  it/solve
+ *     16   klu-full     13.0   13104     674     -
+ *     16   klu          12.0   13024     673     -
+ *     16   cholmod      13.4   13300     685     -
+ *     16   pcg           3.4   13331     689    1.04
+ *     16   auto          3.7   13331     689    1.04   (all pcg)
+ *     32   klu-full    175.7   13820     737     -
+ *     32   klu         146.7   14844     784     -
+ *     32   cholmod     110.1   13534     735     -
+ *     32   pcg          12.4   14322     754    1.13
+ *     32   auto         12.3   14322     754    1.13   (all pcg)
+ *     64   pcg         118.3   29574    1580    1.18
+ *     64   auto        124.0   29574    1580    1.18   (all pcg)
+ *
+ * At these steps A is close to M: a factorisation per setup plus two
+ * triangular solves per Newton iteration cost far more than one or two
+ * block products.  What remains with pcg (perf, n = 32): the block
+ * products 18-22 %, the force evaluation 30-37 %, SUNDIALS' vector
+ * operations ~15 % (linalg/nvec.h), CVODE's own logic the rest.
+ *
  * The solver type is SUNLINEARSOLVER_DIRECT for direct cl_linsols (klu,
  * cholmod) and SUNLINEARSOLVER_MATRIX_ITERATIVE for those with solve_tol
  * (pcg, pcg-jacobi, auto), which then get the integrator's tolerance and
@@ -84,7 +107,7 @@
  * indefinite A, no convergence) is a recoverable failure for the
  * integrator, which retries with a fresh Jacobian or a smaller step; other
  * failures are unrecoverable.  The last message is kept
- * (cl_sunred_explain).
+ * (cl_sunred_advance).
  *
  * Everything is allocated by cl_sunred_attach; setup and solve allocate
  * nothing (beyond what the cl_linsol documents). */
@@ -117,12 +140,14 @@ cl_status cl_sunred_attach(cl_sun *s, const cl_linsol_type *lt,
                            cl_sunred **out, cl_error *err);
 void cl_sunred_free(cl_sunred *r);
 
-/* Statistics of the half-size solver over those of cl_sun_stats: lin_solves,
- * lin_iters, symbolic_facts, lin_fallbacks and linsol from the cl_linsol
- * (steps, setups, Jacobian evaluations stay the integrator's). */
-void cl_sunred_stats(const cl_sunred *r, cl_stats *out);
-
-/* Append the last linear-solver failure, if any, to err's message. */
-void cl_sunred_explain(const cl_sunred *r, cl_error *err);
+/* The integrator-table entries of cvode-bdf and ida with half-size solver
+ * r, or NULL for klu-full.  Statistics: cl_sun_stats, then with r
+ * lin_solves, lin_iters, symbolic_facts, lin_fallbacks and linsol from the
+ * cl_linsol (steps, setups, Jacobian evaluations stay the integrator's),
+ * without r linsol = "klu-full".  Advance: cl_sun_advance, a failure's
+ * message followed by r's last linear-solver failure if any. */
+void cl_sunred_stats(const cl_sun *s, const cl_sunred *r, cl_stats *out);
+cl_status cl_sunred_advance(cl_sun *s, const cl_sunred *r, double t_out,
+                            double *x, double *v, cl_error *err);
 
 #endif
