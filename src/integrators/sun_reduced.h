@@ -89,6 +89,7 @@
  *     32   auto         12.3   14322     754    1.13   (all pcg)
  *     64   pcg         118.3   29574    1580    1.18
  *     64   auto        124.0   29574    1580    1.18   (all pcg)
+ *    128   auto        712.0   47135    2511    1.24   (all pcg)
  *
  * At these steps A is close to M: a factorisation per setup plus two
  * triangular solves per Newton iteration cost far more than one or two
