@@ -10,7 +10,7 @@ SAN     ?= 0
 BUILD   := build$(if $(filter 1,$(SAN)),-san,)
 
 CPPFLAGS := -Isrc -I/usr/include/suitesparse -D_XOPEN_SOURCE=700
-CFLAGS   := -std=c11 -Wall -Wextra -Werror -g
+CFLAGS   := -std=c11 -Wall -Wextra -Werror -g -fopenmp-simd
 ifeq ($(SAN),1)
 CFLAGS  += -O1 -fsanitize=address,undefined -fno-omit-frame-pointer \
            -fno-sanitize-recover=undefined

@@ -107,9 +107,37 @@ static double damp_axial(double kd, const cl_pair *pr, const long *s,
     return add_pair_force(ev, pr, fa);
 }
 
+/* Linear damping, forces only: the path of every right-hand side. */
+static void damp_linear_forces(const cl_pairdamp *pd,
+                               const double *restrict v, double *restrict f)
+{
+    const cl_pair *pair = pd->pt.set.pair;
+    double kd = pd->kd;
+    for (size_t k = 0; k < pd->pt.set.n; k++) {
+        if (cl_pairterm_is_torn(&pd->pt, k))
+            continue;
+        const double *va = v + 3 * pair[k].a, *vb = v + 3 * pair[k].b;
+        double *fa = f + 3 * pair[k].a, *fb = f + 3 * pair[k].b;
+        double f0 = -kd * (va[0] - vb[0]), f1 = -kd * (va[1] - vb[1]);
+        double f2 = -kd * (va[2] - vb[2]);
+        fa[0] += f0;
+        fa[1] += f1;
+        fa[2] += f2;
+        fb[0] -= f0;
+        fb[1] -= f1;
+        fb[2] -= f2;
+    }
+}
+
 void cl_pairdamp_eval(cl_pairdamp *pd, cl_eval *ev, cl_pairdamp_keep keep,
                       const void *ctx)
 {
+    if (pd->model == CL_DAMP_LINEAR && !keep && !ev->dfdx && !ev->dfdv &&
+        !ev->want_energy) {
+        if (ev->f)
+            damp_linear_forces(pd, ev->v, ev->f);
+        return;
+    }
     double power = 0.0;
     for (size_t k = 0; k < pd->pt.set.n; k++) {
         if (cl_pairterm_is_torn(&pd->pt, k) ||

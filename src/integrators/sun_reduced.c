@@ -18,6 +18,7 @@
 #include <ida/ida.h>
 #include <sundials/sundials_matrix.h>
 
+#include "linalg/bsym.h"
 #include "linalg/reduced.h"
 
 struct cl_sunred {
@@ -30,6 +31,10 @@ struct cl_sunred {
     double *w;          /* n: half-size weights (iterative solvers) */
     N_Vector weight;    /* the integrator's weights (borrowed), or NULL */
     N_Vector last_x;    /* the solution vector of the last solve (IDA's) */
+    cl_bsym sym;        /* the block that red_rhs multiplies by (Kx for
+                         * CVODE, Kv for IDA), by halves when symmetric: */
+    double *kdiag, *kupper;
+    bool ksym;          /* kdiag, kupper hold the last Jacobian's */
     cl_error err;       /* last failure, msg[0] == 0 if none */
 };
 
@@ -91,11 +96,18 @@ static SUNMatrix shell_new(cl_sunred *r, SUNContext ctx)
 
 /* ---- Jacobian functions: Kx, Kv at the solver's state ------------------ */
 
+/* Also packs the block red_rhs multiplies by, if it is symmetric. */
 static int red_eval(SUNMatrix J, sunrealtype t, N_Vector y)
 {
     cl_sunred *r = J->content;
+    cl_sun *b = r->base;
     const double *x = N_VGetArrayPointer(y);
-    return cl_sun_jacobian(r->base, t, x, x + r->base->sys->n);
+    int ret = cl_sun_jacobian(b, t, x, x + b->sys->n);
+    r->ksym = ret == 0 && cl_bsym_pack(&r->sym, 1.0, r->ida ? b->dfdv
+                                                            : b->dfdx,
+                                       0.0, NULL, NULL, CL_BSYM_TOL,
+                                       r->kdiag, r->kupper);
+    return ret;
 }
 
 static int red_cvode_jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J,
@@ -188,6 +200,16 @@ static int red_setup(SUNLinearSolver S, SUNMatrix A)
     return red_flag(st);
 }
 
+/* r->rhs = K rx, K = Kx (CVODE) or Kv (IDA). */
+static void red_kprod(cl_sunred *r, const double *rx)
+{
+    const cl_sun *s = r->base;
+    if (r->ksym)
+        cl_bsym_matvec(&r->sym, r->kdiag, r->kupper, rx, r->rhs);
+    else
+        cl_bmatvec(s->sys->pattern, r->ida ? s->dfdv : s->dfdx, rx, r->rhs);
+}
+
 /* Half-size right-hand side from b = (rx, rv), into r->rhs. */
 static void red_rhs(cl_sunred *r, const double *rx, const double *rv)
 {
@@ -195,13 +217,12 @@ static void red_rhs(cl_sunred *r, const double *rx, const double *rv)
     const double *m = s->sys->mass;
     size_t n = s->sys->n;
     double g = r->g;
+    red_kprod(r, rx);
     if (!r->ida) {
-        cl_bmatvec(s->sys->pattern, s->dfdx, rx, r->rhs);
         for (size_t i = 0; i < n; i++)
             r->rhs[i] = m[i] * rv[i] + g * r->rhs[i];
         return;
     }
-    cl_bmatvec(s->sys->pattern, s->dfdv, rx, r->rhs);
     for (size_t i = 0; i < n; i++)
         r->rhs[i] = (rv[i] + g * m[i] * rx[i] - r->rhs[i]) / (g * g);
 }
@@ -288,6 +309,9 @@ void cl_sunred_free(cl_sunred *r)
     free(r->rhs);
     free(r->z);
     free(r->w);
+    free(r->kdiag);
+    free(r->kupper);
+    cl_bsym_free(&r->sym);
     free(r);
 }
 
@@ -308,7 +332,14 @@ static cl_status red_alloc(cl_sun *s, const cl_linsol_type *lt,
     if (!r->rhs || !r->z || !r->w)
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
     cl_error inner = {0};
-    cl_status st = lt->create(s->sys->pattern, s->sys->mass, o, &r->lstate,
+    cl_status st = cl_bsym_create(s->sys->pattern, &r->sym, &inner);
+    if (st != CL_OK)
+        return cl_error_set(err, st, "%s: %s", s->name, inner.msg);
+    r->kdiag = malloc(9 * r->sym.nb * sizeof *r->kdiag);
+    r->kupper = malloc((9 * r->sym.ne + 1) * sizeof *r->kupper);
+    if (!r->kdiag || !r->kupper)
+        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
+    st = lt->create(s->sys->pattern, s->sys->mass, o, &r->lstate,
                               &inner);
     if (st != CL_OK)
         return cl_error_set(err, st, "%s: %s", s->name, inner.msg);

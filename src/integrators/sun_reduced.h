@@ -71,7 +71,9 @@
  *    itself, as for KLU on the full matrix;
  *  - solve uses the gamma / cj of the last setup, consistent with A.
  * Nothing the size of the first-order matrix exists: no 2n x 2n values,
- * no copies of them.
+ * no copies of them.  The product Kx rx (Kv rx for IDA) of the right-hand
+ * side uses the halves of the block when it is symmetric (linalg/bsym.h,
+ * packed once per Jacobian), as pcg does for A at every setup.
  *
  * Measured (cvode-bdf on hang, rtol 1e-4, atol 1e-6, T = 2 s; CPU seconds
  * of one run each on a shared machine, so +-10 %; iterations per solve):

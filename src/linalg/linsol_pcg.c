@@ -3,8 +3,10 @@
  * by SUNDIALS' SUNLinSol_PCG (no hand-written Krylov loop):
  *
  *  - matrix-free product (SUNLinSolSetATimes): y = A p from A's 3x3 block
- *    values, formed at every setup (linalg/reduced.h: cl_reduced_blocks,
- *    cl_bmatvec);
+ *    values, formed at every setup: when A is symmetric (it is for
+ *    conservative forces with linear damping) its diagonal and upper
+ *    blocks only (linalg/bsym.h: half the memory of the full product),
+ *    else every block (linalg/reduced.h: cl_reduced_blocks, cl_bmatvec);
  *  - preconditioner (SUNLinSolSetPreconditioner, applied as z = P^-1 r):
  *      pcg         3x3 block-Jacobi, P = blockdiag(S_ii), S_ii the
  *                  symmetric part of A's diagonal block i, inverted
@@ -50,6 +52,7 @@
 #include <sunlinsol/sunlinsol_pcg.h>
 
 #include "core/check.h"
+#include "linalg/bsym.h"
 #include "linalg/nvec.h"
 #include "linalg/reduced.h"
 
@@ -62,7 +65,10 @@ typedef struct {
     size_t n;
     bool block;              /* block-Jacobi (else point Jacobi) */
     double *mass;            /* n */
-    double *ablk;            /* 9 nnzb: A's block values */
+    double *ablk;            /* 9 nnzb: A's block values (if !symmetric) */
+    cl_bsym sym;             /* A's halves, if it is symmetric: */
+    double *sdiag, *supper;  /* 9 nb, 9 ne: their values */
+    bool symmetric;          /* the last setup packed A (sdiag, supper) */
     double *pinv;            /* 9 nb (block) or n (point): P^-1 */
     double tol;
     int maxit;
@@ -83,7 +89,10 @@ static int pcg_atimes(void *data, N_Vector v, N_Vector z)
     cl_pcg *s = data;
     const double *vp = N_VGetArrayPointer(v);
     double *zp = N_VGetArrayPointer(z), curv = 0.0, vv = 0.0;
-    cl_bmatvec(s->pat, s->ablk, vp, zp);
+    if (s->symmetric)
+        cl_bsym_matvec(&s->sym, s->sdiag, s->supper, vp, zp);
+    else
+        cl_bmatvec(s->pat, s->ablk, vp, zp);
     s->nprod++;
     for (size_t i = 0; i < s->n; i++)
         curv += vp[i] * zp[i];
@@ -120,12 +129,17 @@ static bool pcg_inv3(const double *B, double *inv, double minor[3])
     return true;
 }
 
+/* A's diagonal block i, from whichever form the last setup made. */
+static const double *pcg_diag_block(const cl_pcg *s, size_t i)
+{
+    return s->symmetric ? s->sdiag + 9 * i : s->ablk + 9 * s->pat->diag[i];
+}
+
 static int pcg_psetup_block(cl_pcg *s)
 {
     for (size_t i = 0; i < s->pat->nb; i++) {
         double minor[3];
-        if (!pcg_inv3(s->ablk + 9 * s->pat->diag[i], s->pinv + 9 * i,
-                      minor)) {
+        if (!pcg_inv3(pcg_diag_block(s, i), s->pinv + 9 * i, minor)) {
             snprintf(s->why, sizeof s->why, "the matrix M - a df/dv - b "
                      "df/dx is not positive definite: its diagonal block "
                      "%zu is not (leading minors %.6g, %.6g, %.6g; no "
@@ -140,7 +154,7 @@ static int pcg_psetup_block(cl_pcg *s)
 static int pcg_psetup_point(cl_pcg *s)
 {
     for (size_t i = 0; i < s->n; i++) {
-        double d = s->ablk[9 * s->pat->diag[i / 3] + 4 * (i % 3)];
+        double d = pcg_diag_block(s, i / 3)[4 * (i % 3)];
         if (!(d > 0.0) || !isfinite(d)) {
             snprintf(s->why, sizeof s->why, "the matrix M - a df/dv - b "
                      "df/dx is not positive definite: its diagonal entry "
@@ -202,6 +216,9 @@ static void pcg_free(void *state)
     free(s->mass);
     free(s->ablk);
     free(s->pinv);
+    free(s->sdiag);
+    free(s->supper);
+    cl_bsym_free(&s->sym);
     free(s);
 }
 
@@ -233,7 +250,14 @@ static cl_status pcg_alloc(cl_pcg *s, const double *mass, cl_error *err)
     s->pinv = calloc(s->block ? 9 * s->pat->nb : s->n, sizeof *s->pinv);
     if (!s->mass || !s->ablk || !s->pinv)
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
-    cl_status st = cl_check_masses(mass, s->n, s->name, err);
+    cl_status st = cl_bsym_create(s->pat, &s->sym, err);
+    if (st != CL_OK)
+        return st;
+    s->sdiag = malloc(9 * s->sym.nb * sizeof *s->sdiag);
+    s->supper = malloc((9 * s->sym.ne + 1) * sizeof *s->supper);
+    if (!s->sdiag || !s->supper)
+        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
+    st = cl_check_masses(mass, s->n, s->name, err);
     if (st == CL_OK)
         memcpy(s->mass, mass, s->n * sizeof *s->mass);
     return st;
@@ -325,7 +349,10 @@ static cl_status pcg_setup(void *state, double a, double b,
                            cl_error *err)
 {
     cl_pcg *s = state;
-    cl_reduced_blocks(s->pat, s->mass, a, b, dfdx, dfdv, s->ablk);
+    s->symmetric = cl_bsym_pack(&s->sym, -a, dfdv, -b, dfdx, s->mass,
+                                CL_BSYM_TOL, s->sdiag, s->supper);
+    if (!s->symmetric)
+        cl_reduced_blocks(s->pat, s->mass, a, b, dfdx, dfdv, s->ablk);
     s->why[0] = '\0';
     s->ready = false;
     int flag = SUNLinSolSetup(s->ls, NULL);

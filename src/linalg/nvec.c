@@ -17,6 +17,12 @@
 #include <math.h>
 #include <stdbool.h>
 
+/* The elementwise loops carry no dependence from one entry to the next
+ * (entry i is read before it is written, whatever aliases), so they may be
+ * vectorised: the same operations on every entry, hence the same results.
+ * Reductions are not marked: vectorising them would reorder their sums. */
+#define CL_SIMD _Pragma("omp simd")
+
 #define NV_N(v) NV_LENGTH_S(v)
 #define NV_D(v) NV_DATA_S(v)
 
@@ -29,12 +35,15 @@ static void nv_axpy(sunrealtype a, N_Vector x, N_Vector y)
     const sunrealtype *xd = NV_D(x);
     sunrealtype *yd = NV_D(y);
     if (a == 1.0) {
+        CL_SIMD
         for (sunindextype i = 0; i < n; i++)
             yd[i] += xd[i];
     } else if (a == -1.0) {
+        CL_SIMD
         for (sunindextype i = 0; i < n; i++)
             yd[i] -= xd[i];
     } else {
+        CL_SIMD
         for (sunindextype i = 0; i < n; i++)
             yd[i] += a * xd[i];
     }
@@ -47,9 +56,11 @@ static void nv_sum(N_Vector x, N_Vector y, N_Vector z, bool diff)
     const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
     sunrealtype *zd = NV_D(z);
     if (diff) {
+        CL_SIMD
         for (sunindextype i = 0; i < n; i++)
             zd[i] = xd[i] - yd[i];
     } else {
+        CL_SIMD
         for (sunindextype i = 0; i < n; i++)
             zd[i] = xd[i] + yd[i];
     }
@@ -63,9 +74,11 @@ static void nv_lin(sunrealtype a, N_Vector x, N_Vector y, N_Vector z,
     const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
     sunrealtype *zd = NV_D(z);
     if (plus) {
+        CL_SIMD
         for (sunindextype i = 0; i < n; i++)
             zd[i] = (a * xd[i]) + yd[i];
     } else {
+        CL_SIMD
         for (sunindextype i = 0; i < n; i++)
             zd[i] = (a * xd[i]) - yd[i];
     }
@@ -79,9 +92,11 @@ static void nv_scalesum(sunrealtype c, N_Vector x, N_Vector y, N_Vector z,
     const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
     sunrealtype *zd = NV_D(z);
     if (plus) {
+        CL_SIMD
         for (sunindextype i = 0; i < n; i++)
             zd[i] = c * (xd[i] + yd[i]);
     } else {
+        CL_SIMD
         for (sunindextype i = 0; i < n; i++)
             zd[i] = c * (xd[i] - yd[i]);
     }
@@ -114,6 +129,7 @@ static void nv_linearsum(sunrealtype a, N_Vector x, sunrealtype b, N_Vector y,
         sunindextype n = NV_N(x);
         const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
         sunrealtype *zd = NV_D(z);
+        CL_SIMD
         for (sunindextype i = 0; i < n; i++)
             zd[i] = (a * xd[i]) + (b * yd[i]);
     }
@@ -125,15 +141,19 @@ static void nv_scale(sunrealtype c, N_Vector x, N_Vector z)
     const sunrealtype *xd = NV_D(x);
     sunrealtype *zd = NV_D(z);
     if (z == x) {
+        CL_SIMD
         for (sunindextype i = 0; i < n; i++)
             zd[i] *= c;
     } else if (c == 1.0) {
+        CL_SIMD
         for (sunindextype i = 0; i < n; i++)
             zd[i] = xd[i];
     } else if (c == -1.0) {
+        CL_SIMD
         for (sunindextype i = 0; i < n; i++)
             zd[i] = -xd[i];
     } else {
+        CL_SIMD
         for (sunindextype i = 0; i < n; i++)
             zd[i] = c * xd[i];
     }
@@ -145,6 +165,7 @@ static void nv_const(sunrealtype c, N_Vector z)
 {
     sunindextype n = NV_N(z);
     sunrealtype *zd = NV_D(z);
+    CL_SIMD
     for (sunindextype i = 0; i < n; i++)
         zd[i] = c;
 }
@@ -154,6 +175,7 @@ static void nv_prod(N_Vector x, N_Vector y, N_Vector z)
     sunindextype n = NV_N(x);
     const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
     sunrealtype *zd = NV_D(z);
+    CL_SIMD
     for (sunindextype i = 0; i < n; i++)
         zd[i] = xd[i] * yd[i];
 }
@@ -163,6 +185,7 @@ static void nv_div(N_Vector x, N_Vector y, N_Vector z)
     sunindextype n = NV_N(x);
     const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
     sunrealtype *zd = NV_D(z);
+    CL_SIMD
     for (sunindextype i = 0; i < n; i++)
         zd[i] = xd[i] / yd[i];
 }
@@ -172,6 +195,7 @@ static void nv_abs(N_Vector x, N_Vector z)
     sunindextype n = NV_N(x);
     const sunrealtype *xd = NV_D(x);
     sunrealtype *zd = NV_D(z);
+    CL_SIMD
     for (sunindextype i = 0; i < n; i++)
         zd[i] = fabs(xd[i]);
 }
@@ -181,6 +205,7 @@ static void nv_inv(N_Vector x, N_Vector z)
     sunindextype n = NV_N(x);
     const sunrealtype *xd = NV_D(x);
     sunrealtype *zd = NV_D(z);
+    CL_SIMD
     for (sunindextype i = 0; i < n; i++)
         zd[i] = 1.0 / xd[i];
 }
@@ -190,6 +215,7 @@ static void nv_addconst(N_Vector x, sunrealtype b, N_Vector z)
     sunindextype n = NV_N(x);
     const sunrealtype *xd = NV_D(x);
     sunrealtype *zd = NV_D(z);
+    CL_SIMD
     for (sunindextype i = 0; i < n; i++)
         zd[i] = xd[i] + b;
 }

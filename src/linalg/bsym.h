@@ -1,0 +1,67 @@
+/* Symmetric 3x3-block matrices on a cl_bpattern, stored by halves.
+ *
+ * The matrices the Krylov solvers multiply by (A = M - a df/dv - b df/dx,
+ * and df/dx itself) are symmetric for every conservative force with linear
+ * damping: block (j, i) is the transpose of block (i, j).  The full block
+ * product (linalg/reduced.h: cl_bmatvec) then reads every off-diagonal
+ * value twice, and at n >= 64 that product is bound by memory traffic.
+ * Here the diagonal blocks and the upper blocks (i < j) are kept, and
+ *
+ *     y_i = B_ii p_i + sum_{j > i} B_ij p_j + sum_{j < i} B_ji^T p_j
+ *
+ * is formed in one pass over the upper blocks: each contributes B_ij p_j to
+ * row i and B_ij^T p_i to row j.  About half the values and indices of the
+ * full product are read.
+ *
+ * Whether a matrix qualifies is decided from its values, every time it is
+ * packed: |B_ji - B_ij^T| <= tol max(|B_ij|, |B_ji|) entrywise (max over
+ * both blocks), so round-off in the assembly of a symmetric matrix (the
+ * pair block s' uu^T + (s/d)(I - uu^T) is rounded differently in its two
+ * triangles) passes, and a non-symmetric one (axial damping, Baraff-
+ * Witkin's damping derivative) is refused: the caller then keeps the full
+ * product.  The packed matrix uses the upper block and its transpose, so
+ * it is exactly symmetric off the diagonal. */
+#ifndef CL_BSYM_H
+#define CL_BSYM_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "core/error.h"
+#include "linalg/bpattern.h"
+
+/* Relative tolerance of the symmetry test: well above assembly round-off
+ * (a few units of 1e-16), far below any real asymmetry. */
+#define CL_BSYM_TOL 1e-10
+
+typedef struct {
+    size_t nb;          /* block rows */
+    size_t ne;          /* upper off-diagonal blocks (i < j) */
+    size_t *rowptr;     /* nb + 1: upper blocks of row i */
+    size_t *col;        /* ne: block column j (> i), ascending in a row */
+    size_t *up;         /* ne: pattern index of block (i, j) */
+    size_t *low;        /* ne: pattern index of block (j, i) */
+    size_t *diag;       /* nb: pattern index of block (i, i) (borrowed) */
+} cl_bsym;
+
+/* The halves of `pat` (which must outlive s: its diagonal index is shared);
+ * CL_EINVAL if the pattern is not structurally symmetric. */
+cl_status cl_bsym_create(const cl_bpattern *pat, cl_bsym *s, cl_error *err);
+void cl_bsym_free(cl_bsym *s);
+
+/* Pack B = ca X + cb Y + diag(mass) (block values X, Y: 9 nnzb on the
+ * pattern; Y and mass may be NULL, mass has 3 nb entries) into d (9 nb:
+ * diagonal blocks) and u (9 ne: upper blocks) if ca X + cb Y is symmetric
+ * to within tol (see above); returns whether it is (d and u are then
+ * valid).  The values are those of linalg/reduced.h's cl_reduced_blocks
+ * for ca = -a, X = dfdv, cb = -b, Y = dfdx, bit for bit. */
+bool cl_bsym_pack(const cl_bsym *s, double ca, const double *x, double cb,
+                  const double *y, const double *mass, double tol, double *d,
+                  double *u);
+
+/* y = B p for a packed B; p and y have 3 nb entries and must not overlap. */
+void cl_bsym_matvec(const cl_bsym *s, const double *restrict d,
+                    const double *restrict u, const double *restrict p,
+                    double *restrict y);
+
+#endif

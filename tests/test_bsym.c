@@ -1,0 +1,154 @@
+/* Symmetric block matrices by halves (linalg/bsym.h): the packed product
+ * against the full block product on the shared small pattern (a pinned
+ * particle, a cycle, a repeated pair) for a random symmetric matrix; a
+ * matrix symmetric only to round-off passes, a non-symmetric one, an
+ * asymmetric diagonal block and a NaN are refused; the halves of a pattern
+ * cover every off-diagonal block once. */
+#include <criterion/criterion.h>
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "linalg/bsym.h"
+#include "linalg/reduced.h"
+
+#include "blockcase.h" /* last: defines NP, NB, N */
+
+typedef struct {
+    cl_bpattern pat;
+    double mass[N];
+    double *blk, *unused;
+    cl_bsym sym;
+    double *d, *u;
+} bs_case;
+
+/* Random values with block (j, i) = block (i, j)^T exactly. */
+static void bs_symmetric(bs_case *c, unsigned long seed)
+{
+    for (size_t i = 0; i < NB; i++)
+        for (size_t k = c->pat.rowptr[i]; k < c->pat.rowptr[i + 1]; k++) {
+            size_t j = c->pat.col[k];
+            if (j < i)
+                continue;
+            long t = cl_bpattern_find(&c->pat, (long)j, (long)i);
+            cr_assert_geq(t, 0);
+            for (int r = 0; r < 3; r++)
+                for (int q = 0; q < 3; q++) {
+                    if (j == i && q < r)
+                        continue;
+                    double v = bc_rand(&seed);
+                    c->blk[9 * k + 3 * r + q] = v;
+                    c->blk[9 * (size_t)t + 3 * q + r] = v;
+                }
+        }
+}
+
+static void bs_init(bs_case *c)
+{
+    memset(c, 0, sizeof *c);
+    bc_init(&c->pat, c->mass, &c->blk, &c->unused);
+    cr_assert_eq(cl_bsym_create(&c->pat, &c->sym, NULL), CL_OK);
+    c->d = malloc(9 * NB * sizeof *c->d);
+    c->u = malloc((9 * c->sym.ne + 1) * sizeof *c->u);
+    cr_assert(c->d && c->u);
+    bs_symmetric(c, 7);
+}
+
+static void bs_free(bs_case *c)
+{
+    cl_bsym_free(&c->sym);
+    free(c->d);
+    free(c->u);
+    bc_free(&c->pat, c->blk, c->unused);
+}
+
+Test(bsym, halves_cover_each_offdiagonal_block_once)
+{
+    bs_case c;
+    bs_init(&c);
+    cr_assert_eq(2 * c.sym.ne + NB, c.pat.nnzb);
+    unsigned char seen[64] = {0};
+    cr_assert_lt(c.pat.nnzb, sizeof seen);
+    for (size_t i = 0; i < NB; i++)
+        for (size_t e = c.sym.rowptr[i]; e < c.sym.rowptr[i + 1]; e++) {
+            cr_assert_gt(c.sym.col[e], i);
+            cr_assert_eq(c.pat.col[c.sym.up[e]], c.sym.col[e]);
+            cr_assert_eq(c.pat.col[c.sym.low[e]], i);
+            seen[c.sym.up[e]]++;
+            seen[c.sym.low[e]]++;
+        }
+    for (size_t i = 0; i < NB; i++)
+        for (size_t k = c.pat.rowptr[i]; k < c.pat.rowptr[i + 1]; k++)
+            cr_assert_eq(seen[k], k == c.pat.diag[i] ? 0 : 1, "block %zu", k);
+    bs_free(&c);
+}
+
+Test(bsym, product_equals_full_block_product)
+{
+    bs_case c;
+    bs_init(&c);
+    cr_assert(cl_bsym_pack(&c.sym, 1.0, c.blk, 0.0, NULL, NULL, CL_BSYM_TOL, c.d, c.u));
+    unsigned long seed = 11;
+    double p[N], y[N], z[N];
+    for (size_t i = 0; i < N; i++)
+        p[i] = bc_rand(&seed);
+    cl_bmatvec(&c.pat, c.blk, p, y);
+    cl_bsym_matvec(&c.sym, c.d, c.u, p, z);
+    for (size_t i = 0; i < N; i++)
+        cr_assert_float_eq(z[i], y[i], 1e-14, "row %zu: %.17g vs %.17g", i,
+                           z[i], y[i]);
+    bs_free(&c);
+}
+
+Test(bsym, roundoff_asymmetry_passes_real_asymmetry_does_not)
+{
+    bs_case c;
+    bs_init(&c);
+    size_t k = c.sym.low[0];
+    double keep = c.blk[9 * k + 1];
+    c.blk[9 * k + 1] = keep * (1 + 4e-16);
+    cr_assert(cl_bsym_pack(&c.sym, 1.0, c.blk, 0.0, NULL, NULL, CL_BSYM_TOL, c.d, c.u));
+    c.blk[9 * k + 1] = keep + 1e-6;
+    cr_assert_not(cl_bsym_pack(&c.sym, 1.0, c.blk, 0.0, NULL, NULL, CL_BSYM_TOL, c.d, c.u));
+    c.blk[9 * k + 1] = NAN;
+    cr_assert_not(cl_bsym_pack(&c.sym, 1.0, c.blk, 0.0, NULL, NULL, CL_BSYM_TOL, c.d, c.u));
+    c.blk[9 * k + 1] = keep;
+    cr_assert(cl_bsym_pack(&c.sym, 1.0, c.blk, 0.0, NULL, NULL, CL_BSYM_TOL, c.d, c.u));
+    double *D = c.blk + 9 * c.pat.diag[2];
+    D[5] += 0.5; /* (1, 2) of a diagonal block, (2, 1) unchanged */
+    cr_assert_not(cl_bsym_pack(&c.sym, 1.0, c.blk, 0.0, NULL, NULL, CL_BSYM_TOL, c.d, c.u));
+    bs_free(&c);
+}
+
+Test(bsym, reduced_matrix_of_symmetric_jacobians_packs)
+{
+    bs_case c;
+    bs_init(&c);
+    double *kv = malloc(9 * c.pat.nnzb * sizeof *kv);
+    double *a = malloc(9 * c.pat.nnzb * sizeof *a);
+    cr_assert(kv && a);
+    memcpy(kv, c.blk, 9 * c.pat.nnzb * sizeof *kv);
+    bs_symmetric(&c, 99);
+    cr_assert(cl_bsym_pack(&c.sym, -0.3, kv, -0.09, c.blk, c.mass,
+                           CL_BSYM_TOL, c.d, c.u));
+    /* the same values as the full blocks of A, bit for bit */
+    cl_reduced_blocks(&c.pat, c.mass, 0.3, 0.09, c.blk, kv, a);
+    for (size_t i = 0; i < NB; i++)
+        cr_assert_arr_eq(c.d + 9 * i, a + 9 * c.pat.diag[i],
+                         9 * sizeof(double));
+    for (size_t e = 0; e < c.sym.ne; e++)
+        cr_assert_arr_eq(c.u + 9 * e, a + 9 * c.sym.up[e],
+                         9 * sizeof(double));
+    double p[N], y[N], z[N];
+    unsigned long seed = 5;
+    for (size_t i = 0; i < N; i++)
+        p[i] = bc_rand(&seed);
+    cl_reduced_matvec(&c.pat, c.mass, 0.3, 0.09, c.blk, kv, p, y);
+    cl_bsym_matvec(&c.sym, c.d, c.u, p, z);
+    for (size_t i = 0; i < N; i++)
+        cr_assert_float_eq(z[i], y[i], 1e-14);
+    free(kv);
+    free(a);
+    bs_free(&c);
+}
