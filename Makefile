@@ -10,7 +10,7 @@ SAN     ?= 0
 BUILD   := build$(if $(filter 1,$(SAN)),-san,)
 
 CPPFLAGS := -Isrc -I/usr/include/suitesparse -D_XOPEN_SOURCE=700
-CFLAGS   := -std=c11 -Wall -Wextra -Werror -g -fopenmp-simd
+CFLAGS   := -std=c11 -Wall -Wextra -Werror -g -fopenmp
 ifeq ($(SAN),1)
 CFLAGS  += -O1 -fsanitize=address,undefined -fno-omit-frame-pointer \
            -fno-sanitize-recover=undefined
@@ -18,6 +18,7 @@ LDFLAGS += -fsanitize=address,undefined
 else
 CFLAGS  += -O2
 endif
+LDFLAGS += -fopenmp
 LDLIBS := -lsundials_cvode -lsundials_ida -lsundials_kinsol \
           -lsundials_nvecserial -lsundials_sunmatrixsparse \
           -lsundials_sunmatrixdense -lsundials_sunlinsoldense \

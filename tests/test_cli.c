@@ -354,6 +354,14 @@ Test(cli, dt_negative)
                    LIST("dt", "-1"));
 }
 
+Test(cli, threads_out_of_range)
+{
+    expect_refused(LIST("run", "hang", "--threads", "0", "--t-end", "0.01"),
+                   0, LIST("threads", "--threads"));
+    expect_refused(LIST("run", "hang", "--threads", "1000", "--t-end",
+                        "0.01"), 0, LIST("threads", "1000"));
+}
+
 Test(cli, fixed_step_without_dt)
 {
     expect_refused(LIST("run", "hang", "--integrator", "symplectic-euler",

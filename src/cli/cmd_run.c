@@ -17,6 +17,9 @@ static const char run_help[] =
     "  --dt H             fixed step for fixed-step integrators (s)\n"
     "  --rtol R --atol A  tolerances for adaptive integrators\n"
     "  --linsol NAME      linear solver of implicit integrators (klu, pcg, ...)\n"
+    "  --threads N        threads for the pair forces of every right-hand side\n"
+    "                     (default 1; results equal the serial ones to\n"
+    "                     round-off)\n"
     "  --t-end T          final time (s); [run] t_end\n"
     "  --samples S        time-series rows after t = 0 (default 200)\n"
     "  --frames K         frames after t = 0 (default 10, 0 for none)\n"
@@ -27,9 +30,10 @@ static const char run_help[] =
     "  --quiet            no summary on stdout\n"
     "  --help             this text\n"
     "Every option is also a key of the [run] section (t_end, dt, rtol, atol,\n"
-    "linsol, samples, frames, format, integrator, max_stretch); [run] also\n"
-    "takes newton_tol, newton_maxit (fixed-step implicit methods), lin_tol,\n"
-    "lin_maxit (iterative linear solvers) and verlet_damping (seed 004).\n";
+    "linsol, threads, samples, frames, format, integrator, max_stretch);\n"
+    "[run] also takes newton_tol, newton_maxit (fixed-step implicit methods),\n"
+    "lin_tol, lin_maxit (iterative linear solvers) and verlet_damping\n"
+    "(seed 004).\n";
 
 typedef struct {
     cl_cli_sets sets;
@@ -46,6 +50,7 @@ static int parse_args(int argc, char **argv, run_args *a)
         {"rtol", required_argument, 0, 'r'},
         {"atol", required_argument, 0, 'a'},
         {"linsol", required_argument, 0, 'l'},
+        {"threads", required_argument, 0, 'T'},
         {"t-end", required_argument, 0, 't'},
         {"samples", required_argument, 0, 'S'},
         {"frames", required_argument, 0, 'f'},
@@ -57,11 +62,12 @@ static int parse_args(int argc, char **argv, run_args *a)
         {0, 0, 0, 0}};
     static const char *const key[128] = {
         ['i'] = "run.integrator", ['d'] = "run.dt", ['r'] = "run.rtol",
-        ['a'] = "run.atol", ['l'] = "run.linsol", ['t'] = "run.t_end", ['S'] = "run.samples",
+        ['a'] = "run.atol", ['l'] = "run.linsol", ['T'] = "run.threads", ['t'] = "run.t_end", ['S'] = "run.samples",
         ['f'] = "run.frames", ['F'] = "run.format"};
     static const char *const label[128] = {
         ['i'] = "--integrator", ['d'] = "--dt", ['r'] = "--rtol",
-        ['a'] = "--atol", ['l'] = "--linsol", ['t'] = "--t-end",
+        ['a'] = "--atol", ['l'] = "--linsol", ['T'] = "--threads",
+        ['t'] = "--t-end",
         ['S'] = "--samples", ['f'] = "--frames", ['F'] = "--format"};
     int c, rc = 0;
     optind = 1;
@@ -98,6 +104,7 @@ typedef struct {
     const cl_integrator_type *type;
     cl_integrator_opts io;
     cl_sim_opts so;
+    long threads;
 } run_setup;
 
 static cl_status read_formats(cl_config *cfg, cl_sim_opts *so, cl_error *err)
@@ -183,6 +190,8 @@ static cl_status read_run(cl_config *cfg, run_setup *r, cl_error *err)
                              &r->so.samples, err)) ||
         (rc = cl_config_long(cfg, "run", "frames", 10, 0, 1000000,
                              &r->so.frames, err)) ||
+        (rc = cl_config_long(cfg, "run", "threads", 1, 1,
+                             CL_MODEL_MAX_THREADS, &r->threads, err)) ||
         (rc = cl_config_double(cfg, "run", "max_stretch", 10.0, 1.0,
                                INFINITY, &r->so.max_stretch, err)))
         return rc;
@@ -224,6 +233,7 @@ static int run_problem(const char *problem, run_args *a)
     if (!rc && !(rc = cl_cli_load(cfg, problem, &a->sets, &err)) &&
         !(rc = read_run(cfg, &r, &err)) &&
         !(rc = cl_model_create(cfg, &m, &err)) &&
+        !(rc = cl_model_set_threads(m, (int)r.threads, &err)) &&
         !(rc = cl_config_check_unused(cfg, &err))) {
         if (!a->out)
             cl_cli_default_out(problem, outbuf, sizeof outbuf);

@@ -108,12 +108,12 @@ static double damp_axial(double kd, const cl_pair *pr, const long *s,
 }
 
 /* Linear damping, forces only: the path of every right-hand side. */
-static void damp_linear_forces(const cl_pairdamp *pd,
+static void damp_linear_forces(const cl_pairdamp *pd, size_t k0, size_t k1,
                                const double *restrict v, double *restrict f)
 {
     const cl_pair *pair = pd->pt.set.pair;
     double kd = pd->kd;
-    for (size_t k = 0; k < pd->pt.set.n; k++) {
+    for (size_t k = k0; k < k1; k++) {
         if (cl_pairterm_is_torn(&pd->pt, k))
             continue;
         const double *va = v + 3 * pair[k].a, *vb = v + 3 * pair[k].b;
@@ -132,14 +132,16 @@ static void damp_linear_forces(const cl_pairdamp *pd,
 void cl_pairdamp_eval(cl_pairdamp *pd, cl_eval *ev, cl_pairdamp_keep keep,
                       const void *ctx)
 {
+    size_t k0, k1;
+    cl_eval_share(ev, pd->pt.set.n, &k0, &k1);
     if (pd->model == CL_DAMP_LINEAR && !keep && !ev->dfdx && !ev->dfdv &&
         !ev->want_energy) {
         if (ev->f)
-            damp_linear_forces(pd, ev->v, ev->f);
+            damp_linear_forces(pd, k0, k1, ev->v, ev->f);
         return;
     }
     double power = 0.0;
-    for (size_t k = 0; k < pd->pt.set.n; k++) {
+    for (size_t k = k0; k < k1; k++) {
         if (cl_pairterm_is_torn(&pd->pt, k) ||
             (keep && !keep(ctx, k, ev->x)))
             continue;

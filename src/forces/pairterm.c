@@ -154,11 +154,11 @@ static inline void pair_direction(const double *xa, const double *xb,
 
 /* Forces only (no Jacobian, no energy): the path of every right-hand
  * side. */
-static void pairterm_forces(const cl_pairterm *pt, const double *restrict x,
-                            double *restrict f)
+static void pairterm_forces(const cl_pairterm *pt, size_t k0, size_t k1,
+                            const double *restrict x, double *restrict f)
 {
     const cl_pair *pair = pt->set.pair;
-    for (size_t k = 0; k < pt->set.n; k++) {
+    for (size_t k = k0; k < k1; k++) {
         if (cl_pairterm_is_torn(pt, k))
             continue;
         const double *xa = x + 3 * pair[k].a, *xb = x + 3 * pair[k].b;
@@ -173,13 +173,15 @@ static void pairterm_forces(const cl_pairterm *pt, const double *restrict x,
 void cl_pairterm_eval(void *state, cl_eval *ev)
 {
     cl_pairterm *pt = state;
+    size_t k0, k1;
+    cl_eval_share(ev, pt->set.n, &k0, &k1);
     if (!ev->dfdx && !ev->want_energy) {
         if (ev->f)
-            pairterm_forces(pt, ev->x, ev->f);
+            pairterm_forces(pt, k0, k1, ev->x, ev->f);
         return;
     }
     double energy = 0.0;
-    for (size_t k = 0; k < pt->set.n; k++) {
+    for (size_t k = k0; k < k1; k++) {
         if (cl_pairterm_is_torn(pt, k))
             continue; /* no force, energy or Jacobian values */
         const cl_pair *pr = &pt->set.pair[k];

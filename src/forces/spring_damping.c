@@ -74,6 +74,7 @@ const cl_term_type cl_term_spring_damping = {
     .doc = "dashpots on the spring pairs: axial kd (u.(v_j - v_i)) u "
            "(seed 004 spring and friction) or linear -kd (v_i - v_j)",
     .conservative = false,
+    .splits = true,
     .create = spring_damping_create,
     .couplings = cl_pairterm_couplings,
     .bind = cl_pairterm_bind,

@@ -221,6 +221,7 @@ const cl_term_type cl_term_springs = {
     .doc = "mass-spring cloth: linear springs k (d - L) on structural, "
            "shear, bend pairs or levels 1..k (seeds 003, 004)",
     .conservative = true,
+    .splits = true,
     .create = springs_create,
     .couplings = cl_pairterm_couplings,
     .bind = cl_pairterm_bind,

@@ -82,6 +82,7 @@ const cl_term_type cl_term_type1 = {
     .doc = "Choi-Ko Type1: tension-only springs on sequential pairs "
            "(axis and diagonal neighbours)",
     .conservative = true,
+    .splits = true,
     .create = type1_create,
     .couplings = cl_pairterm_couplings,
     .bind = cl_pairterm_bind,
