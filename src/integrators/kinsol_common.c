@@ -129,6 +129,7 @@ static int kin_jac(N_Vector uv, N_Vector fu, SUNMatrix J, void *data,
         return kin_sysfail(s, st, true, false);
     if (!cl_all_finite(s->dfdx, nval) || !cl_all_finite(s->dfdv, nval))
         return kin_sysfail(s, CL_EBLOWUP, true, true);
+    cl_linsol_jacobian(s->lt, s->lstate, s->dfdx, s->dfdv);
     return 0;
 }
 

@@ -120,6 +120,7 @@ cl_status cl_semi_linearise(cl_semi *s, double t, cl_error *err)
                             cl_status_name(st),
                             st == CL_EBLOWUP ? ": values not finite" : "", t,
                             s->done, s->h);
+    cl_linsol_jacobian(s->lst, s->ls, s->dfdx, s->dfdv);
     return CL_OK;
 }
 

@@ -96,18 +96,24 @@ static SUNMatrix shell_new(cl_sunred *r, SUNContext ctx)
 
 /* ---- Jacobian functions: Kx, Kv at the solver's state ------------------ */
 
-/* Also packs the block red_rhs multiplies by, if it is symmetric. */
+/* Also packs the block red_rhs multiplies by, if it is symmetric, and
+ * tells the cl_linsol of the new values. */
 static int red_eval(SUNMatrix J, sunrealtype t, N_Vector y)
 {
     cl_sunred *r = J->content;
     cl_sun *b = r->base;
     const double *x = N_VGetArrayPointer(y);
     int ret = cl_sun_jacobian(b, t, x, x + b->sys->n);
-    r->ksym = ret == 0 && cl_bsym_pack(&r->sym, 1.0, r->ida ? b->dfdv
-                                                            : b->dfdx,
-                                       0.0, NULL, NULL, CL_BSYM_TOL,
-                                       r->kdiag, r->kupper);
-    return ret;
+    if (ret != 0) {
+        r->ksym = false;
+        return ret;
+    }
+    const double *k = r->ida ? b->dfdv : b->dfdx;
+    r->ksym = cl_bsym_check(&r->sym, k, CL_BSYM_TOL);
+    if (r->ksym)
+        cl_bsym_pack(&r->sym, 1.0, k, 0.0, NULL, NULL, r->kdiag, r->kupper);
+    cl_linsol_jacobian(r->lt, r->lstate, b->dfdx, b->dfdv);
+    return 0;
 }
 
 static int red_cvode_jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J,

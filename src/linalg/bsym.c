@@ -5,12 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-typedef struct {
-    double ca;
-    const double *x;
-    double cb;
-    const double *y;
-} bsym_src;
 
 void cl_bsym_free(cl_bsym *s)
 {
@@ -72,50 +66,62 @@ cl_status cl_bsym_create(const cl_bpattern *pat, cl_bsym *s, cl_error *err)
     return CL_OK;
 }
 
-/* Block (i, j) of B = ca X + cb Y into out[9] (from source block kb), if
- * it is the transpose of block (j, i) (source kt) to within tol, relative
- * to its largest entry: false otherwise, and for NaN.  Unrolled: this runs
- * over every block at every setup of a Krylov solve. */
-static inline bool bsym_block(const bsym_src *src, size_t kb, size_t kt,
-                              double tol, double *restrict out)
+/* Whether block kt is the transpose of block kb to within tol, relative
+ * to kb's largest entry (false for NaN).  Unrolled: it runs over every
+ * block of every Jacobian. */
+static inline bool bsym_transposed(const double *blk, size_t kb, size_t kt,
+                                   double tol)
 {
-    const double *xb = src->x + 9 * kb, *yb = src->y + 9 * kb;
-    const double *xt = src->x + 9 * kt, *yt = src->y + 9 * kt;
+    const double *b = blk + 9 * kb, *bt = blk + 9 * kt;
     double big = 0.0;
 #pragma GCC unroll 9
-    for (int q = 0; q < 9; q++) {
-        out[q] = src->ca * xb[q] + src->cb * yb[q];
-        big = fabs(out[q]) > big ? fabs(out[q]) : big;
-    }
+    for (int q = 0; q < 9; q++)
+        big = fabs(b[q]) > big ? fabs(b[q]) : big;
     double lim = tol * big;
     bool ok = true;
 #pragma GCC unroll 9
-    for (int q = 0; q < 9; q++) {
-        int t = 3 * (q % 3) + q / 3; /* (r, c) -> (c, r) */
-        ok &= fabs(out[q] - (src->ca * xt[t] + src->cb * yt[t])) <= lim;
-    }
+    for (int q = 0; q < 9; q++)
+        ok &= fabs(b[q] - bt[3 * (q % 3) + q / 3]) <= lim; /* (r,c), (c,r) */
     return ok;
 }
 
-bool cl_bsym_pack(const cl_bsym *s, double ca, const double *x, double cb,
-                  const double *y, const double *mass, double tol, double *d,
-                  double *u)
+bool cl_bsym_check(const cl_bsym *s, const double *blk, double tol)
 {
-    /* Without Y: ca X + 0 X, the same values for finite X (a non-finite
-     * one fails the test either way). */
-    const bsym_src src = {ca, x, y ? cb : 0.0, y ? y : x};
+    bool ok = true;
+    for (size_t i = 0; ok && i < s->nb; i++)
+        ok = bsym_transposed(blk, s->diag[i], s->diag[i], tol);
+    for (size_t e = 0; ok && e < s->ne; e++)
+        ok = bsym_transposed(blk, s->up[e], s->low[e], tol);
+    return ok;
+}
+
+/* out = ca x + cb y over 9 values. */
+static inline void bsym_combine(double ca, const double *restrict x,
+                                double cb, const double *restrict y,
+                                double *restrict out)
+{
+#pragma GCC unroll 9
+    for (int q = 0; q < 9; q++)
+        out[q] = ca * x[q] + cb * y[q];
+}
+
+void cl_bsym_pack(const cl_bsym *s, double ca, const double *x, double cb,
+                  const double *y, const double *mass, double *d, double *u)
+{
+    /* Without Y: ca X + 0 X, the same values for finite X. */
+    if (!y) {
+        y = x;
+        cb = 0.0;
+    }
     for (size_t i = 0; i < s->nb; i++) {
         double *b = d + 9 * i;
-        if (!bsym_block(&src, s->diag[i], s->diag[i], tol, b))
-            return false;
+        bsym_combine(ca, x + 9 * s->diag[i], cb, y + 9 * s->diag[i], b);
         if (mass)
             for (int r = 0; r < 3; r++)
                 b[4 * r] += mass[3 * i + r];
     }
     for (size_t e = 0; e < s->ne; e++)
-        if (!bsym_block(&src, s->up[e], s->low[e], tol, u + 9 * e))
-            return false;
-    return true;
+        bsym_combine(ca, x + 9 * s->up[e], cb, y + 9 * s->up[e], u + 9 * e);
 }
 
 /* Row i's sum is kept in registers; the transposed contributions to the

@@ -13,9 +13,9 @@
  * row i and B_ij^T p_i to row j.  About half the values and indices of the
  * full product are read.
  *
- * Whether a matrix qualifies is decided from its values, every time it is
- * packed: |B_ji - B_ij^T| <= tol max(|B_ij|, |B_ji|) entrywise (max over
- * both blocks), so round-off in the assembly of a symmetric matrix (the
+ * Whether a matrix qualifies is decided from its values (cl_bsym_check,
+ * once per Jacobian): |B_ji - B_ij^T| <= tol max|B_ij| entrywise, so
+ * round-off in the assembly of a symmetric matrix (the
  * pair block s' uu^T + (s/d)(I - uu^T) is rounded differently in its two
  * triangles) passes, and a non-symmetric one (axial damping, Baraff-
  * Witkin's damping derivative) is refused: the caller then keeps the full
@@ -49,15 +49,18 @@ typedef struct {
 cl_status cl_bsym_create(const cl_bpattern *pat, cl_bsym *s, cl_error *err);
 void cl_bsym_free(cl_bsym *s);
 
+/* Whether the block matrix with values blk (9 nnzb on the pattern) is
+ * symmetric to within tol (see above). */
+bool cl_bsym_check(const cl_bsym *s, const double *blk, double tol);
+
 /* Pack B = ca X + cb Y + diag(mass) (block values X, Y: 9 nnzb on the
  * pattern; Y and mass may be NULL, mass has 3 nb entries) into d (9 nb:
- * diagonal blocks) and u (9 ne: upper blocks) if ca X + cb Y is symmetric
- * to within tol (see above); returns whether it is (d and u are then
- * valid).  The values are those of linalg/reduced.h's cl_reduced_blocks
- * for ca = -a, X = dfdv, cb = -b, Y = dfdx, bit for bit. */
-bool cl_bsym_pack(const cl_bsym *s, double ca, const double *x, double cb,
-                  const double *y, const double *mass, double tol, double *d,
-                  double *u);
+ * diagonal blocks) and u (9 ne: upper blocks).  Meant for X and Y that
+ * passed cl_bsym_check: the lower blocks are not read.  The values are
+ * those of linalg/reduced.h's cl_reduced_blocks for ca = -a, X = dfdv,
+ * cb = -b, Y = dfdx, bit for bit. */
+void cl_bsym_pack(const cl_bsym *s, double ca, const double *x, double cb,
+                  const double *y, const double *mass, double *d, double *u);
 
 /* y = B p for a packed B; p and y have 3 nb entries and must not overlap. */
 void cl_bsym_matvec(const cl_bsym *s, const double *restrict d,

@@ -43,6 +43,12 @@ typedef struct {
     cl_status (*create)(const cl_bpattern *pat, const double *mass,
                         const cl_integrator_opts *opts, void **state,
                         cl_error *err);
+    /* Optional: told of every new df/dx, df/dv (their values, the arrays
+     * later setups receive) before the setups that use them.  A solver
+     * that exploits symmetry (pcg) tests for it here, once per Jacobian;
+     * one never told assumes none.  Callers: every integrator with a
+     * cl_linsol (cl_linsol_jacobian). */
+    void (*jacobian)(void *state, const double *dfdx, const double *dfdv);
     /* Assemble A = M - a dfdv - b dfdx from block values (9 * nnzb each)
      * and factorise / set up the preconditioner. */
     cl_status (*setup)(void *state, double a, double b, const double *dfdx,
@@ -72,6 +78,14 @@ extern const cl_linsol_type *const cl_linsol_registry[];
 
 /* By name; NULL or "" gives the first (default) solver; NULL if unknown. */
 const cl_linsol_type *cl_linsol_find(const char *name);
+
+/* Tell solver `lt` (state `ls`) of new Jacobian values, if it listens. */
+static inline void cl_linsol_jacobian(const cl_linsol_type *lt, void *ls,
+                                      const double *dfdx, const double *dfdv)
+{
+    if (lt->jacobian)
+        lt->jacobian(ls, dfdx, dfdv);
+}
 
 /* "klu, pcg": the names, for messages. */
 const char *cl_linsol_names(char *buf, size_t len);

@@ -166,6 +166,13 @@ static cl_status auto_direct(cl_auto *s, cl_error *err)
                                    err);
 }
 
+/* Only pcg listens (the direct solvers do not exploit symmetry). */
+static void auto_jacobian(void *state, const double *dfdx, const double *dfdv)
+{
+    cl_auto *s = state;
+    cl_linsol_jacobian(&cl_linsol_pcg, s->pcg, dfdx, dfdv);
+}
+
 static cl_status auto_setup(void *state, double a, double b,
                             const double *dfdx, const double *dfdv,
                             cl_error *err)
@@ -255,6 +262,7 @@ const cl_linsol_type cl_linsol_auto = {
     .doc = "pcg, or cholmod (klu if not SPD) while a factorisation is "
            "cheaper or after pcg failed",
     .create = auto_create,
+    .jacobian = auto_jacobian,
     .setup = auto_setup,
     .solve = auto_solve,
     .solve_tol = auto_solve_tol,

@@ -68,6 +68,7 @@ typedef struct {
     double *ablk;            /* 9 nnzb: A's block values (if !symmetric) */
     cl_bsym sym;             /* A's halves, if it is symmetric: */
     double *sdiag, *supper;  /* 9 nb, 9 ne: their values */
+    bool jac_symmetric;      /* df/dx and df/dv as last told (jacobian) */
     bool symmetric;          /* the last setup packed A (sdiag, supper) */
     double *pinv;            /* 9 nb (block) or n (point): P^-1 */
     double tol;
@@ -349,9 +350,11 @@ static cl_status pcg_setup(void *state, double a, double b,
                            cl_error *err)
 {
     cl_pcg *s = state;
-    s->symmetric = cl_bsym_pack(&s->sym, -a, dfdv, -b, dfdx, s->mass,
-                                CL_BSYM_TOL, s->sdiag, s->supper);
-    if (!s->symmetric)
+    s->symmetric = s->jac_symmetric;
+    if (s->symmetric)
+        cl_bsym_pack(&s->sym, -a, dfdv, -b, dfdx, s->mass, s->sdiag,
+                     s->supper);
+    else
         cl_reduced_blocks(s->pat, s->mass, a, b, dfdx, dfdv, s->ablk);
     s->why[0] = '\0';
     s->ready = false;
@@ -363,6 +366,13 @@ static cl_status pcg_setup(void *state, double a, double b,
     s->ready = true;
     s->setups++;
     return CL_OK;
+}
+
+static void pcg_jacobian(void *state, const double *dfdx, const double *dfdv)
+{
+    cl_pcg *s = state;
+    s->jac_symmetric = cl_bsym_check(&s->sym, dfdx, CL_BSYM_TOL) &&
+                       cl_bsym_check(&s->sym, dfdv, CL_BSYM_TOL);
 }
 
 /* `test` says what delta is, for the message. */
@@ -454,6 +464,7 @@ const cl_linsol_type cl_linsol_pcg = {
     .doc = "SUNDIALS PCG, matrix-free, 3x3 block-Jacobi preconditioner "
            "(A must be SPD)",
     .create = pcg_create_block,
+    .jacobian = pcg_jacobian,
     .setup = pcg_setup,
     .solve = pcg_solve,
     .solve_tol = pcg_solve_tol,
@@ -466,6 +477,7 @@ const cl_linsol_type cl_linsol_pcg_jacobi = {
     .doc = "SUNDIALS PCG, matrix-free, point Jacobi preconditioner "
            "(A must be SPD)",
     .create = pcg_create_point,
+    .jacobian = pcg_jacobian,
     .setup = pcg_setup,
     .solve = pcg_solve,
     .solve_tol = pcg_solve_tol,
