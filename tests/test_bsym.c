@@ -1,8 +1,9 @@
 /* Symmetric block matrices by halves (linalg/bsym.h): the packed product
  * against the full block product on the shared small pattern (a pinned
  * particle, a cycle, a repeated pair) for a random symmetric matrix; the
- * check passes a matrix symmetric only to round-off and refuses a
- * non-symmetric one, an asymmetric diagonal block and a NaN; the packed
+ * check tells symmetric blocks from symmetric halves, passes round-off
+ * and refuses a non-symmetric matrix, an asymmetric diagonal block and a
+ * NaN; the packed
  * A = M - a Kv - b Kx has the values of the full blocks bit for bit; the
  * halves of a pattern cover every off-diagonal block once. */
 #include <criterion/criterion.h>
@@ -24,8 +25,9 @@ typedef struct {
     double *d, *u;
 } bs_case;
 
-/* Random values with block (j, i) = block (i, j)^T exactly. */
-static void bs_symmetric(bs_case *c, unsigned long seed)
+/* Random values with block (j, i) = block (i, j)^T exactly; with `own`
+ * every block symmetric as well. */
+static void bs_symmetric(bs_case *c, unsigned long seed, bool own)
 {
     for (size_t i = 0; i < NB; i++)
         for (size_t k = c->pat.rowptr[i]; k < c->pat.rowptr[i + 1]; k++) {
@@ -36,16 +38,18 @@ static void bs_symmetric(bs_case *c, unsigned long seed)
             cr_assert_geq(t, 0);
             for (int r = 0; r < 3; r++)
                 for (int q = 0; q < 3; q++) {
-                    if (j == i && q < r)
+                    if ((j == i || own) && q < r)
                         continue;
                     double v = bc_rand(&seed);
-                    c->blk[9 * k + 3 * r + q] = v;
-                    c->blk[9 * (size_t)t + 3 * q + r] = v;
+                    double *b = c->blk + 9 * k, *bt = c->blk + 9 * (size_t)t;
+                    b[3 * r + q] = bt[3 * q + r] = v;
+                    if (own)
+                        b[3 * q + r] = bt[3 * r + q] = v;
                 }
         }
 }
 
-static void bs_init(bs_case *c)
+static void bs_init(bs_case *c, bool own)
 {
     memset(c, 0, sizeof *c);
     bc_init(&c->pat, c->mass, &c->blk, &c->unused);
@@ -53,7 +57,7 @@ static void bs_init(bs_case *c)
     c->d = malloc(9 * NB * sizeof *c->d);
     c->u = malloc((9 * c->sym.ne + 1) * sizeof *c->u);
     cr_assert(c->d && c->u);
-    bs_symmetric(c, 7);
+    bs_symmetric(c, 7, own);
 }
 
 static void bs_free(bs_case *c)
@@ -67,7 +71,7 @@ static void bs_free(bs_case *c)
 Test(bsym, halves_cover_each_offdiagonal_block_once)
 {
     bs_case c;
-    bs_init(&c);
+    bs_init(&c, false);
     cr_assert_eq(2 * c.sym.ne + NB, c.pat.nnzb);
     unsigned char seen[64] = {0};
     cr_assert_lt(c.pat.nnzb, sizeof seen);
@@ -85,70 +89,95 @@ Test(bsym, halves_cover_each_offdiagonal_block_once)
     bs_free(&c);
 }
 
-Test(bsym, product_equals_full_block_product)
+/* Packed as its kind, the product equals the full block product. */
+static void bs_product(bool own, cl_bsym_kind want)
 {
     bs_case c;
-    bs_init(&c);
-    cr_assert(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL));
-    cl_bsym_pack(&c.sym, 1.0, c.blk, 0.0, NULL, NULL, c.d, c.u);
+    bs_init(&c, own);
+    cl_bsym_kind kind = cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL);
+    cr_assert_eq(kind, want);
+    cl_bsym_pack(&c.sym, kind, 1.0, c.blk, 0.0, NULL, NULL, c.d, c.u);
     unsigned long seed = 11;
     double p[N], y[N], z[N];
     for (size_t i = 0; i < N; i++)
         p[i] = bc_rand(&seed);
     cl_bmatvec(&c.pat, c.blk, p, y);
-    cl_bsym_matvec(&c.sym, c.d, c.u, p, z);
+    cl_bsym_matvec(&c.sym, kind, c.d, c.u, p, z);
     for (size_t i = 0; i < N; i++)
         cr_assert_float_eq(z[i], y[i], 1e-14, "row %zu: %.17g vs %.17g", i,
                            z[i], y[i]);
+    if (kind == CL_BSYM_BLOCKS) { /* the 9-value halves work too */
+        cl_bsym_pack(&c.sym, CL_BSYM_HALVES, 1.0, c.blk, 0.0, NULL, NULL,
+                     c.d, c.u);
+        cl_bsym_matvec(&c.sym, CL_BSYM_HALVES, c.d, c.u, p, z);
+        for (size_t i = 0; i < N; i++)
+            cr_assert_float_eq(z[i], y[i], 1e-14);
+    }
     bs_free(&c);
+}
+
+Test(bsym, product_by_halves_equals_full_product)
+{
+    bs_product(false, CL_BSYM_HALVES);
+}
+
+Test(bsym, product_by_symmetric_blocks_equals_full_product)
+{
+    bs_product(true, CL_BSYM_BLOCKS);
 }
 
 Test(bsym, roundoff_asymmetry_passes_real_asymmetry_does_not)
 {
     bs_case c;
-    bs_init(&c);
+    bs_init(&c, true);
     size_t k = c.sym.low[0];
     double keep = c.blk[9 * k + 1];
     c.blk[9 * k + 1] = keep * (1 + 4e-16);
-    cr_assert(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL));
+    cr_assert_eq(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL), CL_BSYM_BLOCKS);
     c.blk[9 * k + 1] = keep + 1e-6;
-    cr_assert_not(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL));
+    cr_assert_eq(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL), CL_BSYM_NONE);
     c.blk[9 * k + 1] = NAN;
-    cr_assert_not(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL));
+    cr_assert_eq(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL), CL_BSYM_NONE);
     c.blk[9 * k + 1] = keep;
-    cr_assert(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL));
+    /* an off-diagonal block and its partner made non-symmetric alike */
+    double *b = c.blk + 9 * c.sym.up[0], *bt = c.blk + 9 * c.sym.low[0];
+    b[1] += 0.25;
+    bt[3] += 0.25;
+    cr_assert_eq(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL), CL_BSYM_HALVES);
     double *D = c.blk + 9 * c.pat.diag[2];
     D[5] += 0.5; /* (1, 2) of a diagonal block, (2, 1) unchanged */
-    cr_assert_not(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL));
+    cr_assert_eq(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL), CL_BSYM_NONE);
     bs_free(&c);
 }
 
+/* A = M - a Kv - b Kx packed from two symmetric Jacobians: the values of
+ * the full blocks of cl_reduced_blocks bit for bit, and its product. */
 Test(bsym, reduced_matrix_of_symmetric_jacobians_packs)
 {
+    static const int six[6] = {0, 1, 2, 4, 5, 8};
     bs_case c;
-    bs_init(&c);
+    bs_init(&c, true);
     double *kv = malloc(9 * c.pat.nnzb * sizeof *kv);
     double *a = malloc(9 * c.pat.nnzb * sizeof *a);
     cr_assert(kv && a);
     memcpy(kv, c.blk, 9 * c.pat.nnzb * sizeof *kv);
-    bs_symmetric(&c, 99);
-    cr_assert(cl_bsym_check(&c.sym, kv, CL_BSYM_TOL));
-    cr_assert(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL));
-    cl_bsym_pack(&c.sym, -0.3, kv, -0.09, c.blk, c.mass, c.d, c.u);
-    /* the same values as the full blocks of A, bit for bit */
+    bs_symmetric(&c, 99, true);
+    cr_assert_eq(cl_bsym_check(&c.sym, kv, CL_BSYM_TOL), CL_BSYM_BLOCKS);
+    cl_bsym_pack(&c.sym, CL_BSYM_BLOCKS, -0.3, kv, -0.09, c.blk, c.mass,
+                 c.d, c.u);
     cl_reduced_blocks(&c.pat, c.mass, 0.3, 0.09, c.blk, kv, a);
     for (size_t i = 0; i < NB; i++)
         cr_assert_arr_eq(c.d + 9 * i, a + 9 * c.pat.diag[i],
                          9 * sizeof(double));
     for (size_t e = 0; e < c.sym.ne; e++)
-        cr_assert_arr_eq(c.u + 9 * e, a + 9 * c.sym.up[e],
-                         9 * sizeof(double));
+        for (int q = 0; q < 6; q++)
+            cr_assert_eq(c.u[6 * e + (size_t)q], a[9 * c.sym.up[e] + six[q]]);
     double p[N], y[N], z[N];
     unsigned long seed = 5;
     for (size_t i = 0; i < N; i++)
         p[i] = bc_rand(&seed);
     cl_reduced_matvec(&c.pat, c.mass, 0.3, 0.09, c.blk, kv, p, y);
-    cl_bsym_matvec(&c.sym, c.d, c.u, p, z);
+    cl_bsym_matvec(&c.sym, CL_BSYM_BLOCKS, c.d, c.u, p, z);
     for (size_t i = 0; i < N; i++)
         cr_assert_float_eq(z[i], y[i], 1e-14);
     free(kv);

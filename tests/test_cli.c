@@ -362,6 +362,15 @@ Test(cli, threads_out_of_range)
                         "0.01"), 0, LIST("threads", "1000"));
 }
 
+Test(cli, max_order_only_for_cvode_and_ida)
+{
+    expect_refused(LIST("run", "hang", "--integrator", "semi-be", "--dt",
+                        "1e-3", "--max-order", "2", "--t-end", "0.01"), 0,
+                   LIST("max_order", "semi-be"));
+    expect_refused(LIST("run", "hang", "--max-order", "13", "--t-end",
+                        "0.01"), 0, LIST("max_order", "13"));
+}
+
 Test(cli, fixed_step_without_dt)
 {
     expect_refused(LIST("run", "hang", "--integrator", "symplectic-euler",

@@ -52,6 +52,39 @@ Test(cvode_bdf, coupled_pair_matches_exact)
     ts_free(&ts);
 }
 
+/* max_order caps the BDF order: at rtol 1e-8 on the oscillators, order 1
+ * needs many times the steps of order 2, which needs more than the
+ * default (up to 5), both within 1e3 rtol; an order above BDF's 5 is
+ * refused. */
+Test(cvode_bdf, max_order_caps_the_order)
+{
+    ts_sys ts;
+    cr_assert_eq(ts_oscillators(&ts, 2), 0);
+    cl_stats s[3];
+    const int order[3] = {0, 2, 1};
+    for (int k = 0; k < 3; k++) {
+        cl_integrator_opts o = {.rtol = 1e-8, .atol = 1e-10,
+                                .max_order = order[k]};
+        double e = run(&ts, &o, 5.0, 5, &s[k]);
+        cr_log_info("cvode-bdf max_order %d: %ld steps, error %.2e",
+                    order[k], s[k].steps, e);
+        if (order[k] != 1) /* first order accumulates more */
+            cr_assert_lt(e, 1e3 * o.rtol);
+    }
+    cr_assert_gt(s[2].steps, 3 * s[1].steps);
+    cr_assert_gt(s[1].steps, s[0].steps);
+    cl_integrator_opts bad = {.rtol = 1e-6, .atol = 1e-8, .max_order = 6};
+    double x0[RI_MAXN], v0[RI_MAXN];
+    ts_initial(&ts, x0, v0);
+    void *st = NULL;
+    cl_error err = {0};
+    cr_assert_eq(cvb()->create(&ts.sys, &bad, 0.0, x0, v0, &st, &err),
+                 CL_ESOLVER);
+    cr_assert_null(st);
+    cr_assert(strstr(err.msg, "CVodeSetMaxOrd"), "%s", err.msg);
+    ts_free(&ts);
+}
+
 Test(cvode_bdf, default_tolerances)
 {
     ts_sys ts;

@@ -33,6 +33,7 @@ typedef struct {
     int n;
     double t_end, rtol, atol;
     char linsol[32];         /* as asked ("" for the default) */
+    int max_order;           /* CVODE's highest BDF order (0: its 5) */
     cl_status rc;
     char msg[240];           /* the failure, if rc */
     double cpu, wall;        /* create + advance + free */
@@ -61,6 +62,7 @@ typedef struct {
     size_t nrun;
     bool linsol_ok;          /* cvode-bdf takes --linsol */
     char best[32];           /* "" for cvode-bdf's default */
+    int best_order;          /* max_order for n >= 128 (workload 2) */
     cl_child peers;          /* runs the peers one after the other */
     char problem[4096];      /* the peers' problem file */
     char budget[32];
@@ -85,10 +87,12 @@ void cl_bench_model_free(cl_bmodel *bm);
 /* Process CPU and monotonic wall clocks (s). */
 void cl_bench_clock(double *cpu, double *wall);
 
-/* cvode-bdf on hang at n, t_end (linsol "" for the default), cached;
- * NULL only when out of memory (c->nomem set).  A failed run has rc set. */
+/* cvode-bdf on hang at n, t_end (linsol "" for the default, max_order 0
+ * for CVODE's), cached; NULL only when out of memory (c->nomem set).  A
+ * failed run has rc set. */
 const cl_brun *cl_bench_hang(cl_bctx *c, int n, double t_end,
-                             const char *linsol, double rtol, double atol);
+                             const char *linsol, int max_order, double rtol,
+                             double atol);
 
 /* Free the cached runs. */
 void cl_bench_runs_free(cl_bctx *c);
@@ -115,8 +119,9 @@ void cl_bench_log(const cl_bctx *c, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 void cl_bench_log_row(const cl_bctx *c, const cl_bench_row *r);
 
-/* "cvode-bdf LINSOL" or "cvode-bdf (default)". */
-void cl_bench_side(char *buf, size_t len, const char *linsol);
+/* "cvode-bdf LINSOL" or "cvode-bdf (default)", and ", order <= K" for a
+ * max_order K > 0. */
+void cl_bench_side(char *buf, size_t len, const char *linsol, int max_order);
 
 /* ---- bench_hang.c: workloads 1, 2, 6 and the choice of solver -------- */
 

@@ -44,9 +44,12 @@ void cl_bench_clock(double *cpu, double *wall)
     *wall = (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-void cl_bench_side(char *buf, size_t len, const char *linsol)
+void cl_bench_side(char *buf, size_t len, const char *linsol, int max_order)
 {
-    snprintf(buf, len, "cvode-bdf %s", *linsol ? linsol : "(default)");
+    int at = snprintf(buf, len, "cvode-bdf %s", *linsol ? linsol
+                                                        : "(default)");
+    if (max_order > 0 && at >= 0 && (size_t)at < len)
+        snprintf(buf + at, len - (size_t)at, ", order <= %d", max_order);
 }
 
 /* Integrate: create, advance to t_end, statistics, free; times around
@@ -56,7 +59,8 @@ static cl_status timed_cvode(cl_model *m, cl_brun *r, cl_error *err)
     const cl_system *sys = cl_model_system(m);
     const cl_integrator_type *type = cl_integrator_find("cvode-bdf");
     cl_integrator_opts io = {.rtol = r->rtol, .atol = r->atol,
-                             .linsol = r->linsol};
+                             .linsol = r->linsol,
+                             .max_order = r->max_order};
     double *v = malloc(sys->n * sizeof *v);
     r->x = malloc(sys->n * sizeof *r->x);
     r->nfree = sys->n / 3;
@@ -85,12 +89,12 @@ static cl_status timed_cvode(cl_model *m, cl_brun *r, cl_error *err)
 }
 
 static const cl_brun *find_run(const cl_bctx *c, int n, double t_end,
-                               const char *linsol, double rtol)
+                               const char *linsol, int max_order, double rtol)
 {
     for (size_t k = 0; k < c->nrun; k++) {
         const cl_brun *r = c->runs[k];
         if (r->n == n && r->t_end == t_end && r->rtol == rtol &&
-            !strcmp(r->linsol, linsol))
+            r->max_order == max_order && !strcmp(r->linsol, linsol))
             return r;
     }
     return NULL;
@@ -104,7 +108,7 @@ static void run_hang(cl_bctx *c, cl_brun *r)
     cl_bmodel bm;
     cl_error err = {0};
     char side[64];
-    cl_bench_side(side, sizeof side, r->linsol);
+    cl_bench_side(side, sizeof side, r->linsol, r->max_order);
     cl_bench_log(c, "  %s on hang n = %d, T = %g, rtol %g ...", side, r->n,
                  r->t_end, r->rtol);
     r->rc = cl_bench_model(c, "hang", sets, &bm, &err);
@@ -119,9 +123,10 @@ static void run_hang(cl_bctx *c, cl_brun *r)
 }
 
 const cl_brun *cl_bench_hang(cl_bctx *c, int n, double t_end,
-                             const char *linsol, double rtol, double atol)
+                             const char *linsol, int max_order, double rtol,
+                             double atol)
 {
-    const cl_brun *have = find_run(c, n, t_end, linsol, rtol);
+    const cl_brun *have = find_run(c, n, t_end, linsol, max_order, rtol);
     if (have)
         return have;
     cl_brun **grown = realloc(c->runs, (c->nrun + 1) * sizeof *grown);
@@ -133,7 +138,8 @@ const cl_brun *cl_bench_hang(cl_bctx *c, int n, double t_end,
         c->nomem = true;
         return NULL;
     }
-    *r = (cl_brun){.n = n, .t_end = t_end, .rtol = rtol, .atol = atol};
+    *r = (cl_brun){.n = n, .t_end = t_end, .rtol = rtol, .atol = atol,
+                   .max_order = max_order};
     cl_bench_copy(r->linsol, sizeof r->linsol, linsol);
     c->runs[c->nrun++] = r;
     run_hang(c, r);

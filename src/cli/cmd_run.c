@@ -17,6 +17,8 @@ static const char run_help[] =
     "  --dt H             fixed step for fixed-step integrators (s)\n"
     "  --rtol R --atol A  tolerances for adaptive integrators\n"
     "  --linsol NAME      linear solver of implicit integrators (klu, pcg, ...)\n"
+    "  --max-order K      highest order of CVODE / IDA (default 5 for BDF, 12\n"
+    "                     for Adams; BDF beyond 2 is not A-stable)\n"
     "  --threads N        threads for the pair forces of every right-hand side\n"
     "                     (default 1; results equal the serial ones to\n"
     "                     round-off)\n"
@@ -30,7 +32,8 @@ static const char run_help[] =
     "  --quiet            no summary on stdout\n"
     "  --help             this text\n"
     "Every option is also a key of the [run] section (t_end, dt, rtol, atol,\n"
-    "linsol, threads, samples, frames, format, integrator, max_stretch);\n"
+    "linsol, max_order, threads, samples, frames, format, integrator,\n"
+    "max_stretch);\n"
     "[run] also takes newton_tol, newton_maxit (fixed-step implicit methods),\n"
     "lin_tol, lin_maxit (iterative linear solvers) and verlet_damping\n"
     "(seed 004).\n";
@@ -51,6 +54,7 @@ static int parse_args(int argc, char **argv, run_args *a)
         {"atol", required_argument, 0, 'a'},
         {"linsol", required_argument, 0, 'l'},
         {"threads", required_argument, 0, 'T'},
+        {"max-order", required_argument, 0, 'm'},
         {"t-end", required_argument, 0, 't'},
         {"samples", required_argument, 0, 'S'},
         {"frames", required_argument, 0, 'f'},
@@ -62,11 +66,11 @@ static int parse_args(int argc, char **argv, run_args *a)
         {0, 0, 0, 0}};
     static const char *const key[128] = {
         ['i'] = "run.integrator", ['d'] = "run.dt", ['r'] = "run.rtol",
-        ['a'] = "run.atol", ['l'] = "run.linsol", ['T'] = "run.threads", ['t'] = "run.t_end", ['S'] = "run.samples",
+        ['a'] = "run.atol", ['l'] = "run.linsol", ['T'] = "run.threads", ['m'] = "run.max_order", ['t'] = "run.t_end", ['S'] = "run.samples",
         ['f'] = "run.frames", ['F'] = "run.format"};
     static const char *const label[128] = {
         ['i'] = "--integrator", ['d'] = "--dt", ['r'] = "--rtol",
-        ['a'] = "--atol", ['l'] = "--linsol", ['T'] = "--threads",
+        ['a'] = "--atol", ['l'] = "--linsol", ['T'] = "--threads", ['m'] = "--max-order",
         ['t'] = "--t-end",
         ['S'] = "--samples", ['f'] = "--frames", ['F'] = "--format"};
     int c, rc = 0;
@@ -134,6 +138,7 @@ static cl_status read_integrator(cl_config *cfg, run_setup *r, cl_error *err)
 {
     const char *names[64];
     int n = 0, k;
+    long max_order;
     for (; cl_integrator_registry[n] && n < 63; n++)
         names[n] = cl_integrator_registry[n]->name;
     names[n] = NULL;
@@ -159,8 +164,11 @@ static cl_status read_integrator(cl_config *cfg, run_setup *r, cl_error *err)
         (rc = cl_config_long(cfg, "run", "lin_maxit", 0, 0, 100000000,
                              &r->io.lin_maxit, err)) ||
         (rc = cl_config_double(cfg, "run", "verlet_damping", 0.0, 0.0,
-                               0.999999, &r->io.vdamp, err)))
+                               0.999999, &r->io.vdamp, err)) ||
+        (rc = cl_config_long(cfg, "run", "max_order", 0, 0, 12, &max_order,
+                             err)))
         return rc;
+    r->io.max_order = (int)max_order;
     r->io.linsol = cl_config_string(cfg, "run", "linsol", "");
     char where[256];
     if (*r->io.linsol && !r->type->takes_linsol)
@@ -170,6 +178,13 @@ static cl_status read_integrator(cl_config *cfg, run_setup *r, cl_error *err)
                             cl_config_origin(cfg, "run", "linsol", where,
                                              sizeof where),
                             r->io.linsol, r->type->name);
+    if (max_order && !r->type->takes_max_order)
+        return cl_error_set(err, CL_EINVAL,
+                            "%s: [run] max_order = %ld: integrator %s has "
+                            "no choice of order (CVODE and IDA have)",
+                            cl_config_origin(cfg, "run", "max_order", where,
+                                             sizeof where),
+                            max_order, r->type->name);
     if (r->type->fixed_step && !(r->io.dt > 0))
         return cl_error_set(err, CL_EINVAL,
                             "%s: [run] dt = %g: integrator %s takes fixed "

@@ -133,23 +133,24 @@ static void add_pair_blocks(double *vals, const long *s, const double K[9])
  * that their forces agree bit for bit (and a pair along an axis gives
  * exactly s). */
 static inline void pair_add_force(double *restrict f, const cl_pair *pr,
-                                  double s, const double u[3])
+                                  double s, double u0, double u1, double u2)
 {
     double *fa = f + 3 * pr->a, *fb = f + 3 * pr->b;
-    fa[0] += s * u[0];
-    fa[1] += s * u[1];
-    fa[2] += s * u[2];
-    fb[0] -= s * u[0];
-    fb[1] -= s * u[1];
-    fb[2] -= s * u[2];
+    fa[0] += s * u0;
+    fa[1] += s * u1;
+    fa[2] += s * u2;
+    fb[0] -= s * u0;
+    fb[1] -= s * u1;
+    fb[2] -= s * u2;
 }
 
-/* u = x_ab / d, or 0 for coincident particles (no direction). */
-static inline void pair_direction(const double *xa, const double *xb,
-                                  double d, double u[3])
+/* Component i of u = x_ab / d, or 0 for coincident particles (no
+ * direction).  Scalars, not an array: a direction stored entry by entry
+ * and read back two at a time stalls on store forwarding. */
+static inline double pair_dir(const double *xa, const double *xb, double d,
+                              int i)
 {
-    for (int i = 0; i < 3; i++)
-        u[i] = d > 0 ? (xb[i] - xa[i]) / d : 0.0;
+    return d > 0 ? (xb[i] - xa[i]) / d : 0.0;
 }
 
 /* Forces only (no Jacobian, no energy): the path of every right-hand
@@ -162,11 +163,11 @@ static void pairterm_forces(const cl_pairterm *pt, size_t k0, size_t k1,
         if (cl_pairterm_is_torn(pt, k))
             continue;
         const double *xa = x + 3 * pair[k].a, *xb = x + 3 * pair[k].b;
-        double d = cl_dist(xa, xb), u[3];
+        double d = cl_dist(xa, xb);
         cl_pairlaw law;
         pt->law(pt->params, k, d, pair[k].rest, false, &law);
-        pair_direction(xa, xb, d, u);
-        pair_add_force(f, &pair[k], law.s, u);
+        pair_add_force(f, &pair[k], law.s, pair_dir(xa, xb, d, 0),
+                       pair_dir(xa, xb, d, 1), pair_dir(xa, xb, d, 2));
     }
 }
 
@@ -191,10 +192,10 @@ void cl_pairterm_eval(void *state, cl_eval *ev)
         pt->law(pt->params, k, d, pr->rest, ev->want_energy, &law);
         energy += law.e;
         /* Coincident particles have no direction: no force, isotropic K. */
-        double u[3];
-        pair_direction(xa, xb, d, u);
+        const double u[3] = {pair_dir(xa, xb, d, 0), pair_dir(xa, xb, d, 1),
+                             pair_dir(xa, xb, d, 2)};
         if (ev->f)
-            pair_add_force(ev->f, pr, law.s, u);
+            pair_add_force(ev->f, pr, law.s, u[0], u[1], u[2]);
         if (ev->dfdx) {
             double K[9];
             if (d > 0)

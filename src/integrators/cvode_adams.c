@@ -50,6 +50,7 @@ const cl_integrator_type cl_integrator_cvode_adams = {
     .name = "cvode-adams",
     .doc = "CVODE Adams-Moulton, fixed-point iteration (non-stiff reference)",
     .fixed_step = false,
+    .takes_max_order = true,
     .takes_linsol = false,
     .create = adams_create,
     .advance = cl_sun_advance,

@@ -120,6 +120,7 @@ const cl_integrator_type cl_integrator_cvode_bdf = {
     .doc = "CVODE BDF, Newton, analytic Jacobian; --linsol auto (default), "
            "klu, pcg, pcg-jacobi, cholmod on the half-size matrix, klu-full",
     .fixed_step = false,
+    .takes_max_order = true,
     .takes_linsol = true,
     .create = cvb_create,
     .advance = cvb_advance,

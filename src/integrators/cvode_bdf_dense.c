@@ -60,6 +60,7 @@ const cl_integrator_type cl_integrator_cvode_bdf_dense = {
     .doc = "CVODE BDF, Newton, dense LU with CVODE's difference-quotient "
            "Jacobian (n <= 24x24 particles; cross-check)",
     .fixed_step = false,
+    .takes_max_order = true,
     .takes_linsol = false,
     .create = dense_create,
     .advance = cl_sun_advance,

@@ -284,6 +284,7 @@ const cl_integrator_type cl_integrator_cvode_bdf_gmres = {
     .doc = "CVODE BDF, Newton-Krylov: SPGMR, analytic J*v, block-Jacobi "
            "(6x6 per particle) left preconditioner",
     .fixed_step = false,
+    .takes_max_order = true,
     .takes_linsol = false,
     .create = gm_create,
     .advance = cl_sun_advance,

@@ -73,6 +73,7 @@ static const cl_sun_api ida_api = {
     .sstolerances = IDASStolerances,
     .set_max_num_steps = IDASetMaxNumSteps,
     .set_init_step = IDASetInitStep,
+    .set_max_ord = IDASetMaxOrd,
     .set_linear_solver = IDASetLinearSolver,
     .get_current_time = IDAGetCurrentTime,
     .get_current_step = IDAGetCurrentStep,
@@ -246,6 +247,7 @@ const cl_integrator_type cl_integrator_ida = {
     .doc = "IDA on F = [x' - v; M v' - f] = 0, Newton, analytic Jacobian; "
            "--linsol as cvode-bdf (default auto)",
     .fixed_step = false,
+    .takes_max_order = true,
     .takes_linsol = true,
     .create = ida_create,
     .advance = ida_advance,

@@ -28,6 +28,9 @@ typedef struct {
     long lin_maxit;      /* iterative linear solver iterations (0: default) */
     double vdamp;        /* Verlet velocity damping factor in [0, 1)
                           * (seed 004; 0: none) */
+    int max_order;       /* highest order of the variable-order methods
+                          * (takes_max_order; 0: the solver's own, 5 for
+                          * BDF, 12 for Adams) */
 } cl_integrator_opts;
 
 /* The statistics every integrator reports (SPEC 5). Counters a method does
@@ -58,6 +61,7 @@ typedef struct {
     const char *doc;     /* one line for `clothode list` */
     bool fixed_step;     /* true: needs dt; false: uses rtol/atol */
     bool takes_linsol;   /* accepts opts->linsol (cl_linsol registry) */
+    bool takes_max_order; /* accepts opts->max_order */
     cl_status (*create)(const cl_system *sys, const cl_integrator_opts *o,
                         double t0, const double *x0, const double *v0,
                         void **state, cl_error *err);

@@ -45,6 +45,7 @@ const cl_sun_api cl_sun_cvode_api = {
     .sstolerances = CVodeSStolerances,
     .set_max_num_steps = CVodeSetMaxNumSteps,
     .set_init_step = CVodeSetInitStep,
+    .set_max_ord = CVodeSetMaxOrd,
     .set_linear_solver = CVodeSetLinearSolver,
     .get_current_time = CVodeGetCurrentTime,
     .get_current_step = CVodeGetCurrentStep,
@@ -303,6 +304,8 @@ cl_status cl_sun_configure(cl_sun *s, const cl_integrator_opts *o,
     CL_SUN_SET(s, err, set_max_num_steps, "SetMaxNumSteps", mxs);
     if (o->dt > 0)
         CL_SUN_SET(s, err, set_init_step, "SetInitStep", o->dt);
+    if (o->max_order > 0)
+        CL_SUN_SET(s, err, set_max_ord, "SetMaxOrd", o->max_order);
     return CL_OK;
 }
 

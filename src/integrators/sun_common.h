@@ -78,6 +78,7 @@ typedef struct {
     int (*sstolerances)(void *mem, sunrealtype rtol, sunrealtype atol);
     int (*set_max_num_steps)(void *mem, long mxsteps);
     int (*set_init_step)(void *mem, sunrealtype h);
+    int (*set_max_ord)(void *mem, int maxord);
     int (*set_linear_solver)(void *mem, SUNLinearSolver ls, SUNMatrix A);
     int (*get_current_time)(void *mem, sunrealtype *t);
     int (*get_current_step)(void *mem, sunrealtype *h);

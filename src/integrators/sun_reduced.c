@@ -34,7 +34,8 @@ struct cl_sunred {
     cl_bsym sym;        /* the block that red_rhs multiplies by (Kx for
                          * CVODE, Kv for IDA), by halves when symmetric: */
     double *kdiag, *kupper;
-    bool ksym;          /* kdiag, kupper hold the last Jacobian's */
+    cl_bsym_kind kkind; /* kdiag, kupper hold the last Jacobian's, unless
+                         * CL_BSYM_NONE */
     cl_error err;       /* last failure, msg[0] == 0 if none */
 };
 
@@ -105,13 +106,14 @@ static int red_eval(SUNMatrix J, sunrealtype t, N_Vector y)
     const double *x = N_VGetArrayPointer(y);
     int ret = cl_sun_jacobian(b, t, x, x + b->sys->n);
     if (ret != 0) {
-        r->ksym = false;
+        r->kkind = CL_BSYM_NONE;
         return ret;
     }
     const double *k = r->ida ? b->dfdv : b->dfdx;
-    r->ksym = cl_bsym_check(&r->sym, k, CL_BSYM_TOL);
-    if (r->ksym)
-        cl_bsym_pack(&r->sym, 1.0, k, 0.0, NULL, NULL, r->kdiag, r->kupper);
+    r->kkind = cl_bsym_check(&r->sym, k, CL_BSYM_TOL);
+    if (r->kkind != CL_BSYM_NONE)
+        cl_bsym_pack(&r->sym, r->kkind, 1.0, k, 0.0, NULL, NULL, r->kdiag,
+                     r->kupper);
     cl_linsol_jacobian(r->lt, r->lstate, b->dfdx, b->dfdv);
     return 0;
 }
@@ -210,8 +212,8 @@ static int red_setup(SUNLinearSolver S, SUNMatrix A)
 static void red_kprod(cl_sunred *r, const double *rx)
 {
     const cl_sun *s = r->base;
-    if (r->ksym)
-        cl_bsym_matvec(&r->sym, r->kdiag, r->kupper, rx, r->rhs);
+    if (r->kkind != CL_BSYM_NONE)
+        cl_bsym_matvec(&r->sym, r->kkind, r->kdiag, r->kupper, rx, r->rhs);
     else
         cl_bmatvec(s->sys->pattern, r->ida ? s->dfdv : s->dfdx, rx, r->rhs);
 }

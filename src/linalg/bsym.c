@@ -66,11 +66,13 @@ cl_status cl_bsym_create(const cl_bpattern *pat, cl_bsym *s, cl_error *err)
     return CL_OK;
 }
 
-/* Whether block kt is the transpose of block kb to within tol, relative
- * to kb's largest entry (false for NaN).  Unrolled: it runs over every
- * block of every Jacobian. */
-static inline bool bsym_transposed(const double *blk, size_t kb, size_t kt,
-                                   double tol)
+/* The kind of blocks kb, kt (kt the transpose partner of kb; kb = kt for a
+ * diagonal block) to within tol, relative to kb's largest entry:
+ * CL_BSYM_NONE if kt^T differs from kb (or any entry is NaN), else
+ * CL_BSYM_BLOCKS if kb is symmetric itself, else CL_BSYM_HALVES.
+ * Unrolled: it runs over every block of every Jacobian. */
+static inline cl_bsym_kind bsym_pair(const double *blk, size_t kb, size_t kt,
+                                     double tol)
 {
     const double *b = blk + 9 * kb, *bt = blk + 9 * kt;
     double big = 0.0;
@@ -78,35 +80,51 @@ static inline bool bsym_transposed(const double *blk, size_t kb, size_t kt,
     for (int q = 0; q < 9; q++)
         big = fabs(b[q]) > big ? fabs(b[q]) : big;
     double lim = tol * big;
-    bool ok = true;
+    bool halves = true;
 #pragma GCC unroll 9
     for (int q = 0; q < 9; q++)
-        ok &= fabs(b[q] - bt[3 * (q % 3) + q / 3]) <= lim; /* (r,c), (c,r) */
-    return ok;
+        halves &= fabs(b[q] - bt[3 * (q % 3) + q / 3]) <= lim; /* (r,c), (c,r) */
+    bool own = fabs(b[1] - b[3]) <= lim && fabs(b[2] - b[6]) <= lim &&
+               fabs(b[5] - b[7]) <= lim;
+    return !halves ? CL_BSYM_NONE : own ? CL_BSYM_BLOCKS : CL_BSYM_HALVES;
 }
 
-bool cl_bsym_check(const cl_bsym *s, const double *blk, double tol)
+cl_bsym_kind cl_bsym_check(const cl_bsym *s, const double *blk, double tol)
 {
-    bool ok = true;
-    for (size_t i = 0; ok && i < s->nb; i++)
-        ok = bsym_transposed(blk, s->diag[i], s->diag[i], tol);
-    for (size_t e = 0; ok && e < s->ne; e++)
-        ok = bsym_transposed(blk, s->up[e], s->low[e], tol);
-    return ok;
+    cl_bsym_kind kind = CL_BSYM_BLOCKS;
+    for (size_t i = 0; kind != CL_BSYM_NONE && i < s->nb; i++) {
+        cl_bsym_kind k = bsym_pair(blk, s->diag[i], s->diag[i], tol);
+        kind = k < kind ? k : kind;
+    }
+    for (size_t e = 0; kind != CL_BSYM_NONE && e < s->ne; e++) {
+        cl_bsym_kind k = bsym_pair(blk, s->up[e], s->low[e], tol);
+        kind = k < kind ? k : kind;
+    }
+    return kind;
 }
 
-/* out = ca x + cb y over 9 values. */
+/* Entries (r <= c) of a symmetric block kept by CL_BSYM_BLOCKS. */
+static const int bsym_upper6[6] = {0, 1, 2, 4, 5, 8};
+
+/* out = ca x + cb y over 9 values, or over the 6 of the upper triangle. */
 static inline void bsym_combine(double ca, const double *restrict x,
                                 double cb, const double *restrict y,
-                                double *restrict out)
+                                bool six, double *restrict out)
 {
+    if (six) {
+#pragma GCC unroll 6
+        for (int q = 0; q < 6; q++)
+            out[q] = ca * x[bsym_upper6[q]] + cb * y[bsym_upper6[q]];
+        return;
+    }
 #pragma GCC unroll 9
     for (int q = 0; q < 9; q++)
         out[q] = ca * x[q] + cb * y[q];
 }
 
-void cl_bsym_pack(const cl_bsym *s, double ca, const double *x, double cb,
-                  const double *y, const double *mass, double *d, double *u)
+void cl_bsym_pack(const cl_bsym *s, cl_bsym_kind kind, double ca,
+                  const double *x, double cb, const double *y,
+                  const double *mass, double *d, double *u)
 {
     /* Without Y: ca X + 0 X, the same values for finite X. */
     if (!y) {
@@ -115,28 +133,40 @@ void cl_bsym_pack(const cl_bsym *s, double ca, const double *x, double cb,
     }
     for (size_t i = 0; i < s->nb; i++) {
         double *b = d + 9 * i;
-        bsym_combine(ca, x + 9 * s->diag[i], cb, y + 9 * s->diag[i], b);
+        bsym_combine(ca, x + 9 * s->diag[i], cb, y + 9 * s->diag[i], false,
+                     b);
         if (mass)
             for (int r = 0; r < 3; r++)
                 b[4 * r] += mass[3 * i + r];
     }
+    bool six = kind == CL_BSYM_BLOCKS;
+    size_t w = six ? 6 : 9;
     for (size_t e = 0; e < s->ne; e++)
-        bsym_combine(ca, x + 9 * s->up[e], cb, y + 9 * s->up[e], u + 9 * e);
+        bsym_combine(ca, x + 9 * s->up[e], cb, y + 9 * s->up[e], six,
+                     u + w * e);
 }
 
-/* Row i's sum is kept in registers; the transposed contributions to the
- * rows below go straight into y, which is read when their turn comes. */
-void cl_bsym_matvec(const cl_bsym *s, const double *restrict d,
-                    const double *restrict u, const double *restrict p,
-                    double *restrict y)
+/* The products below keep row i's sum in registers; the transposed
+ * contributions to the rows below go straight into y, which is read when
+ * their turn comes. */
+
+/* Row r of a 9-value block times (p0, p1, p2). */
+static inline double bsym_row(const double *D, int r, double p0, double p1,
+                              double p2)
 {
-    memset(y, 0, 3 * s->nb * sizeof *y);
+    return D[3 * r] * p0 + D[3 * r + 1] * p1 + D[3 * r + 2] * p2;
+}
+
+static void bsym_matvec9(const cl_bsym *s, const double *restrict d,
+                         const double *restrict u, const double *restrict p,
+                         double *restrict y)
+{
     for (size_t i = 0; i < s->nb; i++) {
         const double *D = d + 9 * i, *pi = p + 3 * i;
         double p0 = pi[0], p1 = pi[1], p2 = pi[2];
-        double y0 = y[3 * i] + D[0] * p0 + D[1] * p1 + D[2] * p2;
-        double y1 = y[3 * i + 1] + D[3] * p0 + D[4] * p1 + D[5] * p2;
-        double y2 = y[3 * i + 2] + D[6] * p0 + D[7] * p1 + D[8] * p2;
+        double y0 = y[3 * i] + bsym_row(D, 0, p0, p1, p2);
+        double y1 = y[3 * i + 1] + bsym_row(D, 1, p0, p1, p2);
+        double y2 = y[3 * i + 2] + bsym_row(D, 2, p0, p1, p2);
         for (size_t e = s->rowptr[i]; e < s->rowptr[i + 1]; e++) {
             const double *B = u + 9 * e, *q = p + 3 * s->col[e];
             double *yj = y + 3 * s->col[e];
@@ -151,4 +181,43 @@ void cl_bsym_matvec(const cl_bsym *s, const double *restrict d,
         y[3 * i + 1] = y1;
         y[3 * i + 2] = y2;
     }
+}
+
+/* Symmetric blocks (b0 b1 b2; b1 b3 b4; b2 b4 b5): a third fewer values
+ * to read than bsym_matvec9, the same products. */
+static void bsym_matvec6(const cl_bsym *s, const double *restrict d,
+                         const double *restrict u, const double *restrict p,
+                         double *restrict y)
+{
+    for (size_t i = 0; i < s->nb; i++) {
+        const double *D = d + 9 * i, *pi = p + 3 * i;
+        double p0 = pi[0], p1 = pi[1], p2 = pi[2];
+        double y0 = y[3 * i] + bsym_row(D, 0, p0, p1, p2);
+        double y1 = y[3 * i + 1] + bsym_row(D, 1, p0, p1, p2);
+        double y2 = y[3 * i + 2] + bsym_row(D, 2, p0, p1, p2);
+        for (size_t e = s->rowptr[i]; e < s->rowptr[i + 1]; e++) {
+            const double *B = u + 6 * e, *q = p + 3 * s->col[e];
+            double *yj = y + 3 * s->col[e];
+            y0 += B[0] * q[0] + B[1] * q[1] + B[2] * q[2];
+            y1 += B[1] * q[0] + B[3] * q[1] + B[4] * q[2];
+            y2 += B[2] * q[0] + B[4] * q[1] + B[5] * q[2];
+            yj[0] += B[0] * p0 + B[1] * p1 + B[2] * p2;
+            yj[1] += B[1] * p0 + B[3] * p1 + B[4] * p2;
+            yj[2] += B[2] * p0 + B[4] * p1 + B[5] * p2;
+        }
+        y[3 * i] = y0;
+        y[3 * i + 1] = y1;
+        y[3 * i + 2] = y2;
+    }
+}
+
+void cl_bsym_matvec(const cl_bsym *s, cl_bsym_kind kind,
+                    const double *restrict d, const double *restrict u,
+                    const double *restrict p, double *restrict y)
+{
+    memset(y, 0, 3 * s->nb * sizeof *y);
+    if (kind == CL_BSYM_BLOCKS)
+        bsym_matvec6(s, d, u, p, y);
+    else
+        bsym_matvec9(s, d, u, p, y);
 }

@@ -49,22 +49,35 @@ typedef struct {
 cl_status cl_bsym_create(const cl_bpattern *pat, cl_bsym *s, cl_error *err);
 void cl_bsym_free(cl_bsym *s);
 
-/* Whether the block matrix with values blk (9 nnzb on the pattern) is
- * symmetric to within tol (see above). */
-bool cl_bsym_check(const cl_bsym *s, const double *blk, double tol);
+/* What a block matrix allows (each kind also has the ones before it). */
+typedef enum {
+    CL_BSYM_NONE = 0,   /* not symmetric: the full product */
+    CL_BSYM_HALVES,     /* symmetric: diagonal and upper blocks, 9 values */
+    CL_BSYM_BLOCKS,     /* and every block symmetric itself (pair forces,
+                         * linear damping): upper blocks by their 6 upper
+                         * entries, a third less to read */
+} cl_bsym_kind;
+
+/* The kind of the block matrix with values blk (9 nnzb on the pattern),
+ * to within tol (see above; for CL_BSYM_BLOCKS the same test within each
+ * block). */
+cl_bsym_kind cl_bsym_check(const cl_bsym *s, const double *blk, double tol);
 
 /* Pack B = ca X + cb Y + diag(mass) (block values X, Y: 9 nnzb on the
  * pattern; Y and mass may be NULL, mass has 3 nb entries) into d (9 nb:
- * diagonal blocks) and u (9 ne: upper blocks).  Meant for X and Y that
- * passed cl_bsym_check: the lower blocks are not read.  The values are
- * those of linalg/reduced.h's cl_reduced_blocks for ca = -a, X = dfdv,
- * cb = -b, Y = dfdx, bit for bit. */
-void cl_bsym_pack(const cl_bsym *s, double ca, const double *x, double cb,
-                  const double *y, const double *mass, double *d, double *u);
+ * the diagonal blocks, all 9 entries) and u (the upper blocks, 9 ne values
+ * for CL_BSYM_HALVES, 6 ne for CL_BSYM_BLOCKS).  For X and Y whose kinds
+ * are at least `kind` (> CL_BSYM_NONE): the lower blocks are not read.
+ * The values are those of linalg/reduced.h's cl_reduced_blocks for
+ * ca = -a, X = dfdv, cb = -b, Y = dfdx, bit for bit. */
+void cl_bsym_pack(const cl_bsym *s, cl_bsym_kind kind, double ca,
+                  const double *x, double cb, const double *y,
+                  const double *mass, double *d, double *u);
 
-/* y = B p for a packed B; p and y have 3 nb entries and must not overlap. */
-void cl_bsym_matvec(const cl_bsym *s, const double *restrict d,
-                    const double *restrict u, const double *restrict p,
-                    double *restrict y);
+/* y = B p for B packed as `kind`; p and y have 3 nb entries and must not
+ * overlap. */
+void cl_bsym_matvec(const cl_bsym *s, cl_bsym_kind kind,
+                    const double *restrict d, const double *restrict u,
+                    const double *restrict p, double *restrict y);
 
 #endif

@@ -68,8 +68,9 @@ typedef struct {
     double *ablk;            /* 9 nnzb: A's block values (if !symmetric) */
     cl_bsym sym;             /* A's halves, if it is symmetric: */
     double *sdiag, *supper;  /* 9 nb, 9 ne: their values */
-    bool jac_symmetric;      /* df/dx and df/dv as last told (jacobian) */
-    bool symmetric;          /* the last setup packed A (sdiag, supper) */
+    cl_bsym_kind jac_kind;   /* df/dx and df/dv as last told (jacobian) */
+    cl_bsym_kind kind;       /* the last setup packed A (sdiag, supper)
+                              * unless CL_BSYM_NONE (then ablk) */
     double *pinv;            /* 9 nb (block) or n (point): P^-1 */
     double tol;
     int maxit;
@@ -90,8 +91,8 @@ static int pcg_atimes(void *data, N_Vector v, N_Vector z)
     cl_pcg *s = data;
     const double *vp = N_VGetArrayPointer(v);
     double *zp = N_VGetArrayPointer(z), curv = 0.0, vv = 0.0;
-    if (s->symmetric)
-        cl_bsym_matvec(&s->sym, s->sdiag, s->supper, vp, zp);
+    if (s->kind != CL_BSYM_NONE)
+        cl_bsym_matvec(&s->sym, s->kind, s->sdiag, s->supper, vp, zp);
     else
         cl_bmatvec(s->pat, s->ablk, vp, zp);
     s->nprod++;
@@ -133,7 +134,8 @@ static bool pcg_inv3(const double *B, double *inv, double minor[3])
 /* A's diagonal block i, from whichever form the last setup made. */
 static const double *pcg_diag_block(const cl_pcg *s, size_t i)
 {
-    return s->symmetric ? s->sdiag + 9 * i : s->ablk + 9 * s->pat->diag[i];
+    return s->kind != CL_BSYM_NONE ? s->sdiag + 9 * i
+                                   : s->ablk + 9 * s->pat->diag[i];
 }
 
 static int pcg_psetup_block(cl_pcg *s)
@@ -350,10 +352,10 @@ static cl_status pcg_setup(void *state, double a, double b,
                            cl_error *err)
 {
     cl_pcg *s = state;
-    s->symmetric = s->jac_symmetric;
-    if (s->symmetric)
-        cl_bsym_pack(&s->sym, -a, dfdv, -b, dfdx, s->mass, s->sdiag,
-                     s->supper);
+    s->kind = s->jac_kind;
+    if (s->kind != CL_BSYM_NONE)
+        cl_bsym_pack(&s->sym, s->kind, -a, dfdv, -b, dfdx, s->mass,
+                     s->sdiag, s->supper);
     else
         cl_reduced_blocks(s->pat, s->mass, a, b, dfdx, dfdv, s->ablk);
     s->why[0] = '\0';
@@ -371,8 +373,10 @@ static cl_status pcg_setup(void *state, double a, double b,
 static void pcg_jacobian(void *state, const double *dfdx, const double *dfdv)
 {
     cl_pcg *s = state;
-    s->jac_symmetric = cl_bsym_check(&s->sym, dfdx, CL_BSYM_TOL) &&
-                       cl_bsym_check(&s->sym, dfdv, CL_BSYM_TOL);
+    cl_bsym_kind kx = cl_bsym_check(&s->sym, dfdx, CL_BSYM_TOL);
+    cl_bsym_kind kv = kx ? cl_bsym_check(&s->sym, dfdv, CL_BSYM_TOL)
+                         : CL_BSYM_NONE;
+    s->jac_kind = kx < kv ? kx : kv;
 }
 
 /* `test` says what delta is, for the message. */

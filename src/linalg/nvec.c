@@ -9,7 +9,9 @@
  *   scale      z = c x (x *= c in place; copy for c = 1; -x for c = -1);
  *   wrmsnorm   sqrt(sum (x_i w_i)^2 / N), mask: only id_i > 0;
  *   wl2norm    sqrt(sum (x_i w_i)^2);
- *   the others elementwise, reductions in index order.
+ *   the others elementwise; dot products and unmasked weighted sums of
+ *   squares in four interleaved partial sums (nv_sum4), the other
+ *   reductions in index order.
  * Every loop reads entry i of each input before it writes entry i of the
  * output, so any of the vectors may be the same. */
 #include "linalg/nvec.h"
@@ -246,14 +248,45 @@ static sunbooleantype nv_invtest(N_Vector x, N_Vector z)
 
 /* ---- reductions -------------------------------------------------------- */
 
+/* The two reductions CVODE and PCG call at every iteration (dot products,
+ * weighted norms) sum in four interleaved partial sums (entry i into sum
+ * i mod 4, in index order), added as (s0 + s1) + (s2 + s3), then the tail:
+ * a fixed order, so results are reproducible, but not N_Vector_Serial's
+ * single running sum (they agree to round-off).  One running sum waits
+ * for the previous addition at every entry; four keep the adder busy. */
+static sunrealtype nv_sum4(const sunrealtype *x, const sunrealtype *y,
+                           sunindextype n, bool square)
+{
+    sunrealtype s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+    sunindextype i = 0;
+    if (square) { /* (x_i y_i)^2 */
+        for (; i + 4 <= n; i += 4) {
+            sunrealtype p0 = x[i] * y[i], p1 = x[i + 1] * y[i + 1];
+            sunrealtype p2 = x[i + 2] * y[i + 2], p3 = x[i + 3] * y[i + 3];
+            s0 += p0 * p0;
+            s1 += p1 * p1;
+            s2 += p2 * p2;
+            s3 += p3 * p3;
+        }
+    } else { /* x_i y_i */
+        for (; i + 4 <= n; i += 4) {
+            s0 += x[i] * y[i];
+            s1 += x[i + 1] * y[i + 1];
+            s2 += x[i + 2] * y[i + 2];
+            s3 += x[i + 3] * y[i + 3];
+        }
+    }
+    sunrealtype sum = (s0 + s1) + (s2 + s3);
+    for (; i < n; i++) {
+        sunrealtype p = x[i] * y[i];
+        sum += square ? p * p : p;
+    }
+    return sum;
+}
+
 static sunrealtype nv_dotprod(N_Vector x, N_Vector y)
 {
-    sunindextype n = NV_N(x);
-    const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
-    sunrealtype sum = 0.0;
-    for (sunindextype i = 0; i < n; i++)
-        sum += xd[i] * yd[i];
-    return sum;
+    return nv_sum4(NV_D(x), NV_D(y), NV_N(x), false);
 }
 
 static sunrealtype nv_maxnorm(N_Vector x)
@@ -274,9 +307,11 @@ static sunrealtype nv_wsqrsum(N_Vector x, N_Vector w, N_Vector id)
     sunindextype n = NV_N(x);
     const sunrealtype *xd = NV_D(x), *wd = NV_D(w);
     const sunrealtype *idd = id ? NV_D(id) : NULL;
+    if (!idd)
+        return nv_sum4(xd, wd, n, true);
     sunrealtype sum = 0.0;
     for (sunindextype i = 0; i < n; i++) {
-        if (idd && !(idd[i] > 0.0))
+        if (!(idd[i] > 0.0))
             continue;
         sunrealtype p = xd[i] * wd[i];
         sum += p * p;

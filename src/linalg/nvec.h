@@ -16,9 +16,11 @@
  *     maxnorm, wrmsnorm, wrmsnormmask, min, wl2norm, l1norm, compare,
  *     invtest
  *
- * so results are bitwise those of N_Vector_Serial (no reassociation: the
- * reductions sum in index order; no fused multiply-add on the default
- * x86-64 target).  Clones inherit the operations (N_VClone_Serial copies
+ * so results are bitwise those of N_Vector_Serial (no fused multiply-add
+ * on the default x86-64 target), except the dot product and the weighted
+ * norms: they sum in four interleaved partial sums (a fixed order, equal
+ * to the serial sums to round-off), at every CVODE step and PCG iteration
+ * ~4x faster than one running sum.  Clones inherit the operations (N_VClone_Serial copies
  * the operation table).  Fused and vector-array operations stay disabled
  * (NULL), as in N_VNew_Serial: SUNDIALS then composes them from the
  * operations above. */
