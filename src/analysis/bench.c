@@ -11,7 +11,7 @@
 
 static const cl_bplan full_plan = {
     .w1_cases = 2, .w1_n = {16, 32}, .w1_t = {2.0, 0.5}, .select = 0,
-    .peer_budget = 480.0,
+    .peer_budget = 800.0,
     .w2_n = 32, .w2_t = 2.0, .w2_large = true, .w2_cap = 600.0,
     .w3_nn = 4, .w3_n = {16, 32, 64, 128}, .w3_budget = 1.0,
     .eval_budget = 1.0, .w6_n = 128,
