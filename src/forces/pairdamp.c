@@ -129,15 +129,49 @@ static void damp_linear_forces(const cl_pairdamp *pd, size_t k0, size_t k1,
     }
 }
 
+/* Axial damping, forces only: f_a = kd (u . (v_b - v_a)) u, the same
+ * arithmetic as damp_axial. */
+static void damp_axial_forces(const cl_pairdamp *pd, size_t k0, size_t k1,
+                              const double *restrict x,
+                              const double *restrict v, double *restrict f)
+{
+    const cl_pair *pair = pd->pt.set.pair;
+    double kd = pd->kd;
+    for (size_t k = k0; k < k1; k++) {
+        if (cl_pairterm_is_torn(&pd->pt, k))
+            continue;
+        const double *xa = x + 3 * pair[k].a, *xb = x + 3 * pair[k].b;
+        const double *va = v + 3 * pair[k].a, *vb = v + 3 * pair[k].b;
+        double d = cl_dist(xa, xb);
+        if (!(d > 0))
+            continue;
+        double u0 = (xb[0] - xa[0]) / d, u1 = (xb[1] - xa[1]) / d;
+        double u2 = (xb[2] - xa[2]) / d;
+        double uw = 0.0;
+        uw += u0 * (vb[0] - va[0]);
+        uw += u1 * (vb[1] - va[1]);
+        uw += u2 * (vb[2] - va[2]);
+        double f0 = kd * uw * u0, f1 = kd * uw * u1, f2 = kd * uw * u2;
+        double *fa = f + 3 * pair[k].a, *fb = f + 3 * pair[k].b;
+        fa[0] += f0;
+        fa[1] += f1;
+        fa[2] += f2;
+        fb[0] -= f0;
+        fb[1] -= f1;
+        fb[2] -= f2;
+    }
+}
+
 void cl_pairdamp_eval(cl_pairdamp *pd, cl_eval *ev, cl_pairdamp_keep keep,
                       const void *ctx)
 {
     size_t k0, k1;
     cl_eval_share(ev, pd->pt.set.n, &k0, &k1);
-    if (pd->model == CL_DAMP_LINEAR && !keep && !ev->dfdx && !ev->dfdv &&
-        !ev->want_energy) {
-        if (ev->f)
+    if (!keep && !ev->dfdx && !ev->dfdv && !ev->want_energy) {
+        if (ev->f && pd->model == CL_DAMP_LINEAR)
             damp_linear_forces(pd, k0, k1, ev->v, ev->f);
+        else if (ev->f)
+            damp_axial_forces(pd, k0, k1, ev->x, ev->v, ev->f);
         return;
     }
     double power = 0.0;

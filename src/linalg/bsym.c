@@ -157,38 +157,20 @@ static inline double bsym_row(const double *D, int r, double p0, double p1,
     return D[3 * r] * p0 + D[3 * r + 1] * p1 + D[3 * r + 2] * p2;
 }
 
-static void bsym_matvec9(const cl_bsym *s, const double *restrict d,
-                         const double *restrict u, const double *restrict p,
-                         double *restrict y)
-{
-    for (size_t i = 0; i < s->nb; i++) {
-        const double *D = d + 9 * i, *pi = p + 3 * i;
-        double p0 = pi[0], p1 = pi[1], p2 = pi[2];
-        double y0 = y[3 * i] + bsym_row(D, 0, p0, p1, p2);
-        double y1 = y[3 * i + 1] + bsym_row(D, 1, p0, p1, p2);
-        double y2 = y[3 * i + 2] + bsym_row(D, 2, p0, p1, p2);
-        for (size_t e = s->rowptr[i]; e < s->rowptr[i + 1]; e++) {
-            const double *B = u + 9 * e, *q = p + 3 * s->col[e];
-            double *yj = y + 3 * s->col[e];
-            y0 += B[0] * q[0] + B[1] * q[1] + B[2] * q[2];
-            y1 += B[3] * q[0] + B[4] * q[1] + B[5] * q[2];
-            y2 += B[6] * q[0] + B[7] * q[1] + B[8] * q[2];
-            yj[0] += B[0] * p0 + B[3] * p1 + B[6] * p2;
-            yj[1] += B[1] * p0 + B[4] * p1 + B[7] * p2;
-            yj[2] += B[2] * p0 + B[5] * p1 + B[8] * p2;
-        }
-        y[3 * i] = y0;
-        y[3 * i + 1] = y1;
-        y[3 * i + 2] = y2;
-    }
-}
+/* Position of entry (r, c) of an upper block: 9 values row-major, or the
+ * 6 of a symmetric block (b0 b1 b2; b1 b3 b4; b2 b4 b5). */
+static const int bsym_at9[9] = {0, 1, 2, 3, 4, 5, 6, 7, 8};
+static const int bsym_at6[9] = {0, 1, 2, 1, 3, 4, 2, 4, 5};
 
-/* Symmetric blocks (b0 b1 b2; b1 b3 b4; b2 b4 b5): a third fewer values
- * to read than bsym_matvec9, the same products. */
-static void bsym_matvec6(const cl_bsym *s, const double *restrict d,
-                         const double *restrict u, const double *restrict p,
-                         double *restrict y)
+/* One pass over the upper blocks, `six` a constant at each call so that
+ * each layout gets its own straight-line loop. */
+static inline void bsym_product(const cl_bsym *s, bool six,
+                                const double *restrict d,
+                                const double *restrict u,
+                                const double *restrict p, double *restrict y)
 {
+    const int *at = six ? bsym_at6 : bsym_at9;
+    size_t w = six ? 6 : 9;
     for (size_t i = 0; i < s->nb; i++) {
         const double *D = d + 9 * i, *pi = p + 3 * i;
         double p0 = pi[0], p1 = pi[1], p2 = pi[2];
@@ -196,14 +178,14 @@ static void bsym_matvec6(const cl_bsym *s, const double *restrict d,
         double y1 = y[3 * i + 1] + bsym_row(D, 1, p0, p1, p2);
         double y2 = y[3 * i + 2] + bsym_row(D, 2, p0, p1, p2);
         for (size_t e = s->rowptr[i]; e < s->rowptr[i + 1]; e++) {
-            const double *B = u + 6 * e, *q = p + 3 * s->col[e];
+            const double *B = u + w * e, *q = p + 3 * s->col[e];
             double *yj = y + 3 * s->col[e];
-            y0 += B[0] * q[0] + B[1] * q[1] + B[2] * q[2];
-            y1 += B[1] * q[0] + B[3] * q[1] + B[4] * q[2];
-            y2 += B[2] * q[0] + B[4] * q[1] + B[5] * q[2];
-            yj[0] += B[0] * p0 + B[1] * p1 + B[2] * p2;
-            yj[1] += B[1] * p0 + B[3] * p1 + B[4] * p2;
-            yj[2] += B[2] * p0 + B[4] * p1 + B[5] * p2;
+            y0 += B[at[0]] * q[0] + B[at[1]] * q[1] + B[at[2]] * q[2];
+            y1 += B[at[3]] * q[0] + B[at[4]] * q[1] + B[at[5]] * q[2];
+            y2 += B[at[6]] * q[0] + B[at[7]] * q[1] + B[at[8]] * q[2];
+            yj[0] += B[at[0]] * p0 + B[at[3]] * p1 + B[at[6]] * p2;
+            yj[1] += B[at[1]] * p0 + B[at[4]] * p1 + B[at[7]] * p2;
+            yj[2] += B[at[2]] * p0 + B[at[5]] * p1 + B[at[8]] * p2;
         }
         y[3 * i] = y0;
         y[3 * i + 1] = y1;
@@ -217,7 +199,7 @@ void cl_bsym_matvec(const cl_bsym *s, cl_bsym_kind kind,
 {
     memset(y, 0, 3 * s->nb * sizeof *y);
     if (kind == CL_BSYM_BLOCKS)
-        bsym_matvec6(s, d, u, p, y);
+        bsym_product(s, true, d, u, p, y);
     else
-        bsym_matvec9(s, d, u, p, y);
+        bsym_product(s, false, d, u, p, y);
 }
