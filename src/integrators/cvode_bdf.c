@@ -16,8 +16,8 @@
  *             cl_linsol (sun_reduced.h, linalg/linsol.h).
  *
  * Default auto, by measurement on hang (rtol 1e-4, atol 1e-6, T = 2 s,
- * CPU time): it runs pcg at CVODE's small steps, 3.5x faster than
- * klu-full at n = 16 and 14x at n = 32; the half-size direct solvers gain
+ * CPU time): it runs pcg at CVODE's small steps, 5.5x faster than
+ * klu-full at n = 16 and 32x at n = 32; the half-size direct solvers gain
  * only 1.0-1.6x (the table is in sun_reduced.h).
  * SUNDIALS 6.x API (SUNContext, sunrealtype).
  *

@@ -76,28 +76,30 @@
  * packed once per Jacobian), as pcg does for A at every setup.
  *
  * Measured (cvode-bdf on hang, rtol 1e-4, atol 1e-6, T = 2 s; CPU seconds
- * of one run each on a shared machine, so +-10 %; iterations per solve):
+ * in one `make bench` run on a shared two-core machine, so +-10 %):
  *
- *     n    linsol      CPU s   steps  setups  it/solve
- *     16   klu-full     13.0   13104     674     -
- *     16   klu          12.0   13024     673     -
- *     16   cholmod      13.4   13300     685     -
- *     16   pcg           3.4   13331     689    1.04
- *     16   auto          3.7   13331     689    1.04   (all pcg)
- *     32   klu-full    175.7   13820     737     -
- *     32   klu         146.7   14844     784     -
- *     32   cholmod     110.1   13534     735     -
- *     32   pcg          12.4   14322     754    1.13
- *     32   auto         12.3   14322     754    1.13   (all pcg)
- *     64   pcg         118.3   29574    1580    1.18
- *     64   auto        124.0   29574    1580    1.18   (all pcg)
- *    128   auto        712.0   47135    2511    1.24   (all pcg)
+ *     n    linsol      order  CPU s   steps
+ *     16   klu-full     <= 5    7.0   13014
+ *     16   klu          <= 5    6.2   12906
+ *     16   cholmod      <= 5    7.5   12950
+ *     16   pcg          <= 5    1.2   12584
+ *     16   pcg-jacobi   <= 5    1.4   12987
+ *     16   auto         <= 5    1.3   12584   (all pcg)
+ *     32   klu-full     <= 5  122     14970
+ *     32   pcg          <= 5    3.8   13529   (32x klu-full)
+ *     64   pcg          <= 5   40.5   29914
+ *     64   pcg          <= 2   14.7    7365
+ *    128   pcg          <= 2  176      9838
  *
  * At these steps A is close to M: a factorisation per setup plus two
  * triangular solves per Newton iteration cost far more than one or two
- * block products.  What remains with pcg (perf, n = 32): the block
- * products 18-22 %, the force evaluation 30-37 %, SUNDIALS' vector
- * operations ~15 % (linalg/nvec.h), CVODE's own logic the rest.
+ * block products (1.1-1.3 pcg iterations per solve).  What remains with
+ * pcg (perf, n = 128): the symmetric block products (linalg/bsym.h) ~31 %,
+ * the force evaluation ~20 %, SUNDIALS' vector operations ~15 %
+ * (linalg/nvec.h), the Jacobian and its symmetry test ~10 %.  BDF orders
+ * above 2 are not stable near the imaginary axis, where the cloth's fast,
+ * lightly damped modes sit: from n = 32 on, --max-order 2 takes fewer
+ * steps (4x fewer at n = 64).
  *
  * The solver type is SUNLINEARSOLVER_DIRECT for direct cl_linsols (klu,
  * cholmod) and SUNLINEARSOLVER_MATRIX_ITERATIVE for those with solve_tol
