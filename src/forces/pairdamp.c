@@ -107,58 +107,51 @@ static double damp_axial(double kd, const cl_pair *pr, const long *s,
     return add_pair_force(ev, pr, fa);
 }
 
-/* Linear damping, forces only: the path of every right-hand side. */
-static void damp_linear_forces(const cl_pairdamp *pd, size_t k0, size_t k1,
-                               const double *restrict v, double *restrict f)
+/* Axial damping's force (f0, f1, f2) on a of pair a-b:
+ * kd (u . (v_b - v_a)) u, the arithmetic of damp_axial; none for
+ * coincident particles.  Scalars, not an array: a force stored entry by
+ * entry and read back two at a time stalls on store forwarding. */
+static inline void axial_force(double kd, const double *xa, const double *xb,
+                               const double *va, const double *vb,
+                               double *f0, double *f1, double *f2)
 {
-    const cl_pair *pair = pd->pt.set.pair;
-    double kd = pd->kd;
-    for (size_t k = k0; k < k1; k++) {
-        if (cl_pairterm_is_torn(&pd->pt, k))
-            continue;
-        const double *va = v + 3 * pair[k].a, *vb = v + 3 * pair[k].b;
-        double *fa = f + 3 * pair[k].a, *fb = f + 3 * pair[k].b;
-        double f0 = -kd * (va[0] - vb[0]), f1 = -kd * (va[1] - vb[1]);
-        double f2 = -kd * (va[2] - vb[2]);
-        fa[0] += f0;
-        fa[1] += f1;
-        fa[2] += f2;
-        fb[0] -= f0;
-        fb[1] -= f1;
-        fb[2] -= f2;
+    double d = cl_dist(xa, xb), uw = 0.0;
+    if (!(d > 0)) {
+        *f0 = *f1 = *f2 = 0.0;
+        return;
     }
+    double u0 = (xb[0] - xa[0]) / d, u1 = (xb[1] - xa[1]) / d;
+    double u2 = (xb[2] - xa[2]) / d;
+    uw += u0 * (vb[0] - va[0]);
+    uw += u1 * (vb[1] - va[1]);
+    uw += u2 * (vb[2] - va[2]);
+    *f0 = kd * uw * u0;
+    *f1 = kd * uw * u1;
+    *f2 = kd * uw * u2;
 }
 
-/* Axial damping, forces only: f_a = kd (u . (v_b - v_a)) u, the same
- * arithmetic as damp_axial. */
-static void damp_axial_forces(const cl_pairdamp *pd, size_t k0, size_t k1,
-                              const double *restrict x,
-                              const double *restrict v, double *restrict f)
+/* Forces only, linear or axial: the path of every right-hand side. */
+static void damp_forces(const cl_pairdamp *pd, size_t k0, size_t k1,
+                        const double *restrict x, const double *restrict v,
+                        double *restrict f)
 {
     const cl_pair *pair = pd->pt.set.pair;
     double kd = pd->kd;
+    bool axial = pd->model == CL_DAMP_AXIAL;
     for (size_t k = k0; k < k1; k++) {
         if (cl_pairterm_is_torn(&pd->pt, k))
             continue;
-        const double *xa = x + 3 * pair[k].a, *xb = x + 3 * pair[k].b;
         const double *va = v + 3 * pair[k].a, *vb = v + 3 * pair[k].b;
-        double d = cl_dist(xa, xb);
-        if (!(d > 0))
-            continue;
-        double u0 = (xb[0] - xa[0]) / d, u1 = (xb[1] - xa[1]) / d;
-        double u2 = (xb[2] - xa[2]) / d;
-        double uw = 0.0;
-        uw += u0 * (vb[0] - va[0]);
-        uw += u1 * (vb[1] - va[1]);
-        uw += u2 * (vb[2] - va[2]);
-        double f0 = kd * uw * u0, f1 = kd * uw * u1, f2 = kd * uw * u2;
-        double *fa = f + 3 * pair[k].a, *fb = f + 3 * pair[k].b;
-        fa[0] += f0;
-        fa[1] += f1;
-        fa[2] += f2;
-        fb[0] -= f0;
-        fb[1] -= f1;
-        fb[2] -= f2;
+        double f0, f1, f2;
+        if (axial) {
+            axial_force(kd, x + 3 * pair[k].a, x + 3 * pair[k].b, va, vb,
+                        &f0, &f1, &f2);
+        } else {
+            f0 = -kd * (va[0] - vb[0]);
+            f1 = -kd * (va[1] - vb[1]);
+            f2 = -kd * (va[2] - vb[2]);
+        }
+        cl_pair_scatter(f, &pair[k], f0, f1, f2);
     }
 }
 
@@ -168,10 +161,8 @@ void cl_pairdamp_eval(cl_pairdamp *pd, cl_eval *ev, cl_pairdamp_keep keep,
     size_t k0, k1;
     cl_eval_share(ev, pd->pt.set.n, &k0, &k1);
     if (!keep && !ev->dfdx && !ev->dfdv && !ev->want_energy) {
-        if (ev->f && pd->model == CL_DAMP_LINEAR)
-            damp_linear_forces(pd, k0, k1, ev->v, ev->f);
-        else if (ev->f)
-            damp_axial_forces(pd, k0, k1, ev->x, ev->v, ev->f);
+        if (ev->f)
+            damp_forces(pd, k0, k1, ev->x, ev->v, ev->f);
         return;
     }
     double power = 0.0;

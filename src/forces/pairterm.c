@@ -135,13 +135,7 @@ static void add_pair_blocks(double *vals, const long *s, const double K[9])
 static inline void pair_add_force(double *restrict f, const cl_pair *pr,
                                   double s, double u0, double u1, double u2)
 {
-    double *fa = f + 3 * pr->a, *fb = f + 3 * pr->b;
-    fa[0] += s * u0;
-    fa[1] += s * u1;
-    fa[2] += s * u2;
-    fb[0] -= s * u0;
-    fb[1] -= s * u1;
-    fb[2] -= s * u2;
+    cl_pair_scatter(f, pr, s * u0, s * u1, s * u2);
 }
 
 /* Component i of u = x_ab / d, or 0 for coincident particles (no

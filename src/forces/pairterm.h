@@ -65,6 +65,20 @@ static inline bool cl_pairterm_is_torn(const cl_pairterm *pt, size_t k)
     return pt->torn && pt->torn[k];
 }
 
+/* f_a += (f0, f1, f2), f_b -= (f0, f1, f2): a pair's force into the
+ * force array f (3 per particle); the force-only paths' scatter. */
+static inline void cl_pair_scatter(double *restrict f, const cl_pair *pr,
+                                   double f0, double f1, double f2)
+{
+    double *fa = f + 3 * pr->a, *fb = f + 3 * pr->b;
+    fa[0] += f0;
+    fa[1] += f1;
+    fa[2] += f2;
+    fb[0] -= f0;
+    fb[1] -= f1;
+    fb[2] -= f2;
+}
+
 /* The block K of SPEC 3.1 (row-major 3x3) for direction u, distance d. */
 void cl_pair_block(const double u[3], double d, double s, double ds,
                    bool clamp_transverse, double K[9]);
