@@ -159,7 +159,7 @@ static void pairterm_forces(const cl_pairterm *pt, size_t k0, size_t k1,
         const double *xa = x + 3 * pair[k].a, *xb = x + 3 * pair[k].b;
         double d = cl_dist(xa, xb);
         cl_pairlaw law;
-        pt->law(pt->params, k, d, pair[k].rest, false, &law);
+        pt->law(pt->params, k, d, pair[k].rest, false, false, &law);
         pair_add_force(f, &pair[k], law.s, pair_dir(xa, xb, d, 0),
                        pair_dir(xa, xb, d, 1), pair_dir(xa, xb, d, 2));
     }
@@ -183,7 +183,8 @@ void cl_pairterm_eval(void *state, cl_eval *ev)
         const double *xa = ev->x + 3 * pr->a, *xb = ev->x + 3 * pr->b;
         double d = cl_dist(xa, xb);
         cl_pairlaw law;
-        pt->law(pt->params, k, d, pr->rest, ev->want_energy, &law);
+        pt->law(pt->params, k, d, pr->rest, ev->want_energy,
+                ev->dfdx != NULL, &law);
         energy += law.e;
         /* Coincident particles have no direction: no force, isotropic K. */
         const double u[3] = {pair_dir(xa, xb, d, 0), pair_dir(xa, xb, d, 1),

@@ -28,13 +28,16 @@
 
 typedef struct {
     double s;   /* s(d): > 0 pulls the pair together */
-    double ds;  /* s'(d) */
+    double ds;  /* s'(d) (only if asked for; else any value) */
     double e;   /* E(d) = integral_L^d s(r) dr (only if asked for) */
 } cl_pairlaw;
 
-/* Scalar law of pair k (rest length L) at distance d. */
+/* Scalar law of pair k (rest length L) at distance d; s' and E only when
+ * asked for (a law may skip work for them: forces alone are every
+ * right-hand side). */
 typedef void (*cl_pairlaw_fn)(const void *params, size_t k, double d,
-                              double L, bool want_energy, cl_pairlaw *out);
+                              double L, bool want_energy, bool want_ds,
+                              cl_pairlaw *out);
 
 typedef struct {
     cl_pairset set;

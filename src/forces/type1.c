@@ -21,8 +21,10 @@ typedef struct {
 } type1_state;
 
 static void type1_law(const void *params, size_t k, double d, double L,
-                      bool want_energy, cl_pairlaw *out)
+                      bool want_energy, bool want_ds,
+                      cl_pairlaw *out)
 {
+    (void)want_ds; /* s' costs nothing here */
     (void)k;
     const type1_state *st = params;
     double stretch = d - L;

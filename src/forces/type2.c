@@ -110,7 +110,7 @@ static double numerator_series(double t, double a)
     return sum * t;
 }
 
-/* f_b(d) and df_b/dd (eq. 9 and its derivative). */
+/* f_b(d) and, if dfb is not NULL, df_b/dd (eq. 9 and its derivative). */
 static double buckling_force(const type2_state *st, double d, double L,
                              double *dfb)
 {
@@ -120,10 +120,13 @@ static double buckling_force(const type2_state *st, double d, double L,
         /* G(t) = t^2/D(t) is even with G(0) = 1/(D''(0)/2). */
         double d2 = st->fbsinc == FBSINC_NORMALISED
                         ? M_PI * M_PI / 6.0 - 0.5 : -1.0 / 3.0;
-        *dfb = 0.0;
+        if (dfb)
+            *dfb = 0.0;
         return c / d2;
     }
     double dD, D = denominator(st, t, &dD);
+    if (!dfb)
+        return c * (t * t / D);
     double N = fabs(t) < 0.5
                    ? numerator_series(t, st->fbsinc == FBSINC_NORMALISED
                                              ? M_PI : 1.0)
@@ -133,9 +136,10 @@ static double buckling_force(const type2_state *st, double d, double L,
     return c * G;
 }
 
-/* The compressive law s = max(f_b, cb (d - L)) and s' (eq. 10). */
+/* The compressive law s = max(f_b, cb (d - L)) and s' (eq. 10); s' only
+ * if want_ds (else *ds is left as it is). */
 static void compression_law(const type2_state *st, double d, double L,
-                            double *s, double *ds)
+                            bool want_ds, double *s, double *ds)
 {
     double lin = st->cb * (d - L);
     /* Exact f_b never exceeds -12 kb/L^2: skip asinc where cb wins. */
@@ -145,7 +149,7 @@ static void compression_law(const type2_state *st, double d, double L,
         *ds = st->cb;
         return;
     }
-    double dfb, fb = buckling_force(st, d, L, &dfb);
+    double dfb = 0.0, fb = buckling_force(st, d, L, want_ds ? &dfb : NULL);
     if (lin >= fb) {
         *s = lin;
         *ds = st->cb;
@@ -202,7 +206,7 @@ static double compression_energy(type2_state *st, const rest_length *rl,
         if (lo >= hi)
             continue;
         double s, ds, mid = 0.5 * (lo + hi);
-        compression_law(st, mid, L, &s, &ds);
+        compression_law(st, mid, L, false, &s, &ds);
         if (s == st->cb * (mid - L))
             e -= 0.5 * st->cb * ((hi - L) * (hi - L) - (lo - L) * (lo - L));
         else
@@ -215,7 +219,7 @@ static double compression_energy(type2_state *st, const rest_length *rl,
 }
 
 static void type2_law(const void *params, size_t k, double d, double L,
-                      bool want_energy, cl_pairlaw *out)
+                      bool want_energy, bool want_ds, cl_pairlaw *out)
 {
     type2_state *st = (type2_state *)params;
     out->e = 0.0;
@@ -227,7 +231,7 @@ static void type2_law(const void *params, size_t k, double d, double L,
             out->e = 0.5 * ks * (d - L) * (d - L);
         return;
     }
-    compression_law(st, d, L, &out->s, &out->ds);
+    compression_law(st, d, L, want_ds, &out->s, &out->ds);
     if (want_energy)
         out->e = compression_energy(st, &st->len[st->len_of[k]], d);
 }
