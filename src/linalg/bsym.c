@@ -5,7 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-
 void cl_bsym_free(cl_bsym *s)
 {
     free(s->rowptr);
