@@ -67,8 +67,15 @@ static void outputs_case(const char *name)
     it->stats(st, &s);
     cr_expect_gt(s.steps, 0);
     cr_expect_geq(s.rhs_evals, s.steps);
-    cr_expect_eq(s.lin_setups + s.lin_solves + s.lin_iters + s.nonlin_iters +
-                     s.nonlin_fails + s.symbolic_facts, 0, "%s", name);
+    /* msbdf's Newton iterations and LU work happen inside GSL: not
+     * reported; rk8pd has none. */
+    long hidden = it == ri_find("gsl-msbdf") ? CL_STAT_NA : 0;
+    cr_expect_eq(s.lin_setups, hidden, "%s", name);
+    cr_expect_eq(s.lin_solves, hidden, "%s", name);
+    cr_expect_eq(s.nonlin_iters, hidden, "%s", name);
+    cr_expect_eq(s.nonlin_fails, hidden, "%s", name);
+    cr_expect_eq(s.lin_iters + s.symbolic_facts + s.lin_fallbacks, 0, "%s",
+                 name);
     it->free(st);
     ts_free(&ts);
 }

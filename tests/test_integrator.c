@@ -139,6 +139,33 @@ Test(integrator, stats_human_block_one_line_per_counter)
     free(buf);
 }
 
+/* A counter the method's library does not expose prints as "n/a" in the
+ * human block (still aligned) and "NA" in CSV, never as a number. */
+Test(integrator, stats_not_available_prints_na)
+{
+    cl_stats s = sample_stats();
+    s.nonlin_iters = CL_STAT_NA;
+    for (int human = 0; human < 2; human++) {
+        char *buf = NULL;
+        size_t len = 0;
+        FILE *fp = open_memstream(&buf, &len);
+        cr_assert_not_null(fp);
+        cl_stats_print(&s, fp, human);
+        fclose(fp);
+        const char *want = human ? "nonlinear iterations" : "\nnonlin_iters,NA\n";
+        char *row = strstr(buf, want);
+        cr_assert_not_null(row, "%s", buf);
+        cr_assert_null(strstr(buf, "-1"), "%s", buf);
+        if (human) {
+            char *eol = strchr(row, '\n');
+            cr_assert_not_null(eol);
+            cr_assert_eq(strncmp(eol - 3, "n/a", 3), 0, "%s", buf);
+            cr_assert_eq(eol - row, strchr(buf, '\n') - buf - 2, "%s", buf);
+        }
+        free(buf);
+    }
+}
+
 /* The name of the linear solver gets a row of its own when reported. */
 Test(integrator, stats_linsol_row_when_reported)
 {

@@ -248,4 +248,7 @@ void cl_gslode_stats(const void *state, cl_stats *out)
     out->rhs_evals = s->nrhs;
     out->jac_evals = s->njac;
     out->err_fails = s->failed_before + (long)s->drv->e->failed_steps;
+    if (s->method->jacobian) /* implicit: Newton and LU inside GSL */
+        out->lin_setups = out->lin_solves = out->nonlin_iters =
+            out->nonlin_fails = CL_STAT_NA;
 }

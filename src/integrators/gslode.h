@@ -33,8 +33,10 @@
  * summed), rhs_evals = force evaluations through the RHS wrapper and the
  * Jacobian's time difference, jac_evals = Jacobian wrapper calls,
  * err_fails = GSL's evolve->failed_steps (steps rejected by the error test
- * plus step halvings after a failed stepper call).  Other counters 0: GSL
- * does not expose msbdf's Newton iterations or LU factorisations.
+ * plus step halvings after a failed stepper call).  GSL does not expose
+ * msbdf's Newton iterations, Newton failures or LU factorisations and
+ * solves: for a method with a Jacobian those four are CL_STAT_NA ("n/a"),
+ * not 0.  The other counters are 0: neither method has them.
  *
  * Tearing (SPEC 3.4): the system's step_done hook is called at the end of
  * every advance, i.e. at output times only (use many samples); when the

@@ -93,8 +93,12 @@ void cl_stats_print(const cl_stats *s, FILE *fp, bool human)
     long c[NC];
     stats_counters(s, c);
     for (size_t i = 0; i < NC; i++) {
-        if (human)
+        if (human && c[i] == CL_STAT_NA)
+            fprintf(fp, "  %-28s %14s\n", cl_counter_names[i].human, "n/a");
+        else if (human)
             fprintf(fp, "  %-28s %14ld\n", cl_counter_names[i].human, c[i]);
+        else if (c[i] == CL_STAT_NA)
+            fprintf(fp, "%s,NA\n", cl_counter_names[i].csv);
         else
             fprintf(fp, "%s,%ld\n", cl_counter_names[i].csv, c[i]);
     }

@@ -34,7 +34,11 @@ typedef struct {
 } cl_integrator_opts;
 
 /* The statistics every integrator reports (SPEC 5). Counters a method does
- * not have stay 0. */
+ * not have stay 0; counters it has but its library does not expose (the
+ * Newton iterations and LU factorisations inside GSL's msbdf) are
+ * CL_STAT_NA, printed "n/a" (CSV: "NA"), never a made-up 0. */
+#define CL_STAT_NA (-1L)
+
 typedef struct {
     long steps;
     long rhs_evals;
