@@ -4,7 +4,9 @@
  * its damper break together, counted once); the pulled hang cloth tears
  * under a fixed-step and under adaptive integrators (solver restart at
  * output times) without NaN; torn triangles leave cl_model_triangles and
- * the frames; without [tear] cut nothing breaks. */
+ * the frames; without [tear] cut nothing breaks.  Baraff-Witkin elements
+ * break with any of their edges: a torn triangle or hinge gives nothing,
+ * in the potential and the damping terms alike. */
 #include <criterion/criterion.h>
 
 #include "io/frames.h"
@@ -177,4 +179,89 @@ Test(tearing, frames_and_series_of_a_tearing_run)
     cr_assert_gt(faces, 2 * 29 * 29 - 100, "%zu faces", faces);
     cli_lines_free(&L);
     tmp_rm_rf(dir);
+}
+
+/* The Baraff-Witkin terms (stretch, shear, bend and their damping) on one
+ * quad a = (0,0,0), b = (1,0,0), c = (1,0,1), d = (0,0,1): triangles
+ * (a,b,c), (a,c,d) and the hinge across a-c. */
+#define BW_QUAD                                                             \
+    "cloth.n=2", "pins.at=", "gravity.g=0,0,0", "type1.enabled=false",     \
+        "type2.enabled=false", "damping.kd=0", "bw-stretch.enabled=true",  \
+        "bw-stretch.k=100", "bw-stretch.kd=1", "bw-shear.enabled=true",    \
+        "bw-shear.k=10", "bw-shear.kd=1", "bw-bend.enabled=true",          \
+        "bw-bend.k=1", "bw-bend.kd=0.1", "tear.cut=1.5"
+
+/* The particle at rest position (X, 0, Z). */
+static int quad_particle(const cl_model *m, double X, double Z)
+{
+    const cl_cloth *c = cl_model_cloth(m);
+    for (size_t p = 0; p < c->np; p++)
+        if (c->X0[3 * p] == X && c->X0[3 * p + 2] == Z)
+            return (int)p;
+    cr_assert_fail("no particle at (%g, 0, %g)", X, Z);
+    return -1;
+}
+
+Test(tearing, baraff_witkin_elements_break_with_an_edge)
+{
+    cl_model *m = FD_MODEL(BW_QUAD);
+    const cl_system *sys = cl_model_system(m);
+    cr_assert_not_null(sys->step_done);
+    int b = quad_particle(m, 1, 0), d = quad_particle(m, 0, 1);
+    size_t n = sys->n;
+    double *x = fd_vec(n), *v = fd_vec(n), *f = fd_vec(n);
+    cr_assert_eq(cl_model_initial_state(m, x, v), CL_OK);
+    x[3 * b] = 1.6;      /* |ab| = 1.6 L > 1.5 L, |bc| = 1.17 L */
+    x[3 * d + 1] = 0.3;  /* folds the hinge, stretches (a,c,d) */
+    v[3 * b + 1] = 0.5;
+    v[3 * d] = -0.2;
+    cr_assert_eq(sys->force(sys->data, 0.0, x, v, f), CL_OK);
+    cr_assert_gt(fd_maxabs(f + 3 * b, 3), 1.0, "intact: b pulled back");
+    bool changed = false;
+    cr_assert_eq(sys->step_done(sys->data, 0.0, x, v, &changed), CL_OK);
+    cr_assert(changed);
+    cr_assert_eq(cl_model_broken(m), 1, "a-b only, merged over the six "
+                 "terms: %zu", cl_model_broken(m));
+    cr_assert(cl_model_is_broken(m, quad_particle(m, 0, 0), b));
+    /* b belongs only to the torn triangle and hinge: no force on it; the
+     * intact triangle (a,c,d) still acts on d */
+    cr_assert_eq(sys->force(sys->data, 0.0, x, v, f), CL_OK);
+    cr_assert_eq(fd_maxabs(f + 3 * b, 3), 0.0);
+    cr_assert_gt(fd_maxabs(f + 3 * d, 3), 0.1);
+    cl_energy e;
+    cr_assert_eq(sys->energy(sys->data, 0.0, x, v, &e), CL_OK);
+    for (size_t k = 0; k < e.nterm; k++)
+        if (!strcmp(e.name[k], "bw-bend"))
+            cr_assert_eq(e.value[k], 0.0, "the hinge is torn");
+    size_t kept = check_triangles(m);
+    cr_assert_eq(kept, 1);
+    /* for good: back at rest nothing comes back or breaks anew */
+    cr_assert_eq(cl_model_initial_state(m, x, v), CL_OK);
+    cr_assert_eq(sys->step_done(sys->data, 0.0, x, v, &changed), CL_OK);
+    cr_assert(!changed);
+    cr_assert_eq(cl_model_broken(m), 1);
+    free(x);
+    free(v);
+    free(f);
+    cl_model_free(m);
+}
+
+/* The pulled cloth of the pair-term tests, as a Baraff-Witkin cloth under
+ * cvode-bdf. */
+Test(tearing, pulled_baraff_witkin_cloth_tears)
+{
+    pb_case c = pb_open(FD_MODEL(PB_PULL, "type1.enabled=false",
+                                 "type2.enabled=false", "damping.kd=0",
+                                 "bw-stretch.enabled=true", "bw-stretch.k=2e4",
+                                 "bw-stretch.kd=2", "bw-shear.enabled=true",
+                                 "bw-shear.k=2e3", "bw-bend.enabled=true",
+                                 "bw-bend.k=5e-5", "tear.cut=1.5"));
+    cl_integrator_opts o = {.rtol = 1e-4, .atol = 1e-6};
+    pb_integrate(&c, "cvode-bdf", &o, 0.5, 100, NULL, NULL);
+    size_t broken = cl_model_broken(c.m), kept = check_triangles(c.m);
+    cr_log_info("baraff-witkin: %zu connections torn, %zu of 98 triangles "
+                "kept, %ld steps", broken, kept, c.st.steps);
+    cr_assert_gt(broken, 0);
+    cr_assert_lt(kept, 98);
+    pb_close(&c);
 }

@@ -9,6 +9,19 @@
 #include <string.h>
 
 #include "forces/pairterm.h"
+#include "model/pairs.h"
+
+/* The connections (mesh edges) of an element, as vertex indices within it:
+ * a triangle's three edges; a hinge's shared edge v0-v1 and the outer edges
+ * of its triangles (v0, v1, v2) and (v1, v0, v3) (model/mesh.h). */
+static const int tri_edges[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+static const int hinge_edges[5][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {3, 1}};
+
+static size_t element_edges(const cl_bw_term *t, const int (**edges)[2])
+{
+    *edges = t->nv == 3 ? tri_edges : hinge_edges;
+    return t->nv == 3 ? 3 : 5;
+}
 
 /* ---- triangles ----------------------------------------------------------- */
 
@@ -190,9 +203,31 @@ static cl_status read_coefs(cl_config *cfg, const cl_bw_spec *spec,
     return CL_OK;
 }
 
+/* Tearing state of t: rest lengths of every element's connections. */
+static cl_status setup_tearing(const cl_cloth *cloth, double cut,
+                               cl_bw_term *t, cl_error *err)
+{
+    const int(*ed)[2];
+    size_t ne = element_edges(t, &ed);
+    t->cut = cut;
+    t->edge_rest = malloc((t->n * ne + 1) * sizeof *t->edge_rest);
+    t->torn = calloc(t->n + 1, sizeof *t->torn);
+    t->broken = malloc((t->n * ne + 1) * sizeof *t->broken);
+    if (!t->edge_rest || !t->torn || !t->broken)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (%s tearing)",
+                            t->name);
+    for (size_t e = 0; e < t->n; e++) {
+        const int *v = t->vert + e * (size_t)t->nv;
+        for (size_t k = 0; k < ne; k++)
+            t->edge_rest[e * ne + k] = cl_dist(cloth->X0 + 3 * v[ed[k][0]],
+                                               cloth->X0 + 3 * v[ed[k][1]]);
+    }
+    return CL_OK;
+}
+
 cl_status cl_bw_create(cl_config *cfg, const cl_cloth *cloth,
-                       const cl_bw_spec *spec, bool damping, void **state,
-                       cl_error *err)
+                       const cl_bw_spec *spec, const cl_term_opts *opts,
+                       bool damping, void **state, cl_error *err)
 {
     bool enabled;
     cl_diagonal d;
@@ -211,9 +246,15 @@ cl_status cl_bw_create(cl_config *cfg, const cl_cloth *cloth,
         any = any || proto.k[c] != 0.0;
     if (!enabled || !any)
         return CL_OK;
-    if ((rc = check_grid(cfg, cloth, spec->section, err)))
+    if ((rc = check_grid(cfg, cloth, spec->section, err)) ||
+        (rc = build(cloth, d, spec, &proto, state, err)))
         return rc;
-    return build(cloth, d, spec, &proto, state, err);
+    if (opts->tear_cut > 0 &&
+        (rc = setup_tearing(cloth, opts->tear_cut, *state, err))) {
+        cl_bw_free(*state);
+        *state = NULL;
+    }
+    return rc;
 }
 
 void cl_bw_free(void *state)
@@ -225,6 +266,9 @@ void cl_bw_free(void *state)
     free(t->rest);
     free(t->couple);
     free(t->slot);
+    free(t->edge_rest);
+    free(t->torn);
+    free(t->broken);
     free(t);
 }
 
@@ -321,6 +365,8 @@ void cl_bw_eval(void *state, cl_eval *ev)
     cl_bw_term *t = state;
     double sum = 0.0;
     for (size_t e = 0; e < t->n; e++) {
+        if (t->torn && t->torn[e])
+            continue;
         const int *v = t->vert + e * (size_t)t->nv;
         double xe[CL_BW_NX], ve[CL_BW_NX];
         for (int m = 0; m < t->nv; m++)
@@ -340,4 +386,46 @@ void cl_bw_eval(void *state, cl_eval *ev)
         ev->energy = t->damping ? 0.0 : sum;
         ev->power = t->damping ? sum : 0.0;
     }
+}
+
+/* Connections of element e over the cut, recorded in t->broken; returns
+ * how many. */
+static size_t record_over_cut(cl_bw_term *t, size_t e, const double *x)
+{
+    const int(*ed)[2];
+    size_t ne = element_edges(t, &ed), over = 0;
+    const int *p = t->vert + e * (size_t)t->nv;
+    for (size_t k = 0; k < ne; k++) {
+        int a = p[ed[k][0]], b = p[ed[k][1]];
+        if (cl_dist(x + 3 * a, x + 3 * b) > t->cut * t->edge_rest[e * ne + k]) {
+            t->broken[t->nbroken][0] = a;
+            t->broken[t->nbroken++][1] = b;
+            over++;
+        }
+    }
+    return over;
+}
+
+/* An element with a connection over the cut breaks for good; each such
+ * connection is reported (the model merges the duplicates). */
+size_t cl_bw_step_done(void *state, const double *x, const double *v)
+{
+    cl_bw_term *t = state;
+    size_t now = 0;
+    (void)v;
+    for (size_t e = 0; t->torn && e < t->n; e++) {
+        if (t->torn[e])
+            continue;
+        size_t over = record_over_cut(t, e, x);
+        t->torn[e] = over > 0;
+        now += over;
+    }
+    return now;
+}
+
+size_t cl_bw_broken(const void *state, const int (**pairs)[2])
+{
+    const cl_bw_term *t = state;
+    *pairs = (const int(*)[2])t->broken;
+    return t->nbroken;
 }

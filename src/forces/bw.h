@@ -20,7 +20,16 @@
  *
  * Each condition file (bw_stretch.c, bw_shear.c, bw_bend.c) supplies C, dC/dx
  * and d2C/dx2 of one element; this module builds the elements, the Jacobian
- * couplings (all vertex pairs of an element) and runs the loops above. */
+ * couplings (all vertex pairs of an element) and runs the loops above.
+ *
+ * Tearing ([tear] cut, SPEC 3.4): the connections of an element are the
+ * mesh edges of its triangles (3 for a triangle; 5 for a hinge: the shared
+ * edge and the four outer edges of its two triangles).  After an accepted
+ * step an element whose connection a-b has d > cut L (L its rest length)
+ * breaks for good and gives no force, energy or Jacobian values; the
+ * connections over the cut are reported as broken.  The test is the same
+ * for every term and for the pair terms, so a torn edge takes every
+ * triangle and hinge it belongs to, in all terms at once. */
 #ifndef CL_BW_H
 #define CL_BW_H
 
@@ -61,6 +70,12 @@ typedef struct {
     double *rest;       /* n * nrest */
     int (*couple)[2];   /* n * nv(nv-1)/2 vertex pairs */
     long *slot;         /* n * nv * nv pattern slots (-1: no unknowns) */
+    /* tearing (NULL / 0 without [tear] cut) */
+    double cut;
+    double *edge_rest;  /* rest lengths of the n * (3 or 5) connections */
+    unsigned char *torn; /* n flags */
+    int (*broken)[2];   /* connections broken so far */
+    size_t nbroken;
 } cl_bw_term;
 
 /* ---- triangles (stretch, shear) ----------------------------------------
@@ -108,8 +123,8 @@ typedef struct {
 } cl_bw_spec;
 
 cl_status cl_bw_create(cl_config *cfg, const cl_cloth *cloth,
-                       const cl_bw_spec *spec, bool damping, void **state,
-                       cl_error *err);
+                       const cl_bw_spec *spec, const cl_term_opts *opts,
+                       bool damping, void **state, cl_error *err);
 
 /* The two term types of a condition, cl_term_<var> (potential, named
  * tname, described by tdoc) and cl_term_<var>_damping (tname "-damping",
@@ -119,30 +134,34 @@ cl_status cl_bw_create(cl_config *cfg, const cl_cloth *cloth,
                                   const cl_term_opts *opts, void **state,   \
                                   cl_error *err)                            \
     {                                                                       \
-        (void)opts;                                                         \
-        return cl_bw_create(cfg, cloth, &spec, false, state, err);          \
+        return cl_bw_create(cfg, cloth, &spec, opts, false, state, err);    \
     }                                                                       \
     static cl_status var##_damping_create(                                  \
         cl_config *cfg, const cl_cloth *cloth, const cl_term_opts *opts,    \
         void **state, cl_error *err)                                        \
     {                                                                       \
-        (void)opts;                                                         \
-        return cl_bw_create(cfg, cloth, &spec, true, state, err);           \
+        return cl_bw_create(cfg, cloth, &spec, opts, true, state, err);     \
     }                                                                       \
     const cl_term_type cl_term_##var = {                                    \
         .name = tname, .doc = tdoc, .conservative = true,                   \
         .create = var##_create, .couplings = cl_bw_couplings,               \
-        .bind = cl_bw_bind, .eval = cl_bw_eval, .free = cl_bw_free};        \
+        .bind = cl_bw_bind, .eval = cl_bw_eval,                             \
+        .step_done = cl_bw_step_done, .broken = cl_bw_broken,               \
+        .free = cl_bw_free};                                                \
     const cl_term_type cl_term_##var##_damping = {                          \
         .name = tname "-damping", .doc = ddoc, .conservative = false,     \
         .create = var##_damping_create, .couplings = cl_bw_couplings,       \
-        .bind = cl_bw_bind, .eval = cl_bw_eval, .free = cl_bw_free}
+        .bind = cl_bw_bind, .eval = cl_bw_eval,                             \
+        .step_done = cl_bw_step_done, .broken = cl_bw_broken,               \
+        .free = cl_bw_free}
 
 /* cl_term_type hooks for a cl_bw_term state. */
 size_t cl_bw_couplings(const void *state, const int (**pairs)[2]);
 cl_status cl_bw_bind(void *state, const cl_bpattern *pat, const int *dof,
                      cl_error *err);
 void cl_bw_eval(void *state, cl_eval *ev);
+size_t cl_bw_step_done(void *state, const double *x, const double *v);
+size_t cl_bw_broken(const void *state, const int (**pairs)[2]);
 void cl_bw_free(void *state);
 
 /* ---- bending hinge (bw_bend.c) -------------------------------------------
