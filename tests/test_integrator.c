@@ -87,15 +87,22 @@ static cl_stats sample_stats(void)
                       .wall = 0.5, .cpu = 0.25};
 }
 
-Test(integrator, stats_csv_rows_parse_back)
+/* cl_stats_print's output in a malloc'd string. */
+static char *stats_text(const cl_stats *s, bool human)
 {
-    cl_stats s = sample_stats();
     char *buf = NULL;
     size_t len = 0;
     FILE *fp = open_memstream(&buf, &len);
     cr_assert_not_null(fp);
-    cl_stats_print(&s, fp, false);
-    fclose(fp);
+    cl_stats_print(s, fp, human);
+    cr_assert_eq(fclose(fp), 0);
+    return buf;
+}
+
+Test(integrator, stats_csv_rows_parse_back)
+{
+    cl_stats s = sample_stats();
+    char *buf = stats_text(&s, false);
     const struct { const char *name; double value; } want[] = {
         {"steps", 11}, {"rhs_evals", 22}, {"jac_evals", 3},
         {"lin_setups", 4}, {"lin_solves", 15}, {"lin_iters", 0},
@@ -122,12 +129,7 @@ Test(integrator, stats_csv_rows_parse_back)
 Test(integrator, stats_human_block_one_line_per_counter)
 {
     cl_stats s = sample_stats();
-    char *buf = NULL;
-    size_t len = 0;
-    FILE *fp = open_memstream(&buf, &len);
-    cr_assert_not_null(fp);
-    cl_stats_print(&s, fp, true);
-    fclose(fp);
+    char *buf = stats_text(&s, true);
     size_t lines = 0, width = 0;
     for (char *line = strtok(buf, "\n"); line; line = strtok(NULL, "\n")) {
         cr_assert_null(strchr(line, ','), "%s", line);
@@ -146,12 +148,7 @@ Test(integrator, stats_not_available_prints_na)
     cl_stats s = sample_stats();
     s.nonlin_iters = CL_STAT_NA;
     for (int human = 0; human < 2; human++) {
-        char *buf = NULL;
-        size_t len = 0;
-        FILE *fp = open_memstream(&buf, &len);
-        cr_assert_not_null(fp);
-        cl_stats_print(&s, fp, human);
-        fclose(fp);
+        char *buf = stats_text(&s, human);
         const char *want = human ? "nonlinear iterations" : "\nnonlin_iters,NA\n";
         char *row = strstr(buf, want);
         cr_assert_not_null(row, "%s", buf);
@@ -172,12 +169,7 @@ Test(integrator, stats_linsol_row_when_reported)
     cl_stats s = sample_stats();
     snprintf(s.linsol, sizeof s.linsol, "auto:pcg");
     for (int human = 0; human < 2; human++) {
-        char *buf = NULL;
-        size_t len = 0;
-        FILE *fp = open_memstream(&buf, &len);
-        cr_assert_not_null(fp);
-        cl_stats_print(&s, fp, human);
-        fclose(fp);
+        char *buf = stats_text(&s, human);
         const char *want = human ? "linear solver" : "\nlinsol,auto:pcg\n";
         cr_assert_not_null(strstr(buf, want), "%s", buf);
         cr_assert_not_null(strstr(buf, "auto:pcg"), "%s", buf);
