@@ -5,6 +5,7 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#include "integrators/integrator.h"
 #include "io/config.h"
 
 typedef struct {
@@ -42,6 +43,15 @@ cl_status cl_cli_load(cl_config *cfg, const char *problem,
 
 /* Directory where a problem's outputs go by default: out/BASENAME. */
 void cl_cli_default_out(const char *problem, char *buf, size_t len);
+
+/* The options of integrator `type` from [run] (dt, rtol, atol, max_steps,
+ * newton_tol, newton_maxit, lin_tol, lin_maxit, verlet_damping, max_order,
+ * linsol), checked against what the integrator takes: a linear solver or
+ * an order cap it has no choice of, or a fixed-step method without dt > 0,
+ * is an error naming the key (cli/runopts.c). */
+cl_status cl_cli_integrator_opts(cl_config *cfg,
+                                 const cl_integrator_type *type,
+                                 cl_integrator_opts *io, cl_error *err);
 
 /* Progress bar on stderr (only when stderr is a terminal). */
 void cl_cli_progress(void *ctx, double fraction);

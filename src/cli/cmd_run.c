@@ -138,7 +138,6 @@ static cl_status read_integrator(cl_config *cfg, run_setup *r, cl_error *err)
 {
     const char *names[64];
     int n = 0, k;
-    long max_order;
     for (; cl_integrator_registry[n] && n < 63; n++)
         names[n] = cl_integrator_registry[n]->name;
     names[n] = NULL;
@@ -147,52 +146,7 @@ static cl_status read_integrator(cl_config *cfg, run_setup *r, cl_error *err)
     if (rc)
         return rc;
     r->type = cl_integrator_registry[k];
-    if ((rc = cl_config_double(cfg, "run", "dt", 0.0, 0.0, INFINITY,
-                               &r->io.dt, err)) ||
-        (rc = cl_config_double(cfg, "run", "rtol", 1e-6, 1e-15, 1.0,
-                               &r->io.rtol, err)) ||
-        (rc = cl_config_double(cfg, "run", "atol", 1e-8, 1e-300, INFINITY,
-                               &r->io.atol, err)) ||
-        (rc = cl_config_long(cfg, "run", "max_steps", 0, 0, 1L << 40,
-                             &r->io.max_steps, err)) ||
-        (rc = cl_config_double(cfg, "run", "newton_tol", 0.0, 0.0, 1.0,
-                               &r->io.newton_tol, err)) ||
-        (rc = cl_config_long(cfg, "run", "newton_maxit", 0, 0, 1000000,
-                             &r->io.newton_maxit, err)) ||
-        (rc = cl_config_double(cfg, "run", "lin_tol", 0.0, 0.0, 1.0,
-                               &r->io.lin_tol, err)) ||
-        (rc = cl_config_long(cfg, "run", "lin_maxit", 0, 0, 100000000,
-                             &r->io.lin_maxit, err)) ||
-        (rc = cl_config_double(cfg, "run", "verlet_damping", 0.0, 0.0,
-                               0.999999, &r->io.vdamp, err)) ||
-        (rc = cl_config_long(cfg, "run", "max_order", 0, 0, 12, &max_order,
-                             err)))
-        return rc;
-    r->io.max_order = (int)max_order;
-    r->io.linsol = cl_config_string(cfg, "run", "linsol", "");
-    char where[256];
-    if (*r->io.linsol && !r->type->takes_linsol)
-        return cl_error_set(err, CL_EINVAL,
-                            "%s: [run] linsol = \"%s\": integrator %s has no "
-                            "choice of linear solver",
-                            cl_config_origin(cfg, "run", "linsol", where,
-                                             sizeof where),
-                            r->io.linsol, r->type->name);
-    if (max_order && !r->type->takes_max_order)
-        return cl_error_set(err, CL_EINVAL,
-                            "%s: [run] max_order = %ld: integrator %s has "
-                            "no choice of order (CVODE and IDA have)",
-                            cl_config_origin(cfg, "run", "max_order", where,
-                                             sizeof where),
-                            max_order, r->type->name);
-    if (r->type->fixed_step && !(r->io.dt > 0))
-        return cl_error_set(err, CL_EINVAL,
-                            "%s: [run] dt = %g: integrator %s takes fixed "
-                            "steps and needs dt > 0 (--dt H)",
-                            cl_config_origin(cfg, "run", "dt", where,
-                                             sizeof where),
-                            r->io.dt, r->type->name);
-    return CL_OK;
+    return cl_cli_integrator_opts(cfg, r->type, &r->io, err);
 }
 
 static cl_status read_run(cl_config *cfg, run_setup *r, cl_error *err)
