@@ -4,9 +4,9 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "analysis/bench_impl.h"
+#include "core/clock.h"
 
 cl_status cl_bench_model(const cl_bctx *c, const char *problem,
                          const char *const *sets, cl_bmodel *bm,
@@ -37,11 +37,8 @@ void cl_bench_model_free(cl_bmodel *bm)
 
 void cl_bench_clock(double *cpu, double *wall)
 {
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    *cpu = (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    *wall = (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+    *cpu = cl_clock_cpu();
+    *wall = cl_clock_wall();
 }
 
 void cl_bench_side(char *buf, size_t len, const char *linsol, int max_order)

@@ -12,9 +12,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "analysis/diagnostics.h"
+#include "core/clock.h"
 #include "io/atomic.h"
 #include "io/frames.h"
 #include "io/series.h"
@@ -193,13 +193,6 @@ static cl_status write_stats(const sim *s, const cl_stats *st, cl_error *err)
 
 /* ---- the run ---------------------------------------------------------- */
 
-static double seconds(clockid_t id)
-{
-    struct timespec ts;
-    clock_gettime(id, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 static cl_status sim_alloc(sim *s, cl_error *err)
 {
     size_t n = s->sys->n, np = s->c->np;
@@ -246,11 +239,11 @@ static cl_status reach(sim *s, const cl_integrator_type *type, void *state,
 {
     double t = tick == sch->nticks && !type->fixed_step
                    ? s->so->t_end : (double)tick * sch->dt_tick;
-    double w0 = seconds(CLOCK_MONOTONIC);
-    double c0 = seconds(CLOCK_PROCESS_CPUTIME_ID);
+    double w0 = cl_clock_wall();
+    double c0 = cl_clock_cpu();
     cl_status rc = type->advance(state, t, s->x, s->v, err);
-    res->stats.wall += seconds(CLOCK_MONOTONIC) - w0;
-    res->stats.cpu += seconds(CLOCK_PROCESS_CPUTIME_ID) - c0;
+    res->stats.wall += cl_clock_wall() - w0;
+    res->stats.cpu += cl_clock_cpu() - c0;
     return rc ? rc : sample(s, t, res, err);
 }
 
