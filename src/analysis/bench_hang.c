@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "analysis/bench_impl.h"
+#include "analysis/diagnostics.h"
 #include "io/state.h"
 #include "linalg/linsol.h"
 
@@ -267,7 +268,7 @@ static const cl_brun *w1_match(cl_bctx *c, int n, double T,
     double rtol = RTOL;
     const cl_brun *a = cl_bench_hang(c, n, T, c->best, 0, rtol, ATOL);
     while (a && !a->rc) {
-        *err_a = cl_bench_distance(a->x, ref->x, a->nfree);
+        *err_a = cl_max_distance(a->x, ref->x, a->nfree);
         if (!(*err_a > err_b) || rtol <= TIGHTEST * 1.01)
             break;
         rtol *= 0.1;
@@ -292,7 +293,7 @@ static void w1_case(cl_bctx *c, int k)
     }
     double *xb = w1_peer(c, &c->peer[k], row, ref->nfree);
     if (xb)
-        row->error_b = cl_bench_distance(xb, ref->x, ref->nfree);
+        row->error_b = cl_max_distance(xb, ref->x, ref->nfree);
     free(xb);
     const cl_brun *a = w1_match(c, n, T, ref, row->error_b, &err_a);
     if (!a || a->rc) {
@@ -377,7 +378,7 @@ static const cl_brun *w2_ratio(cl_bctx *c, int n, double T)
     cl_bench_judge(row, b->cpu / a->cpu, "x", ">=", 20.0);
     cl_bench_note(row, "%ld vs %ld steps, final positions %.2g m apart",
                   a->steps, b->steps,
-                  cl_bench_distance(a->x, b->x, a->nfree));
+                  cl_max_distance(a->x, b->x, a->nfree));
     cl_bench_log_row(c, row);
     return a;
 }

@@ -97,9 +97,6 @@ const cl_brun *cl_bench_hang(cl_bctx *c, int n, double t_end,
 /* Free the cached runs. */
 void cl_bench_runs_free(cl_bctx *c);
 
-/* Largest distance between two sets of nfree positions. */
-double cl_bench_distance(const double *x, const double *y, size_t nfree);
-
 /* A new row (NaN figures, no goal), or c->spare if the table is full. */
 cl_bench_row *cl_bench_row_add(cl_bctx *c, int workload, const char *kase);
 

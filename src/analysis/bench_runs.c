@@ -154,17 +154,6 @@ void cl_bench_runs_free(cl_bctx *c)
     c->nrun = 0;
 }
 
-double cl_bench_distance(const double *x, const double *y, size_t nfree)
-{
-    double m = 0.0;
-    for (size_t p = 0; p < nfree; p++) {
-        double d0 = x[3 * p] - y[3 * p], d1 = x[3 * p + 1] - y[3 * p + 1];
-        double d2 = x[3 * p + 2] - y[3 * p + 2];
-        m = fmax(m, sqrt(d0 * d0 + d1 * d1 + d2 * d2));
-    }
-    return m;
-}
-
 cl_bench_row *cl_bench_row_add(cl_bctx *c, int workload, const char *kase)
 {
     cl_bench_table *t = c->t;

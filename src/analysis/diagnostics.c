@@ -47,3 +47,14 @@ long cl_wrinkles(const cl_cloth *c, const double *xfull)
     }
     return changes;
 }
+
+double cl_max_distance(const double *a, const double *b, size_t np)
+{
+    double m = 0.0;
+    for (size_t p = 0; p < np; p++) {
+        double d0 = a[3 * p] - b[3 * p], d1 = a[3 * p + 1] - b[3 * p + 1];
+        double d2 = a[3 * p + 2] - b[3 * p + 2];
+        m = fmax(m, sqrt(d0 * d0 + d1 * d1 + d2 * d2));
+    }
+    return m;
+}

@@ -2,7 +2,13 @@
 #ifndef CL_DIAGNOSTICS_H
 #define CL_DIAGNOSTICS_H
 
+#include <stddef.h>
+
 #include "model/pairs.h"
+
+/* Largest distance |a_p - b_p| over np points (3 np coordinates each): how
+ * far apart two states of the same cloth are. */
+double cl_max_distance(const double *a, const double *b, size_t np);
 
 /* Largest d/L over the pairs of `set` (e.g. the Type1 neighbours). */
 double cl_max_stretch(const cl_pairset *set, const double *xfull);

@@ -1,0 +1,84 @@
+/* Convergence study (SPEC 7 `clothode convergence`): one integrator run at
+ * a sequence of levels from the model's initial state to T,
+ *   fixed-step methods at dt_k = dt_0 / 2^k,
+ *   adaptive methods at rtol_k = rtol_0 / 10^k (atol_k = atol_0 / 10^k),
+ * k = 0 .. levels-1, each final state measured against a reference:
+ * cvode-bdf at rtol_ref, atol_ref = rtol_ref / 100 (default rtol_ref 1e-11).
+ *
+ * Errors: e_x = max over free particles of |x - x_ref| (m), e_v likewise for
+ * the velocities (m/s).  The reference's own error is estimated as the
+ * distance to a second reference run at 10 rtol_ref; a level whose e_x is
+ * below 10x that estimate is at the reference's floor, and a level that
+ * failed (blow-up, solver failure) has no error: neither enters the fit.
+ *
+ * Orders: between levels k-1 and k, p_k = log(e_{k-1} / e_k) / log(q),
+ * q = 2 for dt, 10 for rtol; over all fitted levels, the least-squares
+ * slope of log e against log dt (or log rtol; gsl_fit_linear).  For a
+ * fixed-step method the slope is its observed order; for an adaptive one
+ * it is its tolerance proportionality (1 when the global error follows the
+ * tolerance).  Problems that forget their initial state (hang at n = 10
+ * beyond 0.25 s) show it as slopes far below 1 with errors well above
+ * rtol. */
+#ifndef CL_CONVERGENCE_H
+#define CL_CONVERGENCE_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "integrators/integrator.h"
+#include "model/model.h"
+
+#define CL_CONV_MAX_LEVELS 20
+
+typedef struct {
+    double t_end;
+    double ref_rtol;      /* reference tolerance, 1e-15 .. 1e-4 */
+    const char *ref_linsol; /* reference's linear solver ("" default) */
+} cl_conv_opts;
+
+/* The reference solution at t_end and an estimate of its error. */
+typedef struct {
+    size_t n;             /* sys->n */
+    double *x, *v;        /* free state at t_end */
+    double err_x;         /* distance to the run at 10 rtol_ref */
+    cl_stats stats;       /* of the rtol_ref run */
+} cl_conv_ref;
+
+typedef struct {
+    double param;         /* dt or rtol of this level */
+    cl_status rc;         /* CL_OK, or why the run failed */
+    char msg[200];
+    double err_x, err_v;  /* NAN after a failure */
+    double order;         /* p_k against the previous level (NAN if none) */
+    bool fitted;
+    cl_stats stats;
+} cl_conv_level;
+
+typedef struct {
+    const cl_integrator_type *type;
+    bool fixed;           /* param is dt (else rtol) */
+    int nlev;
+    cl_conv_level lev[CL_CONV_MAX_LEVELS];
+    int nfit;
+    double slope_x, slope_v; /* fitted orders (NAN if nfit < 2) */
+} cl_conv_result;
+
+/* Run the reference (allocates ref->x, ref->v; free with
+ * cl_conv_ref_free). */
+cl_status cl_conv_reference(cl_model *m, const cl_conv_opts *o,
+                            cl_conv_ref *ref, cl_error *err);
+void cl_conv_ref_free(cl_conv_ref *ref);
+
+/* The levels of `type` (io: its options, dt or rtol/atol of level 0).
+ * CL_EINVAL for levels outside 2 .. CL_CONV_MAX_LEVELS; failures of single
+ * levels are recorded in r, not returned. */
+cl_status cl_convergence(cl_model *m, const cl_integrator_type *type,
+                         const cl_integrator_opts *io, int levels,
+                         const cl_conv_opts *o, const cl_conv_ref *ref,
+                         cl_conv_result *r, cl_error *err);
+
+/* One CSV row per level, header first when `header`:
+ * integrator,param,value,err_x,err_v,order,fitted,steps,rhs_evals,cpu,status */
+void cl_conv_write_rows(FILE *fp, const cl_conv_result *r, bool header);
+
+#endif
