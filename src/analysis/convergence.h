@@ -6,10 +6,11 @@
  * cvode-bdf at rtol_ref, atol_ref = rtol_ref / 100 (default rtol_ref 1e-11).
  *
  * Errors: e_x = max over free particles of |x - x_ref| (m), e_v likewise for
- * the velocities (m/s).  The reference's own error is estimated as the
- * distance to a second reference run at 10 rtol_ref; a level whose e_x is
- * below 10x that estimate is at the reference's floor, and a level that
- * failed (blow-up, solver failure) has no error: neither enters the fit.
+ * the velocities (m/s).  The reference's floor is the distance to a second
+ * reference run at 10 rtol_ref (about 10x the reference's own error when
+ * the error follows the tolerance): a level whose e_x is below it cannot be
+ * told from the reference's error, and a level that failed (blow-up,
+ * solver failure) has no error; neither enters the fit.
  *
  * Orders: between levels k-1 and k, p_k = log(e_{k-1} / e_k) / log(q),
  * q = 2 for dt, 10 for rtol; over all fitted levels, the least-squares
@@ -40,14 +41,14 @@ typedef struct {
 typedef struct {
     size_t n;             /* sys->n */
     double *x, *v;        /* free state at t_end */
-    double err_x;         /* distance to the run at 10 rtol_ref */
+    double err_x;         /* floor: distance to the run at 10 rtol_ref */
     cl_stats stats;       /* of the rtol_ref run */
 } cl_conv_ref;
 
 typedef struct {
     double param;         /* dt or rtol of this level */
-    cl_status rc;         /* CL_OK, or why the run failed */
-    char msg[200];
+    cl_status rc;         /* CL_OK, or how the run failed ... */
+    cl_error why;         /* ... and why */
     double err_x, err_v;  /* NAN after a failure */
     double order;         /* p_k against the previous level (NAN if none) */
     bool fitted;

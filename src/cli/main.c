@@ -8,6 +8,8 @@
 
 static const cl_command commands[] = {
     {"run", cl_cmd_run, "integrate a problem, write series, frames, stats"},
+    {"convergence", cl_cmd_convergence,
+     "observed orders against a tight reference"},
     {"eval", cl_cmd_eval, "forces, energies and Jacobians at a given state"},
     {"counts", cl_cmd_counts, "connection counts beside the seed's formulas"},
     {"list", cl_cmd_list, "problems, integrators and force terms"},
@@ -19,7 +21,7 @@ static int usage(FILE *fp)
     fprintf(fp, "usage: clothode COMMAND [options]   (COMMAND --help for "
                 "more)\ncommands:\n");
     for (size_t k = 0; k < sizeof commands / sizeof *commands; k++)
-        fprintf(fp, "  %-8s %s\n", commands[k].name, commands[k].summary);
+        fprintf(fp, "  %-11s %s\n", commands[k].name, commands[k].summary);
     return fp == stdout ? 0 : 2;
 }
 

@@ -1,0 +1,273 @@
+/* clothode convergence PROBLEM: observed orders of integrators against a
+ * tight reference (analysis/convergence.h). */
+#include <getopt.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analysis/convergence.h"
+#include "cli/cli.h"
+#include "cli/commands.h"
+#include "io/atomic.h"
+
+#define CONV_MAX_METHODS 32
+
+static const char conv_help[] =
+    "usage: clothode convergence PROBLEM [options]\n"
+    "Run each integrator at a sequence of levels to T and measure the final\n"
+    "state against a tight cvode-bdf reference: fixed-step methods at dt,\n"
+    "dt/2, dt/4, ..., adaptive ones at rtol, rtol/10, ... (atol alike).\n"
+    "Prints the errors, the order between levels and the least-squares\n"
+    "order; writes convergence.csv into the output directory.\n"
+    "\n"
+    "  --integrator LIST  integrators, comma-separated; [run] integrator\n"
+    "  --dt H             first step of the fixed-step integrators (s); the\n"
+    "                     adaptive ones choose their own initial step\n"
+    "  --rtol R --atol A  first tolerances of the adaptive integrators\n"
+    "  --levels K         levels per integrator, 2 .. 20 (default 5)\n"
+    "  --t-end T          final time (s); [run] t_end\n"
+    "  --ref-rtol R       reference tolerance (default 1e-11; atol R/100)\n"
+    "  --linsol NAME      linear solver of implicit integrators\n"
+    "  --max-order K      highest order of CVODE / IDA\n"
+    "  --out DIR          output directory (default out/PROBLEM)\n"
+    "  --set SEC.KEY=VAL  override any problem key (repeatable)\n"
+    "  --quiet            no table on stdout\n"
+    "  --help             this text\n"
+    "The reference's floor is its distance to a run at 10x its rtol; levels\n"
+    "below the floor, and failed levels, are left out of the fit.  Other\n"
+    "[run] keys (newton_tol, lin_tol, ...) apply as in run.\n";
+
+typedef struct {
+    cl_cli_sets sets;
+    const char *out;
+    bool quiet;
+} conv_args;
+
+static int parse_args(int argc, char **argv, conv_args *a)
+{
+    static const struct option opts[] = {
+        {"integrator", required_argument, 0, 'i'},
+        {"dt", required_argument, 0, 'd'},
+        {"rtol", required_argument, 0, 'r'},
+        {"atol", required_argument, 0, 'a'},
+        {"levels", required_argument, 0, 'L'},
+        {"t-end", required_argument, 0, 't'},
+        {"ref-rtol", required_argument, 0, 'R'},
+        {"linsol", required_argument, 0, 'l'},
+        {"max-order", required_argument, 0, 'm'},
+        {"out", required_argument, 0, 'o'},
+        {"set", required_argument, 0, 's'},
+        {"quiet", no_argument, 0, 'q'},
+        {"help", no_argument, 0, 'h'},
+        {0, 0, 0, 0}};
+    static const char *const key[128] = {
+        ['i'] = "run.integrator", ['d'] = "run.dt", ['r'] = "run.rtol",
+        ['a'] = "run.atol", ['L'] = "convergence.levels",
+        ['t'] = "run.t_end", ['R'] = "convergence.ref_rtol",
+        ['l'] = "run.linsol", ['m'] = "run.max_order"};
+    static const char *const label[128] = {
+        ['i'] = "--integrator", ['d'] = "--dt", ['r'] = "--rtol",
+        ['a'] = "--atol", ['L'] = "--levels", ['t'] = "--t-end",
+        ['R'] = "--ref-rtol", ['l'] = "--linsol", ['m'] = "--max-order"};
+    int c, rc = 0;
+    optind = 1;
+    opterr = 0;
+    while (rc == 0 && (c = getopt_long(argc, argv, "", opts, NULL)) != -1) {
+        if (c == 'h') {
+            fputs(conv_help, stdout);
+            return -2;
+        } else if (c == 'o') {
+            a->out = optarg;
+        } else if (c == 'q') {
+            a->quiet = true;
+        } else if (c == 's') {
+            rc = cl_cli_sets_add(&a->sets, NULL, optarg, NULL);
+        } else if (c > 0 && c < 128 && key[c]) {
+            rc = cl_cli_sets_add(&a->sets, key[c], optarg, label[c]);
+        } else {
+            cl_cli_usage_error("convergence", "unknown or incomplete option "
+                               "'%s'", argv[optind - 1]);
+            return -1;
+        }
+    }
+    if (rc)
+        return -1;
+    if (optind != argc - 1) {
+        cl_cli_usage_error("convergence", "expected exactly one PROBLEM, got "
+                           "%d", argc - optind);
+        return -1;
+    }
+    return optind;
+}
+
+/* The study: integrators with their options, levels, reference. */
+typedef struct {
+    int nm;
+    const cl_integrator_type *type[CONV_MAX_METHODS];
+    cl_integrator_opts io[CONV_MAX_METHODS];
+    long levels;
+    cl_conv_opts co;
+} conv_setup;
+
+/* [run] integrator as a comma-separated list of registered names. */
+static cl_status read_methods(cl_config *cfg, conv_setup *s, cl_error *err)
+{
+    const char *list = cl_config_string(cfg, "run", "integrator",
+                                        "cvode-bdf");
+    char where[256], name[64];
+    cl_config_origin(cfg, "run", "integrator", where, sizeof where);
+    for (const char *p = list; *p;) {
+        size_t len = strcspn(p, ",");
+        if (len == 0 || len >= sizeof name || s->nm == CONV_MAX_METHODS)
+            return cl_error_set(err, CL_EINVAL, "%s: [run] integrator = "
+                                "\"%s\": expected 1 to %d names separated "
+                                "by commas", where, list, CONV_MAX_METHODS);
+        memcpy(name, p, len);
+        name[len] = '\0';
+        s->type[s->nm] = cl_integrator_find(name);
+        if (!s->type[s->nm])
+            return cl_error_set(err, CL_EINVAL, "%s: [run] integrator = "
+                                "\"%s\": unknown integrator \"%s\" ("
+                                "clothode list shows them)", where, list,
+                                name);
+        cl_status rc = cl_cli_integrator_opts(cfg, s->type[s->nm],
+                                              &s->io[s->nm], err);
+        if (rc)
+            return rc;
+        if (!s->type[s->nm]->fixed_step)
+            s->io[s->nm].dt = 0.0; /* not CVODE's first step: its own */
+        s->nm++;
+        p += len + (p[len] == ',');
+    }
+    return s->nm ? CL_OK
+                 : cl_error_set(err, CL_EINVAL, "%s: [run] integrator is "
+                                "empty", where);
+}
+
+static cl_status read_setup(cl_config *cfg, conv_setup *s, cl_error *err)
+{
+    cl_status rc;
+    s->co.ref_linsol = "";
+    if ((rc = read_methods(cfg, s, err)) ||
+        (rc = cl_config_double(cfg, "run", "t_end", 2.0, 1e-300, INFINITY,
+                               &s->co.t_end, err)) ||
+        (rc = cl_config_long(cfg, "convergence", "levels", 5, 2,
+                             CL_CONV_MAX_LEVELS, &s->levels, err)))
+        return rc;
+    return cl_config_double(cfg, "convergence", "ref_rtol", 1e-11, 1e-15,
+                            1e-4, &s->co.ref_rtol, err);
+}
+
+static void print_result(const cl_conv_result *r)
+{
+    for (int k = 0; k < r->nlev; k++) {
+        const cl_conv_level *l = &r->lev[k];
+        printf("%-18s %10.3e", k ? "" : r->type->name, l->param);
+        if (l->rc) {
+            printf("   failed: %s\n", l->why.msg);
+            continue;
+        }
+        printf(" %10.3e %10.3e", l->err_x, l->err_v);
+        if (isnan(l->order))
+            printf(" %7s", "-");
+        else
+            printf(" %7.2f", l->order);
+        printf(" %9ld %9.3f%s\n", l->stats.steps, l->stats.cpu,
+               l->fitted ? "" : "  (below the reference's floor)");
+    }
+    if (r->nfit >= 2)
+        printf("%-18s fitted order %.2f (positions), %.2f (velocities) "
+               "over %d levels\n", "", r->slope_x, r->slope_v, r->nfit);
+    else
+        printf("%-18s no fit: fewer than 2 levels above the floor\n", "");
+}
+
+static cl_status write_csv(const char *dir, const cl_conv_result *res, int n,
+                           cl_error *err)
+{
+    char path[4200];
+    cl_afile af;
+    cl_status rc = cl_mkdir_p(dir, err);
+    snprintf(path, sizeof path, "%s/convergence.csv", dir);
+    if (rc || (rc = cl_afile_open(&af, path, err)))
+        return rc;
+    for (int k = 0; k < n; k++)
+        cl_conv_write_rows(af.fp, &res[k], k == 0);
+    return cl_afile_commit(&af, err);
+}
+
+/* Reference, then every integrator's levels; the CSV holds whatever was
+ * measured, also when a later integrator could not be run. */
+static cl_status study(cl_model *m, const char *problem, const conv_setup *s,
+                       const char *outdir, bool quiet, cl_error *err)
+{
+    cl_conv_ref ref;
+    cl_conv_result *res = calloc((size_t)s->nm, sizeof *res);
+    if (!res)
+        return cl_error_set(err, CL_ENOMEM, "out of memory");
+    cl_status rc = cl_conv_reference(m, &s->co, &ref, err);
+    const cl_cloth *c = cl_model_cloth(m);
+    if (!rc && !quiet) {
+        printf("problem    %s (%d x %d particles, %zu free), T = %g s\n",
+               problem, c->nu, c->nv, c->nfree, s->co.t_end);
+        printf("reference  cvode-bdf rtol %g: %ld steps, floor %.2e m "
+               "(distance to rtol %g)\n", s->co.ref_rtol, ref.stats.steps,
+               ref.err_x, 10 * s->co.ref_rtol);
+        printf("%-18s %10s %10s %10s %7s %9s %9s\n", "integrator",
+               "dt / rtol", "err_x [m]", "err_v", "order", "steps", "cpu [s]");
+    }
+    int done = 0;
+    for (; !rc && done < s->nm; done++) {
+        rc = cl_convergence(m, s->type[done], &s->io[done], (int)s->levels,
+                            &s->co, &ref, &res[done], err);
+        if (!rc && !quiet)
+            print_result(&res[done]);
+        fflush(stdout);
+    }
+    cl_error later;
+    if (done > (rc ? 1 : 0)) {
+        cl_status rc2 = write_csv(outdir, res, done - (rc ? 1 : 0),
+                                  rc ? &later : err);
+        rc = rc ? rc : rc2;
+    }
+    if (!rc && !quiet)
+        printf("output     %s/convergence.csv\n", outdir);
+    cl_conv_ref_free(&ref);
+    free(res);
+    return rc;
+}
+
+static int convergence_problem(const char *problem, conv_args *a)
+{
+    cl_error err = {0};
+    cl_config *cfg = cl_config_alloc();
+    cl_model *m = NULL;
+    conv_setup s = {0};
+    char outbuf[4096];
+    cl_status rc = cfg ? CL_OK : cl_error_set(&err, CL_ENOMEM, "no memory");
+    if (!rc && !(rc = cl_cli_load(cfg, problem, &a->sets, &err)) &&
+        !(rc = read_setup(cfg, &s, &err)) &&
+        !(rc = cl_model_create(cfg, &m, &err)) &&
+        !(rc = cl_config_check_unused(cfg, &err))) {
+        if (!a->out)
+            cl_cli_default_out(problem, outbuf, sizeof outbuf);
+        rc = study(m, problem, &s, a->out ? a->out : outbuf, a->quiet, &err);
+    }
+    cl_model_free(m);
+    cl_config_free(cfg);
+    return rc ? cl_cli_fail(&err) : 0;
+}
+
+int cl_cmd_convergence(int argc, char **argv)
+{
+    conv_args a = {0};
+    int at = parse_args(argc, argv, &a);
+    char buf[4096];
+    int status = at == -2 ? 0
+                 : at < 0 ? 2
+                          : convergence_problem(
+                                cl_cli_problem_path(argv[at], buf, sizeof buf),
+                                &a);
+    cl_cli_sets_free(&a.sets);
+    return status;
+}

@@ -1,0 +1,159 @@
+/* Convergence study (analysis/convergence.c) on spring2 (one particle on a
+ * linear spring, problems/spring2.ini): the fitted orders of fixed-step
+ * methods, the tolerance levels of an adaptive one, a level that blows up
+ * (recorded, left out of the fit, later levels still measured), the
+ * reference's floor and the refused requests. */
+#include <criterion/criterion.h>
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analysis/convergence.h"
+#include "io/config.h"
+
+typedef struct {
+    cl_config *cfg;
+    cl_model *m;
+    cl_conv_opts o;
+    cl_conv_ref ref;
+} cv_case;
+
+/* spring2 with the assignment `set` (or none), reference to T. */
+static void cv_open(cv_case *c, const char *set, double T)
+{
+    cl_error err = {0};
+    c->cfg = cl_config_alloc();
+    cr_assert_not_null(c->cfg);
+    cr_assert_eq(cl_config_load(c->cfg, "problems/spring2.ini", &err), CL_OK,
+                 "%s", err.msg);
+    if (set)
+        cr_assert_eq(cl_config_set(c->cfg, set, &err), CL_OK, "%s", err.msg);
+    cr_assert_eq(cl_model_create(c->cfg, &c->m, &err), CL_OK, "%s", err.msg);
+    c->o = (cl_conv_opts){.t_end = T, .ref_rtol = 1e-11, .ref_linsol = ""};
+    cr_assert_eq(cl_conv_reference(c->m, &c->o, &c->ref, &err), CL_OK, "%s",
+                 err.msg);
+}
+
+static void cv_close(cv_case *c)
+{
+    cl_conv_ref_free(&c->ref);
+    cl_model_free(c->m);
+    cl_config_free(c->cfg);
+}
+
+/* The levels of `name` from dt (fixed) or rtol, atol = rtol / 100. */
+static cl_conv_result cv_levels(cv_case *c, const char *name, double first,
+                                int levels)
+{
+    const cl_integrator_type *type = cl_integrator_find(name);
+    cr_assert_not_null(type, "%s", name);
+    cl_integrator_opts io = {.dt = type->fixed_step ? first : 0.0,
+                             .rtol = first, .atol = first / 100};
+    cl_conv_result r;
+    cl_error err = {0};
+    cr_assert_eq(cl_convergence(c->m, type, &io, levels, &c->o, &c->ref, &r,
+                                &err),
+                 CL_OK, "%s: %s", name, err.msg);
+    cr_assert_eq(r.nlev, levels);
+    for (int k = 0; k < r.nlev; k++)
+        cr_log_info("%s %g: err_x %.3e err_v %.3e order %.3f fitted %d",
+                    name, r.lev[k].param, r.lev[k].err_x, r.lev[k].err_v,
+                    r.lev[k].order, r.lev[k].fitted);
+    cr_log_info("%s: slope %.3f (x), %.3f (v) over %d", name, r.slope_x,
+                r.slope_v, r.nfit);
+    return r;
+}
+
+/* The reference is far closer to the closed form x = L + (v0/w) sin(w t)
+ * (L = 1, v0 = 1, w = 10) than its floor says. */
+Test(convergence, reference_and_floor)
+{
+    cv_case c;
+    cv_open(&c, NULL, 1.0);
+    double xe = 1.0 + 0.1 * sin(10.0);
+    cr_log_info("reference error %.3e, floor %.3e", fabs(c.ref.x[0] - xe),
+                c.ref.err_x);
+    cr_assert_lt(fabs(c.ref.x[0] - xe), 1e-9);
+    cr_assert_gt(c.ref.err_x, 0.0);
+    cr_assert_lt(c.ref.err_x, 1e-8);
+    cv_close(&c);
+}
+
+/* Observed orders of three fixed-step methods (SPEC 5 theory: 1, 2, 4). */
+Test(convergence, fixed_step_orders)
+{
+    static const struct { const char *name; double order; } m[] = {
+        {"fe", 1.0}, {"semi-bdf2", 2.0}, {"rk4", 4.0}};
+    cv_case c;
+    cv_open(&c, NULL, 1.0);
+    for (size_t i = 0; i < sizeof m / sizeof m[0]; i++) {
+        cl_conv_result r = cv_levels(&c, m[i].name, 1e-2, 4);
+        cr_assert(r.fixed);
+        for (int k = 0; k < r.nlev; k++) {
+            cr_assert_eq(r.lev[k].param, ldexp(1e-2, -k));
+            cr_assert_eq(r.lev[k].stats.steps, 100L << k);
+        }
+        cr_assert(isnan(r.lev[0].order));
+        cr_assert_geq(r.nfit, 2, "%s", m[i].name);
+        cr_expect(fabs(r.slope_x - m[i].order) < 0.2, "%s: %.3f", m[i].name,
+                  r.slope_x);
+    }
+    cv_close(&c);
+}
+
+/* rtol levels of cvode-bdf: decades, errors falling from the first to the
+ * last level. */
+Test(convergence, adaptive_levels_are_tolerances)
+{
+    cv_case c;
+    cv_open(&c, NULL, 1.0);
+    cl_conv_result r = cv_levels(&c, "cvode-bdf", 1e-4, 4);
+    cr_assert(!r.fixed);
+    for (int k = 0; k < r.nlev; k++)
+        cr_assert_float_eq(r.lev[k].param, 1e-4 * pow(10.0, -k), 1e-18);
+    cr_assert_lt(r.lev[3].err_x, r.lev[0].err_x / 10);
+    cr_assert_gt(r.slope_x, 0.3);
+    cv_close(&c);
+}
+
+/* ks = 1e4 (w = 100): symplectic Euler is unstable for dt w > 2.  At
+ * dt = 0.04 it overflows over 1000 steps; dt = 0.01 is stable. */
+Test(convergence, blown_up_level_is_recorded_and_skipped)
+{
+    cv_case c;
+    cv_open(&c, "type1.ks=1e4", 40.0);
+    cl_conv_result r = cv_levels(&c, "symplectic-euler", 0.04, 3);
+    cr_assert_eq(r.lev[0].rc, CL_EBLOWUP, "%s", r.lev[0].why.msg);
+    cr_assert(isnan(r.lev[0].err_x) && !r.lev[0].fitted);
+    cr_assert(isnan(r.lev[1].order));
+    cr_assert_eq(r.lev[2].rc, CL_OK, "%s", r.lev[2].why.msg);
+    cr_assert(isfinite(r.lev[2].err_x));
+    cv_close(&c);
+}
+
+static cl_status cv_request(cv_case *c, const char *name, double dt,
+                            int levels, cl_error *err)
+{
+    cl_integrator_opts io = {.dt = dt, .rtol = 1e-6, .atol = 1e-8};
+    cl_conv_result r;
+    return cl_convergence(c->m, cl_integrator_find(name), &io, levels, &c->o,
+                          &c->ref, &r, err);
+}
+
+Test(convergence, refused_requests)
+{
+    cv_case c;
+    cv_open(&c, NULL, 1.0);
+    cl_error err = {0};
+    cr_assert_eq(cv_request(&c, "rk4", 1e-2, 1, &err), CL_EINVAL);
+    cr_assert_not_null(strstr(err.msg, "levels"), "%s", err.msg);
+    cr_assert_eq(cv_request(&c, "rk4", 0.3, 3, &err), CL_EINVAL);
+    cr_assert_not_null(strstr(err.msg, "multiple"), "%s", err.msg);
+    cr_assert_eq(cv_request(&c, "cvode-bdf", 0, 12, &err), CL_EINVAL);
+    cr_assert_not_null(strstr(err.msg, "1e-15"), "%s", err.msg);
+    cl_conv_ref bad;
+    c.o.ref_rtol = 1e-3;
+    cr_assert_eq(cl_conv_reference(c.m, &c.o, &bad, &err), CL_EINVAL);
+    cv_close(&c);
+}
