@@ -989,6 +989,52 @@ Test(cli, counts_match_their_formulas)
     cli_result_free(&r);
 }
 
+/* convergence: the table on stdout and one CSV row per level, with the
+ * fitted order of rk4 near 4 in the text. */
+Test(cli, convergence_table_and_csv)
+{
+    char out[1024], path[1100];
+    cli_result r;
+    cli_run(&r, "convergence", "spring2", "--integrator", "rk4,cvode-bdf",
+            "--dt", "1e-2", "--rtol", "1e-4", "--atol", "1e-6", "--t-end",
+            "1", "--levels", "3", "--out", in_tmp(out, "conv"), NULL);
+    cli_assert_ok(&r);
+    const char *fit = strstr(r.out, "fitted order ");
+    cr_assert_not_null(fit, "%s", r.out);
+    double order = strtod(fit + 13, NULL);
+    cr_assert(fabs(order - 4) < 0.2, "rk4: %g\n%s", order, r.out);
+    cli_result_free(&r);
+    cli_lines L;
+    snprintf(path, sizeof path, "%s/convergence.csv", out);
+    cli_read_lines(path, &L);
+    cr_assert_eq(L.n, 7, "header and 2 x 3 levels, got %zu lines", L.n);
+    cr_assert_str_eq(L.line[0], "integrator,param,value,err_x,err_v,order,"
+                                "fitted,steps,rhs_evals,cpu,status");
+    cr_assert(!strncmp(L.line[1], "rk4,dt,0.01,", 12), "%s", L.line[1]);
+    cr_assert(!strncmp(L.line[4], "cvode-bdf,rtol,0.0001,", 22), "%s",
+              L.line[4]);
+    for (size_t k = 1; k < L.n; k++)
+        cr_assert(strstr(L.line[k], ",ok"), "%s", L.line[k]);
+    cli_lines_free(&L);
+}
+
+Test(cli, convergence_refusals)
+{
+    expect_refused(LIST("convergence", "spring2", "--integrator",
+                        "rk4,no-such", "--dt", "1e-2"), 0,
+                   LIST("--integrator", "no-such", "clothode list"));
+    expect_refused(LIST("convergence", "spring2", "--integrator", "rk4",
+                        "--dt", "1e-2", "--levels", "1"), 0,
+                   LIST("--levels", "levels"));
+    expect_refused(LIST("convergence", "spring2", "--integrator", "rk4"), 0,
+                   LIST("dt", "rk4"));
+    expect_refused(LIST("convergence", "spring2", "--integrator", "rk4",
+                        "--dt", "0.3", "--t-end", "1"), 0,
+                   LIST("multiple", "0.3"));
+    expect_refused(LIST("convergence", "spring2", "--ref-rtol", "1e-2"), 0,
+                   LIST("--ref-rtol", "ref_rtol"));
+}
+
 Test(cli, list_names_problems_integrators_terms)
 {
     cli_result r;
@@ -1007,9 +1053,10 @@ Test(cli, list_names_problems_integrators_terms)
 
 Test(cli, help_on_every_subcommand)
 {
-    const char *cmds[] = {"run", "eval", "counts", "list"};
+    const char *cmds[] = {"run", "eval", "counts", "list", "convergence"};
+    enum { NCMD = sizeof cmds / sizeof cmds[0] };
     cli_result r;
-    for (size_t k = 0; k < 4; k++) {
+    for (size_t k = 0; k < NCMD; k++) {
         cli_run(&r, cmds[k], "--help", NULL);
         cli_assert_ok(&r);
         cr_assert(strstr(r.out, "usage"), "%s --help:\n%s", cmds[k], r.out);
@@ -1018,7 +1065,7 @@ Test(cli, help_on_every_subcommand)
     cli_run(&r, "--help", NULL);
     cli_assert_ok(&r);
     cr_assert(strstr(r.out, "usage"), "--help:\n%s", r.out);
-    for (size_t k = 0; k < 4; k++)
+    for (size_t k = 0; k < NCMD; k++)
         cr_assert(strstr(r.out, cmds[k]), "--help does not list %s",
                   cmds[k]);
     cli_result_free(&r);

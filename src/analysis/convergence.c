@@ -101,9 +101,9 @@ static cl_integrator_opts level_opts(const cl_integrator_type *type,
     return o;
 }
 
-static cl_status check_request(const cl_integrator_type *type,
-                               const cl_integrator_opts *io, int levels,
-                               const cl_conv_opts *o, cl_error *err)
+cl_status cl_conv_check(const cl_integrator_type *type,
+                        const cl_integrator_opts *io, int levels,
+                        const cl_conv_opts *o, cl_error *err)
 {
     if (levels < 2 || levels > CL_CONV_MAX_LEVELS)
         return cl_error_set(err, CL_EINVAL, "levels = %d: expected 2 .. %d",
@@ -159,7 +159,7 @@ cl_status cl_convergence(cl_model *m, const cl_integrator_type *type,
     memset(r, 0, sizeof *r);
     r->type = type;
     r->fixed = type->fixed_step;
-    cl_status rc = check_request(type, io, levels, o, err);
+    cl_status rc = cl_conv_check(type, io, levels, o, err);
     double *x = malloc(n * sizeof *x), *v = malloc(n * sizeof *v);
     if (!rc && (!x || !v))
         rc = cl_error_set(err, CL_ENOMEM, "out of memory");

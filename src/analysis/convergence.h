@@ -70,9 +70,16 @@ cl_status cl_conv_reference(cl_model *m, const cl_conv_opts *o,
                             cl_conv_ref *ref, cl_error *err);
 void cl_conv_ref_free(cl_conv_ref *ref);
 
+/* Whether the levels of `type` can be run: CL_EINVAL for levels outside
+ * 2 .. CL_CONV_MAX_LEVELS, an rtol that would go below 1e-15, or a T that
+ * is not a multiple of a fixed step. */
+cl_status cl_conv_check(const cl_integrator_type *type,
+                        const cl_integrator_opts *io, int levels,
+                        const cl_conv_opts *o, cl_error *err);
+
 /* The levels of `type` (io: its options, dt or rtol/atol of level 0).
- * CL_EINVAL for levels outside 2 .. CL_CONV_MAX_LEVELS; failures of single
- * levels are recorded in r, not returned. */
+ * cl_conv_check's refusals are returned; failures of single levels are
+ * recorded in r, not returned. */
 cl_status cl_convergence(cl_model *m, const cl_integrator_type *type,
                          const cl_integrator_opts *io, int levels,
                          const cl_conv_opts *o, const cl_conv_ref *ref,

@@ -152,10 +152,14 @@ static cl_status read_setup(cl_config *cfg, conv_setup *s, cl_error *err)
         (rc = cl_config_double(cfg, "run", "t_end", 2.0, 1e-300, INFINITY,
                                &s->co.t_end, err)) ||
         (rc = cl_config_long(cfg, "convergence", "levels", 5, 2,
-                             CL_CONV_MAX_LEVELS, &s->levels, err)))
+                             CL_CONV_MAX_LEVELS, &s->levels, err)) ||
+        (rc = cl_config_double(cfg, "convergence", "ref_rtol", 1e-11, 1e-15,
+                               1e-4, &s->co.ref_rtol, err)))
         return rc;
-    return cl_config_double(cfg, "convergence", "ref_rtol", 1e-11, 1e-15,
-                            1e-4, &s->co.ref_rtol, err);
+    for (int k = 0; !rc && k < s->nm; k++)
+        rc = cl_conv_check(s->type[k], &s->io[k], (int)s->levels, &s->co,
+                           err);
+    return rc;
 }
 
 static void print_result(const cl_conv_result *r)
