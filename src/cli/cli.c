@@ -68,6 +68,42 @@ void cl_cli_sets_free(cl_cli_sets *s)
     s->n = 0;
 }
 
+int cl_cli_parse(int argc, char **argv, const cl_cli_spec *spec,
+                 cl_cli_args *a)
+{
+    int c, rc = 0;
+    optind = 1;
+    opterr = 0;
+    while (rc == 0 &&
+           (c = getopt_long(argc, argv, "", spec->opts, NULL)) != -1) {
+        if (c == 'h') {
+            fputs(spec->help, stdout);
+            return -2;
+        } else if (c == 'o') {
+            a->out = optarg;
+        } else if (c == 'q') {
+            a->quiet = true;
+        } else if (c == 's') {
+            rc = cl_cli_sets_add(&a->sets, NULL, optarg, NULL);
+        } else if (c > 0 && c < 128 && spec->key[c]) {
+            rc = cl_cli_sets_add(&a->sets, spec->key[c], optarg,
+                                 spec->label[c]);
+        } else {
+            cl_cli_usage_error(spec->cmd, "unknown or incomplete option "
+                               "'%s'", argv[optind - 1]);
+            return -1;
+        }
+    }
+    if (rc)
+        return -1;
+    if (optind != argc - 1) {
+        cl_cli_usage_error(spec->cmd, "expected exactly one PROBLEM, got %d",
+                           argc - optind);
+        return -1;
+    }
+    return optind;
+}
+
 cl_status cl_cli_load(cl_config *cfg, const char *problem,
                       const cl_cli_sets *sets, cl_error *err)
 {

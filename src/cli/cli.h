@@ -2,6 +2,7 @@
 #ifndef CL_CLI_H
 #define CL_CLI_H
 
+#include <getopt.h>
 #include <stdbool.h>
 #include <stdio.h>
 
@@ -36,6 +37,29 @@ typedef struct {
 int cl_cli_sets_add(cl_cli_sets *s, const char *key, const char *val,
                     const char *label);
 void cl_cli_sets_free(cl_cli_sets *s);
+
+/* The options of a subcommand that takes one PROBLEM (run, convergence). */
+typedef struct {
+    cl_cli_sets sets;
+    const char *out;   /* --out DIR, or NULL */
+    bool quiet;        /* --quiet */
+} cl_cli_args;
+
+/* Its option table: getopt_long's `opts`, where 'o' is --out, 'q' --quiet,
+ * 's' --set and 'h' --help, and every other option c stands for the key
+ * key[c] ("run.dt"), named label[c] ("--dt") in messages. */
+typedef struct {
+    const char *cmd;
+    const char *help;
+    const struct option *opts;
+    const char *const *key;    /* 128 entries */
+    const char *const *label;  /* 128 entries */
+} cl_cli_spec;
+
+/* Parse argv: the index of PROBLEM; -2 after --help (printed), -1 after a
+ * usage error (printed).  a->sets must be freed by the caller. */
+int cl_cli_parse(int argc, char **argv, const cl_cli_spec *spec,
+                 cl_cli_args *a);
 
 /* Load a problem file and apply the assignments. */
 cl_status cl_cli_load(cl_config *cfg, const char *problem,

@@ -1,6 +1,5 @@
 /* clothode convergence PROBLEM: observed orders of integrators against a
  * tight reference (analysis/convergence.h). */
-#include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -37,68 +36,32 @@ static const char conv_help[] =
     "below the floor, and failed levels, are left out of the fit.  Other\n"
     "[run] keys (newton_tol, lin_tol, ...) apply as in run.\n";
 
-typedef struct {
-    cl_cli_sets sets;
-    const char *out;
-    bool quiet;
-} conv_args;
-
-static int parse_args(int argc, char **argv, conv_args *a)
-{
-    static const struct option opts[] = {
-        {"integrator", required_argument, 0, 'i'},
-        {"dt", required_argument, 0, 'd'},
-        {"rtol", required_argument, 0, 'r'},
-        {"atol", required_argument, 0, 'a'},
-        {"levels", required_argument, 0, 'L'},
-        {"t-end", required_argument, 0, 't'},
-        {"ref-rtol", required_argument, 0, 'R'},
-        {"linsol", required_argument, 0, 'l'},
-        {"max-order", required_argument, 0, 'm'},
-        {"out", required_argument, 0, 'o'},
-        {"set", required_argument, 0, 's'},
-        {"quiet", no_argument, 0, 'q'},
-        {"help", no_argument, 0, 'h'},
-        {0, 0, 0, 0}};
-    static const char *const key[128] = {
-        ['i'] = "run.integrator", ['d'] = "run.dt", ['r'] = "run.rtol",
-        ['a'] = "run.atol", ['L'] = "convergence.levels",
-        ['t'] = "run.t_end", ['R'] = "convergence.ref_rtol",
-        ['l'] = "run.linsol", ['m'] = "run.max_order"};
-    static const char *const label[128] = {
-        ['i'] = "--integrator", ['d'] = "--dt", ['r'] = "--rtol",
-        ['a'] = "--atol", ['L'] = "--levels", ['t'] = "--t-end",
-        ['R'] = "--ref-rtol", ['l'] = "--linsol", ['m'] = "--max-order"};
-    int c, rc = 0;
-    optind = 1;
-    opterr = 0;
-    while (rc == 0 && (c = getopt_long(argc, argv, "", opts, NULL)) != -1) {
-        if (c == 'h') {
-            fputs(conv_help, stdout);
-            return -2;
-        } else if (c == 'o') {
-            a->out = optarg;
-        } else if (c == 'q') {
-            a->quiet = true;
-        } else if (c == 's') {
-            rc = cl_cli_sets_add(&a->sets, NULL, optarg, NULL);
-        } else if (c > 0 && c < 128 && key[c]) {
-            rc = cl_cli_sets_add(&a->sets, key[c], optarg, label[c]);
-        } else {
-            cl_cli_usage_error("convergence", "unknown or incomplete option "
-                               "'%s'", argv[optind - 1]);
-            return -1;
-        }
-    }
-    if (rc)
-        return -1;
-    if (optind != argc - 1) {
-        cl_cli_usage_error("convergence", "expected exactly one PROBLEM, got "
-                           "%d", argc - optind);
-        return -1;
-    }
-    return optind;
-}
+static const struct option conv_opts[] = {
+    {"integrator", required_argument, 0, 'i'},
+    {"dt", required_argument, 0, 'd'},
+    {"rtol", required_argument, 0, 'r'},
+    {"atol", required_argument, 0, 'a'},
+    {"levels", required_argument, 0, 'L'},
+    {"t-end", required_argument, 0, 't'},
+    {"ref-rtol", required_argument, 0, 'R'},
+    {"linsol", required_argument, 0, 'l'},
+    {"max-order", required_argument, 0, 'm'},
+    {"out", required_argument, 0, 'o'},
+    {"set", required_argument, 0, 's'},
+    {"quiet", no_argument, 0, 'q'},
+    {"help", no_argument, 0, 'h'},
+    {0, 0, 0, 0}};
+static const char *const conv_key[128] = {
+    ['i'] = "run.integrator", ['d'] = "run.dt", ['r'] = "run.rtol",
+    ['a'] = "run.atol", ['L'] = "convergence.levels", ['t'] = "run.t_end",
+    ['R'] = "convergence.ref_rtol", ['l'] = "run.linsol",
+    ['m'] = "run.max_order"};
+static const char *const conv_label[128] = {
+    ['i'] = "--integrator", ['d'] = "--dt", ['r'] = "--rtol",
+    ['a'] = "--atol", ['L'] = "--levels", ['t'] = "--t-end",
+    ['R'] = "--ref-rtol", ['l'] = "--linsol", ['m'] = "--max-order"};
+static const cl_cli_spec conv_spec = {"convergence", conv_help, conv_opts,
+                                      conv_key, conv_label};
 
 /* The study: integrators with their options, levels, reference. */
 typedef struct {
@@ -241,7 +204,7 @@ static cl_status study(cl_model *m, const char *problem, const conv_setup *s,
     return rc;
 }
 
-static int convergence_problem(const char *problem, conv_args *a)
+static int convergence_problem(const char *problem, cl_cli_args *a)
 {
     cl_error err = {0};
     cl_config *cfg = cl_config_alloc();
@@ -264,8 +227,8 @@ static int convergence_problem(const char *problem, conv_args *a)
 
 int cl_cmd_convergence(int argc, char **argv)
 {
-    conv_args a = {0};
-    int at = parse_args(argc, argv, &a);
+    cl_cli_args a = {0};
+    int at = cl_cli_parse(argc, argv, &conv_spec, &a);
     char buf[4096];
     int status = at == -2 ? 0
                  : at < 0 ? 2

@@ -1,5 +1,4 @@
 /* clothode run PROBLEM: integrate one problem and write its outputs. */
-#include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -38,71 +37,35 @@ static const char run_help[] =
     "lin_tol, lin_maxit (iterative linear solvers) and verlet_damping\n"
     "(seed 004).\n";
 
-typedef struct {
-    cl_cli_sets sets;
-    const char *out;
-    bool quiet;
-} run_args;
-
-/* Options -> [run] assignments; returns the index of PROBLEM or -1/-2. */
-static int parse_args(int argc, char **argv, run_args *a)
-{
-    static const struct option opts[] = {
-        {"integrator", required_argument, 0, 'i'},
-        {"dt", required_argument, 0, 'd'},
-        {"rtol", required_argument, 0, 'r'},
-        {"atol", required_argument, 0, 'a'},
-        {"linsol", required_argument, 0, 'l'},
-        {"threads", required_argument, 0, 'T'},
-        {"max-order", required_argument, 0, 'm'},
-        {"t-end", required_argument, 0, 't'},
-        {"samples", required_argument, 0, 'S'},
-        {"frames", required_argument, 0, 'f'},
-        {"format", required_argument, 0, 'F'},
-        {"out", required_argument, 0, 'o'},
-        {"set", required_argument, 0, 's'},
-        {"quiet", no_argument, 0, 'q'},
-        {"help", no_argument, 0, 'h'},
-        {0, 0, 0, 0}};
-    static const char *const key[128] = {
-        ['i'] = "run.integrator", ['d'] = "run.dt", ['r'] = "run.rtol",
-        ['a'] = "run.atol", ['l'] = "run.linsol", ['T'] = "run.threads", ['m'] = "run.max_order", ['t'] = "run.t_end", ['S'] = "run.samples",
-        ['f'] = "run.frames", ['F'] = "run.format"};
-    static const char *const label[128] = {
-        ['i'] = "--integrator", ['d'] = "--dt", ['r'] = "--rtol",
-        ['a'] = "--atol", ['l'] = "--linsol", ['T'] = "--threads", ['m'] = "--max-order",
-        ['t'] = "--t-end",
-        ['S'] = "--samples", ['f'] = "--frames", ['F'] = "--format"};
-    int c, rc = 0;
-    optind = 1;
-    opterr = 0;
-    while (rc == 0 && (c = getopt_long(argc, argv, "", opts, NULL)) != -1) {
-        if (c == 'h') {
-            fputs(run_help, stdout);
-            return -2;
-        } else if (c == 'o') {
-            a->out = optarg;
-        } else if (c == 'q') {
-            a->quiet = true;
-        } else if (c == 's') {
-            rc = cl_cli_sets_add(&a->sets, NULL, optarg, NULL);
-        } else if (c > 0 && c < 128 && key[c]) {
-            rc = cl_cli_sets_add(&a->sets, key[c], optarg, label[c]);
-        } else {
-            cl_cli_usage_error("run", "unknown or incomplete option '%s'",
-                               argv[optind - 1]);
-            return -1;
-        }
-    }
-    if (rc)
-        return -1;
-    if (optind != argc - 1) {
-        cl_cli_usage_error("run", "expected exactly one PROBLEM, got %d",
-                           argc - optind);
-        return -1;
-    }
-    return optind;
-}
+static const struct option run_opts[] = {
+    {"integrator", required_argument, 0, 'i'},
+    {"dt", required_argument, 0, 'd'},
+    {"rtol", required_argument, 0, 'r'},
+    {"atol", required_argument, 0, 'a'},
+    {"linsol", required_argument, 0, 'l'},
+    {"threads", required_argument, 0, 'T'},
+    {"max-order", required_argument, 0, 'm'},
+    {"t-end", required_argument, 0, 't'},
+    {"samples", required_argument, 0, 'S'},
+    {"frames", required_argument, 0, 'f'},
+    {"format", required_argument, 0, 'F'},
+    {"out", required_argument, 0, 'o'},
+    {"set", required_argument, 0, 's'},
+    {"quiet", no_argument, 0, 'q'},
+    {"help", no_argument, 0, 'h'},
+    {0, 0, 0, 0}};
+static const char *const run_key[128] = {
+    ['i'] = "run.integrator", ['d'] = "run.dt", ['r'] = "run.rtol",
+    ['a'] = "run.atol", ['l'] = "run.linsol", ['T'] = "run.threads",
+    ['m'] = "run.max_order", ['t'] = "run.t_end", ['S'] = "run.samples",
+    ['f'] = "run.frames", ['F'] = "run.format"};
+static const char *const run_label[128] = {
+    ['i'] = "--integrator", ['d'] = "--dt", ['r'] = "--rtol",
+    ['a'] = "--atol", ['l'] = "--linsol", ['T'] = "--threads",
+    ['m'] = "--max-order", ['t'] = "--t-end", ['S'] = "--samples",
+    ['f'] = "--frames", ['F'] = "--format"};
+static const cl_cli_spec run_spec = {"run", run_help, run_opts, run_key,
+                                     run_label};
 
 typedef struct {
     const cl_integrator_type *type;
@@ -190,7 +153,7 @@ static void print_summary(const char *problem, const run_setup *r,
            r->so.outdir, res->frames);
 }
 
-static int run_problem(const char *problem, run_args *a)
+static int run_problem(const char *problem, cl_cli_args *a)
 {
     cl_error err = {0};
     cl_config *cfg = cl_config_alloc();
@@ -226,8 +189,8 @@ static int run_problem(const char *problem, run_args *a)
 
 int cl_cmd_run(int argc, char **argv)
 {
-    run_args a = {0};
-    int at = parse_args(argc, argv, &a);
+    cl_cli_args a = {0};
+    int at = cl_cli_parse(argc, argv, &run_spec, &a);
     char buf[4096];
     int status = at == -2 ? 0
                  : at < 0 ? 2
