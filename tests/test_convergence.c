@@ -30,7 +30,8 @@ static void cv_open(cv_case *c, const char *set, double T)
     if (set)
         cr_assert_eq(cl_config_set(c->cfg, set, &err), CL_OK, "%s", err.msg);
     cr_assert_eq(cl_model_create(c->cfg, &c->m, &err), CL_OK, "%s", err.msg);
-    c->o = (cl_conv_opts){.t_end = T, .ref_rtol = 1e-11, .ref_linsol = ""};
+    c->o = (cl_conv_opts){.t_end = T, .max_stretch = 10, .ref_rtol = 1e-11,
+                          .ref_linsol = ""};
     cr_assert_eq(cl_conv_reference(c->m, &c->o, &c->ref, &err), CL_OK, "%s",
                  err.msg);
 }
@@ -118,7 +119,9 @@ Test(convergence, adaptive_levels_are_tolerances)
 }
 
 /* ks = 1e4 (w = 100): symplectic Euler is unstable for dt w > 2.  At
- * dt = 0.04 it overflows over 1000 steps; dt = 0.01 is stable. */
+ * dt = 0.04 it overflows over 1000 steps; at dt = 0.02 (dt w = 2, a double
+ * eigenvalue -1) it grows linearly and ends finite but stretched far
+ * beyond max_stretch; dt = 0.01 is stable. */
 Test(convergence, blown_up_level_is_recorded_and_skipped)
 {
     cv_case c;
@@ -126,7 +129,10 @@ Test(convergence, blown_up_level_is_recorded_and_skipped)
     cl_conv_result r = cv_levels(&c, "symplectic-euler", 0.04, 3);
     cr_assert_eq(r.lev[0].rc, CL_EBLOWUP, "%s", r.lev[0].why.msg);
     cr_assert(isnan(r.lev[0].err_x) && !r.lev[0].fitted);
-    cr_assert(isnan(r.lev[1].order));
+    cr_assert_eq(r.lev[1].rc, CL_EBLOWUP, "%s", r.lev[1].why.msg);
+    cr_assert_not_null(strstr(r.lev[1].why.msg, "max stretch"), "%s",
+                       r.lev[1].why.msg);
+    cr_assert(isnan(r.lev[1].order) && isnan(r.lev[2].order));
     cr_assert_eq(r.lev[2].rc, CL_OK, "%s", r.lev[2].why.msg);
     cr_assert(isfinite(r.lev[2].err_x));
     cv_close(&c);
@@ -156,4 +162,22 @@ Test(convergence, refused_requests)
     c.o.ref_rtol = 1e-3;
     cr_assert_eq(cl_conv_reference(c.m, &c.o, &bad, &err), CL_EINVAL);
     cv_close(&c);
+}
+
+/* Tearing changes the model for good: no repeated runs. */
+Test(convergence, tearing_model_refused)
+{
+    cl_error err = {0};
+    cl_config *cfg = cl_config_alloc();
+    cl_model *m = NULL;
+    cr_assert_eq(cl_config_load(cfg, "problems/verlet-scene3.ini", &err),
+                 CL_OK, "%s", err.msg);
+    cr_assert_eq(cl_model_create(cfg, &m, &err), CL_OK, "%s", err.msg);
+    cl_conv_opts o = {.t_end = 0.1, .max_stretch = 10, .ref_rtol = 1e-8,
+                      .ref_linsol = ""};
+    cl_conv_ref ref;
+    cr_assert_eq(cl_conv_reference(m, &o, &ref, &err), CL_EUNSUPPORTED);
+    cr_assert_not_null(strstr(err.msg, "tear"), "%s", err.msg);
+    cl_model_free(m);
+    cl_config_free(cfg);
 }

@@ -10,7 +10,9 @@
  * reference run at 10 rtol_ref (about 10x the reference's own error when
  * the error follows the tolerance): a level whose e_x is below it cannot be
  * told from the reference's error, and a level that failed (blow-up,
- * solver failure) has no error; neither enters the fit.
+ * solver failure, or a final state stretched beyond max_stretch, the
+ * blow-up test of `run`) has no error; neither enters the fit.  A model
+ * that tears changes for good during a run and is refused.
  *
  * Orders: between levels k-1 and k, p_k = log(e_{k-1} / e_k) / log(q),
  * q = 2 for dt, 10 for rtol; over all fitted levels, the least-squares
@@ -33,6 +35,7 @@
 
 typedef struct {
     double t_end;
+    double max_stretch;   /* a final max d/L beyond it is a blow-up */
     double ref_rtol;      /* reference tolerance, 1e-15 .. 1e-4 */
     const char *ref_linsol; /* reference's linear solver ("" default) */
 } cl_conv_opts;

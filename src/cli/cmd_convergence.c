@@ -33,8 +33,10 @@ static const char conv_help[] =
     "  --quiet            no table on stdout\n"
     "  --help             this text\n"
     "The reference's floor is its distance to a run at 10x its rtol; levels\n"
-    "below the floor, and failed levels, are left out of the fit.  Other\n"
-    "[run] keys (newton_tol, lin_tol, ...) apply as in run.\n";
+    "below the floor, and failed levels (as in run, a final stretch d/L\n"
+    "beyond [run] max_stretch counts as a blow-up), are left out of the fit.\n"
+    "Other [run] keys (newton_tol, lin_tol, ...) apply as in run.  Problems\n"
+    "that tear are refused.\n";
 
 static const struct option conv_opts[] = {
     {"integrator", required_argument, 0, 'i'},
@@ -114,6 +116,8 @@ static cl_status read_setup(cl_config *cfg, conv_setup *s, cl_error *err)
     if ((rc = read_methods(cfg, s, err)) ||
         (rc = cl_config_double(cfg, "run", "t_end", 2.0, 1e-300, INFINITY,
                                &s->co.t_end, err)) ||
+        (rc = cl_config_double(cfg, "run", "max_stretch", 10.0, 1.0,
+                               INFINITY, &s->co.max_stretch, err)) ||
         (rc = cl_config_long(cfg, "convergence", "levels", 5, 2,
                              CL_CONV_MAX_LEVELS, &s->levels, err)) ||
         (rc = cl_config_double(cfg, "convergence", "ref_rtol", 1e-11, 1e-15,
@@ -143,10 +147,12 @@ static void print_result(const cl_conv_result *r)
                l->fitted ? "" : "  (below the reference's floor)");
     }
     if (r->nfit >= 2)
-        printf("%-18s fitted order %.2f (positions), %.2f (velocities) "
-               "over %d levels\n", "", r->slope_x, r->slope_v, r->nfit);
+        printf("%-18s %s: fitted order %.2f (positions), %.2f (velocities) "
+               "over %d levels\n", "", r->type->name, r->slope_x,
+               r->slope_v, r->nfit);
     else
-        printf("%-18s no fit: fewer than 2 levels above the floor\n", "");
+        printf("%-18s %s: no fit, fewer than 2 levels above the floor\n", "",
+               r->type->name);
 }
 
 static cl_status write_csv(const char *dir, const cl_conv_result *res, int n,
