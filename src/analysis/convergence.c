@@ -9,40 +9,19 @@
 #include <gsl/gsl_fit.h>
 
 #include "analysis/diagnostics.h"
-#include "core/clock.h"
+#include "analysis/trial.h"
 
 
-/* Integrate sys with a fresh integrator from the model's initial state to
- * T: the final free state into x, v; statistics with times into *s. */
-static cl_status integrate(cl_model *m, const cl_integrator_type *type,
-                           const cl_integrator_opts *io, double T, double *x,
-                           double *v, cl_stats *s, cl_error *err)
-{
-    const cl_system *sys = cl_model_system(m);
-    void *state = NULL;
-    double c0 = cl_clock_cpu(), w0 = cl_clock_wall();
-    cl_status rc = cl_model_initial_state(m, x, v);
-    memset(s, 0, sizeof *s);
-    if (!rc && !(rc = type->create(sys, io, 0.0, x, v, &state, err)))
-        rc = type->advance(state, T, x, v, err);
-    if (state) {
-        type->stats(state, s);
-        type->free(state);
-    }
-    s->cpu = cl_clock_cpu() - c0;
-    s->wall = cl_clock_wall() - w0;
-    return rc;
-}
-
-static cl_status reference_run(cl_model *m, const cl_conv_opts *o,
-                               double rtol, double *x, double *v,
-                               cl_stats *s, cl_error *err)
+/* The reference run at rtol; its final state is in t->x, t->v. */
+static cl_status reference_run(cl_trial *t, const cl_conv_opts *o,
+                               double rtol, cl_stats *s, cl_error *err)
 {
     const cl_integrator_type *type = cl_integrator_find("cvode-bdf");
     cl_integrator_opts io = {.rtol = rtol, .atol = rtol / 100,
                              .linsol = o->ref_linsol};
     cl_error why = {0};
-    cl_status rc = integrate(m, type, &io, o->t_end, x, v, s, &why);
+    cl_status rc = cl_trial_run(t, type, &io, o->t_end, 1, o->max_stretch,
+                                s, &why);
     if (rc)
         cl_error_set(err, rc, "reference (cvode-bdf, rtol %g) failed: %s",
                      rtol, why.msg);
@@ -53,6 +32,8 @@ cl_status cl_conv_reference(cl_model *m, const cl_conv_opts *o,
                             cl_conv_ref *ref, cl_error *err)
 {
     size_t n = cl_model_system(m)->n;
+    cl_trial t = {0};
+    cl_stats loose;
     memset(ref, 0, sizeof *ref);
     if (cl_model_system(m)->step_done)
         return cl_error_set(err, CL_EUNSUPPORTED, "a model that tears ([tear] "
@@ -64,17 +45,16 @@ cl_status cl_conv_reference(cl_model *m, const cl_conv_opts *o,
     ref->n = n;
     ref->x = malloc(n * sizeof *ref->x);
     ref->v = malloc(n * sizeof *ref->v);
-    double *xl = malloc(n * sizeof *xl), *vl = malloc(n * sizeof *vl);
-    cl_stats loose;
-    cl_status rc = ref->x && ref->v && xl && vl
-                       ? CL_OK
+    cl_status rc = ref->x && ref->v
+                       ? cl_trial_init(&t, m, err)
                        : cl_error_set(err, CL_ENOMEM, "out of memory");
-    if (!rc && !(rc = reference_run(m, o, o->ref_rtol, ref->x, ref->v,
-                                    &ref->stats, err)) &&
-        !(rc = reference_run(m, o, 10 * o->ref_rtol, xl, vl, &loose, err)))
-        ref->err_x = cl_max_distance(xl, ref->x, n / 3);
-    free(xl);
-    free(vl);
+    if (!rc && !(rc = reference_run(&t, o, o->ref_rtol, &ref->stats, err))) {
+        memcpy(ref->x, t.x, n * sizeof *ref->x);
+        memcpy(ref->v, t.v, n * sizeof *ref->v);
+        if (!(rc = reference_run(&t, o, 10 * o->ref_rtol, &loose, err)))
+            ref->err_x = cl_max_distance(t.x, ref->x, n / 3);
+    }
+    cl_trial_free(&t);
     if (rc)
         cl_conv_ref_free(ref);
     return rc;
@@ -154,75 +134,30 @@ static void fit_orders(cl_conv_result *r)
                    &cov01, &cov11, &sumsq);
 }
 
-/* Work space of the levels: the free state, the full one and the Type1
- * neighbours for the stretch test. */
-typedef struct {
-    double *x, *v, *xf, *vf;
-    cl_pairset type1;
-} conv_work;
-
-static cl_status work_alloc(cl_model *m, conv_work *w, cl_error *err)
-{
-    const cl_cloth *c = cl_model_cloth(m);
-    size_t n = cl_model_system(m)->n;
-    w->x = malloc(n * sizeof *w->x);
-    w->v = malloc(n * sizeof *w->v);
-    w->xf = malloc(3 * c->np * sizeof *w->xf);
-    w->vf = malloc(3 * c->np * sizeof *w->vf);
-    if (!w->x || !w->v || !w->xf || !w->vf)
-        return cl_error_set(err, CL_ENOMEM, "out of memory");
-    return cl_pairs_type1(c, &w->type1, err);
-}
-
-static void work_free(conv_work *w)
-{
-    free(w->x);
-    free(w->v);
-    free(w->xf);
-    free(w->vf);
-    cl_pairs_free(&w->type1);
-}
-
-/* A run that ends finite but stretched beyond max_stretch has blown up
- * as surely as one that overflowed (the test `run` applies). */
-static cl_status check_stretch(cl_model *m, const cl_conv_opts *o,
-                               conv_work *w, cl_error *err)
-{
-    cl_cloth_scatter(cl_model_cloth(m), o->t_end, w->x, w->v, w->xf, w->vf);
-    double q = cl_max_stretch(&w->type1, w->xf);
-    if (!(q <= o->max_stretch))
-        return cl_error_set(err, CL_EBLOWUP, "max stretch d/L = %.3g at "
-                            "t = %g exceeds max_stretch = %g", q, o->t_end,
-                            o->max_stretch);
-    return CL_OK;
-}
-
 cl_status cl_convergence(cl_model *m, const cl_integrator_type *type,
                          const cl_integrator_opts *io, int levels,
                          const cl_conv_opts *o, const cl_conv_ref *ref,
                          cl_conv_result *r, cl_error *err)
 {
     size_t n = ref->n;
-    conv_work w = {0};
+    cl_trial t = {0};
     memset(r, 0, sizeof *r);
     r->type = type;
     r->fixed = type->fixed_step;
     cl_status rc = cl_conv_check(type, io, levels, o, err);
     if (!rc)
-        rc = work_alloc(m, &w, err);
+        rc = cl_trial_init(&t, m, err);
     for (int k = 0; !rc && k < levels; k++, r->nlev++) {
         cl_conv_level *l = &r->lev[k];
         cl_integrator_opts lo = level_opts(type, io, k, &l->param);
-        l->rc = integrate(m, type, &lo, o->t_end, w.x, w.v, &l->stats,
-                          &l->why);
-        if (!l->rc)
-            l->rc = check_stretch(m, o, &w, &l->why);
-        l->err_x = l->rc ? NAN : cl_max_distance(w.x, ref->x, n / 3);
-        l->err_v = l->rc ? NAN : cl_max_distance(w.v, ref->v, n / 3);
+        l->rc = cl_trial_run(&t, type, &lo, o->t_end, 1, o->max_stretch,
+                             &l->stats, &l->why);
+        l->err_x = l->rc ? NAN : cl_max_distance(t.x, ref->x, n / 3);
+        l->err_v = l->rc ? NAN : cl_max_distance(t.v, ref->v, n / 3);
         l->fitted = !l->rc && l->err_x > ref->err_x;
     }
     fit_orders(r);
-    work_free(&w);
+    cl_trial_free(&t);
     return rc;
 }
 

@@ -1,0 +1,84 @@
+/* Checked runs from the initial state (see trial.h). */
+#include "analysis/trial.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analysis/diagnostics.h"
+#include "core/clock.h"
+
+cl_status cl_trial_init(cl_trial *t, cl_model *m, cl_error *err)
+{
+    const cl_cloth *c = cl_model_cloth(m);
+    size_t n = cl_model_system(m)->n;
+    memset(t, 0, sizeof *t);
+    t->m = m;
+    t->x = malloc(n * sizeof *t->x);
+    t->v = malloc(n * sizeof *t->v);
+    t->xf = malloc(3 * c->np * sizeof *t->xf);
+    t->vf = malloc(3 * c->np * sizeof *t->vf);
+    if (!t->x || !t->v || !t->xf || !t->vf)
+        return cl_error_set(err, CL_ENOMEM, "out of memory");
+    return cl_pairs_type1(c, &t->type1, err);
+}
+
+void cl_trial_free(cl_trial *t)
+{
+    free(t->x);
+    free(t->v);
+    free(t->xf);
+    free(t->vf);
+    cl_pairs_free(&t->type1);
+    memset(t, 0, sizeof *t);
+}
+
+static cl_status check_stretch(cl_trial *t, double time, double max_stretch,
+                               cl_error *err)
+{
+    cl_cloth_scatter(cl_model_cloth(t->m), time, t->x, t->v, t->xf, t->vf);
+    double q = cl_max_stretch(&t->type1, t->xf);
+    if (!(q <= max_stretch))
+        return cl_error_set(err, CL_EBLOWUP, "max stretch d/L = %.3g at "
+                            "t = %g exceeds max_stretch = %g", q, time,
+                            max_stretch);
+    return CL_OK;
+}
+
+/* Check time k of `checks`: a whole number of steps for a fixed step. */
+static double check_time(const cl_integrator_type *type, double dt, double T,
+                         long k, long checks)
+{
+    if (!type->fixed_step)
+        return k == checks ? T : T * (double)k / (double)checks;
+    double steps = nearbyint(T / dt);
+    return dt * nearbyint(steps * (double)k / (double)checks);
+}
+
+cl_status cl_trial_run(cl_trial *t, const cl_integrator_type *type,
+                       const cl_integrator_opts *io, double T, long checks,
+                       double max_stretch, cl_stats *s, cl_error *err)
+{
+    const cl_system *sys = cl_model_system(t->m);
+    void *state = NULL;
+    double c0 = cl_clock_cpu(), w0 = cl_clock_wall(), last = 0.0;
+    cl_status rc = cl_model_initial_state(t->m, t->x, t->v);
+    memset(s, 0, sizeof *s);
+    if (!rc)
+        rc = type->create(sys, io, 0.0, t->x, t->v, &state, err);
+    for (long k = 1; !rc && k <= checks; k++) {
+        double tk = check_time(type, io->dt, T, k, checks);
+        if (tk <= last)
+            continue;
+        if (!(rc = type->advance(state, tk, t->x, t->v, err)))
+            rc = check_stretch(t, tk, max_stretch, err);
+        last = tk;
+    }
+    if (state) {
+        type->stats(state, s);
+        type->free(state);
+    }
+    s->cpu = cl_clock_cpu() - c0;
+    s->wall = cl_clock_wall() - w0;
+    return rc;
+}

@@ -1,0 +1,32 @@
+/* A checked run, the unit of the convergence and stability studies: a fresh
+ * integrator from the model's initial state to T, stopping at `checks`
+ * evenly spread times (whole steps for fixed-step methods) where the
+ * largest stretch d/L of the Type1 neighbours is tested against
+ * max_stretch.  A stretch beyond it is a blow-up (CL_EBLOWUP), the test
+ * `run` applies at its samples; so is a non-finite state, which the
+ * integrators report themselves. */
+#ifndef CL_TRIAL_H
+#define CL_TRIAL_H
+
+#include "integrators/integrator.h"
+#include "model/model.h"
+#include "model/pairs.h"
+
+typedef struct {
+    cl_model *m;
+    cl_pairset type1;
+    double *x, *v;        /* free state at the end of the last run */
+    double *xf, *vf;      /* full-particle scratch */
+} cl_trial;
+
+cl_status cl_trial_init(cl_trial *t, cl_model *m, cl_error *err);
+void cl_trial_free(cl_trial *t);
+
+/* Run `type` with options io to T; statistics (with CPU and wall time)
+ * into *s.  The final state is in t->x, t->v (up to the failure after
+ * one). */
+cl_status cl_trial_run(cl_trial *t, const cl_integrator_type *type,
+                       const cl_integrator_opts *io, double T, long checks,
+                       double max_stretch, cl_stats *s, cl_error *err);
+
+#endif
