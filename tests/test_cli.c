@@ -1035,6 +1035,50 @@ Test(cli, convergence_refusals)
                    LIST("--ref-rtol", "ref_rtol"));
 }
 
+/* stability on the stiffened spring (w = 100): symplectic Euler's limit
+ * 2/w = 0.02 bracketed, backward Euler stable at dt_max; every run in the
+ * CSV. */
+Test(cli, stability_table_and_csv)
+{
+    char out[1024], path[1100];
+    cli_result r;
+    cli_run(&r, "stability", "spring2", "--set", "type1.ks=1e4", "--set",
+            "run.max_stretch=1.5", "--checks", "100000", "--integrator",
+            "symplectic-euler,semi-be", "--t-end", "4", "--dt-max", "0.1",
+            "--rel", "0.01", "--out", in_tmp(out, "stab"), NULL);
+    cli_assert_ok(&r);
+    const char *row = strstr(r.out, "\nsymplectic-euler ");
+    cr_assert_not_null(row, "%s", r.out);
+    double stable = strtod(row + 18, NULL);
+    cr_assert(stable > 0.0194 && stable <= 0.02, "%g\n%s", stable, r.out);
+    cr_assert_not_null(strstr(r.out, "semi-be            stable at dt_max "
+                                     "= 0.1"), "%s", r.out);
+    cli_result_free(&r);
+    cli_lines L;
+    snprintf(path, sizeof path, "%s/stability.csv", out);
+    cli_read_lines(path, &L);
+    cr_assert_str_eq(L.line[0], "integrator,dt,steps,stable,status,cpu,"
+                                "reason");
+    cr_assert(!strncmp(L.line[1], "symplectic-euler,0.1,40,0,blow-up,", 34),
+              "%s", L.line[1]);
+    cr_assert(!strncmp(L.line[L.n - 1], "semi-be,0.1,40,1,ok,", 20), "%s",
+              L.line[L.n - 1]);
+    cli_lines_free(&L);
+}
+
+Test(cli, stability_refusals)
+{
+    expect_refused(LIST("stability", "spring2", "--integrator",
+                        "rk4,cvode-bdf"), 0,
+                   LIST("cvode-bdf", "error control"));
+    expect_refused(LIST("stability", "spring2", "--integrator", "rk4",
+                        "--t-end", "4", "--dt-max", "1"), 0,
+                   LIST("--dt-max", "dt_max"));
+    expect_refused(LIST("stability", "verlet-scene3", "--integrator",
+                        "verlet", "--t-end", "1"), 0,
+                   LIST("tear"));
+}
+
 Test(cli, list_names_problems_integrators_terms)
 {
     cli_result r;
@@ -1053,7 +1097,8 @@ Test(cli, list_names_problems_integrators_terms)
 
 Test(cli, help_on_every_subcommand)
 {
-    const char *cmds[] = {"run", "eval", "counts", "list", "convergence"};
+    const char *cmds[] = {"run",  "eval",        "counts",
+                          "list", "convergence", "stability"};
     enum { NCMD = sizeof cmds / sizeof cmds[0] };
     cli_result r;
     for (size_t k = 0; k < NCMD; k++) {

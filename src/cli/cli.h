@@ -71,11 +71,20 @@ void cl_cli_default_out(const char *problem, char *buf, size_t len);
 /* The options of integrator `type` from [run] (dt, rtol, atol, max_steps,
  * newton_tol, newton_maxit, lin_tol, lin_maxit, verlet_damping, max_order,
  * linsol), checked against what the integrator takes: a linear solver or
- * an order cap it has no choice of, or a fixed-step method without dt > 0,
- * is an error naming the key (cli/runopts.c). */
+ * an order cap it has no choice of, or (need_dt) a fixed-step method
+ * without dt > 0, is an error naming the key (cli/runopts.c). */
 cl_status cl_cli_integrator_opts(cl_config *cfg,
                                  const cl_integrator_type *type,
-                                 cl_integrator_opts *io, cl_error *err);
+                                 bool need_dt, cl_integrator_opts *io,
+                                 cl_error *err);
+
+/* [run] integrator as a comma-separated list of at most max registered
+ * names (default cvode-bdf): their types and options (as
+ * cl_cli_integrator_opts) into type[], io[]; their number into *n. */
+cl_status cl_cli_integrator_list(cl_config *cfg, bool need_dt, int max,
+                                 const cl_integrator_type **type,
+                                 cl_integrator_opts *io, int *n,
+                                 cl_error *err);
 
 /* Progress bar on stderr (only when stderr is a terminal). */
 void cl_cli_progress(void *ctx, double fraction);

@@ -74,39 +74,16 @@ typedef struct {
     cl_conv_opts co;
 } conv_setup;
 
-/* [run] integrator as a comma-separated list of registered names. */
+/* The integrators of [run] integrator; an adaptive one picks its own
+ * first step (dt is for the fixed-step ones). */
 static cl_status read_methods(cl_config *cfg, conv_setup *s, cl_error *err)
 {
-    const char *list = cl_config_string(cfg, "run", "integrator",
-                                        "cvode-bdf");
-    char where[256], name[64];
-    cl_config_origin(cfg, "run", "integrator", where, sizeof where);
-    for (const char *p = list; *p;) {
-        size_t len = strcspn(p, ",");
-        if (len == 0 || len >= sizeof name || s->nm == CONV_MAX_METHODS)
-            return cl_error_set(err, CL_EINVAL, "%s: [run] integrator = "
-                                "\"%s\": expected 1 to %d names separated "
-                                "by commas", where, list, CONV_MAX_METHODS);
-        memcpy(name, p, len);
-        name[len] = '\0';
-        s->type[s->nm] = cl_integrator_find(name);
-        if (!s->type[s->nm])
-            return cl_error_set(err, CL_EINVAL, "%s: [run] integrator = "
-                                "\"%s\": unknown integrator \"%s\" ("
-                                "clothode list shows them)", where, list,
-                                name);
-        cl_status rc = cl_cli_integrator_opts(cfg, s->type[s->nm],
-                                              &s->io[s->nm], err);
-        if (rc)
-            return rc;
-        if (!s->type[s->nm]->fixed_step)
-            s->io[s->nm].dt = 0.0; /* not CVODE's first step: its own */
-        s->nm++;
-        p += len + (p[len] == ',');
-    }
-    return s->nm ? CL_OK
-                 : cl_error_set(err, CL_EINVAL, "%s: [run] integrator is "
-                                "empty", where);
+    cl_status rc = cl_cli_integrator_list(cfg, true, CONV_MAX_METHODS,
+                                          s->type, s->io, &s->nm, err);
+    for (int k = 0; !rc && k < s->nm; k++)
+        if (!s->type[k]->fixed_step)
+            s->io[k].dt = 0.0;
+    return rc;
 }
 
 static cl_status read_setup(cl_config *cfg, conv_setup *s, cl_error *err)

@@ -109,7 +109,7 @@ static cl_status read_integrator(cl_config *cfg, run_setup *r, cl_error *err)
     if (rc)
         return rc;
     r->type = cl_integrator_registry[k];
-    return cl_cli_integrator_opts(cfg, r->type, &r->io, err);
+    return cl_cli_integrator_opts(cfg, r->type, true, &r->io, err);
 }
 
 static cl_status read_run(cl_config *cfg, run_setup *r, cl_error *err)

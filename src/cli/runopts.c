@@ -1,6 +1,7 @@
 /* The integrator options of the [run] section, shared by the subcommands
  * that run integrators (run, convergence). */
 #include <math.h>
+#include <string.h>
 
 #include "cli/cli.h"
 
@@ -33,7 +34,8 @@ static cl_status read_numbers(cl_config *cfg, cl_integrator_opts *io,
 
 cl_status cl_cli_integrator_opts(cl_config *cfg,
                                  const cl_integrator_type *type,
-                                 cl_integrator_opts *io, cl_error *err)
+                                 bool need_dt, cl_integrator_opts *io,
+                                 cl_error *err)
 {
     long max_order;
     char where[256];
@@ -56,7 +58,7 @@ cl_status cl_cli_integrator_opts(cl_config *cfg,
                             cl_config_origin(cfg, "run", "max_order", where,
                                              sizeof where),
                             max_order, type->name);
-    if (type->fixed_step && !(io->dt > 0))
+    if (need_dt && type->fixed_step && !(io->dt > 0))
         return cl_error_set(err, CL_EINVAL,
                             "%s: [run] dt = %g: integrator %s takes fixed "
                             "steps and needs dt > 0 (--dt H)",
@@ -64,4 +66,39 @@ cl_status cl_cli_integrator_opts(cl_config *cfg,
                                              sizeof where),
                             io->dt, type->name);
     return CL_OK;
+}
+
+cl_status cl_cli_integrator_list(cl_config *cfg, bool need_dt, int max,
+                                 const cl_integrator_type **type,
+                                 cl_integrator_opts *io, int *n,
+                                 cl_error *err)
+{
+    const char *list = cl_config_string(cfg, "run", "integrator",
+                                        "cvode-bdf");
+    char where[256], name[64];
+    cl_config_origin(cfg, "run", "integrator", where, sizeof where);
+    *n = 0;
+    for (const char *p = list; *p;) {
+        size_t len = strcspn(p, ",");
+        if (len == 0 || len >= sizeof name || *n == max)
+            return cl_error_set(err, CL_EINVAL, "%s: [run] integrator = "
+                                "\"%s\": expected 1 to %d names separated "
+                                "by commas", where, list, max);
+        memcpy(name, p, len);
+        name[len] = '\0';
+        if (!(type[*n] = cl_integrator_find(name)))
+            return cl_error_set(err, CL_EINVAL, "%s: [run] integrator = "
+                                "\"%s\": unknown integrator \"%s\" ("
+                                "clothode list shows them)", where, list,
+                                name);
+        cl_status rc = cl_cli_integrator_opts(cfg, type[*n], need_dt,
+                                              &io[*n], err);
+        if (rc)
+            return rc;
+        ++*n;
+        p += len + (p[len] == ',');
+    }
+    return *n ? CL_OK
+              : cl_error_set(err, CL_EINVAL, "%s: [run] integrator is empty",
+                             where);
 }

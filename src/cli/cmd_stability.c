@@ -1,0 +1,214 @@
+/* clothode stability PROBLEM: the largest stable step of fixed-step
+ * integrators (analysis/stability.h). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analysis/stability.h"
+#include "cli/cli.h"
+#include "cli/commands.h"
+#include "io/atomic.h"
+
+#define STAB_MAX_METHODS 32
+
+static const char stab_help[] =
+    "usage: clothode stability PROBLEM [options]\n"
+    "For each fixed-step integrator, the largest step dt = T/N with which a\n"
+    "run to T stays bounded: N doubles from T/dt_max until a run is stable,\n"
+    "then bisection brackets the limit.  A run is unstable when its state\n"
+    "becomes non-finite, its stretch d/L exceeds [run] max_stretch at one of\n"
+    "the checks, or its solver gives up.  Writes every run to stability.csv\n"
+    "in the output directory.\n"
+    "\n"
+    "  --integrator LIST  fixed-step integrators, comma-separated\n"
+    "  --t-end T          horizon every run must survive (s); [run] t_end\n"
+    "  --dt-max H         largest step tried, at most T/10 (default T/100):\n"
+    "                     a run of a few steps has no room to blow up\n"
+    "  --dt-min H         give up below this step (default 1e-7)\n"
+    "  --rel R            bracket width relative to the step (default 0.02)\n"
+    "  --checks K         stretch tests per run (default 20)\n"
+    "  --linsol NAME      linear solver of implicit integrators\n"
+    "  --out DIR          output directory (default out/PROBLEM)\n"
+    "  --set SEC.KEY=VAL  override any problem key (repeatable)\n"
+    "  --quiet            no table on stdout\n"
+    "  --help             this text\n"
+    "Other [run] keys (newton_tol, newton_maxit, verlet_damping, ...) apply\n"
+    "as in run; [run] dt is not used.  Stability need not be monotone in\n"
+    "dt: the bracket is the one the search found.  Problems that tear are\n"
+    "refused.\n";
+
+static const struct option stab_opts[] = {
+    {"integrator", required_argument, 0, 'i'},
+    {"t-end", required_argument, 0, 't'},
+    {"dt-max", required_argument, 0, 'H'},
+    {"dt-min", required_argument, 0, 'M'},
+    {"rel", required_argument, 0, 'r'},
+    {"checks", required_argument, 0, 'c'},
+    {"linsol", required_argument, 0, 'l'},
+    {"out", required_argument, 0, 'o'},
+    {"set", required_argument, 0, 's'},
+    {"quiet", no_argument, 0, 'q'},
+    {"help", no_argument, 0, 'h'},
+    {0, 0, 0, 0}};
+static const char *const stab_key[128] = {
+    ['i'] = "run.integrator", ['t'] = "run.t_end",
+    ['H'] = "stability.dt_max", ['M'] = "stability.dt_min",
+    ['r'] = "stability.rel", ['c'] = "stability.checks",
+    ['l'] = "run.linsol"};
+static const char *const stab_label[128] = {
+    ['i'] = "--integrator", ['t'] = "--t-end", ['H'] = "--dt-max",
+    ['M'] = "--dt-min", ['r'] = "--rel", ['c'] = "--checks",
+    ['l'] = "--linsol"};
+static const cl_cli_spec stab_spec = {"stability", stab_help, stab_opts,
+                                      stab_key, stab_label};
+
+typedef struct {
+    int nm;
+    const cl_integrator_type *type[STAB_MAX_METHODS];
+    cl_integrator_opts io[STAB_MAX_METHODS];
+    cl_stab_opts so;
+} stab_setup;
+
+/* Only fixed-step integrators have a step to limit. */
+static cl_status check_fixed(cl_config *cfg, const stab_setup *s,
+                             cl_error *err)
+{
+    char where[256];
+    for (int k = 0; k < s->nm; k++)
+        if (!s->type[k]->fixed_step)
+            return cl_error_set(err, CL_EINVAL, "%s: [run] integrator: %s "
+                                "chooses its own steps by error control; "
+                                "stability takes fixed-step integrators",
+                                cl_config_origin(cfg, "run", "integrator",
+                                                 where, sizeof where),
+                                s->type[k]->name);
+    return CL_OK;
+}
+
+static cl_status read_setup(cl_config *cfg, stab_setup *s, cl_error *err)
+{
+    cl_stab_opts *o = &s->so;
+    cl_status rc;
+    if ((rc = cl_cli_integrator_list(cfg, false, STAB_MAX_METHODS, s->type,
+                                     s->io, &s->nm, err)) ||
+        (rc = check_fixed(cfg, s, err)) ||
+        (rc = cl_config_double(cfg, "run", "t_end", 2.0, 1e-300, INFINITY,
+                               &o->t_end, err)) ||
+        (rc = cl_config_double(cfg, "run", "max_stretch", 10.0, 1.0,
+                               INFINITY, &o->max_stretch, err)) ||
+        (rc = cl_config_double(cfg, "stability", "dt_max", o->t_end / 100,
+                               1e-300, o->t_end / 10, &o->dt_max, err)) ||
+        (rc = cl_config_double(cfg, "stability", "dt_min", 1e-7, 1e-300,
+                               o->dt_max, &o->dt_min, err)) ||
+        (rc = cl_config_double(cfg, "stability", "rel", 0.02, 1e-6, 0.5,
+                               &o->rel, err)))
+        return rc;
+    return cl_config_long(cfg, "stability", "checks", 20, 1, 100000,
+                          &o->checks, err);
+}
+
+static void print_result(const cl_stab_result *r)
+{
+    printf("%-18s ", r->type->name);
+    if (isnan(r->dt_unstable))
+        printf("stable at dt_max = %.4g (%d run)\n", r->dt_stable,
+               r->ntrial);
+    else if (isnan(r->dt_stable))
+        printf("%11s %11.4g %5d  %s\n", "none", r->dt_unstable, r->ntrial,
+               r->trial[r->failed].why.msg);
+    else
+        printf("%11.4g %11.4g %5d  %s\n", r->dt_stable, r->dt_unstable,
+               r->ntrial, r->trial[r->failed].why.msg);
+}
+
+static cl_status write_csv(const char *dir, const cl_stab_result *res, int n,
+                           cl_error *err)
+{
+    char path[4200];
+    cl_afile af;
+    cl_status rc = cl_mkdir_p(dir, err);
+    snprintf(path, sizeof path, "%s/stability.csv", dir);
+    if (rc || (rc = cl_afile_open(&af, path, err)))
+        return rc;
+    for (int k = 0; k < n; k++)
+        cl_stab_write_rows(af.fp, &res[k], k == 0);
+    return cl_afile_commit(&af, err);
+}
+
+/* Every integrator in turn; the CSV holds the searches that finished, also
+ * when a later one failed. */
+static cl_status study(cl_model *m, const char *problem, const stab_setup *s,
+                       const char *outdir, bool quiet, cl_error *err)
+{
+    cl_stab_result *res = calloc((size_t)s->nm, sizeof *res);
+    if (!res)
+        return cl_error_set(err, CL_ENOMEM, "out of memory");
+    const cl_cloth *c = cl_model_cloth(m);
+    cl_status rc = CL_OK;
+    for (int k = 0; !rc && k < s->nm; k++)
+        rc = cl_stab_check(m, s->type[k], &s->so, err);
+    if (rc) {
+        free(res);
+        return rc;
+    }
+    if (!quiet) {
+        printf("problem    %s (%d x %d particles, %zu free), T = %g s, "
+               "max_stretch %g, %ld checks per run\n", problem, c->nu, c->nv,
+               c->nfree, s->so.t_end, s->so.max_stretch, s->so.checks);
+        printf("%-18s %11s %11s %5s  %s\n", "integrator", "stable dt",
+               "unstable dt", "runs", "why the unstable run failed");
+    }
+    int done = 0;
+    for (; !rc && done < s->nm; done++) {
+        rc = cl_stability(m, s->type[done], &s->io[done], &s->so,
+                          &res[done], err);
+        if (!rc && !quiet)
+            print_result(&res[done]);
+        fflush(stdout);
+    }
+    int ok = done - (rc ? 1 : 0);
+    cl_error later;
+    if (ok > 0) {
+        cl_status rc2 = write_csv(outdir, res, ok, rc ? &later : err);
+        rc = rc ? rc : rc2;
+    }
+    if (!rc && !quiet)
+        printf("output     %s/stability.csv\n", outdir);
+    free(res);
+    return rc;
+}
+
+static int stability_problem(const char *problem, cl_cli_args *a)
+{
+    cl_error err = {0};
+    cl_config *cfg = cl_config_alloc();
+    cl_model *m = NULL;
+    stab_setup s = {0};
+    char outbuf[4096];
+    cl_status rc = cfg ? CL_OK : cl_error_set(&err, CL_ENOMEM, "no memory");
+    if (!rc && !(rc = cl_cli_load(cfg, problem, &a->sets, &err)) &&
+        !(rc = read_setup(cfg, &s, &err)) &&
+        !(rc = cl_model_create(cfg, &m, &err)) &&
+        !(rc = cl_config_check_unused(cfg, &err))) {
+        if (!a->out)
+            cl_cli_default_out(problem, outbuf, sizeof outbuf);
+        rc = study(m, problem, &s, a->out ? a->out : outbuf, a->quiet, &err);
+    }
+    cl_model_free(m);
+    cl_config_free(cfg);
+    return rc ? cl_cli_fail(&err) : 0;
+}
+
+int cl_cmd_stability(int argc, char **argv)
+{
+    cl_cli_args a = {0};
+    int at = cl_cli_parse(argc, argv, &stab_spec, &a);
+    char buf[4096];
+    int status = at == -2 ? 0
+                 : at < 0 ? 2
+                          : stability_problem(
+                                cl_cli_problem_path(argv[at], buf, sizeof buf),
+                                &a);
+    cl_cli_sets_free(&a.sets);
+    return status;
+}
