@@ -104,6 +104,44 @@ int cl_cli_parse(int argc, char **argv, const cl_cli_spec *spec,
     return optind;
 }
 
+static int problem_job(const char *problem, const cl_cli_args *a,
+                       cl_cli_setup_fn setup, cl_cli_work_fn work, void *ctx)
+{
+    cl_error err = {0};
+    cl_config *cfg = cl_config_alloc();
+    cl_model *m = NULL;
+    char outbuf[4096];
+    cl_status rc = cfg ? CL_OK : cl_error_set(&err, CL_ENOMEM, "no memory");
+    if (!rc && !(rc = cl_cli_load(cfg, problem, &a->sets, &err)) &&
+        !(rc = setup(cfg, ctx, &err)) &&
+        !(rc = cl_model_create(cfg, &m, &err)) &&
+        !(rc = cl_config_check_unused(cfg, &err))) {
+        if (!a->out)
+            cl_cli_default_out(problem, outbuf, sizeof outbuf);
+        cl_cli_job job = {problem, cfg, a->out ? a->out : outbuf, a->quiet};
+        rc = work(m, &job, ctx, &err);
+    }
+    cl_model_free(m);
+    cl_config_free(cfg);
+    return rc ? cl_cli_fail(&err) : 0;
+}
+
+int cl_cli_problem_main(int argc, char **argv, const cl_cli_spec *spec,
+                        cl_cli_setup_fn setup, cl_cli_work_fn work,
+                        void *ctx)
+{
+    cl_cli_args a = {0};
+    int at = cl_cli_parse(argc, argv, spec, &a);
+    char buf[4096];
+    int status = at == -2 ? 0
+                 : at < 0 ? 2
+                          : problem_job(cl_cli_problem_path(argv[at], buf,
+                                                            sizeof buf),
+                                        &a, setup, work, ctx);
+    cl_cli_sets_free(&a.sets);
+    return status;
+}
+
 cl_status cl_cli_load(cl_config *cfg, const char *problem,
                       const cl_cli_sets *sets, cl_error *err)
 {

@@ -8,6 +8,7 @@
 
 #include "integrators/integrator.h"
 #include "io/config.h"
+#include "model/model.h"
 
 typedef struct {
     const char *name;
@@ -60,6 +61,29 @@ typedef struct {
  * usage error (printed).  a->sets must be freed by the caller. */
 int cl_cli_parse(int argc, char **argv, const cl_cli_spec *spec,
                  cl_cli_args *a);
+
+/* What a subcommand on one problem does once the model exists: the
+ * problem's path and configuration, the output directory (--out or
+ * out/PROBLEM), --quiet, and the command's own context. */
+typedef struct {
+    const char *problem;
+    cl_config *cfg;
+    const char *outdir;
+    bool quiet;
+} cl_cli_job;
+
+typedef cl_status (*cl_cli_setup_fn)(cl_config *cfg, void *ctx,
+                                     cl_error *err);
+typedef cl_status (*cl_cli_work_fn)(cl_model *m, const cl_cli_job *job,
+                                    void *ctx, cl_error *err);
+
+/* main() of such a subcommand: parse argv by spec, load the problem with
+ * its assignments, setup() reads the command's keys, the model is made,
+ * keys nobody read are refused, then work().  Returns the exit status: 0,
+ * 1 with the one-line message of a failure, 2 for a usage error. */
+int cl_cli_problem_main(int argc, char **argv, const cl_cli_spec *spec,
+                        cl_cli_setup_fn setup, cl_cli_work_fn work,
+                        void *ctx);
 
 /* Load a problem file and apply the assignments. */
 cl_status cl_cli_load(cl_config *cfg, const char *problem,

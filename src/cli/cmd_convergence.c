@@ -86,8 +86,9 @@ static cl_status read_methods(cl_config *cfg, conv_setup *s, cl_error *err)
     return rc;
 }
 
-static cl_status read_setup(cl_config *cfg, conv_setup *s, cl_error *err)
+static cl_status read_setup(cl_config *cfg, void *ctx, cl_error *err)
 {
+    conv_setup *s = ctx;
     cl_status rc;
     s->co.ref_linsol = "";
     if ((rc = read_methods(cfg, s, err)) ||
@@ -148,9 +149,12 @@ static cl_status write_csv(const char *dir, const cl_conv_result *res, int n,
 
 /* Reference, then every integrator's levels; the CSV holds whatever was
  * measured, also when a later integrator could not be run. */
-static cl_status study(cl_model *m, const char *problem, const conv_setup *s,
-                       const char *outdir, bool quiet, cl_error *err)
+static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
+                       cl_error *err)
 {
+    const conv_setup *s = ctx;
+    const char *problem = job->problem, *outdir = job->outdir;
+    bool quiet = job->quiet;
     cl_conv_ref ref;
     cl_conv_result *res = calloc((size_t)s->nm, sizeof *res);
     if (!res)
@@ -187,37 +191,8 @@ static cl_status study(cl_model *m, const char *problem, const conv_setup *s,
     return rc;
 }
 
-static int convergence_problem(const char *problem, cl_cli_args *a)
-{
-    cl_error err = {0};
-    cl_config *cfg = cl_config_alloc();
-    cl_model *m = NULL;
-    conv_setup s = {0};
-    char outbuf[4096];
-    cl_status rc = cfg ? CL_OK : cl_error_set(&err, CL_ENOMEM, "no memory");
-    if (!rc && !(rc = cl_cli_load(cfg, problem, &a->sets, &err)) &&
-        !(rc = read_setup(cfg, &s, &err)) &&
-        !(rc = cl_model_create(cfg, &m, &err)) &&
-        !(rc = cl_config_check_unused(cfg, &err))) {
-        if (!a->out)
-            cl_cli_default_out(problem, outbuf, sizeof outbuf);
-        rc = study(m, problem, &s, a->out ? a->out : outbuf, a->quiet, &err);
-    }
-    cl_model_free(m);
-    cl_config_free(cfg);
-    return rc ? cl_cli_fail(&err) : 0;
-}
-
 int cl_cmd_convergence(int argc, char **argv)
 {
-    cl_cli_args a = {0};
-    int at = cl_cli_parse(argc, argv, &conv_spec, &a);
-    char buf[4096];
-    int status = at == -2 ? 0
-                 : at < 0 ? 2
-                          : convergence_problem(
-                                cl_cli_problem_path(argv[at], buf, sizeof buf),
-                                &a);
-    cl_cli_sets_free(&a.sets);
-    return status;
+    conv_setup s = {0};
+    return cl_cli_problem_main(argc, argv, &conv_spec, read_setup, study, &s);
 }

@@ -112,8 +112,9 @@ static cl_status read_integrator(cl_config *cfg, run_setup *r, cl_error *err)
     return cl_cli_integrator_opts(cfg, r->type, true, &r->io, err);
 }
 
-static cl_status read_run(cl_config *cfg, run_setup *r, cl_error *err)
+static cl_status read_run(cl_config *cfg, void *ctx, cl_error *err)
 {
+    run_setup *r = ctx;
     cl_status rc;
     if ((rc = read_integrator(cfg, r, err)) ||
         (rc = cl_config_double(cfg, "run", "t_end", 2.0, 1e-300, INFINITY,
@@ -153,50 +154,31 @@ static void print_summary(const char *problem, const run_setup *r,
            r->so.outdir, res->frames);
 }
 
-static int run_problem(const char *problem, cl_cli_args *a)
+static cl_status run_work(cl_model *m, const cl_cli_job *job, void *ctx,
+                          cl_error *err)
 {
-    cl_error err = {0};
-    cl_config *cfg = cl_config_alloc();
-    cl_model *m = NULL;
-    run_setup r = {0};
+    run_setup *r = ctx;
     cl_sim_result res = {0};
-    char outbuf[4096];
-    cl_status rc = cfg ? CL_OK : cl_error_set(&err, CL_ENOMEM, "no memory");
-    if (!rc && !(rc = cl_cli_load(cfg, problem, &a->sets, &err)) &&
-        !(rc = read_run(cfg, &r, &err)) &&
-        !(rc = cl_model_create(cfg, &m, &err)) &&
-        !(rc = cl_model_set_threads(m, (int)r.threads, &err)) &&
-        !(rc = cl_config_check_unused(cfg, &err))) {
-        if (!a->out)
-            cl_cli_default_out(problem, outbuf, sizeof outbuf);
-        r.so.outdir = a->out ? a->out : outbuf;
-        r.so.progress = cl_cli_progress;
-        rc = cl_simulate(m, r.type, &r.io, &r.so, &res, &err);
-        if (!a->quiet && res.rows > 0)
-            print_summary(problem, &r, m, &res);
-        if (res.rows > 0) {
-            char path[4200];
-            cl_error ignored;
-            snprintf(path, sizeof path, "%s/config.ini", r.so.outdir);
-            cl_config_write(cfg, path, &ignored);
-        }
+    cl_status rc = cl_model_set_threads(m, (int)r->threads, err);
+    r->so.outdir = job->outdir;
+    r->so.progress = cl_cli_progress;
+    if (!rc)
+        rc = cl_simulate(m, r->type, &r->io, &r->so, &res, err);
+    if (!job->quiet && res.rows > 0)
+        print_summary(job->problem, r, m, &res);
+    if (res.rows > 0) {
+        char path[4200];
+        cl_error ignored;
+        snprintf(path, sizeof path, "%s/config.ini", job->outdir);
+        cl_config_write(job->cfg, path, &ignored);
     }
     free(res.xfinal);
-    cl_model_free(m);
-    cl_config_free(cfg);
-    return rc ? cl_cli_fail(&err) : 0;
+    return rc;
 }
 
 int cl_cmd_run(int argc, char **argv)
 {
-    cl_cli_args a = {0};
-    int at = cl_cli_parse(argc, argv, &run_spec, &a);
-    char buf[4096];
-    int status = at == -2 ? 0
-                 : at < 0 ? 2
-                          : run_problem(cl_cli_problem_path(argv[at], buf,
-                                                            sizeof buf),
-                                        &a);
-    cl_cli_sets_free(&a.sets);
-    return status;
+    run_setup r = {0};
+    return cl_cli_problem_main(argc, argv, &run_spec, read_run, run_work,
+                               &r);
 }
