@@ -110,6 +110,33 @@ Test(firstorder, matches_dense_reference)
     case_free(&c);
 }
 
+/* The dense form (GSL's msbdf, spectra) equals the CSC matrix expanded. */
+Test(firstorder, dense_equals_csc)
+{
+    fo_case c;
+    case_init(&c);
+    static double csc[NN * NN], dense[NN * NN];
+    static int hits[NN * NN];
+    double inv_mass[N];
+    for (size_t i = 0; i < N; i++)
+        inv_mass[i] = 1.0 / c.mass[i];
+    sunindextype *cp = malloc((NN + 1) * sizeof *cp);
+    sunindextype *rv = malloc((size_t)c.fo.nnz * sizeof *rv);
+    double *val = malloc((size_t)c.fo.nnz * sizeof *val);
+    cr_assert(cp && rv && val);
+    cl_firstorder_fill_arrays(&c.fo, c.dfdx, c.dfdv, cp, rv, val);
+    expand(cp, rv, val, csc, hits);
+    cl_firstorder_dense(&c.pat, inv_mass, c.dfdx, c.dfdv, dense);
+    for (size_t k = 0; k < NN * NN; k++)
+        cr_assert(fabs(dense[k] - csc[k]) <= 1e-15 * fabs(csc[k]),
+                  "J(%zu,%zu) = %.17g, CSC %.17g", k / NN, k % NN, dense[k],
+                  csc[k]);
+    free(cp);
+    free(rv);
+    free(val);
+    case_free(&c);
+}
+
 Test(firstorder, structure_sorted_with_full_diagonal)
 {
     fo_case c;

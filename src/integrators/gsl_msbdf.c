@@ -36,31 +36,9 @@
 #include <gsl/gsl_errno.h>
 
 #include "core/check.h"
+#include "linalg/firstorder.h"
 
 #define CL_MSBDF_MAX_N (3 * 24 * 24)
-
-/* Fill the dense 2n x 2n first-order Jacobian from the block values. */
-static void msbdf_fill(const cl_gslode *s, double *J)
-{
-    const cl_bpattern *p = s->sys->pattern;
-    size_t n = s->n, dim = 2 * n;
-    memset(J, 0, dim * dim * sizeof *J);
-    for (size_t i = 0; i < n; i++)
-        J[i * dim + n + i] = 1.0;
-    for (size_t bi = 0; bi < p->nb; bi++) {
-        for (size_t k = p->rowptr[bi]; k < p->rowptr[bi + 1]; k++) {
-            size_t bj = p->col[k];
-            for (size_t r = 0; r < 3; r++) {
-                double w = s->inv_mass[3 * bi + r];
-                double *row = J + (n + 3 * bi + r) * dim;
-                for (size_t c = 0; c < 3; c++) {
-                    row[3 * bj + c] = w * s->dfdx[9 * k + 3 * r + c];
-                    row[n + 3 * bj + c] = w * s->dfdv[9 * k + 3 * r + c];
-                }
-            }
-        }
-    }
-}
 
 /* dfdt = (0, M^-1 (f(t + d) - f(t)) / d), f(t) already in s->f. */
 static int msbdf_dfdt(cl_gslode *s, double t, const double *y, double *dfdt)
@@ -94,7 +72,7 @@ static int msbdf_jacobian(double t, const double y[], double *dfdy,
     if (!cl_all_finite(s->dfdx, nval) || !cl_all_finite(s->dfdv, nval)
         || !cl_all_finite(s->f, n))
         return cl_gslode_failed(s, CL_EBLOWUP, t);
-    msbdf_fill(s, dfdy);
+    cl_firstorder_dense(s->sys->pattern, s->inv_mass, s->dfdx, s->dfdv, dfdy);
     return msbdf_dfdt(s, t, y, dfdt);
 }
 

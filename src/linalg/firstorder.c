@@ -194,3 +194,24 @@ cl_status cl_firstorder_fill_implicit(const cl_firstorder *fo,
                                            SUNSparseMatrix_Data(G));
     return st;
 }
+
+void cl_firstorder_dense(const cl_bpattern *pat, const double *inv_mass,
+                         const double *dfdx, const double *dfdv, double *J)
+{
+    size_t n = 3 * pat->nb, dim = 2 * n;
+    memset(J, 0, dim * dim * sizeof *J);
+    for (size_t i = 0; i < n; i++)
+        J[i * dim + n + i] = 1.0;
+    for (size_t bi = 0; bi < pat->nb; bi++)
+        for (size_t k = pat->rowptr[bi]; k < pat->rowptr[bi + 1]; k++) {
+            size_t bj = pat->col[k];
+            for (size_t r = 0; r < 3; r++) {
+                double w = inv_mass[3 * bi + r];
+                double *row = J + (n + 3 * bi + r) * dim;
+                for (size_t c = 0; c < 3; c++) {
+                    row[3 * bj + c] = w * dfdx[9 * k + 3 * r + c];
+                    row[n + 3 * bj + c] = w * dfdv[9 * k + 3 * r + c];
+                }
+            }
+        }
+}

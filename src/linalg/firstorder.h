@@ -76,6 +76,11 @@ void cl_firstorder_fill_arrays(const cl_firstorder *fo, const double *dfdx,
 cl_status cl_firstorder_fill(const cl_firstorder *fo, const double *dfdx,
                              const double *dfdv, SUNMatrix J, cl_error *err);
 
+/* J dense and row-major (2n x 2n, n = 3 pat->nb) from the block values
+ * and the inverse masses (n), for small systems (GSL's msbdf, spectra). */
+void cl_firstorder_dense(const cl_bpattern *pat, const double *inv_mass,
+                         const double *dfdx, const double *dfdv, double *J);
+
 /* The implicit-form iteration matrix G (c_j as IDA passes it) into caller
  * arrays, resp. into a SUNDIALS sparse matrix (same checks as above). */
 void cl_firstorder_fill_implicit_arrays(const cl_firstorder *fo,
