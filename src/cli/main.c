@@ -10,6 +10,8 @@ static const cl_command commands[] = {
     {"run", cl_cmd_run, "integrate a problem, write series, frames, stats"},
     {"stability", cl_cmd_stability,
      "largest stable step of fixed-step integrators"},
+    {"spectrum", cl_cmd_spectrum,
+     "eigenvalues at a state and the step limits they predict"},
     {"convergence", cl_cmd_convergence,
      "observed orders against a tight reference"},
     {"eval", cl_cmd_eval, "forces, energies and Jacobians at a given state"},

@@ -1,0 +1,236 @@
+/* Spectra of the linearised cloth and predicted explicit step limits (see
+ * spectrum.h). */
+#include "analysis/spectrum.h"
+
+#include <complex.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_eigen.h>
+#include <gsl/gsl_sort.h>
+
+#include "linalg/firstorder.h"
+
+/* Growth rates below this fraction of the largest |lambda| are round-off
+ * (a zero-stiffness mode's double eigenvalue 0 splits into +-sqrt(eps)). */
+#define SPEC_TOL 1e-6
+
+typedef struct {
+    size_t n, nval;
+    double *dfdx, *dfdv, *f, *inv_mass, *A;
+} spec_work;
+
+static void work_free(spec_work *w)
+{
+    free(w->dfdx);
+    free(w->dfdv);
+    free(w->f);
+    free(w->inv_mass);
+    free(w->A);
+}
+
+/* The Jacobian blocks at (t, x, v) and a dense (2n)^2 scratch. */
+static cl_status work_fill(cl_model *m, double t, const double *x,
+                           const double *v, spec_work *w, cl_error *err)
+{
+    const cl_system *sys = cl_model_system(m);
+    w->n = sys->n;
+    w->nval = 9 * sys->pattern->nnzb;
+    w->dfdx = malloc((w->nval + 1) * sizeof *w->dfdx);
+    w->dfdv = malloc((w->nval + 1) * sizeof *w->dfdv);
+    w->f = malloc(w->n * sizeof *w->f);
+    w->inv_mass = malloc(w->n * sizeof *w->inv_mass);
+    w->A = malloc(4 * w->n * w->n * sizeof *w->A);
+    if (!w->dfdx || !w->dfdv || !w->f || !w->inv_mass || !w->A)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (spectrum of %zu "
+                            "unknowns)", w->n);
+    for (size_t i = 0; i < w->n; i++)
+        w->inv_mass[i] = 1.0 / sys->mass[i];
+    cl_status rc = sys->jacobian(sys->data, t, x, v, w->f, w->dfdx, w->dfdv);
+    return rc ? cl_error_set(err, rc, "Jacobian at t = %g failed", t) : rc;
+}
+
+/* A = -M^-1/2 (K + K^T)/2 M^-1/2, K = df/dx, dense n x n. */
+static void stiffness_matrix(const cl_bpattern *p, const spec_work *w)
+{
+    size_t n = w->n;
+    memset(w->A, 0, n * n * sizeof *w->A);
+    for (size_t bi = 0; bi < p->nb; bi++)
+        for (size_t k = p->rowptr[bi]; k < p->rowptr[bi + 1]; k++)
+            for (size_t r = 0; r < 3; r++)
+                for (size_t c = 0; c < 3; c++) {
+                    size_t i = 3 * bi + r, j = 3 * p->col[k] + c;
+                    double a = -0.5 * w->dfdx[9 * k + 3 * r + c] *
+                               sqrt(w->inv_mass[i] * w->inv_mass[j]);
+                    w->A[i * n + j] += a;
+                    w->A[j * n + i] += a;
+                }
+}
+
+static cl_status stiffness_spectrum(const cl_bpattern *p, spec_work *w,
+                                    cl_spectrum *s, cl_error *err)
+{
+    stiffness_matrix(p, w);
+    gsl_matrix_view A = gsl_matrix_view_array(w->A, w->n, w->n);
+    gsl_vector_view mu = gsl_vector_view_array(s->mu, w->n);
+    gsl_eigen_symm_workspace *ws = gsl_eigen_symm_alloc(w->n);
+    if (!ws)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (eigensolver)");
+    int rc = gsl_eigen_symm(&A.matrix, &mu.vector, ws);
+    gsl_eigen_symm_free(ws);
+    if (rc)
+        return cl_error_set(err, CL_ESOLVER, "symmetric eigensolver failed "
+                            "(GSL %d)", rc);
+    gsl_sort(s->mu, 1, w->n);
+    s->w_max = sqrt(fmax(s->mu[w->n - 1], 0.0));
+    return CL_OK;
+}
+
+static int by_modulus_desc(const void *a, const void *b)
+{
+    double x = cabs(*(const double complex *)a);
+    double y = cabs(*(const double complex *)b);
+    return (x < y) - (x > y);
+}
+
+static cl_status first_order_spectrum(const cl_bpattern *p, spec_work *w,
+                                      cl_spectrum *s, cl_error *err)
+{
+    size_t dim = 2 * w->n;
+    cl_firstorder_dense(p, w->inv_mass, w->dfdx, w->dfdv, w->A);
+    gsl_matrix_view J = gsl_matrix_view_array(w->A, dim, dim);
+    gsl_vector_complex *ev = gsl_vector_complex_alloc(dim);
+    gsl_eigen_nonsymm_workspace *ws = gsl_eigen_nonsymm_alloc(dim);
+    int rc = ev && ws ? gsl_eigen_nonsymm(&J.matrix, ev, ws) : GSL_ENOMEM;
+    if (!rc) {
+        double complex *lam = (double complex *)ev->data; /* stride 1 */
+        qsort(lam, dim, sizeof *lam, by_modulus_desc);
+        double tol = SPEC_TOL * cabs(lam[0]);
+        for (size_t j = 0; j < dim; j++) {
+            s->re[j] = creal(lam[j]);
+            s->im[j] = cimag(lam[j]);
+            if (s->re[j] > tol) {
+                s->n_growing++;
+                s->growth_max = fmax(s->growth_max, s->re[j]);
+            }
+        }
+    }
+    gsl_eigen_nonsymm_free(ws);
+    gsl_vector_complex_free(ev);
+    if (rc == GSL_ENOMEM)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (eigensolver)");
+    return rc ? cl_error_set(err, CL_ESOLVER, "QR iteration of the "
+                             "first-order Jacobian failed (GSL %d)", rc)
+              : CL_OK;
+}
+
+cl_status cl_spectrum_compute(cl_model *m, double t, const double *x,
+                              const double *v, cl_spectrum *s, cl_error *err)
+{
+    const cl_system *sys = cl_model_system(m);
+    spec_work w = {0};
+    memset(s, 0, sizeof *s);
+    if (sys->n > CL_SPECTRUM_MAX_N)
+        return cl_error_set(err, CL_EUNSUPPORTED, "spectrum: %zu unknowns, "
+                            "at most %d (dense eigensolvers; a 24 x 24 "
+                            "cloth)", sys->n, CL_SPECTRUM_MAX_N);
+    s->n = sys->n;
+    s->mu = malloc(s->n * sizeof *s->mu);
+    s->re = malloc(2 * s->n * sizeof *s->re);
+    s->im = malloc(2 * s->n * sizeof *s->im);
+    cl_status rc = s->mu && s->re && s->im
+                       ? work_fill(m, t, x, v, &w, err)
+                       : cl_error_set(err, CL_ENOMEM, "out of memory");
+    if (!rc && !(rc = stiffness_spectrum(sys->pattern, &w, s, err)))
+        rc = first_order_spectrum(sys->pattern, &w, s, err);
+    work_free(&w);
+    if (rc)
+        cl_spectrum_free(s);
+    return rc;
+}
+
+void cl_spectrum_free(cl_spectrum *s)
+{
+    free(s->mu);
+    free(s->re);
+    free(s->im);
+    memset(s, 0, sizeof *s);
+}
+
+/* ---- predicted limits -------------------------------------------------- */
+
+/* Forward Euler, R = 1 + z: |1 + h lambda| <= 1 for h <= -2 Re / |l|^2
+ * (0 for an undamped mode: every oscillation without damping grows). */
+static double fe_limit(double complex l)
+{
+    return fmax(0.0, -2 * creal(l) / (creal(l) * creal(l) +
+                                      cimag(l) * cimag(l)));
+}
+
+static double complex r_rk4(double complex z)
+{
+    return 1 + z * (1 + z / 2 * (1 + z / 3 * (1 + z / 4)));
+}
+
+/* RK4: the largest h with |R(h l)| <= 1 along the ray of l; scan
+ * s = h |l| up to 4 (beyond RK4's region), then bisect. */
+static double rk4_limit(double complex l)
+{
+    double a = cabs(l), lo, hi = 0.0;
+    double complex d = l / a;
+    for (double s = 0.005; s <= 4.0; s += 0.005)
+        if (cabs(r_rk4(s * d)) > 1 + 1e-12) {
+            hi = s;
+            break;
+        }
+    if (hi == 0.0)
+        return INFINITY;
+    lo = hi - 0.005;
+    for (int k = 0; k < 60; k++) {
+        double mid = 0.5 * (lo + hi);
+        *(cabs(r_rk4(mid * d)) > 1 + 1e-12 ? &hi : &lo) = mid;
+    }
+    return lo / a;
+}
+
+/* The smallest per-eigenvalue limit over every eigenvalue that is neither
+ * growing nor round-off-zero; a real part within the tolerance counts as 0
+ * (undamped). */
+static double r_limit(const cl_spectrum *s, double (*limit)(double complex))
+{
+    size_t dim = 2 * s->n;
+    double tol = SPEC_TOL * hypot(s->re[0], s->im[0]), h = INFINITY;
+    for (size_t j = 0; j < dim; j++) {
+        double re = fabs(s->re[j]) <= tol ? 0.0 : s->re[j];
+        double complex l = re + I * s->im[j];
+        if (re > 0 || cabs(l) <= tol)
+            continue;
+        h = fmin(h, limit(l));
+    }
+    return h;
+}
+
+void cl_spectrum_limits(const cl_spectrum *s,
+                        cl_spectrum_limit out[CL_SPECTRUM_NLIMITS])
+{
+    static const char *const symplectic[] = {
+        "symplectic-euler", "symplectic-euler-x", "verlet",
+        "velocity-verlet"};
+    double hs = s->w_max > 0 ? 2.0 / s->w_max : INFINITY;
+    out[0] = (cl_spectrum_limit){"fe", "|R(h lambda)| <= 1",
+                                 r_limit(s, fe_limit)};
+    out[1] = (cl_spectrum_limit){"rk4", "|R(h lambda)| <= 1",
+                                 r_limit(s, rk4_limit)};
+    for (int k = 0; k < 4; k++)
+        out[2 + k] = (cl_spectrum_limit){symplectic[k], "h w_max < 2", hs};
+}
+
+void cl_spectrum_write(FILE *fp, const cl_spectrum *s)
+{
+    fprintf(fp, "kind,index,re,im\n");
+    for (size_t i = 0; i < s->n; i++)
+        fprintf(fp, "mu,%zu,%.17g,0\n", i, s->mu[i]);
+    for (size_t j = 0; j < 2 * s->n; j++)
+        fprintf(fp, "lambda,%zu,%.17g,%.17g\n", j, s->re[j], s->im[j]);
+}

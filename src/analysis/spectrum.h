@@ -1,0 +1,67 @@
+/* Spectrum of the linearised cloth at a state and the explicit step limits
+ * it predicts (SPEC 7 `clothode spectrum`, SPEC 8 "spectral prediction vs
+ * measured explicit limit").
+ *
+ * Two eigenvalue problems, both dense (GSL), so n <= CL_SPECTRUM_MAX_N:
+ *  - stiffness: mu_i, eigenvalues of -M^-1/2 S M^-1/2, S the symmetric part
+ *    of df/dx (symmetric for conservative forces): mu = w^2 > 0 for an
+ *    oscillating mode, mu < 0 for a mode the forces push away (a buckling
+ *    direction of compressed pairs), ascending;
+ *  - first order: lambda_j, eigenvalues of the Jacobian of y' = (v, M^-1 f)
+ *    (2n of them, damping and non-symmetric parts included).
+ *
+ * Predicted limits (linear stability, all modes at once):
+ *  - a method with stability function R (fe: 1 + z; rk4: the degree-4
+ *    Taylor polynomial) is stable with step h when |R(h lambda)| <= 1 for
+ *    every lambda.  With tol = 1e-6 |lambda|_max: eigenvalues with
+ *    Re lambda > tol, modes the true solution grows along too, cannot be
+ *    stabilised and are left out (their number and the largest growth rate
+ *    are reported); |Re lambda| <= tol counts as undamped (Re = 0), which
+ *    gives fe a limit of 0; |lambda| <= tol (round-off zeros, e.g. the
+ *    out-of-plane modes of a flat cloth at rest) constrains nothing;
+ *  - the symplectic methods (symplectic Euler either way, position and
+ *    velocity Verlet) are stable for h w_max < 2 on undamped oscillators,
+ *    h < 2 / sqrt(mu_max); damping is not accounted for there. */
+#ifndef CL_SPECTRUM_H
+#define CL_SPECTRUM_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "model/model.h"
+
+#define CL_SPECTRUM_MAX_N (3 * 24 * 24)
+
+typedef struct {
+    size_t n;             /* unknowns, 3 nfree */
+    double *mu;           /* n, ascending */
+    double *re, *im;      /* 2n first-order eigenvalues, by decreasing |.| */
+    double w_max;         /* sqrt(mu_max) (rad/s) */
+    size_t n_growing;     /* first-order eigenvalues with Re > tol */
+    double growth_max;    /* their largest real part (1/s), 0 if none */
+} cl_spectrum;
+
+/* At the free state (x, v) and time t.  CL_EUNSUPPORTED above
+ * CL_SPECTRUM_MAX_N unknowns; CL_ESOLVER if GSL's QR iteration fails. */
+cl_status cl_spectrum_compute(cl_model *m, double t, const double *x,
+                              const double *v, cl_spectrum *s, cl_error *err);
+void cl_spectrum_free(cl_spectrum *s);
+
+/* The integrators whose limit is predicted, with how. */
+typedef struct {
+    const char *integrator;
+    const char *basis;    /* "|R(h lambda)| <= 1" or "h w_max < 2" */
+    double h;             /* predicted largest stable step (inf: none) */
+} cl_spectrum_limit;
+
+#define CL_SPECTRUM_NLIMITS 6
+
+/* The predicted limits, in a fixed order: fe, rk4, symplectic-euler,
+ * symplectic-euler-x, verlet, velocity-verlet. */
+void cl_spectrum_limits(const cl_spectrum *s,
+                        cl_spectrum_limit out[CL_SPECTRUM_NLIMITS]);
+
+/* kind,index,re,im rows (kind "mu" with im 0, or "lambda"), header first. */
+void cl_spectrum_write(FILE *fp, const cl_spectrum *s);
+
+#endif

@@ -1,0 +1,137 @@
+/* clothode spectrum PROBLEM: eigenvalues of the linearised cloth and the
+ * explicit step limits they predict (analysis/spectrum.h). */
+#include <math.h>
+#include <stdlib.h>
+
+#include "analysis/spectrum.h"
+#include "cli/cli.h"
+#include "cli/commands.h"
+#include "io/atomic.h"
+#include "io/state.h"
+
+static const char spec_help[] =
+    "usage: clothode spectrum PROBLEM [options]\n"
+    "Eigenvalues of the cloth linearised at a state: mu = w^2 of the\n"
+    "stiffness (-M^-1/2 sym(df/dx) M^-1/2) and lambda of the first-order\n"
+    "Jacobian (damping included), and the largest stable steps they predict\n"
+    "for the explicit integrators (compare with clothode stability).  Dense\n"
+    "eigensolvers: at most a 24 x 24 cloth.  Writes spectrum.csv (kind,\n"
+    "index, re, im) into the output directory.\n"
+    "\n"
+    "  --state FILE       state to linearise at, as final.csv (default: the\n"
+    "                     problem's initial state)\n"
+    "  --t T              time of that state (moving pins; default 0)\n"
+    "  --out DIR          output directory (default out/PROBLEM)\n"
+    "  --set SEC.KEY=VAL  override any problem key (repeatable)\n"
+    "  --quiet            no summary on stdout\n"
+    "  --help             this text\n";
+
+static const struct option spec_opts[] = {
+    {"state", required_argument, 0, 'S'},
+    {"t", required_argument, 0, 't'},
+    {"out", required_argument, 0, 'o'},
+    {"set", required_argument, 0, 's'},
+    {"quiet", no_argument, 0, 'q'},
+    {"help", no_argument, 0, 'h'},
+    {0, 0, 0, 0}};
+static const char *const spec_key[128] = {['S'] = "spectrum.state",
+                                          ['t'] = "spectrum.t"};
+static const char *const spec_label[128] = {['S'] = "--state",
+                                            ['t'] = "--t"};
+static const cl_cli_spec spec_spec = {"spectrum", spec_help, spec_opts,
+                                      spec_key, spec_label};
+
+typedef struct {
+    const char *state; /* "" for the initial state */
+    double t;
+} spec_setup;
+
+static cl_status read_setup(cl_config *cfg, void *ctx, cl_error *err)
+{
+    spec_setup *s = ctx;
+    cl_config_ignore_section(cfg, "run"); /* spectrum does not integrate */
+    s->state = cl_config_string(cfg, "spectrum", "state", "");
+    return cl_config_double(cfg, "spectrum", "t", 0.0, -INFINITY, INFINITY,
+                            &s->t, err);
+}
+
+/* The free state to linearise at. */
+static cl_status free_state(cl_model *m, const spec_setup *s, double *x,
+                            double *v, cl_error *err)
+{
+    const cl_cloth *c = cl_model_cloth(m);
+    if (!*s->state)
+        return cl_model_initial_state(m, x, v);
+    double *xf = malloc(3 * c->np * sizeof *xf);
+    double *vf = malloc(3 * c->np * sizeof *vf);
+    cl_status rc = xf && vf ? cl_state_read(s->state, c->np, xf, vf, err)
+                            : cl_error_set(err, CL_ENOMEM, "out of memory");
+    if (!rc) {
+        cl_cloth_gather(c, xf, x);
+        cl_cloth_gather(c, vf, v);
+    }
+    free(xf);
+    free(vf);
+    return rc;
+}
+
+static void print_summary(const cl_cli_job *job, const cl_spectrum *sp)
+{
+    cl_spectrum_limit lim[CL_SPECTRUM_NLIMITS];
+    size_t neg = 0;
+    for (size_t i = 0; i < sp->n; i++)
+        neg += sp->mu[i] < 0;
+    printf("problem    %s, %zu unknowns\n", job->problem, sp->n);
+    printf("stiffness  w_max = %.6g rad/s (mu %.6g .. %.6g; %zu negative)\n",
+           sp->w_max, sp->mu[0], sp->mu[sp->n - 1], neg);
+    printf("first order  |lambda|_max = %.6g 1/s; %zu growing modes%s",
+           hypot(sp->re[0], sp->im[0]), sp->n_growing,
+           sp->n_growing ? "" : "\n");
+    if (sp->n_growing)
+        printf(", fastest growth rate %.6g 1/s\n", sp->growth_max);
+    printf("%-20s %12s   %s\n", "integrator", "predicted dt", "from");
+    cl_spectrum_limits(sp, lim);
+    for (int k = 0; k < CL_SPECTRUM_NLIMITS; k++)
+        printf("%-20s %12.4g   %s\n", lim[k].integrator, lim[k].h,
+               lim[k].basis);
+}
+
+static cl_status write_csv(const char *dir, const cl_spectrum *sp,
+                           cl_error *err)
+{
+    char path[4200];
+    cl_afile af;
+    cl_status rc = cl_mkdir_p(dir, err);
+    snprintf(path, sizeof path, "%s/spectrum.csv", dir);
+    if (rc || (rc = cl_afile_open(&af, path, err)))
+        return rc;
+    cl_spectrum_write(af.fp, sp);
+    return cl_afile_commit(&af, err);
+}
+
+static cl_status spectrum(cl_model *m, const cl_cli_job *job, void *ctx,
+                          cl_error *err)
+{
+    const spec_setup *s = ctx;
+    size_t n = cl_model_system(m)->n;
+    double *x = malloc(n * sizeof *x), *v = malloc(n * sizeof *v);
+    cl_spectrum sp = {0};
+    cl_status rc = x && v ? free_state(m, s, x, v, err)
+                          : cl_error_set(err, CL_ENOMEM, "out of memory");
+    if (!rc && !(rc = cl_spectrum_compute(m, s->t, x, v, &sp, err)) &&
+        !(rc = write_csv(job->outdir, &sp, err)) && !job->quiet) {
+        print_summary(job, &sp);
+        printf("output     %s/spectrum.csv\n", job->outdir);
+    }
+    cl_spectrum_free(&sp);
+    free(x);
+    free(v);
+    return rc;
+}
+
+int cl_cmd_spectrum(int argc, char **argv)
+{
+    spec_setup s = {0};
+    return cl_cli_problem_main(argc, argv, &spec_spec, read_setup, spectrum,
+                               &s);
+}

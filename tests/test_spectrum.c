@@ -1,0 +1,135 @@
+/* Spectra (analysis/spectrum.c) on spring2 stiffened to ks = 1e4: one free
+ * particle of mass 1 on a spring to a pinned one along x, w = 100 rad/s.
+ * At rest the spring has no tension, so only x is stiff: mu = {0, 0, w^2},
+ * lambda = {+-i w, 0 x 4}.  Predicted limits: 2/w for the symplectic
+ * methods, 2 sqrt(2)/w for rk4, 0 for fe (undamped).  With pair damping
+ * kd = 20 (c = 20/s): lambda = -10 +- i sqrt(w^2 - 100), fe's limit
+ * -2 Re/|lambda|^2 = 2e-3, which the stability search finds too (over
+ * T = 40 s: near the limit the growth per step is small, and over a short
+ * horizon a slightly unstable step passes for a stable one).
+ * Compressed to d = L/2 the spring pushes (s = -5e3 N), a transverse
+ * stiffness s/d = -1e4: two growing modes at rate 100/s. */
+#include <criterion/criterion.h>
+
+#include <math.h>
+#include <string.h>
+
+#include "analysis/spectrum.h"
+#include "analysis/stability.h"
+#include "io/config.h"
+
+typedef struct {
+    cl_config *cfg;
+    cl_model *m;
+    cl_spectrum s;
+} sp_case;
+
+/* spring2 with ks = 1e4 and `set` (or none), spectrum at x = (x1, 0, 0),
+ * v = 0. */
+static void sp_open(sp_case *c, const char *set, double x1)
+{
+    cl_error err = {0};
+    c->cfg = cl_config_alloc();
+    cr_assert_not_null(c->cfg);
+    cr_assert_eq(cl_config_load(c->cfg, "problems/spring2.ini", &err), CL_OK,
+                 "%s", err.msg);
+    cr_assert_eq(cl_config_set(c->cfg, "type1.ks=1e4", &err), CL_OK);
+    if (set)
+        cr_assert_eq(cl_config_set(c->cfg, set, &err), CL_OK, "%s", err.msg);
+    cr_assert_eq(cl_model_create(c->cfg, &c->m, &err), CL_OK, "%s", err.msg);
+    double x[3] = {x1, 0, 0}, v[3] = {0, 0, 0};
+    cr_assert_eq(cl_spectrum_compute(c->m, 0.0, x, v, &c->s, &err), CL_OK,
+                 "%s", err.msg);
+}
+
+static void sp_close(sp_case *c)
+{
+    cl_spectrum_free(&c->s);
+    cl_model_free(c->m);
+    cl_config_free(c->cfg);
+}
+
+static double sp_limit(const cl_spectrum *s, const char *name)
+{
+    cl_spectrum_limit lim[CL_SPECTRUM_NLIMITS];
+    cl_spectrum_limits(s, lim);
+    for (int k = 0; k < CL_SPECTRUM_NLIMITS; k++)
+        if (!strcmp(lim[k].integrator, name))
+            return lim[k].h;
+    cr_assert_fail("no limit for %s", name);
+    return NAN;
+}
+
+Test(spectrum, undamped_spring_at_rest)
+{
+    sp_case c;
+    sp_open(&c, NULL, 1.0);
+    cr_assert_eq(c.s.n, 3);
+    cr_assert(fabs(c.s.mu[0]) < 1e-9 && fabs(c.s.mu[1]) < 1e-9);
+    cr_assert_float_eq(c.s.mu[2], 1e4, 1e-8);
+    cr_assert_float_eq(c.s.w_max, 100.0, 1e-10);
+    cr_assert_float_eq(hypot(c.s.re[0], c.s.im[0]), 100.0, 1e-9);
+    cr_assert_float_eq(fabs(c.s.im[0]), 100.0, 1e-9);
+    cr_assert_eq(c.s.n_growing, 0);
+    cr_assert_float_eq(sp_limit(&c.s, "symplectic-euler"), 0.02, 1e-15);
+    cr_assert_float_eq(sp_limit(&c.s, "velocity-verlet"), 0.02, 1e-15);
+    cr_assert_float_eq(sp_limit(&c.s, "rk4"), 2 * sqrt(2.0) / 100, 1e-9);
+    cr_assert_eq(sp_limit(&c.s, "fe"), 0.0);
+    sp_close(&c);
+}
+
+/* The fe prediction on the damped spring, and the stability search on the
+ * same system (tight stretch test, every step) agreeing with it. */
+Test(spectrum, damped_spring_fe_limit_matches_the_search)
+{
+    sp_case c;
+    sp_open(&c, "damping.kd=20", 1.0);
+    double h = sp_limit(&c.s, "fe");
+    cr_log_info("fe predicted %.6g", h);
+    cr_assert_float_eq(h, 2e-3, 1e-12);
+    cr_assert_float_eq(c.s.re[0], -10.0, 1e-9);
+    /* T long enough for a growth of 1 + 1e-4 per step to show */
+    cl_stab_opts o = {.t_end = 40.0, .dt_max = 0.01, .dt_min = 1e-5,
+                      .rel = 0.005, .checks = 1000000, .max_stretch = 1.5};
+    cl_stab_result r;
+    cl_integrator_opts io = {0};
+    cl_error err = {0};
+    cr_assert_eq(cl_stability(c.m, cl_integrator_find("fe"), &io, &o, &r,
+                              &err),
+                 CL_OK, "%s", err.msg);
+    cr_log_info("fe measured (%.6g, %.6g)", r.dt_stable, r.dt_unstable);
+    cr_assert(r.dt_stable > 0.97 * h && r.dt_stable < 1.03 * h, "%g",
+              r.dt_stable);
+    sp_close(&c);
+}
+
+Test(spectrum, compressed_spring_has_growing_modes)
+{
+    sp_case c;
+    sp_open(&c, NULL, 0.5);
+    cr_assert_float_eq(c.s.mu[0], -1e4, 1e-8);
+    cr_assert_float_eq(c.s.mu[1], -1e4, 1e-8);
+    cr_assert_eq(c.s.n_growing, 2);
+    cr_assert_float_eq(c.s.growth_max, 100.0, 1e-9);
+    sp_close(&c);
+}
+
+Test(spectrum, large_cloth_refused)
+{
+    cl_error err = {0};
+    cl_config *cfg = cl_config_alloc();
+    cl_model *m = NULL;
+    cr_assert_eq(cl_config_load(cfg, "problems/hang.ini", &err), CL_OK);
+    cr_assert_eq(cl_config_set(cfg, "cloth.n=26", &err), CL_OK);
+    cr_assert_eq(cl_model_create(cfg, &m, &err), CL_OK, "%s", err.msg);
+    size_t n = cl_model_system(m)->n;
+    double *x = calloc(n, sizeof *x), *v = calloc(n, sizeof *v);
+    cl_spectrum s;
+    cr_assert_eq(cl_spectrum_compute(m, 0.0, x, v, &s, &err),
+                 CL_EUNSUPPORTED);
+    cr_assert_not_null(strstr(err.msg, "24 x 24"), "%s", err.msg);
+    free(x);
+    free(v);
+    cl_model_free(m);
+    cl_config_free(cfg);
+}
