@@ -1079,6 +1079,39 @@ Test(cli, stability_refusals)
                    LIST("tear"));
 }
 
+/* spectrum of the stiffened spring at rest: w_max = 100, the symplectic
+ * limit 2/w; spectrum.csv holds 3 mu and 6 lambda rows. */
+Test(cli, spectrum_summary_and_csv)
+{
+    char out[1024], path[1100];
+    cli_result r;
+    cli_run(&r, "spectrum", "spring2", "--set", "type1.ks=1e4", "--out",
+            in_tmp(out, "spec"), NULL);
+    cli_assert_ok(&r);
+    cr_assert_not_null(strstr(r.out, "w_max = 100 rad/s"), "%s", r.out);
+    cr_assert_not_null(strstr(r.out, "symplectic-euler             0.02 "),
+                       "%s", r.out);
+    cli_result_free(&r);
+    cli_lines L;
+    snprintf(path, sizeof path, "%s/spectrum.csv", out);
+    cli_read_lines(path, &L);
+    cr_assert_eq(L.n, 10, "%zu lines", L.n);
+    cr_assert_str_eq(L.line[0], "kind,index,re,im");
+    cr_assert(!strncmp(L.line[3], "mu,2,", 5), "%s", L.line[3]);
+    cr_assert(!strncmp(L.line[4], "lambda,0,", 9), "%s", L.line[4]);
+    cli_lines_free(&L);
+}
+
+Test(cli, spectrum_refusals)
+{
+    char path[1024];
+    expect_refused(LIST("spectrum", "hang", "--set", "cloth.n=26"), 0,
+                   LIST("24 x 24"));
+    expect_refused(LIST("spectrum", "spring2", "--state",
+                        in_tmp(path, "no-such-state.csv")),
+                   0, LIST("no-such-state.csv"));
+}
+
 Test(cli, list_names_problems_integrators_terms)
 {
     cli_result r;
@@ -1097,8 +1130,8 @@ Test(cli, list_names_problems_integrators_terms)
 
 Test(cli, help_on_every_subcommand)
 {
-    const char *cmds[] = {"run",  "eval",        "counts",
-                          "list", "convergence", "stability"};
+    const char *cmds[] = {"run",         "eval",      "counts",  "list",
+                          "convergence", "stability", "spectrum"};
     enum { NCMD = sizeof cmds / sizeof cmds[0] };
     cli_result r;
     for (size_t k = 0; k < NCMD; k++) {
