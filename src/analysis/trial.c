@@ -64,14 +64,17 @@ cl_status cl_trial_run(cl_trial *t, const cl_integrator_type *type,
     double c0 = cl_clock_cpu(), w0 = cl_clock_wall(), last = 0.0;
     cl_status rc = cl_model_initial_state(t->m, t->x, t->v);
     memset(s, 0, sizeof *s);
+    if (!rc && t->hook)
+        rc = t->hook(t->hook_ctx, 0.0, t->x, t->v, err);
     if (!rc)
         rc = type->create(sys, io, 0.0, t->x, t->v, &state, err);
     for (long k = 1; !rc && k <= checks; k++) {
         double tk = check_time(type, io->dt, T, k, checks);
         if (tk <= last)
             continue;
-        if (!(rc = type->advance(state, tk, t->x, t->v, err)))
-            rc = check_stretch(t, tk, max_stretch, err);
+        if (!(rc = type->advance(state, tk, t->x, t->v, err)) &&
+            !(rc = check_stretch(t, tk, max_stretch, err)) && t->hook)
+            rc = t->hook(t->hook_ctx, tk, t->x, t->v, err);
         last = tk;
     }
     if (state) {

@@ -12,11 +12,17 @@
 #include "model/model.h"
 #include "model/pairs.h"
 
+/* Called at t = 0 and after every passed check with the free state. */
+typedef cl_status (*cl_trial_hook)(void *ctx, double t, const double *x,
+                                   const double *v, cl_error *err);
+
 typedef struct {
     cl_model *m;
     cl_pairset type1;
     double *x, *v;        /* free state at the end of the last run */
     double *xf, *vf;      /* full-particle scratch */
+    cl_trial_hook hook;   /* optional (NULL), with its context */
+    void *hook_ctx;
 } cl_trial;
 
 cl_status cl_trial_init(cl_trial *t, cl_model *m, cl_error *err);

@@ -10,6 +10,7 @@ static const cl_command commands[] = {
     {"run", cl_cmd_run, "integrate a problem, write series, frames, stats"},
     {"stability", cl_cmd_stability,
      "largest stable step of fixed-step integrators"},
+    {"energy", cl_cmd_energy, "energy balance of integrators over a run"},
     {"spectrum", cl_cmd_spectrum,
      "eigenvalues at a state and the step limits they predict"},
     {"convergence", cl_cmd_convergence,

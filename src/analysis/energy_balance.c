@@ -1,0 +1,109 @@
+/* Energy balance of one run (see energy_balance.h). */
+#include "analysis/energy_balance.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analysis/trial.h"
+
+typedef struct {
+    cl_model *m;
+    cl_ebal_result *r;
+    size_t cap;
+} ebal_ctx;
+
+/* One sample: energies at (t, x, v), W by the trapezoidal rule from the
+ * previous sample. */
+static cl_status sample(void *vctx, double t, const double *x,
+                        const double *v, cl_error *err)
+{
+    ebal_ctx *c = vctx;
+    cl_ebal_result *r = c->r;
+    const cl_system *sys = cl_model_system(c->m);
+    cl_energy e;
+    cl_status rc = sys->energy(sys->data, t, x, v, &e);
+    if (rc)
+        return cl_error_set(err, rc, "energy at t = %g failed", t);
+    if (r->n == c->cap)
+        return cl_error_set(err, CL_EINVAL, "more samples than planned");
+    cl_ebal_sample *s = &r->s[r->n], *p = r->n ? s - 1 : NULL;
+    s->t = t;
+    s->kinetic = e.kinetic;
+    s->potential = e.potential;
+    s->total = e.total;
+    s->power = e.power_diss;
+    s->dissipated = p ? p->dissipated + 0.5 * (t - p->t) *
+                                            (p->power + s->power)
+                      : 0.0;
+    s->balance = p ? s->total - r->s[0].total - s->dissipated : 0.0;
+    r->scale = fmax(r->scale, fmax(fabs(r->s[0].total), s->kinetic));
+    r->scale = fmax(r->scale, fabs(s->potential - r->s[0].potential));
+    r->balance_max = fmax(r->balance_max, fabs(s->balance));
+    r->n++;
+    return CL_OK;
+}
+
+cl_status cl_ebal_check(cl_model *m, const cl_integrator_type *type,
+                        const cl_integrator_opts *io, double T, long samples,
+                        cl_error *err)
+{
+    if (samples < 1 || !(T > 0))
+        return cl_error_set(err, CL_EINVAL, "samples = %ld, T = %g: expected "
+                            ">= 1 and > 0", samples, T);
+    double steps = T / io->dt;
+    if (type->fixed_step && (!(io->dt > 0) ||
+                             fabs(steps - round(steps)) > 1e-9 * steps))
+        return cl_error_set(err, CL_EINVAL, "t_end = %g is not a whole "
+                            "number of steps dt = %g (%s takes fixed steps)",
+                            T, io->dt, type->name);
+    if (cl_model_system(m)->step_done)
+        return cl_error_set(err, CL_EUNSUPPORTED, "a model that tears ([tear] "
+                            "cut) changes for good during a run, so runs "
+                            "cannot be repeated from its initial state");
+    return CL_OK;
+}
+
+cl_status cl_ebal_run(cl_model *m, const cl_integrator_type *type,
+                      const cl_integrator_opts *io, double T, long samples,
+                      double max_stretch, cl_ebal_result *r, cl_error *err)
+{
+    cl_trial t = {0};
+    memset(r, 0, sizeof *r);
+    r->type = type;
+    cl_status rc = cl_ebal_check(m, type, io, T, samples, err);
+    if (rc)
+        return rc;
+    ebal_ctx c = {m, r, (size_t)samples + 1};
+    r->s = malloc(c.cap * sizeof *r->s);
+    if (!r->s)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (%ld samples)",
+                            samples);
+    if (!(rc = cl_trial_init(&t, m, err))) {
+        t.hook = sample;
+        t.hook_ctx = &c;
+        r->rc = cl_trial_run(&t, type, io, T, samples, max_stretch,
+                             &r->stats, &r->why);
+    }
+    cl_trial_free(&t);
+    return rc;
+}
+
+void cl_ebal_free(cl_ebal_result *r)
+{
+    free(r->s);
+    memset(r, 0, sizeof *r);
+}
+
+void cl_ebal_write_rows(FILE *fp, const cl_ebal_result *r, bool header)
+{
+    if (header)
+        fprintf(fp, "integrator,t,kinetic,potential,total,dissipated,"
+                    "balance\n");
+    for (size_t k = 0; k < r->n; k++) {
+        const cl_ebal_sample *s = &r->s[k];
+        fprintf(fp, "%s,%.9g,%.12g,%.12g,%.12g,%.12g,%.12g\n", r->type->name,
+                s->t, s->kinetic, s->potential, s->total, s->dissipated,
+                s->balance);
+    }
+}

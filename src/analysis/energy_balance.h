@@ -1,0 +1,62 @@
+/* Energy behaviour of an integrator (SPEC 7 `clothode energy`): one run
+ * from the model's initial state to T, sampled at `samples` evenly spread
+ * times (whole steps for fixed-step methods; the blow-up test of
+ * analysis/trial.h applies), where
+ *
+ *   E(t) = kinetic + potential (every conservative term, gravity included),
+ *   W(t) = int_0^t P dt, P <= 0 the power of the dissipative terms
+ *          (damping), by the trapezoidal rule between samples,
+ *   B(t) = E(t) - E(0) - W(t),
+ *
+ * B being the energy the integrator made (> 0) or destroyed (< 0) beyond
+ * the model's own dissipation: 0 for the exact solution of a model whose
+ * pins stay put (moving pins do work on the cloth, which shows in B).  The
+ * trapezoidal W is exact to O(sample spacing^2): sample densely when the
+ * damping is strong (a fixed-step method can be sampled at every step).
+ * Relative figures divide by the scale S = max over the samples of |E(0)|,
+ * the kinetic energy and |potential - potential(0)|. */
+#ifndef CL_ENERGY_BALANCE_H
+#define CL_ENERGY_BALANCE_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "integrators/integrator.h"
+#include "model/model.h"
+
+typedef struct {
+    double t, kinetic, potential, total, dissipated, balance;
+    double power;         /* P at t */
+} cl_ebal_sample;
+
+typedef struct {
+    const cl_integrator_type *type;
+    cl_status rc;         /* how the run ended (CL_OK, or a failure: the
+                           * samples up to it are kept) ... */
+    cl_error why;         /* ... and why */
+    size_t n;             /* samples taken, t = 0 included */
+    cl_ebal_sample *s;
+    double scale;         /* S */
+    double balance_max;   /* max |B| */
+    cl_stats stats;
+} cl_ebal_result;
+
+/* Whether the run can be made: CL_EINVAL for samples < 1 or a T that is
+ * not a whole number of fixed steps; CL_EUNSUPPORTED for a model that
+ * tears. */
+cl_status cl_ebal_check(cl_model *m, const cl_integrator_type *type,
+                        const cl_integrator_opts *io, double T, long samples,
+                        cl_error *err);
+
+/* The run: cl_ebal_check's refusals are returned; a failing run is
+ * recorded in r (r->rc), not returned. */
+cl_status cl_ebal_run(cl_model *m, const cl_integrator_type *type,
+                      const cl_integrator_opts *io, double T, long samples,
+                      double max_stretch, cl_ebal_result *r, cl_error *err);
+void cl_ebal_free(cl_ebal_result *r);
+
+/* integrator,t,kinetic,potential,total,dissipated,balance rows, header
+ * first when `header`. */
+void cl_ebal_write_rows(FILE *fp, const cl_ebal_result *r, bool header);
+
+#endif
