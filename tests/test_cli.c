@@ -1112,6 +1112,44 @@ Test(cli, spectrum_refusals)
                    0, LIST("no-such-state.csv"));
 }
 
+/* energy on spring2: backward Euler loses energy, velocity Verlet keeps
+ * it; one CSV row per sample and integrator. */
+Test(cli, energy_table_and_csv)
+{
+    char out[1024], path[1100];
+    cli_result r;
+    cli_run(&r, "energy", "spring2", "--integrator",
+            "semi-be,velocity-verlet", "--dt", "1e-2", "--t-end", "1",
+            "--samples", "10", "--out", in_tmp(out, "energy"), NULL);
+    cli_assert_ok(&r);
+    const char *row = strstr(r.out, "\nsemi-be ");
+    cr_assert_not_null(row, "%s", r.out);
+    double v[4];
+    cr_assert_eq(sscanf(row + 9, "%lf %lf %lf %lf", &v[0], &v[1], &v[2],
+                        &v[3]), 4, "%s", row);
+    cr_assert_float_eq(v[0], 0.5, 1e-12);
+    cr_assert_lt(v[3], -0.3, "B(T) of semi-be: %g", v[3]);
+    cli_result_free(&r);
+    cli_lines L;
+    snprintf(path, sizeof path, "%s/energy.csv", out);
+    cli_read_lines(path, &L);
+    cr_assert_eq(L.n, 23, "header and 2 x 11 samples, got %zu", L.n);
+    cr_assert_str_eq(L.line[0], "integrator,t,kinetic,potential,total,"
+                                "dissipated,balance");
+    cr_assert(!strncmp(L.line[12], "velocity-verlet,0,", 18), "%s",
+              L.line[12]);
+    cli_lines_free(&L);
+}
+
+Test(cli, energy_refusals)
+{
+    expect_refused(LIST("energy", "spring2", "--integrator", "rk4", "--dt",
+                        "0.3", "--t-end", "1"), 0,
+                   LIST("whole number", "0.3"));
+    expect_refused(LIST("energy", "spring2", "--samples", "0"), 0,
+                   LIST("--samples"));
+}
+
 Test(cli, list_names_problems_integrators_terms)
 {
     cli_result r;
@@ -1130,8 +1168,8 @@ Test(cli, list_names_problems_integrators_terms)
 
 Test(cli, help_on_every_subcommand)
 {
-    const char *cmds[] = {"run",         "eval",      "counts",  "list",
-                          "convergence", "stability", "spectrum"};
+    const char *cmds[] = {"run",         "eval",      "counts",   "list",
+                          "convergence", "stability", "spectrum", "energy"};
     enum { NCMD = sizeof cmds / sizeof cmds[0] };
     cli_result r;
     for (size_t k = 0; k < NCMD; k++) {
