@@ -7,6 +7,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "io/atomic.h"
+
 int cl_cli_fail(const cl_error *err)
 {
     fprintf(stderr, "clothode: %s\n", err->msg[0] ? err->msg
@@ -140,6 +142,20 @@ int cl_cli_problem_main(int argc, char **argv, const cl_cli_spec *spec,
                                         &a, setup, work, ctx);
     cl_cli_sets_free(&a.sets);
     return status;
+}
+
+cl_status cl_cli_write_csv(const char *dir, const char *name,
+                           cl_cli_rows_fn write, const void *ctx, int n,
+                           cl_error *err)
+{
+    char path[4200];
+    cl_afile af;
+    cl_status rc = cl_mkdir_p(dir, err);
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    if (rc || (rc = cl_afile_open(&af, path, err)))
+        return rc;
+    write(af.fp, ctx, n);
+    return cl_afile_commit(&af, err);
 }
 
 cl_status cl_cli_load(cl_config *cfg, const char *problem,

@@ -85,6 +85,13 @@ int cl_cli_problem_main(int argc, char **argv, const cl_cli_spec *spec,
                         cl_cli_setup_fn setup, cl_cli_work_fn work,
                         void *ctx);
 
+/* Write DIR/NAME atomically (DIR made first): write(fp, ctx, n) puts the
+ * rows of the first n results of ctx. */
+typedef void (*cl_cli_rows_fn)(FILE *fp, const void *ctx, int n);
+cl_status cl_cli_write_csv(const char *dir, const char *name,
+                           cl_cli_rows_fn write, const void *ctx, int n,
+                           cl_error *err);
+
 /* Load a problem file and apply the assignments. */
 cl_status cl_cli_load(cl_config *cfg, const char *problem,
                       const cl_cli_sets *sets, cl_error *err);

@@ -7,7 +7,6 @@
 #include "analysis/convergence.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
-#include "io/atomic.h"
 
 #define CONV_MAX_METHODS 32
 
@@ -133,18 +132,11 @@ static void print_result(const cl_conv_result *r)
                r->type->name);
 }
 
-static cl_status write_csv(const char *dir, const cl_conv_result *res, int n,
-                           cl_error *err)
+static void write_rows(FILE *fp, const void *ctx, int n)
 {
-    char path[4200];
-    cl_afile af;
-    cl_status rc = cl_mkdir_p(dir, err);
-    snprintf(path, sizeof path, "%s/convergence.csv", dir);
-    if (rc || (rc = cl_afile_open(&af, path, err)))
-        return rc;
+    const cl_conv_result *res = ctx;
     for (int k = 0; k < n; k++)
-        cl_conv_write_rows(af.fp, &res[k], k == 0);
-    return cl_afile_commit(&af, err);
+        cl_conv_write_rows(fp, &res[k], k == 0);
 }
 
 /* Reference, then every integrator's levels; the CSV holds whatever was
@@ -180,8 +172,10 @@ static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
     }
     cl_error later;
     if (done > (rc ? 1 : 0)) {
-        cl_status rc2 = write_csv(outdir, res, done - (rc ? 1 : 0),
-                                  rc ? &later : err);
+        cl_status rc2 = cl_cli_write_csv(outdir, "convergence.csv",
+                                         write_rows, res,
+                                         done - (rc ? 1 : 0),
+                                         rc ? &later : err);
         rc = rc ? rc : rc2;
     }
     if (!rc && !quiet)

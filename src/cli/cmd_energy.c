@@ -6,7 +6,6 @@
 #include "analysis/energy_balance.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
-#include "io/atomic.h"
 
 #define EB_MAX_METHODS 32
 
@@ -95,18 +94,11 @@ static void print_result(const cl_ebal_result *r)
            r->rc ? r->why.msg : "");
 }
 
-static cl_status write_csv(const char *dir, const cl_ebal_result *res, int n,
-                           cl_error *err)
+static void write_rows(FILE *fp, const void *ctx, int n)
 {
-    char path[4200];
-    cl_afile af;
-    cl_status rc = cl_mkdir_p(dir, err);
-    snprintf(path, sizeof path, "%s/energy.csv", dir);
-    if (rc || (rc = cl_afile_open(&af, path, err)))
-        return rc;
+    const cl_ebal_result *res = ctx;
     for (int k = 0; k < n; k++)
-        cl_ebal_write_rows(af.fp, &res[k], k == 0);
-    return cl_afile_commit(&af, err);
+        cl_ebal_write_rows(fp, &res[k], k == 0);
 }
 
 /* Every request checked, then every integrator in turn; the CSV holds the
@@ -140,7 +132,9 @@ static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
     int ok = done - (rc ? 1 : 0);
     cl_error later;
     if (ok > 0) {
-        cl_status rc2 = write_csv(job->outdir, res, ok, rc ? &later : err);
+        cl_status rc2 = cl_cli_write_csv(job->outdir, "energy.csv",
+                                         write_rows, res, ok,
+                                         rc ? &later : err);
         rc = rc ? rc : rc2;
     }
     if (!rc && !job->quiet)

@@ -6,7 +6,6 @@
 #include "analysis/spectrum.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
-#include "io/atomic.h"
 #include "io/state.h"
 
 static const char spec_help[] =
@@ -96,17 +95,10 @@ static void print_summary(const cl_cli_job *job, const cl_spectrum *sp)
                lim[k].basis);
 }
 
-static cl_status write_csv(const char *dir, const cl_spectrum *sp,
-                           cl_error *err)
+static void write_rows(FILE *fp, const void *ctx, int n)
 {
-    char path[4200];
-    cl_afile af;
-    cl_status rc = cl_mkdir_p(dir, err);
-    snprintf(path, sizeof path, "%s/spectrum.csv", dir);
-    if (rc || (rc = cl_afile_open(&af, path, err)))
-        return rc;
-    cl_spectrum_write(af.fp, sp);
-    return cl_afile_commit(&af, err);
+    (void)n;
+    cl_spectrum_write(fp, ctx);
 }
 
 static cl_status spectrum(cl_model *m, const cl_cli_job *job, void *ctx,
@@ -119,7 +111,8 @@ static cl_status spectrum(cl_model *m, const cl_cli_job *job, void *ctx,
     cl_status rc = x && v ? free_state(m, s, x, v, err)
                           : cl_error_set(err, CL_ENOMEM, "out of memory");
     if (!rc && !(rc = cl_spectrum_compute(m, s->t, x, v, &sp, err)) &&
-        !(rc = write_csv(job->outdir, &sp, err)) && !job->quiet) {
+        !(rc = cl_cli_write_csv(job->outdir, "spectrum.csv", write_rows, &sp,
+                                1, err)) && !job->quiet) {
         print_summary(job, &sp);
         printf("output     %s/spectrum.csv\n", job->outdir);
     }

@@ -7,7 +7,6 @@
 #include "analysis/stability.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
-#include "io/atomic.h"
 
 #define STAB_MAX_METHODS 32
 
@@ -122,18 +121,11 @@ static void print_result(const cl_stab_result *r)
                r->ntrial, r->trial[r->failed].why.msg);
 }
 
-static cl_status write_csv(const char *dir, const cl_stab_result *res, int n,
-                           cl_error *err)
+static void write_rows(FILE *fp, const void *ctx, int n)
 {
-    char path[4200];
-    cl_afile af;
-    cl_status rc = cl_mkdir_p(dir, err);
-    snprintf(path, sizeof path, "%s/stability.csv", dir);
-    if (rc || (rc = cl_afile_open(&af, path, err)))
-        return rc;
+    const cl_stab_result *res = ctx;
     for (int k = 0; k < n; k++)
-        cl_stab_write_rows(af.fp, &res[k], k == 0);
-    return cl_afile_commit(&af, err);
+        cl_stab_write_rows(fp, &res[k], k == 0);
 }
 
 /* Every integrator in turn; the CSV holds the searches that finished, also
@@ -173,7 +165,8 @@ static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
     int ok = done - (rc ? 1 : 0);
     cl_error later;
     if (ok > 0) {
-        cl_status rc2 = write_csv(outdir, res, ok, rc ? &later : err);
+        cl_status rc2 = cl_cli_write_csv(outdir, "stability.csv", write_rows,
+                                         res, ok, rc ? &later : err);
         rc = rc ? rc : rc2;
     }
     if (!rc && !quiet)
