@@ -7,6 +7,7 @@
 #include "analysis/convergence.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
+#include "cli/study.h"
 
 #define CONV_MAX_METHODS 32
 
@@ -71,6 +72,7 @@ typedef struct {
     cl_integrator_opts io[CONV_MAX_METHODS];
     long levels;
     cl_conv_opts co;
+    cl_conv_ref ref;
 } conv_setup;
 
 /* The integrators of [run] integrator; an adaptive one picks its own
@@ -106,8 +108,9 @@ static cl_status read_setup(cl_config *cfg, void *ctx, cl_error *err)
     return rc;
 }
 
-static void print_result(const cl_conv_result *r)
+static void print_result(const void *result)
 {
+    const cl_conv_result *r = result;
     for (int k = 0; k < r->nlev; k++) {
         const cl_conv_level *l = &r->lev[k];
         printf("%-18s %10.3e", k ? "" : r->type->name, l->param);
@@ -132,57 +135,54 @@ static void print_result(const cl_conv_result *r)
                r->type->name);
 }
 
-static void write_rows(FILE *fp, const void *ctx, int n)
+/* The reference (which also checks that the model can be rerun), then
+ * the header. */
+static cl_status begin(cl_model *m, const cl_cli_job *job, void *ctx,
+                       cl_error *err)
 {
-    const cl_conv_result *res = ctx;
-    for (int k = 0; k < n; k++)
-        cl_conv_write_rows(fp, &res[k], k == 0);
+    conv_setup *s = ctx;
+    const cl_cloth *c = cl_model_cloth(m);
+    cl_status rc = cl_conv_reference(m, &s->co, &s->ref, err);
+    if (rc || job->quiet)
+        return rc;
+    printf("problem    %s (%d x %d particles, %zu free), T = %g s\n",
+           job->problem, c->nu, c->nv, c->nfree, s->co.t_end);
+    printf("reference  cvode-bdf rtol %g: %ld steps, floor %.2e m "
+           "(distance to rtol %g)\n", s->co.ref_rtol, s->ref.stats.steps,
+           s->ref.err_x, 10 * s->co.ref_rtol);
+    printf("%-18s %10s %10s %10s %7s %9s %9s\n", "integrator", "dt / rtol",
+           "err_x [m]", "err_v", "order", "steps", "cpu [s]");
+    return CL_OK;
 }
 
-/* Reference, then every integrator's levels; the CSV holds whatever was
- * measured, also when a later integrator could not be run. */
+static cl_status run_one(cl_model *m, void *ctx, int k, void *result,
+                         cl_error *err)
+{
+    const conv_setup *s = ctx;
+    return cl_convergence(m, s->type[k], &s->io[k], (int)s->levels, &s->co,
+                          &s->ref, result, err);
+}
+
+static void rows(FILE *fp, const void *result, bool header)
+{
+    cl_conv_write_rows(fp, result, header);
+}
+
+static void end(void *ctx)
+{
+    cl_conv_ref_free(&((conv_setup *)ctx)->ref);
+}
+
+static const cl_cli_study conv_study = {
+    .csv = "convergence.csv", .size = sizeof(cl_conv_result),
+    .begin = begin, .run = run_one, .print = print_result, .rows = rows,
+    .end = end};
+
 static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
                        cl_error *err)
 {
     const conv_setup *s = ctx;
-    const char *problem = job->problem, *outdir = job->outdir;
-    bool quiet = job->quiet;
-    cl_conv_ref ref;
-    cl_conv_result *res = calloc((size_t)s->nm, sizeof *res);
-    if (!res)
-        return cl_error_set(err, CL_ENOMEM, "out of memory");
-    cl_status rc = cl_conv_reference(m, &s->co, &ref, err);
-    const cl_cloth *c = cl_model_cloth(m);
-    if (!rc && !quiet) {
-        printf("problem    %s (%d x %d particles, %zu free), T = %g s\n",
-               problem, c->nu, c->nv, c->nfree, s->co.t_end);
-        printf("reference  cvode-bdf rtol %g: %ld steps, floor %.2e m "
-               "(distance to rtol %g)\n", s->co.ref_rtol, ref.stats.steps,
-               ref.err_x, 10 * s->co.ref_rtol);
-        printf("%-18s %10s %10s %10s %7s %9s %9s\n", "integrator",
-               "dt / rtol", "err_x [m]", "err_v", "order", "steps", "cpu [s]");
-    }
-    int done = 0;
-    for (; !rc && done < s->nm; done++) {
-        rc = cl_convergence(m, s->type[done], &s->io[done], (int)s->levels,
-                            &s->co, &ref, &res[done], err);
-        if (!rc && !quiet)
-            print_result(&res[done]);
-        fflush(stdout);
-    }
-    cl_error later;
-    if (done > (rc ? 1 : 0)) {
-        cl_status rc2 = cl_cli_write_csv(outdir, "convergence.csv",
-                                         write_rows, res,
-                                         done - (rc ? 1 : 0),
-                                         rc ? &later : err);
-        rc = rc ? rc : rc2;
-    }
-    if (!rc && !quiet)
-        printf("output     %s/convergence.csv\n", outdir);
-    cl_conv_ref_free(&ref);
-    free(res);
-    return rc;
+    return cl_cli_study_run(m, job, &conv_study, s->nm, ctx, err);
 }
 
 int cl_cmd_convergence(int argc, char **argv)

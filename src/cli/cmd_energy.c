@@ -6,6 +6,7 @@
 #include "analysis/energy_balance.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
+#include "cli/study.h"
 
 #define EB_MAX_METHODS 32
 
@@ -84,8 +85,9 @@ static cl_status read_setup(cl_config *cfg, void *ctx, cl_error *err)
                           &s->samples, err);
 }
 
-static void print_result(const cl_ebal_result *r)
+static void print_result(const void *result)
 {
+    const cl_ebal_result *r = result;
     const cl_ebal_sample *a = &r->s[0], *b = &r->s[r->n - 1];
     printf("%-18s %11.4e %11.4e %11.4e %11.4e %11.4e %9.2e %8ld %8.3f%s%s\n",
            r->type->name, a->total, b->total, b->dissipated, b->balance,
@@ -94,16 +96,8 @@ static void print_result(const cl_ebal_result *r)
            r->rc ? r->why.msg : "");
 }
 
-static void write_rows(FILE *fp, const void *ctx, int n)
-{
-    const cl_ebal_result *res = ctx;
-    for (int k = 0; k < n; k++)
-        cl_ebal_write_rows(fp, &res[k], k == 0);
-}
-
-/* Every request checked, then every integrator in turn; the CSV holds the
- * runs made, also when a later one could not be (no memory). */
-static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
+/* Every request checked, then the header. */
+static cl_status begin(cl_model *m, const cl_cli_job *job, void *ctx,
                        cl_error *err)
 {
     const eb_setup *s = ctx;
@@ -111,38 +105,44 @@ static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
     for (int k = 0; !rc && k < s->nm; k++)
         rc = cl_ebal_check(m, s->type[k], &s->io[k], s->t_end, s->samples,
                            err);
-    cl_ebal_result *res = rc ? NULL : calloc((size_t)s->nm, sizeof *res);
-    if (rc || !res)
-        return rc ? rc : cl_error_set(err, CL_ENOMEM, "out of memory");
-    if (!job->quiet) {
-        printf("problem    %s, T = %g s, %ld samples\n", job->problem,
-               s->t_end, s->samples);
-        printf("%-18s %11s %11s %11s %11s %11s %9s %8s %8s\n", "integrator",
-               "E(0) [J]", "E(T)", "W(T)", "B(T)", "max |B|", "max|B|/S",
-               "steps", "cpu [s]");
-    }
-    int done = 0;
-    for (; !rc && done < s->nm; done++) {
-        rc = cl_ebal_run(m, s->type[done], &s->io[done], s->t_end,
-                         s->samples, s->max_stretch, &res[done], err);
-        if (!rc && !job->quiet && res[done].n)
-            print_result(&res[done]);
-        fflush(stdout);
-    }
-    int ok = done - (rc ? 1 : 0);
-    cl_error later;
-    if (ok > 0) {
-        cl_status rc2 = cl_cli_write_csv(job->outdir, "energy.csv",
-                                         write_rows, res, ok,
-                                         rc ? &later : err);
-        rc = rc ? rc : rc2;
-    }
-    if (!rc && !job->quiet)
-        printf("output     %s/energy.csv\n", job->outdir);
-    for (int k = 0; k < s->nm; k++)
-        cl_ebal_free(&res[k]);
-    free(res);
-    return rc;
+    if (rc || job->quiet)
+        return rc;
+    printf("problem    %s, T = %g s, %ld samples\n", job->problem, s->t_end,
+           s->samples);
+    printf("%-18s %11s %11s %11s %11s %11s %9s %8s %8s\n", "integrator",
+           "E(0) [J]", "E(T)", "W(T)", "B(T)", "max |B|", "max|B|/S",
+           "steps", "cpu [s]");
+    return CL_OK;
+}
+
+static cl_status run_one(cl_model *m, void *ctx, int k, void *result,
+                         cl_error *err)
+{
+    const eb_setup *s = ctx;
+    return cl_ebal_run(m, s->type[k], &s->io[k], s->t_end, s->samples,
+                       s->max_stretch, result, err);
+}
+
+static void rows(FILE *fp, const void *result, bool header)
+{
+    cl_ebal_write_rows(fp, result, header);
+}
+
+static void release(void *result)
+{
+    cl_ebal_free(result);
+}
+
+static const cl_cli_study eb_study = {
+    .csv = "energy.csv", .size = sizeof(cl_ebal_result), .begin = begin,
+    .run = run_one, .print = print_result, .rows = rows,
+    .release = release};
+
+static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
+                       cl_error *err)
+{
+    const eb_setup *s = ctx;
+    return cl_cli_study_run(m, job, &eb_study, s->nm, ctx, err);
 }
 
 int cl_cmd_energy(int argc, char **argv)

@@ -7,6 +7,7 @@
 #include "analysis/stability.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
+#include "cli/study.h"
 
 #define STAB_MAX_METHODS 32
 
@@ -107,8 +108,9 @@ static cl_status read_setup(cl_config *cfg, void *ctx, cl_error *err)
                           &o->checks, err);
 }
 
-static void print_result(const cl_stab_result *r)
+static void print_result(const void *result)
 {
+    const cl_stab_result *r = result;
     printf("%-18s ", r->type->name);
     if (isnan(r->dt_unstable))
         printf("stable at dt_max = %.4g (%d run)\n", r->dt_stable,
@@ -121,58 +123,46 @@ static void print_result(const cl_stab_result *r)
                r->ntrial, r->trial[r->failed].why.msg);
 }
 
-static void write_rows(FILE *fp, const void *ctx, int n)
-{
-    const cl_stab_result *res = ctx;
-    for (int k = 0; k < n; k++)
-        cl_stab_write_rows(fp, &res[k], k == 0);
-}
-
-/* Every integrator in turn; the CSV holds the searches that finished, also
- * when a later one failed. */
-static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
+/* Every request checked, then the header. */
+static cl_status begin(cl_model *m, const cl_cli_job *job, void *ctx,
                        cl_error *err)
 {
     const stab_setup *s = ctx;
-    const char *problem = job->problem, *outdir = job->outdir;
-    bool quiet = job->quiet;
-    cl_stab_result *res = calloc((size_t)s->nm, sizeof *res);
-    if (!res)
-        return cl_error_set(err, CL_ENOMEM, "out of memory");
     const cl_cloth *c = cl_model_cloth(m);
     cl_status rc = CL_OK;
     for (int k = 0; !rc && k < s->nm; k++)
         rc = cl_stab_check(m, s->type[k], &s->so, err);
-    if (rc) {
-        free(res);
+    if (rc || job->quiet)
         return rc;
-    }
-    if (!quiet) {
-        printf("problem    %s (%d x %d particles, %zu free), T = %g s, "
-               "max_stretch %g, %ld checks per run\n", problem, c->nu, c->nv,
-               c->nfree, s->so.t_end, s->so.max_stretch, s->so.checks);
-        printf("%-18s %11s %11s %5s  %s\n", "integrator", "stable dt",
-               "unstable dt", "runs", "why the unstable run failed");
-    }
-    int done = 0;
-    for (; !rc && done < s->nm; done++) {
-        rc = cl_stability(m, s->type[done], &s->io[done], &s->so,
-                          &res[done], err);
-        if (!rc && !quiet)
-            print_result(&res[done]);
-        fflush(stdout);
-    }
-    int ok = done - (rc ? 1 : 0);
-    cl_error later;
-    if (ok > 0) {
-        cl_status rc2 = cl_cli_write_csv(outdir, "stability.csv", write_rows,
-                                         res, ok, rc ? &later : err);
-        rc = rc ? rc : rc2;
-    }
-    if (!rc && !quiet)
-        printf("output     %s/stability.csv\n", outdir);
-    free(res);
-    return rc;
+    printf("problem    %s (%d x %d particles, %zu free), T = %g s, "
+           "max_stretch %g, %ld checks per run\n", job->problem, c->nu,
+           c->nv, c->nfree, s->so.t_end, s->so.max_stretch, s->so.checks);
+    printf("%-18s %11s %11s %5s  %s\n", "integrator", "stable dt",
+           "unstable dt", "runs", "why the unstable run failed");
+    return CL_OK;
+}
+
+static cl_status run_one(cl_model *m, void *ctx, int k, void *result,
+                         cl_error *err)
+{
+    const stab_setup *s = ctx;
+    return cl_stability(m, s->type[k], &s->io[k], &s->so, result, err);
+}
+
+static void rows(FILE *fp, const void *result, bool header)
+{
+    cl_stab_write_rows(fp, result, header);
+}
+
+static const cl_cli_study stab_study = {
+    .csv = "stability.csv", .size = sizeof(cl_stab_result), .begin = begin,
+    .run = run_one, .print = print_result, .rows = rows};
+
+static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
+                       cl_error *err)
+{
+    const stab_setup *s = ctx;
+    return cl_cli_study_run(m, job, &stab_study, s->nm, ctx, err);
 }
 
 int cl_cmd_stability(int argc, char **argv)

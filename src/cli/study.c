@@ -1,0 +1,49 @@
+/* The study loop of convergence, stability and energy (see study.h). */
+#include "cli/study.h"
+
+#include <stdlib.h>
+
+typedef struct {
+    const cl_cli_study *st;
+    const char *res;
+} study_rows;
+
+static void write_rows(FILE *fp, const void *ctx, int n)
+{
+    const study_rows *r = ctx;
+    for (int k = 0; k < n; k++)
+        r->st->rows(fp, r->res + (size_t)k * r->st->size, k == 0);
+}
+
+cl_status cl_cli_study_run(cl_model *m, const cl_cli_job *job,
+                           const cl_cli_study *st, int n, void *ctx,
+                           cl_error *err)
+{
+    char *res = calloc((size_t)n, st->size);
+    if (!res)
+        return cl_error_set(err, CL_ENOMEM, "out of memory");
+    cl_status rc = st->begin(m, job, ctx, err);
+    int done = 0;
+    for (; !rc && done < n; done++) {
+        rc = st->run(m, ctx, done, res + (size_t)done * st->size, err);
+        if (!rc && !job->quiet)
+            st->print(res + (size_t)done * st->size);
+        fflush(stdout);
+    }
+    int ok = done - (rc ? 1 : 0);
+    cl_error later;
+    if (ok > 0) {
+        study_rows rows = {st, res};
+        cl_status rc2 = cl_cli_write_csv(job->outdir, st->csv, write_rows,
+                                         &rows, ok, rc ? &later : err);
+        rc = rc ? rc : rc2;
+    }
+    if (!rc && !job->quiet)
+        printf("output     %s/%s\n", job->outdir, st->csv);
+    for (int k = 0; st->release && k < done; k++)
+        st->release(res + (size_t)k * st->size);
+    if (st->end)
+        st->end(ctx);
+    free(res);
+    return rc;
+}
