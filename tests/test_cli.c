@@ -1150,6 +1150,34 @@ Test(cli, energy_refusals)
                    LIST("--samples"));
 }
 
+/* workprecision: integrator:linsol entries, a ranking line per decade of
+ * error, the CSV labelled with the entries. */
+Test(cli, workprecision_ranking_and_csv)
+{
+    char out[1024], path[1100];
+    cli_result r;
+    cli_run(&r, "workprecision", "spring2", "--integrator",
+            "rk4,semi-bdf2:pcg", "--dt", "1e-2", "--t-end", "1", "--levels",
+            "3", "--out", in_tmp(out, "wp"), NULL);
+    cli_assert_ok(&r);
+    cr_assert_not_null(strstr(r.out, "\nsemi-bdf2:pcg "), "%s", r.out);
+    cr_assert_not_null(strstr(r.out, "\n<= 1e-03 "), "%s", r.out);
+    cli_result_free(&r);
+    cli_lines L;
+    snprintf(path, sizeof path, "%s/workprecision.csv", out);
+    cli_read_lines(path, &L);
+    cr_assert_eq(L.n, 7, "%zu lines", L.n);
+    cr_assert(!strncmp(L.line[4], "semi-bdf2:pcg,dt,0.01,", 22), "%s",
+              L.line[4]);
+    cli_lines_free(&L);
+    expect_refused(LIST("workprecision", "spring2", "--integrator",
+                        "rk4:klu", "--dt", "1e-2"), 0,
+                   LIST("rk4", "no choice of linear solver"));
+    expect_refused(LIST("workprecision", "spring2", "--integrator",
+                        "semi-bdf2:nosuch", "--dt", "1e-2"), 0,
+                   LIST("semi-bdf2:nosuch", "nosuch"));
+}
+
 Test(cli, list_names_problems_integrators_terms)
 {
     cli_result r;
@@ -1168,8 +1196,9 @@ Test(cli, list_names_problems_integrators_terms)
 
 Test(cli, help_on_every_subcommand)
 {
-    const char *cmds[] = {"run",         "eval",      "counts",   "list",
-                          "convergence", "stability", "spectrum", "energy"};
+    const char *cmds[] = {"run",       "eval",     "counts",
+                          "list",      "convergence", "workprecision",
+                          "stability", "spectrum", "energy"};
     enum { NCMD = sizeof cmds / sizeof cmds[0] };
     cli_result r;
     for (size_t k = 0; k < NCMD; k++) {

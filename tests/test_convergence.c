@@ -181,3 +181,19 @@ Test(convergence, tearing_model_refused)
     cl_model_free(m);
     cl_config_free(cfg);
 }
+
+/* Work-precision: the cheapest level that reaches a target error. */
+Test(convergence, cheapest_level_for_a_target)
+{
+    cv_case c;
+    cv_open(&c, NULL, 1.0);
+    cl_conv_result r = cv_levels(&c, "rk4", 1e-2, 3);
+    double e1 = r.lev[1].err_x;
+    cr_assert_eq(cl_conv_cheapest(&r, e1), fmin(r.lev[1].stats.cpu,
+                                                r.lev[2].stats.cpu));
+    cr_assert(isnan(cl_conv_cheapest(&r, r.lev[2].err_x / 2)));
+    cr_assert_eq(cl_conv_cheapest(&r, 1.0),
+                 fmin(r.lev[0].stats.cpu,
+                      fmin(r.lev[1].stats.cpu, r.lev[2].stats.cpu)));
+    cv_close(&c);
+}

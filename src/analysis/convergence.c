@@ -143,6 +143,7 @@ cl_status cl_convergence(cl_model *m, const cl_integrator_type *type,
     cl_trial t = {0};
     memset(r, 0, sizeof *r);
     r->type = type;
+    r->label = type->name;
     r->fixed = type->fixed_step;
     cl_status rc = cl_conv_check(type, io, levels, o, err);
     if (!rc)
@@ -161,6 +162,16 @@ cl_status cl_convergence(cl_model *m, const cl_integrator_type *type,
     return rc;
 }
 
+double cl_conv_cheapest(const cl_conv_result *r, double target)
+{
+    double cpu = NAN;
+    for (int k = 0; k < r->nlev; k++)
+        if (!r->lev[k].rc && r->lev[k].err_x <= target &&
+            !(r->lev[k].stats.cpu >= cpu))
+            cpu = r->lev[k].stats.cpu;
+    return cpu;
+}
+
 void cl_conv_write_rows(FILE *fp, const cl_conv_result *r, bool header)
 {
     if (header)
@@ -169,7 +180,7 @@ void cl_conv_write_rows(FILE *fp, const cl_conv_result *r, bool header)
     for (int k = 0; k < r->nlev; k++) {
         const cl_conv_level *l = &r->lev[k];
         fprintf(fp, "%s,%s,%.9g,%.9g,%.9g,%.6g,%d,%ld,%ld,%.6g,%s\n",
-                r->type->name, r->fixed ? "dt" : "rtol", l->param, l->err_x,
+                r->label, r->fixed ? "dt" : "rtol", l->param, l->err_x,
                 l->err_v, l->order, l->fitted, l->stats.steps,
                 l->stats.rhs_evals, l->stats.cpu,
                 l->rc ? cl_status_name(l->rc) : "ok");

@@ -65,6 +65,7 @@ typedef struct {
     cl_conv_level lev[CL_CONV_MAX_LEVELS];
     int nfit;
     double slope_x, slope_v; /* fitted orders (NAN if nfit < 2) */
+    const char *label;    /* how rows name the method (type->name) */
 } cl_conv_result;
 
 /* Run the reference (allocates ref->x, ref->v; free with
@@ -87,6 +88,10 @@ cl_status cl_convergence(cl_model *m, const cl_integrator_type *type,
                          const cl_integrator_opts *io, int levels,
                          const cl_conv_opts *o, const cl_conv_ref *ref,
                          cl_conv_result *r, cl_error *err);
+
+/* Work-precision: the least CPU time of the levels that ran and reached
+ * e_x <= target (NAN if none did). */
+double cl_conv_cheapest(const cl_conv_result *r, double target);
 
 /* One CSV row per level, header first when `header`:
  * integrator,param,value,err_x,err_v,order,fitted,steps,rhs_evals,cpu,status */

@@ -71,6 +71,7 @@ cl_status cl_ebal_run(cl_model *m, const cl_integrator_type *type,
     cl_trial t = {0};
     memset(r, 0, sizeof *r);
     r->type = type;
+    r->label = type->name;
     cl_status rc = cl_ebal_check(m, type, io, T, samples, err);
     if (rc)
         return rc;
@@ -102,7 +103,7 @@ void cl_ebal_write_rows(FILE *fp, const cl_ebal_result *r, bool header)
                     "balance\n");
     for (size_t k = 0; k < r->n; k++) {
         const cl_ebal_sample *s = &r->s[k];
-        fprintf(fp, "%s,%.9g,%.12g,%.12g,%.12g,%.12g,%.12g\n", r->type->name,
+        fprintf(fp, "%s,%.9g,%.12g,%.12g,%.12g,%.12g,%.12g\n", r->label,
                 s->t, s->kinetic, s->potential, s->total, s->dissipated,
                 s->balance);
     }

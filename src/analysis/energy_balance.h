@@ -39,6 +39,7 @@ typedef struct {
     double scale;         /* S */
     double balance_max;   /* max |B| */
     cl_stats stats;
+    const char *label;    /* how rows name the method (type->name) */
 } cl_ebal_result;
 
 /* Whether the run can be made: CL_EINVAL for samples < 1 or a T that is

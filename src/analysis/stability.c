@@ -110,6 +110,7 @@ cl_status cl_stability(cl_model *m, const cl_integrator_type *type,
     cl_trial t = {0};
     memset(r, 0, sizeof *r);
     r->type = type;
+    r->label = type->name;
     r->dt_stable = r->dt_unstable = NAN;
     r->failed = -1;
     cl_status rc = cl_stab_check(m, type, o, err);
@@ -141,7 +142,7 @@ void cl_stab_write_rows(FILE *fp, const cl_stab_result *r, bool header)
         fprintf(fp, "integrator,dt,steps,stable,status,cpu,reason\n");
     for (int k = 0; k < r->ntrial; k++) {
         const cl_stab_trial *t = &r->trial[k];
-        fputs(r->type->name, fp);
+        fputs(r->label, fp);
         fprintf(fp, ",%.9g,%ld,%d,%s,%.6g,\"", t->dt, t->nsteps,
                 t->rc == CL_OK, t->rc ? cl_status_name(t->rc) : "ok",
                 t->stats.cpu);

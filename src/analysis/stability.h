@@ -52,6 +52,7 @@ typedef struct {
     double dt_stable;      /* NAN: no stable step down to dt_min */
     double dt_unstable;    /* NAN: stable at dt_max */
     int failed;            /* index of the trial at dt_unstable, or -1 */
+    const char *label;     /* how rows name the method (type->name) */
 } cl_stab_result;
 
 /* Whether the search can be run: CL_EINVAL for an adaptive integrator or

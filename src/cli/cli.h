@@ -109,13 +109,25 @@ cl_status cl_cli_integrator_opts(cl_config *cfg,
                                  bool need_dt, cl_integrator_opts *io,
                                  cl_error *err);
 
-/* [run] integrator as a comma-separated list of at most max registered
- * names (default cvode-bdf): their types and options (as
- * cl_cli_integrator_opts) into type[], io[]; their number into *n. */
-cl_status cl_cli_integrator_list(cl_config *cfg, bool need_dt, int max,
-                                 const cl_integrator_type **type,
-                                 cl_integrator_opts *io, int *n,
-                                 cl_error *err);
+/* One entry of [run] integrator as a list "NAME[:LINSOL],...": the
+ * integrator, its options (cl_cli_integrator_opts; a LINSOL given here
+ * overrides [run] linsol) and how it is labelled in tables. */
+typedef struct {
+    const cl_integrator_type *type;
+    cl_integrator_opts io;  /* io.linsol may point into linsol */
+    char linsol[32];
+    char label[64];         /* the entry as written */
+} cl_cli_method;
+
+/* The entries of [run] integrator (default cvode-bdf), at most max. */
+cl_status cl_cli_methods(cl_config *cfg, bool need_dt, int max,
+                         cl_cli_method *m, int *n, cl_error *err);
+
+/* Create and free every method on the model's initial state, so that an
+ * option it refuses (an unknown linear solver, a cloth too large for a
+ * dense method) stops a study before it starts. */
+cl_status cl_cli_methods_try(cl_model *model, const cl_cli_method *m, int n,
+                             cl_error *err);
 
 /* Progress bar on stderr (only when stderr is a terminal). */
 void cl_cli_progress(void *ctx, double fraction);

@@ -19,7 +19,8 @@ static const char conv_help[] =
     "Prints the errors, the order between levels and the least-squares\n"
     "order; writes convergence.csv into the output directory.\n"
     "\n"
-    "  --integrator LIST  integrators, comma-separated; [run] integrator\n"
+    "  --integrator LIST  integrators, comma-separated, each NAME or\n"
+    "                     NAME:LINSOL (cvode-bdf:pcg); [run] integrator\n"
     "  --dt H             first step of the fixed-step integrators (s); the\n"
     "                     adaptive ones choose their own initial step\n"
     "  --rtol R --atol A  first tolerances of the adaptive integrators\n"
@@ -65,25 +66,36 @@ static const char *const conv_label[128] = {
 static const cl_cli_spec conv_spec = {"convergence", conv_help, conv_opts,
                                       conv_key, conv_label};
 
+static const char wp_help[] =
+    "usage: clothode workprecision PROBLEM [options]\n"
+    "The runs of clothode convergence (the same options), ranked by cost:\n"
+    "each integrator, or integrator:linsol (cvode-bdf:pcg), at its levels\n"
+    "with the error reached and its CPU time; then, for every decade of\n"
+    "error, the integrator that reached it in the least CPU time and the\n"
+    "others' times relative to it.  One run per level: repeat for timing\n"
+    "noise.  Writes workprecision.csv (the columns of convergence.csv).\n";
+static const cl_cli_spec wp_spec = {"workprecision", wp_help, conv_opts,
+                                    conv_key, conv_label};
+
 /* The study: integrators with their options, levels, reference. */
 typedef struct {
     int nm;
-    const cl_integrator_type *type[CONV_MAX_METHODS];
-    cl_integrator_opts io[CONV_MAX_METHODS];
+    cl_cli_method m[CONV_MAX_METHODS];
     long levels;
     cl_conv_opts co;
     cl_conv_ref ref;
+    const cl_cli_study *study; /* convergence or workprecision */
 } conv_setup;
 
 /* The integrators of [run] integrator; an adaptive one picks its own
  * first step (dt is for the fixed-step ones). */
 static cl_status read_methods(cl_config *cfg, conv_setup *s, cl_error *err)
 {
-    cl_status rc = cl_cli_integrator_list(cfg, true, CONV_MAX_METHODS,
-                                          s->type, s->io, &s->nm, err);
+    cl_status rc = cl_cli_methods(cfg, true, CONV_MAX_METHODS, s->m, &s->nm,
+                                  err);
     for (int k = 0; !rc && k < s->nm; k++)
-        if (!s->type[k]->fixed_step)
-            s->io[k].dt = 0.0;
+        if (!s->m[k].type->fixed_step)
+            s->m[k].io.dt = 0.0;
     return rc;
 }
 
@@ -103,8 +115,8 @@ static cl_status read_setup(cl_config *cfg, void *ctx, cl_error *err)
                                1e-4, &s->co.ref_rtol, err)))
         return rc;
     for (int k = 0; !rc && k < s->nm; k++)
-        rc = cl_conv_check(s->type[k], &s->io[k], (int)s->levels, &s->co,
-                           err);
+        rc = cl_conv_check(s->m[k].type, &s->m[k].io, (int)s->levels,
+                           &s->co, err);
     return rc;
 }
 
@@ -113,7 +125,7 @@ static void print_result(const void *result)
     const cl_conv_result *r = result;
     for (int k = 0; k < r->nlev; k++) {
         const cl_conv_level *l = &r->lev[k];
-        printf("%-18s %10.3e", k ? "" : r->type->name, l->param);
+        printf("%-18s %10.3e", k ? "" : r->label, l->param);
         if (l->rc) {
             printf("   failed: %s\n", l->why.msg);
             continue;
@@ -128,12 +140,14 @@ static void print_result(const void *result)
     }
     if (r->nfit >= 2)
         printf("%-18s %s: fitted order %.2f (positions), %.2f (velocities) "
-               "over %d levels\n", "", r->type->name, r->slope_x,
+               "over %d levels\n", "", r->label, r->slope_x,
                r->slope_v, r->nfit);
     else
         printf("%-18s %s: no fit, fewer than 2 levels above the floor\n", "",
-               r->type->name);
+               r->label);
 }
+
+static const cl_cli_study wp_study;
 
 /* The reference (which also checks that the model can be rerun), then
  * the header. */
@@ -142,16 +156,22 @@ static cl_status begin(cl_model *m, const cl_cli_job *job, void *ctx,
 {
     conv_setup *s = ctx;
     const cl_cloth *c = cl_model_cloth(m);
-    cl_status rc = cl_conv_reference(m, &s->co, &s->ref, err);
-    if (rc || job->quiet)
+    cl_status rc = cl_cli_methods_try(m, s->m, s->nm, err);
+    if (rc || (rc = cl_conv_reference(m, &s->co, &s->ref, err)) ||
+        job->quiet)
         return rc;
     printf("problem    %s (%d x %d particles, %zu free), T = %g s\n",
            job->problem, c->nu, c->nv, c->nfree, s->co.t_end);
     printf("reference  cvode-bdf rtol %g: %ld steps, floor %.2e m "
            "(distance to rtol %g)\n", s->co.ref_rtol, s->ref.stats.steps,
            s->ref.err_x, 10 * s->co.ref_rtol);
-    printf("%-18s %10s %10s %10s %7s %9s %9s\n", "integrator", "dt / rtol",
-           "err_x [m]", "err_v", "order", "steps", "cpu [s]");
+    if (s->study == &wp_study)
+        printf("%-18s %10s %10s %9s %9s %9s\n", "integrator", "dt / rtol",
+               "err_x [m]", "cpu [s]", "steps", "rhs");
+    else
+        printf("%-18s %10s %10s %10s %7s %9s %9s\n", "integrator",
+               "dt / rtol", "err_x [m]", "err_v", "order", "steps",
+               "cpu [s]");
     return CL_OK;
 }
 
@@ -159,8 +179,11 @@ static cl_status run_one(cl_model *m, void *ctx, int k, void *result,
                          cl_error *err)
 {
     const conv_setup *s = ctx;
-    return cl_convergence(m, s->type[k], &s->io[k], (int)s->levels, &s->co,
-                          &s->ref, result, err);
+    cl_conv_result *r = result;
+    cl_status rc = cl_convergence(m, s->m[k].type, &s->m[k].io,
+                                  (int)s->levels, &s->co, &s->ref, r, err);
+    r->label = s->m[k].label;
+    return rc;
 }
 
 static void rows(FILE *fp, const void *result, bool header)
@@ -173,20 +196,88 @@ static void end(void *ctx)
     cl_conv_ref_free(&((conv_setup *)ctx)->ref);
 }
 
+/* ---- workprecision: the same runs, ranked by CPU time per accuracy ---- */
+
+static void print_wp(const void *result)
+{
+    const cl_conv_result *r = result;
+    for (int k = 0; k < r->nlev; k++) {
+        const cl_conv_level *l = &r->lev[k];
+        printf("%-18s %10.3e", k ? "" : r->label, l->param);
+        if (l->rc)
+            printf("   failed: %s\n", l->why.msg);
+        else
+            printf(" %10.3e %9.3f %9ld %9ld\n", l->err_x, l->stats.cpu,
+                   l->stats.steps, l->stats.rhs_evals);
+    }
+}
+
+/* One row per decade of error reached: the cheapest method and the
+ * others' CPU time relative to it. */
+static void print_ranking(const cl_conv_result *res, int n, double target)
+{
+    int order[CONV_MAX_METHODS], m = 0;
+    for (int k = 0; k < n; k++)
+        if (!isnan(cl_conv_cheapest(&res[k], target)))
+            order[m++] = k;
+    for (int i = 1; i < m; i++) /* insertion sort by CPU time */
+        for (int j = i; j > 0 && cl_conv_cheapest(&res[order[j]], target) <
+                                     cl_conv_cheapest(&res[order[j - 1]],
+                                                      target); j--) {
+            int t = order[j];
+            order[j] = order[j - 1];
+            order[j - 1] = t;
+        }
+    double best = cl_conv_cheapest(&res[order[0]], target);
+    printf("<= %-8.0e %-18s %8.3f s", target, res[order[0]].label, best);
+    for (int i = 1; i < m; i++)
+        printf("%s %s %.3gx", i == 1 ? "  then" : ",", res[order[i]].label,
+               cl_conv_cheapest(&res[order[i]], target) / best);
+    printf("\n");
+}
+
+static void summary_wp(const void *results, int n)
+{
+    const cl_conv_result *res = results;
+    double lo = INFINITY, hi = 0.0;
+    for (int k = 0; k < n; k++)
+        for (int l = 0; l < res[k].nlev; l++)
+            if (res[k].lev[l].fitted) {
+                lo = fmin(lo, res[k].lev[l].err_x);
+                hi = fmax(hi, res[k].lev[l].err_x);
+            }
+    if (!(lo <= hi))
+        return;
+    printf("%-11s %-18s %10s\n", "error [m]", "fastest", "cpu");
+    for (double t = pow(10, ceil(log10(lo))); t <= 10 * hi; t *= 10)
+        print_ranking(res, n, t);
+}
+
 static const cl_cli_study conv_study = {
     .csv = "convergence.csv", .size = sizeof(cl_conv_result),
     .begin = begin, .run = run_one, .print = print_result, .rows = rows,
     .end = end};
 
+static const cl_cli_study wp_study = {
+    .csv = "workprecision.csv", .size = sizeof(cl_conv_result),
+    .begin = begin, .run = run_one, .print = print_wp,
+    .summary = summary_wp, .rows = rows, .end = end};
+
 static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
                        cl_error *err)
 {
     const conv_setup *s = ctx;
-    return cl_cli_study_run(m, job, &conv_study, s->nm, ctx, err);
+    return cl_cli_study_run(m, job, s->study, s->nm, ctx, err);
 }
 
 int cl_cmd_convergence(int argc, char **argv)
 {
-    conv_setup s = {0};
+    conv_setup s = {.study = &conv_study};
     return cl_cli_problem_main(argc, argv, &conv_spec, read_setup, study, &s);
+}
+
+int cl_cmd_workprecision(int argc, char **argv)
+{
+    conv_setup s = {.study = &wp_study};
+    return cl_cli_problem_main(argc, argv, &wp_spec, read_setup, study, &s);
 }

@@ -61,8 +61,7 @@ static const cl_cli_spec eb_spec = {"energy", eb_help, eb_opts, eb_key,
 
 typedef struct {
     int nm;
-    const cl_integrator_type *type[EB_MAX_METHODS];
-    cl_integrator_opts io[EB_MAX_METHODS];
+    cl_cli_method m[EB_MAX_METHODS];
     double t_end, max_stretch;
     long samples;
 } eb_setup;
@@ -71,16 +70,16 @@ static cl_status read_setup(cl_config *cfg, void *ctx, cl_error *err)
 {
     eb_setup *s = ctx;
     cl_status rc;
-    if ((rc = cl_cli_integrator_list(cfg, true, EB_MAX_METHODS, s->type,
-                                     s->io, &s->nm, err)) ||
+    if ((rc = cl_cli_methods(cfg, true, EB_MAX_METHODS, s->m, &s->nm,
+                             err)) ||
         (rc = cl_config_double(cfg, "run", "t_end", 2.0, 1e-300, INFINITY,
                                &s->t_end, err)) ||
         (rc = cl_config_double(cfg, "run", "max_stretch", 10.0, 1.0,
                                INFINITY, &s->max_stretch, err)))
         return rc;
     for (int k = 0; k < s->nm; k++)
-        if (!s->type[k]->fixed_step)
-            s->io[k].dt = 0.0; /* not CVODE's first step: its own */
+        if (!s->m[k].type->fixed_step)
+            s->m[k].io.dt = 0.0; /* not CVODE's first step: its own */
     return cl_config_long(cfg, "energy", "samples", 1000, 1, 100000000,
                           &s->samples, err);
 }
@@ -90,7 +89,7 @@ static void print_result(const void *result)
     const cl_ebal_result *r = result;
     const cl_ebal_sample *a = &r->s[0], *b = &r->s[r->n - 1];
     printf("%-18s %11.4e %11.4e %11.4e %11.4e %11.4e %9.2e %8ld %8.3f%s%s\n",
-           r->type->name, a->total, b->total, b->dissipated, b->balance,
+           r->label, a->total, b->total, b->dissipated, b->balance,
            r->balance_max, r->scale > 0 ? r->balance_max / r->scale : NAN,
            r->stats.steps, r->stats.cpu, r->rc ? "  failed: " : "",
            r->rc ? r->why.msg : "");
@@ -101,10 +100,10 @@ static cl_status begin(cl_model *m, const cl_cli_job *job, void *ctx,
                        cl_error *err)
 {
     const eb_setup *s = ctx;
-    cl_status rc = CL_OK;
+    cl_status rc = cl_cli_methods_try(m, s->m, s->nm, err);
     for (int k = 0; !rc && k < s->nm; k++)
-        rc = cl_ebal_check(m, s->type[k], &s->io[k], s->t_end, s->samples,
-                           err);
+        rc = cl_ebal_check(m, s->m[k].type, &s->m[k].io, s->t_end,
+                           s->samples, err);
     if (rc || job->quiet)
         return rc;
     printf("problem    %s, T = %g s, %ld samples\n", job->problem, s->t_end,
@@ -119,8 +118,11 @@ static cl_status run_one(cl_model *m, void *ctx, int k, void *result,
                          cl_error *err)
 {
     const eb_setup *s = ctx;
-    return cl_ebal_run(m, s->type[k], &s->io[k], s->t_end, s->samples,
-                       s->max_stretch, result, err);
+    cl_ebal_result *r = result;
+    cl_status rc = cl_ebal_run(m, s->m[k].type, &s->m[k].io, s->t_end,
+                               s->samples, s->max_stretch, r, err);
+    r->label = s->m[k].label;
+    return rc;
 }
 
 static void rows(FILE *fp, const void *result, bool header)

@@ -64,8 +64,7 @@ static const cl_cli_spec stab_spec = {"stability", stab_help, stab_opts,
 
 typedef struct {
     int nm;
-    const cl_integrator_type *type[STAB_MAX_METHODS];
-    cl_integrator_opts io[STAB_MAX_METHODS];
+    cl_cli_method m[STAB_MAX_METHODS];
     cl_stab_opts so;
 } stab_setup;
 
@@ -75,13 +74,13 @@ static cl_status check_fixed(cl_config *cfg, const stab_setup *s,
 {
     char where[256];
     for (int k = 0; k < s->nm; k++)
-        if (!s->type[k]->fixed_step)
+        if (!s->m[k].type->fixed_step)
             return cl_error_set(err, CL_EINVAL, "%s: [run] integrator: %s "
                                 "chooses its own steps by error control; "
                                 "stability takes fixed-step integrators",
                                 cl_config_origin(cfg, "run", "integrator",
                                                  where, sizeof where),
-                                s->type[k]->name);
+                                s->m[k].type->name);
     return CL_OK;
 }
 
@@ -90,8 +89,8 @@ static cl_status read_setup(cl_config *cfg, void *ctx, cl_error *err)
     stab_setup *s = ctx;
     cl_stab_opts *o = &s->so;
     cl_status rc;
-    if ((rc = cl_cli_integrator_list(cfg, false, STAB_MAX_METHODS, s->type,
-                                     s->io, &s->nm, err)) ||
+    if ((rc = cl_cli_methods(cfg, false, STAB_MAX_METHODS, s->m, &s->nm,
+                             err)) ||
         (rc = check_fixed(cfg, s, err)) ||
         (rc = cl_config_double(cfg, "run", "t_end", 2.0, 1e-300, INFINITY,
                                &o->t_end, err)) ||
@@ -111,7 +110,7 @@ static cl_status read_setup(cl_config *cfg, void *ctx, cl_error *err)
 static void print_result(const void *result)
 {
     const cl_stab_result *r = result;
-    printf("%-18s ", r->type->name);
+    printf("%-18s ", r->label);
     if (isnan(r->dt_unstable))
         printf("stable at dt_max = %.4g (%d run)\n", r->dt_stable,
                r->ntrial);
@@ -129,9 +128,9 @@ static cl_status begin(cl_model *m, const cl_cli_job *job, void *ctx,
 {
     const stab_setup *s = ctx;
     const cl_cloth *c = cl_model_cloth(m);
-    cl_status rc = CL_OK;
+    cl_status rc = cl_cli_methods_try(m, s->m, s->nm, err);
     for (int k = 0; !rc && k < s->nm; k++)
-        rc = cl_stab_check(m, s->type[k], &s->so, err);
+        rc = cl_stab_check(m, s->m[k].type, &s->so, err);
     if (rc || job->quiet)
         return rc;
     printf("problem    %s (%d x %d particles, %zu free), T = %g s, "
@@ -146,7 +145,11 @@ static cl_status run_one(cl_model *m, void *ctx, int k, void *result,
                          cl_error *err)
 {
     const stab_setup *s = ctx;
-    return cl_stability(m, s->type[k], &s->io[k], &s->so, result, err);
+    cl_stab_result *r = result;
+    cl_status rc = cl_stability(m, s->m[k].type, &s->m[k].io, &s->so, r,
+                                err);
+    r->label = s->m[k].label;
+    return rc;
 }
 
 static void rows(FILE *fp, const void *result, bool header)

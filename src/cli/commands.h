@@ -8,6 +8,7 @@ int cl_cmd_counts(int argc, char **argv);
 int cl_cmd_list(int argc, char **argv);
 int cl_cmd_bench(int argc, char **argv);
 int cl_cmd_convergence(int argc, char **argv);
+int cl_cmd_workprecision(int argc, char **argv);
 int cl_cmd_stability(int argc, char **argv);
 int cl_cmd_spectrum(int argc, char **argv);
 int cl_cmd_energy(int argc, char **argv);

@@ -15,6 +15,8 @@ static const cl_command commands[] = {
      "eigenvalues at a state and the step limits they predict"},
     {"convergence", cl_cmd_convergence,
      "observed orders against a tight reference"},
+    {"workprecision", cl_cmd_workprecision,
+     "error against CPU time, the fastest method per accuracy"},
     {"eval", cl_cmd_eval, "forces, energies and Jacobians at a given state"},
     {"counts", cl_cmd_counts, "connection counts beside the seed's formulas"},
     {"list", cl_cmd_list, "problems, integrators and force terms"},
@@ -26,7 +28,7 @@ static int usage(FILE *fp)
     fprintf(fp, "usage: clothode COMMAND [options]   (COMMAND --help for "
                 "more)\ncommands:\n");
     for (size_t k = 0; k < sizeof commands / sizeof *commands; k++)
-        fprintf(fp, "  %-11s %s\n", commands[k].name, commands[k].summary);
+        fprintf(fp, "  %-13s %s\n", commands[k].name, commands[k].summary);
     return fp == stdout ? 0 : 2;
 }
 

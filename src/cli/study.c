@@ -31,6 +31,8 @@ cl_status cl_cli_study_run(cl_model *m, const cl_cli_job *job,
         fflush(stdout);
     }
     int ok = done - (rc ? 1 : 0);
+    if (!rc && st->summary && !job->quiet)
+        st->summary(res, ok);
     cl_error later;
     if (ok > 0) {
         study_rows rows = {st, res};

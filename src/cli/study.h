@@ -1,8 +1,9 @@
 /* The loop shared by the subcommands that study several integrators on
- * one problem (convergence, stability, energy): begin (check every
- * request, print the header), then for each integrator run and print its
- * result, then write the results measured into one CSV file, also when a
- * later integrator failed, and release them. */
+ * one problem (convergence, workprecision, stability, energy): begin
+ * (check every request, print the header), then for each integrator run
+ * and print its result, then a summary over them all, then write the
+ * results measured into one CSV file, also when a later integrator failed,
+ * and release them. */
 #ifndef CL_CLI_STUDY_H
 #define CL_CLI_STUDY_H
 
@@ -19,6 +20,8 @@ typedef struct {
     cl_status (*run)(cl_model *m, void *ctx, int k, void *result,
                      cl_error *err);
     void (*print)(const void *result);
+    /* NULL, or a table over all results once they are in (not --quiet) */
+    void (*summary)(const void *results, int n);
     void (*rows)(FILE *fp, const void *result, bool header);
     void (*release)(void *result); /* NULL: nothing to release */
     void (*end)(void *ctx);        /* NULL: nothing to release */
