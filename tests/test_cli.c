@@ -1178,6 +1178,27 @@ Test(cli, workprecision_ranking_and_csv)
                    LIST("semi-bdf2:nosuch", "nosuch"));
 }
 
+Test(cli, asinc_table_and_csv)
+{
+    cli_result r;
+    cli_run(&r, "asinc", "--points", "10000", NULL);
+    cli_assert_ok(&r);
+    const char *at = strstr(r.out, "max |p - asinc/pi| = ");
+    cr_assert_not_null(at, "%s", r.out);
+    double e = strtod(at + 21, NULL);
+    cr_assert(e > 0.055 && e < 0.058, "%g", e);
+    cli_result_free(&r);
+    cli_run(&r, "asinc", "--points", "10", "--csv", NULL);
+    cli_assert_ok(&r);
+    cr_assert_eq(cli_count_lines(r.out), 12, "%s", r.out);
+    cr_assert(!strncmp(r.out, "y,asinc,asinc_over_pi,seed_poly,residual\n"
+                              "0,3.1415926535897931,", 61), "%s", r.out);
+    cli_result_free(&r);
+    cli_run(&r, "asinc", "--points", "0", NULL);
+    cli_assert_error(&r, 1, "--points", NULL);
+    cli_result_free(&r);
+}
+
 Test(cli, list_names_problems_integrators_terms)
 {
     cli_result r;
@@ -1198,7 +1219,8 @@ Test(cli, help_on_every_subcommand)
 {
     const char *cmds[] = {"run",       "eval",     "counts",
                           "list",      "convergence", "workprecision",
-                          "stability", "spectrum", "energy"};
+                          "stability", "spectrum", "energy",
+                          "asinc"};
     enum { NCMD = sizeof cmds / sizeof cmds[0] };
     cli_result r;
     for (size_t k = 0; k < NCMD; k++) {

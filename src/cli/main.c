@@ -18,6 +18,7 @@ static const cl_command commands[] = {
     {"workprecision", cl_cmd_workprecision,
      "error against CPU time, the fastest method per accuracy"},
     {"eval", cl_cmd_eval, "forces, energies and Jacobians at a given state"},
+    {"asinc", cl_cmd_asinc, "the exact inverse sinc beside the seed's polynomial"},
     {"counts", cl_cmd_counts, "connection counts beside the seed's formulas"},
     {"list", cl_cmd_list, "problems, integrators and force terms"},
     {"bench", cl_cmd_bench, "benchmark workloads against their goals"},
