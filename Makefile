@@ -36,7 +36,7 @@ BIN      := $(BUILD)/clothode
 TESTBIN  := $(BUILD)/clothode-tests
 JOBS     ?= 2
 
-.PHONY: all deps demo test bench clean
+.PHONY: all deps demo test bench report clean
 
 all: $(BIN)
 
@@ -74,6 +74,12 @@ test: deps
 bench: deps
 	$(MAKE) $(BIN)
 	$(BIN) bench
+
+# Reports (README "Reports"): the analyses on the default problems, CSV
+# tables in results/report/, figures in plots/ (about five minutes).
+report: deps
+	$(MAKE) $(BIN)
+	scripts/report.sh $(BIN)
 
 clean:
 	rm -rf build build-san

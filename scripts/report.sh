@@ -1,0 +1,92 @@
+#!/usr/bin/env bash
+# make report: run the analyses on the default problems, keep their CSV
+# tables under results/report/ and draw the figures into plots/ (PNG and
+# PDF; an animated GIF of the hanging cloth).  About five minutes on two
+# cores.  usage: scripts/report.sh path/to/clothode
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bin=${1:-build/clothode}
+res=results/report
+mkdir -p "$res" plots
+
+# Split a study's CSV (first column: the method) into DIR/NAME.dat with the
+# columns given (1-based, whitespace-separated), keeping only the rows whose
+# status (last column, when the header ends in "status") is "ok"; print the
+# names in order.
+split_csv() { # csv dir col...
+    local csv=$1 dir=$2
+    shift 2
+    rm -rf "$dir" && mkdir -p "$dir"
+    awk -F, -v dir="$dir" -v cols="$*" '
+        NR == 1 { status = $NF == "status"; next }
+        status && $NF != "ok" { next }
+        { n = split(cols, c, " "); line = ""
+          for (i = 1; i <= n; i++) line = line (i > 1 ? " " : "") $c[i]
+          if (!($1 in seen)) { seen[$1] = 1; order[++m] = $1 }
+          print line > (dir "/" $1 ".dat") }
+        END { for (i = 1; i <= m; i++) printf "%s%s", (i > 1 ? " " : ""), order[i] }' "$csv"
+}
+
+# Draw plots/NAME.png and plots/NAME.pdf with plots/NAME.gp.
+draw() { # name gnuplot-assignments
+    local name=$1 vars=$2
+    for term in png pdf; do
+        gnuplot -e "term='$term'; outfile='plots/$name.$term'; $vars" \
+            "plots/${3:-$name}.gp"
+    done
+    echo "  plots/$name.png, .pdf"
+}
+
+echo "report: convergence (spring2)"
+"$bin" convergence spring2 --quiet --out "$res/convergence" --t-end 1 \
+    --dt 1e-2 --levels 5 --integrator \
+    fe,symplectic-euler,symplectic-euler-x,verlet,velocity-verlet,rk4,semi-be,semi-bdf2,kinsol-midpoint
+names=$(split_csv "$res/convergence/convergence.csv" "$res/convergence/dat" 3 4)
+draw convergence "dir='$res/convergence/dat'; names='$names'; title_text='spring2, T = 1 s: position error against dt'; xlabel_text='dt (s)'"
+
+echo "report: work-precision (hang, T = 0.2 s)"
+"$bin" workprecision hang --quiet --out "$res/workprecision" --t-end 0.2 \
+    --dt 1e-3 --rtol 1e-4 --atol 1e-6 --levels 4 --integrator \
+    cvode-bdf:klu,cvode-bdf:pcg,semi-bdf2:klu,semi-bdf2:pcg,rk4
+names=$(split_csv "$res/workprecision/workprecision.csv" "$res/workprecision/dat" 4 10)
+draw workprecision "dir='$res/workprecision/dat'; names='$names'; title_text='hang 16 x 16, T = 0.2 s: CPU time against error'"
+
+echo "report: energy balance (hang-smooth, undamped)"
+"$bin" energy hang-smooth --quiet --out "$res/energy" --t-end 2 --dt 5e-4 \
+    --samples 2000 --integrator \
+    symplectic-euler,velocity-verlet,rk4,semi-be,semi-bdf2,kinsol-midpoint
+names=$(split_csv "$res/energy/energy.csv" "$res/energy/dat" 2 7)
+draw energy "dir='$res/energy/dat'; names='$names'; title_text='hang-smooth, dt = 5e-4 s: energy balance B(t)'"
+
+echo "report: explicit step limits, spectrum against stability"
+limits() { # problem
+    "$bin" stability "$1" --quiet --out "$res/limits/$1" --t-end 2 \
+        --integrator symplectic-euler,velocity-verlet,verlet,rk4,fe
+    "$bin" spectrum "$1" --out "$res/limits/$1" |
+        awk '$2 ~ /^[0-9.e+-]+$/ && NF >= 3 { print $1, $2 }' \
+            > "$res/limits/$1/predicted.txt"
+    awk -F, 'NR > 1 && $4 == 1 { if (!($1 in s) || $2 > s[$1]) s[$1] = $2 }
+             NR > 1 && $4 == 0 { if (!($1 in u) || $2 < u[$1]) u[$1] = $2 }
+             END { for (k in s) print k, s[k], (k in u ? u[k] : "nan") }' \
+        "$res/limits/$1/stability.csv" > "$res/limits/$1/measured.txt"
+    awk 'NR == FNR { p[$1] = $2; next } ($1 in p) { print $1, p[$1], $2, $3 }' \
+        "$res/limits/$1/predicted.txt" "$res/limits/$1/measured.txt" |
+        sort > "$res/limits/$1/limits.txt"
+}
+for p in hang-smooth hang; do
+    limits "$p"
+    draw "limits-$p" "data='$res/limits/$p/limits.txt'; title_text='$p: explicit step limits, T = 2 s'" limits
+    draw "spectrum-$p" "data='$res/limits/$p/spectrum.csv'; title_text='$p at rest: first-order eigenvalues'" spectrum
+done
+
+echo "report: inverse sinc and counts"
+"$bin" asinc --points 1000 --csv > "$res/asinc.csv"
+draw asinc "data='$res/asinc.csv'; title_text='Type2 curvature: asinc against the seed polynomial'"
+"$bin" counts --csv --n-max 64 > "$res/counts.csv"
+draw counts "data='$res/counts.csv'; title_text='Choi-Ko connections: measured (points) and formulas (lines)'"
+
+echo "report: animation (hang, cvode-bdf, 2 s)"
+"$bin" run hang --quiet --out "$res/hang" --frames 40 --format obj
+gnuplot -e "dir='$res/hang'; nframes=40; nv=16; outfile='plots/hang.gif'; xr0=-0.6; xr1=1.1; zr0=0; zr1=1; yr0=-1.1; yr1=0.1" plots/animation.gp
+echo "  plots/hang.gif"
+echo "report: tables in $res, figures in plots/"
