@@ -11,9 +11,10 @@
 
 #include "analysis/convergence.h"
 #include "io/config.h"
+#include "problem.h"
 
 typedef struct {
-    cl_config *cfg;
+    pr_problem p;
     cl_model *m;
     cl_conv_opts o;
     cl_conv_ref ref;
@@ -23,13 +24,8 @@ typedef struct {
 static void cv_open(cv_case *c, const char *set, double T)
 {
     cl_error err = {0};
-    c->cfg = cl_config_alloc();
-    cr_assert_not_null(c->cfg);
-    cr_assert_eq(cl_config_load(c->cfg, "problems/spring2.ini", &err), CL_OK,
-                 "%s", err.msg);
-    if (set)
-        cr_assert_eq(cl_config_set(c->cfg, set, &err), CL_OK, "%s", err.msg);
-    cr_assert_eq(cl_model_create(c->cfg, &c->m, &err), CL_OK, "%s", err.msg);
+    pr_load(&c->p, "problems/spring2.ini", set, NULL);
+    c->m = c->p.m;
     c->o = (cl_conv_opts){.t_end = T, .max_stretch = 10, .ref_rtol = 1e-11,
                           .ref_linsol = ""};
     cr_assert_eq(cl_conv_reference(c->m, &c->o, &c->ref, &err), CL_OK, "%s",
@@ -39,8 +35,7 @@ static void cv_open(cv_case *c, const char *set, double T)
 static void cv_close(cv_case *c)
 {
     cl_conv_ref_free(&c->ref);
-    cl_model_free(c->m);
-    cl_config_free(c->cfg);
+    pr_free(&c->p);
 }
 
 /* The levels of `name` from dt (fixed) or rtol, atol = rtol / 100. */

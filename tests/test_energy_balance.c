@@ -12,30 +12,23 @@
 
 #include "analysis/energy_balance.h"
 #include "io/config.h"
+#include "problem.h"
 
 typedef struct {
-    cl_config *cfg;
-    cl_model *m;
+    pr_problem p;
     cl_ebal_result r;
 } eb_case;
 
 static void eb_open(eb_case *c, const char *problem, const char *set)
 {
-    cl_error err = {0};
     memset(c, 0, sizeof *c);
-    c->cfg = cl_config_alloc();
-    cr_assert_not_null(c->cfg);
-    cr_assert_eq(cl_config_load(c->cfg, problem, &err), CL_OK, "%s", err.msg);
-    if (set)
-        cr_assert_eq(cl_config_set(c->cfg, set, &err), CL_OK, "%s", err.msg);
-    cr_assert_eq(cl_model_create(c->cfg, &c->m, &err), CL_OK, "%s", err.msg);
+    pr_load(&c->p, problem, set, NULL);
 }
 
 static void eb_close(eb_case *c)
 {
     cl_ebal_free(&c->r);
-    cl_model_free(c->m);
-    cl_config_free(c->cfg);
+    pr_free(&c->p);
 }
 
 /* Run `name` (dt = h, or rtol = h, atol = h / 100) to T with `samples`. */
@@ -47,7 +40,7 @@ static const cl_ebal_result *eb_run(eb_case *c, const char *name, double h,
                              .atol = h / 100};
     cl_error err = {0};
     cl_ebal_free(&c->r);
-    cr_assert_eq(cl_ebal_run(c->m, type, &io, T, samples, 10.0, &c->r, &err),
+    cr_assert_eq(cl_ebal_run(c->p.m, type, &io, T, samples, 10.0, &c->r, &err),
                  CL_OK, "%s: %s", name, err.msg);
     cr_assert_eq(c->r.rc, CL_OK, "%s: %s", name, c->r.why.msg);
     const cl_ebal_sample *e = &c->r.s[c->r.n - 1];
@@ -108,14 +101,14 @@ Test(energy_balance, refused_requests)
     eb_open(&c, "problems/spring2.ini", NULL);
     cl_integrator_opts io = {.dt = 0.3};
     cl_error err = {0};
-    cr_assert_eq(cl_ebal_run(c.m, cl_integrator_find("rk4"), &io, 1.0, 10,
+    cr_assert_eq(cl_ebal_run(c.p.m, cl_integrator_find("rk4"), &io, 1.0, 10,
                              10.0, &c.r, &err),
                  CL_EINVAL);
     cr_assert_not_null(strstr(err.msg, "whole number"), "%s", err.msg);
     eb_close(&c);
     eb_open(&c, "problems/verlet-scene3.ini", NULL);
     io.dt = 1e-3;
-    cr_assert_eq(cl_ebal_run(c.m, cl_integrator_find("verlet"), &io, 0.1,
+    cr_assert_eq(cl_ebal_run(c.p.m, cl_integrator_find("verlet"), &io, 0.1,
                              10, 10.0, &c.r, &err),
                  CL_EUNSUPPORTED);
     eb_close(&c);

@@ -17,9 +17,10 @@
 #include "analysis/spectrum.h"
 #include "analysis/stability.h"
 #include "io/config.h"
+#include "problem.h"
 
 typedef struct {
-    cl_config *cfg;
+    pr_problem p;
     cl_model *m;
     cl_spectrum s;
 } sp_case;
@@ -29,14 +30,8 @@ typedef struct {
 static void sp_open(sp_case *c, const char *set, double x1)
 {
     cl_error err = {0};
-    c->cfg = cl_config_alloc();
-    cr_assert_not_null(c->cfg);
-    cr_assert_eq(cl_config_load(c->cfg, "problems/spring2.ini", &err), CL_OK,
-                 "%s", err.msg);
-    cr_assert_eq(cl_config_set(c->cfg, "type1.ks=1e4", &err), CL_OK);
-    if (set)
-        cr_assert_eq(cl_config_set(c->cfg, set, &err), CL_OK, "%s", err.msg);
-    cr_assert_eq(cl_model_create(c->cfg, &c->m, &err), CL_OK, "%s", err.msg);
+    pr_load(&c->p, "problems/spring2.ini", "type1.ks=1e4", set);
+    c->m = c->p.m;
     double x[3] = {x1, 0, 0}, v[3] = {0, 0, 0};
     cr_assert_eq(cl_spectrum_compute(c->m, 0.0, x, v, &c->s, &err), CL_OK,
                  "%s", err.msg);
@@ -45,8 +40,7 @@ static void sp_open(sp_case *c, const char *set, double x1)
 static void sp_close(sp_case *c)
 {
     cl_spectrum_free(&c->s);
-    cl_model_free(c->m);
-    cl_config_free(c->cfg);
+    pr_free(&c->p);
 }
 
 static double sp_limit(const cl_spectrum *s, const char *name)

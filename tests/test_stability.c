@@ -17,29 +17,20 @@
 
 #include "analysis/stability.h"
 #include "io/config.h"
+#include "problem.h"
 
 #define ST_W 100.0
 
-typedef struct {
-    cl_config *cfg;
-    cl_model *m;
-} st_case;
+typedef pr_problem st_case;
 
 static void st_open(st_case *c, const char *problem, const char *set)
 {
-    cl_error err = {0};
-    c->cfg = cl_config_alloc();
-    cr_assert_not_null(c->cfg);
-    cr_assert_eq(cl_config_load(c->cfg, problem, &err), CL_OK, "%s", err.msg);
-    if (set)
-        cr_assert_eq(cl_config_set(c->cfg, set, &err), CL_OK, "%s", err.msg);
-    cr_assert_eq(cl_model_create(c->cfg, &c->m, &err), CL_OK, "%s", err.msg);
+    pr_load(c, problem, set, NULL);
 }
 
 static void st_close(st_case *c)
 {
-    cl_model_free(c->m);
-    cl_config_free(c->cfg);
+    pr_free(c);
 }
 
 static const cl_stab_opts st_opts = {.t_end = 4.0, .dt_max = 0.1,
