@@ -1009,7 +1009,8 @@ Test(cli, convergence_table_and_csv)
     cli_read_lines(path, &L);
     cr_assert_eq(L.n, 7, "header and 2 x 3 levels, got %zu lines", L.n);
     cr_assert_str_eq(L.line[0], "integrator,param,value,err_x,err_v,order,"
-                                "fitted,steps,rhs_evals,cpu,status");
+                                "fitted,steps,rhs_evals,cpu,fit_x,fit_v,"
+                                "status");
     cr_assert(!strncmp(L.line[1], "rk4,dt,0.01,", 12), "%s", L.line[1]);
     cr_assert(!strncmp(L.line[4], "cvode-bdf,rtol,0.0001,", 22), "%s",
               L.line[4]);

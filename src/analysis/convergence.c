@@ -176,13 +176,13 @@ void cl_conv_write_rows(FILE *fp, const cl_conv_result *r, bool header)
 {
     if (header)
         fprintf(fp, "integrator,param,value,err_x,err_v,order,fitted,steps,"
-                    "rhs_evals,cpu,status\n");
+                    "rhs_evals,cpu,fit_x,fit_v,status\n");
     for (int k = 0; k < r->nlev; k++) {
         const cl_conv_level *l = &r->lev[k];
-        fprintf(fp, "%s,%s,%.9g,%.9g,%.9g,%.6g,%d,%ld,%ld,%.6g,%s\n",
-                r->label, r->fixed ? "dt" : "rtol", l->param, l->err_x,
-                l->err_v, l->order, l->fitted, l->stats.steps,
-                l->stats.rhs_evals, l->stats.cpu,
+        fprintf(fp, "%s,%s,%.9g,%.9g,%.9g,%.6g,%d,%ld,%ld,%.6g,%.6g,%.6g,"
+                "%s\n", r->label, r->fixed ? "dt" : "rtol", l->param,
+                l->err_x, l->err_v, l->order, l->fitted, l->stats.steps,
+                l->stats.rhs_evals, l->stats.cpu, r->slope_x, r->slope_v,
                 l->rc ? cl_status_name(l->rc) : "ok");
     }
 }

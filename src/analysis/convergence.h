@@ -94,7 +94,9 @@ cl_status cl_convergence(cl_model *m, const cl_integrator_type *type,
 double cl_conv_cheapest(const cl_conv_result *r, double target);
 
 /* One CSV row per level, header first when `header`:
- * integrator,param,value,err_x,err_v,order,fitted,steps,rhs_evals,cpu,status */
+ * integrator,param,value,err_x,err_v,order,fitted,steps,rhs_evals,cpu,
+ * fit_x,fit_v,status (fit_x, fit_v: the method's fitted orders, repeated
+ * on each of its rows). */
 void cl_conv_write_rows(FILE *fp, const cl_conv_result *r, bool header);
 
 #endif
