@@ -36,7 +36,7 @@ BIN      := $(BUILD)/clothode
 TESTBIN  := $(BUILD)/clothode-tests
 JOBS     ?= 2
 
-.PHONY: all deps demo test bench report clean
+.PHONY: all deps demo test bench report paper clean
 
 all: $(BIN)
 
@@ -80,6 +80,21 @@ bench: deps
 report: deps
 	$(MAKE) $(BIN)
 	scripts/report.sh $(BIN)
+
+# The paper (README "Reports"): paper/paper.pdf from the report's tables
+# and figures (the report is made first if it is missing).
+paper: deps
+	@scripts/install-deps.sh paper
+	$(MAKE) $(BIN)
+	test -f results/report/sensitivity.txt || scripts/report.sh $(BIN)
+	scripts/paper-tables.sh
+	mkdir -p $(BUILD)/paper
+	cd paper && for pass in 1 2; do \
+	    pdflatex -interaction=nonstopmode -halt-on-error \
+	        -output-directory=../$(BUILD)/paper paper.tex > /dev/null || \
+	    { tail -30 ../$(BUILD)/paper/paper.log; exit 1; }; done
+	cp $(BUILD)/paper/paper.pdf paper/paper.pdf
+	@echo "paper: paper/paper.pdf"
 
 clean:
 	rm -rf build build-san

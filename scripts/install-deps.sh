@@ -7,6 +7,11 @@ set -euo pipefail
 # (scripts/peers/hang_scipy.py), which tests/test_peer.c checks.
 pkgs=(build-essential libsundials-dev libsuitesparse-dev libgsl-dev
       gnuplot-nox libinih-dev libcriterion-dev python3-numpy python3-scipy)
+# `install-deps.sh paper`: also LaTeX, for make paper only.
+if [[ ${1:-} == paper ]]; then
+    pkgs+=(texlive-latex-base texlive-latex-recommended
+           texlive-fonts-recommended lmodern)
+fi
 
 missing=()
 for p in "${pkgs[@]}"; do

@@ -85,6 +85,10 @@ draw asinc "data='$res/asinc.csv'; title_text='Type2 curvature: asinc against th
 "$bin" counts --csv --n-max 64 > "$res/counts.csv"
 draw counts "data='$res/counts.csv'; title_text='Choi-Ko connections: measured (points) and formulas (lines)'"
 
+echo "report: predictability of hang (n = 10), cvode-bdf against rtol 1e-11"
+scripts/hang-sensitivity.sh 10 0.2 0.5 > "$res/sensitivity.txt"
+cat "$res/sensitivity.txt"
+
 echo "report: animation (hang, cvode-bdf, 2 s)"
 "$bin" run hang --quiet --out "$res/hang" --frames 40 --format obj
 gnuplot -e "dir='$res/hang'; nframes=40; nv=16; outfile='plots/hang.gif'; xr0=-0.6; xr1=1.1; zr0=0; zr1=1; yr0=-1.1; yr1=0.1" plots/animation.gp

@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# make paper: LaTeX table bodies from the report's CSV tables
+# (results/report, made by scripts/report.sh) into results/report/tex/.
+# Every number the paper's tables print comes from these files.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+res=results/report
+tex=$res/tex
+mkdir -p "$tex"
+
+# Fitted orders per integrator (first row of each in convergence.csv).
+awk -F, 'NR > 1 && !($1 in seen) { seen[$1] = 1
+         printf "%s & %.2f & %.2f \\\\\n", $1, $11, $12 }' \
+    "$res/convergence/convergence.csv" > "$tex/orders.tex"
+
+# Explicit limits: predicted, largest stable, smallest unstable (s).
+for p in hang hang-smooth; do
+    awk '{ printf "%s & %s & %.4g & %.4g \\\\\n", $1,
+                  ($2 == 0 ? "0" : sprintf("%.4g", $2)), $3, $4 }' \
+        "$res/limits/$p/limits.txt" > "$tex/limits-$p.tex"
+done
+
+# Energy balance at T: E(T), W(T), B(T) and max |B| per integrator.
+awk -F, 'NR > 1 { e[$1] = $5; w[$1] = $6; b[$1] = $7
+                  if (!($1 in m) || ($7 < 0 ? -$7 : $7) > m[$1]) m[$1] = ($7 < 0 ? -$7 : $7)
+                  if (!($1 in seen)) { seen[$1] = 1; order[++n] = $1 } }
+         END { for (i = 1; i <= n; i++) { k = order[i]
+               printf "%s & %.3e & %.3e & %.3e \\\\\n", k, b[k], m[k], e[k] } }' \
+    "$res/energy/energy.csv" > "$tex/energy.tex"
+
+# Work-precision: every level that ran, error and CPU time.
+awk -F, 'NR > 1 && $NF == "ok" {
+         printf "%s & %s & %.3g & %.3e & %.3f & %d \\\\\n",
+                ($1 == last ? "" : $1), $2, $3, $4, $10, $8; last = $1 }' \
+    "$res/workprecision/workprecision.csv" > "$tex/workprecision.tex"
+
+# Predictability of hang: the sensitivity table (rtol, one column per T).
+awk 'NR > 2 && NF > 1 { line = $1; for (i = 2; i <= NF; i++) line = line " & " $i
+                         print line " \\\\" }' \
+    "$res/sensitivity.txt" > "$tex/sensitivity.tex"
+awk 'NR == 2 { for (i = 2; i <= NF; i++) printf "%s%s", (i > 2 ? " & " : ""), $i }' \
+    "$res/sensitivity.txt" > "$tex/sensitivity-head.tex"
+echo "paper: tables in $tex"
