@@ -11,6 +11,7 @@ set zlabel "y (m)" rotate by 90
 set xrange [xr0:xr1]
 set yrange [zr0:zr1]
 set zrange [yr0:yr1]
+set cbrange [yr0:yr1]
 set view 60, 35, 1, 1
 set pm3d depthorder border lc rgb "#303030" lw 0.5
 set palette defined (0 "#1f3b73", 0.5 "#4f9fd0", 1 "#e8f4ff")
