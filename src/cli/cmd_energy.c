@@ -87,6 +87,10 @@ static cl_status read_setup(cl_config *cfg, void *ctx, cl_error *err)
 static void print_result(const void *result)
 {
     const cl_ebal_result *r = result;
+    if (r->n == 0) { /* failed before the first sample */
+        printf("%-18s failed: %s\n", r->label, r->why.msg);
+        return;
+    }
     const cl_ebal_sample *a = &r->s[0], *b = &r->s[r->n - 1];
     printf("%-18s %11.4e %11.4e %11.4e %11.4e %11.4e %9.2e %8ld %8.3f%s%s\n",
            r->label, a->total, b->total, b->dissipated, b->balance,
