@@ -34,6 +34,11 @@ awk -F, 'NR > 1 && $NF == "ok" {
                 ($1 == last ? "" : $1), $2, $3, $4, $10, $8; last = $1 }' \
     "$res/workprecision/workprecision.csv" > "$tex/workprecision.tex"
 
+# Wrinkles of compress: method, step, time reached, amplitude, count.
+awk '{ split($2, kv, "="); printf "%s & %s %s & %s & %.4f & %d & %s \\\\\n",
+       $1, kv[1], kv[2], $3, $4, $5, $6 }' \
+    "$res/wrinkles/wrinkles.txt" > "$tex/wrinkles.tex"
+
 # Predictability of hang: the sensitivity table (rtol, one column per T).
 awk 'NR > 2 && NF > 1 { line = $1; for (i = 2; i <= NF; i++) line = line " & " $i
                          print line " \\\\" }' \

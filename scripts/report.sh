@@ -85,6 +85,32 @@ draw asinc "data='$res/asinc.csv'; title_text='Type2 curvature: asinc against th
 "$bin" counts --csv --n-max 64 > "$res/counts.csv"
 draw counts "data='$res/counts.csv'; title_text='Choi-Ko connections: measured (points) and formulas (lines)'"
 
+echo "report: wrinkles under large steps (compress, T = 1 s)"
+# The final out-of-plane amplitude and wrinkle count of every run, or how
+# far it got before it blew up: "method dt t_reached amplitude wrinkles".
+wr=$res/wrinkles
+rm -rf "$wr" && mkdir -p "$wr"
+wrinkle_run() { # label dir args...
+    local label=$1 dir=$2
+    shift 2
+    local status=ok
+    "$bin" run compress --quiet --frames 0 --samples 100 --out "$dir" "$@" \
+        2> "$dir.err" || status=blow-up
+    awk -F, -v l="$label" -v s="$status" 'NR > 1 { t = $1; a = $(NF - 2); w = $(NF - 1) }
+        END { print l, t, a, w, s }' "$dir/series.csv" >> "$wr/wrinkles.txt"
+    awk -F, 'NR > 1 { print $1, $(NF - 2) }' "$dir/series.csv" > "$dir.dat"
+}
+wrinkle_run "cvode-bdf rtol=1e-6" "$wr/reference"
+names="reference"
+for m in semi-be semi-bdf2; do
+    for dt in 1e-3 2e-3 5e-3 1e-2 2e-2; do
+        wrinkle_run "$m dt=$dt" "$wr/$m-$dt" --integrator "$m" --dt "$dt"
+    done
+    names="$names $m-1e-3 $m-5e-3 $m-1e-2"
+done
+cat "$wr/wrinkles.txt"
+draw wrinkles "dir='$wr'; names='$names'; title_text='compress: largest out-of-plane displacement'"
+
 echo "report: predictability of hang (n = 10), cvode-bdf against rtol 1e-11"
 scripts/hang-sensitivity.sh 10 0.2 0.5 > "$res/sensitivity.txt"
 cat "$res/sensitivity.txt"
