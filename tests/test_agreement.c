@@ -110,7 +110,8 @@ static void ag_compare(int side, double T, bool with_dense)
             double bound = 10 * (rtol * xmax + atol);
             double d = ag_distance(x[a], x[b], n);
             cr_log_info("agreement n=%d T=%g: %s vs %s: %.3e (bound %.3e)",
-                        side, T, ag_methods[a].name, ag_methods[b].name, d, bound);
+                        side, T, ag_methods[a].name, ag_methods[b].name, d,
+                        bound);
             cr_expect_leq(d, bound, "%s vs %s at T = %g: %.3e > %.3e",
                           ag_methods[a].name, ag_methods[b].name, T, d,
                           bound);

@@ -149,7 +149,8 @@ Test(integrator, stats_not_available_prints_na)
     s.nonlin_iters = CL_STAT_NA;
     for (int human = 0; human < 2; human++) {
         char *buf = stats_text(&s, human);
-        const char *want = human ? "nonlinear iterations" : "\nnonlin_iters,NA\n";
+        const char *want =
+            human ? "nonlinear iterations" : "\nnonlin_iters,NA\n";
         char *row = strstr(buf, want);
         cr_assert_not_null(row, "%s", buf);
         cr_assert_null(strstr(buf, "-1"), "%s", buf);
