@@ -20,6 +20,10 @@ for p in hang hang-smooth; do
         "$res/limits/$p/limits.txt" > "$tex/limits-$p.tex"
 done
 
+# Stability map: n, method, predicted, largest stable, smallest unstable.
+awk '{ printf "%d & %s & %.4g & %.4g & %.4g \\\\\n", $1, $2, $3, $4, $5 }' \
+    "$res/limits/map/map.txt" > "$tex/map.tex"
+
 # Energy balance at T: E(T), W(T), B(T) and max |B| per integrator.
 awk -F, 'NR > 1 { e[$1] = $5; w[$1] = $6; b[$1] = $7
                   if (!($1 in m) || ($7 < 0 ? -$7 : $7) > m[$1]) m[$1] = ($7 < 0 ? -$7 : $7)

@@ -79,6 +79,32 @@ for p in hang-smooth hang; do
     draw "spectrum-$p" "data='$res/limits/$p/spectrum.csv'; title_text='$p at rest: first-order eigenvalues'" spectrum
 done
 
+echo "report: stability map, explicit limits of hang against the grid size"
+# "n method predicted largest-stable smallest-unstable" per size and method.
+map=$res/limits/map
+rm -rf "$map" && mkdir -p "$map"
+for n in 6 8 12 16; do
+    limits_of() { # dir
+        "$bin" stability hang --set cloth.n="$n" --quiet --out "$1" \
+            --t-end 2 --integrator symplectic-euler,rk4
+        "$bin" spectrum hang --set cloth.n="$n" --out "$1" |
+            awk '$2 ~ /^[0-9.e+-]+$/ && NF >= 3 { print $1, $2 }' > "$1/predicted.txt"
+        awk -F, 'NR > 1 && $4 == 1 { if (!($1 in s) || $2 > s[$1]) s[$1] = $2 }
+                 NR > 1 && $4 == 0 { if (!($1 in u) || $2 < u[$1]) u[$1] = $2 }
+                 END { for (k in s) print k, s[k], (k in u ? u[k] : "nan") }' \
+            "$1/stability.csv" > "$1/measured.txt"
+    }
+    limits_of "$map/n$n"
+    awk -v n="$n" 'NR == FNR { p[$1] = $2; next } ($1 in p) { print n, $1, p[$1], $2, $3 }' \
+        "$map/n$n/predicted.txt" "$map/n$n/measured.txt" >> "$map/map.txt"
+done
+sort -k2,2 -k1,1n "$map/map.txt" -o "$map/map.txt"
+cat "$map/map.txt"
+for m in symplectic-euler rk4; do
+    awk -v m="$m" '$2 == m { print $1, $3, $4 }' "$map/map.txt" > "$map/$m.dat"
+done
+draw map "dir='$map'; names='symplectic-euler rk4'; title_text='hang, T = 2 s: explicit step limit against grid size'"
+
 echo "report: inverse sinc and counts"
 "$bin" asinc --points 1000 --csv > "$res/asinc.csv"
 draw asinc "data='$res/asinc.csv'; title_text='Type2 curvature: asinc against the seed polynomial'"
