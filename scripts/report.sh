@@ -59,22 +59,26 @@ names=$(split_csv "$res/energy/energy.csv" "$res/energy/dat" 2 7)
 draw energy "dir='$res/energy/dat'; names='$names'; title_text='hang-smooth, dt = 5e-4 s: energy balance B(t)'"
 
 echo "report: explicit step limits, spectrum against stability"
-limits() { # problem
-    "$bin" stability "$1" --quiet --out "$res/limits/$1" --t-end 2 \
-        --integrator symplectic-euler,velocity-verlet,verlet,rk4,fe
-    "$bin" spectrum "$1" --out "$res/limits/$1" |
+# The spectral predictions and the measured brackets of the integrators
+# LIST on hang-like PROBLEM (T = 2 s) into DIR/limits.txt, one row
+# "integrator predicted largest-stable smallest-unstable" each.
+limits() { # dir problem list [--set ...]
+    local dir=$1 problem=$2 list=$3
+    shift 3
+    "$bin" stability "$problem" "$@" --quiet --out "$dir" --t-end 2 \
+        --integrator "$list"
+    "$bin" spectrum "$problem" "$@" --out "$dir" |
         awk '$2 ~ /^[0-9.e+-]+$/ && NF >= 3 { print $1, $2 }' \
-            > "$res/limits/$1/predicted.txt"
+            > "$dir/predicted.txt"
     awk -F, 'NR > 1 && $4 == 1 { if (!($1 in s) || $2 > s[$1]) s[$1] = $2 }
              NR > 1 && $4 == 0 { if (!($1 in u) || $2 < u[$1]) u[$1] = $2 }
              END { for (k in s) print k, s[k], (k in u ? u[k] : "nan") }' \
-        "$res/limits/$1/stability.csv" > "$res/limits/$1/measured.txt"
+        "$dir/stability.csv" > "$dir/measured.txt"
     awk 'NR == FNR { p[$1] = $2; next } ($1 in p) { print $1, p[$1], $2, $3 }' \
-        "$res/limits/$1/predicted.txt" "$res/limits/$1/measured.txt" |
-        sort > "$res/limits/$1/limits.txt"
+        "$dir/predicted.txt" "$dir/measured.txt" | sort > "$dir/limits.txt"
 }
 for p in hang-smooth hang; do
-    limits "$p"
+    limits "$res/limits/$p" "$p" symplectic-euler,velocity-verlet,verlet,rk4,fe
     draw "limits-$p" "data='$res/limits/$p/limits.txt'; title_text='$p: explicit step limits, T = 2 s'" limits
     draw "spectrum-$p" "data='$res/limits/$p/spectrum.csv'; title_text='$p at rest: first-order eigenvalues'" spectrum
 done
@@ -84,19 +88,8 @@ echo "report: stability map, explicit limits of hang against the grid size"
 map=$res/limits/map
 rm -rf "$map" && mkdir -p "$map"
 for n in 6 8 12 16; do
-    limits_of() { # dir
-        "$bin" stability hang --set cloth.n="$n" --quiet --out "$1" \
-            --t-end 2 --integrator symplectic-euler,rk4
-        "$bin" spectrum hang --set cloth.n="$n" --out "$1" |
-            awk '$2 ~ /^[0-9.e+-]+$/ && NF >= 3 { print $1, $2 }' > "$1/predicted.txt"
-        awk -F, 'NR > 1 && $4 == 1 { if (!($1 in s) || $2 > s[$1]) s[$1] = $2 }
-                 NR > 1 && $4 == 0 { if (!($1 in u) || $2 < u[$1]) u[$1] = $2 }
-                 END { for (k in s) print k, s[k], (k in u ? u[k] : "nan") }' \
-            "$1/stability.csv" > "$1/measured.txt"
-    }
-    limits_of "$map/n$n"
-    awk -v n="$n" 'NR == FNR { p[$1] = $2; next } ($1 in p) { print n, $1, p[$1], $2, $3 }' \
-        "$map/n$n/predicted.txt" "$map/n$n/measured.txt" >> "$map/map.txt"
+    limits "$map/n$n" hang symplectic-euler,rk4 --set cloth.n="$n"
+    awk -v n="$n" '{ print n, $0 }' "$map/n$n/limits.txt" >> "$map/map.txt"
 done
 sort -k2,2 -k1,1n "$map/map.txt" -o "$map/map.txt"
 cat "$map/map.txt"
