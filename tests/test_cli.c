@@ -1031,7 +1031,7 @@ Test(cli, convergence_refusals)
                    LIST("dt", "rk4"));
     expect_refused(LIST("convergence", "spring2", "--integrator", "rk4",
                         "--dt", "0.3", "--t-end", "1"), 0,
-                   LIST("multiple", "0.3"));
+                   LIST("whole number", "0.3"));
     expect_refused(LIST("convergence", "spring2", "--ref-rtol", "1e-2"), 0,
                    LIST("--ref-rtol", "ref_rtol"));
 }

@@ -71,7 +71,10 @@ static void expect_limit(const char *name, double limit)
     for (int k = 0; k < r.ntrial; k++) {
         const cl_stab_trial *t = &r.trial[k];
         cr_assert_float_eq(t->dt * (double)t->nsteps, 4.0, 1e-12);
-        cr_assert_eq(t->stats.steps, t->rc ? t->stats.steps : t->nsteps);
+        if (t->rc == CL_OK) /* a stable run took all its steps */
+            cr_assert_eq(t->stats.steps, t->nsteps);
+        else
+            cr_assert_lt(t->stats.steps, t->nsteps);
     }
     st_close(&c);
 }

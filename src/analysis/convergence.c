@@ -11,7 +11,6 @@
 #include "analysis/diagnostics.h"
 #include "analysis/trial.h"
 
-
 /* The reference run at rtol; its final state is in t->x, t->v. */
 static cl_status reference_run(cl_trial *t, const cl_conv_opts *o,
                                double rtol, cl_stats *s, cl_error *err)
@@ -35,19 +34,17 @@ cl_status cl_conv_reference(cl_model *m, const cl_conv_opts *o,
     cl_trial t = {0};
     cl_stats loose;
     memset(ref, 0, sizeof *ref);
-    if (cl_model_system(m)->step_done)
-        return cl_error_set(err, CL_EUNSUPPORTED, "a model that tears ([tear] "
-                            "cut) changes for good during a run, so runs "
-                            "cannot be repeated from its initial state");
+    cl_status rc = cl_trial_repeatable(m, err);
+    if (rc)
+        return rc;
     if (!(o->ref_rtol >= 1e-15 && o->ref_rtol <= 1e-4))
         return cl_error_set(err, CL_EINVAL, "reference rtol = %g: expected "
                             "1e-15 .. 1e-4", o->ref_rtol);
     ref->n = n;
     ref->x = malloc(n * sizeof *ref->x);
     ref->v = malloc(n * sizeof *ref->v);
-    cl_status rc = ref->x && ref->v
-                       ? cl_trial_init(&t, m, err)
-                       : cl_error_set(err, CL_ENOMEM, "out of memory");
+    rc = ref->x && ref->v ? cl_trial_init(&t, m, err)
+                          : cl_error_set(err, CL_ENOMEM, "out of memory");
     if (!rc && !(rc = reference_run(&t, o, o->ref_rtol, &ref->stats, err))) {
         memcpy(ref->x, t.x, n * sizeof *ref->x);
         memcpy(ref->v, t.v, n * sizeof *ref->v);
@@ -97,12 +94,7 @@ cl_status cl_conv_check(const cl_integrator_type *type,
         return cl_error_set(err, CL_EINVAL, "rtol = %g over %d levels goes "
                             "down to %g: below 1e-15", io->rtol, levels,
                             io->rtol * pow(10.0, 1 - levels));
-    double steps = o->t_end / io->dt;
-    if (type->fixed_step && fabs(steps - round(steps)) > 1e-9 * steps)
-        return cl_error_set(err, CL_EINVAL, "t_end = %g is not a multiple "
-                            "of dt = %g (%s takes fixed steps)", o->t_end,
-                            io->dt, type->name);
-    return CL_OK;
+    return cl_trial_whole_steps(type, io->dt, o->t_end, err);
 }
 
 /* Orders between consecutive levels and the least-squares fit. */

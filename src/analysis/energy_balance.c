@@ -51,17 +51,8 @@ cl_status cl_ebal_check(cl_model *m, const cl_integrator_type *type,
     if (samples < 1 || !(T > 0))
         return cl_error_set(err, CL_EINVAL, "samples = %ld, T = %g: expected "
                             ">= 1 and > 0", samples, T);
-    double steps = T / io->dt;
-    if (type->fixed_step && (!(io->dt > 0) ||
-                             fabs(steps - round(steps)) > 1e-9 * steps))
-        return cl_error_set(err, CL_EINVAL, "t_end = %g is not a whole "
-                            "number of steps dt = %g (%s takes fixed steps)",
-                            T, io->dt, type->name);
-    if (cl_model_system(m)->step_done)
-        return cl_error_set(err, CL_EUNSUPPORTED, "a model that tears ([tear] "
-                            "cut) changes for good during a run, so runs "
-                            "cannot be repeated from its initial state");
-    return CL_OK;
+    cl_status rc = cl_trial_whole_steps(type, io->dt, T, err);
+    return rc ? rc : cl_trial_repeatable(m, err);
 }
 
 cl_status cl_ebal_run(cl_model *m, const cl_integrator_type *type,

@@ -106,7 +106,8 @@ static cl_status first_order_spectrum(const cl_bpattern *p, spec_work *w,
     if (!rc) {
         double complex *lam = (double complex *)ev->data; /* stride 1 */
         qsort(lam, dim, sizeof *lam, by_modulus_desc);
-        double tol = SPEC_TOL * cabs(lam[0]);
+        s->lambda_max = cabs(lam[0]);
+        double tol = SPEC_TOL * s->lambda_max;
         for (size_t j = 0; j < dim; j++) {
             s->re[j] = creal(lam[j]);
             s->im[j] = cimag(lam[j]);
@@ -200,7 +201,7 @@ static double rk4_limit(double complex l)
 static double r_limit(const cl_spectrum *s, double (*limit)(double complex))
 {
     size_t dim = 2 * s->n;
-    double tol = SPEC_TOL * hypot(s->re[0], s->im[0]), h = INFINITY;
+    double tol = SPEC_TOL * s->lambda_max, h = INFINITY;
     for (size_t j = 0; j < dim; j++) {
         double re = fabs(s->re[j]) <= tol ? 0.0 : s->re[j];
         double complex l = re + I * s->im[j];

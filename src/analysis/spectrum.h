@@ -37,6 +37,7 @@ typedef struct {
     double *mu;           /* n, ascending */
     double *re, *im;      /* 2n first-order eigenvalues, by decreasing |.| */
     double w_max;         /* sqrt(mu_max) (rad/s) */
+    double lambda_max;    /* |lambda| of the first, largest eigenvalue */
     size_t n_growing;     /* first-order eigenvalues with Re > tol */
     double growth_max;    /* their largest real part (1/s), 0 if none */
 } cl_spectrum;

@@ -27,11 +27,7 @@ cl_status cl_stab_check(cl_model *m, const cl_integrator_type *type,
         return cl_error_set(err, CL_EINVAL, "rel = %g, checks = %ld: "
                             "expected 0 < rel < 1 and checks >= 1", o->rel,
                             o->checks);
-    if (cl_model_system(m)->step_done)
-        return cl_error_set(err, CL_EUNSUPPORTED, "a model that tears ([tear] "
-                            "cut) changes for good during a run, so runs "
-                            "cannot be repeated from its initial state");
-    return CL_OK;
+    return cl_trial_repeatable(m, err);
 }
 
 /* Run with N steps: returns 1 stable, 0 unstable, or -1 with err set for a

@@ -8,6 +8,27 @@
 #include "analysis/diagnostics.h"
 #include "core/clock.h"
 
+cl_status cl_trial_repeatable(cl_model *m, cl_error *err)
+{
+    if (cl_model_system(m)->step_done)
+        return cl_error_set(err, CL_EUNSUPPORTED, "a model that tears ([tear] "
+                            "cut) changes for good during a run, so runs "
+                            "cannot be repeated from its initial state");
+    return CL_OK;
+}
+
+cl_status cl_trial_whole_steps(const cl_integrator_type *type, double dt,
+                               double T, cl_error *err)
+{
+    double steps = T / dt;
+    if (type->fixed_step &&
+        !(dt > 0 && fabs(steps - round(steps)) <= 1e-9 * steps))
+        return cl_error_set(err, CL_EINVAL, "t_end = %g is not a whole "
+                            "number of steps dt = %g (%s takes fixed steps)",
+                            T, dt, type->name);
+    return CL_OK;
+}
+
 cl_status cl_trial_init(cl_trial *t, cl_model *m, cl_error *err)
 {
     const cl_cloth *c = cl_model_cloth(m);

@@ -25,6 +25,15 @@ typedef struct {
     void *hook_ctx;
 } cl_trial;
 
+/* Whether runs of m can be repeated from its initial state:
+ * CL_EUNSUPPORTED for a model that tears (a tear changes it for good). */
+cl_status cl_trial_repeatable(cl_model *m, cl_error *err);
+
+/* Whether a run of `type` with step dt can end exactly at T: CL_EINVAL if
+ * it takes fixed steps and T is not a whole number of them (to 1e-9). */
+cl_status cl_trial_whole_steps(const cl_integrator_type *type, double dt,
+                               double T, cl_error *err);
+
 cl_status cl_trial_init(cl_trial *t, cl_model *m, cl_error *err);
 void cl_trial_free(cl_trial *t);
 

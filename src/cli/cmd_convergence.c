@@ -147,8 +147,6 @@ static void print_result(const void *result)
                r->label);
 }
 
-static const cl_cli_study wp_study;
-
 /* The reference (which also checks that the model can be rerun), then
  * the header. */
 static cl_status begin(cl_model *m, const cl_cli_job *job, void *ctx,
@@ -165,13 +163,6 @@ static cl_status begin(cl_model *m, const cl_cli_job *job, void *ctx,
     printf("reference  cvode-bdf rtol %g: %ld steps, floor %.2e m "
            "(distance to rtol %g)\n", s->co.ref_rtol, s->ref.stats.steps,
            s->ref.err_x, 10 * s->co.ref_rtol);
-    if (s->study == &wp_study)
-        printf("%-18s %10s %10s %9s %9s %9s\n", "integrator", "dt / rtol",
-               "err_x [m]", "cpu [s]", "steps", "rhs");
-    else
-        printf("%-18s %10s %10s %10s %7s %9s %9s\n", "integrator",
-               "dt / rtol", "err_x [m]", "err_v", "order", "steps",
-               "cpu [s]");
     return CL_OK;
 }
 
@@ -254,12 +245,18 @@ static void summary_wp(const void *results, int n)
 }
 
 static const cl_cli_study conv_study = {
-    .csv = "convergence.csv", .size = sizeof(cl_conv_result),
+    .csv = "convergence.csv",
+    .columns = "integrator          dt / rtol  err_x [m]      err_v   order"
+               "     steps   cpu [s]",
+    .size = sizeof(cl_conv_result),
     .begin = begin, .run = run_one, .print = print_result, .rows = rows,
     .end = end};
 
 static const cl_cli_study wp_study = {
-    .csv = "workprecision.csv", .size = sizeof(cl_conv_result),
+    .csv = "workprecision.csv",
+    .columns = "integrator          dt / rtol  err_x [m]   cpu [s]     steps"
+               "       rhs",
+    .size = sizeof(cl_conv_result),
     .begin = begin, .run = run_one, .print = print_wp,
     .summary = summary_wp, .rows = rows, .end = end};
 

@@ -112,9 +112,6 @@ static cl_status begin(cl_model *m, const cl_cli_job *job, void *ctx,
         return rc;
     printf("problem    %s, T = %g s, %ld samples\n", job->problem, s->t_end,
            s->samples);
-    printf("%-18s %11s %11s %11s %11s %11s %9s %8s %8s\n", "integrator",
-           "E(0) [J]", "E(T)", "W(T)", "B(T)", "max |B|", "max|B|/S",
-           "steps", "cpu [s]");
     return CL_OK;
 }
 
@@ -140,7 +137,10 @@ static void release(void *result)
 }
 
 static const cl_cli_study eb_study = {
-    .csv = "energy.csv", .size = sizeof(cl_ebal_result), .begin = begin,
+    .csv = "energy.csv",
+    .columns = "integrator            E(0) [J]        E(T)        W(T)       "
+               " B(T)     max |B|  max|B|/S    steps  cpu [s]",
+    .size = sizeof(cl_ebal_result), .begin = begin,
     .run = run_one, .print = print_result, .rows = rows,
     .release = release};
 

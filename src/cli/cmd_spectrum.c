@@ -84,7 +84,7 @@ static void print_summary(const cl_cli_job *job, const cl_spectrum *sp)
     printf("stiffness  w_max = %.6g rad/s (mu %.6g .. %.6g; %zu negative)\n",
            sp->w_max, sp->mu[0], sp->mu[sp->n - 1], neg);
     printf("first order  |lambda|_max = %.6g 1/s; %zu growing modes%s",
-           hypot(sp->re[0], sp->im[0]), sp->n_growing,
+           sp->lambda_max, sp->n_growing,
            sp->n_growing ? "" : "\n");
     if (sp->n_growing)
         printf(", fastest growth rate %.6g 1/s\n", sp->growth_max);

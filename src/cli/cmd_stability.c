@@ -136,8 +136,6 @@ static cl_status begin(cl_model *m, const cl_cli_job *job, void *ctx,
     printf("problem    %s (%d x %d particles, %zu free), T = %g s, "
            "max_stretch %g, %ld checks per run\n", job->problem, c->nu,
            c->nv, c->nfree, s->so.t_end, s->so.max_stretch, s->so.checks);
-    printf("%-18s %11s %11s %5s  %s\n", "integrator", "stable dt",
-           "unstable dt", "runs", "why the unstable run failed");
     return CL_OK;
 }
 
@@ -158,7 +156,10 @@ static void rows(FILE *fp, const void *result, bool header)
 }
 
 static const cl_cli_study stab_study = {
-    .csv = "stability.csv", .size = sizeof(cl_stab_result), .begin = begin,
+    .csv = "stability.csv",
+    .columns = "integrator           stable dt unstable dt  runs  why the "
+               "unstable run failed",
+    .size = sizeof(cl_stab_result), .begin = begin,
     .run = run_one, .print = print_result, .rows = rows};
 
 static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,

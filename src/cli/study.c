@@ -23,6 +23,8 @@ cl_status cl_cli_study_run(cl_model *m, const cl_cli_job *job,
     if (!res)
         return cl_error_set(err, CL_ENOMEM, "out of memory");
     cl_status rc = st->begin(m, job, ctx, err);
+    if (!rc && !job->quiet)
+        puts(st->columns);
     int done = 0;
     for (; !rc && done < n; done++) {
         rc = st->run(m, ctx, done, res + (size_t)done * st->size, err);

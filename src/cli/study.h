@@ -14,6 +14,7 @@
 
 typedef struct {
     const char *csv;      /* file name in the output directory */
+    const char *columns;  /* the table's header line, printed after begin */
     size_t size;          /* bytes of one result */
     cl_status (*begin)(cl_model *m, const cl_cli_job *job, void *ctx,
                        cl_error *err);
