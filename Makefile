@@ -21,11 +21,11 @@ endif
 LDFLAGS += -fopenmp
 LDLIBS := -lsundials_cvode -lsundials_ida -lsundials_kinsol \
           -lsundials_nvecserial -lsundials_sunmatrixsparse \
-          -lsundials_sunmatrixdense -lsundials_sunlinsoldense \
+          -lsundials_sunmatrixdense \
           -lsundials_sunlinsolklu -lsundials_sunlinsolspgmr \
           -lsundials_sunlinsolpcg -lsundials_sunnonlinsolfixedpoint \
           -lklu -lcholmod -lamd -lcolamd -lbtf \
-          -lsuitesparseconfig -lgsl -lgslcblas -linih -lm
+          -lsuitesparseconfig -lgsl -llapacke -llapack -lblas -linih -lm
 
 LIB_SRC  := $(filter-out src/cli/main.c,$(wildcard src/*/*.c))
 LIB_OBJ  := $(LIB_SRC:%.c=$(BUILD)/%.o)

@@ -5,7 +5,12 @@ set -euo pipefail
 
 # python3-numpy, python3-scipy: the scipy peer of the benchmarks
 # (scripts/peers/hang_scipy.py), which tests/test_peer.c checks.
+# liblapacke-dev: LAPACK's dense LU for cvode-bdf-dense; libopenblas0-serial
+# makes it (and GSL's LU, which gsl-msbdf uses, through CBLAS) fast: the
+# system's BLAS and LAPACK switch to OpenBLAS, single-threaded so that
+# results do not depend on a thread count.
 pkgs=(build-essential libsundials-dev libsuitesparse-dev libgsl-dev
+      liblapacke-dev libopenblas0-serial
       gnuplot-nox libinih-dev libcriterion-dev python3-numpy python3-scipy)
 # `install-deps.sh paper`: also LaTeX, for make paper only.
 if [[ ${1:-} == paper ]]; then

@@ -4,11 +4,12 @@
  *   y = (x, v),   x' = v,   v' = M^-1 f(t, x, v),   2n unknowns,
  *
  * variable-order variable-step BDF (orders 1..5), Newton iteration, the
- * linear systems (I - gamma J) dy = r solved by SUNLinSol_Dense (LU with
- * partial pivoting) on a SUNDenseMatrix, and J approximated by CVODE's own
- * column-by-column difference quotients (no CVodeSetJacFn): 2n RHS
- * evaluations per Jacobian, counted in rhs_evals.  Nothing of the
- * system's analytic Jacobian is used, which is what makes it a check.
+ * linear systems (I - gamma J) dy = r solved by LAPACK's LU with partial
+ * pivoting (linalg/sunls_lapack.h) on a SUNDenseMatrix, and J approximated
+ * by CVODE's own column-by-column difference quotients (no
+ * CVodeSetJacFn): 2n RHS evaluations per Jacobian, counted in rhs_evals.
+ * Nothing of the system's analytic Jacobian is used, which is what makes
+ * it a check.
  *
  * Dense storage and O((2n)^3) factorisations limit it to systems of at
  * most 24 x 24 particles' worth of unknowns (n <= 3 * 24 * 24 = 1728, a
@@ -22,10 +23,10 @@
 #include "integrators/integrator.h"
 
 #include <cvode/cvode.h>
-#include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "integrators/sun_common.h"
+#include "linalg/sunls_lapack.h"
 
 #define CL_DENSE_SIDE 24
 #define CL_DENSE_MAX_N ((size_t)3 * CL_DENSE_SIDE * CL_DENSE_SIDE)
@@ -50,15 +51,15 @@ static cl_status dense_create(const cl_system *sys,
         sunindextype m = (sunindextype)(2 * sys->n);
         SUNMatrix A = SUNDenseMatrix(m, m, s->ctx);
         st = cl_sun_attach_direct(
-            s, A, A ? SUNLinSol_Dense(s->y, A, s->ctx) : NULL, err);
+            s, A, A ? cl_sunls_lapack_dense(s->y, s->ctx) : NULL, err);
     }
     return cl_sun_finish(s, st, cl_sun_free, state);
 }
 
 const cl_integrator_type cl_integrator_cvode_bdf_dense = {
     .name = "cvode-bdf-dense",
-    .doc = "CVODE BDF, Newton, dense LU with CVODE's difference-quotient "
-           "Jacobian (n <= 24x24 particles; cross-check)",
+    .doc = "CVODE BDF, Newton, LAPACK dense LU with CVODE's "
+           "difference-quotient Jacobian (n <= 24x24 particles; cross-check)",
     .fixed_step = false,
     .takes_max_order = true,
     .takes_linsol = false,
