@@ -20,14 +20,6 @@ times=(0.2 0.3 0.5 1.0)
 rtols=(1e-6 1e-7 1e-8 1e-9 1e-10)
 out=out/hang-sensitivity/n$n
 
-# Max over particles of |x_a - x_b| between two final.csv files.
-distance() {
-    awk -F, 'NR == FNR { if (FNR > 1) { x[FNR] = $2; y[FNR] = $3; z[FNR] = $4 }; next }
-             FNR > 1 { d = sqrt(($2 - x[FNR])^2 + ($3 - y[FNR])^2 + ($4 - z[FNR])^2)
-                       if (d > m) m = d }
-             END { printf "%.2e", m }' "$1" "$2"
-}
-
 run() { # T rtol
     local dir=$out/T$1/rtol$2
     "$bin" run hang --set cloth.n="$n" --t-end "$1" --rtol "$2" \
@@ -45,7 +37,8 @@ for T in "${times[@]}"; do ref[$T]=$(run "$T" 1e-11); done
 for r in "${rtols[@]}"; do
     printf "%-8s" "$r"
     for T in "${times[@]}"; do
-        printf " %10s" "$(distance "${ref[$T]}" "$(run "$T" "$r")")"
+        printf " %10s" "$(awk -F, -f scripts/final-distance.awk "${ref[$T]}" \
+            "$(run "$T" "$r")")"
     done
     echo
 done

@@ -43,10 +43,18 @@ awk '{ split($2, kv, "="); printf "%s & %s %s & %s & %.4f & %d & %s \\\\\n",
        $1, kv[1], kv[2], $3, $4, $5, $6 }' \
     "$res/wrinkles/wrinkles.txt" > "$tex/wrinkles.tex"
 
-# Predictability of hang: the sensitivity table (rtol, one column per T).
-awk 'NR > 2 && NF > 1 { line = $1; for (i = 2; i <= NF; i++) line = line " & " $i
-                         print line " \\\\" }' \
-    "$res/sensitivity.txt" > "$tex/sensitivity.tex"
-awk 'NR == 2 { for (i = 2; i <= NF; i++) printf "%s%s", (i > 2 ? " & " : ""), $i }' \
-    "$res/sensitivity.txt" > "$tex/sensitivity-head.tex"
+# Predictability of hang: tables of rtol rows, one column per T (the
+# sensitivity and the mirror asymmetry), and the parameter variants.
+for t in sensitivity symmetry; do
+    awk 'NR > 2 && NF > 1 { line = $1; for (i = 2; i <= NF; i++) line = line " & " $i
+                             print line " \\\\" }' \
+        "$res/$t.txt" > "$tex/$t.tex"
+    awk 'NR == 2 { for (i = 2; i <= NF; i++) printf "%s%s", (i > 2 ? " & " : ""), $i }' \
+        "$res/$t.txt" > "$tex/$t-head.tex"
+done
+awk 'NR > 2 { name = $1; sub(/^as-specified$/, "as specified", name)
+              sub(/^kb\*10$/, "$10\\,k_b$", name); sub(/^kd\*10$/, "$10\\,k_d$", name)
+              sub(/^no-type2$/, "no Type2 pairs", name)
+              printf "%s & %s \\\\\n", name, $2 }' \
+    "$res/variants.txt" > "$tex/variants.tex"
 echo "paper: tables in $tex"

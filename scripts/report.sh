@@ -133,6 +133,10 @@ draw wrinkles "dir='$wr'; names='$names'; title_text='compress: largest out-of-p
 echo "report: predictability of hang (n = 10), cvode-bdf against rtol 1e-11"
 scripts/hang-sensitivity.sh 10 0.2 0.5 > "$res/sensitivity.txt"
 cat "$res/sensitivity.txt"
+echo "report: why (mirror asymmetry; bending, damping and Type2 varied)"
+scripts/hang-mechanism.sh symmetry 10 0.2 0.3 0.5 1.0 > "$res/symmetry.txt"
+scripts/hang-mechanism.sh variants 10 0.5 > "$res/variants.txt"
+cat "$res/symmetry.txt" "$res/variants.txt"
 
 echo "report: animation (hang, cvode-bdf, 2 s)"
 "$bin" run hang --quiet --out "$res/hang" --frames 40 --format obj
