@@ -26,6 +26,7 @@
 #include "core/check.h"
 #include "integrators/fixed_step.h"
 #include "linalg/linsol.h"
+#include "linalg/sunls.h"
 
 _Static_assert(sizeof(sunrealtype) == sizeof(double),
                "clothode needs SUNDIALS built in double precision");
@@ -164,18 +165,6 @@ static void shell_destroy(SUNMatrix A)
         A->content = NULL;
         SUNMatFreeEmpty(A);
     }
-}
-
-static SUNLinearSolver_Type ls_gettype(SUNLinearSolver S)
-{
-    (void)S;
-    return SUNLINEARSOLVER_DIRECT;
-}
-
-static SUNLinearSolver_ID ls_getid(SUNLinearSolver S)
-{
-    (void)S;
-    return SUNLINEARSOLVER_CUSTOM;
 }
 
 static int ls_initialize(SUNLinearSolver S)
@@ -329,8 +318,8 @@ static cl_status kin_linsol(cl_kin *s, const cl_integrator_opts *o,
     s->J->ops->zero = shell_zero;
     s->J->ops->destroy = shell_destroy;
     s->ls->content = s;
-    s->ls->ops->gettype = ls_gettype;
-    s->ls->ops->getid = ls_getid;
+    s->ls->ops->gettype = cl_sunls_type_direct;
+    s->ls->ops->getid = cl_sunls_id_custom;
     s->ls->ops->initialize = ls_initialize;
     s->ls->ops->setup = ls_setup;
     s->ls->ops->solve = ls_solve;

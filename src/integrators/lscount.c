@@ -6,6 +6,8 @@
 
 #include <sunlinsol/sunlinsol_klu.h>
 
+#include "linalg/sunls.h"
+
 static SUNLinearSolver inner(SUNLinearSolver S)
 {
     return ((cl_lscount *)S->content)->inner;
@@ -14,12 +16,6 @@ static SUNLinearSolver inner(SUNLinearSolver S)
 static SUNLinearSolver_Type cnt_gettype(SUNLinearSolver S)
 {
     return SUNLinSolGetType(inner(S));
-}
-
-static SUNLinearSolver_ID cnt_getid(SUNLinearSolver S)
-{
-    (void)S;
-    return SUNLINEARSOLVER_CUSTOM;
 }
 
 static int cnt_initialize(SUNLinearSolver S)
@@ -82,7 +78,7 @@ SUNLinearSolver cl_lscount_create(cl_lscount *c, SUNContext ctx)
         return NULL;
     S->content = c;
     S->ops->gettype = cnt_gettype;
-    S->ops->getid = cnt_getid;
+    S->ops->getid = cl_sunls_id_custom;
     S->ops->initialize = cnt_initialize;
     S->ops->setup = cnt_setup;
     S->ops->solve = cnt_solve;

@@ -5,23 +5,13 @@
 #include <stdlib.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include "linalg/sunls.h"
+
 typedef struct {
     lapack_int n;
     lapack_int *pivots;
     sunindextype last_flag;
 } lapack_content;
-
-static SUNLinearSolver_Type lapack_gettype(SUNLinearSolver S)
-{
-    (void)S;
-    return SUNLINEARSOLVER_DIRECT;
-}
-
-static SUNLinearSolver_ID lapack_getid(SUNLinearSolver S)
-{
-    (void)S;
-    return SUNLINEARSOLVER_CUSTOM;
-}
 
 static int lapack_initialize(SUNLinearSolver S)
 {
@@ -84,8 +74,8 @@ SUNLinearSolver cl_sunls_lapack_dense(N_Vector y, SUNContext ctx)
     SUNLinearSolver S = SUNLinSolNewEmpty(ctx);
     if (!S)
         return NULL;
-    S->ops->gettype = lapack_gettype;
-    S->ops->getid = lapack_getid;
+    S->ops->gettype = cl_sunls_type_direct;
+    S->ops->getid = cl_sunls_id_custom;
     S->ops->initialize = lapack_initialize;
     S->ops->setup = lapack_setup;
     S->ops->solve = lapack_solve;
