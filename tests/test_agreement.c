@@ -30,6 +30,7 @@
 #include <stdlib.h>
 
 #include "runsun.h"
+#include "timelimit.h"
 
 #define AG_N_SPEC 16 /* the problem as specified */
 #define AG_T_SPEC 0.5
@@ -121,17 +122,20 @@ static void ag_compare(const ag_case *c)
 }
 
 /* The problem's own tolerances (problems/hang.ini). */
-Test(agreement, hang_all_methods_at_half_a_second, .timeout = 600)
+Test(agreement, hang_all_methods_at_half_a_second)
 {
+    time_limit(600);
     ag_compare(&(ag_case){AG_N_SPEC, AG_T_SPEC, 1e-4, 1e-6, true});
 }
 
-Test(agreement, hang_sparse_methods_at_half_a_second, .timeout = 300)
+Test(agreement, hang_sparse_methods_at_half_a_second)
 {
+    time_limit(300);
     ag_compare(&(ag_case){AG_N_SPEC, AG_T_SPEC, 1e-6, 1e-8, false});
 }
 
-Test(agreement, hang_n10_all_methods, .timeout = 300)
+Test(agreement, hang_n10_all_methods)
 {
+    time_limit(300);
     ag_compare(&(ag_case){AG_N_SMALL, AG_T_SMALL, 1e-6, 1e-8, true});
 }

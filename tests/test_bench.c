@@ -10,11 +10,13 @@
 #include "analysis/bench.h"
 #include "analysis/child.h"
 #include "runcli.h"
+#include "timelimit.h"
 
 static char tmp[512];
 
 static void setup(void)
 {
+    time_limit(300);
     tmp_mkdtemp(tmp, sizeof tmp, "bench");
 }
 
@@ -23,7 +25,7 @@ static void teardown(void)
     tmp_rm_rf(tmp);
 }
 
-TestSuite(bench, .init = setup, .fini = teardown, .timeout = 300);
+TestSuite(bench, .init = setup, .fini = teardown);
 
 static const char *in_tmp(char *buf, const char *name)
 {

@@ -16,6 +16,7 @@
 #include "io/state.h"
 #include "model/model.h"
 #include "runcli.h"
+#include "timelimit.h"
 
 /* ---- fixture: one scratch directory per test -------------------------- */
 
@@ -23,6 +24,7 @@ static char tmp[512];
 
 static void setup(void)
 {
+    time_limit(900);
     tmp_mkdtemp(tmp, sizeof tmp, "cli");
 }
 
@@ -31,7 +33,7 @@ static void teardown(void)
     tmp_rm_rf(tmp);
 }
 
-TestSuite(cli, .init = setup, .fini = teardown, .timeout = 900);
+TestSuite(cli, .init = setup, .fini = teardown);
 
 /* A path inside the scratch directory. */
 static const char *in_tmp(char *buf, const char *name)

@@ -20,6 +20,7 @@
 #include "io/state.h"
 #include "model/model.h"
 #include "runcli.h"
+#include "timelimit.h"
 
 #define N 6
 #define NP (N * N)
@@ -29,6 +30,7 @@ static char tmp[512];
 
 static void setup(void)
 {
+    time_limit(300);
     tmp_mkdtemp(tmp, sizeof tmp, "peer");
 }
 
@@ -37,7 +39,7 @@ static void teardown(void)
     tmp_rm_rf(tmp);
 }
 
-TestSuite(peer, .init = setup, .fini = teardown, .timeout = 300);
+TestSuite(peer, .init = setup, .fini = teardown);
 
 static const char *in_tmp(char *buf, const char *name)
 {
