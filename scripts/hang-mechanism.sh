@@ -54,13 +54,13 @@ symmetry() {
 
 variants() {
     local T=${1:-0.5} name
-    local -A set=([as-specified]="" [kb*10]=type2.kb=5e-5
-                  [kd*10]=damping.kd=1e-2 [no-type2]=type2.enabled=false)
+    local -A change=([as-specified]="" [kb*10]=type2.kb=5e-5
+                     [kd*10]=damping.kd=1e-2 [no-type2]=type2.enabled=false)
     printf "hang n = %s, T = %s, cvode-bdf: max |x(rtol 1e-6) - x(rtol 1e-10)| (m)\n" "$n" "$T"
     printf "%-14s %10s\n" variant distance
     for name in as-specified 'kb*10' 'kd*10' no-type2; do
         local args=() a b
-        [[ -n ${set[$name]} ]] && args=(--set "${set[$name]}")
+        [[ -n ${change[$name]} ]] && args=(--set "${change[$name]}")
         a=$(run "variants/$name/rtol1e-6" "$T" 1e-6 "${args[@]}")
         b=$(run "variants/$name/rtol1e-10" "$T" 1e-10 "${args[@]}")
         printf "%-14s %10s\n" "$name" "$(awk -F, -f scripts/final-distance.awk "$a" "$b")"
