@@ -21,9 +21,8 @@
  * at rtol 1e-6 is off by 6.2e-7 m at 0.2 s, 2.9e-5 at 0.3 s and 4.0e-4 at
  * 0.5 s, and at 0.5 s the error is 400 to 1e5 times rtol for every rtol
  * from 1e-6 to 1e-10: no tolerance-based bound can hold there, for any
- * method.  So at n = 10 the
- * five methods are compared at T = 0.2 s, where the bound (1e-5 m)
- * exceeds the measured differences by more than 10x. */
+ * method.  So at n = 10 the five methods are compared at T = 0.2 s, where
+ * the bound (1e-5 m) exceeds the measured differences by more than 10x. */
 #include <criterion/criterion.h>
 
 #include <math.h>
