@@ -57,6 +57,17 @@ typedef struct {
     const char *const *label;  /* 128 entries */
 } cl_cli_spec;
 
+/* The options every such subcommand ends with: --out, --set, --quiet and
+ * --help as getopt_long entries (closing the table), and the help lines of
+ * --out and --set. */
+#define CL_CLI_OPTS_TAIL                                                     \
+    {"out", required_argument, 0, 'o'}, {"set", required_argument, 0, 's'}, \
+    {"quiet", no_argument, 0, 'q'}, {"help", no_argument, 0, 'h'},           \
+    {0, 0, 0, 0}
+#define CL_CLI_HELP_OUT_SET                                                  \
+    "  --out DIR          output directory (default out/PROBLEM)\n"          \
+    "  --set SEC.KEY=VAL  override any problem key (repeatable)\n"
+
 /* Parse argv: the index of PROBLEM; -2 after --help (printed), -1 after a
  * usage error (printed).  a->sets must be freed by the caller. */
 int cl_cli_parse(int argc, char **argv, const cl_cli_spec *spec,

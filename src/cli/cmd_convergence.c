@@ -29,8 +29,7 @@ static const char conv_help[] =
     "  --ref-rtol R       reference tolerance (default 1e-11; atol R/100)\n"
     "  --linsol NAME      linear solver of implicit integrators\n"
     "  --max-order K      highest order of CVODE / IDA\n"
-    "  --out DIR          output directory (default out/PROBLEM)\n"
-    "  --set SEC.KEY=VAL  override any problem key (repeatable)\n"
+    CL_CLI_HELP_OUT_SET
     "  --quiet            no table on stdout\n"
     "  --help             this text\n"
     "The reference's floor is its distance to a run at 10x its rtol; levels\n"
@@ -49,11 +48,7 @@ static const struct option conv_opts[] = {
     {"ref-rtol", required_argument, 0, 'R'},
     {"linsol", required_argument, 0, 'l'},
     {"max-order", required_argument, 0, 'm'},
-    {"out", required_argument, 0, 'o'},
-    {"set", required_argument, 0, 's'},
-    {"quiet", no_argument, 0, 'q'},
-    {"help", no_argument, 0, 'h'},
-    {0, 0, 0, 0}};
+    CL_CLI_OPTS_TAIL};
 static const char *const conv_key[128] = {
     ['i'] = "run.integrator", ['d'] = "run.dt", ['r'] = "run.rtol",
     ['a'] = "run.atol", ['L'] = "convergence.levels", ['t'] = "run.t_end",

@@ -26,8 +26,7 @@ static const char eb_help[] =
     "  --samples S        samples after t = 0 (default 1000; a fixed-step\n"
     "                     method is sampled at most at every step)\n"
     "  --linsol NAME      linear solver of implicit integrators\n"
-    "  --out DIR          output directory (default out/PROBLEM)\n"
-    "  --set SEC.KEY=VAL  override any problem key (repeatable)\n"
+    CL_CLI_HELP_OUT_SET
     "  --quiet            no table on stdout\n"
     "  --help             this text\n"
     "W's quadrature error falls with the square of the sample spacing:\n"
@@ -43,11 +42,7 @@ static const struct option eb_opts[] = {
     {"t-end", required_argument, 0, 't'},
     {"samples", required_argument, 0, 'S'},
     {"linsol", required_argument, 0, 'l'},
-    {"out", required_argument, 0, 'o'},
-    {"set", required_argument, 0, 's'},
-    {"quiet", no_argument, 0, 'q'},
-    {"help", no_argument, 0, 'h'},
-    {0, 0, 0, 0}};
+    CL_CLI_OPTS_TAIL};
 static const char *const eb_key[128] = {
     ['i'] = "run.integrator", ['d'] = "run.dt", ['r'] = "run.rtol",
     ['a'] = "run.atol", ['t'] = "run.t_end", ['S'] = "energy.samples",

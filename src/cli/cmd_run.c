@@ -26,8 +26,7 @@ static const char run_help[] =
     "  --frames K         frames after t = 0 (default 10, 0 for none)\n"
     "  --format LIST      frame formats among csv,vtk,obj (default vtk,obj;\n"
     "                     csv: the time series only)\n"
-    "  --out DIR          output directory (default out/PROBLEM)\n"
-    "  --set SEC.KEY=VAL  override any problem key (repeatable)\n"
+    CL_CLI_HELP_OUT_SET
     "  --quiet            no summary on stdout\n"
     "  --help             this text\n"
     "Every option is also a key of the [run] section (t_end, dt, rtol, atol,\n"
@@ -49,11 +48,7 @@ static const struct option run_opts[] = {
     {"samples", required_argument, 0, 'S'},
     {"frames", required_argument, 0, 'f'},
     {"format", required_argument, 0, 'F'},
-    {"out", required_argument, 0, 'o'},
-    {"set", required_argument, 0, 's'},
-    {"quiet", no_argument, 0, 'q'},
-    {"help", no_argument, 0, 'h'},
-    {0, 0, 0, 0}};
+    CL_CLI_OPTS_TAIL};
 static const char *const run_key[128] = {
     ['i'] = "run.integrator", ['d'] = "run.dt", ['r'] = "run.rtol",
     ['a'] = "run.atol", ['l'] = "run.linsol", ['T'] = "run.threads",

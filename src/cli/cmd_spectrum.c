@@ -20,19 +20,14 @@ static const char spec_help[] =
     "  --state FILE       state to linearise at, as final.csv (default: the\n"
     "                     problem's initial state)\n"
     "  --t T              time of that state (moving pins; default 0)\n"
-    "  --out DIR          output directory (default out/PROBLEM)\n"
-    "  --set SEC.KEY=VAL  override any problem key (repeatable)\n"
+    CL_CLI_HELP_OUT_SET
     "  --quiet            no summary on stdout\n"
     "  --help             this text\n";
 
 static const struct option spec_opts[] = {
     {"state", required_argument, 0, 'S'},
     {"t", required_argument, 0, 't'},
-    {"out", required_argument, 0, 'o'},
-    {"set", required_argument, 0, 's'},
-    {"quiet", no_argument, 0, 'q'},
-    {"help", no_argument, 0, 'h'},
-    {0, 0, 0, 0}};
+    CL_CLI_OPTS_TAIL};
 static const char *const spec_key[128] = {['S'] = "spectrum.state",
                                           ['t'] = "spectrum.t"};
 static const char *const spec_label[128] = {['S'] = "--state",

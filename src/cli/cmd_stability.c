@@ -28,8 +28,7 @@ static const char stab_help[] =
     "  --rel R            bracket width relative to the step (default 0.02)\n"
     "  --checks K         stretch tests per run (default 20)\n"
     "  --linsol NAME      linear solver of implicit integrators\n"
-    "  --out DIR          output directory (default out/PROBLEM)\n"
-    "  --set SEC.KEY=VAL  override any problem key (repeatable)\n"
+    CL_CLI_HELP_OUT_SET
     "  --quiet            no table on stdout\n"
     "  --help             this text\n"
     "Other [run] keys (newton_tol, newton_maxit, verlet_damping, ...) apply\n"
@@ -45,11 +44,7 @@ static const struct option stab_opts[] = {
     {"rel", required_argument, 0, 'r'},
     {"checks", required_argument, 0, 'c'},
     {"linsol", required_argument, 0, 'l'},
-    {"out", required_argument, 0, 'o'},
-    {"set", required_argument, 0, 's'},
-    {"quiet", no_argument, 0, 'q'},
-    {"help", no_argument, 0, 'h'},
-    {0, 0, 0, 0}};
+    CL_CLI_OPTS_TAIL};
 static const char *const stab_key[128] = {
     ['i'] = "run.integrator", ['t'] = "run.t_end",
     ['H'] = "stability.dt_max", ['M'] = "stability.dt_min",
