@@ -735,6 +735,40 @@ void cl_config_ignore_section(cl_config *cfg, const char *sec)
             cfg->ent[i].used = true;
 }
 
+static const cl_entry *cl_find_section(const cl_config *cfg,
+                                       const char *sec);
+
+const char *cl_config_section_at(const cl_config *cfg, const char *prefix,
+                                 size_t k)
+{
+    size_t len = strlen(prefix), seen = 0;
+    for (const cl_entry *e = cfg->ent; e < cfg->ent + cfg->nent; e++)
+        if (!strncmp(e->sec, prefix, len) && cl_find_section(cfg, e->sec) == e
+            && seen++ == k)
+            return e->sec;
+    return NULL;
+}
+
+cl_status cl_config_path_of(cl_config *cfg, const char *sec, const char *key,
+                            char *buf, size_t len, cl_error *err)
+{
+    const char *name = cl_config_string(cfg, sec, key, "");
+    const cl_entry *e = cl_lookup(cfg, sec, key);
+    cl_origin_buf origin;
+    if (!*name)
+        return cl_error_set(err, CL_EINVAL, "[%s] %s: a file name is "
+                            "required", sec, key);
+    cl_origin_of(e, origin, sizeof origin);
+    const char *slash = e->file ? strrchr(e->file, '/') : NULL;
+    int dirlen = name[0] == '/' || !slash ? 0 : (int)(slash - e->file) + 1;
+    int n = snprintf(buf, len, "%.*s%s", dirlen, e->file ? e->file : "", name);
+    if (n < 0 || (size_t)n >= len)
+        return cl_error_set(err, CL_EINVAL, "%s: [%s] %s = \"%s\": path too "
+                            "long (at most %zu bytes)", origin, sec, key, name,
+                            len - 1);
+    return CL_OK;
+}
+
 /* ---------------------------------------------------------------- writing */
 
 /* The first entry of section `sec`, or NULL. */

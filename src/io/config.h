@@ -76,6 +76,19 @@ const char *cl_config_origin(const cl_config *cfg, const char *sec,
  * known once a getter asked for them, present in the file or not). */
 cl_status cl_config_check_unused(const cl_config *cfg, cl_error *err);
 
+/* The distinct sections whose names start with `prefix` (e.g. "obstacle."
+ * for [obstacle.ball], [obstacle.floor]), in order of first appearance:
+ * the k-th (0-based) such name, or NULL when there are k or fewer. */
+const char *cl_config_section_at(const cl_config *cfg, const char *prefix,
+                                 size_t k);
+
+/* A file named by a key, relative to the directory of the file that set
+ * it (an entry from --set: relative to the working directory), into buf;
+ * CL_EINVAL naming the entry if the key is absent or empty or the path
+ * does not fit in len bytes. */
+cl_status cl_config_path_of(cl_config *cfg, const char *sec, const char *key,
+                            char *buf, size_t len, cl_error *err);
+
 /* Count every entry now in section `sec` as used, for commands that
  * deliberately do not read that section. */
 void cl_config_ignore_section(cl_config *cfg, const char *sec);

@@ -1,0 +1,78 @@
+/* An obstacle: a shape (contact/shape.h) moved rigidly along a scripted
+ * path, with the response its contacts get (docs/model.md, contact).
+ *
+ * INI section [obstacle.NAME] (NAME: letters, digits, '-', '_'):
+ *   shape     = sphere | plane | box | mesh, then the shape's own keys
+ *   path      = keyframes "t: x, y, z; t: x, y, z; ..." of the
+ *               displacement of the shape from where its keys put it
+ *               (m), times strictly increasing; piecewise linear between
+ *               them, held before the first and after the last (default:
+ *               none, the obstacle stays put)
+ *   omega     = constant angular velocity (rad/s, vector, default 0),
+ *               about the shape's pivot carried along the path
+ *   response  = penalty | project
+ *   penalty:  k (N/m, > 0), eps (band, m, >= 0), damping (N s/m, >= 0,
+ *             default 0), mu (>= 0, default 0), v_smooth (m/s, > 0,
+ *             default 1e-3: the friction's smoothing speed)
+ *   project:  offset (m, >= 0, default 0), zero_velocity (default false),
+ *             mu (>= 0, default 0), iterations (>= 1, default 1)
+ *
+ * The position of a shape point X at time t is
+ *     x(t) = q + R(t) (X - q) + s(t),   R(t) = exp(t [omega]x),
+ * q the pivot, s(t) the path displacement; the obstacle's velocity field is
+ * u(x, t) = s'(t) + omega x (x - q - s(t)), exact (s' piecewise constant). */
+#ifndef CL_OBSTACLE_H
+#define CL_OBSTACLE_H
+
+#include <stdbool.h>
+
+#include "contact/shape.h"
+
+typedef enum { CL_RESPONSE_PENALTY, CL_RESPONSE_PROJECT } cl_response;
+
+typedef struct {
+    cl_response kind;
+    double k, eps, damping, v_smooth; /* penalty */
+    double offset;                    /* project */
+    bool zero_velocity;               /* project */
+    long iterations;                  /* project */
+    double mu;                        /* both: Coulomb friction */
+} cl_response_params;
+
+typedef struct {
+    double d, n[3], c[3], G[9]; /* as cl_shape_query, in the world frame */
+    double u[3];                /* obstacle velocity at x */
+    double W[9];                /* du/dx = [omega]x, row-major */
+} cl_contact_point;
+
+typedef struct {
+    char name[64];
+    const cl_shape_type *type;
+    void *shape;
+    double pivot[3];
+    size_t nkey;
+    double *key_t;        /* keyframe times */
+    double (*key_s)[3];   /* keyframe displacements */
+    double omega[3];
+    cl_response_params resp;
+} cl_obstacle;
+
+/* Read [sec] (sec = "obstacle.NAME"). */
+cl_status cl_obstacle_create(cl_config *cfg, const char *sec, cl_obstacle *o,
+                             cl_error *err);
+void cl_obstacle_free(cl_obstacle *o);
+
+/* Rotation R(t) (row-major) and displacement s(t), velocity s'(t). */
+void cl_obstacle_pose(const cl_obstacle *o, double t, double R[9],
+                      double s[3], double sdot[3]);
+
+/* Distance, normal, closest point, dn/dx and the obstacle's velocity at
+ * the world point x at time t. */
+void cl_obstacle_query(const cl_obstacle *o, double t, const double x[3],
+                       cl_contact_point *q);
+
+/* The obstacle's drawing surface at time t, in the world frame. */
+cl_status cl_obstacle_surface(const cl_obstacle *o, double t,
+                              cl_shape_surface *s, cl_error *err);
+
+#endif

@@ -1,0 +1,63 @@
+/* The obstacle-shape interface of the contact layer.  A shape (sphere,
+ * plane, box, triangle mesh) is one file defining a cl_shape_type plus one
+ * row in the registry table of contact/registry.c; nothing else changes.
+ *
+ * A shape lives in its own frame; the obstacle (contact/obstacle.h) moves
+ * that frame rigidly along its scripted path.  A shape answers, for a
+ * point x of its frame, the signed distance d (> 0 outside, < 0 inside),
+ * the outward unit normal n = grad d, the closest surface point
+ * c = x - d n and the derivative of the normal G = dn/dx (the Hessian of
+ * d, symmetric; docs/model.md, contact section): 0 on a face, (I - n n^T)/r
+ * around a sphere of radius-to-centre r, (I - n n^T - e e^T)/d near an edge
+ * of direction e, (I - n n^T)/d near a vertex.  Where d is not
+ * differentiable (the centre of a sphere, a point equidistant from two
+ * faces of a box) any one of the candidates is returned. */
+#ifndef CL_SHAPE_H
+#define CL_SHAPE_H
+
+#include <stddef.h>
+
+#include "core/error.h"
+#include "io/config.h"
+
+typedef struct {
+    double d;       /* signed distance (m), > 0 outside */
+    double n[3];    /* outward unit normal, grad d */
+    double c[3];    /* closest point on the surface */
+    double G[9];    /* dn/dx, row-major, symmetric */
+} cl_shape_query;
+
+/* Triangles that draw a shape (in its own frame), for the frames written
+ * beside the cloth. */
+typedef struct {
+    size_t nvert;
+    double *vert;   /* 3 * nvert */
+    size_t ntri;
+    int (*tri)[3];  /* 0-based, counter-clockwise seen from outside */
+} cl_shape_surface;
+
+typedef struct {
+    const char *name;   /* the `shape` value in an [obstacle.NAME] section */
+    const char *doc;    /* one line for `clothode list` */
+    /* Read the geometry keys of INI section `sec` (the keys of each shape
+     * are listed in its file and the README) and set pivot, the point the
+     * obstacle's rotation turns about (a sphere's or box's centre, a
+     * plane's point, a mesh's vertex centroid).  Bad values give CL_EINVAL
+     * naming the file, line, key, value and the allowed range. */
+    cl_status (*create)(cl_config *cfg, const char *sec, double pivot[3],
+                        void **shape, cl_error *err);
+    void (*query)(const void *shape, const double x[3], cl_shape_query *q);
+    /* Allocate the drawing surface (free with cl_shape_surface_free). */
+    cl_status (*surface)(const void *shape, cl_shape_surface *s,
+                         cl_error *err);
+    void (*free)(void *shape);
+} cl_shape_type;
+
+/* Registry (contact/registry.c), NULL-terminated. */
+extern const cl_shape_type *const cl_shape_registry[];
+
+const cl_shape_type *cl_shape_find(const char *name);
+
+void cl_shape_surface_free(cl_shape_surface *s);
+
+#endif
