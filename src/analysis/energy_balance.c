@@ -11,6 +11,7 @@ typedef struct {
     cl_model *m;
     cl_ebal_result *r;
     size_t cap;
+    double trapz;   /* int P dt so far, by the trapezoidal rule */
 } ebal_ctx;
 
 /* One sample: energies at (t, x, v), W by the trapezoidal rule from the
@@ -33,9 +34,9 @@ static cl_status sample(void *vctx, double t, const double *x,
     s->potential = e.potential;
     s->total = e.total;
     s->power = e.power_diss;
-    s->dissipated = p ? p->dissipated + 0.5 * (t - p->t) *
-                                            (p->power + s->power)
-                      : 0.0;
+    if (p)
+        c->trapz += 0.5 * (t - p->t) * (p->power + s->power);
+    s->dissipated = c->trapz + e.contact_work;
     s->balance = p ? s->total - r->s[0].total - s->dissipated : 0.0;
     r->scale = fmax(r->scale, fmax(fabs(r->s[0].total), s->kinetic));
     r->scale = fmax(r->scale, fabs(s->potential - r->s[0].potential));
@@ -66,7 +67,7 @@ cl_status cl_ebal_run(cl_model *m, const cl_integrator_type *type,
     cl_status rc = cl_ebal_check(m, type, io, T, samples, err);
     if (rc)
         return rc;
-    ebal_ctx c = {m, r, (size_t)samples + 1};
+    ebal_ctx c = {m, r, (size_t)samples + 1, 0.0};
     r->s = malloc(c.cap * sizeof *r->s);
     if (!r->s)
         return cl_error_set(err, CL_ENOMEM, "out of memory (%ld samples)",
@@ -74,6 +75,7 @@ cl_status cl_ebal_run(cl_model *m, const cl_integrator_type *type,
     if (!(rc = cl_trial_init(&t, m, err))) {
         t.hook = sample;
         t.hook_ctx = &c;
+        t.contact_work = true;
         r->rc = cl_trial_run(&t, type, io, T, samples, max_stretch,
                              &r->stats, &r->why);
     }

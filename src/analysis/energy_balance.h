@@ -5,7 +5,9 @@
  *
  *   E(t) = kinetic + potential (every conservative term, gravity included),
  *   W(t) = int_0^t P dt, P <= 0 the power of the dissipative terms
- *          (damping), by the trapezoidal rule between samples,
+ *          (damping, contact damping and friction), by the trapezoidal
+ *          rule between samples, plus the energy the contact projections
+ *          changed, summed at every projection (cl_model_contact_start),
  *   B(t) = E(t) - E(0) - W(t),
  *
  * B being the energy the integrator made (> 0) or destroyed (< 0) beyond

@@ -5,7 +5,11 @@
  * frames leave out the triangles with a torn edge (cl_model_triangles into
  * a buffer allocated once per run), the max_stretch diagnostic and its
  * blow-up limit look at intact neighbour pairs only, and the series'
- * last column, broken, counts the torn connections (cl_model_broken). */
+ * last column, broken, counts the torn connections (cl_model_broken).
+ *
+ * Contact (a model with obstacles): four more columns, the contact figures
+ * at the sample (contact/contact.h), obstacle frames beside the cloth's,
+ * and the deepest penetration of the run with its time in the result. */
 #include "analysis/simulate.h"
 
 #include <math.h>
@@ -92,6 +96,12 @@ static cl_status open_series(sim *s, cl_error *err)
     names[n++] = "max_offplane";
     names[n++] = "wrinkles";
     names[n++] = "broken";
+    if (cl_model_contact(s->m)) {
+        names[n++] = "contacts";
+        names[n++] = "max_penetration";
+        names[n++] = "contact_force";
+        names[n++] = "friction_power";
+    }
     s->row = malloc(n * sizeof *s->row);
     if (!s->row)
         return cl_error_set(err, CL_ENOMEM, "out of memory (series row)");
@@ -145,6 +155,16 @@ static cl_status sample(sim *s, double t, cl_sim_result *res, cl_error *err)
     s->row[n++] = offplane;
     s->row[n++] = (double)cl_wrinkles(s->c, s->xf);
     s->row[n++] = (double)cl_model_broken(s->m);
+    if (cl_model_contact(s->m)) {
+        cl_contact_figures cf;
+        if ((rc = cl_model_contact_figures(s->m, t, s->x, s->v, &cf)))
+            return cl_error_set(err, rc, "blow-up at t = %g: contact force "
+                                "is not finite", t);
+        s->row[n++] = (double)cf.contacts;
+        s->row[n++] = cf.max_penetration;
+        s->row[n++] = cf.force;
+        s->row[n++] = cf.friction_power;
+    }
     if ((rc = cl_series_row(s->series, s->row, err)))
         return rc;
     res->t_reached = t;
@@ -154,6 +174,26 @@ static cl_status sample(sim *s, double t, cl_sim_result *res, cl_error *err)
     res->rows++;
     memcpy(res->xfinal, s->xf, 3 * s->c->np * sizeof *s->xf);
     return CL_OK;
+}
+
+/* The obstacles' surfaces at t, in the formats of the cloth frames. */
+static cl_status write_obstacles(sim *s, double t, cl_error *err)
+{
+    cl_shape_surface all;
+    char path[4096];
+    cl_status rc = cl_model_obstacle_surface(s->m, t, &all, err);
+    cl_frame f = {(int)all.nvert, 1, all.vert, NULL, NULL, t,
+                  (const int(*)[3])all.tri, all.ntri};
+    if (!rc && s->so->vtk &&
+        !(rc = cl_frame_path_stem(s->so->outdir, "obstacles", s->frame_index,
+                                  "vtk", path, sizeof path, err)))
+        rc = cl_frame_write_vtk(path, &f, err);
+    if (!rc && s->so->obj &&
+        !(rc = cl_frame_path_stem(s->so->outdir, "obstacles", s->frame_index,
+                                  "obj", path, sizeof path, err)))
+        rc = cl_frame_write_obj(path, &f, err);
+    cl_shape_surface_free(&all);
+    return rc;
 }
 
 static cl_status write_frame(sim *s, double t, cl_sim_result *res,
@@ -172,6 +212,8 @@ static cl_status write_frame(sim *s, double t, cl_sim_result *res,
         (!(rc = cl_frame_path(s->so->outdir, s->frame_index, "obj", path,
                               sizeof path, err))))
         rc = cl_frame_write_obj(path, &f, err);
+    if (!rc && cl_model_contact(s->m))
+        rc = write_obstacles(s, t, err);
     if (!rc) {
         s->frame_index++;
         res->frames++;
@@ -286,6 +328,7 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
     schedule sch;
     void *state = NULL;
     memset(res, 0, sizeof *res);
+    cl_model_contact_start(m, false);
     res->xfinal = malloc(3 * s.c->np * sizeof *res->xfinal);
     cl_status rc = res->xfinal ? CL_OK
                                : cl_error_set(err, CL_ENOMEM, "out of memory");
@@ -300,6 +343,7 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
         if (!rc)
             rc = integrate(&s, type, state, &sch, res, err);
     }
+    cl_model_contact_worst(m, &res->worst_penetration, &res->worst_t);
     if (state) {
         double wall = res->stats.wall, cpu = res->stats.cpu;
         type->stats(state, &res->stats);

@@ -4,8 +4,11 @@
  *                power_diss, max_stretch, max_offplane, wrinkles, broken
  *                (connections torn so far) (one row per sample, flushed as
  *                it is written, so a failed run keeps its rows)
+ *                with obstacles also contacts, max_penetration,
+ *                contact_force, friction_power (contact/contact.h)
  *   frame_NNNNN.vtk / .obj   cloth frames (ParaView / Blender); with
  *                tearing, without the triangles that have a torn edge
+ *   obstacles_NNNNN.vtk / .obj   the obstacles at the frame times
  *   final.csv    the final state (p,x,y,z,vx,vy,vz, all particles)
  *   stats.csv    the integrator statistics (name,value)
  * Fixed-step integrators are sampled on their own step grid; t_end must be a
@@ -37,6 +40,8 @@ typedef struct {
     double max_offplane; /* at t_reached */
     long rows;           /* time-series rows written (incl. t = 0) */
     long frames;         /* frames written */
+    double worst_penetration; /* deepest into an obstacle (m; contact) */
+    double worst_t;      /* ... and when */
     double *xfinal;      /* full-particle positions at t_reached (3*np);
                           * owned by the caller after the call: free() */
 } cl_sim_result;

@@ -85,6 +85,7 @@ cl_status cl_trial_run(cl_trial *t, const cl_integrator_type *type,
     double c0 = cl_clock_cpu(), w0 = cl_clock_wall(), last = 0.0;
     cl_status rc = cl_model_initial_state(t->m, t->x, t->v);
     memset(s, 0, sizeof *s);
+    cl_model_contact_start(t->m, t->contact_work);
     if (!rc && t->hook)
         rc = t->hook(t->hook_ctx, 0.0, t->x, t->v, err);
     if (!rc)

@@ -23,6 +23,8 @@ typedef struct {
     double *xf, *vf;      /* full-particle scratch */
     cl_trial_hook hook;   /* optional (NULL), with its context */
     void *hook_ctx;
+    bool contact_work;    /* account the contact projections' energy
+                           * (cl_model_contact_start) */
 } cl_trial;
 
 /* Whether runs of m can be repeated from its initial state:

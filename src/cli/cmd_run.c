@@ -144,6 +144,9 @@ static void print_summary(const char *problem, const run_setup *r,
         printf("  %-10s %.10g J\n", res->e1.name[k], res->e1.value[k]);
     printf("shape        max stretch d/L = %.6f, max out-of-plane %.6g m\n",
            res->max_stretch, res->max_offplane);
+    if (cl_model_contact(m))
+        printf("contact      worst penetration %.6g m at t = %.6g s\n",
+               res->worst_penetration, res->worst_t);
     cl_stats_print(&res->stats, stdout, true);
     printf("output       %s (series.csv, %ld frames, final.csv, stats.csv)\n",
            r->so.outdir, res->frames);

@@ -110,16 +110,22 @@ cl_status cl_fixed_accel(cl_fixed *s, double t, const double *x,
     return CL_OK;
 }
 
-/* The system's step_done hook after step `done` (tearing), if any. */
+/* The system's hooks after step `done`, if it has them: contact (the
+ * projections move the state in place), then step_done (tearing). */
 static cl_status fixed_step_done(const cl_fixed_clock *c, long done,
                                  cl_error *err)
 {
     bool changed = false;
     double t = c->t0 + (double)done * c->h;
+    cl_status st = CL_OK;
+    if (c->sys && c->sys->contact &&
+        (st = c->sys->contact(c->sys->data, t, *c->x, *c->v)) != CL_OK)
+        return cl_error_set(err, st, "%s: contact after the step failed "
+                            "(%s) at t = %.9g (step %ld)", c->name,
+                            cl_status_name(st), t, done);
     if (!c->sys || !c->sys->step_done)
         return CL_OK;
-    cl_status st = c->sys->step_done(c->sys->data, t, *c->x, *c->v,
-                                     &changed);
+    st = c->sys->step_done(c->sys->data, t, *c->x, *c->v, &changed);
     if (st != CL_OK)
         return cl_error_set(err, st, "%s: update after the step failed "
                             "(%s) at t = %.9g (step %ld)", c->name,

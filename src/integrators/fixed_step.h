@@ -84,14 +84,17 @@ typedef struct {
     long *done;         /* steps taken */
     /* the current state (n each); a step may repoint it (history swap) */
     double *const *x, *const *v;
-    /* the system, for its step_done hook (tearing); NULL: not called */
+    /* the system, for its contact and step_done hooks (projections,
+     * tearing); NULL: not called */
     const cl_system *sys;
 } cl_fixed_clock;
 
 /* Take the steps from *done to t_out, which must be a whole number of
  * steps from t0 (cl_fixed_steps_to): call step(state), count it in *done
  * and check that *x and *v are finite (CL_EBLOWUP with the time and the
- * step otherwise), then call sys->step_done (when the clock has a system
+ * step otherwise), then call sys->contact (contact figures and
+ * projections, which move *x and *v in place) and sys->step_done (when the
+ * clock has a system
  * with that hook: tearing after every accepted step), until t_out or a
  * failure.  x_out and v_out receive the current state, also after a
  * failure.

@@ -71,7 +71,7 @@ static cl_status gslode_check_system(const cl_gslode_method *m,
     if (m->jacobian && (!sys->jacobian || !sys->pattern))
         return cl_error_set(err, CL_EINVAL, "%s: the system has no "
                             "Jacobian", m->name);
-    return CL_OK;
+    return cl_integrator_refuse_projection(m->name, sys, err);
 }
 
 static cl_status gslode_check_args(const char *name, const cl_system *sys,
@@ -237,6 +237,10 @@ cl_status cl_gslode_advance(void *state, double t_out, double *x, double *v,
     if (!cl_all_finite(s->y, 2 * s->n))
         return cl_error_set(err, CL_EBLOWUP, "%s: state not finite at "
                             "t = %.9g", s->method->name, s->t);
+    cl_status st = cl_integrator_contact_at(s->method->name, s->sys, s->t,
+                                            s->y, s->y + s->n, err);
+    if (st != CL_OK)
+        return st;
     return s->sys->step_done ? gslode_step_done(s, err) : CL_OK;
 }
 

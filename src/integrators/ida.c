@@ -220,7 +220,7 @@ static cl_status ida_create(const cl_system *sys, const cl_integrator_opts *o,
     cl_sun *b = NULL;
     *state = NULL;
     cl_status st = cl_sun_alloc(sizeof(cl_ida), "ida", &ida_api, sys, o, t0,
-                                x0, v0, true, &b, err);
+                                x0, v0, true, false, &b, err);
     cl_ida *s = (cl_ida *)b;
     if (st == CL_OK)
         st = ida_initial_yp(b, t0, err);

@@ -50,6 +50,29 @@ cl_status cl_fixed_steps_to(double t_out, double dt, long done, long *nsteps,
     return CL_OK;
 }
 
+cl_status cl_integrator_refuse_projection(const char *name,
+                                          const cl_system *sys,
+                                          cl_error *err)
+{
+    if (!sys->projects)
+        return CL_OK;
+    return cl_error_set(err, CL_EUNSUPPORTED, "%s cannot apply a contact "
+                        "response = project (only the fixed-step methods "
+                        "and CVODE BDF can); use response = penalty, or "
+                        "another integrator", name);
+}
+
+cl_status cl_integrator_contact_at(const char *name, const cl_system *sys,
+                                   double t, double *x, double *v,
+                                   cl_error *err)
+{
+    cl_status st = sys->contact ? sys->contact(sys->data, t, x, v) : CL_OK;
+    if (st != CL_OK)
+        return cl_error_set(err, st, "%s: contact at t = %.9g failed (%s)",
+                            name, t, cl_status_name(st));
+    return CL_OK;
+}
+
 typedef struct {
     const char *csv;   /* CSV name */
     const char *human; /* label in the human block */

@@ -88,6 +88,18 @@ const cl_integrator_type *cl_integrator_find(const char *name);
 cl_status cl_fixed_steps_to(double t_out, double dt, long done, long *nsteps,
                             cl_error *err);
 
+/* Contact (model/system.h) for an adaptive method that cannot project:
+ * CL_EUNSUPPORTED naming the method if the system projects. */
+cl_status cl_integrator_refuse_projection(const char *name,
+                                          const cl_system *sys,
+                                          cl_error *err);
+
+/* The system's contact hook at an output time t of an adaptive method (the
+ * contact figures only), if it has one. */
+cl_status cl_integrator_contact_at(const char *name, const cl_system *sys,
+                                   double t, double *x, double *v,
+                                   cl_error *err);
+
 /* Write the statistics as an aligned human-readable block (human = true) or
  * as "name,value" CSV rows without header (human = false). */
 void cl_stats_print(const cl_stats *s, FILE *fp, bool human);

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include <cvode/cvode.h>
+#include <cvode/cvode_proj.h>
 #include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
@@ -260,11 +261,14 @@ static cl_status sun_vectors(cl_sun *s, const double *x0, const double *v0,
 cl_status cl_sun_alloc(size_t size, const char *name, const cl_sun_api *api,
                        const cl_system *sys, const cl_integrator_opts *o,
                        double t0, const double *x0, const double *v0,
-                       bool need_jac, cl_sun **out, cl_error *err)
+                       bool need_jac, bool projects, cl_sun **out,
+                       cl_error *err)
 {
     *out = NULL;
     cl_status st = sun_check(name, sys, o, t0, need_jac, err);
     if (st != CL_OK)
+        return st;
+    if (!projects && (st = cl_integrator_refuse_projection(name, sys, err)))
         return st;
     cl_sun *s = calloc(1, size);
     if (!s)
@@ -309,6 +313,39 @@ cl_status cl_sun_configure(cl_sun *s, const cl_integrator_opts *o,
     return CL_OK;
 }
 
+/* Contact projection (see the header): corr = P(ycur) - ycur. */
+static int sun_project(sunrealtype t, N_Vector ycur, N_Vector corr,
+                       sunrealtype eps, N_Vector errv, void *data)
+{
+    cl_sun *s = data;
+    size_t n2 = 2 * s->sys->n;
+    const double *y = N_VGetArrayPointer(ycur);
+    double *c = N_VGetArrayPointer(corr);
+    (void)eps, (void)errv;
+    memcpy(s->proj, y, n2 * sizeof *y);
+    cl_status st = s->sys->contact(s->sys->data, t, s->proj,
+                                   s->proj + s->sys->n);
+    if (st != CL_OK)
+        return 1; /* recoverable: CVODE retries with a smaller step */
+    for (size_t i = 0; i < n2; i++)
+        c[i] = s->proj[i] - y[i];
+    return 0;
+}
+
+static cl_status sun_set_projection(cl_sun *s, cl_error *err)
+{
+    s->proj = malloc(2 * s->sys->n * sizeof *s->proj);
+    if (!s->proj)
+        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
+    int flag = CVodeSetProjFn(s->mem, sun_project);
+    if (flag < 0)
+        return cl_sun_fail(s, "CVodeSetProjFn", flag, err);
+    flag = CVodeSetProjErrEst(s->mem, SUNFALSE);
+    if (flag < 0)
+        return cl_sun_fail(s, "CVodeSetProjErrEst", flag, err);
+    return CL_OK;
+}
+
 cl_status cl_sun_cvode_create(size_t size, const char *name, int lmm,
                               bool need_jac, const cl_system *sys,
                               const cl_integrator_opts *o, double t0,
@@ -316,7 +353,7 @@ cl_status cl_sun_cvode_create(size_t size, const char *name, int lmm,
                               cl_sun **out, cl_error *err)
 {
     cl_status st = cl_sun_alloc(size, name, &cl_sun_cvode_api, sys, o, t0, x0,
-                                v0, need_jac, out, err);
+                                v0, need_jac, lmm == CV_BDF, out, err);
     if (st != CL_OK)
         return st;
     cl_sun *s = *out;
@@ -326,6 +363,8 @@ cl_status cl_sun_cvode_create(size_t size, const char *name, int lmm,
     int flag = CVodeInit(s->mem, cl_sun_cvode_rhs, t0, s->y);
     if (flag < 0)
         return cl_sun_fail(s, "CVodeInit", flag, err);
+    if (sys->projects && (st = sun_set_projection(s, err)) != CL_OK)
+        return st;
     return cl_sun_configure(s, o, err);
 }
 
@@ -379,6 +418,7 @@ void cl_sun_free(void *state)
         return;
     if (s->mem)
         s->api->free_mem(&s->mem);
+    free(s->proj);
     if (s->ls)
         SUNLinSolFree(s->ls);
     if (s->inner)
@@ -476,6 +516,12 @@ cl_status cl_sun_advance(void *state, double t_out, double *x, double *v,
     if (!cl_all_finite(N_VGetArrayPointer(s->y), 2 * s->sys->n))
         return cl_error_set(err, CL_EBLOWUP, "%s: state not finite at "
                             "t = %.9g", s->name, t_out);
+    double *y = N_VGetArrayPointer(s->y);
+    cl_status st = s->proj ? CL_OK
+                           : cl_integrator_contact_at(s->name, s->sys, t_out,
+                                                      y, y + s->sys->n, err);
+    if (st != CL_OK)
+        return st;
     return s->sys->step_done ? sun_step_done(s, t_out, err) : CL_OK;
 }
 

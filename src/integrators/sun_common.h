@@ -38,7 +38,16 @@
  *   IDAReInit with a consistent y' = (v, M^-1 f)), which drops its history
  *   and step size, and the pattern stays (a torn pair's blocks are zeros),
  *   so KLU only analyses once more.  The solver's counters, which a
- *   re-initialisation resets, are carried over in the statistics.
+ *   re-initialisation resets, are carried over in the statistics;
+ * - contact (model/system.h): CVODE BDF applies the `project` responses
+ *   inside every step through its projection interface (CVodeSetProjFn:
+ *   after the Newton iteration converges, before the error test; the
+ *   correction enters the Nordsieck history).  The error estimate is not
+ *   projected (CVodeSetProjErrEst off): the error test judges the smooth
+ *   step, and the jump a projection makes is outside error control, as it
+ *   is for the fixed-step methods.  CVODE Adams and IDA refuse a problem
+ *   that projects; without projections every method calls the contact hook
+ *   at its output times, for the contact figures only.
  *
  * Usage: an integrator's state struct has a cl_sun as its FIRST member, so
  * the one pointer the solver passes to every callback (user data and error
@@ -109,6 +118,7 @@ struct cl_sun {
     SUNNonlinearSolver nls;  /* own nonlinear solver, or NULL */
     cl_lscount cnt;          /* counters of the wrapper */
     double *inv_mass;        /* n */
+    double *proj;            /* 2n: the projected state (contact), or NULL */
     double *dfdx, *dfdv;     /* block values, 9 nnzb each (need_jac) */
     size_t nval;             /* 9 nnzb */
     long njac;               /* system Jacobian evaluations */
@@ -126,12 +136,15 @@ struct cl_sun {
 
 /* Check the arguments, allocate a zeroed state of `size` bytes (a struct
  * starting with a cl_sun), masses, block-value arrays (need_jac), context
- * and vectors y = (x0, v0) (and y' = 0 for IDA).  On failure *out is NULL
- * and everything is freed. */
+ * and vectors y = (x0, v0) (and y' = 0 for IDA).  `projects`: whether the
+ * method can apply contact projections; CL_EUNSUPPORTED for a system that
+ * has them if it cannot.  On failure *out is NULL and everything is
+ * freed. */
 cl_status cl_sun_alloc(size_t size, const char *name, const cl_sun_api *api,
                        const cl_system *sys, const cl_integrator_opts *o,
                        double t0, const double *x0, const double *v0,
-                       bool need_jac, cl_sun **out, cl_error *err);
+                       bool need_jac, bool projects, cl_sun **out,
+                       cl_error *err);
 
 /* Store freshly created solver memory (fn names the creator for the
  * message if mem is NULL) and install the error handler. */
@@ -143,7 +156,8 @@ cl_status cl_sun_configure(cl_sun *s, const cl_integrator_opts *o,
                            cl_error *err);
 
 /* cl_sun_alloc, then CVODE with multistep method lmm (CV_BDF, CV_ADAMS):
- * create, error handler, CVodeInit with cl_sun_cvode_rhs,
+ * create, error handler, CVodeInit with cl_sun_cvode_rhs, the contact
+ * projection (BDF only; Adams refuses a system that projects),
  * cl_sun_configure.  If the allocation succeeded, *out is the state even
  * when a later call failed (for cl_sun_finish to free). */
 cl_status cl_sun_cvode_create(size_t size, const char *name, int lmm,

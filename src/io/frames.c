@@ -163,11 +163,19 @@ cl_status cl_frame_write_obj(const char *path, const cl_frame *f,
 cl_status cl_frame_path(const char *dir, long index, const char *ext,
                         char *buf, size_t len, cl_error *err)
 {
+    return cl_frame_path_stem(dir, "frame", index, ext, buf, len, err);
+}
+
+cl_status cl_frame_path_stem(const char *dir, const char *stem, long index,
+                             const char *ext, char *buf, size_t len,
+                             cl_error *err)
+{
     if (!dir || !ext || !buf || index < 0)
         return cl_error_set(err, CL_EINVAL, "invalid frame file request");
     size_t dl = strlen(dir);
     const char *sep = (dl == 0 || dir[dl - 1] == '/') ? "" : "/";
-    int n = snprintf(buf, len, "%s%sframe_%05ld.%s", dir, sep, index, ext);
+    int n = snprintf(buf, len, "%s%s%s_%05ld.%s", dir, sep, stem, index,
+                     ext);
     if (n < 0 || (size_t)n >= len)
         return cl_error_set(err, CL_EINVAL,
                             "frame file name in '%s' is too long", dir);

@@ -43,5 +43,9 @@ cl_status cl_frame_write_obj(const char *path, const cl_frame *f,
  * fit in len bytes or index < 0. */
 cl_status cl_frame_path(const char *dir, long index, const char *ext,
                         char *buf, size_t len, cl_error *err);
+/* The same with another stem than "frame" ("obstacles_00042.EXT"). */
+cl_status cl_frame_path_stem(const char *dir, const char *stem, long index,
+                             const char *ext, char *buf, size_t len,
+                             cl_error *err);
 
 #endif

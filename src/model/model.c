@@ -2,6 +2,7 @@
  * arrays (pins prescribed), let every force term add its share, gather. */
 #include "model/model.h"
 
+#include "contact/contact.h"
 #include "io/frames.h"
 #include "model/pins.h"
 
@@ -33,6 +34,12 @@ struct cl_model {
     double *tf;           /* forces of parts 1 .. threads-1, 3 np each */
     int (*torn)[2];       /* distinct connections torn so far, sorted */
     size_t ntorn;
+    cl_contact *contact;  /* the obstacles (also a term), or NULL */
+    double worst_pen;     /* deepest penetration seen by the contact hook */
+    double worst_t;       /* ... and when */
+    bool track_work;      /* account the projections' energy change */
+    double contact_work;  /* their sum so far (J) */
+    double *xw, *vw;      /* the state before a projection (track_work) */
     cl_system sys;
 };
 
@@ -96,6 +103,24 @@ static cl_status read_opts(cl_config *cfg, cl_term_opts *o, cl_error *err)
 
 /* ---- terms and pattern ------------------------------------------------ */
 
+/* The obstacles, a force term after the registry's (contact/contact.h). */
+static cl_status create_contact(cl_config *cfg, cl_model *m, cl_error *err)
+{
+    void *st = NULL;
+    cl_status rc = cl_contact_term.create(cfg, &m->cloth, &m->opts, &st,
+                                          err);
+    if (rc || !st)
+        return rc;
+    if (m->nterm == MAX_TERMS) {
+        cl_contact_term.free(st);
+        return cl_error_set(err, CL_EUNSUPPORTED, "too many force terms");
+    }
+    m->type[m->nterm] = &cl_contact_term;
+    m->state[m->nterm++] = st;
+    m->contact = st;
+    return CL_OK;
+}
+
 static cl_status create_terms(cl_config *cfg, cl_model *m, cl_error *err)
 {
     for (size_t k = 0; cl_term_registry[k]; k++) {
@@ -113,7 +138,7 @@ static cl_status create_terms(cl_config *cfg, cl_model *m, cl_error *err)
         m->type[m->nterm] = cl_term_registry[k];
         m->state[m->nterm++] = st;
     }
-    return CL_OK;
+    return create_contact(cfg, m, err);
 }
 
 /* Pattern over the particles with dof[p] >= 0, bound to every term. */
@@ -164,10 +189,11 @@ static void eval_terms(cl_model *m, double t, double *f, double *dfdx,
             e->name[e->nterm] = m->type[k]->name;
             e->value[e->nterm++] = ev.energy;
             e->potential += ev.energy;
-        } else {
-            e->power_diss += ev.power;
         }
+        e->power_diss += ev.power; /* 0 but for damping, friction */
     }
+    if (e)
+        e->contact_work = m->contact_work;
 }
 
 /* Forces into m->ff by m->threads parts: part p runs its share of every
@@ -297,6 +323,39 @@ static cl_status sys_step_done(void *data, double t, const double *x,
     return broken > 0 ? update_torn(m) : CL_OK;
 }
 
+/* Contact after an accepted step (model/system.h): the deepest
+ * penetration, then the projections; with track_work their energy change
+ * (kinetic and potential, friction included) is added to contact_work. */
+static cl_status sys_contact(void *data, double t, double *x, double *v)
+{
+    cl_model *m = data;
+    size_t n = 3 * m->cloth.nfree;
+    cl_cloth_scatter(&m->cloth, t, x, v, m->xf, m->vf);
+    double pen = cl_contact_penetration(m->contact, t, m->xf);
+    if (pen > m->worst_pen) {
+        m->worst_pen = pen;
+        m->worst_t = t;
+    }
+    if (!m->sys.projects)
+        return CL_OK;
+    if (m->track_work) {
+        memcpy(m->xw, x, n * sizeof *x);
+        memcpy(m->vw, v, n * sizeof *v);
+    }
+    size_t moved = cl_contact_project(m->contact, t, m->xf, m->vf);
+    cl_cloth_gather(&m->cloth, m->xf, x);
+    cl_cloth_gather(&m->cloth, m->vf, v);
+    if (m->track_work && moved) {
+        cl_energy before, after;
+        cl_status rc;
+        if ((rc = sys_energy(m, t, m->xw, m->vw, &before)) ||
+            (rc = sys_energy(m, t, x, v, &after)))
+            return rc;
+        m->contact_work += after.total - before.total;
+    }
+    return cl_all_finite(x, n) && cl_all_finite(v, n) ? CL_OK : CL_EBLOWUP;
+}
+
 static bool any_hook(const cl_model *m, size_t offset)
 {
     for (size_t k = 0; k < m->nterm; k++)
@@ -314,7 +373,9 @@ static cl_status alloc_work(cl_model *m, cl_error *err)
     m->vf = calloc(n3, sizeof *m->vf);
     m->ff = calloc(n3, sizeof *m->ff);
     m->mass3 = malloc(nf3 * sizeof *m->mass3);
-    if (!m->xf || !m->vf || !m->ff || !m->mass3)
+    m->xw = malloc((nf3 + 1) * sizeof *m->xw);
+    m->vw = malloc((nf3 + 1) * sizeof *m->vw);
+    if (!m->xf || !m->vf || !m->ff || !m->mass3 || !m->xw || !m->vw)
         return cl_error_set(err, CL_ENOMEM, "out of memory (model)");
     for (size_t k = 0; k < nf3; k++)
         m->mass3[k] = m->cloth.mass[m->cloth.free_p[k / 3]];
@@ -349,7 +410,9 @@ cl_status cl_model_create(cl_config *cfg, cl_model **model, cl_error *err)
                                                                  : NULL,
         .step_done = m->opts.tear_cut > 0 &&
                              any_hook(m, offsetof(cl_term_type, step_done))
-                         ? sys_step_done : NULL};
+                         ? sys_step_done : NULL,
+        .contact = m->contact ? sys_contact : NULL,
+        .projects = m->contact && cl_contact_projects(m->contact)};
     *model = m;
     return CL_OK;
 }
@@ -368,6 +431,8 @@ void cl_model_free(cl_model *m)
     free(m->ff);
     free(m->tf);
     free(m->torn);
+    free(m->xw);
+    free(m->vw);
     free(m);
 }
 
@@ -528,4 +593,74 @@ cl_status cl_model_triangles(const cl_model *m, int (*tri)[3], size_t *ntri,
     }
     *ntri = kept;
     return CL_OK;
+}
+
+const cl_contact *cl_model_contact(const cl_model *m) { return m->contact; }
+
+void cl_model_contact_start(cl_model *m, bool track_work)
+{
+    m->worst_pen = 0.0;
+    m->worst_t = 0.0;
+    m->track_work = track_work;
+    m->contact_work = 0.0;
+    if (m->contact)
+        cl_contact_restart(m->contact);
+}
+
+void cl_model_contact_worst(const cl_model *m, double *pen, double *t)
+{
+    *pen = m->worst_pen;
+    *t = m->worst_t;
+}
+
+cl_status cl_model_contact_figures(cl_model *m, double t, const double *x,
+                                   const double *v, cl_contact_figures *f)
+{
+    cl_cloth_scatter(&m->cloth, t, x, v, m->xf, m->vf);
+    cl_contact_measure(m->contact, t, m->xf, m->vf, f);
+    if (f->max_penetration > m->worst_pen) {
+        m->worst_pen = f->max_penetration;
+        m->worst_t = t;
+    }
+    return isfinite(f->force) ? CL_OK : CL_EBLOWUP;
+}
+
+/* Append surface b to a (vertex numbers shifted). */
+static cl_status append_surface(cl_shape_surface *a,
+                                const cl_shape_surface *b, cl_error *err)
+{
+    double *v = realloc(a->vert, 3 * (a->nvert + b->nvert) * sizeof *v);
+    if (v)
+        a->vert = v;
+    int(*t)[3] = realloc(a->tri, (a->ntri + b->ntri) * sizeof *t);
+    if (t)
+        a->tri = t;
+    if (!v || !t)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (obstacles)");
+    memcpy(a->vert + 3 * a->nvert, b->vert, 3 * b->nvert * sizeof *v);
+    for (size_t k = 0; k < b->ntri; k++)
+        for (int i = 0; i < 3; i++)
+            a->tri[a->ntri + k][i] = b->tri[k][i] + (int)a->nvert;
+    a->nvert += b->nvert;
+    a->ntri += b->ntri;
+    return CL_OK;
+}
+
+cl_status cl_model_obstacle_surface(const cl_model *m, double t,
+                                    cl_shape_surface *all, cl_error *err)
+{
+    cl_status rc = CL_OK;
+    memset(all, 0, sizeof *all);
+    size_t n = m->contact ? cl_contact_obstacles(m->contact) : 0;
+    for (size_t k = 0; k < n && rc == CL_OK; k++) {
+        cl_shape_surface one = {0};
+        rc = cl_obstacle_surface(cl_contact_obstacle(m->contact, k), t, &one,
+                                 err);
+        if (rc == CL_OK)
+            rc = append_surface(all, &one, err);
+        cl_shape_surface_free(&one);
+    }
+    if (rc)
+        cl_shape_surface_free(all);
+    return rc;
 }

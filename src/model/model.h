@@ -19,6 +19,7 @@
 #ifndef CL_MODEL_H
 #define CL_MODEL_H
 
+#include "contact/contact.h"
 #include "forces/term.h"
 #include "io/config.h"
 #include "model/cloth.h"
@@ -74,5 +75,31 @@ cl_status cl_model_eval_full(cl_model *m, double t, const double *x,
 cl_status cl_model_jacobian_full(cl_model *m, double t, const double *x,
                                  const double *v, cl_bpattern *pat,
                                  double **dfdx, double **dfdv, cl_error *err);
+
+/* ---- contact (contact/contact.h) ------------------------------------- */
+
+/* The obstacles, or NULL when the problem has none. */
+const cl_contact *cl_model_contact(const cl_model *m);
+
+/* Start of a run: the worst penetration is forgotten, and with track_work
+ * the contact hook accounts the energy every projection changes
+ * (cl_energy.contact_work; two energy evaluations per projecting step,
+ * so only the energy study asks for it). */
+void cl_model_contact_start(cl_model *m, bool track_work);
+
+/* The deepest penetration since cl_model_contact_start, seen by the
+ * contact hook after every accepted step (fixed-step methods, CVODE BDF)
+ * or at output times, and by cl_model_contact_figures; and its time. */
+void cl_model_contact_worst(const cl_model *m, double *pen, double *t);
+
+/* The surfaces of all obstacles at time t, in one triangle list (free
+ * with cl_shape_surface_free); none without obstacles. */
+cl_status cl_model_obstacle_surface(const cl_model *m, double t,
+                                    cl_shape_surface *all, cl_error *err);
+
+/* The contact figures at time t for the free state x, v (only with
+ * obstacles). */
+cl_status cl_model_contact_figures(cl_model *m, double t, const double *x,
+                                   const double *v, cl_contact_figures *f);
 
 #endif

@@ -1,0 +1,240 @@
+/* The obstacles of a problem as a force term (penalty) and a projection
+ * (contact.h; docs/model.md, contact). */
+#include "contact/contact.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "contact/penalty.h"
+#include "contact/project.h"
+
+#define PREFIX "obstacle."
+#define ON_SURFACE 1e-9 /* m: a projected particle counts as touching */
+
+struct cl_contact {
+    const cl_cloth *cloth;
+    size_t nobs;
+    cl_obstacle *obs;
+    bool penalizes, projects;
+    long passes;             /* projection passes */
+    long *slot;              /* diagonal block of each particle, or -1 */
+    double last_t;           /* time of the last projection */
+    double proj_force;       /* its impulses / (t - previous time) */
+    double proj_friction;    /* its friction energy / (t - previous time) */
+};
+
+bool cl_contact_projects(const cl_contact *c) { return c->projects; }
+
+void cl_contact_restart(cl_contact *c)
+{
+    c->last_t = 0.0;
+    c->proj_force = c->proj_friction = 0.0;
+}
+
+size_t cl_contact_obstacles(const cl_contact *c) { return c->nobs; }
+
+const cl_obstacle *cl_contact_obstacle(const cl_contact *c, size_t k)
+{
+    return &c->obs[k];
+}
+
+/* ---- the term --------------------------------------------------------- */
+
+static void contact_free(void *state)
+{
+    cl_contact *c = state;
+    if (!c)
+        return;
+    for (size_t k = 0; k < c->nobs; k++)
+        cl_obstacle_free(&c->obs[k]);
+    free(c->obs);
+    free(c->slot);
+    free(c);
+}
+
+static cl_status contact_create(cl_config *cfg, const cl_cloth *cloth,
+                                const cl_term_opts *opts, void **state,
+                                cl_error *err)
+{
+    (void)opts;
+    *state = NULL;
+    size_t n = 0;
+    while (cl_config_section_at(cfg, PREFIX, n))
+        n++;
+    if (n == 0)
+        return CL_OK;
+    cl_contact *c = calloc(1, sizeof *c);
+    if (!c || !(c->obs = calloc(n, sizeof *c->obs)) ||
+        !(c->slot = malloc(cloth->np * sizeof *c->slot))) {
+        contact_free(c);
+        return cl_error_set(err, CL_ENOMEM, "out of memory (obstacles)");
+    }
+    c->cloth = cloth;
+    for (; c->nobs < n; c->nobs++) {
+        cl_obstacle *o = &c->obs[c->nobs];
+        cl_status rc = cl_obstacle_create(
+            cfg, cl_config_section_at(cfg, PREFIX, c->nobs), o, err);
+        if (rc) {
+            c->nobs++;
+            contact_free(c);
+            return rc;
+        }
+        c->penalizes |= o->resp.kind == CL_RESPONSE_PENALTY;
+        c->projects |= o->resp.kind == CL_RESPONSE_PROJECT;
+        if (o->resp.kind == CL_RESPONSE_PROJECT && o->resp.iterations >
+                                                       c->passes)
+            c->passes = o->resp.iterations;
+    }
+    *state = c;
+    return CL_OK;
+}
+
+static size_t contact_couplings(const void *state, const int (**pairs)[2])
+{
+    (void)state;
+    *pairs = NULL; /* diagonal blocks only: always in the pattern */
+    return 0;
+}
+
+static cl_status contact_bind(void *state, const cl_bpattern *pat,
+                              const int *dof, cl_error *err)
+{
+    cl_contact *c = state;
+    (void)err;
+    for (size_t p = 0; p < c->cloth->np; p++)
+        c->slot[p] = cl_bpattern_find(pat, dof[p], dof[p]);
+    return CL_OK;
+}
+
+static void add_block(double *vals, long slot, const double b[9])
+{
+    for (int k = 0; k < 9; k++)
+        vals[9 * slot + k] += b[k];
+}
+
+/* Penalty forces of every particle that has a block (the free particles;
+ * all of them for the full Jacobian of `clothode eval`). */
+static void contact_eval(void *state, cl_eval *ev)
+{
+    cl_contact *c = state;
+    bool jac = ev->dfdx || ev->dfdv;
+    double energy = 0.0, power = 0.0;
+    for (size_t k = 0; k < c->nobs && c->penalizes; k++) {
+        const cl_obstacle *o = &c->obs[k];
+        if (o->resp.kind != CL_RESPONSE_PENALTY)
+            continue;
+        for (size_t p = 0; p < c->cloth->np; p++) {
+            cl_contact_point q;
+            cl_penalty_out out;
+            if (c->slot[p] < 0)
+                continue;
+            cl_obstacle_query(o, ev->t, ev->x + 3 * p, &q);
+            if (!cl_penalty_eval(&o->resp, &q, ev->v + 3 * p, jac, &out))
+                continue;
+            for (int i = 0; ev->f && i < 3; i++)
+                ev->f[3 * p + i] += out.f[i];
+            if (ev->dfdx)
+                add_block(ev->dfdx, c->slot[p], out.dfdx);
+            if (ev->dfdv)
+                add_block(ev->dfdv, c->slot[p], out.dfdv);
+            energy += out.energy;
+            power += out.power;
+        }
+    }
+    if (ev->want_energy) {
+        ev->energy = energy;
+        ev->power = power;
+    }
+}
+
+const cl_term_type cl_contact_term = {
+    .name = "contact",
+    .doc = "obstacles [obstacle.NAME]: penalty forces (projection after "
+           "the steps)",
+    .conservative = true,
+    .create = contact_create,
+    .couplings = contact_couplings,
+    .bind = contact_bind,
+    .eval = contact_eval,
+    .free = contact_free,
+};
+
+/* ---- figures and projection ------------------------------------------ */
+
+static bool touching(const cl_response_params *r, double d)
+{
+    return r->kind == CL_RESPONSE_PENALTY ? d < r->eps
+                                          : d <= r->offset + ON_SURFACE;
+}
+
+void cl_contact_measure(cl_contact *c, double t, const double *x,
+                        const double *v, cl_contact_figures *f)
+{
+    const cl_cloth *cl = c->cloth;
+    memset(f, 0, sizeof *f);
+    for (size_t p = 0; p < cl->np; p++) {
+        double fp[3] = {0.0, 0.0, 0.0};
+        bool in = false;
+        if (cl->dof[p] < 0)
+            continue;
+        for (size_t k = 0; k < c->nobs; k++) {
+            const cl_obstacle *o = &c->obs[k];
+            cl_contact_point q;
+            cl_penalty_out out;
+            cl_obstacle_query(o, t, x + 3 * p, &q);
+            f->max_penetration = fmax(f->max_penetration, -q.d);
+            in |= touching(&o->resp, q.d);
+            if (o->resp.kind != CL_RESPONSE_PENALTY ||
+                !cl_penalty_eval(&o->resp, &q, v + 3 * p, false, &out))
+                continue;
+            for (int i = 0; i < 3; i++)
+                fp[i] += out.f[i];
+            f->friction_power += out.friction_power;
+        }
+        f->contacts += in;
+        f->force += sqrt(fp[0] * fp[0] + fp[1] * fp[1] + fp[2] * fp[2]);
+    }
+    if (c->projects) {
+        f->force += c->proj_force;
+        f->friction_power += c->proj_friction;
+    }
+}
+
+double cl_contact_penetration(const cl_contact *c, double t, const double *x)
+{
+    double worst = 0.0;
+    for (size_t p = 0; p < c->cloth->np; p++)
+        for (size_t k = 0; k < c->nobs && c->cloth->dof[p] >= 0; k++) {
+            cl_contact_point q;
+            cl_obstacle_query(&c->obs[k], t, x + 3 * p, &q);
+            worst = fmax(worst, -q.d);
+        }
+    return worst;
+}
+
+size_t cl_contact_project(cl_contact *c, double t, double *x, double *v)
+{
+    const cl_cloth *cl = c->cloth;
+    cl_project_tally tally = {0, 0.0, 0.0};
+    for (long pass = 0; pass < c->passes; pass++)
+        for (size_t k = 0; k < c->nobs; k++) {
+            const cl_obstacle *o = &c->obs[k];
+            if (o->resp.kind != CL_RESPONSE_PROJECT ||
+                pass >= o->resp.iterations)
+                continue;
+            for (size_t p = 0; p < cl->np; p++) {
+                cl_contact_point q;
+                if (cl->dof[p] < 0)
+                    continue;
+                cl_obstacle_query(o, t, x + 3 * p, &q);
+                cl_project_particle(&o->resp, &q, cl->mass[p], x + 3 * p,
+                                    v + 3 * p, &tally);
+            }
+        }
+    double dt = t - c->last_t;
+    c->proj_force = dt > 0.0 ? tally.impulse / dt : 0.0;
+    c->proj_friction = dt > 0.0 ? tally.friction_energy / dt : 0.0;
+    c->last_t = t;
+    return tally.moved;
+}

@@ -1,0 +1,98 @@
+/* Penalty response with damping and smoothed friction, and its exact
+ * Jacobians (penalty.h; docs/model.md, contact). */
+#include "contact/penalty.h"
+
+#include <math.h>
+#include <string.h>
+
+static double dot3(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* M += s a b^T */
+static void add_outer(double M[9], double s, const double a[3],
+                      const double b[3])
+{
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            M[3 * i + j] += s * a[i] * b[j];
+}
+
+/* C = A B (3x3, row-major) */
+static void mul33(const double A[9], const double B[9], double C[9])
+{
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            C[3 * i + j] = A[3 * i] * B[j] + A[3 * i + 1] * B[3 + j] +
+                           A[3 * i + 2] * B[6 + j];
+}
+
+/* Derivatives of the relative velocity's parts: dwn/dx = -n^T W + w^T G
+ * (a row), dvt/dx = -W - n dwn/dx - w_n G, dvt/dv = I - n n^T. */
+static void relative_velocity_jacobians(const cl_contact_point *q,
+                                        const double w[3], double wn,
+                                        double dwn_dx[3], double dvt_dx[9],
+                                        double dvt_dv[9])
+{
+    for (int j = 0; j < 3; j++) {
+        dwn_dx[j] = 0.0;
+        for (int i = 0; i < 3; i++)
+            dwn_dx[j] += -q->n[i] * q->W[3 * i + j] + w[i] * q->G[3 * i + j];
+    }
+    for (int k = 0; k < 9; k++) {
+        dvt_dx[k] = -q->W[k] - wn * q->G[k];
+        dvt_dv[k] = (k % 4 == 0) - q->n[k / 3] * q->n[k % 3];
+    }
+    add_outer(dvt_dx, -1.0, q->n, dwn_dx);
+}
+
+static void penalty_jacobians(const cl_response_params *r,
+                              const cl_contact_point *q, const double w[3],
+                              double wn, double fe, const double g[3],
+                              double s, cl_penalty_out *o)
+{
+    double dwn_dx[3], dvt_dx[9], dvt_dv[9], A[9], Ax[9], Av[9];
+    relative_velocity_jacobians(q, w, wn, dwn_dx, dvt_dx, dvt_dv);
+    for (int k = 0; k < 9; k++) {
+        o->dfdx[k] = fe * q->G[k] - r->damping * wn * q->G[k];
+        o->dfdv[k] = 0.0;
+        A[k] = ((k % 4 == 0) - g[k / 3] * g[k % 3]) / s; /* dg/dvt */
+    }
+    add_outer(o->dfdx, -r->k, q->n, q->n);
+    add_outer(o->dfdx, -r->damping, q->n, dwn_dx);
+    add_outer(o->dfdv, -r->damping, q->n, q->n);
+    if (r->mu == 0.0)
+        return;
+    mul33(A, dvt_dx, Ax);
+    mul33(A, dvt_dv, Av);
+    add_outer(o->dfdx, r->mu * r->k, g, q->n);
+    for (int k = 0; k < 9; k++) {
+        o->dfdx[k] -= r->mu * fe * Ax[k];
+        o->dfdv[k] -= r->mu * fe * Av[k];
+    }
+}
+
+bool cl_penalty_eval(const cl_response_params *r, const cl_contact_point *q,
+                     const double v[3], bool jac, cl_penalty_out *o)
+{
+    if (!(q->d < r->eps))
+        return false;
+    double w[3], vt[3], g[3];
+    for (int i = 0; i < 3; i++)
+        w[i] = v[i] - q->u[i];
+    double fe = r->k * (r->eps - q->d), wn = dot3(w, q->n);
+    for (int i = 0; i < 3; i++)
+        vt[i] = w[i] - wn * q->n[i];
+    double s = sqrt(dot3(vt, vt) + r->v_smooth * r->v_smooth);
+    for (int i = 0; i < 3; i++) {
+        g[i] = vt[i] / s;
+        o->f[i] = (fe - r->damping * wn) * q->n[i] - r->mu * fe * g[i];
+    }
+    o->energy = 0.5 * r->k * (r->eps - q->d) * (r->eps - q->d);
+    o->friction_power = -r->mu * fe * dot3(g, vt);
+    o->power = -r->damping * wn * wn + o->friction_power;
+    if (jac)
+        penalty_jacobians(r, q, w, wn, fe, g, s, o);
+    return true;
+}

@@ -1,0 +1,40 @@
+/* The penalty response of one particle to one obstacle (docs/model.md,
+ * contact; the repulsion spring of Zischg, Chea and Aigner, "Cloth
+ * Simulation", 2016, eq. 12, with damping and smoothed Coulomb friction
+ * added).  Inside the band d < eps, with w = v - u the velocity relative to
+ * the obstacle, w_n = w . n, v_t = w - w_n n:
+ *
+ *   f = k (eps - d) n                      repulsion, E = k (eps - d)^2 / 2
+ *     - c w_n n                            normal damping
+ *     - mu k (eps - d) v_t / sqrt(|v_t|^2 + v_s^2)   friction
+ *
+ * The friction is Coulomb's law mu |f_n| opposite the sliding velocity,
+ * smoothed below the speed v_s (so a block on a slope with mu > tan theta
+ * creeps at about v_s tan theta / sqrt(mu^2 - tan^2 theta)).  Both
+ * Jacobians are exact, curvature terms included: with G = dn/dx and
+ * W = du/dx,
+ *   d(k (eps - d) n)/dx = -k n n^T + k (eps - d) G,
+ * and the damping and friction terms differentiate w_n and v_t through n
+ * and u (penalty.c). */
+#ifndef CL_PENALTY_H
+#define CL_PENALTY_H
+
+#include <stdbool.h>
+
+#include "contact/obstacle.h"
+
+typedef struct {
+    double f[3];          /* force on the particle */
+    double dfdx[9];       /* row-major; only when asked for */
+    double dfdv[9];
+    double energy;        /* k (eps - d)^2 / 2 */
+    double power;         /* (damping + friction) . w, <= 0 */
+    double friction_power;
+} cl_penalty_out;
+
+/* false (and o untouched) outside the band d < eps; Jacobians only when
+ * jac is true. */
+bool cl_penalty_eval(const cl_response_params *r, const cl_contact_point *q,
+                     const double v[3], bool jac, cl_penalty_out *o);
+
+#endif

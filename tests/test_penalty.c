@@ -1,0 +1,204 @@
+/* The penalty response (contact/penalty.h): its force against the law, its
+ * exact Jacobians and its energy against central finite differences, on
+ * every shape and region (sphere, plane, box face/edge/corner, a cube
+ * mesh's face/edge/vertex), on moving and rotating obstacles, with damping
+ * and friction. */
+#include <criterion/criterion.h>
+
+#include <math.h>
+#include <stdio.h>
+
+#include "contact/penalty.h"
+#include "tmpdir.h"
+
+#define NSET 16
+
+/* An obstacle named "o" from assignments (NULL-terminated). */
+static void make(cl_obstacle *o, const char *const *sets)
+{
+    cl_error err = {0};
+    cl_config *cfg = cl_config_alloc();
+    cr_assert_not_null(cfg);
+    for (size_t k = 0; sets[k]; k++)
+        cr_assert_eq(cl_config_set(cfg, sets[k], &err), CL_OK, "%s", err.msg);
+    cr_assert_eq(cl_obstacle_create(cfg, "obstacle.o", o, &err), CL_OK, "%s",
+                 err.msg);
+    cl_config_free(cfg);
+}
+
+static bool force_at(const cl_obstacle *o, double t, const double x[3],
+                     const double v[3], bool jac, cl_penalty_out *out)
+{
+    cl_contact_point q;
+    cl_obstacle_query(o, t, x, &q);
+    return cl_penalty_eval(&o->resp, &q, v, jac, out);
+}
+
+/* Largest difference of the analytic Jacobians from central differences of
+ * the force, relative to the largest entry. */
+static void check_jacobians(const cl_obstacle *o, double t, const double x[3],
+                            const double v[3], const char *what)
+{
+    cl_penalty_out a, p, m;
+    cr_assert(force_at(o, t, x, v, true, &a), "%s: not in the band", what);
+    double h = 1e-7, ex = 0.0, ev = 0.0, sx = 0.0, sv = 0.0;
+    for (int j = 0; j < 3; j++) {
+        double xp[3] = {x[0], x[1], x[2]}, xm[3] = {x[0], x[1], x[2]};
+        double vp[3] = {v[0], v[1], v[2]}, vm[3] = {v[0], v[1], v[2]};
+        xp[j] += h;
+        xm[j] -= h;
+        cr_assert(force_at(o, t, xp, v, false, &p) &&
+                  force_at(o, t, xm, v, false, &m));
+        for (int i = 0; i < 3; i++) {
+            double fd = (p.f[i] - m.f[i]) / (2 * h);
+            ex = fmax(ex, fabs(fd - a.dfdx[3 * i + j]));
+            sx = fmax(sx, fabs(a.dfdx[3 * i + j]));
+        }
+        vp[j] += h;
+        vm[j] -= h;
+        cr_assert(force_at(o, t, x, vp, false, &p) &&
+                  force_at(o, t, x, vm, false, &m));
+        for (int i = 0; i < 3; i++) {
+            double fd = (p.f[i] - m.f[i]) / (2 * h);
+            ev = fmax(ev, fabs(fd - a.dfdv[3 * i + j]));
+            sv = fmax(sv, fabs(a.dfdv[3 * i + j]));
+        }
+    }
+    cr_expect_lt(ex, 1e-6 * sx, "%s: df/dx off by %g (scale %g)", what, ex,
+                 sx);
+    cr_expect_lt(ev, 1e-6 * sv, "%s: df/dv off by %g (scale %g)", what, ev,
+                 sv);
+}
+
+/* A moving, rotating obstacle with damping and friction: every term of
+ * the Jacobians is exercised. */
+#define MOVING "obstacle.o.path = 0: 0, 0, 0; 2: 0.4, -0.2, 0.3", \
+               "obstacle.o.omega = 0.3, -0.7, 0.5",                  \
+               "obstacle.o.response = penalty", "obstacle.o.k = 1000", \
+               "obstacle.o.eps = 0.05", "obstacle.o.damping = 3",       \
+               "obstacle.o.mu = 0.4", "obstacle.o.v_smooth = 0.05"
+
+static const double vel[3] = {0.31, -0.52, 0.17};
+
+Test(penalty, sphere_jacobians)
+{
+    cl_obstacle o;
+    const char *sets[NSET] = {"obstacle.o.shape = sphere",
+                              "obstacle.o.center = 1, 2, 3",
+                              "obstacle.o.radius = 0.5", MOVING, NULL};
+    make(&o, sets);
+    double R[9], s[3], sd[3];
+    cl_obstacle_pose(&o, 0.7, R, s, sd);
+    /* a point 0.02 m inside along a skew direction from the moved centre */
+    double dir[3] = {0.48, 0.6, 0.64};
+    double x[3];
+    for (int i = 0; i < 3; i++)
+        x[i] = (double[]){1, 2, 3}[i] + s[i] + 0.48 * dir[i];
+    check_jacobians(&o, 0.7, x, vel, "sphere, inside");
+    for (int i = 0; i < 3; i++)
+        x[i] += 0.03 * dir[i]; /* outside, in the band */
+    check_jacobians(&o, 0.7, x, vel, "sphere, in the band");
+    cl_obstacle_free(&o);
+}
+
+Test(penalty, plane_jacobians)
+{
+    cl_obstacle o;
+    const char *sets[NSET] = {"obstacle.o.shape = plane",
+                              "obstacle.o.point = 0, -1, 0",
+                              "obstacle.o.normal = 0.2, 1, 0.1", MOVING, NULL};
+    make(&o, sets);
+    double x[3] = {0.3, -1.0, 0.2};
+    check_jacobians(&o, 1.3, x, vel, "plane");
+    cl_obstacle_free(&o);
+}
+
+Test(penalty, box_jacobians)
+{
+    cl_obstacle o;
+    const char *sets[NSET] = {"obstacle.o.shape = box",
+                              "obstacle.o.center = 0, 0, 0",
+                              "obstacle.o.size = 2, 1, 1", MOVING, NULL};
+    make(&o, sets);
+    double R[9], s[3], sd[3];
+    double t = 0.4;
+    cl_obstacle_pose(&o, t, R, s, sd);
+    /* body-frame points: face (inside, outside), edge, corner */
+    const double body[4][3] = {{0.3, 0.49, 0.1}, {0.3, 0.53, 0.1},
+                               {1.02, 0.52, 0.0}, {1.02, 0.52, 0.53}};
+    const char *what[4] = {"box face, inside", "box face, outside",
+                           "box edge", "box corner"};
+    for (int k = 0; k < 4; k++) {
+        double x[3];
+        for (int i = 0; i < 3; i++)
+            x[i] = s[i] + R[3 * i] * body[k][0] + R[3 * i + 1] * body[k][1] +
+                   R[3 * i + 2] * body[k][2];
+        check_jacobians(&o, t, x, vel, what[k]);
+    }
+    cl_obstacle_free(&o);
+}
+
+static void write_cube(const char *path)
+{
+    tmp_put(path, "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n"
+                  "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+                  "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 3 4 8 7\n"
+                  "f 2 3 7 6\nf 1 5 8 4\n");
+}
+
+Test(penalty, mesh_jacobians)
+{
+    char dir[512], obj[600], file[700];
+    tmp_mkdtemp(dir, sizeof dir, "penalty");
+    snprintf(obj, sizeof obj, "%s/cube.obj", dir);
+    write_cube(obj);
+    snprintf(file, sizeof file, "obstacle.o.file = %s", obj);
+    cl_obstacle o;
+    const char *sets[NSET] = {"obstacle.o.shape = mesh", file, MOVING, NULL};
+    make(&o, sets);
+    double R[9], s[3], sd[3], t = 0.9;
+    cl_obstacle_pose(&o, t, R, s, sd);
+    const double body[3][3] = {{0.2, 0.3, 1.03}, {1.02, 0.3, 1.03},
+                               {1.02, 1.03, 1.03}};
+    const char *what[3] = {"mesh face", "mesh edge", "mesh vertex"};
+    for (int k = 0; k < 3; k++) {
+        double x[3];
+        for (int i = 0; i < 3; i++)
+            x[i] = s[i] + R[3 * i] * body[k][0] + R[3 * i + 1] * body[k][1] +
+                   R[3 * i + 2] * body[k][2];
+        check_jacobians(&o, t, x, vel, what[k]);
+    }
+    cl_obstacle_free(&o);
+    tmp_rm_rf(dir);
+}
+
+/* The repulsion is minus the gradient of its energy, and the law's
+ * magnitudes: k (eps - d) along n, mu k (eps - d) against the sliding when
+ * it is fast. */
+Test(penalty, energy_and_law)
+{
+    cl_obstacle o;
+    const char *sets[NSET] = {"obstacle.o.shape = sphere",
+                              "obstacle.o.radius = 1",
+                              "obstacle.o.response = penalty",
+                              "obstacle.o.k = 500", "obstacle.o.eps = 0.1",
+                              "obstacle.o.mu = 0.5",
+                              "obstacle.o.v_smooth = 1e-6", NULL};
+    make(&o, sets);
+    double x[3] = {0.0, 1.04, 0.0}, v[3] = {2.0, 0.0, 0.0};
+    cl_penalty_out a, p, m;
+    cr_assert(force_at(&o, 0.0, x, v, false, &a));
+    cr_expect_float_eq(a.f[1], 500 * (0.1 - 0.04), 1e-12);
+    cr_expect_float_eq(a.f[0], -0.5 * 500 * (0.1 - 0.04), 1e-9);
+    cr_expect_float_eq(a.energy, 0.5 * 500 * 0.06 * 0.06, 1e-12);
+    cr_expect_float_eq(a.friction_power, a.f[0] * v[0], 1e-9);
+    double h = 1e-6, xp[3] = {0.0, 1.04 + h, 0.0}, xm[3] = {0.0, 1.04 - h,
+                                                            0.0};
+    double zero[3] = {0.0, 0.0, 0.0};
+    force_at(&o, 0.0, xp, zero, false, &p);
+    force_at(&o, 0.0, xm, zero, false, &m);
+    cr_expect_float_eq(-(p.energy - m.energy) / (2 * h), a.f[1], 1e-6);
+    double out[3] = {0.0, 1.2, 0.0};
+    cr_expect_not(force_at(&o, 0.0, out, v, true, &a), "outside the band");
+    cl_obstacle_free(&o);
+}
