@@ -108,7 +108,11 @@ Test(penalty, plane_jacobians)
                               "obstacle.o.point = 0, -1, 0",
                               "obstacle.o.normal = 0.2, 1, 0.1", MOVING, NULL};
     make(&o, sets);
-    double x[3] = {0.3, -1.0, 0.2};
+    double R[9], s[3], sd[3], X[3] = {0.1, -1.02 + 1.0, 0.1}, x[3];
+    cl_obstacle_pose(&o, 1.3, R, s, sd); /* X relative to the pivot */
+    for (int i = 0; i < 3; i++)
+        x[i] = (i == 1 ? -1.0 : 0.0) + s[i] + R[3 * i] * X[0] +
+               R[3 * i + 1] * X[1] + R[3 * i + 2] * X[2];
     check_jacobians(&o, 1.3, x, vel, "plane");
     cl_obstacle_free(&o);
 }

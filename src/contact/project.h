@@ -1,7 +1,8 @@
 /* The projection response of one particle to one obstacle (docs/model.md,
  * contact): a particle closer than `offset` to the surface (d < offset) is
  * moved along the normal to d = offset (Jiao's sphere collision and
- * Ronchi's "Cloth Simulation" collision offset), and its velocity relative
+ * the collision offset of the Verlet-and-PBD "Cloth Simulation" report),
+ * and its velocity relative
  * to the obstacle, w = v - u, loses its inward normal part:
  *   w_n = w . n < 0:  w <- w - w_n n,
  * then Coulomb's cone at the velocity level: the tangential part shrinks

@@ -64,9 +64,10 @@ cl_status cl_integrator_refuse_projection(const char *name,
 
 cl_status cl_integrator_contact_at(const char *name, const cl_system *sys,
                                    double t, double *x, double *v,
-                                   cl_error *err)
+                                   bool record, cl_error *err)
 {
-    cl_status st = sys->contact ? sys->contact(sys->data, t, x, v) : CL_OK;
+    cl_status st = sys->contact ? sys->contact(sys->data, t, x, v, record)
+                                : CL_OK;
     if (st != CL_OK)
         return cl_error_set(err, st, "%s: contact at t = %.9g failed (%s)",
                             name, t, cl_status_name(st));

@@ -94,11 +94,13 @@ cl_status cl_integrator_refuse_projection(const char *name,
                                           const cl_system *sys,
                                           cl_error *err);
 
-/* The system's contact hook at an output time t of an adaptive method (the
- * contact figures only), if it has one. */
+/* The system's contact hook at an output time t of an adaptive method, if
+ * it has one: the contact figures (record), and for CVODE BDF the
+ * projection of the interpolated output, not recorded (its steps are
+ * projected inside, see sun_common.h). */
 cl_status cl_integrator_contact_at(const char *name, const cl_system *sys,
                                    double t, double *x, double *v,
-                                   cl_error *err);
+                                   bool record, cl_error *err);
 
 /* Write the statistics as an aligned human-readable block (human = true) or
  * as "name,value" CSV rows without header (human = false). */

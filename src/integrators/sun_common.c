@@ -313,6 +313,30 @@ cl_status cl_sun_configure(cl_sun *s, const cl_integrator_opts *o,
     return CL_OK;
 }
 
+/* The error estimate of a particle the projection moved loses its part
+ * along the move (the normal): positions and velocities (see the
+ * header). */
+static void sun_project_error(const cl_sun *s, const double *corr,
+                              double *e)
+{
+    size_t n = s->sys->n;
+    for (size_t p = 0; p < n; p += 3) {
+        const double *c = corr + p;
+        double len = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        if (len == 0.0)
+            continue;
+        double ex = 0.0, ev = 0.0;
+        for (int i = 0; i < 3; i++) {
+            ex += e[p + i] * c[i] / len;
+            ev += e[n + p + i] * c[i] / len;
+        }
+        for (int i = 0; i < 3; i++) {
+            e[p + i] -= ex * c[i] / len;
+            e[n + p + i] -= ev * c[i] / len;
+        }
+    }
+}
+
 /* Contact projection (see the header): corr = P(ycur) - ycur. */
 static int sun_project(sunrealtype t, N_Vector ycur, N_Vector corr,
                        sunrealtype eps, N_Vector errv, void *data)
@@ -321,14 +345,16 @@ static int sun_project(sunrealtype t, N_Vector ycur, N_Vector corr,
     size_t n2 = 2 * s->sys->n;
     const double *y = N_VGetArrayPointer(ycur);
     double *c = N_VGetArrayPointer(corr);
-    (void)eps, (void)errv;
+    (void)eps;
     memcpy(s->proj, y, n2 * sizeof *y);
     cl_status st = s->sys->contact(s->sys->data, t, s->proj,
-                                   s->proj + s->sys->n);
+                                   s->proj + s->sys->n, false);
     if (st != CL_OK)
         return 1; /* recoverable: CVODE retries with a smaller step */
     for (size_t i = 0; i < n2; i++)
         c[i] = s->proj[i] - y[i];
+    if (errv)
+        sun_project_error(s, c, N_VGetArrayPointer(errv));
     return 0;
 }
 
@@ -340,9 +366,6 @@ static cl_status sun_set_projection(cl_sun *s, cl_error *err)
     int flag = CVodeSetProjFn(s->mem, sun_project);
     if (flag < 0)
         return cl_sun_fail(s, "CVodeSetProjFn", flag, err);
-    flag = CVodeSetProjErrEst(s->mem, SUNFALSE);
-    if (flag < 0)
-        return cl_sun_fail(s, "CVodeSetProjErrEst", flag, err);
     return CL_OK;
 }
 
@@ -517,11 +540,11 @@ cl_status cl_sun_advance(void *state, double t_out, double *x, double *v,
         return cl_error_set(err, CL_EBLOWUP, "%s: state not finite at "
                             "t = %.9g", s->name, t_out);
     double *y = N_VGetArrayPointer(s->y);
-    cl_status st = s->proj ? CL_OK
-                           : cl_integrator_contact_at(s->name, s->sys, t_out,
-                                                      y, y + s->sys->n, err);
+    cl_status st = cl_integrator_contact_at(s->name, s->sys, t_out, y,
+                                            y + s->sys->n, !s->proj, err);
     if (st != CL_OK)
         return st;
+    sun_copy_out(s, x, v);
     return s->sys->step_done ? sun_step_done(s, t_out, err) : CL_OK;
 }
 

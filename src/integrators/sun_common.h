@@ -42,10 +42,12 @@
  * - contact (model/system.h): CVODE BDF applies the `project` responses
  *   inside every step through its projection interface (CVodeSetProjFn:
  *   after the Newton iteration converges, before the error test; the
- *   correction enters the Nordsieck history).  The error estimate is not
- *   projected (CVodeSetProjErrEst off): the error test judges the smooth
- *   step, and the jump a projection makes is outside error control, as it
- *   is for the fixed-step methods.  CVODE Adams and IDA refuse a problem
+ *   correction enters the Nordsieck history).  The error estimate is
+ *   projected too (CVODE's default): a moved particle's error loses its
+ *   part along the move, the normal, in positions and velocities, so the
+ *   error test judges the motion the contact leaves free and does not
+ *   shrink the step to resolve the jumps of a particle resting on a
+ *   surface.  CVODE Adams and IDA refuse a problem
  *   that projects; without projections every method calls the contact hook
  *   at its output times, for the contact figures only.
  *

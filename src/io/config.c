@@ -420,7 +420,10 @@ cl_status cl_config_set_as(cl_config *cfg, const char *assignment,
                             "--set \"%s\": missing '=' (expected"
                             " section.key=value)",
                             assignment);
-    const char *dot = memchr(assignment, '.', (size_t)(eq - assignment));
+    const char *dot = NULL; /* the last '.': sections may hold dots */
+    for (const char *c = assignment; c < eq; c++)
+        if (*c == '.')
+            dot = c;
     if (!dot)
         return cl_error_set(err, CL_EINVAL,
                             "--set \"%s\": missing '.' between section and"

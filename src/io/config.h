@@ -28,7 +28,8 @@ void cl_config_free(cl_config *cfg);
 cl_status cl_config_load(cl_config *cfg, const char *path, cl_error *err);
 
 /* Apply "section.key=value" (as given to --set): split at the first '=' and
- * at the first '.' before it; parts are trimmed and the value may be empty.
+ * at the last '.' before it (so "obstacle.ball.radius=1" sets [obstacle.ball]
+ * radius); parts are trimmed and the value may be empty.
  * Keys not present in the file are accepted here and checked by
  * cl_config_check_unused().  CL_EINVAL for a malformed assignment or names
  * and values that could not be written back as INI (e.g. "a.b:c=1"). */

@@ -326,12 +326,13 @@ static cl_status sys_step_done(void *data, double t, const double *x,
 /* Contact after an accepted step (model/system.h): the deepest
  * penetration, then the projections; with track_work their energy change
  * (kinetic and potential, friction included) is added to contact_work. */
-static cl_status sys_contact(void *data, double t, double *x, double *v)
+static cl_status sys_contact(void *data, double t, double *x, double *v,
+                             bool record)
 {
     cl_model *m = data;
     size_t n = 3 * m->cloth.nfree;
     cl_cloth_scatter(&m->cloth, t, x, v, m->xf, m->vf);
-    double pen = cl_contact_penetration(m->contact, t, m->xf);
+    double pen = record ? cl_contact_penetration(m->contact, t, m->xf) : 0.0;
     if (pen > m->worst_pen) {
         m->worst_pen = pen;
         m->worst_t = t;

@@ -56,15 +56,20 @@ typedef struct cl_system {
     cl_status (*step_done)(void *data, double t, const double *x,
                            const double *v, bool *changed);
     /* Contact with obstacles after an accepted step to t (docs/model.md,
-     * contact), NULL if the problem has no obstacle: records the contact
-     * figures (worst penetration) and applies every `project` response,
-     * moving x and v (n each) in place.  The rule, one for every
-     * integrator: penalty contact is a force term like any other;
-     * projection runs after every step of the fixed-step methods (before
-     * step_done) and inside CVODE's BDF step through its projection
-     * interface; the other adaptive methods call this hook at their output
-     * times for the figures only and refuse a problem with `projects`. */
-    cl_status (*contact)(void *data, double t, double *x, double *v);
+     * contact), NULL if the problem has no obstacle: applies every
+     * `project` response, moving x and v (n each) in place, and with
+     * `record` first records the contact figures (the deepest
+     * penetration the step reached).  The rule, one for every integrator:
+     * penalty contact is a force term like any other; projection runs
+     * after every step of the fixed-step methods (before step_done,
+     * recorded) and inside CVODE's BDF steps through its projection
+     * interface (not recorded: a step the error test then rejects is
+     * projected too), and its interpolated outputs are projected
+     * (recorded); the other adaptive methods call this hook at their
+     * output times for the figures only and refuse a problem with
+     * `projects`. */
+    cl_status (*contact)(void *data, double t, double *x, double *v,
+                         bool record);
     bool projects;  /* some obstacle has response = project */
 } cl_system;
 
