@@ -11,8 +11,8 @@
  *   omega     = constant angular velocity (rad/s, vector, default 0),
  *               about the shape's pivot carried along the path
  *   response  = penalty | project
- *   penalty:  k (N/m, > 0), eps (band, m, >= 0), damping (N s/m, >= 0,
- *             default 0), mu (>= 0, default 0), v_smooth (m/s, > 0,
+ *   penalty:  k (N/m, > 0), eps (band, m, >= 0), damping (Hunt-Crossley,
+ *             s/m, >= 0, default 0), mu (>= 0, default 0), v_smooth (m/s, > 0,
  *             default 1e-3: the friction's smoothing speed)
  *   project:  offset (m, >= 0, default 0), zero_velocity (default false),
  *             mu (>= 0, default 0), iterations (>= 1, default 1)

@@ -47,21 +47,23 @@ static void relative_velocity_jacobians(const cl_contact_point *q,
     add_outer(dvt_dx, -1.0, q->n, dwn_dx);
 }
 
+/* f_n = fe (1 - a w_n) n (docs/model.md, eq. C7, C8). */
 static void penalty_jacobians(const cl_response_params *r,
                               const cl_contact_point *q, const double w[3],
                               double wn, double fe, const double g[3],
                               double s, cl_penalty_out *o)
 {
     double dwn_dx[3], dvt_dx[9], dvt_dv[9], A[9], Ax[9], Av[9];
+    double a = r->damping, hc = 1.0 - a * wn;
     relative_velocity_jacobians(q, w, wn, dwn_dx, dvt_dx, dvt_dv);
     for (int k = 0; k < 9; k++) {
-        o->dfdx[k] = fe * q->G[k] - r->damping * wn * q->G[k];
+        o->dfdx[k] = fe * hc * q->G[k];
         o->dfdv[k] = 0.0;
         A[k] = ((k % 4 == 0) - g[k / 3] * g[k % 3]) / s; /* dg/dvt */
     }
-    add_outer(o->dfdx, -r->k, q->n, q->n);
-    add_outer(o->dfdx, -r->damping, q->n, dwn_dx);
-    add_outer(o->dfdv, -r->damping, q->n, q->n);
+    add_outer(o->dfdx, -r->k * hc, q->n, q->n);
+    add_outer(o->dfdx, -a * fe, q->n, dwn_dx);
+    add_outer(o->dfdv, -a * fe, q->n, q->n);
     if (r->mu == 0.0)
         return;
     mul33(A, dvt_dx, Ax);
@@ -87,11 +89,11 @@ bool cl_penalty_eval(const cl_response_params *r, const cl_contact_point *q,
     double s = sqrt(dot3(vt, vt) + r->v_smooth * r->v_smooth);
     for (int i = 0; i < 3; i++) {
         g[i] = vt[i] / s;
-        o->f[i] = (fe - r->damping * wn) * q->n[i] - r->mu * fe * g[i];
+        o->f[i] = fe * (1.0 - r->damping * wn) * q->n[i] - r->mu * fe * g[i];
     }
     o->energy = 0.5 * r->k * (r->eps - q->d) * (r->eps - q->d);
     o->friction_power = -r->mu * fe * dot3(g, vt);
-    o->power = -r->damping * wn * wn + o->friction_power;
+    o->power = -r->damping * fe * wn * wn + o->friction_power;
     if (jac)
         penalty_jacobians(r, q, w, wn, fe, g, s, o);
     return true;
