@@ -1250,3 +1250,44 @@ Test(cli, no_command_is_a_usage_error)
     cr_assert(strstr(r.err, "usage"), "stderr:\n%s", r.err);
     cli_result_free(&r);
 }
+
+/* ---- obstacles: bad parameters, malformed meshes, unsupported pairs ---- */
+
+Test(cli, bad_obstacle_parameters_are_refused)
+{
+    expect_refused(LIST("run", "drape-sphere", "--set",
+                        "obstacle.ball.radius=0"),
+                   0, LIST("[obstacle.ball] radius", "\"0\""));
+    expect_refused(LIST("run", "drape-sphere", "--set",
+                        "obstacle.ball.radius=-1"),
+                   0, LIST("radius", "\"-1\""));
+    expect_refused(LIST("run", "drape-sphere", "--set",
+                        "obstacle.floor.normal=0, 0, 0"),
+                   0, LIST("[obstacle.floor] normal", "nonzero"));
+    expect_refused(LIST("run", "drape-sphere", "--set",
+                        "obstacle.ball.shape=cone"),
+                   0, LIST("shape", "cone", "sphere", "plane", "box", "mesh"));
+    expect_refused(LIST("run", "drape-sphere", "--set",
+                        "obstacle.ball.response=bounce"),
+                   0, LIST("response", "bounce", "penalty", "project"));
+    expect_refused(LIST("run", "drape-sphere", "--set",
+                        "obstacle.ball.path=0: 1, 2"),
+                   0, LIST("[obstacle.ball] path", "keyframes"));
+    expect_refused(LIST("run", "drape-sphere", "--set",
+                        "obstacle.ball.path=1: 0, 0, 0; 1: 1, 0, 0"),
+                   0, LIST("path", "increasing"));
+    expect_refused(LIST("run", "drape-sphere", "--set",
+                        "obstacle.ball.k=0"),
+                   0, LIST("[obstacle.ball] k", "\"0\""));
+    expect_refused(LIST("run", "drape-box", "--set",
+                        "obstacle.table.size=1, 0, 1"),
+                   0, LIST("[obstacle.table] size", "> 0"));
+}
+
+Test(cli, projection_refused_by_an_integrator_that_cannot_apply_it)
+{
+    expect_refused(LIST("run", "jiao-sphere", "--integrator", "ida"), 0,
+                   LIST("ida", "response = project", "penalty"));
+    expect_refused(LIST("run", "jiao-sphere", "--integrator", "gsl-rk8pd"),
+                   0, LIST("gsl-rk8pd", "response = project"));
+}

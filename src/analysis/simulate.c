@@ -332,14 +332,16 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
     res->xfinal = malloc(3 * s.c->np * sizeof *res->xfinal);
     cl_status rc = res->xfinal ? CL_OK
                                : cl_error_set(err, CL_ENOMEM, "out of memory");
+    /* the integrator first: one that refuses the problem (a contact
+     * response it cannot apply, ...) stops the run before any output */
     if (!rc && !(rc = make_schedule(type, iopts, so, &sch, err)) &&
-        !(rc = cl_mkdir_p(so->outdir, err)) && !(rc = sim_alloc(&s, err)) &&
+        !(rc = sim_alloc(&s, err)) &&
+        !(rc = type->create(s.sys, iopts, 0.0, s.x, s.v, &state, err)) &&
+        !(rc = cl_mkdir_p(so->outdir, err)) &&
         !(rc = open_series(&s, err)) && !(rc = sample(&s, 0.0, res, err))) {
         res->e0 = res->e1;
         if (so->frames > 0)
             rc = write_frame(&s, 0.0, res, err);
-        if (!rc)
-            rc = type->create(s.sys, iopts, 0.0, s.x, s.v, &state, err);
         if (!rc)
             rc = integrate(&s, type, state, &sch, res, err);
     }
