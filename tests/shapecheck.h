@@ -140,6 +140,17 @@ static inline int sc_region(const cl_shape_query *q)
     return ff > 0 ? (int)lround(tr * tr / ff) : 0;
 }
 
+/* Whether x + step is in the region of x: the same rank of G and a
+ * normal that barely turned (n jumps across the surfaces where two
+ * features are equally near). */
+static inline bool sc_same_region(const cl_shape_query *q,
+                                  const cl_shape_query *qs)
+{
+    double dn[3];
+    cl_v3_sub(q->n, qs->n, dn);
+    return sc_region(q) == sc_region(qs) && cl_v3_norm(dn) <= 1e-2;
+}
+
 /* Central differences with step h around x: of n against G and of d
  * against n.  Returns the relative error of G (max |FD - G| / max |G|,
  * absolute where G = 0), or -1 when a step left the region of x (the
@@ -155,8 +166,7 @@ static inline double sc_fd_error(const sc_shape *s, const double x[3],
         xm[j] -= h;
         s->type->query(s->shape, xp, &qp);
         s->type->query(s->shape, xm, &qm);
-        if (sc_region(&qp) != sc_region(&q) ||
-            sc_region(&qm) != sc_region(&q))
+        if (!sc_same_region(&q, &qp) || !sc_same_region(&q, &qm))
             return -1;
         for (int i = 0; i < 3; i++)
             fd[3 * i + j] = (qp.n[i] - qm.n[i]) / (2 * h);

@@ -47,11 +47,12 @@ static void query_outside(const box *b, const double x[3], const double p[3],
     double c[3], n0[3] = {0, 0, 0}, e[3] = {0, 0, 0};
     int out = 0;
     for (int i = 0; i < 3; i++) {
-        c[i] = b->c[i] + fmax(-b->h[i], fmin(b->h[i], p[i]));
         if (fabs(p[i]) > b->h[i]) {
+            c[i] = b->c[i] + (p[i] > 0 ? b->h[i] : -b->h[i]);
             if (!out++)
                 n0[i] = p[i] > 0 ? 1 : -1;
         } else {
+            c[i] = x[i];    /* x - c exactly 0 along the box */
             e[i] = 1;
         }
     }

@@ -20,8 +20,9 @@
  * sum of the two face normals on an edge, the sum of the face normals of
  * the vertex's triangles weighted by their angles at it on a vertex;
  * x - c against it is >= 0 outside.  Then d = sign |x - c| and
- * n = sign (x - c) / |x - c| (the outward normal of the face when
- * |x - c| <= 1e-12 times the mesh's size).
+ * n = sign (x - c) / |x - c|, taken as the face normal on a face (which
+ * it is, without the round-off of x - c) and when |x - c| <= 1e-12 times
+ * the mesh's size (x on the surface).
  *
  * G is the Hessian of the distance to the feature: 0 on a face,
  * (I - n n^T - e e^T) / d on an edge of direction e, (I - n n^T) / d on a
@@ -315,8 +316,11 @@ static void mesh_query(const void *shape, const double x[3],
     g_kind kind = feature(m, &h, &pn, e);
     cl_v3_sub(x, h.p.c, r);
     double sign = cl_v3_dot(r, pn) >= 0 ? 1.0 : -1.0;
-    if (cl_shape_answer(x, h.p.c, sign, m->fn[h.tri], m->tiny, q) &&
-        kind != G_FACE)
+    if (!cl_shape_answer(x, h.p.c, sign, m->fn[h.tri], m->tiny, q))
+        return;
+    if (h.p.feature == CL_TRI_FACE)     /* exact, not (x - c) / |x - c| */
+        memcpy(q->n, m->fn[h.tri], sizeof q->n);
+    else if (kind != G_FACE)
         cl_shape_hessian(q->n, kind == G_EDGE ? e : NULL, q->d, q->G);
 }
 
