@@ -1291,3 +1291,49 @@ Test(cli, projection_refused_by_an_integrator_that_cannot_apply_it)
     expect_refused(LIST("run", "jiao-sphere", "--integrator", "gsl-rk8pd"),
                    0, LIST("gsl-rk8pd", "response = project"));
 }
+
+/* A problem whose obstacle is the mesh FILE: every malformed OBJ stops the
+ * run with one message naming the file and its line (or why the file as a
+ * whole is refused) and a non-zero exit. */
+Test(cli, malformed_obstacle_meshes_are_refused)
+{
+    static const struct {
+        const char *name, *text, *want;
+    } bad[] = {
+        {"empty.obj", "", "empty.obj"},
+        {"nofaces.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n", "face"},
+        {"zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "zero.obj:4"},
+        {"range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n", "range.obj:4"},
+        {"nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", "nan.obj:2"},
+        {"inf.obj", "v 0 0 0\nv 1 0 0\nv 0 inf 0\nf 1 2 3\n", "inf.obj:3"},
+        {"degenerate.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n",
+         "degenerate.obj:4"},
+        {"repeated.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2\n",
+         "repeated.obj:4"},
+        {"token.obj", "v 0 0 0\nv 1 zero 0\nv 0 1 0\nf 1 2 3\n", "token.obj:2"},
+    };
+    char ini[1100], obj[1100], text[1400];
+    for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
+        tmp_put(in_tmp(obj, bad[k].name), bad[k].text);
+        in_tmp(ini, "mesh.ini");
+        snprintf(text, sizeof text,
+                 "[cloth]\nn = 4\n[obstacle.rock]\nshape = mesh\nfile = %s\n"
+                 "response = penalty\nk = 10\n", bad[k].name);
+        tmp_put(ini, text);
+        expect_refused(LIST("run", ini, "--t-end", "0.01"), 0,
+                       LIST(bad[k].want));
+    }
+    /* a 10 MB line */
+    char *big = malloc(10u << 20);
+    cr_assert_not_null(big);
+    memset(big, '1', (10u << 20) - 1);
+    memcpy(big, "v 0 0 ", 6);
+    big[(10u << 20) - 1] = '\0';
+    tmp_put(in_tmp(obj, "long.obj"), big);
+    free(big);
+    snprintf(text, sizeof text, "[cloth]\nn = 4\n[obstacle.rock]\nshape = mesh"
+             "\nfile = long.obj\nresponse = penalty\nk = 10\n");
+    tmp_put(ini, text);
+    expect_refused(LIST("run", ini, "--t-end", "0.01"), 0,
+                   LIST("long.obj:1", "long"));
+}

@@ -1,126 +1,116 @@
-/* An axis-aligned box in its own frame (docs/model.md, eq. C1): outside,
- * the distance to the nearest face, edge or corner, with G = 0 on a face,
- * (I - n n^T - e e^T)/d at an edge of direction e, (I - n n^T)/d at a
- * corner; inside, minus the distance to the nearest face, G = 0.  Keys:
- * center (m, default 0), size (m, three full side lengths > 0,
- * required). */
+/* The box shape, axis-aligned in its own frame: [obstacle.NAME]
+ * shape = box,
+ *   center  the centre (m, vector, default 0), the pivot
+ *   size    the three full side lengths (m, each > 0, required)
+ * Exact signed distance.  Outside, the closest point is x clamped to the
+ * box; it lies on a face (one coordinate outside: G = 0), an edge (two:
+ * G = (I - n n^T - e e^T) / d, e the edge's axis) or a corner (three:
+ * G = (I - n n^T) / d).  Inside, d is minus the distance to the nearest
+ * face, n that face's normal, G = 0 (a point as near to two faces takes
+ * the first of them, x before y before z).  Drawn as 12 triangles. */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
-#include "contact/shape.h"
+#include "contact/shape_impl.h"
+#include "core/vec3.h"
 
 typedef struct {
-    double c[3], h[3]; /* centre, half sides */
+    double c[3], h[3];  /* centre, half sides */
 } box;
 
 static cl_status box_create(cl_config *cfg, const char *sec, double pivot[3],
                             void **shape, cl_error *err)
 {
-    box s = {{0.0, 0.0, 0.0}, {NAN, NAN, NAN}};
-    char where[256];
+    box s = {{0, 0, 0}, {0, 0, 0}};
+    double size[3];
     cl_status rc;
-    if ((rc = cl_config_vector(cfg, sec, "center", 3, s.c, err)) ||
-        (rc = cl_config_vector(cfg, sec, "size", 3, s.h, err)))
+    if ((rc = cl_shape_vector(cfg, sec, "center", false, s.c, err)) ||
+        (rc = cl_shape_vector(cfg, sec, "size", true, size, err)))
         return rc;
-    if (isnan(s.h[0]))
-        return cl_error_set(err, CL_EINVAL, "[%s] shape = box needs its "
-                            "size (m, three side lengths > 0)", sec);
     for (int i = 0; i < 3; i++) {
-        if (!(s.h[i] > 0.0))
-            return cl_error_set(err, CL_EINVAL, "%s: [%s] size = \"%s\": "
-                                "expected three side lengths > 0 (m)",
-                                cl_config_origin(cfg, sec, "size", where,
-                                                 sizeof where),
-                                sec, cl_config_string(cfg, sec, "size", ""));
-        s.h[i] *= 0.5;
-        pivot[i] = s.c[i];
+        if (!(size[i] > 0))
+            return cl_shape_bad_value(cfg, sec, "size", "three side lengths "
+                                      "> 0", err);
+        s.h[i] = 0.5 * size[i];
     }
-    box *p = malloc(sizeof *p);
-    if (!p)
-        return cl_error_set(err, CL_ENOMEM, "out of memory (box)");
-    *p = s;
-    *shape = p;
-    return CL_OK;
+    memcpy(pivot, s.c, sizeof s.c);
+    return cl_shape_copy(&s, sizeof s, shape, err);
 }
 
-/* Inside: the nearest face. */
-static void box_inside(const box *s, const double r[3], cl_shape_query *q)
+/* x outside the box: the closest point is p (x relative to the centre)
+ * clamped.  With two coordinates of p outside, e is the axis of the
+ * third, the direction of the nearest edge. */
+static void query_outside(const box *b, const double x[3], const double p[3],
+                          cl_shape_query *q)
+{
+    double c[3], n0[3] = {0, 0, 0}, e[3] = {0, 0, 0};
+    int out = 0;
+    for (int i = 0; i < 3; i++) {
+        if (fabs(p[i]) > b->h[i]) {
+            c[i] = b->c[i] + (p[i] > 0 ? b->h[i] : -b->h[i]);
+            if (!out++)
+                n0[i] = p[i] > 0 ? 1 : -1;
+        } else {
+            c[i] = x[i];    /* x - c exactly 0 along the box */
+            e[i] = 1;
+        }
+    }
+    double tiny = 1e-12 * fmax(b->h[0], fmax(b->h[1], b->h[2]));
+    if (cl_shape_answer(x, c, 1.0, n0, tiny, q) && out > 1)
+        cl_shape_hessian(q->n, out == 2 ? e : NULL, q->d, q->G);
+}
+
+/* x inside (or on) the box: the nearest face. */
+static void query_inside(const box *b, const double x[3], const double p[3],
+                         cl_shape_query *q)
 {
     int a = 0;
     for (int i = 1; i < 3; i++)
-        if (s->h[i] - fabs(r[i]) < s->h[a] - fabs(r[a]))
+        if (fabs(p[i]) - b->h[i] > fabs(p[a]) - b->h[a])
             a = i;
-    double sg = r[a] < 0.0 ? -1.0 : 1.0;
-    q->d = -(s->h[a] - fabs(r[a]));
-    for (int i = 0; i < 3; i++) {
-        q->n[i] = i == a ? sg : 0.0;
-        q->c[i] = s->c[i] + (i == a ? sg * s->h[a] : r[i]);
-    }
-    for (int k = 0; k < 9; k++)
-        q->G[k] = 0.0;
+    double s = p[a] >= 0 ? 1 : -1, c[3], n0[3] = {0, 0, 0};
+    memcpy(c, x, sizeof c);
+    c[a] = b->c[a] + s * b->h[a];
+    n0[a] = s;
+    cl_shape_answer(x, c, -1.0, n0, 0.0, q);
 }
 
 static void box_query(const void *shape, const double x[3],
                       cl_shape_query *q)
 {
-    const box *s = shape;
-    double r[3], diff[3], len2 = 0.0;
-    int clamped = 0;
-    for (int i = 0; i < 3; i++) {
-        r[i] = x[i] - s->c[i];
-        double cl = fmin(fmax(r[i], -s->h[i]), s->h[i]);
-        diff[i] = r[i] - cl;
-        clamped += diff[i] != 0.0;
-        len2 += diff[i] * diff[i];
-        q->c[i] = s->c[i] + cl;
-    }
-    if (clamped == 0) {
-        box_inside(s, r, q);
-        return;
-    }
-    q->d = sqrt(len2);
-    for (int i = 0; i < 3; i++)
-        q->n[i] = diff[i] / q->d;
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) {
-            /* the free axes (not clamped) are the edge's direction; on a
-             * face the normal's curvature vanishes */
-            double e = i == j && diff[i] == 0.0 ? 1.0 : 0.0;
-            q->G[3 * i + j] = clamped == 1
-                                  ? 0.0
-                                  : ((i == j) - q->n[i] * q->n[j] - e) / q->d;
-        }
+    const box *b = shape;
+    double p[3];
+    cl_v3_sub(x, b->c, p);
+    if (fabs(p[0]) > b->h[0] || fabs(p[1]) > b->h[1] || fabs(p[2]) > b->h[2])
+        query_outside(b, x, p, q);
+    else
+        query_inside(b, x, p, q);
 }
 
-static cl_status box_surface(const void *shape, cl_shape_surface *out,
+static cl_status box_surface(const void *shape, cl_shape_surface *s,
                              cl_error *err)
 {
-    const box *s = shape;
-    out->vert = malloc(24 * sizeof *out->vert);
-    out->tri = malloc(12 * sizeof *out->tri);
-    if (!out->vert || !out->tri)
-        return cl_error_set(err, CL_ENOMEM, "out of memory (box)");
-    for (int k = 0; k < 8; k++) /* corner k: bit i set = + side of axis i */
+    /* corner k at (k & 1, k & 2, k & 4) -> +h, else -h; two triangles a
+     * face, -z, +z, -y, +y, -x, +x */
+    static const int tri[12][3] = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6},
+                                   {0, 1, 5}, {0, 5, 4}, {2, 6, 7}, {2, 7, 3},
+                                   {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+    const box *b = shape;
+    cl_status rc = cl_shape_surface_alloc(s, 8, 12, err);
+    if (rc)
+        return rc;
+    for (int k = 0; k < 8; k++)
         for (int i = 0; i < 3; i++)
-            out->vert[3 * k + i] = s->c[i] + ((k >> i) & 1 ? s->h[i]
-                                                             : -s->h[i]);
-    static const int quad[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
-                                   {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
-    for (int f = 0; f < 6; f++) {
-        const int *v = quad[f];
-        int t[2][3] = {{v[0], v[1], v[2]}, {v[0], v[2], v[3]}};
-        for (int k = 0; k < 2; k++)
-            for (int i = 0; i < 3; i++)
-                out->tri[2 * f + k][i] = t[k][i];
-    }
-    out->nvert = 8;
-    out->ntri = 12;
+            s->vert[3 * k + i] = b->c[i] + (k >> i & 1 ? b->h[i] : -b->h[i]);
+    memcpy(s->tri, tri, sizeof tri);
     return CL_OK;
 }
 
 const cl_shape_type cl_shape_box = {
     .name = "box",
-    .doc = "axis-aligned box: center, size",
+    .doc = "axis-aligned box: center (vector), size (three side lengths "
+           "> 0)",
     .create = box_create,
     .query = box_query,
     .surface = box_surface,

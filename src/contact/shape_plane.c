@@ -1,100 +1,99 @@
-/* The half-space below a plane (docs/model.md, eq. C1): d = m . (x - p),
- * n = m, G = 0.  Keys: point (m, default 0), normal (required, nonzero;
- * normalised here), extent (m, > 0, default 10: the side of the square
- * drawn in frames). */
+/* The plane shape, a half-space: [obstacle.NAME] shape = plane,
+ *   point   a point of the plane (m, vector, default 0), the pivot
+ *   normal  the outward normal (vector, nonzero, required; normalised)
+ *   extent  the side of the square drawn around point (m, > 0, default 10)
+ * d = n . (x - p), the normal is n everywhere and G = 0.  The drawing is
+ * a square of two triangles, counter-clockwise seen from the outside. */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
-#include "contact/shape.h"
+#include "contact/shape_impl.h"
+#include "core/vec3.h"
 
 typedef struct {
-    double p[3], m[3], extent;
+    double p[3], n[3], extent;
 } plane;
+
+/* n / |n| (scaled first, so that no square overflows or underflows);
+ * false for the zero vector. */
+static bool normalise(double n[3])
+{
+    double m = fmax(fabs(n[0]), fmax(fabs(n[1]), fabs(n[2])));
+    if (!(m > 0))
+        return false;
+    for (int i = 0; i < 3; i++)
+        n[i] /= m;
+    cl_v3_normalize(n);
+    return true;
+}
 
 static cl_status plane_create(cl_config *cfg, const char *sec,
                               double pivot[3], void **shape, cl_error *err)
 {
-    plane s = {{0.0, 0.0, 0.0}, {NAN, NAN, NAN}, 10.0};
-    char where[256];
+    plane s = {{0, 0, 0}, {0, 0, 0}, 0};
     cl_status rc;
-    if ((rc = cl_config_vector(cfg, sec, "point", 3, s.p, err)) ||
-        (rc = cl_config_vector(cfg, sec, "normal", 3, s.m, err)) ||
-        (rc = cl_config_double(cfg, sec, "extent", 10.0, 1e-300, INFINITY,
-                               &s.extent, err)))
+    if ((rc = cl_shape_vector(cfg, sec, "point", false, s.p, err)) ||
+        (rc = cl_shape_vector(cfg, sec, "normal", true, s.n, err)) ||
+        (rc = cl_shape_positive(cfg, sec, "extent", 10.0, &s.extent, err)))
         return rc;
-    if (isnan(s.m[0]))
-        return cl_error_set(err, CL_EINVAL, "[%s] shape = plane needs its "
-                            "outward normal (a nonzero vector)", sec);
-    double len = sqrt(s.m[0] * s.m[0] + s.m[1] * s.m[1] + s.m[2] * s.m[2]);
-    if (!(len > 0.0) || !isfinite(len))
-        return cl_error_set(err, CL_EINVAL, "%s: [%s] normal = \"%s\": "
-                            "expected a nonzero vector of finite length",
-                            cl_config_origin(cfg, sec, "normal", where,
-                                             sizeof where),
-                            sec, cl_config_string(cfg, sec, "normal", ""));
-    for (int i = 0; i < 3; i++)
-        s.m[i] /= len;
-    plane *p = malloc(sizeof *p);
-    if (!p)
-        return cl_error_set(err, CL_ENOMEM, "out of memory (plane)");
-    *p = s;
-    for (int i = 0; i < 3; i++)
-        pivot[i] = s.p[i];
-    *shape = p;
-    return CL_OK;
+    if (!normalise(s.n))
+        return cl_shape_bad_value(cfg, sec, "normal", "a nonzero vector",
+                                  err);
+    memcpy(pivot, s.p, sizeof s.p);
+    return cl_shape_copy(&s, sizeof s, shape, err);
 }
 
 static void plane_query(const void *shape, const double x[3],
                         cl_shape_query *q)
 {
     const plane *s = shape;
-    q->d = s->m[0] * (x[0] - s->p[0]) + s->m[1] * (x[1] - s->p[1]) +
-           s->m[2] * (x[2] - s->p[2]);
-    for (int i = 0; i < 3; i++) {
-        q->n[i] = s->m[i];
-        q->c[i] = x[i] - q->d * s->m[i];
-    }
-    for (int k = 0; k < 9; k++)
-        q->G[k] = 0.0;
+    double r[3];
+    cl_v3_sub(x, s->p, r);
+    q->d = cl_v3_dot(s->n, r);
+    memcpy(q->n, s->n, sizeof q->n);
+    cl_v3_axpy(x, -q->d, s->n, q->c);
+    memset(q->G, 0, sizeof q->G);
 }
 
-/* A square of side `extent` centred on the point, normal m. */
-static cl_status plane_surface(const void *shape, cl_shape_surface *out,
+/* Unit u, v in the plane with u x v = n. */
+static void tangents(const double n[3], double u[3], double v[3])
+{
+    int a = 0;
+    for (int i = 1; i < 3; i++)
+        if (fabs(n[i]) < fabs(n[a]))
+            a = i;
+    double e[3] = {0, 0, 0};
+    e[a] = 1;
+    cl_v3_axpy(e, -n[a], n, u);
+    cl_v3_normalize(u);
+    cl_v3_cross(n, u, v);
+}
+
+static cl_status plane_surface(const void *shape, cl_shape_surface *s,
                                cl_error *err)
 {
-    const plane *s = shape;
-    const double *m = s->m;
-    double a[3] = {fabs(m[0]) < 0.9 ? 1.0 : 0.0, fabs(m[0]) < 0.9 ? 0.0 : 1.0,
-                   0.0};
-    double e1[3] = {a[1] * m[2] - a[2] * m[1], a[2] * m[0] - a[0] * m[2],
-                    a[0] * m[1] - a[1] * m[0]};
-    double l = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
-    for (int i = 0; i < 3; i++)
-        e1[i] /= l;
-    double e2[3] = {m[1] * e1[2] - m[2] * e1[1], m[2] * e1[0] - m[0] * e1[2],
-                    m[0] * e1[1] - m[1] * e1[0]};
-    out->vert = malloc(12 * sizeof *out->vert);
-    out->tri = malloc(2 * sizeof *out->tri);
-    if (!out->vert || !out->tri)
-        return cl_error_set(err, CL_ENOMEM, "out of memory (plane)");
     static const double corner[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-    for (int k = 0; k < 4; k++)
-        for (int i = 0; i < 3; i++)
-            out->vert[3 * k + i] = s->p[i] + 0.5 * s->extent *
-                                                 (corner[k][0] * e1[i] +
-                                                  corner[k][1] * e2[i]);
     static const int tri[2][3] = {{0, 1, 2}, {0, 2, 3}};
-    for (int k = 0; k < 2; k++)
-        for (int i = 0; i < 3; i++)
-            out->tri[k][i] = tri[k][i];
-    out->nvert = 4;
-    out->ntri = 2;
+    const plane *pl = shape;
+    double u[3], v[3];
+    cl_status rc = cl_shape_surface_alloc(s, 4, 2, err);
+    if (rc)
+        return rc;
+    tangents(pl->n, u, v);
+    for (int k = 0; k < 4; k++) {
+        double *w = s->vert + 3 * k;
+        cl_v3_axpy(pl->p, 0.5 * pl->extent * corner[k][0], u, w);
+        cl_v3_axpy(w, 0.5 * pl->extent * corner[k][1], v, w);
+    }
+    memcpy(s->tri, tri, sizeof tri);
     return CL_OK;
 }
 
 const cl_shape_type cl_shape_plane = {
     .name = "plane",
-    .doc = "half-space below a plane: point, normal",
+    .doc = "half-space: point (vector), normal (outward, nonzero), extent "
+           "(drawn square's side, > 0)",
     .create = plane_create,
     .query = plane_query,
     .surface = plane_surface,

@@ -1,16 +1,20 @@
 /* Wavefront OBJ triangle meshes: the obstacle meshes of the contact layer
- * and the cloth meshes of model/cloth (seed 003 builds its skirt and its
- * sphere in Blender and exports them as OBJ).
+ * and the cloth meshes of model/cloth (meshes made in a modeller such as
+ * Blender and exported as OBJ).
  *
  * Read: `v x y z [w]` vertices (w ignored), `f` faces of three or more
  * vertices, each vertex `i`, `i/t`, `i//n` or `i/t/n` with i 1-based or
- * negative (relative to the vertices read so far); polygons are split into
+ * negative (relative to the vertices read so far: -1 is the last one);
+ * a face may only use vertices defined above it.  Polygons are split into
  * a fan (0, k, k+1).  `vt`, `vn`, `o`, `g`, `s`, `usemtl`, `mtllib` and
- * comments are accepted and ignored; any other statement, a non-numeric or
- * non-finite coordinate, an index 0 or out of range, a degenerate triangle
- * (a repeated vertex or zero area), a line longer than CL_OBJ_MAX_LINE, a
- * file without vertices or without faces are refused with CL_EPARSE naming
- * the file, the line and the reason. */
+ * comments ('#' to the end of the line) are accepted and ignored; any
+ * other statement, a non-numeric or non-finite coordinate, an index 0 or
+ * out of range, a degenerate triangle (a repeated vertex, or zero area:
+ * |(b - a) x (c - a)| <= 1e-14 (|b - a|^2 + |c - b|^2 + |a - c|^2)), a
+ * line longer than CL_OBJ_MAX_LINE characters (found without reading the
+ * rest of it), a NUL byte, a file without vertices or without faces are
+ * refused with CL_EPARSE and the message "PATH:LINE: reason"; a file that
+ * cannot be opened or read gives CL_EIO. */
 #ifndef CL_OBJ_H
 #define CL_OBJ_H
 
@@ -27,7 +31,9 @@ typedef struct {
     int (*tri)[3];  /* 0-based vertex indices, in the file's orientation */
 } cl_obj;
 
+/* On failure m is left empty (nothing to free). */
 cl_status cl_obj_read(const char *path, cl_obj *m, cl_error *err);
+/* Free and empty m (harmless on an empty or already freed mesh). */
 void cl_obj_free(cl_obj *m);
 
 #endif

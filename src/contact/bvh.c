@@ -1,0 +1,189 @@
+/* Bounding-volume hierarchy of a triangle mesh (contact/bvh.h). */
+#include "contact/bvh.h"
+
+#include <limits.h>
+#include <math.h>
+#include <stdlib.h>
+
+/* Pending nodes of a query: at most one per level plus one (depth <= 30). */
+#define STACK 64
+
+typedef struct {
+    int node;
+    double d2;      /* squared distance from the point to its box */
+} pending;
+
+void cl_bvh_free(cl_bvh *b)
+{
+    free(b->order);
+    free(b->node);
+    *b = (cl_bvh){0};
+}
+
+/* The bounds of the triangles idx[0..n). */
+static void node_bounds(const cl_bvh *b, cl_bvh_node *nd, const int *idx,
+                        int n)
+{
+    for (int i = 0; i < 3; i++) {
+        nd->lo[i] = INFINITY;
+        nd->hi[i] = -INFINITY;
+    }
+    for (int t = 0; t < n; t++)
+        for (int k = 0; k < 3; k++) {
+            const double *v = b->vert + 3 * b->tri[idx[t]][k];
+            for (int i = 0; i < 3; i++) {
+                nd->lo[i] = fmin(nd->lo[i], v[i]);
+                nd->hi[i] = fmax(nd->hi[i], v[i]);
+            }
+        }
+}
+
+/* The axis along which the centroids of idx[0..n) spread most. */
+static int longest_axis(const double *cent, const int *idx, int n)
+{
+    double lo[3] = {INFINITY, INFINITY, INFINITY};
+    double hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int t = 0; t < n; t++)
+        for (int i = 0; i < 3; i++) {
+            lo[i] = fmin(lo[i], cent[3 * idx[t] + i]);
+            hi[i] = fmax(hi[i], cent[3 * idx[t] + i]);
+        }
+    int axis = 0;
+    for (int i = 1; i < 3; i++)
+        if (hi[i] - lo[i] > hi[axis] - lo[axis])
+            axis = i;
+    return axis;
+}
+
+/* Reorder a[0..n) so that a[k] has the k-th least key (key[3 a[i]]), none
+ * before it a greater one and none after it a smaller one (Hoare's FIND,
+ * as given by Wirth, "Algorithms + Data Structures = Programs", 1976). */
+static void select_nth(int *a, long n, long k, const double *key)
+{
+    long l = 0, r = n - 1;
+    while (l < r) {
+        double x = key[3 * a[k]];
+        long i = l, j = r;
+        do {
+            while (key[3 * a[i]] < x)
+                i++;
+            while (x < key[3 * a[j]])
+                j--;
+            if (i <= j) {
+                int s = a[i];
+                a[i++] = a[j];
+                a[j--] = s;
+            }
+        } while (i <= j);
+        if (j < k)
+            l = i;
+        if (k < i)
+            r = j;
+    }
+}
+
+/* The subtree of order[first .. first + n), depth first; its root. */
+static int build_node(cl_bvh *b, const double *cent, int first, int n)
+{
+    int id = (int)b->nnode++;
+    node_bounds(b, &b->node[id], b->order + first, n);
+    if (n <= CL_BVH_LEAF) {
+        b->node[id].first = first;
+        b->node[id].count = n;
+        return id;
+    }
+    int half = n / 2;
+    select_nth(b->order + first, n, half,
+               cent + longest_axis(cent, b->order + first, n));
+    b->node[id].count = 0;
+    build_node(b, cent, first, half);
+    b->node[id].first = build_node(b, cent, first + half, n - half);
+    return id;
+}
+
+cl_status cl_bvh_build(cl_bvh *b, const double *vert, size_t ntri,
+                       const int (*tri)[3], cl_error *err)
+{
+    *b = (cl_bvh){.vert = vert, .tri = tri, .ntri = ntri};
+    if (ntri < 1 || ntri > INT_MAX / 2)
+        return cl_error_set(err, CL_EINVAL, "bounding-volume tree of %zu "
+                            "triangles: need 1 to %d", ntri, INT_MAX / 2);
+    double *cent = malloc(3 * ntri * sizeof *cent);
+    b->order = malloc(ntri * sizeof *b->order);
+    b->node = malloc(2 * ntri * sizeof *b->node);
+    if (!cent || !b->order || !b->node) {
+        free(cent);
+        cl_bvh_free(b);
+        return cl_error_set(err, CL_ENOMEM, "out of memory (bounding-volume "
+                            "tree of %zu triangles)", ntri);
+    }
+    for (size_t t = 0; t < ntri; t++) {
+        b->order[t] = (int)t;
+        for (int i = 0; i < 3; i++)
+            cent[3 * t + i] = (vert[3 * tri[t][0] + i] +
+                               vert[3 * tri[t][1] + i] +
+                               vert[3 * tri[t][2] + i]) / 3.0;
+    }
+    build_node(b, cent, 0, (int)ntri);
+    free(cent);
+    return CL_OK;
+}
+
+/* Squared distance from x to the node's box (0 inside). */
+static double box_dist2(const cl_bvh_node *nd, const double x[3])
+{
+    double s = 0;
+    for (int i = 0; i < 3; i++) {
+        double d = x[i] < nd->lo[i] ? nd->lo[i] - x[i]
+                   : x[i] > nd->hi[i] ? x[i] - nd->hi[i] : 0.0;
+        s += d * d;
+    }
+    return s;
+}
+
+/* Triangle t replaces the hit if it is nearer (or the distances are not
+ * numbers, so that a non-finite point still gets a triangle). */
+static void try_triangle(const cl_bvh *b, int t, const double x[3],
+                         cl_bvh_hit *hit)
+{
+    const int *v = b->tri[t];
+    cl_tri_point p;
+    cl_tri_closest(x, b->vert + 3 * v[0], b->vert + 3 * v[1],
+                   b->vert + 3 * v[2], &p);
+    if (!(p.dist2 >= hit->p.dist2)) {
+        hit->tri = t;
+        hit->p = p;
+    }
+}
+
+void cl_bvh_nearest(const cl_bvh *b, const double x[3], cl_bvh_hit *hit)
+{
+    pending stack[STACK];
+    int top = 0;
+    hit->tri = -1;
+    hit->p.dist2 = INFINITY;
+    stack[top++] = (pending){0, box_dist2(&b->node[0], x)};
+    while (top > 0) {
+        pending e = stack[--top];
+        const cl_bvh_node *nd = &b->node[e.node];
+        if (e.d2 >= hit->p.dist2)
+            continue;
+        for (int i = 0; i < nd->count; i++)
+            try_triangle(b, b->order[nd->first + i], x, hit);
+        if (nd->count)
+            continue;
+        pending l = {e.node + 1, box_dist2(&b->node[e.node + 1], x)};
+        pending r = {nd->first, box_dist2(&b->node[nd->first], x)};
+        stack[top++] = l.d2 <= r.d2 ? r : l;   /* the farther one first */
+        stack[top++] = l.d2 <= r.d2 ? l : r;
+    }
+}
+
+void cl_bvh_nearest_brute(const cl_bvh *b, const double x[3],
+                          cl_bvh_hit *hit)
+{
+    hit->tri = -1;
+    hit->p.dist2 = INFINITY;
+    for (size_t t = 0; t < b->ntri; t++)
+        try_triangle(b, (int)t, x, hit);
+}

@@ -1,0 +1,347 @@
+/* The mesh shape, a closed triangle mesh from an OBJ file: [obstacle.NAME]
+ * shape = mesh,
+ *   file       the OBJ file (io/obj.h), relative to the problem file
+ *   scale      (> 0, default 1) and
+ *   translate  (m, vector, default 0): vertices become scale v + translate
+ * The pivot is the vertex centroid.
+ *
+ * The mesh must be closed (every edge shared by exactly two triangles),
+ * consistently oriented (the two run their edge in opposite directions)
+ * and face outwards (counter-clockwise seen from outside, so that the
+ * enclosed volume is positive); meshes that are not are refused.  It
+ * should also be free of self-intersections, pinched vertices and
+ * zero-thickness folds, which are not checked.
+ *
+ * Query: the nearest triangle by the bounding-volume tree (contact/bvh.h)
+ * gives the closest point c and the feature it lies on.  The sign comes
+ * from the angle-weighted pseudo-normal of that feature (Baerentzen and
+ * Aanaes, "Signed distance computation using the angle weighted
+ * pseudonormal", IEEE TVCG 11(3), 2005): the face normal on a face, the
+ * sum of the two face normals on an edge, the sum of the face normals of
+ * the vertex's triangles weighted by their angles at it on a vertex;
+ * x - c against it is >= 0 outside.  Then d = sign |x - c| and
+ * n = sign (x - c) / |x - c|, taken as the face normal on a face (which
+ * it is, without the round-off of x - c) and when |x - c| <= 1e-12 times
+ * the mesh's size (x on the surface).
+ *
+ * G is the Hessian of the distance to the feature: 0 on a face,
+ * (I - n n^T - e e^T) / d on an edge of direction e, (I - n n^T) / d on a
+ * vertex.  A feature whose faces are coplanar (normals within 1e-6 rad:
+ * the diagonal of a flat quad, a vertex inside a flat region) has no
+ * region of its own, and a point found on it is on a face: G = 0.
+ * Likewise a vertex whose faces all contain one line (a vertex in the
+ * middle of a straight crease) has no region of its own and acts as the
+ * crease, an edge along that line. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "contact/bvh.h"
+#include "contact/closed.h"
+#include "contact/shape_impl.h"
+#include "core/vec3.h"
+#include "io/obj.h"
+
+/* Normals closer than this (sine of their angle) count as parallel. */
+#define FLAT_SIN 1e-6
+
+/* What G a feature has: that of a face, an edge or a corner. */
+typedef enum { G_FACE, G_EDGE, G_CORNER } g_kind;
+
+typedef struct {
+    cl_obj m;               /* vertices (scaled, moved) and triangles */
+    cl_bvh bvh;
+    double (*fn)[3];        /* unit face normals */
+    double (*sn)[3];        /* side k of triangle t at 3t + k: the edge's
+                               pseudo-normal */
+    unsigned char *sflat;   /* ... whose two faces are coplanar */
+    double (*vn)[3];        /* vertex pseudo-normals */
+    double (*ve)[3];        /* crease direction of a G_EDGE vertex */
+    unsigned char *vkind;   /* g_kind of each vertex */
+    double tiny;            /* 1e-12 times the bounding box's diagonal */
+} mesh;
+
+static void mesh_free(void *shape)
+{
+    mesh *m = shape;
+    if (!m)
+        return;
+    cl_obj_free(&m->m);
+    cl_bvh_free(&m->bvh);
+    free(m->fn);
+    free(m->sn);
+    free(m->sflat);
+    free(m->vn);
+    free(m->ve);
+    free(m->vkind);
+    free(m);
+}
+
+/* err's message behind "prefix: ". */
+static cl_status prefixed(cl_error *err, cl_status rc, const char *prefix)
+{
+    if (!err)
+        return rc;
+    char msg[sizeof err->msg];
+    snprintf(msg, sizeof msg, "%s", err->msg);
+    return cl_error_set(err, rc, "%s: %s", prefix, msg);
+}
+
+static const double *vertex(const mesh *m, int v)
+{
+    return m->m.vert + 3 * v;
+}
+
+static cl_status allocate(mesh *m, const char *path, cl_error *err)
+{
+    size_t nv = m->m.nvert, nt = m->m.ntri;
+    m->fn = malloc(nt * sizeof *m->fn);
+    m->sn = malloc(3 * nt * sizeof *m->sn);
+    m->sflat = malloc(3 * nt * sizeof *m->sflat);
+    m->vn = calloc(nv, sizeof *m->vn);
+    m->ve = calloc(nv, sizeof *m->ve);
+    m->vkind = malloc(nv * sizeof *m->vkind);
+    if (m->fn && m->sn && m->sflat && m->vn && m->ve && m->vkind)
+        return CL_OK;
+    return cl_error_set(err, CL_ENOMEM, "%s: out of memory", path);
+}
+
+/* The enclosed volume must be positive (sum of the signed volumes of the
+ * tetrahedra from vertex 0 to each triangle). */
+static cl_status check_outward(const mesh *m, const char *path,
+                               cl_error *err)
+{
+    double vol = 0;
+    for (size_t t = 0; t < m->m.ntri; t++) {
+        double a[3], b[3], c[3], n[3];
+        cl_v3_sub(vertex(m, m->m.tri[t][0]), m->m.vert, a);
+        cl_v3_sub(vertex(m, m->m.tri[t][1]), m->m.vert, b);
+        cl_v3_sub(vertex(m, m->m.tri[t][2]), m->m.vert, c);
+        cl_v3_tri_cross(a, b, c, n);
+        vol += cl_v3_dot(a, n) / 6.0;
+    }
+    if (vol > 0)
+        return CL_OK;
+    return cl_error_set(err, CL_EINVAL, "%s: the enclosed volume is %g: the "
+                        "triangles must be counter-clockwise seen from "
+                        "outside (reverse the vertex order of every face)",
+                        path, vol);
+}
+
+/* Whether unit vectors a and b are parallel (and not opposite). */
+static bool parallel(const double a[3], const double b[3])
+{
+    double c[3];
+    cl_v3_cross(a, b, c);
+    return cl_v3_norm(c) <= FLAT_SIN && cl_v3_dot(a, b) > 0;
+}
+
+/* Face normals, and the pseudo-normal of every side. */
+static void face_and_edge_normals(mesh *m, const cl_closed *s)
+{
+    for (size_t t = 0; t < m->m.ntri; t++) {
+        const int *v = m->m.tri[t];
+        cl_v3_tri_cross(vertex(m, v[0]), vertex(m, v[1]), vertex(m, v[2]),
+                        m->fn[t]);
+        cl_v3_normalize(m->fn[t]);
+    }
+    for (size_t t = 0; t < m->m.ntri; t++)
+        for (int k = 0; k < 3; k++) {
+            const double *other = m->fn[cl_closed_across(s, (int)t, k)];
+            cl_v3_axpy(m->fn[t], 1.0, other, m->sn[3 * t + k]);
+            m->sflat[3 * t + k] = parallel(m->fn[t], other);
+        }
+}
+
+/* The angle of triangle t at its corner k. */
+static double corner_angle(const mesh *m, size_t t, int k)
+{
+    const int *v = m->m.tri[t];
+    double u[3], w[3], c[3];
+    cl_v3_sub(vertex(m, v[(k + 1) % 3]), vertex(m, v[k]), u);
+    cl_v3_sub(vertex(m, v[(k + 2) % 3]), vertex(m, v[k]), w);
+    cl_v3_cross(u, w, c);
+    return atan2(cl_v3_norm(c), cl_v3_dot(u, w));
+}
+
+/* Vertex pseudo-normals (unit), and each vertex's kind: flat when every
+ * face normal is parallel to its pseudo-normal, else a crease when they
+ * are all perpendicular to one direction (that of the pseudo-normal
+ * crossed with the face normal farthest from it), else a corner. */
+static cl_status vertex_normals(mesh *m, const char *path, cl_error *err)
+{
+    size_t nv = m->m.nvert, nt = m->m.ntri;
+    double *spread = calloc(nv, sizeof *spread);
+    if (!spread)
+        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", path);
+    for (size_t t = 0; t < nt; t++)
+        for (int k = 0; k < 3; k++)
+            cl_v3_axpy(m->vn[m->m.tri[t][k]], corner_angle(m, t, k),
+                       m->fn[t], m->vn[m->m.tri[t][k]]);
+    for (size_t v = 0; v < nv; v++)
+        cl_v3_normalize(m->vn[v]);
+    for (size_t t = 0; t < nt; t++)
+        for (int k = 0; k < 3; k++) {
+            int v = m->m.tri[t][k];
+            double c[3];
+            cl_v3_cross(m->vn[v], m->fn[t], c);
+            if (cl_v3_norm(c) > spread[v]) {
+                spread[v] = cl_v3_norm(c);
+                cl_v3_normalize(c);
+                memcpy(m->ve[v], c, sizeof c);
+            }
+        }
+    for (size_t v = 0; v < nv; v++)
+        m->vkind[v] = spread[v] <= FLAT_SIN ? G_FACE : G_EDGE;
+    for (size_t t = 0; t < nt; t++)
+        for (int k = 0; k < 3; k++) {
+            int v = m->m.tri[t][k];
+            if (m->vkind[v] == G_EDGE &&
+                fabs(cl_v3_dot(m->fn[t], m->ve[v])) > FLAT_SIN)
+                m->vkind[v] = G_CORNER;
+        }
+    free(spread);
+    return CL_OK;
+}
+
+/* Normals, pseudo-normals and kinds of a closed, outward mesh. */
+static cl_status geometry(mesh *m, const char *path, cl_error *err)
+{
+    cl_closed s;
+    cl_status rc = cl_closed_build(m->m.ntri, (const int(*)[3])m->m.tri, &s,
+                                   err);
+    if (rc) {
+        char where[4200];
+        snprintf(where, sizeof where, "%s (vertices and triangles counted "
+                 "from 0)", path);
+        return prefixed(err, rc, where);
+    }
+    if (!(rc = check_outward(m, path, err)) &&
+        !(rc = allocate(m, path, err))) {
+        face_and_edge_normals(m, &s);
+        rc = vertex_normals(m, path, err);
+    }
+    cl_closed_free(&s);
+    return rc;
+}
+
+/* Read, scale and move the mesh; its size for tiny. */
+static cl_status load(mesh *m, const char *path, double scale,
+                      const double shift[3], cl_error *err)
+{
+    cl_status rc = cl_obj_read(path, &m->m, err);
+    if (rc)
+        return rc;
+    double lo[3] = {INFINITY, INFINITY, INFINITY};
+    double hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t v = 0; v < m->m.nvert; v++) {
+        double *x = m->m.vert + 3 * v;
+        cl_v3_axpy(shift, scale, x, x);
+        for (int i = 0; i < 3; i++) {
+            lo[i] = fmin(lo[i], x[i]);
+            hi[i] = fmax(hi[i], x[i]);
+        }
+    }
+    cl_v3_sub(hi, lo, hi);
+    m->tiny = 1e-12 * cl_v3_norm(hi);
+    return CL_OK;
+}
+
+static void centroid(const mesh *m, double c[3])
+{
+    c[0] = c[1] = c[2] = 0;
+    for (size_t v = 0; v < m->m.nvert; v++)
+        cl_v3_axpy(c, 1.0 / (double)m->m.nvert, vertex(m, (int)v), c);
+}
+
+static cl_status mesh_create(cl_config *cfg, const char *sec,
+                             double pivot[3], void **shape, cl_error *err)
+{
+    char path[4096], where[512];
+    double scale = 1, shift[3] = {0, 0, 0};
+    cl_status rc;
+    if ((rc = cl_config_path_of(cfg, sec, "file", path, sizeof path, err)) ||
+        (rc = cl_shape_positive(cfg, sec, "scale", 1.0, &scale, err)) ||
+        (rc = cl_shape_vector(cfg, sec, "translate", false, shift, err)))
+        return rc;
+    mesh *m = calloc(1, sizeof *m);
+    if (!m)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (mesh shape)");
+    if ((rc = load(m, path, scale, shift, err)) ||
+        (rc = geometry(m, path, err)) ||
+        (rc = cl_bvh_build(&m->bvh, m->m.vert, m->m.ntri,
+                           (const int(*)[3])m->m.tri, err))) {
+        mesh_free(m);
+        cl_config_origin(cfg, sec, "file", where, sizeof where);
+        snprintf(where + strlen(where), sizeof where - strlen(where),
+                 ": [%s] file", sec);
+        return prefixed(err, rc, where);
+    }
+    centroid(m, pivot);
+    *shape = m;
+    return CL_OK;
+}
+
+/* The pseudo-normal (for the sign) and the kind of the feature hit, with
+ * the direction e of an edge or crease. */
+static g_kind feature(const mesh *m, const cl_bvh_hit *h, const double **pn,
+                      double e[3])
+{
+    int t = h->tri, k = h->p.k;
+    const int *v = m->m.tri[t];
+    if (h->p.feature == CL_TRI_FACE) {
+        *pn = m->fn[t];
+        return G_FACE;
+    }
+    if (h->p.feature == CL_TRI_EDGE) {
+        *pn = m->sn[3 * t + k];
+        cl_v3_sub(vertex(m, v[(k + 1) % 3]), vertex(m, v[k]), e);
+        cl_v3_normalize(e);
+        return m->sflat[3 * t + k] ? G_FACE : G_EDGE;
+    }
+    *pn = m->vn[v[k]];
+    memcpy(e, m->ve[v[k]], 3 * sizeof *e);
+    return m->vkind[v[k]];
+}
+
+static void mesh_query(const void *shape, const double x[3],
+                       cl_shape_query *q)
+{
+    const mesh *m = shape;
+    cl_bvh_hit h;
+    cl_bvh_nearest(&m->bvh, x, &h);
+    const double *pn;
+    double e[3], r[3];
+    g_kind kind = feature(m, &h, &pn, e);
+    cl_v3_sub(x, h.p.c, r);
+    double sign = cl_v3_dot(r, pn) >= 0 ? 1.0 : -1.0;
+    if (!cl_shape_answer(x, h.p.c, sign, m->fn[h.tri], m->tiny, q))
+        return;
+    if (h.p.feature == CL_TRI_FACE)     /* exact, not (x - c) / |x - c| */
+        memcpy(q->n, m->fn[h.tri], sizeof q->n);
+    else if (kind != G_FACE)
+        cl_shape_hessian(q->n, kind == G_EDGE ? e : NULL, q->d, q->G);
+}
+
+static cl_status mesh_surface(const void *shape, cl_shape_surface *s,
+                              cl_error *err)
+{
+    const mesh *m = shape;
+    cl_status rc = cl_shape_surface_alloc(s, m->m.nvert, m->m.ntri, err);
+    if (rc)
+        return rc;
+    memcpy(s->vert, m->m.vert, 3 * m->m.nvert * sizeof *s->vert);
+    memcpy(s->tri, m->m.tri, m->m.ntri * sizeof *s->tri);
+    return CL_OK;
+}
+
+const cl_shape_type cl_shape_mesh = {
+    .name = "mesh",
+    .doc = "closed triangle mesh: file (OBJ, relative to the problem file), "
+           "scale (> 0), translate (vector)",
+    .create = mesh_create,
+    .query = mesh_query,
+    .surface = mesh_surface,
+    .free = mesh_free,
+};

@@ -1,0 +1,70 @@
+/* Closest point on a triangle (contact/triangle.h), after Ericson,
+ * "Real-Time Collision Detection", section 5.1.5. */
+#include "contact/triangle.h"
+
+#include "core/vec3.h"
+
+/* p->c = o + s u, on `feature` k. */
+static void found(const double o[3], double s, const double u[3],
+                  cl_tri_feature feature, int k, cl_tri_point *p)
+{
+    cl_v3_axpy(o, s, u, p->c);
+    p->feature = feature;
+    p->k = k;
+}
+
+/* The closest point with d1..d6 the dot products of Ericson's code. */
+static void classify(const double x[3], const double a[3], const double b[3],
+                     const double c[3], cl_tri_point *p)
+{
+    double ab[3], ac[3], bc[3], ap[3], bp[3], cp[3];
+    cl_v3_sub(b, a, ab);
+    cl_v3_sub(c, a, ac);
+    cl_v3_sub(x, a, ap);
+    double d1 = cl_v3_dot(ab, ap), d2 = cl_v3_dot(ac, ap);
+    if (d1 <= 0 && d2 <= 0) {
+        found(a, 0, ab, CL_TRI_VERTEX, 0, p);
+        return;
+    }
+    cl_v3_sub(x, b, bp);
+    double d3 = cl_v3_dot(ab, bp), d4 = cl_v3_dot(ac, bp);
+    if (d3 >= 0 && d4 <= d3) {
+        found(b, 0, ab, CL_TRI_VERTEX, 1, p);
+        return;
+    }
+    double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+        found(a, d1 / (d1 - d3), ab, CL_TRI_EDGE, 0, p);
+        return;
+    }
+    cl_v3_sub(x, c, cp);
+    double d5 = cl_v3_dot(ab, cp), d6 = cl_v3_dot(ac, cp);
+    if (d6 >= 0 && d5 <= d6) {
+        found(c, 0, ab, CL_TRI_VERTEX, 2, p);
+        return;
+    }
+    double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+        found(a, d2 / (d2 - d6), ac, CL_TRI_EDGE, 2, p);
+        return;
+    }
+    double va = d3 * d6 - d5 * d4;
+    cl_v3_sub(c, b, bc);
+    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
+        found(b, (d4 - d3) / ((d4 - d3) + (d5 - d6)), bc, CL_TRI_EDGE, 1,
+              p);
+        return;
+    }
+    double v = vb / (va + vb + vc), w = vc / (va + vb + vc);
+    found(a, v, ab, CL_TRI_FACE, 0, p);
+    cl_v3_axpy(p->c, w, ac, p->c);
+}
+
+void cl_tri_closest(const double x[3], const double a[3], const double b[3],
+                    const double c[3], cl_tri_point *p)
+{
+    classify(x, a, b, c, p);
+    double r[3];
+    cl_v3_sub(x, p->c, r);
+    p->dist2 = cl_v3_dot(r, r);
+}

@@ -1,0 +1,27 @@
+/* The point of a triangle closest to a given point, and the feature of the
+ * triangle it lies on (Ericson, "Real-Time Collision Detection", 2005,
+ * section 5.1.5: the Voronoi regions of the vertices, then of the edges,
+ * then the face, tested with dot products only).
+ *
+ * Features are numbered from the triangle's vertex order a, b, c: vertex
+ * k is (a, b, c)[k]; edge k runs from vertex k to vertex (k + 1) % 3, so
+ * edge 0 is ab, 1 is bc, 2 is ca.  A point on the boundary of two regions
+ * gets the first of them in Ericson's order (vertex a, vertex b, edge ab,
+ * vertex c, edge ca, edge bc, face).  The triangle must not be degenerate
+ * (its vertices not collinear). */
+#ifndef CL_TRIANGLE_H
+#define CL_TRIANGLE_H
+
+typedef enum { CL_TRI_FACE, CL_TRI_EDGE, CL_TRI_VERTEX } cl_tri_feature;
+
+typedef struct {
+    double c[3];            /* the closest point */
+    double dist2;           /* |x - c|^2 */
+    cl_tri_feature feature;
+    int k;                  /* which edge or vertex (0 for the face) */
+} cl_tri_point;
+
+void cl_tri_closest(const double x[3], const double a[3], const double b[3],
+                    const double c[3], cl_tri_point *p);
+
+#endif

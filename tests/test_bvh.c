@@ -1,0 +1,123 @@
+/* Tests for contact/bvh: the tree's structure (every triangle once, leaves
+ * of at most CL_BVH_LEAF, boxes nested, depth), the nearest triangle
+ * against trying them all, and the refusals. */
+#include <criterion/criterion.h>
+
+#include "contact/bvh.h"
+#include "contact/icosphere.h"
+#include "core/vec3.h"
+#include "fdcheck.h"
+
+TestSuite(bvh);
+
+static bool box_holds(const cl_bvh_node *outer, const double lo[3],
+                      const double hi[3])
+{
+    for (int i = 0; i < 3; i++)
+        if (lo[i] < outer->lo[i] || hi[i] > outer->hi[i])
+            return false;
+    return true;
+}
+
+/* Walk the subtree of node id at depth `depth`: counts of triangles seen
+ * in leaves; returns the deepest level. */
+static int walk(const cl_bvh *b, int id, int depth, int *seen)
+{
+    const cl_bvh_node *nd = &b->node[id];
+    if (nd->count) {
+        cr_assert(nd->count <= CL_BVH_LEAF);
+        for (int i = 0; i < nd->count; i++) {
+            int t = b->order[nd->first + i];
+            seen[t]++;
+            for (int k = 0; k < 3; k++) {
+                const double *v = b->vert + 3 * b->tri[t][k];
+                cr_assert(box_holds(nd, v, v), "triangle %d outside its "
+                          "leaf", t);
+            }
+        }
+        return depth;
+    }
+    int l = id + 1, r = nd->first;
+    cr_assert(box_holds(nd, b->node[l].lo, b->node[l].hi));
+    cr_assert(box_holds(nd, b->node[r].lo, b->node[r].hi));
+    int dl = walk(b, l, depth + 1, seen), dr = walk(b, r, depth + 1, seen);
+    return dl > dr ? dl : dr;
+}
+
+Test(bvh, structure)
+{
+    cl_shape_surface s;
+    cl_bvh b;
+    cl_error err = {0};
+    cr_assert_eq(cl_icosphere(4, (double[]){0, 0, 0}, 1, &s, &err), CL_OK);
+    cr_assert_eq(cl_bvh_build(&b, s.vert, s.ntri, (const int(*)[3])s.tri,
+                              &err), CL_OK, "%s", err.msg);
+    int *seen = calloc(s.ntri, sizeof *seen);
+    int depth = walk(&b, 0, 0, seen);
+    for (size_t t = 0; t < s.ntri; t++)
+        cr_assert_eq(seen[t], 1, "triangle %zu in %d leaves", t, seen[t]);
+    cr_assert_leq(depth, (int)ceil(log2((double)s.ntri / CL_BVH_LEAF)));
+    cr_assert_lt(b.nnode, 2 * s.ntri);
+    free(seen);
+    cl_bvh_free(&b);
+    cl_shape_surface_free(&s);
+}
+
+static void same_answer(const cl_bvh *b, const double x[3])
+{
+    cl_bvh_hit fast, slow;
+    cl_bvh_nearest(b, x, &fast);
+    cl_bvh_nearest_brute(b, x, &slow);
+    cr_assert(fast.tri >= 0 && slow.tri >= 0);
+    cr_assert(fabs(sqrt(fast.p.dist2) - sqrt(slow.p.dist2)) <= 1e-14,
+              "tree %.17g, brute force %.17g at (%g, %g, %g)",
+              sqrt(fast.p.dist2), sqrt(slow.p.dist2), x[0], x[1], x[2]);
+}
+
+/* A lumpy sphere (radii 0.6..1.4), points near it, far off and near its
+ * vertices. */
+Test(bvh, nearest_equals_brute_force)
+{
+    cl_shape_surface s;
+    cl_bvh b;
+    cl_error err = {0};
+    fd_rng r = {9};
+    cr_assert_eq(cl_icosphere(3, (double[]){0, 0, 0}, 1, &s, &err), CL_OK);
+    for (size_t v = 0; v < s.nvert; v++)
+        for (int i = 0; i < 3; i++)
+            s.vert[3 * v + i] *= 1 + 0.4 * fd_rand(&r);
+    cr_assert_eq(cl_bvh_build(&b, s.vert, s.ntri, (const int(*)[3])s.tri,
+                              &err), CL_OK, "%s", err.msg);
+    for (int k = 0; k < 3000; k++) {
+        double x[3];
+        double scale = k % 3 == 0 ? 1.5 : k % 3 == 1 ? 20 : 0.02;
+        const double *base = k % 3 == 2 ? s.vert + 3 * (k % s.nvert)
+                                        : (const double[]){0, 0, 0};
+        for (int i = 0; i < 3; i++)
+            x[i] = base[i] + scale * fd_rand(&r);
+        same_answer(&b, x);
+    }
+    cl_bvh_hit h;
+    cl_bvh_nearest(&b, (double[]){NAN, 0, 0}, &h);
+    cr_assert(h.tri >= 0 && isnan(h.p.dist2));
+    cl_bvh_free(&b);
+    cl_shape_surface_free(&s);
+}
+
+Test(bvh, one_triangle_and_no_triangle)
+{
+    static const double v[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    static const int t[1][3] = {{0, 1, 2}};
+    cl_bvh b;
+    cl_error err = {0};
+    cr_assert_eq(cl_bvh_build(&b, v, 1, t, &err), CL_OK);
+    cr_assert_eq(b.nnode, 1);
+    cl_bvh_hit h;
+    cl_bvh_nearest(&b, (double[]){0.25, 0.25, 2}, &h);
+    cr_assert(h.tri == 0 && h.p.dist2 == 4 && h.p.feature == CL_TRI_FACE);
+    cl_bvh_free(&b);
+    cr_assert_eq(cl_bvh_build(&b, v, 0, t, &err), CL_EINVAL);
+    cr_assert(strstr(err.msg, "of 0 triangles"), "%s", err.msg);
+    cr_assert_null(b.node);
+    cl_bvh_free(&b);
+}
