@@ -213,7 +213,7 @@ Test(cloth_mesh, grid_cloth_keeps_its_triangles)
     cl_model_free(m);
 }
 
-/* ---- pair sets ----------------------------------------------------------- */
+/* ---- pair sets ---------------------------------------------------------- */
 
 /* Sorted, each pair once, a < b, rest length the rest distance. */
 static void check_set(const cl_cloth *c, const cl_pairset *s)
@@ -315,7 +315,7 @@ Test(cloth_mesh, spring_network)
     }
 }
 
-/* ---- pins ---------------------------------------------------------------- */
+/* ---- pins --------------------------------------------------------------- */
 
 Test(cloth_mesh, pins_by_index_and_box)
 {
@@ -353,67 +353,66 @@ Test(cloth_mesh, grid_pins_by_index_and_box)
     cl_model_free(m);
 }
 
+/* Settings refused on the mesh o (Choi-Ko off) with a message holding s1
+ * and s2; up to three settings, the unused ones NULL. */
+typedef struct {
+    const char *set[3], *s1, *s2;
+} mesh_case;
+
+static void expect_mesh_cases(const obj_file *o, const mesh_case *cases,
+                              size_t n)
+{
+    for (size_t k = 0; k < n; k++)
+        expect_refused(FD_SETS(o->key, "type1.enabled=false",
+                               "type2.enabled=false", cases[k].set[0],
+                               cases[k].set[1], cases[k].set[2]),
+                       CL_EINVAL, cases[k].s1, cases[k].s2);
+}
+
 Test(cloth_mesh, pin_errors)
 {
     obj_file o = grid_obj("square.obj", 3, 3, 1.0, 1.0);
-    expect_refused(FD_SETS(o.key, "type1.enabled=false",
-                           "type2.enabled=false", "pins.at=p=9"),
-                   CL_EINVAL, "[pins] at", "p=9 lies outside the 9");
-    expect_refused(FD_SETS(o.key, "type1.enabled=false",
-                           "type2.enabled=false", "pins.at=p=-10"),
-                   CL_EINVAL, "[pins] at", "outside");
-    expect_refused(FD_SETS(o.key, "type1.enabled=false",
-                           "type2.enabled=false", "pins.at=0,0"),
-                   CL_EINVAL, "[pins] at", "no rows or columns");
-    expect_refused(FD_SETS(o.key, "type1.enabled=false",
-                           "type2.enabled=false", "pins3.at=j=1"),
-                   CL_EINVAL, "[pins3] at", "p=K");
-    expect_refused(FD_SETS(o.key, "type1.enabled=false",
-                           "type2.enabled=false",
-                           "pins2.box=2,2,2, 3,3,3"),
-                   CL_EINVAL, "[pins2] box", "no particle");
-    expect_refused(FD_SETS(o.key, "type1.enabled=false",
-                           "type2.enabled=false", "pins.box=0,0,0, 1,1"),
-                   CL_EINVAL, "[pins] box", "6 finite numbers");
-    expect_refused(FD_SETS(o.key, "type1.enabled=false",
-                           "type2.enabled=false", "pins.at=p=4",
-                           "pins2.box=0.4,-1,-1, 0.6,1,2",
-                           "pins2.velocity=1,0,0"),
-                   CL_EINVAL, "[pins2] box", "twice");
+    static const mesh_case cases[] = {
+        {{"pins.at=p=9"}, "[pins] at", "p=9 lies outside the 9"},
+        {{"pins.at=p=-10"}, "[pins] at", "outside"},
+        {{"pins.at=0,0"}, "[pins] at", "no rows or columns"},
+        {{"pins3.at=j=1"}, "[pins3] at", "p=K"},
+        {{"pins2.box=2,2,2, 3,3,3"}, "[pins2] box", "no particle"},
+        {{"pins.box=0,0,0, 1,1"}, "[pins] box", "6 finite numbers"},
+        {{"pins.at=p=4", "pins2.box=0.4,-1,-1, 0.6,1,2",
+          "pins2.velocity=1,0,0"},
+         "[pins2] box",
+         "twice"},
+    };
+    expect_mesh_cases(&o, cases, sizeof cases / sizeof cases[0]);
     expect_refused(FD_SETS("cloth.n=3", "pins.box=5,5,5, 6,6,6"), CL_EINVAL,
                    "[pins] box", "no particle");
 }
 
-/* ---- refused keys and terms ---------------------------------------------- */
+/* ---- refused keys and terms --------------------------------------------- */
 
 Test(cloth_mesh, grid_keys_and_terms_refused)
 {
     obj_file o = grid_obj("square.obj", 3, 3, 1.0, 1.0);
-    static const struct {
-        const char *a, *b, *s1, *s2;
-    } cases[] = {
-        {"cloth.n=5", NULL, "[cloth] n = \"5\"", "mesh cloth"},
-        {"cloth.nv=5", NULL, "[cloth] nv", "grid key"},
-        {"cloth.size=2", NULL, "[cloth] size", "grid key"},
-        {"cloth.su=2", NULL, "[cloth] su", "grid key"},
-        {"cloth.diagonal=alternate", NULL, "[cloth] diagonal", "grid key"},
-        {"type2.enabled=true", NULL, "[type2] enabled", "Type2"},
-        {"damping.kd=0.1", NULL, "[damping] kd", "Type1 and Type2 pairs"},
-        {"springs.enabled=true", "springs.levels=1", "[springs] levels",
+    static const mesh_case cases[] = {
+        {{"cloth.n=5"}, "[cloth] n = \"5\"", "mesh cloth"},
+        {{"cloth.nv=5"}, "[cloth] nv", "grid key"},
+        {{"cloth.size=2"}, "[cloth] size", "grid key"},
+        {{"cloth.su=2"}, "[cloth] su", "grid key"},
+        {{"cloth.diagonal=alternate"}, "[cloth] diagonal", "grid key"},
+        {{"type2.enabled=true"}, "[type2] enabled", "Type2"},
+        {{"damping.kd=0.1"}, "[damping] kd", "Type1 and Type2 pairs"},
+        {{"springs.enabled=true", "springs.levels=1"}, "[springs] levels",
          "grid offsets"},
-        {"springs.enabled=true", "springs.k_shear=5", "[springs] k_shear",
+        {{"springs.enabled=true", "springs.k_shear=5"}, "[springs] k_shear",
          "no shear springs"},
-        {"spring-damping.kd=1", "springs.levels=2", "[springs] levels",
+        {{"spring-damping.kd=1", "springs.levels=2"}, "[springs] levels",
          "grid offsets"},
-        {"pbd.enabled=true", "pbd.levels=3", "[pbd] levels", "beyond 2"},
-        {"cloth.scale=0", NULL, "[cloth] scale", "expected"},
-        {"cloth.translate=1,2", NULL, "[cloth] translate", "3 finite"},
+        {{"pbd.enabled=true", "pbd.levels=3"}, "[pbd] levels", "beyond 2"},
+        {{"cloth.scale=0"}, "[cloth] scale", "expected"},
+        {{"cloth.translate=1,2"}, "[cloth] translate", "3 finite"},
     };
-    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++)
-        expect_refused(FD_SETS(o.key, "type1.enabled=false",
-                               "type2.enabled=false", cases[k].a,
-                               cases[k].b),
-                       CL_EINVAL, cases[k].s1, cases[k].s2);
+    expect_mesh_cases(&o, cases, sizeof cases / sizeof cases[0]);
     /* Type1 is on by default: the message names the mesh key. */
     expect_refused(FD_SETS(o.key, "type2.enabled=false"), CL_EINVAL,
                    "[cloth] mesh", "[type1] enabled = false");
@@ -454,7 +453,7 @@ Test(cloth_mesh, bad_mesh_files_refused)
     expect_refused(FD_SETS(o.key), CL_OK, "[cloth] mesh", "junk.obj");
 }
 
-/* ---- springs --------------------------------------------------------------- */
+/* ---- springs ------------------------------------------------------------ */
 
 /* At rest every spring of a bumpy mesh has d == L bit for bit: force and
  * energy exactly zero (spring damping too, at rest velocity). */
@@ -562,7 +561,7 @@ Test(cloth_mesh, spring_damping_follows_the_network)
     }
 }
 
-/* ---- position-based constraints ------------------------------------------- */
+/* ---- position-based constraints ----------------------------------------- */
 
 /* Levels 1 (edges) and 2 (edges and bend pairs) on a mesh: a projection
  * from a state shrunk by 3% restores every edge (to 1e-4: the Gauss-Seidel
@@ -599,7 +598,7 @@ Test(cloth_mesh, pbd_restores_the_edges)
     }
 }
 
-/* ---- Baraff-Witkin ---------------------------------------------------------- */
+/* ---- Baraff-Witkin ------------------------------------------------------ */
 
 /* y = s R X0 + t: a similarity, under which every triangle is stretched by
  * s in every direction of its plane, whatever its (u, v). */
@@ -711,7 +710,7 @@ Test(cloth_mesh, bw_stretch_rest_state)
     cl_model_free(m);
 }
 
-/* ---- a run: frames and series --------------------------------------------- */
+/* ---- a run: frames and series ------------------------------------------- */
 
 /* A problem file next to its mesh, `mesh = NAME` relative to it. */
 static void write_problem(const char *ini, const char *mesh)

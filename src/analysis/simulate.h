@@ -3,7 +3,8 @@
  *   series.csv   t, kinetic, each potential term, potential, total,
  *                power_diss, max_stretch, max_offplane, wrinkles, broken
  *                (connections torn so far) (one row per sample, flushed as
- *                it is written, so a failed run keeps its rows)
+ *                it is written, so a failed run keeps its rows; NA in a
+ *                column that does not apply, see simulate.c)
  *   frame_NNNNN.vtk / .obj   cloth frames (ParaView / Blender); with
  *                tearing, without the triangles that have a torn edge
  *   final.csv    the final state (p,x,y,z,vx,vy,vz, all particles)
@@ -34,7 +35,7 @@ typedef struct {
     double t_reached;    /* last time with a good state */
     cl_energy e0, e1;    /* energies at t = 0 and at t_reached */
     double max_stretch;  /* at t_reached */
-    double max_offplane; /* at t_reached */
+    double max_offplane; /* at t_reached (NaN: does not apply) */
     long rows;           /* time-series rows written (incl. t = 0) */
     long frames;         /* frames written */
     double *xfinal;      /* full-particle positions at t_reached (3*np);

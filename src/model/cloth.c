@@ -54,8 +54,8 @@ cl_status cl_cloth_grid(int nu, int nv, double su, double sv,
     return CL_OK;
 }
 
-/* Triangle area and the vertex areas A_i (a third of each triangle's);
- * false for a vertex out of range, a repeated vertex or a zero area. */
+/* The rest area of triangle t; false for a vertex out of range, a
+ * repeated vertex or a zero area. */
 static bool triangle_area(const double *X0, size_t np, const int t[3],
                           double *area)
 {
@@ -132,12 +132,13 @@ cl_status cl_cloth_mesh(size_t np, const double *X0, size_t ntri,
     }
     memcpy(c->X0, X0, 3 * np * sizeof *X0);
     memcpy(c->tri, tri, ntri * sizeof *tri);
-    cl_mesh mesh;
+    cl_mesh mesh; /* built only to check: at most two triangles an edge */
     cl_status rc = area_masses(c, mass, err);
-    if (rc == CL_OK && (rc = cl_mesh_from_triangles(ntri, tri, &mesh, err)) ==
-                           CL_OK)
-        cl_mesh_free(&mesh); /* only the check: at most two per edge */
-    if (rc)
+    if (rc == CL_OK)
+        rc = cl_mesh_from_triangles(ntri, tri, &mesh, err);
+    if (rc == CL_OK)
+        cl_mesh_free(&mesh);
+    else
         cl_cloth_free(c);
     return rc;
 }

@@ -3,8 +3,8 @@
 #include "model/cloth_read.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
-#include <string.h>
 
 #include "io/obj.h"
 
@@ -34,8 +34,8 @@ static cl_status read_grid(cl_config *cfg, cl_cloth *c, cl_error *err)
     static const char *const mesh_keys[] = {"scale", "translate", NULL};
     const char *k = first_set(cfg, mesh_keys);
     if (k)
-        return refuse(cfg, SEC, k, CL_EINVAL, "applies to a mesh cloth only (set "
-                      "[cloth] mesh = FILE.obj)", err);
+        return refuse(cfg, SEC, k, CL_EINVAL, "applies to a mesh cloth only "
+                      "(set [cloth] mesh = FILE.obj)", err);
     long n, nu, nv;
     double size, su, sv, mass, pmass;
     cl_status rc;
@@ -88,9 +88,9 @@ static cl_status read_mesh(cl_config *cfg, cl_cloth *c, cl_error *err)
                                             "su", "sv", "diagonal", NULL};
     const char *k = first_set(cfg, grid_keys);
     if (k)
-        return refuse(cfg, SEC, k, CL_EINVAL, "a grid key (n, nu, nv, size, su, sv, "
-                      "diagonal) does not apply to a mesh cloth ([cloth] "
-                      "mesh): remove it", err);
+        return refuse(cfg, SEC, k, CL_EINVAL, "a grid key (n, nu, nv, size, "
+                      "su, sv, diagonal) does not apply to a mesh cloth "
+                      "([cloth] mesh): remove it", err);
     char path[4096];
     double scale, t[3] = {0.0, 0.0, 0.0}, mass, pmass;
     cl_status rc;
