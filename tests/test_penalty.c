@@ -30,7 +30,9 @@ static bool force_at(const cl_obstacle *o, double t, const double x[3],
                      const double v[3], bool jac, cl_penalty_out *out)
 {
     cl_contact_point q;
-    cl_obstacle_query(o, t, x, &q);
+    cl_pose P;
+    cl_obstacle_pose(o, t, &P);
+    cl_obstacle_query(o, &P, x, &q);
     return cl_penalty_eval(&o->resp, &q, v, jac, out);
 }
 
@@ -87,8 +89,9 @@ Test(penalty, sphere_jacobians)
                               "obstacle.o.center = 1, 2, 3",
                               "obstacle.o.radius = 0.5", MOVING, NULL};
     make(&o, sets);
-    double R[9], s[3], sd[3];
-    cl_obstacle_pose(&o, 0.7, R, s, sd);
+    cl_pose P;
+    cl_obstacle_pose(&o, 0.7, &P);
+    const double *s = P.s;
     /* a point 0.02 m inside along a skew direction from the moved centre */
     double dir[3] = {0.48, 0.6, 0.64};
     double x[3];
@@ -108,8 +111,10 @@ Test(penalty, plane_jacobians)
                               "obstacle.o.point = 0, -1, 0",
                               "obstacle.o.normal = 0.2, 1, 0.1", MOVING, NULL};
     make(&o, sets);
-    double R[9], s[3], sd[3], X[3] = {0.1, -1.02 + 1.0, 0.1}, x[3];
-    cl_obstacle_pose(&o, 1.3, R, s, sd); /* X relative to the pivot */
+    double X[3] = {0.1, -1.02 + 1.0, 0.1}, x[3]; /* relative to the pivot */
+    cl_pose P;
+    cl_obstacle_pose(&o, 1.3, &P);
+    const double *R = P.R, *s = P.s;
     for (int i = 0; i < 3; i++)
         x[i] = (i == 1 ? -1.0 : 0.0) + s[i] + R[3 * i] * X[0] +
                R[3 * i + 1] * X[1] + R[3 * i + 2] * X[2];
@@ -124,9 +129,10 @@ Test(penalty, box_jacobians)
                               "obstacle.o.center = 0, 0, 0",
                               "obstacle.o.size = 2, 1, 1", MOVING, NULL};
     make(&o, sets);
-    double R[9], s[3], sd[3];
     double t = 0.4;
-    cl_obstacle_pose(&o, t, R, s, sd);
+    cl_pose P;
+    cl_obstacle_pose(&o, t, &P);
+    const double *R = P.R, *s = P.s;
     /* body-frame points: face (inside, outside), edge, corner */
     const double body[4][3] = {{0.3, 0.49, 0.1}, {0.3, 0.53, 0.1},
                                {1.02, 0.52, 0.0}, {1.02, 0.52, 0.53}};
@@ -160,8 +166,10 @@ Test(penalty, mesh_jacobians)
     cl_obstacle o;
     const char *sets[NSET] = {"obstacle.o.shape = mesh", file, MOVING, NULL};
     make(&o, sets);
-    double R[9], s[3], sd[3], t = 0.9;
-    cl_obstacle_pose(&o, t, R, s, sd);
+    double t = 0.9;
+    cl_pose P;
+    cl_obstacle_pose(&o, t, &P);
+    const double *R = P.R, *s = P.s;
     const double body[3][3] = {{0.2, 0.3, 1.03}, {1.02, 0.3, 1.03},
                                {1.02, 1.03, 1.03}};
     const char *what[3] = {"mesh face", "mesh edge", "mesh vertex"};

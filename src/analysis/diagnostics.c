@@ -26,6 +26,14 @@ double cl_max_offplane(const cl_cloth *c, const double *xfull)
     return m;
 }
 
+bool cl_offplane_applies(const cl_cloth *c)
+{
+    for (size_t p = 1; p < c->np; p++)
+        if (c->X0[3 * p + 1] != c->X0[1])
+            return false;
+    return true;
+}
+
 long cl_wrinkles(const cl_cloth *c, const double *xfull)
 {
     int j = c->nv / 2;

@@ -1,6 +1,13 @@
 /* One simulation run: schedule of output times, integration, time series,
  * frames, final state, statistics.
  *
+ * The stretch diagnostic looks at the nearest neighbours
+ * (cl_pairs_neighbours: Type1's pairs on a grid, the triangle edges on a
+ * mesh cloth).  On a mesh cloth the series writes NA for wrinkles (a grid's
+ * centre line) and, unless the rest mesh is flat and horizontal, for
+ * max_offplane (cl_offplane_applies); the summary's max_offplane is then
+ * NaN.
+ *
  * Tearing (a model with [tear] cut > 0, or with connections already torn):
  * frames leave out the triangles with a torn edge (cl_model_triangles into
  * a buffer allocated once per run), the max_stretch diagnostic and its
@@ -29,11 +36,12 @@ typedef struct {
     const cl_cloth *c;
     const cl_system *sys;
     const cl_sim_opts *so;
-    cl_pairset type1;       /* neighbours, for the stretch diagnostic */
+    cl_pairset near;        /* neighbours, for the stretch diagnostic */
     bool tearing;           /* the model can tear (see the header) */
-    cl_pairset intact;      /* type1 without torn pairs (tearing) */
+    cl_pairset intact;      /* near without torn pairs (tearing) */
     size_t torn_seen;       /* cl_model_broken when intact was built */
-    int (*tri)[3];          /* frame triangles (tearing), 2 (nu-1)(nv-1) */
+    int (*tri)[3];          /* frame triangles (tearing), c->ntri */
+    bool offplane;          /* max_offplane applies (cl_offplane_applies) */
     double *x, *v;          /* free state */
     double *xf, *vf;        /* full-particle state */
     unsigned char *pinned;
@@ -107,7 +115,12 @@ static cl_status open_series(sim *s, cl_error *err)
         return cl_error_set(err, CL_ENOMEM, "out of memory (series row)");
     char path[4096];
     snprintf(path, sizeof path, "%s/series.csv", s->so->outdir);
-    return cl_series_open(path, n, names, &s->series, err);
+    cl_status rc = cl_series_open(path, n, names, &s->series, err);
+    if (rc == CL_OK && !s->offplane)
+        cl_series_not_applicable(s->series, n - 3);
+    if (rc == CL_OK && s->c->kind == CL_CLOTH_MESH)
+        cl_series_not_applicable(s->series, n - 2);
+    return rc;
 }
 
 /* The neighbour pairs the stretch diagnostic looks at: all of them, or
@@ -116,11 +129,11 @@ static const cl_pairset *stretch_pairs(sim *s)
 {
     size_t torn = s->tearing ? cl_model_broken(s->m) : 0;
     if (torn == 0)
-        return &s->type1;
+        return &s->near;
     if (torn != s->torn_seen) {
         s->intact.n = 0;
-        for (size_t k = 0; k < s->type1.n; k++) {
-            const cl_pair *p = &s->type1.pair[k];
+        for (size_t k = 0; k < s->near.n; k++) {
+            const cl_pair *p = &s->near.pair[k];
             if (!cl_model_is_broken(s->m, p->a, p->b))
                 s->intact.pair[s->intact.n++] = *p;
         }
@@ -136,7 +149,7 @@ static cl_status sample(sim *s, double t, cl_sim_result *res, cl_error *err)
     cl_cloth_scatter(s->c, t, s->x, s->v, s->xf, s->vf);
     cl_status rc = s->sys->energy(s->sys->data, t, s->x, s->v, &e);
     double stretch = cl_max_stretch(stretch_pairs(s), s->xf);
-    double offplane = cl_max_offplane(s->c, s->xf);
+    double offplane = s->offplane ? cl_max_offplane(s->c, s->xf) : NAN;
     if (rc || !(stretch <= s->so->max_stretch))
         return cl_error_set(err, CL_EBLOWUP,
                             "blow-up at t = %g: %s (max stretch d/L = %g, "
@@ -153,7 +166,8 @@ static cl_status sample(sim *s, double t, cl_sim_result *res, cl_error *err)
     s->row[n++] = e.power_diss;
     s->row[n++] = stretch;
     s->row[n++] = offplane;
-    s->row[n++] = (double)cl_wrinkles(s->c, s->xf);
+    s->row[n++] = s->c->kind == CL_CLOTH_GRID
+                      ? (double)cl_wrinkles(s->c, s->xf) : NAN;
     s->row[n++] = (double)cl_model_broken(s->m);
     if (cl_model_contact(s->m)) {
         cl_contact_figures cf;
@@ -199,7 +213,10 @@ static cl_status write_obstacles(sim *s, double t, cl_error *err)
 static cl_status write_frame(sim *s, double t, cl_sim_result *res,
                              cl_error *err)
 {
-    cl_frame f = {s->c->nu, s->c->nv, s->xf, s->vf, s->pinned, t, NULL, 0};
+    bool mesh = s->c->kind == CL_CLOTH_MESH;
+    cl_frame f = {mesh ? (int)s->c->np : s->c->nu, mesh ? 0 : s->c->nv,
+                  s->xf, s->vf, s->pinned, t,
+                  (const int(*)[3])s->c->tri, s->c->ntri};
     char path[4096];
     cl_status rc = CL_OK;
     if (s->tearing && !(rc = cl_model_triangles(s->m, s->tri, &f.ntri, err)))
@@ -249,13 +266,13 @@ static cl_status sim_alloc(sim *s, cl_error *err)
         s->pinned[p] = s->c->dof[p] < 0;
     if (cl_model_initial_state(s->m, s->x, s->v))
         return cl_error_set(err, CL_ENOMEM, "out of memory (initial state)");
-    cl_status rc = cl_pairs_type1(s->c, &s->type1, err);
+    cl_status rc = cl_pairs_neighbours(s->c, &s->near, err);
     s->tearing = s->sys->step_done != NULL || cl_model_broken(s->m) > 0;
+    s->offplane = cl_offplane_applies(s->c);
     if (rc || !s->tearing)
         return rc;
-    s->intact.pair = malloc((s->type1.n + 1) * sizeof *s->intact.pair);
-    s->tri = malloc((cl_grid_triangles(s->c->nu, s->c->nv, NULL) + 1) *
-                    sizeof *s->tri);
+    s->intact.pair = malloc((s->near.n + 1) * sizeof *s->intact.pair);
+    s->tri = malloc((s->c->ntri + 1) * sizeof *s->tri);
     if (!s->intact.pair || !s->tri)
         return cl_error_set(err, CL_ENOMEM, "out of memory (tearing)");
     return CL_OK;
@@ -263,7 +280,7 @@ static cl_status sim_alloc(sim *s, cl_error *err)
 
 static void sim_free(sim *s)
 {
-    cl_pairs_free(&s->type1);
+    cl_pairs_free(&s->near);
     cl_pairs_free(&s->intact);
     free(s->tri);
     free(s->x);

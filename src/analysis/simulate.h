@@ -3,9 +3,10 @@
  *   series.csv   t, kinetic, each potential term, potential, total,
  *                power_diss, max_stretch, max_offplane, wrinkles, broken
  *                (connections torn so far) (one row per sample, flushed as
- *                it is written, so a failed run keeps its rows)
- *                with obstacles also contacts, max_penetration,
- *                contact_force, friction_power (contact/contact.h)
+ *                it is written, so a failed run keeps its rows; NA in a
+ *                column that does not apply, see simulate.c); with
+ *                obstacles also contacts, max_penetration, contact_force,
+ *                friction_power (contact/contact.h)
  *   frame_NNNNN.vtk / .obj   cloth frames (ParaView / Blender); with
  *                tearing, without the triangles that have a torn edge
  *   obstacles_NNNNN.vtk / .obj   the obstacles at the frame times
@@ -37,7 +38,7 @@ typedef struct {
     double t_reached;    /* last time with a good state */
     cl_energy e0, e1;    /* energies at t = 0 and at t_reached */
     double max_stretch;  /* at t_reached */
-    double max_offplane; /* at t_reached */
+    double max_offplane; /* at t_reached (NaN: does not apply) */
     long rows;           /* time-series rows written (incl. t = 0) */
     long frames;         /* frames written */
     double worst_penetration; /* deepest into an obstacle (m; contact) */

@@ -41,7 +41,7 @@ cl_status cl_trial_init(cl_trial *t, cl_model *m, cl_error *err)
     t->vf = malloc(3 * c->np * sizeof *t->vf);
     if (!t->x || !t->v || !t->xf || !t->vf)
         return cl_error_set(err, CL_ENOMEM, "out of memory");
-    return cl_pairs_type1(c, &t->type1, err);
+    return cl_pairs_neighbours(c, &t->near, err);
 }
 
 void cl_trial_free(cl_trial *t)
@@ -50,7 +50,7 @@ void cl_trial_free(cl_trial *t)
     free(t->v);
     free(t->xf);
     free(t->vf);
-    cl_pairs_free(&t->type1);
+    cl_pairs_free(&t->near);
     memset(t, 0, sizeof *t);
 }
 
@@ -58,7 +58,7 @@ static cl_status check_stretch(cl_trial *t, double time, double max_stretch,
                                cl_error *err)
 {
     cl_cloth_scatter(cl_model_cloth(t->m), time, t->x, t->v, t->xf, t->vf);
-    double q = cl_max_stretch(&t->type1, t->xf);
+    double q = cl_max_stretch(&t->near, t->xf);
     if (!(q <= max_stretch))
         return cl_error_set(err, CL_EBLOWUP, "max stretch d/L = %.3g at "
                             "t = %g exceeds max_stretch = %g", q, time,

@@ -1,8 +1,9 @@
 /* A checked run, the unit of the convergence and stability studies: a fresh
  * integrator from the model's initial state to T, stopping at `checks`
  * evenly spread times (whole steps for fixed-step methods) where the
- * largest stretch d/L of the Type1 neighbours is tested against
- * max_stretch.  A stretch beyond it is a blow-up (CL_EBLOWUP), the test
+ * largest stretch d/L of the nearest neighbours (cl_pairs_neighbours:
+ * Type1's pairs on a grid, the triangle edges on a mesh cloth) is tested
+ * against max_stretch.  A stretch beyond it is a blow-up (CL_EBLOWUP), the test
  * `run` applies at its samples; so is a non-finite state, which the
  * integrators report themselves. */
 #ifndef CL_TRIAL_H
@@ -18,7 +19,7 @@ typedef cl_status (*cl_trial_hook)(void *ctx, double t, const double *x,
 
 typedef struct {
     cl_model *m;
-    cl_pairset type1;
+    cl_pairset near;      /* nearest neighbours */
     double *x, *v;        /* free state at the end of the last run */
     double *xf, *vf;      /* full-particle scratch */
     cl_trial_hook hook;   /* optional (NULL), with its context */

@@ -153,8 +153,9 @@ static cl_status begin(cl_model *m, const cl_cli_job *job, void *ctx,
     if (rc || (rc = cl_conv_reference(m, &s->co, &s->ref, err)) ||
         job->quiet)
         return rc;
-    printf("problem    %s (%d x %d particles, %zu free), T = %g s\n",
-           job->problem, c->nu, c->nv, c->nfree, s->co.t_end);
+    char shape[96];
+    printf("problem    %s (%s, %zu free), T = %g s\n", job->problem,
+           cl_cloth_shape(c, shape, sizeof shape), c->nfree, s->co.t_end);
     printf("reference  cvode-bdf rtol %g: %ld steps, floor %.2e m "
            "(distance to rtol %g)\n", s->co.ref_rtol, s->ref.stats.steps,
            s->ref.err_x, 10 * s->co.ref_rtol);

@@ -130,8 +130,9 @@ static void print_summary(const char *problem, const run_setup *r,
                           const cl_model *m, const cl_sim_result *res)
 {
     const cl_cloth *c = cl_model_cloth(m);
-    printf("problem      %s (%d x %d particles, %zu free)\n", problem,
-           c->nu, c->nv, c->nfree);
+    char shape[96];
+    printf("problem      %s (%s, %zu free)\n", problem,
+           cl_cloth_shape(c, shape, sizeof shape), c->nfree);
     printf("integrator   %s", r->type->name);
     if (r->type->fixed_step)
         printf(" (dt = %g)\n", r->io.dt);
@@ -142,8 +143,11 @@ static void print_summary(const char *problem, const run_setup *r,
            res->e1.total, res->e1.kinetic);
     for (size_t k = 0; k < res->e1.nterm; k++)
         printf("  %-10s %.10g J\n", res->e1.name[k], res->e1.value[k]);
-    printf("shape        max stretch d/L = %.6f, max out-of-plane %.6g m\n",
-           res->max_stretch, res->max_offplane);
+    printf("shape        max stretch d/L = %.6f, ", res->max_stretch);
+    if (isnan(res->max_offplane))
+        printf("max out-of-plane n/a (the rest mesh is not horizontal)\n");
+    else
+        printf("max out-of-plane %.6g m\n", res->max_offplane);
     if (cl_model_contact(m))
         printf("contact      worst penetration %.6g m at t = %.6g s\n",
                res->worst_penetration, res->worst_t);

@@ -128,9 +128,11 @@ static cl_status begin(cl_model *m, const cl_cli_job *job, void *ctx,
         rc = cl_stab_check(m, s->m[k].type, &s->so, err);
     if (rc || job->quiet)
         return rc;
-    printf("problem    %s (%d x %d particles, %zu free), T = %g s, "
-           "max_stretch %g, %ld checks per run\n", job->problem, c->nu,
-           c->nv, c->nfree, s->so.t_end, s->so.max_stretch, s->so.checks);
+    char shape[96];
+    printf("problem    %s (%s, %zu free), T = %g s, max_stretch %g, %ld "
+           "checks per run\n", job->problem,
+           cl_cloth_shape(c, shape, sizeof shape), c->nfree, s->so.t_end,
+           s->so.max_stretch, s->so.checks);
     return CL_OK;
 }
 

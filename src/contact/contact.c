@@ -16,6 +16,7 @@ struct cl_contact {
     const cl_cloth *cloth;
     size_t nobs;
     cl_obstacle *obs;
+    cl_pose *pose;           /* scratch: every obstacle's pose at a time */
     bool penalizes, projects;
     long passes;             /* projection passes */
     long *slot;              /* diagonal block of each particle, or -1 */
@@ -49,6 +50,7 @@ static void contact_free(void *state)
     for (size_t k = 0; k < c->nobs; k++)
         cl_obstacle_free(&c->obs[k]);
     free(c->obs);
+    free(c->pose);
     free(c->slot);
     free(c);
 }
@@ -66,6 +68,7 @@ static cl_status contact_create(cl_config *cfg, const cl_cloth *cloth,
         return CL_OK;
     cl_contact *c = calloc(1, sizeof *c);
     if (!c || !(c->obs = calloc(n, sizeof *c->obs)) ||
+        !(c->pose = calloc(n, sizeof *c->pose)) ||
         !(c->slot = malloc(cloth->np * sizeof *c->slot))) {
         contact_free(c);
         return cl_error_set(err, CL_ENOMEM, "out of memory (obstacles)");
@@ -122,15 +125,16 @@ static void contact_eval(void *state, cl_eval *ev)
     double energy = 0.0, power = 0.0;
     for (size_t k = 0; k < c->nobs && c->penalizes; k++) {
         const cl_obstacle *o = &c->obs[k];
+        cl_pose P;
         if (o->resp.kind != CL_RESPONSE_PENALTY)
             continue;
+        cl_obstacle_pose(o, ev->t, &P);
         for (size_t p = 0; p < c->cloth->np; p++) {
             cl_contact_point q;
             cl_penalty_out out;
-            if (c->slot[p] < 0)
-                continue;
-            cl_obstacle_query(o, ev->t, ev->x + 3 * p, &q);
-            if (!cl_penalty_eval(&o->resp, &q, ev->v + 3 * p, jac, &out))
+            if (c->slot[p] < 0 ||
+                !cl_obstacle_near(o, &P, ev->x + 3 * p, o->resp.eps, &q) ||
+                !cl_penalty_eval(&o->resp, &q, ev->v + 3 * p, jac, &out))
                 continue;
             for (int i = 0; ev->f && i < 3; i++)
                 ev->f[3 * p + i] += out.f[i];
@@ -162,10 +166,23 @@ const cl_term_type cl_contact_term = {
 
 /* ---- figures and projection ------------------------------------------ */
 
+/* The distance within which a particle counts as touching. */
+static double reach(const cl_response_params *r)
+{
+    return r->kind == CL_RESPONSE_PENALTY ? r->eps : r->offset + ON_SURFACE;
+}
+
 static bool touching(const cl_response_params *r, double d)
 {
     return r->kind == CL_RESPONSE_PENALTY ? d < r->eps
                                           : d <= r->offset + ON_SURFACE;
+}
+
+/* Every obstacle's pose at t into c->pose. */
+static void place(cl_contact *c, double t)
+{
+    for (size_t k = 0; k < c->nobs; k++)
+        cl_obstacle_pose(&c->obs[k], t, &c->pose[k]);
 }
 
 void cl_contact_measure(cl_contact *c, double t, const double *x,
@@ -173,6 +190,7 @@ void cl_contact_measure(cl_contact *c, double t, const double *x,
 {
     const cl_cloth *cl = c->cloth;
     memset(f, 0, sizeof *f);
+    place(c, t);
     for (size_t p = 0; p < cl->np; p++) {
         double fp[3] = {0.0, 0.0, 0.0};
         bool in = false;
@@ -182,7 +200,9 @@ void cl_contact_measure(cl_contact *c, double t, const double *x,
             const cl_obstacle *o = &c->obs[k];
             cl_contact_point q;
             cl_penalty_out out;
-            cl_obstacle_query(o, t, x + 3 * p, &q);
+            if (!cl_obstacle_near(o, &c->pose[k], x + 3 * p, reach(&o->resp),
+                                  &q))
+                continue;
             f->max_penetration = fmax(f->max_penetration, -q.d);
             in |= touching(&o->resp, q.d);
             if (o->resp.kind != CL_RESPONSE_PENALTY ||
@@ -201,14 +221,15 @@ void cl_contact_measure(cl_contact *c, double t, const double *x,
     }
 }
 
-double cl_contact_penetration(const cl_contact *c, double t, const double *x)
+double cl_contact_penetration(cl_contact *c, double t, const double *x)
 {
     double worst = 0.0;
+    place(c, t);
     for (size_t p = 0; p < c->cloth->np; p++)
         for (size_t k = 0; k < c->nobs && c->cloth->dof[p] >= 0; k++) {
             cl_contact_point q;
-            cl_obstacle_query(&c->obs[k], t, x + 3 * p, &q);
-            worst = fmax(worst, -q.d);
+            if (cl_obstacle_near(&c->obs[k], &c->pose[k], x + 3 * p, 0.0, &q))
+                worst = fmax(worst, -q.d);
         }
     return worst;
 }
@@ -217,6 +238,7 @@ size_t cl_contact_project(cl_contact *c, double t, double *x, double *v)
 {
     const cl_cloth *cl = c->cloth;
     cl_project_tally tally = {0, 0.0, 0.0};
+    place(c, t);
     for (long pass = 0; pass < c->passes; pass++)
         for (size_t k = 0; k < c->nobs; k++) {
             const cl_obstacle *o = &c->obs[k];
@@ -225,11 +247,11 @@ size_t cl_contact_project(cl_contact *c, double t, double *x, double *v)
                 continue;
             for (size_t p = 0; p < cl->np; p++) {
                 cl_contact_point q;
-                if (cl->dof[p] < 0)
-                    continue;
-                cl_obstacle_query(o, t, x + 3 * p, &q);
-                cl_project_particle(&o->resp, &q, cl->mass[p], x + 3 * p,
-                                    v + 3 * p, &tally);
+                if (cl->dof[p] >= 0 &&
+                    cl_obstacle_near(o, &c->pose[k], x + 3 * p,
+                                     o->resp.offset, &q))
+                    cl_project_particle(&o->resp, &q, cl->mass[p], x + 3 * p,
+                                        v + 3 * p, &tally);
             }
         }
     double dt = t - c->last_t;

@@ -44,7 +44,7 @@ void cl_contact_measure(cl_contact *c, double t, const double *x,
                         const double *v, cl_contact_figures *f);
 
 /* Deepest penetration max(0, -d) of a free particle into an obstacle. */
-double cl_contact_penetration(const cl_contact *c, double t, const double *x);
+double cl_contact_penetration(cl_contact *c, double t, const double *x);
 
 /* The `project` responses after a step to t: every free particle, every
  * projecting obstacle, `iterations` passes (the largest of theirs), in

@@ -28,63 +28,108 @@ static void rotation(const double w[3], double t, double R[9])
         }
 }
 
-void cl_obstacle_pose(const cl_obstacle *o, double t, double R[9],
-                      double s[3], double sdot[3])
+void cl_obstacle_pose(const cl_obstacle *o, double t, cl_pose *P)
 {
-    rotation(o->omega, t, R);
-    memset(s, 0, 3 * sizeof *s);
-    memset(sdot, 0, 3 * sizeof *sdot);
+    P->t = t;
+    P->rotates = o->omega[0] != 0.0 || o->omega[1] != 0.0 ||
+                 o->omega[2] != 0.0;
+    rotation(o->omega, t, P->R);
+    memset(P->s, 0, sizeof P->s);
+    memset(P->sdot, 0, sizeof P->sdot);
     if (o->nkey == 0)
         return;
     size_t k = 0;
     while (k + 1 < o->nkey && t >= o->key_t[k + 1])
         k++;
     if (t < o->key_t[0] || k + 1 == o->nkey) {
-        memcpy(s, o->key_s[t < o->key_t[0] ? 0 : k], 3 * sizeof *s);
+        memcpy(P->s, o->key_s[t < o->key_t[0] ? 0 : k], sizeof P->s);
         return;
     }
     double dt = o->key_t[k + 1] - o->key_t[k];
     double a = (t - o->key_t[k]) / dt;
     for (int i = 0; i < 3; i++) {
-        sdot[i] = (o->key_s[k + 1][i] - o->key_s[k][i]) / dt;
-        s[i] = o->key_s[k][i] + a * (o->key_s[k + 1][i] - o->key_s[k][i]);
+        P->sdot[i] = (o->key_s[k + 1][i] - o->key_s[k][i]) / dt;
+        P->s[i] = o->key_s[k][i] + a * (o->key_s[k + 1][i] - o->key_s[k][i]);
     }
 }
 
 /* ---- queries ---------------------------------------------------------- */
 
-void cl_obstacle_query(const cl_obstacle *o, double t, const double x[3],
-                       cl_contact_point *q)
+/* The shape-frame point X of the world point x (docs/model.md, eq. C2):
+ * X = q + R^T (x - q - s), with r = x - q - s. */
+static void to_shape(const cl_obstacle *o, const cl_pose *P,
+                     const double x[3], double r[3], double X[3])
 {
-    double R[9], s[3], sdot[3], r[3], X[3];
-    cl_shape_query b;
-    cl_obstacle_pose(o, t, R, s, sdot);
+    const double *R = P->R;
     for (int i = 0; i < 3; i++)
-        r[i] = x[i] - o->pivot[i] - s[i];
-    for (int i = 0; i < 3; i++) /* X = q + R^T (x - q - s) */
-        X[i] = o->pivot[i] + R[i] * r[0] + R[3 + i] * r[1] + R[6 + i] * r[2];
-    o->type->query(o->shape, X, &b);
-    double cb[3] = {b.c[0] - o->pivot[0], b.c[1] - o->pivot[1],
-                    b.c[2] - o->pivot[2]};
-    q->d = b.d;
-    for (int i = 0; i < 3; i++) {
-        q->n[i] = R[3 * i] * b.n[0] + R[3 * i + 1] * b.n[1] +
-                  R[3 * i + 2] * b.n[2];
-        q->c[i] = o->pivot[i] + s[i] + R[3 * i] * cb[0] +
-                  R[3 * i + 1] * cb[1] + R[3 * i + 2] * cb[2];
+        r[i] = x[i] - o->pivot[i] - P->s[i];
+    for (int i = 0; i < 3; i++)
+        X[i] = o->pivot[i] + (P->rotates ? R[i] * r[0] + R[3 + i] * r[1] +
+                                               R[6 + i] * r[2]
+                                         : r[i]);
+}
+
+/* y = R b (b itself when the obstacle does not rotate). */
+static void rotate(const cl_pose *P, const double b[3], double y[3])
+{
+    for (int i = 0; i < 3; i++)
+        y[i] = P->rotates ? P->R[3 * i] * b[0] + P->R[3 * i + 1] * b[1] +
+                                P->R[3 * i + 2] * b[2]
+                          : b[i];
+}
+
+/* G = R Gb R^T */
+static void rotate_hessian(const cl_pose *P, const double Gb[9],
+                           double G[9])
+{
+    const double *R = P->R;
+    double T[9];
+    if (!P->rotates) {
+        memcpy(G, Gb, 9 * sizeof *G);
+        return;
     }
-    for (int i = 0; i < 3; i++) /* G = R Gb R^T */
-        for (int j = 0; j < 3; j++) {
-            double g = 0.0;
-            for (int k = 0; k < 3; k++)
-                for (int l = 0; l < 3; l++)
-                    g += R[3 * i + k] * b.G[3 * k + l] * R[3 * j + l];
-            q->G[3 * i + j] = g;
-        }
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            T[3 * i + j] = R[3 * i] * Gb[j] + R[3 * i + 1] * Gb[3 + j] +
+                           R[3 * i + 2] * Gb[6 + j];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            G[3 * i + j] = T[3 * i] * R[3 * j] + T[3 * i + 1] * R[3 * j + 1] +
+                           T[3 * i + 2] * R[3 * j + 2];
+}
+
+bool cl_obstacle_near(const cl_obstacle *o, const cl_pose *P,
+                      const double x[3], double dmax, cl_contact_point *q)
+{
+    if (o->type->lower_bound) {
+        double r[3], X[3];
+        to_shape(o, P, x, r, X);
+        if (o->type->lower_bound(o->shape, X) >= dmax)
+            return false;
+    }
+    cl_obstacle_query(o, P, x, q);
+    return q->d < dmax;
+}
+
+void cl_obstacle_query(const cl_obstacle *o, const cl_pose *P,
+                       const double x[3], cl_contact_point *q)
+{
+    double r[3], X[3], cb[3], c[3];
+    cl_shape_query b;
+    to_shape(o, P, x, r, X);
+    o->type->query(o->shape, X, &b);
+    for (int i = 0; i < 3; i++)
+        cb[i] = b.c[i] - o->pivot[i];
+    q->d = b.d;
+    rotate(P, b.n, q->n);
+    rotate(P, cb, c);
+    for (int i = 0; i < 3; i++)
+        q->c[i] = o->pivot[i] + P->s[i] + c[i];
+    rotate_hessian(P, b.G, q->G);
     const double *w = o->omega; /* u = s' + w x r, du/dx = [w]x */
-    q->u[0] = sdot[0] + w[1] * r[2] - w[2] * r[1];
-    q->u[1] = sdot[1] + w[2] * r[0] - w[0] * r[2];
-    q->u[2] = sdot[2] + w[0] * r[1] - w[1] * r[0];
+    q->u[0] = P->sdot[0] + w[1] * r[2] - w[2] * r[1];
+    q->u[1] = P->sdot[1] + w[2] * r[0] - w[0] * r[2];
+    q->u[2] = P->sdot[2] + w[0] * r[1] - w[1] * r[0];
     double W[9] = {0.0, -w[2], w[1], w[2], 0.0, -w[0], -w[1], w[0], 0.0};
     memcpy(q->W, W, sizeof W);
 }
@@ -92,18 +137,18 @@ void cl_obstacle_query(const cl_obstacle *o, double t, const double x[3],
 cl_status cl_obstacle_surface(const cl_obstacle *o, double t,
                               cl_shape_surface *s, cl_error *err)
 {
-    double R[9], d[3], sdot[3];
+    cl_pose P;
     cl_status rc = o->type->surface(o->shape, s, err);
     if (rc)
         return rc;
-    cl_obstacle_pose(o, t, R, d, sdot);
+    cl_obstacle_pose(o, t, &P);
     for (size_t k = 0; k < s->nvert; k++) {
-        double *p = s->vert + 3 * k, r[3];
+        double *p = s->vert + 3 * k, r[3], y[3];
         for (int i = 0; i < 3; i++)
             r[i] = p[i] - o->pivot[i];
+        rotate(&P, r, y);
         for (int i = 0; i < 3; i++)
-            p[i] = o->pivot[i] + d[i] + R[3 * i] * r[0] + R[3 * i + 1] * r[1] +
-                   R[3 * i + 2] * r[2];
+            p[i] = o->pivot[i] + P.s[i] + y[i];
     }
     return CL_OK;
 }

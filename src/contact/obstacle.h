@@ -62,14 +62,28 @@ cl_status cl_obstacle_create(cl_config *cfg, const char *sec, cl_obstacle *o,
                              cl_error *err);
 void cl_obstacle_free(cl_obstacle *o);
 
-/* Rotation R(t) (row-major) and displacement s(t), velocity s'(t). */
-void cl_obstacle_pose(const cl_obstacle *o, double t, double R[9],
-                      double s[3], double sdot[3]);
+/* Where an obstacle is at a time: computed once for all particles. */
+typedef struct {
+    double t;
+    double R[9];      /* rotation R(t), row-major */
+    double s[3];      /* displacement s(t) */
+    double sdot[3];   /* its velocity s'(t) */
+    bool rotates;     /* omega != 0 (else R = I) */
+} cl_pose;
+
+void cl_obstacle_pose(const cl_obstacle *o, double t, cl_pose *P);
 
 /* Distance, normal, closest point, dn/dx and the obstacle's velocity at
- * the world point x at time t. */
-void cl_obstacle_query(const cl_obstacle *o, double t, const double x[3],
-                       cl_contact_point *q);
+ * the world point x, the obstacle at pose P. */
+void cl_obstacle_query(const cl_obstacle *o, const cl_pose *P,
+                       const double x[3], cl_contact_point *q);
+
+/* cl_obstacle_query for the points closer than dmax to the surface (or
+ * inside): false, with q left unset, when the shape's lower bound of d
+ * (shape.h) already shows d >= dmax; else the query, and whether
+ * q->d < dmax. */
+bool cl_obstacle_near(const cl_obstacle *o, const cl_pose *P,
+                      const double x[3], double dmax, cl_contact_point *q);
 
 /* The obstacle's drawing surface at time t, in the world frame. */
 cl_status cl_obstacle_surface(const cl_obstacle *o, double t,

@@ -47,6 +47,10 @@ typedef struct {
     cl_status (*create)(cl_config *cfg, const char *sec, double pivot[3],
                         void **shape, cl_error *err);
     void (*query)(const void *shape, const double x[3], cl_shape_query *q);
+    /* Optional (NULL: none): a lower bound of d at x, much cheaper than
+     * the query (a mesh: the distance to its bounding box), so that
+     * particles far from the shape skip the query. */
+    double (*lower_bound)(const void *shape, const double x[3]);
     /* Allocate the drawing surface (free with cl_shape_surface_free). */
     cl_status (*surface)(const void *shape, cl_shape_surface *s,
                          cl_error *err);

@@ -336,8 +336,22 @@ static cl_status mesh_surface(const void *shape, cl_shape_surface *s,
     return CL_OK;
 }
 
+/* The distance from x to the bounding box of all triangles (0 inside): d
+ * is at least that. */
+static double mesh_lower_bound(const void *shape, const double x[3])
+{
+    const cl_bvh_node *root = &((const mesh *)shape)->bvh.node[0];
+    double d2 = 0.0;
+    for (int i = 0; i < 3; i++) {
+        double e = fmax(root->lo[i] - x[i], fmax(x[i] - root->hi[i], 0.0));
+        d2 += e * e;
+    }
+    return sqrt(d2);
+}
+
 const cl_shape_type cl_shape_mesh = {
     .name = "mesh",
+    .lower_bound = mesh_lower_bound,
     .doc = "closed triangle mesh: file (OBJ, relative to the problem file), "
            "scale (> 0), translate (vector)",
     .create = mesh_create,

@@ -25,13 +25,10 @@ static size_t element_edges(const cl_bw_term *t, const int (**edges)[2])
 
 /* ---- triangles ----------------------------------------------------------- */
 
-bool cl_bw_tri_rest(const double *X0, const int tri[3],
-                    double rest[CL_BW_TRI_REST])
+/* Rest constants from the rest (u, v) differences of a triangle. */
+static bool tri_rest(double du1, double du2, double dv1, double dv2,
+                     double rest[CL_BW_TRI_REST])
 {
-    const double *Xi = X0 + 3 * tri[0], *Xj = X0 + 3 * tri[1],
-                 *Xk = X0 + 3 * tri[2];
-    double du1 = Xj[0] - Xi[0], du2 = Xk[0] - Xi[0];
-    double dv1 = Xj[2] - Xi[2], dv2 = Xk[2] - Xi[2];
     double det = du1 * dv2 - du2 * dv1;
     memset(rest, 0, CL_BW_TRI_REST * sizeof *rest);
     if (det == 0.0 || !isfinite(det))
@@ -51,6 +48,38 @@ bool cl_bw_tri_rest(const double *X0, const int tri[3],
     return true;
 }
 
+bool cl_bw_tri_rest(const double *X0, const int tri[3],
+                    double rest[CL_BW_TRI_REST])
+{
+    const double *Xi = X0 + 3 * tri[0], *Xj = X0 + 3 * tri[1],
+                 *Xk = X0 + 3 * tri[2];
+    return tri_rest(Xj[0] - Xi[0], Xk[0] - Xi[0], Xj[2] - Xi[2],
+                    Xk[2] - Xi[2], rest);
+}
+
+bool cl_bw_tri_rest_plane(const double *X0, const int tri[3],
+                          double rest[CL_BW_TRI_REST])
+{
+    const double *Xi = X0 + 3 * tri[0], *Xj = X0 + 3 * tri[1],
+                 *Xk = X0 + 3 * tri[2];
+    double e[3], f[3], ef = 0.0, ee = 0.0;
+    for (int i = 0; i < 3; i++) {
+        e[i] = Xj[i] - Xi[i];
+        f[i] = Xk[i] - Xi[i];
+        ee += e[i] * e[i];
+        ef += e[i] * f[i];
+    }
+    double n[3] = {e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2],
+                   e[0] * f[1] - e[1] * f[0]};
+    double l = sqrt(ee), twice_area = sqrt(n[0] * n[0] + n[1] * n[1] +
+                                           n[2] * n[2]);
+    if (!(l > 0)) {
+        memset(rest, 0, CL_BW_TRI_REST * sizeof *rest);
+        return false;
+    }
+    return tri_rest(l, ef / l, 0.0, twice_area / l, rest);
+}
+
 /* The SPEC 3.3 expressions as written: at rest dx1, dx2 are du, dv bit for
  * bit, so w_u and w_v are exactly the unit axes there. */
 void cl_bw_tri_w(const double *rest, const double *x, double wu[3],
@@ -67,12 +96,13 @@ void cl_bw_tri_w(const double *rest, const double *x, double wu[3],
 
 /* ---- building ------------------------------------------------------------ */
 
-/* A grid with a side of one particle (a chain) has no triangles. */
+/* A grid with a side of one particle (a chain) has no triangles (a mesh
+ * cloth always has some). */
 static cl_status check_grid(cl_config *cfg, const cl_cloth *cloth,
                             const char *section, cl_error *err)
 {
     char where[256];
-    if (cloth->nu >= 2 && cloth->nv >= 2)
+    if (cloth->ntri > 0)
         return CL_OK;
     return cl_error_set(err, CL_EINVAL,
                         "%s: [%s] enabled: the Baraff-Witkin model needs a "
@@ -117,13 +147,15 @@ static void set_couplings(cl_bw_term *t)
     }
 }
 
-/* One element per mesh triangle of non-zero rest area. */
+/* One element per mesh triangle of non-zero rest area; rest (u, v) from
+ * the grid's (x, z), or on a mesh cloth from each triangle's own plane. */
 static void add_triangles(const cl_cloth *cloth, const cl_mesh *mesh,
                           cl_bw_term *t)
 {
+    bool (*rest)(const double *, const int *, double *) =
+        cloth->kind == CL_CLOTH_MESH ? cl_bw_tri_rest_plane : cl_bw_tri_rest;
     for (size_t k = 0; k < mesh->ntri; k++)
-        if (cl_bw_tri_rest(cloth->X0, mesh->tri[k],
-                           t->rest + t->n * (size_t)t->nrest))
+        if (rest(cloth->X0, mesh->tri[k], t->rest + t->n * (size_t)t->nrest))
             memcpy(t->vert + 3 * t->n++, mesh->tri[k], 3 * sizeof(int));
 }
 
@@ -146,8 +178,12 @@ static cl_status build(const cl_cloth *cloth, cl_diagonal diag,
                        void **state, cl_error *err)
 {
     cl_mesh mesh;
-    cl_status rc;
-    if ((rc = cl_mesh_grid(cloth->nu, cloth->nv, diag, &mesh, err)))
+    cl_status rc = cloth->kind == CL_CLOTH_MESH
+                       ? cl_mesh_from_triangles(cloth->ntri,
+                                                (const int(*)[3])cloth->tri,
+                                                &mesh, err)
+                       : cl_mesh_grid(cloth->nu, cloth->nv, diag, &mesh, err);
+    if (rc)
         return rc;
     cl_bw_term *t = new_term(proto, spec->hinge_rest ? mesh.nedge : mesh.ntri);
     if (!t) {

@@ -1,8 +1,8 @@
 /* Baraff-Witkin cloth (D. Baraff, A. Witkin, "Large steps in cloth
  * simulation", SIGGRAPH 1998, section 4; SPEC 3.3): forces from condition
  * functions C(x) of small groups of particles ("elements": the triangles of
- * the grid mesh for stretch and shear, the two triangles of an interior edge
- * for bend; model/mesh.h).
+ * the grid mesh, or of a mesh cloth's own mesh (model/cloth.h), for stretch
+ * and shear, the two triangles of an interior edge for bend; model/mesh.h).
  *
  * Potential part (BW98 section 4: condition energy), per element and
  * component c:
@@ -79,23 +79,36 @@ typedef struct {
 } cl_bw_term;
 
 /* ---- triangles (stretch, shear) ----------------------------------------
- * Rest (u, v) = (X, Z) of the flat grid (model/cloth.h).  For triangle
+ * Rest (u, v) = (X, Z) of the flat grid (model/cloth.h).  On a mesh cloth
+ * each triangle (i, j, k) has its own rest (u, v), in metres, in the plane
+ * of its rest shape: u along its first edge X_j - X_i, v perpendicular to
+ * it towards X_k, so du1 = |X_j - X_i|, dv1 = 0, du2 = the projection of
+ * X_k - X_i on u, dv2 = twice the area / du1 (det > 0).  The warp and weft
+ * directions w_u, w_v then change from triangle to triangle with the mesh's
+ * edges: bu, bv and ku, kv (stretch) act isotropically only when equal.
+ * For triangle
  * (i, j, k): du1 = u_j - u_i, du2 = u_k - u_i, dv1, dv2 likewise,
  * det = du1 dv2 - du2 dv1, a = |det|/2; with dx1 = x_j - x_i,
  * dx2 = x_k - x_i:
  *     w_u = (dx1 dv2 - dx2 dv1)/det,   w_v = (-dx1 du2 + dx2 du1)/det,
  * so dw_u/dx_m = cu_m I and dw_v/dx_m = cv_m I with
  *     cu = ((dv1 - dv2), dv2, -dv1)/det,  cv = ((du2 - du1), -du2, du1)/det.
- * At rest w_u = (1, 0, 0) and w_v = (0, 0, 1) exactly. */
+ * At rest w_u = (1, 0, 0) and w_v = (0, 0, 1) exactly on a grid; on a
+ * mesh they are the triangle's unit u and v directions in space, up to
+ * round-off. */
 enum {
     CL_BW_DU1, CL_BW_DU2, CL_BW_DV1, CL_BW_DV2, CL_BW_DET, CL_BW_AREA,
     CL_BW_CU, CL_BW_CV = CL_BW_CU + 3, CL_BW_TRI_REST = CL_BW_CV + 3
 };
 
-/* Rest constants of triangle tri from rest positions X0; false if its rest
- * area is zero (such a triangle carries no force). */
+/* Rest constants of triangle tri from rest positions X0, (u, v) = (X, Z)
+ * (a grid); false if its rest area is zero (such a triangle carries no
+ * force). */
 bool cl_bw_tri_rest(const double *X0, const int tri[3],
                     double rest[CL_BW_TRI_REST]);
+/* The same with (u, v) in the triangle's own plane (a mesh cloth). */
+bool cl_bw_tri_rest_plane(const double *X0, const int tri[3],
+                          double rest[CL_BW_TRI_REST]);
 /* w_u, w_v of a triangle at positions x (9). */
 void cl_bw_tri_w(const double *rest, const double *x, double wu[3],
                  double wv[3]);
@@ -105,7 +118,8 @@ void cl_bw_tri_w(const double *rest, const double *x, double wu[3],
  *   enabled (default false), k (stiffness, >= 0), kd (damping, >= 0) and,
  *   for a two-component condition with suffixes {"u", "v"}: ku, kv (default
  *   k), kdu, kdv (default kd), bu, bv (targets, > 0, default 1);
- * and [cloth] diagonal (model/mesh.h).  All keys are read even when the
+ * and [cloth] diagonal (model/mesh.h; a grid's triangulation, a mesh
+ * cloth has its own triangles).  All keys are read even when the
  * term is off.  The term is off (state NULL) unless enabled and its
  * coefficients (k for the potential part, kd for the damping part) are not
  * all zero.  A grid with fewer than two particles along a side has no

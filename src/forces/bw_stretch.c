@@ -1,5 +1,5 @@
 /* Baraff-Witkin stretch (BW98 section 4, stretch; SPEC 3.3) on every
- * triangle of the grid mesh, two components:
+ * triangle of the grid mesh or mesh cloth, two components:
  *     C = a (|w_u| - bu, |w_v| - bv)
  * with a the rest area and w_u, w_v the stretch directions of forces/bw.h
  * (dw_u/dx_m = cu_m I, dw_v/dx_m = cv_m I, constant).  With
@@ -17,8 +17,10 @@
  * mesh) and kd in N s/m^3.
  *
  * INI section [bw-stretch]: enabled (false), k (N/m^3, default 2e6),
- * ku, kv (default k: warp and weft may differ), bu, bv (target stretch,
- * default 1; < 1 shrinks), kd (N s/m^3, default 0), kdu, kdv (default kd).
+ * ku, kv (default k: warp and weft may differ; on a mesh cloth u and v
+ * follow each triangle's first edge, forces/bw.h, so unequal values make
+ * no consistent warp and weft), bu, bv (target stretch, default 1; < 1
+ * shrinks), kd (N s/m^3, default 0), kdu, kdv (default kd).
  * The damping term runs when enabled and kd (or kdu, kdv) is not zero. */
 #include <math.h>
 

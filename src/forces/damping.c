@@ -19,10 +19,10 @@
  * INI section [damping]: kd (N s/m, >= 0; 0 switches the term off),
  * where (always|engaged), model (linear|axial, default linear). */
 #include <stdlib.h>
-#include <string.h>
 
 #include "forces/choiko.h"
 #include "forces/pairdamp.h"
+#include "model/cloth_read.h"
 
 typedef struct {
     cl_pairdamp pd;     /* first member; its pairs: Type1 first, then Type2 */
@@ -68,16 +68,11 @@ static cl_status damping_pairs(cl_config *cfg, const cl_cloth *cloth,
         return rc;
     }
     *ntype1 = t1.n;
-    set->n = t1.n + t2.n;
-    set->pair = realloc(t1.pair, (set->n + 1) * sizeof *t1.pair);
-    if (!set->pair) {
+    if ((rc = cl_pairs_append(&t1, &t2, err))) {
         cl_pairs_free(&t1);
-        cl_pairs_free(&t2);
-        return cl_error_set(err, CL_ENOMEM, "out of memory (damping)");
+        return rc;
     }
-    if (t2.n)
-        memcpy(set->pair + t1.n, t2.pair, t2.n * sizeof *t2.pair);
-    cl_pairs_free(&t2);
+    *set = t1;
     return CL_OK;
 }
 
@@ -100,6 +95,12 @@ static cl_status damping_create(cl_config *cfg, const cl_cloth *cloth,
         return rc;
     if (kd == 0.0)
         return CL_OK;
+    if ((rc = cl_cloth_grid_only(cfg, cloth, "damping", "kd",
+                                 "Choi-Ko pair damping acts on the grid's "
+                                 "Type1 and Type2 pairs; on a mesh cloth set "
+                                 "[damping] kd = 0 (and use [spring-damping] "
+                                 "or a Baraff-Witkin damping)", err)))
+        return rc;
     damping_state *st = calloc(1, sizeof *st);
     if (!st)
         return cl_error_set(err, CL_ENOMEM, "out of memory (damping)");

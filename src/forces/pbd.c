@@ -6,6 +6,7 @@
 #include <stdlib.h>
 
 #include "forces/pairterm.h"
+#include "model/cloth_read.h"
 
 #define SEC "pbd"
 
@@ -78,18 +79,37 @@ static void pbd_free(void *state)
     free(st);
 }
 
+/* The constraints of levels 1..levels: grid levels, or on a mesh the
+ * triangle edges (level 1) and the bend pairs (level 2). */
+static cl_status pbd_pairs(const cl_cloth *cloth, long levels,
+                           cl_pairset *set, cl_error *err)
+{
+    cl_pairset bend;
+    cl_status rc;
+    if (cloth->kind == CL_CLOTH_GRID)
+        return cl_pairs_levels(cloth, levels, set, err);
+    if ((rc = cl_pairs_mesh_edges(cloth, set, err)) || levels < 2)
+        return rc;
+    if ((rc = cl_pairs_mesh_bend(cloth, &bend, err)) == CL_OK)
+        rc = cl_pairs_append(set, &bend, err);
+    return rc;
+}
+
 static cl_status pbd_setup(pbd_state *st, const cl_cloth *cloth, long levels,
                            double cut, cl_error *err)
 {
-    cl_pairset set;
+    cl_pairset set = {0};
     cl_status rc;
     st->w = malloc(cloth->np * sizeof *st->w);
     if (!st->w)
         return cl_error_set(err, CL_ENOMEM, "out of memory (pbd)");
     for (size_t p = 0; p < cloth->np; p++)
         st->w[p] = 1.0 / cloth->mass[p];
-    if ((rc = cl_pairs_levels(cloth, levels, &set, err)) ||
-        (rc = cl_pairterm_init(&st->pt, set, NULL, NULL, false, err)))
+    if ((rc = pbd_pairs(cloth, levels, &set, err))) {
+        cl_pairs_free(&set);
+        return rc;
+    }
+    if ((rc = cl_pairterm_init(&st->pt, set, NULL, NULL, false, err)))
         return rc;
     return cl_pairterm_tear(&st->pt, cut, err);
 }
@@ -111,6 +131,12 @@ static cl_status pbd_create(cl_config *cfg, const cl_cloth *cloth,
         (rc = cl_config_long(cfg, SEC, "iterations", 10, 1, 1000000,
                              &iterations, err)) ||
         !enabled)
+        return rc;
+    if (levels > 2 &&
+        (rc = cl_cloth_grid_only(cfg, cloth, SEC, "levels",
+                                 "on a mesh cloth level 1 is the triangle "
+                                 "edges and level 2 adds the bend pairs; "
+                                 "levels beyond 2 are grid offsets", err)))
         return rc;
     pbd_state *st = calloc(1, sizeof *st);
     if (!st)

@@ -4,7 +4,10 @@
  *
  * Constraints C_ab(x) = |x_a - x_b| - L_ab = 0 on the pairs of constraint
  * levels 1..k (model/pairs.h: level l joins particles l apart along the
- * axes and both diagonals; level 1 = axis and diagonal neighbours).  The
+ * axes and both diagonals; level 1 = axis and diagonal neighbours).  On a
+ * mesh cloth level 1 is the triangle edges and level 2 adds the bend pairs
+ * (the far vertices of neighbouring triangles, as the mass-spring mesh
+ * network of forces/springs.h); levels > 2 are refused there.  The
  * term has no force, no Jacobian and no potential: it acts only through
  * the system's `project` hook, which position-based integrators
  * (verlet-pbd) call after each step.  Every other integrator ignores it.

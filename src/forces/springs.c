@@ -15,6 +15,7 @@
 #include <stdlib.h>
 
 #include "forces/pairterm.h"
+#include "model/cloth_read.h"
 
 #define SEC "springs"
 
@@ -117,8 +118,9 @@ static void pair_stiffness(const cl_cloth *c, const spring_opts *o,
     }
 }
 
-static cl_status build_network(const cl_cloth *c, const spring_opts *o,
-                               cl_springnet *net, cl_error *err)
+/* The grid network: the offsets of the sets in use. */
+static cl_status grid_network(const cl_cloth *c, const spring_opts *o,
+                              cl_springnet *net, cl_error *err)
 {
     /* Levels beyond the grid add no pair. */
     long span = c->nu > c->nv ? c->nu : c->nv;
@@ -143,13 +145,79 @@ static cl_status build_network(const cl_cloth *c, const spring_opts *o,
     return CL_OK;
 }
 
+/* Pairs of *set get stiffness k from net->k[from] on, appended to net. */
+static cl_status add_set(cl_springnet *net, cl_pairset *set, double k,
+                         cl_error *err)
+{
+    size_t from = net->set.n;
+    cl_status rc = cl_pairs_append(&net->set, set, err);
+    double *kk = rc ? NULL
+                    : realloc(net->k, (net->set.n + 1) * sizeof *net->k);
+    if (!rc && !kk)
+        rc = cl_error_set(err, CL_ENOMEM, "out of memory (springs)");
+    if (rc)
+        return rc;
+    net->k = kk;
+    for (size_t i = from; i < net->set.n; i++)
+        net->k[i] = k;
+    return CL_OK;
+}
+
+/* The mesh network: the triangle edges (k_structural) and the bend pairs
+ * (k_bend), each left out when its stiffness is 0. */
+static cl_status mesh_network(const cl_cloth *c, const spring_opts *o,
+                              cl_springnet *net, cl_error *err)
+{
+    cl_pairset edges = {0}, bend = {0};
+    cl_status rc = CL_OK;
+    *net = (cl_springnet){.k = NULL};
+    if (o->ks > 0 && !(rc = cl_pairs_mesh_edges(c, &edges, err)))
+        rc = add_set(net, &edges, o->ks, err);
+    if (!rc && o->kbend > 0 && !(rc = cl_pairs_mesh_bend(c, &bend, err)))
+        rc = add_set(net, &bend, o->kbend, err);
+    cl_pairs_free(&edges);
+    cl_pairs_free(&bend);
+    if (rc)
+        cl_springnet_free(net);
+    return rc;
+}
+
+/* On a mesh cloth the grid's levels and shear springs do not exist. */
+static cl_status check_mesh_keys(cl_config *cfg, const cl_cloth *c,
+                                 const spring_opts *o, cl_error *err)
+{
+    cl_status rc = CL_OK;
+    if (o->levels)
+        rc = cl_cloth_grid_only(cfg, c, SEC, "levels",
+                                "levels are grid offsets; a mesh cloth has "
+                                "structural springs on its triangle edges "
+                                "and bend springs across them (levels = 0)",
+                                err);
+    if (!rc && o->kshear > 0 && cl_config_string(cfg, SEC, "k_shear", NULL))
+        rc = cl_cloth_grid_only(cfg, c, SEC, "k_shear",
+                                "a mesh cloth has no shear springs (its "
+                                "triangle edges are the structural springs): "
+                                "remove k_shear or set it to 0", err);
+    return rc;
+}
+
+static cl_status build_network(cl_config *cfg, const cl_cloth *c,
+                               const spring_opts *o, cl_springnet *net,
+                               cl_error *err)
+{
+    if (c->kind == CL_CLOTH_GRID)
+        return grid_network(c, o, net, err);
+    cl_status rc = check_mesh_keys(cfg, c, o, err);
+    return rc ? rc : mesh_network(c, o, net, err);
+}
+
 cl_status cl_springs_network(cl_config *cfg, const cl_cloth *cloth,
                              cl_springnet *net, cl_error *err)
 {
     spring_opts o;
     *net = (cl_springnet){.k = NULL};
     cl_status rc = read_opts(cfg, &o, err);
-    return rc ? rc : build_network(cloth, &o, net, err);
+    return rc ? rc : build_network(cfg, cloth, &o, net, err);
 }
 
 void cl_springnet_free(cl_springnet *net)
@@ -203,7 +271,7 @@ static cl_status springs_create(cl_config *cfg, const cl_cloth *cloth,
     if (!st)
         return cl_error_set(err, CL_ENOMEM, "out of memory (springs)");
     cl_springnet net;
-    if ((rc = build_network(cloth, &o, &net, err))) {
+    if ((rc = build_network(cfg, cloth, &o, &net, err))) {
         free(st);
         return rc;
     }

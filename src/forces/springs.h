@@ -14,6 +14,14 @@
  * (counts for n x n; on nu x nv, axis u gives (nu-o) nv pairs, axis v
  * nu (nv-o), each diagonal (nu-o)(nv-o), o the offset).
  *
+ * On a mesh cloth (model/cloth.h) the network is that of Zischg, Chea and
+ * Aigner's mesh cloth ("Cloth Simulation", the skirt): structural springs
+ * (k_structural) on every triangle edge, bend springs (k_bend) between the
+ * two far vertices of every pair of neighbouring triangles
+ * (model/pairs.h cl_pairs_mesh_edges, cl_pairs_mesh_bend), no shear
+ * springs.  `levels` and a non-zero k_shear are grid notions and are
+ * refused there.
+ *
  * The rule: `levels = 0` (default) uses the named sets structural + shear
  * + bend, each with its own stiffness; a set whose stiffness is 0 is left
  * out (k_shear = 0 gives seed 003's structural + bend).  `levels = k >= 1`

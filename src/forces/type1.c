@@ -13,6 +13,7 @@
 
 #include "forces/choiko.h"
 #include "forces/pairterm.h"
+#include "model/cloth_read.h"
 
 typedef struct {
     cl_pairterm pt; /* first member: the pairterm hooks use it */
@@ -62,6 +63,11 @@ static cl_status type1_create(cl_config *cfg, const cl_cloth *cloth,
         return rc;
     if (!enabled)
         return CL_OK;
+    if ((rc = cl_cloth_grid_only(cfg, cloth, "type1", "enabled",
+                                 "Choi-Ko Type1 acts on the grid's sequential "
+                                 "pairs; a mesh cloth needs [type1] enabled = "
+                                 "false", err)))
+        return rc;
     type1_state *st = calloc(1, sizeof *st);
     if (!st)
         return cl_error_set(err, CL_ENOMEM, "out of memory (type1)");

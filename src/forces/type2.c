@@ -34,6 +34,7 @@
 #include "forces/asinc.h"
 #include "forces/choiko.h"
 #include "forces/pairterm.h"
+#include "model/cloth_read.h"
 
 #define CROSS_SAMPLES 512
 #define MAX_CROSS 8
@@ -385,6 +386,10 @@ static cl_status type2_create(cl_config *cfg, const cl_cloth *cloth,
     /* Parameters are read even when disabled, so that they are validated
      * and not reported as unknown keys. */
     if ((rc = read_params(cfg, st, err)) || !enabled ||
+        (rc = cl_cloth_grid_only(cfg, cloth, "type2", "enabled",
+                                 "Choi-Ko Type2 acts on the grid's interlaced "
+                                 "pairs; a mesh cloth needs [type2] enabled = "
+                                 "false", err)) ||
         (rc = check_grid(cfg, cloth, err)) ||
         (rc = type2_setup(st, cloth, opts, err))) {
         type2_free(st);

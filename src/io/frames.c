@@ -37,7 +37,7 @@ static cl_status frame_prepare(const char *path, const cl_frame *f,
     *tri = NULL;
     *own = NULL;
     *ntri = 0;
-    if (!f || f->nu < 1 || f->nv < 1 || !f->x)
+    if (!f || !f->x || f->nu < 1 || f->nv < 0 || (f->nv == 0 && !f->tri))
         return cl_error_set(err, CL_EINVAL, "%s: empty or invalid frame",
                             path);
     if (f->tri) {
@@ -81,6 +81,16 @@ static int write_triangles(FILE *fp, const char *prefix,
     return 0;
 }
 
+/* "nu=NU nv=NV" of a grid, "np=NP" of a mesh cloth, for the header. */
+static const char *frame_shape(const cl_frame *f, char *buf, size_t len)
+{
+    if (f->nv == 0)
+        snprintf(buf, len, "np=%d", f->nu);
+    else
+        snprintf(buf, len, "nu=%d nv=%d", f->nu, f->nv);
+    return buf;
+}
+
 /* The content of one file format: np points, ntri triangles; nonzero on a
  * write error (errno says why). */
 typedef int (*frame_body)(FILE *fp, const cl_frame *f, size_t np,
@@ -89,15 +99,17 @@ typedef int (*frame_body)(FILE *fp, const cl_frame *f, size_t np,
 static int vtk_body(FILE *fp, const cl_frame *f, size_t np,
                     const int (*tri)[3], size_t ntri)
 {
+    char shape[64];
     int bad = fprintf(fp, "# vtk DataFile Version 3.0\n"
-                          "clothode frame t=%.17g nu=%d nv=%d\n"
+                          "clothode frame t=%.17g %s\n"
                           "ASCII\n"
                           "DATASET POLYDATA\n"
                           "FIELD FieldData 1\n"
                           "TIME 1 1 double\n"
                           "%.17g\n"
                           "POINTS %zu double\n",
-                      f->t, f->nu, f->nv, f->t, np) < 0 ||
+                      f->t, frame_shape(f, shape, sizeof shape), f->t,
+                      np) < 0 ||
               write_points(fp, "", f->x, np);
     if (!bad && ntri > 0)
         bad = fprintf(fp, "POLYGONS %zu %zu\n", ntri, 4 * ntri) < 0 ||
@@ -119,9 +131,10 @@ static int vtk_body(FILE *fp, const cl_frame *f, size_t np,
 static int obj_body(FILE *fp, const cl_frame *f, size_t np,
                     const int (*tri)[3], size_t ntri)
 {
-    return fprintf(fp, "# clothode frame t=%.17g nu=%d nv=%d\n"
+    char shape[64];
+    return fprintf(fp, "# clothode frame t=%.17g %s\n"
                        "# %zu vertices, %zu triangles\n",
-                   f->t, f->nu, f->nv, np, ntri) < 0 ||
+                   f->t, frame_shape(f, shape, sizeof shape), np, ntri) < 0 ||
            write_points(fp, "v ", f->x, np) ||
            write_triangles(fp, "f ", tri, ntri, 1);
 }
@@ -140,7 +153,7 @@ static cl_status frame_write(const char *path, const cl_frame *f,
         return st;
     cl_afile af;
     if ((st = cl_afile_open(&af, path, err)) == CL_OK) {
-        size_t np = (size_t)f->nu * (size_t)f->nv;
+        size_t np = (size_t)f->nu * (size_t)(f->nv ? f->nv : 1);
         st = body(af.fp, f, np, tri, ntri) ? cl_afile_fail(&af, err)
                                            : cl_afile_commit(&af, err);
     }

@@ -3,8 +3,9 @@
  * The surface is the grid's triangulation (cl_grid_triangles): each quad
  * (i, j)-(i+1, j+1) is split into (i,j),(i+1,j),(i+1,j+1) and
  * (i,j),(i+1,j+1),(i,j+1), particle (i, j) having index i*nv + j; or, when
- * the frame gives one, its own triangle list (a torn cloth: the grid's
- * triangles without those with a torn edge, cl_model_triangles).
+ * the frame gives one, its own triangle list (a torn cloth: the cloth's
+ * triangles without those with a torn edge, cl_model_triangles; a mesh
+ * cloth: its triangles, its particles given as nu = np, nv = 0).
  * VTK frames carry the time as field data TIME (read by ParaView) and, when
  * given, point data "velocity" (vectors) and "pinned" (0/1 scalars).  OBJ
  * frames carry positions and faces only, the time in a comment.  Both are
@@ -17,9 +18,11 @@
 #include "core/error.h"
 
 typedef struct {
-    int nu, nv;                   /* grid size, nu*nv particles */
-    const double *x;              /* positions, 3*nu*nv */
-    const double *v;              /* velocities, 3*nu*nv, or NULL */
+    int nu, nv;                   /* grid size, nu*nv particles; nv = 0:
+                                   * a mesh cloth of nu particles (then tri
+                                   * is required) */
+    const double *x;              /* positions, 3 * particles */
+    const double *v;              /* velocities, 3 * particles, or NULL */
     const unsigned char *pinned;  /* per particle, nonzero = pinned, or NULL */
     double t;                     /* time */
     const int (*tri)[3];          /* triangles (0-based particle indices),

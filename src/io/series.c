@@ -10,6 +10,7 @@
 struct cl_series {
     cl_afile af;
     size_t ncol;
+    unsigned char *na; /* per column: written as "NA" */
 };
 
 cl_status cl_series_open(const char *path, size_t ncol,
@@ -28,11 +29,17 @@ cl_status cl_series_open(const char *path, size_t ncol,
                                 k + 1, names[k] ? names[k] : "");
 
     cl_series *s = malloc(sizeof *s);
-    if (!s)
+    unsigned char *na = calloc(ncol, 1);
+    if (!s || !na) {
+        free(s);
+        free(na);
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", path);
+    }
     s->ncol = ncol;
+    s->na = na;
     cl_status st = cl_afile_open(&s->af, path, err);
     if (st) {
+        free(s->na);
         free(s);
         return st;
     }
@@ -53,13 +60,21 @@ cl_status cl_series_open(const char *path, size_t ncol,
     return CL_OK;
 }
 
+void cl_series_not_applicable(cl_series *s, size_t col)
+{
+    if (s && col < s->ncol)
+        s->na[col] = 1;
+}
+
 cl_status cl_series_row(cl_series *s, const double *values, cl_error *err)
 {
     if (!s || !s->af.fp || !values)
         return cl_error_set(err, CL_EINVAL, "series row without a series "
                             "or values");
     for (size_t k = 0; k < s->ncol; k++)
-        if (fprintf(s->af.fp, "%s%.10g", k ? "," : "", values[k]) < 0)
+        if ((s->na[k] ? fprintf(s->af.fp, "%sNA", k ? "," : "")
+                      : fprintf(s->af.fp, "%s%.10g", k ? "," : "",
+                                values[k])) < 0)
             return cl_afile_write_error(&s->af, err);
     if (fputc('\n', s->af.fp) == EOF || fflush(s->af.fp) != 0)
         return cl_afile_write_error(&s->af, err);
@@ -71,6 +86,7 @@ cl_status cl_series_close(cl_series *s, cl_error *err)
     if (!s)
         return CL_OK;
     cl_status st = cl_afile_commit(&s->af, err);
+    free(s->na);
     free(s);
     return st;
 }
@@ -80,5 +96,6 @@ void cl_series_discard(cl_series *s)
     if (!s)
         return;
     cl_afile_abort(&s->af);
+    free(s->na);
     free(s);
 }

@@ -23,6 +23,11 @@ cl_status cl_series_open(const char *path, size_t ncol,
                          const char *const *names, cl_series **out,
                          cl_error *err);
 
+/* Mark column col (0-based, < ncol) as not applicable to this series:
+ * every row then writes "NA" there, whatever its value (a diagnostic that
+ * has no meaning for the problem at hand, e.g. a grid's on a mesh cloth). */
+void cl_series_not_applicable(cl_series *s, size_t col);
+
 /* Append one row of ncol values and flush it.  CL_EIO on a write error. */
 cl_status cl_series_row(cl_series *s, const double *values, cl_error *err);
 

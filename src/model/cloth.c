@@ -1,11 +1,16 @@
-/* Grid cloth: rest geometry, masses, pins and the free-particle numbering
- * (SPEC 2). */
+/* Cloth (grid or mesh): rest geometry, masses, triangles, pins and the
+ * free-particle numbering (SPEC 2). */
 #include "model/cloth.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdbool.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "io/frames.h"
+#include "model/mesh.h"
 
 cl_status cl_cloth_grid(int nu, int nv, double su, double sv,
                         double particle_mass, cl_cloth *c, cl_error *err)
@@ -28,12 +33,15 @@ cl_status cl_cloth_grid(int nu, int nv, double su, double sv,
     c->np = (size_t)nu * (size_t)nv;
     c->hu = nu > 1 ? su / (nu - 1) : 0.0;
     c->hv = nv > 1 ? sv / (nv - 1) : 0.0;
+    c->ntri = cl_grid_triangles(nu, nv, NULL);
     c->X0 = malloc(3 * c->np * sizeof *c->X0);
     c->mass = malloc(c->np * sizeof *c->mass);
-    if (!c->X0 || !c->mass) {
+    c->tri = malloc((c->ntri + 1) * sizeof *c->tri);
+    if (!c->X0 || !c->mass || !c->tri) {
         cl_cloth_free(c);
         return cl_error_set(err, CL_ENOMEM, "out of memory (cloth)");
     }
+    cl_grid_triangles(nu, nv, c->tri);
     for (int i = 0; i < nu; i++)
         for (int j = 0; j < nv; j++) {
             double *X = c->X0 + 3 * (size_t)cl_cloth_index(c, i, j);
@@ -46,16 +54,108 @@ cl_status cl_cloth_grid(int nu, int nv, double su, double sv,
     return CL_OK;
 }
 
-cl_status cl_cloth_pin(cl_cloth *c, int i, int j, const double w[3],
-                       double t_stop, cl_error *err)
+/* The rest area of triangle t; false for a vertex out of range, a
+ * repeated vertex or a zero area. */
+static bool triangle_area(const double *X0, size_t np, const int t[3],
+                          double *area)
 {
-    int ii = i < 0 ? c->nu + i : i, jj = j < 0 ? c->nv + j : j;
-    if (ii < 0 || ii >= c->nu || jj < 0 || jj >= c->nv)
+    for (int k = 0; k < 3; k++)
+        if (t[k] < 0 || (size_t)t[k] >= np || t[k] == t[(k + 1) % 3])
+            return false;
+    const double *a = X0 + 3 * t[0], *b = X0 + 3 * t[1], *d = X0 + 3 * t[2];
+    double e[3], f[3];
+    for (int i = 0; i < 3; i++) {
+        e[i] = b[i] - a[i];
+        f[i] = d[i] - a[i];
+    }
+    double n[3] = {e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2],
+                   e[0] * f[1] - e[1] * f[0]};
+    *area = 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    return *area > 0 && isfinite(*area);
+}
+
+/* mass[i] = mass A_i / A from the triangles' vertex areas. */
+static cl_status area_masses(cl_cloth *c, double mass, cl_error *err)
+{
+    double total = 0.0;
+    memset(c->mass, 0, c->np * sizeof *c->mass);
+    for (size_t t = 0; t < c->ntri; t++) {
+        double a;
+        const int *v = c->tri[t];
+        if (!triangle_area(c->X0, c->np, v, &a))
+            return cl_error_set(err, CL_EINVAL,
+                                "mesh triangle %zu (%d, %d, %d): needs three "
+                                "distinct vertices among 0..%zu and a "
+                                "non-zero area", t, v[0], v[1], v[2],
+                                c->np - 1);
+        for (int k = 0; k < 3; k++)
+            c->mass[v[k]] += a / 3.0;
+        total += a;
+    }
+    for (size_t p = 0; p < c->np; p++) {
+        if (c->mass[p] == 0.0)
+            return cl_error_set(err, CL_EINVAL,
+                                "mesh vertex %zu belongs to no triangle (a "
+                                "particle's mass comes from its triangles' "
+                                "areas)", p);
+        c->mass[p] *= mass / total;
+    }
+    return CL_OK;
+}
+
+cl_status cl_cloth_mesh(size_t np, const double *X0, size_t ntri,
+                        const int (*tri)[3], double mass, cl_cloth *c,
+                        cl_error *err)
+{
+    memset(c, 0, sizeof *c);
+    c->kind = CL_CLOTH_MESH;
+    if (np < 3 || np > INT_MAX || ntri == 0)
         return cl_error_set(err, CL_EINVAL,
-                            "pin (%d, %d) lies outside the %d x %d grid "
-                            "(allowed: 0..%d, 0..%d, or negative from the end)",
-                            i, j, c->nu, c->nv, c->nu - 1, c->nv - 1);
-    int p = cl_cloth_index(c, ii, jj);
+                            "mesh of %zu vertices and %zu triangles: need at "
+                            "least one triangle and at most %d vertices",
+                            np, ntri, INT_MAX);
+    if (!(mass > 0) || !isfinite(mass))
+        return cl_error_set(err, CL_EINVAL,
+                            "cloth mass %g: need positive, finite", mass);
+    for (size_t k = 0; k < 3 * np; k++)
+        if (!isfinite(X0[k]))
+            return cl_error_set(err, CL_EINVAL, "mesh vertex %zu: "
+                                "coordinates must be finite", k / 3);
+    c->np = np;
+    c->ntri = ntri;
+    c->X0 = malloc(3 * np * sizeof *c->X0);
+    c->mass = malloc(np * sizeof *c->mass);
+    c->tri = malloc(ntri * sizeof *c->tri);
+    if (!c->X0 || !c->mass || !c->tri) {
+        cl_cloth_free(c);
+        return cl_error_set(err, CL_ENOMEM, "out of memory (cloth)");
+    }
+    memcpy(c->X0, X0, 3 * np * sizeof *X0);
+    memcpy(c->tri, tri, ntri * sizeof *tri);
+    cl_mesh mesh; /* built only to check: at most two triangles an edge */
+    cl_status rc = area_masses(c, mass, err);
+    if (rc == CL_OK)
+        rc = cl_mesh_from_triangles(ntri, tri, &mesh, err);
+    if (rc == CL_OK)
+        cl_mesh_free(&mesh);
+    else
+        cl_cloth_free(c);
+    return rc;
+}
+
+const char *cl_cloth_shape(const cl_cloth *c, char *buf, size_t len)
+{
+    if (c->kind == CL_CLOTH_MESH)
+        snprintf(buf, len, "%zu particles, %zu triangles", c->np, c->ntri);
+    else
+        snprintf(buf, len, "%d x %d particles", c->nu, c->nv);
+    return buf;
+}
+
+/* Pin particle p (in range), called `name` in messages. */
+static cl_status add_pin(cl_cloth *c, int p, const double w[3],
+                         double t_stop, const char *name, cl_error *err)
+{
     for (size_t k = 0; k < c->npin; k++) {
         const cl_pin *q = &c->pins[k];
         if (q->p != p)
@@ -64,8 +164,8 @@ cl_status cl_cloth_pin(cl_cloth *c, int i, int j, const double w[3],
         if (!memcmp(q->w, w, 3 * sizeof *w) && (still || q->t_stop == t_stop))
             return CL_OK; /* the same pin again (a row meeting a column) */
         return cl_error_set(err, CL_EINVAL,
-                            "pin (%d, %d) is given twice with different "
-                            "motions", ii, jj);
+                            "pin %s is given twice with different motions",
+                            name);
     }
     cl_pin *np = realloc(c->pins, (c->npin + 1) * sizeof *np);
     if (!np)
@@ -76,6 +176,34 @@ cl_status cl_cloth_pin(cl_cloth *c, int i, int j, const double w[3],
     c->pins[c->npin].t_stop = t_stop;
     c->npin++;
     return CL_OK;
+}
+
+cl_status cl_cloth_pin(cl_cloth *c, int i, int j, const double w[3],
+                       double t_stop, cl_error *err)
+{
+    int ii = i < 0 ? c->nu + i : i, jj = j < 0 ? c->nv + j : j;
+    if (ii < 0 || ii >= c->nu || jj < 0 || jj >= c->nv)
+        return cl_error_set(err, CL_EINVAL,
+                            "pin (%d, %d) lies outside the %d x %d grid "
+                            "(allowed: 0..%d, 0..%d, or negative from the end)",
+                            i, j, c->nu, c->nv, c->nu - 1, c->nv - 1);
+    char name[64];
+    snprintf(name, sizeof name, "(%d, %d)", ii, jj);
+    return add_pin(c, cl_cloth_index(c, ii, jj), w, t_stop, name, err);
+}
+
+cl_status cl_cloth_pin_particle(cl_cloth *c, int p, const double w[3],
+                                double t_stop, cl_error *err)
+{
+    long n = (long)c->np, q = p < 0 ? n + p : p;
+    if (q < 0 || q >= n)
+        return cl_error_set(err, CL_EINVAL,
+                            "pin p=%d lies outside the %ld particles "
+                            "(allowed: 0..%ld, or negative from the end)",
+                            p, n, n - 1);
+    char name[64];
+    snprintf(name, sizeof name, "p=%ld", q);
+    return add_pin(c, (int)q, w, t_stop, name, err);
 }
 
 cl_status cl_cloth_finalize(cl_cloth *c, cl_error *err)
@@ -109,6 +237,7 @@ void cl_cloth_free(cl_cloth *c)
     free(c->pins);
     free(c->dof);
     free(c->free_p);
+    free(c->tri);
     memset(c, 0, sizeof *c);
 }
 

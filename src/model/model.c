@@ -3,7 +3,7 @@
 #include "model/model.h"
 
 #include "contact/contact.h"
-#include "io/frames.h"
+#include "model/cloth_read.h"
 #include "model/pins.h"
 
 #include <gsl/gsl_errno.h>
@@ -44,29 +44,6 @@ struct cl_model {
 };
 
 /* ---- configuration ---------------------------------------------------- */
-
-static cl_status read_grid(cl_config *cfg, cl_cloth *c, cl_error *err)
-{
-    long n, nu, nv;
-    double size, su, sv, mass, pmass;
-    cl_status rc;
-    if ((rc = cl_config_long(cfg, "cloth", "n", 16, 2, 4096, &n, err)) ||
-        (rc = cl_config_long(cfg, "cloth", "nu", n, 1, 4096, &nu, err)) ||
-        (rc = cl_config_long(cfg, "cloth", "nv", n, 1, 4096, &nv, err)) ||
-        (rc = cl_config_double(cfg, "cloth", "size", 1.0, 1e-300, INFINITY,
-                               &size, err)) ||
-        (rc = cl_config_double(cfg, "cloth", "su", size, 1e-300, INFINITY,
-                               &su, err)) ||
-        (rc = cl_config_double(cfg, "cloth", "sv", size, 1e-300, INFINITY,
-                               &sv, err)) ||
-        (rc = cl_config_double(cfg, "cloth", "mass", 0.1, 1e-300, INFINITY,
-                               &mass, err)) ||
-        (rc = cl_config_double(cfg, "cloth", "particle_mass",
-                               mass / (double)(nu * nv), 1e-300, INFINITY,
-                               &pmass, err)))
-        return rc;
-    return cl_cloth_grid((int)nu, (int)nv, su, sv, pmass, c, err);
-}
 
 static cl_status read_init(cl_config *cfg, cl_model *m, cl_error *err)
 {
@@ -391,7 +368,7 @@ cl_status cl_model_create(cl_config *cfg, cl_model **model, cl_error *err)
     if (!m)
         return cl_error_set(err, CL_ENOMEM, "out of memory (model)");
     gsl_set_error_handler_off(); /* GSL reports through return codes */
-    if ((rc = read_grid(cfg, &m->cloth, err)) ||
+    if ((rc = cl_cloth_read(cfg, &m->cloth, err)) ||
         (rc = cl_pins_read(cfg, &m->cloth, err)) ||
         (rc = read_init(cfg, m, err)) ||
         (rc = cl_cloth_finalize(&m->cloth, err)) ||
@@ -582,9 +559,9 @@ cl_status cl_model_triangles(const cl_model *m, int (*tri)[3], size_t *ntri,
                              cl_error *err)
 {
     size_t kept = 0;
-    size_t all = cl_grid_triangles(m->cloth.nu, m->cloth.nv, tri);
     (void)err; /* nothing can fail: the torn set is kept by step_done */
-    for (size_t t = 0; t < all; t++) {
+    memcpy(tri, m->cloth.tri, m->cloth.ntri * sizeof *tri);
+    for (size_t t = 0; t < m->cloth.ntri; t++) {
         const int *v = tri[t];
         if (cl_model_is_broken(m, v[0], v[1]) ||
             cl_model_is_broken(m, v[1], v[2]) ||

@@ -1,14 +1,13 @@
-/* A cloth problem: the grid, its pins and its force terms, presented to the
- * integrators as a cl_system (SPEC 1).
+/* A cloth problem: the cloth (a grid or a mesh), its pins and its force
+ * terms, presented to the integrators as a cl_system (SPEC 1).
  *
  * INI sections read here:
- *   [cloth]    n (particles per side, default 16) or nu, nv; size (m,
- *              default 1) or su, sv; mass (total kg, default 0.1) or
- *              particle_mass (kg, overrides mass)
+ *   [cloth]    the grid or the mesh (model/cloth_read.h)
  *   [pins] .. [pins4]  pinned particles and their motion (model/pins.h)
  *   [init]     velocity = initial velocity of every free particle (vector,
  *              default 0,0,0); perturb = amplitude (m) of a uniform random
- *              out-of-plane displacement of the free particles (default 0:
+ *              displacement along y of the free particles, out of the
+ *              plane of a grid or of a horizontal mesh (default 0:
  *              positions start at rest); seed = its random seed (default 1)
  *   [jacobian] transverse = full|clamp (SPEC 3.1)
  *   [tear]     cut = a connection breaks for good when d > cut L (0, the
@@ -55,8 +54,9 @@ size_t cl_model_broken(const cl_model *m);
 /* Whether the connection a-b (either order) has torn. */
 bool cl_model_is_broken(const cl_model *m, int a, int b);
 
-/* The grid's triangles (cl_grid_triangles order) without those that have a
- * torn edge: tri must hold 2 (nu-1)(nv-1) rows; *ntri is the number kept. */
+/* The cloth's triangles (cl_cloth tri, in order) without those that have a
+ * torn edge: tri must hold cl_model_cloth(m)->ntri rows; *ntri is the
+ * number kept. */
 cl_status cl_model_triangles(const cl_model *m, int (*tri)[3], size_t *ntri,
                              cl_error *err);
 
