@@ -138,6 +138,41 @@ scripts/hang-mechanism.sh symmetry 10 0.2 0.3 0.5 1.0 > "$res/symmetry.txt"
 scripts/hang-mechanism.sh variants 10 0.5 > "$res/variants.txt"
 cat "$res/symmetry.txt" "$res/variants.txt"
 
+echo "report: contact (skirt; drape-sphere at several steps)"
+ct=$res/contact
+rm -rf "$ct" && mkdir -p "$ct"
+"$bin" run skirt --quiet --out "$ct/skirt" --frames 4 --format obj
+last=$(ls "$ct"/skirt/frame_*.obj | tail -1)
+draw skirt "cloth='$last'; obstacles='${last/frame_/obstacles_}'; title_text='skirt: the last frame, t = 4 s'" scene
+# Every run: "label worst_penetration_m at_s steps cpu_s status", and the
+# penetration over time as LABEL.dat.
+contact_run() { # label args...
+    local label=$1 dir=$ct/$1 status=ok
+    shift
+    "$bin" run drape-sphere --frames 2 --format obj --out "$dir" "$@" \
+        > "$dir.out" 2>&1 || status=failed
+    awk -v l="$label" -v s="$status" '
+        $1 == "contact" { w = $4; at = $9 } $1 == "steps" { n = $2 }
+        $1 == "cpu" { c = $4 } $1 == "time" { t = $2 }
+        END { print l, w, at, n, c, (s == "ok" ? s : s "@" t) }' \
+        "$dir.out" >> "$ct/drape.txt"
+    awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "max_penetration") c = i }
+        NR > 1 { print $1, $c }' "$dir/series.csv" > "$ct/$label.dat"
+}
+names=""
+for run in "cvode-bdf" "symplectic-euler 1e-4" "semi-be 1e-2" "semi-be 4e-2" \
+           "semi-bdf2 1e-2" "semi-bdf2 2e-2" "semi-bdf2 4e-2" \
+           "kinsol-bdf2 1e-2" "kinsol-bdf2 4e-2"; do
+    set -- $run
+    label=$1${2:+-$2}
+    contact_run "$label" --integrator "$1" ${2:+--dt "$2"}
+    names="$names $label"
+done
+cat "$ct/drape.txt"
+last=$(ls "$ct"/semi-bdf2-1e-2/frame_*.obj | tail -1)
+draw drape-sphere "cloth='$last'; obstacles='${last/frame_/obstacles_}'; title_text='drape-sphere, semi-bdf2 dt = 0.01: t = 3 s'" scene
+draw penetration "dir='$ct'; names='$names'; title_text='drape-sphere: deepest penetration into the sphere or the floor'"
+
 echo "report: animation (hang, cvode-bdf, 2 s)"
 "$bin" run hang --quiet --out "$res/hang" --frames 40 --format obj
 gnuplot -e "dir='$res/hang'; nframes=40; nv=16; outfile='plots/hang.gif'; xr0=-0.6; xr1=1.1; zr0=0; zr1=1; yr0=-1.1; yr1=0.1" plots/animation.gp
