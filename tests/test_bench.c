@@ -84,20 +84,28 @@ static double row_figure(const char *line, const char *unit)
     return strtod(p, NULL);
 }
 
+/* `bench --quick --only W` writing its CSV into tmp/name (created): the
+ * table on stdout must hold `unit`; the CSV's lines into L. */
+static void quick_workload(const char *w, const char *name, const char *unit,
+                           cli_lines *L)
+{
+    char csv[1024];
+    cli_result r;
+    cli_run(&r, "bench", "--quick", "--only", w, "--out", in_tmp(csv, name),
+            NULL);
+    cli_assert_no_crash(&r);
+    cr_assert_eq(r.status, 0, "%s: status %d\n%s", r.cmd, r.status, r.err);
+    cr_assert(strstr(r.out, unit), "table:\n%s", r.out);
+    cli_result_free(&r);
+    cli_read_lines(csv, L);
+}
+
 /* Workload 4 in its quick form: a table on stdout, the CSV with its header
  * and a force row whose figure is a positive time per pair. */
 Test(bench, quick_force_workload_writes_its_rows)
 {
-    char csv[1024];
-    cli_result r;
-    cli_run(&r, "bench", "--quick", "--only", "4", "--out",
-            in_tmp(csv, "sub/bench.csv"), NULL);
-    cli_assert_no_crash(&r);
-    cr_assert_eq(r.status, 0, "%s: status %d\n%s", r.cmd, r.status, r.err);
-    cr_assert(strstr(r.out, "ns/pair"), "table:\n%s", r.out);
-    cli_result_free(&r);
     cli_lines L;
-    cli_read_lines(csv, &L);
+    quick_workload("4", "sub/bench.csv", "ns/pair", &L);
     cr_assert_str_eq(L.line[0], "workload,case,side_a,side_b,cpu_a,cpu_b,"
                      "wall_a,wall_b,error_a,error_b,ratio,unit,goal,"
                      "target,met,note");
@@ -115,15 +123,8 @@ Test(bench, quick_force_workload_writes_its_rows)
  * force. */
 Test(bench, quick_mesh_workload_writes_its_rows)
 {
-    char csv[1024];
-    cli_result r;
-    cli_run(&r, "bench", "--quick", "--only", "7", "--out",
-            in_tmp(csv, "mesh.csv"), NULL);
-    cli_assert_no_crash(&r);
-    cr_assert_eq(r.status, 0, "%s: status %d\n%s", r.cmd, r.status, r.err);
-    cli_result_free(&r);
     cli_lines L;
-    cli_read_lines(csv, &L);
+    quick_workload("7", "mesh.csv", "every triangle", &L);
     cr_assert_eq(L.n, 3, "%zu rows", L.n - 1);
     static const char band[] = "7,band 0.9..1.1 R,bvh nearest triangle,"
                                "every triangle,";
