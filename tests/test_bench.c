@@ -40,8 +40,8 @@ Test(bench, help_and_bad_options)
     cli_assert_ok(&r);
     cr_assert(strstr(r.out, "usage: clothode bench"), "%s", r.out);
     cli_result_free(&r);
-    cli_run(&r, "bench", "--only", "7", NULL);
-    cli_assert_error(&r, 1, "--only", "7", NULL);
+    cli_run(&r, "bench", "--only", "8", NULL);
+    cli_assert_error(&r, 1, "--only", "8", NULL);
     cli_result_free(&r);
     cli_run(&r, "bench", "--only", "1,x", NULL);
     cli_assert_error(&r, 1, "--only", NULL);
@@ -73,33 +73,70 @@ Test(bench, peak_memory_child_prints_its_peak)
     cli_result_free(&r);
 }
 
+/* The figure of a CSV row: the number before ",UNIT," (NaN if absent). */
+static double row_figure(const char *line, const char *unit)
+{
+    const char *p = strstr(line, unit);
+    if (!p)
+        return NAN;
+    while (p > line && p[-1] != ',')
+        p--;
+    return strtod(p, NULL);
+}
+
+/* `bench --quick --only W` writing its CSV into tmp/name (created): the
+ * table on stdout must hold `unit`; the CSV's lines into L. */
+static void quick_workload(const char *w, const char *name, const char *unit,
+                           cli_lines *L)
+{
+    char csv[1024];
+    cli_result r;
+    cli_run(&r, "bench", "--quick", "--only", w, "--out", in_tmp(csv, name),
+            NULL);
+    cli_assert_no_crash(&r);
+    cr_assert_eq(r.status, 0, "%s: status %d\n%s", r.cmd, r.status, r.err);
+    cr_assert(strstr(r.out, unit), "table:\n%s", r.out);
+    cli_result_free(&r);
+    cli_read_lines(csv, L);
+}
+
 /* Workload 4 in its quick form: a table on stdout, the CSV with its header
  * and a force row whose figure is a positive time per pair. */
 Test(bench, quick_force_workload_writes_its_rows)
 {
-    char csv[1024];
-    cli_result r;
-    cli_run(&r, "bench", "--quick", "--only", "4", "--out",
-            in_tmp(csv, "sub/bench.csv"), NULL);
-    cli_assert_no_crash(&r);
-    cr_assert_eq(r.status, 0, "%s: status %d\n%s", r.cmd, r.status, r.err);
-    cr_assert(strstr(r.out, "ns/pair"), "table:\n%s", r.out);
-    cli_result_free(&r);
     cli_lines L;
-    cli_read_lines(csv, &L);
+    quick_workload("4", "sub/bench.csv", "ns/pair", &L);
     cr_assert_str_eq(L.line[0], "workload,case,side_a,side_b,cpu_a,cpu_b,"
                      "wall_a,wall_b,error_a,error_b,ratio,unit,goal,"
                      "target,met,note");
     cr_assert_eq(L.n, 3, "%zu rows", L.n - 1);
     cr_assert(!strncmp(L.line[1], "4,hang n=64,force,,", 19), "%s",
               L.line[1]);
-    const char *unit = strstr(L.line[1], ",ns/pair,<=,10,");
-    cr_assert_not_null(unit, "%s", L.line[1]);
-    const char *p = unit;
-    while (p > L.line[1] && p[-1] != ',')
-        p--;
-    double ns = strtod(p, NULL);
+    cr_assert(strstr(L.line[1], ",ns/pair,<=,10,"), "%s", L.line[1]);
+    double ns = row_figure(L.line[1], ",ns/pair,");
     cr_assert(ns > 0 && isfinite(ns), "figure %g ns per pair", ns);
+    cli_lines_free(&L);
+}
+
+/* Workload 7 in its quick form: the band row with its goal, the cube row
+ * without, positive speed-ups, the tree's distances those of brute
+ * force. */
+Test(bench, quick_mesh_workload_writes_its_rows)
+{
+    cli_lines L;
+    quick_workload("7", "mesh.csv", "every triangle", &L);
+    cr_assert_eq(L.n, 3, "%zu rows", L.n - 1);
+    static const char band[] = "7,band 0.9..1.1 R,bvh nearest triangle,"
+                               "every triangle,";
+    cr_assert(!strncmp(L.line[1], band, sizeof band - 1), "%s", L.line[1]);
+    cr_assert(strstr(L.line[1], ",x,>=,50,"), "%s", L.line[1]);
+    cr_assert(!strncmp(L.line[2], "7,cube 1.5 R,", 13), "%s", L.line[2]);
+    cr_assert(strstr(L.line[2], ",x,,,,"), "%s", L.line[2]);
+    for (size_t k = 1; k < 3; k++) {
+        double x = row_figure(L.line[k], ",x,");
+        cr_assert(x > 0 && isfinite(x), "figure %g", x);
+        cr_assert(strstr(L.line[k], "; 0 of "), "%s", L.line[k]);
+    }
     cli_lines_free(&L);
 }
 

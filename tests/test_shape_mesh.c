@@ -203,8 +203,8 @@ Test(shape_mesh, scale_and_translate)
 /* ---- a lumpy sphere against brute force ----------------------------- */
 
 /* An icosphere of level 2 with radii 0.7..1.3: closed, outward and not
- * convex. */
-static void lumpy_sphere(cl_shape_surface *sf)
+ * convex; as a surface and, read from its OBJ text, as a mesh shape. */
+static void lumpy_sphere(cl_shape_surface *sf, sc_shape *s)
 {
     cl_error err = {0};
     fd_rng r = {23};
@@ -214,6 +214,9 @@ static void lumpy_sphere(cl_shape_surface *sf)
         for (int i = 0; i < 3; i++)
             sf->vert[3 * v + i] *= k;
     }
+    char *obj = obj_text(sf);
+    mesh_shape(s, obj, "");
+    free(obj);
 }
 
 /* The generalised winding number: the solid angles of the triangles seen
@@ -271,10 +274,8 @@ static void sample(const cl_shape_surface *sf, fd_rng *r, int k, double x[3])
 Test(shape_mesh, lumpy_sphere_against_brute_force)
 {
     cl_shape_surface sf;
-    lumpy_sphere(&sf);
-    char *obj = obj_text(&sf);
     sc_shape s;
-    mesh_shape(&s, obj, "");
+    lumpy_sphere(&sf, &s);
     fd_rng r = {29};
     int inside = 0;
     for (int k = 0; k < 10000; k++) {
@@ -292,7 +293,6 @@ Test(shape_mesh, lumpy_sphere_against_brute_force)
     }
     cr_assert(inside > 2000 && inside < 8000, "%d points inside", inside);
     sc_free(&s);
-    free(obj);
     cl_shape_surface_free(&sf);
 }
 
@@ -301,10 +301,8 @@ Test(shape_mesh, lumpy_sphere_against_brute_force)
 Test(shape_mesh, hessian_against_differences)
 {
     cl_shape_surface sf;
-    lumpy_sphere(&sf);
-    char *obj = obj_text(&sf);
     sc_shape s;
-    mesh_shape(&s, obj, "");
+    lumpy_sphere(&sf, &s);
     fd_rng r = {31};
     int seen[3] = {0, 0, 0};
     for (int k = 0; k < 3000; k++) {
@@ -322,7 +320,6 @@ Test(shape_mesh, hessian_against_differences)
               "regions met: face %d, edge %d, vertex %d", seen[0], seen[1],
               seen[2]);
     sc_free(&s);
-    free(obj);
     cl_shape_surface_free(&sf);
 }
 

@@ -53,9 +53,9 @@ cl_status cl_bench_run(const cl_bench_opts *o, cl_bench_table *t,
         cl_bench_peers_start(&c);
     if (selected(&c, 1) || selected(&c, 2) || selected(&c, 6))
         cl_bench_choose(&c);
-    void (*const work[])(cl_bctx *) = {NULL, NULL, cl_bench_w2, cl_bench_w3,
-                                       cl_bench_w4, cl_bench_w5, cl_bench_w6,
-                                       NULL};
+    void (*const work[])(cl_bctx *) = {NULL,        NULL,        cl_bench_w2,
+                                       cl_bench_w3, cl_bench_w4, cl_bench_w5,
+                                       cl_bench_w6, cl_bench_w7, NULL};
     for (int w = 2; w <= CL_BENCH_WORKLOADS; w++)
         if (selected(&c, w) && !c.nomem)
             work[w](&c);

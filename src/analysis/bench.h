@@ -1,5 +1,5 @@
 /* Benchmarks (`clothode bench`, SPEC 7): cost of the integrators and
- * linear solvers on the default problem, against goals.  Six workloads:
+ * linear solvers on the default problem, against goals.  Seven workloads:
  *
  *   1  hang, cvode-bdf with the best linear solver against the scipy peer
  *      (scripts/peers/hang_scipy.py: solve_ivp BDF, analytic sparse
@@ -34,6 +34,10 @@
  *      bench --peak-memory`, which reports its own VmHWM); the note gives
  *      the bytes per unknown above a run at n = 8 (program, libraries and
  *      fixed buffers taken out).
+ *   7  the contact layer's nearest-triangle query (contact/bvh.h): CPU
+ *      time per point of the bounding-volume tree against trying every
+ *      triangle, on an icosphere of 20480 triangles and 10^4 points
+ *      around it; goal >= 50x.
  *
  * The best solver for cvode-bdf is picked once per run: every name of the
  * linear-solver registry plus klu-full, timed on the first case of
@@ -53,11 +57,11 @@
 
 #include "core/error.h"
 
-#define CL_BENCH_WORKLOADS 6
+#define CL_BENCH_WORKLOADS 7
 
 typedef struct {
     bool quick;
-    unsigned only;          /* bit w (1..6) selects workload w; 0: all */
+    unsigned only;          /* bit w (1..7) selects workload w; 0: all */
     const char *problems;   /* directory of the problem files */
     const char *peer;       /* the peer script */
     const char *self;       /* the clothode program, for child runs */
@@ -66,10 +70,11 @@ typedef struct {
 } cl_bench_opts;
 
 /* One result line.  cpu_*, wall_* are seconds of the timed unit (a whole
- * run; one step in workload 3; one evaluation in workload 4); ratio is the
- * measured figure in `unit` (x for a speed-up, s, ns/pair, steps/s,
- * B/unknown, or empty for an exponent), compared with target by goal
- * (">=" or "<="; "" when there is none).  NaN where not measured. */
+ * run; one step in workload 3; one evaluation in workload 4; one point in
+ * workload 7); ratio is the measured figure in `unit` (x for a speed-up,
+ * s, ns/pair, steps/s, B/unknown, or empty for an exponent), compared
+ * with target by goal (">=" or "<="; "" when there is none).  NaN where
+ * not measured. */
 typedef struct {
     int workload;
     char kase[48];

@@ -246,13 +246,6 @@ void cl_bench_w3(cl_bctx *c)
 
 /* ---- workload 4 ------------------------------------------------------- */
 
-/* Deterministic numbers in [-1, 1). */
-static double uniform(unsigned long long *s)
-{
-    *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
-    return 2.0 * ((double)(*s >> 11) / 9007199254740992.0) - 1.0;
-}
-
 /* Rest positions moved by up to 5 % of a spacing per coordinate (many
  * Type2 pairs on the buckling branch), velocities up to 0.1 m/s. */
 static void perturb(const cl_model *m, double *x, double *v, size_t n)
@@ -260,8 +253,8 @@ static void perturb(const cl_model *m, double *x, double *v, size_t n)
     double h = cl_model_cloth(m)->hu;
     unsigned long long s = 2024;
     for (size_t k = 0; k < n; k++) {
-        x[k] += 0.05 * h * uniform(&s);
-        v[k] = 0.1 * uniform(&s);
+        x[k] += 0.05 * h * cl_bench_uniform(&s);
+        v[k] = 0.1 * cl_bench_uniform(&s);
     }
 }
 

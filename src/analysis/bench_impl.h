@@ -116,6 +116,10 @@ void cl_bench_log(const cl_bctx *c, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 void cl_bench_log_row(const cl_bctx *c, const cl_bench_row *r);
 
+/* Deterministic numbers in [-1, 1) from the state *s (a linear
+ * congruential generator, Knuth's MMIX constants). */
+double cl_bench_uniform(unsigned long long *s);
+
 /* "cvode-bdf LINSOL" or "cvode-bdf (default)", and ", order <= K" for a
  * max_order K > 0. */
 void cl_bench_side(char *buf, size_t len, const char *linsol, int max_order);
@@ -134,5 +138,9 @@ void cl_bench_peers_stop(cl_bctx *c);
 void cl_bench_w3(cl_bctx *c);
 void cl_bench_w4(cl_bctx *c);
 void cl_bench_w5(cl_bctx *c);
+
+/* ---- bench_mesh.c: workload 7 --------------------------------------- */
+
+void cl_bench_w7(cl_bctx *c);
 
 #endif

@@ -41,6 +41,12 @@ void cl_bench_clock(double *cpu, double *wall)
     *wall = cl_clock_wall();
 }
 
+double cl_bench_uniform(unsigned long long *s)
+{
+    *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
+    return 2.0 * ((double)(*s >> 11) / 9007199254740992.0) - 1.0;
+}
+
 void cl_bench_side(char *buf, size_t len, const char *linsol, int max_order)
 {
     int at = snprintf(buf, len, "cvode-bdf %s", *linsol ? linsol

@@ -27,6 +27,8 @@ static const char bench_help[] =
     "  4  force evaluation at n = 64: <= 10 ns per pair\n"
     "  5  explicit integrators on a 30 x 30 cloth: >= 25,000 steps/s\n"
     "  6  peak memory per unknown of cvode-bdf at n = 128\n"
+    "  7  nearest triangle among 20480: bounding-volume tree vs trying all,\n"
+    "     >= 50x for points near the surface\n"
     "\n"
     "  --quick        a reduced set (smaller n and T), about two minutes\n"
     "  --only LIST    only these workloads, e.g. --only 3,4\n"

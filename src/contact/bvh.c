@@ -5,6 +5,8 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "core/vec3.h"
+
 /* Pending nodes of a query: at most one per level plus one (depth <= 30). */
 #define STACK 64
 
@@ -17,6 +19,7 @@ void cl_bvh_free(cl_bvh *b)
 {
     free(b->order);
     free(b->node);
+    free(b->normal);
     *b = (cl_bvh){0};
 }
 
@@ -111,7 +114,8 @@ cl_status cl_bvh_build(cl_bvh *b, const double *vert, size_t ntri,
     double *cent = malloc(3 * ntri * sizeof *cent);
     b->order = malloc(ntri * sizeof *b->order);
     b->node = malloc(2 * ntri * sizeof *b->node);
-    if (!cent || !b->order || !b->node) {
+    b->normal = malloc(ntri * sizeof *b->normal);
+    if (!cent || !b->order || !b->node || !b->normal) {
         free(cent);
         cl_bvh_free(b);
         return cl_error_set(err, CL_ENOMEM, "out of memory (bounding-volume "
@@ -119,6 +123,9 @@ cl_status cl_bvh_build(cl_bvh *b, const double *vert, size_t ntri,
     }
     for (size_t t = 0; t < ntri; t++) {
         b->order[t] = (int)t;
+        cl_v3_tri_cross(vert + 3 * tri[t][0], vert + 3 * tri[t][1],
+                        vert + 3 * tri[t][2], b->normal[t]);
+        cl_v3_normalize(b->normal[t]);
         for (int i = 0; i < 3; i++)
             cent[3 * t + i] = (vert[3 * tri[t][0] + i] +
                                vert[3 * tri[t][1] + i] +
@@ -148,6 +155,11 @@ static void try_triangle(const cl_bvh *b, int t, const double x[3],
 {
     const int *v = b->tri[t];
     cl_tri_point p;
+    double ap[3];
+    cl_v3_sub(x, b->vert + 3 * v[0], ap);
+    double hgt = cl_v3_dot(ap, b->normal[t]);
+    if (hgt * hgt >= hit->p.dist2)
+        return;
     cl_tri_closest(x, b->vert + 3 * v[0], b->vert + 3 * v[1],
                    b->vert + 3 * v[2], &p);
     if (!(p.dist2 >= hit->p.dist2)) {

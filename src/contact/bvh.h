@@ -11,8 +11,10 @@
  *
  * Query: a depth-first walk with a fixed stack on the C stack (no
  * allocation), the nearer child first, skipping every box farther than
- * the best triangle found so far; each triangle of a visited leaf gets the
- * exact closest point (contact/triangle.h).  The answer is a triangle at
+ * the best triangle found so far; a triangle of a visited leaf is skipped
+ * too when its plane is that far (a lower bound of its distance), and
+ * otherwise gets the exact closest point (contact/triangle.h).  Brute
+ * force tries every triangle the same way.  The answer is a triangle at
  * the least distance (which one, among triangles at exactly that
  * distance, is unspecified).  A non-finite point gets some triangle with
  * a non-finite distance. */
@@ -40,6 +42,7 @@ typedef struct {
     int *order;             /* triangle indices, leaf after leaf */
     cl_bvh_node *node;
     size_t nnode;
+    double (*normal)[3];    /* unit normal of each triangle */
 } cl_bvh;
 
 typedef struct {

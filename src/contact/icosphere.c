@@ -28,11 +28,10 @@ static cl_status icosahedron(cl_shape_surface *s, cl_error *err)
     const double v[12][3] = {{-1, p, 0}, {1, p, 0},  {-1, -p, 0}, {1, -p, 0},
                              {0, -1, p}, {0, 1, p},  {0, -1, -p}, {0, 1, -p},
                              {p, 0, -1}, {p, 0, 1},  {-p, 0, -1}, {-p, 0, 1}};
-    cl_status rc = cl_shape_surface_alloc(s, 12, 20, err);
+    cl_status rc = cl_shape_surface_alloc(s, 12, 20, ico_tri, err);
     if (rc)
         return rc;
     memcpy(s->vert, v, sizeof v);
-    memcpy(s->tri, ico_tri, sizeof ico_tri);
     for (size_t k = 0; k < 12; k++)
         cl_v3_normalize(s->vert + 3 * k);
     return CL_OK;

@@ -34,8 +34,7 @@ static cl_status box_create(cl_config *cfg, const char *sec, double pivot[3],
                                       "> 0", err);
         s.h[i] = 0.5 * size[i];
     }
-    memcpy(pivot, s.c, sizeof s.c);
-    return cl_shape_copy(&s, sizeof s, shape, err);
+    return cl_shape_copy(&s, sizeof s, s.c, pivot, shape, err);
 }
 
 /* x outside the box: the closest point is p (x relative to the centre)
@@ -97,13 +96,12 @@ static cl_status box_surface(const void *shape, cl_shape_surface *s,
                                    {0, 1, 5}, {0, 5, 4}, {2, 6, 7}, {2, 7, 3},
                                    {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
     const box *b = shape;
-    cl_status rc = cl_shape_surface_alloc(s, 8, 12, err);
+    cl_status rc = cl_shape_surface_alloc(s, 8, 12, tri, err);
     if (rc)
         return rc;
     for (int k = 0; k < 8; k++)
         for (int i = 0; i < 3; i++)
             s->vert[3 * k + i] = b->c[i] + (k >> i & 1 ? b->h[i] : -b->h[i]);
-    memcpy(s->tri, tri, sizeof tri);
     return CL_OK;
 }
 

@@ -43,9 +43,10 @@ cl_status cl_shape_vector(cl_config *cfg, const char *sec, const char *key,
     return cl_config_vector(cfg, sec, key, 3, out, err);
 }
 
-cl_status cl_shape_copy(const void *src, size_t size, void **shape,
-                        cl_error *err)
+cl_status cl_shape_copy(const void *src, size_t size, const double at[3],
+                        double pivot[3], void **shape, cl_error *err)
 {
+    memcpy(pivot, at, 3 * sizeof *pivot);
     *shape = malloc(size);
     if (!*shape)
         return cl_error_set(err, CL_ENOMEM, "out of memory (shape)");
@@ -79,14 +80,17 @@ void cl_shape_hessian(const double n[3], const double *e, double rho,
 }
 
 cl_status cl_shape_surface_alloc(cl_shape_surface *s, size_t nvert,
-                                 size_t ntri, cl_error *err)
+                                 size_t ntri, const int (*tri)[3],
+                                 cl_error *err)
 {
     s->nvert = nvert;
     s->ntri = ntri;
     s->vert = malloc((3 * nvert + 1) * sizeof *s->vert);
     s->tri = malloc((ntri + 1) * sizeof *s->tri);
-    if (s->vert && s->tri)
+    if (s->vert && s->tri) {
+        memcpy(s->tri, tri, ntri * sizeof *tri);
         return CL_OK;
+    }
     cl_shape_surface_free(s);
     return cl_error_set(err, CL_ENOMEM, "out of memory (surface of %zu "
                         "triangles)", ntri);

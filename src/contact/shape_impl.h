@@ -24,9 +24,10 @@ cl_status cl_shape_positive(cl_config *cfg, const char *sec, const char *key,
 cl_status cl_shape_vector(cl_config *cfg, const char *sec, const char *key,
                           bool required, double out[3], cl_error *err);
 
-/* A copy of the size bytes at src in *shape. */
-cl_status cl_shape_copy(const void *src, size_t size, void **shape,
-                        cl_error *err);
+/* The end of an analytic shape's create: a copy of the size bytes at src
+ * in *shape, and its pivot at `at`. */
+cl_status cl_shape_copy(const void *src, size_t size, const double at[3],
+                        double pivot[3], void **shape, cl_error *err);
 
 /* q for the point x whose closest surface point is c, on the side `sign`
  * (+1 outside, -1 inside): d = sign |x - c|, n = sign (x - c) / |x - c|,
@@ -42,9 +43,10 @@ bool cl_shape_answer(const double x[3], const double c[3], double sign,
 void cl_shape_hessian(const double n[3], const double *e, double rho,
                       double G[9]);
 
-/* Room for nvert vertices and ntri triangles (free with
+/* Room for nvert vertices and the ntri triangles tri, copied (free with
  * cl_shape_surface_free). */
 cl_status cl_shape_surface_alloc(cl_shape_surface *s, size_t nvert,
-                                 size_t ntri, cl_error *err);
+                                 size_t ntri, const int (*tri)[3],
+                                 cl_error *err);
 
 #endif

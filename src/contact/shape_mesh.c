@@ -328,12 +328,11 @@ static cl_status mesh_surface(const void *shape, cl_shape_surface *s,
                               cl_error *err)
 {
     const mesh *m = shape;
-    cl_status rc = cl_shape_surface_alloc(s, m->m.nvert, m->m.ntri, err);
-    if (rc)
-        return rc;
-    memcpy(s->vert, m->m.vert, 3 * m->m.nvert * sizeof *s->vert);
-    memcpy(s->tri, m->m.tri, m->m.ntri * sizeof *s->tri);
-    return CL_OK;
+    cl_status rc = cl_shape_surface_alloc(s, m->m.nvert, m->m.ntri,
+                                          (const int(*)[3])m->m.tri, err);
+    if (!rc)
+        memcpy(s->vert, m->m.vert, 3 * m->m.nvert * sizeof *s->vert);
+    return rc;
 }
 
 /* The distance from x to the bounding box of all triangles (0 inside): d

@@ -40,8 +40,7 @@ static cl_status plane_create(cl_config *cfg, const char *sec,
     if (!normalise(s.n))
         return cl_shape_bad_value(cfg, sec, "normal", "a nonzero vector",
                                   err);
-    memcpy(pivot, s.p, sizeof s.p);
-    return cl_shape_copy(&s, sizeof s, shape, err);
+    return cl_shape_copy(&s, sizeof s, s.p, pivot, shape, err);
 }
 
 static void plane_query(const void *shape, const double x[3],
@@ -77,7 +76,7 @@ static cl_status plane_surface(const void *shape, cl_shape_surface *s,
     static const int tri[2][3] = {{0, 1, 2}, {0, 2, 3}};
     const plane *pl = shape;
     double u[3], v[3];
-    cl_status rc = cl_shape_surface_alloc(s, 4, 2, err);
+    cl_status rc = cl_shape_surface_alloc(s, 4, 2, tri, err);
     if (rc)
         return rc;
     tangents(pl->n, u, v);
@@ -86,7 +85,6 @@ static cl_status plane_surface(const void *shape, cl_shape_surface *s,
         cl_v3_axpy(pl->p, 0.5 * pl->extent * corner[k][0], u, w);
         cl_v3_axpy(w, 0.5 * pl->extent * corner[k][1], v, w);
     }
-    memcpy(s->tri, tri, sizeof tri);
     return CL_OK;
 }
 

@@ -27,8 +27,7 @@ static cl_status sphere_create(cl_config *cfg, const char *sec,
     if ((rc = cl_shape_vector(cfg, sec, "center", false, s.c, err)) ||
         (rc = cl_shape_positive(cfg, sec, "radius", NAN, &s.r, err)))
         return rc;
-    memcpy(pivot, s.c, sizeof s.c);
-    return cl_shape_copy(&s, sizeof s, shape, err);
+    return cl_shape_copy(&s, sizeof s, s.c, pivot, shape, err);
 }
 
 static void sphere_query(const void *shape, const double x[3],
