@@ -1337,3 +1337,31 @@ Test(cli, malformed_obstacle_meshes_are_refused)
     expect_refused(LIST("run", ini, "--t-end", "0.01"), 0,
                    LIST("long.obj:1", "long"));
 }
+
+/* drape-sphere with one method of every family, through the first
+ * contact (t = 0.4 s): each finishes and prints its worst penetration,
+ * which stays within a few bands (eps = 5 mm) of the surface. */
+Test(cli, drape_sphere_runs_with_every_family)
+{
+    static const char *const runs[][4] = {
+        {"cvode-bdf", NULL, NULL, NULL},
+        {"semi-bdf2", "--dt", "0.01", NULL},
+        {"semi-be", "--dt", "0.01", NULL},
+        {"kinsol-bdf2", "--dt", "0.01", NULL},
+        {"symplectic-euler", "--dt", "1e-4", NULL},
+    };
+    char out[1024];
+    for (size_t k = 0; k < sizeof runs / sizeof *runs; k++) {
+        cli_result r;
+        cli_run(&r, "run", "drape-sphere", "--t-end", "0.4", "--frames",
+                "0", "--out", in_tmp(out, runs[k][0]), "--integrator",
+                runs[k][0], runs[k][1], runs[k][2], NULL);
+        cli_assert_ok(&r);
+        const char *w = strstr(r.out, "worst penetration ");
+        cr_assert_not_null(w, "%s: %s", runs[k][0], r.out);
+        double pen = strtod(w + strlen("worst penetration "), NULL);
+        cr_expect(pen >= 0.0 && pen < 0.02, "%s: worst penetration %g m",
+                  runs[k][0], pen);
+        cli_result_free(&r);
+    }
+}

@@ -1,0 +1,167 @@
+/* Obstacles (contact/obstacle.h): the scripted path (keyframes held before
+ * the first and after the last, linear in between), the rotation about
+ * the pivot, the exact velocity field against the motion of a shape point,
+ * queries on a moved and turned shape, names and refusals. */
+#include <criterion/criterion.h>
+
+#include <math.h>
+#include <string.h>
+
+#include "contact/obstacle.h"
+
+#define NSET 12
+
+static cl_status try_make(cl_obstacle *o, const char *sec,
+                          const char *const *sets, cl_error *err)
+{
+    cl_config *cfg = cl_config_alloc();
+    cr_assert_not_null(cfg);
+    for (size_t k = 0; sets[k]; k++)
+        cr_assert_eq(cl_config_set(cfg, sets[k], err), CL_OK, "%s", err->msg);
+    cl_status rc = cl_obstacle_create(cfg, sec, o, err);
+    cl_config_free(cfg);
+    return rc;
+}
+
+static void make(cl_obstacle *o, const char *const *sets)
+{
+    cl_error err = {0};
+    cr_assert_eq(try_make(o, "obstacle.o", sets, &err), CL_OK, "%s",
+                 err.msg);
+}
+
+Test(obstacle, path_is_held_and_interpolated)
+{
+    cl_obstacle o;
+    const char *sets[NSET] = {"obstacle.o.shape = sphere",
+                              "obstacle.o.radius = 1",
+                              "obstacle.o.path = 1: 0, 0, 0; 3: 2, -4, 6",
+                              "obstacle.o.response = project", NULL};
+    make(&o, sets);
+    cl_pose P;
+    cl_obstacle_pose(&o, 0.5, &P); /* before the first keyframe */
+    for (int i = 0; i < 3; i++)
+        cr_expect_eq(P.s[i], 0.0);
+    cr_expect_eq(P.sdot[0], 0.0);
+    cl_obstacle_pose(&o, 2.5, &P); /* three quarters of the way */
+    cr_expect_float_eq(P.s[0], 1.5, 1e-15);
+    cr_expect_float_eq(P.s[1], -3.0, 1e-15);
+    cr_expect_float_eq(P.s[2], 4.5, 1e-15);
+    cr_expect_float_eq(P.sdot[0], 1.0, 1e-15);
+    cr_expect_float_eq(P.sdot[1], -2.0, 1e-15);
+    cr_expect_float_eq(P.sdot[2], 3.0, 1e-15);
+    cl_obstacle_pose(&o, 7.0, &P); /* held after the last */
+    cr_expect_eq(P.s[2], 6.0);
+    cr_expect_eq(P.sdot[2], 0.0);
+    cr_expect_not(P.rotates);
+    cl_obstacle_free(&o);
+}
+
+/* The world position of the shape point X at time t (docs/model.md,
+ * eq. C2). */
+static void world(const cl_obstacle *o, double t, const double X[3],
+                  double x[3])
+{
+    cl_pose P;
+    cl_obstacle_pose(o, t, &P);
+    for (int i = 0; i < 3; i++) {
+        x[i] = o->pivot[i] + P.s[i];
+        for (int j = 0; j < 3; j++)
+            x[i] += P.R[3 * i + j] * (X[j] - o->pivot[j]);
+    }
+}
+
+Test(obstacle, velocity_field_is_the_motion_of_the_shape)
+{
+    cl_obstacle o;
+    const char *sets[NSET] = {"obstacle.o.shape = box",
+                              "obstacle.o.center = 1, 2, 3",
+                              "obstacle.o.size = 1, 2, 3",
+                              "obstacle.o.path = 0: 0, 0, 0; 4: 1, 2, -2",
+                              "obstacle.o.omega = 0.4, -0.3, 1.1",
+                              "obstacle.o.response = penalty",
+                              "obstacle.o.k = 1", NULL};
+    make(&o, sets);
+    cr_expect_float_eq(o.pivot[0], 1.0, 0.0);
+    const double X[3] = {1.7, 2.9, 2.2}; /* a point of the box's frame */
+    double t = 1.3, h = 1e-6, xp[3], xm[3], x[3];
+    world(&o, t + h, X, xp);
+    world(&o, t - h, X, xm);
+    world(&o, t, X, x);
+    cl_pose P;
+    cl_obstacle_pose(&o, t, &P);
+    cl_contact_point q;
+    cl_obstacle_query(&o, &P, x, &q);
+    for (int i = 0; i < 3; i++)
+        cr_expect_float_eq(q.u[i], (xp[i] - xm[i]) / (2 * h), 1e-8,
+                           "u[%d] = %.12g", i, q.u[i]);
+    /* the rotation is a rotation: R R^T = I, det 1 */
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            double rr = 0.0;
+            for (int k = 0; k < 3; k++)
+                rr += P.R[3 * i + k] * P.R[3 * j + k];
+            cr_expect_float_eq(rr, i == j, 1e-14);
+        }
+    cl_obstacle_free(&o);
+}
+
+/* A turned, moved box: the corner that moved with it is on its surface, a
+ * point along its moved face normal is at the expected distance. */
+Test(obstacle, queries_follow_the_moved_and_turned_shape)
+{
+    cl_obstacle o;
+    const char *sets[NSET] = {"obstacle.o.shape = box",
+                              "obstacle.o.size = 2, 2, 2",
+                              "obstacle.o.path = 0: 0, 0, 0; 1: 3, 0, 0",
+                              "obstacle.o.omega = 0, 0, 1.5707963267948966",
+                              "obstacle.o.response = project", NULL};
+    make(&o, sets);
+    const double corner[3] = {1, 1, 1}, face[3] = {1.5, 0.2, -0.3};
+    double x[3], y[3];
+    world(&o, 1.0, corner, x);
+    world(&o, 1.0, face, y);
+    cl_pose P;
+    cl_obstacle_pose(&o, 1.0, &P);
+    cl_contact_point q;
+    cl_obstacle_query(&o, &P, x, &q);
+    cr_expect_lt(fabs(q.d), 1e-14, "corner at d = %g", q.d);
+    cl_obstacle_query(&o, &P, y, &q);
+    cr_expect_float_eq(q.d, 0.5, 1e-14);
+    /* turned a quarter about z and moved 3 along x: the +x face normal
+     * now points along +y */
+    cr_expect_float_eq(q.n[1], 1.0, 1e-14);
+    cr_expect_float_eq(q.c[0], y[0] - 0.5 * q.n[0], 1e-14);
+    cr_expect_float_eq(q.c[1], y[1] - 0.5, 1e-14);
+    cl_obstacle_free(&o);
+}
+
+Test(obstacle, names_shapes_and_responses_are_checked)
+{
+    cl_obstacle o;
+    cl_error err = {0};
+    const char *bad_name[NSET] = {"obstacle.b@d.shape = sphere", NULL};
+    cr_expect_eq(try_make(&o, "obstacle.b@d", bad_name, &err), CL_EINVAL);
+    cr_expect(strstr(err.msg, "name"), "%s", err.msg);
+    const char *no_shape[NSET] = {"obstacle.o.response = project", NULL};
+    cr_expect_eq(try_make(&o, "obstacle.o", no_shape, &err), CL_EINVAL);
+    cr_expect(strstr(err.msg, "needs a shape"), "%s", err.msg);
+    const char *no_resp[NSET] = {"obstacle.o.shape = sphere",
+                                 "obstacle.o.radius = 1", NULL};
+    cr_expect_eq(try_make(&o, "obstacle.o", no_resp, &err), CL_EINVAL);
+    cr_expect(strstr(err.msg, "needs a response"), "%s", err.msg);
+    cl_obstacle_free(&o);
+    const char *no_k[NSET] = {"obstacle.o.shape = sphere",
+                              "obstacle.o.radius = 1",
+                              "obstacle.o.response = penalty", NULL};
+    cr_expect_eq(try_make(&o, "obstacle.o", no_k, &err), CL_EINVAL);
+    cr_expect(strstr(err.msg, "stiffness k"), "%s", err.msg);
+    cl_obstacle_free(&o);
+    const char *bad_omega[NSET] = {"obstacle.o.shape = sphere",
+                                   "obstacle.o.radius = 1",
+                                   "obstacle.o.omega = 1, 2",
+                                   "obstacle.o.response = project", NULL};
+    cr_expect_eq(try_make(&o, "obstacle.o", bad_omega, &err), CL_EINVAL);
+    cr_expect(strstr(err.msg, "omega"), "%s", err.msg);
+    cl_obstacle_free(&o);
+}
