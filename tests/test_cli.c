@@ -1255,33 +1255,33 @@ Test(cli, no_command_is_a_usage_error)
 
 Test(cli, bad_obstacle_parameters_are_refused)
 {
-    expect_refused(LIST("run", "drape-sphere", "--set",
-                        "obstacle.ball.radius=0"),
-                   0, LIST("[obstacle.ball] radius", "\"0\""));
-    expect_refused(LIST("run", "drape-sphere", "--set",
-                        "obstacle.ball.radius=-1"),
-                   0, LIST("radius", "\"-1\""));
-    expect_refused(LIST("run", "drape-sphere", "--set",
-                        "obstacle.floor.normal=0, 0, 0"),
-                   0, LIST("[obstacle.floor] normal", "nonzero"));
-    expect_refused(LIST("run", "drape-sphere", "--set",
-                        "obstacle.ball.shape=cone"),
-                   0, LIST("shape", "cone", "sphere", "plane", "box", "mesh"));
-    expect_refused(LIST("run", "drape-sphere", "--set",
-                        "obstacle.ball.response=bounce"),
-                   0, LIST("response", "bounce", "penalty", "project"));
-    expect_refused(LIST("run", "drape-sphere", "--set",
-                        "obstacle.ball.path=0: 1, 2"),
-                   0, LIST("[obstacle.ball] path", "keyframes"));
-    expect_refused(LIST("run", "drape-sphere", "--set",
-                        "obstacle.ball.path=1: 0, 0, 0; 1: 1, 0, 0"),
-                   0, LIST("path", "increasing"));
-    expect_refused(LIST("run", "drape-sphere", "--set",
-                        "obstacle.ball.k=0"),
-                   0, LIST("[obstacle.ball] k", "\"0\""));
-    expect_refused(LIST("run", "drape-box", "--set",
-                        "obstacle.table.size=1, 0, 1"),
-                   0, LIST("[obstacle.table] size", "> 0"));
+    static const struct {
+        const char *problem, *set, *want[6];
+    } bad[] = {
+        {"drape-sphere", "obstacle.ball.radius=0",
+         {"[obstacle.ball] radius", "\"0\""}},
+        {"drape-sphere", "obstacle.ball.radius=-1", {"radius", "\"-1\""}},
+        {"drape-sphere", "obstacle.floor.normal=0, 0, 0",
+         {"[obstacle.floor] normal", "nonzero"}},
+        {"drape-sphere", "obstacle.ball.shape=cone",
+         {"shape", "cone", "sphere", "plane", "box", "mesh"}},
+        {"drape-sphere", "obstacle.ball.response=bounce",
+         {"response", "bounce", "penalty", "project"}},
+        {"drape-sphere", "obstacle.ball.path=0: 1, 2",
+         {"[obstacle.ball] path", "keyframes"}},
+        {"drape-sphere", "obstacle.ball.path=1: 0, 0, 0; 1: 1, 0, 0",
+         {"path", "increasing"}},
+        {"drape-sphere", "obstacle.ball.k=0", {"[obstacle.ball] k", "\"0\""}},
+        {"drape-box", "obstacle.table.size=1, 0, 1",
+         {"[obstacle.table] size", "> 0"}},
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
+        const char *const *w = bad[k].want;
+        expect_refused(LIST("run", bad[k].problem, "--set", bad[k].set), 0,
+                       LIST(w[0], w[1], w[2] ? w[2] : w[1],
+                            w[3] ? w[3] : w[1], w[4] ? w[4] : w[1],
+                            w[5] ? w[5] : w[1]));
+    }
 }
 
 Test(cli, projection_refused_by_an_integrator_that_cannot_apply_it)

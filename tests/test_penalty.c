@@ -26,6 +26,16 @@ static void make(cl_obstacle *o, const char *const *sets)
     cl_config_free(cfg);
 }
 
+/* The world point of the shape-frame point X (relative to the pivot q):
+ * x = q + R X + s. */
+static void to_world(const cl_pose *P, const double q[3], const double X[3],
+                     double x[3])
+{
+    for (int i = 0; i < 3; i++)
+        x[i] = q[i] + P->s[i] + P->R[3 * i] * X[0] + P->R[3 * i + 1] * X[1] +
+               P->R[3 * i + 2] * X[2];
+}
+
 static bool force_at(const cl_obstacle *o, double t, const double x[3],
                      const double v[3], bool jac, cl_penalty_out *out)
 {
@@ -111,13 +121,10 @@ Test(penalty, plane_jacobians)
                               "obstacle.o.point = 0, -1, 0",
                               "obstacle.o.normal = 0.2, 1, 0.1", MOVING, NULL};
     make(&o, sets);
-    double X[3] = {0.1, -1.02 + 1.0, 0.1}, x[3]; /* relative to the pivot */
+    double X[3] = {0.1, -0.02, 0.1}, x[3]; /* relative to the pivot */
     cl_pose P;
     cl_obstacle_pose(&o, 1.3, &P);
-    const double *R = P.R, *s = P.s;
-    for (int i = 0; i < 3; i++)
-        x[i] = (i == 1 ? -1.0 : 0.0) + s[i] + R[3 * i] * X[0] +
-               R[3 * i + 1] * X[1] + R[3 * i + 2] * X[2];
+    to_world(&P, o.pivot, X, x);
     check_jacobians(&o, 1.3, x, vel, "plane");
     cl_obstacle_free(&o);
 }
@@ -132,7 +139,6 @@ Test(penalty, box_jacobians)
     double t = 0.4;
     cl_pose P;
     cl_obstacle_pose(&o, t, &P);
-    const double *R = P.R, *s = P.s;
     /* body-frame points: face (inside, outside), edge, corner */
     const double body[4][3] = {{0.3, 0.49, 0.1}, {0.3, 0.53, 0.1},
                                {1.02, 0.52, 0.0}, {1.02, 0.52, 0.53}};
@@ -140,9 +146,7 @@ Test(penalty, box_jacobians)
                            "box edge", "box corner"};
     for (int k = 0; k < 4; k++) {
         double x[3];
-        for (int i = 0; i < 3; i++)
-            x[i] = s[i] + R[3 * i] * body[k][0] + R[3 * i + 1] * body[k][1] +
-                   R[3 * i + 2] * body[k][2];
+        to_world(&P, o.pivot, body[k], x);
         check_jacobians(&o, t, x, vel, what[k]);
     }
     cl_obstacle_free(&o);
@@ -169,15 +173,12 @@ Test(penalty, mesh_jacobians)
     double t = 0.9;
     cl_pose P;
     cl_obstacle_pose(&o, t, &P);
-    const double *R = P.R, *s = P.s;
     const double body[3][3] = {{0.2, 0.3, 1.03}, {1.02, 0.3, 1.03},
                                {1.02, 1.03, 1.03}};
     const char *what[3] = {"mesh face", "mesh edge", "mesh vertex"};
     for (int k = 0; k < 3; k++) {
         double x[3];
-        for (int i = 0; i < 3; i++)
-            x[i] = s[i] + R[3 * i] * body[k][0] + R[3 * i + 1] * body[k][1] +
-                   R[3 * i + 2] * body[k][2];
+        to_world(&P, o.pivot, body[k], x);
         check_jacobians(&o, t, x, vel, what[k]);
     }
     cl_obstacle_free(&o);
