@@ -57,4 +57,10 @@ awk 'NR > 2 { name = $1; sub(/^as-specified$/, "as specified", name)
               sub(/^no-type2$/, "no Type2 pairs", name)
               printf "%s & %s \\\\\n", name, $2 }' \
     "$res/variants.txt" > "$tex/variants.tex"
+# Contact on drape-sphere: method, step, worst penetration (mm), when (s),
+# steps, CPU time (s), how the run ended.
+awk '{ end = $7; sub(/^failed@/, "stopped at ", end); sub(/^ok$/, "ran", end)
+       printf "%s & %s & %.3g & %s & %d & %.2f & %s \\\\\n",
+              $1, $2, 1000 * $3, $4, $5, $6, end }' \
+    "$res/contact/drape.txt" > "$tex/drape.tex"
 echo "paper: tables in $tex"

@@ -144,29 +144,27 @@ rm -rf "$ct" && mkdir -p "$ct"
 "$bin" run skirt --quiet --out "$ct/skirt" --frames 4 --format obj
 last=$(ls "$ct"/skirt/frame_*.obj | tail -1)
 draw skirt "cloth='$last'; obstacles='${last/frame_/obstacles_}'; title_text='skirt: the last frame, t = 4 s'" scene
-# Every run: "label worst_penetration_m at_s steps cpu_s status", and the
-# penetration over time as LABEL.dat.
-contact_run() { # label args...
-    local label=$1 dir=$ct/$1 status=ok
-    shift
-    "$bin" run drape-sphere --frames 2 --format obj --out "$dir" "$@" \
-        > "$dir.out" 2>&1 || status=failed
-    awk -v l="$label" -v s="$status" '
+# Every run: "method step worst_penetration_m at_s steps cpu_s status"
+# (step "-" for CVODE), and the penetration over time as LABEL.dat.
+contact_run() { # method [step]
+    local label=$1${2:+-$2} status=ok
+    local dir=$ct/$label
+    "$bin" run drape-sphere --frames 2 --format obj --out "$dir" \
+        --integrator "$1" ${2:+--dt "$2"} > "$dir.out" 2>&1 || status=failed
+    awk -v m="$1" -v h="${2:--}" -v s="$status" '
         $1 == "contact" { w = $4; at = $9 } $1 == "steps" { n = $2 }
         $1 == "cpu" { c = $4 } $1 == "time" { t = $2 }
-        END { print l, w, at, n, c, (s == "ok" ? s : s "@" t) }' \
+        END { print m, h, w, at, n, c, (s == "ok" ? s : s "@" t) }' \
         "$dir.out" >> "$ct/drape.txt"
     awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "max_penetration") c = i }
         NR > 1 { print $1, $c }' "$dir/series.csv" > "$ct/$label.dat"
+    names="$names $label"
 }
 names=""
 for run in "cvode-bdf" "symplectic-euler 1e-4" "semi-be 1e-2" "semi-be 4e-2" \
            "semi-bdf2 1e-2" "semi-bdf2 2e-2" "semi-bdf2 4e-2" \
            "kinsol-bdf2 1e-2" "kinsol-bdf2 4e-2"; do
-    set -- $run
-    label=$1${2:+-$2}
-    contact_run "$label" --integrator "$1" ${2:+--dt "$2"}
-    names="$names $label"
+    contact_run $run
 done
 cat "$ct/drape.txt"
 last=$(ls "$ct"/semi-bdf2-1e-2/frame_*.obj | tail -1)

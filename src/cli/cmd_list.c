@@ -1,10 +1,13 @@
-/* clothode list: problems, integrators and force terms. */
+/* clothode list: problems, integrators, force terms and obstacle
+ * shapes. */
 #include <dirent.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli/cli.h"
 #include "cli/commands.h"
+#include "contact/contact.h"
+#include "contact/shape.h"
 #include "forces/term.h"
 #include "integrators/integrator.h"
 
@@ -58,7 +61,8 @@ int cl_cmd_list(int argc, char **argv)
 {
     if (argc > 1 && !strcmp(argv[1], "--help")) {
         puts("usage: clothode list\nNames the problems (problems/*.ini or "
-             "$CLOTHODE_PROBLEMS), the integrators and the force terms.");
+             "$CLOTHODE_PROBLEMS), the integrators, the force terms and the "
+             "obstacle shapes.");
         return 0;
     }
     if (argc > 1)
@@ -72,5 +76,10 @@ int cl_cmd_list(int argc, char **argv)
     for (size_t k = 0; cl_term_registry[k]; k++)
         printf("  %-20s %s\n", cl_term_registry[k]->name,
                cl_term_registry[k]->doc);
+    printf("  %-20s %s\n", cl_contact_term.name, cl_contact_term.doc);
+    printf("obstacle shapes ([obstacle.NAME] shape = ...):\n");
+    for (size_t k = 0; cl_shape_registry[k]; k++)
+        printf("  %-20s %s\n", cl_shape_registry[k]->name,
+               cl_shape_registry[k]->doc);
     return 0;
 }
