@@ -1290,6 +1290,11 @@ Test(cli, projection_refused_by_an_integrator_that_cannot_apply_it)
                    LIST("ida", "response = project", "penalty"));
     expect_refused(LIST("run", "jiao-sphere", "--integrator", "gsl-rk8pd"),
                    0, LIST("gsl-rk8pd", "response = project"));
+    expect_refused(LIST("run", "jiao-sphere", "--integrator", "cvode-bdf"),
+                   0, LIST("cvode-bdf", "friction", "zero_velocity"));
+    expect_refused(LIST("energy", "verlet-scene1", "--integrator",
+                        "cvode-bdf", "--t-end", "0.1"),
+                   0, LIST("energy balance", "projections"));
 }
 
 /* A problem whose obstacle is the mesh FILE: every malformed OBJ stops the

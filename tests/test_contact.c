@@ -259,4 +259,16 @@ Test(contact, projection_refused_by_methods_that_cannot_apply_it)
     }
     pr_free(&p);
     tmp_rm_rf(dir);
+    /* CVODE BDF projects, but not with friction */
+    particle(&p, dir, "shape = plane\nnormal = 0, 1, 0\nresponse = project\n"
+                      "mu = 0.2");
+    void *st = NULL;
+    cl_error err = {0};
+    cr_expect_eq(cl_integrator_find("cvode-bdf")->create(
+                     cl_model_system(p.m), &io, 0.0, x, v, &st, &err),
+                 CL_EUNSUPPORTED);
+    cr_expect(strstr(err.msg, "friction"), "%s", err.msg);
+    cr_expect_null(st);
+    pr_free(&p);
+    tmp_rm_rf(dir);
 }

@@ -53,6 +53,12 @@ cl_status cl_ebal_check(cl_model *m, const cl_integrator_type *type,
         return cl_error_set(err, CL_EINVAL, "samples = %ld, T = %g: expected "
                             ">= 1 and > 0", samples, T);
     cl_status rc = cl_trial_whole_steps(type, io->dt, T, err);
+    if (!rc && !type->fixed_step && cl_model_system(m)->projects)
+        return cl_error_set(err, CL_EUNSUPPORTED, "%s: the energy balance "
+                            "cannot separate the work of contact "
+                            "projections made inside an adaptive method's "
+                            "steps; use a fixed-step method or penalty "
+                            "contact", type->name);
     return rc ? rc : cl_trial_repeatable(m, err);
 }
 

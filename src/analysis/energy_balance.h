@@ -46,7 +46,8 @@ typedef struct {
 
 /* Whether the run can be made: CL_EINVAL for samples < 1 or a T that is
  * not a whole number of fixed steps; CL_EUNSUPPORTED for a model that
- * tears. */
+ * tears, and for an adaptive method on a model with contact projections
+ * (CVODE projects inside its steps, whose states may be rejected). */
 cl_status cl_ebal_check(cl_model *m, const cl_integrator_type *type,
                         const cl_integrator_opts *io, double T, long samples,
                         cl_error *err);

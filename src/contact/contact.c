@@ -27,6 +27,16 @@ struct cl_contact {
 
 bool cl_contact_projects(const cl_contact *c) { return c->projects; }
 
+bool cl_contact_projects_friction(const cl_contact *c)
+{
+    for (size_t k = 0; k < c->nobs; k++) {
+        const cl_response_params *r = &c->obs[k].resp;
+        if (r->kind == CL_RESPONSE_PROJECT && (r->mu > 0 || r->zero_velocity))
+            return true;
+    }
+    return false;
+}
+
 void cl_contact_restart(cl_contact *c)
 {
     c->last_t = 0.0;

@@ -33,6 +33,8 @@ typedef struct {
 } cl_contact_figures;
 
 bool cl_contact_projects(const cl_contact *c);
+/* Some projecting obstacle has friction (mu > 0) or zero_velocity. */
+bool cl_contact_projects_friction(const cl_contact *c);
 size_t cl_contact_obstacles(const cl_contact *c);
 const cl_obstacle *cl_contact_obstacle(const cl_contact *c, size_t k);
 

@@ -313,9 +313,9 @@ cl_status cl_sun_configure(cl_sun *s, const cl_integrator_opts *o,
     return CL_OK;
 }
 
-/* The error estimate of a particle the projection moved loses its part
- * along the move (the normal): positions and velocities (see the
- * header). */
+/* The error estimate of a particle the projection moved (see the
+ * header): its position error and velocity error lose the part along the
+ * move (the normal), which the projection sets. */
 static void sun_project_error(const cl_sun *s, const double *corr,
                               double *e)
 {
@@ -386,6 +386,13 @@ cl_status cl_sun_cvode_create(size_t size, const char *name, int lmm,
     int flag = CVodeInit(s->mem, cl_sun_cvode_rhs, t0, s->y);
     if (flag < 0)
         return cl_sun_fail(s, "CVodeInit", flag, err);
+    if (sys->projects_friction)
+        return cl_error_set(err, CL_EUNSUPPORTED, "%s cannot apply a contact "
+                            "response = project with friction (mu > 0 or "
+                            "zero_velocity): the friction acts on the "
+                            "velocity after CVODE's step, which its error "
+                            "control cannot follow; use a fixed-step "
+                            "method, mu = 0, or response = penalty", name);
     if (sys->projects && (st = sun_set_projection(s, err)) != CL_OK)
         return st;
     return cl_sun_configure(s, o, err);

@@ -47,7 +47,10 @@
  *   part along the move, the normal, in positions and velocities, so the
  *   error test judges the motion the contact leaves free and does not
  *   shrink the step to resolve the jumps of a particle resting on a
- *   surface.  CVODE Adams and IDA refuse a problem
+ *   surface.  Projection with friction (mu > 0, zero_velocity) is refused:
+ *   it cuts the tangential velocity after the step while the step itself
+ *   slid the particle frictionlessly, an error that grows with CVODE's
+ *   step and that its error test never sees.  CVODE Adams and IDA refuse a problem
  *   that projects; without projections every method calls the contact hook
  *   at its output times, for the contact figures only.
  *

@@ -302,7 +302,9 @@ static cl_status sys_step_done(void *data, double t, const double *x,
 
 /* Contact after an accepted step (model/system.h): the deepest
  * penetration, then the projections; with track_work their energy change
- * (kinetic and potential, friction included) is added to contact_work. */
+ * (kinetic and potential, friction included) is added to contact_work,
+ * for recorded calls only (not CVODE's projections inside its steps,
+ * whose states may lie far inside an obstacle and may be rejected). */
 static cl_status sys_contact(void *data, double t, double *x, double *v,
                              bool record)
 {
@@ -316,14 +318,15 @@ static cl_status sys_contact(void *data, double t, double *x, double *v,
     }
     if (!m->sys.projects)
         return CL_OK;
-    if (m->track_work) {
+    bool track = m->track_work && record;
+    if (track) {
         memcpy(m->xw, x, n * sizeof *x);
         memcpy(m->vw, v, n * sizeof *v);
     }
     size_t moved = cl_contact_project(m->contact, t, m->xf, m->vf);
     cl_cloth_gather(&m->cloth, m->xf, x);
     cl_cloth_gather(&m->cloth, m->vf, v);
-    if (m->track_work && moved) {
+    if (track && moved) {
         cl_energy before, after;
         cl_status rc;
         if ((rc = sys_energy(m, t, m->xw, m->vw, &before)) ||
@@ -390,7 +393,9 @@ cl_status cl_model_create(cl_config *cfg, cl_model **model, cl_error *err)
                              any_hook(m, offsetof(cl_term_type, step_done))
                          ? sys_step_done : NULL,
         .contact = m->contact ? sys_contact : NULL,
-        .projects = m->contact && cl_contact_projects(m->contact)};
+        .projects = m->contact && cl_contact_projects(m->contact),
+        .projects_friction =
+            m->contact && cl_contact_projects_friction(m->contact)};
     *model = m;
     return CL_OK;
 }

@@ -71,6 +71,9 @@ typedef struct cl_system {
     cl_status (*contact)(void *data, double t, double *x, double *v,
                          bool record);
     bool projects;  /* some obstacle has response = project */
+    bool projects_friction; /* ... with friction: mu > 0 or zero_velocity
+                             * (a velocity-level law that CVODE's error
+                             * control cannot follow, see sun_common.h) */
 } cl_system;
 
 #endif
