@@ -40,8 +40,8 @@ Test(bench, help_and_bad_options)
     cli_assert_ok(&r);
     cr_assert(strstr(r.out, "usage: clothode bench"), "%s", r.out);
     cli_result_free(&r);
-    cli_run(&r, "bench", "--only", "8", NULL);
-    cli_assert_error(&r, 1, "--only", "8", NULL);
+    cli_run(&r, "bench", "--only", "9", NULL);
+    cli_assert_error(&r, 1, "--only", "9", NULL);
     cli_result_free(&r);
     cli_run(&r, "bench", "--only", "1,x", NULL);
     cli_assert_error(&r, 1, "--only", NULL);
@@ -136,6 +136,38 @@ Test(bench, quick_mesh_workload_writes_its_rows)
         double x = row_figure(L.line[k], ",x,");
         cr_assert(x > 0 && isfinite(x), "figure %g", x);
         cr_assert(strstr(L.line[k], "; 0 of "), "%s", L.line[k]);
+    }
+    cli_lines_free(&L);
+}
+
+/* The number after `key` in a line (NaN if absent). */
+static double number_after(const char *line, const char *key)
+{
+    const char *p = strstr(line, key);
+    return p ? strtod(p + strlen(key), NULL) : NAN;
+}
+
+/* Workload 8 in its quick form: one row per state of the skirt, the share
+ * a percentage strictly between 0 and 100 with its goal, and particles in
+ * contact at both states. */
+Test(bench, quick_contact_workload_writes_its_rows)
+{
+    cli_lines L;
+    quick_workload("8", "contact.csv", "<= 25 %", &L);
+    cr_assert_eq(L.n, 3, "%zu rows", L.n - 1);
+    static const char *const kase[] = {"8,skirt t=0.5 s (sphere),",
+                                       "8,skirt t=3 s (floor),"};
+    for (size_t k = 1; k < 3; k++) {
+        const char *line = L.line[k];
+        cr_assert(!strncmp(line, kase[k - 1], strlen(kase[k - 1])), "%s",
+                  line);
+        cr_assert(strstr(line, ",contact term + hook,force + hook,"), "%s",
+                  line);
+        cr_assert(strstr(line, ",%,<=,25,"), "%s", line);
+        double share = row_figure(line, ",%,");
+        cr_assert(share > 0 && share < 100, "share %g %% (%s)", share, line);
+        double in = number_after(line, " particles, ");
+        cr_assert(in > 0 && isfinite(in), "no particle in contact: %s", line);
     }
     cli_lines_free(&L);
 }

@@ -1,5 +1,5 @@
 /* Benchmarks (`clothode bench`, SPEC 7): cost of the integrators and
- * linear solvers on the default problem, against goals.  Seven workloads:
+ * linear solvers on the default problem, against goals.  Eight workloads:
  *
  *   1  hang, cvode-bdf with the best linear solver against the scipy peer
  *      (scripts/peers/hang_scipy.py: solve_ivp BDF, analytic sparse
@@ -38,6 +38,11 @@
  *      time per point of the bounding-volume tree against trying every
  *      triangle, on an icosphere of 20480 triangles and 10^4 points
  *      around it; goal >= 50x.
+ *   8  the contact share of a skirt step (problems/skirt.ini, its
+ *      symplectic-euler-x at dt = 2e-4 s) at t = 0.5 s (over the sphere)
+ *      and t = 3 s (on the floor): CPU time of the contact term's
+ *      evaluation plus the contact hook after the step, over that of the
+ *      model's whole force plus the hook; goal <= 25 %.
  *
  * The best solver for cvode-bdf is picked once per run: every name of the
  * linear-solver registry plus klu-full, timed on the first case of
@@ -57,11 +62,11 @@
 
 #include "core/error.h"
 
-#define CL_BENCH_WORKLOADS 7
+#define CL_BENCH_WORKLOADS 8
 
 typedef struct {
     bool quick;
-    unsigned only;          /* bit w (1..7) selects workload w; 0: all */
+    unsigned only;          /* bit w (1..8) selects workload w; 0: all */
     const char *problems;   /* directory of the problem files */
     const char *peer;       /* the peer script */
     const char *self;       /* the clothode program, for child runs */
@@ -71,8 +76,9 @@ typedef struct {
 
 /* One result line.  cpu_*, wall_* are seconds of the timed unit (a whole
  * run; one step in workload 3; one evaluation in workload 4; one point in
- * workload 7); ratio is the measured figure in `unit` (x for a speed-up,
- * s, ns/pair, steps/s, B/unknown, or empty for an exponent), compared
+ * workload 7; one step's share in workload 8); ratio is the measured
+ * figure in `unit` (x for a speed-up, s, ns/pair, steps/s, B/unknown, %,
+ * or empty for an exponent), compared
  * with target by goal (">=" or "<="; "" when there is none).  NaN where
  * not measured. */
 typedef struct {

@@ -338,20 +338,6 @@ typedef struct {
     double dt;             /* 0: the problem's [run] dt */
 } w5_case;
 
-/* [run] dt and verlet_damping of the problem (dt given: that one). */
-static cl_status w5_opts(cl_config *cfg, double dt, cl_integrator_opts *io,
-                         cl_error *err)
-{
-    cl_status rc = cl_config_double(cfg, "run", "dt", dt, 0.0, INFINITY,
-                                    &io->dt, err);
-    if (!rc && dt > 0)
-        io->dt = dt;
-    if (!rc)
-        rc = cl_config_double(cfg, "run", "verlet_damping", 0.0, 0.0,
-                              0.999999, &io->vdamp, err);
-    return rc;
-}
-
 static void w5_one(cl_bctx *c, const w5_case *wc)
 {
     cl_bench_row *row = cl_bench_row_add(c, 5, "30x30 cloth");
@@ -367,7 +353,8 @@ static void w5_one(cl_bctx *c, const w5_case *wc)
         cl_bench_note(row, "%s", err.msg);
     } else {
         fixed_plan fp = {10, W5_CHUNK, W5_CHUNK, c->plan.eval_budget};
-        fixed_time ft = {.rc = w5_opts(bm.cfg, wc->dt, &io, &err)};
+        fixed_time ft = {
+            .rc = cl_bench_fixed_opts(bm.cfg, wc->dt, &io, &err)};
         if (!ft.rc)
             time_fixed(bm.m, type, &io, &fp, &ft);
         if (ft.rc)

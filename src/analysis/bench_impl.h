@@ -24,7 +24,7 @@ typedef struct {
     int w3_nn;               /* workload 3: sizes */
     int w3_n[4];
     double w3_budget;        /* CPU seconds per (solver, n, dt) */
-    double eval_budget;      /* workloads 4 and 5: seconds per case */
+    double eval_budget;      /* workloads 4, 5, 7, 8: seconds per case */
     int w6_n;
 } cl_bplan;
 
@@ -84,6 +84,11 @@ cl_status cl_bench_model(const cl_bctx *c, const char *problem,
                          cl_error *err);
 void cl_bench_model_free(cl_bmodel *bm);
 
+/* [run] dt and verlet_damping of a problem's configuration into io (dt
+ * > 0 given: that one instead of [run] dt). */
+cl_status cl_bench_fixed_opts(cl_config *cfg, double dt,
+                              cl_integrator_opts *io, cl_error *err);
+
 /* Process CPU and monotonic wall clocks (s). */
 void cl_bench_clock(double *cpu, double *wall);
 
@@ -142,5 +147,9 @@ void cl_bench_w5(cl_bctx *c);
 /* ---- bench_mesh.c: workload 7 --------------------------------------- */
 
 void cl_bench_w7(cl_bctx *c);
+
+/* ---- bench_contact.c: workload 8 ------------------------------------ */
+
+void cl_bench_w8(cl_bctx *c);
 
 #endif

@@ -35,6 +35,19 @@ void cl_bench_model_free(cl_bmodel *bm)
     bm->cfg = NULL;
 }
 
+cl_status cl_bench_fixed_opts(cl_config *cfg, double dt,
+                              cl_integrator_opts *io, cl_error *err)
+{
+    cl_status rc = cl_config_double(cfg, "run", "dt", dt, 0.0, INFINITY,
+                                    &io->dt, err);
+    if (!rc && dt > 0)
+        io->dt = dt;
+    if (!rc)
+        rc = cl_config_double(cfg, "run", "verlet_damping", 0.0, 0.0,
+                              0.999999, &io->vdamp, err);
+    return rc;
+}
+
 void cl_bench_clock(double *cpu, double *wall)
 {
     *cpu = cl_clock_cpu();

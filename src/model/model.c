@@ -580,6 +580,8 @@ cl_status cl_model_triangles(const cl_model *m, int (*tri)[3], size_t *ntri,
 
 const cl_contact *cl_model_contact(const cl_model *m) { return m->contact; }
 
+cl_contact *cl_model_contact_state(cl_model *m) { return m->contact; }
+
 void cl_model_contact_start(cl_model *m, bool track_work)
 {
     m->worst_pen = 0.0;

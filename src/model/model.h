@@ -81,6 +81,12 @@ cl_status cl_model_jacobian_full(cl_model *m, double t, const double *x,
 /* The obstacles, or NULL when the problem has none. */
 const cl_contact *cl_model_contact(const cl_model *m);
 
+/* The same pointer, writable: the contact term's own state, for calling
+ * cl_contact_term's functions (its eval) directly on full-particle arrays,
+ * e.g. to time the term alone (bench workload 8).  The model owns it;
+ * use the const accessor above for anything else. */
+cl_contact *cl_model_contact_state(cl_model *m);
+
 /* Start of a run: the worst penetration is forgotten, and with track_work
  * the contact hook accounts the energy every projection changes
  * (cl_energy.contact_work; two energy evaluations per projecting step,
