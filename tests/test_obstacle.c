@@ -165,3 +165,38 @@ Test(obstacle, names_shapes_and_responses_are_checked)
     cr_expect(strstr(err.msg, "omega"), "%s", err.msg);
     cl_obstacle_free(&o);
 }
+
+/* The memo only skips queries that cannot matter: along a random walk
+ * about a moving, turning box, cl_obstacle_near with a memo answers as it
+ * does without. */
+Test(obstacle, memo_skips_only_what_cannot_matter)
+{
+    cl_obstacle o;
+    const char *sets[NSET] = {"obstacle.o.shape = box",
+                              "obstacle.o.size = 1, 1, 1",
+                              "obstacle.o.path = 0: 0, 0, 0; 10: 1, 0, 0",
+                              "obstacle.o.omega = 0, 0.3, 0",
+                              "obstacle.o.response = penalty",
+                              "obstacle.o.k = 1", NULL};
+    make(&o, sets);
+    cl_contact_memo memo = {{0, 0, 0}, -INFINITY};
+    double x[3] = {1.5, 0.2, 0.1};
+    unsigned long seed = 12345, same = 0, steps = 20000;
+    for (unsigned long k = 0; k < steps; k++) {
+        for (int i = 0; i < 3; i++) { /* a small random step */
+            seed = seed * 6364136223846793005UL + 1442695040888963407UL;
+            x[i] += 0.01 * ((double)(seed >> 11) / 9007199254740992.0 - 0.5);
+        }
+        cl_pose P;
+        cl_obstacle_pose(&o, 1e-3 * (double)k, &P);
+        cl_contact_point a, b;
+        bool with = cl_obstacle_near(&o, &P, x, 0.05, &memo, &a);
+        bool without = cl_obstacle_near(&o, &P, x, 0.05, NULL, &b);
+        cr_assert_eq(with, without, "step %lu", k);
+        if (with)
+            cr_assert_eq(memcmp(&a, &b, sizeof a), 0, "step %lu", k);
+        same += with == without;
+    }
+    cr_expect_eq(same, steps);
+    cl_obstacle_free(&o);
+}

@@ -17,6 +17,7 @@ struct cl_contact {
     size_t nobs;
     cl_obstacle *obs;
     cl_pose *pose;           /* scratch: every obstacle's pose at a time */
+    cl_contact_memo *memo;   /* np per obstacle: the last exact distances */
     bool penalizes, projects;
     long passes;             /* projection passes */
     long *slot;              /* diagonal block of each particle, or -1 */
@@ -50,6 +51,12 @@ const cl_obstacle *cl_contact_obstacle(const cl_contact *c, size_t k)
     return &c->obs[k];
 }
 
+/* The memo of particle p and obstacle k. */
+static cl_contact_memo *memo_of(cl_contact *c, size_t k, size_t p)
+{
+    return &c->memo[k * c->cloth->np + p];
+}
+
 /* ---- the term --------------------------------------------------------- */
 
 static void contact_free(void *state)
@@ -61,6 +68,7 @@ static void contact_free(void *state)
         cl_obstacle_free(&c->obs[k]);
     free(c->obs);
     free(c->pose);
+    free(c->memo);
     free(c->slot);
     free(c);
 }
@@ -79,11 +87,14 @@ static cl_status contact_create(cl_config *cfg, const cl_cloth *cloth,
     cl_contact *c = calloc(1, sizeof *c);
     if (!c || !(c->obs = calloc(n, sizeof *c->obs)) ||
         !(c->pose = calloc(n, sizeof *c->pose)) ||
+        !(c->memo = malloc(n * cloth->np * sizeof *c->memo)) ||
         !(c->slot = malloc(cloth->np * sizeof *c->slot))) {
         contact_free(c);
         return cl_error_set(err, CL_ENOMEM, "out of memory (obstacles)");
     }
     c->cloth = cloth;
+    for (size_t k = 0; k < n * cloth->np; k++)
+        c->memo[k].d = -INFINITY;
     for (; c->nobs < n; c->nobs++) {
         cl_obstacle *o = &c->obs[c->nobs];
         cl_status rc = cl_obstacle_create(
@@ -143,7 +154,8 @@ static void contact_eval(void *state, cl_eval *ev)
             cl_contact_point q;
             cl_penalty_out out;
             if (c->slot[p] < 0 ||
-                !cl_obstacle_near(o, &P, ev->x + 3 * p, o->resp.eps, &q) ||
+                !cl_obstacle_near(o, &P, ev->x + 3 * p, o->resp.eps,
+                                  memo_of(c, k, p), &q) ||
                 !cl_penalty_eval(&o->resp, &q, ev->v + 3 * p, jac, &out))
                 continue;
             for (int i = 0; ev->f && i < 3; i++)
@@ -211,7 +223,7 @@ void cl_contact_measure(cl_contact *c, double t, const double *x,
             cl_contact_point q;
             cl_penalty_out out;
             if (!cl_obstacle_near(o, &c->pose[k], x + 3 * p, reach(&o->resp),
-                                  &q))
+                                  memo_of(c, k, p), &q))
                 continue;
             f->max_penetration = fmax(f->max_penetration, -q.d);
             in |= touching(&o->resp, q.d);
@@ -238,7 +250,8 @@ double cl_contact_penetration(cl_contact *c, double t, const double *x)
     for (size_t p = 0; p < c->cloth->np; p++)
         for (size_t k = 0; k < c->nobs && c->cloth->dof[p] >= 0; k++) {
             cl_contact_point q;
-            if (cl_obstacle_near(&c->obs[k], &c->pose[k], x + 3 * p, 0.0, &q))
+            if (cl_obstacle_near(&c->obs[k], &c->pose[k], x + 3 * p, 0.0,
+                                 memo_of(c, k, p), &q))
                 worst = fmax(worst, -q.d);
         }
     return worst;
@@ -259,7 +272,7 @@ size_t cl_contact_project(cl_contact *c, double t, double *x, double *v)
                 cl_contact_point q;
                 if (cl->dof[p] >= 0 &&
                     cl_obstacle_near(o, &c->pose[k], x + 3 * p,
-                                     o->resp.offset, &q))
+                                     o->resp.offset, memo_of(c, k, p), &q))
                     cl_project_particle(&o->resp, &q, cl->mass[p], x + 3 * p,
                                         v + 3 * p, &tally);
             }

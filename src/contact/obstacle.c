@@ -98,16 +98,28 @@ static void rotate_hessian(const cl_pose *P, const double Gb[9],
                            T[3 * i + 2] * R[3 * j + 2];
 }
 
-bool cl_obstacle_near(const cl_obstacle *o, const cl_pose *P,
-                      const double x[3], double dmax, cl_contact_point *q)
+/* |a - b| */
+static double dist3(const double a[3], const double b[3])
 {
-    if (o->type->lower_bound) {
-        double r[3], X[3];
-        to_shape(o, P, x, r, X);
-        if (o->type->lower_bound(o->shape, X) >= dmax)
-            return false;
-    }
+    double e[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+    return sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+}
+
+bool cl_obstacle_near(const cl_obstacle *o, const cl_pose *P,
+                      const double x[3], double dmax, cl_contact_memo *memo,
+                      cl_contact_point *q)
+{
+    double r[3], X[3];
+    to_shape(o, P, x, r, X);
+    if (memo && memo->d > dmax && memo->d - dist3(X, memo->X) >= dmax)
+        return false;
+    if (o->type->lower_bound && o->type->lower_bound(o->shape, X) >= dmax)
+        return false;
     cl_obstacle_query(o, P, x, q);
+    if (memo) {
+        memcpy(memo->X, X, sizeof memo->X);
+        memo->d = q->d;
+    }
     return q->d < dmax;
 }
 
