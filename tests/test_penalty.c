@@ -92,64 +92,57 @@ static void check_jacobians(const cl_obstacle *o, double t, const double x[3],
 
 static const double vel[3] = {0.31, -0.52, 0.17};
 
-Test(penalty, sphere_jacobians)
+/* The Jacobians at shape-frame points X[k] (relative to the pivot) of the
+ * obstacle made from `sets`, at time t. */
+static void check_points(const char *const *sets, double t,
+                         const double (*X)[3], const char *const *what,
+                         int n)
 {
     cl_obstacle o;
+    cl_pose P;
+    make(&o, sets);
+    cl_obstacle_pose(&o, t, &P);
+    for (int k = 0; k < n; k++) {
+        double x[3];
+        to_world(&P, o.pivot, X[k], x);
+        check_jacobians(&o, t, x, vel, what[k]);
+    }
+    cl_obstacle_free(&o);
+}
+
+Test(penalty, sphere_jacobians)
+{
     const char *sets[NSET] = {"obstacle.o.shape = sphere",
                               "obstacle.o.center = 1, 2, 3",
                               "obstacle.o.radius = 0.5", MOVING, NULL};
-    make(&o, sets);
-    cl_pose P;
-    cl_obstacle_pose(&o, 0.7, &P);
-    const double *s = P.s;
-    /* a point 0.02 m inside along a skew direction from the moved centre */
-    double dir[3] = {0.48, 0.6, 0.64};
-    double x[3];
-    for (int i = 0; i < 3; i++)
-        x[i] = (double[]){1, 2, 3}[i] + s[i] + 0.48 * dir[i];
-    check_jacobians(&o, 0.7, x, vel, "sphere, inside");
-    for (int i = 0; i < 3; i++)
-        x[i] += 0.03 * dir[i]; /* outside, in the band */
-    check_jacobians(&o, 0.7, x, vel, "sphere, in the band");
-    cl_obstacle_free(&o);
+    /* 0.02 m inside and 0.01 m outside, in the band, along a skew
+     * direction */
+    const double X[2][3] = {{0.2304, 0.288, 0.3072}, {0.2448, 0.306, 0.3264}};
+    const char *what[2] = {"sphere, inside", "sphere, in the band"};
+    check_points(sets, 0.7, X, what, 2);
 }
 
 Test(penalty, plane_jacobians)
 {
-    cl_obstacle o;
     const char *sets[NSET] = {"obstacle.o.shape = plane",
                               "obstacle.o.point = 0, -1, 0",
                               "obstacle.o.normal = 0.2, 1, 0.1", MOVING, NULL};
-    make(&o, sets);
-    double X[3] = {0.1, -0.02, 0.1}, x[3]; /* relative to the pivot */
-    cl_pose P;
-    cl_obstacle_pose(&o, 1.3, &P);
-    to_world(&P, o.pivot, X, x);
-    check_jacobians(&o, 1.3, x, vel, "plane");
-    cl_obstacle_free(&o);
+    const double X[1][3] = {{0.1, -0.02, 0.1}};
+    const char *what[1] = {"plane"};
+    check_points(sets, 1.3, X, what, 1);
 }
 
 Test(penalty, box_jacobians)
 {
-    cl_obstacle o;
     const char *sets[NSET] = {"obstacle.o.shape = box",
                               "obstacle.o.center = 0, 0, 0",
                               "obstacle.o.size = 2, 1, 1", MOVING, NULL};
-    make(&o, sets);
-    double t = 0.4;
-    cl_pose P;
-    cl_obstacle_pose(&o, t, &P);
-    /* body-frame points: face (inside, outside), edge, corner */
-    const double body[4][3] = {{0.3, 0.49, 0.1}, {0.3, 0.53, 0.1},
-                               {1.02, 0.52, 0.0}, {1.02, 0.52, 0.53}};
+    /* face (inside, outside), edge, corner */
+    const double X[4][3] = {{0.3, 0.49, 0.1}, {0.3, 0.53, 0.1},
+                            {1.02, 0.52, 0.0}, {1.02, 0.52, 0.53}};
     const char *what[4] = {"box face, inside", "box face, outside",
                            "box edge", "box corner"};
-    for (int k = 0; k < 4; k++) {
-        double x[3];
-        to_world(&P, o.pivot, body[k], x);
-        check_jacobians(&o, t, x, vel, what[k]);
-    }
-    cl_obstacle_free(&o);
+    check_points(sets, 0.4, X, what, 4);
 }
 
 static void write_cube(const char *path)
@@ -167,21 +160,11 @@ Test(penalty, mesh_jacobians)
     snprintf(obj, sizeof obj, "%s/cube.obj", dir);
     write_cube(obj);
     snprintf(file, sizeof file, "obstacle.o.file = %s", obj);
-    cl_obstacle o;
     const char *sets[NSET] = {"obstacle.o.shape = mesh", file, MOVING, NULL};
-    make(&o, sets);
-    double t = 0.9;
-    cl_pose P;
-    cl_obstacle_pose(&o, t, &P);
-    const double body[3][3] = {{0.2, 0.3, 1.03}, {1.02, 0.3, 1.03},
-                               {1.02, 1.03, 1.03}};
+    const double X[3][3] = {{0.2, 0.3, 1.03}, {1.02, 0.3, 1.03},
+                            {1.02, 1.03, 1.03}};
     const char *what[3] = {"mesh face", "mesh edge", "mesh vertex"};
-    for (int k = 0; k < 3; k++) {
-        double x[3];
-        to_world(&P, o.pivot, body[k], x);
-        check_jacobians(&o, t, x, vel, what[k]);
-    }
-    cl_obstacle_free(&o);
+    check_points(sets, 0.9, X, what, 3);
     tmp_rm_rf(dir);
 }
 
