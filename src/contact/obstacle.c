@@ -98,11 +98,19 @@ static void rotate_hessian(const cl_pose *P, const double Gb[9],
                            T[3 * i + 2] * R[3 * j + 2];
 }
 
-/* |a - b| */
-static double dist3(const double a[3], const double b[3])
+/* |a - b|^2 */
+static double dist2(const double a[3], const double b[3])
 {
     double e[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-    return sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+    return e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
+}
+
+/* Whether the memo shows d >= dmax at X: d(X) >= m.d - |X - m.X|. */
+static bool memo_far(const cl_contact_memo *m, const double X[3],
+                     double dmax)
+{
+    double margin = m->d - dmax;
+    return margin > 0.0 && dist2(X, m->X) <= margin * margin;
 }
 
 bool cl_obstacle_near(const cl_obstacle *o, const cl_pose *P,
@@ -111,9 +119,8 @@ bool cl_obstacle_near(const cl_obstacle *o, const cl_pose *P,
 {
     double r[3], X[3];
     to_shape(o, P, x, r, X);
-    if (memo && memo->d > dmax && memo->d - dist3(X, memo->X) >= dmax)
-        return false;
-    if (o->type->lower_bound && o->type->lower_bound(o->shape, X) >= dmax)
+    if ((memo && memo_far(memo, X, dmax)) ||
+        (o->type->lower_bound && o->type->lower_bound(o->shape, X) >= dmax))
         return false;
     cl_obstacle_query(o, P, x, q);
     if (memo) {

@@ -342,7 +342,9 @@ static double mesh_lower_bound(const void *shape, const double x[3])
     const cl_bvh_node *root = &((const mesh *)shape)->bvh.node[0];
     double d2 = 0.0;
     for (int i = 0; i < 3; i++) {
-        double e = fmax(root->lo[i] - x[i], fmax(x[i] - root->hi[i], 0.0));
+        double e = x[i] < root->lo[i]   ? root->lo[i] - x[i]
+                   : x[i] > root->hi[i] ? x[i] - root->hi[i]
+                                        : 0.0;
         d2 += e * e;
     }
     return sqrt(d2);
