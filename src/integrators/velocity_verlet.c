@@ -8,7 +8,9 @@
  *
  * h = opts->dt, t_k = t0 + k h, a_0 = M^-1 f(t0, x0, v0).  The
  * acceleration of the step's end is kept for the next step's first kick
- * (one force evaluation per step, plus one for a_0: rhs_evals = steps + 1).
+ * (one force evaluation per step, plus one for a_0: rhs_evals = steps + 1),
+ * except on a system with contact projections, which may move x_k after
+ * the step: there a_k is evaluated again (two evaluations per step).
  * Velocity-dependent forces need v_{k+1} before it is known; they are
  * given the explicit predictor v*_{k+1} = v_k + h a_k, an O(h^2) estimate,
  * which keeps the method second order in x and v also with damping (the
@@ -26,8 +28,11 @@ static cl_status vv_step(cl_fixed *s, double t, double h, cl_error *err)
 {
     double *a = s->w[0], *xn = s->w[1], *vh = s->w[2], *vp = s->w[3];
     double *an = s->w[4];
-    cl_status st = s->done == 0 ? cl_fixed_accel(s, t, s->x, s->v, a, err)
-                                : CL_OK;
+    /* a_k is the last step's a_{k+1}, unless contact projections may
+     * have moved x_k since (then it is evaluated again) */
+    cl_status st = s->done == 0 || s->sys->projects
+                       ? cl_fixed_accel(s, t, s->x, s->v, a, err)
+                       : CL_OK;
     if (st != CL_OK)
         return st;
     for (size_t i = 0; i < s->n; i++) {
