@@ -36,7 +36,10 @@ BIN      := $(BUILD)/clothode
 TESTBIN  := $(BUILD)/clothode-tests
 JOBS     ?= 2
 
-.PHONY: all deps demo test bench report paper clean
+PREFIX  ?= /usr/local
+VERSION := 0.1
+
+.PHONY: all deps demo test bench report paper install clean
 
 all: $(BIN)
 
@@ -95,6 +98,22 @@ paper: deps
 	    { tail -30 ../$(BUILD)/paper/paper.log; exit 1; }; done
 	cp $(BUILD)/paper/paper.pdf paper/paper.pdf
 	@echo "paper: paper/paper.pdf"
+
+# make install PREFIX=DIR (README "Installing"): the command, the library
+# with its headers and pkg-config file, the problems, the man page.
+install: $(BIN)
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig \
+	    $(DESTDIR)$(PREFIX)/share/clothode $(DESTDIR)$(PREFIX)/share/man/man1
+	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/clothode
+	install -m 644 $(BUILD)/libclothode.a $(DESTDIR)$(PREFIX)/lib/
+	for h in src/*/*.h; do \
+	    install -D -m 644 $$h $(DESTDIR)$(PREFIX)/include/clothode/$${h#src/}; \
+	done
+	cp -R problems $(DESTDIR)$(PREFIX)/share/clothode/
+	install -m 644 docs/clothode.1 $(DESTDIR)$(PREFIX)/share/man/man1/
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' \
+	    -e 's|@LIBS@|$(filter -fsanitize%,$(LDFLAGS)) $(LDLIBS)|' \
+	    scripts/clothode.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/clothode.pc
 
 clean:
 	rm -rf build build-san

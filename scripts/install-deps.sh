@@ -9,9 +9,12 @@ set -euo pipefail
 # makes it (and GSL's LU, which gsl-msbdf uses, through CBLAS) fast: the
 # system's BLAS and LAPACK switch to OpenBLAS, single-threaded so that
 # results do not depend on a thread count.
+# pkg-config: the installed library's flags, for the example the test
+# suite builds against it (scripts/install-check.sh).
 pkgs=(build-essential libsundials-dev libsuitesparse-dev libgsl-dev
       liblapacke-dev libopenblas0-serial
-      gnuplot-nox libinih-dev libcriterion-dev python3-numpy python3-scipy)
+      gnuplot-nox libinih-dev libcriterion-dev python3-numpy python3-scipy
+      pkg-config)
 # `install-deps.sh paper`: also LaTeX, for make paper only.
 if [[ ${1:-} == paper ]]; then
     pkgs+=(texlive-latex-base texlive-latex-recommended

@@ -27,13 +27,36 @@ int cl_cli_usage_error(const char *cmd, const char *fmt, ...)
     return 2;
 }
 
+const char *cl_cli_problems_dir(void)
+{
+    static char installed[4096];
+    struct stat st;
+    const char *dir = getenv("CLOTHODE_PROBLEMS");
+    if (dir && *dir)
+        return dir;
+    if (stat("problems", &st) == 0 && S_ISDIR(st.st_mode))
+        return "problems";
+    /* an installed clothode: PREFIX/bin/clothode, PREFIX/share/clothode */
+    char exe[4096];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    char *slash = n > 0 ? (exe[n] = '\0', strrchr(exe, '/')) : NULL;
+    if (slash) {
+        *slash = '\0';
+        int k = snprintf(installed, sizeof installed,
+                         "%s/../share/clothode/problems", exe);
+        if (k > 0 && (size_t)k < sizeof installed &&
+            stat(installed, &st) == 0 && S_ISDIR(st.st_mode))
+            return installed;
+    }
+    return "problems";
+}
+
 const char *cl_cli_problem_path(const char *arg, char *buf, size_t len)
 {
     struct stat st;
     if (strchr(arg, '/') || strstr(arg, ".ini") || stat(arg, &st) == 0)
         return arg;
-    const char *dir = getenv("CLOTHODE_PROBLEMS");
-    snprintf(buf, len, "%s/%s.ini", dir && *dir ? dir : "problems", arg);
+    snprintf(buf, len, "%s/%s.ini", cl_cli_problems_dir(), arg);
     return buf;
 }
 

@@ -26,6 +26,12 @@ int cl_cli_usage_error(const char *cmd, const char *fmt, ...)
  * looked up under $CLOTHODE_PROBLEMS if set). */
 const char *cl_cli_problem_path(const char *arg, char *buf, size_t len);
 
+/* Where problems are looked up by name: $CLOTHODE_PROBLEMS, else
+ * ./problems if it is a directory, else the installed
+ * PREFIX/share/clothode/problems beside PREFIX/bin/clothode, else
+ * "problems". */
+const char *cl_cli_problems_dir(void);
+
 /* "section.key=value" assignments collected from the command line. */
 typedef struct {
     char **v;

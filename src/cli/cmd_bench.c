@@ -192,8 +192,7 @@ static int peak_memory(bench_args *a)
 
 int cl_cmd_bench(int argc, char **argv)
 {
-    const char *dir = getenv("CLOTHODE_PROBLEMS");
-    bench_args a = {.o = {.problems = dir && *dir ? dir : "problems",
+    bench_args a = {.o = {.problems = cl_cli_problems_dir(),
                           .peer = "scripts/peers/hang_scipy.py",
                           .log = stderr},
                     .out = "results/bench.csv"};

@@ -41,9 +41,8 @@ static int is_ini(const struct dirent *d)
 
 static void list_problems(void)
 {
-    const char *dir = getenv("CLOTHODE_PROBLEMS");
+    const char *dir = cl_cli_problems_dir();
     struct dirent **names;
-    dir = dir && *dir ? dir : "problems";
     int n = scandir(dir, &names, is_ini, by_name);
     printf("problems (%s/):\n", dir);
     if (n < 0) {

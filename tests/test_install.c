@@ -1,0 +1,39 @@
+/* make install, as a library user sees it (scripts/install-check.sh):
+ * the example examples/embed_cvode.c, built against the installed
+ * libclothode with pkg-config, integrates a 6 x 6 hang with its own CVODE
+ * (dense Jacobian from the system's blocks) and ends at the same energy as
+ * the installed clothode run by problem name (KLU, reduced system), both
+ * at rtol 1e-8. */
+#include <criterion/criterion.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "timelimit.h"
+
+Test(install, example_builds_with_pkg_config_and_agrees)
+{
+    time_limit(300);
+    /* the build whose clothode the suite runs: build or build-san */
+    const char *bin = getenv("CLOTHODE");
+    const char *build = bin && strstr(bin, "build-san") ? "build-san"
+                                                         : "build";
+    char cmd[256];
+    snprintf(cmd, sizeof cmd, "scripts/install-check.sh %s 2>&1", build);
+    FILE *p = popen(cmd, "r");
+    cr_assert_not_null(p);
+    char line[1024], out[8192] = "";
+    double example = NAN, clothode = NAN;
+    while (fgets(line, sizeof line, p)) {
+        strncat(out, line, sizeof out - strlen(out) - 1);
+        sscanf(line, "example %lf", &example);
+        sscanf(line, "clothode %lf", &clothode);
+    }
+    int status = pclose(p);
+    cr_assert_eq(status, 0, "install-check failed:\n%s", out);
+    cr_assert(isfinite(example) && isfinite(clothode), "%s", out);
+    cr_expect_lt(fabs(example - clothode), 1e-6 * fabs(clothode),
+                 "example %.12g, clothode %.12g", example, clothode);
+}
