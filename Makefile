@@ -27,9 +27,14 @@ LDLIBS := -lsundials_cvode -lsundials_ida -lsundials_kinsol \
           -lklu -lcholmod -lamd -lcolamd -lbtf \
           -lsuitesparseconfig -lgsl -llapacke -llapack -lblas -linih -lm
 
-LIB_SRC  := $(filter-out src/cli/main.c,$(wildcard src/*/*.c))
+# The library holds the numerics; the benchmark harness (src/bench) is a
+# program of its own on it, clothode-bench.
+LIB_SRC  := $(filter-out src/cli/main.c src/bench/%,$(wildcard src/*/*.c))
 LIB_OBJ  := $(LIB_SRC:%.c=$(BUILD)/%.o)
 CLI_OBJ  := $(BUILD)/src/cli/main.o
+BENCH_SRC := $(filter-out src/bench/main.c,$(wildcard src/bench/*.c))
+BENCH_OBJ := $(BENCH_SRC:%.c=$(BUILD)/%.o)
+BENCHBIN := $(BUILD)/clothode-bench
 TEST_SRC := $(wildcard tests/test_*.c)
 TEST_OBJ := $(TEST_SRC:%.c=$(BUILD)/%.o)
 BIN      := $(BUILD)/clothode
@@ -51,12 +56,16 @@ $(BUILD)/%.o: %.c
 	$(CC) $(CPPFLAGS) $(CFLAGS) -MMD -MP -c $< -o $@
 
 $(BUILD)/libclothode.a: $(LIB_OBJ)
+	rm -f $@
 	ar rcs $@ $^
 
 $(BIN): $(CLI_OBJ) $(BUILD)/libclothode.a
 	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
-$(TESTBIN): $(TEST_OBJ) $(BUILD)/libclothode.a
+$(BENCHBIN): $(BUILD)/src/bench/main.o $(BENCH_OBJ) $(BUILD)/libclothode.a
+	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
+
+$(TESTBIN): $(TEST_OBJ) $(BENCH_OBJ) $(BUILD)/libclothode.a
 	$(CC) $(LDFLAGS) $^ -lcriterion $(LDLIBS) -o $@
 
 demo: deps
@@ -66,8 +75,9 @@ demo: deps
 # Sanitizer reports from Criterion's worker processes (LeakSanitizer at
 # exit) do not fail a test by themselves: the log is checked for them.
 test: deps
-	$(MAKE) $(BIN) $(TESTBIN)
-	set -o pipefail; CLOTHODE=$(BIN) $(TESTBIN) --jobs $(JOBS) 2>&1 | \
+	$(MAKE) $(BIN) $(BENCHBIN) $(TESTBIN)
+	set -o pipefail; CLOTHODE=$(BIN) CLOTHODE_BENCH=$(BENCHBIN) \
+	    $(TESTBIN) --jobs $(JOBS) 2>&1 | \
 	    tee $(BUILD)/test.log
 	@! grep -E "(Address|Leak|UndefinedBehavior)Sanitizer|runtime error:" \
 	    $(BUILD)/test.log || (echo "sanitizer reports above" >&2; exit 1)
@@ -75,8 +85,8 @@ test: deps
 # Benchmarks (README "Benchmarks"): the full set, under 20 minutes on two
 # cores; table on stdout, results/bench.csv.
 bench: deps
-	$(MAKE) $(BIN)
-	$(BIN) bench
+	$(MAKE) $(BENCHBIN)
+	$(BENCHBIN)
 
 # Reports (README "Reports"): the analyses on the default problems, CSV
 # tables in results/report/, figures in plots/ (about five minutes).
@@ -118,4 +128,5 @@ install: $(BIN)
 clean:
 	rm -rf build build-san
 
--include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d) $(TEST_OBJ:.o=.d)
+-include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d) $(TEST_OBJ:.o=.d) \
+    $(BENCH_OBJ:.o=.d) $(BUILD)/src/bench/main.d

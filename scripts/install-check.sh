@@ -2,7 +2,8 @@
 # The installed clothode as a library user sees it (tests/test_install.c):
 # make install into a scratch prefix, build examples/embed_cvode.c against
 # it with pkg-config, run it and the installed command on the same cloth,
-# and print both final total energies ("example E", "clothode E").
+# and print both final total energies ("example E", "clothode E"), and
+# how many benchmark objects the installed library holds ("bench_objects").
 # usage: scripts/install-check.sh [build|build-san]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -12,6 +13,8 @@ san=0
 prefix=$(mktemp -d "${TMPDIR:-/tmp}/clothode-install-XXXXXX")
 trap 'rm -rf "$prefix"' EXIT
 make -s install PREFIX="$prefix" SAN=$san > /dev/null
+# the library holds the numerics, not the benchmark harness (src/bench)
+echo "bench_objects $(ar t "$prefix/lib/libclothode.a" | grep -c -E '^(bench|child|main)' || true)"
 export PKG_CONFIG_PATH=$prefix/lib/pkgconfig
 cc -std=c11 -Wall -Wextra -Werror $(pkg-config --cflags clothode) \
     examples/embed_cvode.c $(pkg-config --libs clothode) \

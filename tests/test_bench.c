@@ -1,14 +1,15 @@
-/* The benchmark harness (analysis/bench.h, analysis/child.h, `clothode
- * bench`): its options, its CSV, the child-process helpers.  No timing is
- * asserted; a short workload (4, --quick) runs for real. */
+/* The benchmark harness (bench/bench.h, bench/child.h, the program
+ * clothode-bench): its options, its CSV, the child-process helpers.  No
+ * timing is asserted; short workloads (--quick) run for real. */
 #include <criterion/criterion.h>
 
 #include <math.h>
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "analysis/bench.h"
-#include "analysis/child.h"
+#include "bench/bench.h"
+#include "bench/child.h"
 #include "runcli.h"
 #include "timelimit.h"
 
@@ -27,6 +28,25 @@ static void teardown(void)
 
 TestSuite(bench, .init = setup, .fini = teardown);
 
+/* Run clothode-bench ($CLOTHODE_BENCH, else build/clothode-bench) with
+ * the NULL-terminated arguments. */
+static void bench_run(cli_result *r, ...)
+{
+    const char *b = getenv("CLOTHODE_BENCH");
+    char *argv[CLI_MAX_ARGS + 2];
+    size_t n = 0;
+    argv[n++] = (char *)(b && *b ? b : "build/clothode-bench");
+    va_list ap;
+    va_start(ap, r);
+    for (char *a; (a = va_arg(ap, char *));) {
+        cr_assert(n < CLI_MAX_ARGS, "too many arguments");
+        argv[n++] = a;
+    }
+    va_end(ap);
+    argv[n] = NULL;
+    cli_spawn(r, argv);
+}
+
 static const char *in_tmp(char *buf, const char *name)
 {
     snprintf(buf, 1024, "%s/%s", tmp, name);
@@ -36,26 +56,26 @@ static const char *in_tmp(char *buf, const char *name)
 Test(bench, help_and_bad_options)
 {
     cli_result r;
-    cli_run(&r, "bench", "--help", NULL);
+    bench_run(&r, "--help", NULL);
     cli_assert_ok(&r);
-    cr_assert(strstr(r.out, "usage: clothode bench"), "%s", r.out);
+    cr_assert(strstr(r.out, "usage: clothode-bench"), "%s", r.out);
     cli_result_free(&r);
-    cli_run(&r, "bench", "--only", "9", NULL);
+    bench_run(&r, "--only", "9", NULL);
     cli_assert_error(&r, 1, "--only", "9", NULL);
     cli_result_free(&r);
-    cli_run(&r, "bench", "--only", "1,x", NULL);
+    bench_run(&r, "--only", "1,x", NULL);
     cli_assert_error(&r, 1, "--only", NULL);
     cli_result_free(&r);
-    cli_run(&r, "bench", "--frobnicate", NULL);
+    bench_run(&r, "--frobnicate", NULL);
     cli_assert_error(&r, 1, "--frobnicate", NULL);
     cli_result_free(&r);
-    cli_run(&r, "bench", "extra", NULL);
+    bench_run(&r, "extra", NULL);
     cli_assert_error(&r, 1, "extra", NULL);
     cli_result_free(&r);
-    cli_run(&r, "bench", "--peak-memory", "2:klu", NULL);
+    bench_run(&r, "--peak-memory", "2:klu", NULL);
     cli_assert_error(&r, 1, "--peak-memory", NULL);
     cli_result_free(&r);
-    cli_run(&r, "bench", "--peak-memory", "6:no-such-solver", NULL);
+    bench_run(&r, "--peak-memory", "6:no-such-solver", NULL);
     cli_assert_error(&r, 0, "no-such-solver", NULL);
     cli_result_free(&r);
 }
@@ -64,7 +84,7 @@ Test(bench, help_and_bad_options)
 Test(bench, peak_memory_child_prints_its_peak)
 {
     cli_result r;
-    cli_run(&r, "bench", "--peak-memory", "6:", NULL);
+    bench_run(&r, "--peak-memory", "6:", NULL);
     cli_assert_ok(&r);
     long kb = -1;
     cr_assert_eq(sscanf(r.out, "peak_kb,%ld\n", &kb), 1, "%s", r.out);
@@ -91,7 +111,7 @@ static void quick_workload(const char *w, const char *name, const char *unit,
 {
     char csv[1024];
     cli_result r;
-    cli_run(&r, "bench", "--quick", "--only", w, "--out", in_tmp(csv, name),
+    bench_run(&r, "--quick", "--only", w, "--out", in_tmp(csv, name),
             NULL);
     cli_assert_no_crash(&r);
     cr_assert_eq(r.status, 0, "%s: status %d\n%s", r.cmd, r.status, r.err);

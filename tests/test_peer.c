@@ -6,7 +6,7 @@
  * velocities (pair damping).  Both programs run as child processes.
  *
  * The peer needs a Python with numpy and scipy (`make test` installs
- * Debian's python3-numpy python3-scipy; analysis/child.h says which
+ * Debian's python3-numpy python3-scipy; bench/child.h says which
  * interpreter is used).  Without one these tests fail, naming what is
  * missing. */
 #include <criterion/criterion.h>
@@ -15,7 +15,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "analysis/child.h"
+#include "bench/child.h"
 #include "io/config.h"
 #include "io/state.h"
 #include "model/model.h"

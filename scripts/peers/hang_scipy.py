@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """hang_scipy.py: the `hang` cloth (problems/hang.ini) in numpy/scipy, as an
-independent peer of clothode for `clothode bench` and tests/test_peer.c.
+independent peer of clothode for `clothode-bench` and tests/test_peer.c.
 
 The model (SPEC 1, 2, 3.1, 3.2), written from the specification, not from the
 C code:

@@ -6,7 +6,6 @@ int cl_cmd_run(int argc, char **argv);
 int cl_cmd_eval(int argc, char **argv);
 int cl_cmd_counts(int argc, char **argv);
 int cl_cmd_list(int argc, char **argv);
-int cl_cmd_bench(int argc, char **argv);
 int cl_cmd_convergence(int argc, char **argv);
 int cl_cmd_workprecision(int argc, char **argv);
 int cl_cmd_stability(int argc, char **argv);

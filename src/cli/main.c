@@ -22,7 +22,6 @@ static const cl_command commands[] = {
      "the exact inverse sinc beside the seed's polynomial"},
     {"counts", cl_cmd_counts, "connection counts beside the seed's formulas"},
     {"list", cl_cmd_list, "problems, integrators and force terms"},
-    {"bench", cl_cmd_bench, "benchmark workloads against their goals"},
 };
 
 static int usage(FILE *fp)

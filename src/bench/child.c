@@ -2,7 +2,7 @@
  * one child alone (getrusage(RUSAGE_CHILDREN) would mix all of them, and
  * its ru_maxrss is the largest child's so far). */
 #define _DEFAULT_SOURCE /* wait4 */
-#include "analysis/child.h"
+#include "bench/child.h"
 
 #include <errno.h>
 #include <fcntl.h>

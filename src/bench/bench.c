@@ -1,12 +1,12 @@
-/* Benchmarks (analysis/bench.h): the plan of a full or quick run, the
+/* Benchmarks (bench/bench.h): the plan of a full or quick run, the
  * order of the workloads, the table as CSV and as text. */
-#include "analysis/bench.h"
+#include "bench/bench.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "analysis/bench_impl.h"
+#include "bench/bench_impl.h"
 #include "io/atomic.h"
 
 static const cl_bplan full_plan = {

@@ -1,4 +1,4 @@
-/* Child processes for the benchmarks (`clothode bench`): start a program
+/* Child processes for the benchmarks (`clothode-bench`): start a program
  * with posix_spawnp, its stdout and stderr into files, and collect its exit
  * status with its own resource usage (wait4: user + system CPU time and
  * peak resident set size of that child alone), without blocking if asked.

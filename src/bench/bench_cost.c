@@ -1,11 +1,11 @@
-/* Benchmark workloads of cost per unit (analysis/bench.h): 3 (semi-bdf2
+/* Benchmark workloads of cost per unit (bench/bench.h): 3 (semi-bdf2
  * per step, per linear solver, against size), 4 (force and Jacobian
  * evaluations per pair) and 5 (explicit steps per second). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "analysis/bench_impl.h"
+#include "bench/bench_impl.h"
 #include "analysis/counts.h"
 #include "linalg/linsol.h"
 

@@ -1,11 +1,11 @@
-/* Internals shared by the benchmark files (analysis/bench*.c): the run
+/* Internals shared by the benchmark files (bench/bench*.c): the run
  * context, the size plan of a full or quick run, cached timed runs of
  * cvode-bdf on hang, rows, clocks.  Not part of the library's interface. */
 #ifndef CL_BENCH_IMPL_H
 #define CL_BENCH_IMPL_H
 
-#include "analysis/bench.h"
-#include "analysis/child.h"
+#include "bench/bench.h"
+#include "bench/child.h"
 #include "integrators/integrator.h"
 #include "io/config.h"
 #include "model/model.h"

@@ -1,4 +1,4 @@
-/* Benchmark workloads on hang with cvode-bdf (analysis/bench.h): the choice
+/* Benchmark workloads on hang with cvode-bdf (bench/bench.h): the choice
  * of linear solver, 1 (against the scipy peer, run in the background), 2
  * (against klu-full; large n) and 6 (peak memory of a child run). */
 #include <errno.h>
@@ -7,7 +7,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "analysis/bench_impl.h"
+#include "bench/bench_impl.h"
 #include "analysis/diagnostics.h"
 #include "io/state.h"
 #include "linalg/linsol.h"
@@ -450,7 +450,7 @@ cl_status cl_bench_peak_memory(const cl_bench_opts *o, int n,
     return rc;
 }
 
-/* Peak memory (KiB) of `clothode bench --peak-memory N:LINSOL` in a child
+/* Peak memory (KiB) of `clothode-bench --peak-memory N:LINSOL` in a child
  * process, and its CPU time; false with the message in err if it failed.
  * (The child reads its own VmHWM: the ru_maxrss of a posix_spawn child
  * also counts its parent's peak, whose address space it shares until
@@ -461,7 +461,7 @@ static bool w6_child(cl_bctx *c, int n, const char *linsol, long *kb,
     char arg[64], out[4096], line[128];
     snprintf(arg, sizeof arg, "%d:%s", n, linsol);
     snprintf(out, sizeof out, "%s/peak-%d.out", c->o->scratch, n);
-    char *argv[] = {(char *)c->o->self, "bench", "--peak-memory", arg, NULL};
+    char *argv[] = {(char *)c->o->self, "--peak-memory", arg, NULL};
     cl_bench_log(c, "  cvode-bdf %s, n = %d: child run for its peak "
                  "memory ...", *linsol ? linsol : "(default)", n);
     *kb = -1;

@@ -1,4 +1,4 @@
-/* Benchmark workload 8 (analysis/bench.h): the contact share of a skirt
+/* Benchmark workload 8 (bench/bench.h): the contact share of a skirt
  * step.  problems/skirt.ini (a mesh cloth on a sphere mesh and a floor,
  * penalty contact) is run with its own integrator and step ([run]:
  * symplectic-euler-x, dt = 2e-4 s) to two states where the cloth touches:
@@ -21,7 +21,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "analysis/bench_impl.h"
+#include "bench/bench_impl.h"
 
 #define W8_CHUNK 8    /* calls per clock reading */
 #define W8_ROUNDS 10  /* rounds at least */

@@ -1,4 +1,4 @@
-/* Benchmark workload 7 (analysis/bench.h): the contact layer's nearest-
+/* Benchmark workload 7 (bench/bench.h): the contact layer's nearest-
  * triangle query by its bounding-volume tree (contact/bvh.h) against
  * trying every triangle, CPU time per point, on an icosphere of level 5
  * (20480 triangles, radius 1), for 10^4 points in two spreads:
@@ -13,7 +13,7 @@
 #include <stdbool.h>
 #include <stdlib.h>
 
-#include "analysis/bench_impl.h"
+#include "bench/bench_impl.h"
 #include "contact/bvh.h"
 #include "contact/icosphere.h"
 

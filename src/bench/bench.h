@@ -1,4 +1,4 @@
-/* Benchmarks (`clothode bench`, SPEC 7): cost of the integrators and
+/* Benchmarks (`clothode-bench`, SPEC 7): cost of the integrators and
  * linear solvers on the default problem, against goals.  Eight workloads:
  *
  *   1  hang, cvode-bdf with the best linear solver against the scipy peer
@@ -69,7 +69,7 @@ typedef struct {
     unsigned only;          /* bit w (1..8) selects workload w; 0: all */
     const char *problems;   /* directory of the problem files */
     const char *peer;       /* the peer script */
-    const char *self;       /* the clothode program, for child runs */
+    const char *self;       /* the clothode-bench program, for child runs */
     const char *scratch;    /* directory for child outputs (must exist) */
     FILE *log;              /* progress lines, or NULL */
 } cl_bench_opts;

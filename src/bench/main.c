@@ -1,20 +1,22 @@
-/* clothode bench: the benchmark workloads (analysis/bench.h), a table on
- * stdout, progress on stderr, results/bench.csv. */
+/* clothode-bench: the benchmark workloads (bench/bench.h), a table on
+ * stdout, progress on stderr, results/bench.csv.  A program of its own
+ * on libclothode: the library holds the numerics, not the harness. */
 #define _DEFAULT_SOURCE /* mkdtemp */
 #include <ftw.h>
 #include <getopt.h>
+#include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
 
-#include "analysis/bench.h"
+#include "bench/bench.h"
 #include "cli/cli.h"
-#include "cli/commands.h"
 #include "io/atomic.h"
 
 static const char bench_help[] =
-    "usage: clothode bench [options]\n"
+    "usage: clothode-bench [options]\n"
     "Time the workloads and compare them with their goals; print a table\n"
     "and write it as CSV.  Run from the repository root (problems/, the\n"
     "scipy peer scripts/peers/hang_scipy.py).  CPU time is reported.\n"
@@ -43,6 +45,20 @@ static const char bench_help[] =
     "  --help         this text\n"
     "The peer runs with $CLOTHODE_PYTHON, else the first of python3 on PATH\n"
     "and /usr/bin/python3 that has numpy and scipy.\n";
+
+/* A usage error: one message and the pointer to --help; exit status 2. */
+static int usage_error(const char *fmt, ...)
+    __attribute__((format(printf, 1, 2)));
+static int usage_error(const char *fmt, ...)
+{
+    va_list ap;
+    fprintf(stderr, "clothode-bench: ");
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fprintf(stderr, "\n(see 'clothode-bench --help')\n");
+    return 2;
+}
 
 typedef struct {
     cl_bench_opts o;
@@ -91,18 +107,18 @@ static int parse_args(int argc, char **argv, bench_args *a)
         } else if (c == 'm') {
             a->peak = optarg;
         } else if (c == 'w' && parse_only(optarg, &a->o.only)) {
-            return cl_cli_usage_error("bench", "--only \"%s\": expected "
-                                      "workload numbers 1..%d separated by "
-                                      "commas", optarg, CL_BENCH_WORKLOADS),
+            return usage_error("--only \"%s\": expected workload numbers "
+                               "1..%d separated by commas", optarg,
+                               CL_BENCH_WORKLOADS),
                    -1;
         } else if (c != 'w') {
-            return cl_cli_usage_error("bench", "unknown or incomplete option "
-                                      "'%s'", argv[optind - 1]), -1;
+            return usage_error("unknown or incomplete option '%s'",
+                               argv[optind - 1]),
+                   -1;
         }
     }
     if (optind != argc)
-        return cl_cli_usage_error("bench", "unexpected argument '%s'",
-                                  argv[optind]), -1;
+        return usage_error("unexpected argument '%s'", argv[optind]), -1;
     return 0;
 }
 
@@ -180,8 +196,8 @@ static int peak_memory(bench_args *a)
     char *end;
     long n = strtol(a->peak, &end, 10);
     if (end == a->peak || *end != ':' || n < 3 || n > 4096)
-        return cl_cli_usage_error("bench", "--peak-memory \"%s\": expected "
-                                  "N:LINSOL with N >= 3", a->peak);
+        return usage_error("--peak-memory \"%s\": expected N:LINSOL "
+                           "with N >= 3", a->peak);
     long kb;
     cl_error err = {0};
     if (cl_bench_peak_memory(&a->o, (int)n, end + 1, &kb, &err))
@@ -190,7 +206,7 @@ static int peak_memory(bench_args *a)
     return 0;
 }
 
-int cl_cmd_bench(int argc, char **argv)
+int main(int argc, char **argv)
 {
     bench_args a = {.o = {.problems = cl_cli_problems_dir(),
                           .peer = "scripts/peers/hang_scipy.py",

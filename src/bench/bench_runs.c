@@ -1,11 +1,11 @@
-/* Benchmark plumbing (analysis/bench_impl.h): problems, clocks, cached
+/* Benchmark plumbing (bench/bench_impl.h): problems, clocks, cached
  * cvode-bdf runs on hang, rows and progress lines. */
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "analysis/bench_impl.h"
+#include "bench/bench_impl.h"
 #include "core/clock.h"
 
 cl_status cl_bench_model(const cl_bctx *c, const char *problem,
