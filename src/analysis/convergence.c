@@ -120,10 +120,13 @@ static void fit_orders(cl_conv_result *r)
     r->slope_x = r->slope_v = NAN;
     if (r->nfit < 2)
         return;
-    gsl_fit_linear(lp, 1, lx, 1, (size_t)r->nfit, &c0, &r->slope_x, &cov00,
-                   &cov01, &cov11, &sumsq);
-    gsl_fit_linear(lp, 1, lv, 1, (size_t)r->nfit, &c0, &r->slope_v, &cov00,
-                   &cov01, &cov11, &sumsq);
+    /* a fit GSL refuses (e.g. all levels at one parameter) stays NaN */
+    if (gsl_fit_linear(lp, 1, lx, 1, (size_t)r->nfit, &c0, &r->slope_x,
+                       &cov00, &cov01, &cov11, &sumsq))
+        r->slope_x = NAN;
+    if (gsl_fit_linear(lp, 1, lv, 1, (size_t)r->nfit, &c0, &r->slope_v,
+                       &cov00, &cov01, &cov11, &sumsq))
+        r->slope_v = NAN;
 }
 
 cl_status cl_convergence(cl_model *m, const cl_integrator_type *type,

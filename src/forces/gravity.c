@@ -23,7 +23,8 @@ static void gravity_eval(void *state, cl_eval *ev)
             double f = st->cloth->mass[p] * st->g[i] + st->F[i];
             if (ev->f)
                 ev->f[3 * p + i] += f;
-            energy -= f * ev->x[3 * p + i];
+            if (ev->want_energy) /* not on every right-hand side */
+                energy -= f * ev->x[3 * p + i];
         }
     if (ev->want_energy) {
         ev->energy = energy;

@@ -251,12 +251,20 @@ static cl_status find_crossings(type2_state *st, rest_length *rl,
     for (int i = 1; i <= CROSS_SAMPLES; i++) {
         double b = L * i / CROSS_SAMPLES, fbv = cross_fn(b, par);
         if ((fa < 0) != (fbv < 0) && rl->ncross < MAX_CROSS) {
-            gsl_root_fsolver_set(rs, &F, a, b);
+            int rc = gsl_root_fsolver_set(rs, &F, a, b);
             double lo = a, hi = b;
-            for (int it = 0; it < 200 && hi - lo > 1e-15 * L; it++) {
-                gsl_root_fsolver_iterate(rs);
+            for (int it = 0; !rc && it < 200 && hi - lo > 1e-15 * L; it++) {
+                rc = gsl_root_fsolver_iterate(rs);
                 lo = gsl_root_fsolver_x_lower(rs);
                 hi = gsl_root_fsolver_x_upper(rs);
+            }
+            if (rc) {
+                gsl_root_fsolver_free(rs);
+                return cl_error_set(err, CL_ESOLVER, "[type2] the crossing "
+                                    "of the buckling law with cb (d - L) in "
+                                    "[%g, %g] L = %g: GSL's Brent solver "
+                                    "failed (%s)", a / L, b / L, L,
+                                    gsl_strerror(rc));
             }
             rl->cross[rl->ncross++] = gsl_root_fsolver_root(rs) / L;
         }

@@ -208,10 +208,15 @@ static cl_status gslode_step_done(cl_gslode *s, cl_error *err)
     if (st != CL_OK)
         return cl_error_set(err, st, "%s: update after t = %.9g failed (%s)",
                             s->method->name, s->t, cl_status_name(st));
+    int rc = GSL_SUCCESS;
     if (changed) {
         s->failed_before += (long)s->drv->e->failed_steps;
-        gsl_odeiv2_driver_reset(s->drv);
+        rc = gsl_odeiv2_driver_reset(s->drv);
     }
+    if (rc != GSL_SUCCESS)
+        return cl_error_set(err, CL_ESOLVER, "%s: gsl_odeiv2_driver_reset "
+                            "after t = %.9g failed: %s", s->method->name,
+                            s->t, gsl_strerror(rc));
     return CL_OK;
 }
 
