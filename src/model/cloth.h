@@ -1,4 +1,5 @@
-/* Cloth: particles, rest geometry, masses, triangles, pins (SPEC 2).
+/* Cloth: particles, rest geometry, masses, triangles, pins
+ * (docs/model.md, 2).
  *
  * Two kinds, told apart by `kind`:
  *   grid (CL_CLOTH_GRID): nu x nv particles; particle (i, j) has index
@@ -46,7 +47,7 @@ typedef struct {
                        * mesh: the file's, in its orientation) */
 } cl_cloth;
 
-/* Flat rectangular grid in the x-z plane at y = 0 (SPEC 2). */
+/* Flat rectangular grid in the x-z plane at y = 0 (docs/model.md, 2). */
 cl_status cl_cloth_grid(int nu, int nv, double su, double sv,
                         double particle_mass, cl_cloth *c, cl_error *err);
 

@@ -1,5 +1,5 @@
-/* Triangle mesh of a grid cloth and its interior edges (SPEC 2), the
- * elements of the Baraff-Witkin model (SPEC 3.3).
+/* Triangle mesh of a cloth and its interior edges (docs/model.md, 2), the
+ * elements of the Baraff-Witkin model (docs/model.md, 3.3).
  *
  * Triangles: two per quad, from cl_grid_triangles (io/frames.h): quad
  * a = (i,j), b = (i+1,j), c = (i+1,j+1), d = (i,j+1) is split along a-c into

@@ -1,5 +1,5 @@
 /* A cloth problem: the cloth (a grid or a mesh), its pins and its force
- * terms, presented to the integrators as a cl_system (SPEC 1).
+ * terms, presented to the integrators as a cl_system (docs/model.md, 1).
  *
  * INI sections read here:
  *   [cloth]    the grid or the mesh (model/cloth_read.h)
@@ -9,11 +9,12 @@
  *              displacement along y of the free particles, out of the
  *              plane of a grid or of a horizontal mesh (default 0:
  *              positions start at rest); seed = its random seed (default 1)
- *   [jacobian] transverse = full|clamp (SPEC 3.1)
+ *   [jacobian] transverse = full|clamp (docs/model.md, 3.1)
  *   [tear]     cut = a connection breaks for good when d > cut L (0, the
- *              default: no tearing; SPEC 3.4).  The system's step_done hook
- *              (tearing, checked after every accepted step or output time,
- *              see model/system.h) is installed only when cut > 0.
+ *              default: no tearing; docs/model.md, 3.4).  The system's
+ *              step_done hook (tearing, checked after every accepted step
+ *              or output time, see model/system.h) is installed only when
+ *              cut > 0.
  * plus each force term's own section (forces/registry.c). */
 #ifndef CL_MODEL_H
 #define CL_MODEL_H
@@ -47,8 +48,9 @@ const cl_cloth *cl_model_cloth(const cl_model *m);
  * only failure. */
 cl_status cl_model_initial_state(const cl_model *m, double *x, double *v);
 
-/* Connections torn so far (SPEC 3.4): distinct particle pairs, however many
- * terms (a spring and its damper, ...) had a force on the pair. */
+/* Connections torn so far (docs/model.md, 3.4): distinct particle pairs,
+ * however many terms (a spring and its damper, ...) had a force on the
+ * pair. */
 size_t cl_model_broken(const cl_model *m);
 
 /* Whether the connection a-b (either order) has torn. */

@@ -1,4 +1,4 @@
-/* Pair connection sets on a cloth (SPEC 2). */
+/* Pair connection sets on a cloth (docs/model.md, 2). */
 #include "model/pairs.h"
 
 #include <stdlib.h>

@@ -1,4 +1,5 @@
-/* Pair connection sets on a cloth (SPEC 2), each unordered pair once.
+/* Pair connection sets on a cloth (docs/model.md, 2), each unordered pair
+ * once.
  *
  * On a grid:
  *
@@ -6,7 +7,8 @@
  *    count 2(n-1)(2n-1) on an n x n grid.
  *  Choi-Ko Type2 (interlaced): (i,j)-(i+-2,j), (i,j+-2), (i+-2,j+-2);
  *    count 4(n-1)(n-2).
- *  Constraint levels 1..k (seed 004 "Level of Constraint"): level l
+ *  Constraint levels 1..k (the Verlet-and-PBD report's "Level of
+ *  Constraint"): level l
  *    connects (i,j) to (i+-l,j), (i,j+-l), (i+-l,j+-l); count
  *    2(n-l)(2n-l) per level l < n (level 1 = Type1's pairs).
  * On the triangles of any cloth (cl_cloth tri; the springs of Zischg, Chea
