@@ -194,12 +194,6 @@ static double reach(const cl_response_params *r)
     return r->kind == CL_RESPONSE_PENALTY ? r->eps : r->offset + ON_SURFACE;
 }
 
-static bool touching(const cl_response_params *r, double d)
-{
-    return r->kind == CL_RESPONSE_PENALTY ? d < r->eps
-                                          : d <= r->offset + ON_SURFACE;
-}
-
 /* Every obstacle's pose at t into c->pose. */
 static void place(cl_contact *c, double t)
 {
@@ -226,7 +220,7 @@ void cl_contact_measure(cl_contact *c, double t, const double *x,
                                   memo_of(c, k, p), &q))
                 continue;
             f->max_penetration = fmax(f->max_penetration, -q.d);
-            in |= touching(&o->resp, q.d);
+            in = true; /* near() answered d < reach */
             if (o->resp.kind != CL_RESPONSE_PENALTY ||
                 !cl_penalty_eval(&o->resp, &q, v + 3 * p, false, &out))
                 continue;

@@ -113,29 +113,13 @@ static bool memo_far(const cl_contact_memo *m, const double X[3],
     return margin > 0.0 && dist2(X, m->X) <= margin * margin;
 }
 
-bool cl_obstacle_near(const cl_obstacle *o, const cl_pose *P,
-                      const double x[3], double dmax, cl_contact_memo *memo,
-                      cl_contact_point *q)
+/* The query at the shape-frame point X of x (r = x - q - s). */
+static void query_at(const cl_obstacle *o, const cl_pose *P,
+                     const double r[3], const double X[3],
+                     cl_contact_point *q)
 {
-    double r[3], X[3];
-    to_shape(o, P, x, r, X);
-    if ((memo && memo_far(memo, X, dmax)) ||
-        (o->type->lower_bound && o->type->lower_bound(o->shape, X) >= dmax))
-        return false;
-    cl_obstacle_query(o, P, x, q);
-    if (memo) {
-        memcpy(memo->X, X, sizeof memo->X);
-        memo->d = q->d;
-    }
-    return q->d < dmax;
-}
-
-void cl_obstacle_query(const cl_obstacle *o, const cl_pose *P,
-                       const double x[3], cl_contact_point *q)
-{
-    double r[3], X[3], cb[3], c[3];
+    double cb[3], c[3];
     cl_shape_query b;
-    to_shape(o, P, x, r, X);
     o->type->query(o->shape, X, &b);
     for (int i = 0; i < 3; i++)
         cb[i] = b.c[i] - o->pivot[i];
@@ -151,6 +135,31 @@ void cl_obstacle_query(const cl_obstacle *o, const cl_pose *P,
     q->u[2] = P->sdot[2] + w[0] * r[1] - w[1] * r[0];
     double W[9] = {0.0, -w[2], w[1], w[2], 0.0, -w[0], -w[1], w[0], 0.0};
     memcpy(q->W, W, sizeof W);
+}
+
+bool cl_obstacle_near(const cl_obstacle *o, const cl_pose *P,
+                      const double x[3], double dmax, cl_contact_memo *memo,
+                      cl_contact_point *q)
+{
+    double r[3], X[3];
+    to_shape(o, P, x, r, X);
+    if ((memo && memo_far(memo, X, dmax)) ||
+        (o->type->lower_bound && o->type->lower_bound(o->shape, X) >= dmax))
+        return false;
+    query_at(o, P, r, X, q);
+    if (memo) {
+        memcpy(memo->X, X, sizeof memo->X);
+        memo->d = q->d;
+    }
+    return q->d < dmax;
+}
+
+void cl_obstacle_query(const cl_obstacle *o, const cl_pose *P,
+                       const double x[3], cl_contact_point *q)
+{
+    double r[3], X[3];
+    to_shape(o, P, x, r, X);
+    query_at(o, P, r, X, q);
 }
 
 cl_status cl_obstacle_surface(const cl_obstacle *o, double t,

@@ -65,8 +65,8 @@ cl_status cl_cloth_mesh(size_t np, const double *X0, size_t ntri,
  * summaries; written to buf (truncated to len), returns buf. */
 const char *cl_cloth_shape(const cl_cloth *c, char *buf, size_t len);
 
-/* Pin grid particle (i, j); negative indices count from the far edge (-1 is the
- * last row/column).  Pinning a particle again with the same motion does
+/* Pin grid particle (i, j); negative indices count from the far edge (-1 is
+ * the last row/column).  Pinning a particle again with the same motion does
  * nothing; with a different motion it is an error. */
 cl_status cl_cloth_pin(cl_cloth *c, int i, int j, const double w[3],
                        double t_stop, cl_error *err);
