@@ -781,3 +781,38 @@ Test(cloth_mesh, run_writes_mesh_frames_and_na_columns)
                   "%s", text);
     }
 }
+
+/* With obstacles the contact columns follow `broken`, and the NA columns
+ * stay the ones they name (a mesh cloth's wrinkles and, off a flat rest
+ * mesh, max_offplane), not counted from the end. */
+Test(cloth_mesh, na_columns_with_obstacles)
+{
+    bumpy_obj("bumpy.obj");
+    char ini[800], out[800], path[900], text[1 << 16], cell[64];
+    snprintf(ini, sizeof ini, "%s/contact.ini", dir);
+    snprintf(out, sizeof out, "%s/contact-out", dir);
+    write_problem(ini, "bumpy.obj");
+    FILE *f = fopen(ini, "a");
+    cr_assert_not_null(f);
+    fputs("[obstacle.floor]\nshape = plane\npoint = 0, -0.001, 0\n"
+          "normal = 0, 1, 0\nresponse = penalty\nk = 10\neps = 0.1\n", f);
+    cr_assert_eq(fclose(f), 0);
+    cli_result r;
+    cli_run(&r, "run", ini, "--out", out, NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    snprintf(path, sizeof path, "%s/series.csv", out);
+    tmp_slurp(path, text, sizeof text);
+    cr_assert(strstr(text, "gravity,contact,potential,"), "%s", text);
+    cr_assert(strstr(text, "max_offplane,wrinkles,broken,contacts,"
+                           "max_penetration,contact_force,friction_power\n"),
+              "%s", text);
+    last_field(text, 9, cell, sizeof cell);
+    cr_assert_str_eq(cell, "NA", "max_offplane: no rest plane");
+    last_field(text, 10, cell, sizeof cell);
+    cr_assert_str_eq(cell, "NA", "wrinkles: a grid's centre line");
+    last_field(text, 12, cell, sizeof cell);
+    cr_assert_gt(strtod(cell, NULL), 0.0, "contacts %s", cell);
+    last_field(text, 14, cell, sizeof cell);
+    cr_assert_gt(strtod(cell, NULL), 0.0, "contact_force %s", cell);
+}

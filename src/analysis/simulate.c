@@ -101,6 +101,7 @@ static cl_status open_series(sim *s, cl_error *err)
     names[n++] = "total";
     names[n++] = "power_diss";
     names[n++] = "max_stretch";
+    size_t offplane_col = n, wrinkles_col = n + 1;
     names[n++] = "max_offplane";
     names[n++] = "wrinkles";
     names[n++] = "broken";
@@ -117,9 +118,9 @@ static cl_status open_series(sim *s, cl_error *err)
     snprintf(path, sizeof path, "%s/series.csv", s->so->outdir);
     cl_status rc = cl_series_open(path, n, names, &s->series, err);
     if (rc == CL_OK && !s->offplane)
-        cl_series_not_applicable(s->series, n - 3);
+        cl_series_not_applicable(s->series, offplane_col);
     if (rc == CL_OK && s->c->kind == CL_CLOTH_MESH)
-        cl_series_not_applicable(s->series, n - 2);
+        cl_series_not_applicable(s->series, wrinkles_col);
     return rc;
 }
 
