@@ -91,7 +91,7 @@ Test(obstacle, velocity_field_is_the_motion_of_the_shape)
     cl_pose P;
     cl_obstacle_pose(&o, t, &P);
     cl_contact_point q;
-    cl_obstacle_query(&o, &P, x, &q);
+    cl_obstacle_near(&o, &P, x, INFINITY, NULL, &q);
     for (int i = 0; i < 3; i++)
         cr_expect_float_eq(q.u[i], (xp[i] - xm[i]) / (2 * h), 1e-8,
                            "u[%d] = %.12g", i, q.u[i]);
@@ -124,9 +124,9 @@ Test(obstacle, queries_follow_the_moved_and_turned_shape)
     cl_pose P;
     cl_obstacle_pose(&o, 1.0, &P);
     cl_contact_point q;
-    cl_obstacle_query(&o, &P, x, &q);
+    cl_obstacle_near(&o, &P, x, INFINITY, NULL, &q);
     cr_expect_lt(fabs(q.d), 1e-14, "corner at d = %g", q.d);
-    cl_obstacle_query(&o, &P, y, &q);
+    cl_obstacle_near(&o, &P, y, INFINITY, NULL, &q);
     cr_expect_float_eq(q.d, 0.5, 1e-14);
     /* turned a quarter about z and moved 3 along x: the +x face normal
      * now points along +y */
@@ -181,7 +181,7 @@ Test(obstacle, memo_skips_only_what_cannot_matter)
     make(&o, sets);
     cl_contact_memo memo = {{0, 0, 0}, -INFINITY};
     double x[3] = {1.5, 0.2, 0.1};
-    unsigned long seed = 12345, same = 0, steps = 20000;
+    unsigned long seed = 12345, steps = 20000;
     for (unsigned long k = 0; k < steps; k++) {
         for (int i = 0; i < 3; i++) { /* a small random step */
             seed = seed * 6364136223846793005UL + 1442695040888963407UL;
@@ -195,8 +195,6 @@ Test(obstacle, memo_skips_only_what_cannot_matter)
         cr_assert_eq(with, without, "step %lu", k);
         if (with)
             cr_assert_eq(memcmp(&a, &b, sizeof a), 0, "step %lu", k);
-        same += with == without;
     }
-    cr_expect_eq(same, steps);
     cl_obstacle_free(&o);
 }

@@ -191,6 +191,11 @@ void cl_bvh_nearest(const cl_bvh *b, const double x[3], cl_bvh_hit *hit)
     }
 }
 
+double cl_bvh_box_distance(const cl_bvh *b, const double x[3])
+{
+    return sqrt(box_dist2(&b->node[0], x));
+}
+
 void cl_bvh_nearest_brute(const cl_bvh *b, const double x[3],
                           cl_bvh_hit *hit)
 {

@@ -60,6 +60,10 @@ void cl_bvh_free(cl_bvh *b);
 
 void cl_bvh_nearest(const cl_bvh *b, const double x[3], cl_bvh_hit *hit);
 
+/* The distance from x to the box of all triangles (0 inside): a lower
+ * bound of the distance to any of them. */
+double cl_bvh_box_distance(const cl_bvh *b, const double x[3]);
+
 /* The same answer by trying every triangle: the reference of the tests and
  * of the benchmark. */
 void cl_bvh_nearest_brute(const cl_bvh *b, const double x[3],

@@ -2,6 +2,8 @@
  * obstacle.h; docs/model.md, contact). */
 #include "contact/obstacle.h"
 
+#include "core/vec3.h"
+
 #include <ctype.h>
 #include <math.h>
 #include <stdlib.h>
@@ -98,19 +100,13 @@ static void rotate_hessian(const cl_pose *P, const double Gb[9],
                            T[3 * i + 2] * R[3 * j + 2];
 }
 
-/* |a - b|^2 */
-static double dist2(const double a[3], const double b[3])
-{
-    double e[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-    return e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
-}
-
 /* Whether the memo shows d >= dmax at X: d(X) >= m.d - |X - m.X|. */
 static bool memo_far(const cl_contact_memo *m, const double X[3],
                      double dmax)
 {
-    double margin = m->d - dmax;
-    return margin > 0.0 && dist2(X, m->X) <= margin * margin;
+    double margin = m->d - dmax, e[3];
+    cl_v3_sub(X, m->X, e);
+    return margin > 0.0 && cl_v3_dot(e, e) <= margin * margin;
 }
 
 /* The query at the shape-frame point X of x (r = x - q - s). */
@@ -152,14 +148,6 @@ bool cl_obstacle_near(const cl_obstacle *o, const cl_pose *P,
         memo->d = q->d;
     }
     return q->d < dmax;
-}
-
-void cl_obstacle_query(const cl_obstacle *o, const cl_pose *P,
-                       const double x[3], cl_contact_point *q)
-{
-    double r[3], X[3];
-    to_shape(o, P, x, r, X);
-    query_at(o, P, r, X, q);
 }
 
 cl_status cl_obstacle_surface(const cl_obstacle *o, double t,

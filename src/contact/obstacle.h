@@ -73,11 +73,6 @@ typedef struct {
 
 void cl_obstacle_pose(const cl_obstacle *o, double t, cl_pose *P);
 
-/* Distance, normal, closest point, dn/dx and the obstacle's velocity at
- * the world point x, the obstacle at pose P. */
-void cl_obstacle_query(const cl_obstacle *o, const cl_pose *P,
-                       const double x[3], cl_contact_point *q);
-
 /* The last exact distance of one particle to one obstacle, in the shape's
  * frame: d is 1-Lipschitz in X and the rigid motion is an isometry, so
  * d(X') >= d - |X' - X| at any time (docs/model.md, contact). */
@@ -86,11 +81,13 @@ typedef struct {
     double d;     /* -INFINITY: nothing known yet */
 } cl_contact_memo;
 
-/* cl_obstacle_query for the points closer than dmax to the surface (or
- * inside): false, with q left unset, when the memo (if not NULL) or the
- * shape's lower bound of d (shape.h) already shows d >= dmax; else the
- * query (kept in the memo), and whether q->d < dmax.  The answer and q are
- * those of the query: the bounds only skip queries that cannot matter. */
+/* Distance, normal, closest point, dn/dx and the obstacle's velocity at
+ * the world point x, the obstacle at pose P, for the points closer than
+ * dmax to the surface (or inside): false, with q left unset, when the memo
+ * (if not NULL) or the shape's lower bound of d (shape.h) already shows
+ * d >= dmax; else the query (kept in the memo), and whether q->d < dmax.
+ * The bounds only skip queries that cannot matter; with dmax = INFINITY
+ * and no memo every point is queried. */
 bool cl_obstacle_near(const cl_obstacle *o, const cl_pose *P,
                       const double x[3], double dmax, cl_contact_memo *memo,
                       cl_contact_point *q);

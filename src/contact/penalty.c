@@ -2,13 +2,10 @@
  * Jacobians (penalty.h; docs/model.md, contact). */
 #include "contact/penalty.h"
 
+#include "core/vec3.h"
+
 #include <math.h>
 #include <string.h>
-
-static double dot3(const double *a, const double *b)
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
 /* M += s a b^T */
 static void add_outer(double M[9], double s, const double a[3],
@@ -83,16 +80,16 @@ bool cl_penalty_eval(const cl_response_params *r, const cl_contact_point *q,
     double w[3], vt[3], g[3];
     for (int i = 0; i < 3; i++)
         w[i] = v[i] - q->u[i];
-    double fe = r->k * (r->eps - q->d), wn = dot3(w, q->n);
+    double fe = r->k * (r->eps - q->d), wn = cl_v3_dot(w, q->n);
     for (int i = 0; i < 3; i++)
         vt[i] = w[i] - wn * q->n[i];
-    double s = sqrt(dot3(vt, vt) + r->v_smooth * r->v_smooth);
+    double s = sqrt(cl_v3_dot(vt, vt) + r->v_smooth * r->v_smooth);
     for (int i = 0; i < 3; i++) {
         g[i] = vt[i] / s;
         o->f[i] = fe * (1.0 - r->damping * wn) * q->n[i] - r->mu * fe * g[i];
     }
     o->energy = 0.5 * r->k * (r->eps - q->d) * (r->eps - q->d);
-    o->friction_power = -r->mu * fe * dot3(g, vt);
+    o->friction_power = -r->mu * fe * cl_v3_dot(g, vt);
     o->power = -r->damping * fe * wn * wn + o->friction_power;
     if (jac)
         penalty_jacobians(r, q, w, wn, fe, g, s, o);

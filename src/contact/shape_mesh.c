@@ -335,19 +335,10 @@ static cl_status mesh_surface(const void *shape, cl_shape_surface *s,
     return rc;
 }
 
-/* The distance from x to the bounding box of all triangles (0 inside): d
- * is at least that. */
+/* The distance from x to the box of all triangles: d is at least that. */
 static double mesh_lower_bound(const void *shape, const double x[3])
 {
-    const cl_bvh_node *root = &((const mesh *)shape)->bvh.node[0];
-    double d2 = 0.0;
-    for (int i = 0; i < 3; i++) {
-        double e = x[i] < root->lo[i]   ? root->lo[i] - x[i]
-                   : x[i] > root->hi[i] ? x[i] - root->hi[i]
-                                        : 0.0;
-        d2 += e * e;
-    }
-    return sqrt(d2);
+    return cl_bvh_box_distance(&((const mesh *)shape)->bvh, x);
 }
 
 const cl_shape_type cl_shape_mesh = {
