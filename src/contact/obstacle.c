@@ -171,16 +171,6 @@ cl_status cl_obstacle_surface(const cl_obstacle *o, double t,
 
 /* ---- configuration ---------------------------------------------------- */
 
-static cl_status bad_value(cl_config *cfg, const char *sec, const char *key,
-                           const char *value, const char *allowed,
-                           cl_error *err)
-{
-    char where[256];
-    return cl_error_set(err, CL_EINVAL, "%s: [%s] %s = \"%s\": %s",
-                        cl_config_origin(cfg, sec, key, where, sizeof where),
-                        sec, key, value, allowed);
-}
-
 static const char path_syntax[] =
     "expected keyframes \"t: x, y, z; t: x, y, z; ...\" with finite "
     "numbers and strictly increasing times";
@@ -228,10 +218,12 @@ static cl_status read_path(cl_config *cfg, const char *sec, cl_obstacle *o,
             !read_number(&p, ',', &o->key_s[k][1]) ||
             !read_number(&p, last, &o->key_s[k][2]) ||
             (k > 0 && !(o->key_t[k] > o->key_t[k - 1])))
-            return bad_value(cfg, sec, "path", v, path_syntax, err);
+            return cl_config_refuse(cfg, sec, "path", CL_EINVAL,
+                                    path_syntax, err);
     }
     if (*p)
-        return bad_value(cfg, sec, "path", v, path_syntax, err);
+        return cl_config_refuse(cfg, sec, "path", CL_EINVAL, path_syntax,
+                                err);
     o->nkey = n;
     return CL_OK;
 }
@@ -302,7 +294,7 @@ static cl_status read_shape(cl_config *cfg, const char *sec, cl_obstacle *o,
             strncat(allowed, cl_shape_registry[k]->name,
                     sizeof allowed - strlen(allowed) - 1);
         }
-        return bad_value(cfg, sec, "shape", name, allowed, err);
+        return cl_config_refuse(cfg, sec, "shape", CL_EINVAL, allowed, err);
     }
     return o->type->create(cfg, sec, o->pivot, &o->shape, err);
 }

@@ -2,6 +2,7 @@
 #include "contact/shape_impl.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -11,10 +12,9 @@ cl_status cl_shape_bad_value(cl_config *cfg, const char *sec,
                              const char *key, const char *what,
                              cl_error *err)
 {
-    char where[512];
-    return cl_error_set(err, CL_EINVAL, "%s: [%s] %s = \"%s\": expected %s",
-                        cl_config_origin(cfg, sec, key, where, sizeof where),
-                        sec, key, cl_config_string(cfg, sec, key, ""), what);
+    char why[256];
+    snprintf(why, sizeof why, "expected %s", what);
+    return cl_config_refuse(cfg, sec, key, CL_EINVAL, why, err);
 }
 
 static cl_status missing(const char *sec, const char *key, const char *what,

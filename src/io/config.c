@@ -741,6 +741,17 @@ void cl_config_ignore_section(cl_config *cfg, const char *sec)
 static const cl_entry *cl_find_section(const cl_config *cfg,
                                        const char *sec);
 
+cl_status cl_config_refuse(const cl_config *cfg, const char *sec,
+                           const char *key, cl_status code, const char *why,
+                           cl_error *err)
+{
+    cl_origin_buf origin;
+    const cl_entry *e = cl_lookup((cl_config *)cfg, sec, key);
+    cl_origin_of(e, origin, sizeof origin);
+    return cl_error_set(err, code, "%s: [%s] %s = \"%s\": %s", origin, sec,
+                        key, e ? e->value : "", why);
+}
+
 const char *cl_config_section_at(const cl_config *cfg, const char *prefix,
                                  size_t k)
 {

@@ -72,6 +72,13 @@ const char *cl_config_string(cl_config *cfg, const char *sec, const char *key,
 const char *cl_config_origin(const cl_config *cfg, const char *sec,
                              const char *key, char *buf, size_t len);
 
+/* Refuse the value of an entry: `code` with "ORIGIN: [sec] key = "value":
+ * why", for checks a typed getter cannot make (cross-key rules, a file's
+ * content, a syntax of its own). */
+cl_status cl_config_refuse(const cl_config *cfg, const char *sec,
+                           const char *key, cl_status code, const char *why,
+                           cl_error *err);
+
 /* CL_EINVAL naming the first entry no getter asked for, with the list of
  * keys known in its section if that section is known at all (names count as
  * known once a getter asked for them, present in the file or not). */

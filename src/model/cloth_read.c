@@ -11,15 +11,6 @@
 #define SEC "cloth"
 
 /* `code` with the message "origin: [sec] key = "value": why". */
-static cl_status refuse(cl_config *cfg, const char *sec, const char *key,
-                        cl_status code, const char *why, cl_error *err)
-{
-    char where[256];
-    return cl_error_set(err, code, "%s: [%s] %s = \"%s\": %s",
-                        cl_config_origin(cfg, sec, key, where, sizeof where),
-                        sec, key, cl_config_string(cfg, sec, key, ""), why);
-}
-
 /* The first of keys (NULL-terminated) the problem sets, or NULL. */
 static const char *first_set(cl_config *cfg, const char *const *keys)
 {
@@ -34,8 +25,9 @@ static cl_status read_grid(cl_config *cfg, cl_cloth *c, cl_error *err)
     static const char *const mesh_keys[] = {"scale", "translate", NULL};
     const char *k = first_set(cfg, mesh_keys);
     if (k)
-        return refuse(cfg, SEC, k, CL_EINVAL, "applies to a mesh cloth only "
-                      "(set [cloth] mesh = FILE.obj)", err);
+        return cl_config_refuse(cfg, SEC, k, CL_EINVAL,
+                                "applies to a mesh cloth only (set [cloth] "
+                                "mesh = FILE.obj)", err);
     long n, nu, nv;
     double size, su, sv, mass, pmass;
     cl_status rc;
@@ -88,9 +80,10 @@ static cl_status read_mesh(cl_config *cfg, cl_cloth *c, cl_error *err)
                                             "su", "sv", "diagonal", NULL};
     const char *k = first_set(cfg, grid_keys);
     if (k)
-        return refuse(cfg, SEC, k, CL_EINVAL, "a grid key (n, nu, nv, size, "
-                      "su, sv, diagonal) does not apply to a mesh cloth "
-                      "([cloth] mesh): remove it", err);
+        return cl_config_refuse(cfg, SEC, k, CL_EINVAL,
+                                "a grid key (n, nu, nv, size, su, sv, "
+                                "diagonal) does not apply to a mesh cloth "
+                                "([cloth] mesh): remove it", err);
     char path[4096];
     double scale, t[3] = {0.0, 0.0, 0.0}, mass, pmass;
     cl_status rc;
@@ -106,7 +99,7 @@ static cl_status read_mesh(cl_config *cfg, cl_cloth *c, cl_error *err)
     if ((rc = mesh_from_file(path, scale, t, mass, pmass, c, err))) {
         char msg[sizeof err->msg];
         snprintf(msg, sizeof msg, "%s", err->msg);
-        return refuse(cfg, SEC, "mesh", rc, msg, err);
+        return cl_config_refuse(cfg, SEC, "mesh", rc, msg, err);
     }
     return CL_OK;
 }
@@ -124,6 +117,6 @@ cl_status cl_cloth_grid_only(cl_config *cfg, const cl_cloth *c,
     if (c->kind == CL_CLOTH_GRID)
         return CL_OK;
     bool named = cl_config_string(cfg, sec, key, NULL) != NULL;
-    return refuse(cfg, named ? sec : SEC, named ? key : "mesh", CL_EINVAL,
-                  why, err);
+    return cl_config_refuse(cfg, named ? sec : SEC, named ? key : "mesh",
+                            CL_EINVAL, why, err);
 }

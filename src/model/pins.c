@@ -103,16 +103,11 @@ static cl_status pin_box(cl_config *cfg, const char *sec, const double b[6],
             return in_key(cfg, sec, "box", rc, err);
         caught++;
     }
-    char where[256];
     if (caught == 0)
-        return cl_error_set(err, CL_EINVAL,
-                            "%s: [%s] box = \"%s\": no particle's rest "
-                            "position lies in the box (x0, y0, z0, x1, y1, z1 "
-                            "with x0 <= x <= x1, y0 <= y <= y1, z0 <= z <= "
-                            "z1)",
-                            cl_config_origin(cfg, sec, "box", where,
-                                             sizeof where),
-                            sec, cl_config_string(cfg, sec, "box", ""));
+        return cl_config_refuse(cfg, sec, "box", CL_EINVAL,
+                                "no particle's rest position lies in the box "
+                                "(x0, y0, z0, x1, y1, z1 with x0 <= x <= x1, "
+                                "y0 <= y <= y1, z0 <= z <= z1)", err);
     return CL_OK;
 }
 
