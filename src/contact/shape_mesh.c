@@ -235,9 +235,9 @@ static cl_status load(mesh *m, const char *path, double scale,
         return rc;
     double lo[3] = {INFINITY, INFINITY, INFINITY};
     double hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    cl_obj_place(&m->m, scale, shift);
     for (size_t v = 0; v < m->m.nvert; v++) {
-        double *x = m->m.vert + 3 * v;
-        cl_v3_axpy(shift, scale, x, x);
+        const double *x = m->m.vert + 3 * v;
         for (int i = 0; i < 3; i++) {
             lo[i] = fmin(lo[i], x[i]);
             hi[i] = fmax(hi[i], x[i]);

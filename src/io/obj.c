@@ -304,3 +304,9 @@ cl_status cl_obj_read(const char *path, cl_obj *m, cl_error *err)
         cl_obj_free(m);
     return st;
 }
+
+void cl_obj_place(cl_obj *m, double scale, const double shift[3])
+{
+    for (size_t k = 0; k < 3 * m->nvert; k++)
+        m->vert[k] = scale * m->vert[k] + shift[k % 3];
+}

@@ -36,4 +36,8 @@ cl_status cl_obj_read(const char *path, cl_obj *m, cl_error *err);
 /* Free and empty m (harmless on an empty or already freed mesh). */
 void cl_obj_free(cl_obj *m);
 
+/* Place the vertices: x <- scale x + shift (the `scale` and `translate`
+ * keys of mesh cloths and mesh obstacles). */
+void cl_obj_place(cl_obj *m, double scale, const double shift[3]);
+
 #endif

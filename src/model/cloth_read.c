@@ -49,13 +49,6 @@ static cl_status read_grid(cl_config *cfg, cl_cloth *c, cl_error *err)
     return cl_cloth_grid((int)nu, (int)nv, su, sv, pmass, c, err);
 }
 
-/* Rest positions scale * vertex + translate, in place. */
-static void place(cl_obj *obj, double scale, const double t[3])
-{
-    for (size_t k = 0; k < 3 * obj->nvert; k++)
-        obj->vert[k] = scale * obj->vert[k] + t[k % 3];
-}
-
 /* A mesh cloth from the file, masses as read_mesh says. */
 static cl_status mesh_from_file(const char *path, double scale,
                                 const double t[3], double mass, double pmass,
@@ -65,7 +58,7 @@ static cl_status mesh_from_file(const char *path, double scale,
     cl_status rc = cl_obj_read(path, &obj, err);
     if (rc)
         return rc;
-    place(&obj, scale, t);
+    cl_obj_place(&obj, scale, t);
     rc = cl_cloth_mesh(obj.nvert, obj.vert, obj.ntri,
                        (const int(*)[3])obj.tri, mass, c, err);
     cl_obj_free(&obj);
