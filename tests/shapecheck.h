@@ -94,7 +94,7 @@ static inline void sc_refused(const char *name, const char *const *sets,
 static inline cl_shape_query sc_query(const sc_shape *s, const double x[3])
 {
     cl_shape_query q;
-    s->type->query(s->shape, x, &q);
+    s->type->query(s->shape, x, NULL, &q);
     double len = cl_v3_norm(q.n), r[3];
     cr_assert(fabs(len - 1) <= 1e-14, "|n| = %.17g at (%g, %g, %g)", len,
               x[0], x[1], x[2]);
@@ -164,8 +164,8 @@ static inline double sc_fd_error(const sc_shape *s, const double x[3],
         double xp[3] = {x[0], x[1], x[2]}, xm[3] = {x[0], x[1], x[2]};
         xp[j] += h;
         xm[j] -= h;
-        s->type->query(s->shape, xp, &qp);
-        s->type->query(s->shape, xm, &qm);
+        s->type->query(s->shape, xp, NULL, &qp);
+        s->type->query(s->shape, xm, NULL, &qm);
         if (!sc_same_region(&q, &qp) || !sc_same_region(&q, &qm))
             return -1;
         for (int i = 0; i < 3; i++)

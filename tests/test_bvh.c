@@ -63,13 +63,12 @@ Test(bvh, structure)
     cl_shape_surface_free(&s);
 }
 
-/* The tree against the closest point of every triangle, computed here
+/* An answer against the closest point of every triangle, computed here
  * without the tree's shortcuts (cl_bvh_nearest_brute shares them). */
-static void same_answer(const cl_bvh *b, const double x[3])
+static void check_hit(const cl_bvh *b, const double x[3],
+                      const cl_bvh_hit *fast)
 {
-    cl_bvh_hit fast;
     double slow = INFINITY;
-    cl_bvh_nearest(b, x, &fast);
     for (size_t t = 0; t < b->ntri; t++) {
         const int *v = b->tri[t];
         cl_tri_point p;
@@ -77,10 +76,30 @@ static void same_answer(const cl_bvh *b, const double x[3])
                        b->vert + 3 * v[2], &p);
         slow = fmin(slow, p.dist2);
     }
-    cr_assert(fast.tri >= 0);
-    cr_assert(fabs(sqrt(fast.p.dist2) - sqrt(slow)) <= 1e-14,
+    cr_assert(fast->tri >= 0);
+    cr_assert(fabs(sqrt(fast->p.dist2) - sqrt(slow)) <= 1e-14,
               "tree %.17g, every triangle %.17g at (%g, %g, %g)",
-              sqrt(fast.p.dist2), sqrt(slow), x[0], x[1], x[2]);
+              sqrt(fast->p.dist2), sqrt(slow), x[0], x[1], x[2]);
+}
+
+static void same_answer(const cl_bvh *b, const double x[3])
+{
+    cl_bvh_hit fast;
+    cl_bvh_nearest(b, x, &fast);
+    check_hit(b, x, &fast);
+}
+
+/* A lumpy sphere of radii 0.6..1.4 (icosphere level 3) into s and b. */
+static void lumpy_sphere(cl_shape_surface *s, cl_bvh *b)
+{
+    cl_error err = {0};
+    fd_rng r = {9};
+    cr_assert_eq(cl_icosphere(3, (double[]){0, 0, 0}, 1, s, &err), CL_OK);
+    for (size_t v = 0; v < s->nvert; v++)
+        for (int i = 0; i < 3; i++)
+            s->vert[3 * v + i] *= 1 + 0.4 * fd_rand(&r);
+    cr_assert_eq(cl_bvh_build(b, s->vert, s->ntri, (const int(*)[3])s->tri,
+                              &err), CL_OK, "%s", err.msg);
 }
 
 /* A lumpy sphere (radii 0.6..1.4), points near it, far off and near its
@@ -89,14 +108,8 @@ Test(bvh, nearest_equals_brute_force)
 {
     cl_shape_surface s;
     cl_bvh b;
-    cl_error err = {0};
-    fd_rng r = {9};
-    cr_assert_eq(cl_icosphere(3, (double[]){0, 0, 0}, 1, &s, &err), CL_OK);
-    for (size_t v = 0; v < s.nvert; v++)
-        for (int i = 0; i < 3; i++)
-            s.vert[3 * v + i] *= 1 + 0.4 * fd_rand(&r);
-    cr_assert_eq(cl_bvh_build(&b, s.vert, s.ntri, (const int(*)[3])s.tri,
-                              &err), CL_OK, "%s", err.msg);
+    fd_rng r = {10};
+    lumpy_sphere(&s, &b);
     for (int k = 0; k < 3000; k++) {
         double x[3];
         double scale = k % 3 == 0 ? 1.5 : k % 3 == 1 ? 20 : 0.02;
@@ -109,6 +122,48 @@ Test(bvh, nearest_equals_brute_force)
     cl_bvh_hit h;
     cl_bvh_nearest(&b, (double[]){NAN, 0, 0}, &h);
     cr_assert(h.tri >= 0 && isnan(h.p.dist2));
+    cl_bvh_free(&b);
+    cl_shape_surface_free(&s);
+}
+
+/* Points walking about the lumpy sphere (steps of 1e-4 to 1e-2, now and
+ * then a jump): the cached answer is the nearest triangle at every step,
+ * the very one cl_bvh_nearest gives,
+ * the cache answers most steps by itself (its x0 stays), and a point that
+ * is not a number, or infinitely far, still gets a triangle. */
+Test(bvh, cached_nearest_follows_a_moving_point)
+{
+    cl_shape_surface s;
+    cl_bvh b;
+    fd_rng r = {11};
+    lumpy_sphere(&s, &b);
+    cl_bvh_cache cache = {0};
+    double x[3] = {1.2, 0.1, 0.2};
+    int steps = 20000, kept = 0;
+    for (int k = 0; k < steps; k++) {
+        double step = k % 997 == 0 ? 0.5 : k % 3 == 0 ? 1e-2 : 1e-4;
+        for (int i = 0; i < 3; i++)
+            x[i] += step * fd_rand(&r);
+        double x0[3];
+        memcpy(x0, cache.x0, sizeof x0);
+        cl_bvh_hit hit, plain;
+        cl_bvh_nearest_cached(&b, x, &cache, &hit);
+        cl_bvh_nearest(&b, x, &plain);
+        check_hit(&b, x, &hit);
+        cr_assert_eq(hit.tri, plain.tri, "step %d", k);
+        kept += k > 0 && memcmp(x0, cache.x0, sizeof x0) == 0;
+    }
+    cr_assert_gt(kept, steps / 2, "the cache answered %d of %d", kept,
+                 steps);
+    static const double odd[][3] = {{NAN, 0, 0}, {INFINITY, 0, 0},
+                                    {0.5, 0.5, 0.5}};
+    for (int k = 0; k < 3; k++) {
+        cl_bvh_hit hit;
+        cl_bvh_nearest_cached(&b, odd[k], &cache, &hit);
+        cr_assert(hit.tri >= 0 && hit.tri < (int)b.ntri);
+        if (k == 2)
+            check_hit(&b, odd[k], &hit);
+    }
     cl_bvh_free(&b);
     cl_shape_surface_free(&s);
 }

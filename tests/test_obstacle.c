@@ -166,35 +166,57 @@ Test(obstacle, names_shapes_and_responses_are_checked)
     cl_obstacle_free(&o);
 }
 
-/* The memo only skips queries that cannot matter: along a random walk
- * about a moving, turning box, cl_obstacle_near with a memo answers as it
- * does without. */
-Test(obstacle, memo_skips_only_what_cannot_matter)
+/* A random walk of x about obstacle o (20000 steps of up to 1 cm,
+ * 1e-3 s each): cl_obstacle_near with a memo (and the shape's cache, if
+ * it has one) answers as it does without. */
+static void memo_walk(const cl_obstacle *o, const double start[3])
 {
-    cl_obstacle o;
-    const char *sets[NSET] = {"obstacle.o.shape = box",
-                              "obstacle.o.size = 1, 1, 1",
-                              "obstacle.o.path = 0: 0, 0, 0; 10: 1, 0, 0",
-                              "obstacle.o.omega = 0, 0.3, 0",
-                              "obstacle.o.response = penalty",
-                              "obstacle.o.k = 1", NULL};
-    make(&o, sets);
-    cl_contact_memo memo = {{0, 0, 0}, -INFINITY};
-    double x[3] = {1.5, 0.2, 0.1};
-    unsigned long seed = 12345, steps = 20000;
+    unsigned char cache[1024] = {0};
+    cr_assert_leq(o->type->cache_size, sizeof cache);
+    cl_contact_memo memo = {.d = -INFINITY,
+                            .cache = o->type->cache_size ? cache : NULL};
+    double x[3] = {start[0], start[1], start[2]};
+    unsigned long seed = 12345, steps = 20000, near = 0;
     for (unsigned long k = 0; k < steps; k++) {
         for (int i = 0; i < 3; i++) { /* a small random step */
             seed = seed * 6364136223846793005UL + 1442695040888963407UL;
             x[i] += 0.01 * ((double)(seed >> 11) / 9007199254740992.0 - 0.5);
         }
         cl_pose P;
-        cl_obstacle_pose(&o, 1e-3 * (double)k, &P);
+        cl_obstacle_pose(o, 1e-3 * (double)k, &P);
         cl_contact_point a, b;
-        bool with = cl_obstacle_near(&o, &P, x, 0.05, &memo, &a);
-        bool without = cl_obstacle_near(&o, &P, x, 0.05, NULL, &b);
+        bool with = cl_obstacle_near(o, &P, x, 0.05, &memo, &a);
+        bool without = cl_obstacle_near(o, &P, x, 0.05, NULL, &b);
         cr_assert_eq(with, without, "step %lu", k);
         if (with)
             cr_assert_eq(memcmp(&a, &b, sizeof a), 0, "step %lu", k);
+        near += with;
     }
+    cr_assert_gt(near, steps / 10, "the walk came near %lu times", near);
+}
+
+/* The memo only skips queries that cannot matter, about a moving, turning
+ * box and a moving, turning mesh (whose memo keeps nearby triangles). */
+Test(obstacle, memo_skips_only_what_cannot_matter)
+{
+    cl_obstacle o;
+    const char *box[NSET] = {"obstacle.o.shape = box",
+                             "obstacle.o.size = 1, 1, 1",
+                             "obstacle.o.path = 0: 0, 0, 0; 10: 1, 0, 0",
+                             "obstacle.o.omega = 0, 0.3, 0",
+                             "obstacle.o.response = penalty",
+                             "obstacle.o.k = 1", NULL};
+    make(&o, box);
+    memo_walk(&o, (double[]){0.52, 0.2, 0.1});
+    cl_obstacle_free(&o);
+    const char *mesh[NSET] = {"obstacle.o.shape = mesh",
+                              "obstacle.o.file = problems/meshes/sphere.obj",
+                              "obstacle.o.scale = 0.5",
+                              "obstacle.o.path = 0: 0, 0, 0; 10: 1, 0, 0",
+                              "obstacle.o.omega = 0, 0.3, 0",
+                              "obstacle.o.response = penalty",
+                              "obstacle.o.k = 1", NULL};
+    make(&o, mesh);
+    memo_walk(&o, (double[]){0.51, 0.1, 0.1});
     cl_obstacle_free(&o);
 }

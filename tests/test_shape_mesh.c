@@ -350,7 +350,7 @@ Test(shape_mesh, non_finite_point_does_not_crash)
     sc_shape s;
     mesh_shape(&s, cube_obj, "");
     cl_shape_query q;
-    s.type->query(s.shape, (double[]){NAN, 0, 0}, &q);
+    s.type->query(s.shape, (double[]){NAN, 0, 0}, NULL, &q);
     cr_assert(isnan(q.d));
     sc_free(&s);
 }

@@ -70,7 +70,7 @@ Test(shape_sphere, non_finite_point_does_not_crash)
     sc_shape s;
     sc_create(&s, "sphere", SC_SETS("radius = 1"));
     cl_shape_query q;
-    s.type->query(s.shape, (double[]){NAN, 0, 0}, &q);
+    s.type->query(s.shape, (double[]){NAN, 0, 0}, NULL, &q);
     cr_assert(isnan(q.d));
     sc_free(&s);
 }

@@ -3,7 +3,9 @@
 
 #include <limits.h>
 #include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "core/vec3.h"
 
@@ -148,40 +150,68 @@ static double box_dist2(const cl_bvh_node *nd, const double x[3])
     return s;
 }
 
-/* Triangle t replaces the hit if it is nearer (or the distances are not
- * numbers, so that a non-finite point still gets a triangle). */
+/* The triangles nearest to a point found so far: at most cap of them
+ * (cap <= CL_BVH_KEEP), their closest points by ascending distance. */
+typedef struct {
+    int cap, n;
+    int tri[CL_BVH_KEEP];
+    cl_tri_point p[CL_BVH_KEEP];
+} kept;
+
+/* Whether something at squared distance d2 cannot be kept: the list is
+ * full and its last is nearer.  (Not while there is room, so that a point
+ * at an infinite distance still gets a triangle.) */
+static bool farther(const kept *k, double d2)
+{
+    return k->n == k->cap && d2 > k->p[k->n - 1].dist2;
+}
+
+/* The order of the list: by distance, then by index, so that the answer
+ * does not depend on the order the triangles are tried in. */
+static bool before(double d2, int t, const kept *k, int i)
+{
+    return d2 < k->p[i].dist2 || (d2 == k->p[i].dist2 && t < k->tri[i]);
+}
+
+/* Keep triangle t if there is room or it comes before the last (so also
+ * when the distances are not numbers: a non-finite point still gets a
+ * triangle). */
 static void try_triangle(const cl_bvh *b, int t, const double x[3],
-                         cl_bvh_hit *hit)
+                         kept *k)
 {
     const int *v = b->tri[t];
-    cl_tri_point p;
     double ap[3];
     cl_v3_sub(x, b->vert + 3 * v[0], ap);
     double hgt = cl_v3_dot(ap, b->normal[t]);
-    if (hgt * hgt >= hit->p.dist2)
+    if (farther(k, hgt * hgt))
         return;
+    cl_tri_point p;
     cl_tri_closest(x, b->vert + 3 * v[0], b->vert + 3 * v[1],
                    b->vert + 3 * v[2], &p);
-    if (!(p.dist2 >= hit->p.dist2)) {
-        hit->tri = t;
-        hit->p = p;
+    if (k->n == k->cap && !before(p.dist2, t, k, k->n - 1))
+        return;
+    int i = k->n < k->cap ? k->n++ : k->n - 1;
+    for (; i > 0 && before(p.dist2, t, k, i - 1); i--) {
+        k->tri[i] = k->tri[i - 1];
+        k->p[i] = k->p[i - 1];
     }
+    k->tri[i] = t;
+    k->p[i] = p;
 }
 
-void cl_bvh_nearest(const cl_bvh *b, const double x[3], cl_bvh_hit *hit)
+/* Branch and bound for the k->cap nearest triangles. */
+static void nearest_kept(const cl_bvh *b, const double x[3], kept *k)
 {
     pending stack[STACK];
     int top = 0;
-    hit->tri = -1;
-    hit->p.dist2 = INFINITY;
     stack[top++] = (pending){0, box_dist2(&b->node[0], x)};
     while (top > 0) {
         pending e = stack[--top];
         const cl_bvh_node *nd = &b->node[e.node];
-        if (e.d2 >= hit->p.dist2)
+        if (farther(k, e.d2))
             continue;
         for (int i = 0; i < nd->count; i++)
-            try_triangle(b, b->order[nd->first + i], x, hit);
+            try_triangle(b, b->order[nd->first + i], x, k);
         if (nd->count)
             continue;
         pending l = {e.node + 1, box_dist2(&b->node[e.node + 1], x)};
@@ -189,6 +219,54 @@ void cl_bvh_nearest(const cl_bvh *b, const double x[3], cl_bvh_hit *hit)
         stack[top++] = l.d2 <= r.d2 ? r : l;   /* the farther one first */
         stack[top++] = l.d2 <= r.d2 ? l : r;
     }
+}
+
+static void hit_of(const kept *k, cl_bvh_hit *hit)
+{
+    hit->tri = k->tri[0];
+    hit->p = k->p[0];
+}
+
+void cl_bvh_nearest(const cl_bvh *b, const double x[3], cl_bvh_hit *hit)
+{
+    kept k = {.cap = 1};
+    nearest_kept(b, x, &k);
+    hit_of(&k, hit);
+}
+
+/* The answer from the cache alone, if its certificate holds at x. */
+static bool nearest_from_cache(const cl_bvh *b, const double x[3],
+                               const cl_bvh_cache *c, cl_bvh_hit *hit)
+{
+    kept k = {.cap = 1};
+    double e[3], best = INFINITY;
+    cl_v3_sub(x, c->x0, e);
+    double moved = sqrt(cl_v3_dot(e, e));
+    for (int i = 0; i < c->n && c->dist[i] - moved <= best; i++) {
+        try_triangle(b, c->tri[i], x, &k);
+        best = sqrt(k.p[0].dist2);
+    }
+    if (!(best < c->r0 - moved))
+        return false;
+    hit_of(&k, hit);
+    return true;
+}
+
+void cl_bvh_nearest_cached(const cl_bvh *b, const double x[3],
+                           cl_bvh_cache *cache, cl_bvh_hit *hit)
+{
+    if (cache->n > 0 && nearest_from_cache(b, x, cache, hit))
+        return;
+    kept k = {.cap = CL_BVH_KEEP};
+    nearest_kept(b, x, &k);
+    memcpy(cache->x0, x, sizeof cache->x0);
+    cache->n = k.n;
+    for (int i = 0; i < k.n; i++) {
+        cache->tri[i] = k.tri[i];
+        cache->dist[i] = sqrt(k.p[i].dist2);
+    }
+    cache->r0 = k.n < k.cap ? INFINITY : cache->dist[k.n - 1];
+    hit_of(&k, hit);
 }
 
 double cl_bvh_box_distance(const cl_bvh *b, const double x[3])
@@ -199,8 +277,8 @@ double cl_bvh_box_distance(const cl_bvh *b, const double x[3])
 void cl_bvh_nearest_brute(const cl_bvh *b, const double x[3],
                           cl_bvh_hit *hit)
 {
-    hit->tri = -1;
-    hit->p.dist2 = INFINITY;
+    kept k = {.cap = 1};
     for (size_t t = 0; t < b->ntri; t++)
-        try_triangle(b, (int)t, x, hit);
+        try_triangle(b, (int)t, x, &k);
+    hit_of(&k, hit);
 }

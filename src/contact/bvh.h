@@ -14,10 +14,10 @@
  * the best triangle found so far; a triangle of a visited leaf is skipped
  * too when its plane is that far (a lower bound of its distance), and
  * otherwise gets the exact closest point (contact/triangle.h).  Brute
- * force tries every triangle the same way.  The answer is a triangle at
- * the least distance (which one, among triangles at exactly that
- * distance, is unspecified).  A non-finite point gets some triangle with
- * a non-finite distance. */
+ * force tries every triangle the same way.  The answer is the triangle at
+ * the least (computed) distance, the one of least index among triangles
+ * at exactly that distance, whatever order they are tried in.  A
+ * non-finite point gets some triangle with a non-finite distance. */
 #ifndef CL_BVH_H
 #define CL_BVH_H
 
@@ -59,6 +59,30 @@ cl_status cl_bvh_build(cl_bvh *b, const double *vert, size_t ntri,
 void cl_bvh_free(cl_bvh *b);
 
 void cl_bvh_nearest(const cl_bvh *b, const double x[3], cl_bvh_hit *hit);
+
+/* The nearest triangle of a point that moves little between queries
+ * (temporal coherence with a certificate).  A full query keeps, besides
+ * the answer, the CL_BVH_KEEP triangles nearest to the point x0 it was
+ * made at, their distances there, and r0: every other triangle is at least
+ * r0 from x0.  At x, d = |x - x0|, a triangle not kept is at least r0 - d
+ * away (the distance to a set is 1-Lipschitz); so when the nearest kept
+ * one is within r0 - d it is the nearest of all, and the kept triangles
+ * are all that is tried (in the order of their distances at x0, stopping
+ * at the first one no nearer than the best at x, d under its distance at
+ * x0).  Otherwise a full query at x refills the cache.  The answer is
+ * cl_bvh_nearest's.  A zeroed cache is empty. */
+#define CL_BVH_KEEP 8
+
+typedef struct {
+    double x0[3];
+    double r0;                  /* other triangles' distance from x0 */
+    double dist[CL_BVH_KEEP];   /* distances of the kept ones, ascending */
+    int tri[CL_BVH_KEEP];
+    int n;                      /* kept; 0: empty */
+} cl_bvh_cache;
+
+void cl_bvh_nearest_cached(const cl_bvh *b, const double x[3],
+                           cl_bvh_cache *cache, cl_bvh_hit *hit);
 
 /* The distance from x to the box of all triangles (0 inside): a lower
  * bound of the distance to any of them. */

@@ -18,6 +18,8 @@ struct cl_contact {
     cl_obstacle *obs;
     cl_pose *pose;           /* scratch: every obstacle's pose at a time */
     cl_contact_memo *memo;   /* np per obstacle: the last exact distances */
+    unsigned char *cache;    /* the shapes' caches the memos point into */
+    size_t *near;            /* scratch: the particles near one obstacle */
     bool penalizes, projects;
     long passes;             /* projection passes */
     long *slot;              /* diagonal block of each particle, or -1 */
@@ -69,8 +71,28 @@ static void contact_free(void *state)
     free(c->obs);
     free(c->pose);
     free(c->memo);
+    free(c->cache);
+    free(c->near);
     free(c->slot);
     free(c);
+}
+
+/* Every memo empty, pointing at its zeroed shape cache (if any). */
+static cl_status start_memos(cl_contact *c, cl_error *err)
+{
+    size_t np = c->cloth->np, total = 0;
+    for (size_t k = 0; k < c->nobs; k++)
+        total += np * c->obs[k].type->cache_size;
+    if (total && !(c->cache = calloc(total, 1)))
+        return cl_error_set(err, CL_ENOMEM, "out of memory (obstacles)");
+    unsigned char *at = c->cache;
+    for (size_t k = 0; k < c->nobs; k++) {
+        size_t size = c->obs[k].type->cache_size;
+        for (size_t p = 0; p < np; p++, at += size)
+            *memo_of(c, k, p) = (cl_contact_memo){
+                .d = -INFINITY, .cache = size ? at : NULL};
+    }
+    return CL_OK;
 }
 
 static cl_status contact_create(cl_config *cfg, const cl_cloth *cloth,
@@ -88,13 +110,12 @@ static cl_status contact_create(cl_config *cfg, const cl_cloth *cloth,
     if (!c || !(c->obs = calloc(n, sizeof *c->obs)) ||
         !(c->pose = calloc(n, sizeof *c->pose)) ||
         !(c->memo = malloc(n * cloth->np * sizeof *c->memo)) ||
+        !(c->near = malloc(cloth->np * sizeof *c->near)) ||
         !(c->slot = malloc(cloth->np * sizeof *c->slot))) {
         contact_free(c);
         return cl_error_set(err, CL_ENOMEM, "out of memory (obstacles)");
     }
     c->cloth = cloth;
-    for (size_t k = 0; k < n * cloth->np; k++)
-        c->memo[k].d = -INFINITY;
     for (; c->nobs < n; c->nobs++) {
         cl_obstacle *o = &c->obs[c->nobs];
         cl_status rc = cl_obstacle_create(
@@ -109,6 +130,11 @@ static cl_status contact_create(cl_config *cfg, const cl_cloth *cloth,
         if (o->resp.kind == CL_RESPONSE_PROJECT && o->resp.iterations >
                                                        c->passes)
             c->passes = o->resp.iterations;
+    }
+    cl_status rc = start_memos(c, err);
+    if (rc) {
+        contact_free(c);
+        return rc;
     }
     *state = c;
     return CL_OK;
@@ -150,7 +176,11 @@ static void contact_eval(void *state, cl_eval *ev)
         if (o->resp.kind != CL_RESPONSE_PENALTY)
             continue;
         cl_obstacle_pose(o, ev->t, &P);
-        for (size_t p = 0; p < c->cloth->np; p++) {
+        size_t nnear = cl_obstacle_screen(o, &P, ev->x, c->cloth->np,
+                                          o->resp.eps, memo_of(c, k, 0),
+                                          c->near);
+        for (size_t i = 0; i < nnear; i++) {
+            size_t p = c->near[i];
             cl_contact_point q;
             cl_penalty_out out;
             if (c->slot[p] < 0 ||
@@ -241,13 +271,19 @@ double cl_contact_penetration(cl_contact *c, double t, const double *x)
 {
     double worst = 0.0;
     place(c, t);
-    for (size_t p = 0; p < c->cloth->np; p++)
-        for (size_t k = 0; k < c->nobs && c->cloth->dof[p] >= 0; k++) {
+    for (size_t k = 0; k < c->nobs; k++) {
+        size_t nnear = cl_obstacle_screen(&c->obs[k], &c->pose[k], x,
+                                          c->cloth->np, 0.0,
+                                          memo_of(c, k, 0), c->near);
+        for (size_t i = 0; i < nnear; i++) {
+            size_t p = c->near[i];
             cl_contact_point q;
-            if (cl_obstacle_near(&c->obs[k], &c->pose[k], x + 3 * p, 0.0,
+            if (c->cloth->dof[p] >= 0 &&
+                cl_obstacle_near(&c->obs[k], &c->pose[k], x + 3 * p, 0.0,
                                  memo_of(c, k, p), &q))
                 worst = fmax(worst, -q.d);
         }
+    }
     return worst;
 }
 
@@ -262,7 +298,11 @@ size_t cl_contact_project(cl_contact *c, double t, double *x, double *v)
             if (o->resp.kind != CL_RESPONSE_PROJECT ||
                 pass >= o->resp.iterations)
                 continue;
-            for (size_t p = 0; p < cl->np; p++) {
+            size_t nnear = cl_obstacle_screen(o, &c->pose[k], x, cl->np,
+                                              o->resp.offset,
+                                              memo_of(c, k, 0), c->near);
+            for (size_t i = 0; i < nnear; i++) {
+                size_t p = c->near[i];
                 cl_contact_point q;
                 if (cl->dof[p] >= 0 &&
                     cl_obstacle_near(o, &c->pose[k], x + 3 * p,

@@ -59,7 +59,7 @@ void cl_obstacle_pose(const cl_obstacle *o, double t, cl_pose *P)
 
 /* The shape-frame point X of the world point x (docs/model.md, eq. C2):
  * X = q + R^T (x - q - s), with r = x - q - s. */
-static void to_shape(const cl_obstacle *o, const cl_pose *P,
+static inline void to_shape(const cl_obstacle *o, const cl_pose *P,
                      const double x[3], double r[3], double X[3])
 {
     const double *R = P->R;
@@ -100,23 +100,25 @@ static void rotate_hessian(const cl_pose *P, const double Gb[9],
                            T[3 * i + 2] * R[3 * j + 2];
 }
 
-/* Whether the memo shows d >= dmax at X: d(X) >= m.d - |X - m.X|. */
-static bool memo_far(const cl_contact_memo *m, const double X[3],
-                     double dmax)
+
+/* Whether the memo m shows d >= dmax at X = (X0, X1, X2):
+ * d(X) >= m.d - |X - m.X|. */
+static inline bool memo_far_at(const cl_contact_memo *m, double X0,
+                               double X1, double X2, double dmax)
 {
-    double margin = m->d - dmax, e[3];
-    cl_v3_sub(X, m->X, e);
-    return margin > 0.0 && cl_v3_dot(e, e) <= margin * margin;
+    double margin = m->d - dmax;
+    double e0 = X0 - m->X[0], e1 = X1 - m->X[1], e2 = X2 - m->X[2];
+    return margin > 0.0 && e0 * e0 + e1 * e1 + e2 * e2 <= margin * margin;
 }
 
 /* The query at the shape-frame point X of x (r = x - q - s). */
 static void query_at(const cl_obstacle *o, const cl_pose *P,
-                     const double r[3], const double X[3],
+                     const double r[3], const double X[3], void *cache,
                      cl_contact_point *q)
 {
     double cb[3], c[3];
     cl_shape_query b;
-    o->type->query(o->shape, X, &b);
+    o->type->query(o->shape, X, cache, &b);
     for (int i = 0; i < 3; i++)
         cb[i] = b.c[i] - o->pivot[i];
     q->d = b.d;
@@ -139,15 +141,43 @@ bool cl_obstacle_near(const cl_obstacle *o, const cl_pose *P,
 {
     double r[3], X[3];
     to_shape(o, P, x, r, X);
-    if ((memo && memo_far(memo, X, dmax)) ||
-        (o->type->lower_bound && o->type->lower_bound(o->shape, X) >= dmax))
+    if (memo && memo_far_at(memo, X[0], X[1], X[2], dmax))
         return false;
-    query_at(o, P, r, X, q);
+    double low = o->type->lower_bound ? o->type->lower_bound(o->shape, X)
+                                      : -INFINITY;
+    if (low < dmax)
+        query_at(o, P, r, X, memo ? memo->cache : NULL, q);
     if (memo) {
         memcpy(memo->X, X, sizeof memo->X);
-        memo->d = q->d;
+        memo->d = low < dmax ? q->d : low;
     }
-    return q->d < dmax;
+    return low < dmax && q->d < dmax;
+}
+
+size_t cl_obstacle_screen(const cl_obstacle *o, const cl_pose *P,
+                          const double *x, size_t np, double dmax,
+                          const cl_contact_memo *memo, size_t *near)
+{
+    size_t n = 0;
+    if (P->rotates) {
+        for (size_t p = 0; p < np; p++) {
+            double r[3], X[3];
+            to_shape(o, P, x + 3 * p, r, X);
+            if (!memo_far_at(&memo[p], X[0], X[1], X[2], dmax))
+                near[n++] = p;
+        }
+        return n;
+    }
+    /* to_shape without the rotation, its terms in the same order */
+    const double q0 = o->pivot[0], q1 = o->pivot[1], q2 = o->pivot[2];
+    const double s0 = P->s[0], s1 = P->s[1], s2 = P->s[2];
+    for (size_t p = 0; p < np; p++) {
+        const double *y = x + 3 * p;
+        if (!memo_far_at(&memo[p], q0 + (y[0] - q0 - s0),
+                         q1 + (y[1] - q1 - s1), q2 + (y[2] - q2 - s2), dmax))
+            near[n++] = p;
+    }
+    return n;
 }
 
 cl_status cl_obstacle_surface(const cl_obstacle *o, double t,

@@ -73,24 +73,37 @@ typedef struct {
 
 void cl_obstacle_pose(const cl_obstacle *o, double t, cl_pose *P);
 
-/* The last exact distance of one particle to one obstacle, in the shape's
- * frame: d is 1-Lipschitz in X and the rigid motion is an isometry, so
- * d(X') >= d - |X' - X| at any time (docs/model.md, contact). */
+/* What is known of the distance of one particle to one obstacle: a lower
+ * bound d at the shape-frame point X (the exact distance of the last
+ * query there, or the shape's lower bound).  d is 1-Lipschitz in X and the
+ * rigid motion is an isometry, so d(X') >= d - |X' - X| at any time
+ * (docs/model.md, contact). */
 typedef struct {
     double X[3];
     double d;     /* -INFINITY: nothing known yet */
+    void *cache;  /* the shape's cache for this point (shape.h), or NULL */
 } cl_contact_memo;
 
 /* Distance, normal, closest point, dn/dx and the obstacle's velocity at
  * the world point x, the obstacle at pose P, for the points closer than
  * dmax to the surface (or inside): false, with q left unset, when the memo
  * (if not NULL) or the shape's lower bound of d (shape.h) already shows
- * d >= dmax; else the query (kept in the memo), and whether q->d < dmax.
+ * d >= dmax (the bound kept in the memo); else the query (kept in the
+ * memo), and whether q->d < dmax.
  * The bounds only skip queries that cannot matter; with dmax = INFINITY
  * and no memo every point is queried. */
 bool cl_obstacle_near(const cl_obstacle *o, const cl_pose *P,
                       const double x[3], double dmax, cl_contact_memo *memo,
                       cl_contact_point *q);
+
+/* The broad phase of cl_obstacle_near for the np points x (3 each) and
+ * their memos: the indices of those whose memo does not already show
+ * d >= dmax into near[], and their number.  One pass over the points
+ * without the per-point call of cl_obstacle_near, which the points listed
+ * then get. */
+size_t cl_obstacle_screen(const cl_obstacle *o, const cl_pose *P,
+                          const double *x, size_t np, double dmax,
+                          const cl_contact_memo *memo, size_t *near);
 
 /* The obstacle's drawing surface at time t, in the world frame. */
 cl_status cl_obstacle_surface(const cl_obstacle *o, double t,

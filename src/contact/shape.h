@@ -46,7 +46,13 @@ typedef struct {
      * naming the file, line, key, value and the allowed range. */
     cl_status (*create)(cl_config *cfg, const char *sec, double pivot[3],
                         void **shape, cl_error *err);
-    void (*query)(const void *shape, const double x[3], cl_shape_query *q);
+    /* cache: NULL, or cache_size bytes kept for one moving point between
+     * its queries (zeroed before the first), which the shape may use to
+     * answer faster; the answer does not depend on it (up to which of
+     * several nearest features is taken; a mesh: contact/bvh.h). */
+    void (*query)(const void *shape, const double x[3], void *cache,
+                  cl_shape_query *q);
+    size_t cache_size;  /* 0: the shape keeps nothing */
     /* Optional (NULL: none): a lower bound of d at x, much cheaper than
      * the query (a mesh: the distance to its bounding box), so that
      * particles far from the shape skip the query. */

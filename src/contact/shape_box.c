@@ -76,8 +76,9 @@ static void query_inside(const box *b, const double x[3], const double p[3],
 }
 
 static void box_query(const void *shape, const double x[3],
-                      cl_shape_query *q)
+                      void *cache, cl_shape_query *q)
 {
+    (void)cache;
     const box *b = shape;
     double p[3];
     cl_v3_sub(x, b->c, p);

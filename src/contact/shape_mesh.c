@@ -12,8 +12,9 @@
  * should also be free of self-intersections, pinched vertices and
  * zero-thickness folds, which are not checked.
  *
- * Query: the nearest triangle by the bounding-volume tree (contact/bvh.h)
- * gives the closest point c and the feature it lies on.  The sign comes
+ * Query: the nearest triangle by the bounding-volume tree (contact/bvh.h;
+ * with a cache, a point's nearby triangles kept from one query to the
+ * next) gives the closest point c and the feature it lies on.  The sign comes
  * from the angle-weighted pseudo-normal of that feature (Baerentzen and
  * Aanaes, "Signed distance computation using the angle weighted
  * pseudonormal", IEEE TVCG 11(3), 2005): the face normal on a face, the
@@ -305,12 +306,15 @@ static g_kind feature(const mesh *m, const cl_bvh_hit *h, const double **pn,
     return m->vkind[v[k]];
 }
 
-static void mesh_query(const void *shape, const double x[3],
+static void mesh_query(const void *shape, const double x[3], void *cache,
                        cl_shape_query *q)
 {
     const mesh *m = shape;
     cl_bvh_hit h;
-    cl_bvh_nearest(&m->bvh, x, &h);
+    if (cache)
+        cl_bvh_nearest_cached(&m->bvh, x, cache, &h);
+    else
+        cl_bvh_nearest(&m->bvh, x, &h);
     const double *pn;
     double e[3], r[3];
     g_kind kind = feature(m, &h, &pn, e);
@@ -348,6 +352,7 @@ const cl_shape_type cl_shape_mesh = {
            "scale (> 0), translate (vector)",
     .create = mesh_create,
     .query = mesh_query,
+    .cache_size = sizeof(cl_bvh_cache),
     .surface = mesh_surface,
     .free = mesh_free,
 };

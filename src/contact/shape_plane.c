@@ -44,8 +44,9 @@ static cl_status plane_create(cl_config *cfg, const char *sec,
 }
 
 static void plane_query(const void *shape, const double x[3],
-                        cl_shape_query *q)
+                        void *cache, cl_shape_query *q)
 {
+    (void)cache;
     const plane *s = shape;
     double r[3];
     cl_v3_sub(x, s->p, r);

@@ -31,8 +31,9 @@ static cl_status sphere_create(cl_config *cfg, const char *sec,
 }
 
 static void sphere_query(const void *shape, const double x[3],
-                         cl_shape_query *q)
+                         void *cache, cl_shape_query *q)
 {
+    (void)cache;
     const sphere *s = shape;
     double rel[3];
     cl_v3_sub(x, s->c, rel);
