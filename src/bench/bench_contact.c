@@ -2,106 +2,256 @@
  * step.  problems/skirt.ini (a mesh cloth on a sphere mesh and a floor,
  * penalty contact) is run with its own integrator and step ([run]:
  * symplectic-euler-x, dt = 2e-4 s) to two states where the cloth touches:
- * t = 0.5 s, draped over the sphere (72 particles in contact when written,
- * none on the floor; by t = 0.8 s it has bounced off the soft penalty and
- * only 6 touch), and t = 3 s, on the floor (233).  At each state, in
- * interleaved rounds until the plan's eval_budget CPU seconds have
- * passed:
- *   contact  the contact term alone (cl_contact_term.eval on the
- *            full-particle arrays, as the model's force calls it);
- *   hook     the contact hook the fixed-step methods call after every step
- *            (sys->contact with record: the penetration, the projections);
- *   force    the model's whole force (every term, the contact term
- *            included; scatter and gather).
- * share = (contact + hook) / (force + hook), the contact part of a step
- * whose cost is its force evaluation and its hook; goal <= 25 %.  The
- * integrator's own work (a few vector updates) is left out of the
- * denominator; the note gives, beside it, the CPU time per step of the
- * next W8_STEPS steps of the run itself. */
+ * t = 0.5 s, draped over the sphere (72 particles in contact; by t = 0.8 s
+ * it has bounced off the soft penalty and only 6 touch), and t = 3 s, on
+ * the floor (about 240).  From each state:
+ *   step     W8_STEPS steps of the run, each time by a new integrator
+ *            from the same state, W8_REPEATS times: the CPU time per step;
+ *   tape     the same steps once more, through a system that records the
+ *            arguments of every force and contact-hook call before passing
+ *            it on;
+ * then, in interleaved rounds until the plan's eval_budget CPU seconds
+ * have passed, the recorded calls are replayed in their order, each on a
+ * copy of its arguments in the same work arrays (hot in the cache, as the
+ * run's arrays are when the integrator has just written them):
+ *   copy     the copies alone;
+ *   term     for a force call the contact term alone (cl_contact_term.eval
+ *            on its state, as the model's force calls it), for a hook call
+ *            nothing;
+ *   contact  the term for a force call, the contact hook (sys->contact)
+ *            for a hook call.
+ * The contact layer's memos and caches follow the states of the replay as
+ * they follow those of the run, so a replay does the run's contact work:
+ * the contact term costs term - copy, the hook contact - term, and
+ * share = (contact - copy) per step / step; goal <= 25 %. */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "bench/bench_impl.h"
 
-#define W8_CHUNK 8    /* calls per clock reading */
-#define W8_ROUNDS 10  /* rounds at least */
-#define W8_STEPS 500  /* steps of the run timed after each state */
+#define W8_STEPS 500  /* steps timed and recorded from each state */
+#define W8_REPEATS 5  /* times the steps are timed */
+#define W8_FORCES 4   /* force calls per step recorded at most */
+#define W8_ROUNDS 3   /* replay rounds at least */
 
-enum { W8_CONTACT, W8_HOOK, W8_FORCE, W8_PARTS };
+/* The replays (header comment). */
+enum { W8_COPY, W8_TERM, W8_CONTACT, W8_PARTS };
 
-/* The model, its integrator and the state being measured. */
+/* The recorded calls in their order (the hook calls marked in is_hook):
+ * the force calls' states as full-particle arrays (3 np each, what the
+ * contact term sees), the hook calls' free arrays (n each). */
+typedef struct {
+    const cl_system *inner;  /* the model's system, called on */
+    const cl_cloth *cloth;
+    size_t n, n3;
+    size_t nforce, nhook;    /* recorded */
+    size_t max_force, max_hook;
+    unsigned char *is_hook;  /* nforce + nhook calls */
+    double *force_t, *force_x, *force_v;
+    double *hook_t, *hook_x, *hook_v;
+    unsigned char *hook_record;
+} w8_tape;
+
+/* The model, its integrator, the state measured and the work arrays. */
 typedef struct {
     cl_model *m;
     const cl_system *sys;
     const cl_integrator_type *type;
-    void *integ;
-    double dt, t;
-    double *x, *v, *f;     /* free state and forces (sys->n each) */
-    double *xf, *vf, *ff;  /* full-particle arrays (3 np each) */
-    cl_eval ev;            /* the contact term's evaluation on xf, vf */
+    cl_integrator_opts io;
+    void *integ;           /* the run */
+    double *x, *v;         /* its state (sys->n each) */
+    double t0, t1;         /* the steps measured: from t0 to t1 */
+    double *x0, *v0;       /* the state at t0 */
+    double *xw, *vw;       /* work arrays: a hook call's (n each) */
+    double *xfw, *vfw, *ff;  /* a contact-term call's (3 np each) */
+    w8_tape tape;
 } w8_run;
 
-static cl_status w8_call(w8_run *r, int part)
+static cl_status tape_force(void *data, double t, const double *x,
+                            const double *v, double *f)
 {
-    const cl_system *sys = r->sys;
-    if (part == W8_CONTACT) {
-        cl_contact_term.eval(cl_model_contact_state(r->m), &r->ev);
-        return CL_OK;
+    w8_tape *tp = data;
+    if (tp->nforce < tp->max_force && tp->nhook < tp->max_hook) {
+        tp->is_hook[tp->nforce + tp->nhook] = false;
+        size_t k = tp->nforce++;
+        tp->force_t[k] = t;
+        cl_cloth_scatter(tp->cloth, t, x, v, tp->force_x + k * tp->n3,
+                         tp->force_v + k * tp->n3);
     }
-    if (part == W8_HOOK)
-        return sys->contact(sys->data, r->t, r->x, r->v, true);
-    return sys->force(sys->data, r->t, r->x, r->v, r->f);
+    return tp->inner->force(tp->inner->data, t, x, v, f);
 }
 
-/* CPU and wall seconds per call of each part, interleaved in rounds of
- * W8_CHUNK calls each; the calls made of each part into *calls. */
-static cl_status w8_time(w8_run *r, double budget, double cpu[W8_PARTS],
-                         double wall[W8_PARTS], long *calls)
+static cl_status tape_contact(void *data, double t, double *x, double *v,
+                              bool record)
+{
+    w8_tape *tp = data;
+    if (tp->nforce < tp->max_force && tp->nhook < tp->max_hook) {
+        tp->is_hook[tp->nforce + tp->nhook] = true;
+        size_t k = tp->nhook++;
+        tp->hook_t[k] = t;
+        memcpy(tp->hook_x + k * tp->n, x, tp->n * sizeof *x);
+        memcpy(tp->hook_v + k * tp->n, v, tp->n * sizeof *v);
+        tp->hook_record[k] = record;
+    }
+    return tp->inner->contact(tp->inner->data, t, x, v, record);
+}
+
+static bool tape_alloc(w8_tape *tp, const cl_system *sys,
+                       const cl_cloth *cloth)
+{
+    *tp = (w8_tape){.inner = sys, .cloth = cloth, .n = sys->n,
+                    .n3 = 3 * cloth->np, .max_force = W8_FORCES * W8_STEPS,
+                    .max_hook = W8_STEPS + 1};
+    tp->is_hook = malloc(tp->max_force + tp->max_hook);
+    tp->force_t = malloc(tp->max_force * sizeof *tp->force_t);
+    tp->force_x = malloc(tp->max_force * tp->n3 * sizeof *tp->force_x);
+    tp->force_v = malloc(tp->max_force * tp->n3 * sizeof *tp->force_v);
+    tp->hook_t = malloc(tp->max_hook * sizeof *tp->hook_t);
+    tp->hook_x = malloc(tp->max_hook * tp->n * sizeof *tp->hook_x);
+    tp->hook_v = malloc(tp->max_hook * tp->n * sizeof *tp->hook_v);
+    tp->hook_record = malloc(tp->max_hook * sizeof *tp->hook_record);
+    return tp->is_hook && tp->force_t && tp->force_x && tp->force_v && tp->hook_t &&
+           tp->hook_x && tp->hook_v && tp->hook_record;
+}
+
+static void tape_free(w8_tape *tp)
+{
+    free(tp->is_hook);
+    free(tp->force_t);
+    free(tp->force_x);
+    free(tp->force_v);
+    free(tp->hook_t);
+    free(tp->hook_x);
+    free(tp->hook_v);
+    free(tp->hook_record);
+}
+
+/* The steps from (t0, x0, v0) to t1 by a new integrator on sys, in the
+ * work arrays. */
+static cl_status w8_steps(w8_run *r, const cl_system *sys, cl_error *err)
+{
+    void *integ = NULL;
+    memcpy(r->xw, r->x0, r->sys->n * sizeof *r->xw);
+    memcpy(r->vw, r->v0, r->sys->n * sizeof *r->vw);
+    cl_status rc = r->type->create(sys, &r->io, r->t0, r->xw, r->vw, &integ,
+                                   err);
+    if (!rc)
+        rc = r->type->advance(integ, r->t1, r->xw, r->vw, err);
+    if (integ)
+        r->type->free(integ);
+    return rc;
+}
+
+/* CPU and wall seconds per step, the mean of W8_REPEATS timings. */
+static cl_status w8_time_steps(w8_run *r, double *cpu, double *wall,
+                               cl_error *err)
+{
+    double c0, w0, c1, w1;
+    cl_status rc = CL_OK;
+    cl_bench_clock(&c0, &w0);
+    for (int k = 0; k < W8_REPEATS && !rc; k++)
+        rc = w8_steps(r, r->sys, err);
+    cl_bench_clock(&c1, &w1);
+    *cpu = (c1 - c0) / (W8_REPEATS * W8_STEPS);
+    *wall = (w1 - w0) / (W8_REPEATS * W8_STEPS);
+    return rc;
+}
+
+/* The steps once more on the recording system. */
+static cl_status w8_record(w8_run *r, cl_error *err)
+{
+    cl_system rec = *r->sys;
+    rec.data = &r->tape;
+    rec.force = tape_force;
+    rec.contact = tape_contact;
+    r->tape.nforce = r->tape.nhook = 0;
+    cl_status rc = w8_steps(r, &rec, err);
+    if (!rc && (r->tape.nforce >= r->tape.max_force ||
+                r->tape.nhook != W8_STEPS))
+        rc = cl_error_set(err, CL_EINVAL, "%zu force and %zu hook calls in "
+                          "%d steps: not one hook call a step, or more "
+                          "than %d force calls", r->tape.nforce,
+                          r->tape.nhook, W8_STEPS, W8_FORCES);
+    return rc;
+}
+
+/* One replay of the recorded calls, in order. */
+static cl_status w8_replay(w8_run *r, int part)
+{
+    w8_tape *tp = &r->tape;
+    cl_status rc = CL_OK;
+    size_t kf = 0, kh = 0;
+    for (size_t k = 0; k < tp->nforce + tp->nhook && !rc; k++) {
+        if (tp->is_hook[k]) {
+            memcpy(r->xw, tp->hook_x + kh * tp->n, tp->n * sizeof *r->xw);
+            memcpy(r->vw, tp->hook_v + kh * tp->n, tp->n * sizeof *r->vw);
+            if (part == W8_CONTACT)
+                rc = r->sys->contact(r->sys->data, tp->hook_t[kh], r->xw,
+                                     r->vw, tp->hook_record[kh]);
+            kh++;
+            continue;
+        }
+        memcpy(r->xfw, tp->force_x + kf * tp->n3, tp->n3 * sizeof *r->xfw);
+        memcpy(r->vfw, tp->force_v + kf * tp->n3, tp->n3 * sizeof *r->vfw);
+        if (part != W8_COPY) {
+            cl_eval ev = {.t = tp->force_t[kf], .x = r->xfw, .v = r->vfw,
+                          .f = r->ff};
+            cl_contact_term.eval(cl_model_contact_state(r->m), &ev);
+        }
+        kf++;
+    }
+    return rc;
+}
+
+/* CPU and wall seconds per recorded step of each replay, the replays
+ * interleaved; the rounds made into *rounds. */
+static cl_status w8_time_replays(w8_run *r, double budget,
+                                 double cpu[W8_PARTS], double wall[W8_PARTS],
+                                 long *rounds)
 {
     double spent = 0.0;
     cl_status rc = CL_OK;
-    long rounds = 0;
+    long k = 0;
     for (int p = 0; p < W8_PARTS; p++)
         cpu[p] = wall[p] = 0.0;
-    for (; !rc && (rounds < W8_ROUNDS || spent < budget); rounds++)
+    for (; !rc && (k < W8_ROUNDS || spent < budget); k++)
         for (int p = 0; p < W8_PARTS && !rc; p++) {
             double c0, w0, c1, w1;
             cl_bench_clock(&c0, &w0);
-            for (int k = 0; k < W8_CHUNK && !rc; k++)
-                rc = w8_call(r, p);
+            rc = w8_replay(r, p);
             cl_bench_clock(&c1, &w1);
             cpu[p] += c1 - c0;
             wall[p] += w1 - w0;
             spent += c1 - c0;
         }
-    *calls = rounds * W8_CHUNK;
+    *rounds = k;
     for (int p = 0; p < W8_PARTS; p++) {
-        cpu[p] /= (double)*calls;
-        wall[p] /= (double)*calls;
+        cpu[p] /= (double)k * W8_STEPS;
+        wall[p] /= (double)k * W8_STEPS;
     }
     return rc;
 }
 
-/* The run to t (from wherever it is), and the full arrays of that state. */
-static cl_status w8_advance(w8_run *r, double t, cl_error *err)
+/* The row of the state at t: the figure, and a note of its parts. */
+static void w8_judge(cl_bctx *c, w8_run *r, cl_bench_row *row,
+                     size_t contacts, const double cpu[W8_PARTS],
+                     const double wall[W8_PARTS], long rounds)
 {
-    cl_status rc = r->type->advance(r->integ, t, r->x, r->v, err);
-    r->t = t;
-    cl_cloth_scatter(cl_model_cloth(r->m), t, r->x, r->v, r->xf, r->vf);
-    r->ev = (cl_eval){.t = t, .x = r->xf, .v = r->vf, .f = r->ff};
-    return rc;
-}
-
-/* CPU seconds per step of the next W8_STEPS steps of the run. */
-static cl_status w8_steps(w8_run *r, double *per_step, cl_error *err)
-{
-    double c0, w0, c1, w1;
-    cl_bench_clock(&c0, &w0);
-    cl_status rc = r->type->advance(r->integ, r->t + W8_STEPS * r->dt, r->x,
-                                    r->v, err);
-    cl_bench_clock(&c1, &w1);
-    *per_step = (c1 - c0) / W8_STEPS;
-    return rc;
+    size_t np = cl_model_cloth(r->m)->np;
+    double contact = cpu[W8_TERM] - cpu[W8_COPY];
+    double hook = cpu[W8_CONTACT] - cpu[W8_TERM];
+    row->cpu_a = cpu[W8_CONTACT] - cpu[W8_COPY];
+    row->wall_a = wall[W8_CONTACT] - wall[W8_COPY];
+    cl_bench_judge(row, 100.0 * row->cpu_a / row->cpu_b, "%", "<=", 25.0);
+    cl_bench_note(row, "%zu particles, %zu in contact at t; per step: "
+                  "contact term %.3g us, hook %.3g us (%.1f ns a "
+                  "particle), the step %.3g us; %d steps, their %zu force "
+                  "calls replayed %ld times",
+                  np, contacts, 1e6 * contact, 1e6 * hook,
+                  1e9 * row->cpu_a / (double)np, 1e6 * row->cpu_b,
+                  W8_STEPS, r->tape.nforce, rounds);
+    cl_bench_log_row(c, row);
 }
 
 /* One state's row; false if the run or a measurement failed. */
@@ -111,38 +261,33 @@ static bool w8_state(cl_bctx *c, w8_run *r, double t, const char *where)
     snprintf(kase, sizeof kase, "skirt t=%g s (%s)", t, where);
     cl_bench_row *row = cl_bench_row_add(c, 8, kase);
     snprintf(row->side_a, sizeof row->side_a, "contact term + hook");
-    snprintf(row->side_b, sizeof row->side_b, "force + hook");
+    snprintf(row->side_b, sizeof row->side_b, "a step");
     cl_bench_log(c, "  skirt to t = %g s (%s) ...", t, where);
-    double cpu[W8_PARTS], wall[W8_PARTS], step = NAN;
-    long calls = 0;
+    double cpu[W8_PARTS], wall[W8_PARTS];
+    long rounds = 0;
     cl_contact_figures fig = {0};
     cl_error err = {0};
-    cl_status rc = w8_advance(r, t, &err);
+    size_t n = r->sys->n;
+    cl_status rc = r->type->advance(r->integ, t, r->x, r->v, &err);
     if (!rc)
         rc = cl_model_contact_figures(r->m, t, r->x, r->v, &fig);
+    r->t0 = t;
+    r->t1 = t + W8_STEPS * r->io.dt;
+    memcpy(r->x0, r->x, n * sizeof *r->x);
+    memcpy(r->v0, r->v, n * sizeof *r->v);
     if (!rc)
-        rc = w8_time(r, c->plan.eval_budget, cpu, wall, &calls);
+        rc = w8_time_steps(r, &row->cpu_b, &row->wall_b, &err);
     if (!rc)
-        rc = w8_steps(r, &step, &err);
+        rc = w8_record(r, &err);
+    if (!rc)
+        rc = w8_time_replays(r, c->plan.eval_budget, cpu, wall, &rounds);
     if (rc) {
         cl_bench_note(row, "failed: %s", *err.msg ? err.msg
                                                   : cl_status_name(rc));
         cl_bench_log_row(c, row);
         return false;
     }
-    size_t np = cl_model_cloth(r->m)->np;
-    row->cpu_a = cpu[W8_CONTACT] + cpu[W8_HOOK];
-    row->cpu_b = cpu[W8_FORCE] + cpu[W8_HOOK];
-    row->wall_a = wall[W8_CONTACT] + wall[W8_HOOK];
-    row->wall_b = wall[W8_FORCE] + wall[W8_HOOK];
-    cl_bench_judge(row, 100.0 * row->cpu_a / row->cpu_b, "%", "<=", 25.0);
-    cl_bench_note(row, "%zu particles, %zu in contact; contact %.1f ns/"
-                  "particle (term %.3g us, hook %.3g us), force %.3g us; "
-                  "%ld calls each; a step of the run %.3g us",
-                  np, fig.contacts, 1e9 * row->cpu_a / (double)np,
-                  1e6 * cpu[W8_CONTACT], 1e6 * cpu[W8_HOOK],
-                  1e6 * cpu[W8_FORCE], calls, 1e6 * step);
-    cl_bench_log_row(c, row);
+    w8_judge(c, r, row, fig.contacts, cpu, wall, rounds);
     return true;
 }
 
@@ -150,37 +295,46 @@ static bool w8_state(cl_bctx *c, w8_run *r, double t, const char *where)
 static bool w8_start(cl_bctx *c, cl_bmodel *bm, w8_run *r)
 {
     cl_error err = {0};
-    cl_integrator_opts io = {0};
     const char *name = cl_config_string(bm->cfg, "run", "integrator", "");
     r->m = bm->m;
     r->sys = cl_model_system(bm->m);
     r->type = cl_integrator_find(name);
     size_t n = r->sys->n, n3 = 3 * cl_model_cloth(bm->m)->np;
-    r->x = malloc(n * sizeof *r->x);
-    r->v = malloc(n * sizeof *r->v);
-    r->f = malloc(n * sizeof *r->f);
-    r->xf = malloc(n3 * sizeof *r->xf);
-    r->vf = malloc(n3 * sizeof *r->vf);
-    r->ff = calloc(n3, sizeof *r->ff);
-    cl_status rc = r->x && r->v && r->f && r->xf && r->vf && r->ff
-                       ? cl_model_initial_state(bm->m, r->x, r->v)
-                       : CL_ENOMEM;
-    if (rc) {
+    double **arrays[] = {&r->x, &r->v, &r->x0, &r->v0, &r->xw, &r->vw};
+    bool ok = tape_alloc(&r->tape, r->sys, cl_model_cloth(r->m));
+    for (size_t k = 0; k < sizeof arrays / sizeof *arrays; k++)
+        ok &= (*arrays[k] = malloc(n * sizeof **arrays[k])) != NULL;
+    ok &= (r->xfw = malloc(n3 * sizeof *r->xfw)) != NULL;
+    ok &= (r->vfw = malloc(n3 * sizeof *r->vfw)) != NULL;
+    ok &= (r->ff = calloc(n3, sizeof *r->ff)) != NULL;
+    if (!ok || cl_model_initial_state(bm->m, r->x, r->v)) {
         c->nomem = true;
         return false;
     }
+    cl_status rc = CL_OK;
     if (!r->type || !r->type->fixed_step || !r->sys->contact)
         rc = cl_error_set(&err, CL_EINVAL, "skirt: [run] integrator \"%s\" "
                           "is not a registered fixed-step method, or no "
                           "obstacle", name);
     if (!rc)
-        rc = cl_bench_fixed_opts(bm->cfg, 0.0, &io, &err);
+        rc = cl_bench_fixed_opts(bm->cfg, 0.0, &r->io, &err);
     if (!rc)
-        rc = r->type->create(r->sys, &io, 0.0, r->x, r->v, &r->integ, &err);
-    r->dt = io.dt;
+        rc = r->type->create(r->sys, &r->io, 0.0, r->x, r->v, &r->integ,
+                             &err);
     if (rc)
         cl_bench_note(cl_bench_row_add(c, 8, "skirt"), "%s", err.msg);
     return !rc;
+}
+
+static void w8_free(w8_run *r)
+{
+    if (r->integ)
+        r->type->free(r->integ);
+    double *arrays[] = {r->x, r->v, r->x0, r->v0, r->xw, r->vw,
+                        r->xfw, r->vfw, r->ff};
+    for (size_t k = 0; k < sizeof arrays / sizeof *arrays; k++)
+        free(arrays[k]);
+    tape_free(&r->tape);
 }
 
 void cl_bench_w8(cl_bctx *c)
@@ -200,13 +354,6 @@ void cl_bench_w8(cl_bctx *c)
     bool ok = w8_start(c, &bm, &r);
     for (size_t k = 0; ok && k < sizeof states / sizeof *states; k++)
         ok = w8_state(c, &r, states[k].t, states[k].where);
-    if (r.integ)
-        r.type->free(r.integ);
-    free(r.x);
-    free(r.v);
-    free(r.f);
-    free(r.xf);
-    free(r.vf);
-    free(r.ff);
+    w8_free(&r);
     cl_bench_model_free(&bm);
 }

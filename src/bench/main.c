@@ -32,7 +32,7 @@ static const char bench_help[] =
     "  7  nearest triangle among 20480: bounding-volume tree vs trying all,\n"
     "     >= 50x for points near the surface\n"
     "  8  skirt step (over the sphere, on the floor): contact term + hook\n"
-    "     <= 25 % of force + hook\n"
+    "     <= 25 % of a step\n"
     "\n"
     "  --quick        a reduced set (smaller n and T), about two minutes\n"
     "  --only LIST    only these workloads, e.g. --only 3,4\n"

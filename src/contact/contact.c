@@ -277,11 +277,11 @@ double cl_contact_penetration(cl_contact *c, double t, const double *x)
                                           memo_of(c, k, 0), c->near);
         for (size_t i = 0; i < nnear; i++) {
             size_t p = c->near[i];
-            cl_contact_point q;
+            double d;
             if (c->cloth->dof[p] >= 0 &&
-                cl_obstacle_near(&c->obs[k], &c->pose[k], x + 3 * p, 0.0,
-                                 memo_of(c, k, p), &q))
-                worst = fmax(worst, -q.d);
+                cl_obstacle_depth(&c->obs[k], &c->pose[k], x + 3 * p, 0.0,
+                                  memo_of(c, k, p), &d))
+                worst = fmax(worst, -d);
         }
     }
     return worst;

@@ -131,8 +131,13 @@ static void query_at(const cl_obstacle *o, const cl_pose *P,
     q->u[0] = P->sdot[0] + w[1] * r[2] - w[2] * r[1];
     q->u[1] = P->sdot[1] + w[2] * r[0] - w[0] * r[2];
     q->u[2] = P->sdot[2] + w[0] * r[1] - w[1] * r[0];
-    double W[9] = {0.0, -w[2], w[1], w[2], 0.0, -w[0], -w[1], w[0], 0.0};
-    memcpy(q->W, W, sizeof W);
+    q->W[0] = q->W[4] = q->W[8] = 0.0;
+    q->W[1] = -w[2];
+    q->W[2] = w[1];
+    q->W[3] = w[2];
+    q->W[5] = -w[0];
+    q->W[6] = -w[1];
+    q->W[7] = w[0];
 }
 
 bool cl_obstacle_near(const cl_obstacle *o, const cl_pose *P,
@@ -150,8 +155,26 @@ bool cl_obstacle_near(const cl_obstacle *o, const cl_pose *P,
     if (memo) {
         memcpy(memo->X, X, sizeof memo->X);
         memo->d = low < dmax ? q->d : low;
+        memo->exact = low < dmax;
     }
     return low < dmax && q->d < dmax;
+}
+
+bool cl_obstacle_depth(const cl_obstacle *o, const cl_pose *P,
+                       const double x[3], double dmax, cl_contact_memo *memo,
+                       double *d)
+{
+    double r[3], X[3];
+    to_shape(o, P, x, r, X);
+    if (memo->exact && memo->X[0] == X[0] && memo->X[1] == X[1] &&
+        memo->X[2] == X[2]) {
+        *d = memo->d;
+        return *d < dmax;
+    }
+    cl_contact_point q;
+    bool near = cl_obstacle_near(o, P, x, dmax, memo, &q);
+    *d = near ? q.d : INFINITY;
+    return near;
 }
 
 size_t cl_obstacle_screen(const cl_obstacle *o, const cl_pose *P,

@@ -81,6 +81,7 @@ void cl_obstacle_pose(const cl_obstacle *o, double t, cl_pose *P);
 typedef struct {
     double X[3];
     double d;     /* -INFINITY: nothing known yet */
+    bool exact;   /* d is the distance at X, not only a bound */
     void *cache;  /* the shape's cache for this point (shape.h), or NULL */
 } cl_contact_memo;
 
@@ -95,6 +96,13 @@ typedef struct {
 bool cl_obstacle_near(const cl_obstacle *o, const cl_pose *P,
                       const double x[3], double dmax, cl_contact_memo *memo,
                       cl_contact_point *q);
+
+/* The signed distance d of x when it is below dmax (else false and d =
+ * INFINITY): as cl_obstacle_near, but without a query when the memo has
+ * the distance at this very point. */
+bool cl_obstacle_depth(const cl_obstacle *o, const cl_pose *P,
+                       const double x[3], double dmax, cl_contact_memo *memo,
+                       double *d);
 
 /* The broad phase of cl_obstacle_near for the np points x (3 each) and
  * their memos: the indices of those whose memo does not already show
