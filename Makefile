@@ -75,6 +75,7 @@ demo: deps
 # Sanitizer reports from Criterion's worker processes (LeakSanitizer at
 # exit) do not fail a test by themselves: the log is checked for them.
 test: deps
+	scripts/check-layers.sh
 	$(MAKE) $(BIN) $(BENCHBIN) $(TESTBIN)
 	set -o pipefail; CLOTHODE=$(BIN) CLOTHODE_BENCH=$(BENCHBIN) \
 	    $(TESTBIN) --jobs $(JOBS) 2>&1 | \

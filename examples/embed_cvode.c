@@ -25,7 +25,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "io/config.h"
-#include "model/model.h"
+#include "system/model.h"
 
 typedef struct {
     const cl_system *sys;

@@ -27,7 +27,7 @@
 
 #include "io/config.h"
 #include "model/cloth.h"
-#include "model/model.h"
+#include "system/model.h"
 #include "model/pairs.h"
 
 #ifndef M_PI

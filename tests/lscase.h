@@ -151,7 +151,7 @@ static inline void ls_rhs(unsigned long seed, double *rhs)
 
 /* Solver t on c's pattern and masses with options o (must succeed). */
 static inline void *ls_create(const cl_linsol_type *t, const ls_case *c,
-                       const cl_integrator_opts *o)
+                              const cl_linsol_opts *o)
 {
     void *st = NULL;
     cl_error err = {0};

@@ -8,7 +8,7 @@
 #include <criterion/criterion.h>
 
 #include "io/config.h"
-#include "model/model.h"
+#include "system/model.h"
 
 typedef struct {
     cl_config *cfg;

@@ -15,7 +15,7 @@
 
 #include "integrators/integrator.h"
 #include "io/config.h"
-#include "model/model.h"
+#include "system/model.h"
 #include "runint.h"
 #include "testsys.h"
 

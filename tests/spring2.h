@@ -18,7 +18,7 @@
 
 #include "integrators/integrator.h"
 #include "io/config.h"
-#include "model/model.h"
+#include "system/model.h"
 
 #define S2_L 1.0
 #define S2_V0 1.0

@@ -14,7 +14,7 @@
 #include "io/config.h"
 #include "io/mtx.h"
 #include "io/state.h"
-#include "model/model.h"
+#include "system/model.h"
 #include "runcli.h"
 #include "timelimit.h"
 

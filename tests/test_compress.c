@@ -8,7 +8,7 @@
 #include "analysis/diagnostics.h"
 #include "integrators/integrator.h"
 #include "io/config.h"
-#include "model/model.h"
+#include "system/model.h"
 
 /* Out-of-plane amplitude at t = 1 s (cvode-bdf, rtol 1e-5). */
 static double amplitude(const char *type2)

@@ -9,7 +9,7 @@
 
 #include "integrators/integrator.h"
 #include "io/config.h"
-#include "model/model.h"
+#include "system/model.h"
 #include "testsys.h"
 
 /* Run `name` for nsteps steps of dt with one Newton iteration (where it

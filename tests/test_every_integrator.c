@@ -10,7 +10,7 @@
 
 #include "integrators/integrator.h"
 #include "io/config.h"
-#include "model/model.h"
+#include "system/model.h"
 
 static bool is_explicit(const char *name)
 {

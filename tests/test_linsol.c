@@ -34,7 +34,7 @@ static void ls_solve_spd(const char *name)
     ls_case c;
     ls_init(&c, 2024);
     const cl_linsol_type *t = ls_find(name);
-    void *st = ls_create(t, &c, &(cl_integrator_opts){0});
+    void *st = ls_create(t, &c, &(cl_linsol_opts){0});
     const double h = 1e-2, ab[][2] = {{h, h * h},
                                       {2 * h / 3, 4 * h * h / 9},
                                       {0.1, 0.01}};
@@ -82,7 +82,7 @@ Test(linsol, pcg_weighted_tolerance)
     ls_case c;
     ls_init(&c, 21);
     const cl_linsol_type *t = ls_find("pcg");
-    void *st = ls_create(t, &c, &(cl_integrator_opts){.lin_tol = 1e-14});
+    void *st = ls_create(t, &c, &(cl_linsol_opts){.tol = 1e-14});
     cl_error err = {0};
     cr_assert_eq(t->setup(st, 0.1, 0.01, c.dfdx, c.dfdv, &err), CL_OK);
     double rhs[LS_N], x[LS_N], y[LS_N], w[LS_N], wr = 0.0, wb = 0.0;
@@ -118,7 +118,7 @@ Test(linsol, auto_picks_by_cost)
     ls_case c;
     ls_init(&c, 23);
     const cl_linsol_type *t = ls_find("auto");
-    void *st = ls_create(t, &c, &(cl_integrator_opts){0});
+    void *st = ls_create(t, &c, &(cl_linsol_opts){0});
     double rhs[LS_N], x[LS_N];
     cr_assert_leq(ls_setup_solve(t, st, &c, 1e-6, 1e-12, 1, rhs, x), 1e-10);
     cl_stats s = {0};
@@ -155,7 +155,7 @@ Test(linsol, auto_keeps_pcg_for_single_solves)
     ls_case c;
     ls_init(&c, 25);
     const cl_linsol_type *t = ls_find("auto");
-    void *st = ls_create(t, &c, &(cl_integrator_opts){.lin_tol = 1e-6});
+    void *st = ls_create(t, &c, &(cl_linsol_opts){.tol = 1e-6});
     double rhs[LS_N], x[LS_N];
     for (unsigned long k = 0; k < 4; k++)
         cr_assert_leq(ls_setup_solve(t, st, &c, 0.01, 1e-4, k, rhs, x),
@@ -176,7 +176,7 @@ Test(linsol, auto_falls_back_when_pcg_fails)
     ls_case c;
     ls_init(&c, 24);
     const cl_linsol_type *t = ls_find("auto");
-    void *st = ls_create(t, &c, &(cl_integrator_opts){.lin_maxit = 1});
+    void *st = ls_create(t, &c, &(cl_linsol_opts){.maxit = 1});
     double rhs[LS_N], x[LS_N];
     cr_assert_leq(ls_setup_solve(t, st, &c, 1e-4, 1e-8, 3, rhs, x), 1e-10);
     cl_stats s = {0};
@@ -199,7 +199,7 @@ Test(linsol, klu_solves_nonsymmetric)
     for (size_t q = 0; q < nval; q++)
         c.dfdx[q] += 10.0 * ls_rand(&seed);
     const cl_linsol_type *t = ls_find("klu");
-    void *st = ls_create(t, &c, &(cl_integrator_opts){0});
+    void *st = ls_create(t, &c, &(cl_linsol_opts){0});
     double rhs[LS_N], x[LS_N];
     cr_assert_leq(ls_setup_solve(t, st, &c, 0.01, 1e-4, 9, rhs, x), 1e-12);
     t->free(st);
@@ -211,7 +211,7 @@ Test(linsol, klu_analyses_once_over_many_setups)
     ls_case c;
     ls_init(&c, 31);
     const cl_linsol_type *t = ls_find("klu");
-    void *st = ls_create(t, &c, &(cl_integrator_opts){0});
+    void *st = ls_create(t, &c, &(cl_linsol_opts){0});
     double rhs[LS_N], x[LS_N];
     const int nset = 60;
     for (int k = 0; k < nset; k++) {
@@ -238,7 +238,7 @@ static void ls_indefinite_diag(const char *name)
     ls_init(&c, 8);
     ls_fill(&c, 8, -1.0);
     const cl_linsol_type *t = ls_find(name);
-    cl_integrator_opts o = {0};
+    cl_linsol_opts o = {0};
     cl_error err = {0};
     void *st = ls_create(t, &c, &o);
     cr_assert_eq(t->setup(st, 0.0, 1.0, c.dfdx, c.dfdv, &err), CL_ESOLVER);
@@ -278,7 +278,7 @@ static void ls_indefinite_coupling(const char *name)
         }
     }
     const cl_linsol_type *t = ls_find(name);
-    cl_integrator_opts o = {0};
+    cl_linsol_opts o = {0};
     cl_error err = {0};
     double rhs[LS_N], x[LS_N];
     void *st = ls_create(t, &c, &o);
@@ -310,7 +310,7 @@ Test(linsol, pcg_iteration_cap_reported)
     ls_case c;
     ls_init(&c, 12);
     const cl_linsol_type *t = ls_find("pcg-jacobi");
-    cl_integrator_opts o = {.lin_maxit = 2};
+    cl_linsol_opts o = {.maxit = 2};
     cl_error err = {0};
     double rhs[LS_N], x[LS_N];
     void *st = ls_create(t, &c, &o);
@@ -335,7 +335,7 @@ Test(linsol, pcg_tolerance_option)
     long iters[2];
     const double tol[2] = {1e-4, 1e-11};
     for (int k = 0; k < 2; k++) {
-        void *st = ls_create(t, &c, &(cl_integrator_opts){.lin_tol = tol[k]});
+        void *st = ls_create(t, &c, &(cl_linsol_opts){.tol = tol[k]});
         res[k] = ls_setup_solve(t, st, &c, 0.1, 0.01, 6, rhs, x);
         cl_stats s = {0};
         t->stats(st, &s);
@@ -354,7 +354,7 @@ Test(linsol, pcg_zero_rhs_gives_zero)
     ls_case c;
     ls_init(&c, 14);
     const cl_linsol_type *t = ls_find("pcg");
-    cl_integrator_opts o = {0};
+    cl_linsol_opts o = {0};
     cl_error err = {0};
     double rhs[LS_N] = {0}, x[LS_N];
     for (size_t i = 0; i < LS_N; i++)
@@ -377,7 +377,7 @@ Test(linsol, klu_bad_refactor_falls_back)
     ls_case c;
     ls_init(&c, 17);
     const cl_linsol_type *t = ls_find("klu");
-    cl_integrator_opts o = {0};
+    cl_linsol_opts o = {0};
     cl_error err = {0};
     double rhs[LS_N], x[LS_N];
     void *st = ls_create(t, &c, &o);
@@ -415,7 +415,7 @@ Test(linsol, klu_singular_reported)
             c.dfdx[9 * c.pat.diag[i] + 4 * r] = i == 5 ? c.mass[3 * i + r]
                                                        : 0.0;
     const cl_linsol_type *t = ls_find("klu");
-    cl_integrator_opts o = {0};
+    cl_linsol_opts o = {0};
     cl_error err = {0};
     void *st = ls_create(t, &c, &o);
     cr_assert_eq(t->setup(st, 0.0, 1.0, c.dfdx, c.dfdv, &err), CL_ESOLVER);
@@ -437,15 +437,15 @@ Test(linsol, rejects_bad_options)
     ls_init(&c, 16);
     cl_error err = {0};
     void *st = (void *)1;
-    cl_integrator_opts o = {.lin_tol = -1.0};
+    cl_linsol_opts o = {.tol = -1.0};
     cr_assert_eq(ls_find("pcg")->create(&c.pat, c.mass, &o, &st, &err),
                  CL_EINVAL);
     cr_assert_null(st);
-    o = (cl_integrator_opts){.lin_maxit = -3};
+    o = (cl_linsol_opts){.maxit = -3};
     cr_assert_eq(ls_find("pcg-jacobi")->create(&c.pat, c.mass, &o, &st,
                                                &err), CL_EINVAL);
     c.mass[7] = 0.0;
-    o = (cl_integrator_opts){0};
+    o = (cl_linsol_opts){0};
     for (size_t k = 0; cl_linsol_registry[k]; k++) {
         st = (void *)1;
         cr_assert_eq(cl_linsol_registry[k]->create(&c.pat, c.mass, &o, &st,

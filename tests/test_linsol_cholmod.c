@@ -25,7 +25,7 @@ Test(linsol_cholmod, spd_solves_with_one_analysis)
     ls_case c;
     ls_init(&c, 101);
     const cl_linsol_type *t = ls_find("cholmod");
-    void *st = ls_create(t, &c, &(cl_integrator_opts){0});
+    void *st = ls_create(t, &c, &(cl_linsol_opts){0});
     double rhs[LS_N], x[LS_N];
     const int nset = 20;
     for (int k = 0; k < nset; k++) {
@@ -51,7 +51,7 @@ Test(linsol_cholmod, in_place_and_repeated_solves)
     ls_case c;
     ls_init(&c, 102);
     const cl_linsol_type *t = ls_find("cholmod");
-    void *st = ls_create(t, &c, &(cl_integrator_opts){0});
+    void *st = ls_create(t, &c, &(cl_linsol_opts){0});
     cl_error err = {0};
     cr_assert_eq(t->setup(st, 0.01, 1e-4, c.dfdx, c.dfdv, &err), CL_OK);
     for (unsigned long k = 0; k < 3; k++) {
@@ -73,7 +73,7 @@ Test(linsol_cholmod, indefinite_goes_to_klu)
     ls_case c;
     ls_init(&c, 103);
     const cl_linsol_type *t = ls_find("cholmod");
-    void *st = ls_create(t, &c, &(cl_integrator_opts){0});
+    void *st = ls_create(t, &c, &(cl_linsol_opts){0});
     double rhs[LS_N], x[LS_N];
     ls_fill(&c, 103, -1.0);
     cr_assert_leq(ls_setup_solve(t, st, &c, 0.0, 1.0, 1, rhs, x), 1e-10);
@@ -101,7 +101,7 @@ Test(linsol_cholmod, nonsymmetric_goes_to_klu)
     for (size_t q = 0; q < nval; q++)
         c.dfdx[q] += 1e-3 * ls_rand(&seed);
     const cl_linsol_type *t = ls_find("cholmod");
-    void *st = ls_create(t, &c, &(cl_integrator_opts){0});
+    void *st = ls_create(t, &c, &(cl_linsol_opts){0});
     double rhs[LS_N], x[LS_N];
     cr_assert_leq(ls_setup_solve(t, st, &c, 0.01, 1e-4, 3, rhs, x), 1e-10);
     cr_assert_eq(chol_stats(t, st).lin_fallbacks, 1);
@@ -114,7 +114,7 @@ Test(linsol_cholmod, solve_needs_a_setup)
     ls_case c;
     ls_init(&c, 106);
     const cl_linsol_type *t = ls_find("cholmod");
-    void *st = ls_create(t, &c, &(cl_integrator_opts){0});
+    void *st = ls_create(t, &c, &(cl_linsol_opts){0});
     double rhs[LS_N], x[LS_N];
     cl_error err = {0};
     ls_rhs(1, rhs);

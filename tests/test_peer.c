@@ -18,7 +18,7 @@
 #include "bench/child.h"
 #include "io/config.h"
 #include "io/state.h"
-#include "model/model.h"
+#include "system/model.h"
 #include "runcli.h"
 #include "timelimit.h"
 

@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "io/config.h"
-#include "model/model.h"
+#include "system/model.h"
 
 static cl_model *model_with(const char *const *sets, cl_error *err,
                             cl_status *rc)

@@ -24,7 +24,7 @@
 #include <string.h>
 
 #include "linalg/bpattern.h"
-#include "model/system.h"
+#include "system/system.h"
 
 enum { TS_FAIL_NONE, TS_FAIL_NAN, TS_FAIL_STATUS, TS_FAIL_TRANSIENT };
 

@@ -29,7 +29,7 @@
 #include <stdio.h>
 
 #include "integrators/integrator.h"
-#include "model/model.h"
+#include "system/model.h"
 
 #define CL_CONV_MAX_LEVELS 20
 

@@ -24,7 +24,7 @@
 #include <stdio.h>
 
 #include "integrators/integrator.h"
-#include "model/model.h"
+#include "system/model.h"
 
 typedef struct {
     double t, kinetic, potential, total, dissipated, balance;

@@ -20,7 +20,7 @@
 #include <stdbool.h>
 
 #include "integrators/integrator.h"
-#include "model/model.h"
+#include "system/model.h"
 
 typedef struct {
     double t_end;

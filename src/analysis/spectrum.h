@@ -28,7 +28,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "model/model.h"
+#include "system/model.h"
 
 #define CL_SPECTRUM_MAX_N (3 * 24 * 24)
 

@@ -24,7 +24,7 @@
 #include <stdio.h>
 
 #include "integrators/integrator.h"
-#include "model/model.h"
+#include "system/model.h"
 
 #define CL_STAB_MAX_TRIALS 128
 

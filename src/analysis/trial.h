@@ -10,7 +10,7 @@
 #define CL_TRIAL_H
 
 #include "integrators/integrator.h"
-#include "model/model.h"
+#include "system/model.h"
 #include "model/pairs.h"
 
 /* Called at t = 0 and after every passed check with the free state. */

@@ -8,7 +8,7 @@
 #include "bench/child.h"
 #include "integrators/integrator.h"
 #include "io/config.h"
-#include "model/model.h"
+#include "system/model.h"
 
 /* Sizes and budgets of a run (full or --quick). */
 typedef struct {

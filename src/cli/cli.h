@@ -8,7 +8,7 @@
 
 #include "integrators/integrator.h"
 #include "io/config.h"
-#include "model/model.h"
+#include "system/model.h"
 
 typedef struct {
     const char *name;

@@ -10,7 +10,7 @@
 #include "io/atomic.h"
 #include "io/mtx.h"
 #include "io/state.h"
-#include "model/model.h"
+#include "system/model.h"
 
 static const char eval_help[] =
     "usage: clothode eval PROBLEM --state STATE.csv [options]\n"

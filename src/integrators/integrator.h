@@ -12,7 +12,9 @@
 #include <stdio.h>
 
 #include "core/error.h"
-#include "model/system.h"
+#include "core/stats.h"
+#include "linalg/linsol.h"
+#include "system/system.h"
 
 typedef struct {
     double dt;        /* fixed step, or initial step hint (0: solver's own) */
@@ -33,32 +35,13 @@ typedef struct {
                           * BDF, 12 for Adams) */
 } cl_integrator_opts;
 
-/* The statistics every integrator reports (SPEC 5). Counters a method does
- * not have stay 0; counters it has but its library does not expose (the
- * Newton iterations and LU factorisations inside GSL's msbdf) are
- * CL_STAT_NA, printed "n/a" (CSV: "NA"), never a made-up 0. */
-#define CL_STAT_NA (-1L)
+/* The linear solver's part of the options. */
+static inline cl_linsol_opts cl_integrator_linsol_opts(
+    const cl_integrator_opts *o)
+{
+    return (cl_linsol_opts){.tol = o->lin_tol, .maxit = o->lin_maxit};
+}
 
-typedef struct {
-    long steps;
-    long rhs_evals;
-    long jac_evals;
-    long lin_setups;     /* matrix factorisations or preconditioner setups */
-    long lin_solves;
-    long lin_iters;      /* Krylov iterations */
-    long nonlin_iters;
-    long nonlin_fails;   /* nonlinear convergence failures */
-    long err_fails;      /* local error test failures */
-    long symbolic_facts; /* symbolic factorisations (KLU analyse) */
-    long lin_fallbacks;  /* setups a linear solver handed to another one
-                          * (cholmod: matrix not SPD -> klu; auto: pcg
-                          * failed -> direct) */
-    char linsol[32];     /* linear solver(s) that did the work, '+'-joined
-                          * ("klu-full", "cholmod+klu", "auto:pcg"); "" if
-                          * none or not reported */
-    double wall;         /* seconds spent inside advance (wall clock) */
-    double cpu;          /* seconds spent inside advance (process CPU) */
-} cl_stats;
 
 typedef struct {
     const char *name;
@@ -88,7 +71,7 @@ const cl_integrator_type *cl_integrator_find(const char *name);
 cl_status cl_fixed_steps_to(double t_out, double dt, long done, long *nsteps,
                             cl_error *err);
 
-/* Contact (model/system.h) for an adaptive method that cannot project:
+/* Contact (system/system.h) for an adaptive method that cannot project:
  * CL_EUNSUPPORTED naming the method if the system projects. */
 cl_status cl_integrator_refuse_projection(const char *name,
                                           const cl_system *sys,

@@ -304,7 +304,8 @@ static cl_status kin_linsol(cl_kin *s, const cl_integrator_opts *o,
         return cl_error_set(err, CL_EINVAL, "%s: unknown linear solver "
                             "\"%s\" (known: %s)", s->sc->name, o->linsol,
                             cl_linsol_names(names, sizeof names));
-    cl_status st = s->lt->create(s->sys->pattern, s->sys->mass, o,
+    cl_linsol_opts lo = cl_integrator_linsol_opts(o);
+    cl_status st = s->lt->create(s->sys->pattern, s->sys->mass, &lo,
                                  &s->lstate, err);
     if (st != CL_OK)
         return st;

@@ -77,8 +77,9 @@ cl_status cl_semi_init(cl_semi *s, const char *name, const cl_system *sys,
     s->t0 = t0;
     s->h = o->dt;
     st = semi_alloc(s, err);
+    cl_linsol_opts lo = cl_integrator_linsol_opts(o);
     if (st == CL_OK)
-        st = s->lst->create(sys->pattern, sys->mass, o, &s->ls, err);
+        st = s->lst->create(sys->pattern, sys->mass, &lo, &s->ls, err);
     if (st != CL_OK) {
         cl_semi_release(s);
         return st;

@@ -39,7 +39,7 @@
  *   and step size, and the pattern stays (a torn pair's blocks are zeros),
  *   so KLU only analyses once more.  The solver's counters, which a
  *   re-initialisation resets, are carried over in the statistics;
- * - contact (model/system.h): CVODE BDF applies the `project` responses
+ * - contact (system/system.h): CVODE BDF applies the `project` responses
  *   inside every step through its projection interface (CVodeSetProjFn:
  *   after the Newton iteration converges, before the error test; the
  *   correction enters the Nordsieck history).  The error estimate is

@@ -347,8 +347,9 @@ static cl_status red_alloc(cl_sun *s, const cl_linsol_type *lt,
     r->kupper = malloc((9 * r->sym.ne + 1) * sizeof *r->kupper);
     if (!r->kdiag || !r->kupper)
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
-    st = lt->create(s->sys->pattern, s->sys->mass, o, &r->lstate,
-                              &inner);
+    cl_linsol_opts lo = cl_integrator_linsol_opts(o);
+    st = lt->create(s->sys->pattern, s->sys->mass, &lo, &r->lstate,
+                    &inner);
     if (st != CL_OK)
         return cl_error_set(err, st, "%s: %s", s->name, inner.msg);
     return CL_OK;

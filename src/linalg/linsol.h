@@ -33,15 +33,20 @@
 #define CL_LINSOL_H
 
 #include "core/error.h"
-#include "integrators/integrator.h"
+#include "core/stats.h"
 #include "linalg/bpattern.h"
+
+/* What an iterative solver is told (0: its defaults). */
+typedef struct {
+    double tol;   /* relative residual tolerance */
+    long maxit;   /* iterations per solve */
+} cl_linsol_opts;
 
 typedef struct {
     const char *name;
     const char *doc;
-    /* opts: lin_tol, lin_maxit (0: solver defaults). */
     cl_status (*create)(const cl_bpattern *pat, const double *mass,
-                        const cl_integrator_opts *opts, void **state,
+                        const cl_linsol_opts *opts, void **state,
                         cl_error *err);
     /* Optional: told of every new df/dx, df/dv (their values, the arrays
      * later setups receive) before the setups that use them.  A solver
@@ -58,7 +63,7 @@ typedef struct {
                        cl_error *err);
     /* Iterative solvers only (NULL for direct ones, which always solve to
      * rounding): the same, stopping once ||w .* (rhs - A x)||_2 <= delta
-     * (w: 3 nb positive weights) instead of at lin_tol: the test SUNDIALS'
+     * (w: 3 nb positive weights) instead of at opts->tol: the test SUNDIALS'
      * integrators ask of an iterative linear solver. */
     cl_status (*solve_tol)(void *state, const double *rhs, double *x,
                            const double *w, double delta, cl_error *err);

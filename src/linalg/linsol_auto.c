@@ -43,6 +43,7 @@
  * "auto:pcg+cholmod+klu" (in the order pcg, cholmod, klu). */
 #include "linalg/linsol.h"
 
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -57,7 +58,7 @@ extern const cl_linsol_type cl_linsol_cholmod;
 
 typedef struct {
     const cl_bpattern *pat;     /* borrowed */
-    cl_integrator_opts opts;    /* copy (for the direct solver) */
+    cl_linsol_opts opts;    /* copy (for the direct solver) */
     double *mass;               /* 3 nb */
     void *pcg, *direct;         /* direct: cholmod, NULL until needed */
     bool use_pcg;               /* the current setup is pcg's */
@@ -85,7 +86,7 @@ static void auto_free(void *state)
 }
 
 static cl_status auto_create(const cl_bpattern *pat, const double *mass,
-                             const cl_integrator_opts *opts, void **state,
+                             const cl_linsol_opts *opts, void **state,
                              cl_error *err)
 {
     *state = NULL;

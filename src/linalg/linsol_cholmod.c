@@ -43,6 +43,7 @@
 #include "linalg/linsol.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -59,7 +60,7 @@ extern const cl_linsol_type cl_linsol_klu;
 
 typedef struct {
     const cl_bpattern *pat;     /* borrowed (for the klu fallback) */
-    cl_integrator_opts opts;    /* copy (for the klu fallback) */
+    cl_linsol_opts opts;    /* copy (for the klu fallback) */
     size_t n;
     double *mass;               /* n */
     cholmod_common c;
@@ -199,7 +200,7 @@ static cl_status chol_start(cl_chol *s, cl_error *err)
 }
 
 static cl_status chol_create(const cl_bpattern *pat, const double *mass,
-                             const cl_integrator_opts *opts, void **state,
+                             const cl_linsol_opts *opts, void **state,
                              cl_error *err)
 {
     *state = NULL;

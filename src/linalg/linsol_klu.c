@@ -25,6 +25,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -82,7 +83,7 @@ static cl_status lklu_analyse(cl_klu *s, cl_error *err)
 }
 
 static cl_status lklu_create(const cl_bpattern *pat, const double *mass,
-                             const cl_integrator_opts *opts, void **state,
+                             const cl_linsol_opts *opts, void **state,
                              cl_error *err)
 {
     (void)opts;

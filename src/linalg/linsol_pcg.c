@@ -20,11 +20,11 @@
  * recurrence, weighted componentwise by the scaling vector s; the
  * preconditioner does not enter the test.  We set s = ones (so the test is
  * on the plain 2-norm of the residual) and pass delta = lin_tol ||b||_2
- * (opts->lin_tol, default 1e-10): a relative residual test.  solve_tol
+ * (opts->tol, default 1e-10): a relative residual test.  solve_tol
  * instead takes the weights s = w and delta from the caller (CVODE and IDA
  * pass their own, linear tolerance, integrators/sun_reduced.h).  The
  * iteration starts from x_0 = 0 (SUNLinSolSetZeroGuess).  At most
- * opts->lin_maxit iterations per solve (default max(1000, 2n)).
+ * opts->maxit iterations per solve (default max(1000, 2n)).
  *
  * Failures are reported as CL_ESOLVER, never hidden:
  *  - CG needs A symmetric positive definite.  SUNDIALS' PCG does not check
@@ -43,6 +43,7 @@
 
 #include <limits.h>
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -233,15 +234,15 @@ static cl_status pcg_sunfail(const cl_pcg *s, const char *fn, int flag,
 }
 
 static cl_status pcg_check_opts(const char *name, const cl_bpattern *pat,
-                                const cl_integrator_opts *o, cl_error *err)
+                                const cl_linsol_opts *o, cl_error *err)
 {
     if (!pat || pat->nb == 0)
         return cl_error_set(err, CL_EINVAL, "%s: empty system (no free "
                             "particles)", name);
-    if (!isfinite(o->lin_tol) || o->lin_tol < 0.0 || o->lin_maxit < 0)
+    if (!isfinite(o->tol) || o->tol < 0.0 || o->maxit < 0)
         return cl_error_set(err, CL_EINVAL, "%s: lin_tol = %g, lin_maxit = "
                             "%ld: need finite >= 0 (0: defaults)", name,
-                            o->lin_tol, o->lin_maxit);
+                            o->tol, o->maxit);
     return CL_OK;
 }
 
@@ -292,7 +293,7 @@ static cl_status pcg_sundials(cl_pcg *s, cl_error *err)
     return CL_OK;
 }
 
-/* opts->lin_maxit, or max(1000, 2n) when 0; at most INT_MAX. */
+/* opts->maxit, or max(1000, 2n) when 0; at most INT_MAX. */
 static int pcg_maxit(long lin_maxit, size_t n)
 {
     long m = lin_maxit;
@@ -304,7 +305,7 @@ static int pcg_maxit(long lin_maxit, size_t n)
 
 static cl_status pcg_create_named(const char *name, bool block,
                                   const cl_bpattern *pat, const double *mass,
-                                  const cl_integrator_opts *o, void **state,
+                                  const cl_linsol_opts *o, void **state,
                                   cl_error *err)
 {
     *state = NULL;
@@ -318,8 +319,8 @@ static cl_status pcg_create_named(const char *name, bool block,
     s->pat = pat;
     s->n = 3 * pat->nb;
     s->block = block;
-    s->tol = o->lin_tol > 0.0 ? o->lin_tol : CL_PCG_TOL;
-    s->maxit = pcg_maxit(o->lin_maxit, s->n);
+    s->tol = o->tol > 0.0 ? o->tol : CL_PCG_TOL;
+    s->maxit = pcg_maxit(o->maxit, s->n);
     st = pcg_alloc(s, mass, err);
     if (st == CL_OK)
         st = pcg_sundials(s, err);
@@ -332,14 +333,14 @@ static cl_status pcg_create_named(const char *name, bool block,
 }
 
 static cl_status pcg_create_block(const cl_bpattern *pat, const double *mass,
-                                  const cl_integrator_opts *o, void **state,
+                                  const cl_linsol_opts *o, void **state,
                                   cl_error *err)
 {
     return pcg_create_named("pcg", true, pat, mass, o, state, err);
 }
 
 static cl_status pcg_create_point(const cl_bpattern *pat, const double *mass,
-                                  const cl_integrator_opts *o, void **state,
+                                  const cl_linsol_opts *o, void **state,
                                   cl_error *err)
 {
     return pcg_create_named("pcg-jacobi", false, pat, mass, o, state, err);

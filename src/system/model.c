@@ -1,6 +1,6 @@
 /* A cloth problem as a cl_system: scatter the free state to full-particle
  * arrays (pins prescribed), let every force term add its share, gather. */
-#include "model/model.h"
+#include "system/model.h"
 
 #include "contact/contact.h"
 #include "model/cloth_read.h"
@@ -300,7 +300,7 @@ static cl_status sys_step_done(void *data, double t, const double *x,
     return broken > 0 ? update_torn(m) : CL_OK;
 }
 
-/* Contact after an accepted step (model/system.h): the deepest
+/* Contact after an accepted step (system/system.h): the deepest
  * penetration, then the projections; with track_work their energy change
  * (kinetic and potential, friction included) is added to contact_work,
  * for recorded calls only (not CVODE's projections inside its steps,

@@ -13,7 +13,7 @@
  *   [tear]     cut = a connection breaks for good when d > cut L (0, the
  *              default: no tearing; docs/model.md, 3.4).  The system's
  *              step_done hook (tearing, checked after every accepted step
- *              or output time, see model/system.h) is installed only when
+ *              or output time, see system/system.h) is installed only when
  *              cut > 0.
  * plus each force term's own section (forces/registry.c). */
 #ifndef CL_MODEL_H
@@ -23,7 +23,7 @@
 #include "forces/term.h"
 #include "io/config.h"
 #include "model/cloth.h"
-#include "model/system.h"
+#include "system/system.h"
 
 typedef struct cl_model cl_model;
 

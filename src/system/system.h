@@ -26,7 +26,7 @@ typedef struct {
     double total;      /* kinetic + potential */
     double power_diss; /* power of the non-conservative forces (<= 0) */
     double contact_work; /* energy changed by contact projections so far
-                          * (J; model/model.h, cl_model_contact_start) */
+                          * (J; system/model.h, cl_model_contact_start) */
 } cl_energy;
 
 typedef struct cl_system {
