@@ -111,8 +111,8 @@ static bool tape_alloc(w8_tape *tp, const cl_system *sys,
     tp->hook_x = malloc(tp->max_hook * tp->n * sizeof *tp->hook_x);
     tp->hook_v = malloc(tp->max_hook * tp->n * sizeof *tp->hook_v);
     tp->hook_record = malloc(tp->max_hook * sizeof *tp->hook_record);
-    return tp->is_hook && tp->force_t && tp->force_x && tp->force_v && tp->hook_t &&
-           tp->hook_x && tp->hook_v && tp->hook_record;
+    return tp->is_hook && tp->force_t && tp->force_x && tp->force_v &&
+           tp->hook_t && tp->hook_x && tp->hook_v && tp->hook_record;
 }
 
 static void tape_free(w8_tape *tp)

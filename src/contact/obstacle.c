@@ -36,6 +36,9 @@ void cl_obstacle_pose(const cl_obstacle *o, double t, cl_pose *P)
     P->rotates = o->omega[0] != 0.0 || o->omega[1] != 0.0 ||
                  o->omega[2] != 0.0;
     rotation(o->omega, t, P->R);
+    const double *w = o->omega;
+    double W[9] = {0.0, -w[2], w[1], w[2], 0.0, -w[0], -w[1], w[0], 0.0};
+    memcpy(P->W, W, sizeof W);
     memset(P->s, 0, sizeof P->s);
     memset(P->sdot, 0, sizeof P->sdot);
     if (o->nkey == 0)
@@ -131,21 +134,14 @@ static void query_at(const cl_obstacle *o, const cl_pose *P,
     q->u[0] = P->sdot[0] + w[1] * r[2] - w[2] * r[1];
     q->u[1] = P->sdot[1] + w[2] * r[0] - w[0] * r[2];
     q->u[2] = P->sdot[2] + w[0] * r[1] - w[1] * r[0];
-    q->W[0] = q->W[4] = q->W[8] = 0.0;
-    q->W[1] = -w[2];
-    q->W[2] = w[1];
-    q->W[3] = w[2];
-    q->W[5] = -w[0];
-    q->W[6] = -w[1];
-    q->W[7] = w[0];
+    memcpy(q->W, P->W, sizeof q->W);
 }
 
-bool cl_obstacle_near(const cl_obstacle *o, const cl_pose *P,
-                      const double x[3], double dmax, cl_contact_memo *memo,
-                      cl_contact_point *q)
+/* cl_obstacle_near at the shape-frame point X of x (r = x - q - s). */
+static bool near_at(const cl_obstacle *o, const cl_pose *P,
+                    const double r[3], const double X[3], double dmax,
+                    cl_contact_memo *memo, cl_contact_point *q)
 {
-    double r[3], X[3];
-    to_shape(o, P, x, r, X);
     if (memo && memo_far_at(memo, X[0], X[1], X[2], dmax))
         return false;
     double low = o->type->lower_bound ? o->type->lower_bound(o->shape, X)
@@ -160,6 +156,15 @@ bool cl_obstacle_near(const cl_obstacle *o, const cl_pose *P,
     return low < dmax && q->d < dmax;
 }
 
+bool cl_obstacle_near(const cl_obstacle *o, const cl_pose *P,
+                      const double x[3], double dmax, cl_contact_memo *memo,
+                      cl_contact_point *q)
+{
+    double r[3], X[3];
+    to_shape(o, P, x, r, X);
+    return near_at(o, P, r, X, dmax, memo, q);
+}
+
 bool cl_obstacle_depth(const cl_obstacle *o, const cl_pose *P,
                        const double x[3], double dmax, cl_contact_memo *memo,
                        double *d)
@@ -172,7 +177,7 @@ bool cl_obstacle_depth(const cl_obstacle *o, const cl_pose *P,
         return *d < dmax;
     }
     cl_contact_point q;
-    bool near = cl_obstacle_near(o, P, x, dmax, memo, &q);
+    bool near = near_at(o, P, r, X, dmax, memo, &q);
     *d = near ? q.d : INFINITY;
     return near;
 }

@@ -68,6 +68,7 @@ typedef struct {
     double R[9];      /* rotation R(t), row-major */
     double s[3];      /* displacement s(t) */
     double sdot[3];   /* its velocity s'(t) */
+    double W[9];      /* [omega]x, the gradient of the velocity field */
     bool rotates;     /* omega != 0 (else R = I) */
 } cl_pose;
 

@@ -52,8 +52,7 @@ typedef enum { G_FACE, G_EDGE, G_CORNER } g_kind;
 
 typedef struct {
     cl_obj m;               /* vertices (scaled, moved) and triangles */
-    cl_bvh bvh;
-    double (*fn)[3];        /* unit face normals */
+    cl_bvh bvh;             /* and its unit face normals */
     double (*sn)[3];        /* side k of triangle t at 3t + k: the edge's
                                pseudo-normal */
     unsigned char *sflat;   /* ... whose two faces are coplanar */
@@ -70,7 +69,6 @@ static void mesh_free(void *shape)
         return;
     cl_obj_free(&m->m);
     cl_bvh_free(&m->bvh);
-    free(m->fn);
     free(m->sn);
     free(m->sflat);
     free(m->vn);
@@ -97,13 +95,12 @@ static const double *vertex(const mesh *m, int v)
 static cl_status allocate(mesh *m, const char *path, cl_error *err)
 {
     size_t nv = m->m.nvert, nt = m->m.ntri;
-    m->fn = malloc(nt * sizeof *m->fn);
     m->sn = malloc(3 * nt * sizeof *m->sn);
     m->sflat = malloc(3 * nt * sizeof *m->sflat);
     m->vn = calloc(nv, sizeof *m->vn);
     m->ve = calloc(nv, sizeof *m->ve);
     m->vkind = malloc(nv * sizeof *m->vkind);
-    if (m->fn && m->sn && m->sflat && m->vn && m->ve && m->vkind)
+    if (m->sn && m->sflat && m->vn && m->ve && m->vkind)
         return CL_OK;
     return cl_error_set(err, CL_ENOMEM, "%s: out of memory", path);
 }
@@ -138,20 +135,16 @@ static bool parallel(const double a[3], const double b[3])
     return cl_v3_norm(c) <= FLAT_SIN && cl_v3_dot(a, b) > 0;
 }
 
-/* Face normals, and the pseudo-normal of every side. */
-static void face_and_edge_normals(mesh *m, const cl_closed *s)
+/* The pseudo-normal of every side, from the unit face normals the tree
+ * keeps. */
+static void edge_normals(mesh *m, const cl_closed *s)
 {
-    for (size_t t = 0; t < m->m.ntri; t++) {
-        const int *v = m->m.tri[t];
-        cl_v3_tri_cross(vertex(m, v[0]), vertex(m, v[1]), vertex(m, v[2]),
-                        m->fn[t]);
-        cl_v3_normalize(m->fn[t]);
-    }
+    const double(*fn)[3] = m->bvh.normal;
     for (size_t t = 0; t < m->m.ntri; t++)
         for (int k = 0; k < 3; k++) {
-            const double *other = m->fn[cl_closed_across(s, (int)t, k)];
-            cl_v3_axpy(m->fn[t], 1.0, other, m->sn[3 * t + k]);
-            m->sflat[3 * t + k] = parallel(m->fn[t], other);
+            const double *other = fn[cl_closed_across(s, (int)t, k)];
+            cl_v3_axpy(fn[t], 1.0, other, m->sn[3 * t + k]);
+            m->sflat[3 * t + k] = parallel(fn[t], other);
         }
 }
 
@@ -179,14 +172,14 @@ static cl_status vertex_normals(mesh *m, const char *path, cl_error *err)
     for (size_t t = 0; t < nt; t++)
         for (int k = 0; k < 3; k++)
             cl_v3_axpy(m->vn[m->m.tri[t][k]], corner_angle(m, t, k),
-                       m->fn[t], m->vn[m->m.tri[t][k]]);
+                       m->bvh.normal[t], m->vn[m->m.tri[t][k]]);
     for (size_t v = 0; v < nv; v++)
         cl_v3_normalize(m->vn[v]);
     for (size_t t = 0; t < nt; t++)
         for (int k = 0; k < 3; k++) {
             int v = m->m.tri[t][k];
             double c[3];
-            cl_v3_cross(m->vn[v], m->fn[t], c);
+            cl_v3_cross(m->vn[v], m->bvh.normal[t], c);
             if (cl_v3_norm(c) > spread[v]) {
                 spread[v] = cl_v3_norm(c);
                 cl_v3_normalize(c);
@@ -199,7 +192,7 @@ static cl_status vertex_normals(mesh *m, const char *path, cl_error *err)
         for (int k = 0; k < 3; k++) {
             int v = m->m.tri[t][k];
             if (m->vkind[v] == G_EDGE &&
-                fabs(cl_v3_dot(m->fn[t], m->ve[v])) > FLAT_SIN)
+                fabs(cl_v3_dot(m->bvh.normal[t], m->ve[v])) > FLAT_SIN)
                 m->vkind[v] = G_CORNER;
         }
     free(spread);
@@ -220,7 +213,7 @@ static cl_status geometry(mesh *m, const char *path, cl_error *err)
     }
     if (!(rc = check_outward(m, path, err)) &&
         !(rc = allocate(m, path, err))) {
-        face_and_edge_normals(m, &s);
+        edge_normals(m, &s);
         rc = vertex_normals(m, path, err);
     }
     cl_closed_free(&s);
@@ -270,9 +263,9 @@ static cl_status mesh_create(cl_config *cfg, const char *sec,
     if (!m)
         return cl_error_set(err, CL_ENOMEM, "out of memory (mesh shape)");
     if ((rc = load(m, path, scale, shift, err)) ||
-        (rc = geometry(m, path, err)) ||
         (rc = cl_bvh_build(&m->bvh, m->m.vert, m->m.ntri,
-                           (const int(*)[3])m->m.tri, err))) {
+                           (const int(*)[3])m->m.tri, err)) ||
+        (rc = geometry(m, path, err))) {
         mesh_free(m);
         cl_config_origin(cfg, sec, "file", where, sizeof where);
         snprintf(where + strlen(where), sizeof where - strlen(where),
@@ -292,7 +285,7 @@ static g_kind feature(const mesh *m, const cl_bvh_hit *h, const double **pn,
     int t = h->tri, k = h->p.k;
     const int *v = m->m.tri[t];
     if (h->p.feature == CL_TRI_FACE) {
-        *pn = m->fn[t];
+        *pn = m->bvh.normal[t];
         return G_FACE;
     }
     if (h->p.feature == CL_TRI_EDGE) {
@@ -320,10 +313,10 @@ static void mesh_query(const void *shape, const double x[3], void *cache,
     g_kind kind = feature(m, &h, &pn, e);
     cl_v3_sub(x, h.p.c, r);
     double sign = cl_v3_dot(r, pn) >= 0 ? 1.0 : -1.0;
-    if (!cl_shape_answer(x, h.p.c, sign, m->fn[h.tri], m->tiny, q))
+    if (!cl_shape_answer(x, h.p.c, sign, m->bvh.normal[h.tri], m->tiny, q))
         return;
     if (h.p.feature == CL_TRI_FACE)     /* exact, not (x - c) / |x - c| */
-        memcpy(q->n, m->fn[h.tri], sizeof q->n);
+        memcpy(q->n, m->bvh.normal[h.tri], sizeof q->n);
     else if (kind != G_FACE)
         cl_shape_hessian(q->n, kind == G_EDGE ? e : NULL, q->d, q->G);
 }
