@@ -546,12 +546,15 @@ cl_status cl_sun_advance(void *state, double t_out, double *x, double *v,
     if (!cl_all_finite(N_VGetArrayPointer(s->y), 2 * s->sys->n))
         return cl_error_set(err, CL_EBLOWUP, "%s: state not finite at "
                             "t = %.9g", s->name, t_out);
-    double *y = N_VGetArrayPointer(s->y);
-    cl_status st = cl_integrator_contact_at(s->name, s->sys, t_out, y,
-                                            y + s->sys->n, !s->proj, err);
-    if (st != CL_OK)
-        return st;
-    sun_copy_out(s, x, v);
+    if (s->sys->contact) { /* the figures, and the output projected */
+        double *y = N_VGetArrayPointer(s->y);
+        cl_status st = cl_integrator_contact_at(s->name, s->sys, t_out, y,
+                                                y + s->sys->n, !s->proj,
+                                                err);
+        if (st != CL_OK)
+            return st;
+        sun_copy_out(s, x, v);
+    }
     return s->sys->step_done ? sun_step_done(s, t_out, err) : CL_OK;
 }
 
