@@ -1,7 +1,7 @@
-/* Inverse sinc for the Choi-Ko Type2 interaction: seed 000, eq. 8
+/* Inverse sinc for the Choi-Ko Type2 interaction: Jiao, eq. 8
  * (kappa = (2/L) asinc(|x_ij|/L)), eq. 9 and 12 (f_b and d|x_ij|/dkappa,
- * which need sinc, 1 - sinc and their derivatives), and section 4.6 (the
- * seed's fifth-order polynomial fit of the inverse sinc, reproduced as its
+ * which need sinc, 1 - sinc and their derivatives), and section 4.6 (Jiao's
+ * fifth-order polynomial fit of the inverse sinc, reproduced as Jiao's
  * numpy code computes it).  The mathematics is in asinc.h. */
 #include "forces/asinc.h"
 
@@ -335,7 +335,7 @@ cl_status cl_polyfit(const double *x, const double *y, int n, int deg,
     return CL_OK;
 }
 
-/* ---- the seed's polynomial ----------------------------------------------- */
+/* ---- Jiao's polynomial --------------------------------------------------- */
 
 /* numpy.sinc, as numpy writes it. */
 static double numpy_sinc(double x)
@@ -361,11 +361,11 @@ cl_status cl_seed_poly_fit(cl_seed_fit *out, cl_error *err)
 {
     enum { N = CL_SEED_POLY_NPTS, D = CL_SEED_POLY_DEGREE };
     if (!out)
-        return cl_error_set(err, CL_EINVAL, "seed polynomial: no output");
+        return cl_error_set(err, CL_EINVAL, "Jiao's polynomial: no output");
     double *buf = malloc(3 * (size_t)N * sizeof *buf);
     if (!buf)
         return cl_error_set(err, CL_ENOMEM,
-                            "seed polynomial: cannot allocate work arrays");
+                            "Jiao's polynomial: cannot allocate work arrays");
     double *x = buf, *y = buf + N, *f = buf + 2 * N;
 
     /* x = np.linspace(0, 1, 1000): i * (1/999), last point set to 1. */

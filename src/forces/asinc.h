@@ -1,6 +1,6 @@
 /* Inverse sinc for the Choi-Ko Type2 (buckling) interaction.
  *
- * Seed 000, section 4.5: a compressed Type2 pair of rest length L and chord
+ * Jiao, section 4.5: a compressed Type2 pair of rest length L and chord
  * d = |x_ij| < L is taken to lie on a circular arc of length L, whose
  * curvature is (eq. 8)
  *
@@ -25,7 +25,7 @@
  * delta in y moves t by delta/g'(t) ~ 3 delta/t, i.e. the y form loses
  * accuracy as t -> 0 (y within 1e-16 of 1 cannot resolve t below ~2.6e-8).
  *
- * Seed-polynomial branch (section 4.6).  The seed author's code builds a
+ * Polynomial branch (Jiao, section 4.6).  Jiao's own code builds a
  * fifth-order polynomial from numpy's NORMALISED sinc, sinc_n(x) =
  * sin(pi x)/(pi x):
  *
@@ -38,8 +38,10 @@
  * and uses kappa = (2/L) p(d/L).  The polynomial approximates the normalised
  * inverse asinc_n(y) = asinc(y)/pi (to within ~0.05 on [0, 1]; p(0) = 1,
  * p(1) ~ 0, but it cannot follow the square-root behaviour at y -> 1), so
- * the seed's kappa is about 1/pi of the true arc curvature.  This module
- * reproduces the coefficients as numpy computes them; it does not fix them.
+ * the kappa of Jiao's code is about 1/pi of the true arc curvature.  This
+ * module reproduces the coefficients as numpy computes them; it does not
+ * fix them.  (The "seed" in the names cl_seed_poly_* and in the option
+ * value type2.asinc = seed-poly stands for Jiao's code.)
  *
  * All functions are pure, allocation-free and thread-safe, except
  * cl_seed_poly_coeffs / cl_seed_poly_fit, which allocate a small work array
@@ -99,7 +101,7 @@ double cl_asinc_1m_deriv(double t);
  * Prefer cl_asinc_1m near y = 1 (see the conditioning note above). */
 double cl_asinc(double y);
 
-/* ---- the seed's polynomial (section 4.6) --------------------------------- */
+/* ---- Jiao's polynomial (Jiao, section 4.6) ------------------------------- */
 
 #define CL_SEED_POLY_DEGREE 5
 #define CL_SEED_POLY_NCOEF (CL_SEED_POLY_DEGREE + 1)
@@ -114,7 +116,7 @@ double cl_asinc(double y);
 cl_status cl_polyfit(const double *x, const double *y, int n, int deg,
                      double *p, cl_error *err);
 
-/* Every stage of the seed's construction, for reports. */
+/* Every stage of the construction in Jiao's code, for reports. */
 typedef struct {
     double p1[CL_SEED_POLY_NCOEF]; /* polyfit(sinc_n(x), x, 5) */
     double fmin, fmax;             /* min of polyval(p1, x) and max after the
@@ -124,11 +126,11 @@ typedef struct {
 
 cl_status cl_seed_poly_fit(cl_seed_fit *out, cl_error *err);
 
-/* The final seed coefficients p[0..5], highest degree first. */
+/* The final coefficients p[0..5] of Jiao's code, highest degree first. */
 cl_status cl_seed_poly_coeffs(double p[CL_SEED_POLY_NCOEF], cl_error *err);
 
 /* p(r) by Horner in numpy.polyval's order (so values are bit-identical),
- * and p'(r) in *dp if dp is not NULL.  The seed uses kappa = (2/L) p(d/L),
+ * and p'(r) in *dp if dp is not NULL.  Jiao uses kappa = (2/L) p(d/L),
  * i.e. p approximates asinc(y)/pi, not asinc(y). */
 double cl_seed_poly_eval(const double p[CL_SEED_POLY_NCOEF], double r,
                          double *dp);

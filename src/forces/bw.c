@@ -1,6 +1,6 @@
 /* Baraff-Witkin elements and the loops of their potential and damping parts
- * (BW98 section 4, condition functions and damping; SPEC 3.3); the
- * equations are in forces/bw.h. */
+ * (BW98 section 4, condition functions and damping; docs/model.md 3.3);
+ * the equations are in forces/bw.h. */
 #include "forces/bw.h"
 
 #include <math.h>
@@ -80,8 +80,9 @@ bool cl_bw_tri_rest_plane(const double *X0, const int tri[3],
     return tri_rest(l, ef / l, 0.0, twice_area / l, rest);
 }
 
-/* The SPEC 3.3 expressions as written: at rest dx1, dx2 are du, dv bit for
- * bit, so w_u and w_v are exactly the unit axes there. */
+/* Baraff and Witkin's expressions (BW98 section 4) as written: at rest
+ * dx1, dx2 are du, dv bit for bit, so w_u and w_v are exactly the unit axes
+ * there. */
 void cl_bw_tri_w(const double *rest, const double *x, double wu[3],
                  double wv[3])
 {

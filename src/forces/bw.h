@@ -1,8 +1,9 @@
 /* Baraff-Witkin cloth (D. Baraff, A. Witkin, "Large steps in cloth
- * simulation", SIGGRAPH 1998, section 4; SPEC 3.3): forces from condition
- * functions C(x) of small groups of particles ("elements": the triangles of
- * the grid mesh, or of a mesh cloth's own mesh (model/cloth.h), for stretch
- * and shear, the two triangles of an interior edge for bend; model/mesh.h).
+ * simulation", SIGGRAPH 1998, section 4; docs/model.md 3.3): forces from
+ * condition functions C(x) of small groups of particles ("elements": the
+ * triangles of the grid mesh, or of a mesh cloth's own mesh
+ * (model/cloth.h), for stretch and shear, the two triangles of an interior
+ * edge for bend; model/mesh.h).
  *
  * Potential part (BW98 section 4: condition energy), per element and
  * component c:
@@ -22,12 +23,12 @@
  * and d2C/dx2 of one element; this module builds the elements, the Jacobian
  * couplings (all vertex pairs of an element) and runs the loops above.
  *
- * Tearing ([tear] cut, SPEC 3.4): the connections of an element are the
- * mesh edges of its triangles (3 for a triangle; 5 for a hinge: the shared
- * edge and the four outer edges of its two triangles).  After an accepted
- * step an element whose connection a-b has d > cut L (L its rest length)
- * breaks for good and gives no force, energy or Jacobian values; the
- * connections over the cut are reported as broken.  The test is the same
+ * Tearing ([tear] cut, docs/model.md 3.4): the connections of an element
+ * are the mesh edges of its triangles (3 for a triangle; 5 for a hinge: the
+ * shared edge and the four outer edges of its two triangles).  After an
+ * accepted step an element whose connection a-b has d > cut L (L its rest
+ * length) breaks for good and gives no force, energy or Jacobian values;
+ * the connections over the cut are reported as broken.  The test is the same
  * for every term and for the pair terms, so a torn edge takes every
  * triangle and hinge it belongs to, in all terms at once. */
 #ifndef CL_BW_H

@@ -1,7 +1,8 @@
-/* Baraff-Witkin bend (BW98 section 4, bend; SPEC 3.3) on every interior
- * edge of the grid mesh or mesh cloth (model/mesh.h): C = theta - theta0,
- * the signed angle between the normals of the edge's two triangles, theta0
- * its value on the rest mesh (0 for the flat grid), wrapped to [-pi, pi].
+/* Baraff-Witkin bend (BW98 section 4, bend; docs/model.md 3.3) on every
+ * interior edge of the grid mesh or mesh cloth (model/mesh.h):
+ * C = theta - theta0, the signed angle between the normals of the edge's
+ * two triangles, theta0 its value on the rest mesh (0 for the flat grid),
+ * wrapped to [-pi, pi].
  *
  * Hinge (x0, x1, x2, x3): edge e = x1 - x0 as it runs in the first triangle
  * (x0, x1, x2); x3 is the far vertex of the second, (x1, x0, x3).  With

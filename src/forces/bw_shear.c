@@ -1,5 +1,5 @@
-/* Baraff-Witkin shear (BW98 section 4, shear; SPEC 3.3) on every triangle
- * of the grid mesh or mesh cloth, one component:
+/* Baraff-Witkin shear (BW98 section 4, shear; docs/model.md 3.3) on every
+ * triangle of the grid mesh or mesh cloth, one component:
  *     C = a w_u . w_v
  * with a the rest area and w_u, w_v the stretch directions of forces/bw.h
  * (dw_u/dx_m = cu_m I, dw_v/dx_m = cv_m I, constant), so

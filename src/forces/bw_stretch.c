@@ -1,5 +1,5 @@
-/* Baraff-Witkin stretch (BW98 section 4, stretch; SPEC 3.3) on every
- * triangle of the grid mesh or mesh cloth, two components:
+/* Baraff-Witkin stretch (BW98 section 4, stretch; docs/model.md 3.3) on
+ * every triangle of the grid mesh or mesh cloth, two components:
  *     C = a (|w_u| - bu, |w_v| - bv)
  * with a the rest area and w_u, w_v the stretch directions of forces/bw.h
  * (dw_u/dx_m = cu_m I, dw_v/dx_m = cv_m I, constant).  With

@@ -1,13 +1,13 @@
-/* Choi-Ko pair damping (seed 000, eq. 14; SPEC 3.2) on every Type1 and
- * Type2 pair:
+/* Choi-Ko pair damping (Jiao, eq. 14; docs/model.md 3.2) on every Type1
+ * and Type2 pair:
  *     f_a = -kd (v_a - v_b),   f_b = -f_a,
  * so df_a/dv_a = df_b/dv_b = -kd I and df_a/dv_b = df_b/dv_a = kd I; no
  * position dependence.  Its power is -kd |v_a - v_b|^2 <= 0 per pair.
- * model = axial (SPEC 3.2 option) damps only the stretching rate,
- * f_a = kd (u . (v_b - v_a)) u (seed 004's "spring and friction"); both
- * laws and their Jacobians are in forces/pairdamp.h.
+ * model = axial (an option) damps only the stretching rate,
+ * f_a = kd (u . (v_b - v_a)) u (the Verlet-and-PBD report's "spring and
+ * friction"); both laws and their Jacobians are in forces/pairdamp.h.
  *
- * where = engaged reproduces the seed author's code, which damps a pair only
+ * where = engaged reproduces Jiao's own code, which damps a pair only
  * while its spring acts: a Type1 pair when d > L, a Type2 pair when d < L.
  * (The force then jumps where a pair engages; the Jacobian is that of the
  * current branch.)
@@ -119,7 +119,7 @@ static cl_status damping_create(cl_config *cfg, const cl_cloth *cloth,
 const cl_term_type cl_term_damping = {
     .name = "damping",
     .doc = "Choi-Ko pair damping on Type1 and Type2 pairs: linear "
-           "-kd (v_i - v_j) (seed eq. 14) or axial",
+           "-kd (v_i - v_j) (Jiao eq. 14) or axial",
     .conservative = false,
     .splits = true,
     .create = damping_create,

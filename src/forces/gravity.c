@@ -1,6 +1,6 @@
-/* Uniform body force (SPEC 3.4): f_p = m_p g + F on every particle, with g
- * an acceleration (m/s^2) and F a force per particle (N; the seed-000
- * author's code applies F = (0, -0.01, 0) instead of gravity).  Potential
+/* Uniform body force (docs/model.md 3.4): f_p = m_p g + F on every
+ * particle, with g an acceleration (m/s^2) and F a force per particle (N;
+ * Jiao's own code applies F = (0, -0.01, 0) instead of gravity).  Potential
  * E = -sum_p (m_p g + F) . x_p; no Jacobian.
  *
  * INI section [gravity]: g (vector, default 0, -9.81, 0), per_particle

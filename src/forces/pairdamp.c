@@ -1,5 +1,6 @@
-/* Pair damping, linear (seed 000 eq. 14) and axial (seed 004 "Spring and
- * Friction"): equations and Jacobians in forces/pairdamp.h. */
+/* Pair damping, linear (Jiao, eq. 14) and axial (the Verlet-and-PBD
+ * report, "Spring and Friction"): equations and Jacobians in
+ * forces/pairdamp.h. */
 #include "forces/pairdamp.h"
 
 cl_status cl_pairdamp_init(cl_pairdamp *pd, cl_pairset set, double kd,

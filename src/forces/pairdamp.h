@@ -2,11 +2,12 @@
  * the spring-damping term (forces/spring_damping.c).  For a pair a-b with
  * u = (x_b - x_a)/d, d = |x_b - x_a|, w = v_b - v_a:
  *
- *  linear (seed 000 eq. 14; SPEC 3.2):  f_a = -kd (v_a - v_b) = kd w,
+ *  linear (Jiao, eq. 14; docs/model.md 3.2):  f_a = -kd (v_a - v_b) = kd w,
  *      df_a/dv_a = df_b/dv_b = -kd I,  df_a/dv_b = df_b/dv_a = kd I,
  *      no position dependence; power f_a.(v_a - v_b) = -kd |w|^2.
  *
- *  axial (seed 004 "Spring and Friction": f_a = k_d (d^ . (v_b - v_a)) d^):
+ *  axial (the Verlet-and-PBD report, "Spring and Friction":
+ *      f_a = k_d (d^ . (v_b - v_a)) d^):
  *      f_a = kd (u . w) u = kd (u u^T) w,   f_b = -f_a;
  *      with D = kd u u^T:  df_a/dv_b = df_b/dv_a = D, df_a/dv_a =
  *      df_b/dv_b = -D.  Positions: du/dx_b = P/d, P = I - u u^T,

@@ -1,4 +1,5 @@
-/* Central pair forces: loop over pairs, scalar law, blocks (SPEC 3.1). */
+/* Central pair forces (docs/model.md 3.1): loop over pairs, scalar law,
+ * blocks. */
 #include "forces/pairterm.h"
 
 #include <stdlib.h>

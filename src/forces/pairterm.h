@@ -1,5 +1,5 @@
-/* Central pair forces (SPEC 3.1), shared by every pair model (Choi-Ko Type1,
- * Type2, springs).
+/* Central pair forces (docs/model.md 3.1), shared by every pair model
+ * (Choi-Ko Type1, Type2, springs).
  *
  * For a pair a-b: x_ab = x_b - x_a, d = |x_ab|, u = x_ab/d.  The force on a is
  * f_a = s(d) u, on b it is -f_a.  With
@@ -11,13 +11,14 @@
  *
  * A model supplies the scalar law s, s', E through a cl_pairlaw_fn.
  *
- * Tearing (SPEC 3.4; seed 004's "cutting distance"): with cut > 0
- * (cl_pairterm_tear, [tear] cut), a pair breaks for good, after an accepted
- * step, once d > cut L.  A broken pair contributes no force, no energy and
- * no Jacobian values: its blocks stay in the pattern and simply receive
- * nothing (zeros), so the sparsity pattern and KLU's symbolic analysis are
- * unchanged.  Every term decides on its own pairs with the same d and L, so
- * a spring and the damper on the same pair break together. */
+ * Tearing (docs/model.md 3.4; the Verlet-and-PBD report's "cutting
+ * distance"): with cut > 0 (cl_pairterm_tear, [tear] cut), a pair breaks
+ * for good, after an accepted step, once d > cut L.  A broken pair
+ * contributes no force, no energy and no Jacobian values: its blocks stay
+ * in the pattern and simply receive nothing (zeros), so the sparsity
+ * pattern and KLU's symbolic analysis are unchanged.  Every term decides on
+ * its own pairs with the same d and L, so a spring and the damper on the
+ * same pair break together. */
 #ifndef CL_PAIRTERM_H
 #define CL_PAIRTERM_H
 
@@ -82,7 +83,8 @@ static inline void cl_pair_scatter(double *restrict f, const cl_pair *pr,
     fb[2] -= f2;
 }
 
-/* The block K of SPEC 3.1 (row-major 3x3) for direction u, distance d. */
+/* The block K of docs/model.md (3.1) (row-major 3x3) for direction u,
+ * distance d. */
 void cl_pair_block(const double u[3], double d, double s, double ds,
                    bool clamp_transverse, double K[9]);
 

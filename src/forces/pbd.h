@@ -1,6 +1,7 @@
-/* Position-based distance constraints (seed 004 "Positional constraint";
- * Mueller, Heidelberger, Hennix, Ratcliff, "Position based dynamics",
- * JVRCI 2007; SPEC 3.4), the term `pbd`.
+/* Position-based distance constraints (the Verlet-and-PBD report,
+ * "Positional constraint"; Mueller, Heidelberger, Hennix, Ratcliff,
+ * "Position based dynamics", JVRCI 2007; docs/model.md 3.4), the term
+ * `pbd`.
  *
  * Constraints C_ab(x) = |x_a - x_b| - L_ab = 0 on the pairs of constraint
  * levels 1..k (model/pairs.h: level l joins particles l apart along the
@@ -21,11 +22,11 @@
  * K = `stiffness` in (0, 1] (K = 1 satisfies the pair exactly).  The
  * corrections conserve the mass-weighted centre sum m_a x_a + m_b x_b of
  * two free particles, hence the centre of mass of a cloth without pins.
- * Seed 004's code moves both (equal-mass) particles by K_seed (d - L), so
- * its recommended K_seed = 0.5 is K = 1 here (K = 2 K_seed).  K applies
- * per sweep, as in seed 004 (Mueller et al.'s iteration-independent
- * 1 - (1 - K)^(1/n) is not used); pairs with w_a + w_b = 0 or d = 0 are
- * skipped.
+ * The Verlet-and-PBD report's code moves both (equal-mass) particles by
+ * K_rep (d - L), so its recommended K_rep = 0.5 is K = 1 here
+ * (K = 2 K_rep).  K applies per sweep, as in that code (Mueller et al.'s
+ * iteration-independent 1 - (1 - K)^(1/n) is not used); pairs with
+ * w_a + w_b = 0 or d = 0 are skipped.
  *
  * Energy: none.  The term is reported as non-conservative with zero
  * dissipated power: a constraint "potential" (K/2) sum (d - L)^2 would be

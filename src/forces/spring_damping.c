@@ -1,19 +1,20 @@
-/* Damped springs, the `spring-damping` term (seed 004 "Spring and Friction
- * or Advanced Physical constraint"; SPEC 3.2 damping, 3.4): a dashpot on
- * every spring pair of the mass-spring network (forces/springs.h), kept
- * apart from the springs term so that the springs' potential energy and the
- * dissipated power are reported separately.
+/* Damped springs, the `spring-damping` term (the Verlet-and-PBD report,
+ * "Spring and Friction or Advanced Physical constraint"; docs/model.md 3.2
+ * damping, 3.4): a dashpot on every spring pair of the mass-spring network
+ * (forces/springs.h), kept apart from the springs term so that the springs'
+ * potential energy and the dissipated power are reported separately.
  *
- *   axial (default, seed 004):  f_a = kd (u . (v_b - v_a)) u,  f_b = -f_a,
+ *   axial (default, the Verlet-and-PBD report):
+ *       f_a = kd (u . (v_b - v_a)) u,  f_b = -f_a,
  *       u = (x_b - x_a)/|x_b - x_a|: resists only the stretching rate;
- *   linear (seed 000 eq. 14):   f_a = -kd (v_a - v_b).
+ *   linear (Jiao, eq. 14):   f_a = -kd (v_a - v_b).
  * Jacobians (axial: df/dv = +-kd u u^T blocks and the nonsymmetric,
  * velocity-dependent df/dx) are derived in forces/pairdamp.h.
  *
  * The pairs are those [springs] defines (sets or levels, stiffness > 0),
  * whether or not the springs term itself is enabled (kd alone then gives a
- * dashpot network).  One kd for every pair, as seed 004's single damping
- * factor.
+ * dashpot network).  One kd for every pair, as the Verlet-and-PBD report's
+ * single damping factor.
  *
  * INI section [spring-damping]: kd (N s/m, >= 0, default 0: off),
  * model (axial|linear, default axial). */
@@ -72,7 +73,7 @@ static cl_status spring_damping_create(cl_config *cfg, const cl_cloth *cloth,
 const cl_term_type cl_term_spring_damping = {
     .name = "spring-damping",
     .doc = "dashpots on the spring pairs: axial kd (u.(v_j - v_i)) u "
-           "(seed 004 spring and friction) or linear -kd (v_i - v_j)",
+           "(Verlet-and-PBD spring and friction) or linear -kd (v_i - v_j)",
     .conservative = false,
     .splits = true,
     .create = spring_damping_create,

@@ -1,12 +1,14 @@
-/* Mass-spring network and the `springs` term (seed 003 sec. 3, eq. 4; seed
- * 004 "Spring or Physical constraint" and "Level of Constraint"; SPEC 2,
- * 3.1, 3.4).  Pair sets, the levels rule and the INI keys: springs.h.
+/* Mass-spring network and the `springs` term (Zischg, Chea and Aigner,
+ * sec. 3, eq. 4; the Verlet-and-PBD report, "Spring or Physical constraint"
+ * and "Level of Constraint"; docs/model.md 2, 3.1, 3.4).  Pair sets, the
+ * levels rule and the INI keys: springs.h.
  *
  * Every spring is linear in tension and compression alike:
  *     s(d) = k (d - L),   E(d) = k (d - L)^2 / 2,
- * on the central-pair machinery of SPEC 3.1 (forces/pairterm.h): force on a
- * is s(d) u, u = (x_b - x_a)/d (seed 004: f_a = k (|P_b - P_a| - l) d^;
- * seed 003 eq. 4 is the same force written for x_1 - x_2), Jacobian blocks
+ * on the central-pair machinery of docs/model.md 3.1 (forces/pairterm.h):
+ * force on a is s(d) u, u = (x_b - x_a)/d (the Verlet-and-PBD report:
+ * f_a = k (|P_b - P_a| - l) d^; Zischg, Chea and Aigner's eq. 4 is the same
+ * force written for x_1 - x_2), Jacobian blocks
  * K = k u u^T + (s/d)(I - u u^T).  k is per pair (structural, shear, bend
  * or level); the rest length L is the rest distance, so d == L at rest. */
 #include "forces/springs.h"
@@ -289,7 +291,8 @@ static cl_status springs_create(cl_config *cfg, const cl_cloth *cloth,
 const cl_term_type cl_term_springs = {
     .name = "springs",
     .doc = "mass-spring cloth: linear springs k (d - L) on structural, "
-           "shear, bend pairs or levels 1..k (seeds 003, 004)",
+           "shear, bend pairs or levels 1..k (Zischg, Chea and Aigner; "
+           "Verlet-and-PBD report)",
     .conservative = true,
     .splits = true,
     .create = springs_create,

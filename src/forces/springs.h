@@ -1,5 +1,6 @@
-/* Mass-spring cloth (SPEC 2, 3.4; seeds 003 and 004): the spring network,
- * the `springs` term and the `spring-damping` term.
+/* Mass-spring cloth (docs/model.md 2, 3.4; Zischg, Chea and Aigner, and
+ * the Verlet-and-PBD report): the spring network, the `springs` term and
+ * the `spring-damping` term.
  *
  * The network is read from INI section [springs] by cl_springs_network, the
  * one place that decides which particle pairs are springs and how stiff
@@ -24,30 +25,32 @@
  *
  * The rule: `levels = 0` (default) uses the named sets structural + shear
  * + bend, each with its own stiffness; a set whose stiffness is 0 is left
- * out (k_shear = 0 gives seed 003's structural + bend).  `levels = k >= 1`
- * replaces the named sets by levels 1..k (seed 004): level 1 = structural +
- * shear, level 2 adds the +-2 axis and +-2 diagonal pairs, and so on; it is
- * an error to set k_shear or k_bend together with levels >= 1.  Levels
- * 1..k on n x n (k < n) count
+ * out (k_shear = 0 gives Zischg, Chea and Aigner's structural + bend).
+ * `levels = k >= 1` replaces the named sets by levels 1..k (the
+ * Verlet-and-PBD report): level 1 = structural + shear, level 2 adds the
+ * +-2 axis and +-2 diagonal pairs, and so on; it is an error to set k_shear
+ * or k_bend together with levels >= 1.  Levels 1..k on n x n (k < n) count
  *     sum_l 2 (n-l)(2n-l) = 4 n^2 k - 3 n k (k+1) + k (k+1)(2k+1)/3;
  * levels >= max(nu, nv) add nothing.
  *
  * INI section [springs]:
  *   enabled          (false) switches the springs term on;
  *   k_structural     (N/m, default 200 = hang's ks);
- *   k_shear          (N/m, default k_structural; seed 003 gives no value: it
- *                    uses no shear springs on its triangle grid, where the
- *                    diagonal is a structural edge.  Without shear a square
- *                    grid has no in-plane shear stiffness);
- *   k_bend           (N/m, default k_structural / 8: seed 003, sec. 3.1.1,
- *                    "a ratio of 1 : 8 ... between the bending- and
- *                    structural springs");
+ *   k_shear          (N/m, default k_structural; Zischg, Chea and Aigner
+ *                    give no value: they use no shear springs on their
+ *                    triangle grid, where the diagonal is a structural
+ *                    edge.  Without shear a square grid has no in-plane
+ *                    shear stiffness);
+ *   k_bend           (N/m, default k_structural / 8: Zischg, Chea and
+ *                    Aigner, sec. 3.1.1, "a ratio of 1 : 8 ... between the
+ *                    bending- and structural springs");
  *   levels           (0 .. 1000, default 0, see above);
  *   level_stiffness  (same | inverse, only with levels >= 1): `same` gives
- *                    every level the stiffness k_structural, as seed 004
- *                    does (one K for every constraint of every level, rest
- *                    length l h); `inverse` gives level l k_structural / l,
- *                    the same axial rigidity k L per unit rest length. */
+ *                    every level the stiffness k_structural, as the
+ *                    Verlet-and-PBD report does (one K for every
+ *                    constraint of every level, rest length l h);
+ *                    `inverse` gives level l k_structural / l, the same
+ *                    axial rigidity k L per unit rest length. */
 #ifndef CL_SPRINGS_H
 #define CL_SPRINGS_H
 

@@ -18,8 +18,8 @@
 #include "linalg/bpattern.h"
 #include "model/cloth.h"
 
-/* Options shared by every term (SPEC 3.1: jacobian.transverse; SPEC 3.4:
- * tearing). */
+/* Options shared by every term (docs/model.md 3.1: jacobian.transverse;
+ * 3.4: tearing). */
 typedef struct {
     bool clamp_transverse; /* drop (s/d)(I - uu^T) where s < 0 */
     double tear_cut;       /* [tear] cut: a connection breaks when
@@ -61,8 +61,8 @@ typedef struct {
     void (*eval)(void *state, cl_eval *ev);
     /* Optional (NULL if not needed): */
     /* Project full-particle positions onto the term's position-based
-     * constraints (seed 004); dof[p] < 0 marks particles that must not
-     * move (pinned). */
+     * constraints (the Verlet-and-PBD report); dof[p] < 0 marks particles
+     * that must not move (pinned). */
     void (*project)(void *state, double *x, const int *dof);
     /* After an accepted step: irreversible updates (tearing: a pair breaks
      * when d > cut L); returns the number of newly broken connections. */

@@ -1,8 +1,8 @@
-/* Choi-Ko Type1 interaction (seed 000, eqs. 1-3; SPEC 3.2): sequential
+/* Choi-Ko Type1 interaction (Jiao, eqs. 1-3; docs/model.md 3.2): sequential
  * pairs (i+-1, j), (i, j+-1), (i+-1, j+-1), tension only:
  *     s(d) = ks (d - L)  for d >= L,   0 for d < L,
  *     E(d) = ks (d - L)^2 / 2 for d >= L, 0 otherwise.
- * The seed's eq. (1) reads ">= L" in both cases; the second means d < L.
+ * Jiao's eq. (1) reads ">= L" in both cases; the second means d < L.
  * With compression = spring the law is ks (d - L) on both sides: a plain
  * linear spring without the kink at d = L (for convergence and energy
  * studies).

@@ -1,5 +1,5 @@
-/* Choi-Ko Type2 interaction: buckling of interlaced pairs (seed 000,
- * eqs. 8-13; SPEC 3.2).  Pairs (i+-2, j), (i, j+-2), (i+-2, j+-2).
+/* Choi-Ko Type2 interaction: buckling of interlaced pairs (Jiao,
+ * eqs. 8-13; docs/model.md 3.2).  Pairs (i+-2, j), (i, j+-2), (i+-2, j+-2).
  *
  * Compression, d < L: the pair is taken to bend into a circular arc of
  * length L and chord d, with curvature kappa = (2/L) asinc(d/L) (eq. 8).
@@ -14,10 +14,10 @@
  * branch segments, whose crossing points are found once per rest length.
  *
  * Tension, d >= L: type2.tension = spring gives ks (d - L) (ks of [type1]),
- * none gives 0 (the seed author's code).
+ * none gives 0 (Jiao's own code).
  *
- * Reproductions of the seed author's code (each measurable on its own):
- *   asinc = seed-poly: t = p(d/L) with the fifth-order polynomial of seed
+ * Reproductions of Jiao's own code (each measurable on its own):
+ *   asinc = seed-poly: t = p(d/L) with the fifth-order polynomial of Jiao,
  *     section 4.6, which fits the *normalised* inverse sinc, i.e. ~asinc/pi;
  *   fb_sinc = normalised: D(t) = cos t - sin(pi t)/(pi t) (numpy's sinc).
  * With either, f_b is no longer the gradient of E_b; the energy is then

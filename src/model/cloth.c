@@ -1,5 +1,5 @@
 /* Cloth (grid or mesh): rest geometry, masses, triangles, pins and the
- * free-particle numbering (SPEC 2). */
+ * free-particle numbering (docs/model.md 2). */
 #include "model/cloth.h"
 
 #include <limits.h>

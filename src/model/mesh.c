@@ -1,4 +1,4 @@
-/* Triangle mesh of a grid cloth and its interior edges (SPEC 2). */
+/* Triangle mesh of a grid cloth and its interior edges (docs/model.md 2). */
 #include "model/mesh.h"
 
 #include <stdlib.h>

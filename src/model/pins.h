@@ -1,4 +1,5 @@
-/* Pins from the problem file (SPEC 6).
+/* Pins from the problem file (README.md, "Problems", and the problem files
+ * under problems/).
  *
  * Up to four groups, INI sections [pins], [pins2], [pins3], [pins4], each
  *   at       = particles to pin, separated by spaces: "p=K" for particle

@@ -2,9 +2,10 @@
  *
  * The unknowns are the positions x and velocities v of the free particles
  * (3*nfree each); M is diagonal.  The ODE is x' = v, M v' = f(t, x, v)
- * (SPEC 1).  Jacobians are given as 3x3-block values in a fixed pattern
- * (`pattern`, block rows = free particles), so an integrator assembles
- * whatever matrix its linear solver wants from precomputed maps.
+ * (docs/model.md 1).  Jacobians are given as 3x3-block values in a fixed
+ * pattern (`pattern`, block rows = free particles), so an integrator
+ * assembles whatever matrix its linear solver wants from precomputed
+ * maps.
  * Modelled on SUNDIALS' user-data pattern and GSL's gsl_odeiv2_system. */
 #ifndef CL_SYSTEM_H
 #define CL_SYSTEM_H
@@ -44,9 +45,10 @@ typedef struct cl_system {
                           double *dfdv);
     cl_status (*energy)(void *data, double t, const double *x,
                         const double *v, cl_energy *e);
-    /* Position-based constraints (seed 004), NULL if the model has none:
-     * move the positions x (n entries) toward satisfying the constraints,
-     * in place.  Used by position-based integrators (verlet-pbd) only. */
+    /* Position-based constraints (the Verlet-and-PBD report; docs/model.md
+     * 3.4), NULL if the model has none: move the positions x (n entries)
+     * toward satisfying the constraints, in place.  Used by position-based
+     * integrators (verlet-pbd) only. */
     cl_status (*project)(void *data, double t, double *x);
     /* Irreversible changes of the model after an accepted step (tearing),
      * NULL if the model has none.  *changed is set when the force law
