@@ -1,5 +1,5 @@
 /* cvode-adams: SUNDIALS CVODE Adams-Moulton with fixed-point iteration,
- * the non-stiff reference (SPEC 5)
+ * the non-stiff reference (docs/integrators.md, 6)
  *
  *   y = (x, v),   x' = v,   v' = M^-1 f(t, x, v),   2n unknowns,
  *

@@ -1,4 +1,5 @@
-/* cvode-bdf: SUNDIALS CVODE on the first-order form (SPEC 1, 5)
+/* cvode-bdf: SUNDIALS CVODE on the first-order form
+ * (docs/model.md, 1; docs/integrators.md, 6)
  *
  *   y = (x, v),   x' = v,   v' = M^-1 f(t, x, v),   2n unknowns,
  *

@@ -1,5 +1,6 @@
 /* cvode-bdf-dense: SUNDIALS CVODE BDF with a dense difference-quotient
- * Jacobian, the cross-check of cvode-bdf for small systems (SPEC 5)
+ * Jacobian, the cross-check of cvode-bdf for small systems
+ * (docs/integrators.md, 6)
  *
  *   y = (x, v),   x' = v,   v' = M^-1 f(t, x, v),   2n unknowns,
  *

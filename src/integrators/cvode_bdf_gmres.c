@@ -1,5 +1,5 @@
 /* cvode-bdf-gmres: SUNDIALS CVODE BDF with matrix-free Newton-Krylov
- * (SPEC 5)
+ * (docs/integrators.md, 6)
  *
  *   y = (x, v),   x' = v,   v' = M^-1 f(t, x, v),   2n unknowns,
  *

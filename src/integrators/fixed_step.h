@@ -1,5 +1,6 @@
-/* Shared plumbing of the explicit fixed-step integrators (SPEC 5): fe,
- * symplectic-euler, symplectic-euler-x, verlet, velocity-verlet, rk4.
+/* Shared plumbing of the explicit fixed-step integrators
+ * (docs/integrators.md, 2): fe, symplectic-euler, symplectic-euler-x,
+ * verlet, velocity-verlet, rk4.
  *
  * A method supplies a cl_fixed_method (CL_FIXED_INTEGRATOR below defines it
  * with the integrator table): its name, how many work arrays of n doubles

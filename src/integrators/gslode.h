@@ -1,5 +1,5 @@
-/* Shared plumbing of the GSL odeiv2 reference integrators (SPEC 5):
- * gsl-rk8pd and gsl-msbdf.
+/* Shared plumbing of the GSL odeiv2 reference integrators
+ * (docs/integrators.md, 6): gsl-rk8pd and gsl-msbdf.
  *
  * Both integrate the first-order form
  *
@@ -38,10 +38,10 @@
  * solves: for a method with a Jacobian those four are CL_STAT_NA ("n/a"),
  * not 0.  The other counters are 0: neither method has them.
  *
- * Tearing (SPEC 3.4): the system's step_done hook is called at the end of
- * every advance, i.e. at output times only (use many samples); when the
- * model changed, gsl_odeiv2_driver_reset drops the stepper's history
- * (msbdf) and the solver continues from the current state. */
+ * Tearing (docs/model.md, 3.4): the system's step_done hook is called at
+ * the end of every advance, i.e. at output times only (use many samples);
+ * when the model changed, gsl_odeiv2_driver_reset drops the stepper's
+ * history (msbdf) and the solver continues from the current state. */
 #ifndef CL_GSLODE_H
 #define CL_GSLODE_H
 

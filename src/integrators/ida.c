@@ -1,4 +1,5 @@
-/* ida: SUNDIALS IDA on the implicit form (SPEC 1, 5)
+/* ida: SUNDIALS IDA on the implicit form
+ * (docs/model.md, 1; docs/integrators.md, 6)
  *
  *   F(t, y, y') = [ x' - v ; M v' - f(t, x, v) ] = 0,   y = (x, v),
  *   2n unknowns,

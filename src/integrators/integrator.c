@@ -1,5 +1,5 @@
 /* Integrator registry lookup, fixed-step bookkeeping and statistics output
- * (SPEC 5).
+ * (docs/integrators.md, 1).
  *
  * Fixed-step methods count steps, never accumulate time: the time after step
  * k is t0 + k dt, and an output time must be a whole number of steps from t0

@@ -1,5 +1,6 @@
-/* The integrator interface (SPEC 5): one file per method, one row in the
- * registry of integrators/registry.c.  An integrator sees only a cl_system.
+/* The integrator interface (docs/integrators.md, 1): one file per method,
+ * one row in the registry of integrators/registry.c.  An integrator sees
+ * only a cl_system.
  *
  * Fixed-step methods take steps of exactly opts->dt; the time after step k is
  * k*dt (no accumulated round-off), and `advance` must be given output times
@@ -29,7 +30,7 @@ typedef struct {
     double lin_tol;      /* iterative linear solver tolerance (0: default) */
     long lin_maxit;      /* iterative linear solver iterations (0: default) */
     double vdamp;        /* Verlet velocity damping factor in [0, 1)
-                          * (seed 004; 0: none) */
+                          * (the Verlet-and-PBD report; 0: none) */
     int max_order;       /* highest order of the variable-order methods
                           * (takes_max_order; 0: the solver's own, 5 for
                           * BDF, 12 for Adams) */

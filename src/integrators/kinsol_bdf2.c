@@ -12,9 +12,9 @@
  * whose Jacobian, with dx1/dv1 = (2h/3) I, is
  *   dR/dv1 = M - (2h/3) df/dv - (2h/3)^2 df/dx
  *          = M - (2h/3) df/dv - (4h^2/9) df/dx      (a = 2h/3, b = 4h^2/9),
- * M times the seed's eq. (15) matrix.  Common form: vb = (4 v0 - v_{-1})/3,
- * c = 2h/3, x1b = (4 x0 - x_{-1})/3, alpha = alpha1 = 2h/3, ve0 = 0,
- * beta = 1, te = t1.
+ * M times the matrix of Jiao's eq. (15).  Common form:
+ * vb = (4 v0 - v_{-1})/3, c = 2h/3, x1b = (4 x0 - x_{-1})/3,
+ * alpha = alpha1 = 2h/3, ve0 = 0, beta = 1, te = t1.
  *
  * Predictor.  v1 = (x_{-1} - x0)/(2h), the v1 for which (1) gives
  * x1 = x0.  With dx = x1 - x0, (1) is v1 = (3 dx - (x0 - x_{-1}))/(2h),

@@ -1,5 +1,6 @@
 /* Shared plumbing of the fixed-step fully implicit integrators solved by
- * KINSOL (SPEC 1, 5): kinsol-be, kinsol-bdf2, kinsol-midpoint.
+ * KINSOL (docs/model.md, 1; docs/integrators.md, 4): kinsol-be,
+ * kinsol-bdf2, kinsol-midpoint.
  *
  * Reduced velocity form.  For x' = v, M v' = f(t, x, v) each step from
  * t_n to t_{n+1} = t_n + h solves for the new velocity v1 (3 per free
@@ -34,10 +35,11 @@
  * position at x_n, i.e. from "the cloth does not move": f and its Jacobian
  * are first evaluated at x_n -- bit for bit, since xe is computed as
  * x_n + alpha (v1 - p), so that pairs sitting exactly on a kink (d = L at
- * rest, SPEC 3.5) see the same branch as the semi-implicit methods do.
+ * rest; docs/architecture.md, "Checks every force term passes") see the
+ * same branch as the semi-implicit methods do.
  * Then one Newton iteration is the linearly implicit method obtained by
  * linearising f about (x_n, v_n) -- backward Euler: Baraff-Witkin's step;
- * BDF2: the seed's eq. (15) -- exactly whenever f is affine in v with a
+ * BDF2: Jiao's eq. (15) -- exactly whenever f is affine in v with a
  * df/dx that does not depend on v (no damping, Choi-Ko pair damping,
  * linear drag), and on every linear model.  (The predictor v1 = v_n would
  * linearise about x_n + alpha v_n instead and give that equivalence only

@@ -1,22 +1,26 @@
-/* The integrators selectable by name (SPEC 5): one row per method file.
+/* The integrators selectable by name (docs/integrators.md): one row per
+ * method file.
  *
  *   cvode-bdf         CVODE BDF + Newton + KLU, analytic sparse Jacobian
  *   cvode-bdf-dense   CVODE BDF + dense LU, difference-quotient Jacobian
  *   cvode-bdf-gmres   CVODE BDF + SPGMR, analytic J*v, block Jacobi
  *   cvode-adams       CVODE Adams-Moulton, fixed-point iteration
  *   ida               IDA on [x' - v; M v' - f] = 0, KLU
- *   symplectic-euler  v += h M^-1 f(x, v); x += h v (seed 000's code)
- *   symplectic-euler-x  x += h v; v += h M^-1 f(x, v) (seed 003)
+ *   symplectic-euler  v += h M^-1 f(x, v); x += h v (Jiao's own code)
+ *   symplectic-euler-x  x += h v; v += h M^-1 f(x, v) (Zischg, Chea
+ *                     and Aigner)
  *   fe                forward Euler
- *   verlet            position Verlet with velocity damping (seed 004)
- *   verlet-pbd        verlet + position-based constraints (seed 004)
+ *   verlet            position Verlet with velocity damping (the
+ *                     Verlet-and-PBD report)
+ *   verlet-pbd        verlet + position-based constraints (the
+ *                     Verlet-and-PBD report)
  *   velocity-verlet   kick-drift-kick velocity Verlet
  *   rk4               classical Runge-Kutta 4
  *   gsl-rk8pd         GSL odeiv2 rk8pd, explicit adaptive reference
  *   gsl-msbdf         GSL odeiv2 msbdf, BDF with dense Jacobian (n <= 1728)
  *   kinsol-be, kinsol-bdf2, kinsol-midpoint  fully implicit, KINSOL Newton
  *   semi-be           Baraff-Witkin linearised backward Euler
- *   semi-bdf2         Choi-Ko semi-implicit BDF2 (seed eq. 15) */
+ *   semi-bdf2         Choi-Ko semi-implicit BDF2 (Jiao, eq. 15) */
 #include "integrators/integrator.h"
 
 extern const cl_integrator_type cl_integrator_cvode_bdf;

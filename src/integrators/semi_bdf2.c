@@ -1,5 +1,5 @@
-/* semi-bdf2: Choi-Ko's semi-implicit BDF2 (seed 000, section 4.9, eq. 15;
- * SPEC 5), fixed step h = opts->dt.  With y = x^{n+1} - x^n,
+/* semi-bdf2: Choi-Ko's semi-implicit BDF2 (Jiao, section 4.9, eq. 15;
+ * docs/integrators.md, 3.2), fixed step h = opts->dt.  With y = x^{n+1} - x^n,
  * d = x^n - x^{n-1}, K = df/dx, D = df/dv:
  *
  *   A y = M [d/3 + (h/9)(8 v^n - 2 v^{n-1})] + (4h^2/9)(f - D v^n)
@@ -12,7 +12,7 @@
  * side needs one block product D (d + 2h v^n), since
  * -(4h^2/9) D v^n - (2h/9) D d = -(2h/9) D (d + 2h v^n).
  *
- * Derivation (checked; the seed's printed eq. 15 is correct).  Fully
+ * Derivation (checked; Jiao's printed eq. 15 is correct).  Fully
  * implicit BDF2 for x' = v, M v' = f(t, x, v) reads
  *   (B1)  x^{n+1} - 4/3 x^n + 1/3 x^{n-1} = 2h/3 v^{n+1},
  *   (B2)  M (v^{n+1} - 4/3 v^n + 1/3 v^{n-1}) = 2h/3 f(t_{n+1}, x^{n+1},
@@ -26,19 +26,20 @@
  *   f(x^n + y, v^{n+1}) ~ f + K y + D (v^{n+1} - v^n)
  *                       = f - D v^n - D d/(2h) + (K + (3/(2h)) D) y,
  * turns G(y) = 0 into A y = M [...] + (4h^2/9)(f - D v^n) - (2h/9) D d:
- * the seed's eq. (15) multiplied through by M, term by term.
+ * Jiao's eq. (15) multiplied through by M, term by term.
  *
- * The claim "eq. 15 is exactly the first Newton iterate of fully implicit
- * BDF2 started from x^{n+1} = x^n" (SPEC 5) holds under a condition.  That
- * iterate solves A_0 y = -G(0), with f and A_0 taken at the start point
- * (x^n, v_0), v_0 = -d/(2h) (what (B1) implies for x^{n+1} = x^n; about
- * -v^n/2, not v^n).  Every force of this project is affine in v,
- * f = g(x) + D(x) v, so f(x^n, v_0) = f - D v^n - D d/(2h): the right-hand
- * sides agree exactly, and so does D.  K = g'(x) + (dD/dx) v does depend on
- * v when D depends on x (axial damping, Baraff-Witkin damping): then eq. 15
- * (K at v^n) and the Newton iterate (K at v_0) differ.  So: exact equality
+ * The claim that eq. 15 is exactly the first Newton iterate of fully
+ * implicit BDF2 started from x^{n+1} = x^n (docs/integrators.md, 3.2)
+ * holds under a condition.  That iterate solves A_0 y = -G(0), with f and
+ * A_0 taken at the start point (x^n, v_0), v_0 = -d/(2h) (what (B1)
+ * implies for x^{n+1} = x^n; about -v^n/2, not v^n).  Every force of this
+ * project is affine in v, f = g(x) + D(x) v, so
+ * f(x^n, v_0) = f - D v^n - D d/(2h): the right-hand sides agree exactly,
+ * and so does D.  K = g'(x) + (dD/dx) v does depend on v when D depends on
+ * x (axial damping, Baraff-Witkin damping): then eq. 15 (K at v^n) and the
+ * Newton iterate (K at v_0) differ.  So: exact equality
  * when df/dx does not depend on v (Choi-Ko Type1/Type2, isotropic pair
- * damping of seed eq. 14, springs, gravity, linear drag); otherwise eq. 15
+ * damping of Jiao's eq. 14, springs, gravity, linear drag); otherwise eq. 15
  * is a Newton step with K at the current velocity, and it is the better
  * one: linearised about (x^n, v^n) the neglected terms are
  * O(|y|^2 + |y| |v^{n+1} - v^n| + |v^{n+1} - v^n|^2) = O(h^2) in f,
@@ -49,13 +50,13 @@
  * m x'' = -k x - c0 (1 + x^2) x' (D depends on x): eq. 15 converges with
  * order 2.00, the first Newton iterate from v_0 with order 1.00.
  *
- * Difference from the seed: f, K, D are taken at t_{n+1} (the seed: "at
- * time step n"; its forces do not depend on t, so the two coincide there).
+ * Difference from Jiao: f, K, D are taken at t_{n+1} (Jiao: "at time step
+ * n"; the forces there do not depend on t, so the two coincide there).
  * With moving pins f depends on t, and evaluating at t_n would perturb y by
  * (4h^2/9) h df/dt = O(h^3) per step: first order (observed: 1.00 on the
- * oscillator above pulled by -k (x - w t)).  f(t_{n+1}, ., .) linearised about (x^n, v^n)
- * keeps second order (tested: spring2 with its pin moving at constant
- * velocity).
+ * oscillator above pulled by -k (x - w t)).  f(t_{n+1}, ., .) linearised
+ * about (x^n, v^n) keeps second order (tested: spring2 with its pin moving
+ * at constant velocity).
  *
  * Start: step 1 by semi-be from (x^0, v^0); its O(h^2) errors in x^1 and
  * v^1 enter BDF2's velocity and position invariants only as O(h^2)
@@ -176,7 +177,7 @@ static void sbdf2_stats(const void *state, cl_stats *out)
 
 const cl_integrator_type cl_integrator_semi_bdf2 = {
     .name = "semi-bdf2",
-    .doc = "Choi-Ko semi-implicit BDF2 (seed eq. 15), one linear solve per "
+    .doc = "Choi-Ko semi-implicit BDF2 (Jiao, eq. 15), one linear solve per "
            "step, first step semi-be, fixed step dt",
     .fixed_step = true,
     .takes_linsol = true,

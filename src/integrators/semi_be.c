@@ -1,5 +1,5 @@
-/* semi-be: Baraff-Witkin's linearised backward Euler (SPEC 5; Baraff &
- * Witkin 1998, section 2.3), fixed step h = opts->dt:
+/* semi-be: Baraff-Witkin's linearised backward Euler (docs/integrators.md,
+ * 3.1; Baraff & Witkin 1998, section 2.3), fixed step h = opts->dt:
  *
  *     (M - h df/dv - h^2 df/dx) dv = h (f_n + h df/dx v_n),
  *     v_{n+1} = v_n + dv,    x_{n+1} = x_n + h v_{n+1},

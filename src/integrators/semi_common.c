@@ -1,5 +1,6 @@
 /* Shared state, evaluation, linear solve and the linearised backward-Euler
- * step of semi-be and semi-bdf2 (SPEC 5; integrators/semi_common.h):
+ * step of semi-be and semi-bdf2 (docs/integrators.md, 3;
+ * integrators/semi_common.h):
  *
  *     (M - h df/dv - h^2 df/dx) dv = h (f0 + h df/dx v0),
  *     v1 = v0 + dv,   x1 = x0 + h v1.

@@ -1,6 +1,6 @@
 /* Shared machinery of the semi-implicit (linearised) integrators semi-be
- * and semi-bdf2 (SPEC 5): the state, the force/Jacobian evaluation, the
- * reduced linear system
+ * and semi-bdf2 (docs/integrators.md, 3): the state, the force/Jacobian
+ * evaluation, the reduced linear system
  *
  *     (M - a df/dv - b df/dx) y = rhs        (linalg/linsol.h)
  *
@@ -13,9 +13,9 @@
  *     v1 = v0 + dv,   x1 = x0 + h v1,
  *
  * f0 = f(t0, x0, v0) and the Jacobians at (t0, x0, v0) (Baraff & Witkin
- * 1998, section 2.3; SPEC 5).  Every array is allocated at creation; a step
- * allocates nothing (the KLU fall-back refactorisation excepted, see
- * linalg/linsol_klu.c). */
+ * 1998, section 2.3; docs/integrators.md, 3.1).  Every array is allocated
+ * at creation; a step allocates nothing (the KLU fall-back
+ * refactorisation excepted, see linalg/linsol_klu.c). */
 #ifndef CL_SEMI_COMMON_H
 #define CL_SEMI_COMMON_H
 

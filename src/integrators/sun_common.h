@@ -1,5 +1,6 @@
-/* Shared plumbing of the SUNDIALS integrators (SPEC 5): cvode-bdf,
- * cvode-bdf-dense, cvode-bdf-gmres, cvode-adams (CVODE) and ida (IDA).
+/* Shared plumbing of the SUNDIALS integrators (docs/integrators.md, 6):
+ * cvode-bdf, cvode-bdf-dense, cvode-bdf-gmres, cvode-adams (CVODE) and
+ * ida (IDA).
  *
  * All of them integrate y = (x, v), 2n unknowns, in a serial N_Vector
  * under one SUNContext, and share:
@@ -31,9 +32,9 @@
  *   quotients) plus force evaluations made outside the solver (s->own_rhs);
  *   with a direct solver wrapped by cl_lscount, lin_solves = solve calls
  *   (one per Newton iteration) and symbolic_facts = KLU analyses;
- * - tearing (SPEC 3.4): the system's step_done hook is called at the end
- *   of every advance, i.e. at output times only (a run with tearing should
- *   ask for many samples); when it reports a change, the solver is
+ * - tearing (docs/model.md, 3.4): the system's step_done hook is called at
+ *   the end of every advance, i.e. at output times only (a run with tearing
+ *   should ask for many samples); when it reports a change, the solver is
  *   re-initialised at t_out from the current state (api->reinit: CVodeReInit;
  *   IDAReInit with a consistent y' = (v, M^-1 f)), which drops its history
  *   and step size, and the pattern stays (a torn pair's blocks are zeros),
@@ -50,9 +51,9 @@
  *   surface.  Projection with friction (mu > 0, zero_velocity) is refused:
  *   it cuts the tangential velocity after the step while the step itself
  *   slid the particle frictionlessly, an error that grows with CVODE's
- *   step and that its error test never sees.  CVODE Adams and IDA refuse a problem
- *   that projects; without projections every method calls the contact hook
- *   at its output times, for the contact figures only.
+ *   step and that its error test never sees.  CVODE Adams and IDA refuse a
+ *   problem that projects; without projections every method calls the
+ *   contact hook at its output times, for the contact figures only.
  *
  * Usage: an integrator's state struct has a cl_sun as its FIRST member, so
  * the one pointer the solver passes to every callback (user data and error

@@ -1,7 +1,8 @@
 /* CVODE's and IDA's Newton systems solved through the half-size matrix
- * (SPEC 1, 5): a SUNLinearSolver that eliminates one block of the 2n x 2n
- * system and hands the n x n remainder (3 unknowns per free particle) to a
- * cl_linsol (klu, pcg, pcg-jacobi, cholmod, auto; linalg/linsol.h).
+ * (docs/model.md, 1; docs/integrators.md, 5): a SUNLinearSolver that
+ * eliminates one block of the 2n x 2n system and hands the n x n remainder
+ * (3 unknowns per free particle) to a cl_linsol (klu, pcg, pcg-jacobi,
+ * cholmod, auto; linalg/linsol.h).
  *
  * Notation: n = 3 (free particles), M = diag(mass), Kx = df/dx, Kv = df/dv
  * (the system's block Jacobians, evaluated at the solver's request),

@@ -1,5 +1,5 @@
 /* symplectic-euler: semi-implicit (symplectic) Euler, velocity first, as in
- * the code of seed 000:
+ * Jiao's own code (docs/integrators.md, 2):
  *
  *   v_{k+1} = v_k + h M^-1 f(t_k, x_k, v_k)
  *   x_{k+1} = x_k + h v_{k+1},        t_k = t0 + k h,  h = opts->dt > 0.
@@ -28,6 +28,6 @@ static cl_status se_step(cl_fixed *s, double t, double h, cl_error *err)
 }
 
 CL_FIXED_INTEGRATOR(cl_integrator_symplectic_euler, "symplectic-euler",
-                    "symplectic Euler, v first then x (seed 000), fixed "
-                    "step dt",
+                    "symplectic Euler, v first then x (Jiao's own code), "
+                    "fixed step dt",
                     1, NULL, se_step);

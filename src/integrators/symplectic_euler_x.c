@@ -1,9 +1,10 @@
 /* symplectic-euler-x: semi-implicit (symplectic) Euler, position first, as
- * in seed 003 (eqs. 1-7): positions move with the old velocity, the forces
- * are evaluated "considering the already updated values from x(t+h)" with
- * the damping taken at the old velocity v(t), then the velocity is updated:
+ * in Zischg, Chea and Aigner, eqs. 1-7 (docs/integrators.md, 2): positions
+ * move with the old velocity, the forces are evaluated "considering the
+ * already updated values from x(t+h)" with the damping taken at the old
+ * velocity v(t), then the velocity is updated:
  *
- *   x_{k+1} = x_k + h v_k                                   (seed 003 eq. 1)
+ *   x_{k+1} = x_k + h v_k                                   (eq. 1)
  *   v_{k+1} = v_k + h M^-1 f(t_{k+1}, x_{k+1}, v_k)         (eqs. 2-7)
  *
  * t_k = t0 + k h, h = opts->dt.  The force is evaluated at t_{k+1}, the
@@ -34,6 +35,6 @@ static cl_status sex_step(cl_fixed *s, double t, double h, cl_error *err)
 }
 
 CL_FIXED_INTEGRATOR(cl_integrator_symplectic_euler_x, "symplectic-euler-x",
-                    "symplectic Euler, x first then v (seed 003), fixed "
-                    "step dt",
+                    "symplectic Euler, x first then v (Zischg, Chea and "
+                    "Aigner), fixed step dt",
                     2, NULL, sex_step);

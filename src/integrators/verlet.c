@@ -1,19 +1,20 @@
-/* verlet: position (Stoermer) Verlet with velocity damping, seed 004:
+/* verlet: position (Stoermer) Verlet with velocity damping, as in the
+ * Verlet-and-PBD report (docs/integrators.md, 2):
  *
  *   x_{k+1} = x_k + (1 - d) (x_k - x_{k-1}) + h^2 M^-1 f(t_k, x_k, v_k)
  *
- * ("Pnext = (2 - DAMPING) Pnow - (1 - DAMPING) Pold + a dt^2" in the seed's
- * code), d = opts->vdamp in [0, 1) (0: plain Verlet), h = opts->dt,
- * t_k = t0 + k h.  The state of the method is (x_k, x_{k-1}); the velocity
- * is not part of it and is estimated, as the seed's code does for its
- * spring friction, by the backward difference
+ * ("Pnext = (2 - DAMPING) Pnow - (1 - DAMPING) Pold + a dt^2" in the
+ * Verlet-and-PBD report's code), d = opts->vdamp in [0, 1) (0: plain
+ * Verlet), h = opts->dt, t_k = t0 + k h.  The state of the method is
+ * (x_k, x_{k-1}); the velocity is not part of it and is estimated, as the
+ * report's code does for its spring friction, by the backward difference
  *
  *   v_{k+1} = (x_{k+1} - x_k) / h,
  *
  * which is both the velocity handed to velocity-dependent forces in the
  * next step and the output velocity.  Equivalently v_{k+1} = (1 - d) v_k +
  * h M^-1 f_k: d removes the fraction d of the velocity every step (a drag
- * of d/h per unit time, seed 004: Cdamp = 1 - dt Cdrag).
+ * of d/h per unit time; the Verlet-and-PBD report: Cdamp = 1 - dt Cdrag).
  *
  * First step from (x0, v0): the consistent start
  *
@@ -91,6 +92,6 @@ cl_status cl_verlet_setup(cl_fixed *s, const cl_integrator_opts *o,
 }
 
 CL_FIXED_INTEGRATOR(cl_integrator_verlet, "verlet",
-                    "position Verlet with velocity damping vdamp (seed 004), "
-                    "fixed step dt",
+                    "position Verlet with velocity damping vdamp "
+                    "(the Verlet-and-PBD report), fixed step dt",
                     3, cl_verlet_setup, verlet_step);

@@ -1,7 +1,8 @@
-/* The position Verlet step with velocity damping (seed 004), shared by
- * verlet (integrators/verlet.c, where the update formulas are derived) and
- * verlet-pbd (integrators/verlet_pbd.c), which adds a projection of the new
- * positions onto position-based constraints before the velocity is formed.
+/* The position Verlet step with velocity damping (the Verlet-and-PBD
+ * report; docs/integrators.md, 2), shared by verlet (integrators/verlet.c,
+ * where the update formulas are derived) and verlet-pbd
+ * (integrators/verlet_pbd.c), which adds a projection of the new positions
+ * onto position-based constraints before the velocity is formed.
  * Both are cl_fixed methods with 3 work arrays (acceleration, x_{k-1},
  * x_{k+1}) and s->param = vdamp. */
 #ifndef CL_VERLET_H

@@ -1,7 +1,7 @@
 /* verlet-pbd: position Verlet with velocity damping plus position-based
- * distance constraints, the loop of seed 004 (SPEC 5; Mueller et al.,
- * "Position based dynamics", 2007, algorithm 1 with Verlet's implicit
- * velocity):
+ * distance constraints, the loop of the Verlet-and-PBD report
+ * (docs/integrators.md, 2; docs/model.md, 3.4; Mueller et al., "Position
+ * based dynamics", 2007, algorithm 1 with Verlet's implicit velocity):
  *
  *   x~_{k+1} = x_k + (1 - d) (x_k - x_{k-1}) + h^2 M^-1 f(t_k, x_k, v_k)
  *   x_{k+1}  = P(t_{k+1}, x~_{k+1})     the system's `project` hook
@@ -13,9 +13,9 @@
  * term (forces/pbd.h: `iterations` sweeps, stiffness K, pinned particles
  * held at their prescribed positions at t_{k+1}).  The velocity formed
  * after the projection carries the constraint correction into the next
- * step (Verlet's state is (x_k, x_{k-1})), as seed 004 relies on: "a
- * change in the actual position will result in a change in velocity".
- * First step from (x0, v0) as verlet (integrators/verlet.c).
+ * step (Verlet's state is (x_k, x_{k-1})), as the Verlet-and-PBD report
+ * relies on: "a change in the actual position will result in a change in
+ * velocity".  First step from (x0, v0) as verlet (integrators/verlet.c).
  *
  * The projection is not a force: the result is first order at best and
  * does not conserve energy; K = 1 with enough iterations holds the
@@ -43,5 +43,6 @@ static cl_status verlet_pbd_setup(cl_fixed *s, const cl_integrator_opts *o,
 
 CL_FIXED_INTEGRATOR(cl_integrator_verlet_pbd, "verlet-pbd",
                     "position Verlet with velocity damping vdamp and "
-                    "position-based constraints (seed 004), fixed step dt",
+                    "position-based constraints (the Verlet-and-PBD "
+                    "report), fixed step dt",
                     3, verlet_pbd_setup, verlet_pbd_step);

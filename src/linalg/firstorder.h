@@ -1,4 +1,4 @@
-/* Sparse Jacobian of the first-order form (SPEC 1).
+/* Sparse Jacobian of the first-order form (docs/model.md, 1).
  *
  *   y = (x, v),  x' = v,  v' = M^-1 f(t, x, v),  size 2n (n = 3 nb),
  *

@@ -1,5 +1,5 @@
 /* The linear solvers for the reduced matrix A = M - a df/dv - b df/dx
- * (SPEC 5, linalg/linsol.h), selectable by name with --linsol:
+ * (docs/integrators.md, 5; linalg/linsol.h), selectable by name with --linsol:
  *
  *   klu         sparse LU by KLU (AMD ordering), symbolic analysis once,
  *               numeric refactorisation at every setup (the default)

@@ -1,8 +1,8 @@
 /* Linear solvers for the half-size ("reduced") Newton matrix of the
- * second-order form (SPEC 1, 5):
+ * second-order form (docs/model.md, 1; docs/integrators.md, 5):
  *     A = M - a df/dv - b df/dx        (3 unknowns per free particle)
  * with method-dependent a, b (backward Euler: a = h, b = h^2; BDF2 as in
- * the seed's eq. 15: a = 2h/3, b = 4h^2/9; ...).  The blocks of df/dx and
+ * Jiao's eq. 15: a = 2h/3, b = 4h^2/9; ...).  The blocks of df/dx and
  * df/dv come in the fixed cl_bpattern of the system.
  *
  * Each solver is one file defining a cl_linsol_type plus one row in the

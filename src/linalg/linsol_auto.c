@@ -1,4 +1,5 @@
-/* auto: picks the linear solver for the reduced matrix (SPEC 1, 5)
+/* auto: picks the linear solver for the reduced matrix
+ * (docs/model.md, 1; docs/integrators.md, 5)
  *
  *     A = M - a df/dv - b df/dx
  *

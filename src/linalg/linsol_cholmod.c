@@ -1,10 +1,11 @@
-/* cholmod: supernodal sparse Cholesky of the reduced matrix (SPEC 1, 5)
+/* cholmod: supernodal sparse Cholesky of the reduced matrix
+ * (docs/model.md, 1; docs/integrators.md, 5)
  *
  *     A = M - a df/dv - b df/dx = P^T L L^T P
  *
  * by SuiteSparse CHOLMOD through its 64-bit cholmod_l_* interface
- * (SuiteSparse_long indices, like klu_l_*; SUNDIALS-NOTES 1), for the
- * symmetric positive definite case:
+ * (SuiteSparse_long indices, like klu_l_*), for the symmetric positive
+ * definite case:
  *
  *  create  keeps the upper triangle of A's CSC pattern (linalg/reduced.h:
  *          the entries with row <= column, stype = 1), a value map and,

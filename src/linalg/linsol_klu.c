@@ -1,6 +1,7 @@
-/* klu: sparse LU of the reduced matrix A = M - a df/dv - b df/dx (SPEC 1,
- * 5) with KLU, called directly through its 64-bit klu_l_* interface
- * (SuiteSparse_long indices, SUNDIALS-NOTES 1, 3, 6, 11).
+/* klu: sparse LU of the reduced matrix A = M - a df/dv - b df/dx
+ * (docs/model.md, 1; docs/integrators.md, 5) with KLU, called directly
+ * through its 64-bit klu_l_* interface (SuiteSparse_long indices, as wide
+ * as SUNDIALS' sunindextype on Debian).
  *
  *  create  builds A's CSC pattern and value map once (linalg/reduced.h) and
  *          runs the symbolic analysis klu_l_analyze once, with AMD ordering

@@ -1,6 +1,7 @@
 /* pcg, pcg-jacobi: preconditioned conjugate gradients on the reduced matrix
- * A = M - a df/dv - b df/dx (SPEC 1, 5), Baraff-Witkin's choice of solver,
- * by SUNDIALS' SUNLinSol_PCG (no hand-written Krylov loop):
+ * A = M - a df/dv - b df/dx (docs/model.md, 1; docs/integrators.md, 5),
+ * Baraff-Witkin's choice of solver, by SUNDIALS' SUNLinSol_PCG (no
+ * hand-written Krylov loop):
  *
  *  - matrix-free product (SUNLinSolSetATimes): y = A p from A's 3x3 block
  *    values, formed at every setup: when A is symmetric (it is for

@@ -20,10 +20,10 @@
  * on the default x86-64 target), except the dot product and the weighted
  * norms: they sum in four interleaved partial sums (a fixed order, equal
  * to the serial sums to round-off), at every CVODE step and PCG iteration
- * ~4x faster than one running sum.  Clones inherit the operations (N_VClone_Serial copies
- * the operation table).  Fused and vector-array operations stay disabled
- * (NULL), as in N_VNew_Serial: SUNDIALS then composes them from the
- * operations above. */
+ * ~4x faster than one running sum.  Clones inherit the operations
+ * (N_VClone_Serial copies the operation table).  Fused and vector-array
+ * operations stay disabled (NULL), as in N_VNew_Serial: SUNDIALS then
+ * composes them from the operations above. */
 #ifndef CL_NVEC_H
 #define CL_NVEC_H
 

@@ -1,4 +1,5 @@
-/* A = M - a df/dv - b df/dx (SPEC 1, 5) in CSC and as 3x3 blocks.
+/* A = M - a df/dv - b df/dx (docs/model.md, 1; docs/integrators.md, 5) in
+ * CSC and as 3x3 blocks.
  *
  * CSC: exactly the block pattern's scalar CSC (linalg/csc.h): column
  * j = 3 bj + c holds, for every stored block (bi, bj) in ascending bi, the

@@ -1,21 +1,20 @@
 /* The half-size ("reduced") Newton matrix of the second-order form
- * (SPEC 1, 5):
+ * (docs/model.md, 1; docs/integrators.md, 5):
  *
  *     A = M - a df/dv - b df/dx          (n x n, n = 3 nb)
  *
  * with M the diagonal mass matrix and method-dependent a, b (backward
- * Euler: a = h, b = h^2; the seed's eq. 15 BDF2: a = 2h/3, b = 4h^2/9).
+ * Euler: a = h, b = h^2; BDF2 as in Jiao's eq. 15: a = 2h/3, b = 4h^2/9).
  * df/dx and df/dv come as 3x3-block values in the fixed cl_bpattern of the
  * system (block k at val[9k .. 9k+8], row-major).
  *
  * Two views of A:
  *  - compressed sparse column (CSC) with SuiteSparse_long indices, for KLU's
  *    klu_l_* routines (SuiteSparse_long and SUNDIALS' sunindextype are both
- *    64-bit on Debian, SUNDIALS-NOTES 1).  The pattern and a value map
- *    (which block value feeds each stored entry) are built once, every
- *    diagonal entry is stored (the diagonal blocks always are), rows ascend
- *    in each column; cl_reduced_fill then writes the values without search
- *    or allocation.
+ *    64-bit on Debian).  The pattern and a value map (which block value
+ *    feeds each stored entry) are built once, every diagonal entry is
+ *    stored (the diagonal blocks always are), rows ascend in each column;
+ *    cl_reduced_fill then writes the values without search or allocation.
  *  - 3x3 blocks over the cl_bpattern itself, for matrix-free Krylov methods:
  *    the block values of A, a block matrix-vector product, and the 3x3
  *    diagonal blocks of A (block-Jacobi preconditioning).
