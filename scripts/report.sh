@@ -100,7 +100,7 @@ draw map "dir='$map'; names='symplectic-euler rk4'; title_text='hang, T = 2 s: e
 
 echo "report: inverse sinc and counts"
 "$bin" asinc --points 1000 --csv > "$res/asinc.csv"
-draw asinc "data='$res/asinc.csv'; title_text='Type2 curvature: asinc against the seed polynomial'"
+draw asinc "data='$res/asinc.csv'; title_text='Type2 curvature: asinc against the polynomial of Jiao'"
 "$bin" counts --csv --n-max 64 > "$res/counts.csv"
 draw counts "data='$res/counts.csv'; title_text='Choi-Ko connections: measured (points) and formulas (lines)'"
 

@@ -1,9 +1,10 @@
-/* Helpers of the Baraff-Witkin tests (tests/test_bw*.c; SPEC 3.3, 3.5) on
- * top of fdcheck.h: models with one BW term alone, and an independent
- * reference of a condition (C and dC/dx written in the test from the
- * formulas, d2C/dx2 by central differences of that dC/dx) from which the
- * expected forces, energies, power and the damping Jacobians are assembled
- * densely (n = 3 np, row-major, as fdcheck.h):
+/* Helpers of the Baraff-Witkin tests (tests/test_bw*.c; docs/model.md 3.3;
+ * docs/architecture.md, "Checks every force term passes") on top of fdcheck.h:
+ * models with one BW term alone, and an independent reference of a condition (C
+ * and dC/dx written in the test from the formulas, d2C/dx2 by central
+ * differences of that dC/dx) from which the expected forces, energies, power
+ * and the damping Jacobians are assembled densely (n = 3 np, row-major, as
+ * fdcheck.h):
  *   kept    = -kd sum_e C'_e d2C_e/dx2           (what BW98 keep),
  *   dropped = -kd sum_e dC_e/dx (d2C_e/dx2 v)^T   (what they drop),
  * so that the finite-difference dd/dx must equal kept + dropped.
@@ -56,7 +57,7 @@ static inline bw_ref bw_ref_elements(const cl_model *m, int nv, int nc,
     return r;
 }
 
-/* Triangle reference (stretch, shear), SPEC 3.3 written as a linear
+/* Triangle reference (stretch, shear), docs/model.md 3.3 written as a linear
  * solve: [w_u w_v] = [dx1 dx2] D^-1, D = [[du1, du2], [dv1, dv2]] the rest
  * edge vectors in (u, v) = (x, z); dW[c][m] = dw_c/dx_m (a scalar).
  * Returns the rest area. */

@@ -1,10 +1,10 @@
-/* Shared helpers of the force-model verification tests (SPEC 3.5): models set
- * up through the config API, full-particle evaluation, dense Jacobians from
- * the block pattern, central finite differences of forces and energies,
- * random rigid motions, an independent reference of the Choi-Ko Type2
- * buckling law, and the exact-zero rest-state check of the pair terms.
- * Header only (static inline), included by tests/test_*.c
- * after <criterion/criterion.h>.
+/* Shared helpers of the force-model verification tests (docs/architecture.md,
+ * "Checks every force term passes"): models set up through the config API,
+ * full-particle evaluation, dense Jacobians from the block pattern, central
+ * finite differences of forces and energies, random rigid motions, an
+ * independent reference of the Choi-Ko Type2 buckling law, and the exact-zero
+ * rest-state check of the pair terms.  Header only (static inline), included by
+ * tests/test_*.c after <criterion/criterion.h>.
  *
  * Conventions: a state is the full-particle arrays x, v (3*np, pinned
  * particles included) as cl_model_eval_full / cl_model_jacobian_full take
@@ -505,7 +505,7 @@ static inline double fd_net_force(const double *x, const double *f,
     return ef / sf;
 }
 
-/* ---- independent reference of the Type2 buckling law (SPEC 3.2) -------- */
+/* ---- independent reference of the Type2 buckling law (docs/model.md 3.2) - */
 
 /* g(t) = 1 - sin(t)/t (series below 0.5). */
 static inline double fd_g(double t)

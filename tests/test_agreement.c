@@ -5,7 +5,7 @@
  * of |x_a - x_b|, within 10x the tolerance, 10 (rtol max_i |x_i| + atol).
  * Adding a method is one row of a table.
  *
- * The problem as specified (n = 16 particles per side) is well conditioned
+ * The problem as shipped (n = 16 particles per side) is well conditioned
  * over its whole horizon: cvode-bdf at rtol 1e-6 is within 1e-8 m of an
  * rtol 1e-11 run at T = 0.5 s and within 3.7e-7 m at T = 2 s
  * (scripts/hang-sensitivity.sh 16 0.5 2.0).  There all five methods are
@@ -32,8 +32,8 @@
 #include "runsun.h"
 #include "timelimit.h"
 
-#define AG_N_SPEC 16 /* the problem as specified */
-#define AG_T_SPEC 0.5
+#define AG_N_HANG 16 /* the problem as shipped */
+#define AG_T_HANG 0.5
 #define AG_N_SMALL 10
 #define AG_T_SMALL 0.2 /* n = 10 is well conditioned up to ~0.25 s */
 
@@ -125,13 +125,13 @@ static void ag_compare(const ag_case *c)
 Test(agreement, hang_all_methods_at_half_a_second)
 {
     time_limit(600);
-    ag_compare(&(ag_case){AG_N_SPEC, AG_T_SPEC, 1e-4, 1e-6, true});
+    ag_compare(&(ag_case){AG_N_HANG, AG_T_HANG, 1e-4, 1e-6, true});
 }
 
 Test(agreement, hang_sparse_methods_at_half_a_second)
 {
     time_limit(300);
-    ag_compare(&(ag_case){AG_N_SPEC, AG_T_SPEC, 1e-6, 1e-8, false});
+    ag_compare(&(ag_case){AG_N_HANG, AG_T_HANG, 1e-6, 1e-8, false});
 }
 
 Test(agreement, hang_n10_all_methods)

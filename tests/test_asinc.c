@@ -1,6 +1,6 @@
 /* Tests for forces/asinc: the inverse sinc behind the Choi-Ko curvature
- * kappa = (2/L) asinc(|x_ij|/L) (seed 000, eq. 8), the sinc pieces of the
- * buckling force and its derivative (eq. 9, 12), and the seed's
+ * kappa = (2/L) asinc(|x_ij|/L) (Jiao, eq. 8), the sinc pieces of the
+ * buckling force and its derivative (eq. 9, 12), and Jiao's
  * fifth-order polynomial fit of the inverse sinc (section 4.6). */
 #include <criterion/criterion.h>
 
@@ -241,7 +241,7 @@ Test(asinc, invalid_inputs_give_nan)
     }
 }
 
-/* ---- least squares and the seed polynomial ------------------------------- */
+/* ---- least squares and Jiao's polynomial --------------------------------- */
 
 Test(asinc, polyfit_recovers_polynomials)
 {
@@ -272,7 +272,7 @@ Test(asinc, polyfit_recovers_polynomials)
 }
 
 /* Reference coefficients.  They are the exact least-squares optima of the
- * seed pipeline's own double-precision data: x_i = i (1/999) (x_999 = 1),
+ * double-precision data of Jiao's own pipeline: x_i = i (1/999) (x_999 = 1),
  * y_i = sin(pi x_i)/(pi x_i) evaluated in double, first fit solved from the
  * normal equations in 60-digit arithmetic (Python mpmath), rounded to
  * double; f = polyval(p1, x) by Horner in double and scale_range in double;

@@ -1,6 +1,6 @@
 /* The asinc error table (analysis/asinc_error.c): the ends of the exact
  * inverse (asinc(0) = pi, asinc(1) = 0), sinc(asinc(y)) = y between, and
- * the seed polynomial's largest distance from asinc/pi, 0.057 near
+ * Jiao's polynomial's largest distance from asinc/pi, 0.057 near
  * y = 0.974 (paper/findings.md), with its curvature about 1/pi of the
  * arc's (largest distance from asinc 2.14, at y = 0). */
 #include <criterion/criterion.h>

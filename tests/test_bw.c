@@ -1,8 +1,8 @@
-/* The Baraff-Witkin term machinery (forces/bw.c; SPEC 3.3): switches and
- * defaults (off unless enabled, every key read even when off), errors
+/* The Baraff-Witkin term machinery (forces/bw.c; docs/model.md 3.3): switches
+ * and defaults (off unless enabled, every key read even when off), errors
  * (chains, bad values), triangles of zero rest area, couplings, pinned
- * particles in the system Jacobian, and the energy / power bookkeeping of
- * the six terms together. */
+ * particles in the system Jacobian, and the energy / power bookkeeping of the
+ * six terms together. */
 #include <criterion/criterion.h>
 
 #include <math.h>

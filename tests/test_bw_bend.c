@@ -1,6 +1,7 @@
-/* Verification of the Baraff-Witkin bend term and its damping (SPEC 3.3,
- * 3.5; forces/bw_bend.c): C = theta - theta0 on every interior edge, theta
- * the signed angle between the normals of the edge's two triangles.
+/* Verification of the Baraff-Witkin bend term and its damping (docs/model.md
+ * 3.3; docs/architecture.md, "Checks every force term passes";
+ * forces/bw_bend.c): C = theta - theta0 on every interior edge, theta the
+ * signed angle between the normals of the edge's two triangles.
  *
  * The hinge itself (cl_bw_hinge): angle value and sign on hand-built pairs
  * of triangles at 0, 30, 90, 150 degrees (both signs) and near +-180, the

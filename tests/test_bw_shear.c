@@ -1,12 +1,13 @@
-/* Verification of the Baraff-Witkin shear term and its damping (SPEC 3.3,
- * 3.5; forces/bw_shear.c): C = a w_u . w_v per triangle.
+/* Verification of the Baraff-Witkin shear term and its damping (docs/model.md
+ * 3.3; docs/architecture.md, "Checks every force term passes";
+ * forces/bw_shear.c): C = a w_u . w_v per triangle.
  *
  * bw-shear (or bw-shear-damping) alone on full-particle states: Jacobians
  * against central differences, f = -dE/dx, Newton's third law, rotation
- * invariance, force and energy against an independent reference written
- * here from SPEC 3.3, a simple shear with known energy, pure stretches
- * that carry no shear, and the damping with its documented approximation
- * of dd/dx. */
+ * invariance, force and energy against an independent reference written here
+ * from docs/model.md 3.3, a simple shear with known energy, pure stretches that
+ * carry no shear, and the damping with its documented approximation of dd/dx.
+ */
 #include <criterion/criterion.h>
 
 #include <math.h>

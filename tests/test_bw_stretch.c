@@ -1,13 +1,14 @@
-/* Verification of the Baraff-Witkin stretch term and its damping (SPEC 3.3,
- * 3.5; forces/bw_stretch.c): C = a (|w_u| - bu, |w_v| - bv) per triangle.
+/* Verification of the Baraff-Witkin stretch term and its damping (docs/model.md
+ * 3.3; docs/architecture.md, "Checks every force term passes";
+ * forces/bw_stretch.c): C = a (|w_u| - bu, |w_v| - bv) per triangle.
  *
  * Each check runs bw-stretch (or bw-stretch-damping) alone on full-particle
  * states: the u and v conditions separately (kv = 0, ku = 0) and together,
  * Jacobians against central differences, f = -dE/dx, Newton's third law,
- * rotation invariance, the force and energy against an independent
- * reference written here from SPEC 3.3, uniform stretches with known
- * energies, exact zeros at rest, and the damping with its documented
- * approximation of dd/dx. */
+ * rotation invariance, the force and energy against an independent reference
+ * written here from docs/model.md 3.3, uniform stretches with known energies,
+ * exact zeros at rest, and the damping with its documented approximation of
+ * dd/dx. */
 #include <criterion/criterion.h>
 
 #include <math.h>

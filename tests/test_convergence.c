@@ -76,7 +76,8 @@ Test(convergence, reference_and_floor)
     cv_close(&c);
 }
 
-/* Observed orders of three fixed-step methods (SPEC 5 theory: 1, 2, 4). */
+/* Observed orders of three fixed-step methods (theory: 1, 2, 4;
+ * docs/integrators.md 2, 3). */
 Test(convergence, fixed_step_orders)
 {
     static const struct { const char *name; double order; } m[] = {

@@ -1,10 +1,10 @@
-/* Connection counts (analysis/counts.c, clothode counts; seed 000 section
- * 4.1, SPEC 2): the Baraff-Witkin elements measured from the mesh against
- * their formulas for n = 3..40 (triangles 2(n-1)^2, hinges (n-1)(3n-5),
- * all edges = the seed's bending count 2n(n-1)+(n-1)^2, BW with hinges
- * 5n^2-12n+7, the seed's BW 5n^2-8n+3 = triangles + all edges), and the
- * CSV columns of `clothode counts --csv --bw`: the Choi-Ko columns first,
- * unchanged, the Baraff-Witkin ones appended. */
+/* Connection counts (analysis/counts.c, clothode counts; Jiao, section 4.1;
+ * docs/model.md 2): the Baraff-Witkin elements measured from the mesh against
+ * their formulas for n = 3..40 (triangles 2(n-1)^2, hinges (n-1)(3n-5), all
+ * edges = Jiao's bending count 2n(n-1)+(n-1)^2, BW with hinges 5n^2-12n+7,
+ * Jiao's BW 5n^2-8n+3 = triangles + all edges), and the CSV columns of
+ * `clothode counts --csv --bw`: the Choi-Ko columns first, unchanged, the
+ * Baraff-Witkin ones appended. */
 #include <criterion/criterion.h>
 
 #include <stdlib.h>

@@ -1,7 +1,8 @@
-/* Verification of the Choi-Ko pair damping (seed eq. 14; SPEC 3.2, 3.5):
+/* Verification of the Choi-Ko pair damping (Jiao, eq. 14; docs/model.md
+ * 3.2; docs/architecture.md, "Checks every force term passes"):
  * f_a = -kd (v_a - v_b), f_b = -f_a on every Type1 and Type2 pair, with
  * where = always (default) or engaged (a Type1 pair only while d > L, a
- * Type2 pair only while d < L, as the seed author's code).
+ * Type2 pair only while d < L, as Jiao's own code).
  *
  * Damping is isolated by switching Type1 off and giving Type2 a zero law
  * (kb = cb = 0, tension = none): Type2 stays enabled so that its pairs are
@@ -176,7 +177,7 @@ Test(damping, newton_third_law)
 
 /* f(R x + c, R v + w) = R f(x, v); a uniform velocity is not damped at all;
  * a rigid rotation is (isotropic pair damping acts on all relative
- * velocity, SPEC 3.2 eq. 14). */
+ * velocity, docs/model.md 3.2; Jiao, eq. 14). */
 Test(damping, rigid_motion)
 {
     cl_model *m = DAMPING_ONLY("cloth.n=4", "damping.kd=0.8");

@@ -1,7 +1,7 @@
 /* The hand-written linearly implicit methods are the first Newton iterate of
- * the fully implicit ones (SPEC 5):
+ * the fully implicit ones (docs/integrators.md 3, 4):
  *   semi-be   == kinsol-be   with one Newton iteration,
- *   semi-bdf2 == kinsol-bdf2 with one Newton iteration (seed eq. 15),
+ *   semi-bdf2 == kinsol-bdf2 with one Newton iteration (Jiao, eq. 15),
  * from the predictor that evaluates the force at x_n.  Exact on a linear
  * model (damped coupled oscillators), and on the Choi-Ko hang cloth too,
  * whose force is affine in v with df/dx independent of v. */

@@ -1,5 +1,5 @@
-/* Verification of the uniform body force (SPEC 3.4): f_p = m_p g + F on
- * every particle (pinned ones included in full-particle evaluations), energy
+/* Verification of the uniform body force (docs/model.md 3.4): f_p = m_p g + F
+ * on every particle (pinned ones included in full-particle evaluations), energy
  * E = -sum_p (m_p g + F) . x_p, no Jacobian.  Gravity runs alone (Type1 and
  * Type2 off, no damping). */
 #include <criterion/criterion.h>

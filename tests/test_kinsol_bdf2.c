@@ -1,6 +1,6 @@
 /* kinsol-bdf2: second order on spring2 (dt = 5e-3 halved 4 times, also
  * with a moving pin); its first step is kinsol-be's; one Newton iteration
- * (newton_maxit = 1) per step equals the seed's eq. (15) (after a
+ * (newton_maxit = 1) per step equals Jiao's eq. (15) (after a
  * Baraff-Witkin first step) on a nonlinear, damped spring2
  * (kinsol_test.h). */
 #include <criterion/criterion.h>

@@ -1,13 +1,12 @@
 /* The triangle mesh of a grid cloth and its interior edges (model/mesh.c;
- * SPEC 2): counts on n x n grids for n = 3..40 (triangles 2(n-1)^2,
- * interior edges (n-1)(3n-5), all edges 3n^2-4n+1 = the seed's
- * 2n(n-1)+(n-1)^2) and on rectangles and chains, for both diagonals; every
- * triangle counter-clockwise at rest; every interior edge well formed
- * (oriented as in its first triangle, reversed in its second, opposite
- * vertices right, each edge once); the fixed split equal to
- * cl_grid_triangles, the alternate one a herringbone; meshes from triangle
- * lists (non-manifold and bad triangles rejected); the [cloth] diagonal
- * key. */
+ * docs/model.md 2): counts on n x n grids for n = 3..40 (triangles 2(n-1)^2,
+ * interior edges (n-1)(3n-5), all edges 3n^2-4n+1 = Jiao's 2n(n-1)+(n-1)^2) and
+ * on rectangles and chains, for both diagonals; every triangle
+ * counter-clockwise at rest; every interior edge well formed (oriented as in
+ * its first triangle, reversed in its second, opposite vertices right, each
+ * edge once); the fixed split equal to cl_grid_triangles, the alternate one a
+ * herringbone; meshes from triangle lists (non-manifold and bad triangles
+ * rejected); the [cloth] diagonal key. */
 #include <criterion/criterion.h>
 
 #include <stdlib.h>

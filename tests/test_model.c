@@ -1,6 +1,6 @@
-/* The cloth model as a cl_system (SPEC 1): free-particle numbering with pins
- * (negative pin indices), scatter/gather with moving pins, mass per degree
- * of freedom, system force = gathered full force, the system Jacobian
+/* The cloth model as a cl_system (docs/model.md 1): free-particle numbering
+ * with pins (negative pin indices), scatter/gather with moving pins, mass per
+ * degree of freedom, system force = gathered full force, the system Jacobian
  * against finite differences of the system force on the hang defaults, the
  * free-particle pattern against the full-particle Jacobian, exact zeros at
  * rest, and configuration errors. */

@@ -8,8 +8,9 @@
  * 0.2 of the theoretical order (NAN: not checked, only logged):
  *
  *   - verlet's velocity is the backward difference (x_{k+1} - x_k)/h
- *     (seed 004), first order by construction, so its state error is first
- *     order and its positions are checked for order 2;
+ *     (the Verlet-and-PBD report), first order by construction, so its
+ *     state error is first order and its positions are checked for order
+ *     2;
  *   - the positions of both symplectic Euler variants obey the Stoermer
  *     recurrence x_{k+1} - 2 x_k + x_{k-1} = h^2 a(x_k) and differ from
  *     verlet's only by the start, x_1 = x0 + h v0 + {1, 0} h^2 a0 instead of

@@ -1,7 +1,7 @@
-/* Topology of the Choi-Ko connection sets (SPEC 2): counts on square and
- * rectangular grids and chains, each unordered pair exactly once, the set
- * equal to a brute-force enumeration by grid offset, rest lengths bit-equal
- * to cl_dist of the rest positions. */
+/* Topology of the Choi-Ko connection sets (docs/model.md 2): counts on square
+ * and rectangular grids and chains, each unordered pair exactly once, the set
+ * equal to a brute-force enumeration by grid offset, rest lengths bit-equal to
+ * cl_dist of the rest positions. */
 #include <criterion/criterion.h>
 
 #include <math.h>

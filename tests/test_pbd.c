@@ -1,11 +1,11 @@
-/* Position-based distance constraints, the `pbd` term (seed 004; Mueller
- * et al. 2007; forces/pbd.h): level pair counts; the Gauss-Seidel
- * projection satisfies one pair exactly at K = 1 with displacements in
- * inverse proportion to the masses, drives the violation of a jittered
- * cloth down over the sweeps, never moves pinned particles and conserves
- * the centre of mass of free particles with unequal masses; the term has
- * no force, Jacobian or potential; constraints tear by the [tear] cut
- * rule; bad options are refused. */
+/* Position-based distance constraints, the `pbd` term (the Verlet-and-PBD
+ * report; Mueller et al. 2007; forces/pbd.h): level pair counts; the
+ * Gauss-Seidel projection satisfies one pair exactly at K = 1 with
+ * displacements in inverse proportion to the masses, drives the violation of a
+ * jittered cloth down over the sweeps, never moves pinned particles and
+ * conserves the centre of mass of free particles with unequal masses; the term
+ * has no force, Jacobian or potential; constraints tear by the [tear] cut rule;
+ * bad options are refused. */
 #include <criterion/criterion.h>
 
 #include "forces/pbd.h"

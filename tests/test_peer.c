@@ -1,9 +1,10 @@
 /* The scipy peer of the benchmarks (scripts/peers/hang_scipy.py, a numpy
- * implementation of hang written from SPEC 3.1-3.2) against `clothode
- * eval`: total forces on every particle of hang at n = 6 agree to 1e-10 of
- * the largest force, at the rest state and at random perturbations (many
- * interlaced pairs compressed onto the buckling branch), without and with
- * velocities (pair damping).  Both programs run as child processes.
+ * implementation of hang written from the formulas of docs/model.md 3.1-3.2,
+ * not from the C code) against `clothode eval`: total forces on every particle
+ * of hang at n = 6 agree to 1e-10 of the largest force, at the rest state and
+ * at random perturbations (many interlaced pairs compressed onto the buckling
+ * branch), without and with velocities (pair damping).  Both programs run as
+ * child processes.
  *
  * The peer needs a Python with numpy and scipy (`make test` installs
  * Debian's python3-numpy python3-scipy; bench/child.h says which

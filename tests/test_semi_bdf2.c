@@ -1,4 +1,4 @@
-/* semi-bdf2 (Choi-Ko semi-implicit BDF2, seed eq. 15): second-order
+/* semi-bdf2 (Choi-Ko semi-implicit BDF2, Jiao, eq. 15): second-order
  * convergence on spring2 (closed form) with klu, pcg and pcg-jacobi, with a
  * pin moving at constant velocity (f depends on t), and on the damped and
  * coupled systems of testsys.h; on a linear damped oscillator it is exactly

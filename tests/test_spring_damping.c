@@ -1,6 +1,7 @@
 /* Verification of the spring-damping term and the shared pair damping
- * (forces/pairdamp.h; seed 004 "spring and friction", seed 000 eq. 14;
- * SPEC 3.2, 3.5) on the spring pairs of forces/springs.h:
+ * (forces/pairdamp.h; the Verlet-and-PBD report's "spring and friction",
+ * Jiao, eq. 14; docs/model.md 3.2; docs/architecture.md, "Checks every
+ * force term passes") on the spring pairs of forces/springs.h:
  *   axial   f_a = kd (u . (v_b - v_a)) u,  df/dv = +-kd u u^T blocks,
  *           df/dx = +-G, G = (kd/d) [u (P w)^T + (u . w) P] (nonsymmetric);
  *   linear  f_a = -kd (v_a - v_b),  df/dv = +-kd I, df/dx = 0.

@@ -1,5 +1,7 @@
 /* Verification of the mass-spring network and the springs term
- * (forces/springs.h; seeds 003, 004; SPEC 2, 3.1, 3.4, 3.5).
+ * (forces/springs.h; Zischg, Chea and Aigner; the Verlet-and-PBD report;
+ * docs/model.md 2, 3.1, 3.4; docs/architecture.md, "Checks every force
+ * term passes").
  *
  * Topology, on n x n grids for n = 3..20 (and rectangles, chains):
  *   structural 2 n (n-1), shear 2 (n-1)^2, bend 2 n (n-2),
@@ -8,8 +10,8 @@
  *   4 n^2 k - 3 n k (k+1) + k (k+1)(2k+1)/3 (k < n; nothing beyond);
  * every pair valid, listed once, equal to a brute-force enumeration; the
  * options consistent (levels = 1 is structural + shear, levels = 2 adds bend
- * and the +-2 diagonals).  Stiffness: bend = structural / 8 by default
- * (seed 003), shear = structural, levels as level_stiffness says.
+ * and the +-2 diagonals).  Stiffness: bend = structural / 8 by default (Zischg,
+ * Chea and Aigner), shear = structural, levels as level_stiffness says.
  * Forces: Jacobian vs central differences, f = -dE/dx, symmetric Hessian,
  * Newton's third law, rigid-motion invariance, the law on a uniform
  * stretch, zero at rest. */
@@ -451,7 +453,7 @@ Test(springs, law_on_uniform_stretch)
 }
 
 /* ms-hang as shipped: springs, spring-damping and gravity only, every key
- * used; the springs at the seed-003 ratio. */
+ * used; the springs at Zischg, Chea and Aigner's ratio. */
 Test(springs, ms_hang_problem)
 {
     cl_config *cfg = cl_config_alloc();

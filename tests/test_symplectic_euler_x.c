@@ -1,9 +1,9 @@
-/* symplectic-euler-x (x first, seed 003): the update formula of one step
- * (force at the new positions and the old velocities), first order in x
- * and v on damped oscillators, bounded energy error without drift, and the
- * adjoint relation with symplectic-euler: for conservative forces half a
- * step of symplectic-euler (v first) followed by half a step of
- * symplectic-euler-x is one step of velocity Verlet. */
+/* symplectic-euler-x (x first, Zischg, Chea and Aigner): the update formula of
+ * one step (force at the new positions and the old velocities), first order in
+ * x and v on damped oscillators, bounded energy error without drift, and the
+ * adjoint relation with symplectic-euler: for conservative forces half a step
+ * of symplectic-euler (v first) followed by half a step of symplectic-euler-x
+ * is one step of velocity Verlet. */
 #include <criterion/criterion.h>
 
 #include "runint.h"

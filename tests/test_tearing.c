@@ -1,12 +1,12 @@
-/* Tearing (SPEC 3.4): a connection breaks for good when d > cut L after an
- * accepted step.  A broken pair gives no force, energy or Jacobian values
- * in any pair term (Type1, damping, springs, spring-damping: the spring and
- * its damper break together, counted once); the pulled hang cloth tears
- * under a fixed-step and under adaptive integrators (solver restart at
- * output times) without NaN; torn triangles leave cl_model_triangles and
- * the frames; without [tear] cut nothing breaks.  Baraff-Witkin elements
- * break with any of their edges: a torn triangle or hinge gives nothing,
- * in the potential and the damping terms alike. */
+/* Tearing (docs/model.md 3.4): a connection breaks for good when d > cut L
+ * after an accepted step.  A broken pair gives no force, energy or Jacobian
+ * values in any pair term (Type1, damping, springs, spring-damping: the spring
+ * and its damper break together, counted once); the pulled hang cloth tears
+ * under a fixed-step and under adaptive integrators (solver restart at output
+ * times) without NaN; torn triangles leave cl_model_triangles and the frames;
+ * without [tear] cut nothing breaks.  Baraff-Witkin elements break with any of
+ * their edges: a torn triangle or hinge gives nothing, in the potential and the
+ * damping terms alike. */
 #include <criterion/criterion.h>
 
 #include "io/frames.h"

@@ -1,4 +1,5 @@
-/* Verification of the Choi-Ko Type1 term (SPEC 3.2, 3.5): tension-only
+/* Verification of the Choi-Ko Type1 term (docs/model.md 3.2;
+ * docs/architecture.md, "Checks every force term passes"): tension-only
  * springs s(d) = ks (d - L) for d >= L, 0 for d < L, on sequential pairs
  * (type1.compression = spring: ks (d - L) on both sides).
  *

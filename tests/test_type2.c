@@ -1,4 +1,5 @@
-/* Verification of the Choi-Ko Type2 term (SPEC 3.2, 3.5): interlaced pairs,
+/* Verification of the Choi-Ko Type2 term (docs/model.md 3.2;
+ * docs/architecture.md, "Checks every force term passes"): interlaced pairs,
  * compression d < L: s = max(f_b, cb (d - L)) with the buckling force
  * f_b = kb kappa^2 / (cos(kappa L/2) - sinc(kappa L/2)),
  * kappa = (2/L) asinc(d/L); tension d >= L: ks (d - L) (tension = spring) or
@@ -329,8 +330,8 @@ Test(type2, jacobian_fd_tension_none)
     cl_model_free(m);
 }
 
-/* The seed reproductions: polynomial asinc, numpy's normalised sinc in the
- * denominator, and both, in compression (f_b branch, 3-9%). */
+/* The reproductions of Jiao's own code: polynomial asinc, numpy's normalised
+ * sinc in the denominator, and both, in compression (f_b branch, 3-9%). */
 static const char *const variants[][2] = {
     {"type2.asinc=seed-poly", "type2.fb_sinc=exact"},
     {"type2.asinc=exact", "type2.fb_sinc=normalised"},
@@ -408,7 +409,8 @@ Test(type2, force_is_minus_energy_gradient)
 /* E(d) = integral_L^d s(r) dr (pieces split at the crossovers found from
  * the code's own branch choice), for the exact law with default and wide
  * parameters, with kb = 1, cb = 35 (two crossovers: cb near d = 0 and near
- * L, f_b in between), and for the seed variants (energy by quadrature). */
+ * L, f_b in between), and for the variants of Jiao's code (energy by
+ * quadrature). */
 Test(type2, energy_is_integral_of_law)
 {
     /* dmin: the normalised sinc makes cos t - sinc(pi t) vanish at
@@ -653,8 +655,8 @@ Test(type2, buckling_force_bounds_and_monotonicity)
     cl_model_free(m);
 }
 
-/* SPEC 3.2: the crossover of f_b and cb (d - L) lies within ~1e-4 L of L,
- * where cb e L = 12 kb/L^2 (1 + 3e/5 + ...). */
+/* The crossover of f_b and cb (d - L) (docs/model.md (3.3)) lies within ~1e-4 L
+ * of L, where cb e L = 12 kb/L^2 (1 + 3e/5 + ...). */
 Test(type2, crossover_location)
 {
     cl_model *m = pair_model(NULL);

@@ -1,7 +1,7 @@
-/* verlet (position Verlet with velocity damping, seed 004): the consistent
- * start and the two-step recurrence, the backward-difference velocity, the
- * documented orders (positions 2 and velocity 1 for conservative forces;
- * positions 1 with velocity-dependent forces), bounded energy without
+/* verlet (position Verlet with velocity damping, the Verlet-and-PBD report):
+ * the consistent start and the two-step recurrence, the backward-difference
+ * velocity, the documented orders (positions 2 and velocity 1 for conservative
+ * forces; positions 1 with velocity-dependent forces), bounded energy without
  * drift for vdamp = 0, dissipation for vdamp > 0 (the velocity of a free
  * particle decays exactly by (1 - vdamp) per step), and rejected vdamp. */
 #include <criterion/criterion.h>

@@ -1,7 +1,7 @@
-/* verlet-pbd (seed 004's loop: damped Verlet, projection, velocity from the
- * projected positions; integrators/verlet_pbd.c): refused without
- * position-based constraints; identical to verlet where no constraint is
- * violated (a rigid fall); a hanging PBD cloth keeps its rest lengths to
+/* verlet-pbd (the Verlet-and-PBD report's loop: damped Verlet, projection,
+ * velocity from the projected positions; integrators/verlet_pbd.c): refused
+ * without position-based constraints; identical to verlet where no constraint
+ * is violated (a rigid fall); a hanging PBD cloth keeps its rest lengths to
  * within 1 % at K = 1; a PBD cloth with [tear] cut tears when its pins are
  * pulled apart; the command line runs ms-hang with pbd switched on. */
 #include <criterion/criterion.h>

@@ -2,8 +2,8 @@
 """hang_scipy.py: the `hang` cloth (problems/hang.ini) in numpy/scipy, as an
 independent peer of clothode for `clothode-bench` and tests/test_peer.c.
 
-The model (SPEC 1, 2, 3.1, 3.2), written from the specification, not from the
-C code:
+The model (docs/model.md 1, 2, 3.1, 3.2), written from the formulas, not from
+the C code:
 
   grid     n x n particles, particle (i, j) at (i h, 0, j h), h = size/(n-1),
            index p = i n + j; mass = total mass / n^2 per particle; pinned
@@ -12,7 +12,7 @@ C code:
   pairs    Type1 (sequential): offsets (0,1) (1,-1) (1,0) (1,1);
            Type2 (interlaced): offsets (0,2) (2,-2) (2,0) (2,2);
            rest length L = |X_b - X_a| on the rest grid.
-  pair     (SPEC 3.1) x_ab = x_b - x_a, d = |x_ab|, u = x_ab / d,
+  pair     (docs/model.md 3.1) x_ab = x_b - x_a, d = |x_ab|, u = x_ab / d,
            f_a = s(d) u, f_b = -f_a,
            df_a/dx_b = K = s'(d) u u^T + (s/d)(I - u u^T), df_a/dx_a = -K
            (jacobian.transverse = clamp drops (s/d)(I - u u^T) where s < 0).
@@ -28,7 +28,7 @@ C code:
            branch wins without solving for t.
            s'(d) on the f_b branch: (4 kb/L^2) (2 t D - t^2 D')/D^2 dt/dd,
            D' = g'(t) - sin t, dt/dd = -1/(L g'(t)).
-  damping  f_a = -kd (v_a - v_b) on every Type1 and Type2 pair (seed eq. 14).
+  damping  f_a = -kd (v_a - v_b) on every Type1 and Type2 pair (Jiao, eq. 14).
   gravity  f_p = m_p g.
 
 ODE: y = (x, v) of the free particles, x' = v, v' = M^-1 f(x, v), with the
@@ -214,7 +214,7 @@ def asinc_1m(e):
 
 
 def pair_law(model, d):
-    """s(d) and s'(d) of every pair (SPEC 3.2)."""
+    """s(d) and s'(d) of every pair (docs/model.md 3.2)."""
     L, stretch = model.L, d - model.L
     s = np.where(stretch >= 0, model.ks * stretch, 0.0)
     ds = np.where(stretch >= 0, model.ks, 0.0)

@@ -1,4 +1,4 @@
-/* The exact inverse sinc against the seed's polynomial (see
+/* The exact inverse sinc against Jiao's polynomial (see
  * asinc_error.h). */
 #include "analysis/asinc_error.h"
 

@@ -1,11 +1,11 @@
-/* The inverse sinc of the Type2 buckling force against the seed's
- * polynomial (SPEC 7 `clothode asinc`, SPEC 8 "asinc error"), on the chord
- * ratios y = k/n, k = 0..n:
+/* The inverse sinc of the Type2 buckling force against Jiao's polynomial
+ * (`clothode asinc`, README "Using it"; the asinc figure of README
+ * "Reports"), on the chord ratios y = k/n, k = 0..n:
  *   t      = asinc(y), sinc(t) = y, t in [0, pi], solved from e = 1 - y
  *            (exact: e = (n - k)/n) by cl_asinc_1m,
- *   t/pi   = the normalised inverse the seed's polynomial fits,
- *   p(y)   = the seed's fifth-order polynomial (section 4.6), which the
- *            seed uses in place of t (kappa = (2/L) p(d/L)),
+ *   t/pi   = the normalised inverse Jiao's polynomial fits,
+ *   p(y)   = Jiao's fifth-order polynomial (section 4.6), which Jiao
+ *            uses in place of t (kappa = (2/L) p(d/L)),
  *   resid  = |1 - sinc(t) - e|, the solver's residual. */
 #ifndef CL_ASINC_ERROR_H
 #define CL_ASINC_ERROR_H
@@ -20,7 +20,7 @@ typedef struct {
 } cl_asinc_row;
 
 typedef struct {
-    double p[CL_SEED_POLY_NCOEF];  /* the seed's coefficients */
+    double p[CL_SEED_POLY_NCOEF];  /* Jiao's coefficients */
     double max_err_normalised;     /* max |p(y) - t/pi| ... */
     double y_err_normalised;       /* ... and where */
     double max_err_true;           /* max |p(y) - t| */

@@ -1,5 +1,5 @@
-/* Convergence study (SPEC 7 `clothode convergence`): one integrator run at
- * a sequence of levels from the model's initial state to T,
+/* Convergence study (`clothode convergence`, README "Using it"): one
+ * integrator run at a sequence of levels from the model's initial state to T,
  *   fixed-step methods at dt_k = dt_0 / 2^k,
  *   adaptive methods at rtol_k = rtol_0 / 10^k (atol_k = atol_0 / 10^k),
  * k = 0 .. levels-1, each final state measured against a reference:

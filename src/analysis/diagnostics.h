@@ -15,8 +15,8 @@ double cl_max_distance(const double *a, const double *b, size_t np);
 double cl_max_stretch(const cl_pairset *set, const double *xfull);
 
 /* Largest |y - Y0| over all particles: the displacement out of the rest
- * plane (the grid lies in y = 0, SPEC 2).  Meaningful only when the rest
- * positions lie in one horizontal plane (cl_offplane_applies). */
+ * plane (the grid lies in y = 0, docs/model.md 2).  Meaningful only when
+ * the rest positions lie in one horizontal plane (cl_offplane_applies). */
 double cl_max_offplane(const cl_cloth *c, const double *xfull);
 
 /* Whether every rest position has the same y: always on a grid, on a mesh

@@ -1,7 +1,7 @@
-/* Energy behaviour of an integrator (SPEC 7 `clothode energy`): one run
- * from the model's initial state to T, sampled at `samples` evenly spread
- * times (whole steps for fixed-step methods; the blow-up test of
- * analysis/trial.h applies), where
+/* Energy behaviour of an integrator (`clothode energy`, README "Using
+ * it"): one run from the model's initial state to T, sampled at `samples`
+ * evenly spread times (whole steps for fixed-step methods; the blow-up
+ * test of analysis/trial.h applies), where
  *
  *   E(t) = kinetic + potential (every conservative term, gravity included),
  *   W(t) = int_0^t P dt, P <= 0 the power of the dissipative terms

@@ -14,7 +14,7 @@
 
 /* Growth rates below this fraction of the largest |lambda| are round-off
  * (a zero-stiffness mode's double eigenvalue 0 splits into +-sqrt(eps)). */
-#define SPEC_TOL 1e-6
+#define EIG_TOL 1e-6
 
 typedef struct {
     size_t n, nval;
@@ -107,7 +107,7 @@ static cl_status first_order_spectrum(const cl_bpattern *p, spec_work *w,
         double complex *lam = (double complex *)ev->data; /* stride 1 */
         qsort(lam, dim, sizeof *lam, by_modulus_desc);
         s->lambda_max = cabs(lam[0]);
-        double tol = SPEC_TOL * s->lambda_max;
+        double tol = EIG_TOL * s->lambda_max;
         for (size_t j = 0; j < dim; j++) {
             s->re[j] = creal(lam[j]);
             s->im[j] = cimag(lam[j]);
@@ -201,7 +201,7 @@ static double rk4_limit(double complex l)
 static double r_limit(const cl_spectrum *s, double (*limit)(double complex))
 {
     size_t dim = 2 * s->n;
-    double tol = SPEC_TOL * s->lambda_max, h = INFINITY;
+    double tol = EIG_TOL * s->lambda_max, h = INFINITY;
     for (size_t j = 0; j < dim; j++) {
         double re = fabs(s->re[j]) <= tol ? 0.0 : s->re[j];
         double complex l = re + I * s->im[j];

@@ -1,6 +1,6 @@
 /* Spectrum of the linearised cloth at a state and the explicit step limits
- * it predicts (SPEC 7 `clothode spectrum`, SPEC 8 "spectral prediction vs
- * measured explicit limit").
+ * it predicts (`clothode spectrum`, README "Using it"; the limits-* figures
+ * of README "Reports", predicted against measured explicit limits).
  *
  * Two eigenvalue problems, both dense (GSL), so n <= CL_SPECTRUM_MAX_N:
  *  - stiffness: mu_i, eigenvalues of -M^-1/2 S M^-1/2, S the symmetric part

@@ -1,7 +1,7 @@
-/* Stability limit of a fixed-step integrator (SPEC 7 `clothode stability`):
- * the largest step with which a run from the model's initial state to T
- * stays bounded.  Steps are dt = T / N for whole N, so that every run ends
- * exactly at T.
+/* Stability limit of a fixed-step integrator (`clothode stability`,
+ * README "Using it"): the largest step with which a run from the model's
+ * initial state to T stays bounded.  Steps are dt = T / N for whole N, so
+ * that every run ends exactly at T.
  *
  * A run is unstable when it blows up (CL_EBLOWUP: a non-finite state, or a
  * stretch d/L beyond max_stretch at one of `checks` evenly spread times,

@@ -1,5 +1,6 @@
-/* Benchmarks (`clothode-bench`, SPEC 7): cost of the integrators and
- * linear solvers on the default problem, against goals.  Eight workloads:
+/* Benchmarks (`clothode-bench`, README "Benchmarks"): cost of the
+ * integrators and linear solvers on the default problem, against goals.
+ * Eight workloads:
  *
  *   1  hang, cvode-bdf with the best linear solver against the scipy peer
  *      (scripts/peers/hang_scipy.py: solve_ivp BDF, analytic sparse
@@ -23,11 +24,11 @@
  *   4  force evaluations of hang at n = 64 on a perturbed state (Type2
  *      buckling branch active), ns per pair (Type1 + Type2, damping and
  *      gravity included): goal <= 10; the Jacobian's cost beside it.
- *   5  explicit steps on a 30 x 30 cloth (seed 004's size): symplectic-
- *      euler and verlet on problems/ms-hang.ini (springs; springs + axial
- *      spring damping), verlet-pbd on problems/verlet-scene1.ini
- *      (constraint level 2, 10 iterations): steps per CPU second, goal >=
- *      25,000.
+ *   5  explicit steps on a 30 x 30 cloth (the size of the Verlet-and-PBD
+ *      report's cloth): symplectic-euler and verlet on
+ *      problems/ms-hang.ini (springs; springs + axial spring damping),
+ *      verlet-pbd on problems/verlet-scene1.ini (constraint level 2, 10
+ *      iterations): steps per CPU second, goal >= 25,000.
  *   6  peak resident memory per unknown (6 per free particle) of
  *      cvode-bdf with the best solver on hang at n = 128, T = 0.02 s (past
  *      the first factorisations), run in a child process (`clothode

@@ -1,4 +1,4 @@
-/* clothode asinc: the exact inverse sinc beside the seed's polynomial
+/* clothode asinc: the exact inverse sinc beside Jiao's polynomial
  * (analysis/asinc_error.h). */
 #include <getopt.h>
 #include <stdlib.h>
@@ -10,8 +10,8 @@
 static const char asinc_help[] =
     "usage: clothode asinc [--points N] [--csv]\n"
     "The inverse sinc t = asinc(y) of the Type2 buckling curvature\n"
-    "(kappa = (2/L) asinc(d/L), seed eq. 8) on y = k/N, k = 0..N (default\n"
-    "N = 20), beside t/pi and the seed's fifth-order polynomial p(y), which\n"
+    "(kappa = (2/L) asinc(d/L), Jiao, eq. 8) on y = k/N, k = 0..N (default\n"
+    "N = 20), beside t/pi and Jiao's fifth-order polynomial p(y), which\n"
     "fits t/pi but is used in place of t; with the largest errors and the\n"
     "exact solver's residual |1 - sinc(t) - (1 - y)|.\n"
     "  --points N  N intervals, 1 .. 10000000\n"
@@ -21,16 +21,16 @@ static void print_table(const cl_asinc_row *r, size_t n,
                         const cl_asinc_summary *s)
 {
     printf("%8s %12s %12s %12s %12s %10s\n", "y", "asinc(y)", "asinc/pi",
-           "seed p(y)", "p - asinc/pi", "residual");
+           "Jiao p(y)", "p - asinc/pi", "residual");
     for (size_t k = 0; k <= n; k++)
         printf("%8.5f %12.9f %12.9f %12.9f %12.3e %10.2e\n", r[k].y, r[k].t,
                r[k].t_over_pi, r[k].seed, r[k].seed - r[k].t_over_pi,
                r[k].resid);
-    printf("seed coefficients (highest power first):");
+    printf("Jiao's coefficients (highest power first):");
     for (int i = 0; i < CL_SEED_POLY_NCOEF; i++)
         printf(" %.9g", s->p[i]);
     printf("\nmax |p - asinc/pi| = %.4g at y = %.5g; max |p - asinc| = %.4g "
-           "(the seed's curvature is about 1/pi of the arc's)\n"
+           "(Jiao's curvature is about 1/pi of the arc's)\n"
            "max residual of the exact inverse: %.2e\n",
            s->max_err_normalised, s->y_err_normalised, s->max_err_true,
            s->max_resid);

@@ -1,7 +1,7 @@
-/* clothode counts: connection counts measured from the topology beside the
- * seed's formulas: Choi-Ko pairs and Baraff-Witkin elements (two tables;
- * with --csv the Choi-Ko columns, and with --bw the Baraff-Witkin columns
- * appended after them). */
+/* clothode counts: connection counts measured from the topology beside
+ * Jiao's formulas (section 4.1): Choi-Ko pairs and Baraff-Witkin elements
+ * (two tables; with --csv the Choi-Ko columns, and with --bw the
+ * Baraff-Witkin columns appended after them). */
 #include <getopt.h>
 #include <stdlib.h>
 
@@ -12,12 +12,12 @@
 static const char counts_help[] =
     "usage: clothode counts [--n-min N] [--n-max N] [--csv [--bw]]\n"
     "For n x n grids, the Choi-Ko Type1 and Type2 connection counts measured\n"
-    "from the built topology beside the seed's formulas 2(n-1)(2n-1),\n"
+    "from the built topology beside Jiao's formulas 2(n-1)(2n-1),\n"
     "4(n-1)(n-2) and CK = 8n^2-18n+10 (defaults: n = 3..40), and the\n"
     "Baraff-Witkin elements measured from the triangle mesh: triangles\n"
     "(formula 2(n-1)^2), bending hinges = interior edges ((n-1)(3n-5)), all\n"
-    "edges (the seed's bending count 2n(n-1)+(n-1)^2 counts these), BW =\n"
-    "triangles + hinges (5n^2-12n+7) and the seed's BW = 5n^2-8n+3.\n"
+    "edges (Jiao's bending count 2n(n-1)+(n-1)^2 counts these), BW =\n"
+    "triangles + hinges (5n^2-12n+7) and Jiao's BW = 5n^2-8n+3.\n"
     "  --csv   one CSV row per n: n,type1,type1_formula,type2,type2_formula,\n"
     "          ck,ck_formula\n"
     "  --bw    with --csv, append bw_tri,bw_tri_formula,bw_bend,\n"
@@ -50,7 +50,7 @@ static void print_tables(const cl_counts *k, size_t n)
         printf("%4d %7ld %13ld %7ld %11ld %7ld %11ld\n", k[i].n, k[i].type1,
                k[i].type1_formula, k[i].type2, k[i].type2_formula, k[i].ck,
                k[i].ck_formula);
-    printf("\nBaraff-Witkin elements (hinges = interior edges; the seed's "
+    printf("\nBaraff-Witkin elements (hinges = interior edges; Jiao's "
            "bending count is all edges)\n"
            "   n   tris 2(n-1)^2 hinges (n-1)(3n-5)   edges "
            "2n(n-1)+(n-1)^2      BW 5n^2-12n+7 5n^2-8n+3\n");

@@ -34,7 +34,7 @@ static const char run_help[] =
     "max_stretch);\n"
     "[run] also takes newton_tol, newton_maxit (fixed-step implicit methods),\n"
     "lin_tol, lin_maxit (iterative linear solvers) and verlet_damping\n"
-    "(seed 004).\n";
+    "(the Verlet-and-PBD report).\n";
 
 static const struct option run_opts[] = {
     {"integrator", required_argument, 0, 'i'},

@@ -1,5 +1,5 @@
 /* clothode: particle cloth as a stiff ODE, integrators side by side.
- * One program, subcommands (SPEC 7). */
+ * One program, subcommands (README "Using it", docs/clothode.1). */
 #include <stdio.h>
 #include <string.h>
 
@@ -19,8 +19,8 @@ static const cl_command commands[] = {
      "error against CPU time, the fastest method per accuracy"},
     {"eval", cl_cmd_eval, "forces, energies and Jacobians at a given state"},
     {"asinc", cl_cmd_asinc,
-     "the exact inverse sinc beside the seed's polynomial"},
-    {"counts", cl_cmd_counts, "connection counts beside the seed's formulas"},
+     "the exact inverse sinc beside Jiao's polynomial"},
+    {"counts", cl_cmd_counts, "connection counts beside Jiao's formulas"},
     {"list", cl_cmd_list, "problems, integrators and force terms"},
 };
 
