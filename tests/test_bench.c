@@ -244,9 +244,10 @@ Test(bench, child_status_usage_and_output)
 
 /* A child that blocks reading a FIFO until the test writes to it: polled
  * before, it cannot have ended; it then exits with the status it read.
- * The test holds the FIFO open for reading and writing (Linux: never
- * blocks), so that the child's open returns at once and, should the test
- * die, the child reads end-of-file and ends too. */
+ * The test alone holds the FIFO open for reading and writing (Linux: never
+ * blocks; close-on-exec, so the child does not inherit it): the child's
+ * open returns at once and, should the test die, the child reads
+ * end-of-file and ends too. */
 Test(bench, child_poll_then_wait)
 {
     cl_child c;
@@ -254,7 +255,7 @@ Test(bench, child_poll_then_wait)
     cl_error err = {0};
     char fifo[1024];
     cr_assert_eq(mkfifo(in_tmp(fifo, "gate"), 0600), 0, "mkfifo %s", fifo);
-    int fd = open(fifo, O_RDWR);
+    int fd = open(fifo, O_RDWR | O_CLOEXEC);
     cr_assert_geq(fd, 0, "open %s", fifo);
     char *gated[] = {"sh", "-c", "read s < \"$0\"; exit \"$s\"", fifo,
                      NULL};
