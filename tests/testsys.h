@@ -42,6 +42,8 @@ typedef struct {
     cl_bpattern pat;
     cl_system sys;
     double pot;           /* the one term energy of the last evaluation */
+    long nforce, njac;    /* force and Jacobian calls seen, for checking
+                           * the integrators' counters */
 } ts_sys;
 
 static const double ts_A[9] = {2, 1, 0, 1, 2, 0, 0, 0, 1};
@@ -59,6 +61,7 @@ static inline cl_status ts_force(void *data, double t, const double *x,
                                  const double *v, double *f)
 {
     ts_sys *ts = data;
+    ts->nforce++;
     cl_status st = ts_failing(ts, t);
     if (st != CL_OK && ts->fail == TS_FAIL_STATUS)
         return st;
@@ -90,6 +93,7 @@ static inline cl_status ts_jacobian(void *data, double t, const double *x,
                                     double *dfdv)
 {
     ts_sys *ts = data;
+    ts->njac++;
     cl_status st = ts->fail == TS_FAIL_TRANSIENT ? CL_OK : ts_failing(ts, t);
     if (st != CL_OK && ts->fail == TS_FAIL_STATUS)
         return st;
