@@ -78,7 +78,8 @@ typedef struct {
     cl_config *cfg;
     cl_model *m;
     const cl_system *sys;
-    double *x0, *v0, *xr, *vr; /* initial state, reference at T */
+    double *x0, *v0, *xr, *vr; /* initial state, reference at T: one
+                                * block of 4 n at x0 */
 } ei_problem;
 
 /* Run `it` with options o from the initial state to T into x, v. */
@@ -108,10 +109,11 @@ static void ei_open(ei_problem *p)
                  err.msg);
     p->sys = cl_model_system(p->m);
     size_t n = p->sys->n;
-    p->x0 = malloc(n * sizeof *p->x0);
-    p->v0 = malloc(n * sizeof *p->v0);
-    p->xr = malloc(n * sizeof *p->xr);
-    p->vr = malloc(n * sizeof *p->vr);
+    p->x0 = malloc(4 * n * sizeof *p->x0);
+    cr_assert_not_null(p->x0);
+    p->v0 = p->x0 + n;
+    p->xr = p->v0 + n;
+    p->vr = p->xr + n;
     cl_model_initial_state(p->m, p->x0, p->v0);
     cl_integrator_opts ref = {.rtol = 1e-11, .atol = 1e-13};
     ei_run(p, cl_integrator_find("cvode-bdf"), &ref, p->xr, p->vr);
@@ -120,9 +122,6 @@ static void ei_open(ei_problem *p)
 static void ei_close(ei_problem *p)
 {
     free(p->x0);
-    free(p->v0);
-    free(p->xr);
-    free(p->vr);
     cl_model_free(p->m);
     cl_config_free(p->cfg);
 }
