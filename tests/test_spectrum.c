@@ -104,6 +104,12 @@ Test(spectrum, limits_listed_from_the_regions)
     static const char *const want[CL_SPECTRUM_NLIMITS] = {
         "fe", "rk4", "symplectic-euler", "symplectic-euler-x", "verlet",
         "velocity-verlet"};
+    size_t explicit = 0;
+    for (size_t i = 0; cl_integrator_registry[i]; i++) {
+        cl_region_kind k = cl_integrator_registry[i]->region->kind;
+        explicit += k == CL_REGION_TAYLOR || k == CL_REGION_SYMPLECTIC;
+    }
+    cr_assert_eq(explicit, CL_SPECTRUM_NLIMITS);
     sp_case c;
     sp_open(&c, NULL, 1.0);
     cl_spectrum_limit lim[CL_SPECTRUM_NLIMITS];

@@ -355,10 +355,12 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
     cl_model_contact_start(m, false);
     size_t n3 = 3 * s.c->np, npot = cl_model_potentials(m);
     res->xfinal = malloc((n3 + 2 * npot) * sizeof *res->xfinal);
-    s.e0_terms = res->xfinal + n3;
-    s.e1_terms = s.e0_terms + npot;
     cl_status rc = res->xfinal ? CL_OK
                                : cl_error_set(err, CL_ENOMEM, "out of memory");
+    if (!rc) {
+        s.e0_terms = res->xfinal + n3;
+        s.e1_terms = s.e0_terms + npot;
+    }
     /* the integrator first: one that refuses the problem (a contact
      * response it cannot apply, ...) stops the run before any output */
     if (!rc && !(rc = make_schedule(type, iopts, so, &sch, err)) &&
