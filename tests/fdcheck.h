@@ -119,9 +119,9 @@ static inline size_t fd_n(const cl_model *m)
 /* Whether the model runs a term of this name. */
 static inline bool fd_has_term(const cl_model *m, const char *name)
 {
-    const char *names[CL_MAX_ENERGY_TERMS];
-    size_t n = cl_model_terms(m, names, CL_MAX_ENERGY_TERMS);
-    for (size_t k = 0; k < n && k < CL_MAX_ENERGY_TERMS; k++)
+    const char *const *names;
+    size_t n = cl_model_terms(m, &names);
+    for (size_t k = 0; k < n; k++)
         if (!strcmp(names[k], name))
             return true;
     return false;
@@ -412,10 +412,11 @@ static inline double fd_check_rigid(cl_model *m, const double *x,
 {
     size_t n = fd_n(m), np = n / 3;
     double *y = fd_vec(n), *u = fd_vec(n), *f = fd_vec(n), *g = fd_vec(n),
-           *Rf = fd_vec(n);
+           *Rf = fd_vec(n), *keep = fd_vec(cl_model_potentials(m) + 1);
     fd_apply(R, c, x, y, np);
     fd_apply(R, w, v, u, np);
-    cl_energy e0 = fd_eval(m, x, v, f);
+    cl_energy e0, e = fd_eval(m, x, v, f);
+    cl_energy_keep(&e0, &e, keep);
     cl_energy e1 = fd_eval(m, y, u, g);
     fd_apply(R, NULL, f, Rf, np);
     double ef = fd_relerr(g, Rf, n);
@@ -466,6 +467,7 @@ static inline double fd_check_rigid(cl_model *m, const double *x,
     free(f);
     free(g);
     free(Rf);
+    free(keep);
     free(Jx);
     free(Jv);
     free(Kx);

@@ -3,10 +3,13 @@
  * timing is asserted; short workloads (--quick) run for real. */
 #include <criterion/criterion.h>
 
+#include <fcntl.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "bench/bench.h"
 #include "bench/child.h"
@@ -239,17 +242,32 @@ Test(bench, child_status_usage_and_output)
     cr_assert(strstr(err.msg, "clothode-no-such-program"), "%s", err.msg);
 }
 
+/* A child that blocks reading a FIFO until the test writes to it: polled
+ * before, it cannot have ended; it then exits with the status it read.
+ * The test alone holds the FIFO open for reading and writing (Linux: never
+ * blocks; close-on-exec, so the child does not inherit it): the child's
+ * open returns at once and, should the test die, the child reads
+ * end-of-file and ends too. */
 Test(bench, child_poll_then_wait)
 {
     cl_child c;
     cl_child_usage u;
     cl_error err = {0};
-    char *sleeper[] = {"sh", "-c", "sleep 0.3", NULL};
-    cr_assert_eq(cl_child_start(&c, sleeper, NULL, NULL, &err), CL_OK, "%s",
+    char fifo[1024];
+    cr_assert_eq(mkfifo(in_tmp(fifo, "gate"), 0600), 0, "mkfifo %s", fifo);
+    int fd = open(fifo, O_RDWR | O_CLOEXEC);
+    cr_assert_geq(fd, 0, "open %s", fifo);
+    char *gated[] = {"sh", "-c", "read s < \"$0\"; exit \"$s\"", fifo,
+                     NULL};
+    cr_assert_eq(cl_child_start(&c, gated, NULL, NULL, &err), CL_OK, "%s",
                  err.msg);
-    cr_assert_not(cl_child_done(&c, &u), "a 0.3 s child ended at once");
+    cr_assert_not(cl_child_done(&c, &u), "a child waiting for its FIFO "
+                  "ended");
+    cr_assert_eq(write(fd, "7\n", 2), 2);
     cl_child_wait(&c, &u);
-    cr_assert(u.exited && u.status == 0);
+    close(fd);
+    cr_assert(u.exited && u.status == 7, "exited %d, status %d", u.exited,
+              u.status);
     cr_assert_eq(c.pid, 0);
     cr_assert_not(cl_child_done(&c, &u), "a reaped child polled again");
 }

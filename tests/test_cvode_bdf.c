@@ -118,7 +118,9 @@ Test(cvode_bdf, stiff_overdamped)
     ts_free(&ts);
 }
 
-/* The baseline klu-full: KLU on the first-order matrix. */
+/* The baseline klu-full: KLU on the first-order matrix.  The force and
+ * Jacobian evaluations reported are those the system saw; one KLU solve
+ * per Newton iteration; one symbolic analysis for the whole run. */
 Test(cvode_bdf, statistics_and_one_symbolic_analysis)
 {
     ts_sys ts;
@@ -132,23 +134,19 @@ Test(cvode_bdf, statistics_and_one_symbolic_analysis)
                 s.steps, s.rhs_evals, s.jac_evals, s.lin_setups,
                 s.lin_solves, s.nonlin_iters, s.nonlin_fails, s.err_fails,
                 s.symbolic_facts);
-    cr_assert_gt(s.steps, 10);
-    cr_assert_geq(s.rhs_evals, s.steps);
-    cr_assert_gt(s.jac_evals, 0);
-    cr_assert_gt(s.lin_setups, 1);
-    cr_assert_geq(s.lin_setups, s.jac_evals);
-    cr_assert_gt(s.nonlin_iters, 0);
+    cr_assert_eq(s.rhs_evals, ts.nforce);
+    cr_assert_eq(s.jac_evals, ts.njac);
     cr_assert_eq(s.lin_solves, s.nonlin_iters);
     cr_assert_eq(s.lin_iters, 0);
-    cr_assert_geq(s.err_fails, 0);
     cr_assert_eq(s.symbolic_facts, 1);
     cr_assert_str_eq(s.linsol, "klu-full");
     ts_free(&ts);
 }
 
-/* The default half-size solver: at most one solve per Newton iteration
- * (an iterative solve of a right-hand side already below CVODE's
- * tolerance is skipped by CVODE), the solver named. */
+/* The default half-size solver: the evaluations reported are those the
+ * system saw, at most one solve per Newton iteration (an iterative solve
+ * of a right-hand side already below CVODE's tolerance is skipped by
+ * CVODE), the solver named. */
 Test(cvode_bdf, statistics_default_linsol)
 {
     ts_sys ts;
@@ -159,8 +157,8 @@ Test(cvode_bdf, statistics_default_linsol)
     cr_log_info("cvode-bdf default: %s, setups %ld solves %ld newton %ld "
                 "lin_iters %ld", s.linsol, s.lin_setups, s.lin_solves,
                 s.nonlin_iters, s.lin_iters);
-    cr_assert_gt(s.jac_evals, 0);
-    cr_assert_geq(s.lin_setups, s.jac_evals);
+    cr_assert_eq(s.rhs_evals, ts.nforce);
+    cr_assert_eq(s.jac_evals, ts.njac);
     cr_assert_gt(s.lin_solves, 0);
     cr_assert_leq(s.lin_solves, s.nonlin_iters);
     cr_assert_eq(strncmp(s.linsol, "auto:", 5), 0, "%s", s.linsol);

@@ -18,7 +18,7 @@ Test(cvode_bdf_gmres, closed_form_solutions)
 Test(cvode_bdf_gmres, coupling_needs_krylov_iterations)
 {
     cl_stats s;
-    rs_check_pair(GN, 1.0, 2.0, 4.0, 1e-7, &s);
+    rs_check_pair(GN, 1.0, 2.0, 4.0, 1e-7, &s, true);
     cr_log_info("pair: lin_iters %ld, lin_solves %ld", s.lin_iters,
                 s.lin_solves);
     cr_assert_gt(s.lin_iters, s.lin_solves);
@@ -34,12 +34,9 @@ Test(cvode_bdf_gmres, statistics_and_exact_block_preconditioner)
     cl_integrator_opts o = {.rtol = 1e-7, .atol = 1e-9};
     cl_stats s;
     rs_exact_error(GN, &ts, &o, 10.0, 10, &s);
-    rs_check_stats(GN, &s);
-    cr_assert_gt(s.lin_iters, 0);
-    cr_assert_gt(s.lin_setups, 0);
+    rs_check_stats(GN, &s, &ts, true);
     cr_assert_gt(s.lin_solves, 0);
     cr_assert_eq(s.lin_iters, s.lin_solves);
-    cr_assert_geq(s.jac_evals, s.lin_solves);
     cr_assert_eq(s.symbolic_facts, 0);
     ts_free(&ts);
 }

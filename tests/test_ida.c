@@ -17,8 +17,10 @@ Test(ida, closed_form_solutions)
     rs_check_closed_forms(IN, true);
 }
 
-/* The baseline klu-full; residual evaluations plus the one force
- * evaluation for y'(0). */
+/* The baseline klu-full: the force and Jacobian evaluations reported are
+ * those the system saw (residual evaluations plus the one force evaluation
+ * for y'(0)); one KLU solve per Newton iteration; one symbolic analysis
+ * for the whole run. */
 Test(ida, statistics_and_one_symbolic_analysis)
 {
     ts_sys ts;
@@ -27,12 +29,9 @@ Test(ida, statistics_and_one_symbolic_analysis)
                             .linsol = "klu-full"};
     cl_stats s;
     cr_assert_lt(rs_exact_error(IN, &ts, &o, 10.0, 25, &s), 100 * o.rtol);
-    rs_check_stats(IN, &s);
+    rs_check_stats(IN, &s, &ts, true);
     ts_free(&ts);
     cr_assert_str_eq(s.linsol, "klu-full");
-    cr_assert_geq(s.rhs_evals, s.steps + 1);
-    cr_assert_gt(s.jac_evals, 0);
-    cr_assert_gt(s.lin_setups, 1);
     cr_assert_eq(s.lin_solves, s.nonlin_iters);
     cr_assert_eq(s.lin_iters, 0);
     cr_assert_eq(s.symbolic_facts, 1);

@@ -31,11 +31,30 @@ Test(integrator, registry_rows_complete_and_unique)
         cr_assert(t->name && t->name[0] && t->doc && t->doc[0]);
         cr_assert(t->create && t->advance && t->stats && t->free, "%s",
                   t->name);
+        cr_assert_not_null(t->region, "%s", t->name);
         cr_assert_eq(cl_integrator_find(t->name), t, "%s", t->name);
         for (size_t j = 0; j < n; j++)
             cr_assert_str_neq(cl_integrator_registry[j]->name, t->name);
     }
     cr_assert_geq(n, 2);
+}
+
+/* A region with a step limit (Taylor, symplectic) belongs to a fixed-step
+ * method, and a Taylor polynomial has the degree region.h allows. */
+Test(integrator, regions_fit_the_methods)
+{
+    for (size_t i = 0; cl_integrator_registry[i]; i++) {
+        const cl_integrator_type *t = cl_integrator_registry[i];
+        cl_region_kind k = t->region->kind;
+        if (k == CL_REGION_TAYLOR || k == CL_REGION_SYMPLECTIC)
+            cr_assert(t->fixed_step, "%s", t->name);
+        if (k == CL_REGION_TAYLOR)
+            cr_assert(t->region->degree >= 1 && t->region->degree <= 4,
+                      "%s", t->name);
+        if (k == CL_REGION_SECTOR)
+            cr_assert(t->region->alpha > 0 && t->region->alpha <= 90,
+                      "%s", t->name);
+    }
 }
 
 Test(integrator, fixed_steps_accepts_multiples)

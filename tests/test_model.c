@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "fdcheck.h"
+#include "forces/term.h"
 
 /* ---- numbering, scatter, gather, mass ---------------------------------- */
 
@@ -264,13 +265,15 @@ Test(model, system_force_equals_gathered_full_force)
     const cl_cloth *c = cl_model_cloth(m);
     size_t n = sys->n, nf = fd_n(m);
     double *x = fd_vec(n), *v = fd_vec(n), *f = fd_vec(n), *g = fd_vec(n),
-           *xf = fd_vec(nf), *vf = fd_vec(nf), *ff = fd_vec(nf);
+           *xf = fd_vec(nf), *vf = fd_vec(nf), *ff = fd_vec(nf),
+           *keep = fd_vec(cl_model_potentials(m));
     fd_rng r = {74};
     const double t = 0.75;
     hang_state(m, &r, x, v);
     cr_assert_eq(sys->force(sys->data, t, x, v, f), CL_OK);
     cl_cloth_scatter(c, t, x, v, xf, vf);
-    cl_energy ef = fd_eval(m, xf, vf, ff);
+    cl_energy ef, e = fd_eval(m, xf, vf, ff);
+    cl_energy_keep(&ef, &e, keep);
     cl_cloth_gather(c, ff, g);
     cr_assert_eq(memcmp(f, g, n * sizeof *f), 0);
     /* The pinned particles feel forces the system does not report. */
@@ -298,6 +301,7 @@ Test(model, system_force_equals_gathered_full_force)
     free(xf);
     free(vf);
     free(ff);
+    free(keep);
     cl_model_free(m);
 }
 
@@ -456,11 +460,60 @@ Test(model, rest_state_forces_exactly_zero)
     }
 }
 
+/* Every row of the force registry and the obstacles at once: the model
+ * holds as many terms as its configuration makes (no fixed bound), names
+ * the conservative ones in its energies, and an energy kept with
+ * cl_energy_keep survives the next evaluation. */
+Test(model, every_term_at_once)
+{
+    cl_model *m = FD_MODEL("cloth.n=4", "pins.at=", "damping.kd=0.01",
+                           "springs.enabled=true", "spring-damping.kd=0.01",
+                           "bw-stretch.enabled=true", "bw-stretch.kd=1",
+                           "bw-shear.enabled=true", "bw-shear.kd=1",
+                           "bw-bend.enabled=true", "bw-bend.kd=1e-6",
+                           "pbd.enabled=true", "obstacle.floor.shape=plane",
+                           "obstacle.floor.point=0,-5,0",
+                           "obstacle.floor.normal=0,1,0",
+                           "obstacle.floor.response=penalty",
+                           "obstacle.floor.k=50");
+    size_t rows = 0, npot = 0;
+    while (cl_term_registry[rows])
+        rows++;
+    const char *const *names;
+    size_t n = cl_model_terms(m, &names);
+    cr_assert_eq(n, rows + 1, "%zu terms of %zu rows", n, rows);
+    for (size_t k = 0; k < rows; k++)
+        cr_assert_str_eq(names[k], cl_term_registry[k]->name);
+    cr_assert_str_eq(names[rows], "contact");
+    for (size_t k = 0; k < rows; k++)
+        npot += cl_term_registry[k]->conservative;
+    cr_assert_eq(cl_model_potentials(m), npot + 1); /* penalty contact */
+    size_t nf = fd_n(m);
+    double *x = fd_vec(nf), *v = fd_vec(nf), *f = fd_vec(nf),
+           *keep = fd_vec(npot + 1);
+    memcpy(x, cl_model_cloth(m)->X0, nf * sizeof *x);
+    cl_energy e0, e = fd_eval(m, x, v, f);
+    cr_assert_eq(e.nterm, npot + 1);
+    cl_energy_keep(&e0, &e, keep);
+    x[1] -= 0.3; /* one particle down: gravity's energy changes */
+    cl_energy e1 = fd_eval(m, x, v, f);
+    size_t g = 0;
+    while (strcmp(e0.name[g], "gravity"))
+        g++;
+    cr_assert_float_eq(e1.value[g] - e0.value[g],
+                       -0.3 * 9.81 * cl_model_cloth(m)->mass[0], 1e-12);
+    free(x);
+    free(v);
+    free(f);
+    free(keep);
+    cl_model_free(m);
+}
+
 Test(model, default_terms)
 {
     cl_model *m = FD_MODEL("cloth.n=4");
-    const char *names[8];
-    size_t n = cl_model_terms(m, names, 8);
+    const char *const *names;
+    size_t n = cl_model_terms(m, &names);
     cr_assert_eq(n, 3);
     cr_assert_str_eq(names[0], "type1");
     cr_assert_str_eq(names[1], "type2");

@@ -46,8 +46,8 @@ static void sp_close(sp_case *c)
 static double sp_limit(const cl_spectrum *s, const char *name)
 {
     cl_spectrum_limit lim[CL_SPECTRUM_NLIMITS];
-    cl_spectrum_limits(s, lim);
-    for (int k = 0; k < CL_SPECTRUM_NLIMITS; k++)
+    size_t n = cl_spectrum_limits(s, lim);
+    for (size_t k = 0; k < n; k++)
         if (!strcmp(lim[k].integrator, name))
             return lim[k].h;
     cr_assert_fail("no limit for %s", name);
@@ -94,6 +94,53 @@ Test(spectrum, damped_spring_fe_limit_matches_the_search)
     cr_log_info("fe measured (%.6g, %.6g)", r.dt_stable, r.dt_unstable);
     cr_assert(r.dt_stable > 0.97 * h && r.dt_stable < 1.03 * h, "%g",
               r.dt_stable);
+    sp_close(&c);
+}
+
+/* The explicit limits come from the registry's regions, Taylor ones first:
+ * exactly the rows `clothode spectrum` prints. */
+Test(spectrum, limits_listed_from_the_regions)
+{
+    static const char *const want[CL_SPECTRUM_NLIMITS] = {
+        "fe", "rk4", "symplectic-euler", "symplectic-euler-x", "verlet",
+        "velocity-verlet"};
+    size_t explicit = 0;
+    for (size_t i = 0; cl_integrator_registry[i]; i++) {
+        cl_region_kind k = cl_integrator_registry[i]->region->kind;
+        explicit += k == CL_REGION_TAYLOR || k == CL_REGION_SYMPLECTIC;
+    }
+    cr_assert_eq(explicit, CL_SPECTRUM_NLIMITS);
+    sp_case c;
+    sp_open(&c, NULL, 1.0);
+    cl_spectrum_limit lim[CL_SPECTRUM_NLIMITS];
+    cr_assert_eq(cl_spectrum_limits(&c.s, lim), CL_SPECTRUM_NLIMITS);
+    for (int k = 0; k < CL_SPECTRUM_NLIMITS; k++) {
+        const cl_integrator_type *t = cl_integrator_find(lim[k].integrator);
+        cr_assert_str_eq(lim[k].integrator, want[k]);
+        cr_assert_eq(lim[k].h, cl_spectrum_step_limit(&c.s, t->region));
+    }
+    sp_close(&c);
+}
+
+/* Implicit methods: the undamped pair +-100i lies on the imaginary axis,
+ * inside an A-stable region (every step stable) but outside BDF5's sector
+ * of 51.84 degrees.  With kd = 140 the pair is -70 +- 71.41i, at
+ * atan(71.41/70) = 45.6 degrees from the negative real axis, and the
+ * transverse modes -140 lie on that axis: all inside. */
+Test(spectrum, implicit_sectors)
+{
+    sp_case c;
+    sp_open(&c, NULL, 1.0);
+    cr_assert_eq(cl_spectrum_step_limit(&c.s, &cl_region_a_stable),
+                 INFINITY);
+    cr_assert(isnan(cl_spectrum_step_limit(&c.s, &cl_region_bdf5)));
+    cr_assert(isnan(cl_spectrum_step_limit(&c.s, &cl_region_adaptive)));
+    cr_assert(isnan(cl_spectrum_step_limit(&c.s, &cl_region_projected)));
+    sp_close(&c);
+    sp_open(&c, "damping.kd=140", 1.0);
+    cr_assert_float_eq(c.s.re[2], -70.0, 1e-9);
+    cr_assert_float_eq(fabs(c.s.im[2]), sqrt(1e4 - 70 * 70), 1e-9);
+    cr_assert_eq(cl_spectrum_step_limit(&c.s, &cl_region_bdf5), INFINITY);
     sp_close(&c);
 }
 

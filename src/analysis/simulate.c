@@ -48,6 +48,7 @@ typedef struct {
     cl_series *series;
     double *row;
     long frame_index;
+    double *e0_terms, *e1_terms; /* term energies of res->e0, res->e1 */
 } sim;
 
 /* ---- output schedule -------------------------------------------------- */
@@ -87,12 +88,16 @@ static long tick_of(long k, long count, long nticks)
 
 /* ---- outputs ---------------------------------------------------------- */
 
+/* The series' columns: t, kinetic, the potential terms, and at most 11
+ * more (the header of simulate.h). */
 static cl_status open_series(sim *s, cl_error *err)
 {
     cl_energy e;
-    const char *names[CL_MAX_ENERGY_TERMS + 8];
     size_t n = 0;
     s->sys->energy(s->sys->data, 0.0, s->x, s->v, &e);
+    const char **names = malloc((e.nterm + 13) * sizeof *names);
+    if (!names)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (series names)");
     names[n++] = "t";
     names[n++] = "kinetic";
     for (size_t k = 0; k < e.nterm; k++)
@@ -112,11 +117,12 @@ static cl_status open_series(sim *s, cl_error *err)
         names[n++] = "friction_power";
     }
     s->row = malloc(n * sizeof *s->row);
-    if (!s->row)
-        return cl_error_set(err, CL_ENOMEM, "out of memory (series row)");
     char path[4096];
     snprintf(path, sizeof path, "%s/series.csv", s->so->outdir);
-    cl_status rc = cl_series_open(path, n, names, &s->series, err);
+    cl_status rc = s->row ? cl_series_open(path, n, names, &s->series, err)
+                          : cl_error_set(err, CL_ENOMEM,
+                                         "out of memory (series row)");
+    free(names);
     if (rc == CL_OK && !s->offplane)
         cl_series_not_applicable(s->series, offplane_col);
     if (rc == CL_OK && s->c->kind == CL_CLOTH_MESH)
@@ -183,7 +189,7 @@ static cl_status sample(sim *s, double t, cl_sim_result *res, cl_error *err)
     if ((rc = cl_series_row(s->series, s->row, err)))
         return rc;
     res->t_reached = t;
-    res->e1 = e;
+    cl_energy_keep(&res->e1, &e, s->e1_terms);
     res->max_stretch = stretch;
     res->max_offplane = offplane;
     res->rows++;
@@ -347,9 +353,14 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
     void *state = NULL;
     memset(res, 0, sizeof *res);
     cl_model_contact_start(m, false);
-    res->xfinal = malloc(3 * s.c->np * sizeof *res->xfinal);
+    size_t n3 = 3 * s.c->np, npot = cl_model_potentials(m);
+    res->xfinal = malloc((n3 + 2 * npot) * sizeof *res->xfinal);
     cl_status rc = res->xfinal ? CL_OK
                                : cl_error_set(err, CL_ENOMEM, "out of memory");
+    if (!rc) {
+        s.e0_terms = res->xfinal + n3;
+        s.e1_terms = s.e0_terms + npot;
+    }
     /* the integrator first: one that refuses the problem (a contact
      * response it cannot apply, ...) stops the run before any output */
     if (!rc && !(rc = make_schedule(type, iopts, so, &sch, err)) &&
@@ -357,7 +368,7 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
         !(rc = type->create(s.sys, iopts, 0.0, s.x, s.v, &state, err)) &&
         !(rc = cl_mkdir_p(so->outdir, err)) &&
         !(rc = open_series(&s, err)) && !(rc = sample(&s, 0.0, res, err))) {
-        res->e0 = res->e1;
+        cl_energy_keep(&res->e0, &res->e1, s.e0_terms);
         if (so->frames > 0)
             rc = write_frame(&s, 0.0, res, err);
         if (!rc)

@@ -43,8 +43,10 @@ typedef struct {
     long frames;         /* frames written */
     double worst_penetration; /* deepest into an obstacle (m; contact) */
     double worst_t;      /* ... and when */
-    double *xfinal;      /* full-particle positions at t_reached (3*np);
-                          * owned by the caller after the call: free() */
+    double *xfinal;      /* full-particle positions at t_reached (3*np),
+                          * followed by the term energies of e0 and e1 in
+                          * the same block; owned by the caller after the
+                          * call: free() */
 } cl_sim_result;
 
 /* On failure (e.g. CL_EBLOWUP) the series and frames written so far are in

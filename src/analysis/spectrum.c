@@ -4,12 +4,14 @@
 
 #include <complex.h>
 #include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include <gsl/gsl_eigen.h>
 #include <gsl/gsl_sort.h>
 
+#include "integrators/integrator.h"
 #include "linalg/firstorder.h"
 
 /* Growth rates below this fraction of the largest |lambda| are round-off
@@ -163,25 +165,32 @@ void cl_spectrum_free(cl_spectrum *s)
 
 /* Forward Euler, R = 1 + z: |1 + h lambda| <= 1 for h <= -2 Re / |l|^2
  * (0 for an undamped mode: every oscillation without damping grows). */
-static double fe_limit(double complex l)
+static double disc_limit(double complex l)
 {
     return fmax(0.0, -2 * creal(l) / (creal(l) * creal(l) +
                                       cimag(l) * cimag(l)));
 }
 
-static double complex r_rk4(double complex z)
+/* R(z) = sum_{k <= p} z^k / k!, nested as 1 + z (1 + z/2 (1 + z/3 ...)). */
+static double complex r_taylor(int p, double complex z)
 {
-    return 1 + z * (1 + z / 2 * (1 + z / 3 * (1 + z / 4)));
+    double complex r = 1;
+    for (int k = p; k >= 1; k--)
+        r = 1 + z / k * r;
+    return r;
 }
 
-/* RK4: the largest h with |R(h l)| <= 1 along the ray of l; scan
- * s = h |l| up to 4 (beyond RK4's region), then bisect. */
-static double rk4_limit(double complex l)
+/* The largest h with |R(h l)| <= 1 along the ray of l: for p = 1 the disc
+ * |1 + z| <= 1 in closed form, else scan s = h |l| up to 4 (beyond the
+ * regions of degree <= 4, region.h), then bisect. */
+static double taylor_limit(int p, double complex l)
 {
+    if (p == 1)
+        return disc_limit(l);
     double a = cabs(l), lo, hi = 0.0;
     double complex d = l / a;
     for (double s = 0.005; s <= 4.0; s += 0.005)
-        if (cabs(r_rk4(s * d)) > 1 + 1e-12) {
+        if (cabs(r_taylor(p, s * d)) > 1 + 1e-12) {
             hi = s;
             break;
         }
@@ -190,41 +199,84 @@ static double rk4_limit(double complex l)
     lo = hi - 0.005;
     for (int k = 0; k < 60; k++) {
         double mid = 0.5 * (lo + hi);
-        *(cabs(r_rk4(mid * d)) > 1 + 1e-12 ? &hi : &lo) = mid;
+        *(cabs(r_taylor(p, mid * d)) > 1 + 1e-12 ? &hi : &lo) = mid;
     }
     return lo / a;
 }
 
-/* The smallest per-eigenvalue limit over every eigenvalue that is neither
- * growing nor round-off-zero; a real part within the tolerance counts as 0
+/* Eigenvalue j as it constrains a step, false if it does not: growing or
+ * round-off-zero; a real part within the tolerance counts as 0
  * (undamped). */
-static double r_limit(const cl_spectrum *s, double (*limit)(double complex))
+static bool constraining(const cl_spectrum *s, size_t j, double complex *l)
 {
-    size_t dim = 2 * s->n;
-    double tol = EIG_TOL * s->lambda_max, h = INFINITY;
-    for (size_t j = 0; j < dim; j++) {
-        double re = fabs(s->re[j]) <= tol ? 0.0 : s->re[j];
-        double complex l = re + I * s->im[j];
-        if (re > 0 || cabs(l) <= tol)
-            continue;
-        h = fmin(h, limit(l));
-    }
+    double tol = EIG_TOL * s->lambda_max;
+    double re = fabs(s->re[j]) <= tol ? 0.0 : s->re[j];
+    *l = re + I * s->im[j];
+    return re <= 0 && cabs(*l) > tol;
+}
+
+/* Whether -l lies within alpha degrees of the positive real axis; an
+ * undamped l (Re = 0) lies at 90 degrees. */
+static bool in_sector(double complex l, double alpha)
+{
+    if (creal(l) == 0.0)
+        return alpha >= 90.0;
+    return atan2(fabs(cimag(l)), -creal(l)) <= alpha * M_PI / 180.0;
+}
+
+static double taylor_step(const cl_spectrum *s, int p)
+{
+    double h = INFINITY;
+    double complex l;
+    for (size_t j = 0; j < 2 * s->n; j++)
+        if (constraining(s, j, &l))
+            h = fmin(h, taylor_limit(p, l));
     return h;
 }
 
-void cl_spectrum_limits(const cl_spectrum *s,
-                        cl_spectrum_limit out[CL_SPECTRUM_NLIMITS])
+static double sector_step(const cl_spectrum *s, double alpha)
 {
-    static const char *const symplectic[] = {
-        "symplectic-euler", "symplectic-euler-x", "verlet",
-        "velocity-verlet"};
-    double hs = s->w_max > 0 ? 2.0 / s->w_max : INFINITY;
-    out[0] = (cl_spectrum_limit){"fe", "|R(h lambda)| <= 1",
-                                 r_limit(s, fe_limit)};
-    out[1] = (cl_spectrum_limit){"rk4", "|R(h lambda)| <= 1",
-                                 r_limit(s, rk4_limit)};
-    for (int k = 0; k < 4; k++)
-        out[2 + k] = (cl_spectrum_limit){symplectic[k], "h w_max < 2", hs};
+    double complex l;
+    for (size_t j = 0; j < 2 * s->n; j++)
+        if (constraining(s, j, &l) && !in_sector(l, alpha))
+            return NAN;
+    return INFINITY;
+}
+
+double cl_spectrum_step_limit(const cl_spectrum *s, const cl_region *r)
+{
+    switch (r->kind) {
+    case CL_REGION_TAYLOR:
+        return taylor_step(s, r->degree);
+    case CL_REGION_SYMPLECTIC:
+        return s->w_max > 0 ? 2.0 / s->w_max : INFINITY;
+    case CL_REGION_SECTOR:
+        return sector_step(s, r->alpha);
+    default:
+        return NAN;
+    }
+}
+
+/* The registry's methods of region kind `kind` appended to out[*n...]. */
+static void limits_of_kind(const cl_spectrum *s, cl_region_kind kind,
+                           const char *basis, cl_spectrum_limit *out,
+                           size_t *n)
+{
+    for (size_t i = 0; cl_integrator_registry[i]; i++) {
+        const cl_integrator_type *t = cl_integrator_registry[i];
+        if (t->region->kind == kind && *n < CL_SPECTRUM_NLIMITS)
+            out[(*n)++] = (cl_spectrum_limit){
+                t->name, basis, cl_spectrum_step_limit(s, t->region)};
+    }
+}
+
+size_t cl_spectrum_limits(const cl_spectrum *s,
+                          cl_spectrum_limit out[CL_SPECTRUM_NLIMITS])
+{
+    size_t n = 0;
+    limits_of_kind(s, CL_REGION_TAYLOR, "|R(h lambda)| <= 1", out, &n);
+    limits_of_kind(s, CL_REGION_SYMPLECTIC, "h w_max < 2", out, &n);
+    return n;
 }
 
 void cl_spectrum_write(FILE *fp, const cl_spectrum *s)

@@ -10,24 +10,32 @@
  *  - first order: lambda_j, eigenvalues of the Jacobian of y' = (v, M^-1 f)
  *    (2n of them, damping and non-symmetric parts included).
  *
- * Predicted limits (linear stability, all modes at once):
- *  - a method with stability function R (fe: 1 + z; rk4: the degree-4
- *    Taylor polynomial) is stable with step h when |R(h lambda)| <= 1 for
- *    every lambda.  With tol = 1e-6 |lambda|_max: eigenvalues with
- *    Re lambda > tol, modes the true solution grows along too, cannot be
- *    stabilised and are left out (their number and the largest growth rate
- *    are reported); |Re lambda| <= tol counts as undamped (Re = 0), which
- *    gives fe a limit of 0; |lambda| <= tol (round-off zeros, e.g. the
- *    out-of-plane modes of a flat cloth at rest) constrains nothing;
- *  - the symplectic methods (symplectic Euler either way, position and
- *    velocity Verlet) are stable for h w_max < 2 on undamped oscillators,
- *    h < 2 / sqrt(mu_max); damping is not accounted for there. */
+ * Predicted limits (linear stability, all modes at once), from each
+ * integrator's stability region (integrators/region.h), not its name:
+ *  - a method with stability function R (CL_REGION_TAYLOR; fe: 1 + z; rk4:
+ *    the degree-4 Taylor polynomial) is stable with step h when
+ *    |R(h lambda)| <= 1 for every lambda.  With tol = 1e-6 |lambda|_max:
+ *    eigenvalues with Re lambda > tol, modes the true solution grows along
+ *    too, cannot be stabilised and are left out (their number and the
+ *    largest growth rate are reported); |Re lambda| <= tol counts as
+ *    undamped (Re = 0), which gives fe a limit of 0; |lambda| <= tol
+ *    (round-off zeros, e.g. the out-of-plane modes of a flat cloth at
+ *    rest) constrains nothing;
+ *  - the symplectic methods (CL_REGION_SYMPLECTIC: symplectic Euler either
+ *    way, position and velocity Verlet) are stable for h w_max < 2 on
+ *    undamped oscillators, h < 2 / sqrt(mu_max); damping is not accounted
+ *    for there;
+ *  - an implicit method whose region contains the sector
+ *    |arg(-z)| <= alpha (CL_REGION_SECTOR) is stable for every h when
+ *    every lambda, taken as above, lies in that sector; an undamped one
+ *    lies on the imaginary axis, inside only for an A-stable method. */
 #ifndef CL_SPECTRUM_H
 #define CL_SPECTRUM_H
 
 #include <stddef.h>
 #include <stdio.h>
 
+#include "integrators/region.h"
 #include "system/model.h"
 
 #define CL_SPECTRUM_MAX_N (3 * 24 * 24)
@@ -48,7 +56,13 @@ cl_status cl_spectrum_compute(cl_model *m, double t, const double *x,
                               const double *v, cl_spectrum *s, cl_error *err);
 void cl_spectrum_free(cl_spectrum *s);
 
-/* The integrators whose limit is predicted, with how. */
+/* The predicted largest stable step for region r: the limit of a Taylor
+ * or symplectic region; for a sector, INFINITY when every eigenvalue lies
+ * in it, else NAN (no prediction); NAN for the regions without one
+ * (adaptive, projected). */
+double cl_spectrum_step_limit(const cl_spectrum *s, const cl_region *r);
+
+/* An explicit integrator whose step limit is predicted, with how. */
 typedef struct {
     const char *integrator;
     const char *basis;    /* "|R(h lambda)| <= 1" or "h w_max < 2" */
@@ -57,10 +71,12 @@ typedef struct {
 
 #define CL_SPECTRUM_NLIMITS 6
 
-/* The predicted limits, in a fixed order: fe, rk4, symplectic-euler,
- * symplectic-euler-x, verlet, velocity-verlet. */
-void cl_spectrum_limits(const cl_spectrum *s,
-                        cl_spectrum_limit out[CL_SPECTRUM_NLIMITS]);
+/* The predicted limits of the registry's integrators with a Taylor region,
+ * then of those with a symplectic one, each in registry order (fe, rk4,
+ * symplectic-euler, symplectic-euler-x, verlet, velocity-verlet); returns
+ * their number, at most CL_SPECTRUM_NLIMITS. */
+size_t cl_spectrum_limits(const cl_spectrum *s,
+                          cl_spectrum_limit out[CL_SPECTRUM_NLIMITS]);
 
 /* kind,index,re,im rows (kind "mu" with im 0, or "lambda"), header first. */
 void cl_spectrum_write(FILE *fp, const cl_spectrum *s);

@@ -48,6 +48,7 @@ static cl_status adams_create(const cl_system *sys,
 
 const cl_integrator_type cl_integrator_cvode_adams = {
     .name = "cvode-adams",
+    .region = &cl_region_adaptive,
     .doc = "CVODE Adams-Moulton, fixed-point iteration (non-stiff reference)",
     .fixed_step = false,
     .takes_max_order = true,

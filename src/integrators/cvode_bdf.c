@@ -118,6 +118,7 @@ static void cvb_stats(const void *state, cl_stats *out)
 
 const cl_integrator_type cl_integrator_cvode_bdf = {
     .name = "cvode-bdf",
+    .region = &cl_region_bdf5,
     .doc = "CVODE BDF, Newton, analytic Jacobian; --linsol auto (default), "
            "klu, pcg, pcg-jacobi, cholmod on the half-size matrix, klu-full",
     .fixed_step = false,

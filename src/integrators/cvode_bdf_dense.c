@@ -59,6 +59,7 @@ static cl_status dense_create(const cl_system *sys,
 
 const cl_integrator_type cl_integrator_cvode_bdf_dense = {
     .name = "cvode-bdf-dense",
+    .region = &cl_region_bdf5,
     .doc = "CVODE BDF, Newton, LAPACK dense LU with CVODE's "
            "difference-quotient Jacobian (n <= 24x24 particles; cross-check)",
     .fixed_step = false,

@@ -281,6 +281,7 @@ static void gm_stats(const void *state, cl_stats *out)
 
 const cl_integrator_type cl_integrator_cvode_bdf_gmres = {
     .name = "cvode-bdf-gmres",
+    .region = &cl_region_bdf5,
     .doc = "CVODE BDF, Newton-Krylov: SPGMR, analytic J*v, block-Jacobi "
            "(6x6 per particle) left preconditioner",
     .fixed_step = false,

@@ -115,10 +115,11 @@ cl_status cl_fixed_run(const cl_fixed_clock *c, cl_fixed_step_fn step,
 cl_status cl_fixed_accel(cl_fixed *s, double t, const double *x,
                          const double *v, double *a, cl_error *err);
 
-/* Define the fixed-step method (registry name name_, nwork_ work arrays,
- * setup hook setup_ or NULL, step function step_) and its integrator table
- * `ident`, with its create function. */
-#define CL_FIXED_INTEGRATOR(ident, name_, doc_, nwork_, setup_, step_)      \
+/* Define the fixed-step method (registry name name_, stability region
+ * region_, nwork_ work arrays, setup hook setup_ or NULL, step function
+ * step_) and its integrator table `ident`, with its create function. */
+#define CL_FIXED_INTEGRATOR(ident, name_, region_, doc_, nwork_, setup_,    \
+                            step_)                                          \
     static const cl_fixed_method ident##_method = {                         \
         .name = (name_),                                                    \
         .nwork = (nwork_),                                                  \
@@ -126,7 +127,7 @@ cl_status cl_fixed_accel(cl_fixed *s, double t, const double *x,
         .step = (step_),                                                    \
     };                                                                      \
     CL_INTEGRATOR_DEFINE(ident, ident##_method, cl_fixed_create, name_,     \
-                         doc_, true, false, cl_fixed_advance,               \
+                         region_, doc_, true, false, cl_fixed_advance,      \
                          cl_fixed_stats, cl_fixed_free)
 
 #endif

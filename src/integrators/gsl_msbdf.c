@@ -77,6 +77,7 @@ static int msbdf_jacobian(double t, const double y[], double *dfdy,
 }
 
 CL_GSLODE_INTEGRATOR(cl_integrator_gsl_msbdf, "gsl-msbdf",
+                     &cl_region_bdf5,
                      "GSL odeiv2 msbdf, BDF orders 1-5 with dense Jacobian "
                      "(n <= 1728), rtol/atol",
                      &gsl_odeiv2_step_msbdf, msbdf_jacobian, CL_MSBDF_MAX_N,

@@ -12,6 +12,7 @@
 #include "integrators/gslode.h"
 
 CL_GSLODE_INTEGRATOR(cl_integrator_gsl_rk8pd, "gsl-rk8pd",
+                     &cl_region_adaptive,
                      "GSL odeiv2 rk8pd, explicit adaptive Runge-Kutta (8,9), "
                      "rtol/atol",
                      &gsl_odeiv2_step_rk8pd, NULL, 0, NULL);

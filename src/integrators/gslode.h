@@ -92,11 +92,12 @@ void cl_gslode_free(void *state);
  * GSL_EBADFUNC. */
 int cl_gslode_failed(cl_gslode *s, cl_status st, double t);
 
-/* Define the GSL method (registry name name_, step type type_ such as
- * &gsl_odeiv2_step_rk8pd, Jacobian function jac_ or NULL, size limit
- * max_n_ (0: none) and its reason why_) and its integrator table `ident`,
- * with its create function. */
-#define CL_GSLODE_INTEGRATOR(ident, name_, doc_, type_, jac_, max_n_, why_) \
+/* Define the GSL method (registry name name_, stability region region_,
+ * step type type_ such as &gsl_odeiv2_step_rk8pd, Jacobian function jac_
+ * or NULL, size limit max_n_ (0: none) and its reason why_) and its
+ * integrator table `ident`, with its create function. */
+#define CL_GSLODE_INTEGRATOR(ident, name_, region_, doc_, type_, jac_,      \
+                             max_n_, why_)                                  \
     static const cl_gslode_method ident##_method = {                        \
         .name = (name_),                                                    \
         .type = (type_),                                                    \
@@ -105,7 +106,7 @@ int cl_gslode_failed(cl_gslode *s, cl_status st, double t);
         .max_n_why = (why_),                                                \
     };                                                                      \
     CL_INTEGRATOR_DEFINE(ident, ident##_method, cl_gslode_create, name_,    \
-                         doc_, false, false, cl_gslode_advance,             \
+                         region_, doc_, false, false, cl_gslode_advance,    \
                          cl_gslode_stats, cl_gslode_free)
 
 #endif

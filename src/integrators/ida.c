@@ -245,6 +245,7 @@ static void ida_stats(const void *state, cl_stats *out)
 
 const cl_integrator_type cl_integrator_ida = {
     .name = "ida",
+    .region = &cl_region_bdf5,
     .doc = "IDA on F = [x' - v; M v' - f] = 0, Newton, analytic Jacobian; "
            "--linsol as cvode-bdf (default auto)",
     .fixed_step = false,

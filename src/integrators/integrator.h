@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "core/stats.h"
+#include "integrators/region.h"
 #include "linalg/linsol.h"
 #include "system/system.h"
 
@@ -50,6 +51,7 @@ typedef struct {
     bool fixed_step;     /* true: needs dt; false: uses rtol/atol */
     bool takes_linsol;   /* accepts opts->linsol (cl_linsol registry) */
     bool takes_max_order; /* accepts opts->max_order */
+    const cl_region *region; /* linear stability region (region.h) */
     cl_status (*create)(const cl_system *sys, const cl_integrator_opts *o,
                         double t0, const double *x0, const double *v0,
                         void **state, cl_error *err);

@@ -126,9 +126,11 @@ void cl_kin_free(void *state);
 /* Backward Euler (kinsol-be, and kinsol-bdf2's first step). */
 extern const cl_kin_scheme cl_kin_scheme_be;
 
-/* Define the integrator table `ident` for the scheme `scheme`. */
-#define CL_KIN_INTEGRATOR(ident, scheme, name_, doc_)                       \
-    CL_INTEGRATOR_DEFINE(ident, scheme, cl_kin_create, name_, doc_, true,   \
-                         true, cl_kin_advance, cl_kin_stats, cl_kin_free)
+/* Define the integrator table `ident` for the scheme `scheme`, with the
+ * stability region region_. */
+#define CL_KIN_INTEGRATOR(ident, scheme, name_, region_, doc_)              \
+    CL_INTEGRATOR_DEFINE(ident, scheme, cl_kin_create, name_, region_,      \
+                         doc_, true, true, cl_kin_advance, cl_kin_stats,    \
+                         cl_kin_free)
 
 #endif

@@ -28,6 +28,7 @@ static cl_status se_step(cl_fixed *s, double t, double h, cl_error *err)
 }
 
 CL_FIXED_INTEGRATOR(cl_integrator_symplectic_euler, "symplectic-euler",
+                    &cl_region_symplectic,
                     "symplectic Euler, v first then x (Jiao's own code), "
                     "fixed step dt",
                     1, NULL, se_step);

@@ -35,6 +35,7 @@ static cl_status sex_step(cl_fixed *s, double t, double h, cl_error *err)
 }
 
 CL_FIXED_INTEGRATOR(cl_integrator_symplectic_euler_x, "symplectic-euler-x",
+                    &cl_region_symplectic,
                     "symplectic Euler, x first then v (Zischg, Chea and "
                     "Aigner), fixed step dt",
                     2, NULL, sex_step);

@@ -92,6 +92,7 @@ cl_status cl_verlet_setup(cl_fixed *s, const cl_integrator_opts *o,
 }
 
 CL_FIXED_INTEGRATOR(cl_integrator_verlet, "verlet",
+                    &cl_region_symplectic,
                     "position Verlet with velocity damping vdamp "
                     "(the Verlet-and-PBD report), fixed step dt",
                     3, cl_verlet_setup, verlet_step);

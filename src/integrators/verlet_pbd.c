@@ -42,6 +42,7 @@ static cl_status verlet_pbd_setup(cl_fixed *s, const cl_integrator_opts *o,
 }
 
 CL_FIXED_INTEGRATOR(cl_integrator_verlet_pbd, "verlet-pbd",
+                    &cl_region_projected,
                     "position Verlet with velocity damping vdamp and "
                     "position-based constraints (the Verlet-and-PBD "
                     "report), fixed step dt",

@@ -16,17 +16,20 @@
 
 #include "core/check.h"
 
-#define MAX_TERMS CL_MAX_ENERGY_TERMS
-
 struct cl_model {
     cl_cloth cloth;
     double v0[3];         /* initial velocity of the free particles */
     double perturb;       /* amplitude of the initial out-of-plane noise */
     long seed;            /* its random seed */
     cl_term_opts opts;
-    size_t nterm;
-    const cl_term_type *type[MAX_TERMS];
-    void *state[MAX_TERMS];
+    size_t nterm;         /* force terms, at most one per registry row and
+                           * the obstacles' */
+    const cl_term_type **type;
+    void **state;
+    const char **term_name; /* nterm (cl_model_terms) */
+    size_t npot;          /* conservative terms (cl_energy.nterm) */
+    const char **pot_name; /* their names, and their energies at the */
+    double *pot_value;    /* last energy evaluation (cl_energy) */
     cl_bpattern pattern;  /* blocks over free particles */
     double *mass3;        /* 3 * nfree */
     double *xf, *vf, *ff; /* full-particle work arrays, 3 * np */
@@ -88,18 +91,23 @@ static cl_status create_contact(cl_config *cfg, cl_model *m, cl_error *err)
                                           err);
     if (rc || !st)
         return rc;
-    if (m->nterm == MAX_TERMS) {
-        cl_contact_term.free(st);
-        return cl_error_set(err, CL_EUNSUPPORTED, "too many force terms");
-    }
     m->type[m->nterm] = &cl_contact_term;
     m->state[m->nterm++] = st;
     m->contact = st;
     return CL_OK;
 }
 
+/* The registry's terms that the configuration enables, then the obstacles':
+ * at most one per registry row and one more. */
 static cl_status create_terms(cl_config *cfg, cl_model *m, cl_error *err)
 {
+    size_t rows = 0;
+    while (cl_term_registry[rows])
+        rows++;
+    m->type = malloc((rows + 1) * sizeof *m->type);
+    m->state = malloc((rows + 1) * sizeof *m->state);
+    if (!m->type || !m->state)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (force terms)");
     for (size_t k = 0; cl_term_registry[k]; k++) {
         void *st = NULL;
         cl_status rc = cl_term_registry[k]->create(cfg, &m->cloth, &m->opts,
@@ -108,14 +116,27 @@ static cl_status create_terms(cl_config *cfg, cl_model *m, cl_error *err)
             return rc;
         if (!st)
             continue;
-        if (m->nterm == MAX_TERMS) {
-            cl_term_registry[k]->free(st);
-            return cl_error_set(err, CL_EUNSUPPORTED, "too many force terms");
-        }
         m->type[m->nterm] = cl_term_registry[k];
         m->state[m->nterm++] = st;
     }
     return create_contact(cfg, m, err);
+}
+
+/* The names of the terms, and of the conservative ones with room for their
+ * energies (cl_energy). */
+static cl_status name_terms(cl_model *m, cl_error *err)
+{
+    m->term_name = malloc((m->nterm + 1) * sizeof *m->term_name);
+    m->pot_name = malloc((m->nterm + 1) * sizeof *m->pot_name);
+    m->pot_value = calloc(m->nterm + 1, sizeof *m->pot_value);
+    if (!m->term_name || !m->pot_name || !m->pot_value)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (term names)");
+    for (size_t k = 0; k < m->nterm; k++) {
+        m->term_name[k] = m->type[k]->name;
+        if (m->type[k]->conservative)
+            m->pot_name[m->npot++] = m->type[k]->name;
+    }
+    return CL_OK;
 }
 
 /* Pattern over the particles with dof[p] >= 0, bound to every term. */
@@ -155,7 +176,7 @@ static void eval_terms(cl_model *m, double t, double *f, double *dfdx,
     if (f)
         memset(f, 0, 3 * m->cloth.np * sizeof *f);
     if (e)
-        memset(e, 0, sizeof *e);
+        *e = (cl_energy){.name = m->pot_name, .value = m->pot_value};
     for (size_t k = 0; k < m->nterm; k++) {
         cl_eval ev = {.t = t, .x = m->xf, .v = m->vf, .f = f,
                       .dfdx = dfdx, .dfdv = dfdv, .want_energy = e != NULL};
@@ -163,8 +184,7 @@ static void eval_terms(cl_model *m, double t, double *f, double *dfdx,
         if (!e)
             continue;
         if (m->type[k]->conservative) {
-            e->name[e->nterm] = m->type[k]->name;
-            e->value[e->nterm++] = ev.energy;
+            m->pot_value[e->nterm++] = ev.energy;
             e->potential += ev.energy;
         }
         e->power_diss += ev.power; /* 0 but for damping, friction */
@@ -376,7 +396,7 @@ cl_status cl_model_create(cl_config *cfg, cl_model **model, cl_error *err)
         (rc = read_init(cfg, m, err)) ||
         (rc = cl_cloth_finalize(&m->cloth, err)) ||
         (rc = read_opts(cfg, &m->opts, err)) ||
-        (rc = create_terms(cfg, m, err)) ||
+        (rc = create_terms(cfg, m, err)) || (rc = name_terms(m, err)) ||
         (rc = build_pattern(m, m->cloth.dof, m->cloth.nfree, &m->pattern,
                             err)) ||
         (rc = alloc_work(m, err))) {
@@ -406,6 +426,11 @@ void cl_model_free(cl_model *m)
         return;
     for (size_t k = 0; k < m->nterm; k++)
         m->type[k]->free(m->state[k]);
+    free(m->type);
+    free(m->state);
+    free(m->term_name);
+    free(m->pot_name);
+    free(m->pot_value);
     cl_bpattern_free(&m->pattern);
     cl_cloth_free(&m->cloth);
     free(m->mass3);
@@ -464,13 +489,13 @@ cl_status cl_model_initial_state(const cl_model *m, double *x, double *v)
     return m->perturb > 0 ? perturb_positions(m, x) : CL_OK;
 }
 
-size_t cl_model_terms(const cl_model *m, const char **names, size_t max)
+size_t cl_model_terms(const cl_model *m, const char *const **names)
 {
-    size_t n = m->nterm < max ? m->nterm : max;
-    for (size_t k = 0; k < n; k++)
-        names[k] = m->type[k]->name;
+    *names = m->term_name;
     return m->nterm;
 }
+
+size_t cl_model_potentials(const cl_model *m) { return m->npot; }
 
 cl_status cl_model_eval_full(cl_model *m, double t, const double *x,
                              const double *v, double *f, cl_energy *e,

@@ -62,8 +62,13 @@ bool cl_model_is_broken(const cl_model *m, int a, int b);
 cl_status cl_model_triangles(const cl_model *m, int (*tri)[3], size_t *ntri,
                              cl_error *err);
 
-/* Names of the active force terms, in evaluation order. */
-size_t cl_model_terms(const cl_model *m, const char **names, size_t max);
+/* The number of active force terms; *names = their names, in evaluation
+ * order (the model's table). */
+size_t cl_model_terms(const cl_model *m, const char *const **names);
+
+/* The number of conservative terms, cl_energy.nterm of every energy
+ * evaluation. */
+size_t cl_model_potentials(const cl_model *m);
 
 /* Forces on every particle (pinned ones included) and the energies for
  * full-particle positions and velocities (3*np each). */

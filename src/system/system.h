@@ -12,16 +12,18 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <string.h>
 
 #include "core/error.h"
 #include "linalg/bpattern.h"
 
-#define CL_MAX_ENERGY_TERMS 16
-
 typedef struct {
     size_t nterm;
-    const char *name[CL_MAX_ENERGY_TERMS]; /* potential terms, by term name */
-    double value[CL_MAX_ENERGY_TERMS];
+    /* The potential terms by name and their energies, nterm each, in the
+     * system's storage (allocated once with it): valid until its next
+     * energy evaluation; cl_energy_keep copies them to the holder's. */
+    const char *const *name;
+    const double *value;
     double kinetic;
     double potential;  /* sum of value[] */
     double total;      /* kinetic + potential */
@@ -29,6 +31,17 @@ typedef struct {
     double contact_work; /* energy changed by contact projections so far
                           * (J; system/model.h, cl_model_contact_start) */
 } cl_energy;
+
+/* *dst = *src with the term energies copied into `keep` (src->nterm
+ * entries), which dst->value then points to. */
+static inline void cl_energy_keep(cl_energy *dst, const cl_energy *src,
+                                  double *keep)
+{
+    *dst = *src;
+    if (src->nterm)
+        memcpy(keep, src->value, src->nterm * sizeof *keep);
+    dst->value = keep;
+}
 
 typedef struct cl_system {
     size_t n;                    /* 3 * free particles */

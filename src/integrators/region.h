@@ -1,0 +1,54 @@
+/* The linear stability region of an integrator (cl_integrator_type.region):
+ * where h lambda may lie for the method to stay bounded on y' = lambda y.
+ * The spectrum of the linearised cloth and a method's region give its
+ * predicted step limit, or whether an unbounded region holds every step,
+ * without knowing the method by name.
+ *
+ *  - CL_REGION_TAYLOR: an explicit Runge-Kutta method with as many stages
+ *    as its order p <= 4, whose stability function is the degree-p Taylor
+ *    polynomial of e^z, R(z) = sum_{k <= p} z^k / k!, stable where
+ *    |R(h lambda)| <= 1 (Hairer and Wanner, "Solving Ordinary Differential
+ *    Equations II", IV.2); these regions lie inside |z| < 4;
+ *  - CL_REGION_SYMPLECTIC: a symplectic (partitioned) method, symplectic
+ *    Euler or Verlet: stable on an undamped oscillator of frequency w for
+ *    h w < 2 (Hairer, Lubich and Wanner, "Geometric Numerical
+ *    Integration", I.5);
+ *  - CL_REGION_SECTOR: an implicit method whose region is unbounded and
+ *    contains the sector |arg(-z)| <= alpha (A(alpha)-stable; alpha = 90
+ *    degrees: A-stable, the whole left half-plane);
+ *  - CL_REGION_ADAPTIVE: a bounded region whose step the method's error
+ *    control chooses (explicit Runge-Kutta pairs, Adams with fixed-point
+ *    iteration): no fixed step to predict;
+ *  - CL_REGION_PROJECTED: the step ends with a nonlinear projection onto
+ *    constraints, which linear stability does not describe. */
+#ifndef CL_REGION_H
+#define CL_REGION_H
+
+typedef enum {
+    CL_REGION_TAYLOR,
+    CL_REGION_SYMPLECTIC,
+    CL_REGION_SECTOR,
+    CL_REGION_ADAPTIVE,
+    CL_REGION_PROJECTED,
+} cl_region_kind;
+
+typedef struct {
+    cl_region_kind kind;
+    int degree;    /* CL_REGION_TAYLOR: p, 1..4 */
+    double alpha;  /* CL_REGION_SECTOR: the angle alpha, degrees */
+} cl_region;
+
+extern const cl_region cl_region_taylor1;   /* fe */
+extern const cl_region cl_region_taylor4;   /* rk4 */
+extern const cl_region cl_region_symplectic;
+/* Backward Euler, BDF2, the implicit midpoint rule, and the linearised
+ * semi-implicit BE and BDF2, which coincide with them on a linear system. */
+extern const cl_region cl_region_a_stable;
+/* Variable-order BDF up to order 5 (CVODE, IDA, GSL msbdf at their default
+ * highest order): the order-5 sector, alpha = 51.84 degrees (Hairer and
+ * Wanner, V.2, table 2.3); orders 1 and 2 alone are A-stable. */
+extern const cl_region cl_region_bdf5;
+extern const cl_region cl_region_adaptive;
+extern const cl_region cl_region_projected;
+
+#endif
