@@ -234,29 +234,76 @@ void cl_bvh_nearest(const cl_bvh *b, const double x[3], cl_bvh_hit *hit)
     hit_of(&k, hit);
 }
 
-/* The answer from the cache alone, if its certificate holds at x. */
+/* Move the cache's anchor to x, where the kept triangles tried[0..n) of
+ * the n kept have the squared distances d2[0..ntried) (the rest are
+ * measured here): the distances at x, in the order of kept (distance,
+ * then index), and r0 less the distance moved (the others' distance is
+ * 1-Lipschitz too). */
+static void reanchor(const cl_bvh *b, const double x[3], double moved,
+                     int ntried, double d2[CL_BVH_KEEP], cl_bvh_cache *c)
+{
+    kept k = {.cap = CL_BVH_KEEP};
+    for (int i = ntried; i < c->n; i++) {
+        cl_tri_point p;
+        const int *v = b->tri[c->tri[i]];
+        cl_tri_closest(x, b->vert + 3 * v[0], b->vert + 3 * v[1],
+                       b->vert + 3 * v[2], &p);
+        d2[i] = p.dist2;
+    }
+    for (int i = 0; i < c->n; i++) {      /* insertion in kept's order */
+        int j = k.n++;
+        for (; j > 0 && before(d2[i], c->tri[i], &k, j - 1); j--) {
+            k.tri[j] = k.tri[j - 1];
+            k.p[j].dist2 = k.p[j - 1].dist2;
+        }
+        k.tri[j] = c->tri[i];
+        k.p[j].dist2 = d2[i];
+    }
+    memcpy(c->x0, x, sizeof c->x0);
+    for (int i = 0; i < c->n; i++) {
+        c->tri[i] = k.tri[i];
+        c->dist[i] = sqrt(k.p[i].dist2);
+    }
+    c->r0 -= moved;
+}
+
+/* The answer from the cache alone, if its certificate holds at x; the
+ * anchor moves to x when more than CL_BVH_TRIED kept triangles had to be
+ * tried (bvh.h). */
 static bool nearest_from_cache(const cl_bvh *b, const double x[3],
-                               const cl_bvh_cache *c, cl_bvh_hit *hit)
+                               cl_bvh_cache *c, cl_bvh_hit *hit)
 {
     kept k = {.cap = 1};
-    double e[3], best = INFINITY;
+    double e[3], best = INFINITY, d2[CL_BVH_KEEP];
     cl_v3_sub(x, c->x0, e);
     double moved = sqrt(cl_v3_dot(e, e));
-    for (int i = 0; i < c->n && c->dist[i] - moved <= best; i++) {
-        try_triangle(b, c->tri[i], x, &k);
+    int i = 0;
+    for (; i < c->n && c->dist[i] - moved <= best; i++) {
+        cl_tri_point p;
+        const int *v = b->tri[c->tri[i]];
+        cl_tri_closest(x, b->vert + 3 * v[0], b->vert + 3 * v[1],
+                       b->vert + 3 * v[2], &p);
+        d2[i] = p.dist2;
+        if (k.n == 0 || before(p.dist2, c->tri[i], &k, 0)) {
+            k.n = 1;
+            k.tri[0] = c->tri[i];
+            k.p[0] = p;
+        }
         best = sqrt(k.p[0].dist2);
     }
     if (!(best < c->r0 - moved))
         return false;
     hit_of(&k, hit);
+    if (i > CL_BVH_TRIED)
+        reanchor(b, x, moved, i, d2, c);
     return true;
 }
 
-void cl_bvh_nearest_cached(const cl_bvh *b, const double x[3],
+bool cl_bvh_nearest_cached(const cl_bvh *b, const double x[3],
                            cl_bvh_cache *cache, cl_bvh_hit *hit)
 {
     if (cache->n > 0 && nearest_from_cache(b, x, cache, hit))
-        return;
+        return true;
     kept k = {.cap = CL_BVH_KEEP};
     nearest_kept(b, x, &k);
     memcpy(cache->x0, x, sizeof cache->x0);
@@ -267,6 +314,7 @@ void cl_bvh_nearest_cached(const cl_bvh *b, const double x[3],
     }
     cache->r0 = k.n < k.cap ? INFINITY : cache->dist[k.n - 1];
     hit_of(&k, hit);
+    return false;
 }
 
 double cl_bvh_box_distance(const cl_bvh *b, const double x[3])
