@@ -158,6 +158,17 @@ typedef struct {
     cl_tri_point p[CL_BVH_KEEP];
 } kept;
 
+/* An empty list of at most cap: its counts and its first entry (the
+ * answer read from it) are set, not the whole list (hundreds of bytes),
+ * which a query would otherwise clear every time. */
+static void kept_start(kept *k, int cap)
+{
+    k->cap = cap;
+    k->n = 0;
+    k->tri[0] = 0;
+    k->p[0] = (cl_tri_point){.dist2 = INFINITY};
+}
+
 /* Whether something at squared distance d2 cannot be kept: the list is
  * full and its last is nearer.  (Not while there is room, so that a point
  * at an infinite distance still gets a triangle.) */
@@ -229,7 +240,8 @@ static void hit_of(const kept *k, cl_bvh_hit *hit)
 
 void cl_bvh_nearest(const cl_bvh *b, const double x[3], cl_bvh_hit *hit)
 {
-    kept k = {.cap = 1};
+    kept k;
+    kept_start(&k, 1);
     nearest_kept(b, x, &k);
     hit_of(&k, hit);
 }
@@ -242,7 +254,8 @@ void cl_bvh_nearest(const cl_bvh *b, const double x[3], cl_bvh_hit *hit)
 static void reanchor(const cl_bvh *b, const double x[3], double moved,
                      int ntried, double d2[CL_BVH_KEEP], cl_bvh_cache *c)
 {
-    kept k = {.cap = CL_BVH_KEEP};
+    kept k;
+    kept_start(&k, CL_BVH_KEEP);
     for (int i = ntried; i < c->n; i++) {
         cl_tri_point p;
         const int *v = b->tri[c->tri[i]];
@@ -273,7 +286,8 @@ static void reanchor(const cl_bvh *b, const double x[3], double moved,
 static bool nearest_from_cache(const cl_bvh *b, const double x[3],
                                cl_bvh_cache *c, cl_bvh_hit *hit)
 {
-    kept k = {.cap = 1};
+    kept k;
+    kept_start(&k, 1);
     double e[3], best = INFINITY, d2[CL_BVH_KEEP];
     cl_v3_sub(x, c->x0, e);
     double moved = sqrt(cl_v3_dot(e, e));
@@ -304,7 +318,8 @@ bool cl_bvh_nearest_cached(const cl_bvh *b, const double x[3],
 {
     if (cache->n > 0 && nearest_from_cache(b, x, cache, hit))
         return true;
-    kept k = {.cap = CL_BVH_KEEP};
+    kept k;
+    kept_start(&k, CL_BVH_KEEP);
     nearest_kept(b, x, &k);
     memcpy(cache->x0, x, sizeof cache->x0);
     cache->n = k.n;
@@ -325,7 +340,8 @@ double cl_bvh_box_distance(const cl_bvh *b, const double x[3])
 void cl_bvh_nearest_brute(const cl_bvh *b, const double x[3],
                           cl_bvh_hit *hit)
 {
-    kept k = {.cap = 1};
+    kept k;
+    kept_start(&k, 1);
     for (size_t t = 0; t < b->ntri; t++)
         try_triangle(b, (int)t, x, &k);
     hit_of(&k, hit);

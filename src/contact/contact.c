@@ -203,8 +203,8 @@ static void contact_eval(void *state, cl_eval *ev)
                 !cl_obstacle_near(o, &P, ev->x + 3 * p, o->resp.eps,
                                   memo_of(c, k, p), &q))
                 continue;
-            if (c->cloth->dof[p] >= 0)
-                c->eval_worst[k] = fmax(c->eval_worst[k], -q.d);
+            if (c->cloth->dof[p] >= 0 && -q.d > c->eval_worst[k])
+                c->eval_worst[k] = -q.d;  /* q.d < eps: a number */
             if (!cl_penalty_eval(&o->resp, &q, ev->v + 3 * p, jac, &out))
                 continue;
             for (int i = 0; ev->f && i < 3; i++)
