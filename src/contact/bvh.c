@@ -210,8 +210,19 @@ static void try_triangle(const cl_bvh *b, int t, const double x[3],
     k->p[i] = p;
 }
 
-/* Branch and bound for the k->cap nearest triangles. */
-static void nearest_kept(const cl_bvh *b, const double x[3], kept *k)
+/* Whether t is among list[0..n). */
+static bool listed(const int *list, int n, int t)
+{
+    for (int i = 0; i < n; i++)
+        if (list[i] == t)
+            return true;
+    return false;
+}
+
+/* Branch and bound for the k->cap nearest triangles, the nskip of skip
+ * already tried (in k). */
+static void nearest_kept(const cl_bvh *b, const double x[3], const int *skip,
+                         int nskip, kept *k)
 {
     pending stack[STACK];
     int top = 0;
@@ -221,8 +232,11 @@ static void nearest_kept(const cl_bvh *b, const double x[3], kept *k)
         const cl_bvh_node *nd = &b->node[e.node];
         if (farther(k, e.d2))
             continue;
-        for (int i = 0; i < nd->count; i++)
-            try_triangle(b, b->order[nd->first + i], x, k);
+        for (int i = 0; i < nd->count; i++) {
+            int t = b->order[nd->first + i];
+            if (!listed(skip, nskip, t))
+                try_triangle(b, t, x, k);
+        }
         if (nd->count)
             continue;
         pending l = {e.node + 1, box_dist2(&b->node[e.node + 1], x)};
@@ -242,7 +256,7 @@ void cl_bvh_nearest(const cl_bvh *b, const double x[3], cl_bvh_hit *hit)
 {
     kept k;
     kept_start(&k, 1);
-    nearest_kept(b, x, &k);
+    nearest_kept(b, x, NULL, 0, &k);
     hit_of(&k, hit);
 }
 
@@ -320,7 +334,9 @@ bool cl_bvh_nearest_cached(const cl_bvh *b, const double x[3],
         return true;
     kept k;
     kept_start(&k, CL_BVH_KEEP);
-    nearest_kept(b, x, &k);
+    for (int i = 0; i < cache->n; i++)  /* a warm start: a tighter bound */
+        try_triangle(b, cache->tri[i], x, &k);
+    nearest_kept(b, x, cache->tri, cache->n, &k);
     memcpy(cache->x0, x, sizeof cache->x0);
     cache->n = k.n;
     for (int i = 0; i < k.n; i++) {

@@ -70,7 +70,9 @@ void cl_bvh_nearest(const cl_bvh *b, const double x[3], cl_bvh_hit *hit);
  * one is within r0 - d it is the nearest of all, and the kept triangles
  * are all that is tried (in the order of their distances at x0, stopping
  * at the first one no nearer than the best at x, d under its distance at
- * x0).  Otherwise a full query at x refills the cache.  When more than
+ * x0).  Otherwise a full query at x refills the cache (the kept
+ * triangles measured at x first, so that the walk starts with a tight
+ * bound).  When more than
  * CL_BVH_TRIED kept triangles had to be tried (d has grown), the anchor
  * moves to x: the other kept triangles are measured there too, and r0
  * becomes r0 - d, so that d stays small and the next queries try fewer.
