@@ -158,6 +158,17 @@ typedef struct {
     cl_tri_point p[CL_BVH_KEEP];
 } kept;
 
+/* An empty list of at most cap: its counts and its first entry (the
+ * answer read from it) are set, not the whole list (hundreds of bytes),
+ * which a query would otherwise clear every time. */
+static void kept_start(kept *k, int cap)
+{
+    k->cap = cap;
+    k->n = 0;
+    k->tri[0] = 0;
+    k->p[0] = (cl_tri_point){.dist2 = INFINITY};
+}
+
 /* Whether something at squared distance d2 cannot be kept: the list is
  * full and its last is nearer.  (Not while there is room, so that a point
  * at an infinite distance still gets a triangle.) */
@@ -199,8 +210,19 @@ static void try_triangle(const cl_bvh *b, int t, const double x[3],
     k->p[i] = p;
 }
 
-/* Branch and bound for the k->cap nearest triangles. */
-static void nearest_kept(const cl_bvh *b, const double x[3], kept *k)
+/* Whether t is among list[0..n). */
+static bool listed(const int *list, int n, int t)
+{
+    for (int i = 0; i < n; i++)
+        if (list[i] == t)
+            return true;
+    return false;
+}
+
+/* Branch and bound for the k->cap nearest triangles, the nskip of skip
+ * already tried (in k). */
+static void nearest_kept(const cl_bvh *b, const double x[3], const int *skip,
+                         int nskip, kept *k)
 {
     pending stack[STACK];
     int top = 0;
@@ -210,8 +232,11 @@ static void nearest_kept(const cl_bvh *b, const double x[3], kept *k)
         const cl_bvh_node *nd = &b->node[e.node];
         if (farther(k, e.d2))
             continue;
-        for (int i = 0; i < nd->count; i++)
-            try_triangle(b, b->order[nd->first + i], x, k);
+        for (int i = 0; i < nd->count; i++) {
+            int t = b->order[nd->first + i];
+            if (!listed(skip, nskip, t))
+                try_triangle(b, t, x, k);
+        }
         if (nd->count)
             continue;
         pending l = {e.node + 1, box_dist2(&b->node[e.node + 1], x)};
@@ -229,36 +254,89 @@ static void hit_of(const kept *k, cl_bvh_hit *hit)
 
 void cl_bvh_nearest(const cl_bvh *b, const double x[3], cl_bvh_hit *hit)
 {
-    kept k = {.cap = 1};
-    nearest_kept(b, x, &k);
+    kept k;
+    kept_start(&k, 1);
+    nearest_kept(b, x, NULL, 0, &k);
     hit_of(&k, hit);
 }
 
-/* The answer from the cache alone, if its certificate holds at x. */
-static bool nearest_from_cache(const cl_bvh *b, const double x[3],
-                               const cl_bvh_cache *c, cl_bvh_hit *hit)
+/* Move the cache's anchor to x, where the kept triangles tried[0..n) of
+ * the n kept have the squared distances d2[0..ntried) (the rest are
+ * measured here): the distances at x, in the order of kept (distance,
+ * then index), and r0 less the distance moved (the others' distance is
+ * 1-Lipschitz too). */
+static void reanchor(const cl_bvh *b, const double x[3], double moved,
+                     int ntried, double d2[CL_BVH_KEEP], cl_bvh_cache *c)
 {
-    kept k = {.cap = 1};
-    double e[3], best = INFINITY;
+    kept k;
+    kept_start(&k, CL_BVH_KEEP);
+    for (int i = ntried; i < c->n; i++) {
+        cl_tri_point p;
+        const int *v = b->tri[c->tri[i]];
+        cl_tri_closest(x, b->vert + 3 * v[0], b->vert + 3 * v[1],
+                       b->vert + 3 * v[2], &p);
+        d2[i] = p.dist2;
+    }
+    for (int i = 0; i < c->n; i++) {      /* insertion in kept's order */
+        int j = k.n++;
+        for (; j > 0 && before(d2[i], c->tri[i], &k, j - 1); j--) {
+            k.tri[j] = k.tri[j - 1];
+            k.p[j].dist2 = k.p[j - 1].dist2;
+        }
+        k.tri[j] = c->tri[i];
+        k.p[j].dist2 = d2[i];
+    }
+    memcpy(c->x0, x, sizeof c->x0);
+    for (int i = 0; i < c->n; i++) {
+        c->tri[i] = k.tri[i];
+        c->dist[i] = sqrt(k.p[i].dist2);
+    }
+    c->r0 -= moved;
+}
+
+/* The answer from the cache alone, if its certificate holds at x; the
+ * anchor moves to x when more than CL_BVH_TRIED kept triangles had to be
+ * tried (bvh.h). */
+static bool nearest_from_cache(const cl_bvh *b, const double x[3],
+                               cl_bvh_cache *c, cl_bvh_hit *hit)
+{
+    kept k;
+    kept_start(&k, 1);
+    double e[3], best = INFINITY, d2[CL_BVH_KEEP];
     cl_v3_sub(x, c->x0, e);
     double moved = sqrt(cl_v3_dot(e, e));
-    for (int i = 0; i < c->n && c->dist[i] - moved <= best; i++) {
-        try_triangle(b, c->tri[i], x, &k);
+    int i = 0;
+    for (; i < c->n && c->dist[i] - moved <= best; i++) {
+        cl_tri_point p;
+        const int *v = b->tri[c->tri[i]];
+        cl_tri_closest(x, b->vert + 3 * v[0], b->vert + 3 * v[1],
+                       b->vert + 3 * v[2], &p);
+        d2[i] = p.dist2;
+        if (k.n == 0 || before(p.dist2, c->tri[i], &k, 0)) {
+            k.n = 1;
+            k.tri[0] = c->tri[i];
+            k.p[0] = p;
+        }
         best = sqrt(k.p[0].dist2);
     }
     if (!(best < c->r0 - moved))
         return false;
     hit_of(&k, hit);
+    if (i > CL_BVH_TRIED)
+        reanchor(b, x, moved, i, d2, c);
     return true;
 }
 
-void cl_bvh_nearest_cached(const cl_bvh *b, const double x[3],
+bool cl_bvh_nearest_cached(const cl_bvh *b, const double x[3],
                            cl_bvh_cache *cache, cl_bvh_hit *hit)
 {
     if (cache->n > 0 && nearest_from_cache(b, x, cache, hit))
-        return;
-    kept k = {.cap = CL_BVH_KEEP};
-    nearest_kept(b, x, &k);
+        return true;
+    kept k;
+    kept_start(&k, CL_BVH_KEEP);
+    for (int i = 0; i < cache->n; i++)  /* a warm start: a tighter bound */
+        try_triangle(b, cache->tri[i], x, &k);
+    nearest_kept(b, x, cache->tri, cache->n, &k);
     memcpy(cache->x0, x, sizeof cache->x0);
     cache->n = k.n;
     for (int i = 0; i < k.n; i++) {
@@ -267,6 +345,7 @@ void cl_bvh_nearest_cached(const cl_bvh *b, const double x[3],
     }
     cache->r0 = k.n < k.cap ? INFINITY : cache->dist[k.n - 1];
     hit_of(&k, hit);
+    return false;
 }
 
 double cl_bvh_box_distance(const cl_bvh *b, const double x[3])
@@ -277,7 +356,8 @@ double cl_bvh_box_distance(const cl_bvh *b, const double x[3])
 void cl_bvh_nearest_brute(const cl_bvh *b, const double x[3],
                           cl_bvh_hit *hit)
 {
-    kept k = {.cap = 1};
+    kept k;
+    kept_start(&k, 1);
     for (size_t t = 0; t < b->ntri; t++)
         try_triangle(b, (int)t, x, &k);
     hit_of(&k, hit);

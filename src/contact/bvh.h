@@ -21,6 +21,7 @@
 #ifndef CL_BVH_H
 #define CL_BVH_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "contact/triangle.h"
@@ -69,9 +70,16 @@ void cl_bvh_nearest(const cl_bvh *b, const double x[3], cl_bvh_hit *hit);
  * one is within r0 - d it is the nearest of all, and the kept triangles
  * are all that is tried (in the order of their distances at x0, stopping
  * at the first one no nearer than the best at x, d under its distance at
- * x0).  Otherwise a full query at x refills the cache.  The answer is
- * cl_bvh_nearest's.  A zeroed cache is empty. */
+ * x0).  Otherwise a full query at x refills the cache (the kept
+ * triangles measured at x first, so that the walk starts with a tight
+ * bound).  When more than
+ * CL_BVH_TRIED kept triangles had to be tried (d has grown), the anchor
+ * moves to x: the other kept triangles are measured there too, and r0
+ * becomes r0 - d, so that d stays small and the next queries try fewer.
+ * The answer is cl_bvh_nearest's; true when the kept triangles gave it,
+ * false when the tree was searched.  A zeroed cache is empty. */
 #define CL_BVH_KEEP 8
+#define CL_BVH_TRIED 2
 
 typedef struct {
     double x0[3];
@@ -81,7 +89,7 @@ typedef struct {
     int n;                      /* kept; 0: empty */
 } cl_bvh_cache;
 
-void cl_bvh_nearest_cached(const cl_bvh *b, const double x[3],
+bool cl_bvh_nearest_cached(const cl_bvh *b, const double x[3],
                            cl_bvh_cache *cache, cl_bvh_hit *hit);
 
 /* The distance from x to the box of all triangles (0 inside): a lower

@@ -26,6 +26,11 @@ struct cl_contact {
     double last_t;           /* time of the last projection */
     double proj_force;       /* its impulses / (t - previous time) */
     double proj_friction;    /* its friction energy / (t - previous time) */
+    double *eval_x;          /* positions of the last term evaluation */
+    double eval_t;           /* ... its time */
+    double *eval_worst;      /* ... each penalty obstacle's deepest
+                                penetration of a free particle there */
+    bool evaluated;          /* eval_* hold an evaluation */
 };
 
 bool cl_contact_projects(const cl_contact *c) { return c->projects; }
@@ -74,6 +79,8 @@ static void contact_free(void *state)
     free(c->cache);
     free(c->near);
     free(c->slot);
+    free(c->eval_x);
+    free(c->eval_worst);
     free(c);
 }
 
@@ -111,7 +118,9 @@ static cl_status contact_create(cl_config *cfg, const cl_cloth *cloth,
         !(c->pose = calloc(n, sizeof *c->pose)) ||
         !(c->memo = malloc(n * cloth->np * sizeof *c->memo)) ||
         !(c->near = malloc(cloth->np * sizeof *c->near)) ||
-        !(c->slot = malloc(cloth->np * sizeof *c->slot))) {
+        !(c->slot = malloc(cloth->np * sizeof *c->slot)) ||
+        !(c->eval_x = malloc(3 * cloth->np * sizeof *c->eval_x)) ||
+        !(c->eval_worst = calloc(n, sizeof *c->eval_worst))) {
         contact_free(c);
         return cl_error_set(err, CL_ENOMEM, "out of memory (obstacles)");
     }
@@ -164,7 +173,13 @@ static void add_block(double *vals, long slot, const double b[9])
 }
 
 /* Penalty forces of every particle that has a block (the free particles;
- * all of them for the full Jacobian of `clothode eval`). */
+ * all of them for the full Jacobian of `clothode eval`).  The deepest
+ * penetration of a free particle into each penalty obstacle is kept with
+ * the positions and time: every particle inside (d < 0 <= eps) is within
+ * the band, so it is among those queried here, and the contact hook of a
+ * step that ends at the very state evaluated last (a symplectic Euler
+ * step evaluates its forces at its new positions) reads it from there
+ * instead of screening the particles again. */
 static void contact_eval(void *state, cl_eval *ev)
 {
     cl_contact *c = state;
@@ -179,14 +194,18 @@ static void contact_eval(void *state, cl_eval *ev)
         size_t nnear = cl_obstacle_screen(o, &P, ev->x, c->cloth->np,
                                           o->resp.eps, memo_of(c, k, 0),
                                           c->near);
+        c->eval_worst[k] = 0.0;
         for (size_t i = 0; i < nnear; i++) {
             size_t p = c->near[i];
             cl_contact_point q;
             cl_penalty_out out;
             if (c->slot[p] < 0 ||
                 !cl_obstacle_near(o, &P, ev->x + 3 * p, o->resp.eps,
-                                  memo_of(c, k, p), &q) ||
-                !cl_penalty_eval(&o->resp, &q, ev->v + 3 * p, jac, &out))
+                                  memo_of(c, k, p), &q))
+                continue;
+            if (c->cloth->dof[p] >= 0 && -q.d > c->eval_worst[k])
+                c->eval_worst[k] = -q.d;  /* q.d < eps: a number */
+            if (!cl_penalty_eval(&o->resp, &q, ev->v + 3 * p, jac, &out))
                 continue;
             for (int i = 0; ev->f && i < 3; i++)
                 ev->f[3 * p + i] += out.f[i];
@@ -201,6 +220,11 @@ static void contact_eval(void *state, cl_eval *ev)
     if (ev->want_energy) {
         ev->energy = energy;
         ev->power = power;
+    }
+    if (c->penalizes) {
+        memcpy(c->eval_x, ev->x, 3 * c->cloth->np * sizeof *c->eval_x);
+        c->eval_t = ev->t;
+        c->evaluated = true;
     }
 }
 
@@ -270,8 +294,15 @@ void cl_contact_measure(cl_contact *c, double t, const double *x,
 double cl_contact_penetration(cl_contact *c, double t, const double *x)
 {
     double worst = 0.0;
+    bool evaluated = c->evaluated && t == c->eval_t &&
+                     !memcmp(x, c->eval_x,
+                             3 * c->cloth->np * sizeof *c->eval_x);
     place(c, t);
     for (size_t k = 0; k < c->nobs; k++) {
+        if (evaluated && c->obs[k].resp.kind == CL_RESPONSE_PENALTY) {
+            worst = fmax(worst, c->eval_worst[k]); /* contact_eval */
+            continue;
+        }
         size_t nnear = cl_obstacle_screen(&c->obs[k], &c->pose[k], x,
                                           c->cloth->np, 0.0,
                                           memo_of(c, k, 0), c->near);

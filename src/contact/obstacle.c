@@ -125,8 +125,13 @@ static void query_at(const cl_obstacle *o, const cl_pose *P,
     for (int i = 0; i < 3; i++)
         cb[i] = b.c[i] - o->pivot[i];
     q->d = b.d;
-    rotate(P, b.n, q->n);
-    rotate(P, cb, c);
+    if (P->rotates) {
+        rotate(P, b.n, q->n);
+        rotate(P, cb, c);
+    } else {
+        memcpy(q->n, b.n, sizeof q->n);
+        memcpy(c, cb, sizeof c);
+    }
     for (int i = 0; i < 3; i++)
         q->c[i] = o->pivot[i] + P->s[i] + c[i];
     rotate_hessian(P, b.G, q->G);

@@ -56,13 +56,14 @@ static void penalty_jacobians(const cl_response_params *r,
     for (int k = 0; k < 9; k++) {
         o->dfdx[k] = fe * hc * q->G[k];
         o->dfdv[k] = 0.0;
-        A[k] = ((k % 4 == 0) - g[k / 3] * g[k % 3]) / s; /* dg/dvt */
     }
     add_outer(o->dfdx, -r->k * hc, q->n, q->n);
     add_outer(o->dfdx, -a * fe, q->n, dwn_dx);
     add_outer(o->dfdv, -a * fe, q->n, q->n);
     if (r->mu == 0.0)
         return;
+    for (int k = 0; k < 9; k++)
+        A[k] = ((k % 4 == 0) - g[k / 3] * g[k % 3]) / s; /* dg/dvt */
     mul33(A, dvt_dx, Ax);
     mul33(A, dvt_dv, Av);
     add_outer(o->dfdx, r->mu * r->k, g, q->n);
@@ -77,19 +78,24 @@ bool cl_penalty_eval(const cl_response_params *r, const cl_contact_point *q,
 {
     if (!(q->d < r->eps))
         return false;
-    double w[3], vt[3], g[3];
+    double w[3], vt[3], g[3] = {0.0, 0.0, 0.0}, s = 0.0;
     for (int i = 0; i < 3; i++)
         w[i] = v[i] - q->u[i];
     double fe = r->k * (r->eps - q->d), wn = cl_v3_dot(w, q->n);
     for (int i = 0; i < 3; i++)
-        vt[i] = w[i] - wn * q->n[i];
-    double s = sqrt(cl_v3_dot(vt, vt) + r->v_smooth * r->v_smooth);
-    for (int i = 0; i < 3; i++) {
-        g[i] = vt[i] / s;
-        o->f[i] = fe * (1.0 - r->damping * wn) * q->n[i] - r->mu * fe * g[i];
-    }
+        o->f[i] = fe * (1.0 - r->damping * wn) * q->n[i];
     o->energy = 0.5 * r->k * (r->eps - q->d) * (r->eps - q->d);
-    o->friction_power = -r->mu * fe * cl_v3_dot(g, vt);
+    o->friction_power = 0.0;
+    if (r->mu != 0.0) { /* without friction, g is not needed */
+        for (int i = 0; i < 3; i++)
+            vt[i] = w[i] - wn * q->n[i];
+        s = sqrt(cl_v3_dot(vt, vt) + r->v_smooth * r->v_smooth);
+        for (int i = 0; i < 3; i++) {
+            g[i] = vt[i] / s;
+            o->f[i] -= r->mu * fe * g[i];
+        }
+        o->friction_power = -r->mu * fe * cl_v3_dot(g, vt);
+    }
     o->power = -r->damping * fe * wn * wn + o->friction_power;
     if (jac)
         penalty_jacobians(r, q, w, wn, fe, g, s, o);

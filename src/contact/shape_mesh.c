@@ -313,11 +313,15 @@ static void mesh_query(const void *shape, const double x[3], void *cache,
     g_kind kind = feature(m, &h, &pn, e);
     cl_v3_sub(x, h.p.c, r);
     double sign = cl_v3_dot(r, pn) >= 0 ? 1.0 : -1.0;
-    if (!cl_shape_answer(x, h.p.c, sign, m->bvh.normal[h.tri], m->tiny, q))
-        return;
-    if (h.p.feature == CL_TRI_FACE)     /* exact, not (x - c) / |x - c| */
+    if (h.p.feature == CL_TRI_FACE) {   /* exact, not (x - c) / |x - c| */
+        q->d = sign * cl_v3_norm(r);
+        memcpy(q->c, h.p.c, sizeof q->c);
         memcpy(q->n, m->bvh.normal[h.tri], sizeof q->n);
-    else if (kind != G_FACE)
+        memset(q->G, 0, sizeof q->G);
+        return;
+    }
+    if (cl_shape_answer(x, h.p.c, sign, m->bvh.normal[h.tri], m->tiny, q) &&
+        kind != G_FACE)
         cl_shape_hessian(q->n, kind == G_EDGE ? e : NULL, q->d, q->G);
 }
 

@@ -330,13 +330,15 @@ static cl_status sys_contact(void *data, double t, double *x, double *v,
 {
     cl_model *m = data;
     size_t n = 3 * m->cloth.nfree;
-    cl_cloth_scatter(&m->cloth, t, x, v, m->xf, m->vf);
+    bool projects = m->sys.projects; /* else the velocities are not read */
+    cl_cloth_scatter(&m->cloth, t, x, projects ? v : NULL, m->xf,
+                     projects ? m->vf : NULL);
     double pen = record ? cl_contact_penetration(m->contact, t, m->xf) : 0.0;
     if (pen > m->worst_pen) {
         m->worst_pen = pen;
         m->worst_t = t;
     }
-    if (!m->sys.projects)
+    if (!projects)
         return CL_OK;
     bool track = m->track_work && record;
     if (track) {
