@@ -20,6 +20,7 @@ struct cl_contact {
     cl_contact_memo *memo;   /* np per obstacle: the last exact distances */
     unsigned char *cache;    /* the shapes' caches the memos point into */
     size_t *near;            /* scratch: the particles near one obstacle */
+    cl_contact_point *hit;   /* scratch: their contact points */
     bool penalizes, projects;
     long passes;             /* projection passes */
     long *slot;              /* diagonal block of each particle, or -1 */
@@ -78,6 +79,7 @@ static void contact_free(void *state)
     free(c->memo);
     free(c->cache);
     free(c->near);
+    free(c->hit);
     free(c->slot);
     free(c->eval_x);
     free(c->eval_worst);
@@ -118,6 +120,7 @@ static cl_status contact_create(cl_config *cfg, const cl_cloth *cloth,
         !(c->pose = calloc(n, sizeof *c->pose)) ||
         !(c->memo = malloc(n * cloth->np * sizeof *c->memo)) ||
         !(c->near = malloc(cloth->np * sizeof *c->near)) ||
+        !(c->hit = malloc(cloth->np * sizeof *c->hit)) ||
         !(c->slot = malloc(cloth->np * sizeof *c->slot)) ||
         !(c->eval_x = malloc(3 * cloth->np * sizeof *c->eval_x)) ||
         !(c->eval_worst = calloc(n, sizeof *c->eval_worst))) {
@@ -179,7 +182,10 @@ static void add_block(double *vals, long slot, const double b[9])
  * the band, so it is among those queried here, and the contact hook of a
  * step that ends at the very state evaluated last (a symplectic Euler
  * step evaluates its forces at its new positions) reads it from there
- * instead of screening the particles again. */
+ * instead of screening the particles again.  The points in the band are
+ * all queried first and their penalty laws applied after, so that the
+ * laws (square roots and divisions, independent of one another) overlap
+ * in the processor instead of each waiting for its own query. */
 static void contact_eval(void *state, cl_eval *ev)
 {
     cl_contact *c = state;
@@ -195,17 +201,23 @@ static void contact_eval(void *state, cl_eval *ev)
                                           o->resp.eps, memo_of(c, k, 0),
                                           c->near);
         c->eval_worst[k] = 0.0;
+        size_t nhit = 0;
         for (size_t i = 0; i < nnear; i++) {
             size_t p = c->near[i];
-            cl_contact_point q;
-            cl_penalty_out out;
+            cl_contact_point *q = &c->hit[nhit];
             if (c->slot[p] < 0 ||
                 !cl_obstacle_near(o, &P, ev->x + 3 * p, o->resp.eps,
-                                  memo_of(c, k, p), &q))
+                                  memo_of(c, k, p), q))
                 continue;
-            if (c->cloth->dof[p] >= 0 && -q.d > c->eval_worst[k])
-                c->eval_worst[k] = -q.d;  /* q.d < eps: a number */
-            if (!cl_penalty_eval(&o->resp, &q, ev->v + 3 * p, jac, &out))
+            if (c->cloth->dof[p] >= 0 && -q->d > c->eval_worst[k])
+                c->eval_worst[k] = -q->d;  /* q.d < eps: a number */
+            c->near[nhit++] = p;
+        }
+        for (size_t i = 0; i < nhit; i++) {
+            size_t p = c->near[i];
+            cl_penalty_out out;
+            if (!cl_penalty_eval(&o->resp, &c->hit[i], ev->v + 3 * p, jac,
+                                 &out))
                 continue;
             for (int i = 0; ev->f && i < 3; i++)
                 ev->f[3 * p + i] += out.f[i];
