@@ -222,50 +222,44 @@ Test(options, out_of_range_and_malformed_values_are_refused)
     refused("--integrator", ":klu", "NAME:LINSOL");
 }
 
-/* cl_cli_parse on argv: its result, and stderr must hold `want`. */
+/* cl_cli_parse on argv is a usage error: -1, and on stderr the message
+ * `want` with the pointer to --help. */
 static void usage_error(char **argv, const char *want)
 {
     opts_t o = {0};
+    char msg[256];
     int at = cl_cli_parse(argc_of(argv), argv, &table, &o);
     cl_cli_sets_free(&o.a.sets);
     fflush(stderr);
     cr_assert_eq(at, -1, "parse gave %d", at);
-    cr_assert_stderr_eq_str(want);
+    snprintf(msg, sizeof msg, "clothode test: %s\n(see 'clothode test "
+             "--help')\n", want);
+    cr_assert_stderr_eq_str(msg);
 }
 
 Test(options, unknown_option, .init = cr_redirect_stderr)
 {
-    usage_error(ARGV("--y", "1", "P"),
-                "clothode test: unknown option '--y'\n"
-                "(see 'clothode test --help')\n");
+    usage_error(ARGV("--y", "1", "P"), "unknown or ambiguous option '--y'");
 }
 
 Test(options, hidden_option_of_a_group, .init = cr_redirect_stderr)
 {
-    usage_error(ARGV("--gl", "1", "P"),
-                "clothode test: unknown option '--gl'\n"
-                "(see 'clothode test --help')\n");
+    usage_error(ARGV("--gl", "1", "P"), "unknown or ambiguous option '--gl'");
 }
 
 Test(options, missing_value, .init = cr_redirect_stderr)
 {
-    usage_error(ARGV("P", "--x"),
-                "clothode test: option '--x' needs a value (--x X)\n"
-                "(see 'clothode test --help')\n");
+    usage_error(ARGV("P", "--x"), "option '--x' needs a value (--x X)");
 }
 
 Test(options, value_to_a_flag, .init = cr_redirect_stderr)
 {
-    usage_error(ARGV("--flag=1", "P"),
-                "clothode test: option '--flag=1' takes no value\n"
-                "(see 'clothode test --help')\n");
+    usage_error(ARGV("--flag=1", "P"), "option '--flag=1' takes no value");
 }
 
 Test(options, problem_count, .init = cr_redirect_stderr)
 {
-    usage_error(ARGV("P", "Q"),
-                "clothode test: expected exactly one PROBLEM, got 2\n"
-                "(see 'clothode test --help')\n");
+    usage_error(ARGV("P", "Q"), "expected exactly one PROBLEM, got 2");
 }
 
 /* ---- saved and read back ----------------------------------------------- */

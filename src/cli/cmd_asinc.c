@@ -25,11 +25,11 @@ static const cl_cli_table asinc_table = {
     .cmd = "asinc", .synopsis = "[--points N] [--csv]", .npos = 0,
     .rows = asinc_rows,
     .about =
-        "The inverse sinc t = asinc(y) of the Type2 buckling curvature\n"
-        "(kappa = (2/L) asinc(d/L), Jiao, eq. 8) on y = k/N, k = 0..N, beside\n"
-        "t/pi and Jiao's fifth-order polynomial p(y), which fits t/pi but is\n"
-        "used in place of t; with the largest errors and the exact solver's\n"
-        "residual |1 - sinc(t) - (1 - y)|.\n"};
+    "The inverse sinc t = asinc(y) of the Type2 buckling curvature\n"
+    "(kappa = (2/L) asinc(d/L), Jiao, eq. 8) on y = k/N, k = 0..N, beside\n"
+    "t/pi and Jiao's fifth-order polynomial p(y), which fits t/pi but is\n"
+    "used in place of t; with the largest errors and the exact solver's\n"
+    "residual |1 - sinc(t) - (1 - y)|.\n"};
 
 static void print_table(const cl_asinc_row *r, size_t n,
                         const cl_asinc_summary *s)

@@ -53,22 +53,22 @@ static const cl_cli_table conv_table = {
     .cmd = "convergence", .synopsis = "PROBLEM [options]", .npos = 1,
     .rows = conv_rows, .notes = conv_notes,
     .about =
-        "Run each integrator at a sequence of levels to T and measure the final\n"
-        "state against a tight cvode-bdf reference: fixed-step methods at dt,\n"
-        "dt/2, dt/4, ..., adaptive ones at rtol, rtol/10, ... (atol alike).\n"
-        "Prints the errors, the order between levels and the least-squares\n"
-        "order; writes convergence.csv into the output directory.\n"};
+    "Run each integrator at a sequence of levels to T and measure the final\n"
+    "state against a tight cvode-bdf reference: fixed-step methods at dt,\n"
+    "dt/2, dt/4, ..., adaptive ones at rtol, rtol/10, ... (atol alike).\n"
+    "Prints the errors, the order between levels and the least-squares\n"
+    "order; writes convergence.csv into the output directory.\n"};
 
 static const cl_cli_table wp_table = {
     .cmd = "workprecision", .synopsis = "PROBLEM [options]", .npos = 1,
     .rows = conv_rows, .notes = conv_notes,
     .about =
-        "The runs of clothode convergence (the same options), ranked by cost:\n"
-        "each integrator, or integrator:linsol (cvode-bdf:pcg), at its levels\n"
-        "with the error reached and its CPU time; then, for every decade of\n"
-        "error, the integrator that reached it in the least CPU time and the\n"
-        "others' times relative to it.  One run per level: repeat for timing\n"
-        "noise.  Writes workprecision.csv (the columns of convergence.csv).\n"};
+    "The runs of clothode convergence (the same options), ranked by cost:\n"
+    "each integrator, or integrator:linsol (cvode-bdf:pcg), at its levels\n"
+    "with the error reached and its CPU time; then, for every decade of\n"
+    "error, the integrator that reached it in the least CPU time and the\n"
+    "others' times relative to it.  One run per level: repeat for timing\n"
+    "noise.  Writes workprecision.csv (the columns of convergence.csv).\n"};
 
 static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
 {

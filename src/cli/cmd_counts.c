@@ -35,13 +35,13 @@ static const cl_cli_table counts_table = {
     .cmd = "counts", .synopsis = "[--n-min N] [--n-max N] [--csv [--bw]]",
     .npos = 0, .rows = counts_rows,
     .about =
-        "For n x n grids, the Choi-Ko Type1 and Type2 connection counts measured\n"
-        "from the built topology beside Jiao's formulas 2(n-1)(2n-1),\n"
-        "4(n-1)(n-2) and CK = 8n^2-18n+10, and the Baraff-Witkin elements\n"
-        "measured from the triangle mesh: triangles (formula 2(n-1)^2), bending\n"
-        "hinges = interior edges ((n-1)(3n-5)), all edges (Jiao's bending count\n"
-        "2n(n-1)+(n-1)^2 counts these), BW = triangles + hinges (5n^2-12n+7)\n"
-        "and Jiao's BW = 5n^2-8n+3.\n"};
+    "For n x n grids, the Choi-Ko Type1 and Type2 connection counts measured\n"
+    "from the built topology beside Jiao's formulas 2(n-1)(2n-1),\n"
+    "4(n-1)(n-2) and CK = 8n^2-18n+10, and the Baraff-Witkin elements\n"
+    "measured from the triangle mesh: triangles (formula 2(n-1)^2), bending\n"
+    "hinges = interior edges ((n-1)(3n-5)), all edges (Jiao's bending count\n"
+    "2n(n-1)+(n-1)^2 counts these), BW = triangles + hinges (5n^2-12n+7)\n"
+    "and Jiao's BW = 5n^2-8n+3.\n"};
 
 static void print_csv(const cl_counts *k, size_t n, int bw)
 {

@@ -34,17 +34,17 @@ static const cl_cli_table eb_table = {
     .cmd = "energy", .synopsis = "PROBLEM [options]", .npos = 1,
     .rows = eb_rows,
     .about =
-        "Run each integrator to T and follow its energy at evenly spread\n"
-        "samples: E = kinetic + potential, W = the work of the damping\n"
-        "(trapezoidal rule between samples) and the balance B = E - E(0) - W,\n"
-        "the energy the integrator made (> 0) or destroyed (< 0).  Prints E(0),\n"
-        "E(T), W(T), B(T) and max |B| (also relative to the run's energy\n"
-        "scale); writes every sample to energy.csv in the output directory.\n",
+    "Run each integrator to T and follow its energy at evenly spread\n"
+    "samples: E = kinetic + potential, W = the work of the damping\n"
+    "(trapezoidal rule between samples) and the balance B = E - E(0) - W,\n"
+    "the energy the integrator made (> 0) or destroyed (< 0).  Prints E(0),\n"
+    "E(T), W(T), B(T) and max |B| (also relative to the run's energy\n"
+    "scale); writes every sample to energy.csv in the output directory.\n",
     .notes =
-        "W's quadrature error falls with the square of the sample spacing:\n"
-        "sample densely when the damping is strong.  Moving pins do work that\n"
-        "shows in B.  A run that blows up (as in run) is reported with the\n"
-        "samples before it.  Problems that tear are refused.\n"};
+    "W's quadrature error falls with the square of the sample spacing:\n"
+    "sample densely when the damping is strong.  Moving pins do work that\n"
+    "shows in B.  A run that blows up (as in run) is reported with the\n"
+    "samples before it.  Problems that tear are refused.\n"};
 
 static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
 {

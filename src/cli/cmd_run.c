@@ -49,8 +49,9 @@ static const cl_cli_table run_table = {
     .cmd = "run", .synopsis = "PROBLEM [options]", .npos = 1,
     .rows = run_rows,
     .about =
-        "Integrate PROBLEM (a .ini file, or a name under problems/) and write\n"
-        "series.csv, frames, final.csv and stats.csv into the output directory.\n"};
+    "Integrate PROBLEM (a .ini file, or a name under problems/) and write\n"
+    "series.csv, frames, final.csv and stats.csv into the output\n"
+    "directory.\n"};
 
 static cl_status check_run(cl_config *cfg, void *ctx, cl_error *err)
 {

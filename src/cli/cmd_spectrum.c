@@ -30,12 +30,12 @@ static const cl_cli_table spec_table = {
     .cmd = "spectrum", .synopsis = "PROBLEM [options]", .npos = 1,
     .rows = spec_rows,
     .about =
-        "Eigenvalues of the cloth linearised at a state: mu = w^2 of the\n"
-        "stiffness (-M^-1/2 sym(df/dx) M^-1/2) and lambda of the first-order\n"
-        "Jacobian (damping included), and the largest stable steps they predict\n"
-        "for the explicit integrators (compare with clothode stability).  Dense\n"
-        "eigensolvers: at most a 24 x 24 cloth.  Writes spectrum.csv (kind,\n"
-        "index, re, im) into the output directory.\n"};
+    "Eigenvalues of the cloth linearised at a state: mu = w^2 of the\n"
+    "stiffness (-M^-1/2 sym(df/dx) M^-1/2) and lambda of the first-order\n"
+    "Jacobian (damping included), and the largest stable steps they predict\n"
+    "for the explicit integrators (compare with clothode stability).  Dense\n"
+    "eigensolvers: at most a 24 x 24 cloth.  Writes spectrum.csv (kind,\n"
+    "index, re, im) into the output directory.\n"};
 
 /* The free state to linearise at. */
 static cl_status free_state(cl_model *m, const spec_setup *s, double *x,

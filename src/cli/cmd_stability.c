@@ -64,16 +64,16 @@ static const cl_cli_table stab_table = {
     .cmd = "stability", .synopsis = "PROBLEM [options]", .npos = 1,
     .rows = stab_rows,
     .about =
-        "For each fixed-step integrator, the largest step dt = T/N with which a\n"
-        "run to T stays bounded: N doubles from T/dt_max until a run is stable,\n"
-        "then bisection brackets the limit.  A run is unstable when its state\n"
-        "becomes non-finite, its stretch d/L exceeds [run] max_stretch at one of\n"
-        "the checks, or its solver gives up.  Writes every run to stability.csv\n"
-        "in the output directory.\n",
+    "For each fixed-step integrator, the largest step dt = T/N with which a\n"
+    "run to T stays bounded: N doubles from T/dt_max until a run is stable,\n"
+    "then bisection brackets the limit.  A run is unstable when its state\n"
+    "becomes non-finite, its stretch d/L exceeds [run] max_stretch at one of\n"
+    "the checks, or its solver gives up.  Writes every run to stability.csv\n"
+    "in the output directory.\n",
     .notes =
-        "The other [run] keys apply as in run; [run] dt is not used.  Stability\n"
-        "need not be monotone in dt: the bracket is the one the search found.\n"
-        "Problems that tear are refused.\n"};
+    "The other [run] keys apply as in run; [run] dt is not used.  Stability\n"
+    "need not be monotone in dt: the bracket is the one the search found.\n"
+    "Problems that tear are refused.\n"};
 
 /* Only fixed-step integrators have a step to limit. */
 static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)

@@ -161,9 +161,11 @@ int cl_cli_parse(int argc, char **argv, const cl_cli_table *t,
         if (c == '?' && optopt >= OPT_VAL0)
             return refused(t, "option '%s' takes no value", opt);
         if (c == '?')
-            return refused(t, "unknown option '%s'", opt);
+            return refused(t, "unknown or ambiguous option '%s'", opt);
         given[c - OPT_VAL0] = true;
         int rc = take(t, &f[c - OPT_VAL0], optarg, settings);
+        if (rc == -1)
+            return refused(t, "out of memory");
         if (rc)
             return rc;
     }
@@ -187,7 +189,8 @@ const char *cl_cli_join(const char *const *names, char *buf, size_t len)
 static cl_status read_names(cl_config *cfg, const cl_cli_opt *r,
                             unsigned *mask, cl_error *err)
 {
-    const char *v = cl_config_string(cfg, r->sec, r->key, r->sdef);
+    const char *v = cl_config_string(cfg, r->sec, r->key,
+                                     r->sdef ? r->sdef : "");
     char why[256] = "expected a list of ";
     *mask = 0;
     for (const char *p = v + strspn(v, ", "); *p; p += strspn(p, ", ")) {
@@ -225,7 +228,8 @@ static cl_status read_row(cl_config *cfg, const cl_cli_opt *r, char *s,
     case CL_CLI_INT:
         rc = cl_config_long(cfg, r->sec, r->key, (long)def, (long)r->lo,
                             (long)hi, &v, err);
-        *(int *)(s + at) = (int)v;
+        if (!rc)
+            *(int *)(s + at) = (int)v;
         return rc;
     case CL_CLI_STRING:
         *(const char **)(s + at) = cl_config_string(cfg, r->sec, r->key,
@@ -286,7 +290,7 @@ static void describe(const cl_cli_opt *r, bool with_key, char *buf,
     if (integer)
         u += (size_t)snprintf(more + u, sizeof more - u, ", %.0f .. %.0f",
                               r->lo, r->hi);
-    /* a default that follows other values (bounds) is told by the help */
+    /* a default set by bounds (0 in the row) is told by the help text */
     if (integer || (r->type == CL_CLI_DOUBLE && r->def != 0))
         snprintf(more + u, sizeof more - u, ", default %.*g",
                  integer ? 17 : 6, r->def);
@@ -301,8 +305,8 @@ void cl_cli_help(const cl_cli_table *t, FILE *fp)
     int n = flatten(t->rows, 0, NULL, f, 0);
     char lead[64], text[768];
     bool keys = false;
-    fprintf(fp, "usage: clothode %s%s%s\n%s\n", t->cmd, *t->synopsis ? " " : "",
-            t->synopsis, t->about);
+    fprintf(fp, "usage: clothode %s%s%s\n%s\n", t->cmd,
+            *t->synopsis ? " " : "", t->synopsis, t->about);
     for (int k = 0; k < n; k++) {
         const cl_cli_opt *r = f[k].row;
         keys |= r->key && !f[k].offered;

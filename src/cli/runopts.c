@@ -94,7 +94,8 @@ static cl_status parse_method(cl_config *cfg, const cl_cli_opt *row,
 cl_status cl_cli_methods_read(cl_config *cfg, const cl_cli_opt *row,
                               cl_cli_methods *ms, cl_error *err)
 {
-    const char *list = cl_config_string(cfg, row->sec, row->key, row->sdef);
+    const char *list = cl_config_string(cfg, row->sec, row->key,
+                                        row->sdef ? row->sdef : "");
     int max = (int)row->hi;
     char why[64];
     ms->n = 0;
@@ -117,12 +118,24 @@ cl_status cl_cli_methods_read(cl_config *cfg, const cl_cli_opt *row,
                                     "no integrator", err);
 }
 
+/* "ORIGIN: [run] key = value: integrator NAME why" for a number. */
+static cl_status refuse_number(cl_config *cfg, const char *key, double value,
+                               const cl_integrator_type *type,
+                               const char *why, cl_error *err)
+{
+    char where[256];
+    return cl_error_set(err, CL_EINVAL, "%s: [run] %s = %g: integrator %s %s",
+                        cl_config_origin(cfg, "run", key, where,
+                                         sizeof where),
+                        key, value, type->name, why);
+}
+
 /* The options of one method against what its integrator takes. */
 static cl_status check_method(cl_config *cfg, const cl_cli_method *m,
                               cl_cli_dt_use dt, cl_error *err)
 {
     const cl_integrator_type *type = m->type;
-    char where[256], why[128];
+    char why[128];
     if (*m->io.linsol && !type->takes_linsol) {
         /* the solver came from the entry NAME:LINSOL or from [run] linsol */
         snprintf(why, sizeof why, "integrator %s has no choice of linear "
@@ -132,19 +145,12 @@ static cl_status check_method(cl_config *cfg, const cl_cli_method *m,
                                 CL_EINVAL, why, err);
     }
     if (m->io.max_order && !type->takes_max_order)
-        return cl_error_set(err, CL_EINVAL,
-                            "%s: [run] max_order = %d: integrator %s has "
-                            "no choice of order (CVODE and IDA have)",
-                            cl_config_origin(cfg, "run", "max_order", where,
-                                             sizeof where),
-                            m->io.max_order, type->name);
+        return refuse_number(cfg, "max_order", m->io.max_order, type,
+                             "has no choice of order (CVODE and IDA have)",
+                             err);
     if (dt != CL_CLI_DT_NONE && type->fixed_step && !(m->io.dt > 0))
-        return cl_error_set(err, CL_EINVAL,
-                            "%s: [run] dt = %g: integrator %s takes fixed "
-                            "steps and needs dt > 0 (--dt H)",
-                            cl_config_origin(cfg, "run", "dt", where,
-                                             sizeof where),
-                            m->io.dt, type->name);
+        return refuse_number(cfg, "dt", m->io.dt, type, "takes fixed steps "
+                             "and needs dt > 0 (--dt H)", err);
     return CL_OK;
 }
 
