@@ -67,9 +67,6 @@ cl_status cl_cli_ignore_run(cl_config *cfg, void *settings, cl_error *err);
 int cl_cli_args_main(int argc, char **argv, const cl_cli_table *t,
                      void *settings, int (*work)(void *settings));
 
-/* "a, b, c": the NULL-ended names, for messages; returns buf. */
-const char *cl_cli_join(const char *const *names, char *buf, size_t len);
-
 /* Write DIR/NAME atomically (DIR made first): write(fp, ctx, n) puts the
  * rows of the first n results of ctx. */
 typedef void (*cl_cli_rows_fn)(FILE *fp, const void *ctx, int n);

@@ -120,6 +120,9 @@ int cl_cli_parse(int argc, char **argv, const cl_cli_table *t,
 cl_status cl_cli_read(cl_config *cfg, const cl_cli_table *t, void *settings,
                       cl_error *err);
 
+/* "a, b, c": the NULL-ended names, for messages; returns buf. */
+const char *cl_cli_join(const char *const *names, char *buf, size_t len);
+
 /* The --help text of the table. */
 void cl_cli_help(const cl_cli_table *t, FILE *fp);
 
