@@ -61,7 +61,7 @@ const char *cl_cli_problem_path(const char *arg, char *buf, size_t len)
 }
 
 static int problem_job(const char *problem, const cl_cli_table *t,
-                       void *settings, cl_cli_setup_fn check,
+                       void *settings, cl_cli_check_fn check,
                        cl_cli_work_fn work)
 {
     const cl_cli_args *a = settings;
@@ -86,7 +86,7 @@ static int problem_job(const char *problem, const cl_cli_table *t,
 }
 
 int cl_cli_problem_main(int argc, char **argv, const cl_cli_table *t,
-                        void *settings, cl_cli_setup_fn check,
+                        void *settings, cl_cli_check_fn check,
                         cl_cli_work_fn work)
 {
     int at = cl_cli_parse(argc, argv, t, settings);

@@ -42,10 +42,10 @@ typedef struct {
     bool quiet;
 } cl_cli_job;
 
-typedef cl_status (*cl_cli_setup_fn)(cl_config *cfg, void *ctx,
+typedef cl_status (*cl_cli_check_fn)(cl_config *cfg, void *settings,
                                      cl_error *err);
 typedef cl_status (*cl_cli_work_fn)(cl_model *m, const cl_cli_job *job,
-                                    void *ctx, cl_error *err);
+                                    void *settings, cl_error *err);
 
 /* main() of such a subcommand: parse argv by the table t into settings
  * (a cl_cli_args first), load the problem with its assignments, read the
@@ -54,7 +54,7 @@ typedef cl_status (*cl_cli_work_fn)(cl_model *m, const cl_cli_job *job,
  * the exit status: 0, 1 with the one-line message of a failure, 2 for a
  * usage error. */
 int cl_cli_problem_main(int argc, char **argv, const cl_cli_table *t,
-                        void *settings, cl_cli_setup_fn check,
+                        void *settings, cl_cli_check_fn check,
                         cl_cli_work_fn work);
 
 /* The check of the commands that do not integrate (spectrum, eval): the

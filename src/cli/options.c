@@ -276,8 +276,8 @@ static void wrapped(FILE *fp, const char *lead, const char *text)
     fputc('\n', fp);
 }
 
-/* The row's help with its key (with_key), range and default: "final time
- * (s); [run] t_end, default 2". */
+/* The row's help with its key (with_key), whether it is required, its
+ * range and default: "final time (s); [run] t_end, default 2". */
 static void describe(const cl_cli_opt *r, bool with_key, char *buf,
                      size_t len)
 {
@@ -286,6 +286,8 @@ static void describe(const cl_cli_opt *r, bool with_key, char *buf,
     if (with_key && r->key)
         u += (size_t)snprintf(more + u, sizeof more - u, ", [%s] %s", r->sec,
                               r->key);
+    if (r->required)
+        u += (size_t)snprintf(more + u, sizeof more - u, ", required");
     bool integer = r->type == CL_CLI_LONG || r->type == CL_CLI_INT;
     if (integer)
         u += (size_t)snprintf(more + u, sizeof more - u, ", %.0f .. %.0f",
