@@ -60,111 +60,73 @@ const char *cl_cli_problem_path(const char *arg, char *buf, size_t len)
     return buf;
 }
 
-int cl_cli_sets_add(cl_cli_sets *s, const char *key, const char *val,
-                    const char *label)
+static int problem_job(const char *problem, const cl_cli_table *t,
+                       void *settings, cl_cli_check_fn check,
+                       cl_cli_work_fn work)
 {
-    size_t len = (key ? strlen(key) : 0) + strlen(val) + 2;
-    char *a = malloc(len);
-    char **grown = realloc(s->v, (size_t)(s->n + 1) * sizeof *grown);
-    if (grown)
-        s->v = grown;
-    const char **lgrown = realloc(s->label, (size_t)(s->n + 1) *
-                                                sizeof *lgrown);
-    if (lgrown)
-        s->label = lgrown;
-    if (!a || !grown || !lgrown) {
-        free(a);
-        return -1;
-    }
-    snprintf(a, len, "%s%s%s", key ? key : "", key ? "=" : "", val);
-    s->label[s->n] = key ? label : NULL;
-    s->v[s->n++] = a;
-    return 0;
-}
-
-void cl_cli_sets_free(cl_cli_sets *s)
-{
-    for (int k = 0; k < s->n; k++)
-        free(s->v[k]);
-    free(s->v);
-    free(s->label);
-    s->v = NULL;
-    s->label = NULL;
-    s->n = 0;
-}
-
-int cl_cli_parse(int argc, char **argv, const cl_cli_spec *spec,
-                 cl_cli_args *a)
-{
-    int c, rc = 0;
-    optind = 1;
-    opterr = 0;
-    while (rc == 0 &&
-           (c = getopt_long(argc, argv, "", spec->opts, NULL)) != -1) {
-        if (c == 'h') {
-            fputs(spec->help, stdout);
-            return -2;
-        } else if (c == 'o') {
-            a->out = optarg;
-        } else if (c == 'q') {
-            a->quiet = true;
-        } else if (c == 's') {
-            rc = cl_cli_sets_add(&a->sets, NULL, optarg, NULL);
-        } else if (c > 0 && c < 128 && spec->key[c]) {
-            rc = cl_cli_sets_add(&a->sets, spec->key[c], optarg,
-                                 spec->label[c]);
-        } else {
-            cl_cli_usage_error(spec->cmd, "unknown or incomplete option "
-                               "'%s'", argv[optind - 1]);
-            return -1;
-        }
-    }
-    if (rc)
-        return -1;
-    if (optind != argc - 1) {
-        cl_cli_usage_error(spec->cmd, "expected exactly one PROBLEM, got %d",
-                           argc - optind);
-        return -1;
-    }
-    return optind;
-}
-
-static int problem_job(const char *problem, const cl_cli_args *a,
-                       cl_cli_setup_fn setup, cl_cli_work_fn work, void *ctx)
-{
+    const cl_cli_args *a = settings;
     cl_error err = {0};
     cl_config *cfg = cl_config_alloc();
     cl_model *m = NULL;
     char outbuf[4096];
     cl_status rc = cfg ? CL_OK : cl_error_set(&err, CL_ENOMEM, "no memory");
     if (!rc && !(rc = cl_cli_load(cfg, problem, &a->sets, &err)) &&
-        !(rc = setup(cfg, ctx, &err)) &&
+        !(rc = cl_cli_read(cfg, t, settings, &err)) &&
+        !(rc = check ? check(cfg, settings, &err) : CL_OK) &&
         !(rc = cl_model_create(cfg, &m, &err)) &&
         !(rc = cl_config_check_unused(cfg, &err))) {
         if (!a->out)
             cl_cli_default_out(problem, outbuf, sizeof outbuf);
         cl_cli_job job = {problem, cfg, a->out ? a->out : outbuf, a->quiet};
-        rc = work(m, &job, ctx, &err);
+        rc = work(m, &job, settings, &err);
     }
     cl_model_free(m);
     cl_config_free(cfg);
     return rc ? cl_cli_fail(&err) : 0;
 }
 
-int cl_cli_problem_main(int argc, char **argv, const cl_cli_spec *spec,
-                        cl_cli_setup_fn setup, cl_cli_work_fn work,
-                        void *ctx)
+int cl_cli_problem_main(int argc, char **argv, const cl_cli_table *t,
+                        void *settings, cl_cli_check_fn check,
+                        cl_cli_work_fn work)
 {
-    cl_cli_args a = {0};
-    int at = cl_cli_parse(argc, argv, spec, &a);
+    int at = cl_cli_parse(argc, argv, t, settings);
     char buf[4096];
     int status = at == -2 ? 0
                  : at < 0 ? 2
                           : problem_job(cl_cli_problem_path(argv[at], buf,
                                                             sizeof buf),
-                                        &a, setup, work, ctx);
-    cl_cli_sets_free(&a.sets);
+                                        t, settings, check, work);
+    cl_cli_sets_free(&((cl_cli_args *)settings)->sets);
     return status;
+}
+
+int cl_cli_args_main(int argc, char **argv, const cl_cli_table *t,
+                     void *settings, int (*work)(void *settings))
+{
+    cl_cli_args *a = settings;
+    int at = cl_cli_parse(argc, argv, t, settings), status = 2;
+    cl_error err = {0};
+    cl_config *cfg = at >= 0 ? cl_config_alloc() : NULL;
+    if (at == -2)
+        status = 0;
+    else if (at >= 0 && !cfg)
+        status = cl_cli_fail(&(cl_error){CL_ENOMEM, "out of memory"});
+    else if (at >= 0 && cl_cli_apply(cfg, &a->sets, &err) == CL_OK &&
+             cl_cli_read(cfg, t, settings, &err) == CL_OK)
+        status = work(settings);
+    else if (at >= 0)
+        status = cl_cli_usage_error(t->cmd, "%s", err.msg);
+    cl_config_free(cfg);
+    cl_cli_sets_free(&a->sets);
+    return status;
+}
+
+cl_status cl_cli_ignore_run(cl_config *cfg, void *settings, cl_error *err)
+{
+    (void)settings;
+    (void)err;
+    cl_config_ignore_section(cfg, "run");
+    return CL_OK;
 }
 
 cl_status cl_cli_write_csv(const char *dir, const char *name,
@@ -181,13 +143,25 @@ cl_status cl_cli_write_csv(const char *dir, const char *name,
     return cl_afile_commit(&af, err);
 }
 
+cl_status cl_cli_apply(cl_config *cfg, const cl_cli_sets *sets,
+                       cl_error *err)
+{
+    cl_status rc = CL_OK;
+    char label[64];
+    for (int k = 0; rc == CL_OK && k < sets->n; k++) {
+        if (sets->label[k])
+            snprintf(label, sizeof label, "--%s", sets->label[k]);
+        rc = cl_config_set_as(cfg, sets->v[k], sets->label[k] ? label : NULL,
+                              err);
+    }
+    return rc;
+}
+
 cl_status cl_cli_load(cl_config *cfg, const char *problem,
                       const cl_cli_sets *sets, cl_error *err)
 {
     cl_status rc = cl_config_load(cfg, problem, err);
-    for (int k = 0; rc == CL_OK && k < sets->n; k++)
-        rc = cl_config_set_as(cfg, sets->v[k], sets->label[k], err);
-    return rc;
+    return rc ? rc : cl_cli_apply(cfg, sets, err);
 }
 
 void cl_cli_default_out(const char *problem, char *buf, size_t len)

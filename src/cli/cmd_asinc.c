@@ -1,21 +1,35 @@
 /* clothode asinc: the exact inverse sinc beside Jiao's polynomial
  * (analysis/asinc_error.h). */
-#include <getopt.h>
 #include <stdlib.h>
 
 #include "analysis/asinc_error.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
 
-static const char asinc_help[] =
-    "usage: clothode asinc [--points N] [--csv]\n"
+typedef struct {
+    cl_cli_args a;
+    long n;
+    bool csv;
+} asinc_args;
+
+static const cl_cli_opt asinc_rows[] = {
+    {.name = "points", .arg = "N", .type = CL_CLI_LONG, .sec = "asinc",
+     .key = "points", .def = 20, .lo = 1, .hi = 10000000,
+     .field = offsetof(asinc_args, n), .help = "N intervals"},
+    {.name = "csv", .type = CL_CLI_FLAG, .field = offsetof(asinc_args, csv),
+     .help = "rows y,asinc,asinc_over_pi,seed_poly,residual on stdout"},
+    CL_CLI_HELP_ROW,
+    {.type = CL_CLI_END}};
+
+static const cl_cli_table asinc_table = {
+    .cmd = "asinc", .synopsis = "[--points N] [--csv]", .npos = 0,
+    .rows = asinc_rows,
+    .about =
     "The inverse sinc t = asinc(y) of the Type2 buckling curvature\n"
-    "(kappa = (2/L) asinc(d/L), Jiao, eq. 8) on y = k/N, k = 0..N (default\n"
-    "N = 20), beside t/pi and Jiao's fifth-order polynomial p(y), which\n"
-    "fits t/pi but is used in place of t; with the largest errors and the\n"
-    "exact solver's residual |1 - sinc(t) - (1 - y)|.\n"
-    "  --points N  N intervals, 1 .. 10000000\n"
-    "  --csv       rows y,asinc,asinc_over_pi,seed_poly,residual on stdout\n";
+    "(kappa = (2/L) asinc(d/L), Jiao, eq. 8) on y = k/N, k = 0..N, beside\n"
+    "t/pi and Jiao's fifth-order polynomial p(y), which fits t/pi but is\n"
+    "used in place of t; with the largest errors and the exact solver's\n"
+    "residual |1 - sinc(t) - (1 - y)|.\n"};
 
 static void print_table(const cl_asinc_row *r, size_t n,
                         const cl_asinc_summary *s)
@@ -36,40 +50,16 @@ static void print_table(const cl_asinc_row *r, size_t n,
            s->max_resid);
 }
 
-int cl_cmd_asinc(int argc, char **argv)
+static int asinc(void *settings)
 {
-    static const struct option opts[] = {
-        {"points", required_argument, 0, 'n'},
-        {"csv", no_argument, 0, 'c'},
-        {"help", no_argument, 0, 'h'},
-        {0, 0, 0, 0}};
-    long n = 20;
-    int c, csv = 0;
-    char *end;
-    optind = 1;
-    opterr = 0;
-    while ((c = getopt_long(argc, argv, "", opts, NULL)) != -1) {
-        if (c == 'h')
-            return fputs(asinc_help, stdout), 0;
-        if (c == 'c')
-            csv = 1;
-        else if (c != 'n')
-            return cl_cli_usage_error("asinc", "unknown or incomplete option "
-                                      "'%s'", argv[optind - 1]);
-        else if ((n = strtol(optarg, &end, 10), *end) || end == optarg ||
-                 n < 1 || n > 10000000)
-            return cl_cli_usage_error("asinc", "--points \"%s\": expected "
-                                      "an integer in [1, 10000000]", optarg);
-    }
-    if (optind != argc)
-        return cl_cli_usage_error("asinc", "unexpected argument '%s'",
-                                  argv[optind]);
+    const asinc_args *a = settings;
+    long n = a->n;
     cl_asinc_row *rows = malloc(((size_t)n + 1) * sizeof *rows);
     cl_asinc_summary s;
     cl_error err = {0};
     cl_status rc = rows ? cl_asinc_error((size_t)n, rows, &s, &err)
                         : cl_error_set(&err, CL_ENOMEM, "out of memory");
-    if (!rc && csv) {
+    if (!rc && a->csv) {
         printf("y,asinc,asinc_over_pi,seed_poly,residual\n");
         for (long k = 0; k <= n; k++)
             printf("%.17g,%.17g,%.17g,%.17g,%.3g\n", rows[k].y, rows[k].t,
@@ -79,4 +69,10 @@ int cl_cmd_asinc(int argc, char **argv)
     }
     free(rows);
     return rc ? cl_cli_fail(&err) : 0;
+}
+
+int cl_cmd_asinc(int argc, char **argv)
+{
+    asinc_args a = {0};
+    return cl_cli_args_main(argc, argv, &asinc_table, &a, asinc);
 }

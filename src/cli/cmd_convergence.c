@@ -9,109 +9,78 @@
 #include "cli/commands.h"
 #include "cli/study.h"
 
-#define CONV_MAX_METHODS 32
-
-static const char conv_help[] =
-    "usage: clothode convergence PROBLEM [options]\n"
-    "Run each integrator at a sequence of levels to T and measure the final\n"
-    "state against a tight cvode-bdf reference: fixed-step methods at dt,\n"
-    "dt/2, dt/4, ..., adaptive ones at rtol, rtol/10, ... (atol alike).\n"
-    "Prints the errors, the order between levels and the least-squares\n"
-    "order; writes convergence.csv into the output directory.\n"
-    "\n"
-    "  --integrator LIST  integrators, comma-separated, each NAME or\n"
-    "                     NAME:LINSOL (cvode-bdf:pcg); [run] integrator\n"
-    "  --dt H             first step of the fixed-step integrators (s); the\n"
-    "                     adaptive ones choose their own initial step\n"
-    "  --rtol R --atol A  first tolerances of the adaptive integrators\n"
-    "  --levels K         levels per integrator, 2 .. 20 (default 5)\n"
-    "  --t-end T          final time (s); [run] t_end\n"
-    "  --ref-rtol R       reference tolerance (default 1e-11; atol R/100)\n"
-    "  --linsol NAME      linear solver of implicit integrators\n"
-    "  --max-order K      highest order of CVODE / IDA\n"
-    CL_CLI_HELP_OUT_SET
-    "  --quiet            no table on stdout\n"
-    "  --help             this text\n"
-    "The reference's floor is its distance to a run at 10x its rtol; levels\n"
-    "below the floor, and failed levels (as in run, a final stretch d/L\n"
-    "beyond [run] max_stretch counts as a blow-up), are left out of the fit.\n"
-    "Other [run] keys (newton_tol, lin_tol, ...) apply as in run.  Problems\n"
-    "that tear are refused.\n";
-
-static const struct option conv_opts[] = {
-    {"integrator", required_argument, 0, 'i'},
-    {"dt", required_argument, 0, 'd'},
-    {"rtol", required_argument, 0, 'r'},
-    {"atol", required_argument, 0, 'a'},
-    {"levels", required_argument, 0, 'L'},
-    {"t-end", required_argument, 0, 't'},
-    {"ref-rtol", required_argument, 0, 'R'},
-    {"linsol", required_argument, 0, 'l'},
-    {"max-order", required_argument, 0, 'm'},
-    CL_CLI_OPTS_TAIL};
-static const char *const conv_key[128] = {
-    ['i'] = "run.integrator", ['d'] = "run.dt", ['r'] = "run.rtol",
-    ['a'] = "run.atol", ['L'] = "convergence.levels", ['t'] = "run.t_end",
-    ['R'] = "convergence.ref_rtol", ['l'] = "run.linsol",
-    ['m'] = "run.max_order"};
-static const char *const conv_label[128] = {
-    ['i'] = "--integrator", ['d'] = "--dt", ['r'] = "--rtol",
-    ['a'] = "--atol", ['L'] = "--levels", ['t'] = "--t-end",
-    ['R'] = "--ref-rtol", ['l'] = "--linsol", ['m'] = "--max-order"};
-static const cl_cli_spec conv_spec = {"convergence", conv_help, conv_opts,
-                                      conv_key, conv_label};
-
-static const char wp_help[] =
-    "usage: clothode workprecision PROBLEM [options]\n"
-    "The runs of clothode convergence (the same options), ranked by cost:\n"
-    "each integrator, or integrator:linsol (cvode-bdf:pcg), at its levels\n"
-    "with the error reached and its CPU time; then, for every decade of\n"
-    "error, the integrator that reached it in the least CPU time and the\n"
-    "others' times relative to it.  One run per level: repeat for timing\n"
-    "noise.  Writes workprecision.csv (the columns of convergence.csv).\n";
-static const cl_cli_spec wp_spec = {"workprecision", wp_help, conv_opts,
-                                    conv_key, conv_label};
-
 /* The study: integrators with their options, levels, reference. */
 typedef struct {
-    int nm;
-    cl_cli_method m[CONV_MAX_METHODS];
+    cl_cli_args a;
+    cl_cli_methods integrators;
+    cl_cli_run run;
     long levels;
     cl_conv_opts co;
     cl_conv_ref ref;
     const cl_cli_study *study; /* convergence or workprecision */
 } conv_setup;
 
-/* The integrators of [run] integrator; an adaptive one picks its own
- * first step (dt is for the fixed-step ones). */
-static cl_status read_methods(cl_config *cfg, conv_setup *s, cl_error *err)
-{
-    cl_status rc = cl_cli_methods(cfg, true, CONV_MAX_METHODS, s->m, &s->nm,
-                                  err);
-    for (int k = 0; !rc && k < s->nm; k++)
-        if (!s->m[k].type->fixed_step)
-            s->m[k].io.dt = 0.0;
-    return rc;
-}
+static const cl_cli_opt conv_rows[] = {
+    {.name = "integrator", .arg = "LIST", .type = CL_CLI_METHODS,
+     .sec = "run", .key = "integrator", .sdef = "cvode-bdf",
+     .hi = CL_CLI_MAX_METHODS, .field = offsetof(conv_setup, integrators),
+     .help = "integrators, comma-separated, each NAME or NAME:LINSOL "
+             "(cvode-bdf:pcg)"},
+    /* dt and rtol, atol: the first level of the fixed-step and of the
+     * adaptive integrators */
+    {.type = CL_CLI_GROUP, .group = cl_cli_run_rows,
+     .field = offsetof(conv_setup, run)},
+    {.name = "levels", .arg = "K", .type = CL_CLI_LONG,
+     .sec = "convergence", .key = "levels", .def = 5, .lo = 2,
+     .hi = CL_CONV_MAX_LEVELS, .field = offsetof(conv_setup, levels),
+     .help = "levels per integrator"},
+    {.name = "ref-rtol", .arg = "R", .type = CL_CLI_DOUBLE,
+     .sec = "convergence", .key = "ref_rtol", .def = 1e-11, .lo = 1e-15,
+     .hi = 1e-4, .field = offsetof(conv_setup, co.ref_rtol),
+     .help = "reference tolerance (atol R/100)"},
+    CL_CLI_TAIL(conv_setup, "no table on stdout"),
+    {.type = CL_CLI_END}};
 
-static cl_status read_setup(cl_config *cfg, void *ctx, cl_error *err)
+static const char conv_notes[] =
+    "The first level of a fixed-step integrator is --dt, of an adaptive one\n"
+    "--rtol and --atol; an adaptive one chooses its own initial step.  The\n"
+    "reference's floor is its distance to a run at 10x its rtol; levels\n"
+    "below the floor, and failed levels (as in run, a final stretch d/L\n"
+    "beyond [run] max_stretch counts as a blow-up), are left out of the fit.\n"
+    "Problems that tear are refused.\n";
+
+static const cl_cli_table conv_table = {
+    .cmd = "convergence", .synopsis = "PROBLEM [options]", .npos = 1,
+    .rows = conv_rows, .notes = conv_notes,
+    .about =
+    "Run each integrator at a sequence of levels to T and measure the final\n"
+    "state against a tight cvode-bdf reference: fixed-step methods at dt,\n"
+    "dt/2, dt/4, ..., adaptive ones at rtol, rtol/10, ... (atol alike).\n"
+    "Prints the errors, the order between levels and the least-squares\n"
+    "order; writes convergence.csv into the output directory.\n"};
+
+static const cl_cli_table wp_table = {
+    .cmd = "workprecision", .synopsis = "PROBLEM [options]", .npos = 1,
+    .rows = conv_rows, .notes = conv_notes,
+    .about =
+    "The runs of clothode convergence (the same options), ranked by cost:\n"
+    "each integrator, or integrator:linsol (cvode-bdf:pcg), at its levels\n"
+    "with the error reached and its CPU time; then, for every decade of\n"
+    "error, the integrator that reached it in the least CPU time and the\n"
+    "others' times relative to it.  One run per level: repeat for timing\n"
+    "noise.  Writes workprecision.csv (the columns of convergence.csv).\n"};
+
+static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
 {
     conv_setup *s = ctx;
-    cl_status rc;
+    cl_status rc = cl_cli_methods_check(cfg, &s->integrators, &s->run.io,
+                                        CL_CLI_DT_FIXED, err);
     s->co.ref_linsol = "";
-    if ((rc = read_methods(cfg, s, err)) ||
-        (rc = cl_config_double(cfg, "run", "t_end", 2.0, 1e-300, INFINITY,
-                               &s->co.t_end, err)) ||
-        (rc = cl_config_double(cfg, "run", "max_stretch", 10.0, 1.0,
-                               INFINITY, &s->co.max_stretch, err)) ||
-        (rc = cl_config_long(cfg, "convergence", "levels", 5, 2,
-                             CL_CONV_MAX_LEVELS, &s->levels, err)) ||
-        (rc = cl_config_double(cfg, "convergence", "ref_rtol", 1e-11, 1e-15,
-                               1e-4, &s->co.ref_rtol, err)))
-        return rc;
-    for (int k = 0; !rc && k < s->nm; k++)
-        rc = cl_conv_check(s->m[k].type, &s->m[k].io, (int)s->levels,
-                           &s->co, err);
+    s->co.t_end = s->run.t_end;
+    s->co.max_stretch = s->run.max_stretch;
+    for (int k = 0; !rc && k < s->integrators.n; k++)
+        rc = cl_conv_check(s->integrators.m[k].type, &s->integrators.m[k].io,
+                           (int)s->levels, &s->co, err);
     return rc;
 }
 
@@ -149,7 +118,7 @@ static cl_status begin(cl_model *m, const cl_cli_job *job, void *ctx,
 {
     conv_setup *s = ctx;
     const cl_cloth *c = cl_model_cloth(m);
-    cl_status rc = cl_cli_methods_try(m, s->m, s->nm, err);
+    cl_status rc = cl_cli_methods_try(m, &s->integrators, err);
     if (rc || (rc = cl_conv_reference(m, &s->co, &s->ref, err)) ||
         job->quiet)
         return rc;
@@ -167,9 +136,10 @@ static cl_status run_one(cl_model *m, void *ctx, int k, void *result,
 {
     const conv_setup *s = ctx;
     cl_conv_result *r = result;
-    cl_status rc = cl_convergence(m, s->m[k].type, &s->m[k].io,
-                                  (int)s->levels, &s->co, &s->ref, r, err);
-    r->label = s->m[k].label;
+    const cl_cli_method *mk = &s->integrators.m[k];
+    cl_status rc = cl_convergence(m, mk->type, &mk->io, (int)s->levels,
+                                  &s->co, &s->ref, r, err);
+    r->label = mk->label;
     return rc;
 }
 
@@ -203,7 +173,7 @@ static void print_wp(const void *result)
  * others' CPU time relative to it. */
 static void print_ranking(const cl_conv_result *res, int n, double target)
 {
-    int order[CONV_MAX_METHODS], m = 0;
+    int order[CL_CLI_MAX_METHODS], m = 0;
     for (int k = 0; k < n; k++)
         if (!isnan(cl_conv_cheapest(&res[k], target)))
             order[m++] = k;
@@ -260,17 +230,19 @@ static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
                        cl_error *err)
 {
     const conv_setup *s = ctx;
-    return cl_cli_study_run(m, job, s->study, s->nm, ctx, err);
+    return cl_cli_study_run(m, job, s->study, s->integrators.n, ctx, err);
 }
 
 int cl_cmd_convergence(int argc, char **argv)
 {
     conv_setup s = {.study = &conv_study};
-    return cl_cli_problem_main(argc, argv, &conv_spec, read_setup, study, &s);
+    return cl_cli_problem_main(argc, argv, &conv_table, &s, check_setup,
+                               study);
 }
 
 int cl_cmd_workprecision(int argc, char **argv)
 {
     conv_setup s = {.study = &wp_study};
-    return cl_cli_problem_main(argc, argv, &wp_spec, read_setup, study, &s);
+    return cl_cli_problem_main(argc, argv, &wp_table, &s, check_setup,
+                               study);
 }

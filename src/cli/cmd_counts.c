@@ -2,26 +2,46 @@
  * Jiao's formulas (section 4.1): Choi-Ko pairs and Baraff-Witkin elements
  * (two tables; with --csv the Choi-Ko columns, and with --bw the
  * Baraff-Witkin columns appended after them). */
-#include <getopt.h>
 #include <stdlib.h>
 
 #include "analysis/counts.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
 
-static const char counts_help[] =
-    "usage: clothode counts [--n-min N] [--n-max N] [--csv [--bw]]\n"
+typedef struct {
+    cl_cli_args a;
+    long lo, hi;
+    bool csv, bw;
+} counts_args;
+
+static const cl_cli_opt counts_rows[] = {
+    {.name = "n-min", .arg = "N", .type = CL_CLI_LONG, .sec = "counts",
+     .key = "n_min", .def = 3, .lo = 2, .hi = 4096,
+     .field = offsetof(counts_args, lo), .help = "smallest grid n"},
+    {.name = "n-max", .arg = "N", .type = CL_CLI_LONG, .sec = "counts",
+     .key = "n_max", .def = 40, .lo = 2, .hi = 4096,
+     .field = offsetof(counts_args, hi), .help = "largest grid n"},
+    {.name = "csv", .type = CL_CLI_FLAG, .field = offsetof(counts_args, csv),
+     .help = "one CSV row per n: n, type1, type1_formula, type2, "
+             "type2_formula, ck, ck_formula"},
+    {.name = "bw", .type = CL_CLI_FLAG, .field = offsetof(counts_args, bw),
+     .help = "with --csv, append bw_tri, bw_tri_formula, bw_bend, "
+             "bw_bend_formula, bw_edges, bw_bend_seed, bw, bw_formula, "
+             "bw_seed"},
+    CL_CLI_HELP_ROW,
+    {.type = CL_CLI_END}};
+
+static const cl_cli_table counts_table = {
+    .cmd = "counts", .synopsis = "[--n-min N] [--n-max N] [--csv [--bw]]",
+    .npos = 0, .rows = counts_rows,
+    .about =
     "For n x n grids, the Choi-Ko Type1 and Type2 connection counts measured\n"
     "from the built topology beside Jiao's formulas 2(n-1)(2n-1),\n"
-    "4(n-1)(n-2) and CK = 8n^2-18n+10 (defaults: n = 3..40), and the\n"
-    "Baraff-Witkin elements measured from the triangle mesh: triangles\n"
-    "(formula 2(n-1)^2), bending hinges = interior edges ((n-1)(3n-5)), all\n"
-    "edges (Jiao's bending count 2n(n-1)+(n-1)^2 counts these), BW =\n"
-    "triangles + hinges (5n^2-12n+7) and Jiao's BW = 5n^2-8n+3.\n"
-    "  --csv   one CSV row per n: n,type1,type1_formula,type2,type2_formula,\n"
-    "          ck,ck_formula\n"
-    "  --bw    with --csv, append bw_tri,bw_tri_formula,bw_bend,\n"
-    "          bw_bend_formula,bw_edges,bw_bend_seed,bw,bw_formula,bw_seed\n";
+    "4(n-1)(n-2) and CK = 8n^2-18n+10, and the Baraff-Witkin elements\n"
+    "measured from the triangle mesh: triangles (formula 2(n-1)^2), bending\n"
+    "hinges = interior edges ((n-1)(3n-5)), all edges (Jiao's bending count\n"
+    "2n(n-1)+(n-1)^2 counts these), BW = triangles + hinges (5n^2-12n+7)\n"
+    "and Jiao's BW = 5n^2-8n+3.\n"};
 
 static void print_csv(const cl_counts *k, size_t n, int bw)
 {
@@ -61,55 +81,33 @@ static void print_tables(const cl_counts *k, size_t n)
                k[i].bw, k[i].bw_formula, k[i].bw_seed);
 }
 
-static int parse_n(const char *s, long *out)
+static int counts(void *settings)
 {
-    char *end;
-    *out = strtol(s, &end, 10);
-    return end != s && !*end && *out >= 2 && *out <= 4096;
-}
-
-int cl_cmd_counts(int argc, char **argv)
-{
-    static const struct option opts[] = {
-        {"n-min", required_argument, 0, 'a'},
-        {"n-max", required_argument, 0, 'b'},
-        {"csv", no_argument, 0, 'c'},
-        {"bw", no_argument, 0, 'w'},
-        {"help", no_argument, 0, 'h'},
-        {0, 0, 0, 0}};
-    long lo = 3, hi = 40;
-    int c, csv = 0, bw = 0;
-    optind = 1;
-    opterr = 0;
-    while ((c = getopt_long(argc, argv, "", opts, NULL)) != -1) {
-        if (c == 'h')
-            return fputs(counts_help, stdout), 0;
-        if (c == 'c' || c == 'w')
-            *(c == 'c' ? &csv : &bw) = 1;
-        else if ((c != 'a' && c != 'b') ||
-                 !parse_n(optarg, c == 'a' ? &lo : &hi))
-            return cl_cli_usage_error("counts", "bad option '%s' (n must be "
-                                      "an integer in [2, 4096])",
-                                      argv[optind - 1]);
-    }
-    if (optind != argc || lo > hi)
-        return cl_cli_usage_error("counts", "unexpected arguments or "
-                                  "n-min > n-max");
-    size_t rows = (size_t)(hi - lo + 1);
+    const counts_args *a = settings;
+    if (a->lo > a->hi)
+        return cl_cli_usage_error("counts", "--n-min %ld is above --n-max "
+                                  "%ld", a->lo, a->hi);
+    size_t rows = (size_t)(a->hi - a->lo + 1);
     cl_counts *k = malloc(rows * sizeof *k);
     if (!k)
         return cl_cli_fail(&(cl_error){CL_ENOMEM, "out of memory"});
     for (size_t i = 0; i < rows; i++) {
         cl_error err;
-        if (cl_counts_measure((int)(lo + (long)i), &k[i], &err)) {
+        if (cl_counts_measure((int)(a->lo + (long)i), &k[i], &err)) {
             free(k);
             return cl_cli_fail(&err);
         }
     }
-    if (csv)
-        print_csv(k, rows, bw);
+    if (a->csv)
+        print_csv(k, rows, a->bw);
     else
         print_tables(k, rows);
     free(k);
     return 0;
+}
+
+int cl_cmd_counts(int argc, char **argv)
+{
+    counts_args a = {0};
+    return cl_cli_args_main(argc, argv, &counts_table, &a, counts);
 }

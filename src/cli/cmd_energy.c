@@ -8,75 +8,49 @@
 #include "cli/commands.h"
 #include "cli/study.h"
 
-#define EB_MAX_METHODS 32
+typedef struct {
+    cl_cli_args a;
+    cl_cli_methods integrators;
+    cl_cli_run run;
+    long samples;
+} eb_setup;
 
-static const char eb_help[] =
-    "usage: clothode energy PROBLEM [options]\n"
+static const cl_cli_opt eb_rows[] = {
+    {.name = "integrator", .arg = "LIST", .type = CL_CLI_METHODS,
+     .sec = "run", .key = "integrator", .sdef = "cvode-bdf",
+     .hi = CL_CLI_MAX_METHODS, .field = offsetof(eb_setup, integrators),
+     .help = "integrators, comma-separated, each NAME or NAME:LINSOL"},
+    {.type = CL_CLI_GROUP, .group = cl_cli_run_rows, .hide = "max-order",
+     .field = offsetof(eb_setup, run)},
+    {.name = "samples", .arg = "S", .type = CL_CLI_LONG, .sec = "energy",
+     .key = "samples", .def = 1000, .lo = 1, .hi = 100000000,
+     .field = offsetof(eb_setup, samples),
+     .help = "samples after t = 0 (a fixed-step method is sampled at most "
+             "at every step)"},
+    CL_CLI_TAIL(eb_setup, "no table on stdout"),
+    {.type = CL_CLI_END}};
+
+static const cl_cli_table eb_table = {
+    .cmd = "energy", .synopsis = "PROBLEM [options]", .npos = 1,
+    .rows = eb_rows,
+    .about =
     "Run each integrator to T and follow its energy at evenly spread\n"
     "samples: E = kinetic + potential, W = the work of the damping\n"
     "(trapezoidal rule between samples) and the balance B = E - E(0) - W,\n"
     "the energy the integrator made (> 0) or destroyed (< 0).  Prints E(0),\n"
     "E(T), W(T), B(T) and max |B| (also relative to the run's energy\n"
-    "scale); writes every sample to energy.csv in the output directory.\n"
-    "\n"
-    "  --integrator LIST  integrators, comma-separated; [run] integrator\n"
-    "  --dt H             step of the fixed-step integrators (s)\n"
-    "  --rtol R --atol A  tolerances of the adaptive integrators\n"
-    "  --t-end T          final time (s); [run] t_end\n"
-    "  --samples S        samples after t = 0 (default 1000; a fixed-step\n"
-    "                     method is sampled at most at every step)\n"
-    "  --linsol NAME      linear solver of implicit integrators\n"
-    CL_CLI_HELP_OUT_SET
-    "  --quiet            no table on stdout\n"
-    "  --help             this text\n"
+    "scale); writes every sample to energy.csv in the output directory.\n",
+    .notes =
     "W's quadrature error falls with the square of the sample spacing:\n"
     "sample densely when the damping is strong.  Moving pins do work that\n"
     "shows in B.  A run that blows up (as in run) is reported with the\n"
-    "samples before it.  Problems that tear are refused.\n";
+    "samples before it.  Problems that tear are refused.\n"};
 
-static const struct option eb_opts[] = {
-    {"integrator", required_argument, 0, 'i'},
-    {"dt", required_argument, 0, 'd'},
-    {"rtol", required_argument, 0, 'r'},
-    {"atol", required_argument, 0, 'a'},
-    {"t-end", required_argument, 0, 't'},
-    {"samples", required_argument, 0, 'S'},
-    {"linsol", required_argument, 0, 'l'},
-    CL_CLI_OPTS_TAIL};
-static const char *const eb_key[128] = {
-    ['i'] = "run.integrator", ['d'] = "run.dt", ['r'] = "run.rtol",
-    ['a'] = "run.atol", ['t'] = "run.t_end", ['S'] = "energy.samples",
-    ['l'] = "run.linsol"};
-static const char *const eb_label[128] = {
-    ['i'] = "--integrator", ['d'] = "--dt", ['r'] = "--rtol",
-    ['a'] = "--atol", ['t'] = "--t-end", ['S'] = "--samples",
-    ['l'] = "--linsol"};
-static const cl_cli_spec eb_spec = {"energy", eb_help, eb_opts, eb_key,
-                                    eb_label};
-
-typedef struct {
-    int nm;
-    cl_cli_method m[EB_MAX_METHODS];
-    double t_end, max_stretch;
-    long samples;
-} eb_setup;
-
-static cl_status read_setup(cl_config *cfg, void *ctx, cl_error *err)
+static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
 {
     eb_setup *s = ctx;
-    cl_status rc;
-    if ((rc = cl_cli_methods(cfg, true, EB_MAX_METHODS, s->m, &s->nm,
-                             err)) ||
-        (rc = cl_config_double(cfg, "run", "t_end", 2.0, 1e-300, INFINITY,
-                               &s->t_end, err)) ||
-        (rc = cl_config_double(cfg, "run", "max_stretch", 10.0, 1.0,
-                               INFINITY, &s->max_stretch, err)))
-        return rc;
-    for (int k = 0; k < s->nm; k++)
-        if (!s->m[k].type->fixed_step)
-            s->m[k].io.dt = 0.0; /* not CVODE's first step: its own */
-    return cl_config_long(cfg, "energy", "samples", 1000, 1, 100000000,
-                          &s->samples, err);
+    return cl_cli_methods_check(cfg, &s->integrators, &s->run.io,
+                                CL_CLI_DT_FIXED, err);
 }
 
 static void print_result(const void *result)
@@ -99,14 +73,15 @@ static cl_status begin(cl_model *m, const cl_cli_job *job, void *ctx,
                        cl_error *err)
 {
     const eb_setup *s = ctx;
-    cl_status rc = cl_cli_methods_try(m, s->m, s->nm, err);
-    for (int k = 0; !rc && k < s->nm; k++)
-        rc = cl_ebal_check(m, s->m[k].type, &s->m[k].io, s->t_end,
-                           s->samples, err);
+    cl_status rc = cl_cli_methods_try(m, &s->integrators, err);
+    for (int k = 0; !rc && k < s->integrators.n; k++)
+        rc = cl_ebal_check(m, s->integrators.m[k].type,
+                           &s->integrators.m[k].io, s->run.t_end, s->samples,
+                           err);
     if (rc || job->quiet)
         return rc;
-    printf("problem    %s, T = %g s, %ld samples\n", job->problem, s->t_end,
-           s->samples);
+    printf("problem    %s, T = %g s, %ld samples\n", job->problem,
+           s->run.t_end, s->samples);
     return CL_OK;
 }
 
@@ -115,9 +90,10 @@ static cl_status run_one(cl_model *m, void *ctx, int k, void *result,
 {
     const eb_setup *s = ctx;
     cl_ebal_result *r = result;
-    cl_status rc = cl_ebal_run(m, s->m[k].type, &s->m[k].io, s->t_end,
-                               s->samples, s->max_stretch, r, err);
-    r->label = s->m[k].label;
+    const cl_cli_method *mk = &s->integrators.m[k];
+    cl_status rc = cl_ebal_run(m, mk->type, &mk->io, s->run.t_end,
+                               s->samples, s->run.max_stretch, r, err);
+    r->label = mk->label;
     return rc;
 }
 
@@ -143,11 +119,12 @@ static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
                        cl_error *err)
 {
     const eb_setup *s = ctx;
-    return cl_cli_study_run(m, job, &eb_study, s->nm, ctx, err);
+    return cl_cli_study_run(m, job, &eb_study, s->integrators.n, ctx, err);
 }
 
 int cl_cmd_energy(int argc, char **argv)
 {
     eb_setup s = {0};
-    return cl_cli_problem_main(argc, argv, &eb_spec, read_setup, study, &s);
+    return cl_cli_problem_main(argc, argv, &eb_table, &s, check_setup,
+                               study);
 }

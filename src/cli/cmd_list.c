@@ -56,16 +56,18 @@ static void list_problems(void)
     free(names);
 }
 
-int cl_cmd_list(int argc, char **argv)
+static const cl_cli_opt list_rows[] = {
+    CL_CLI_HELP_ROW,
+    {.type = CL_CLI_END}};
+
+static const cl_cli_table list_table = {
+    .cmd = "list", .synopsis = "", .npos = 0, .rows = list_rows,
+    .about = "Names the problems (problems/*.ini or $CLOTHODE_PROBLEMS), the\n"
+             "integrators, the force terms and the obstacle shapes.\n"};
+
+static int list(void *settings)
 {
-    if (argc > 1 && !strcmp(argv[1], "--help")) {
-        puts("usage: clothode list\nNames the problems (problems/*.ini or "
-             "$CLOTHODE_PROBLEMS), the integrators, the force terms and the "
-             "obstacle shapes.");
-        return 0;
-    }
-    if (argc > 1)
-        return cl_cli_usage_error("list", "takes no arguments");
+    (void)settings;
     list_problems();
     printf("integrators:\n");
     for (size_t k = 0; cl_integrator_registry[k]; k++)
@@ -81,4 +83,10 @@ int cl_cmd_list(int argc, char **argv)
         printf("  %-20s %s\n", cl_shape_registry[k]->name,
                cl_shape_registry[k]->doc);
     return 0;
+}
+
+int cl_cmd_list(int argc, char **argv)
+{
+    cl_cli_args a = {0};
+    return cl_cli_args_main(argc, argv, &list_table, &a, list);
 }

@@ -7,137 +7,78 @@
 #include "cli/cli.h"
 #include "cli/commands.h"
 
-static const char run_help[] =
-    "usage: clothode run PROBLEM [options]\n"
-    "Integrate PROBLEM (a .ini file, or a name under problems/) and write\n"
-    "series.csv, frames, final.csv and stats.csv into the output directory.\n"
-    "\n"
-    "  --integrator NAME  integrator (clothode list); [run] integrator\n"
-    "  --dt H             fixed step for fixed-step integrators (s)\n"
-    "  --rtol R --atol A  tolerances for adaptive integrators\n"
-    "  --linsol NAME      linear solver of implicit integrators (klu, pcg, ...)\n"
-    "  --max-order K      highest order of CVODE / IDA (default 5 for BDF, 12\n"
-    "                     for Adams; BDF beyond 2 is not A-stable)\n"
-    "  --threads N        threads for the pair forces of every right-hand side\n"
-    "                     (default 1; results equal the serial ones to\n"
-    "                     round-off)\n"
-    "  --t-end T          final time (s); [run] t_end\n"
-    "  --samples S        time-series rows after t = 0 (default 200)\n"
-    "  --frames K         frames after t = 0 (default 10, 0 for none)\n"
-    "  --format LIST      frame formats among csv,vtk,obj (default vtk,obj;\n"
-    "                     csv: the time series only)\n"
-    CL_CLI_HELP_OUT_SET
-    "  --quiet            no summary on stdout\n"
-    "  --help             this text\n"
-    "Every option is also a key of the [run] section (t_end, dt, rtol, atol,\n"
-    "linsol, max_order, threads, samples, frames, format, integrator,\n"
-    "max_stretch);\n"
-    "[run] also takes newton_tol, newton_maxit (fixed-step implicit methods),\n"
-    "lin_tol, lin_maxit (iterative linear solvers) and verlet_damping\n"
-    "(the Verlet-and-PBD report).\n";
-
-static const struct option run_opts[] = {
-    {"integrator", required_argument, 0, 'i'},
-    {"dt", required_argument, 0, 'd'},
-    {"rtol", required_argument, 0, 'r'},
-    {"atol", required_argument, 0, 'a'},
-    {"linsol", required_argument, 0, 'l'},
-    {"threads", required_argument, 0, 'T'},
-    {"max-order", required_argument, 0, 'm'},
-    {"t-end", required_argument, 0, 't'},
-    {"samples", required_argument, 0, 'S'},
-    {"frames", required_argument, 0, 'f'},
-    {"format", required_argument, 0, 'F'},
-    CL_CLI_OPTS_TAIL};
-static const char *const run_key[128] = {
-    ['i'] = "run.integrator", ['d'] = "run.dt", ['r'] = "run.rtol",
-    ['a'] = "run.atol", ['l'] = "run.linsol", ['T'] = "run.threads",
-    ['m'] = "run.max_order", ['t'] = "run.t_end", ['S'] = "run.samples",
-    ['f'] = "run.frames", ['F'] = "run.format"};
-static const char *const run_label[128] = {
-    ['i'] = "--integrator", ['d'] = "--dt", ['r'] = "--rtol",
-    ['a'] = "--atol", ['l'] = "--linsol", ['T'] = "--threads",
-    ['m'] = "--max-order", ['t'] = "--t-end", ['S'] = "--samples",
-    ['f'] = "--frames", ['F'] = "--format"};
-static const cl_cli_spec run_spec = {"run", run_help, run_opts, run_key,
-                                     run_label};
-
 typedef struct {
-    const cl_integrator_type *type;
-    cl_integrator_opts io;
+    cl_cli_args a;
+    cl_cli_methods integrator; /* one */
+    cl_cli_run run;
+    long threads, samples, frames;
+    unsigned format; /* bits of run_formats */
     cl_sim_opts so;
-    long threads;
 } run_setup;
 
-static cl_status read_formats(cl_config *cfg, cl_sim_opts *so, cl_error *err)
-{
-    const char *fmt = cl_config_string(cfg, "run", "format", "vtk,obj");
-    char where[256];
-    so->vtk = so->obj = false;
-    for (const char *p = fmt; *p;) {
-        size_t n = strcspn(p, ", ");
-        if (n == 3 && !strncmp(p, "vtk", 3))
-            so->vtk = true;
-        else if (n == 3 && !strncmp(p, "obj", 3))
-            so->obj = true;
-        else if (n && !(n == 3 && !strncmp(p, "csv", 3)))
-            return cl_error_set(err, CL_EINVAL,
-                                "%s: [run] format = \"%s\": expected a list "
-                                "of csv, vtk, obj",
-                                cl_config_origin(cfg, "run", "format", where,
-                                                 sizeof where), fmt);
-        p += n;
-        p += strspn(p, ", ");
-    }
-    return CL_OK;
-}
+static const char *const run_formats[] = {"csv", "vtk", "obj", NULL};
 
-static cl_status read_integrator(cl_config *cfg, run_setup *r, cl_error *err)
-{
-    const char *names[64];
-    int n = 0, k;
-    for (; cl_integrator_registry[n] && n < 63; n++)
-        names[n] = cl_integrator_registry[n]->name;
-    names[n] = NULL;
-    cl_status rc = cl_config_choice(cfg, "run", "integrator", names, 0, &k,
-                                    err);
-    if (rc)
-        return rc;
-    r->type = cl_integrator_registry[k];
-    return cl_cli_integrator_opts(cfg, r->type, true, &r->io, err);
-}
+static const cl_cli_opt run_rows[] = {
+    {.name = "integrator", .arg = "NAME", .type = CL_CLI_METHODS,
+     .sec = "run", .key = "integrator", .sdef = "cvode-bdf", .hi = 1,
+     .field = offsetof(run_setup, integrator),
+     .help = "integrator, or NAME:LINSOL (clothode list)"},
+    {.type = CL_CLI_GROUP, .group = cl_cli_run_rows,
+     .field = offsetof(run_setup, run)},
+    {.name = "threads", .arg = "N", .type = CL_CLI_LONG, .sec = "run",
+     .key = "threads", .def = 1, .lo = 1, .hi = CL_MODEL_MAX_THREADS,
+     .field = offsetof(run_setup, threads),
+     .help = "threads for the pair forces of every right-hand side; results "
+             "equal the serial ones to round-off"},
+    {.name = "samples", .arg = "S", .type = CL_CLI_LONG, .sec = "run",
+     .key = "samples", .def = 200, .lo = 1, .hi = 100000000,
+     .field = offsetof(run_setup, samples),
+     .help = "time-series rows after t = 0"},
+    {.name = "frames", .arg = "K", .type = CL_CLI_LONG, .sec = "run",
+     .key = "frames", .def = 10, .lo = 0, .hi = 1000000,
+     .field = offsetof(run_setup, frames),
+     .help = "frames after t = 0, 0 for none"},
+    {.name = "format", .arg = "LIST", .type = CL_CLI_NAMES, .sec = "run",
+     .key = "format", .sdef = "vtk,obj", .names = run_formats,
+     .field = offsetof(run_setup, format),
+     .help = "frame formats among csv,vtk,obj (csv: the time series only)"},
+    CL_CLI_TAIL(run_setup, "no summary on stdout"),
+    {.type = CL_CLI_END}};
 
-static cl_status read_run(cl_config *cfg, void *ctx, cl_error *err)
+static const cl_cli_table run_table = {
+    .cmd = "run", .synopsis = "PROBLEM [options]", .npos = 1,
+    .rows = run_rows,
+    .about =
+    "Integrate PROBLEM (a .ini file, or a name under problems/) and write\n"
+    "series.csv, frames, final.csv and stats.csv into the output\n"
+    "directory.\n"};
+
+static cl_status check_run(cl_config *cfg, void *ctx, cl_error *err)
 {
     run_setup *r = ctx;
-    cl_status rc;
-    if ((rc = read_integrator(cfg, r, err)) ||
-        (rc = cl_config_double(cfg, "run", "t_end", 2.0, 1e-300, INFINITY,
-                               &r->so.t_end, err)) ||
-        (rc = cl_config_long(cfg, "run", "samples", 200, 1, 100000000,
-                             &r->so.samples, err)) ||
-        (rc = cl_config_long(cfg, "run", "frames", 10, 0, 1000000,
-                             &r->so.frames, err)) ||
-        (rc = cl_config_long(cfg, "run", "threads", 1, 1,
-                             CL_MODEL_MAX_THREADS, &r->threads, err)) ||
-        (rc = cl_config_double(cfg, "run", "max_stretch", 10.0, 1.0,
-                               INFINITY, &r->so.max_stretch, err)))
-        return rc;
-    return read_formats(cfg, &r->so, err);
+    r->so.t_end = r->run.t_end;
+    r->so.max_stretch = r->run.max_stretch;
+    r->so.samples = r->samples;
+    r->so.frames = r->frames;
+    r->so.vtk = r->format & 2u;
+    r->so.obj = r->format & 4u;
+    return cl_cli_methods_check(cfg, &r->integrator, &r->run.io,
+                                CL_CLI_DT_ALL, err);
 }
 
 static void print_summary(const char *problem, const run_setup *r,
                           const cl_model *m, const cl_sim_result *res)
 {
     const cl_cloth *c = cl_model_cloth(m);
+    const cl_cli_method *im = &r->integrator.m[0];
     char shape[96];
     printf("problem      %s (%s, %zu free)\n", problem,
            cl_cloth_shape(c, shape, sizeof shape), c->nfree);
-    printf("integrator   %s", r->type->name);
-    if (r->type->fixed_step)
-        printf(" (dt = %g)\n", r->io.dt);
+    printf("integrator   %s", im->type->name);
+    if (im->type->fixed_step)
+        printf(" (dt = %g)\n", im->io.dt);
     else
-        printf(" (rtol = %g, atol = %g)\n", r->io.rtol, r->io.atol);
+        printf(" (rtol = %g, atol = %g)\n", im->io.rtol, im->io.atol);
     printf("time         %g of %g s\n", res->t_reached, r->so.t_end);
     printf("energy       %.10g -> %.10g J (kinetic %.6g)\n", res->e0.total,
            res->e1.total, res->e1.kinetic);
@@ -165,7 +106,8 @@ static cl_status run_work(cl_model *m, const cl_cli_job *job, void *ctx,
     r->so.outdir = job->outdir;
     r->so.progress = cl_cli_progress;
     if (!rc)
-        rc = cl_simulate(m, r->type, &r->io, &r->so, &res, err);
+        rc = cl_simulate(m, r->integrator.m[0].type, &r->integrator.m[0].io,
+                         &r->so, &res, err);
     if (!job->quiet && res.rows > 0)
         print_summary(job->problem, r, m, &res);
     if (res.rows > 0) {
@@ -181,6 +123,6 @@ static cl_status run_work(cl_model *m, const cl_cli_job *job, void *ctx,
 int cl_cmd_run(int argc, char **argv)
 {
     run_setup r = {0};
-    return cl_cli_problem_main(argc, argv, &run_spec, read_run, run_work,
-                               &r);
+    return cl_cli_problem_main(argc, argv, &run_table, &r, check_run,
+                               run_work);
 }

@@ -8,46 +8,34 @@
 #include "cli/commands.h"
 #include "io/state.h"
 
-static const char spec_help[] =
-    "usage: clothode spectrum PROBLEM [options]\n"
+typedef struct {
+    cl_cli_args a;
+    const char *state; /* "" for the initial state */
+    double t;
+} spec_setup;
+
+static const cl_cli_opt spec_rows[] = {
+    {.name = "state", .arg = "FILE", .type = CL_CLI_STRING,
+     .sec = "spectrum", .key = "state", .field = offsetof(spec_setup, state),
+     .help = "state to linearise at, as final.csv (default: the problem's "
+             "initial state)"},
+    {.name = "t", .arg = "T", .type = CL_CLI_DOUBLE, .sec = "spectrum",
+     .key = "t", .lo = -INFINITY, .hi = INFINITY,
+     .field = offsetof(spec_setup, t),
+     .help = "time of that state (moving pins; default 0)"},
+    CL_CLI_TAIL(spec_setup, "no summary on stdout"),
+    {.type = CL_CLI_END}};
+
+static const cl_cli_table spec_table = {
+    .cmd = "spectrum", .synopsis = "PROBLEM [options]", .npos = 1,
+    .rows = spec_rows,
+    .about =
     "Eigenvalues of the cloth linearised at a state: mu = w^2 of the\n"
     "stiffness (-M^-1/2 sym(df/dx) M^-1/2) and lambda of the first-order\n"
     "Jacobian (damping included), and the largest stable steps they predict\n"
     "for the explicit integrators (compare with clothode stability).  Dense\n"
     "eigensolvers: at most a 24 x 24 cloth.  Writes spectrum.csv (kind,\n"
-    "index, re, im) into the output directory.\n"
-    "\n"
-    "  --state FILE       state to linearise at, as final.csv (default: the\n"
-    "                     problem's initial state)\n"
-    "  --t T              time of that state (moving pins; default 0)\n"
-    CL_CLI_HELP_OUT_SET
-    "  --quiet            no summary on stdout\n"
-    "  --help             this text\n";
-
-static const struct option spec_opts[] = {
-    {"state", required_argument, 0, 'S'},
-    {"t", required_argument, 0, 't'},
-    CL_CLI_OPTS_TAIL};
-static const char *const spec_key[128] = {['S'] = "spectrum.state",
-                                          ['t'] = "spectrum.t"};
-static const char *const spec_label[128] = {['S'] = "--state",
-                                            ['t'] = "--t"};
-static const cl_cli_spec spec_spec = {"spectrum", spec_help, spec_opts,
-                                      spec_key, spec_label};
-
-typedef struct {
-    const char *state; /* "" for the initial state */
-    double t;
-} spec_setup;
-
-static cl_status read_setup(cl_config *cfg, void *ctx, cl_error *err)
-{
-    spec_setup *s = ctx;
-    cl_config_ignore_section(cfg, "run"); /* spectrum does not integrate */
-    s->state = cl_config_string(cfg, "spectrum", "state", "");
-    return cl_config_double(cfg, "spectrum", "t", 0.0, -INFINITY, INFINITY,
-                            &s->t, err);
-}
+    "index, re, im) into the output directory.\n"};
 
 /* The free state to linearise at. */
 static cl_status free_state(cl_model *m, const spec_setup *s, double *x,
@@ -120,6 +108,6 @@ static cl_status spectrum(cl_model *m, const cl_cli_job *job, void *ctx,
 int cl_cmd_spectrum(int argc, char **argv)
 {
     spec_setup s = {0};
-    return cl_cli_problem_main(argc, argv, &spec_spec, read_setup, spectrum,
-                               &s);
+    return cl_cli_problem_main(argc, argv, &spec_table, &s, cl_cli_ignore_run,
+                               spectrum);
 }

@@ -9,97 +9,90 @@
 #include "cli/commands.h"
 #include "cli/study.h"
 
-#define STAB_MAX_METHODS 32
+typedef struct {
+    cl_cli_args a;
+    cl_cli_methods integrators;
+    cl_cli_run run;
+    cl_stab_opts so;
+} stab_setup;
 
-static const char stab_help[] =
-    "usage: clothode stability PROBLEM [options]\n"
+/* dt_max: T/100 by default, at most T/10 (a run of a few steps has no room
+ * to blow up); dt_min at most dt_max. */
+static void dt_max_bounds(const void *settings, double *def, double *hi)
+{
+    const stab_setup *s = settings;
+    *def = s->run.t_end / 100;
+    *hi = s->run.t_end / 10;
+}
+
+static void dt_min_bounds(const void *settings, double *def, double *hi)
+{
+    (void)def;
+    *hi = ((const stab_setup *)settings)->so.dt_max;
+}
+
+static const cl_cli_opt stab_rows[] = {
+    {.name = "integrator", .arg = "LIST", .type = CL_CLI_METHODS,
+     .sec = "run", .key = "integrator", .sdef = "cvode-bdf",
+     .hi = CL_CLI_MAX_METHODS, .field = offsetof(stab_setup, integrators),
+     .help = "fixed-step integrators, comma-separated, each NAME or "
+             "NAME:LINSOL"},
+    /* [run] dt is read but not used: the search sets the step */
+    {.type = CL_CLI_GROUP, .group = cl_cli_run_rows,
+     .hide = "dt rtol atol max-order", .field = offsetof(stab_setup, run)},
+    {.name = "dt-max", .arg = "H", .type = CL_CLI_DOUBLE,
+     .sec = "stability", .key = "dt_max", .lo = 1e-300,
+     .bounds = dt_max_bounds, .field = offsetof(stab_setup, so.dt_max),
+     .help = "largest step tried, at most T/10 (default T/100): a run of a "
+             "few steps has no room to blow up"},
+    {.name = "dt-min", .arg = "H", .type = CL_CLI_DOUBLE,
+     .sec = "stability", .key = "dt_min", .def = 1e-7, .lo = 1e-300,
+     .bounds = dt_min_bounds, .field = offsetof(stab_setup, so.dt_min),
+     .help = "give up below this step, at most dt_max"},
+    {.name = "rel", .arg = "R", .type = CL_CLI_DOUBLE, .sec = "stability",
+     .key = "rel", .def = 0.02, .lo = 1e-6, .hi = 0.5,
+     .field = offsetof(stab_setup, so.rel),
+     .help = "bracket width relative to the step"},
+    {.name = "checks", .arg = "K", .type = CL_CLI_LONG, .sec = "stability",
+     .key = "checks", .def = 20, .lo = 1, .hi = 100000,
+     .field = offsetof(stab_setup, so.checks),
+     .help = "stretch tests per run"},
+    CL_CLI_TAIL(stab_setup, "no table on stdout"),
+    {.type = CL_CLI_END}};
+
+static const cl_cli_table stab_table = {
+    .cmd = "stability", .synopsis = "PROBLEM [options]", .npos = 1,
+    .rows = stab_rows,
+    .about =
     "For each fixed-step integrator, the largest step dt = T/N with which a\n"
     "run to T stays bounded: N doubles from T/dt_max until a run is stable,\n"
     "then bisection brackets the limit.  A run is unstable when its state\n"
     "becomes non-finite, its stretch d/L exceeds [run] max_stretch at one of\n"
     "the checks, or its solver gives up.  Writes every run to stability.csv\n"
-    "in the output directory.\n"
-    "\n"
-    "  --integrator LIST  fixed-step integrators, comma-separated\n"
-    "  --t-end T          horizon every run must survive (s); [run] t_end\n"
-    "  --dt-max H         largest step tried, at most T/10 (default T/100):\n"
-    "                     a run of a few steps has no room to blow up\n"
-    "  --dt-min H         give up below this step (default 1e-7)\n"
-    "  --rel R            bracket width relative to the step (default 0.02)\n"
-    "  --checks K         stretch tests per run (default 20)\n"
-    "  --linsol NAME      linear solver of implicit integrators\n"
-    CL_CLI_HELP_OUT_SET
-    "  --quiet            no table on stdout\n"
-    "  --help             this text\n"
-    "Other [run] keys (newton_tol, newton_maxit, verlet_damping, ...) apply\n"
-    "as in run; [run] dt is not used.  Stability need not be monotone in\n"
-    "dt: the bracket is the one the search found.  Problems that tear are\n"
-    "refused.\n";
-
-static const struct option stab_opts[] = {
-    {"integrator", required_argument, 0, 'i'},
-    {"t-end", required_argument, 0, 't'},
-    {"dt-max", required_argument, 0, 'H'},
-    {"dt-min", required_argument, 0, 'M'},
-    {"rel", required_argument, 0, 'r'},
-    {"checks", required_argument, 0, 'c'},
-    {"linsol", required_argument, 0, 'l'},
-    CL_CLI_OPTS_TAIL};
-static const char *const stab_key[128] = {
-    ['i'] = "run.integrator", ['t'] = "run.t_end",
-    ['H'] = "stability.dt_max", ['M'] = "stability.dt_min",
-    ['r'] = "stability.rel", ['c'] = "stability.checks",
-    ['l'] = "run.linsol"};
-static const char *const stab_label[128] = {
-    ['i'] = "--integrator", ['t'] = "--t-end", ['H'] = "--dt-max",
-    ['M'] = "--dt-min", ['r'] = "--rel", ['c'] = "--checks",
-    ['l'] = "--linsol"};
-static const cl_cli_spec stab_spec = {"stability", stab_help, stab_opts,
-                                      stab_key, stab_label};
-
-typedef struct {
-    int nm;
-    cl_cli_method m[STAB_MAX_METHODS];
-    cl_stab_opts so;
-} stab_setup;
+    "in the output directory.\n",
+    .notes =
+    "The other [run] keys apply as in run; [run] dt is not used.  Stability\n"
+    "need not be monotone in dt: the bracket is the one the search found.\n"
+    "Problems that tear are refused.\n"};
 
 /* Only fixed-step integrators have a step to limit. */
-static cl_status check_fixed(cl_config *cfg, const stab_setup *s,
-                             cl_error *err)
+static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
 {
+    stab_setup *s = ctx;
     char where[256];
-    for (int k = 0; k < s->nm; k++)
-        if (!s->m[k].type->fixed_step)
+    cl_status rc = cl_cli_methods_check(cfg, &s->integrators, &s->run.io,
+                                        CL_CLI_DT_NONE, err);
+    for (int k = 0; !rc && k < s->integrators.n; k++)
+        if (!s->integrators.m[k].type->fixed_step)
             return cl_error_set(err, CL_EINVAL, "%s: [run] integrator: %s "
                                 "chooses its own steps by error control; "
                                 "stability takes fixed-step integrators",
                                 cl_config_origin(cfg, "run", "integrator",
                                                  where, sizeof where),
-                                s->m[k].type->name);
-    return CL_OK;
-}
-
-static cl_status read_setup(cl_config *cfg, void *ctx, cl_error *err)
-{
-    stab_setup *s = ctx;
-    cl_stab_opts *o = &s->so;
-    cl_status rc;
-    if ((rc = cl_cli_methods(cfg, false, STAB_MAX_METHODS, s->m, &s->nm,
-                             err)) ||
-        (rc = check_fixed(cfg, s, err)) ||
-        (rc = cl_config_double(cfg, "run", "t_end", 2.0, 1e-300, INFINITY,
-                               &o->t_end, err)) ||
-        (rc = cl_config_double(cfg, "run", "max_stretch", 10.0, 1.0,
-                               INFINITY, &o->max_stretch, err)) ||
-        (rc = cl_config_double(cfg, "stability", "dt_max", o->t_end / 100,
-                               1e-300, o->t_end / 10, &o->dt_max, err)) ||
-        (rc = cl_config_double(cfg, "stability", "dt_min", 1e-7, 1e-300,
-                               o->dt_max, &o->dt_min, err)) ||
-        (rc = cl_config_double(cfg, "stability", "rel", 0.02, 1e-6, 0.5,
-                               &o->rel, err)))
-        return rc;
-    return cl_config_long(cfg, "stability", "checks", 20, 1, 100000,
-                          &o->checks, err);
+                                s->integrators.m[k].type->name);
+    s->so.t_end = s->run.t_end;
+    s->so.max_stretch = s->run.max_stretch;
+    return rc;
 }
 
 static void print_result(const void *result)
@@ -123,9 +116,9 @@ static cl_status begin(cl_model *m, const cl_cli_job *job, void *ctx,
 {
     const stab_setup *s = ctx;
     const cl_cloth *c = cl_model_cloth(m);
-    cl_status rc = cl_cli_methods_try(m, s->m, s->nm, err);
-    for (int k = 0; !rc && k < s->nm; k++)
-        rc = cl_stab_check(m, s->m[k].type, &s->so, err);
+    cl_status rc = cl_cli_methods_try(m, &s->integrators, err);
+    for (int k = 0; !rc && k < s->integrators.n; k++)
+        rc = cl_stab_check(m, s->integrators.m[k].type, &s->so, err);
     if (rc || job->quiet)
         return rc;
     char shape[96];
@@ -141,9 +134,9 @@ static cl_status run_one(cl_model *m, void *ctx, int k, void *result,
 {
     const stab_setup *s = ctx;
     cl_stab_result *r = result;
-    cl_status rc = cl_stability(m, s->m[k].type, &s->m[k].io, &s->so, r,
-                                err);
-    r->label = s->m[k].label;
+    const cl_cli_method *mk = &s->integrators.m[k];
+    cl_status rc = cl_stability(m, mk->type, &mk->io, &s->so, r, err);
+    r->label = mk->label;
     return rc;
 }
 
@@ -163,11 +156,13 @@ static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
                        cl_error *err)
 {
     const stab_setup *s = ctx;
-    return cl_cli_study_run(m, job, &stab_study, s->nm, ctx, err);
+    return cl_cli_study_run(m, job, &stab_study, s->integrators.n, ctx,
+                            err);
 }
 
 int cl_cmd_stability(int argc, char **argv)
 {
     stab_setup s = {0};
-    return cl_cli_problem_main(argc, argv, &stab_spec, read_setup, study, &s);
+    return cl_cli_problem_main(argc, argv, &stab_table, &s, check_setup,
+                               study);
 }

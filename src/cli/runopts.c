@@ -1,151 +1,194 @@
-/* The integrator options of the [run] section, shared by the subcommands
- * that run integrators (run, convergence). */
+/* The [run] keys of the subcommands that run integrators (run, stability,
+ * convergence, energy): the rows they share, the list of integrators and
+ * the check of their options against what each integrator takes. */
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli/cli.h"
 
-/* The numeric keys. */
-static cl_status read_numbers(cl_config *cfg, cl_integrator_opts *io,
-                              long *max_order, cl_error *err)
-{
-    cl_status rc;
-    if ((rc = cl_config_double(cfg, "run", "dt", 0.0, 0.0, INFINITY, &io->dt,
-                               err)) ||
-        (rc = cl_config_double(cfg, "run", "rtol", 1e-6, 1e-15, 1.0,
-                               &io->rtol, err)) ||
-        (rc = cl_config_double(cfg, "run", "atol", 1e-8, 1e-300, INFINITY,
-                               &io->atol, err)) ||
-        (rc = cl_config_long(cfg, "run", "max_steps", 0, 0, 1L << 40,
-                             &io->max_steps, err)) ||
-        (rc = cl_config_double(cfg, "run", "newton_tol", 0.0, 0.0, 1.0,
-                               &io->newton_tol, err)) ||
-        (rc = cl_config_long(cfg, "run", "newton_maxit", 0, 0, 1000000,
-                             &io->newton_maxit, err)) ||
-        (rc = cl_config_double(cfg, "run", "lin_tol", 0.0, 0.0, 1.0,
-                               &io->lin_tol, err)) ||
-        (rc = cl_config_long(cfg, "run", "lin_maxit", 0, 0, 100000000,
-                             &io->lin_maxit, err)) ||
-        (rc = cl_config_double(cfg, "run", "verlet_damping", 0.0, 0.0,
-                               0.999999, &io->vdamp, err)))
-        return rc;
-    return cl_config_long(cfg, "run", "max_order", 0, 0, 12, max_order, err);
-}
+#define RUN_ROW(f) .sec = "run", .field = offsetof(cl_cli_run, f)
 
-cl_status cl_cli_integrator_opts(cl_config *cfg,
-                                 const cl_integrator_type *type,
-                                 bool need_dt, cl_integrator_opts *io,
-                                 cl_error *err)
-{
-    long max_order;
-    char where[256];
-    cl_status rc = read_numbers(cfg, io, &max_order, err);
-    if (rc)
-        return rc;
-    io->max_order = (int)max_order;
-    io->linsol = cl_config_string(cfg, "run", "linsol", "");
-    if (*io->linsol && !type->takes_linsol)
-        return cl_error_set(err, CL_EINVAL,
-                            "%s: [run] linsol = \"%s\": integrator %s has no "
-                            "choice of linear solver",
-                            cl_config_origin(cfg, "run", "linsol", where,
-                                             sizeof where),
-                            io->linsol, type->name);
-    if (max_order && !type->takes_max_order)
-        return cl_error_set(err, CL_EINVAL,
-                            "%s: [run] max_order = %ld: integrator %s has "
-                            "no choice of order (CVODE and IDA have)",
-                            cl_config_origin(cfg, "run", "max_order", where,
-                                             sizeof where),
-                            max_order, type->name);
-    if (need_dt && type->fixed_step && !(io->dt > 0))
-        return cl_error_set(err, CL_EINVAL,
-                            "%s: [run] dt = %g: integrator %s takes fixed "
-                            "steps and needs dt > 0 (--dt H)",
-                            cl_config_origin(cfg, "run", "dt", where,
-                                             sizeof where),
-                            io->dt, type->name);
-    return CL_OK;
-}
+const cl_cli_opt cl_cli_run_rows[] = {
+    {.name = "dt", .arg = "H", .type = CL_CLI_DOUBLE, .key = "dt",
+     RUN_ROW(io.dt), .lo = 0, .hi = INFINITY,
+     .help = "step of the fixed-step integrators (s)"},
+    {.name = "rtol", .arg = "R", .type = CL_CLI_DOUBLE, .key = "rtol",
+     RUN_ROW(io.rtol), .def = 1e-6, .lo = 1e-15, .hi = 1,
+     .help = "relative tolerance of the adaptive integrators"},
+    {.name = "atol", .arg = "A", .type = CL_CLI_DOUBLE, .key = "atol",
+     RUN_ROW(io.atol), .def = 1e-8, .lo = 1e-300, .hi = INFINITY,
+     .help = "absolute tolerance of the adaptive integrators"},
+    {.name = "linsol", .arg = "NAME", .type = CL_CLI_STRING, .key = "linsol",
+     RUN_ROW(io.linsol),
+     .help = "linear solver of implicit integrators (klu, pcg, ...; "
+             "clothode list)"},
+    {.name = "max-order", .arg = "K", .type = CL_CLI_INT, .key = "max_order",
+     RUN_ROW(io.max_order), .lo = 0, .hi = 12,
+     .help = "highest order of CVODE / IDA, 0 for theirs (5 for BDF, 12 for "
+             "Adams; BDF beyond 2 is not A-stable)"},
+    {.name = "t-end", .arg = "T", .type = CL_CLI_DOUBLE, .key = "t_end",
+     RUN_ROW(t_end), .def = 2.0, .lo = 1e-300, .hi = INFINITY,
+     .help = "final time (s)"},
+    {.type = CL_CLI_LONG, .key = "max_steps", RUN_ROW(io.max_steps),
+     .lo = 0, .hi = 1099511627776.0,
+     .help = "steps per output interval of an adaptive solver, 0 for its "
+             "own limit"},
+    {.type = CL_CLI_DOUBLE, .key = "newton_tol", RUN_ROW(io.newton_tol),
+     .lo = 0, .hi = 1,
+     .help = "Newton tolerance of the fixed-step implicit integrators, 0 for "
+             "theirs"},
+    {.type = CL_CLI_LONG, .key = "newton_maxit", RUN_ROW(io.newton_maxit),
+     .lo = 0, .hi = 1000000,
+     .help = "Newton iterations per step of the fixed-step implicit "
+             "integrators, 0 for theirs"},
+    {.type = CL_CLI_DOUBLE, .key = "lin_tol", RUN_ROW(io.lin_tol), .lo = 0,
+     .hi = 1, .help = "tolerance of the iterative linear solvers, 0 for "
+                      "theirs"},
+    {.type = CL_CLI_LONG, .key = "lin_maxit", RUN_ROW(io.lin_maxit), .lo = 0,
+     .hi = 100000000,
+     .help = "iterations of the iterative linear solvers, 0 for theirs"},
+    {.type = CL_CLI_DOUBLE, .key = "verlet_damping", RUN_ROW(io.vdamp),
+     .lo = 0, .hi = 0.999999,
+     .help = "velocity damping of the Verlet integrators (the Verlet-and-PBD "
+             "report)"},
+    {.type = CL_CLI_DOUBLE, .key = "max_stretch", RUN_ROW(max_stretch),
+     .def = 10.0, .lo = 1.0, .hi = INFINITY,
+     .help = "a stretch d/L beyond this counts as a blow-up"},
+    {.type = CL_CLI_END}};
 
 /* Entry "name" or "name:linsol" of the list into m. */
-static cl_status parse_method(cl_config *cfg, bool need_dt, const char *list,
-                              const char *where, const char *p, size_t len,
-                              cl_cli_method *m, cl_error *err)
+static cl_status parse_method(cl_config *cfg, const cl_cli_opt *row,
+                              const char *p, size_t len, cl_cli_method *m,
+                              cl_error *err)
 {
-    char name[64];
+    char name[64], why[1024];
     size_t nlen = strcspn(p, ":");
     nlen = nlen < len ? nlen : len;
     if (len >= sizeof m->label || nlen == 0 ||
-        (nlen < len && len - nlen - 1 >= sizeof m->linsol))
-        return cl_error_set(err, CL_EINVAL, "%s: [run] integrator = \"%s\": "
-                            "bad entry \"%.*s\" (expected NAME or "
-                            "NAME:LINSOL)", where, list, (int)len, p);
+        (nlen < len && len - nlen - 1 >= sizeof m->linsol)) {
+        snprintf(why, sizeof why, "bad entry \"%.*s\" (expected NAME or "
+                 "NAME:LINSOL)", (int)len, p);
+        return cl_config_refuse(cfg, row->sec, row->key, CL_EINVAL, why, err);
+    }
     memcpy(m->label, p, len);
     m->label[len] = '\0';
     memcpy(name, p, nlen);
     name[nlen] = '\0';
     snprintf(m->linsol, sizeof m->linsol, "%s",
              nlen < len ? m->label + nlen + 1 : "");
-    if (!(m->type = cl_integrator_find(name)))
-        return cl_error_set(err, CL_EINVAL, "%s: [run] integrator = \"%s\": "
-                            "unknown integrator \"%s\" (clothode list shows "
-                            "them)", where, list, name);
-    if (*m->linsol && !m->type->takes_linsol)
-        return cl_error_set(err, CL_EINVAL, "%s: [run] integrator = \"%s\": "
-                            "integrator %s has no choice of linear solver",
-                            where, list, name);
-    cl_status rc = cl_cli_integrator_opts(cfg, m->type, need_dt, &m->io, err);
-    if (!rc && *m->linsol)
-        m->io.linsol = m->linsol;
+    if ((m->type = cl_integrator_find(name)))
+        return CL_OK;
+    const char *names[64];
+    size_t n = 0;
+    for (; cl_integrator_registry[n] && n < 63; n++)
+        names[n] = cl_integrator_registry[n]->name;
+    names[n] = NULL;
+    int at = snprintf(why, sizeof why, "unknown integrator \"%s\" (expected "
+                      "one of ", name);
+    cl_cli_join(names, why + at, sizeof why - (size_t)at - 1);
+    strcat(why, ")");
+    return cl_config_refuse(cfg, row->sec, row->key, CL_EINVAL, why, err);
+}
+
+cl_status cl_cli_methods_read(cl_config *cfg, const cl_cli_opt *row,
+                              cl_cli_methods *ms, cl_error *err)
+{
+    const char *list = cl_config_string(cfg, row->sec, row->key,
+                                        row->sdef ? row->sdef : "");
+    int max = (int)row->hi;
+    char why[64];
+    ms->n = 0;
+    for (const char *p = list; *p;) {
+        size_t len = strcspn(p, ",");
+        if (ms->n == max) {
+            snprintf(why, sizeof why, "more than %d entr%s", max,
+                     max == 1 ? "y" : "ies");
+            return cl_config_refuse(cfg, row->sec, row->key, CL_EINVAL, why,
+                                    err);
+        }
+        cl_status rc = parse_method(cfg, row, p, len, &ms->m[ms->n], err);
+        if (rc)
+            return rc;
+        ms->n++;
+        p += len + (p[len] == ',');
+    }
+    return ms->n ? CL_OK
+                 : cl_config_refuse(cfg, row->sec, row->key, CL_EINVAL,
+                                    "no integrator", err);
+}
+
+/* "ORIGIN: [run] key = value: integrator NAME why" for a number. */
+static cl_status refuse_number(cl_config *cfg, const char *key, double value,
+                               const cl_integrator_type *type,
+                               const char *why, cl_error *err)
+{
+    char where[256];
+    return cl_error_set(err, CL_EINVAL, "%s: [run] %s = %g: integrator %s %s",
+                        cl_config_origin(cfg, "run", key, where,
+                                         sizeof where),
+                        key, value, type->name, why);
+}
+
+/* The options of one method against what its integrator takes. */
+static cl_status check_method(cl_config *cfg, const cl_cli_method *m,
+                              cl_cli_dt_use dt, cl_error *err)
+{
+    const cl_integrator_type *type = m->type;
+    char why[128];
+    if (*m->io.linsol && !type->takes_linsol) {
+        /* the solver came from the entry NAME:LINSOL or from [run] linsol */
+        snprintf(why, sizeof why, "integrator %s has no choice of linear "
+                 "solver", type->name);
+        return cl_config_refuse(cfg, "run", *m->linsol ? "integrator"
+                                                       : "linsol",
+                                CL_EINVAL, why, err);
+    }
+    if (m->io.max_order && !type->takes_max_order)
+        return refuse_number(cfg, "max_order", m->io.max_order, type,
+                             "has no choice of order (CVODE and IDA have)",
+                             err);
+    if (dt != CL_CLI_DT_NONE && type->fixed_step && !(m->io.dt > 0))
+        return refuse_number(cfg, "dt", m->io.dt, type, "takes fixed steps "
+                             "and needs dt > 0 (--dt H)", err);
+    return CL_OK;
+}
+
+cl_status cl_cli_methods_check(cl_config *cfg, cl_cli_methods *ms,
+                               const cl_integrator_opts *io, cl_cli_dt_use dt,
+                               cl_error *err)
+{
+    cl_status rc = CL_OK;
+    for (int k = 0; !rc && k < ms->n; k++) {
+        cl_cli_method *m = &ms->m[k];
+        m->io = *io;
+        if (*m->linsol)
+            m->io.linsol = m->linsol;
+        if (dt == CL_CLI_DT_FIXED && !m->type->fixed_step)
+            m->io.dt = 0.0; /* not a first step: an adaptive one's own */
+        rc = check_method(cfg, m, dt, err);
+    }
     return rc;
 }
 
-cl_status cl_cli_methods(cl_config *cfg, bool need_dt, int max,
-                         cl_cli_method *m, int *n, cl_error *err)
-{
-    const char *list = cl_config_string(cfg, "run", "integrator",
-                                        "cvode-bdf");
-    char where[256];
-    cl_config_origin(cfg, "run", "integrator", where, sizeof where);
-    *n = 0;
-    for (const char *p = list; *p;) {
-        size_t len = strcspn(p, ",");
-        if (*n == max)
-            return cl_error_set(err, CL_EINVAL, "%s: [run] integrator = "
-                                "\"%s\": more than %d entries", where, list,
-                                max);
-        cl_status rc = parse_method(cfg, need_dt, list, where, p, len,
-                                    &m[*n], err);
-        if (rc)
-            return rc;
-        ++*n;
-        p += len + (p[len] == ',');
-    }
-    return *n ? CL_OK
-              : cl_error_set(err, CL_EINVAL, "%s: [run] integrator is empty",
-                             where);
-}
-
-cl_status cl_cli_methods_try(cl_model *model, const cl_cli_method *m, int n,
+cl_status cl_cli_methods_try(cl_model *model, const cl_cli_methods *ms,
                              cl_error *err)
 {
     const cl_system *sys = cl_model_system(model);
     double *x = malloc(sys->n * sizeof *x), *v = malloc(sys->n * sizeof *v);
     cl_status rc = x && v ? cl_model_initial_state(model, x, v)
                           : cl_error_set(err, CL_ENOMEM, "out of memory");
-    for (int k = 0; !rc && k < n; k++) {
+    for (int k = 0; !rc && k < ms->n; k++) {
+        const cl_cli_method *m = &ms->m[k];
         void *state = NULL;
-        cl_integrator_opts io = m[k].io;
-        if (m[k].type->fixed_step && !(io.dt > 0))
+        cl_integrator_opts io = m->io;
+        if (m->type->fixed_step && !(io.dt > 0))
             io.dt = 1.0; /* a search (stability) sets the step later */
         cl_error why = {0};
-        if ((rc = m[k].type->create(sys, &io, 0.0, x, v, &state, &why)))
-            cl_error_set(err, rc, "%s: %s", m[k].label, why.msg);
+        if ((rc = m->type->create(sys, &io, 0.0, x, v, &state, &why)))
+            cl_error_set(err, rc, "%s: %s", m->label, why.msg);
         if (state)
-            m[k].type->free(state);
+            m->type->free(state);
     }
     free(x);
     free(v);
