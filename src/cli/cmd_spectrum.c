@@ -72,8 +72,8 @@ static void print_summary(const cl_cli_job *job, const cl_spectrum *sp)
     if (sp->n_growing)
         printf(", fastest growth rate %.6g 1/s\n", sp->growth_max);
     printf("%-20s %12s   %s\n", "integrator", "predicted dt", "from");
-    cl_spectrum_limits(sp, lim);
-    for (int k = 0; k < CL_SPECTRUM_NLIMITS; k++)
+    size_t nlim = cl_spectrum_limits(sp, lim);
+    for (size_t k = 0; k < nlim; k++)
         printf("%-20s %12.4g   %s\n", lim[k].integrator, lim[k].h,
                lim[k].basis);
 }
