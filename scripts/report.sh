@@ -104,6 +104,13 @@ draw asinc "data='$res/asinc.csv'; title_text='Type2 curvature: asinc against th
 "$bin" counts --csv --n-max 64 > "$res/counts.csv"
 draw counts "data='$res/counts.csv'; title_text='Choi-Ko connections: measured (points) and formulas (lines)'"
 
+echo "report: the sources' claims on their own configurations"
+scripts/claims.sh "$bin" "$res/claims"
+# The K x U x iterations map as "K U iterations k kd", bounded and blown up.
+awk -F, -v dir="$res/claims" 'NR > 1 { print $1, $2, $3, $4, $5 > (dir "/" ($6 ? "stable" : "blowup") ".dat") }' \
+    "$res/claims/map.csv"
+draw claims-map "dir='$res/claims'; title_text='verlet-drop at 1/60 s: spring and friction, K x U x constraint iterations'"
+
 echo "report: wrinkles under large steps (compress, T = 1 s)"
 # The final out-of-plane amplitude and wrinkle count of every run, or how
 # far it got before it blew up: "method dt t_reached amplitude wrinkles".
