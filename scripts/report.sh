@@ -109,7 +109,8 @@ scripts/claims.sh "$bin" "$res/claims"
 # The K x U x iterations map as "K U iterations k kd", bounded and blown up.
 awk -F, -v dir="$res/claims" 'NR > 1 { print $1, $2, $3, $4, $5 > (dir "/" ($6 ? "stable" : "blowup") ".dat") }' \
     "$res/claims/map.csv"
-draw claims-map "dir='$res/claims'; title_text='verlet-drop at 1/60 s: spring and friction, K x U x constraint iterations'"
+read -r k0 d0 < "$res/claims/map-line.txt"
+draw claims-map "dir='$res/claims'; k0=$k0; d0=$d0; title_text='verlet-drop at 1/60 s: spring and friction, K x U x constraint iterations'"
 
 echo "report: wrinkles under large steps (compress, T = 1 s)"
 # The final out-of-plane amplitude and wrinkle count of every run, or how
