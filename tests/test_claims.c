@@ -42,8 +42,8 @@ static const char *const rows_run[] = {
     "jiao-more-wrinkles", "jiao-counts-ck", "jiao-counts-bw",
     "jiao-counts-slower", "jiao-asinc", "jiao-asinc-used",
     "jiao-sphere-inside", "jiao-sphere-unstable", "jiao-sphere-small",
-    "skirt-limit", "skirt-penalty", "verlet-order", "verlet-pbd-60",
-    "verlet-pbd-30", "verlet-spring-k150", "verlet-spring-k15",
+    "skirt-limit", "skirt-penalty", "skirt-penalty-file", "verlet-order",
+    "verlet-pbd-60", "verlet-pbd-30", "verlet-spring-k150", "verlet-spring-k15",
     "verlet-friction", "verlet-map", NULL};
 static const char *const rows_untestable[] = {"verlet-fps", "verlet-look",
                                               "zca-ratio", NULL};
@@ -376,6 +376,10 @@ Test(claims, skirt)
                            "--dt 8e-4 --t-end 0.4 --frames 0",
                            0, dir, sizeof dir);
     expect_in(penetration(&r), 0.0, 0.5, "skirt penetration");
+    free_result(r);
+    r = row_run("skirt-penalty-file", "run skirt --t-end 0.4 --frames 0", 0,
+                dir, sizeof dir);
+    expect_in(penetration(&r), 0.0, 0.5, "skirt penetration at 2e-4 s");
     free_result(r);
 }
 
