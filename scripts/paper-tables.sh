@@ -88,11 +88,11 @@ function num(v,   t, m) {
 }
 NR == 1 { next }
 {   line = substr($0, 2, length($0) - 2); n = split(line, f, "\",\"")
-    id = tex(f[1]); unit = (f[8] == "" ? "" : "\\," tex(f[8]))
+    id = tex(f[1]); gsub(/-/, "-\\allowbreak{}", id); unit = (f[8] == "" ? "" : "\\," tex(f[8]))
     printf "\\texttt{%s} & %s, %s & %s & %s%s & %s \\\\\n", id, tex(f[2]), tex(f[3]),
-           tex(f[4]), num(f[7]), unit, tex(f[9]) > (tex "/claims.tex")
+           tex(f[4]), num(f[7]), unit, tex(f[9]) > (dir "/claims.tex")
     printf "\\texttt{%s} & %s & %s & \\texttt{%s} \\\\\n", id, tex(f[5]), tex(f[6]),
-           tex(f[10]) > (tex "/claims-how.tex")
-    printf "\\expandafter\\def\\csname cv:%s\\endcsname{%s}\n", f[1], num(f[7]) > (tex "/claims-values.tex")
-}' tex="$tex" "$res/claims/claims.csv"
+           tex(f[10]) > (dir "/claims-how.tex")
+    printf "\\expandafter\\def\\csname cv:%s\\endcsname{%s}\n", f[1], num(f[7]) > (dir "/claims-values.tex")
+}' dir="$tex" "$res/claims/claims.csv"
 echo "paper: tables in $tex"
