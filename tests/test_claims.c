@@ -373,12 +373,15 @@ Test(claims, skirt)
     expect_in(series(dir, "max_stretch", 0), 0.5, 10.0, "skirt stretch");
     cli_result r = row_run("skirt-penalty",
                            "run skirt --integrator symplectic-euler-x "
-                           "--dt 8e-4 --t-end 0.4 --frames 0",
+                           "--dt 8e-4 --t-end 0.4 "
+                           "--set obstacle.floor.point=0,-50,0 --frames 0",
                            0, dir, sizeof dir);
     expect_in(penetration(&r), 0.0, 0.5, "skirt penetration");
     free_result(r);
-    r = row_run("skirt-penalty-file", "run skirt --t-end 0.4 --frames 0", 0,
-                dir, sizeof dir);
+    r = row_run("skirt-penalty-file",
+                "run skirt --t-end 0.4 --set obstacle.floor.point=0,-50,0 "
+                "--frames 0",
+                0, dir, sizeof dir);
     expect_in(penetration(&r), 0.0, 0.5, "skirt penetration at 2e-4 s");
     free_result(r);
 }
