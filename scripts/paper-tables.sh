@@ -91,8 +91,9 @@ NR == 1 { next }
     id = tex(f[1]); gsub(/-/, "-\\allowbreak{}", id); unit = (f[8] == "" ? "" : "\\," tex(f[8]))
     printf "\\texttt{%s} & %s, %s & %s & %s%s & %s \\\\\n", id, tex(f[2]), tex(f[3]),
            tex(f[4]), num(f[7]), unit, tex(f[9]) > (dir "/claims.tex")
+    cmd = tex(f[10]); gsub(/-/, "-{}", cmd)  # no -- ligature in the options
     printf "\\texttt{%s} & %s & %s & \\texttt{%s} \\\\\n", id, tex(f[5]), tex(f[6]),
-           tex(f[10]) > (dir "/claims-how.tex")
+           cmd > (dir "/claims-how.tex")
     printf "\\expandafter\\def\\csname cv:%s\\endcsname{%s}\n", f[1], num(f[7]) > (dir "/claims-values.tex")
 }' dir="$tex" "$res/claims/claims.csv"
 echo "paper: tables in $tex"

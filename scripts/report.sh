@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # make report: run the analyses on the default problems, keep their CSV
 # tables under results/report/ and draw the figures into plots/ (PNG and
-# PDF; an animated GIF of the hanging cloth).  About five minutes on two
-# cores.  usage: scripts/report.sh path/to/clothode
+# PDF; an animated GIF of the hanging cloth).  About six minutes of CPU
+# time, one process at a time.  usage: scripts/report.sh path/to/clothode
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=${1:-build/clothode}
