@@ -44,7 +44,7 @@ static const char *const rows_run[] = {
     "jiao-sphere-inside", "jiao-sphere-unstable", "jiao-sphere-small",
     "skirt-limit", "skirt-penalty", "skirt-penalty-file", "verlet-order",
     "verlet-pbd-60", "verlet-pbd-30", "verlet-spring-k150", "verlet-spring-k15",
-    "verlet-friction", "verlet-map", NULL};
+    "verlet-friction", "verlet-friction-30", "verlet-map", NULL};
 static const char *const rows_untestable[] = {"verlet-fps", "verlet-look",
                                               "zca-ratio", NULL};
 
@@ -400,6 +400,8 @@ Test(claims, verlet)
         {"verlet-pbd-30", "run verlet-scene1 --dt 0.033333333333333333 "
                           "--t-end 0.5 --frames 0 --quiet"},
         {"verlet-friction", "run verlet-drop --t-end 0.5 --frames 0 --quiet"},
+        {"verlet-friction-30", "run verlet-drop --dt 0.033333333333333333 "
+                               "--t-end 0.2 --frames 0 --quiet"},
         {"verlet-map", "run verlet-drop --set springs.k_structural=50 "
                        "--set spring-damping.kd=0.5 --t-end 0.5 --frames 0 "
                        "--samples 20 --quiet"}};
