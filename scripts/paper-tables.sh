@@ -63,4 +63,37 @@ awk '{ end = $7; sub(/^failed@/, "stopped at ", end); sub(/^ok$/, "ran", end)
        printf "%s & %s & %.3g & %s & %d & %.2f & %s \\\\\n",
               $1, $2, 1000 * $3, $4, $5, $6, end }' \
     "$res/contact/drape.txt" > "$tex/drape.tex"
+# The claims of the sources (results/report/claims/claims.csv, every field
+# quoted, made by scripts/claims.sh; run here if a report made before it
+# lacks it): claims.tex (id, source and section, claim, value, verdict),
+# claims-how.tex (id, configuration, quantity, command) and
+# claims-values.tex, every row's value as \cv{ID} for the text.
+[ -f "$res/claims/claims.csv" ] || scripts/claims.sh build/clothode "$res/claims"
+awk '
+function tex(s) {
+    gsub(/\\/, "\\textbackslash{}", s); gsub(/_/, "\\_", s); gsub(/%/, "\\%", s)
+    gsub(/&/, "\\\\&", s); gsub(/#/, "\\#", s); gsub(/\^/, "\\^{}", s)
+    gsub(/~/, "\\~{}", s); gsub(/\$/, "\\$", s)
+    return s
+}
+# a number as LaTeX: 3 significant digits, powers of ten for small or large
+function num(v,   t, m) {
+    if (v !~ /^-?[0-9.]+(e[-+]?[0-9]+)?$/) return tex(v)
+    t = sprintf("%.3g", v)
+    if (v != 0 && (v + 0 < 1e-2 && v + 0 > -1e-2 || v + 0 >= 1e5)) {
+        t = sprintf("%.2e", v); split(t, m, "e")
+        return sprintf("$%g\\cdot10^{%d}$", m[1], m[2])
+    }
+    return t
+}
+NR == 1 { next }
+{   line = substr($0, 2, length($0) - 2); n = split(line, f, "\",\"")
+    id = tex(f[1]); gsub(/-/, "-\\allowbreak{}", id); unit = (f[8] == "" ? "" : "\\," tex(f[8]))
+    printf "\\texttt{%s} & %s, %s & %s & %s%s & %s \\\\\n", id, tex(f[2]), tex(f[3]),
+           tex(f[4]), num(f[7]), unit, tex(f[9]) > (dir "/claims.tex")
+    cmd = tex(f[10]); gsub(/-/, "-{}", cmd)  # no -- ligature in the options
+    printf "\\texttt{%s} & %s & %s & \\texttt{%s} \\\\\n", id, tex(f[5]), tex(f[6]),
+           cmd > (dir "/claims-how.tex")
+    printf "\\expandafter\\def\\csname cv:%s\\endcsname{%s}\n", f[1], num(f[7]) > (dir "/claims-values.tex")
+}' dir="$tex" "$res/claims/claims.csv"
 echo "paper: tables in $tex"

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # make report: run the analyses on the default problems, keep their CSV
 # tables under results/report/ and draw the figures into plots/ (PNG and
-# PDF; an animated GIF of the hanging cloth).  About five minutes on two
-# cores.  usage: scripts/report.sh path/to/clothode
+# PDF; an animated GIF of the hanging cloth).  About six minutes of CPU
+# time, one process at a time.  usage: scripts/report.sh path/to/clothode
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=${1:-build/clothode}
@@ -103,6 +103,14 @@ echo "report: inverse sinc and counts"
 draw asinc "data='$res/asinc.csv'; title_text='Type2 curvature: asinc against the polynomial of Jiao'"
 "$bin" counts --csv --n-max 64 > "$res/counts.csv"
 draw counts "data='$res/counts.csv'; title_text='Choi-Ko connections: measured (points) and formulas (lines)'"
+
+echo "report: the sources' claims on their own configurations"
+scripts/claims.sh "$bin" "$res/claims"
+# The K x U x iterations map as "K U iterations k kd", bounded and blown up.
+awk -F, -v dir="$res/claims" 'NR > 1 { print $1, $2, $3, $4, $5 > (dir "/" ($6 ? "stable" : "blowup") ".dat") }' \
+    "$res/claims/map.csv"
+read -r k0 d0 < "$res/claims/map-line.txt"
+draw claims-map "dir='$res/claims'; k0=$k0; d0=$d0; title_text='verlet-drop at 1/60 s: spring and friction, K x U x constraint iterations'"
 
 echo "report: wrinkles under large steps (compress, T = 1 s)"
 # The final out-of-plane amplitude and wrinkle count of every run, or how
