@@ -90,7 +90,7 @@ bench: deps
 	$(BENCHBIN)
 
 # Reports (README "Reports"): the analyses on the default problems, CSV
-# tables in results/report/, figures in plots/ (about five minutes).
+# tables in results/report/, figures in plots/ (about six minutes).
 report: deps
 	$(MAKE) $(BIN)
 	scripts/report.sh $(BIN)
