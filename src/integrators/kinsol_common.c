@@ -282,7 +282,8 @@ static cl_status kin_linsol(cl_kin *s, const cl_integrator_opts *o,
     s->J = cl_sun_shell_matrix(s->ctx);
     s->ls = cl_sun_shell_linsol(&kin_lsdef, s, s->ctx);
     if (!s->J || !s->ls)
-        return kin_sunfail(s, s->J ? "SUNLinSolNewEmpty" : "SUNMatNewEmpty",
+        return kin_sunfail(s, s->J ? "cl_sun_shell_linsol"
+                                    : "cl_sun_shell_matrix",
                            0, err);
     return CL_OK;
 }

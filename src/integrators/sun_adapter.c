@@ -653,7 +653,7 @@ cl_status cl_sun_attach_direct(cl_sun *s, SUNMatrix A, SUNLinearSolver inner,
     s->cnt.analyse = true;
     s->ls = cl_sun_shell_linsol(&count_def, &s->cnt, s->ctx);
     if (!s->ls)
-        return cl_sun_sunfail(s, "SUNLinSolNewEmpty", 0, err);
+        return cl_sun_sunfail(s, "cl_sun_shell_linsol", 0, err);
     CL_SUN_SET(s, err, set_linear_solver, "SetLinearSolver", s->ls, s->A);
     return CL_OK;
 }

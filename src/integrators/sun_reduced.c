@@ -319,7 +319,7 @@ static cl_status red_attach(cl_sun *s, const cl_linsol_type *lt,
                                        r, s->ctx)
                  : NULL;
     if (!s->ls)
-        return cl_sun_sunfail(s, "SUNMatNewEmpty/SUNLinSolNewEmpty", 0, err);
+        return cl_sun_sunfail(s, "cl_sun_shell_matrix/cl_sun_shell_linsol", 0, err);
     char fn[64];
     snprintf(fn, sizeof fn, "%sSetLinearSolver", s->api->pkg);
     int flag = s->api->set_linear_solver(s->mem, s->ls, s->A);
