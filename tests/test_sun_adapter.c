@@ -67,15 +67,40 @@ static const cl_sun_lsdef full = {
     .free = probe_free,
 };
 
-Test(sun_adapter, shell_linsol_calls_its_table_with_its_data)
+static SUNContext ctx;
+
+static void open_ctx(void)
 {
-    SUNContext ctx;
     cr_assert_eq(SUNContext_Create(NULL, &ctx), 0);
-    probe p = {0};
-    SUNLinearSolver S = cl_sun_shell_linsol(&full, &p, ctx);
+}
+
+static void close_ctx(void)
+{
+    SUNContext_Free(&ctx);
+}
+
+/* The shell of def on p, of def's type and SUNDIALS' custom id. */
+static SUNLinearSolver make_shell(const cl_sun_lsdef *def, probe *p)
+{
+    SUNLinearSolver S = cl_sun_shell_linsol(def, p, ctx);
     cr_assert_not_null(S);
-    cr_assert_eq(SUNLinSolGetType(S), SUNLINEARSOLVER_MATRIX_ITERATIVE);
+    cr_assert_eq(SUNLinSolGetType(S), def->type);
     cr_assert_eq(SUNLinSolGetID(S), SUNLINEARSOLVER_CUSTOM);
+    return S;
+}
+
+/* Release S; how often its table's free ran on p. */
+static int release(SUNLinearSolver S, const probe *p)
+{
+    cr_assert_eq(SUNLinSolFree(S), SUNLS_SUCCESS);
+    return p->frees;
+}
+
+Test(sun_adapter, shell_linsol_calls_its_table_with_its_data,
+     .init = open_ctx, .fini = close_ctx)
+{
+    probe p = {0};
+    SUNLinearSolver S = make_shell(&full, &p);
     cr_assert_eq(SUNLinSolInitialize(S), SUNLS_SUCCESS);
     cr_assert_eq(SUNLinSolSetup(S, NULL), 7);
     cr_assert_eq(SUNLinSolSolve(S, NULL, NULL, NULL, 0.0), SUNLS_SUCCESS);
@@ -83,19 +108,14 @@ Test(sun_adapter, shell_linsol_calls_its_table_with_its_data)
     cr_assert_eq(SUNLinSolLastFlag(S), 1);
     cr_assert_eq(p.seen, &p);
     cr_assert_eq(p.inits + p.setups + p.solves, 4);
-    cr_assert_eq(SUNLinSolFree(S), SUNLS_SUCCESS);
-    cr_assert_eq(p.frees, 1, "the table's free releases owned data once");
-    SUNContext_Free(&ctx);
+    cr_assert_eq(release(S, &p), 1, "owned data is released once");
 }
 
-Test(sun_adapter, shell_linsol_has_only_the_operations_given)
+Test(sun_adapter, shell_linsol_has_only_the_operations_given,
+     .init = open_ctx, .fini = close_ctx)
 {
-    SUNContext ctx;
-    cr_assert_eq(SUNContext_Create(NULL, &ctx), 0);
     probe p = {0};
-    SUNLinearSolver S = cl_sun_shell_linsol(&bare, &p, ctx);
-    cr_assert_not_null(S);
-    cr_assert_eq(SUNLinSolGetType(S), SUNLINEARSOLVER_DIRECT);
+    SUNLinearSolver S = make_shell(&bare, &p);
     cr_assert_null(S->ops->lastflag);
     cr_assert_null(S->ops->space);
     cr_assert_null(S->ops->setscalingvectors);
@@ -103,15 +123,12 @@ Test(sun_adapter, shell_linsol_has_only_the_operations_given)
     cr_assert_null(S->ops->resid);
     cr_assert_eq(SUNLinSolInitialize(S), SUNLS_SUCCESS);
     cr_assert_eq(p.inits, 0);
-    cr_assert_eq(SUNLinSolFree(S), SUNLS_SUCCESS);
-    cr_assert_eq(p.frees, 0, "borrowed data is not released");
-    SUNContext_Free(&ctx);
+    cr_assert_eq(release(S, &p), 0, "borrowed data is not released");
 }
 
-Test(sun_adapter, shell_matrix_holds_nothing_and_clones_a_shell)
+Test(sun_adapter, shell_matrix_holds_nothing_and_clones_a_shell,
+     .init = open_ctx, .fini = close_ctx)
 {
-    SUNContext ctx;
-    cr_assert_eq(SUNContext_Create(NULL, &ctx), 0);
     SUNMatrix A = cl_sun_shell_matrix(ctx);
     cr_assert_not_null(A);
     cr_assert_null(A->content);
@@ -125,7 +142,6 @@ Test(sun_adapter, shell_matrix_holds_nothing_and_clones_a_shell)
     cr_assert_eq(SUNMatCopy(A, B), SUNMAT_SUCCESS);
     SUNMatDestroy(B);
     SUNMatDestroy(A);
-    SUNContext_Free(&ctx);
 }
 
 /* Outputs after which the model tore further: CVODE restarts there. */
