@@ -97,7 +97,7 @@ static int red_scaling(void *data, N_Vector s1, N_Vector s2)
 
 /* The solution is always in x: IDA would take the solver's residual vector
  * for it after a solve reported with 0 iterations.  The true counts come
- * from the cl_linsol (cl_sunred_stats). */
+ * from the cl_linsol (red_stats). */
 static int red_numiters(void *data)
 {
     (void)data;
