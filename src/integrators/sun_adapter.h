@@ -103,7 +103,7 @@
  * with the data given to cl_sun_shell_linsol.  Return values are
  * SUNDIALS' (SUNLS_SUCCESS, > 0 recoverable, < 0 not).  An optional entry
  * left NULL leaves the operation out of the solver, as SUNDIALS expects of
- * a solver that lacks it. */
+ * a solver that lacks it (initialize then has nothing to do). */
 typedef struct {
     SUNLinearSolver_Type type;   /* DIRECT or MATRIX_ITERATIVE */
     int (*setup)(void *data, SUNMatrix A);
