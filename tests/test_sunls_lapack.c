@@ -6,7 +6,7 @@
 #include <math.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
-#include "linalg/sunls_lapack.h"
+#include "integrators/sunls_lapack.h"
 
 typedef struct {
     SUNContext ctx;

@@ -12,14 +12,14 @@
  * it is the reference for how much an implicit method's Newton solves buy.
  *
  * Options, error capture, blow-up policy and statistics as in
- * sun_common.h; jac_evals, lin_setups, lin_solves, lin_iters and
+ * sun_adapter.h; jac_evals, lin_setups, lin_solves, lin_iters and
  * symbolic_facts are 0, nonlin_iters counts fixed-point iterations. */
 #include "integrators/integrator.h"
 
 #include <cvode/cvode.h>
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
-#include "integrators/sun_common.h"
+#include "integrators/sun_adapter.h"
 
 static cl_status adams_nls(cl_sun *s, cl_error *err)
 {

@@ -24,8 +24,8 @@
  *
  * Options (tolerances, max steps, initial step), error capture, the
  * blow-up policy of the RHS and Jacobian functions and the statistics are
- * those of every SUNDIALS integrator here (sun_common.h).  klu-full: the
- * KLU solver is wrapped in a counting SUNLinearSolver (lscount.h):
+ * those of every SUNDIALS integrator here (sun_adapter.h).  klu-full: the
+ * KLU solver is wrapped in the adapter's counting shell:
  * lin_solves = solve calls (one per Newton iteration), symbolic_facts = KLU
  * symbolic analyses, 1 for the whole run with the fixed pattern;
  * lin_setups = KLU factor or refactor calls, lin_iters = 0.  Half-size
@@ -36,61 +36,8 @@
 
 #include <cvode/cvode.h>
 
-#include "integrators/sun_common.h"
+#include "integrators/sun_adapter.h"
 #include "integrators/sun_reduced.h"
-#include "linalg/firstorder.h"
-
-typedef struct {
-    cl_sun base;     /* first: CVODE's user data is the whole state */
-    cl_firstorder fo; /* klu-full */
-    cl_sunred *red;  /* half-size solvers */
-} cl_cvbdf;
-
-static int cvb_jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J,
-                   void *data, N_Vector t1, N_Vector t2, N_Vector t3)
-{
-    cl_cvbdf *s = data;
-    size_t n = s->base.sys->n;
-    const double *x = N_VGetArrayPointer(y), *v = x + n;
-    (void)fy, (void)t1, (void)t2, (void)t3;
-    int ret = cl_sun_jacobian(&s->base, t, x, v);
-    if (ret != 0)
-        return ret;
-    if (cl_firstorder_fill(&s->fo, s->base.dfdx, s->base.dfdv, J, NULL) !=
-        CL_OK)
-        return -1;
-    return 0;
-}
-
-static void cvb_free(void *state)
-{
-    cl_cvbdf *s = state;
-    if (s) {
-        cl_firstorder_free(&s->fo);
-        cl_sunred_free(s->red);
-    }
-    cl_sun_free(state);
-}
-
-/* klu-full: the pattern, then KLU on it and the Jacobian function;
- * otherwise the half-size solver. */
-static cl_status cvb_linsol(cl_cvbdf *s, const cl_integrator_opts *o,
-                            cl_error *err)
-{
-    cl_sun *b = &s->base;
-    const cl_linsol_type *lt;
-    cl_status st = cl_sunred_choose(b, o->linsol, &lt, err);
-    if (st != CL_OK || lt)
-        return st != CL_OK ? st
-                           : cl_sunred_attach(b, lt, o, false, &s->red, err);
-    st = cl_firstorder_create(b->sys->pattern, b->sys->mass, &s->fo, err);
-    if (st == CL_OK)
-        st = cl_sun_attach_klu(b, s->fo.size, s->fo.nnz, err);
-    if (st != CL_OK)
-        return st;
-    int flag = CVodeSetJacFn(b->mem, cvb_jac);
-    return flag < 0 ? cl_sun_fail(b, "CVodeSetJacFn", flag, err) : CL_OK;
-}
 
 static cl_status cvb_create(const cl_system *sys, const cl_integrator_opts *o,
                             double t0, const double *x0, const double *v0,
@@ -98,22 +45,11 @@ static cl_status cvb_create(const cl_system *sys, const cl_integrator_opts *o,
 {
     cl_sun *s = NULL;
     *state = NULL;
-    cl_status st = cl_sun_cvode_create(sizeof(cl_cvbdf), "cvode-bdf", CV_BDF,
-                                       true, sys, o, t0, x0, v0, &s, err);
+    cl_status st = cl_sun_cvode_create(sizeof *s, "cvode-bdf", CV_BDF, true,
+                                       sys, o, t0, x0, v0, &s, err);
     if (st == CL_OK)
-        st = cvb_linsol((cl_cvbdf *)s, o, err);
-    return cl_sun_finish(s, st, cvb_free, state);
-}
-
-static cl_status cvb_advance(void *state, double t_out, double *x, double *v,
-                             cl_error *err)
-{
-    return cl_sunred_advance(state, ((cl_cvbdf *)state)->red, t_out, x, v, err);
-}
-
-static void cvb_stats(const void *state, cl_stats *out)
-{
-    cl_sunred_stats(state, ((const cl_cvbdf *)state)->red, out);
+        st = cl_sunred_attach(s, o, false, err);
+    return cl_sun_finish(s, st, cl_sun_free, state);
 }
 
 const cl_integrator_type cl_integrator_cvode_bdf = {
@@ -125,7 +61,7 @@ const cl_integrator_type cl_integrator_cvode_bdf = {
     .takes_max_order = true,
     .takes_linsol = true,
     .create = cvb_create,
-    .advance = cvb_advance,
-    .stats = cvb_stats,
-    .free = cvb_free,
+    .advance = cl_sun_advance,
+    .stats = cl_sun_stats,
+    .free = cl_sun_free,
 };

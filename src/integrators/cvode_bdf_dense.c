@@ -6,7 +6,7 @@
  *
  * variable-order variable-step BDF (orders 1..5), Newton iteration, the
  * linear systems (I - gamma J) dy = r solved by LAPACK's LU with partial
- * pivoting (linalg/sunls_lapack.h) on a SUNDenseMatrix, and J approximated
+ * pivoting (sunls_lapack.h) on a SUNDenseMatrix, and J approximated
  * by CVODE's own column-by-column difference quotients (no
  * CVodeSetJacFn): 2n RHS evaluations per Jacobian, counted in rhs_evals.
  * Nothing of the system's analytic Jacobian is used, which is what makes
@@ -18,16 +18,16 @@
  * CL_EUNSUPPORTED.
  *
  * Options, error capture, blow-up policy and statistics as in
- * sun_common.h; the dense solver is wrapped in the counting shell
- * (lscount.h): lin_solves = solve calls, lin_setups = LU factorisations,
+ * sun_adapter.h; the dense solver is wrapped in its counting shell:
+ * lin_solves = solve calls, lin_setups = LU factorisations,
  * symbolic_facts = 0. */
 #include "integrators/integrator.h"
 
 #include <cvode/cvode.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
-#include "integrators/sun_common.h"
-#include "linalg/sunls_lapack.h"
+#include "integrators/sun_adapter.h"
+#include "integrators/sunls_lapack.h"
 
 #define CL_DENSE_SIDE 24
 #define CL_DENSE_MAX_N ((size_t)3 * CL_DENSE_SIDE * CL_DENSE_SIDE)

@@ -32,7 +32,7 @@
  * new Jacobian evaluation when CVODE asks (jok false); otherwise only
  * gamma changes.
  *
- * Options, error capture, blow-up policy as in sun_common.h.  Statistics:
+ * Options, error capture, blow-up policy as in sun_adapter.h.  Statistics:
  * lin_iters = Krylov iterations (CVodeGetNumLinIters), lin_setups =
  * preconditioner setups (CVODE's linear solver setups), lin_solves =
  * Krylov solves performed (jtsetup calls; a Newton iteration whose residual
@@ -50,7 +50,7 @@
 #include <cvode/cvode.h>
 #include <sunlinsol/sunlinsol_spgmr.h>
 
-#include "integrators/sun_common.h"
+#include "integrators/sun_adapter.h"
 
 /* Krylov dimension when opts->lin_maxit is 0: SUNDIALS' default.  On hang
  * (n = 16, rtol 1e-4) the preconditioned solves take 1.1 to 1.4 Krylov

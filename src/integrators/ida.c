@@ -37,7 +37,7 @@
  * system's status).
  *
  * Options, error capture, blow-up policy of the residual and Jacobian
- * functions and statistics as in sun_common.h (rhs_evals = residual
+ * functions and statistics as in sun_adapter.h (rhs_evals = residual
  * evaluations + 1; lin_setups = factor or refactor calls; klu-full:
  * lin_solves = KLU solve calls, symbolic_facts = KLU analyses, 1 with the
  * fixed pattern; half-size solvers: as in cvode_bdf.c). */
@@ -47,15 +47,8 @@
 
 #include <ida/ida.h>
 
-#include "integrators/sun_common.h"
+#include "integrators/sun_adapter.h"
 #include "integrators/sun_reduced.h"
-#include "linalg/firstorder.h"
-
-typedef struct {
-    cl_sun base; /* first: IDA's user data is the whole state */
-    cl_firstorder fo; /* klu-full */
-    cl_sunred *red;   /* half-size solvers */
-} cl_ida;
 
 static int ida_solve(cl_sun *s, double t_out)
 {
@@ -79,6 +72,7 @@ static const cl_sun_api ida_api = {
     .get_current_time = IDAGetCurrentTime,
     .get_current_step = IDAGetCurrentStep,
     .flag_name = IDAGetReturnFlagName,
+    .collapse_warning = 0, /* IDA does not warn of t + h = t */
     .free_mem = IDAFree,
     .solve = ida_solve,
     .reinit = ida_reinit,
@@ -93,7 +87,7 @@ static const cl_sun_api ida_api = {
     .err_fails = IDAGetNumErrTestFails,
 };
 
-/* ---- residual and iteration matrix ------------------------------------- */
+/* ---- residual ---------------------------------------------------------- */
 
 static int ida_res(sunrealtype t, N_Vector yy, N_Vector yp, N_Vector rr,
                    void *data)
@@ -111,22 +105,6 @@ static int ida_res(sunrealtype t, N_Vector yy, N_Vector yp, N_Vector rr,
         rv[i] = s->sys->mass[i] * vd[i] - rv[i];
     }
     return cl_sun_rhs_finite(s, rx, 2 * n, t);
-}
-
-static int ida_jac(sunrealtype t, sunrealtype cj, N_Vector yy, N_Vector yp,
-                   N_Vector rr, SUNMatrix G, void *data, N_Vector t1,
-                   N_Vector t2, N_Vector t3)
-{
-    cl_ida *s = data;
-    const double *x = N_VGetArrayPointer(yy);
-    (void)yp, (void)rr, (void)t1, (void)t2, (void)t3;
-    int ret = cl_sun_jacobian(&s->base, t, x, x + s->base.sys->n);
-    if (ret != 0)
-        return ret;
-    if (cl_firstorder_fill_implicit(&s->fo, s->base.dfdx, s->base.dfdv, cj, G,
-                                    NULL) != CL_OK)
-        return -1;
-    return 0;
 }
 
 /* ---- create / free ----------------------------------------------------- */
@@ -151,7 +129,7 @@ static cl_status ida_initial_yp(cl_sun *s, double t0, cl_error *err)
                         s->fail_nonfinite ? ": values not finite" : "", t0);
 }
 
-/* Restart after a change of the model (tearing, sun_common.h) from the
+/* Restart after a change of the model (tearing, sun_adapter.h) from the
  * current y with the consistent y' = (v, M^-1 f(t, x, v)). */
 static cl_status ida_reinit(cl_sun *s, double t, cl_error *err)
 {
@@ -184,63 +162,21 @@ static cl_status ida_memory(cl_sun *s, const cl_integrator_opts *o,
     return CL_OK;
 }
 
-/* klu-full: the first-order pattern and KLU on it; otherwise the
- * half-size solver (sun_reduced.h). */
-static cl_status ida_linsol(cl_ida *s, const cl_integrator_opts *o,
-                            cl_error *err)
-{
-    cl_sun *b = &s->base;
-    const cl_linsol_type *lt;
-    cl_status st = cl_sunred_choose(b, o->linsol, &lt, err);
-    if (st != CL_OK || lt)
-        return st != CL_OK ? st
-                           : cl_sunred_attach(b, lt, o, true, &s->red, err);
-    st = cl_firstorder_create(b->sys->pattern, b->sys->mass, &s->fo, err);
-    if (st == CL_OK)
-        st = cl_sun_attach_klu(b, s->fo.size, s->fo.nnz, err);
-    if (st != CL_OK)
-        return st;
-    int flag = IDASetJacFn(b->mem, ida_jac);
-    return flag < 0 ? cl_sun_fail(b, "IDASetJacFn", flag, err) : CL_OK;
-}
-
-static void ida_free(void *state)
-{
-    cl_ida *s = state;
-    if (s) {
-        cl_firstorder_free(&s->fo);
-        cl_sunred_free(s->red);
-    }
-    cl_sun_free(state);
-}
-
 static cl_status ida_create(const cl_system *sys, const cl_integrator_opts *o,
                             double t0, const double *x0, const double *v0,
                             void **state, cl_error *err)
 {
-    cl_sun *b = NULL;
+    cl_sun *s = NULL;
     *state = NULL;
-    cl_status st = cl_sun_alloc(sizeof(cl_ida), "ida", &ida_api, sys, o, t0,
-                                x0, v0, true, false, &b, err);
-    cl_ida *s = (cl_ida *)b;
+    cl_status st = cl_sun_alloc(sizeof *s, "ida", &ida_api, sys, o, t0, x0,
+                                v0, true, false, &s, err);
     if (st == CL_OK)
-        st = ida_initial_yp(b, t0, err);
+        st = ida_initial_yp(s, t0, err);
     if (st == CL_OK)
-        st = ida_memory(b, o, t0, err);
+        st = ida_memory(s, o, t0, err);
     if (st == CL_OK)
-        st = ida_linsol(s, o, err);
-    return cl_sun_finish(b, st, ida_free, state);
-}
-
-static cl_status ida_advance(void *state, double t_out, double *x, double *v,
-                             cl_error *err)
-{
-    return cl_sunred_advance(state, ((cl_ida *)state)->red, t_out, x, v, err);
-}
-
-static void ida_stats(const void *state, cl_stats *out)
-{
-    cl_sunred_stats(state, ((const cl_ida *)state)->red, out);
+        st = cl_sunred_attach(s, o, true, err);
+    return cl_sun_finish(s, st, cl_sun_free, state);
 }
 
 const cl_integrator_type cl_integrator_ida = {
@@ -252,7 +188,7 @@ const cl_integrator_type cl_integrator_ida = {
     .takes_max_order = true,
     .takes_linsol = true,
     .create = ida_create,
-    .advance = ida_advance,
-    .stats = ida_stats,
-    .free = ida_free,
+    .advance = cl_sun_advance,
+    .stats = cl_sun_stats,
+    .free = cl_sun_free,
 };

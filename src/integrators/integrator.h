@@ -83,7 +83,7 @@ cl_status cl_integrator_refuse_projection(const char *name,
 /* The system's contact hook at an output time t of an adaptive method, if
  * it has one: the contact figures (record), and for CVODE BDF the
  * projection of the interpolated output, not recorded (its steps are
- * projected inside, see sun_common.h). */
+ * projected inside, see sun_adapter.h). */
 cl_status cl_integrator_contact_at(const char *name, const cl_system *sys,
                                    double t, double *x, double *v,
                                    bool record, cl_error *err);

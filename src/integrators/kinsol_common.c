@@ -21,12 +21,11 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_linearsolver.h>
-#include <sundials/sundials_matrix.h>
 
 #include "core/check.h"
 #include "integrators/fixed_step.h"
+#include "integrators/sun_adapter.h"
 #include "linalg/linsol.h"
-#include "linalg/sunls.h"
 
 _Static_assert(sizeof(sunrealtype) == sizeof(double),
                "clothode needs SUNDIALS built in double precision");
@@ -143,50 +142,22 @@ static void kin_errhandler(int code, const char *module, const char *function,
         snprintf(s->kmsg, sizeof s->kmsg, "%s: %s", function, msg);
 }
 
-/* ---- shell matrix and the cl_linsol SUNLinearSolver -------------------- */
-
-static SUNMatrix_ID shell_getid(SUNMatrix A)
-{
-    (void)A;
-    return SUNMATRIX_CUSTOM;
-}
-
-/* KINSOL zeroes a direct solver's matrix before each Jacobian call; the
- * shell holds no values. */
-static int shell_zero(SUNMatrix A)
-{
-    (void)A;
-    return 0;
-}
-
-static void shell_destroy(SUNMatrix A)
-{
-    if (A) {
-        A->content = NULL;
-        SUNMatFreeEmpty(A);
-    }
-}
-
-static int ls_initialize(SUNLinearSolver S)
-{
-    (void)S;
-    return SUNLS_SUCCESS;
-}
+/* ---- the cl_linsol as KINSOL's direct solver (sun_adapter.h) ---------- */
 
 /* A = M - (c beta) df/dv - (c alpha) df/dx at the iterate of kin_jac. */
-static int ls_setup(SUNLinearSolver S, SUNMatrix A)
+static int ls_setup(void *data, SUNMatrix A)
 {
-    cl_kin *s = S->content;
+    cl_kin *s = data;
     (void)A;
     s->lin_st = s->lt->setup(s->lstate, s->c * s->beta, s->c * s->alpha,
                              s->dfdx, s->dfdv, &s->lin_err);
     return s->lin_st == CL_OK ? SUNLS_SUCCESS : SUNLS_PACKAGE_FAIL_UNREC;
 }
 
-static int ls_solve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b,
+static int ls_solve(void *data, SUNMatrix A, N_Vector x, N_Vector b,
                     sunrealtype tol)
 {
-    cl_kin *s = S->content;
+    cl_kin *s = data;
     double *xd = N_VGetArrayPointer(x);
     (void)A, (void)tol;
     s->lin_st = s->lt->solve(s->lstate, N_VGetArrayPointer(b), xd,
@@ -197,14 +168,13 @@ static int ls_solve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b,
     return s->lin_st == CL_OK ? SUNLS_SUCCESS : SUNLS_PACKAGE_FAIL_UNREC;
 }
 
-static int ls_free(SUNLinearSolver S)
-{
-    if (S) {
-        S->content = NULL;
-        SUNLinSolFreeEmpty(S);
-    }
-    return SUNLS_SUCCESS;
-}
+/* KINSOL zeroes a direct solver's matrix before each Jacobian call; the
+ * matrix is the adapter's shell, which holds no values. */
+static const cl_sun_lsdef kin_lsdef = {
+    .type = SUNLINEARSOLVER_DIRECT,
+    .setup = ls_setup,
+    .solve = ls_solve,
+};
 
 /* ---- create / free ------------------------------------------------------ */
 
@@ -309,22 +279,12 @@ static cl_status kin_linsol(cl_kin *s, const cl_integrator_opts *o,
                                  &s->lstate, err);
     if (st != CL_OK)
         return st;
-    s->J = SUNMatNewEmpty(s->ctx);
-    s->ls = SUNLinSolNewEmpty(s->ctx);
+    s->J = cl_sun_shell_matrix(s->ctx);
+    s->ls = cl_sun_shell_linsol(&kin_lsdef, s, s->ctx);
     if (!s->J || !s->ls)
-        return kin_sunfail(s, s->J ? "SUNLinSolNewEmpty" : "SUNMatNewEmpty",
+        return kin_sunfail(s, s->J ? "cl_sun_shell_linsol"
+                                    : "cl_sun_shell_matrix",
                            0, err);
-    s->J->content = s;
-    s->J->ops->getid = shell_getid;
-    s->J->ops->zero = shell_zero;
-    s->J->ops->destroy = shell_destroy;
-    s->ls->content = s;
-    s->ls->ops->gettype = cl_sunls_type_direct;
-    s->ls->ops->getid = cl_sunls_id_custom;
-    s->ls->ops->initialize = ls_initialize;
-    s->ls->ops->setup = ls_setup;
-    s->ls->ops->solve = ls_solve;
-    s->ls->ops->free = ls_free;
     return CL_OK;
 }
 

@@ -26,7 +26,8 @@
  * Jacobian and the factorisation renewed at every iteration
  * (KINSetMaxSetupCalls = 1), so that iteration counts compare directly with
  * the semi-implicit methods and one iteration is exactly one Newton step.
- * KINSOL sees a custom "direct" SUNLinearSolver and a shell SUNMatrix: its
+ * KINSOL sees a custom "direct" SUNLinearSolver and a shell SUNMatrix (both
+ * made by the SUNDIALS adapter, sun_adapter.h): its
  * Jacobian callback evaluates df/dx, df/dv at the iterate (the system's
  * block values), the solver's setup calls cl_linsol setup with (a, b) and
  * its solve calls cl_linsol solve (opts->linsol, default klu).

@@ -1,5 +1,6 @@
 /* The integrators selectable by name (docs/integrators.md): one row per
- * method file.
+ * method file, X(ident) for the table cl_integrator_ident that the file
+ * defines; the rows declare the tables and list them in this order.
  *
  *   cvode-bdf         CVODE BDF + Newton + KLU, analytic sparse Jacobian
  *   cvode-bdf-dense   CVODE BDF + dense LU, difference-quotient Jacobian
@@ -23,45 +24,34 @@
  *   semi-bdf2         Choi-Ko semi-implicit BDF2 (Jiao, eq. 15) */
 #include "integrators/integrator.h"
 
-extern const cl_integrator_type cl_integrator_cvode_bdf;
-extern const cl_integrator_type cl_integrator_cvode_bdf_dense;
-extern const cl_integrator_type cl_integrator_cvode_bdf_gmres;
-extern const cl_integrator_type cl_integrator_cvode_adams;
-extern const cl_integrator_type cl_integrator_ida;
-extern const cl_integrator_type cl_integrator_symplectic_euler;
-extern const cl_integrator_type cl_integrator_fe;
-extern const cl_integrator_type cl_integrator_symplectic_euler_x;
-extern const cl_integrator_type cl_integrator_verlet;
-extern const cl_integrator_type cl_integrator_verlet_pbd;
-extern const cl_integrator_type cl_integrator_velocity_verlet;
-extern const cl_integrator_type cl_integrator_rk4;
-extern const cl_integrator_type cl_integrator_gsl_rk8pd;
-extern const cl_integrator_type cl_integrator_gsl_msbdf;
-extern const cl_integrator_type cl_integrator_kinsol_be;
-extern const cl_integrator_type cl_integrator_kinsol_bdf2;
-extern const cl_integrator_type cl_integrator_kinsol_midpoint;
-extern const cl_integrator_type cl_integrator_semi_be;
-extern const cl_integrator_type cl_integrator_semi_bdf2;
+/* Every row ends in a backslash; the blank line closes the list. */
+#define CL_INTEGRATOR_ROWS(X)                                               \
+    X(cvode_bdf)                                                            \
+    X(cvode_bdf_dense)                                                      \
+    X(cvode_bdf_gmres)                                                      \
+    X(cvode_adams)                                                          \
+    X(ida)                                                                  \
+    X(symplectic_euler)                                                     \
+    X(fe)                                                                   \
+    X(symplectic_euler_x)                                                   \
+    X(verlet)                                                               \
+    X(verlet_pbd)                                                           \
+    X(velocity_verlet)                                                      \
+    X(rk4)                                                                  \
+    X(gsl_rk8pd)                                                            \
+    X(gsl_msbdf)                                                            \
+    X(kinsol_be)                                                            \
+    X(kinsol_bdf2)                                                          \
+    X(kinsol_midpoint)                                                      \
+    X(semi_be)                                                              \
+    X(semi_bdf2)                                                            \
+
+#define CL_INTEGRATOR_DECLARE(ident) \
+    extern const cl_integrator_type cl_integrator_##ident;
+#define CL_INTEGRATOR_ENTRY(ident) &cl_integrator_##ident,
+
+CL_INTEGRATOR_ROWS(CL_INTEGRATOR_DECLARE)
 
 const cl_integrator_type *const cl_integrator_registry[] = {
-    &cl_integrator_cvode_bdf,
-    &cl_integrator_cvode_bdf_dense,
-    &cl_integrator_cvode_bdf_gmres,
-    &cl_integrator_cvode_adams,
-    &cl_integrator_ida,
-    &cl_integrator_symplectic_euler,
-    &cl_integrator_fe,
-    &cl_integrator_symplectic_euler_x,
-    &cl_integrator_verlet,
-    &cl_integrator_verlet_pbd,
-    &cl_integrator_velocity_verlet,
-    &cl_integrator_rk4,
-    &cl_integrator_gsl_rk8pd,
-    &cl_integrator_gsl_msbdf,
-    &cl_integrator_kinsol_be,
-    &cl_integrator_kinsol_bdf2,
-    &cl_integrator_kinsol_midpoint,
-    &cl_integrator_semi_be,
-    &cl_integrator_semi_bdf2,
-    NULL,
+    CL_INTEGRATOR_ROWS(CL_INTEGRATOR_ENTRY) NULL,
 };

@@ -1,14 +1,14 @@
-/* The half-size Newton solver of CVODE and IDA (see sun_reduced.h for the
- * equations and the calling sequence):
+/* The Newton linear solvers of CVODE and IDA (see sun_reduced.h for the
+ * equations and the calling sequence): klu-full, and the half-size
  *
  *   CVODE  A = M - gamma Kv - gamma^2 Kx,   A zv = M rv + gamma Kx rx,
  *          zx = rx + gamma zv;
  *   IDA    A = M - Kv / cj - Kx / cj^2,     A zx = (rv + cj M rx - Kv rx)
  *          / cj^2,  zv = cj zx - rx.
  *
- * The shell SUNMatrix carries a pointer to the solver state (its content,
- * shared by CVODE's clone of it) and nothing else, so that the Jacobian
- * function finds the state through the matrix it is given. */
+ * Either is plugged into the integrator state (sun_adapter.h), where the
+ * Jacobian functions find it; the half-size solver's SUNMatrix is the
+ * adapter's shell, which holds no values. */
 #include "integrators/sun_reduced.h"
 
 #include <stdlib.h>
@@ -16,12 +16,12 @@
 
 #include <cvode/cvode.h>
 #include <ida/ida.h>
-#include <sundials/sundials_matrix.h>
 
 #include "linalg/bsym.h"
+#include "linalg/firstorder.h"
 #include "linalg/reduced.h"
 
-struct cl_sunred {
+typedef struct {
     cl_sun *base;
     const cl_linsol_type *lt;
     void *lstate;
@@ -37,72 +37,15 @@ struct cl_sunred {
     cl_bsym_kind kkind; /* kdiag, kupper hold the last Jacobian's, unless
                          * CL_BSYM_NONE */
     cl_error err;       /* last failure, msg[0] == 0 if none */
-};
-
-/* ---- the shell matrix -------------------------------------------------- */
-
-static SUNMatrix_ID shell_getid(SUNMatrix A)
-{
-    (void)A;
-    return SUNMATRIX_CUSTOM;
-}
-
-static int shell_noop(SUNMatrix A)
-{
-    (void)A;
-    return SUNMAT_SUCCESS;
-}
-
-static int shell_copy(SUNMatrix A, SUNMatrix B)
-{
-    (void)A, (void)B;
-    return SUNMAT_SUCCESS;
-}
-
-static int shell_scaleaddi(sunrealtype c, SUNMatrix A)
-{
-    (void)c, (void)A;
-    return SUNMAT_SUCCESS;
-}
-
-static void shell_destroy(SUNMatrix A)
-{
-    if (A) {
-        A->content = NULL;
-        SUNMatFreeEmpty(A);
-    }
-}
-
-static SUNMatrix shell_new(cl_sunred *r, SUNContext ctx);
-
-static SUNMatrix shell_clone(SUNMatrix A)
-{
-    return shell_new(A->content, A->sunctx);
-}
-
-static SUNMatrix shell_new(cl_sunred *r, SUNContext ctx)
-{
-    SUNMatrix A = SUNMatNewEmpty(ctx);
-    if (!A)
-        return NULL;
-    A->content = r;
-    A->ops->getid = shell_getid;
-    A->ops->clone = shell_clone;
-    A->ops->destroy = shell_destroy;
-    A->ops->zero = shell_noop;
-    A->ops->copy = shell_copy;
-    A->ops->scaleaddi = shell_scaleaddi;
-    return A;
-}
+} cl_sunred;
 
 /* ---- Jacobian functions: Kx, Kv at the solver's state ------------------ */
 
 /* Also packs the block red_rhs multiplies by, if it is symmetric, and
  * tells the cl_linsol of the new values. */
-static int red_eval(SUNMatrix J, sunrealtype t, N_Vector y)
+static int red_eval(cl_sun *b, sunrealtype t, N_Vector y)
 {
-    cl_sunred *r = J->content;
-    cl_sun *b = r->base;
+    cl_sunred *r = b->plug_data;
     const double *x = N_VGetArrayPointer(y);
     int ret = cl_sun_jacobian(b, t, x, x + b->sys->n);
     if (ret != 0) {
@@ -121,16 +64,16 @@ static int red_eval(SUNMatrix J, sunrealtype t, N_Vector y)
 static int red_cvode_jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J,
                          void *data, N_Vector t1, N_Vector t2, N_Vector t3)
 {
-    (void)fy, (void)data, (void)t1, (void)t2, (void)t3;
-    return red_eval(J, t, y);
+    (void)fy, (void)J, (void)t1, (void)t2, (void)t3;
+    return red_eval(data, t, y);
 }
 
 static int red_ida_jac(sunrealtype t, sunrealtype cj, N_Vector yy,
                        N_Vector yp, N_Vector rr, SUNMatrix J, void *data,
                        N_Vector t1, N_Vector t2, N_Vector t3)
 {
-    (void)cj, (void)yp, (void)rr, (void)data, (void)t1, (void)t2, (void)t3;
-    return red_eval(J, t, yy);
+    (void)cj, (void)yp, (void)rr, (void)J, (void)t1, (void)t2, (void)t3;
+    return red_eval(data, t, yy);
 }
 
 /* ---- the linear solver ------------------------------------------------- */
@@ -144,28 +87,9 @@ static int red_flag(cl_status st)
                             : SUNLS_PACKAGE_FAIL_UNREC;
 }
 
-static SUNLinearSolver_Type red_gettype(SUNLinearSolver S)
+static int red_scaling(void *data, N_Vector s1, N_Vector s2)
 {
-    const cl_sunred *r = S->content;
-    return r->lt->solve_tol ? SUNLINEARSOLVER_MATRIX_ITERATIVE
-                            : SUNLINEARSOLVER_DIRECT;
-}
-
-static SUNLinearSolver_ID red_getid(SUNLinearSolver S)
-{
-    (void)S;
-    return SUNLINEARSOLVER_CUSTOM;
-}
-
-static int red_initialize(SUNLinearSolver S)
-{
-    (void)S;
-    return SUNLS_SUCCESS;
-}
-
-static int red_scaling(SUNLinearSolver S, N_Vector s1, N_Vector s2)
-{
-    cl_sunred *r = S->content;
+    cl_sunred *r = data;
     (void)s2;
     r->weight = s1;
     return SUNLS_SUCCESS;
@@ -173,25 +97,25 @@ static int red_scaling(SUNLinearSolver S, N_Vector s1, N_Vector s2)
 
 /* The solution is always in x: IDA would take the solver's residual vector
  * for it after a solve reported with 0 iterations.  The true counts come
- * from the cl_linsol (cl_sunred_stats). */
-static int red_numiters(SUNLinearSolver S)
+ * from the cl_linsol (red_stats). */
+static int red_numiters(void *data)
 {
-    (void)S;
+    (void)data;
     return 1;
 }
 
 /* IDA insists on this operation for iterative solvers; it would only use
  * it after 0 iterations.  The last solution is what it would want. */
-static N_Vector red_resid(SUNLinearSolver S)
+static N_Vector red_resid(void *data)
 {
-    const cl_sunred *r = S->content;
+    const cl_sunred *r = data;
     return r->last_x;
 }
 
 /* A from the stored Kx, Kv and the current gamma or cj. */
-static int red_setup(SUNLinearSolver S, SUNMatrix A)
+static int red_setup(void *data, SUNMatrix A)
 {
-    cl_sunred *r = S->content;
+    cl_sunred *r = data;
     cl_sun *b = r->base;
     sunrealtype g = 0;
     (void)A;
@@ -250,10 +174,10 @@ static cl_status red_solve_half(cl_sunred *r, double delta)
     return r->lt->solve_tol(r->lstate, r->rhs, r->z, r->w, delta, &r->err);
 }
 
-static int red_solve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b,
+static int red_solve(void *data, SUNMatrix A, N_Vector x, N_Vector b,
                      sunrealtype delta)
 {
-    cl_sunred *r = S->content;
+    cl_sunred *r = data;
     size_t n = r->base->sys->n;
     const double *rx = N_VGetArrayPointer(b), *rv = rx + n;
     double *zx = N_VGetArrayPointer(x), *zv = zx + n, g = r->g;
@@ -276,40 +200,39 @@ static int red_solve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b,
     return SUNLS_SUCCESS;
 }
 
-/* Only the shell: the state belongs to the integrator (cl_sunred_free). */
-static int red_free_shell(SUNLinearSolver S)
+/* The state belongs to the integrator (its plug), not to the solver. */
+static const cl_sun_lsdef red_direct = {
+    .type = SUNLINEARSOLVER_DIRECT,
+    .setup = red_setup,
+    .solve = red_solve,
+};
+
+/* Iterative cl_linsols get the integrator's weights and tolerance. */
+static const cl_sun_lsdef red_iterative = {
+    .type = SUNLINEARSOLVER_MATRIX_ITERATIVE,
+    .setup = red_setup,
+    .solve = red_solve,
+    .scaling = red_scaling,
+    .numiters = red_numiters,
+    .resid = red_resid,
+};
+
+/* ---- the half-size solver as the integrator's plug -------------------- */
+
+/* The package's Jacobian function: cv for CVODE, id for IDA. */
+static cl_status red_jacfn(cl_sun *s, bool ida, CVLsJacFn cv, IDALsJacFn id,
+                           cl_error *err)
 {
-    if (S) {
-        S->content = NULL;
-        SUNLinSolFreeEmpty(S);
-    }
-    return SUNLS_SUCCESS;
+    int flag = ida ? IDASetJacFn(s->mem, id) : CVodeSetJacFn(s->mem, cv);
+    if (flag < 0)
+        return cl_sun_fail(s, ida ? "IDASetJacFn" : "CVodeSetJacFn", flag,
+                           err);
+    return CL_OK;
 }
 
-static SUNLinearSolver red_solver(cl_sunred *r, SUNContext ctx)
+static void red_free(void *data)
 {
-    SUNLinearSolver S = SUNLinSolNewEmpty(ctx);
-    if (!S)
-        return NULL;
-    S->content = r;
-    S->ops->gettype = red_gettype;
-    S->ops->getid = red_getid;
-    S->ops->initialize = red_initialize;
-    S->ops->setup = red_setup;
-    S->ops->solve = red_solve;
-    S->ops->free = red_free_shell;
-    if (r->lt->solve_tol) {
-        S->ops->setscalingvectors = red_scaling;
-        S->ops->numiters = red_numiters;
-        S->ops->resid = red_resid;
-    }
-    return S;
-}
-
-/* ---- create / free / statistics ---------------------------------------- */
-
-void cl_sunred_free(cl_sunred *r)
-{
+    cl_sunred *r = data;
     if (!r)
         return;
     if (r->lstate)
@@ -323,17 +246,36 @@ void cl_sunred_free(cl_sunred *r)
     free(r);
 }
 
-static cl_status red_alloc(cl_sun *s, const cl_linsol_type *lt,
-                           const cl_integrator_opts *o, bool ida,
-                           cl_sunred **out, cl_error *err)
+/* The counters the cl_linsol keeps (steps, setups, Jacobian evaluations
+ * stay the integrator's). */
+static void red_stats(const void *data, cl_stats *out)
+{
+    const cl_sunred *r = data;
+    cl_stats ls = {0};
+    r->lt->stats(r->lstate, &ls);
+    out->lin_solves = ls.lin_solves;
+    out->lin_iters = ls.lin_iters;
+    out->symbolic_facts = ls.symbolic_facts;
+    out->lin_fallbacks = ls.lin_fallbacks;
+    snprintf(out->linsol, sizeof out->linsol, "%s",
+             ls.linsol[0] ? ls.linsol : r->lt->name);
+}
+
+static const char *red_last_error(const void *data)
+{
+    return ((const cl_sunred *)data)->err.msg;
+}
+
+static const cl_sun_plug red_plug = {
+    .stats = red_stats,
+    .last_error = red_last_error,
+    .free = red_free,
+};
+
+static cl_status red_alloc(cl_sun *s, cl_sunred *r, const cl_integrator_opts *o,
+                           cl_error *err)
 {
     size_t n = s->sys->n;
-    cl_sunred *r = *out = calloc(1, sizeof *r);
-    if (!r)
-        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
-    r->base = s;
-    r->lt = lt;
-    r->ida = ida;
     r->rhs = malloc(n * sizeof *r->rhs);
     r->z = malloc(n * sizeof *r->z);
     r->w = malloc(n * sizeof *r->w);
@@ -348,79 +290,125 @@ static cl_status red_alloc(cl_sun *s, const cl_linsol_type *lt,
     if (!r->kdiag || !r->kupper)
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
     cl_linsol_opts lo = cl_integrator_linsol_opts(o);
-    st = lt->create(s->sys->pattern, s->sys->mass, &lo, &r->lstate,
-                    &inner);
+    st = r->lt->create(s->sys->pattern, s->sys->mass, &lo, &r->lstate,
+                       &inner);
     if (st != CL_OK)
         return cl_error_set(err, st, "%s: %s", s->name, inner.msg);
     return CL_OK;
 }
 
-cl_status cl_sunred_attach(cl_sun *s, const cl_linsol_type *lt,
-                           const cl_integrator_opts *o, bool ida,
-                           cl_sunred **out, cl_error *err)
+/* The half-size solver with cl_linsol lt: shell matrix into s->A, solver
+ * into s->ls, state plugged into s. */
+static cl_status red_attach(cl_sun *s, const cl_linsol_type *lt,
+                            const cl_integrator_opts *o, bool ida,
+                            cl_error *err)
 {
-    cl_status st = red_alloc(s, lt, o, ida, out, err);
+    cl_sunred *r = calloc(1, sizeof *r);
+    if (!r)
+        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
+    cl_sun_plug_in(s, &red_plug, r);
+    r->base = s;
+    r->lt = lt;
+    r->ida = ida;
+    cl_status st = red_alloc(s, r, o, err);
     if (st != CL_OK)
         return st;
-    s->A = shell_new(*out, s->ctx);
-    s->ls = s->A ? red_solver(*out, s->ctx) : NULL;
+    s->A = cl_sun_shell_matrix(s->ctx);
+    s->ls = s->A ? cl_sun_shell_linsol(lt->solve_tol ? &red_iterative
+                                                      : &red_direct,
+                                       r, s->ctx)
+                 : NULL;
     if (!s->ls)
-        return cl_sun_sunfail(s, "SUNMatNewEmpty/SUNLinSolNewEmpty", 0, err);
+        return cl_sun_sunfail(s, "cl_sun_shell_matrix/cl_sun_shell_linsol", 0, err);
     char fn[64];
     snprintf(fn, sizeof fn, "%sSetLinearSolver", s->api->pkg);
     int flag = s->api->set_linear_solver(s->mem, s->ls, s->A);
     if (flag < 0)
         return cl_sun_fail(s, fn, flag, err);
-    flag = ida ? IDASetJacFn(s->mem, red_ida_jac)
-               : CVodeSetJacFn(s->mem, red_cvode_jac);
-    if (flag < 0)
-        return cl_sun_fail(s, ida ? "IDASetJacFn" : "CVodeSetJacFn", flag,
-                           err);
-    return CL_OK;
+    return red_jacfn(s, ida, red_cvode_jac, red_ida_jac, err);
 }
 
-cl_status cl_sunred_choose(const cl_sun *s, const char *name,
-                           const cl_linsol_type **lt, cl_error *err)
+/* ---- klu-full: KLU on the first-order matrix --------------------------- */
+
+static int full_cvode_jac(sunrealtype t, N_Vector y, N_Vector fy,
+                          SUNMatrix J, void *data, N_Vector t1, N_Vector t2,
+                          N_Vector t3)
 {
-    *lt = NULL;
-    if (!name || !name[0])
-        name = CL_SUNRED_DEFAULT;
+    cl_sun *s = data;
+    const double *x = N_VGetArrayPointer(y);
+    (void)fy, (void)t1, (void)t2, (void)t3;
+    int ret = cl_sun_jacobian(s, t, x, x + s->sys->n);
+    if (ret != 0)
+        return ret;
+    if (cl_firstorder_fill(s->plug_data, s->dfdx, s->dfdv, J, NULL) != CL_OK)
+        return -1;
+    return 0;
+}
+
+static int full_ida_jac(sunrealtype t, sunrealtype cj, N_Vector yy,
+                        N_Vector yp, N_Vector rr, SUNMatrix G, void *data,
+                        N_Vector t1, N_Vector t2, N_Vector t3)
+{
+    cl_sun *s = data;
+    const double *x = N_VGetArrayPointer(yy);
+    (void)yp, (void)rr, (void)t1, (void)t2, (void)t3;
+    int ret = cl_sun_jacobian(s, t, x, x + s->sys->n);
+    if (ret != 0)
+        return ret;
+    if (cl_firstorder_fill_implicit(s->plug_data, s->dfdx, s->dfdv, cj, G,
+                                    NULL) != CL_OK)
+        return -1;
+    return 0;
+}
+
+static void full_stats(const void *data, cl_stats *out)
+{
+    (void)data;
+    snprintf(out->linsol, sizeof out->linsol, "klu-full");
+}
+
+static void full_free(void *data)
+{
+    cl_firstorder_free(data);
+    free(data);
+}
+
+static const cl_sun_plug full_plug = {
+    .stats = full_stats,
+    .free = full_free,
+};
+
+/* The first-order pattern and KLU on it (the counting shell counts its
+ * solves and analyses), the Jacobian function. */
+static cl_status full_attach(cl_sun *s, bool ida, cl_error *err)
+{
+    cl_firstorder *fo = calloc(1, sizeof *fo);
+    if (!fo)
+        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
+    cl_sun_plug_in(s, &full_plug, fo);
+    cl_status st = cl_firstorder_create(s->sys->pattern, s->sys->mass, fo,
+                                        err);
+    if (st == CL_OK)
+        st = cl_sun_attach_klu(s, fo->size, fo->nnz, err);
+    if (st != CL_OK)
+        return st;
+    return red_jacfn(s, ida, full_cvode_jac, full_ida_jac, err);
+}
+
+/* ---- the choice --------------------------------------------------------- */
+
+cl_status cl_sunred_attach(cl_sun *s, const cl_integrator_opts *o, bool ida,
+                           cl_error *err)
+{
+    const char *name = o->linsol && o->linsol[0] ? o->linsol
+                                                 : CL_SUNRED_DEFAULT;
     if (strcmp(name, "klu-full") == 0)
-        return CL_OK;
-    *lt = cl_linsol_find(name);
-    if (*lt)
-        return CL_OK;
+        return full_attach(s, ida, err);
+    const cl_linsol_type *lt = cl_linsol_find(name);
+    if (lt)
+        return red_attach(s, lt, o, ida, err);
     char names[256];
     return cl_error_set(err, CL_EINVAL, "%s: unknown linear solver \"%s\" "
                         "(known: klu-full, %s)", s->name, name,
                         cl_linsol_names(names, sizeof names));
-}
-
-void cl_sunred_stats(const cl_sun *s, const cl_sunred *r, cl_stats *out)
-{
-    cl_sun_stats(s, out);
-    if (!r) {
-        snprintf(out->linsol, sizeof out->linsol, "klu-full");
-        return;
-    }
-    cl_stats ls = {0};
-    r->lt->stats(r->lstate, &ls);
-    out->lin_solves = ls.lin_solves;
-    out->lin_iters = ls.lin_iters;
-    out->symbolic_facts = ls.symbolic_facts;
-    out->lin_fallbacks = ls.lin_fallbacks;
-    snprintf(out->linsol, sizeof out->linsol, "%s",
-             ls.linsol[0] ? ls.linsol : r->lt->name);
-}
-
-cl_status cl_sunred_advance(cl_sun *s, const cl_sunred *r, double t_out,
-                            double *x, double *v, cl_error *err)
-{
-    cl_status st = cl_sun_advance(s, t_out, x, v, err);
-    if (st == CL_OK || !r || !r->err.msg[0])
-        return st;
-    size_t len = strlen(err->msg);
-    snprintf(err->msg + len, sizeof err->msg - len,
-             "; last linear-solver failure: %s", r->err.msg);
-    return st;
 }

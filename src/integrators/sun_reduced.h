@@ -56,9 +56,10 @@
  * rtol 1e-4, T = 2 s: 1.5 Newton iterations per step instead of 1.06 and
  * 38 % (n = 16) / 32 % (n = 32) more CPU time than the design below.
  * So the solver is attached
- * as a matrix-based one with a *shell* SUNMatrix that holds no values (its
- * zero, copy, scale-add-identity and clone operations do nothing but keep
- * the shell), and CVODE's and IDA's own heuristics decide:
+ * as a matrix-based one with a *shell* SUNMatrix that holds no values (the
+ * adapter's, sun_adapter.h: its zero, copy, scale-add-identity and clone
+ * operations do nothing but keep the shell), and CVODE's and IDA's own
+ * heuristics decide:
  *
  *  - the Jacobian function (CVodeSetJacFn / IDASetJacFn) evaluates Kx, Kv
  *    at the solver's state; CVODE calls it only when it wants a new
@@ -107,53 +108,42 @@
  * (pcg, pcg-jacobi, auto), which then get the integrator's tolerance and
  * weights as above; every solve is reported to CVODE and IDA as one
  * iteration (IDA would take a residual vector for the solution after 0),
- * the true counts come from the cl_linsol (cl_sunred_stats).
+ * the true counts come from the cl_linsol (see cl_sunred_attach).
  *
  * Failures: a cl_linsol setup or solve failing with CL_ESOLVER (singular or
  * indefinite A, no convergence) is a recoverable failure for the
  * integrator, which retries with a fresh Jacobian or a smaller step; other
- * failures are unrecoverable.  The last message is kept
- * (cl_sunred_advance).
+ * failures are unrecoverable.  The last message is kept and ends the
+ * message of a failed advance.
  *
  * Everything is allocated by cl_sunred_attach; setup and solve allocate
  * nothing (beyond what the cl_linsol documents). */
 #ifndef CL_SUN_REDUCED_H
 #define CL_SUN_REDUCED_H
 
-#include "integrators/sun_common.h"
-#include "linalg/linsol.h"
-
-typedef struct cl_sunred cl_sunred;
+#include "integrators/sun_adapter.h"
 
 /* The linear solver of cvode-bdf and ida when --linsol is not given. */
 #define CL_SUNRED_DEFAULT "auto"
 
-/* --linsol `name` of integrator s: NULL or "" for CL_SUNRED_DEFAULT;
- * "klu-full" (KLU on the full first-order matrix, the baseline) gives
- * *lt = NULL; otherwise the cl_linsol of that name; CL_EINVAL naming the
- * known ones if there is none. */
-cl_status cl_sunred_choose(const cl_sun *s, const char *name,
-                           const cl_linsol_type **lt, cl_error *err);
-
-/* The half-size solver with cl_linsol lt (options o: lin_tol, lin_maxit)
- * on s (CVODE when ida is false, IDA otherwise; s->mem, s->dfdx, s->dfdv
- * must exist): shell matrix into s->A, solver into s->ls (released by
- * cl_sun_free), attached with the Jacobian function.  *out is the solver's
- * state, to be freed with cl_sunred_free before cl_sun_free (also when
- * this call failed). */
-cl_status cl_sunred_attach(cl_sun *s, const cl_linsol_type *lt,
-                           const cl_integrator_opts *o, bool ida,
-                           cl_sunred **out, cl_error *err);
-void cl_sunred_free(cl_sunred *r);
-
-/* The integrator-table entries of cvode-bdf and ida with half-size solver
- * r, or NULL for klu-full.  Statistics: cl_sun_stats, then with r
- * lin_solves, lin_iters, symbolic_facts, lin_fallbacks and linsol from the
- * cl_linsol (steps, setups, Jacobian evaluations stay the integrator's),
- * without r linsol = "klu-full".  Advance: cl_sun_advance, a failure's
- * message followed by r's last linear-solver failure if any. */
-void cl_sunred_stats(const cl_sun *s, const cl_sunred *r, cl_stats *out);
-cl_status cl_sunred_advance(cl_sun *s, const cl_sunred *r, double t_out,
-                            double *x, double *v, cl_error *err);
+/* The Newton linear solver named by o->linsol (NULL or "":
+ * CL_SUNRED_DEFAULT) on s, CVODE's when ida is false, IDA's otherwise
+ * (s->mem, s->dfdx, s->dfdv must exist), attached with its Jacobian
+ * function and plugged into s (sun_adapter.h), which releases it:
+ *
+ *   klu-full  KLU on the first-order matrix (the baseline), assembled from
+ *             the pattern built once (linalg/firstorder.h) and wrapped in
+ *             the adapter's counting shell; statistics linsol = "klu-full";
+ *   klu, pcg, pcg-jacobi, cholmod, auto
+ *             the half-size solver above with that cl_linsol (options
+ *             lin_tol, lin_maxit); statistics lin_solves, lin_iters,
+ *             symbolic_facts, lin_fallbacks and linsol from the cl_linsol
+ *             (steps, setups, Jacobian evaluations stay the
+ *             integrator's); a failure's message ends with the last
+ *             linear-solver failure.
+ *
+ * CL_EINVAL naming the known solvers for an unknown name. */
+cl_status cl_sunred_attach(cl_sun *s, const cl_integrator_opts *o, bool ida,
+                           cl_error *err);
 
 #endif

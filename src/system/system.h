@@ -88,7 +88,7 @@ typedef struct cl_system {
     bool projects;  /* some obstacle has response = project */
     bool projects_friction; /* ... with friction: mu > 0 or zero_velocity
                              * (a velocity-level law that CVODE's error
-                             * control cannot follow, see sun_common.h) */
+                             * control cannot follow, see sun_adapter.h) */
 } cl_system;
 
 #endif

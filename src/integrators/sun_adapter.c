@@ -1,7 +1,8 @@
-/* Shared plumbing of the SUNDIALS integrators (see sun_common.h): state
- * and vectors, CVODE set-up, error capture, the blow-up policy of the user
- * functions, advance, statistics, release in dependency order. */
-#include "integrators/sun_common.h"
+/* The SUNDIALS adapter (see sun_adapter.h): the shell linear solvers and
+ * matrices, the counting shell; for CVODE and IDA the state and vectors,
+ * CVODE's set-up, error capture, the blow-up policy of the user functions,
+ * advance, statistics, release in dependency order. */
+#include "integrators/sun_adapter.h"
 
 #include <float.h>
 #include <math.h>
@@ -10,6 +11,7 @@
 
 #include <cvode/cvode.h>
 #include <cvode/cvode_proj.h>
+#include <sundials/sundials_matrix.h>
 #include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
@@ -22,6 +24,232 @@ _Static_assert(sizeof(sunrealtype) == sizeof(double),
 #define CL_SUN_RTOL 1e-6
 #define CL_SUN_ATOL 1e-8
 #define CL_SUN_MAX_STEPS 10000000L
+
+/* ---- the shell linear solver ------------------------------------------- */
+
+/* The content of a shell solver: its table and the caller's data. */
+typedef struct {
+    const cl_sun_lsdef *def;
+    void *data;
+} shell_ls;
+
+static shell_ls *shell_of(SUNLinearSolver S)
+{
+    return S->content;
+}
+
+static SUNLinearSolver_Type shell_gettype(SUNLinearSolver S)
+{
+    return shell_of(S)->def->type;
+}
+
+static SUNLinearSolver_ID shell_getid(SUNLinearSolver S)
+{
+    (void)S;
+    return SUNLINEARSOLVER_CUSTOM;
+}
+
+static int shell_initialize(SUNLinearSolver S)
+{
+    shell_ls *c = shell_of(S);
+    return c->def->initialize ? c->def->initialize(c->data) : SUNLS_SUCCESS;
+}
+
+static int shell_setup(SUNLinearSolver S, SUNMatrix A)
+{
+    return shell_of(S)->def->setup(shell_of(S)->data, A);
+}
+
+static int shell_solve(SUNLinearSolver S, SUNMatrix A, N_Vector x,
+                       N_Vector b, sunrealtype tol)
+{
+    return shell_of(S)->def->solve(shell_of(S)->data, A, x, b, tol);
+}
+
+static sunindextype shell_lastflag(SUNLinearSolver S)
+{
+    return shell_of(S)->def->lastflag(shell_of(S)->data);
+}
+
+static int shell_space(SUNLinearSolver S, long *lrw, long *liw)
+{
+    return shell_of(S)->def->space(shell_of(S)->data, lrw, liw);
+}
+
+static int shell_scaling(SUNLinearSolver S, N_Vector s1, N_Vector s2)
+{
+    return shell_of(S)->def->scaling(shell_of(S)->data, s1, s2);
+}
+
+static int shell_numiters(SUNLinearSolver S)
+{
+    return shell_of(S)->def->numiters(shell_of(S)->data);
+}
+
+static N_Vector shell_resid(SUNLinearSolver S)
+{
+    return shell_of(S)->def->resid(shell_of(S)->data);
+}
+
+static int shell_free(SUNLinearSolver S)
+{
+    if (!S)
+        return SUNLS_SUCCESS;
+    shell_ls *c = shell_of(S);
+    if (c && c->def->free)
+        c->def->free(c->data);
+    free(c);
+    S->content = NULL;
+    SUNLinSolFreeEmpty(S);
+    return SUNLS_SUCCESS;
+}
+
+/* The optional operations of def, only those it has. */
+static void shell_optional(SUNLinearSolver S, const cl_sun_lsdef *def)
+{
+    if (def->lastflag)
+        S->ops->lastflag = shell_lastflag;
+    if (def->space)
+        S->ops->space = shell_space;
+    if (def->scaling)
+        S->ops->setscalingvectors = shell_scaling;
+    if (def->numiters)
+        S->ops->numiters = shell_numiters;
+    if (def->resid)
+        S->ops->resid = shell_resid;
+}
+
+SUNLinearSolver cl_sun_shell_linsol(const cl_sun_lsdef *def, void *data,
+                                    SUNContext ctx)
+{
+    shell_ls *c = malloc(sizeof *c);
+    SUNLinearSolver S = c ? SUNLinSolNewEmpty(ctx) : NULL;
+    if (!S) {
+        free(c);
+        return NULL;
+    }
+    *c = (shell_ls){def, data};
+    S->content = c;
+    S->ops->gettype = shell_gettype;
+    S->ops->getid = shell_getid;
+    S->ops->initialize = shell_initialize;
+    S->ops->setup = shell_setup;
+    S->ops->solve = shell_solve;
+    S->ops->free = shell_free;
+    shell_optional(S, def);
+    return S;
+}
+
+/* ---- the shell matrix --------------------------------------------------- */
+
+static SUNMatrix_ID shellmat_getid(SUNMatrix A)
+{
+    (void)A;
+    return SUNMATRIX_CUSTOM;
+}
+
+static int shellmat_zero(SUNMatrix A)
+{
+    (void)A;
+    return SUNMAT_SUCCESS;
+}
+
+static int shellmat_copy(SUNMatrix A, SUNMatrix B)
+{
+    (void)A, (void)B;
+    return SUNMAT_SUCCESS;
+}
+
+static int shellmat_scaleaddi(sunrealtype c, SUNMatrix A)
+{
+    (void)c, (void)A;
+    return SUNMAT_SUCCESS;
+}
+
+static void shellmat_destroy(SUNMatrix A)
+{
+    if (A)
+        SUNMatFreeEmpty(A);
+}
+
+static SUNMatrix shellmat_clone(SUNMatrix A)
+{
+    return cl_sun_shell_matrix(A->sunctx);
+}
+
+SUNMatrix cl_sun_shell_matrix(SUNContext ctx)
+{
+    SUNMatrix A = SUNMatNewEmpty(ctx);
+    if (!A)
+        return NULL;
+    A->ops->getid = shellmat_getid;
+    A->ops->clone = shellmat_clone;
+    A->ops->destroy = shellmat_destroy;
+    A->ops->zero = shellmat_zero;
+    A->ops->copy = shellmat_copy;
+    A->ops->scaleaddi = shellmat_scaleaddi;
+    return A;
+}
+
+/* ---- the counting shell around a direct solver -------------------------- */
+
+/* KLU analyses the pattern at the first setup after its initialisation
+ * (and again at the next setup while that one fails); the symbolic object
+ * it leaves, read by the public accessor, tells whether the analysis
+ * succeeded. */
+static int count_initialize(void *data)
+{
+    cl_sun_count *c = data;
+    c->analyse = true;
+    return SUNLinSolInitialize(c->inner);
+}
+
+static int count_setup_klu(cl_sun_count *c, SUNMatrix A)
+{
+    void *sym = SUNLinSol_KLUGetSymbolic(c->inner);
+    int ret = SUNLinSolSetup(c->inner, A);
+    void *now = SUNLinSol_KLUGetSymbolic(c->inner);
+    if (c->analyse ? now != NULL : now != sym)
+        c->analyses++;
+    if (ret == SUNLS_SUCCESS)
+        c->analyse = false;
+    return ret;
+}
+
+static int count_setup(void *data, SUNMatrix A)
+{
+    cl_sun_count *c = data;
+    if (SUNLinSolGetID(c->inner) == SUNLINEARSOLVER_KLU)
+        return count_setup_klu(c, A);
+    return SUNLinSolSetup(c->inner, A);
+}
+
+static int count_solve(void *data, SUNMatrix A, N_Vector x, N_Vector b,
+                       sunrealtype tol)
+{
+    cl_sun_count *c = data;
+    c->solves++;
+    return SUNLinSolSolve(c->inner, A, x, b, tol);
+}
+
+static sunindextype count_lastflag(void *data)
+{
+    return SUNLinSolLastFlag(((cl_sun_count *)data)->inner);
+}
+
+static int count_space(void *data, long *lrw, long *liw)
+{
+    return SUNLinSolSpace(((cl_sun_count *)data)->inner, lrw, liw);
+}
+
+static const cl_sun_lsdef count_def = {
+    .type = SUNLINEARSOLVER_DIRECT,
+    .initialize = count_initialize,
+    .setup = count_setup,
+    .solve = count_solve,
+    .lastflag = count_lastflag,
+    .space = count_space,
+};
 
 /* ---- CVODE's entry in the package table -------------------------------- */
 
@@ -51,6 +279,7 @@ const cl_sun_api cl_sun_cvode_api = {
     .get_current_time = CVodeGetCurrentTime,
     .get_current_step = CVodeGetCurrentStep,
     .flag_name = CVodeGetReturnFlagName,
+    .collapse_warning = CV_WARNING,
     .free_mem = CVodeFree,
     .solve = cv_solve,
     .reinit = cv_reinit,
@@ -89,7 +318,9 @@ cl_status cl_sun_sunfail(const cl_sun *s, const char *fn, int flag,
 }
 
 /* The solver's messages: errors are kept for the report, the "t + h = t"
- * warning marks a collapsed step (see the blow-up policy). */
+ * warning marks a collapsed step (see the blow-up policy); CVODE gives it,
+ * and after mxhnil of them the notice that it stops repeating it, the code
+ * CV_WARNING, its only warning in our use. */
 static void sun_errhandler(int code, const char *module, const char *function,
                            char *msg, void *data)
 {
@@ -97,7 +328,7 @@ static void sun_errhandler(int code, const char *module, const char *function,
     (void)module;
     if (code < 0)
         snprintf(s->msg, sizeof s->msg, "%s: %s", function, msg);
-    else if (strstr(msg, "t + h = t"))
+    else if (code > 0 && code == s->api->collapse_warning)
         s->collapsed = true;
 }
 
@@ -419,9 +650,10 @@ cl_status cl_sun_attach_direct(cl_sun *s, SUNMatrix A, SUNLinearSolver inner,
     if (!inner)
         return cl_sun_sunfail(s, "linear solver constructor", 0, err);
     s->cnt.inner = inner;
-    s->ls = cl_lscount_create(&s->cnt, s->ctx);
+    s->cnt.analyse = true;
+    s->ls = cl_sun_shell_linsol(&count_def, &s->cnt, s->ctx);
     if (!s->ls)
-        return cl_sun_sunfail(s, "SUNLinSolNewEmpty", 0, err);
+        return cl_sun_sunfail(s, "cl_sun_shell_linsol", 0, err);
     CL_SUN_SET(s, err, set_linear_solver, "SetLinearSolver", s->ls, s->A);
     return CL_OK;
 }
@@ -440,6 +672,12 @@ cl_status cl_sun_attach_klu(cl_sun *s, sunindextype size, sunindextype nnz,
     return CL_OK;
 }
 
+void cl_sun_plug_in(cl_sun *s, const cl_sun_plug *p, void *data)
+{
+    s->plug = p;
+    s->plug_data = data;
+}
+
 /* Solver memory first (it refers to the solvers), the context last. */
 void cl_sun_free(void *state)
 {
@@ -448,6 +686,8 @@ void cl_sun_free(void *state)
         return;
     if (s->mem)
         s->api->free_mem(&s->mem);
+    if (s->plug)
+        s->plug->free(s->plug_data);
     free(s->proj);
     if (s->ls)
         SUNLinSolFree(s->ls);
@@ -523,10 +763,9 @@ static cl_status sun_step_done(cl_sun *s, double t, cl_error *err)
     return s->api->reinit(s, t, err);
 }
 
-cl_status cl_sun_advance(void *state, double t_out, double *x, double *v,
-                         cl_error *err)
+static cl_status sun_advance(cl_sun *s, double t_out, double *x, double *v,
+                             cl_error *err)
 {
-    cl_sun *s = state;
     if (!isfinite(t_out) || t_out < s->t_last)
         return cl_error_set(err, CL_EINVAL, "%s: output time %.17g lies "
                             "behind the last one, %.17g", s->name, t_out,
@@ -556,6 +795,22 @@ cl_status cl_sun_advance(void *state, double t_out, double *x, double *v,
         sun_copy_out(s, x, v);
     }
     return s->sys->step_done ? sun_step_done(s, t_out, err) : CL_OK;
+}
+
+cl_status cl_sun_advance(void *state, double t_out, double *x, double *v,
+                         cl_error *err)
+{
+    cl_sun *s = state;
+    cl_status st = sun_advance(s, t_out, x, v, err);
+    const char *last = st != CL_OK && s->plug && s->plug->last_error
+                           ? s->plug->last_error(s->plug_data)
+                           : "";
+    if (last[0]) {
+        size_t len = strlen(err->msg);
+        snprintf(err->msg + len, sizeof err->msg - len,
+                 "; last linear-solver failure: %s", last);
+    }
+    return st;
 }
 
 /* ---- statistics -------------------------------------------------------- */
@@ -606,4 +861,6 @@ void cl_sun_stats(const void *state, cl_stats *out)
     out->rhs_evals += s->own_rhs;
     out->lin_solves = s->cnt.solves;
     out->symbolic_facts = s->cnt.analyses;
+    if (s->plug)
+        s->plug->stats(s->plug_data, out);
 }

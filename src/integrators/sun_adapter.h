@@ -1,8 +1,23 @@
-/* Shared plumbing of the SUNDIALS integrators (docs/integrators.md, 6):
- * cvode-bdf, cvode-bdf-dense, cvode-bdf-gmres, cvode-adams (CVODE) and
- * ida (IDA).
+/* The SUNDIALS adapter (docs/integrators.md, 7): the one place where
+ * clothode meets SUNDIALS' objects.  The packages plug into it:
  *
- * All of them integrate y = (x, v), 2n unknowns, in a serial N_Vector
+ * - CVODE (cvode-bdf, cvode-bdf-dense, cvode-bdf-gmres, cvode-adams) and
+ *   IDA (ida) through a package table (cl_sun_api: CVODE's is
+ *   cl_sun_cvode_api, IDA's is in ida.c; ARKODE's would be one more) and
+ *   the integrator state cl_sun below, whose create, advance, statistics
+ *   and free serve every such integrator;
+ * - KINSOL (kinsol_common.c) and the half-size Newton solvers of CVODE and
+ *   IDA (sun_reduced.c) through the shell objects: every SUNLinearSolver
+ *   and SUNMatrix clothode implements itself is made here, by
+ *   cl_sun_shell_linsol from a table of the solver's own functions
+ *   (cl_sun_lsdef) and by cl_sun_shell_matrix, a matrix that holds no
+ *   values (the cl_linsol behind the solver keeps its own);
+ * - a linear solver with state of its own beside SUNDIALS' objects hangs
+ *   on the integrator state as a plug (cl_sun_plug: its counters, its
+ *   last failure, its release), so that the integrator's table entries
+ *   stay cl_sun_advance, cl_sun_stats and cl_sun_free.
+ *
+ * The CVODE and IDA integrators integrate y = (x, v), 2n unknowns, in a serial N_Vector
  * under one SUNContext, and share:
  *
  * - options: scalar tolerances opts->rtol, opts->atol (defaults when 0:
@@ -16,7 +31,8 @@
  *   call returning CL_EBLOWUP) makes the user function return 1
  *   (recoverable: the solver retries with a smaller step, which cures a
  *   trial state that went too far) unless the step has collapsed to
- *   round-off during this advance (CVODE warned "t + h = t", or the
+ *   round-off during this advance (CVODE warned that t + h = t, its only
+ *   warning, code CV_WARNING, or the
  *   solver's current step is below 100 ulp of t): then retrying would only
  *   crawl towards the singularity until max_steps, and it returns -1; any
  *   other system error returns -1 (unrecoverable).  After a -1 every later
@@ -30,8 +46,13 @@
  *   jac_evals, lin_setups, lin_iters are the solver's counters; rhs_evals
  *   = its RHS / residual evaluations plus the linear solver's (difference
  *   quotients) plus force evaluations made outside the solver (s->own_rhs);
- *   with a direct solver wrapped by cl_lscount, lin_solves = solve calls
- *   (one per Newton iteration) and symbolic_facts = KLU analyses;
+ *   with a direct solver wrapped by the counting shell
+ *   (cl_sun_attach_direct), lin_solves = solve calls (one per Newton
+ *   iteration) and symbolic_facts = KLU analyses (setups that ran KLU's
+ *   symbolic analysis: the first setup after each SUNLinSolInitialize,
+ *   which CVODE and IDA call at their first step after an Init or ReInit,
+ *   retried until one succeeds; 1 for a whole run with a fixed pattern);
+ *   a plug then overrides what its solver counts itself;
  * - tearing (docs/model.md, 3.4): the system's step_done hook is called at
  *   the end of every advance, i.e. at output times only (a run with tearing
  *   should ask for many samples); when it reports a change, the solver is
@@ -57,14 +78,15 @@
  *
  * Usage: an integrator's state struct has a cl_sun as its FIRST member, so
  * the one pointer the solver passes to every callback (user data and error
- * handler data) is both.  create: cl_sun_cvode_create (CVODE), or
- * cl_sun_alloc (argument checks, state, masses, context, vectors) and the
- * integrator's own memory creation with cl_sun_created + its Init +
- * cl_sun_configure (IDA); then the solvers, stored in s->A, s->ls,
- * s->inner, s->nls so that cl_sun_free releases everything in order; then
- * cl_sun_finish. */
-#ifndef CL_SUN_COMMON_H
-#define CL_SUN_COMMON_H
+ * handler data) is both (most need no more: the state is the cl_sun).
+ * create: cl_sun_cvode_create (CVODE), or cl_sun_alloc (argument checks,
+ * state, masses, context, vectors) and the integrator's own memory
+ * creation with cl_sun_created + its Init + cl_sun_configure (IDA); then
+ * the solvers, stored in s->A, s->ls, s->inner, s->nls or as a plug so
+ * that cl_sun_free releases everything in order; then cl_sun_finish.
+ * docs/integrators.md, 7, adds an integrator step by step. */
+#ifndef CL_SUN_ADAPTER_H
+#define CL_SUN_ADAPTER_H
 
 #include <stdbool.h>
 
@@ -74,7 +96,42 @@
 #include <sundials/sundials_nonlinearsolver.h>
 
 #include "integrators/integrator.h"
-#include "integrators/lscount.h"
+
+/* ---- shell objects ------------------------------------------------------ */
+
+/* A SUNLinearSolver of clothode's own: its operations call these functions
+ * with the data given to cl_sun_shell_linsol.  Return values are
+ * SUNDIALS' (SUNLS_SUCCESS, > 0 recoverable, < 0 not).  An optional entry
+ * left NULL leaves the operation out of the solver, as SUNDIALS expects of
+ * a solver that lacks it (initialize then has nothing to do). */
+typedef struct {
+    SUNLinearSolver_Type type;   /* DIRECT or MATRIX_ITERATIVE */
+    int (*setup)(void *data, SUNMatrix A);
+    int (*solve)(void *data, SUNMatrix A, N_Vector x, N_Vector b,
+                 sunrealtype tol);
+    int (*initialize)(void *data);                 /* optional */
+    sunindextype (*lastflag)(void *data);          /* optional */
+    int (*space)(void *data, long *lrw, long *liw); /* optional */
+    /* matrix-iterative solvers: the integrator's weights (s2 unused), the
+     * iterations of the last solve, its residual vector (optional) */
+    int (*scaling)(void *data, N_Vector s1, N_Vector s2);
+    int (*numiters)(void *data);
+    N_Vector (*resid)(void *data);
+    void (*free)(void *data); /* optional: data owned by the solver */
+} cl_sun_lsdef;
+
+/* The solver of table def (static storage) on data (SUNLINEARSOLVER_CUSTOM;
+ * SUNLinSolFree releases it and, with def->free, its data), or NULL if
+ * out of memory (data is then not freed). */
+SUNLinearSolver cl_sun_shell_linsol(const cl_sun_lsdef *def, void *data,
+                                    SUNContext ctx);
+
+/* A SUNMATRIX_CUSTOM matrix without values for the matrix-based solvers
+ * whose matrix lives elsewhere: zero, copy and scale-add-identity do
+ * nothing, clone gives another shell; NULL if out of memory. */
+SUNMatrix cl_sun_shell_matrix(SUNContext ctx);
+
+/* ---- CVODE, IDA (and ARKODE next): the integrator state ---------------- */
 
 typedef struct cl_sun cl_sun;
 
@@ -98,6 +155,7 @@ typedef struct {
     int (*get_current_time)(void *mem, sunrealtype *t);
     int (*get_current_step)(void *mem, sunrealtype *h);
     char *(*flag_name)(long flag);
+    int collapse_warning;   /* code of the "t + h = t" warning (0: none) */
     void (*free_mem)(void **mem);
     int (*solve)(cl_sun *s, double t_out); /* one advance to t_out */
     /* restart at t from the current s->y (NULL: never restarted) */
@@ -109,6 +167,22 @@ typedef struct {
 } cl_sun_api;
 
 extern const cl_sun_api cl_sun_cvode_api;
+
+/* A linear solver's own state on an integrator (see the head). */
+typedef struct {
+    /* after the solver's counters: what the linear solver counts itself */
+    void (*stats)(const void *data, cl_stats *out);
+    /* message of its last failure, "" if none (NULL: never any) */
+    const char *(*last_error)(const void *data);
+    void (*free)(void *data);
+} cl_sun_plug;
+
+/* The counting shell around a direct solver (cl_sun_attach_direct). */
+typedef struct {
+    SUNLinearSolver inner; /* the wrapped direct solver */
+    bool analyse;          /* KLU analyses at its next setup */
+    long solves, analyses;
+} cl_sun_count;
 
 struct cl_sun {
     const char *name;        /* integrator name: prefix of every message */
@@ -122,7 +196,9 @@ struct cl_sun {
     SUNLinearSolver ls;      /* attached to mem (NULL: none) */
     SUNLinearSolver inner;   /* direct solver wrapped by ls, or NULL */
     SUNNonlinearSolver nls;  /* own nonlinear solver, or NULL */
-    cl_lscount cnt;          /* counters of the wrapper */
+    cl_sun_count cnt;        /* counters of the wrapper */
+    const cl_sun_plug *plug; /* the linear solver's own state, or NULL */
+    void *plug_data;
     double *inv_mass;        /* n */
     double *proj;            /* 2n: the projected state (contact), or NULL */
     double *dfdx, *dfdv;     /* block values, 9 nnzb each (need_jac) */
@@ -178,7 +254,7 @@ cl_status cl_sun_finish(cl_sun *s, cl_status st, void (*free_fn)(void *),
                         void **state);
 
 /* Attach matrix A and direct solver `inner` (both owned by s from now on,
- * even on failure) through a counting wrapper. */
+ * even on failure) through the counting shell. */
 cl_status cl_sun_attach_direct(cl_sun *s, SUNMatrix A, SUNLinearSolver inner,
                                cl_error *err);
 
@@ -187,6 +263,9 @@ cl_status cl_sun_attach_direct(cl_sun *s, SUNMatrix A, SUNLinearSolver inner,
  * cl_sun_attach_direct. */
 cl_status cl_sun_attach_klu(cl_sun *s, sunindextype size, sunindextype nnz,
                             cl_error *err);
+
+/* Hang plug p with data on s (released by cl_sun_free from now on). */
+void cl_sun_plug_in(cl_sun *s, const cl_sun_plug *p, void *data);
 
 /* A solver call returned flag < 0 (fn: the full function name). */
 cl_status cl_sun_fail(cl_sun *s, const char *fn, int flag, cl_error *err);
@@ -208,7 +287,8 @@ int cl_sun_jacobian(cl_sun *s, double t, const double *x, const double *v);
 /* CVODE's right-hand side y' = (v, M^-1 f(t, x, v)). */
 int cl_sun_cvode_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *data);
 
-/* The integrator-table entries (state: a struct starting with cl_sun). */
+/* The integrator-table entries (state: a struct starting with cl_sun).
+ * A failure's message ends with the plug's last failure, if any. */
 cl_status cl_sun_advance(void *state, double t_out, double *x, double *v,
                          cl_error *err);
 void cl_sun_stats(const void *state, cl_stats *out);
