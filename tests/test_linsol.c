@@ -29,6 +29,24 @@ Test(linsol, registry)
     cr_assert_str_eq(cl_linsol_names(tiny, sizeof tiny), "klu, pc");
 }
 
+/* The lookup the integrators share: the solver, or one message naming
+ * the integrator, the name and every name accepted. */
+Test(linsol, get_or_refuse)
+{
+    const cl_linsol_type *lt = NULL;
+    cl_error err = {0};
+    cr_assert_eq(cl_linsol_get("semi-be", "cholmod", NULL, &lt, &err), CL_OK);
+    cr_assert_str_eq(lt->name, "cholmod");
+    cr_assert_eq(cl_linsol_get("semi-be", "lu", NULL, &lt, &err), CL_EINVAL);
+    cr_assert_str_eq(err.msg, "semi-be: unknown linear solver \"lu\" "
+                     "(known: klu, pcg, pcg-jacobi, cholmod, auto)");
+    cr_assert_eq(cl_linsol_get("ida", "lu", "klu-full", &lt, &err),
+                 CL_EINVAL);
+    cr_assert_str_eq(err.msg, "ida: unknown linear solver \"lu\" "
+                     "(known: klu-full, klu, pcg, pcg-jacobi, cholmod, "
+                     "auto)");
+}
+
 static void ls_solve_spd(const char *name)
 {
     ls_case c;

@@ -268,14 +268,12 @@ static cl_status kin_vectors(cl_kin *s, cl_error *err)
 static cl_status kin_linsol(cl_kin *s, const cl_integrator_opts *o,
                             cl_error *err)
 {
-    char names[256];
-    s->lt = cl_linsol_find(o->linsol);
-    if (!s->lt)
-        return cl_error_set(err, CL_EINVAL, "%s: unknown linear solver "
-                            "\"%s\" (known: %s)", s->sc->name, o->linsol,
-                            cl_linsol_names(names, sizeof names));
+    cl_status st = cl_linsol_get(s->sc->name, o->linsol, NULL, &s->lt,
+                                 err);
+    if (st != CL_OK)
+        return st;
     cl_linsol_opts lo = cl_integrator_linsol_opts(o);
-    cl_status st = s->lt->create(s->sys->pattern, s->sys->mass, &lo,
+    st = s->lt->create(s->sys->pattern, s->sys->mass, &lo,
                                  &s->lstate, err);
     if (st != CL_OK)
         return st;

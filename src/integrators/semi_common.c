@@ -36,18 +36,6 @@ static cl_status semi_check_args(const char *name, const cl_system *sys,
     return cl_check_masses(sys->mass, sys->n, name, err);
 }
 
-static cl_status semi_find_linsol(cl_semi *s, const cl_integrator_opts *o,
-                                  cl_error *err)
-{
-    s->lst = cl_linsol_find(o->linsol);
-    if (s->lst)
-        return CL_OK;
-    char names[256];
-    return cl_error_set(err, CL_EINVAL, "%s: unknown linear solver \"%s\" "
-                        "(known: %s)", s->name, o->linsol,
-                        cl_linsol_names(names, sizeof names));
-}
-
 static cl_status semi_alloc(cl_semi *s, cl_error *err)
 {
     size_t n = s->n, nval = 9 * s->sys->pattern->nnzb;
@@ -71,7 +59,7 @@ cl_status cl_semi_init(cl_semi *s, const char *name, const cl_system *sys,
     s->sys = sys;
     cl_status st = semi_check_args(name, sys, o, t0, err);
     if (st == CL_OK)
-        st = semi_find_linsol(s, o, err);
+        st = cl_linsol_get(s->name, o->linsol, NULL, &s->lst, err);
     if (st != CL_OK)
         return st;
     s->n = sys->n;

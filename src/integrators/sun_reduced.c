@@ -404,11 +404,7 @@ cl_status cl_sunred_attach(cl_sun *s, const cl_integrator_opts *o, bool ida,
                                                  : CL_SUNRED_DEFAULT;
     if (strcmp(name, "klu-full") == 0)
         return full_attach(s, ida, err);
-    const cl_linsol_type *lt = cl_linsol_find(name);
-    if (lt)
-        return red_attach(s, lt, o, ida, err);
-    char names[256];
-    return cl_error_set(err, CL_EINVAL, "%s: unknown linear solver \"%s\" "
-                        "(known: klu-full, %s)", s->name, name,
-                        cl_linsol_names(names, sizeof names));
+    const cl_linsol_type *lt;
+    cl_status rc = cl_linsol_get(s->name, name, "klu-full", &lt, err);
+    return rc ? rc : red_attach(s, lt, o, ida, err);
 }

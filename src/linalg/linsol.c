@@ -40,6 +40,19 @@ const cl_linsol_type *cl_linsol_find(const char *name)
     return NULL;
 }
 
+cl_status cl_linsol_get(const char *who, const char *name, const char *also,
+                        const cl_linsol_type **lt, cl_error *err)
+{
+    char names[256];
+    *lt = cl_linsol_find(name);
+    if (*lt)
+        return CL_OK;
+    return cl_error_set(err, CL_EINVAL, "%s: unknown linear solver \"%s\" "
+                        "(known: %s%s%s)", who, name, also ? also : "",
+                        also ? ", " : "",
+                        cl_linsol_names(names, sizeof names));
+}
+
 const char *cl_linsol_names(char *buf, size_t len)
 {
     size_t used = 0;

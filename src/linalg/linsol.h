@@ -84,6 +84,12 @@ extern const cl_linsol_type *const cl_linsol_registry[];
 /* By name; NULL or "" gives the first (default) solver; NULL if unknown. */
 const cl_linsol_type *cl_linsol_find(const char *name);
 
+/* cl_linsol_find into *lt, or CL_EINVAL naming `who` (the integrator),
+ * the name and the known ones, `also` (NULL or names the caller accepts
+ * besides the registry's) first. */
+cl_status cl_linsol_get(const char *who, const char *name, const char *also,
+                        const cl_linsol_type **lt, cl_error *err);
+
 /* Tell solver `lt` (state `ls`) of new Jacobian values, if it listens. */
 static inline void cl_linsol_jacobian(const cl_linsol_type *lt, void *ls,
                                       const double *dfdx, const double *dfdv)
