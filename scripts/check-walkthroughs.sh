@@ -99,9 +99,9 @@ check_walkthrough() {
         [[ $(<"$w/$b.kind") == file && $(<"$w/$b.path") == tests/test_*.c ]] &&
             suite=$(sed -n 's/^Test(\([A-Za-z0-9_]*\),.*/\1/p' "$w/$b.body" | head -1)
     done
-    make -C "$tree" -j"$jobs" SAN="$san" "$build/clothode" > "$log" 2>&1 ||
+    MAKEFLAGS= make -C "$tree" -j"$jobs" SAN="$san" "$build/clothode" > "$log" 2>&1 ||
         fail "$doc" "$heading" "build/clothode does not build" \
-            < <(grep -E -A3 'error|undefined reference' "$log" || tail -20 "$log")
+            < <(grep -E -A3 'error:|undefined reference' "$log" || tail -20 "$log")
     local added
     added=$(comm -13 <(sort -u "$scratch/base-names") \
                      <(names "$tree/$build/clothode" | sort -u) | paste -sd' ')
@@ -109,12 +109,14 @@ check_walkthrough() {
         "clothode list (and --linsol) name nothing new" < /dev/null
     local what="new: $added"
     if [[ -n $suite ]]; then
-        make -C "$tree" -j"$jobs" SAN="$san" "$build/clothode-tests" > "$log" 2>&1 ||
+        MAKEFLAGS= make -C "$tree" -j"$jobs" SAN="$san" "$build/clothode-tests" > "$log" 2>&1 ||
             fail "$doc" "$heading" "the test program does not build" \
-                < <(grep -E -A3 'error|undefined reference' "$log" || tail -20 "$log")
+                < <(grep -E -A3 'error:|undefined reference' "$log" || tail -20 "$log")
         (cd "$tree" && CLOTHODE=$build/clothode "$build/clothode-tests" \
             --filter "$suite/*") > "$log" 2>&1 ||
             fail "$doc" "$heading" "its tests ($suite/*) fail" < "$log"
+        ! grep -qE '(Address|Leak|UndefinedBehavior)Sanitizer|runtime error:' \
+            "$log" || fail "$doc" "$heading" "sanitizer reports" < "$log"
         grep -q 'Tested: [1-9]' "$log" ||
             fail "$doc" "$heading" "no test in suite $suite" < "$log"
         what+="; tests $suite/*: $(sed -n 's/.*Passing: \([0-9]*\).*/\1/p' "$log") passed"
@@ -129,7 +131,7 @@ check_walkthrough() {
     echo "check-walkthroughs: ok: $doc, \"$heading\" ($what)"
 }
 
-make -j"$jobs" SAN="$san" "$build/clothode" "$build/clothode-tests" \
+MAKEFLAGS= make -j"$jobs" SAN="$san" "$build/clothode" "$build/clothode-tests" \
     > "$scratch/log" 2>&1 ||
     fail "the tree" "" "does not build" < <(tail -20 "$scratch/log")
 names "$build/clothode" > "$scratch/base-names"
