@@ -54,7 +54,7 @@ split_doc() {
             } else if (info == "sh run") kind = "run"
             if (kind != "") {
                 if (!started) { nw++; started = 1; wdir = dir "/" nw
-                                system("mkdir -p " wdir); nb = 0
+                                system("mkdir -p \"" wdir "\""); nb = 0
                                 printf "%s", heading > (wdir "/heading"); close(wdir "/heading") }
                 nb++; body = ""
                 out("kind", kind); out("path", path); out("before", before)
