@@ -108,14 +108,14 @@ while read -r name args; do
     read -ra argv <<< "$args"
     run_one "$old" "$outdir/old" "$name" "${argv[@]}"
     run_one "$new" "$outdir/new" "$name" "${argv[@]}"
-    files=$(differing "$name" |
-            awk 'NR <= 6 { printf "%s%s", NR > 1 ? " " : "", $0 }
-                 END { if (NR > 6) printf " (and %d more)", NR - 6 }')
+    mapfile -t files < <(differing "$name")
     count=$((count + 1))
-    if [[ -z $files ]]; then
+    if [[ ${#files[@]} -eq 0 ]]; then
         echo "$name: identical"
     else
-        echo "$name: differs: $files"
+        more=$((${#files[@]} - 6))
+        echo "$name: differs: ${files[*]:0:6}$( ((more > 0)) &&
+             echo " (and $more more)")"
         status=1 ndiff=$((ndiff + 1))
     fi
 done < <(runs)
