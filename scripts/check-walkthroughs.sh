@@ -8,8 +8,9 @@
 # For each one: copy the tree with its built objects into a scratch
 # directory (so that only the changed files compile), apply the blocks,
 # build clothode, check that it names something new (`clothode list`, or
-# the names --linsol takes), and if a block adds tests/test_*.c build the
-# test program and run that file's suite; then run the `sh run` commands.
+# the names --linsol takes), and if blocks add or change tests/test_*.c
+# build the test program and run those files' suites; then run the
+# `sh run` commands.
 # Any failure names the doc, the heading and the compiler's or program's
 # messages.  Run by `make test` (SAN=1: the objects of build-san).
 # usage: scripts/check-walkthroughs.sh
@@ -45,7 +46,7 @@ split_doc() {
     awk -v dir="$2" '
         function out(name, text) { printf "%s", text > (wdir "/" nb "." name); close(wdir "/" nb "." name) }
         /^```/ && !fence {
-            fence = 1; kind = ""; info = substr($0, 4)
+            fence = 1; kind = path = before = ""; info = substr($0, 4)
             if (info ~ /^c file=/) { kind = "file"; path = substr(info, 8) }
             else if (info ~ /^c insert=/) {
                 kind = "insert"; rest = substr(info, 10)
@@ -86,9 +87,32 @@ apply_block() {
     esac
 }
 
+# Build the test program in tree $3 and run each suite $4...: it must
+# pass, run at least one test and raise no sanitizer report.  The tests
+# that passed are added up in $passed.
+check_tests() {
+    local doc=$1 heading=$2 tree=$3 log=$scratch/log suite
+    shift 3
+    MAKEFLAGS= make -C "$tree" -j"$jobs" SAN="$san" "$build/clothode-tests" \
+        > "$log" 2>&1 ||
+        fail "$doc" "$heading" "the test program does not build" \
+            < <(grep -E -A3 'error:|undefined reference' "$log" || tail -20 "$log")
+    passed=0
+    for suite in "$@"; do
+        (cd "$tree" && CLOTHODE=$build/clothode "$build/clothode-tests" \
+            --filter "$suite/*") > "$log" 2>&1 ||
+            fail "$doc" "$heading" "its tests fail ($suite/*)" < "$log"
+        ! grep -qE '(Address|Leak|UndefinedBehavior)Sanitizer|runtime error:' \
+            "$log" || fail "$doc" "$heading" "sanitizer reports" < "$log"
+        grep -q 'Tested: [1-9]' "$log" ||
+            fail "$doc" "$heading" "no test in suite $suite" < "$log"
+        passed=$((passed + $(sed -n 's/.*Passing: \([0-9]*\).*/\1/p' "$log")))
+    done
+}
+
 # Check walk-through directory $1 of doc $2.
 check_walkthrough() {
-    local w=$1 doc=$2 heading tree=$scratch/tree b suite="" log=$scratch/log
+    local w=$1 doc=$2 heading tree=$scratch/tree b suites="" log=$scratch/log
     heading=$(<"$w/heading")
     rm -rf "$tree" && mkdir "$tree"
     cp -a Makefile src tests problems "$tree"/ && cp -a "$build" "$tree"/
@@ -96,8 +120,9 @@ check_walkthrough() {
     for b in $(ls "$w" | sed -n 's/\.kind$//p' | sort -n); do
         apply_block "$w" "$b" "$tree" > "$log" 2>&1 ||
             fail "$doc" "$heading" "block $b does not apply" < "$log"
-        [[ $(<"$w/$b.kind") == file && $(<"$w/$b.path") == tests/test_*.c ]] &&
-            suite=$(sed -n 's/^Test(\([A-Za-z0-9_]*\),.*/\1/p' "$w/$b.body" | head -1)
+        [[ $(<"$w/$b.path") == tests/test_*.c ]] &&
+            suites+=" $(sed -n 's/^Test(\([A-Za-z0-9_]*\),.*/\1/p' \
+                        "$tree/$(<"$w/$b.path")" | sort -u | paste -sd' ')"
     done
     MAKEFLAGS= make -C "$tree" -j"$jobs" SAN="$san" "$build/clothode" > "$log" 2>&1 ||
         fail "$doc" "$heading" "build/clothode does not build" \
@@ -108,18 +133,10 @@ check_walkthrough() {
     [[ -n $added ]] || fail "$doc" "$heading" \
         "clothode list (and --linsol) name nothing new" < /dev/null
     local what="new: $added"
-    if [[ -n $suite ]]; then
-        MAKEFLAGS= make -C "$tree" -j"$jobs" SAN="$san" "$build/clothode-tests" > "$log" 2>&1 ||
-            fail "$doc" "$heading" "the test program does not build" \
-                < <(grep -E -A3 'error:|undefined reference' "$log" || tail -20 "$log")
-        (cd "$tree" && CLOTHODE=$build/clothode "$build/clothode-tests" \
-            --filter "$suite/*") > "$log" 2>&1 ||
-            fail "$doc" "$heading" "its tests ($suite/*) fail" < "$log"
-        ! grep -qE '(Address|Leak|UndefinedBehavior)Sanitizer|runtime error:' \
-            "$log" || fail "$doc" "$heading" "sanitizer reports" < "$log"
-        grep -q 'Tested: [1-9]' "$log" ||
-            fail "$doc" "$heading" "no test in suite $suite" < "$log"
-        what+="; tests $suite/*: $(sed -n 's/.*Passing: \([0-9]*\).*/\1/p' "$log") passed"
+    suites=$(printf '%s\n' $suites | sort -u | paste -sd' ')
+    if [[ -n $suites ]]; then
+        check_tests "$doc" "$heading" "$tree" $suites
+        what+="; tests$(printf ' %s/*' $suites): $passed passed"
     fi
     for b in $(ls "$w" | sed -n 's/\.kind$//p' | sort -n); do
         [[ $(<"$w/$b.kind") == run ]] || continue
