@@ -16,7 +16,7 @@
 #                  a blow-up that stops with an error among them
 # Prints one line per run, `NAME: identical` or `NAME: differs: FILE...`
 # (NAME.log: the exit status or messages), and exits 1 if any run
-# differs.  60 runs: 75 s on two idle cores.
+# differs.  60 runs: 40 s on two idle cores, three minutes on busy ones.
 # usage: scripts/compare-outputs.sh OLD_BIN NEW_BIN [OUTDIR]
 set -uo pipefail
 if [[ $# -lt 2 || $# -gt 3 ]]; then
