@@ -76,6 +76,7 @@ demo: deps
 # exit) do not fail a test by themselves: the log is checked for them.
 test: deps
 	scripts/check-layers.sh
+	SAN=$(SAN) JOBS=$(JOBS) scripts/check-walkthroughs.sh
 	$(MAKE) $(BIN) $(BENCHBIN) $(TESTBIN)
 	set -o pipefail; CLOTHODE=$(BIN) CLOTHODE_BENCH=$(BENCHBIN) \
 	    $(TESTBIN) --jobs $(JOBS) 2>&1 | \
