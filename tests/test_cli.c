@@ -1107,6 +1107,31 @@ Test(cli, convergence_refusals)
                    LIST("--ref-rtol", "ref_rtol"));
 }
 
+/* A problem file written for run serves the studies: run's output keys
+ * ([run] frames, samples, format, threads) are read and ignored there
+ * (they used to refuse them), and a misspelt key is
+ * still refused. */
+Test(cli, studies_take_run_output_keys)
+{
+    char out[1024], path[1100];
+    cli_result r;
+    cli_run(&r, "stability", "spring2", "--set", "run.frames=3", "--set",
+            "run.samples=7", "--set", "run.format=csv", "--set",
+            "run.threads=2", "--integrator", "symplectic-euler", "--t-end",
+            "1", "--dt-max", "0.05", "--rel", "0.1", "--out",
+            in_tmp(out, "stab-keys"), NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    cli_lines L;
+    snprintf(path, sizeof path, "%s/stability.csv", out);
+    cli_read_lines(path, &L);
+    cr_assert_gt(L.n, 1);
+    cli_lines_free(&L);
+    cli_run(&r, "convergence", "spring2", "--set", "run.framez=3", NULL);
+    cli_assert_error(&r, 0, "framez", "frames", NULL);
+    cli_result_free(&r);
+}
+
 /* stability on the stiffened spring (w = 100): symplectic Euler's limit
  * 2/w = 0.02 bracketed to --rel 0.01, backward Euler stable at dt_max;
  * every run in the CSV. */

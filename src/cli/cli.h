@@ -92,8 +92,14 @@ typedef struct {
     cl_integrator_opts io; /* dt, rtol, atol, ..., linsol, max_order */
     double t_end;
     double max_stretch;
-} cl_cli_run;
+    long threads, samples, frames; /* run's outputs (the studies hide */
+    unsigned format;               /* them): format bits of */
+} cl_cli_run;                      /* cl_cli_run_formats */
 extern const cl_cli_opt cl_cli_run_rows[];
+extern const char *const cl_cli_run_formats[];
+
+/* The options of cl_cli_run_rows that only run offers. */
+#define CL_CLI_RUN_OUTPUTS "threads samples frames format"
 
 /* One entry of [run] integrator, a list "NAME[:LINSOL],...": the
  * integrator, its options (a LINSOL given here overrides [run] linsol)

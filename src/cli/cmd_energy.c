@@ -20,7 +20,7 @@ static const cl_cli_opt eb_rows[] = {
      .sec = "run", .key = "integrator", .sdef = "cvode-bdf",
      .hi = CL_CLI_MAX_METHODS, .field = offsetof(eb_setup, integrators),
      .help = "integrators, comma-separated, each NAME or NAME:LINSOL"},
-    {.type = CL_CLI_GROUP, .group = cl_cli_run_rows, .hide = "max-order",
+    {.type = CL_CLI_GROUP, .group = cl_cli_run_rows, .hide = "max-order " CL_CLI_RUN_OUTPUTS,
      .field = offsetof(eb_setup, run)},
     {.name = "samples", .arg = "S", .type = CL_CLI_LONG, .sec = "energy",
      .key = "samples", .def = 1000, .lo = 1, .hi = 100000000,

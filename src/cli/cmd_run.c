@@ -11,12 +11,8 @@ typedef struct {
     cl_cli_args a;
     cl_cli_methods integrator; /* one */
     cl_cli_run run;
-    long threads, samples, frames;
-    unsigned format; /* bits of run_formats */
     cl_sim_opts so;
 } run_setup;
-
-static const char *const run_formats[] = {"csv", "vtk", "obj", NULL};
 
 static const cl_cli_opt run_rows[] = {
     {.name = "integrator", .arg = "NAME", .type = CL_CLI_METHODS,
@@ -25,23 +21,6 @@ static const cl_cli_opt run_rows[] = {
      .help = "integrator, or NAME:LINSOL (clothode list)"},
     {.type = CL_CLI_GROUP, .group = cl_cli_run_rows,
      .field = offsetof(run_setup, run)},
-    {.name = "threads", .arg = "N", .type = CL_CLI_LONG, .sec = "run",
-     .key = "threads", .def = 1, .lo = 1, .hi = CL_MODEL_MAX_THREADS,
-     .field = offsetof(run_setup, threads),
-     .help = "threads for the pair forces of every right-hand side; results "
-             "equal the serial ones to round-off"},
-    {.name = "samples", .arg = "S", .type = CL_CLI_LONG, .sec = "run",
-     .key = "samples", .def = 200, .lo = 1, .hi = 100000000,
-     .field = offsetof(run_setup, samples),
-     .help = "time-series rows after t = 0"},
-    {.name = "frames", .arg = "K", .type = CL_CLI_LONG, .sec = "run",
-     .key = "frames", .def = 10, .lo = 0, .hi = 1000000,
-     .field = offsetof(run_setup, frames),
-     .help = "frames after t = 0, 0 for none"},
-    {.name = "format", .arg = "LIST", .type = CL_CLI_NAMES, .sec = "run",
-     .key = "format", .sdef = "vtk,obj", .names = run_formats,
-     .field = offsetof(run_setup, format),
-     .help = "frame formats among csv,vtk,obj (csv: the time series only)"},
     CL_CLI_TAIL(run_setup, "no summary on stdout"),
     {.type = CL_CLI_END}};
 
@@ -58,10 +37,10 @@ static cl_status check_run(cl_config *cfg, void *ctx, cl_error *err)
     run_setup *r = ctx;
     r->so.t_end = r->run.t_end;
     r->so.max_stretch = r->run.max_stretch;
-    r->so.samples = r->samples;
-    r->so.frames = r->frames;
-    r->so.vtk = r->format & 2u;
-    r->so.obj = r->format & 4u;
+    r->so.samples = r->run.samples;
+    r->so.frames = r->run.frames;
+    r->so.vtk = r->run.format & 2u;
+    r->so.obj = r->run.format & 4u;
     return cl_cli_methods_check(cfg, &r->integrator, &r->run.io,
                                 CL_CLI_DT_ALL, err);
 }
@@ -102,7 +81,7 @@ static cl_status run_work(cl_model *m, const cl_cli_job *job, void *ctx,
 {
     run_setup *r = ctx;
     cl_sim_result res = {0};
-    cl_status rc = cl_model_set_threads(m, (int)r->threads, err);
+    cl_status rc = cl_model_set_threads(m, (int)r->run.threads, err);
     r->so.outdir = job->outdir;
     r->so.progress = cl_cli_progress;
     if (!rc)

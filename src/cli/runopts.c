@@ -55,7 +55,24 @@ const cl_cli_opt cl_cli_run_rows[] = {
     {.type = CL_CLI_DOUBLE, .key = "max_stretch", RUN_ROW(max_stretch),
      .def = 10.0, .lo = 1.0, .hi = INFINITY,
      .help = "a stretch d/L beyond this counts as a blow-up"},
+    /* run's own outputs: read by every command, so that a problem file
+     * written for run serves the studies too (which hide them) */
+    {.name = "threads", .arg = "N", .type = CL_CLI_LONG, .key = "threads",
+     RUN_ROW(threads), .def = 1, .lo = 1, .hi = CL_MODEL_MAX_THREADS,
+     .help = "threads for the pair forces of every right-hand side; results "
+             "equal the serial ones to round-off"},
+    {.name = "samples", .arg = "S", .type = CL_CLI_LONG, .key = "samples",
+     RUN_ROW(samples), .def = 200, .lo = 1, .hi = 100000000,
+     .help = "time-series rows after t = 0"},
+    {.name = "frames", .arg = "K", .type = CL_CLI_LONG, .key = "frames",
+     RUN_ROW(frames), .def = 10, .lo = 0, .hi = 1000000,
+     .help = "frames after t = 0, 0 for none"},
+    {.name = "format", .arg = "LIST", .type = CL_CLI_NAMES, .key = "format",
+     RUN_ROW(format), .sdef = "vtk,obj", .names = cl_cli_run_formats,
+     .help = "frame formats among csv,vtk,obj (csv: the time series only)"},
     {.type = CL_CLI_END}};
+
+const char *const cl_cli_run_formats[] = {"csv", "vtk", "obj", NULL};
 
 /* Entry "name" or "name:linsol" of the list into m. */
 static cl_status parse_method(cl_config *cfg, const cl_cli_opt *row,
