@@ -184,30 +184,43 @@ static bool before(double d2, int t, const kept *k, int i)
     return d2 < k->p[i].dist2 || (d2 == k->p[i].dist2 && t < k->tri[i]);
 }
 
-/* Keep triangle t if there is room or it comes before the last (so also
- * when the distances are not numbers: a non-finite point still gets a
- * triangle). */
-static void try_triangle(const cl_bvh *b, int t, const double x[3],
-                         kept *k)
+/* The closest point of triangle t to x. */
+static void measure(const cl_bvh *b, int t, const double x[3],
+                    cl_tri_point *p)
 {
     const int *v = b->tri[t];
-    double ap[3];
-    cl_v3_sub(x, b->vert + 3 * v[0], ap);
-    double hgt = cl_v3_dot(ap, b->normal[t]);
-    if (farther(k, hgt * hgt))
-        return;
-    cl_tri_point p;
     cl_tri_closest(x, b->vert + 3 * v[0], b->vert + 3 * v[1],
-                   b->vert + 3 * v[2], &p);
-    if (k->n == k->cap && !before(p.dist2, t, k, k->n - 1))
+                   b->vert + 3 * v[2], p);
+}
+
+/* Keep triangle t, at p, if there is room or it comes before the last (so
+ * also when the distances are not numbers: a non-finite point still gets
+ * a triangle). */
+static void keep(kept *k, int t, const cl_tri_point *p)
+{
+    if (k->n == k->cap && !before(p->dist2, t, k, k->n - 1))
         return;
     int i = k->n < k->cap ? k->n++ : k->n - 1;
-    for (; i > 0 && before(p.dist2, t, k, i - 1); i--) {
+    for (; i > 0 && before(p->dist2, t, k, i - 1); i--) {
         k->tri[i] = k->tri[i - 1];
         k->p[i] = k->p[i - 1];
     }
     k->tri[i] = t;
-    k->p[i] = p;
+    k->p[i] = *p;
+}
+
+/* keep() triangle t unless its plane already shows it is too far. */
+static void try_triangle(const cl_bvh *b, int t, const double x[3],
+                         kept *k)
+{
+    double ap[3];
+    cl_v3_sub(x, b->vert + 3 * b->tri[t][0], ap);
+    double hgt = cl_v3_dot(ap, b->normal[t]);
+    if (farther(k, hgt * hgt))
+        return;
+    cl_tri_point p;
+    measure(b, t, x, &p);
+    keep(k, t, &p);
 }
 
 /* Whether t is among list[0..n). */
@@ -260,31 +273,20 @@ void cl_bvh_nearest(const cl_bvh *b, const double x[3], cl_bvh_hit *hit)
     hit_of(&k, hit);
 }
 
-/* Move the cache's anchor to x, where the kept triangles tried[0..n) of
- * the n kept have the squared distances d2[0..ntried) (the rest are
- * measured here): the distances at x, in the order of kept (distance,
- * then index), and r0 less the distance moved (the others' distance is
- * 1-Lipschitz too). */
+/* Move the cache's anchor to x, where the first ntried of its n kept
+ * triangles were measured (at[]; the rest are measured here): their
+ * distances at x, in the order of kept (distance, then index), and r0 less
+ * the distance moved (the others' distance is 1-Lipschitz too). */
 static void reanchor(const cl_bvh *b, const double x[3], double moved,
-                     int ntried, double d2[CL_BVH_KEEP], cl_bvh_cache *c)
+                     int ntried, cl_tri_point at[CL_BVH_KEEP],
+                     cl_bvh_cache *c)
 {
     kept k;
     kept_start(&k, CL_BVH_KEEP);
-    for (int i = ntried; i < c->n; i++) {
-        cl_tri_point p;
-        const int *v = b->tri[c->tri[i]];
-        cl_tri_closest(x, b->vert + 3 * v[0], b->vert + 3 * v[1],
-                       b->vert + 3 * v[2], &p);
-        d2[i] = p.dist2;
-    }
-    for (int i = 0; i < c->n; i++) {      /* insertion in kept's order */
-        int j = k.n++;
-        for (; j > 0 && before(d2[i], c->tri[i], &k, j - 1); j--) {
-            k.tri[j] = k.tri[j - 1];
-            k.p[j].dist2 = k.p[j - 1].dist2;
-        }
-        k.tri[j] = c->tri[i];
-        k.p[j].dist2 = d2[i];
+    for (int i = 0; i < c->n; i++) {
+        if (i >= ntried)
+            measure(b, c->tri[i], x, &at[i]);
+        keep(&k, c->tri[i], &at[i]);
     }
     memcpy(c->x0, x, sizeof c->x0);
     for (int i = 0; i < c->n; i++) {
@@ -302,28 +304,21 @@ static bool nearest_from_cache(const cl_bvh *b, const double x[3],
 {
     kept k;
     kept_start(&k, 1);
-    double e[3], best = INFINITY, d2[CL_BVH_KEEP];
+    double e[3], best = INFINITY;
+    cl_tri_point at[CL_BVH_KEEP];
     cl_v3_sub(x, c->x0, e);
     double moved = sqrt(cl_v3_dot(e, e));
     int i = 0;
     for (; i < c->n && c->dist[i] - moved <= best; i++) {
-        cl_tri_point p;
-        const int *v = b->tri[c->tri[i]];
-        cl_tri_closest(x, b->vert + 3 * v[0], b->vert + 3 * v[1],
-                       b->vert + 3 * v[2], &p);
-        d2[i] = p.dist2;
-        if (k.n == 0 || before(p.dist2, c->tri[i], &k, 0)) {
-            k.n = 1;
-            k.tri[0] = c->tri[i];
-            k.p[0] = p;
-        }
+        measure(b, c->tri[i], x, &at[i]);
+        keep(&k, c->tri[i], &at[i]);
         best = sqrt(k.p[0].dist2);
     }
     if (!(best < c->r0 - moved))
         return false;
     hit_of(&k, hit);
     if (i > CL_BVH_TRIED)
-        reanchor(b, x, moved, i, d2, c);
+        reanchor(b, x, moved, i, at, c);
     return true;
 }
 
