@@ -92,6 +92,11 @@ static void ei_run(const ei_problem *p, const cl_integrator_type *it,
                  "%s: %s", it->name, err.msg);
     cr_assert_eq(it->advance(st, EI_T, x, v, &err), CL_OK, "%s: %s",
                  it->name, err.msg);
+    cl_stats s = {0};
+    it->stats(st, &s);
+    if (o->dt > 0) /* a fixed-step method takes exactly T / h steps */
+        cr_assert_eq(s.steps, lround(EI_T / o->dt), "%s: %ld steps",
+                     it->name, (long)s.steps);
     it->free(st);
 }
 

@@ -650,7 +650,6 @@ cl_status cl_sun_attach_direct(cl_sun *s, SUNMatrix A, SUNLinearSolver inner,
     if (!inner)
         return cl_sun_sunfail(s, "linear solver constructor", 0, err);
     s->cnt.inner = inner;
-    s->cnt.analyse = true;
     s->ls = cl_sun_shell_linsol(&count_def, &s->cnt, s->ctx);
     if (!s->ls)
         return cl_sun_sunfail(s, "cl_sun_shell_linsol", 0, err);
