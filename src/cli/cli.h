@@ -93,10 +93,12 @@ typedef struct {
     double t_end;
     double max_stretch;
     long threads, samples, frames; /* run's outputs (the studies hide */
-    unsigned format;               /* them): format bits of */
-} cl_cli_run;                      /* cl_cli_run_formats */
+    unsigned format;               /* them); format: CL_CLI_FMT_ bits */
+} cl_cli_run;
 extern const cl_cli_opt cl_cli_run_rows[];
-extern const char *const cl_cli_run_formats[];
+
+/* The bits of [run] format, in the order of its names csv, vtk, obj. */
+enum { CL_CLI_FMT_CSV = 1u, CL_CLI_FMT_VTK = 2u, CL_CLI_FMT_OBJ = 4u };
 
 /* The options of cl_cli_run_rows that only run offers. */
 #define CL_CLI_RUN_OUTPUTS "threads samples frames format"

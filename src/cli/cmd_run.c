@@ -39,8 +39,8 @@ static cl_status check_run(cl_config *cfg, void *ctx, cl_error *err)
     r->so.max_stretch = r->run.max_stretch;
     r->so.samples = r->run.samples;
     r->so.frames = r->run.frames;
-    r->so.vtk = r->run.format & 2u;
-    r->so.obj = r->run.format & 4u;
+    r->so.vtk = r->run.format & CL_CLI_FMT_VTK;
+    r->so.obj = r->run.format & CL_CLI_FMT_OBJ;
     return cl_cli_methods_check(cfg, &r->integrator, &r->run.io,
                                 CL_CLI_DT_ALL, err);
 }

@@ -9,6 +9,9 @@
 
 #define RUN_ROW(f) .sec = "run", .field = offsetof(cl_cli_run, f)
 
+/* [run] format's names, bit k for the k-th (CL_CLI_FMT_...) */
+static const char *const run_formats[] = {"csv", "vtk", "obj", NULL};
+
 const cl_cli_opt cl_cli_run_rows[] = {
     {.name = "dt", .arg = "H", .type = CL_CLI_DOUBLE, .key = "dt",
      RUN_ROW(io.dt), .lo = 0, .hi = INFINITY,
@@ -68,11 +71,9 @@ const cl_cli_opt cl_cli_run_rows[] = {
      RUN_ROW(frames), .def = 10, .lo = 0, .hi = 1000000,
      .help = "frames after t = 0, 0 for none"},
     {.name = "format", .arg = "LIST", .type = CL_CLI_NAMES, .key = "format",
-     RUN_ROW(format), .sdef = "vtk,obj", .names = cl_cli_run_formats,
+     RUN_ROW(format), .sdef = "vtk,obj", .names = run_formats,
      .help = "frame formats among csv,vtk,obj (csv: the time series only)"},
     {.type = CL_CLI_END}};
-
-const char *const cl_cli_run_formats[] = {"csv", "vtk", "obj", NULL};
 
 /* Entry "name" or "name:linsol" of the list into m. */
 static cl_status parse_method(cl_config *cfg, const cl_cli_opt *row,

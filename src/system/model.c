@@ -331,6 +331,8 @@ static cl_status sys_contact(void *data, double t, double *x, double *v,
     cl_model *m = data;
     size_t n = 3 * m->cloth.nfree;
     bool projects = m->sys.projects; /* else the velocities are not read */
+    if (!projects && !record)
+        return CL_OK;                    /* nothing to record or move */
     cl_cloth_scatter(&m->cloth, t, x, projects ? v : NULL, m->xf,
                      projects ? m->vf : NULL);
     double pen = record ? cl_contact_penetration(m->contact, t, m->xf) : 0.0;
