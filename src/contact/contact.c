@@ -28,7 +28,7 @@ struct cl_contact {
     double proj_force;       /* its impulses / (t - previous time) */
     double proj_friction;    /* its friction energy / (t - previous time) */
     double *eval_x;          /* positions of the last term evaluation */
-    double eval_t;           /* ... its time */
+    cl_pose *eval_pose;      /* ... every penalty obstacle's pose there */
     double *eval_worst;      /* ... each penalty obstacle's deepest
                                 penetration of a free particle there */
     bool evaluated;          /* eval_* hold an evaluation */
@@ -82,6 +82,7 @@ static void contact_free(void *state)
     free(c->hit);
     free(c->slot);
     free(c->eval_x);
+    free(c->eval_pose);
     free(c->eval_worst);
     free(c);
 }
@@ -123,6 +124,7 @@ static cl_status contact_create(cl_config *cfg, const cl_cloth *cloth,
         !(c->hit = malloc(cloth->np * sizeof *c->hit)) ||
         !(c->slot = malloc(cloth->np * sizeof *c->slot)) ||
         !(c->eval_x = malloc(3 * cloth->np * sizeof *c->eval_x)) ||
+        !(c->eval_pose = calloc(n, sizeof *c->eval_pose)) ||
         !(c->eval_worst = calloc(n, sizeof *c->eval_worst))) {
         contact_free(c);
         return cl_error_set(err, CL_ENOMEM, "out of memory (obstacles)");
@@ -178,14 +180,15 @@ static void add_block(double *vals, long slot, const double b[9])
 /* Penalty forces of every particle that has a block (the free particles;
  * all of them for the full Jacobian of `clothode eval`).  The deepest
  * penetration of a free particle into each penalty obstacle is kept with
- * the positions and time: every particle inside (d < 0 <= eps) is within
- * the band, so it is among those queried here, and the contact hook of a
- * step that ends at the very state evaluated last (a symplectic Euler
- * step evaluates its forces at its new positions) reads it from there
- * instead of screening the particles again.  The points in the band are
- * all queried first and their penalty laws applied after, so that the
- * laws (square roots and divisions, independent of one another) overlap
- * in the processor instead of each waiting for its own query. */
+ * the positions and the obstacles' poses: every particle inside
+ * (d < 0 <= eps) is within the band, so it is among those queried here,
+ * and the contact hook of a step that ends at the very state evaluated
+ * last (a symplectic Euler step evaluates its forces at its new
+ * positions) reads it from there instead of screening the particles
+ * again.  The points in the band are all queried first and their penalty
+ * laws applied after, so that the laws (square roots and divisions,
+ * independent of one another) overlap in the processor instead of each
+ * waiting for its own query. */
 static void contact_eval(void *state, cl_eval *ev)
 {
     cl_contact *c = state;
@@ -193,11 +196,11 @@ static void contact_eval(void *state, cl_eval *ev)
     double energy = 0.0, power = 0.0;
     for (size_t k = 0; k < c->nobs && c->penalizes; k++) {
         const cl_obstacle *o = &c->obs[k];
-        cl_pose P;
+        cl_pose *P = &c->eval_pose[k];
         if (o->resp.kind != CL_RESPONSE_PENALTY)
             continue;
-        cl_obstacle_pose(o, ev->t, &P);
-        size_t nnear = cl_obstacle_screen(o, &P, ev->x, c->cloth->np,
+        cl_obstacle_pose(o, ev->t, P);
+        size_t nnear = cl_obstacle_screen(o, P, ev->x, c->cloth->np,
                                           o->resp.eps, memo_of(c, k, 0),
                                           c->near);
         c->eval_worst[k] = 0.0;
@@ -206,7 +209,7 @@ static void contact_eval(void *state, cl_eval *ev)
             size_t p = c->near[i];
             cl_contact_point *q = &c->hit[nhit];
             if (c->slot[p] < 0 ||
-                !cl_obstacle_near(o, &P, ev->x + 3 * p, o->resp.eps,
+                !cl_obstacle_near(o, P, ev->x + 3 * p, o->resp.eps,
                                   memo_of(c, k, p), q))
                 continue;
             if (c->cloth->dof[p] >= 0 && -q->d > c->eval_worst[k])
@@ -235,7 +238,6 @@ static void contact_eval(void *state, cl_eval *ev)
     }
     if (c->penalizes) {
         memcpy(c->eval_x, ev->x, 3 * c->cloth->np * sizeof *c->eval_x);
-        c->eval_t = ev->t;
         c->evaluated = true;
     }
 }
@@ -303,15 +305,29 @@ void cl_contact_measure(cl_contact *c, double t, const double *x,
     }
 }
 
+/* Whether obstacle k stands at pose P where the last evaluation saw it:
+ * the same displacement and rotation (its velocity does not move a
+ * particle), so that a time that differs from the evaluation's in the
+ * last bits (t0 + (k + 1) h against t0 + k h + h) still finds a static
+ * obstacle in its place. */
+static bool placed_as_evaluated(const cl_contact *c, size_t k,
+                                const cl_pose *P)
+{
+    const cl_pose *E = &c->eval_pose[k];
+    return P->rotates == E->rotates && !memcmp(P->s, E->s, sizeof P->s) &&
+           (!P->rotates || !memcmp(P->R, E->R, sizeof P->R));
+}
+
 double cl_contact_penetration(cl_contact *c, double t, const double *x)
 {
     double worst = 0.0;
-    bool evaluated = c->evaluated && t == c->eval_t &&
+    bool evaluated = c->evaluated &&
                      !memcmp(x, c->eval_x,
                              3 * c->cloth->np * sizeof *c->eval_x);
     place(c, t);
     for (size_t k = 0; k < c->nobs; k++) {
-        if (evaluated && c->obs[k].resp.kind == CL_RESPONSE_PENALTY) {
+        if (evaluated && c->obs[k].resp.kind == CL_RESPONSE_PENALTY &&
+            placed_as_evaluated(c, k, &c->pose[k])) {
             worst = fmax(worst, c->eval_worst[k]); /* contact_eval */
             continue;
         }
