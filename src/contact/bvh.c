@@ -274,25 +274,29 @@ void cl_bvh_nearest(const cl_bvh *b, const double x[3], cl_bvh_hit *hit)
 }
 
 /* Move the cache's anchor to x, where the first ntried of its n kept
- * triangles were measured (at[]; the rest are measured here): their
- * distances at x, in the order of kept (distance, then index), and r0 less
- * the distance moved (the others' distance is 1-Lipschitz too). */
-static void reanchor(const cl_bvh *b, const double x[3], double moved,
-                     int ntried, cl_tri_point at[CL_BVH_KEEP],
-                     cl_bvh_cache *c)
+ * triangles were measured (at[]): their distances there, and for the
+ * others their distances at the old anchor less the distance moved, lower
+ * bounds of their distances at x (the distance to a triangle is
+ * 1-Lipschitz), as r0 less it is for the triangles not kept.  The kept
+ * ones are sorted by these again, without measuring any (bvh.h). */
+static void reanchor(const double x[3], double moved, int ntried,
+                     const cl_tri_point at[CL_BVH_KEEP], cl_bvh_cache *c)
 {
-    kept k;
-    kept_start(&k, CL_BVH_KEEP);
+    double dist[CL_BVH_KEEP];
+    int tri[CL_BVH_KEEP];
     for (int i = 0; i < c->n; i++) {
-        if (i >= ntried)
-            measure(b, c->tri[i], x, &at[i]);
-        keep(&k, c->tri[i], &at[i]);
+        double d = i < ntried ? sqrt(at[i].dist2) : c->dist[i] - moved;
+        int j = i;
+        for (; j > 0 && d < dist[j - 1]; j--) {
+            dist[j] = dist[j - 1];
+            tri[j] = tri[j - 1];
+        }
+        dist[j] = d;
+        tri[j] = c->tri[i];
     }
     memcpy(c->x0, x, sizeof c->x0);
-    for (int i = 0; i < c->n; i++) {
-        c->tri[i] = k.tri[i];
-        c->dist[i] = sqrt(k.p[i].dist2);
-    }
+    memcpy(c->dist, dist, (size_t)c->n * sizeof *dist);
+    memcpy(c->tri, tri, (size_t)c->n * sizeof *tri);
     c->r0 -= moved;
 }
 
@@ -318,7 +322,7 @@ static bool nearest_from_cache(const cl_bvh *b, const double x[3],
         return false;
     hit_of(&k, hit);
     if (i > CL_BVH_TRIED)
-        reanchor(b, x, moved, i, at, c);
+        reanchor(x, moved, i, at, c);
     return true;
 }
 

@@ -64,27 +64,30 @@ void cl_bvh_nearest(const cl_bvh *b, const double x[3], cl_bvh_hit *hit);
 /* The nearest triangle of a point that moves little between queries
  * (temporal coherence with a certificate).  A full query keeps, besides
  * the answer, the CL_BVH_KEEP triangles nearest to the point x0 it was
- * made at, their distances there, and r0: every other triangle is at least
- * r0 from x0.  At x, d = |x - x0|, a triangle not kept is at least r0 - d
- * away (the distance to a set is 1-Lipschitz); so when the nearest kept
- * one is within r0 - d it is the nearest of all, and the kept triangles
- * are all that is tried (in the order of their distances at x0, stopping
- * at the first one no nearer than the best at x, d under its distance at
- * x0).  Otherwise a full query at x refills the cache (the kept
+ * made at, lower bounds of their distances there (their distances, after
+ * a full query), and r0: every other triangle is at least r0 from x0.  At
+ * x, d = |x - x0|, a triangle is at least its bound less d away (the
+ * distance to a set is 1-Lipschitz), one not kept at least r0 - d; so
+ * when the nearest kept one is within r0 - d it is the nearest of all,
+ * and the kept triangles are all that is tried (in the order of their
+ * bounds, stopping at the first whose bound less d is farther than the
+ * best at x).  Otherwise a full query at x refills the cache (the kept
  * triangles measured at x first, so that the walk starts with a tight
- * bound).  When more than
- * CL_BVH_TRIED kept triangles had to be tried (d has grown), the anchor
- * moves to x: the other kept triangles are measured there too, and r0
- * becomes r0 - d, so that d stays small and the next queries try fewer.
- * The answer is cl_bvh_nearest's; true when the kept triangles gave it,
- * false when the tree was searched.  A zeroed cache is empty. */
+ * bound).  When more than CL_BVH_TRIED kept triangles had to be tried (d
+ * has grown), the anchor moves to x without measuring any more: the
+ * bounds become the distances measured at x and, for the others, their
+ * bounds less d, and r0 becomes r0 - d, so that d stays small and the
+ * next queries try fewer.  The answer is cl_bvh_nearest's; true when the
+ * kept triangles gave it, false when the tree was searched.  A zeroed
+ * cache is empty. */
 #define CL_BVH_KEEP 8
-#define CL_BVH_TRIED 2
+#define CL_BVH_TRIED 1
 
 typedef struct {
     double x0[3];
     double r0;                  /* other triangles' distance from x0 */
-    double dist[CL_BVH_KEEP];   /* distances of the kept ones, ascending */
+    double dist[CL_BVH_KEEP];   /* the kept ones' distance bounds at x0,
+                                   ascending */
     int tri[CL_BVH_KEEP];
     int n;                      /* kept; 0: empty */
 } cl_bvh_cache;
