@@ -220,3 +220,58 @@ Test(obstacle, memo_skips_only_what_cannot_matter)
     memo_walk(&o, (double[]){0.51, 0.1, 0.1});
     cl_obstacle_free(&o);
 }
+
+/* The screen of a moving half-space computes its distances directly (not
+ * through the memos): about a tilted floor on a path, 2000 points within
+ * 5 cm of it, every point the query puts closer than dmax is listed, and
+ * no point the query puts farther than dmax by more than 1e-9 m; a point
+ * that is not a number is listed. */
+Test(obstacle, halfspace_screen_lists_exactly_the_near_points)
+{
+    cl_obstacle o;
+    const char *plane[NSET] = {"obstacle.o.shape = plane",
+                               "obstacle.o.point = 0.3, -1.2, 0.1",
+                               "obstacle.o.normal = 0.1, 1, -0.2",
+                               "obstacle.o.path = 0: 0, 0, 0; 1: 0.4, 0.2, 0",
+                               "obstacle.o.response = penalty",
+                               "obstacle.o.k = 1", NULL};
+    make(&o, plane);
+    enum { NP = 2000 };
+    static double x[3 * NP];
+    static size_t near[NP];
+    static cl_contact_memo memo[NP];
+    unsigned long seed = 777;
+    for (size_t i = 0; i < 3 * NP; i++) {
+        seed = seed * 6364136223846793005UL + 1442695040888963407UL;
+        x[i] = (double)(seed >> 11) / 9007199254740992.0 - 0.5;
+    }
+    cl_pose P;
+    cl_obstacle_pose(&o, 0.5, &P);
+    const double dmax = 0.01;
+    for (size_t p = 0; p < NP; p++) { /* to d = x_p,0 / 10, within 5 cm */
+        cl_contact_point q;
+        memo[p] = (cl_contact_memo){.d = -INFINITY};
+        cl_obstacle_near(&o, &P, x + 3 * p, INFINITY, NULL, &q);
+        double move = q.d - 0.1 * x[3 * p];
+        for (int i = 0; i < 3; i++)
+            x[3 * p + i] -= move * q.n[i];
+    }
+    x[3 * (NP - 1)] = NAN;
+    size_t nnear = cl_obstacle_screen(&o, &P, x, NP, dmax, memo, near);
+    size_t listed = 0, closer = 0;
+    for (size_t p = 0; p + 1 < NP; p++) {
+        cl_contact_point q;
+        cl_obstacle_near(&o, &P, x + 3 * p, INFINITY, NULL, &q);
+        bool in = listed < nnear && near[listed] == p;
+        listed += in;
+        closer += q.d < dmax;
+        cr_assert(q.d >= dmax || in, "point %zu at d = %g not listed", p,
+                  q.d);
+        cr_assert(q.d < dmax + 1e-9 || !in, "point %zu at d = %g listed", p,
+                  q.d);
+    }
+    cr_assert_eq(listed + 1, nnear);
+    cr_assert_eq(near[nnear - 1], NP - 1);
+    cr_assert(closer > NP / 4 && closer < NP - NP / 4, "%zu", closer);
+    cl_obstacle_free(&o);
+}

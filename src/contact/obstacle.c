@@ -60,6 +60,10 @@ void cl_obstacle_pose(const cl_obstacle *o, double t, cl_pose *P)
 
 /* ---- queries ---------------------------------------------------------- */
 
+/* The relative slack of a screen computed in another order than the
+ * query (a few units of rounding, 1.1e-16 each, with a wide margin). */
+#define SCREEN_SLACK 1e-12
+
 /* The shape-frame point X of the world point x (docs/model.md, eq. C2):
  * X = q + R^T (x - q - s), with r = x - q - s. */
 static inline void to_shape(const cl_obstacle *o, const cl_pose *P,
@@ -187,11 +191,39 @@ bool cl_obstacle_depth(const cl_obstacle *o, const cl_pose *P,
     return near;
 }
 
+/* The screen of a half-space that does not rotate (shape.h): d = n . x -
+ * (c + n . s) in the world frame, a dot product a point, which differs
+ * from the query's n . (q + (x - q - s) - p) by rounding only, far less
+ * than the slack allowed for it (relative to the magnitudes involved);
+ * NaN points are near, as with the memos. */
+static size_t screen_halfspace(const cl_obstacle *o, const cl_pose *P,
+                               const double *x, size_t np, double dmax,
+                               size_t *near)
+{
+    double nrm[3], c;
+    o->type->halfspace(o->shape, nrm, &c);
+    double cw = c + cl_v3_dot(nrm, P->s);
+    double scale = fabs(c) + fabs(cw) + cl_v3_norm(P->s) +
+                   cl_v3_norm(o->pivot);
+    size_t n = 0;
+    for (size_t p = 0; p < np; p++) {
+        const double *y = x + 3 * p;
+        double d = nrm[0] * y[0] + nrm[1] * y[1] + nrm[2] * y[2] - cw;
+        double slack = SCREEN_SLACK * (scale + fabs(y[0]) + fabs(y[1]) +
+                                       fabs(y[2]));
+        if (!(d >= dmax + slack))
+            near[n++] = p;
+    }
+    return n;
+}
+
 size_t cl_obstacle_screen(const cl_obstacle *o, const cl_pose *P,
                           const double *x, size_t np, double dmax,
                           const cl_contact_memo *memo, size_t *near)
 {
     size_t n = 0;
+    if (!P->rotates && o->type->halfspace)
+        return screen_halfspace(o, P, x, np, dmax, near);
     if (P->rotates) {
         for (size_t p = 0; p < np; p++) {
             double r[3], X[3];

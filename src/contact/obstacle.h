@@ -107,9 +107,10 @@ bool cl_obstacle_depth(const cl_obstacle *o, const cl_pose *P,
 
 /* The broad phase of cl_obstacle_near for the np points x (3 each) and
  * their memos: the indices of those whose memo does not already show
- * d >= dmax into near[], and their number.  One pass over the points
- * without the per-point call of cl_obstacle_near, which the points listed
- * then get. */
+ * d >= dmax (for a half-space that does not rotate, shape.h: whose
+ * distance, computed directly, is not clearly >= dmax) into near[], and
+ * their number.  One pass over the points without the per-point call of
+ * cl_obstacle_near, which the points listed then get. */
 size_t cl_obstacle_screen(const cl_obstacle *o, const cl_pose *P,
                           const double *x, size_t np, double dmax,
                           const cl_contact_memo *memo, size_t *near);

@@ -57,6 +57,10 @@ typedef struct {
      * the query (a mesh: the distance to its bounding box), so that
      * particles far from the shape skip the query. */
     double (*lower_bound)(const void *shape, const double x[3]);
+    /* Optional (NULL: none): a half-space's outward unit normal n and
+     * offset c, d(x) = n . x - c, so that a screen of many points is a dot
+     * product each instead of a look at each point's memo (obstacle.h). */
+    void (*halfspace)(const void *shape, double n[3], double *c);
     /* Allocate the drawing surface (free with cl_shape_surface_free). */
     cl_status (*surface)(const void *shape, cl_shape_surface *s,
                          cl_error *err);

@@ -56,6 +56,13 @@ static void plane_query(const void *shape, const double x[3],
     memset(q->G, 0, sizeof q->G);
 }
 
+static void plane_halfspace(const void *shape, double n[3], double *c)
+{
+    const plane *s = shape;
+    memcpy(n, s->n, sizeof s->n);
+    *c = cl_v3_dot(s->n, s->p);
+}
+
 /* Unit u, v in the plane with u x v = n. */
 static void tangents(const double n[3], double u[3], double v[3])
 {
@@ -95,6 +102,7 @@ const cl_shape_type cl_shape_plane = {
            "(drawn square's side, > 0)",
     .create = plane_create,
     .query = plane_query,
+    .halfspace = plane_halfspace,
     .surface = plane_surface,
     .free = free,
 };

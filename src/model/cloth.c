@@ -206,13 +206,30 @@ cl_status cl_cloth_pin_particle(cl_cloth *c, int p, const double w[3],
     return add_pin(c, (int)q, w, t_stop, name, err);
 }
 
+/* The runs of consecutive free particles (cl_cloth.run), at most one
+ * more than the pins. */
+static void find_runs(cl_cloth *c)
+{
+    c->nrun = 0;
+    for (size_t k = 0; k < c->nfree; k++) {
+        size_t p = (size_t)c->free_p[k];
+        cl_cloth_run *r = &c->run[c->nrun - (c->nrun > 0)];
+        if (c->nrun > 0 && r->p + r->n == p)
+            r->n++;
+        else
+            c->run[c->nrun++] = (cl_cloth_run){k, p, 1};
+    }
+}
+
 cl_status cl_cloth_finalize(cl_cloth *c, cl_error *err)
 {
     free(c->dof);
     free(c->free_p);
+    free(c->run);
     c->dof = malloc(c->np * sizeof *c->dof);
     c->free_p = malloc(c->np * sizeof *c->free_p);
-    if (!c->dof || !c->free_p)
+    c->run = malloc((c->npin + 1) * sizeof *c->run);
+    if (!c->dof || !c->free_p || !c->run)
         return cl_error_set(err, CL_ENOMEM, "out of memory (dof map)");
     for (size_t p = 0; p < c->np; p++)
         c->dof[p] = 0;
@@ -227,6 +244,7 @@ cl_status cl_cloth_finalize(cl_cloth *c, cl_error *err)
     if (c->nfree == 0)
         return cl_error_set(err, CL_EINVAL,
                             "every particle is pinned: nothing to simulate");
+    find_runs(c);
     return CL_OK;
 }
 
@@ -237,6 +255,7 @@ void cl_cloth_free(cl_cloth *c)
     free(c->pins);
     free(c->dof);
     free(c->free_p);
+    free(c->run);
     free(c->tri);
     memset(c, 0, sizeof *c);
 }
@@ -244,11 +263,11 @@ void cl_cloth_free(cl_cloth *c)
 void cl_cloth_scatter(const cl_cloth *c, double t, const double *x,
                       const double *v, double *xfull, double *vfull)
 {
-    for (size_t k = 0; k < c->nfree; k++) {
-        size_t p = (size_t)c->free_p[k];
-        memcpy(xfull + 3 * p, x + 3 * k, 3 * sizeof *x);
+    for (size_t j = 0; j < c->nrun; j++) {
+        const cl_cloth_run *r = &c->run[j];
+        memcpy(xfull + 3 * r->p, x + 3 * r->k, 3 * r->n * sizeof *x);
         if (v)
-            memcpy(vfull + 3 * p, v + 3 * k, 3 * sizeof *v);
+            memcpy(vfull + 3 * r->p, v + 3 * r->k, 3 * r->n * sizeof *v);
     }
     for (size_t k = 0; k < c->npin; k++) {
         const cl_pin *pin = &c->pins[k];
@@ -264,7 +283,8 @@ void cl_cloth_scatter(const cl_cloth *c, double t, const double *x,
 
 void cl_cloth_gather(const cl_cloth *c, const double *full, double *freev)
 {
-    for (size_t k = 0; k < c->nfree; k++)
-        memcpy(freev + 3 * k, full + 3 * (size_t)c->free_p[k],
-               3 * sizeof *full);
+    for (size_t j = 0; j < c->nrun; j++) {
+        const cl_cloth_run *r = &c->run[j];
+        memcpy(freev + 3 * r->k, full + 3 * r->p, 3 * r->n * sizeof *full);
+    }
 }

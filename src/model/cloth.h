@@ -30,6 +30,11 @@ typedef struct {
     double t_stop;  /* time the motion stops (INFINITY: never) */
 } cl_pin;
 
+/* Free particles p .. p + n - 1, free indices k .. k + n - 1. */
+typedef struct {
+    size_t k, p, n;
+} cl_cloth_run;
+
 typedef struct {
     int nu, nv;       /* grid: particles along u (first index) and v */
     size_t np;        /* particles (nu * nv on a grid) */
@@ -41,6 +46,8 @@ typedef struct {
     int *dof;         /* particle -> free index, or -1 if pinned */
     size_t nfree;
     int *free_p;      /* free index -> particle */
+    size_t nrun;      /* the free particles as runs of consecutive ones: */
+    cl_cloth_run *run;  /* nrun of them, in order */
     cl_cloth_kind kind;
     size_t ntri;
     int (*tri)[3];    /* the triangles (grid: cl_grid_triangles order;
