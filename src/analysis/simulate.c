@@ -375,6 +375,7 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
             rc = integrate(&s, type, state, &sch, res, err);
     }
     cl_model_contact_worst(m, &res->worst_penetration, &res->worst_t);
+    cl_model_contact_closest(m, &res->min_distance, &res->min_distance_t);
     if (state) {
         double wall = res->stats.wall, cpu = res->stats.cpu;
         type->stats(state, &res->stats);

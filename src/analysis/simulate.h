@@ -43,6 +43,9 @@ typedef struct {
     long frames;         /* frames written */
     double worst_penetration; /* deepest into an obstacle (m; contact) */
     double worst_t;      /* ... and when */
+    double min_distance; /* least distance to a barrier obstacle (m;
+                          * INFINITY without barriers) */
+    double min_distance_t; /* ... and when */
     double *xfinal;      /* full-particle positions at t_reached (3*np),
                           * followed by the term energies of e0 and e1 in
                           * the same block; owned by the caller after the

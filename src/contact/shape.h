@@ -57,6 +57,11 @@ typedef struct {
      * the query (a mesh: the distance to its bounding box), so that
      * particles far from the shape skip the query. */
     double (*lower_bound)(const void *shape, const double x[3]);
+    /* Optional (NULL: none; response = barrier needs it): the time of
+     * impact of the straight move from X0 (outside, d > 0) to X1, the
+     * least fraction a in [0, 1] at which X0 + a (X1 - X0) reaches the
+     * surface (d = 0), or INFINITY when the segment stays outside. */
+    double (*toi)(const void *shape, const double X0[3], const double X1[3]);
     /* Allocate the drawing surface (free with cl_shape_surface_free). */
     cl_status (*surface)(const void *shape, cl_shape_surface *s,
                          cl_error *err);

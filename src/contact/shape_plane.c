@@ -56,6 +56,20 @@ static void plane_query(const void *shape, const double x[3],
     memset(q->G, 0, sizeof q->G);
 }
 
+/* d is linear along the segment: it reaches 0 at d0 / (d0 - d1). */
+static double plane_toi(const void *shape, const double X0[3],
+                        const double X1[3])
+{
+    const plane *s = shape;
+    double r0[3], r1[3];
+    cl_v3_sub(X0, s->p, r0);
+    cl_v3_sub(X1, s->p, r1);
+    double d0 = cl_v3_dot(s->n, r0), d1 = cl_v3_dot(s->n, r1);
+    if (d0 <= 0.0)
+        return 0.0;
+    return d1 <= 0.0 ? d0 / (d0 - d1) : INFINITY;
+}
+
 /* Unit u, v in the plane with u x v = n. */
 static void tangents(const double n[3], double u[3], double v[3])
 {
@@ -95,6 +109,7 @@ const cl_shape_type cl_shape_plane = {
            "(drawn square's side, > 0)",
     .create = plane_create,
     .query = plane_query,
+    .toi = plane_toi,
     .surface = plane_surface,
     .free = free,
 };

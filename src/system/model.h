@@ -105,6 +105,12 @@ void cl_model_contact_start(cl_model *m, bool track_work);
  * or at output times, and by cl_model_contact_figures; and its time. */
 void cl_model_contact_worst(const cl_model *m, double *pen, double *t);
 
+/* The least signed distance of a free particle to a barrier obstacle
+ * since cl_model_contact_start (INFINITY without barriers), seen by the
+ * contact hook after every accepted step (fixed-step methods) or at output
+ * times (contact/barrier.h); and its time. */
+void cl_model_contact_closest(const cl_model *m, double *d, double *t);
+
 /* The surfaces of all obstacles at time t, in one triangle list (free
  * with cl_shape_surface_free); none without obstacles. */
 cl_status cl_model_obstacle_surface(const cl_model *m, double t,
