@@ -1,13 +1,16 @@
 /* Obstacles (contact/obstacle.h): the scripted path (keyframes held before
  * the first and after the last, linear in between), the rotation about
  * the pivot, the exact velocity field against the motion of a shape point,
- * queries on a moved and turned shape, names and refusals. */
+ * queries on a moved and turned shape, names and refusals, and the times
+ * of impact of straight moves (continuous collision detection) against
+ * every shape, static and moving. */
 #include <criterion/criterion.h>
 
 #include <math.h>
 #include <string.h>
 
 #include "contact/obstacle.h"
+#include "tmpdir.h"
 
 #define NSET 12
 
@@ -218,5 +221,109 @@ Test(obstacle, memo_skips_only_what_cannot_matter)
                               "obstacle.o.k = 1", NULL};
     make(&o, mesh);
     memo_walk(&o, (double[]){0.51, 0.1, 0.1});
+    cl_obstacle_free(&o);
+}
+
+/* The time of impact of the move x0 -> x1 (obstacle o static at t = 0). */
+static double toi(const cl_obstacle *o, const double x0[3],
+                  const double x1[3])
+{
+    cl_pose P;
+    cl_obstacle_pose(o, 0.0, &P);
+    return cl_obstacle_toi(o, &P, x0, &P, x1);
+}
+
+#define BARRIER "obstacle.o.response = barrier", "obstacle.o.kappa = 1", \
+                "obstacle.o.dhat = 0.01"
+
+Test(obstacle, time_of_impact_plane_sphere_box)
+{
+    cl_obstacle o;
+    const char *plane[NSET] = {"obstacle.o.shape = plane",
+                               "obstacle.o.normal = 0, 1, 0", BARRIER, NULL};
+    make(&o, plane);
+    double a0[3] = {0.0, 0.3, 0.0}, a1[3] = {0.2, -0.1, 0.1};
+    cr_expect_float_eq(toi(&o, a0, a1), 0.75, 1e-15); /* 0.3 / 0.4 */
+    double a2[3] = {1.0, 0.05, 0.0};
+    cr_expect_eq(toi(&o, a0, a2), INFINITY, "stays above");
+    cl_obstacle_free(&o);
+    const char *sphere[NSET] = {"obstacle.o.shape = sphere",
+                                "obstacle.o.radius = 0.5", BARRIER, NULL};
+    make(&o, sphere);
+    double b0[3] = {-1.0, 0.3, 0.0}, b1[3] = {1.0, 0.3, 0.0};
+    cr_expect_float_eq(toi(&o, b0, b1), 0.3, 1e-15); /* x = -0.4 */
+    double c0[3] = {-1.0, 0.6, 0.0}, c1[3] = {1.0, 0.6, 0.0};
+    cr_expect_eq(toi(&o, c0, c1), INFINITY, "passes above");
+    double d1[3] = {-0.7, 0.3, 0.0};
+    cr_expect_eq(toi(&o, b0, d1), INFINITY, "stops short");
+    cl_obstacle_free(&o);
+    const char *box[NSET] = {"obstacle.o.shape = box",
+                             "obstacle.o.size = 2, 1, 1", BARRIER, NULL};
+    make(&o, box);
+    double e0[3] = {0.0, 1.5, 0.2}, e1[3] = {0.0, -0.5, 0.2};
+    cr_expect_float_eq(toi(&o, e0, e1), 0.5, 1e-15); /* the top face */
+    double f0[3] = {1.5, 1.5, 0.0}, f1[3] = {0.5, -0.5, 0.0};
+    cr_expect_float_eq(toi(&o, f0, f1), 0.5, 1e-15); /* the edge x=1,y=.5 */
+    double g0[3] = {1.5, 1.5, 0.0}, g1[3] = {1.5, -1.5, 0.0};
+    cr_expect_eq(toi(&o, g0, g1), INFINITY, "passes beside");
+    cl_obstacle_free(&o);
+}
+
+/* A cube mesh: a face hit, a crossing through an edge shared by two
+ * triangles (found, not slipped through), a miss; and a plane moving up
+ * 1 m in 1 s reaching a particle at rest 0.5 m above it at t = 0.5 s. */
+Test(obstacle, time_of_impact_mesh_and_moving)
+{
+    char dir[512], obj[600], file[700];
+    tmp_mkdtemp(dir, sizeof dir, "obstacle");
+    snprintf(obj, sizeof obj, "%s/cube.obj", dir);
+    tmp_put(obj, "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n"
+                 "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+                 "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 3 4 8 7\n"
+                 "f 2 3 7 6\nf 1 5 8 4\n");
+    snprintf(file, sizeof file, "obstacle.o.file = %s", obj);
+    cl_obstacle o;
+    const char *mesh[NSET] = {"obstacle.o.shape = mesh", file, BARRIER, NULL};
+    make(&o, mesh);
+    double a0[3] = {0.2, 3.0, 0.1}, a1[3] = {0.2, -1.0, 0.1};
+    cr_expect_float_eq(toi(&o, a0, a1), 0.5, 1e-15);
+    /* through the diagonal x = -z of the top quad's two triangles */
+    double b0[3] = {0.2, 2.0, -0.2}, b1[3] = {0.2, 0.0, -0.2};
+    cr_expect_float_eq(toi(&o, b0, b1), 0.5, 1e-12);
+    double c0[3] = {1.5, 1.5, 0.0}, c1[3] = {1.5, -1.5, 0.0};
+    cr_expect_eq(toi(&o, c0, c1), INFINITY, "passes beside");
+    cl_obstacle_free(&o);
+    tmp_rm_rf(dir);
+    const char *moving[NSET] = {"obstacle.o.shape = plane",
+                                "obstacle.o.normal = 0, 1, 0",
+                                "obstacle.o.path = 0: 0, 0, 0; 1: 0, 1, 0",
+                                BARRIER, NULL};
+    make(&o, moving);
+    cl_pose P0, P1;
+    cl_obstacle_pose(&o, 0.0, &P0);
+    cl_obstacle_pose(&o, 1.0, &P1);
+    double x[3] = {0.3, 0.5, -0.2};
+    cr_expect_float_eq(cl_obstacle_toi(&o, &P0, x, &P1, x), 0.5, 1e-15);
+    cl_obstacle_free(&o);
+}
+
+Test(obstacle, barrier_needs_its_keys)
+{
+    cl_obstacle o;
+    cl_error err = {0};
+    const char *no_kappa[NSET] = {"obstacle.o.shape = sphere",
+                                  "obstacle.o.radius = 1",
+                                  "obstacle.o.response = barrier",
+                                  "obstacle.o.dhat = 0.01", NULL};
+    cr_expect_eq(try_make(&o, "obstacle.o", no_kappa, &err), CL_EINVAL);
+    cr_expect(strstr(err.msg, "kappa"), "%s", err.msg);
+    cl_obstacle_free(&o);
+    const char *bad_dhat[NSET] = {"obstacle.o.shape = sphere",
+                                  "obstacle.o.radius = 1",
+                                  "obstacle.o.response = barrier",
+                                  "obstacle.o.kappa = 1",
+                                  "obstacle.o.dhat = -1", NULL};
+    cr_expect_eq(try_make(&o, "obstacle.o", bad_dhat, &err), CL_EINVAL);
+    cr_expect(strstr(err.msg, "dhat"), "%s", err.msg);
     cl_obstacle_free(&o);
 }

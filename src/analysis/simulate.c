@@ -274,7 +274,7 @@ static cl_status sim_alloc(sim *s, cl_error *err)
     if (cl_model_initial_state(s->m, s->x, s->v))
         return cl_error_set(err, CL_ENOMEM, "out of memory (initial state)");
     cl_status rc = cl_pairs_neighbours(s->c, &s->near, err);
-    s->tearing = s->sys->step_done != NULL || cl_model_broken(s->m) > 0;
+    s->tearing = cl_model_tears(s->m) || cl_model_broken(s->m) > 0;
     s->offplane = cl_offplane_applies(s->c);
     if (rc || !s->tearing)
         return rc;

@@ -57,6 +57,7 @@ void cl_contact_restart(cl_contact *c)
 {
     c->last_t = 0.0;
     c->proj_force = c->proj_friction = 0.0;
+    memset(c->lambda, 0, c->nobs * c->cloth->np * sizeof *c->lambda);
 }
 
 size_t cl_contact_obstacles(const cl_contact *c) { return c->nobs; }
@@ -464,6 +465,14 @@ size_t cl_contact_project(cl_contact *c, double t, double *x, double *v)
 bool cl_contact_barriers(const cl_contact *c) { return c->barriers; }
 
 bool cl_contact_infeasible(const cl_contact *c) { return c->infeasible; }
+
+bool cl_contact_lags(const cl_contact *c)
+{
+    for (size_t k = 0; k < c->nobs; k++)
+        if (c->obs[k].resp.kind == CL_RESPONSE_BARRIER && c->obs[k].resp.mu > 0)
+            return true;
+    return false;
+}
 
 void cl_contact_lag(cl_contact *c, double t, const double *x)
 {

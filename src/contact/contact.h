@@ -39,7 +39,8 @@ bool cl_contact_projects_friction(const cl_contact *c);
 size_t cl_contact_obstacles(const cl_contact *c);
 const cl_obstacle *cl_contact_obstacle(const cl_contact *c, size_t k);
 
-/* Forget the last projection (the start of a run). */
+/* Forget the last projection and the barriers' lagged friction (the
+ * start of a run). */
 void cl_contact_restart(cl_contact *c);
 
 /* The figures at time t for full-particle positions and velocities. */
@@ -63,6 +64,10 @@ bool cl_contact_barriers(const cl_contact *c);
  * barrier obstacle: the state is infeasible (its barrier energy is
  * +infinity and its force meaningless). */
 bool cl_contact_infeasible(const cl_contact *c);
+
+/* Some barrier obstacle has friction (mu > 0): its lag changes the force
+ * law after every step (cl_contact_lag). */
+bool cl_contact_lags(const cl_contact *c);
 
 /* Lag the barriers' friction: each free particle's normal force lambda
  * (barrier.h) at time t and full-particle positions x, kept for the

@@ -40,6 +40,8 @@ struct cl_model {
     cl_contact *contact;  /* the obstacles (also a term), or NULL */
     double worst_pen;     /* deepest penetration seen by the contact hook */
     double worst_t;       /* ... and when */
+    bool tears;           /* [tear] cut > 0 and a term that tears */
+    bool lags;            /* a barrier with friction (its lag) */
     double min_dist;      /* least distance to a barrier obstacle seen by
                            * the contact hook */
     double min_dist_t;    /* ... and when */
@@ -319,7 +321,9 @@ static cl_status update_torn(cl_model *m)
     return CL_OK;
 }
 
-/* Tearing after an accepted step (installed only with [tear] cut > 0).
+/* Tearing after an accepted step (with [tear] cut > 0), and the lag of
+ * the barriers' friction (contact/barrier.h), which changes the force law:
+ * adaptive methods restart from the state the lag was taken at.
  * Allocates only on a step where something tore. */
 static cl_status sys_step_done(void *data, double t, const double *x,
                                const double *v, bool *changed)
@@ -327,18 +331,21 @@ static cl_status sys_step_done(void *data, double t, const double *x,
     cl_model *m = data;
     size_t broken = 0;
     cl_cloth_scatter(&m->cloth, t, x, v, m->xf, m->vf);
-    for (size_t k = 0; k < m->nterm; k++)
+    for (size_t k = 0; m->tears && k < m->nterm; k++)
         if (m->type[k]->step_done)
             broken += m->type[k]->step_done(m->state[k], m->xf, m->vf);
     *changed = broken > 0;
+    if (m->lags) {
+        cl_contact_lag(m->contact, t, m->xf);
+        *changed = true;
+    }
     return broken > 0 ? update_torn(m) : CL_OK;
 }
 
-/* The barriers after an accepted step (m->xf at t): their friction's
- * normal force lagged, and with record the least distance. */
+/* The least distance to a barrier obstacle after a recorded step (m->xf
+ * at t). */
 static void barrier_step_done(cl_model *m, double t, bool record)
 {
-    cl_contact_lag(m->contact, t, m->xf);
     if (!record)
         return;
     double d = cl_contact_min_distance(m->contact, t, m->xf);
@@ -439,15 +446,16 @@ cl_status cl_model_create(cl_config *cfg, cl_model **model, cl_error *err)
         return rc;
     }
     m->min_dist = INFINITY;
+    m->tears = m->opts.tear_cut > 0 &&
+               any_hook(m, offsetof(cl_term_type, step_done));
+    m->lags = m->contact && cl_contact_lags(m->contact);
     m->sys = (cl_system){
         .n = 3 * m->cloth.nfree, .mass = m->mass3, .pattern = &m->pattern,
         .data = m, .force = sys_force, .jacobian = sys_jacobian,
         .energy = sys_energy,
         .project = any_hook(m, offsetof(cl_term_type, project)) ? sys_project
                                                                  : NULL,
-        .step_done = m->opts.tear_cut > 0 &&
-                             any_hook(m, offsetof(cl_term_type, step_done))
-                         ? sys_step_done : NULL,
+        .step_done = m->tears || m->lags ? sys_step_done : NULL,
         .contact = m->contact ? sys_contact : NULL,
         .step_fraction = m->contact && cl_contact_barriers(m->contact)
                              ? sys_step_fraction : NULL,
@@ -582,6 +590,8 @@ cl_status cl_model_jacobian_full(cl_model *m, double t, const double *x,
 }
 
 size_t cl_model_broken(const cl_model *m) { return m->ntorn; }
+
+bool cl_model_tears(const cl_model *m) { return m->tears; }
 
 static int cmp_pair(const void *a, const void *b)
 {

@@ -53,6 +53,9 @@ cl_status cl_model_initial_state(const cl_model *m, double *x, double *v);
  * pair. */
 size_t cl_model_broken(const cl_model *m);
 
+/* Whether the model can tear ([tear] cut > 0 and a term that tears). */
+bool cl_model_tears(const cl_model *m);
+
 /* Whether the connection a-b (either order) has torn. */
 bool cl_model_is_broken(const cl_model *m, int a, int b);
 

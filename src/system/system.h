@@ -63,8 +63,8 @@ typedef struct cl_system {
      * toward satisfying the constraints, in place.  Used by position-based
      * integrators (verlet-pbd) only. */
     cl_status (*project)(void *data, double t, double *x);
-    /* Irreversible changes of the model after an accepted step (tearing),
-     * NULL if the model has none.  *changed is set when the force law
+    /* Changes of the model after an accepted step (tearing, the lag of
+     * the barriers' friction), NULL if the model has none.  *changed is set when the force law
      * changed, so that multistep and adaptive methods restart from (t, x,
      * v).  Fixed-step integrators call it after every step; adaptive ones
      * at every output time. */
