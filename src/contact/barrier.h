@@ -1,5 +1,5 @@
 /* The barrier response of one particle to one obstacle (docs/model.md,
- * contact, eq. C12-C16): Incremental Potential Contact's clamped log
+ * 4.6, eq. C20-C26): Incremental Potential Contact's clamped log
  * barrier (Li, Ferguson, Schneider, Langlois, Zorin, Panozzo, Jiang and
  * Kaufman, "Incremental Potential Contact", SIGGRAPH 2020, eq. 6)
  *
