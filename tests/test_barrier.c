@@ -11,30 +11,9 @@
 #include <stdio.h>
 
 #include "contact/barrier.h"
-#include "tmpdir.h"
+#include "obstaclecase.h"
 
 #define NSET 16
-
-static void make(cl_obstacle *o, const char *const *sets)
-{
-    cl_error err = {0};
-    cl_config *cfg = cl_config_alloc();
-    cr_assert_not_null(cfg);
-    for (size_t k = 0; sets[k]; k++)
-        cr_assert_eq(cl_config_set(cfg, sets[k], &err), CL_OK, "%s", err.msg);
-    cr_assert_eq(cl_obstacle_create(cfg, "obstacle.o", o, &err), CL_OK, "%s",
-                 err.msg);
-    cl_config_free(cfg);
-}
-
-/* x = q + R X + s */
-static void to_world(const cl_pose *P, const double q[3], const double X[3],
-                     double x[3])
-{
-    for (int i = 0; i < 3; i++)
-        x[i] = q[i] + P->s[i] + P->R[3 * i] * X[0] + P->R[3 * i + 1] * X[1] +
-               P->R[3 * i + 2] * X[2];
-}
 
 static bool barrier_at(const cl_obstacle *o, double t, const double x[3],
                        bool jac, cl_barrier_out *out)
@@ -174,69 +153,44 @@ static void check_point(const cl_obstacle *o, double t, const double x[3],
                "obstacle.o.dhat = 0.05", "obstacle.o.psd = false",      \
                "obstacle.o.mu = 0.4", "obstacle.o.eps_v = 0.01"
 
-static void check_points(const char *const *sets, double t,
-                         const double (*X)[3], const char *const *what,
-                         int n)
+/* Sphere (0.012 and 0.03 m out, along a skew direction), plane (0.0095
+ * m out), box face, edge and corner (0.02, 0.036, 0.03 m out), as shape-frame points relative to the pivot. */
+Test(barrier, analytic_shape_derivatives)
 {
-    cl_obstacle o;
-    cl_pose P;
-    make(&o, sets);
-    cl_obstacle_pose(&o, t, &P);
-    for (int k = 0; k < n; k++) {
-        double x[3];
-        to_world(&P, o.pivot, X[k], x);
-        check_point(&o, t, x, what[k]);
-    }
-    cl_obstacle_free(&o);
-}
-
-Test(barrier, sphere_derivatives)
-{
-    const char *sets[NSET] = {"obstacle.o.shape = sphere",
-                              "obstacle.o.center = 1, 2, 3",
-                              "obstacle.o.radius = 0.5", MOVING, NULL};
-    /* 0.01 m and 0.03 m outside, along a skew direction */
-    const double X[2][3] = {{0.2448, 0.306, 0.3264}, {0.2544, 0.318, 0.3392}};
-    const char *what[2] = {"sphere, near", "sphere, far"};
-    check_points(sets, 0.7, X, what, 2);
-}
-
-Test(barrier, plane_derivatives)
-{
-    const char *sets[NSET] = {"obstacle.o.shape = plane",
-                              "obstacle.o.point = 0, -1, 0",
-                              "obstacle.o.normal = 0.2, 1, 0.1", MOVING, NULL};
-    const double X[1][3] = {{0.1, 0.02, 0.1}};
-    const char *what[1] = {"plane"};
-    check_points(sets, 1.3, X, what, 1);
-}
-
-Test(barrier, box_derivatives)
-{
-    const char *sets[NSET] = {"obstacle.o.shape = box",
-                              "obstacle.o.center = 0, 0, 0",
-                              "obstacle.o.size = 2, 1, 1", MOVING, NULL};
-    const double X[3][3] = {{0.3, 0.53, 0.1}, {1.02, 0.52, 0.0},
-                            {1.02, 0.52, 0.53}};
-    const char *what[3] = {"box face", "box edge", "box corner"};
-    check_points(sets, 0.4, X, what, 3);
+    static const struct {
+        const char *sets[NSET];
+        double t, X[3][3];
+        int n;
+        const char *what[3];
+    } c[] = {
+        {{"obstacle.o.shape = sphere", "obstacle.o.center = -1, 0.5, 2",
+          "obstacle.o.radius = 0.4", MOVING},
+         0.6, {{0.2472, 0.0, 0.3296}, {0.258, 0.0, 0.344}}, 2,
+         {"sphere, near", "sphere, far"}},
+        {{"obstacle.o.shape = plane", "obstacle.o.point = 0, 0.5, 0",
+          "obstacle.o.normal = -0.1, 1, 0.3", MOVING},
+         1.1, {{0.2, 0.06, -0.1}}, 1, {"plane"}},
+        {{"obstacle.o.shape = box", "obstacle.o.size = 1, 2, 1.5", MOVING},
+         0.3, {{0.1, 1.02, 0.2}, {0.52, 1.03, 0.1}, {0.51, 1.02, 0.77}}, 3,
+         {"box face", "box edge", "box corner"}},
+    };
+    for (size_t k = 0; k < sizeof c / sizeof c[0]; k++)
+        oc_check_points(c[k].sets, c[k].t, (const double (*)[3])c[k].X,
+                        c[k].what, c[k].n, check_point);
 }
 
 Test(barrier, mesh_derivatives)
 {
-    char dir[512], obj[600], file[700];
-    tmp_mkdtemp(dir, sizeof dir, "barrier");
-    snprintf(obj, sizeof obj, "%s/cube.obj", dir);
-    tmp_put(obj, "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n"
-                 "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
-                 "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 3 4 8 7\n"
-                 "f 2 3 7 6\nf 1 5 8 4\n");
-    snprintf(file, sizeof file, "obstacle.o.file = %s", obj);
-    const char *sets[NSET] = {"obstacle.o.shape = mesh", file, MOVING, NULL};
-    const double X[3][3] = {{0.2, 0.3, 1.03}, {1.02, 0.3, 1.03},
-                            {1.02, 1.03, 1.03}};
+    char dir[512], file[800];
+    oc_cube(dir, sizeof dir, file, sizeof file);
+    const char *sets[NSET] = {"obstacle.o.shape = mesh", file, OC_CUBE_SCALE,
+                              MOVING, NULL};
+    /* 0.02 m from the face z = 1, 0.032 m from the edge x = -1, z = 1,
+     * 0.041 m from the vertex (-1, -1, 1) */
+    const double X[3][3] = {{-0.3, 0.4, 1.02}, {-1.03, 0.2, 1.01},
+                            {-1.02, -1.03, 1.02}};
     const char *what[3] = {"mesh face", "mesh edge", "mesh vertex"};
-    check_points(sets, 0.9, X, what, 3);
+    oc_check_points(sets, 1.1, X, what, 3, check_point);
     tmp_rm_rf(dir);
 }
 
@@ -296,7 +250,7 @@ Test(barrier, psd_projection)
                             NULL};
     cl_obstacle o;
     cl_barrier_out a;
-    make(&o, sphere);
+    oc_make(&o, sphere);
     double x[3] = {0.3, 0.4, 0.12 * sqrt(3.0)}; /* |x| = 0.52: d = 0.02 */
     cr_assert(barrier_at(&o, 0.0, x, true, &a));
     double H[9], b, db, d2b, n[3], rho = sqrt(0.25 + 0.0432);
@@ -316,7 +270,7 @@ Test(barrier, psd_projection)
                            "obstacle.o.kappa = 100", "obstacle.o.dhat = 0.05",
                            NULL};
     cl_barrier_out u;
-    make(&o, plane);
+    oc_make(&o, plane);
     double y[3] = {0.1, 0.02, -0.3};
     cr_assert(barrier_at(&o, 0.0, y, true, &a));
     o.resp.psd = false;

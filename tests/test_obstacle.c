@@ -10,7 +10,7 @@
 #include <string.h>
 
 #include "contact/obstacle.h"
-#include "tmpdir.h"
+#include "obstaclecase.h"
 
 #define NSET 12
 
@@ -141,32 +141,34 @@ Test(obstacle, queries_follow_the_moved_and_turned_shape)
 
 Test(obstacle, names_shapes_and_responses_are_checked)
 {
-    cl_obstacle o;
-    cl_error err = {0};
-    const char *bad_name[NSET] = {"obstacle.b@d.shape = sphere", NULL};
-    cr_expect_eq(try_make(&o, "obstacle.b@d", bad_name, &err), CL_EINVAL);
-    cr_expect(strstr(err.msg, "name"), "%s", err.msg);
-    const char *no_shape[NSET] = {"obstacle.o.response = project", NULL};
-    cr_expect_eq(try_make(&o, "obstacle.o", no_shape, &err), CL_EINVAL);
-    cr_expect(strstr(err.msg, "needs a shape"), "%s", err.msg);
-    const char *no_resp[NSET] = {"obstacle.o.shape = sphere",
-                                 "obstacle.o.radius = 1", NULL};
-    cr_expect_eq(try_make(&o, "obstacle.o", no_resp, &err), CL_EINVAL);
-    cr_expect(strstr(err.msg, "needs a response"), "%s", err.msg);
-    cl_obstacle_free(&o);
-    const char *no_k[NSET] = {"obstacle.o.shape = sphere",
-                              "obstacle.o.radius = 1",
-                              "obstacle.o.response = penalty", NULL};
-    cr_expect_eq(try_make(&o, "obstacle.o", no_k, &err), CL_EINVAL);
-    cr_expect(strstr(err.msg, "stiffness k"), "%s", err.msg);
-    cl_obstacle_free(&o);
-    const char *bad_omega[NSET] = {"obstacle.o.shape = sphere",
-                                   "obstacle.o.radius = 1",
-                                   "obstacle.o.omega = 1, 2",
-                                   "obstacle.o.response = project", NULL};
-    cr_expect_eq(try_make(&o, "obstacle.o", bad_omega, &err), CL_EINVAL);
-    cr_expect(strstr(err.msg, "omega"), "%s", err.msg);
-    cl_obstacle_free(&o);
+    static const struct {
+        const char *sec, *sets[NSET], *what;
+    } bad[] = {
+        {"obstacle.b@d", {"obstacle.b@d.shape = sphere"}, "name"},
+        {"obstacle.o", {"obstacle.o.response = project"}, "needs a shape"},
+        {"obstacle.o", {"obstacle.o.shape = sphere", "obstacle.o.radius = 1"},
+         "needs a response"},
+        {"obstacle.o", {"obstacle.o.shape = sphere", "obstacle.o.radius = 1",
+                        "obstacle.o.response = penalty"}, "stiffness k"},
+        {"obstacle.o", {"obstacle.o.shape = sphere", "obstacle.o.radius = 1",
+                        "obstacle.o.omega = 1, 2",
+                        "obstacle.o.response = project"}, "omega"},
+        {"obstacle.o", {"obstacle.o.shape = sphere", "obstacle.o.radius = 1",
+                        "obstacle.o.response = barrier",
+                        "obstacle.o.dhat = 0.01"}, "kappa"},
+        {"obstacle.o", {"obstacle.o.shape = sphere", "obstacle.o.radius = 1",
+                        "obstacle.o.response = barrier",
+                        "obstacle.o.kappa = 1", "obstacle.o.dhat = -1"},
+         "dhat"},
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        cl_obstacle o;
+        cl_error err = {0};
+        cr_expect_eq(try_make(&o, bad[k].sec, bad[k].sets, &err), CL_EINVAL,
+                     "%s", bad[k].what);
+        cr_expect(strstr(err.msg, bad[k].what), "%s", err.msg);
+        cl_obstacle_free(&o);
+    }
 }
 
 /* A random walk of x about obstacle o (20000 steps of up to 1 cm,
@@ -274,21 +276,16 @@ Test(obstacle, time_of_impact_plane_sphere_box)
  * 1 m in 1 s reaching a particle at rest 0.5 m above it at t = 0.5 s. */
 Test(obstacle, time_of_impact_mesh_and_moving)
 {
-    char dir[512], obj[600], file[700];
-    tmp_mkdtemp(dir, sizeof dir, "obstacle");
-    snprintf(obj, sizeof obj, "%s/cube.obj", dir);
-    tmp_put(obj, "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n"
-                 "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
-                 "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 3 4 8 7\n"
-                 "f 2 3 7 6\nf 1 5 8 4\n");
-    snprintf(file, sizeof file, "obstacle.o.file = %s", obj);
+    char dir[512], file[800];
+    oc_cube(dir, sizeof dir, file, sizeof file);
     cl_obstacle o;
-    const char *mesh[NSET] = {"obstacle.o.shape = mesh", file, BARRIER, NULL};
+    const char *mesh[NSET] = {"obstacle.o.shape = mesh", file, OC_CUBE_SCALE,
+                              BARRIER, NULL};
     make(&o, mesh);
     double a0[3] = {0.2, 3.0, 0.1}, a1[3] = {0.2, -1.0, 0.1};
     cr_expect_float_eq(toi(&o, a0, a1), 0.5, 1e-15);
-    /* through the diagonal x = -z of the top quad's two triangles */
-    double b0[3] = {0.2, 2.0, -0.2}, b1[3] = {0.2, 0.0, -0.2};
+    /* through the diagonal x = z of the top quad's two triangles */
+    double b0[3] = {0.2, 2.0, 0.2}, b1[3] = {0.2, 0.0, 0.2};
     cr_expect_float_eq(toi(&o, b0, b1), 0.5, 1e-12);
     double c0[3] = {1.5, 1.5, 0.0}, c1[3] = {1.5, -1.5, 0.0};
     cr_expect_eq(toi(&o, c0, c1), INFINITY, "passes beside");
@@ -304,26 +301,5 @@ Test(obstacle, time_of_impact_mesh_and_moving)
     cl_obstacle_pose(&o, 1.0, &P1);
     double x[3] = {0.3, 0.5, -0.2};
     cr_expect_float_eq(cl_obstacle_toi(&o, &P0, x, &P1, x), 0.5, 1e-15);
-    cl_obstacle_free(&o);
-}
-
-Test(obstacle, barrier_needs_its_keys)
-{
-    cl_obstacle o;
-    cl_error err = {0};
-    const char *no_kappa[NSET] = {"obstacle.o.shape = sphere",
-                                  "obstacle.o.radius = 1",
-                                  "obstacle.o.response = barrier",
-                                  "obstacle.o.dhat = 0.01", NULL};
-    cr_expect_eq(try_make(&o, "obstacle.o", no_kappa, &err), CL_EINVAL);
-    cr_expect(strstr(err.msg, "kappa"), "%s", err.msg);
-    cl_obstacle_free(&o);
-    const char *bad_dhat[NSET] = {"obstacle.o.shape = sphere",
-                                  "obstacle.o.radius = 1",
-                                  "obstacle.o.response = barrier",
-                                  "obstacle.o.kappa = 1",
-                                  "obstacle.o.dhat = -1", NULL};
-    cr_expect_eq(try_make(&o, "obstacle.o", bad_dhat, &err), CL_EINVAL);
-    cr_expect(strstr(err.msg, "dhat"), "%s", err.msg);
     cl_obstacle_free(&o);
 }
