@@ -6,7 +6,8 @@
  *                it is written, so a failed run keeps its rows; NA in a
  *                column that does not apply, see simulate.c); with
  *                obstacles also contacts, max_penetration, contact_force,
- *                friction_power (contact/contact.h)
+ *                friction_power, and with barrier obstacles min_distance
+ *                (contact/contact.h)
  *   frame_NNNNN.vtk / .obj   cloth frames (ParaView / Blender); with
  *                tearing, without the triangles that have a torn edge
  *   obstacles_NNNNN.vtk / .obj   the obstacles at the frame times

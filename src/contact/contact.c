@@ -400,6 +400,8 @@ void cl_contact_measure(cl_contact *c, double t, const double *x,
         f->force += c->proj_force;
         f->friction_power += c->proj_friction;
     }
+    f->min_distance = c->barriers ? cl_contact_min_distance(c, t, x)
+                                  : INFINITY;
 }
 
 double cl_contact_penetration(cl_contact *c, double t, const double *x)

@@ -31,6 +31,9 @@ typedef struct {
                              * impulses of the last projection divided by
                              * the time since the one before */
     double friction_power;  /* friction's power (W, <= 0), likewise */
+    double min_distance;    /* least signed distance of a free particle to
+                             * a barrier obstacle (m; INFINITY without
+                             * barriers) */
 } cl_contact_figures;
 
 bool cl_contact_projects(const cl_contact *c);
