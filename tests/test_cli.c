@@ -1442,7 +1442,7 @@ Test(cli, bad_obstacle_parameters_are_refused)
         {"drape-sphere", "obstacle.ball.shape=cone",
          {"shape", "cone", "sphere", "plane", "box", "mesh"}},
         {"drape-sphere", "obstacle.ball.response=bounce",
-         {"response", "bounce", "penalty", "project"}},
+         {"response", "bounce", "penalty", "project", "barrier"}},
         {"drape-sphere", "obstacle.ball.path=0: 1, 2",
          {"[obstacle.ball] path", "keyframes"}},
         {"drape-sphere", "obstacle.ball.path=1: 0, 0, 0; 1: 1, 0, 0",
@@ -1450,6 +1450,10 @@ Test(cli, bad_obstacle_parameters_are_refused)
         {"drape-sphere", "obstacle.ball.k=0", {"[obstacle.ball] k", "\"0\""}},
         {"drape-box", "obstacle.table.size=1, 0, 1",
          {"[obstacle.table] size", "> 0"}},
+        {"drape-sphere-barrier", "obstacle.ball.kappa=0",
+         {"[obstacle.ball] kappa", "\"0\""}},
+        {"drape-box-barrier", "obstacle.table.dhat=-1",
+         {"[obstacle.table] dhat", "\"-1\""}},
     };
     for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
         const char *const *w = bad[k].want;

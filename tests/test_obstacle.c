@@ -1,13 +1,16 @@
 /* Obstacles (contact/obstacle.h): the scripted path (keyframes held before
  * the first and after the last, linear in between), the rotation about
  * the pivot, the exact velocity field against the motion of a shape point,
- * queries on a moved and turned shape, names and refusals. */
+ * queries on a moved and turned shape, names and refusals, and the times
+ * of impact of straight moves (continuous collision detection) against
+ * every shape, static and moving. */
 #include <criterion/criterion.h>
 
 #include <math.h>
 #include <string.h>
 
 #include "contact/obstacle.h"
+#include "obstaclecase.h"
 
 #define NSET 12
 
@@ -138,32 +141,34 @@ Test(obstacle, queries_follow_the_moved_and_turned_shape)
 
 Test(obstacle, names_shapes_and_responses_are_checked)
 {
-    cl_obstacle o;
-    cl_error err = {0};
-    const char *bad_name[NSET] = {"obstacle.b@d.shape = sphere", NULL};
-    cr_expect_eq(try_make(&o, "obstacle.b@d", bad_name, &err), CL_EINVAL);
-    cr_expect(strstr(err.msg, "name"), "%s", err.msg);
-    const char *no_shape[NSET] = {"obstacle.o.response = project", NULL};
-    cr_expect_eq(try_make(&o, "obstacle.o", no_shape, &err), CL_EINVAL);
-    cr_expect(strstr(err.msg, "needs a shape"), "%s", err.msg);
-    const char *no_resp[NSET] = {"obstacle.o.shape = sphere",
-                                 "obstacle.o.radius = 1", NULL};
-    cr_expect_eq(try_make(&o, "obstacle.o", no_resp, &err), CL_EINVAL);
-    cr_expect(strstr(err.msg, "needs a response"), "%s", err.msg);
-    cl_obstacle_free(&o);
-    const char *no_k[NSET] = {"obstacle.o.shape = sphere",
-                              "obstacle.o.radius = 1",
-                              "obstacle.o.response = penalty", NULL};
-    cr_expect_eq(try_make(&o, "obstacle.o", no_k, &err), CL_EINVAL);
-    cr_expect(strstr(err.msg, "stiffness k"), "%s", err.msg);
-    cl_obstacle_free(&o);
-    const char *bad_omega[NSET] = {"obstacle.o.shape = sphere",
-                                   "obstacle.o.radius = 1",
-                                   "obstacle.o.omega = 1, 2",
-                                   "obstacle.o.response = project", NULL};
-    cr_expect_eq(try_make(&o, "obstacle.o", bad_omega, &err), CL_EINVAL);
-    cr_expect(strstr(err.msg, "omega"), "%s", err.msg);
-    cl_obstacle_free(&o);
+    static const struct {
+        const char *sec, *sets[NSET], *what;
+    } bad[] = {
+        {"obstacle.b@d", {"obstacle.b@d.shape = sphere"}, "name"},
+        {"obstacle.o", {"obstacle.o.response = project"}, "needs a shape"},
+        {"obstacle.o", {"obstacle.o.shape = sphere", "obstacle.o.radius = 1"},
+         "needs a response"},
+        {"obstacle.o", {"obstacle.o.shape = sphere", "obstacle.o.radius = 1",
+                        "obstacle.o.response = penalty"}, "stiffness k"},
+        {"obstacle.o", {"obstacle.o.shape = sphere", "obstacle.o.radius = 1",
+                        "obstacle.o.omega = 1, 2",
+                        "obstacle.o.response = project"}, "omega"},
+        {"obstacle.o", {"obstacle.o.shape = sphere", "obstacle.o.radius = 1",
+                        "obstacle.o.response = barrier",
+                        "obstacle.o.dhat = 0.01"}, "kappa"},
+        {"obstacle.o", {"obstacle.o.shape = sphere", "obstacle.o.radius = 1",
+                        "obstacle.o.response = barrier",
+                        "obstacle.o.kappa = 1", "obstacle.o.dhat = -1"},
+         "dhat"},
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        cl_obstacle o;
+        cl_error err = {0};
+        cr_expect_eq(try_make(&o, bad[k].sec, bad[k].sets, &err), CL_EINVAL,
+                     "%s", bad[k].what);
+        cr_expect(strstr(err.msg, bad[k].what), "%s", err.msg);
+        cl_obstacle_free(&o);
+    }
 }
 
 /* A random walk of x about obstacle o (20000 steps of up to 1 cm,
@@ -273,5 +278,83 @@ Test(obstacle, halfspace_screen_lists_exactly_the_near_points)
     cr_assert_eq(listed + 1, nnear);
     cr_assert_eq(near[nnear - 1], NP - 1);
     cr_assert(closer > NP / 4 && closer < NP - NP / 4, "%zu", closer);
+    cl_obstacle_free(&o);
+}
+
+/* The time of impact of the move x0 -> x1 (obstacle o static at t = 0). */
+static double toi(const cl_obstacle *o, const double x0[3],
+                  const double x1[3])
+{
+    cl_pose P;
+    cl_obstacle_pose(o, 0.0, &P);
+    return cl_obstacle_toi(o, &P, x0, &P, x1);
+}
+
+#define BARRIER "obstacle.o.response = barrier", "obstacle.o.kappa = 1", \
+                "obstacle.o.dhat = 0.01"
+
+Test(obstacle, time_of_impact_plane_sphere_box)
+{
+    cl_obstacle o;
+    const char *plane[NSET] = {"obstacle.o.shape = plane",
+                               "obstacle.o.normal = 0, 1, 0", BARRIER, NULL};
+    make(&o, plane);
+    double a0[3] = {0.0, 0.3, 0.0}, a1[3] = {0.2, -0.1, 0.1};
+    cr_expect_float_eq(toi(&o, a0, a1), 0.75, 1e-15); /* 0.3 / 0.4 */
+    double a2[3] = {1.0, 0.05, 0.0};
+    cr_expect_eq(toi(&o, a0, a2), INFINITY, "stays above");
+    cl_obstacle_free(&o);
+    const char *sphere[NSET] = {"obstacle.o.shape = sphere",
+                                "obstacle.o.radius = 0.5", BARRIER, NULL};
+    make(&o, sphere);
+    double b0[3] = {-1.0, 0.3, 0.0}, b1[3] = {1.0, 0.3, 0.0};
+    cr_expect_float_eq(toi(&o, b0, b1), 0.3, 1e-15); /* x = -0.4 */
+    double c0[3] = {-1.0, 0.6, 0.0}, c1[3] = {1.0, 0.6, 0.0};
+    cr_expect_eq(toi(&o, c0, c1), INFINITY, "passes above");
+    double d1[3] = {-0.7, 0.3, 0.0};
+    cr_expect_eq(toi(&o, b0, d1), INFINITY, "stops short");
+    cl_obstacle_free(&o);
+    const char *box[NSET] = {"obstacle.o.shape = box",
+                             "obstacle.o.size = 2, 1, 1", BARRIER, NULL};
+    make(&o, box);
+    double e0[3] = {0.0, 1.5, 0.2}, e1[3] = {0.0, -0.5, 0.2};
+    cr_expect_float_eq(toi(&o, e0, e1), 0.5, 1e-15); /* the top face */
+    double f0[3] = {1.5, 1.5, 0.0}, f1[3] = {0.5, -0.5, 0.0};
+    cr_expect_float_eq(toi(&o, f0, f1), 0.5, 1e-15); /* the edge x=1,y=.5 */
+    double g0[3] = {1.5, 1.5, 0.0}, g1[3] = {1.5, -1.5, 0.0};
+    cr_expect_eq(toi(&o, g0, g1), INFINITY, "passes beside");
+    cl_obstacle_free(&o);
+}
+
+/* A cube mesh: a face hit, a crossing through an edge shared by two
+ * triangles (found, not slipped through), a miss; and a plane moving up
+ * 1 m in 1 s reaching a particle at rest 0.5 m above it at t = 0.5 s. */
+Test(obstacle, time_of_impact_mesh_and_moving)
+{
+    char dir[512], file[800];
+    oc_cube(dir, sizeof dir, file, sizeof file);
+    cl_obstacle o;
+    const char *mesh[NSET] = {"obstacle.o.shape = mesh", file, OC_CUBE_SCALE,
+                              BARRIER, NULL};
+    make(&o, mesh);
+    double a0[3] = {0.2, 3.0, 0.1}, a1[3] = {0.2, -1.0, 0.1};
+    cr_expect_float_eq(toi(&o, a0, a1), 0.5, 1e-15);
+    /* through the diagonal x = z of the top quad's two triangles */
+    double b0[3] = {0.2, 2.0, 0.2}, b1[3] = {0.2, 0.0, 0.2};
+    cr_expect_float_eq(toi(&o, b0, b1), 0.5, 1e-12);
+    double c0[3] = {1.5, 1.5, 0.0}, c1[3] = {1.5, -1.5, 0.0};
+    cr_expect_eq(toi(&o, c0, c1), INFINITY, "passes beside");
+    cl_obstacle_free(&o);
+    tmp_rm_rf(dir);
+    const char *moving[NSET] = {"obstacle.o.shape = plane",
+                                "obstacle.o.normal = 0, 1, 0",
+                                "obstacle.o.path = 0: 0, 0, 0; 1: 0, 1, 0",
+                                BARRIER, NULL};
+    make(&o, moving);
+    cl_pose P0, P1;
+    cl_obstacle_pose(&o, 0.0, &P0);
+    cl_obstacle_pose(&o, 1.0, &P1);
+    double x[3] = {0.3, 0.5, -0.2};
+    cr_expect_float_eq(cl_obstacle_toi(&o, &P0, x, &P1, x), 0.5, 1e-15);
     cl_obstacle_free(&o);
 }

@@ -9,32 +9,9 @@
 #include <stdio.h>
 
 #include "contact/penalty.h"
-#include "tmpdir.h"
+#include "obstaclecase.h"
 
 #define NSET 16
-
-/* An obstacle named "o" from assignments (NULL-terminated). */
-static void make(cl_obstacle *o, const char *const *sets)
-{
-    cl_error err = {0};
-    cl_config *cfg = cl_config_alloc();
-    cr_assert_not_null(cfg);
-    for (size_t k = 0; sets[k]; k++)
-        cr_assert_eq(cl_config_set(cfg, sets[k], &err), CL_OK, "%s", err.msg);
-    cr_assert_eq(cl_obstacle_create(cfg, "obstacle.o", o, &err), CL_OK, "%s",
-                 err.msg);
-    cl_config_free(cfg);
-}
-
-/* The world point of the shape-frame point X (relative to the pivot q):
- * x = q + R X + s. */
-static void to_world(const cl_pose *P, const double q[3], const double X[3],
-                     double x[3])
-{
-    for (int i = 0; i < 3; i++)
-        x[i] = q[i] + P->s[i] + P->R[3 * i] * X[0] + P->R[3 * i + 1] * X[1] +
-               P->R[3 * i + 2] * X[2];
-}
 
 static bool force_at(const cl_obstacle *o, double t, const double x[3],
                      const double v[3], bool jac, cl_penalty_out *out)
@@ -92,22 +69,20 @@ static void check_jacobians(const cl_obstacle *o, double t, const double x[3],
 
 static const double vel[3] = {0.31, -0.52, 0.17};
 
-/* The Jacobians at shape-frame points X[k] (relative to the pivot) of the
- * obstacle made from `sets`, at time t. */
+/* The Jacobians at x with the velocity vel. */
+static void check_at(const cl_obstacle *o, double t, const double x[3],
+                     const char *what)
+{
+    check_jacobians(o, t, x, vel, what);
+}
+
+/* The Jacobians at the shape-frame points X[k] of the obstacle made from
+ * `sets`, at time t. */
 static void check_points(const char *const *sets, double t,
                          const double (*X)[3], const char *const *what,
                          int n)
 {
-    cl_obstacle o;
-    cl_pose P;
-    make(&o, sets);
-    cl_obstacle_pose(&o, t, &P);
-    for (int k = 0; k < n; k++) {
-        double x[3];
-        to_world(&P, o.pivot, X[k], x);
-        check_jacobians(&o, t, x, vel, what[k]);
-    }
-    cl_obstacle_free(&o);
+    oc_check_points(sets, t, X, what, n, check_at);
 }
 
 Test(penalty, sphere_jacobians)
@@ -145,22 +120,12 @@ Test(penalty, box_jacobians)
     check_points(sets, 0.4, X, what, 4);
 }
 
-static void write_cube(const char *path)
-{
-    tmp_put(path, "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n"
-                  "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
-                  "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 3 4 8 7\n"
-                  "f 2 3 7 6\nf 1 5 8 4\n");
-}
-
 Test(penalty, mesh_jacobians)
 {
-    char dir[512], obj[600], file[700];
-    tmp_mkdtemp(dir, sizeof dir, "penalty");
-    snprintf(obj, sizeof obj, "%s/cube.obj", dir);
-    write_cube(obj);
-    snprintf(file, sizeof file, "obstacle.o.file = %s", obj);
-    const char *sets[NSET] = {"obstacle.o.shape = mesh", file, MOVING, NULL};
+    char dir[512], file[800];
+    oc_cube(dir, sizeof dir, file, sizeof file);
+    const char *sets[NSET] = {"obstacle.o.shape = mesh", file, OC_CUBE_SCALE,
+                              MOVING, NULL};
     const double X[3][3] = {{0.2, 0.3, 1.03}, {1.02, 0.3, 1.03},
                             {1.02, 1.03, 1.03}};
     const char *what[3] = {"mesh face", "mesh edge", "mesh vertex"};
@@ -180,7 +145,7 @@ Test(penalty, energy_and_law)
                               "obstacle.o.k = 500", "obstacle.o.eps = 0.1",
                               "obstacle.o.mu = 0.5",
                               "obstacle.o.v_smooth = 1e-6", NULL};
-    make(&o, sets);
+    oc_make(&o, sets);
     double x[3] = {0.0, 1.04, 0.0}, v[3] = {2.0, 0.0, 0.0};
     cl_penalty_out a, p, m;
     cr_assert(force_at(&o, 0.0, x, v, false, &a));

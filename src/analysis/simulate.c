@@ -88,14 +88,14 @@ static long tick_of(long k, long count, long nticks)
 
 /* ---- outputs ---------------------------------------------------------- */
 
-/* The series' columns: t, kinetic, the potential terms, and at most 11
+/* The series' columns: t, kinetic, the potential terms, and at most 14
  * more (the header of simulate.h). */
 static cl_status open_series(sim *s, cl_error *err)
 {
     cl_energy e;
     size_t n = 0;
     s->sys->energy(s->sys->data, 0.0, s->x, s->v, &e);
-    const char **names = malloc((e.nterm + 13) * sizeof *names);
+    const char **names = malloc((e.nterm + 14) * sizeof *names);
     if (!names)
         return cl_error_set(err, CL_ENOMEM, "out of memory (series names)");
     names[n++] = "t";
@@ -115,6 +115,8 @@ static cl_status open_series(sim *s, cl_error *err)
         names[n++] = "max_penetration";
         names[n++] = "contact_force";
         names[n++] = "friction_power";
+        if (cl_contact_barriers(cl_model_contact(s->m)))
+            names[n++] = "min_distance";
     }
     s->row = malloc(n * sizeof *s->row);
     char path[4096];
@@ -185,6 +187,8 @@ static cl_status sample(sim *s, double t, cl_sim_result *res, cl_error *err)
         s->row[n++] = cf.max_penetration;
         s->row[n++] = cf.force;
         s->row[n++] = cf.friction_power;
+        if (cl_contact_barriers(cl_model_contact(s->m)))
+            s->row[n++] = cf.min_distance;
     }
     if ((rc = cl_series_row(s->series, s->row, err)))
         return rc;
@@ -274,7 +278,7 @@ static cl_status sim_alloc(sim *s, cl_error *err)
     if (cl_model_initial_state(s->m, s->x, s->v))
         return cl_error_set(err, CL_ENOMEM, "out of memory (initial state)");
     cl_status rc = cl_pairs_neighbours(s->c, &s->near, err);
-    s->tearing = s->sys->step_done != NULL || cl_model_broken(s->m) > 0;
+    s->tearing = cl_model_tears(s->m) || cl_model_broken(s->m) > 0;
     s->offplane = cl_offplane_applies(s->c);
     if (rc || !s->tearing)
         return rc;
@@ -375,6 +379,7 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
             rc = integrate(&s, type, state, &sch, res, err);
     }
     cl_model_contact_worst(m, &res->worst_penetration, &res->worst_t);
+    cl_model_contact_closest(m, &res->min_distance, &res->min_distance_t);
     if (state) {
         double wall = res->stats.wall, cpu = res->stats.cpu;
         type->stats(state, &res->stats);

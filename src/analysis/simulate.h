@@ -6,7 +6,8 @@
  *                it is written, so a failed run keeps its rows; NA in a
  *                column that does not apply, see simulate.c); with
  *                obstacles also contacts, max_penetration, contact_force,
- *                friction_power (contact/contact.h)
+ *                friction_power, and with barrier obstacles min_distance
+ *                (contact/contact.h)
  *   frame_NNNNN.vtk / .obj   cloth frames (ParaView / Blender); with
  *                tearing, without the triangles that have a torn edge
  *   obstacles_NNNNN.vtk / .obj   the obstacles at the frame times
@@ -43,6 +44,9 @@ typedef struct {
     long frames;         /* frames written */
     double worst_penetration; /* deepest into an obstacle (m; contact) */
     double worst_t;      /* ... and when */
+    double min_distance; /* least distance to a barrier obstacle (m;
+                          * INFINITY without barriers) */
+    double min_distance_t; /* ... and when */
     double *xfinal;      /* full-particle positions at t_reached (3*np),
                           * followed by the term energies of e0 and e1 in
                           * the same block; owned by the caller after the

@@ -10,7 +10,7 @@
 
 cl_status cl_trial_repeatable(cl_model *m, cl_error *err)
 {
-    if (cl_model_system(m)->step_done)
+    if (cl_model_tears(m))
         return cl_error_set(err, CL_EUNSUPPORTED, "a model that tears ([tear] "
                             "cut) changes for good during a run, so runs "
                             "cannot be repeated from its initial state");

@@ -71,6 +71,9 @@ static void print_summary(const char *problem, const run_setup *r,
     if (cl_model_contact(m))
         printf("contact      worst penetration %.6g m at t = %.6g s\n",
                res->worst_penetration, res->worst_t);
+    if (cl_model_contact(m) && cl_contact_barriers(cl_model_contact(m)))
+        printf("barrier      min distance %.6g m at t = %.6g s\n",
+               res->min_distance, res->min_distance_t);
     cl_stats_print(&res->stats, stdout, true);
     printf("output       %s (series.csv, %ld frames, final.csv, stats.csv)\n",
            r->so.outdir, res->frames);

@@ -347,6 +347,57 @@ bool cl_bvh_nearest_cached(const cl_bvh *b, const double x[3],
     return false;
 }
 
+/* The fraction at which x0 + a D enters the node's box widened by pad
+ * (0 if x0 is inside), INFINITY if the segment misses it (the slab
+ * method). */
+static double box_entry(const cl_bvh_node *nd, const double x0[3],
+                        const double D[3], double pad)
+{
+    double enter = 0.0, leave = 1.0;
+    for (int i = 0; i < 3; i++) {
+        double lo = nd->lo[i] - pad, hi = nd->hi[i] + pad;
+        if (D[i] == 0.0) {
+            if (x0[i] < lo || x0[i] > hi)
+                return INFINITY;
+            continue;
+        }
+        double a0 = (lo - x0[i]) / D[i], a1 = (hi - x0[i]) / D[i];
+        enter = fmax(enter, fmin(a0, a1));
+        leave = fmin(leave, fmax(a0, a1));
+    }
+    return enter <= leave ? enter : INFINITY;
+}
+
+double cl_bvh_segment(const cl_bvh *b, const double x0[3],
+                      const double x1[3])
+{
+    double D[3], best = INFINITY;
+    cl_v3_sub(x1, x0, D);
+    double pad = 1e-9 * cl_v3_norm(D);
+    pending stack[STACK];
+    int top = 0;
+    stack[top++] = (pending){0, box_entry(&b->node[0], x0, D, pad)};
+    while (top > 0) {
+        pending e = stack[--top];
+        const cl_bvh_node *nd = &b->node[e.node];
+        if (e.d2 == INFINITY || e.d2 > best) /* d2: the entry fraction */
+            continue;
+        for (int i = 0; i < nd->count; i++) {
+            const int *t = b->tri[b->order[nd->first + i]];
+            best = fmin(best, cl_tri_segment(x0, D, b->vert + 3 * t[0],
+                                             b->vert + 3 * t[1],
+                                             b->vert + 3 * t[2]));
+        }
+        if (nd->count)
+            continue;
+        pending l = {e.node + 1, box_entry(&b->node[e.node + 1], x0, D, pad)};
+        pending r = {nd->first, box_entry(&b->node[nd->first], x0, D, pad)};
+        stack[top++] = l.d2 <= r.d2 ? r : l;   /* the farther one first */
+        stack[top++] = l.d2 <= r.d2 ? l : r;
+    }
+    return best;
+}
+
 double cl_bvh_box_distance(const cl_bvh *b, const double x[3])
 {
     return sqrt(box_dist2(&b->node[0], x));

@@ -99,6 +99,14 @@ bool cl_bvh_nearest_cached(const cl_bvh *b, const double x[3],
  * bound of the distance to any of them. */
 double cl_bvh_box_distance(const cl_bvh *b, const double x[3]);
 
+/* The least fraction a in [0, 1] at which the segment from x0 to x1
+ * crosses a triangle (cl_tri_segment), INFINITY if none: a walk of the
+ * boxes the segment meets (the slab test, boxes widened by 1e-9 of the
+ * segment's length), the nearer child first, skipping boxes entered after
+ * the best crossing found so far. */
+double cl_bvh_segment(const cl_bvh *b, const double x0[3],
+                      const double x1[3]);
+
 /* The same answer by trying every triangle: the reference of the tests and
  * of the benchmark. */
 void cl_bvh_nearest_brute(const cl_bvh *b, const double x[3],

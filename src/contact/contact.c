@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "contact/barrier.h"
 #include "contact/penalty.h"
 #include "contact/project.h"
 
@@ -22,6 +23,12 @@ struct cl_contact {
     size_t *near;            /* scratch: the particles near one obstacle */
     cl_contact_point *hit;   /* scratch: their contact points */
     bool penalizes, projects;
+    bool barriers;           /* some obstacle has response = barrier */
+    bool infeasible;         /* the last evaluation had a free particle at
+                                d <= 0 of a barrier obstacle */
+    double *lambda;          /* np per obstacle: the lagged normal force
+                                of a barrier's friction (barrier.h) */
+    double (*lag_n)[3];      /* ... and the lagged normal */
     long passes;             /* projection passes */
     long *slot;              /* diagonal block of each particle, or -1 */
     double last_t;           /* time of the last projection */
@@ -50,6 +57,7 @@ void cl_contact_restart(cl_contact *c)
 {
     c->last_t = 0.0;
     c->proj_force = c->proj_friction = 0.0;
+    memset(c->lambda, 0, c->nobs * c->cloth->np * sizeof *c->lambda);
 }
 
 size_t cl_contact_obstacles(const cl_contact *c) { return c->nobs; }
@@ -84,6 +92,8 @@ static void contact_free(void *state)
     free(c->eval_x);
     free(c->eval_pose);
     free(c->eval_worst);
+    free(c->lambda);
+    free(c->lag_n);
     free(c);
 }
 
@@ -125,7 +135,9 @@ static cl_status contact_create(cl_config *cfg, const cl_cloth *cloth,
         !(c->slot = malloc(cloth->np * sizeof *c->slot)) ||
         !(c->eval_x = malloc(3 * cloth->np * sizeof *c->eval_x)) ||
         !(c->eval_pose = calloc(n, sizeof *c->eval_pose)) ||
-        !(c->eval_worst = calloc(n, sizeof *c->eval_worst))) {
+        !(c->eval_worst = calloc(n, sizeof *c->eval_worst)) ||
+        !(c->lambda = calloc(n * cloth->np, sizeof *c->lambda)) ||
+        !(c->lag_n = calloc(n * cloth->np, sizeof *c->lag_n))) {
         contact_free(c);
         return cl_error_set(err, CL_ENOMEM, "out of memory (obstacles)");
     }
@@ -141,6 +153,7 @@ static cl_status contact_create(cl_config *cfg, const cl_cloth *cloth,
         }
         c->penalizes |= o->resp.kind == CL_RESPONSE_PENALTY;
         c->projects |= o->resp.kind == CL_RESPONSE_PROJECT;
+        c->barriers |= o->resp.kind == CL_RESPONSE_BARRIER;
         if (o->resp.kind == CL_RESPONSE_PROJECT && o->resp.iterations >
                                                        c->passes)
             c->passes = o->resp.iterations;
@@ -177,44 +190,107 @@ static void add_block(double *vals, long slot, const double b[9])
         vals[9 * slot + k] += b[k];
 }
 
-/* Penalty forces of every particle that has a block (the free particles;
- * all of them for the full Jacobian of `clothode eval`).  The deepest
- * penetration of a free particle into each penalty obstacle is kept with
- * the positions and the obstacles' poses: every particle inside
- * (d < 0 <= eps) is within the band, so it is among those queried here,
- * and the contact hook of a step that ends at the very state evaluated
- * last (a symplectic Euler step evaluates its forces at its new
- * positions) reads it from there instead of screening the particles
- * again.  The points in the band are all queried first and their penalty
- * laws applied after, so that the laws (square roots and divisions,
- * independent of one another) overlap in the processor instead of each
- * waiting for its own query. */
+/* The particles with a block (the free particles; all of them for the
+ * full Jacobian of `clothode eval`) within obstacle k's reach dmax at
+ * pose P: their indices into c->near and contact points into c->hit, and
+ * their number.  The deepest penetration of a free particle there is kept
+ * in eval_worst[k] (every particle inside, d < 0 <= dmax, is within the
+ * reach, so it is among those queried here).  The points are all queried
+ * first and the laws applied after (by the caller), so that the laws
+ * (square roots and divisions, independent of one another) overlap in the
+ * processor instead of each waiting for its own query. */
+static size_t gather(cl_contact *c, size_t k, const cl_pose *P,
+                     const cl_eval *ev, double dmax)
+{
+    const cl_obstacle *o = &c->obs[k];
+    size_t nnear = cl_obstacle_screen(o, P, ev->x, c->cloth->np, dmax,
+                                      memo_of(c, k, 0), c->near);
+    c->eval_worst[k] = 0.0;
+    size_t nhit = 0;
+    for (size_t i = 0; i < nnear; i++) {
+        size_t p = c->near[i];
+        cl_contact_point *q = &c->hit[nhit];
+        if (c->slot[p] < 0 ||
+            !cl_obstacle_near(o, P, ev->x + 3 * p, dmax, memo_of(c, k, p), q))
+            continue;
+        if (c->cloth->dof[p] >= 0 && -q->d > c->eval_worst[k])
+            c->eval_worst[k] = -q->d;  /* q.d < dmax: a number */
+        c->near[nhit++] = p;
+    }
+    return nhit;
+}
+
+/* Add one particle's force and Jacobian blocks. */
+static void add_particle(cl_contact *c, cl_eval *ev, size_t p,
+                         const double f[3], const double dfdx[9],
+                         const double dfdv[9])
+{
+    for (int i = 0; ev->f && i < 3; i++)
+        ev->f[3 * p + i] += f[i];
+    if (ev->dfdx)
+        add_block(ev->dfdx, c->slot[p], dfdx);
+    if (ev->dfdv)
+        add_block(ev->dfdv, c->slot[p], dfdv);
+}
+
+/* The barrier forces of obstacle k (at pose P) on its nhit gathered
+ * particles, then the lagged friction of every particle with a block and
+ * a lagged normal force; a free particle at d <= 0 makes the state
+ * infeasible (energy +infinity). */
+static void barrier_eval(cl_contact *c, size_t k, const cl_pose *P,
+                         size_t nhit, cl_eval *ev, bool jac, double *energy,
+                         double *power)
+{
+    const cl_obstacle *o = &c->obs[k];
+    const double *lambda = c->lambda + k * c->cloth->np;
+    cl_barrier_out out;
+    for (size_t i = 0; i < nhit; i++) {
+        size_t p = c->near[i];
+        if (!(c->hit[i].d > 0.0) && c->cloth->dof[p] >= 0) {
+            c->infeasible = true;
+            *energy = INFINITY;
+        }
+        if (!cl_barrier_eval(&o->resp, &c->hit[i], jac, &out))
+            continue;
+        add_particle(c, ev, p, out.f, out.dfdx, out.dfdv);
+        *energy += out.energy;
+    }
+    for (size_t p = 0; o->resp.mu > 0.0 && p < c->cloth->np; p++) {
+        double u[3];
+        if (!(lambda[p] > 0.0) || c->slot[p] < 0)
+            continue;
+        cl_obstacle_velocity(o, P, ev->x + 3 * p, u);
+        cl_barrier_friction(&o->resp, c->lag_n[k * c->cloth->np + p],
+                            lambda[p], u, P->W, ev->v + 3 * p, jac, &out);
+        add_particle(c, ev, p, out.f, out.dfdx, out.dfdv);
+        *power += out.power;
+    }
+}
+
+/* Penalty and barrier forces of every particle that has a block.  The
+ * deepest penetration of a free particle into each penalty obstacle is
+ * kept with the positions and the obstacles' poses (gather): the contact
+ * hook of a step that ends at the very state evaluated last (a symplectic
+ * Euler step evaluates its forces at its new positions) reads it from
+ * there instead of screening the particles again. */
 static void contact_eval(void *state, cl_eval *ev)
 {
     cl_contact *c = state;
     bool jac = ev->dfdx || ev->dfdv;
     double energy = 0.0, power = 0.0;
-    for (size_t k = 0; k < c->nobs && c->penalizes; k++) {
+    c->infeasible = false;
+    for (size_t k = 0; k < c->nobs && (c->penalizes || c->barriers); k++) {
         const cl_obstacle *o = &c->obs[k];
         cl_pose *P = &c->eval_pose[k];
-        if (o->resp.kind != CL_RESPONSE_PENALTY)
+        if (o->resp.kind == CL_RESPONSE_PROJECT)
             continue;
         cl_obstacle_pose(o, ev->t, P);
-        size_t nnear = cl_obstacle_screen(o, P, ev->x, c->cloth->np,
-                                          o->resp.eps, memo_of(c, k, 0),
-                                          c->near);
-        c->eval_worst[k] = 0.0;
-        size_t nhit = 0;
-        for (size_t i = 0; i < nnear; i++) {
-            size_t p = c->near[i];
-            cl_contact_point *q = &c->hit[nhit];
-            if (c->slot[p] < 0 ||
-                !cl_obstacle_near(o, P, ev->x + 3 * p, o->resp.eps,
-                                  memo_of(c, k, p), q))
-                continue;
-            if (c->cloth->dof[p] >= 0 && -q->d > c->eval_worst[k])
-                c->eval_worst[k] = -q->d;  /* q.d < eps: a number */
-            c->near[nhit++] = p;
+        bool barrier = o->resp.kind == CL_RESPONSE_BARRIER;
+        size_t nhit = gather(c, k, P, ev,
+                             barrier ? o->resp.dhat : o->resp.eps);
+        if (barrier) {
+            barrier_eval(c, k, P, nhit, ev, jac, &energy, &power);
+            continue;
         }
         for (size_t i = 0; i < nhit; i++) {
             size_t p = c->near[i];
@@ -222,12 +298,7 @@ static void contact_eval(void *state, cl_eval *ev)
             if (!cl_penalty_eval(&o->resp, &c->hit[i], ev->v + 3 * p, jac,
                                  &out))
                 continue;
-            for (int i = 0; ev->f && i < 3; i++)
-                ev->f[3 * p + i] += out.f[i];
-            if (ev->dfdx)
-                add_block(ev->dfdx, c->slot[p], out.dfdx);
-            if (ev->dfdv)
-                add_block(ev->dfdv, c->slot[p], out.dfdv);
+            add_particle(c, ev, p, out.f, out.dfdx, out.dfdv);
             energy += out.energy;
             power += out.power;
         }
@@ -244,8 +315,8 @@ static void contact_eval(void *state, cl_eval *ev)
 
 const cl_term_type cl_contact_term = {
     .name = "contact",
-    .doc = "obstacles [obstacle.NAME]: penalty forces (projection after "
-           "the steps)",
+    .doc = "obstacles [obstacle.NAME]: penalty and barrier forces "
+           "(projection after the steps)",
     .conservative = true,
     .create = contact_create,
     .couplings = contact_couplings,
@@ -259,7 +330,9 @@ const cl_term_type cl_contact_term = {
 /* The distance within which a particle counts as touching. */
 static double reach(const cl_response_params *r)
 {
-    return r->kind == CL_RESPONSE_PENALTY ? r->eps : r->offset + ON_SURFACE;
+    return r->kind == CL_RESPONSE_PENALTY   ? r->eps
+           : r->kind == CL_RESPONSE_BARRIER ? r->dhat
+                                            : r->offset + ON_SURFACE;
 }
 
 /* Every obstacle's pose at t into c->pose. */
@@ -267,6 +340,27 @@ static void place(cl_contact *c, double t)
 {
     for (size_t k = 0; k < c->nobs; k++)
         cl_obstacle_pose(&c->obs[k], t, &c->pose[k]);
+}
+
+/* A barrier's force on particle p (added to fp) and its friction's power
+ * (to f). */
+static void barrier_force(const cl_contact *c, size_t k, size_t p,
+                          const cl_contact_point *q, const double v[3],
+                          double fp[3], cl_contact_figures *f)
+{
+    const cl_obstacle *o = &c->obs[k];
+    size_t at = k * c->cloth->np + p;
+    cl_barrier_out out;
+    if (cl_barrier_eval(&o->resp, q, false, &out))
+        for (int i = 0; i < 3; i++)
+            fp[i] += out.f[i];
+    if (o->resp.mu == 0.0 || !(c->lambda[at] > 0.0))
+        return;
+    cl_barrier_friction(&o->resp, c->lag_n[at], c->lambda[at], q->u, q->W,
+                        v, false, &out);
+    for (int i = 0; i < 3; i++)
+        fp[i] += out.f[i];
+    f->friction_power += out.power;
 }
 
 void cl_contact_measure(cl_contact *c, double t, const double *x,
@@ -289,6 +383,10 @@ void cl_contact_measure(cl_contact *c, double t, const double *x,
                 continue;
             f->max_penetration = fmax(f->max_penetration, -q.d);
             in = true; /* near() answered d < reach */
+            if (o->resp.kind == CL_RESPONSE_BARRIER) {
+                barrier_force(c, k, p, &q, v + 3 * p, fp, f);
+                continue;
+            }
             if (o->resp.kind != CL_RESPONSE_PENALTY ||
                 !cl_penalty_eval(&o->resp, &q, v + 3 * p, false, &out))
                 continue;
@@ -303,6 +401,8 @@ void cl_contact_measure(cl_contact *c, double t, const double *x,
         f->force += c->proj_force;
         f->friction_power += c->proj_friction;
     }
+    f->min_distance = c->barriers ? cl_contact_min_distance(c, t, x)
+                                  : INFINITY;
 }
 
 /* Whether obstacle k stands at pose P where the last evaluation saw it:
@@ -375,4 +475,83 @@ size_t cl_contact_project(cl_contact *c, double t, double *x, double *v)
     c->proj_friction = dt > 0.0 ? tally.friction_energy / dt : 0.0;
     c->last_t = t;
     return tally.moved;
+}
+
+/* ---- barriers ---------------------------------------------------------- */
+
+bool cl_contact_barriers(const cl_contact *c) { return c->barriers; }
+
+bool cl_contact_infeasible(const cl_contact *c) { return c->infeasible; }
+
+bool cl_contact_lags(const cl_contact *c)
+{
+    for (size_t k = 0; k < c->nobs; k++)
+        if (c->obs[k].resp.kind == CL_RESPONSE_BARRIER && c->obs[k].resp.mu > 0)
+            return true;
+    return false;
+}
+
+void cl_contact_lag(cl_contact *c, double t, const double *x)
+{
+    const cl_cloth *cl = c->cloth;
+    place(c, t);
+    for (size_t k = 0; k < c->nobs; k++) {
+        const cl_obstacle *o = &c->obs[k];
+        double *lambda = c->lambda + k * cl->np;
+        if (o->resp.kind != CL_RESPONSE_BARRIER || o->resp.mu == 0.0)
+            continue;
+        memset(lambda, 0, cl->np * sizeof *lambda);
+        size_t nnear = cl_obstacle_screen(o, &c->pose[k], x, cl->np,
+                                          o->resp.dhat, memo_of(c, k, 0),
+                                          c->near);
+        for (size_t i = 0; i < nnear; i++) {
+            size_t p = c->near[i];
+            cl_contact_point q;
+            if (cl->dof[p] < 0 ||
+                !cl_obstacle_near(o, &c->pose[k], x + 3 * p, o->resp.dhat,
+                                  memo_of(c, k, p), &q))
+                continue;
+            lambda[p] = cl_barrier_lambda(&o->resp, q.d);
+            memcpy(c->lag_n[k * cl->np + p], q.n, sizeof q.n);
+        }
+    }
+}
+
+double cl_contact_min_distance(cl_contact *c, double t, const double *x)
+{
+    const cl_cloth *cl = c->cloth;
+    double best = INFINITY;
+    place(c, t);
+    for (size_t k = 0; k < c->nobs; k++) {
+        const cl_obstacle *o = &c->obs[k];
+        if (o->resp.kind != CL_RESPONSE_BARRIER)
+            continue;
+        for (size_t p = 0; p < cl->np; p++) {
+            double d;
+            if (cl->dof[p] >= 0 &&
+                cl_obstacle_depth(o, &c->pose[k], x + 3 * p, best,
+                                  memo_of(c, k, p), &d))
+                best = d;
+        }
+    }
+    return best;
+}
+
+double cl_contact_step_fraction(cl_contact *c, double t0, const double *x0,
+                                double t1, const double *x1)
+{
+    const cl_cloth *cl = c->cloth;
+    double toi = INFINITY;
+    for (size_t k = 0; k < c->nobs; k++) {
+        const cl_obstacle *o = &c->obs[k];
+        cl_pose P0, P1;
+        if (o->resp.kind != CL_RESPONSE_BARRIER)
+            continue;
+        cl_obstacle_pose(o, t0, &P0);
+        cl_obstacle_pose(o, t1, &P1);
+        for (size_t i = 0; i < cl->nfree; i++)
+            toi = fmin(toi, cl_obstacle_toi(o, &P0, x0 + 3 * i, &P1,
+                                            x1 + 3 * i));
+    }
+    return toi <= 1.0 ? CL_BARRIER_SAFETY * toi : 1.0;
 }

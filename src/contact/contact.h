@@ -4,9 +4,10 @@
  *
  * cl_contact_term is a cl_term_type named "contact": its create reads the
  * obstacles (state NULL when there is none), its eval adds the penalty
- * forces of the free particles, their exact df/dx and df/dv into the
- * diagonal blocks, the penalty energy (series column "contact") and the
- * power of the penalty's damping and friction (power_diss).  A model adds
+ * and barrier forces of the free particles, their exact df/dx and df/dv
+ * into the diagonal blocks, the penalty and barrier energy (series column
+ * "contact") and the power of the penalty's damping and friction and of
+ * the barrier's friction (power_diss).  A model adds
  * it after the registry's force terms. */
 #ifndef CL_CONTACT_H
 #define CL_CONTACT_H
@@ -30,6 +31,9 @@ typedef struct {
                              * impulses of the last projection divided by
                              * the time since the one before */
     double friction_power;  /* friction's power (W, <= 0), likewise */
+    double min_distance;    /* least signed distance of a free particle to
+                             * a barrier obstacle (m; INFINITY without
+                             * barriers) */
 } cl_contact_figures;
 
 bool cl_contact_projects(const cl_contact *c);
@@ -38,7 +42,8 @@ bool cl_contact_projects_friction(const cl_contact *c);
 size_t cl_contact_obstacles(const cl_contact *c);
 const cl_obstacle *cl_contact_obstacle(const cl_contact *c, size_t k);
 
-/* Forget the last projection (the start of a run). */
+/* Forget the last projection and the barriers' lagged friction (the
+ * start of a run). */
 void cl_contact_restart(cl_contact *c);
 
 /* The figures at time t for full-particle positions and velocities. */
@@ -52,5 +57,37 @@ double cl_contact_penetration(cl_contact *c, double t, const double *x);
  * projecting obstacle, `iterations` passes (the largest of theirs), in
  * place on full-particle arrays; returns the particles moved. */
 size_t cl_contact_project(cl_contact *c, double t, double *x, double *v);
+
+/* ---- barriers (contact/barrier.h) ---- */
+
+/* Some obstacle has response = barrier. */
+bool cl_contact_barriers(const cl_contact *c);
+
+/* The last evaluation of the term found a free particle at d <= 0 of a
+ * barrier obstacle: the state is infeasible (its barrier energy is
+ * +infinity and its force meaningless). */
+bool cl_contact_infeasible(const cl_contact *c);
+
+/* Some barrier obstacle has friction (mu > 0): its lag changes the force
+ * law after every step (cl_contact_lag). */
+bool cl_contact_lags(const cl_contact *c);
+
+/* Lag the barriers' friction: each free particle's normal force lambda
+ * (barrier.h) at time t and full-particle positions x, kept for the
+ * evaluations that follow (until the next call; 0 before the first). */
+void cl_contact_lag(cl_contact *c, double t, const double *x);
+
+/* The least signed distance of a free particle to a barrier obstacle at
+ * time t (full-particle positions x); INFINITY without barriers. */
+double cl_contact_min_distance(cl_contact *c, double t, const double *x);
+
+/* The filter of a straight move of the free particles (3 * nfree each,
+ * in the order of the cloth's free particles) from x0 at t0 to x1 at t1,
+ * the barrier obstacles moving from their poses at t0 to those at t1:
+ * 1 when no particle reaches a barrier obstacle, else CL_BARRIER_SAFETY
+ * times the least time of impact (cl_obstacle_toi), a fraction in
+ * [0, 1).  x0 must be feasible (every d > 0). */
+double cl_contact_step_fraction(cl_contact *c, double t0, const double *x0,
+                                double t1, const double *x1);
 
 #endif

@@ -118,6 +118,26 @@ static inline bool memo_far_at(const cl_contact_memo *m, double X0,
     return margin > 0.0 && e0 * e0 + e1 * e1 + e2 * e2 <= margin * margin;
 }
 
+/* The obstacle's velocity u = s' + w x r at r = x - q - s (du/dx =
+ * [w]x). */
+static void velocity_at(const cl_obstacle *o, const cl_pose *P,
+                        const double r[3], double u[3])
+{
+    const double *w = o->omega;
+    u[0] = P->sdot[0] + w[1] * r[2] - w[2] * r[1];
+    u[1] = P->sdot[1] + w[2] * r[0] - w[0] * r[2];
+    u[2] = P->sdot[2] + w[0] * r[1] - w[1] * r[0];
+}
+
+void cl_obstacle_velocity(const cl_obstacle *o, const cl_pose *P,
+                          const double x[3], double u[3])
+{
+    double r[3];
+    for (int i = 0; i < 3; i++)
+        r[i] = x[i] - o->pivot[i] - P->s[i];
+    velocity_at(o, P, r, u);
+}
+
 /* The query at the shape-frame point X of x (r = x - q - s). */
 static void query_at(const cl_obstacle *o, const cl_pose *P,
                      const double r[3], const double X[3], void *cache,
@@ -139,10 +159,7 @@ static void query_at(const cl_obstacle *o, const cl_pose *P,
     for (int i = 0; i < 3; i++)
         q->c[i] = o->pivot[i] + P->s[i] + c[i];
     rotate_hessian(P, b.G, q->G);
-    const double *w = o->omega; /* u = s' + w x r, du/dx = [w]x */
-    q->u[0] = P->sdot[0] + w[1] * r[2] - w[2] * r[1];
-    q->u[1] = P->sdot[1] + w[2] * r[0] - w[0] * r[2];
-    q->u[2] = P->sdot[2] + w[0] * r[1] - w[1] * r[0];
+    velocity_at(o, P, r, q->u);
     memcpy(q->W, P->W, sizeof q->W);
 }
 
@@ -243,6 +260,16 @@ size_t cl_obstacle_screen(const cl_obstacle *o, const cl_pose *P,
             near[n++] = p;
     }
     return n;
+}
+
+double cl_obstacle_toi(const cl_obstacle *o, const cl_pose *P0,
+                       const double x0[3], const cl_pose *P1,
+                       const double x1[3])
+{
+    double r[3], X0[3], X1[3];
+    to_shape(o, P0, x0, r, X0);
+    to_shape(o, P1, x1, r, X1);
+    return o->type->toi(o->shape, X0, X1);
 }
 
 cl_status cl_obstacle_surface(const cl_obstacle *o, double t,
@@ -356,19 +383,43 @@ static cl_status read_project(cl_config *cfg, const char *sec,
     return CL_OK;
 }
 
+static cl_status read_barrier(cl_config *cfg, const char *sec,
+                              cl_response_params *r, cl_error *err)
+{
+    cl_status rc;
+    if ((rc = cl_config_double(cfg, sec, "kappa", NAN, 1e-300, INFINITY,
+                               &r->kappa, err)) ||
+        (rc = cl_config_double(cfg, sec, "dhat", NAN, 1e-300, INFINITY,
+                               &r->dhat, err)) ||
+        (rc = cl_config_double(cfg, sec, "eps_v", 1e-3, 1e-300, INFINITY,
+                               &r->eps_v, err)) ||
+        (rc = cl_config_bool(cfg, sec, "psd", true, &r->psd, err)))
+        return rc;
+    if (isnan(r->kappa) || isnan(r->dhat))
+        return cl_error_set(err, CL_EINVAL, "[%s] response = barrier needs "
+                            "its stiffness kappa (J/m^2, > 0) and its reach "
+                            "dhat (m, > 0)", sec);
+    return CL_OK;
+}
+
 static cl_status read_response(cl_config *cfg, const char *sec,
                                cl_response_params *r, cl_error *err)
 {
-    static const char *const kinds[] = {"penalty", "project", NULL};
+    static const char *const kinds[] = {"penalty", "project", "barrier",
+                                        NULL};
     int k;
     cl_status rc;
     if (!cl_config_string(cfg, sec, "response", NULL))
         return cl_error_set(err, CL_EINVAL, "[%s] needs a response "
-                            "(penalty or project)", sec);
+                            "(penalty, project or barrier)", sec);
     if ((rc = cl_config_choice(cfg, sec, "response", kinds, 0, &k, err)) ||
         (rc = cl_config_double(cfg, sec, "mu", 0.0, 0.0, INFINITY, &r->mu,
                                err)))
         return rc;
+    if (k == 2) {
+        r->kind = CL_RESPONSE_BARRIER;
+        return read_barrier(cfg, sec, r, err);
+    }
     r->kind = k == 0 ? CL_RESPONSE_PENALTY : CL_RESPONSE_PROJECT;
     return k == 0 ? read_penalty(cfg, sec, r, err)
                   : read_project(cfg, sec, r, err);
@@ -421,6 +472,10 @@ cl_status cl_obstacle_create(cl_config *cfg, const char *sec, cl_obstacle *o,
         (rc = cl_config_vector(cfg, sec, "omega", 3, o->omega, err)) ||
         (rc = read_response(cfg, sec, &o->resp, err)))
         return rc;
+    if (o->resp.kind == CL_RESPONSE_BARRIER && !o->type->toi)
+        return cl_error_set(err, CL_EINVAL, "[%s] response = barrier: shape "
+                            "%s has no time of impact (continuous collision "
+                            "detection)", sec, o->type->name);
     return CL_OK;
 }
 

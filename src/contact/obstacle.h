@@ -16,6 +16,9 @@
  *             default 1e-3: the friction's smoothing speed)
  *   project:  offset (m, >= 0, default 0), zero_velocity (default false),
  *             mu (>= 0, default 0), iterations (>= 1, default 1)
+ *   barrier:  kappa (J/m^2, > 0), dhat (m, > 0), psd (default true),
+ *             mu (>= 0, default 0), eps_v (m/s, > 0, default 1e-3)
+ *             (contact/barrier.h; the shape needs a time of impact)
  *
  * The position of a shape point X at time t is
  *     x(t) = q + R(t) (X - q) + s(t),   R(t) = exp(t [omega]x),
@@ -28,7 +31,11 @@
 
 #include "contact/shape.h"
 
-typedef enum { CL_RESPONSE_PENALTY, CL_RESPONSE_PROJECT } cl_response;
+typedef enum {
+    CL_RESPONSE_PENALTY,
+    CL_RESPONSE_PROJECT,
+    CL_RESPONSE_BARRIER
+} cl_response;
 
 typedef struct {
     cl_response kind;
@@ -36,7 +43,9 @@ typedef struct {
     double offset;                    /* project */
     bool zero_velocity;               /* project */
     long iterations;                  /* project */
-    double mu;                        /* both: Coulomb friction */
+    double mu;                        /* all: Coulomb friction */
+    double kappa, dhat, eps_v;        /* barrier */
+    bool psd;                         /* barrier: projected Hessian */
 } cl_response_params;
 
 typedef struct {
@@ -114,6 +123,20 @@ bool cl_obstacle_depth(const cl_obstacle *o, const cl_pose *P,
 size_t cl_obstacle_screen(const cl_obstacle *o, const cl_pose *P,
                           const double *x, size_t np, double dmax,
                           const cl_contact_memo *memo, size_t *near);
+
+/* The obstacle's velocity u(x, t) at the world point x, the obstacle at
+ * pose P (its gradient is P->W). */
+void cl_obstacle_velocity(const cl_obstacle *o, const cl_pose *P,
+                          const double x[3], double u[3]);
+
+/* The time of impact of a straight move (contact/barrier.h): the least
+ * fraction a in [0, 1] at which the point moving from x0 (the obstacle at
+ * pose P0, x0 outside it) to x1 (at pose P1) reaches the surface, the path
+ * taken straight in the shape's frame; INFINITY when it stays outside.
+ * The obstacle's shape has a toi (cl_shape_type). */
+double cl_obstacle_toi(const cl_obstacle *o, const cl_pose *P0,
+                       const double x0[3], const cl_pose *P1,
+                       const double x1[3]);
 
 /* The obstacle's drawing surface at time t, in the world frame. */
 cl_status cl_obstacle_surface(const cl_obstacle *o, double t,

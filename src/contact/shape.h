@@ -61,6 +61,11 @@ typedef struct {
      * offset c, d(x) = n . x - c, so that a screen of many points is a dot
      * product each instead of a look at each point's memo (obstacle.h). */
     void (*halfspace)(const void *shape, double n[3], double *c);
+    /* Optional (NULL: none; response = barrier needs it): the time of
+     * impact of the straight move from X0 (outside, d > 0) to X1, the
+     * least fraction a in [0, 1] at which X0 + a (X1 - X0) reaches the
+     * surface (d = 0), or INFINITY when the segment stays outside. */
+    double (*toi)(const void *shape, const double X0[3], const double X1[3]);
     /* Allocate the drawing surface (free with cl_shape_surface_free). */
     cl_status (*surface)(const void *shape, cl_shape_surface *s,
                          cl_error *err);

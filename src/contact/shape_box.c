@@ -88,6 +88,29 @@ static void box_query(const void *shape, const double x[3],
         query_inside(b, x, p, q);
 }
 
+/* The slab method (Kay and Kajiya, "Ray tracing complex scenes", 1986):
+ * the segment is inside the box where it is inside all three slabs
+ * |p_i| <= h_i; it enters at the latest of the three entry fractions if
+ * that is before the earliest exit. */
+static double box_toi(const void *shape, const double X0[3],
+                      const double X1[3])
+{
+    const box *b = shape;
+    double enter = 0.0, leave = 1.0;
+    for (int i = 0; i < 3; i++) {
+        double p = X0[i] - b->c[i], D = X1[i] - X0[i];
+        if (D == 0.0) {
+            if (fabs(p) > b->h[i])
+                return INFINITY;
+            continue;
+        }
+        double a0 = (-b->h[i] - p) / D, a1 = (b->h[i] - p) / D;
+        enter = fmax(enter, fmin(a0, a1));
+        leave = fmin(leave, fmax(a0, a1));
+    }
+    return enter <= leave ? enter : INFINITY;
+}
+
 static cl_status box_surface(const void *shape, cl_shape_surface *s,
                              cl_error *err)
 {
@@ -112,6 +135,7 @@ const cl_shape_type cl_shape_box = {
            "> 0)",
     .create = box_create,
     .query = box_query,
+    .toi = box_toi,
     .surface = box_surface,
     .free = free,
 };

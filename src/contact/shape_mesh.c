@@ -336,6 +336,14 @@ static cl_status mesh_surface(const void *shape, cl_shape_surface *s,
     return rc;
 }
 
+/* The first crossing of a triangle (contact/bvh.h): X0 is outside, so
+ * the segment reaches the surface there. */
+static double mesh_toi(const void *shape, const double X0[3],
+                       const double X1[3])
+{
+    return cl_bvh_segment(&((const mesh *)shape)->bvh, X0, X1);
+}
+
 /* The distance from x to the box of all triangles: d is at least that. */
 static double mesh_lower_bound(const void *shape, const double x[3])
 {
@@ -349,6 +357,7 @@ const cl_shape_type cl_shape_mesh = {
            "scale (> 0), translate (vector)",
     .create = mesh_create,
     .query = mesh_query,
+    .toi = mesh_toi,
     .cache_size = sizeof(cl_bvh_cache),
     .surface = mesh_surface,
     .free = mesh_free,

@@ -63,6 +63,20 @@ static void plane_halfspace(const void *shape, double n[3], double *c)
     *c = cl_v3_dot(s->n, s->p);
 }
 
+/* d is linear along the segment: it reaches 0 at d0 / (d0 - d1). */
+static double plane_toi(const void *shape, const double X0[3],
+                        const double X1[3])
+{
+    const plane *s = shape;
+    double r0[3], r1[3];
+    cl_v3_sub(X0, s->p, r0);
+    cl_v3_sub(X1, s->p, r1);
+    double d0 = cl_v3_dot(s->n, r0), d1 = cl_v3_dot(s->n, r1);
+    if (d0 <= 0.0)
+        return 0.0;
+    return d1 <= 0.0 ? d0 / (d0 - d1) : INFINITY;
+}
+
 /* Unit u, v in the plane with u x v = n. */
 static void tangents(const double n[3], double u[3], double v[3])
 {
@@ -103,6 +117,7 @@ const cl_shape_type cl_shape_plane = {
     .create = plane_create,
     .query = plane_query,
     .halfspace = plane_halfspace,
+    .toi = plane_toi,
     .surface = plane_surface,
     .free = free,
 };

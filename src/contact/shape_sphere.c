@@ -49,6 +49,26 @@ static void sphere_query(const void *shape, const double x[3],
         memset(q->G, 0, sizeof q->G);
 }
 
+/* |X0 + a D - c|^2 = r^2, D = X1 - X0: A a^2 + 2 B a + C = 0 with
+ * A = D.D, B = D.(X0 - c), C = |X0 - c|^2 - r^2; its least root, written
+ * a = C / (-B + sqrt(B^2 - A C)) so that no difference cancels. */
+static double sphere_toi(const void *shape, const double X0[3],
+                         const double X1[3])
+{
+    const sphere *s = shape;
+    double D[3], e[3];
+    cl_v3_sub(X1, X0, D);
+    cl_v3_sub(X0, s->c, e);
+    double A = cl_v3_dot(D, D), B = cl_v3_dot(D, e);
+    double C = cl_v3_dot(e, e) - s->r * s->r, disc = B * B - A * C;
+    if (C <= 0.0)
+        return 0.0;
+    if (B >= 0.0 || disc < 0.0)
+        return INFINITY;
+    double a = C / (-B + sqrt(disc));
+    return a <= 1.0 ? a : INFINITY;
+}
+
 static cl_status sphere_surface(const void *shape, cl_shape_surface *s,
                                 cl_error *err)
 {
@@ -61,6 +81,7 @@ const cl_shape_type cl_shape_sphere = {
     .doc = "sphere: center (vector), radius (> 0)",
     .create = sphere_create,
     .query = sphere_query,
+    .toi = sphere_toi,
     .surface = sphere_surface,
     .free = free,
 };

@@ -4,6 +4,8 @@
 
 #include "core/vec3.h"
 
+#include <math.h>
+
 /* p->c = o + s u, on `feature` k. */
 static void found(const double o[3], double s, const double u[3],
                   cl_tri_feature feature, int k, cl_tri_point *p)
@@ -67,4 +69,25 @@ void cl_tri_closest(const double x[3], const double a[3], const double b[3],
     double r[3];
     cl_v3_sub(x, p->c, r);
     p->dist2 = cl_v3_dot(r, r);
+}
+
+double cl_tri_segment(const double x0[3], const double D[3],
+                      const double a[3], const double b[3],
+                      const double c[3])
+{
+    const double tol = 1e-9;
+    double e1[3], e2[3], p[3], s[3], q[3];
+    cl_v3_sub(b, a, e1);
+    cl_v3_sub(c, a, e2);
+    cl_v3_cross(D, e2, p);
+    double det = cl_v3_dot(e1, p);
+    if (det == 0.0)
+        return INFINITY;
+    cl_v3_sub(x0, a, s);
+    double u = cl_v3_dot(s, p) / det;
+    cl_v3_cross(s, e1, q);
+    double v = cl_v3_dot(D, q) / det, t = cl_v3_dot(e2, q) / det;
+    if (u < -tol || v < -tol || u + v > 1.0 + tol || t < 0.0 || t > 1.0)
+        return INFINITY;
+    return t;
 }

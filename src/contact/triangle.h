@@ -24,4 +24,14 @@ typedef struct {
 void cl_tri_closest(const double x[3], const double a[3], const double b[3],
                     const double c[3], cl_tri_point *p);
 
+/* The fraction a in [0, 1] at which the segment x0 + a D crosses the
+ * triangle (Moeller and Trumbore, "Fast, minimum storage ray-triangle
+ * intersection", 1997), INFINITY if it does not; barycentric coordinates
+ * within -1e-9 of the triangle's edges count as inside (conservative
+ * along edges shared by two triangles).  A segment parallel to the
+ * triangle's plane does not cross it. */
+double cl_tri_segment(const double x0[3], const double D[3],
+                      const double a[3], const double b[3],
+                      const double c[3]);
+
 #endif

@@ -34,6 +34,7 @@ const char *cl_status_name(cl_status code)
     case CL_ESOLVER: return "solver failure";
     case CL_EBLOWUP: return "blow-up";
     case CL_EUNSUPPORTED: return "unsupported";
+    case CL_EINFEASIBLE: return "infeasible state";
     }
     return "unknown status";
 }

@@ -14,7 +14,10 @@ typedef enum {
     CL_EPARSE,      /* malformed input file */
     CL_ESOLVER,     /* a solver reported failure */
     CL_EBLOWUP,     /* state became non-finite or ran away */
-    CL_EUNSUPPORTED /* valid request this build or problem cannot serve */
+    CL_EUNSUPPORTED, /* valid request this build or problem cannot serve */
+    CL_EINFEASIBLE  /* a state outside the feasible set (a particle at
+                     * d <= 0 of a barrier obstacle): a smaller step may
+                     * avoid it */
 } cl_status;
 
 typedef struct {

@@ -34,6 +34,8 @@ _Static_assert(sizeof(sunrealtype) == sizeof(double),
 #define CL_KIN_MAXIT 50L
 #define CL_KIN_VREF_MIN 1.0 /* m/s: floor of the velocity scale */
 #define CL_KIN_STEP_FLOOR (10 * DBL_EPSILON) /* update test: round-off */
+#define CL_KIN_HALVINGS 30  /* filtered Newton: halvings of a step */
+#define CL_KIN_ARMIJO 1e-4  /* ... and the decrease it must give */
 
 typedef struct {
     const cl_kin_scheme *sc;
@@ -53,6 +55,8 @@ typedef struct {
     /* SUNDIALS */
     SUNContext ctx;
     N_Vector u, uscale, fscale;
+    N_Vector r, du, ut;     /* the filtered Newton loop's residual, step
+                               and trial point (barriers) */
     SUNMatrix J;            /* shell: the matrix lives in the linear solver */
     SUNLinearSolver ls;     /* custom solver calling cl_linsol */
     void *mem;              /* KINSOL memory */
@@ -191,8 +195,8 @@ void cl_kin_free(void *state)
         SUNMatDestroy(s->J);
     if (s->lstate)
         s->lt->free(s->lstate);
-    N_Vector vec[] = {s->u, s->uscale, s->fscale};
-    for (size_t k = 0; k < 3; k++) {
+    N_Vector vec[] = {s->u, s->uscale, s->fscale, s->r, s->du, s->ut};
+    for (size_t k = 0; k < sizeof vec / sizeof vec[0]; k++) {
         if (vec[k])
             N_VDestroy(vec[k]);
     }
@@ -261,6 +265,13 @@ static cl_status kin_vectors(cl_kin *s, cl_error *err)
     s->uscale = N_VNew_Serial(n, s->ctx);
     s->fscale = N_VNew_Serial(n, s->ctx);
     if (!s->u || !s->uscale || !s->fscale)
+        return kin_sunfail(s, "N_VNew_Serial", 0, err);
+    if (!s->sys->step_fraction)
+        return CL_OK;
+    s->r = N_VNew_Serial(n, s->ctx);
+    s->du = N_VNew_Serial(n, s->ctx);
+    s->ut = N_VNew_Serial(n, s->ctx);
+    if (!s->r || !s->du || !s->ut)
         return kin_sunfail(s, "N_VNew_Serial", 0, err);
     return CL_OK;
 }
@@ -459,6 +470,107 @@ static void kin_commit(cl_kin *s)
     memcpy(s->v, u, s->n * sizeof *s->v);
 }
 
+/* ---- the filtered Newton loop (barrier obstacles) ----------------------- */
+
+/* The scaled 2-norm of the residual in s->r. */
+static double kin_rnorm(const cl_kin *s)
+{
+    const double *r = N_VGetArrayPointer(s->r);
+    const double *fs = N_VGetArrayPointer(s->fscale);
+    double sum = 0.0;
+    for (size_t i = 0; i < s->n; i++)
+        sum += (r[i] * fs[i]) * (r[i] * fs[i]);
+    return sqrt(sum);
+}
+
+/* The residual at ut = u + lam du into s->r: 0, 1 when ut is infeasible
+ * (a particle at d <= 0 of a barrier obstacle), -1 on another failure. */
+static int kin_try(cl_kin *s, double lam)
+{
+    N_VLinearSum(1.0, s->u, lam, s->du, s->ut);
+    if (kin_residual(s->ut, s->r, s) == 0)
+        return 0;
+    if (s->sys_st != CL_EINFEASIBLE)
+        return -1;
+    s->sys_st = CL_OK;
+    return 1;
+}
+
+/* The fraction of the Newton step du the barriers' filter allows: the
+ * evaluation point moves straight from xe(u) to xe(u + du) (s->x1 is
+ * free scratch until kin_commit). */
+static double kin_filter(cl_kin *s)
+{
+    const double *du = N_VGetArrayPointer(s->du);
+    kin_point(s, N_VGetArrayPointer(s->u));
+    for (size_t i = 0; i < s->n; i++)
+        s->x1[i] = s->xe[i] + s->alpha * du[i];
+    return s->sys->step_fraction(s->sys->data, s->te, s->xe, s->te, s->x1);
+}
+
+/* One filtered Newton iteration from u, whose residual is in s->r with
+ * scaled norm *rnorm: du = -J^{-1} R, the filter's fraction of it, then
+ * halvings until the norm decreases (Armijo's test; in one-step mode the
+ * first feasible point is taken).  KIN_SUCCESS, or the failure's flag. */
+static int kin_filtered_iteration(cl_kin *s, double *rnorm)
+{
+    if (kin_jac(s->u, NULL, NULL, s, NULL, NULL) != 0 ||
+        ls_setup(s, NULL) != SUNLS_SUCCESS ||
+        ls_solve(s, NULL, s->du, s->r, 0.0) != SUNLS_SUCCESS)
+        return KIN_LSETUP_FAIL;
+    N_VScale(-1.0, s->du, s->du);
+    double lam = kin_filter(s);
+    for (int k = 0; k <= CL_KIN_HALVINGS; k++, lam *= 0.5) {
+        int rc = kin_try(s, lam);
+        if (rc < 0)
+            return KIN_SYSFUNC_FAIL;
+        double rn = rc == 0 ? kin_rnorm(s) : INFINITY;
+        if (rc == 0 && (rn <= (1.0 - CL_KIN_ARMIJO * lam) * *rnorm ||
+                        s->maxit == 1 || k == CL_KIN_HALVINGS)) {
+            N_VScale(1.0, s->ut, s->u);
+            *rnorm = rn;
+            return KIN_SUCCESS;
+        }
+    }
+    return KIN_LINESEARCH_NONCONV;
+}
+
+/* The full Newton update du is round-off or below newton_tol relative
+ * (the test of KINSetScaledStepTol, kinsol_common.h). */
+static bool kin_small_update(const cl_kin *s)
+{
+    const double *u = N_VGetArrayPointer(s->u), *du = N_VGetArrayPointer(s->du);
+    const double *us = N_VGetArrayPointer(s->uscale);
+    double worst = 0.0;
+    for (size_t i = 0; i < s->n; i++)
+        worst = fmax(worst, fabs(du[i]) * us[i] / (1.0 + fabs(u[i]) * us[i]));
+    return worst <= fmax(s->tol, CL_KIN_STEP_FLOOR);
+}
+
+/* The step's Newton solve with the barriers' filter (kinsol_common.h,
+ * "Barriers"); the convergence tests and one-step mode are KINSOL's. */
+static cl_status kin_filtered_solve(cl_kin *s, cl_error *err)
+{
+    long it = 0;
+    int flag = KIN_SUCCESS;
+    if (kin_residual(s->u, s->r, s) != 0)
+        return kin_stepfail(s, KIN_SYSFUNC_FAIL, 0, err);
+    double rnorm = kin_rnorm(s);
+    bool done = s->rmax <= 0.01 * s->tol;
+    while (!done && it < s->maxit && flag == KIN_SUCCESS) {
+        it++;
+        flag = kin_filtered_iteration(s, &rnorm);
+        done = flag == KIN_SUCCESS &&
+               (s->rmax <= s->tol || s->maxit == 1 || kin_small_update(s));
+    }
+    s->nni += it;
+    if (!done)
+        return kin_stepfail(s, flag == KIN_SUCCESS ? KIN_MAXITER_REACHED
+                                                   : flag, it, err);
+    kin_commit(s);
+    return CL_OK;
+}
+
 static cl_status kin_step(void *state, cl_error *err)
 {
     cl_kin *s = state;
@@ -466,6 +578,8 @@ static cl_status kin_step(void *state, cl_error *err)
     kin_scales(s);
     s->sys_st = s->lin_st = CL_OK;
     s->kmsg[0] = '\0';
+    if (s->sys->step_fraction)
+        return kin_filtered_solve(s, err);
     int flag = KINSol(s->mem, s->u, KIN_NONE, s->uscale, s->fscale);
     long nni = 0;
     int gflag = KINGetNumNonlinSolvIters(s->mem, &nni);

@@ -80,6 +80,20 @@
  * unrecoverable, so KINSOL never silently halves a step).  KINSOL's own
  * messages are captured (KINSetErrHandlerFn), never printed.
  *
+ * Barriers.  On a system with a step_fraction (barrier obstacles,
+ * contact/barrier.h) KINSOL's line search cannot take the filter, so each
+ * step is solved by a Newton loop of this file instead (docs/
+ * integrators.md 4.1): the Newton step du of the same matrix and linear
+ * solver, cut to the fraction of it that keeps the evaluation point
+ * outside every barrier obstacle (0.8 of the first time of impact), then
+ * halved until the scaled residual norm decreases (Armijo, 1e-4; at most
+ * 30 halvings, after which the last feasible trial is taken; an
+ * infeasible trial is halved).  The initial-guess test (scaled residual
+ * <= 0.01 newton_tol), the convergence tests (scaled residual <=
+ * newton_tol, or the full update du below it relative), newton_maxit and
+ * the one-step mode are KINSOL's; iterations are counted the same way.
+ * Systems without barriers use KINSOL as above, unchanged.
+ *
  * Statistics: steps; rhs_evals = force evaluations (residuals); jac_evals
  * = system Jacobian evaluations; lin_setups, lin_solves, lin_iters,
  * symbolic_facts from the linear solver's counters; nonlin_iters = the sum

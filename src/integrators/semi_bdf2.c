@@ -141,8 +141,9 @@ static cl_status sbdf2_bdf_step(cl_sbdf2 *s, cl_error *err)
     st = cl_semi_solve(b, 2.0 * h / 3.0, 4.0 * h * h / 9.0, err);
     if (st != CL_OK)
         return st;
+    double a = cl_semi_filter(b, b->sol); /* 1 without barriers */
     for (size_t i = 0; i < b->n; i++) {
-        double d = b->x[i] - s->xprev[i], y = b->sol[i];
+        double d = b->x[i] - s->xprev[i], y = a * b->sol[i];
         s->xprev[i] = b->x[i];
         s->vprev[i] = b->v[i];
         b->x[i] += y;

@@ -128,6 +128,17 @@ cl_status cl_semi_solve(cl_semi *s, double a, double b, cl_error *err)
     return CL_OK;
 }
 
+double cl_semi_filter(cl_semi *s, const double *dx)
+{
+    const cl_system *sys = s->sys;
+    if (!sys->step_fraction)
+        return 1.0;
+    double t = s->t0 + (double)s->done * s->h;
+    for (size_t i = 0; i < s->n; i++)
+        s->work[i] = s->x[i] + dx[i];
+    return sys->step_fraction(sys->data, t, s->x, t + s->h, s->work);
+}
+
 cl_status cl_semi_be_step(cl_semi *s, cl_error *err)
 {
     double h = s->h;
@@ -140,8 +151,11 @@ cl_status cl_semi_be_step(cl_semi *s, cl_error *err)
     st = cl_semi_solve(s, h, h * h, err);
     if (st != CL_OK)
         return st;
+    for (size_t i = 0; s->sys->step_fraction && i < s->n; i++)
+        s->rhs[i] = h * (s->v[i] + s->sol[i]); /* the step's move */
+    double a = cl_semi_filter(s, s->rhs);
     for (size_t i = 0; i < s->n; i++) {
-        s->v[i] += s->sol[i];
+        s->v[i] = a * (s->v[i] + s->sol[i]);
         s->x[i] += h * s->v[i];
     }
     return CL_OK;

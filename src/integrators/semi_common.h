@@ -56,7 +56,17 @@ cl_status cl_semi_linearise(cl_semi *s, double t, cl_error *err);
  * the method, time and step prefixed. */
 cl_status cl_semi_solve(cl_semi *s, double a, double b, cl_error *err);
 
-/* One linearised backward-Euler step of x, v in place (done unchanged). */
+/* The filtered step of a problem with barrier obstacles (contact/
+ * barrier.h; docs/integrators.md, 3.3): the fraction a in [0, 1] of the
+ * step's move x -> x + dx (n entries; from t_n to t_n + h) that keeps
+ * every particle outside every barrier obstacle (IPC's filter with its
+ * safety factor), by which the method scales its step; 1 without
+ * barriers (dx not read).  Uses s->work. */
+double cl_semi_filter(cl_semi *s, const double *dx);
+
+/* One linearised backward-Euler step of x, v in place (done unchanged):
+ * v_{n+1} = a (v_n + dv), x_{n+1} = x_n + h v_{n+1}, a = 1 but for a
+ * filtered step (cl_semi_filter). */
 cl_status cl_semi_be_step(cl_semi *s, cl_error *err);
 
 /* Take the steps up to t_out with `step` (one step of s->x, s->v in

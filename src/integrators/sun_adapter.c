@@ -358,17 +358,19 @@ static bool sun_collapsed(const cl_sun *s, double t)
     return h != 0 && fabs(h) <= 100 * DBL_EPSILON * fabs(t);
 }
 
-/* Record a failed system call.  A blow-up is recoverable (1) unless the
- * step has already shrunk to round-off: then the force fails however small
- * the step, as at a singularity in time or state.  Any other system error
- * is unrecoverable (-1), and -1 is latched (see the header). */
+/* Record a failed system call.  A blow-up, or a state outside a barrier's
+ * feasible set (CL_EINFEASIBLE, contact/barrier.h), is recoverable (1)
+ * unless the step has already shrunk to round-off: then the force fails
+ * however small the step, as at a singularity in time or state.  Any other
+ * system error is unrecoverable (-1), and -1 is latched (see the
+ * header). */
 static int sun_sysfail(cl_sun *s, cl_status *slot, cl_status st, double t,
                        bool nonfinite)
 {
     *slot = st;
     s->fail_t = t;
     s->fail_nonfinite = nonfinite;
-    if (st == CL_EBLOWUP && !sun_collapsed(s, t))
+    if ((st == CL_EBLOWUP || st == CL_EINFEASIBLE) && !sun_collapsed(s, t))
         return 1;
     s->fatal = true;
     return -1;

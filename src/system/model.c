@@ -40,6 +40,11 @@ struct cl_model {
     cl_contact *contact;  /* the obstacles (also a term), or NULL */
     double worst_pen;     /* deepest penetration seen by the contact hook */
     double worst_t;       /* ... and when */
+    bool tears;           /* [tear] cut > 0 and a term that tears */
+    bool lags;            /* a barrier with friction (its lag) */
+    double min_dist;      /* least distance to a barrier obstacle seen by
+                           * the contact hook */
+    double min_dist_t;    /* ... and when */
     bool track_work;      /* account the projections' energy change */
     double contact_work;  /* their sum so far (J) */
     double *xw, *vw;      /* the state before a projection (track_work) */
@@ -234,6 +239,8 @@ static cl_status sys_force(void *data, double t, const double *x,
     else
         eval_terms(m, t, m->ff, NULL, NULL, NULL);
     cl_cloth_gather(&m->cloth, m->ff, f);
+    if (m->contact && cl_contact_infeasible(m->contact))
+        return CL_EINFEASIBLE;
     return cl_all_finite(f, 3 * m->cloth.nfree) ? CL_OK : CL_EBLOWUP;
 }
 
@@ -249,8 +256,17 @@ static cl_status sys_jacobian(void *data, double t, const double *x,
     eval_terms(m, t, f ? m->ff : NULL, dfdx, dfdv, NULL);
     if (f)
         cl_cloth_gather(&m->cloth, m->ff, f);
+    if (m->contact && cl_contact_infeasible(m->contact))
+        return CL_EINFEASIBLE;
     return cl_all_finite(dfdx, nval) && cl_all_finite(dfdv, nval) ? CL_OK
                                                             : CL_EBLOWUP;
+}
+
+static double sys_step_fraction(void *data, double t0, const double *x0,
+                                double t1, const double *x1)
+{
+    cl_model *m = data;
+    return cl_contact_step_fraction(m->contact, t0, x0, t1, x1);
 }
 
 static double kinetic_free(const cl_cloth *c, const double *vfull)
@@ -305,7 +321,9 @@ static cl_status update_torn(cl_model *m)
     return CL_OK;
 }
 
-/* Tearing after an accepted step (installed only with [tear] cut > 0).
+/* Tearing after an accepted step (with [tear] cut > 0), and the lag of
+ * the barriers' friction (contact/barrier.h), which changes the force law:
+ * adaptive methods restart from the state the lag was taken at.
  * Allocates only on a step where something tore. */
 static cl_status sys_step_done(void *data, double t, const double *x,
                                const double *v, bool *changed)
@@ -313,11 +331,28 @@ static cl_status sys_step_done(void *data, double t, const double *x,
     cl_model *m = data;
     size_t broken = 0;
     cl_cloth_scatter(&m->cloth, t, x, v, m->xf, m->vf);
-    for (size_t k = 0; k < m->nterm; k++)
+    for (size_t k = 0; m->tears && k < m->nterm; k++)
         if (m->type[k]->step_done)
             broken += m->type[k]->step_done(m->state[k], m->xf, m->vf);
     *changed = broken > 0;
+    if (m->lags) {
+        cl_contact_lag(m->contact, t, m->xf);
+        *changed = true;
+    }
     return broken > 0 ? update_torn(m) : CL_OK;
+}
+
+/* The least distance to a barrier obstacle after a recorded step (m->xf
+ * at t). */
+static void barrier_step_done(cl_model *m, double t, bool record)
+{
+    if (!record)
+        return;
+    double d = cl_contact_min_distance(m->contact, t, m->xf);
+    if (d < m->min_dist) {
+        m->min_dist = d;
+        m->min_dist_t = t;
+    }
 }
 
 /* Contact after an accepted step (system/system.h): the deepest
@@ -331,7 +366,8 @@ static cl_status sys_contact(void *data, double t, double *x, double *v,
     cl_model *m = data;
     size_t n = 3 * m->cloth.nfree;
     bool projects = m->sys.projects; /* else the velocities are not read */
-    if (!projects && !record)
+    bool barriers = m->sys.step_fraction != NULL;
+    if (!projects && !record && !barriers)
         return CL_OK;                    /* nothing to record or move */
     cl_cloth_scatter(&m->cloth, t, x, projects ? v : NULL, m->xf,
                      projects ? m->vf : NULL);
@@ -340,6 +376,8 @@ static cl_status sys_contact(void *data, double t, double *x, double *v,
         m->worst_pen = pen;
         m->worst_t = t;
     }
+    if (barriers)
+        barrier_step_done(m, t, record);
     if (!projects)
         return CL_OK;
     bool track = m->track_work && record;
@@ -407,16 +445,20 @@ cl_status cl_model_create(cl_config *cfg, cl_model **model, cl_error *err)
         cl_model_free(m);
         return rc;
     }
+    m->min_dist = INFINITY;
+    m->tears = m->opts.tear_cut > 0 &&
+               any_hook(m, offsetof(cl_term_type, step_done));
+    m->lags = m->contact && cl_contact_lags(m->contact);
     m->sys = (cl_system){
         .n = 3 * m->cloth.nfree, .mass = m->mass3, .pattern = &m->pattern,
         .data = m, .force = sys_force, .jacobian = sys_jacobian,
         .energy = sys_energy,
         .project = any_hook(m, offsetof(cl_term_type, project)) ? sys_project
                                                                  : NULL,
-        .step_done = m->opts.tear_cut > 0 &&
-                             any_hook(m, offsetof(cl_term_type, step_done))
-                         ? sys_step_done : NULL,
+        .step_done = m->tears || m->lags ? sys_step_done : NULL,
         .contact = m->contact ? sys_contact : NULL,
+        .step_fraction = m->contact && cl_contact_barriers(m->contact)
+                             ? sys_step_fraction : NULL,
         .projects = m->contact && cl_contact_projects(m->contact),
         .projects_friction =
             m->contact && cl_contact_projects_friction(m->contact)};
@@ -549,6 +591,8 @@ cl_status cl_model_jacobian_full(cl_model *m, double t, const double *x,
 
 size_t cl_model_broken(const cl_model *m) { return m->ntorn; }
 
+bool cl_model_tears(const cl_model *m) { return m->tears; }
+
 static int cmp_pair(const void *a, const void *b)
 {
     const int *p = a, *q = b;
@@ -615,6 +659,8 @@ void cl_model_contact_start(cl_model *m, bool track_work)
 {
     m->worst_pen = 0.0;
     m->worst_t = 0.0;
+    m->min_dist = INFINITY;
+    m->min_dist_t = 0.0;
     m->track_work = track_work;
     m->contact_work = 0.0;
     if (m->contact)
@@ -625,6 +671,12 @@ void cl_model_contact_worst(const cl_model *m, double *pen, double *t)
 {
     *pen = m->worst_pen;
     *t = m->worst_t;
+}
+
+void cl_model_contact_closest(const cl_model *m, double *d, double *t)
+{
+    *d = m->min_dist;
+    *t = m->min_dist_t;
 }
 
 cl_status cl_model_contact_figures(cl_model *m, double t, const double *x,

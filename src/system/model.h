@@ -53,6 +53,9 @@ cl_status cl_model_initial_state(const cl_model *m, double *x, double *v);
  * pair. */
 size_t cl_model_broken(const cl_model *m);
 
+/* Whether the model can tear ([tear] cut > 0 and a term that tears). */
+bool cl_model_tears(const cl_model *m);
+
 /* Whether the connection a-b (either order) has torn. */
 bool cl_model_is_broken(const cl_model *m, int a, int b);
 
@@ -104,6 +107,12 @@ void cl_model_contact_start(cl_model *m, bool track_work);
  * contact hook after every accepted step (fixed-step methods, CVODE BDF)
  * or at output times, and by cl_model_contact_figures; and its time. */
 void cl_model_contact_worst(const cl_model *m, double *pen, double *t);
+
+/* The least signed distance of a free particle to a barrier obstacle
+ * since cl_model_contact_start (INFINITY without barriers), seen by the
+ * contact hook after every accepted step (fixed-step methods) or at output
+ * times (contact/barrier.h); and its time. */
+void cl_model_contact_closest(const cl_model *m, double *d, double *t);
 
 /* The surfaces of all obstacles at time t, in one triangle list (free
  * with cl_shape_surface_free); none without obstacles. */

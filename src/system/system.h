@@ -63,8 +63,8 @@ typedef struct cl_system {
      * toward satisfying the constraints, in place.  Used by position-based
      * integrators (verlet-pbd) only. */
     cl_status (*project)(void *data, double t, double *x);
-    /* Irreversible changes of the model after an accepted step (tearing),
-     * NULL if the model has none.  *changed is set when the force law
+    /* Changes of the model after an accepted step (tearing, the lag of
+     * the barriers' friction), NULL if the model has none.  *changed is set when the force law
      * changed, so that multistep and adaptive methods restart from (t, x,
      * v).  Fixed-step integrators call it after every step; adaptive ones
      * at every output time. */
@@ -85,6 +85,15 @@ typedef struct cl_system {
      * `projects`. */
     cl_status (*contact)(void *data, double t, double *x, double *v,
                          bool record);
+    /* The filter of the barrier responses (contact/barrier.h), NULL if
+     * the problem has no barrier obstacle: the largest fraction in [0, 1]
+     * of the straight move of the free positions from x0 (feasible, at
+     * t0) to x1 (at t1) that keeps every particle outside every barrier
+     * obstacle, with IPC's safety factor (cl_contact_step_fraction).  With
+     * barriers, force and jacobian return CL_EINFEASIBLE for a state with
+     * a particle at d <= 0 of a barrier obstacle. */
+    double (*step_fraction)(void *data, double t0, const double *x0,
+                            double t1, const double *x1);
     bool projects;  /* some obstacle has response = project */
     bool projects_friction; /* ... with friction: mu > 0 or zero_velocity
                              * (a velocity-level law that CVODE's error
