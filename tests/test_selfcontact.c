@@ -1,4 +1,4 @@
-/* The self-contact term (forces/selfcontact.h; docs/model.md 3.6) on a
+/* The self-contact term (forces/selfcontact.h; docs/model.md 3.5) on a
  * folded 6 x 6 grid (spacing 0.2 m, thickness 0.25 m, k_s = 40 N/m): the
  * upper half laid back over the lower half 0.06 m above it, jittered, so
  * that about 40 pairs across the fold are in contact.

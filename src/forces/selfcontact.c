@@ -1,4 +1,4 @@
-/* Self-contact (docs/model.md 3.6; equations and keys in
+/* Self-contact (docs/model.md 3.5; equations and keys in
  * forces/selfcontact.h). */
 #include "forces/selfcontact.h"
 
@@ -32,7 +32,7 @@ typedef struct {
 } sc_pass;
 
 /* The block K of pair (a, b) at distance d > 0, direction u: exact, or
- * (lumped) its normal part k_s u u^T alone (docs/model.md 3.6). */
+ * (lumped) its normal part k_s u u^T alone (docs/model.md 3.5). */
 static void pair_block(const sc_state *st, const double u[3], double d,
                        bool normal_only, double K[9])
 {

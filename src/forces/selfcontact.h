@@ -1,22 +1,24 @@
 /* Self-contact: repulsion between particles of the cloth that are not
- * topological neighbours (docs/model.md 3.6).
+ * topological neighbours (docs/model.md 3.5).
  *
  * Two particles a, b more than `ring` steps apart in the nearest-neighbour
  * graph (model/ring.h) and closer than the thickness h_s repel along
  * their separation with the penalty law
  *     s(d) = -k_s (h_s - d),   E(d) = k_s (h_s - d)^2 / 2   (d < h_s),
  * on the central-pair machinery of docs/model.md 3.1 (forces/pairterm.h:
- * f_a = s u, u = (x_b - x_a)/d, blocks K = k_s u u^T + (s/d)(I - u u^T),
- * the transverse part dropped with jacobian.transverse = clamp).  The
- * pairs are found at every evaluation by a spatial hash with cells of side
- * h_s (forces/sphash.h), never by trying all pairs, with no allocation.
+ * f_a = s u, u = (x_b - x_a)/d, blocks K = k_s u u^T + (s/d)(I - u u^T)).
+ * The pairs are found at every evaluation by a spatial hash with cells of
+ * side h_s (forces/sphash.h), never by trying all pairs, with no
+ * allocation.
  *
- * The Jacobian is lumped (docs/model.md 3.6): the pairs change from one
- * evaluation to the next while the system's block pattern is built once,
- * so the term writes only the diagonal blocks df_a/dx_a = df_b/dx_b = -K
- * of each pair and leaves out the coupling blocks +K: implicit methods
- * run a modified Newton iteration on contact.  cl_selfcontact_dense gives
- * the exact Jacobian.
+ * The Jacobian is lumped (docs/model.md 3.5, eq. 3.7): the pairs change
+ * from one evaluation to the next while the system's block pattern is
+ * built once, so the term writes only the diagonal blocks
+ * df_a/dx_a = df_b/dx_b = -k_s u u^T of each pair, the normal part of -K
+ * (the transverse part is a negative stiffness, unbounded as d -> 0), and
+ * leaves out the coupling blocks +K: implicit methods run a modified
+ * Newton iteration on contact.  cl_selfcontact_dense gives the exact
+ * Jacobian.
  *
  * INI section [selfcontact]:
  *   enabled    (false) switches the term on;

@@ -1,4 +1,4 @@
-/* Topological neighbourhoods of a cloth's particles (docs/model.md 3.6):
+/* Topological neighbourhoods of a cloth's particles (docs/model.md 3.5):
  * the particles within `ring` steps of each particle in the graph of
  * nearest neighbours (cl_pairs_neighbours: structural and both diagonal
  * pairs of a grid, the triangle edges of a mesh), the particle itself
