@@ -2,8 +2,8 @@
  * folded 6 x 6 grid (spacing 0.2 m, thickness 0.25 m, k_s = 40 N/m): the
  * upper half laid back over the lower half 0.06 m above it, jittered, so
  * that about 40 pairs across the fold are in contact.
- *   - force = -dE/dx (central differences of the energy), Newton's third
- *     law;
+ *   - for the penalty and the log barrier (forces/logbarrier.h): force
+ *     = -dE/dx (central differences of the energy), Newton's third law;
  *   - the exact Jacobian (cl_selfcontact_dense) against central
  *     differences of the force;
  *   - the lumped Jacobian the term writes into the pattern: the diagonal
@@ -20,8 +20,10 @@
 #include <string.h>
 
 #include "fdcheck.h"
+#include "forces/logbarrier.h"
 #include "forces/selfcontact.h"
 #include "runcli.h"
+#include "timelimit.h"
 #include "tmpdir.h"
 
 #define N 6
@@ -36,23 +38,26 @@ typedef struct {
     void *st;
 } sc_case;
 
-static sc_case make_case(void)
+/* law: "penalty" or "barrier".  The term keeps a pointer to c->cloth. */
+static void make_case(sc_case *c, const char *law)
 {
-    sc_case c = {.cfg = cl_config_alloc()};
+    c->cfg = cl_config_alloc();
     cl_error err = {0};
     cl_term_opts opts = {0};
-    cr_assert_eq(cl_cloth_grid(N, N, 1.0, 1.0, 1e-3, &c.cloth, &err), CL_OK);
-    cr_assert_not_null(c.cfg);
+    cr_assert_eq(cl_cloth_grid(N, N, 1.0, 1.0, 1e-3, &c->cloth, &err), CL_OK);
+    cr_assert_not_null(c->cfg);
     const char *sets[] = {"selfcontact.enabled=true",
                           "selfcontact.thickness=0.25",
                           "selfcontact.stiffness=40", NULL};
+    char lawset[64];
+    snprintf(lawset, sizeof lawset, "selfcontact.law=%s", law);
     for (size_t k = 0; sets[k]; k++)
-        cr_assert_eq(cl_config_set(c.cfg, sets[k], &err), CL_OK);
-    cr_assert_eq(cl_term_selfcontact.create(c.cfg, &c.cloth, &opts, &c.st,
+        cr_assert_eq(cl_config_set(c->cfg, sets[k], &err), CL_OK);
+    cr_assert_eq(cl_config_set(c->cfg, lawset, &err), CL_OK);
+    cr_assert_eq(cl_term_selfcontact.create(c->cfg, &c->cloth, &opts, &c->st,
                                             &err),
                  CL_OK, "%s", err.msg);
-    cr_assert_not_null(c.st);
-    return c;
+    cr_assert_not_null(c->st);
 }
 
 static void free_case(sc_case *c)
@@ -100,9 +105,10 @@ static size_t contacts(const double *x)
     return n;
 }
 
-Test(selfcontact, force_is_minus_energy_gradient)
+static void check_gradient(const char *law)
 {
-    sc_case c = make_case();
+    sc_case c;
+    make_case(&c, law);
     double x[N3], f[N3], g[N3];
     folded(&c.cloth, x);
     cr_assert(contacts(x) >= 30, "%zu contacts", contacts(x));
@@ -120,17 +126,26 @@ Test(selfcontact, force_is_minus_energy_gradient)
         sum[k % 3] += f[k];
     }
     double rel = fd_relerr(f, g, N3);
-    fd_report("selfcontact f vs -dE/dx", rel);
-    cr_assert_lt(rel, 1e-7, "f against -dE/dx: %g", rel);
+    char label[64];
+    snprintf(label, sizeof label, "selfcontact %s f vs -dE/dx", law);
+    fd_report(label, rel);
+    cr_assert_lt(rel, 1e-7, "%s: f against -dE/dx: %g", law, rel);
     for (int i = 0; i < 3; i++)
         cr_assert_lt(fabs(sum[i]), 1e-12 * fd_maxabs(f, N3), "sum f = %g",
                      sum[i]);
     free_case(&c);
 }
 
-Test(selfcontact, dense_jacobian_against_differences)
+Test(selfcontact, force_is_minus_energy_gradient)
 {
-    sc_case c = make_case();
+    check_gradient("penalty");
+    check_gradient("barrier");
+}
+
+static void check_dense(const char *law)
+{
+    sc_case c;
+    make_case(&c, law);
     double x[N3], fp[N3], fm[N3];
     double *J = fd_vec(N3 * N3), *F = fd_vec(N3 * N3);
     folded(&c.cloth, x);
@@ -146,8 +161,10 @@ Test(selfcontact, dense_jacobian_against_differences)
             F[r * N3 + col] = (fp[r] - fm[r]) / (2 * h);
     }
     double rel = fd_relerr(F, J, N3 * N3);
-    fd_report("selfcontact dense df/dx", rel);
-    cr_assert_lt(rel, 1e-6, "df/dx against differences: %g", rel);
+    char label[64];
+    snprintf(label, sizeof label, "selfcontact %s dense df/dx", law);
+    fd_report(label, rel);
+    cr_assert_lt(rel, 1e-6, "%s: df/dx against differences: %g", law, rel);
     double big = fd_maxabs(J, N3 * N3);
     for (size_t r = 0; r < N3; r++) /* a Hessian: symmetric */
         for (size_t col = 0; col < r; col++)
@@ -158,10 +175,23 @@ Test(selfcontact, dense_jacobian_against_differences)
     free_case(&c);
 }
 
-/* The pattern of the diagonal blocks alone (every particle a dof). */
-Test(selfcontact, lumped_jacobian_is_the_normal_diagonal)
+Test(selfcontact, dense_jacobian_against_differences)
 {
-    sc_case c = make_case();
+    check_dense("penalty");
+    check_dense("barrier");
+}
+
+/* s'(d) of the law (3.5, 3.8). */
+static double law_ds(bool barrier, double d)
+{
+    return barrier ? K_S * cl_logbarrier_eval(d, H_S).d2b : K_S;
+}
+
+/* The pattern of the diagonal blocks alone (every particle a dof). */
+static void check_lumped(bool barrier)
+{
+    sc_case c;
+    make_case(&c, barrier ? "barrier" : "penalty");
     cl_bpattern pat;
     cl_error err = {0};
     int dof[NP];
@@ -181,13 +211,38 @@ Test(selfcontact, lumped_jacobian_is_the_normal_diagonal)
             for (int r = 0; r < 3; r++)
                 for (int s = 0; s < 3; s++)
                     want[9 * pat.diag[a] + 3 * r + s] -=
-                        K_S * (x[3 * b + r] - x[3 * a + r]) *
+                        law_ds(barrier, d) * (x[3 * b + r] - x[3 * a + r]) *
                         (x[3 * b + s] - x[3 * a + s]) / (d * d);
         }
     double rel = fd_relerr(vals, want, 9 * NP);
     cr_assert_lt(rel, 1e-13, "lumped blocks: %g", rel);
     cl_bpattern_free(&pat);
     free_case(&c);
+}
+
+Test(selfcontact, lumped_jacobian_is_the_normal_diagonal)
+{
+    check_lumped(false);
+    check_lumped(true);
+}
+
+/* b, b', b'' vanish at dh; b'' > 0 below it; b grows as d -> 0. */
+Test(selfcontact, barrier_shape)
+{
+    cl_logbarrier at = cl_logbarrier_eval(0.25, 0.25),
+                  beyond = cl_logbarrier_eval(0.3, 0.25);
+    cr_assert(at.b == 0 && at.db == 0 && at.d2b == 0);
+    cr_assert(beyond.b == 0 && beyond.db == 0 && beyond.d2b == 0);
+    double last = 0;
+    for (double d = 0.24; d > 1e-6; d *= 0.5) {
+        cl_logbarrier b = cl_logbarrier_eval(d, 0.25);
+        cr_assert(b.b > last && b.db < 0 && b.d2b > 0, "d = %g", d);
+        last = b.b;
+    }
+    /* b(dh / e) = (dh (1 - 1/e))^2 */
+    double dh = 0.25, d = dh / M_E;
+    cr_assert_float_eq(cl_logbarrier_eval(d, dh).b, (dh - d) * (dh - d),
+                       1e-15);
 }
 
 Test(selfcontact, model_energy_column_and_refusals)
@@ -199,7 +254,8 @@ Test(selfcontact, model_energy_column_and_refusals)
     double x[N3], v[N3] = {0}, f[N3];
     folded(cl_model_cloth(m), x);
     cl_energy e = fd_eval(m, x, v, f);
-    sc_case c = make_case();
+    sc_case c;
+    make_case(&c, "penalty");
     cr_assert_eq(fd_term_energy(&e, "selfcontact"), eval(&c, x, NULL, NULL));
     free_case(&c);
     cl_model_free(m);
@@ -251,8 +307,9 @@ static double fold_run(const char *tmp, const char *on)
     return closest_at_end(out);
 }
 
-Test(selfcontact, fold_scene_keeps_layers_apart, .timeout = 120)
+Test(selfcontact, fold_scene_keeps_layers_apart)
 {
+    time_limit(600);
     char tmp[256];
     tmp_mkdtemp(tmp, sizeof tmp, "fold");
     double on = fold_run(tmp, "true"), off = fold_run(tmp, "false");

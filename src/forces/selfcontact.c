@@ -5,15 +5,19 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "forces/logbarrier.h"
 #include "forces/pairterm.h"
 #include "forces/sphash.h"
 #include "model/ring.h"
 
 #define SEC "selfcontact"
 
+typedef enum { SC_PENALTY, SC_BARRIER } sc_law;
+
 typedef struct {
     const cl_cloth *cloth;
     double h, k;           /* thickness (m), stiffness (N/m) */
+    sc_law law;
     cl_ring ring;
     cl_sphash hash;
     long *diag;            /* np: slot of each particle's diagonal block,
@@ -31,13 +35,31 @@ typedef struct {
     double closest;        /* smallest d */
 } sc_pass;
 
+/* The scalar law at distance d < h_s: E(d), s(d) = E'(d) (the force on a
+ * is s u) and s'(d): the penalty (3.4)-(3.5) or k_s times the barrier
+ * (3.8). */
+static void pair_law(const sc_state *st, double d, double *e, double *s,
+                     double *ds)
+{
+    if (st->law == SC_BARRIER) {
+        cl_logbarrier b = cl_logbarrier_eval(d, st->h);
+        *e = st->k * b.b;
+        *s = st->k * b.db;
+        *ds = st->k * b.d2b;
+        return;
+    }
+    double gap = st->h - d;
+    *e = 0.5 * st->k * gap * gap;
+    *s = -st->k * gap;
+    *ds = st->k;
+}
+
 /* The block K of pair (a, b) at distance d > 0, direction u: exact, or
- * (lumped) its normal part k_s u u^T alone (docs/model.md 3.5). */
-static void pair_block(const sc_state *st, const double u[3], double d,
+ * (lumped) its normal part s'(d) u u^T alone (docs/model.md 3.5). */
+static void pair_block(const double u[3], double d, double s, double ds,
                        bool normal_only, double K[9])
 {
-    double s = -st->k * (st->h - d);
-    cl_pair_block(u, d, normal_only ? 0.0 : s, st->k, false, K);
+    cl_pair_block(u, d, normal_only ? 0.0 : s, ds, false, K);
 }
 
 /* Add sign * K into the dense n x n matrix at block (a, b). */
@@ -51,16 +73,16 @@ static void dense_add(double *J, size_t n, int a, int b, double sign,
 }
 
 static void add_blocks(sc_pass *p, int a, int b, const double u[3],
-                       double d)
+                       double d, double s, double ds)
 {
     double K[9];
     if (p->dfdx) {
-        pair_block(p->st, u, d, true, K);
+        pair_block(u, d, s, ds, true, K);
         cl_block_add(p->dfdx, p->st->diag[a], -1.0, K);
         cl_block_add(p->dfdx, p->st->diag[b], -1.0, K);
     }
     if (p->dense) {
-        pair_block(p->st, u, d, false, K);
+        pair_block(u, d, s, ds, false, K);
         size_t n = 3 * p->st->cloth->np;
         dense_add(p->dense, n, a, a, -1.0, K);
         dense_add(p->dense, n, b, b, -1.0, K);
@@ -77,21 +99,21 @@ static void visit(void *ctx, int a, int b, double d2)
     const sc_state *st = p->st;
     if (cl_ring_has(&st->ring, a, b))
         return;
-    double d = sqrt(d2), gap = st->h - d;
+    double d = sqrt(d2), e, s, ds;
     if (d < p->closest)
         p->closest = d;
-    p->energy += 0.5 * st->k * gap * gap;
+    pair_law(st, d, &e, &s, &ds);
+    p->energy += e;
     if (!(d > 0))
         return;
     const double *xa = p->x + 3 * (size_t)a, *xb = p->x + 3 * (size_t)b;
     double u[3] = {(xb[0] - xa[0]) / d, (xb[1] - xa[1]) / d,
                    (xb[2] - xa[2]) / d};
-    double s = -st->k * gap;
     if (p->f)
         cl_pair_scatter(p->f, &(cl_pair){.a = a, .b = b}, s * u[0],
                         s * u[1], s * u[2]);
     if (p->dfdx || p->dense)
-        add_blocks(p, a, b, u, d);
+        add_blocks(p, a, b, u, d, s, ds);
 }
 
 static sc_pass run_pass(sc_state *st, const double *x, double *f,
@@ -173,13 +195,17 @@ static cl_status check_rest(cl_config *cfg, sc_state *st, cl_error *err)
 static cl_status read_keys(cl_config *cfg, bool enabled, sc_state *st,
                            long *ring, cl_error *err)
 {
+    static const char *const laws[] = {"penalty", "barrier", NULL};
+    int law;
     cl_status rc;
     if ((rc = cl_config_double(cfg, SEC, "thickness", NAN, 1e-300, INFINITY,
                                &st->h, err)) ||
         (rc = cl_config_double(cfg, SEC, "stiffness", NAN, 1e-300, INFINITY,
                                &st->k, err)) ||
-        (rc = cl_config_long(cfg, SEC, "ring", 2, 1, 8, ring, err)))
+        (rc = cl_config_long(cfg, SEC, "ring", 2, 1, 8, ring, err)) ||
+        (rc = cl_config_choice(cfg, SEC, "law", laws, 0, &law, err)))
         return rc;
+    st->law = law == 1 ? SC_BARRIER : SC_PENALTY;
     if (enabled && (isnan(st->h) || isnan(st->k)))
         return cl_error_set(err, CL_EINVAL, "[selfcontact] enabled = true "
                             "needs thickness (m, > 0) and stiffness (N/m, "
@@ -204,6 +230,7 @@ static cl_status sc_create(cl_config *cfg, const cl_cloth *cloth,
     st->cloth = cloth;
     st->h = keys.h;
     st->k = keys.k;
+    st->law = keys.law;
     (void)opts; /* the lumped blocks drop the transverse part anyway */
     st->diag = malloc((cloth->np + 1) * sizeof *st->diag);
     if (!st->diag)
@@ -220,9 +247,9 @@ static cl_status sc_create(cl_config *cfg, const cl_cloth *cloth,
 
 const cl_term_type cl_term_selfcontact = {
     .name = "selfcontact",
-    .doc = "self-contact: penalty k_s (h_s - d) between particles more "
-           "than `ring` steps apart and closer than h_s (spatial hash; "
-           "lumped Jacobian)",
+    .doc = "self-contact: penalty k_s (h_s - d) or IPC's log barrier "
+           "between particles more than `ring` steps apart and closer "
+           "than h_s (spatial hash; lumped Jacobian)",
     .conservative = true,
     .create = sc_create,
     .couplings = sc_couplings,
