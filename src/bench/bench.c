@@ -55,7 +55,8 @@ cl_status cl_bench_run(const cl_bench_opts *o, cl_bench_table *t,
         cl_bench_choose(&c);
     void (*const work[])(cl_bctx *) = {NULL,        NULL,        cl_bench_w2,
                                        cl_bench_w3, cl_bench_w4, cl_bench_w5,
-                                       cl_bench_w6, cl_bench_w7, cl_bench_w8};
+                                       cl_bench_w6, cl_bench_w7, cl_bench_w8,
+                                       cl_bench_w9};
     for (int w = 2; w <= CL_BENCH_WORKLOADS; w++)
         if (selected(&c, w) && !c.nomem)
             work[w](&c);

@@ -1,6 +1,6 @@
 /* Benchmarks (`clothode-bench`, README "Benchmarks"): cost of the
  * integrators and linear solvers on the default problem, against goals.
- * Eight workloads:
+ * Nine workloads:
  *
  *   1  hang, cvode-bdf with the best linear solver against the scipy peer
  *      (scripts/peers/hang_scipy.py: solve_ivp BDF, analytic sparse
@@ -44,6 +44,11 @@
  *      (over the sphere) and from t = 3 s (on the floor): CPU time of the
  *      contact term plus the contact hook, replayed on the recorded
  *      calls of those steps, over that of a step; goal <= 25 %.
+ *   9  self-contact in a step of problems/fold.ini (semi-be, dt = 1e-3
+ *      s) at t = 2.5 s, the cloth folded onto itself: CPU time of the
+ *      self-contact term's evaluations of a step (spatial hash, close
+ *      pairs, forces, lumped Jacobian) over that of the step; goal <=
+ *      10 %.
  *
  * The best solver for cvode-bdf is picked once per run: every name of the
  * linear-solver registry plus klu-full, timed on the first case of
@@ -63,11 +68,11 @@
 
 #include "core/error.h"
 
-#define CL_BENCH_WORKLOADS 8
+#define CL_BENCH_WORKLOADS 9
 
 typedef struct {
     bool quick;
-    unsigned only;          /* bit w (1..8) selects workload w; 0: all */
+    unsigned only;          /* bit w (1..9) selects workload w; 0: all */
     const char *problems;   /* directory of the problem files */
     const char *peer;       /* the peer script */
     const char *self;       /* the clothode-bench program, for child runs */
@@ -77,7 +82,7 @@ typedef struct {
 
 /* One result line.  cpu_*, wall_* are seconds of the timed unit (a whole
  * run; one step in workload 3; one evaluation in workload 4; one point in
- * workload 7; one step's share in workload 8); ratio is the measured
+ * workload 7; one step's share in workloads 8 and 9); ratio is the measured
  * figure in `unit` (x for a speed-up, s, ns/pair, steps/s, B/unknown, %,
  * or empty for an exponent), compared
  * with target by goal (">=" or "<="; "" when there is none).  NaN where

@@ -152,4 +152,8 @@ void cl_bench_w7(cl_bctx *c);
 
 void cl_bench_w8(cl_bctx *c);
 
+/* ---- bench_selfcontact.c: workload 9 --------------------------------- */
+
+void cl_bench_w9(cl_bctx *c);
+
 #endif

@@ -45,8 +45,22 @@ static cl_status check_run(cl_config *cfg, void *ctx, cl_error *err)
                                 CL_CLI_DT_ALL, err);
 }
 
+/* The closest non-neighbours at the end (forces/selfcontact.h). */
+static void print_selfcontact(cl_model *m, const cl_sim_result *res)
+{
+    double d;
+    if (!cl_model_selfcontact_closest(m, res->xfinal, &d))
+        return;
+    if (isinf(d))
+        printf("self-contact no non-neighbours closer than the thickness "
+               "at the end\n");
+    else
+        printf("self-contact closest non-neighbours %.6g m apart at the "
+               "end\n", d);
+}
+
 static void print_summary(const char *problem, const run_setup *r,
-                          const cl_model *m, const cl_sim_result *res)
+                          cl_model *m, const cl_sim_result *res)
 {
     const cl_cloth *c = cl_model_cloth(m);
     const cl_cli_method *im = &r->integrator.m[0];
@@ -74,6 +88,7 @@ static void print_summary(const char *problem, const run_setup *r,
     if (cl_model_contact(m) && cl_contact_barriers(cl_model_contact(m)))
         printf("barrier      min distance %.6g m at t = %.6g s\n",
                res->min_distance, res->min_distance_t);
+    print_selfcontact(m, res);
     cl_stats_print(&res->stats, stdout, true);
     printf("output       %s (series.csv, %ld frames, final.csv, stats.csv)\n",
            r->so.outdir, res->frames);

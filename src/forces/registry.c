@@ -4,6 +4,7 @@
 #include "forces/bw.h"
 #include "forces/choiko.h"
 #include "forces/pbd.h"
+#include "forces/selfcontact.h"
 #include "forces/springs.h"
 
 const cl_term_type *const cl_term_registry[] = {
@@ -20,5 +21,6 @@ const cl_term_type *const cl_term_registry[] = {
     &cl_term_bw_bend_damping,
     &cl_term_gravity,
     &cl_term_pbd,
+    &cl_term_selfcontact,
     NULL,
 };

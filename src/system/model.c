@@ -3,6 +3,7 @@
 #include "system/model.h"
 
 #include "contact/contact.h"
+#include "forces/selfcontact.h"
 #include "model/cloth_read.h"
 #include "model/pins.h"
 
@@ -649,6 +650,16 @@ cl_status cl_model_triangles(const cl_model *m, int (*tri)[3], size_t *ntri,
     }
     *ntri = kept;
     return CL_OK;
+}
+
+bool cl_model_selfcontact_closest(cl_model *m, const double *x, double *d)
+{
+    for (size_t k = 0; k < m->nterm; k++)
+        if (m->type[k] == &cl_term_selfcontact) {
+            *d = cl_selfcontact_closest(m->state[k], x);
+            return true;
+        }
+    return false;
 }
 
 const cl_contact *cl_model_contact(const cl_model *m) { return m->contact; }

@@ -86,6 +86,12 @@ cl_status cl_model_jacobian_full(cl_model *m, double t, const double *x,
                                  const double *v, cl_bpattern *pat,
                                  double **dfdx, double **dfdv, cl_error *err);
 
+/* The self-contact term's closest distance between non-neighbours at
+ * full-particle positions x (3 np; forces/selfcontact.h
+ * cl_selfcontact_closest: INFINITY when no pair is closer than its
+ * thickness); false, *d untouched, when the model has no self-contact. */
+bool cl_model_selfcontact_closest(cl_model *m, const double *x, double *d);
+
 /* ---- contact (contact/contact.h) ------------------------------------- */
 
 /* The obstacles, or NULL when the problem has none. */
