@@ -1,0 +1,10 @@
+/* CSV fields shared by the studies' tables. */
+#ifndef CL_CSV_H
+#define CL_CSV_H
+
+#include <stdio.h>
+
+/* s as one quoted CSV field, a quote inside it doubled (RFC 4180). */
+void cl_csv_quoted(FILE *fp, const char *s);
+
+#endif
