@@ -6,10 +6,11 @@
  * symplectic Euler alone on a particle of mass m, h < 2 sqrt(m / k)).  The
  * measured limit is the stability search (analysis/stability.h); the
  * prediction is the integrator's region applied to the spectrum of the
- * model linearised at its initial state (analysis/spectrum.h), whose
- * Jacobian includes the contact term's, so a scene that starts in
- * contact (a cloth resting on a floor) is predicted with its contact
- * springs and one that starts free without them. */
+ * model linearised at a given state (analysis/spectrum.h), whose Jacobian
+ * includes the contact term's: linearised at a state in contact (a cloth
+ * resting on a floor, the end state of a draped run) it counts the
+ * contact springs, at a state out of contact (a cloth about to fall) it
+ * does not. */
 #ifndef CL_CONTACT_LIMIT_H
 #define CL_CONTACT_LIMIT_H
 
@@ -26,9 +27,11 @@ typedef struct {
     double w_max;         /* sqrt(mu_max) at the initial state (rad/s) */
 } cl_climit_result;
 
-/* The search and the prediction for `type` on m. */
+/* The search from m's initial state and the prediction at the free state
+ * (x, v) at time t for `type`. */
 cl_status cl_climit_run(cl_model *m, const cl_integrator_type *type,
                         const cl_integrator_opts *io, const cl_stab_opts *o,
+                        double t, const double *x, const double *v,
                         cl_climit_result *r, cl_error *err);
 
 /* One CSV row, header first when `header`:

@@ -34,6 +34,8 @@ typedef struct {
     cl_cli_methods integrators;
     cl_cli_run run;
     const char *responses, *dts, *ks;
+    const char *state;    /* --k: the state of the prediction, "": initial */
+    double t;             /* ... its time */
     long checks;
     double dt_max, dt_min, rel;
     cl_stab_opts so;
@@ -44,6 +46,7 @@ typedef struct {
     cl_config *cfg;       /* the command's, where variants are applied */
     cl_model *variant;    /* the model of the variant being run */
     int variant_of;       /* ... its index, -1 none */
+    double *x, *v;        /* --k: the free state of the prediction */
 } ct_setup;
 
 static const cl_cli_opt ct_rows[] = {
@@ -62,7 +65,7 @@ static const cl_cli_opt ct_rows[] = {
     {.name = "dt", .arg = "LIST", .type = CL_CLI_STRING, .sec = "contact",
      .key = "dt", .field = offsetof(ct_setup, dts),
      .help = "steps (s), comma-separated, or LO:HI:N for N steps spread "
-             "evenly in log from LO to HI; each must divide T (required)"},
+             "evenly in log from LO to HI; each must divide T"},
     {.name = "checks", .arg = "K", .type = CL_CLI_LONG, .sec = "contact",
      .key = "checks", .def = 20, .lo = 1, .hi = 100000,
      .field = offsetof(ct_setup, checks), .help = "stretch tests per run"},
@@ -70,8 +73,16 @@ static const cl_cli_opt ct_rows[] = {
      .key = "k", .field = offsetof(ct_setup, ks),
      .help = "penalty stiffnesses (N/m), comma-separated: for each, every "
              "obstacle's response penalty with that k, the stability "
-             "search's limit beside the spectrum's prediction at the "
-             "initial state (default: none)"},
+             "search's limit beside the spectrum's prediction at --state "
+             "(default: none)"},
+    {.name = "state", .arg = "FILE", .type = CL_CLI_STRING, .sec = "contact",
+     .key = "state", .field = offsetof(ct_setup, state),
+     .help = "--k: the state the prediction linearises at, as final.csv "
+             "(default: the problem's initial state)"},
+    {.name = "t", .arg = "T", .type = CL_CLI_DOUBLE, .sec = "contact",
+     .key = "t", .lo = -INFINITY, .hi = INFINITY,
+     .field = offsetof(ct_setup, t),
+     .help = "--k: the time of that state (moving obstacles and pins)"},
     {.name = "dt-max", .arg = "H", .type = CL_CLI_DOUBLE, .sec = "contact",
      .key = "dt_max", .def = NAN, .lo = 1e-300, .hi = INFINITY,
      .field = offsetof(ct_setup, dt_max),
@@ -88,7 +99,8 @@ static const cl_cli_opt ct_rows[] = {
     {.type = CL_CLI_END}};
 
 static const cl_cli_table ct_table = {
-    .cmd = "contact", .synopsis = "PROBLEM --dt LIST [options]", .npos = 1,
+    .cmd = "contact", .synopsis = "PROBLEM --dt LIST | --k LIST [options]",
+    .npos = 1,
     .rows = ct_rows,
     .about =
     "For each response and fixed-step integrator, runs from the initial\n"
@@ -99,8 +111,8 @@ static const cl_cli_table ct_table = {
     "rest (the end state), the largest stretch, Newton iterations and CPU\n"
     "time; writes contact.csv.  With --k, for each penalty stiffness the\n"
     "largest stable step of each integrator (the stability search) beside\n"
-    "the spectrum's prediction at the initial state, contact included;\n"
-    "writes contact-k.csv.\n",
+    "the spectrum's prediction at --state (a state in contact includes\n"
+    "the contact springs); writes contact-k.csv.\n",
     .notes =
     "A response is given to every [obstacle.NAME] of the problem, as --set\n"
     "obstacle.NAME.response=R would; its own keys come from the file or\n"
@@ -163,10 +175,11 @@ static bool read_names(const char *s, char (*out)[32], int max, int *n)
 static cl_status read_lists(cl_config *cfg, ct_setup *s, cl_error *err)
 {
     char why[160];
-    if (!*s->dts)
-        return cl_error_set(err, CL_EINVAL, "contact needs its steps: --dt "
-                            "LIST (or [contact] dt)");
-    if (!read_steps(s->dts, s->dt, &s->ndt)) {
+    if (!*s->dts && !*s->ks)
+        return cl_error_set(err, CL_EINVAL, "contact needs steps to run "
+                            "(--dt LIST) or stiffnesses to search (--k "
+                            "LIST)");
+    if (*s->dts && !read_steps(s->dts, s->dt, &s->ndt)) {
         snprintf(why, sizeof why, "expected steps > 0 separated by commas "
                  "(at most %d) or LO:HI:N with 0 < LO < HI and 2 <= N <= %d",
                  CL_CSTUDY_MAX_DT, CL_CSTUDY_MAX_DT);
@@ -259,10 +272,10 @@ static cl_status restore(ct_setup *s, cl_error *err)
 }
 
 /* Variants 0 .. nresp-1 (or one, the problem as it is, without
- * --response) are the responses, then one per k. */
+ * --response) are the responses, none without --dt, then one per k. */
 static int dt_variants(const ct_setup *s)
 {
-    return s->nresp > 0 ? s->nresp : 1;
+    return s->ndt == 0 ? 0 : s->nresp > 0 ? s->nresp : 1;
 }
 
 static const char *variant_response(const ct_setup *s, int v)
@@ -415,13 +428,20 @@ static void print_k_result(const void *result)
 static cl_status begin_k(cl_model *m, const cl_cli_job *job, void *ctx,
                          cl_error *err)
 {
-    const ct_setup *s = ctx;
-    (void)m;
-    (void)err;
+    ct_setup *s = ctx;
+    size_t n = cl_model_system(m)->n;
+    s->x = malloc(n * sizeof *s->x);
+    s->v = malloc(n * sizeof *s->v);
+    cl_status rc = s->x && s->v ? cl_cli_free_state(m, s->state, s->x, s->v,
+                                                    err)
+                                : cl_error_set(err, CL_ENOMEM,
+                                               "out of memory");
+    if (rc)
+        return rc;
     if (!job->quiet)
         printf("\nexplicit limit against the penalty stiffness k (every "
-               "obstacle penalty), predicted at the initial state\n");
-    (void)s;
+               "obstacle penalty), predicted at %s\n",
+               *s->state ? s->state : "the initial state");
     return CL_OK;
 }
 
@@ -437,7 +457,8 @@ static cl_status run_k(cl_model *m, void *ctx, int k, void *result,
     if (s->variant_of != v)
         rc = build(s, v, err);
     if (!rc)
-        rc = cl_climit_run(s->variant, mk->type, &mk->io, &s->so, r, err);
+        rc = cl_climit_run(s->variant, mk->type, &mk->io, &s->so, s->t,
+                           s->x, s->v, r, err);
     r->label = mk->label;
     r->k = s->k[v - dt_variants(s)];
     return rc;
@@ -467,9 +488,10 @@ static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
                        cl_error *err)
 {
     ct_setup *s = ctx;
-    cl_status rc = cl_cli_study_run(m, job, &step_study,
-                                    dt_variants(s) * s->integrators.n, ctx,
-                                    err);
+    cl_status rc = s->ndt == 0 ? CL_OK
+                   : cl_cli_study_run(m, job, &step_study,
+                                      dt_variants(s) * s->integrators.n, ctx,
+                                      err);
     if (!rc && s->nk > 0)
         rc = cl_cli_study_run(m, job, &k_study, s->nk * s->integrators.n,
                               ctx, err);
@@ -484,5 +506,7 @@ int cl_cmd_contact(int argc, char **argv)
                                      study);
     cl_model_free(s.variant);
     free_obstacles(&s);
+    free(s.x);
+    free(s.v);
     return status;
 }
