@@ -39,7 +39,8 @@ typedef struct {
     int n;
     cl_cstudy_row row[CL_CSTUDY_MAX_DT];
     /* the smallest dt of the list whose run is unstable (NaN: none), and
-     * the largest stable dt below it (NaN: none) */
+     * the largest stable dt below it, or of all when none is unstable
+     * (NaN: none) */
     double dt_unstable, dt_stable;
 } cl_cstudy_result;
 
