@@ -6,13 +6,14 @@
 
 #include "io/csv.h"
 
-static void expect_quoted(const char *in, const char *want)
+static void expect_field(void (*write)(FILE *, const char *),
+                         const char *in, const char *want)
 {
     char *buf = NULL;
     size_t len = 0;
     FILE *fp = open_memstream(&buf, &len);
     cr_assert_not_null(fp);
-    cl_csv_quoted(fp, in);
+    write(fp, in);
     cr_assert_eq(fclose(fp), 0);
     cr_assert_str_eq(buf, want);
     free(buf);
@@ -20,7 +21,16 @@ static void expect_quoted(const char *in, const char *want)
 
 Test(csv, quotes_doubled_inside_quotes)
 {
-    expect_quoted("", "\"\"");
-    expect_quoted("a, b", "\"a, b\"");
-    expect_quoted("[s] k = \"x\": bad", "\"[s] k = \"\"x\"\": bad\"");
+    expect_field(cl_csv_quoted, "", "\"\"");
+    expect_field(cl_csv_quoted, "a, b", "\"a, b\"");
+    expect_field(cl_csv_quoted, "[s] k = \"x\": bad",
+                 "\"[s] k = \"\"x\"\": bad\"");
+}
+
+Test(csv, text_quoted_only_when_it_must)
+{
+    expect_field(cl_csv_text, "plain text", "plain text");
+    expect_field(cl_csv_text, "a,b", "\"a,b\"");
+    expect_field(cl_csv_text, "say \"hi\"", "\"say \"\"hi\"\"\"");
+    expect_field(cl_csv_text, "two\nlines", "\"two\nlines\"");
 }

@@ -303,6 +303,18 @@ static cl_status build(ct_setup *s, int v, cl_error *err)
     return rc;
 }
 
+/* The model of variant v in s->variant, built unless it is there. */
+static cl_status use_variant(ct_setup *s, int v, cl_error *err)
+{
+    return s->variant_of == v ? CL_OK : build(s, v, err);
+}
+
+/* The integrator of the study's k-th result (variants by integrators). */
+static const cl_cli_method *method_of(const ct_setup *s, int k)
+{
+    return &s->integrators.m[k % s->integrators.n];
+}
+
 /* Every variant built, each integrator created on it and checked for its
  * study, then the problem's own values put back. */
 static cl_status try_variants(ct_setup *s, cl_error *err)
@@ -390,11 +402,9 @@ static cl_status run_steps(cl_model *m, void *ctx, int k, void *result,
     ct_setup *s = ctx;
     cl_cstudy_result *r = result;
     int v = k / s->integrators.n;
-    const cl_cli_method *mk = &s->integrators.m[k % s->integrators.n];
-    cl_status rc = CL_OK;
+    const cl_cli_method *mk = method_of(s, k);
+    cl_status rc = use_variant(s, v, err);
     (void)m;
-    if (s->variant_of != v)
-        rc = build(s, v, err);
     if (!rc)
         rc = cl_cstudy_run(s->variant, mk->type, &mk->io, &s->so, s->dt,
                            s->ndt, r, err);
@@ -451,11 +461,9 @@ static cl_status run_k(cl_model *m, void *ctx, int k, void *result,
     ct_setup *s = ctx;
     cl_climit_result *r = result;
     int v = dt_variants(s) + k / s->integrators.n;
-    const cl_cli_method *mk = &s->integrators.m[k % s->integrators.n];
-    cl_status rc = CL_OK;
+    const cl_cli_method *mk = method_of(s, k);
+    cl_status rc = use_variant(s, v, err);
     (void)m;
-    if (s->variant_of != v)
-        rc = build(s, v, err);
     if (!rc)
         rc = cl_climit_run(s->variant, mk->type, &mk->io, &s->so, s->t,
                            s->x, s->v, r, err);
