@@ -49,6 +49,21 @@ typedef struct {
     double *x, *v;        /* --k: the free state of the prediction */
 } ct_setup;
 
+/* --k's search range: dt_max T/100 by default, at most T/10 (as
+ * stability's); dt_min at most dt_max. */
+static void dt_max_bounds(const void *settings, double *def, double *hi)
+{
+    const ct_setup *s = settings;
+    *def = s->run.t_end / 100;
+    *hi = s->run.t_end / 10;
+}
+
+static void dt_min_bounds(const void *settings, double *def, double *hi)
+{
+    (void)def;
+    *hi = ((const ct_setup *)settings)->dt_max;
+}
+
 static const cl_cli_opt ct_rows[] = {
     {.name = "integrator", .arg = "LIST", .type = CL_CLI_METHODS,
      .sec = "run", .key = "integrator", .sdef = "symplectic-euler",
@@ -84,13 +99,13 @@ static const cl_cli_opt ct_rows[] = {
      .field = offsetof(ct_setup, t),
      .help = "--k: the time of that state (moving obstacles and pins)"},
     {.name = "dt-max", .arg = "H", .type = CL_CLI_DOUBLE, .sec = "contact",
-     .key = "dt_max", .def = NAN, .lo = 1e-300, .hi = INFINITY,
+     .key = "dt_max", .lo = 1e-300, .bounds = dt_max_bounds,
      .field = offsetof(ct_setup, dt_max),
      .help = "--k: largest step tried, at most T/10 (default T/100)"},
     {.name = "dt-min", .arg = "H", .type = CL_CLI_DOUBLE, .sec = "contact",
-     .key = "dt_min", .def = 1e-7, .lo = 1e-300, .hi = INFINITY,
+     .key = "dt_min", .def = 1e-7, .lo = 1e-300, .bounds = dt_min_bounds,
      .field = offsetof(ct_setup, dt_min),
-     .help = "--k: give up below this step"},
+     .help = "--k: give up below this step, at most dt_max"},
     {.name = "rel", .arg = "R", .type = CL_CLI_DOUBLE, .sec = "contact",
      .key = "rel", .def = 0.02, .lo = 1e-6, .hi = 0.5,
      .field = offsetof(ct_setup, rel),
@@ -355,9 +370,7 @@ static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
                                 s->integrators.m[k].type->name);
     s->so = (cl_stab_opts){.t_end = s->run.t_end, .checks = s->checks,
                            .max_stretch = s->run.max_stretch, .rel = s->rel,
-                           .dt_max = isnan(s->dt_max) ? s->run.t_end / 100
-                                                      : s->dt_max,
-                           .dt_min = s->dt_min};
+                           .dt_max = s->dt_max, .dt_min = s->dt_min};
     if (!rc && !(rc = read_lists(cfg, s, err)) &&
         !(rc = save_obstacles(cfg, s, err)))
         rc = try_variants(s, err);
