@@ -67,6 +67,17 @@ awk '{ end = $7; sub(/^failed@/, "stopped at ", end); sub(/^ok$/, "ran", end)
 # quoted, made by scripts/claims.sh; run here if a report made before it
 # lacks it): claims.tex (id, source and section, claim, value, verdict),
 # claims-how.tex (id, configuration, quantity, command) and
+# The contact study: jiao-sphere's runs (response, step, stable, worst
+# penetration in m, largest stretch, CPU) and tunnel's speeds (speed, then
+# contacts at T and worst penetration in mm for projection and penalty).
+cs=$res/contact-study
+awk -F, 'NR > 1 { printf "%s & %s & %s & %.3g & %.3g & %.2f \\\\\n", ($2 == last ? "" : $2), $3,
+                  ($5 == 1 ? "stable" : "unstable"), $7, $11, $13; last = $2 }' \
+    "$cs/jiao-sphere/contact.csv" > "$tex/contact-study.tex"
+paste "$cs/tunnel-project.dat" "$cs/tunnel-penalty.dat" |
+    awk '{ printf "%g & %d & %.3g & %d & %.3g \\\\\n", $1, $3, 1000 * $2, $6, 1000 * $5 }' \
+    > "$tex/tunnel.tex"
+
 # claims-values.tex, every row's value as \cv{ID} for the text.
 [ -f "$res/claims/claims.csv" ] || scripts/claims.sh build/clothode "$res/claims"
 awk '

@@ -179,6 +179,30 @@ last=$(ls "$ct"/semi-bdf2-1e-2/frame_*.obj | tail -1)
 draw drape-sphere "cloth='$last'; obstacles='${last/frame_/obstacles_}'; title_text='drape-sphere, semi-bdf2 dt = 0.01: t = 3 s'" scene
 draw penetration "dir='$ct'; names='$names'; title_text='drape-sphere: deepest penetration into the sphere or the floor'"
 
+echo "report: contact study (jiao-sphere against dt; tunnel against speed)"
+cs=$res/contact-study
+rm -rf "$cs" && mkdir -p "$cs"
+# Jiao's cloth on his sphere with Choi and Ko's BDF2 step, the code's
+# projection beside a penalty spring (k = 1 N/m: 1 cm of rest depth under
+# the code's 0.01 N a particle); unstable: d/L > 3 (the cloth alone swings
+# to 1.73 at these steps).
+"$bin" contact jiao-sphere --quiet --out "$cs/jiao-sphere" --integrator semi-bdf2 \
+    --response project,penalty --set obstacle.sphere.k=1 \
+    --dt 2e-3,5e-3,1e-2,2e-2 --t-end 0.5 --checks 100 --set run.max_stretch=3
+awk -F, -v dir="$cs" 'NR > 1 { print $3, $7, $11, $5 > (dir "/" $2 ".dat") }' \
+    "$cs/jiao-sphere/contact.csv"
+# tunnel: the sphere of radius 0.2 m at speed V (T = 0.6 / V), semi-be at
+# 1e-3 s: "V worst_penetration contacts_at_T" per response.
+for v in 1 10 30 100 150 200 300 600; do
+    "$bin" contact tunnel --quiet --out "$cs/tunnel-$v" --integrator semi-be \
+        --response penalty,project --dt 1e-3 --t-end "$(awk -v v=$v 'BEGIN { print 0.6 / v }')" \
+        --set "obstacle.ball.path=0: 0, 0, 0; 1: 0, $v, 0"
+    awk -F, -v dir="$cs" -v v=$v 'NR > 1 { print v, $7, $10 >> (dir "/tunnel-" $2 ".dat") }' \
+        "$cs/tunnel-$v/contact.csv"
+done
+cat "$cs/jiao-sphere/contact.csv" "$cs"/tunnel-*.dat
+draw contact-study "dir='$cs'; title_text='contact study'"
+
 echo "report: animation (hang, cvode-bdf, 2 s)"
 "$bin" run hang --quiet --out "$res/hang" --frames 40 --format obj
 gnuplot -e "dir='$res/hang'; nframes=40; nv=16; outfile='plots/hang.gif'; xr0=-0.6; xr1=1.1; zr0=0; zr1=1; yr0=-1.1; yr1=0.1" plots/animation.gp

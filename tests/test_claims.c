@@ -42,6 +42,7 @@ static const char *const rows_run[] = {
     "jiao-more-wrinkles", "jiao-counts-ck", "jiao-counts-bw",
     "jiao-counts-slower", "jiao-asinc", "jiao-asinc-used",
     "jiao-sphere-inside", "jiao-sphere-unstable", "jiao-sphere-small",
+    "jiao-sphere-fig13", "jiao-sphere-fig14", "verlet-small-sphere",
     "skirt-limit", "skirt-penalty", "skirt-penalty-file", "verlet-order",
     "verlet-pbd-60", "verlet-pbd-30", "verlet-spring-k150", "verlet-spring-k15",
     "verlet-friction", "verlet-friction-30", "verlet-map", NULL};
@@ -172,6 +173,25 @@ static double convergence(const char *dir, const char *method,
         }
     cr_assert_fail("%s: no row of %s", path, method);
     return NAN;
+}
+
+/* The column `name` of row k (1-based, after the header) of
+ * DIR/contact.csv, whose header and row count are checked. */
+static double contact(const char *dir, size_t k, size_t rows,
+                      const char *name)
+{
+    char path[1100];
+    snprintf(path, sizeof path, "%s/contact.csv", dir);
+    cli_lines L;
+    cli_read_lines(path, &L);
+    cr_assert_str_eq(L.line[0], "integrator,response,dt,steps,stable,status,"
+                                "worst_penetration,worst_t,rest_penetration,"
+                                "rest_contacts,max_stretch,newton_iters,cpu,"
+                                "reason");
+    cr_assert_eq(L.n, rows + 1, "%s: %zu lines", path, L.n);
+    double v = field(L.line[k], column(L.line[0], name), path);
+    cli_lines_free(&L);
+    return v;
 }
 
 /* The worst penetration a run's summary prints (m). */
@@ -361,6 +381,44 @@ Test(claims, jiao_sphere)
                 0, dir, sizeof dir);
     expect_in(penetration(&r), 0.0, 6.0, "penetration at 5e-4 s");
     free_result(r);
+}
+
+/* The contact study's rows at T = 0.2 s: the projection's runs on
+ * jiao-sphere and the instability test on jiao alone; scene 1 of the
+ * Verlet-and-PBD report up to the sphere's passage (t = 2.3 s), where a
+ * sphere of radius 0.05 m, below half the 0.15 m quad's diagonal, touches
+ * no particle and one of 0.2 m does. */
+Test(claims, contact_study)
+{
+    char dir[1024];
+    free_result(row_run("jiao-sphere-fig13",
+                        "contact jiao-sphere --integrator semi-bdf2 "
+                        "--response project --dt 1e-2,2e-2 --t-end 0.2 "
+                        "--checks 20 --set run.max_stretch=3 --quiet",
+                        0, dir, sizeof dir));
+    for (size_t k = 1; k <= 2; k++) {
+        double stable = contact(dir, k, 2, "stable");
+        cr_assert(stable == 0.0 || stable == 1.0);
+        expect_in(contact(dir, k, 2, "worst_penetration"), 0.0, 6.0,
+                  "jiao-sphere penetration");
+    }
+    free_result(row_run("jiao-sphere-fig13",
+                        "stability jiao --integrator semi-bdf2 --t-end 0.2 "
+                        "--checks 20 --set run.max_stretch=3 --dt-max 0.02 "
+                        "--rel 0.1 --quiet",
+                        0, dir, sizeof dir));
+    expect_in(stable_dt(dir, "semi-bdf2"), 1e-3, 0.02, "jiao alone");
+    const char *scene1 = "contact verlet-scene1 --integrator verlet-pbd "
+                         "--dt 0.016666666666666666 --t-end 2.5 --quiet "
+                         "--set obstacle.ball.radius=";
+    char args[256];
+    snprintf(args, sizeof args, "%s0.05", scene1);
+    free_result(row_run("verlet-small-sphere", args, 0, dir, sizeof dir));
+    cr_assert_eq(contact(dir, 1, 1, "worst_penetration"), 0.0);
+    snprintf(args, sizeof args, "%s0.2", scene1);
+    free_result(row_run("verlet-small-sphere", args, 0, dir, sizeof dir));
+    expect_in(contact(dir, 1, 1, "worst_penetration"), 1e-3, 0.2,
+              "radius 0.2 m");
 }
 
 Test(claims, skirt)

@@ -1185,6 +1185,82 @@ Test(cli, stability_refusals)
                    LIST("tear"));
 }
 
+/* contact on particle-floor (a 0.1 kg particle 1e-4 m deep in a floor,
+ * g = 9.81): penalty k = 1e4 rests at m g / k under semi-be; projection
+ * sinks 1e-4 + g dt^2 in its first step; symplectic Euler's limit on the
+ * contact spring is 2 sqrt(m/k) = 6.325e-3 s (dt = 1e-2 unstable). */
+Test(cli, contact_table_and_csv)
+{
+    char out[1024], path[1100], f[64];
+    cli_result r;
+    cli_run(&r, "contact", "particle-floor", "--integrator",
+            "semi-be,symplectic-euler", "--response", "penalty,project",
+            "--dt", "1e-2,1e-3", "--k", "1e4", "--dt-max", "0.02",
+            "--out", in_tmp(out, "contact"), NULL);
+    cli_assert_ok(&r);
+    cr_assert_not_null(strstr(r.out, "unstable from dt = 0.01"), "%s", r.out);
+    cli_result_free(&r);
+    cli_lines L;
+    snprintf(path, sizeof path, "%s/contact.csv", out);
+    cli_read_lines(path, &L);
+    cr_assert_str_eq(L.line[0], "integrator,response,dt,steps,stable,status,"
+                                "worst_penetration,worst_t,rest_penetration,"
+                                "rest_contacts,max_stretch,newton_iters,cpu,"
+                                "reason");
+    cr_assert_eq(L.n, 9, "%zu lines", L.n); /* 2 responses x 2 x 2 dt */
+    const char *order[] = {"semi-be", "symplectic-euler"};
+    for (size_t k = 1; k < L.n; k++) {
+        const char *row = L.line[k];
+        int project = k > 4;
+        double dt = k % 2 ? 1e-2 : 1e-3;
+        cr_assert_str_eq(csv_field(row, 0, f, sizeof f), order[(k - 1) / 2 % 2]);
+        cr_assert_str_eq(csv_field(row, 1, f, sizeof f),
+                         project ? "project" : "penalty");
+        cr_assert_eq(csv_number(row, 2), dt, "%s", row);
+        cr_assert_eq(csv_number(row, 3), (double)llround(2 / dt), "%s", row);
+        if (project)
+            cr_assert_float_eq(csv_number(row, 6), 1e-4 + 9.81 * dt * dt,
+                               1e-12, "%s", row);
+    }
+    cr_assert_float_eq(csv_number(L.line[1], 8), 0.1 * 9.81 / 1e4, 1e-12,
+                       "%s", L.line[1]);
+    cr_assert_eq(csv_number(L.line[3], 4), 0.0, "%s", L.line[3]);
+    cr_assert_str_eq(csv_field(L.line[3], 5, f, sizeof f), "blow-up");
+    cli_lines_free(&L);
+    snprintf(path, sizeof path, "%s/contact-k.csv", out);
+    cli_read_lines(path, &L);
+    cr_assert_str_eq(L.line[0], "integrator,k,dt_stable,dt_unstable,"
+                                "predicted,w_max,runs");
+    cr_assert_eq(L.n, 3, "%zu lines", L.n);
+    cr_assert_float_eq(csv_number(L.line[2], 4), 2 * sqrt(0.1 / 1e4), 1e-12,
+                       "%s", L.line[2]);
+    cli_lines_free(&L);
+}
+
+Test(cli, contact_refusals)
+{
+    expect_refused(LIST("contact", "particle-floor"), 0,
+                   LIST("--dt LIST", "--k LIST"));
+    expect_refused(LIST("contact", "particle-floor", "--dt", "1e-2,x"), 0,
+                   LIST("--dt", "1e-2,x", "expected steps"));
+    expect_refused(LIST("contact", "particle-floor", "--dt", "1e-2",
+                        "--integrator", "cvode-bdf"), 0,
+                   LIST("cvode-bdf", "error control"));
+    expect_refused(LIST("contact", "particle-floor", "--dt", "1e-2",
+                        "--response", "penalty,bogus"), 0,
+                   LIST("--response", "bogus", "penalty, project"));
+    expect_refused(LIST("contact", "spring2", "--dt", "1e-2",
+                        "--integrator", "semi-be"), 0,
+                   LIST("no obstacle"));
+    expect_refused(LIST("contact", "particle-floor", "--dt", "3e-2"), 0,
+                   LIST("whole number", "0.03"));
+    expect_refused(LIST("contact", "jiao-sphere", "--dt", "1e-2",
+                        "--response", "penalty"), 0,
+                   LIST("[obstacle.sphere]", "needs its stiffness k"));
+    expect_refused(LIST("contact", "particle-floor", "--k", "1e4,-1"), 0,
+                   LIST("--k", "stiffnesses > 0"));
+}
+
 /* spectrum of the stiffened spring at rest (ks = 1e4 on unit mass and
  * length): mu = w^2 = 0, 0, 1e4 and lambda = 0 (4 times) and +-100 i. */
 Test(cli, spectrum_summary_and_csv)

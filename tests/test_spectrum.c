@@ -174,3 +174,33 @@ Test(spectrum, large_cloth_refused)
     cl_model_free(m);
     cl_config_free(cfg);
 }
+
+/* The contact term is part of the model's Jacobian: on particle-floor (a
+ * particle of 0.1 kg in a penalty floor of normal x, k = 1e4 N/m, no other
+ * stiffness) linearised in contact, mu = {0, 0, k/m}; with the floor moved
+ * out of reach, all zero. */
+static double sp_mu_max_floor(const char *set)
+{
+    pr_problem p;
+    cl_spectrum s = {0};
+    cl_error err = {0};
+    double x[3], v[3];
+    pr_load(&p, "problems/particle-floor.ini", set, NULL);
+    cr_assert_eq(cl_model_initial_state(p.m, x, v), CL_OK);
+    cr_assert_eq(cl_spectrum_compute(p.m, 0.0, x, v, &s, &err), CL_OK, "%s",
+                 err.msg);
+    cr_assert_eq(s.n, 3);
+    cr_assert_float_eq(s.mu[0], 0.0, 1e-9);
+    cr_assert_float_eq(s.mu[1], 0.0, 1e-9);
+    double mu = s.mu[2];
+    cl_spectrum_free(&s);
+    pr_free(&p);
+    return mu;
+}
+
+Test(spectrum, contact_spring_in_contact_only)
+{
+    cr_assert_float_eq(sp_mu_max_floor(NULL), 1e4 / 0.1, 1e-6);
+    cr_assert_float_eq(sp_mu_max_floor("obstacle.floor.point=0.9,0,0"), 0.0,
+                       1e-9);
+}

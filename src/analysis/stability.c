@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "analysis/trial.h"
+#include "io/csv.h"
 
 cl_status cl_stab_check(cl_model *m, const cl_integrator_type *type,
                         const cl_stab_opts *o, cl_error *err)
@@ -30,18 +31,10 @@ cl_status cl_stab_check(cl_model *m, const cl_integrator_type *type,
     return cl_trial_repeatable(m, err);
 }
 
-/* Run with N steps: returns 1 stable, 0 unstable, or -1 with err set for a
- * failure that is not instability (or no room for another trial). */
-static int try_steps(cl_trial *t, const cl_integrator_type *type,
-                     const cl_integrator_opts *io, const cl_stab_opts *o,
-                     long nsteps, cl_stab_result *r, cl_error *err)
+int cl_stab_try(cl_trial *t, const cl_integrator_type *type,
+                const cl_integrator_opts *io, const cl_stab_opts *o,
+                long nsteps, cl_stab_trial *tr, cl_error *err)
 {
-    if (r->ntrial == CL_STAB_MAX_TRIALS) {
-        cl_error_set(err, CL_ESOLVER, "%s: no bracket after %d runs",
-                     type->name, CL_STAB_MAX_TRIALS);
-        return -1;
-    }
-    cl_stab_trial *tr = &r->trial[r->ntrial++];
     cl_integrator_opts to = *io;
     to.dt = o->t_end / (double)nsteps;
     tr->dt = to.dt;
@@ -52,6 +45,20 @@ static int try_steps(cl_trial *t, const cl_integrator_type *type,
         return tr->rc == CL_OK;
     *err = tr->why;
     return -1;
+}
+
+/* Run with N steps into the next trial of r: as cl_stab_try, and -1 when
+ * r has no room for another trial. */
+static int try_steps(cl_trial *t, const cl_integrator_type *type,
+                     const cl_integrator_opts *io, const cl_stab_opts *o,
+                     long nsteps, cl_stab_result *r, cl_error *err)
+{
+    if (r->ntrial == CL_STAB_MAX_TRIALS) {
+        cl_error_set(err, CL_ESOLVER, "%s: no bracket after %d runs",
+                     type->name, CL_STAB_MAX_TRIALS);
+        return -1;
+    }
+    return cl_stab_try(t, type, io, o, nsteps, &r->trial[r->ntrial++], err);
 }
 
 /* Doubling from N0 to the first stable N; *nu, *ns: the bracket (ns = 0 if
@@ -139,14 +146,10 @@ void cl_stab_write_rows(FILE *fp, const cl_stab_result *r, bool header)
     for (int k = 0; k < r->ntrial; k++) {
         const cl_stab_trial *t = &r->trial[k];
         fputs(r->label, fp);
-        fprintf(fp, ",%.9g,%ld,%d,%s,%.6g,\"", t->dt, t->nsteps,
+        fprintf(fp, ",%.9g,%ld,%d,%s,%.6g,", t->dt, t->nsteps,
                 t->rc == CL_OK, t->rc ? cl_status_name(t->rc) : "ok",
                 t->stats.cpu);
-        for (const char *p = t->rc ? t->why.msg : ""; *p; p++) {
-            if (*p == '"') /* CSV: a quote inside quotes is doubled */
-                fputc('"', fp);
-            fputc(*p, fp);
-        }
-        fputs("\"\n", fp);
+        cl_csv_quoted(fp, t->rc ? t->why.msg : "");
+        fputc('\n', fp);
     }
 }

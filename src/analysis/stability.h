@@ -23,6 +23,7 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#include "analysis/trial.h"
 #include "integrators/integrator.h"
 #include "system/model.h"
 
@@ -66,6 +67,16 @@ cl_status cl_stab_check(cl_model *m, const cl_integrator_type *type,
 cl_status cl_stability(cl_model *m, const cl_integrator_type *type,
                        const cl_integrator_opts *io, const cl_stab_opts *o,
                        cl_stab_result *r, cl_error *err);
+
+/* One run of the search: `type` with nsteps steps (dt = t_end / nsteps) on
+ * the trial t, recorded in *tr.  Returns 1 when the run is stable, 0 when
+ * it is unstable (CL_EBLOWUP or CL_ESOLVER, the definition above), or -1
+ * with err set for any other failure.  Other studies that ask whether a
+ * run stays stable (`clothode contact`) use it, so that they mean what
+ * `stability` means. */
+int cl_stab_try(cl_trial *t, const cl_integrator_type *type,
+                const cl_integrator_opts *io, const cl_stab_opts *o,
+                long nsteps, cl_stab_trial *tr, cl_error *err);
 
 /* One CSV row per run, header first when `header`:
  * integrator,dt,steps,stable,status,cpu,reason */

@@ -26,6 +26,8 @@ typedef struct {
     void *hook_ctx;
     bool contact_work;    /* account the contact projections' energy
                            * (cl_model_contact_start) */
+    double stretch_seen;  /* the largest stretch d/L at the checks of the
+                           * last run (NaN ones left out) */
 } cl_trial;
 
 /* Whether runs of m can be repeated from its initial state:

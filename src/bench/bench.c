@@ -8,6 +8,7 @@
 
 #include "bench/bench_impl.h"
 #include "io/atomic.h"
+#include "io/csv.h"
 
 static const cl_bplan full_plan = {
     .w1_cases = 2, .w1_n = {16, 32}, .w1_t = {2.0, 0.5}, .select = 0,
@@ -77,21 +78,6 @@ void cl_bench_table_free(cl_bench_table *t)
 
 /* ---- CSV -------------------------------------------------------------- */
 
-static void csv_text(FILE *fp, const char *s)
-{
-    if (!strpbrk(s, ",\"\n")) {
-        fputs(s, fp);
-        return;
-    }
-    fputc('"', fp);
-    for (; *s; s++) {
-        if (*s == '"')
-            fputc('"', fp);
-        fputc(*s, fp);
-    }
-    fputc('"', fp);
-}
-
 static void csv_number(FILE *fp, double v)
 {
     if (isfinite(v))
@@ -103,11 +89,11 @@ static void csv_row(FILE *fp, const cl_bench_row *r)
     const double num[] = {r->cpu_a, r->cpu_b, r->wall_a, r->wall_b,
                           r->error_a, r->error_b, r->ratio};
     fprintf(fp, "%d,", r->workload);
-    csv_text(fp, r->kase);
+    cl_csv_text(fp, r->kase);
     fputc(',', fp);
-    csv_text(fp, r->side_a);
+    cl_csv_text(fp, r->side_a);
     fputc(',', fp);
-    csv_text(fp, r->side_b);
+    cl_csv_text(fp, r->side_b);
     for (size_t k = 0; k < sizeof num / sizeof *num; k++) {
         fputc(',', fp);
         csv_number(fp, num[k]);
@@ -115,7 +101,7 @@ static void csv_row(FILE *fp, const cl_bench_row *r)
     fprintf(fp, ",%s,%s,", r->unit, r->goal);
     csv_number(fp, r->target);
     fprintf(fp, ",%s,", r->met == 1 ? "yes" : r->met == 0 ? "no" : "");
-    csv_text(fp, r->note);
+    cl_csv_text(fp, r->note);
     fputc('\n', fp);
 }
 

@@ -143,6 +143,11 @@ cl_status cl_cli_methods_check(cl_config *cfg, cl_cli_methods *ms,
 cl_status cl_cli_methods_try(cl_model *model, const cl_cli_methods *ms,
                              cl_error *err);
 
+/* The free state x, v of m read from a state file (final.csv's format),
+ * or its initial state when path is "". */
+cl_status cl_cli_free_state(cl_model *m, const char *path, double *x,
+                            double *v, cl_error *err);
+
 /* Progress bar on stderr (only when stderr is a terminal). */
 void cl_cli_progress(void *ctx, double fraction);
 

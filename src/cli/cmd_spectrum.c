@@ -6,7 +6,6 @@
 #include "analysis/spectrum.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
-#include "io/state.h"
 
 typedef struct {
     cl_cli_args a;
@@ -36,26 +35,6 @@ static const cl_cli_table spec_table = {
     "for the explicit integrators (compare with clothode stability).  Dense\n"
     "eigensolvers: at most a 24 x 24 cloth.  Writes spectrum.csv (kind,\n"
     "index, re, im) into the output directory.\n"};
-
-/* The free state to linearise at. */
-static cl_status free_state(cl_model *m, const spec_setup *s, double *x,
-                            double *v, cl_error *err)
-{
-    const cl_cloth *c = cl_model_cloth(m);
-    if (!*s->state)
-        return cl_model_initial_state(m, x, v);
-    double *xf = malloc(3 * c->np * sizeof *xf);
-    double *vf = malloc(3 * c->np * sizeof *vf);
-    cl_status rc = xf && vf ? cl_state_read(s->state, c->np, xf, vf, err)
-                            : cl_error_set(err, CL_ENOMEM, "out of memory");
-    if (!rc) {
-        cl_cloth_gather(c, xf, x);
-        cl_cloth_gather(c, vf, v);
-    }
-    free(xf);
-    free(vf);
-    return rc;
-}
 
 static void print_summary(const cl_cli_job *job, const cl_spectrum *sp)
 {
@@ -91,7 +70,7 @@ static cl_status spectrum(cl_model *m, const cl_cli_job *job, void *ctx,
     size_t n = cl_model_system(m)->n;
     double *x = malloc(n * sizeof *x), *v = malloc(n * sizeof *v);
     cl_spectrum sp = {0};
-    cl_status rc = x && v ? free_state(m, s, x, v, err)
+    cl_status rc = x && v ? cl_cli_free_state(m, s->state, x, v, err)
                           : cl_error_set(err, CL_ENOMEM, "out of memory");
     if (!rc && !(rc = cl_spectrum_compute(m, s->t, x, v, &sp, err)) &&
         !(rc = cl_cli_write_csv(job->outdir, "spectrum.csv", write_rows, &sp,

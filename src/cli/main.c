@@ -13,6 +13,8 @@ static const cl_command commands[] = {
     {"energy", cl_cmd_energy, "energy balance of integrators over a run"},
     {"spectrum", cl_cmd_spectrum,
      "eigenvalues at a state and the step limits they predict"},
+    {"contact", cl_cmd_contact,
+     "contact responses against the step, explicit limit against k"},
     {"convergence", cl_cmd_convergence,
      "observed orders against a tight reference"},
     {"workprecision", cl_cmd_workprecision,
