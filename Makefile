@@ -26,6 +26,8 @@ LDLIBS := -lsundials_cvode -lsundials_ida -lsundials_kinsol \
           -lsundials_sunlinsolpcg -lsundials_sunnonlinsolfixedpoint \
           -lklu -lcholmod -lamd -lcolamd -lbtf \
           -lsuitesparseconfig -lgsl -llapacke -llapack -lblas -linih -lm
+# run.json (src/cli/manifest.c): JSON by jansson, SHA-256 by nettle
+LDLIBS += -ljansson -lnettle -ldl
 
 # The library holds the numerics; the benchmark harness (src/bench) is a
 # program of its own on it, clothode-bench.
@@ -44,7 +46,7 @@ JOBS     ?= 2
 PREFIX  ?= /usr/local
 VERSION := 0.1
 
-.PHONY: all deps demo test bench report paper install clean
+.PHONY: all deps demo test bench report paper install clean FORCE
 
 all: $(BIN)
 
@@ -54,6 +56,16 @@ deps:
 $(BUILD)/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -MMD -MP -c $< -o $@
+
+# The commit, compiler and flags `clothode --version` and run.json name
+# (scripts/buildinfo.sh); the header changes only when they do.
+$(BUILD)/buildinfo.h: FORCE
+	@mkdir -p $(BUILD)
+	@scripts/buildinfo.sh "$(CC)" "$(CPPFLAGS) $(CFLAGS)" "$(VERSION)" > $@.new
+	@cmp -s $@.new $@ && rm -f $@.new || mv -f $@.new $@
+$(BUILD)/src/cli/version.o: $(BUILD)/buildinfo.h
+$(BUILD)/src/cli/version.o: CPPFLAGS += -I$(BUILD)
+FORCE:
 
 $(BUILD)/libclothode.a: $(LIB_OBJ)
 	rm -f $@

@@ -9,11 +9,28 @@
 
 #include "io/atomic.h"
 
+int cl_cli_exit_status(cl_status code)
+{
+    switch (code) {
+    case CL_OK: return CL_EXIT_OK;
+    case CL_EINVAL:
+    case CL_EPARSE:
+    case CL_EUNSUPPORTED: return CL_EXIT_INPUT;
+    case CL_ESOLVER: return CL_EXIT_SOLVER;
+    case CL_EBLOWUP: return CL_EXIT_BLOWUP;
+    case CL_EBUDGET: return CL_EXIT_BUDGET;
+    case CL_EINTR: return CL_EXIT_INTERRUPTED;
+    case CL_EIO: return CL_EXIT_IO;
+    case CL_ENOMEM: break;
+    }
+    return CL_EXIT_OTHER;
+}
+
 int cl_cli_fail(const cl_error *err)
 {
     fprintf(stderr, "clothode: %s\n", err->msg[0] ? err->msg
                                                   : cl_status_name(err->code));
-    return 1;
+    return cl_cli_exit_status(err->code);
 }
 
 int cl_cli_usage_error(const char *cmd, const char *fmt, ...)

@@ -34,6 +34,8 @@ const char *cl_status_name(cl_status code)
     case CL_ESOLVER: return "solver failure";
     case CL_EBLOWUP: return "blow-up";
     case CL_EUNSUPPORTED: return "unsupported";
+    case CL_EBUDGET: return "budget reached";
+    case CL_EINTR: return "interrupted";
     }
     return "unknown status";
 }

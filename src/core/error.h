@@ -14,7 +14,9 @@ typedef enum {
     CL_EPARSE,      /* malformed input file */
     CL_ESOLVER,     /* a solver reported failure */
     CL_EBLOWUP,     /* state became non-finite or ran away */
-    CL_EUNSUPPORTED /* valid request this build or problem cannot serve */
+    CL_EUNSUPPORTED, /* valid request this build or problem cannot serve */
+    CL_EBUDGET,     /* a run reached its --max-wall or --max-steps budget */
+    CL_EINTR        /* a run stopped on SIGINT or SIGTERM (core/stop.h) */
 } cl_status;
 
 typedef struct {
