@@ -57,12 +57,19 @@ $(BUILD)/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -MMD -MP -c $< -o $@
 
-# The commit, compiler and flags `clothode --version` and run.json name
-# (scripts/buildinfo.sh); the header changes only when they do.
+# The version, git commit (`git describe --always --dirty`, "unknown"
+# outside a git checkout), compiler and flags that `clothode --version` and
+# run.json name (src/cli/version.c); the header changes only when they do.
 $(BUILD)/buildinfo.h: FORCE
 	@mkdir -p $(BUILD)
-	@scripts/buildinfo.sh "$(CC)" "$(CPPFLAGS) $(CFLAGS)" "$(VERSION)" > $@.new
+	@c=$$(git describe --always --dirty 2>/dev/null) || c=; \
+	{ printf '#define CL_BUILD_VERSION "%s"\n' '$(VERSION)'; \
+	  printf '#define CL_BUILD_COMMIT "%s"\n' "$${c:-unknown}"; \
+	  printf '#define CL_BUILD_CC "%s"\n' '$(CC)'; \
+	  printf '#define CL_BUILD_FLAGS "%s"\n' '$(BUILD_FLAGS)'; \
+	} > $@.new
 	@cmp -s $@.new $@ && rm -f $@.new || mv -f $@.new $@
+BUILD_FLAGS := $(CPPFLAGS) $(CFLAGS)
 $(BUILD)/src/cli/version.o: $(BUILD)/buildinfo.h
 $(BUILD)/src/cli/version.o: CPPFLAGS += -I$(BUILD)
 FORCE:

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <unistd.h>
 
 #include "io/atomic.h"
@@ -238,14 +239,25 @@ static void assert_same_node(const struct stat *a, const struct stat *b,
               "%s was replaced", path);
 }
 
+/* A device node of our own (a copy of /dev/null's, as root), so that
+ * nothing else on the machine can change it during the test; /dev/null
+ * itself otherwise. */
+static const char *device_node(char *buf, size_t len)
+{
+    snprintf(buf, len, "%s/null", dir);
+    return mknod(buf, S_IFCHR | 0666, makedev(1, 3)) == 0 ? buf
+                                                           : "/dev/null";
+}
+
 Test(atomic, special_files_are_refused_and_untouched)
 {
-    char fifo[256], sub[256];
+    char fifo[256], sub[256], node[256];
     snprintf(fifo, sizeof fifo, "%s/pipe", dir);
     snprintf(sub, sizeof sub, "%s/sub", dir);
     cr_assert_eq(mkfifo(fifo, 0600), 0);
     cr_assert_eq(mkdir(sub, 0700), 0);
-    const char *paths[] = {fifo, sub, "/dev/null"};
+    const char *dev = device_node(node, sizeof node);
+    const char *paths[] = {fifo, sub, dev};
     const char *what[] = {"a FIFO", "a directory", "a device"};
     for (size_t k = 0; k < 3; k++) {
         struct stat before, after;
@@ -261,8 +273,8 @@ Test(atomic, special_files_are_refused_and_untouched)
         stat_of(paths[k], &after);
         assert_same_node(&before, &after, paths[k]);
     }
-    /* only the FIFO and the directory: no temporary was created */
-    cr_assert_eq(tmp_list_dir(dir, NULL, 0), 2);
+    /* only the FIFO, the directory and the node: no temporary was made */
+    cr_assert_eq(tmp_list_dir(dir, NULL, 0), dev == node ? 3u : 2u);
 }
 
 Test(atomic, symbolic_link_is_refused)

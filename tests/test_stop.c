@@ -4,6 +4,7 @@
 #include "runcli.h"
 
 #include "core/stop.h"
+#include "timelimit.h"
 
 Test(stop, signal_sets_the_flag_and_names_it)
 {
@@ -132,12 +133,14 @@ static void interrupted_run(int sig)
     tmp_rm_rf(dir);
 }
 
-Test(stop, sigint_stops_a_run_with_everything_written, .timeout = 120)
+Test(stop, sigint_stops_a_run_with_everything_written)
 {
+    time_limit(120);
     interrupted_run(SIGINT);
 }
 
-Test(stop, sigterm_stops_a_run_with_everything_written, .timeout = 120)
+Test(stop, sigterm_stops_a_run_with_everything_written)
 {
+    time_limit(120);
     interrupted_run(SIGTERM);
 }

@@ -146,6 +146,19 @@ cl_status cl_cli_ignore_run(cl_config *cfg, void *settings, cl_error *err)
     return CL_OK;
 }
 
+cl_status cl_cli_check_output(const char *dir, const char *name,
+                              cl_error *err)
+{
+    char path[4200];
+    struct stat st;
+    if (stat(dir, &st) == 0 && !S_ISDIR(st.st_mode))
+        return cl_error_set(err, CL_EIO, "cannot use '%s' as the output "
+                            "directory: it exists and is not a directory",
+                            dir);
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    return cl_output_check(path, err);
+}
+
 cl_status cl_cli_write_csv(const char *dir, const char *name,
                            cl_cli_rows_fn write, const void *ctx, int n,
                            cl_error *err)

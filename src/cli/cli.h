@@ -83,6 +83,12 @@ cl_status cl_cli_ignore_run(cl_config *cfg, void *settings, cl_error *err);
 int cl_cli_args_main(int argc, char **argv, const cl_cli_table *t,
                      void *settings, int (*work)(void *settings));
 
+/* Whether DIR/NAME can receive an output, checked before any work: DIR
+ * absent or a directory, DIR/NAME absent or a regular file (CL_EIO naming
+ * what is there otherwise, io/atomic.h). */
+cl_status cl_cli_check_output(const char *dir, const char *name,
+                              cl_error *err);
+
 /* Write DIR/NAME atomically (DIR made first): write(fp, ctx, n) puts the
  * rows of the first n results of ctx. */
 typedef void (*cl_cli_rows_fn)(FILE *fp, const void *ctx, int n);

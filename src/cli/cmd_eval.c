@@ -100,13 +100,9 @@ static cl_status write_jacobians(cl_model *m, const eval_args *a,
 static cl_status check_outputs(const eval_args *a, const char *dir,
                                cl_error *err)
 {
-    char path[4096];
-    cl_status rc = CL_OK;
-    const char *names[] = {"forces.csv", "energy.csv"};
-    for (size_t k = 0; !rc && k < 2; k++) {
-        snprintf(path, sizeof path, "%s/%s", dir, names[k]);
-        rc = cl_output_check(path, err);
-    }
+    cl_status rc = cl_cli_check_output(dir, "forces.csv", err);
+    if (!rc)
+        rc = cl_cli_check_output(dir, "energy.csv", err);
     if (!rc && *a->jac_x)
         rc = cl_output_check(a->jac_x, err);
     if (!rc && *a->jac_v)

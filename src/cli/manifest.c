@@ -108,7 +108,12 @@ cl_status cl_manifest_begin(cl_manifest *mf, const cl_cli_job *job, int argc,
         "status", "running", "files");
     if (!mf->root)
         return cl_error_set(err, CL_ENOMEM, "out of memory (run.json)");
-    return write_json(mf, err);
+    rc = write_json(mf, err);
+    if (rc) {
+        json_decref(mf->root);
+        mf->root = NULL;
+    }
+    return rc;
 }
 
 static int by_name(const void *a, const void *b)

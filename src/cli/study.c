@@ -24,7 +24,9 @@ cl_status cl_cli_study_run(cl_model *m, const cl_cli_job *job,
     char *res = calloc((size_t)n, st->size);
     if (!res)
         return cl_error_set(err, CL_ENOMEM, "out of memory");
-    cl_status rc = st->begin(m, job, ctx, err);
+    cl_status rc = cl_cli_check_output(job->outdir, st->csv, err);
+    if (!rc)
+        rc = st->begin(m, job, ctx, err);
     if (!rc && !job->quiet)
         puts(st->columns);
     int done = 0, ok = 0; /* runs started, runs finished */
