@@ -26,6 +26,8 @@ LDLIBS := -lsundials_cvode -lsundials_ida -lsundials_kinsol \
           -lsundials_sunlinsolpcg -lsundials_sunnonlinsolfixedpoint \
           -lklu -lcholmod -lamd -lcolamd -lbtf \
           -lsuitesparseconfig -lgsl -llapacke -llapack -lblas -linih -lm
+# run.json (src/cli/manifest.c): JSON by jansson, SHA-256 by nettle
+LDLIBS += -ljansson -lnettle -ldl
 
 # The library holds the numerics; the benchmark harness (src/bench) is a
 # program of its own on it, clothode-bench.
@@ -44,7 +46,7 @@ JOBS     ?= 2
 PREFIX  ?= /usr/local
 VERSION := 0.1
 
-.PHONY: all deps demo test bench report paper install clean
+.PHONY: all deps demo test bench report paper install clean FORCE
 
 all: $(BIN)
 
@@ -54,6 +56,23 @@ deps:
 $(BUILD)/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -MMD -MP -c $< -o $@
+
+# The version, git commit (`git describe --always --dirty`, "unknown"
+# outside a git checkout), compiler and flags that `clothode --version` and
+# run.json name (src/cli/version.c); the header changes only when they do.
+$(BUILD)/buildinfo.h: FORCE
+	@mkdir -p $(BUILD)
+	@c=$$(git describe --always --dirty 2>/dev/null) || c=; \
+	{ printf '#define CL_BUILD_VERSION "%s"\n' '$(VERSION)'; \
+	  printf '#define CL_BUILD_COMMIT "%s"\n' "$${c:-unknown}"; \
+	  printf '#define CL_BUILD_CC "%s"\n' '$(CC)'; \
+	  printf '#define CL_BUILD_FLAGS "%s"\n' '$(BUILD_FLAGS)'; \
+	} > $@.new
+	@cmp -s $@.new $@ && rm -f $@.new || mv -f $@.new $@
+BUILD_FLAGS := $(CPPFLAGS) $(CFLAGS)
+$(BUILD)/src/cli/version.o: $(BUILD)/buildinfo.h
+$(BUILD)/src/cli/version.o: CPPFLAGS += -I$(BUILD)
+FORCE:
 
 $(BUILD)/libclothode.a: $(LIB_OBJ)
 	rm -f $@

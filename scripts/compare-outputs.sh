@@ -3,8 +3,9 @@
 # (docs/architecture.md, "Checking that outputs stay byte-identical"): the
 # same `clothode run`s with OLD_BIN into OUTDIR/old and with NEW_BIN into
 # OUTDIR/new, then every output file compared with cmp; stats.csv without
-# its timing rows (wall, cpu), and each run's exit status and messages
-# (OUTDIR/*/NAME.log) too.  The runs:
+# its timing rows (wall, cpu; older builds wrote them), run.json not at all
+# (a newer build's provenance: times, paths, the build), and each run's
+# exit status and messages (OUTDIR/*/NAME.log) too.  The runs:
 #   problem/P      every problem of problems/ at a shortened t_end
 #                  (T_END, default 0.5 s) with its own integrator
 #   demo           the run of `make demo` (scripts/demo.sh)
@@ -93,7 +94,9 @@ differing() {
     cmp -s "$a.log" "$b.log" || echo "${1##*/}.log"
     for f in $( (cd "$a" 2>/dev/null && ls; cd "$b" 2>/dev/null && ls) |
                 sort -u); do
-        if [[ $f == stats.csv ]]; then
+        if [[ $f == run.json ]]; then
+            continue    # provenance: times, paths, the build (README)
+        elif [[ $f == stats.csv ]]; then
             cmp -s <(grep -Ev '^(wall|cpu),' "$a/$f" 2>&1) \
                    <(grep -Ev '^(wall|cpu),' "$b/$f" 2>&1)
         else

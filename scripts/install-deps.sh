@@ -15,6 +15,8 @@ pkgs=(build-essential libsundials-dev libsuitesparse-dev libgsl-dev
       liblapacke-dev libopenblas0-serial
       gnuplot-nox libinih-dev libcriterion-dev python3-numpy python3-scipy
       pkg-config)
+# libjansson-dev, nettle-dev: run.json (JSON, SHA-256 of the files)
+pkgs+=(libjansson-dev nettle-dev)
 # `install-deps.sh paper`: also LaTeX, for make paper only.
 if [[ ${1:-} == paper ]]; then
     pkgs+=(texlive-latex-base texlive-latex-recommended

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <unistd.h>
 
 #include "io/atomic.h"
@@ -123,18 +124,20 @@ Test(atomic, open_empty_name)
 
 Test(atomic, commit_failure_removes_temporary)
 {
-    /* Renaming a regular file onto a directory fails. */
+    /* A directory put in place of the output while it was being written:
+     * the commit does not rename onto it and removes the temporary. */
     char path[256];
     snprintf(path, sizeof path, "%s/sub", dir);
-    cr_assert_eq(mkdir(path, 0777), 0);
     cl_afile af;
     cl_error err;
     cr_assert_eq(cl_afile_open(&af, path, &err), CL_OK);
+    cr_assert_eq(mkdir(path, 0777), 0);
     cr_assert(fprintf(af.fp, "x\n") > 0);
     cr_assert_eq(tmp_list_dir(dir, NULL, 0), 2);
     cr_assert_eq(cl_afile_commit(&af, &err), CL_EIO);
     cr_assert(strstr(err.msg, path) != NULL, "%s", err.msg);
-    cr_assert(strstr(err.msg, "rename") != NULL, "%s", err.msg);
+    cr_assert(strstr(err.msg, "no longer a regular file") != NULL, "%s",
+              err.msg);
     cr_assert_eq(tmp_list_dir(dir, NULL, 0), 1);
     cr_assert_null(af.fp);
     cl_afile_abort(&af);
@@ -218,4 +221,71 @@ Test(atomic, write_error_blocks_commit)
     cr_assert(strstr(err.msg, "write error") != NULL, "%s", err.msg);
     cr_assert_eq(access(path, F_OK), -1);
     cr_assert_eq(tmp_list_dir(dir, NULL, 0), 0);
+}
+
+/* ---- outputs replace regular files only ------------------------------- */
+
+/* mode, device and inode of path, to see that it was left alone */
+static void stat_of(const char *path, struct stat *st)
+{
+    cr_assert_eq(lstat(path, st), 0, "lstat %s", path);
+}
+
+static void assert_same_node(const struct stat *a, const struct stat *b,
+                             const char *path)
+{
+    cr_assert(a->st_mode == b->st_mode && a->st_ino == b->st_ino &&
+                  a->st_rdev == b->st_rdev && a->st_dev == b->st_dev,
+              "%s was replaced", path);
+}
+
+/* A device node of our own (a copy of /dev/null's, as root), so that
+ * nothing else on the machine can change it during the test; /dev/null
+ * itself otherwise. */
+static const char *device_node(char *buf, size_t len)
+{
+    snprintf(buf, len, "%s/null", dir);
+    return mknod(buf, S_IFCHR | 0666, makedev(1, 3)) == 0 ? buf
+                                                           : "/dev/null";
+}
+
+Test(atomic, special_files_are_refused_and_untouched)
+{
+    char fifo[256], sub[256], node[256];
+    snprintf(fifo, sizeof fifo, "%s/pipe", dir);
+    snprintf(sub, sizeof sub, "%s/sub", dir);
+    cr_assert_eq(mkfifo(fifo, 0600), 0);
+    cr_assert_eq(mkdir(sub, 0700), 0);
+    const char *dev = device_node(node, sizeof node);
+    const char *paths[] = {fifo, sub, dev};
+    const char *what[] = {"a FIFO", "a directory", "a device"};
+    for (size_t k = 0; k < 3; k++) {
+        struct stat before, after;
+        cl_afile af;
+        cl_error err = {0};
+        stat_of(paths[k], &before);
+        cr_assert_eq(cl_output_check(paths[k], &err), CL_EIO, "%s",
+                     paths[k]);
+        cr_assert(strstr(err.msg, what[k]) && strstr(err.msg, paths[k]),
+                  "%s", err.msg);
+        cr_assert_eq(cl_afile_open(&af, paths[k], &err), CL_EIO);
+        cr_assert_null(af.fp);
+        stat_of(paths[k], &after);
+        assert_same_node(&before, &after, paths[k]);
+    }
+    /* only the FIFO, the directory and the node: no temporary was made */
+    cr_assert_eq(tmp_list_dir(dir, NULL, 0), dev == node ? 3u : 2u);
+}
+
+Test(atomic, symbolic_link_is_refused)
+{
+    char target[256], link[256];
+    cl_error err = {0};
+    snprintf(target, sizeof target, "%s/target", dir);
+    snprintf(link, sizeof link, "%s/link", dir);
+    tmp_put(target, "kept\n");
+    cr_assert_eq(symlink(target, link), 0);
+    cr_assert_eq(cl_output_check(link, &err), CL_EIO);
+    cr_assert(strstr(err.msg, "symbolic link"), "%s", err.msg);
+    cr_assert_eq(cl_output_check(target, &err), CL_OK);
 }

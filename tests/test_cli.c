@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/sysmacros.h>
 
 #include "io/config.h"
 #include "io/mtx.h"
@@ -1632,4 +1633,116 @@ Test(cli, drape_sphere_runs_with_every_family)
                   runs[k][0], pen);
         free(s.v);
     }
+}
+
+/* ---- exit status per class of failure --------------------------------- */
+
+static void assert_status(const char *const *args, int want, const char *msg)
+{
+    cli_result r;
+    cli_runv(&r, args);
+    cli_assert_no_crash(&r);
+    cr_assert_eq(r.status, want, "%s: status %d, expected %d\n%s", r.cmd,
+                 r.status, want, r.err);
+    cr_assert(strstr(r.err, msg), "%s: no \"%s\" in\n%s", r.cmd, msg, r.err);
+    cli_result_free(&r);
+}
+
+Test(cli, each_failure_class_has_its_exit_status)
+{
+    char out[64];
+    tmp_mkdtemp(out, sizeof out, "exit");
+    const char *bad[] = {"run", "hang", "--set", "cloth.n=1", "--out", out,
+                         NULL};
+    assert_status(bad, 2, "cloth");
+    const char *usage[] = {"run", "hang", "--no-such-option", NULL};
+    assert_status(usage, 2, "no-such-option");
+    const char *blowup[] = {"run", "hang", "--integrator", "fe", "--dt",
+                            "0.05", "--out", out, "--quiet", NULL};
+    assert_status(blowup, 4, "blow-up");
+    const char *solver[] = {"run", "hang", "--set", "cloth.n=8", "--set",
+                            "run.max_steps=1", "--out", out, "--quiet",
+                            NULL};
+    assert_status(solver, 3, "mxstep");
+    const char *budget[] = {"run", "hang", "--set", "cloth.n=8",
+                            "--max-steps", "10", "--out", out, "--quiet",
+                            NULL};
+    assert_status(budget, 5, "--max-steps 10");
+    char path[300], json[1 << 16];
+    snprintf(path, sizeof path, "%s/run.json", out);
+    tmp_slurp(path, json, sizeof json);
+    cr_assert(strstr(json, "\"status\": \"budget\""), "%s", json);
+    snprintf(path, sizeof path, "%s/final.csv", out);
+    cr_assert(cli_exists(path), "a budget run writes final.csv");
+    tmp_rm_rf(out);
+}
+
+/* clothode with stdout on /dev/full: the lost output is an I/O error. */
+Test(cli, stdout_write_error_is_an_io_error)
+{
+    char *argv[] = {(char *)cli_binary(), "list", NULL};
+    FILE *err = tmpfile();
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, "/dev/full",
+                                     O_WRONLY, 0);
+    posix_spawn_file_actions_adddup2(&fa, fileno(err), STDERR_FILENO);
+    pid_t pid;
+    int ws;
+    cr_assert_eq(posix_spawnp(&pid, argv[0], &fa, NULL, argv, environ), 0);
+    posix_spawn_file_actions_destroy(&fa);
+    cr_assert_eq(waitpid(pid, &ws, 0), pid);
+    char *msg = cli_slurp_fp(err);
+    fclose(err);
+    cr_assert(WIFEXITED(ws) && WEXITSTATUS(ws) == 7, "status %d: %s",
+              WEXITSTATUS(ws), msg);
+    cr_assert(strstr(msg, "cannot write standard output"), "%s", msg);
+    free(msg);
+}
+
+/* Output paths that are not regular files are refused before any work,
+ * and the special file is left as it was (as root, the rename of an
+ * atomic write would replace a device node). */
+Test(cli, special_output_paths_are_refused_untouched)
+{
+    char dir[64], fifo[128], out[128], state[300], null[128];
+    struct stat before[3], after[3];
+    tmp_mkdtemp(dir, sizeof dir, "special");
+    snprintf(fifo, sizeof fifo, "%s/pipe", dir);
+    snprintf(out, sizeof out, "%s/out", dir);
+    snprintf(state, sizeof state, "%s/final.csv", out);
+    cr_assert_eq(mkfifo(fifo, 0600), 0);
+    /* a null device of the test's own as root (nothing else on the
+     * machine touches it), /dev/null otherwise */
+    snprintf(null, sizeof null, "%s/null", dir);
+    const char *dev = mknod(null, S_IFCHR | 0666, makedev(1, 3)) == 0
+                          ? null : "/dev/null";
+    const char *nodes[] = {fifo, dev, "/dev/full"};
+    for (size_t k = 0; k < 3; k++)
+        cr_assert_eq(lstat(nodes[k], &before[k]), 0);
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "cloth.n=4", "--t-end", "0.01",
+            "--out", out, "--quiet", NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    const char *jac[] = {fifo, "/dev/full"};
+    for (size_t k = 0; k < 2; k++) {
+        cli_run(&r, "eval", "hang", "--set", "cloth.n=4", "--state", state,
+                "--jacobian", jac[k], "--out", out, NULL);
+        cli_assert_error(&r, 0, jac[k], "regular file", NULL);
+        cr_assert_eq(r.status, 7);
+        cli_result_free(&r);
+    }
+    cli_run(&r, "run", "hang", "--set", "cloth.n=4", "--out", dev, NULL);
+    cli_assert_error(&r, 0, dev, "not a directory", NULL);
+    cr_assert_eq(r.status, 7);
+    cli_result_free(&r);
+    for (size_t k = 0; k < 3; k++) {
+        cr_assert_eq(lstat(nodes[k], &after[k]), 0);
+        cr_assert(before[k].st_mode == after[k].st_mode &&
+                      before[k].st_ino == after[k].st_ino &&
+                      before[k].st_rdev == after[k].st_rdev,
+                  "%s was replaced", nodes[k]);
+    }
+    tmp_rm_rf(dir);
 }

@@ -727,3 +727,54 @@ Test(config, write_to_missing_directory_is_eio)
     assert_msg_has(err, "/nonexistent/dir/used.ini");
     cl_config_free(cfg);
 }
+
+/* ---- the resolved configuration (run.json) ---------------------------- */
+
+typedef struct {
+    char text[1024];
+} visits;
+
+static void visit(void *ctx, const char *sec, const char *key,
+                  const char *value, bool given)
+{
+    visits *v = ctx;
+    size_t n = strlen(v->text);
+    snprintf(v->text + n, sizeof v->text - n, "%s%s.%s=%s;", given ? "" : "*",
+             sec, key, value);
+}
+
+/* Given entries first (file, then --set), then every default a getter
+ * used, once, in the order asked; a key with no default is left out. */
+Test(config, resolved_lists_given_values_then_defaults)
+{
+    cl_config *cfg = cfg_from("[run]\ndt = 1e-3\n[cloth]\nn = 8\n");
+    cl_error err;
+    double d;
+    long l;
+    bool b;
+    int c;
+    double vec[3] = {1, 2, 3};
+    cr_assert_eq(cl_config_set(cfg, "cloth.n=12", &err), CL_OK);
+    cr_assert_eq(cl_config_double(cfg, "run", "dt", 0, 0, 1, &d, &err),
+                 CL_OK);
+    cr_assert_eq(cl_config_double(cfg, "run", "rtol", 1e-6, 0, 1, &d, &err),
+                 CL_OK);
+    cr_assert_eq(cl_config_double(cfg, "run", "rtol", 5, 0, 9, &d, &err),
+                 CL_OK);
+    cr_assert_eq(cl_config_long(cfg, "run", "samples", 200, 1, 1000, &l,
+                                &err), CL_OK);
+    cr_assert_eq(cl_config_bool(cfg, "type1", "enabled", true, &b, &err),
+                 CL_OK);
+    cr_assert_eq(cl_config_choice(cfg, "run", "integrator", integrators, 1,
+                                  &c, &err), CL_OK);
+    cr_assert_eq(cl_config_vector(cfg, "gravity", "g", 3, vec, &err), CL_OK);
+    cr_assert_str_eq(cl_config_string(cfg, "run", "linsol", "klu"), "klu");
+    cr_assert_null(cl_config_string(cfg, "run", "state", NULL));
+    visits v = {""};
+    cl_config_resolved(cfg, visit, &v);
+    cr_assert_str_eq(v.text, "run.dt=1e-3;cloth.n=12;*run.rtol=1e-06;"
+                             "*run.samples=200;*type1.enabled=true;"
+                             "*run.integrator=symplectic-euler;"
+                             "*run.linsol=klu;");
+    cl_config_free(cfg);
+}

@@ -141,11 +141,12 @@ Test(series, row_without_values)
 
 Test(series, close_failure_removes_temporary)
 {
-    /* The final path is a directory: the rename fails. */
-    cr_assert_eq(mkdir(path, 0777), 0);
+    /* A directory put in place of the final path while the series was
+     * written: the close does not rename onto it. */
     cl_series *s;
     cl_error err;
     cr_assert_eq(cl_series_open(path, 3, cols, &s, &err), CL_OK);
+    cr_assert_eq(mkdir(path, 0777), 0);
     double r[] = {1, 2, 3};
     cr_assert_eq(cl_series_row(s, r, &err), CL_OK);
     cr_assert_eq(cl_series_close(s, &err), CL_EIO);

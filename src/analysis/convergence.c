@@ -151,6 +151,8 @@ cl_status cl_convergence(cl_model *m, const cl_integrator_type *type,
         l->err_x = l->rc ? NAN : cl_max_distance(t.x, ref->x, n / 3);
         l->err_v = l->rc ? NAN : cl_max_distance(t.v, ref->v, n / 3);
         l->fitted = !l->rc && l->err_x > ref->err_x;
+        if (l->rc == CL_EINTR) /* a stopped study keeps no part-row */
+            rc = cl_error_set(err, CL_EINTR, "%s", l->why.msg);
     }
     fit_orders(r);
     cl_trial_free(&t);

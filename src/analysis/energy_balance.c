@@ -84,6 +84,8 @@ cl_status cl_ebal_run(cl_model *m, const cl_integrator_type *type,
         t.contact_work = true;
         r->rc = cl_trial_run(&t, type, io, T, samples, max_stretch,
                              &r->stats, &r->why);
+        if (r->rc == CL_EINTR) /* a stopped study keeps no part-row */
+            rc = cl_error_set(err, CL_EINTR, "%s", r->why.msg);
     }
     cl_trial_free(&t);
     return rc;

@@ -26,6 +26,7 @@
 
 #include "analysis/diagnostics.h"
 #include "core/clock.h"
+#include "core/stop.h"
 #include "io/atomic.h"
 #include "io/frames.h"
 #include "io/series.h"
@@ -49,6 +50,7 @@ typedef struct {
     double *row;
     long frame_index;
     double *e0_terms, *e1_terms; /* term energies of res->e0, res->e1 */
+    double wall0;           /* wall clock at the start (budget) */
 } sim;
 
 /* ---- output schedule -------------------------------------------------- */
@@ -317,6 +319,32 @@ static cl_status reach(sim *s, const cl_integrator_type *type, void *state,
     return rc ? rc : sample(s, t, res, err);
 }
 
+/* A stop asked for (a signal) or a budget spent after the sample at
+ * res->t_reached: CL_EINTR or CL_EBUDGET with the reason. */
+static cl_status check_stop(const sim *s, const cl_integrator_type *type,
+                            const void *state, const cl_sim_result *res,
+                            cl_error *err)
+{
+    const cl_sim_opts *so = s->so;
+    int sig = cl_stop_requested();
+    if (sig)
+        return cl_error_set(err, CL_EINTR, "interrupted by %s at t = %g",
+                            cl_stop_signal_name(sig), res->t_reached);
+    if (so->max_wall > 0 && cl_clock_wall() - s->wall0 >= so->max_wall)
+        return cl_error_set(err, CL_EBUDGET, "budget --max-wall %g s "
+                            "reached at t = %g", so->max_wall,
+                            res->t_reached);
+    if (so->max_steps > 0) {
+        cl_stats st = {0};
+        type->stats(state, &st);
+        if (st.steps >= so->max_steps)
+            return cl_error_set(err, CL_EBUDGET, "budget --max-steps %ld "
+                                "reached at t = %g (%ld steps)",
+                                so->max_steps, res->t_reached, st.steps);
+    }
+    return CL_OK;
+}
+
 /* Integrate over the schedule, sampling and writing frames.  Samples and
  * frames that round to the same tick (more outputs than fixed steps) are
  * produced once. */
@@ -343,6 +371,8 @@ static cl_status integrate(sim *s, const cl_integrator_type *type,
         kf += tick == tf;
         if (so->progress)
             so->progress(so->progress_ctx, res->t_reached / so->t_end);
+        if (!rc && ks <= so->samples)
+            rc = check_stop(s, type, state, res, err);
     }
     return rc;
 }
@@ -352,7 +382,7 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
                       cl_sim_result *res, cl_error *err)
 {
     sim s = {.m = m, .c = cl_model_cloth(m), .sys = cl_model_system(m),
-             .so = so};
+             .so = so, .wall0 = cl_clock_wall()};
     schedule sch;
     void *state = NULL;
     memset(res, 0, sizeof *res);
@@ -387,15 +417,18 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
         res->stats.cpu = cpu;
         type->free(state);
     }
-    /* What was computed is published even after a failure. */
+    /* What was computed is published even after a failure; a run stopped
+     * early (stopped) writes everything a finished one does. */
     cl_error later;
+    bool stopped = rc == CL_EINTR || rc == CL_EBUDGET;
     cl_status rc2 = cl_series_close(s.series, rc ? &later : err);
     if (!rc)
         rc = rc2;
-    if (!rc) {
+    if (!rc || (stopped && !rc2)) {
         char path[4096];
         snprintf(path, sizeof path, "%s/final.csv", so->outdir);
-        rc = cl_state_write(path, s.c->np, s.xf, s.vf, err);
+        rc2 = cl_state_write(path, s.c->np, s.xf, s.vf, rc ? &later : err);
+        rc = rc ? rc : rc2;
     }
     if (s.x && (rc == CL_OK || state))
         rc2 = write_stats(&s, &res->stats, rc ? &later : err);

@@ -12,7 +12,9 @@
  *                tearing, without the triangles that have a torn edge
  *   obstacles_NNNNN.vtk / .obj   the obstacles at the frame times
  *   final.csv    the final state (p,x,y,z,vx,vy,vz, all particles)
- *   stats.csv    the integrator statistics (name,value)
+ *   stats.csv    the integrator's counters (name,value); its wall and CPU
+ *                time are in the result only, so that two identical runs
+ *                write identical bytes
  * Fixed-step integrators are sampled on their own step grid; t_end must be a
  * multiple of dt. */
 #ifndef CL_SIMULATE_H
@@ -30,6 +32,8 @@ typedef struct {
     bool vtk, obj;       /* frame formats */
     const char *outdir;
     double max_stretch;  /* a larger max d/L counts as a blow-up */
+    double max_wall;     /* budget: wall-clock seconds of the run, 0: none */
+    long max_steps;      /* budget: integrator steps of the run, 0: none */
     void (*progress)(void *ctx, double fraction);
     void *progress_ctx;
 } cl_sim_opts;
@@ -54,7 +58,11 @@ typedef struct {
 } cl_sim_result;
 
 /* On failure (e.g. CL_EBLOWUP) the series and frames written so far are in
- * place and `res` describes the last good sample. */
+ * place and `res` describes the last good sample.  A run stopped early
+ * writes all its outputs up to the last sample, final.csv at that time
+ * included, and returns CL_EBUDGET (so->max_wall or so->max_steps reached)
+ * or CL_EINTR (SIGINT or SIGTERM, core/stop.h); both are checked after
+ * every output time (sample or frame). */
 cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
                       const cl_integrator_opts *iopts, const cl_sim_opts *so,
                       cl_sim_result *res, cl_error *err);

@@ -7,6 +7,7 @@
 
 #include "analysis/diagnostics.h"
 #include "core/clock.h"
+#include "core/stop.h"
 
 cl_status cl_trial_repeatable(cl_model *m, cl_error *err)
 {
@@ -96,6 +97,11 @@ cl_status cl_trial_run(cl_trial *t, const cl_integrator_type *type,
         double tk = check_time(type, io->dt, T, k, checks);
         if (tk <= last)
             continue;
+        if (cl_stop_requested()) {
+            rc = cl_error_set(err, CL_EINTR, "interrupted by %s at t = %g",
+                              cl_stop_signal_name(cl_stop_requested()), last);
+            break;
+        }
         if (!(rc = type->advance(state, tk, t->x, t->v, err)) &&
             !(rc = check_stretch(t, tk, max_stretch, err)) && t->hook)
             rc = t->hook(t->hook_ctx, tk, t->x, t->v, err);

@@ -10,11 +10,29 @@
 #include "io/atomic.h"
 #include "io/state.h"
 
+int cl_cli_exit_status(cl_status code)
+{
+    switch (code) {
+    case CL_OK: return CL_EXIT_OK;
+    case CL_EINVAL:
+    case CL_EPARSE:
+    case CL_EUNSUPPORTED: return CL_EXIT_INPUT;
+    case CL_ESOLVER:
+    case CL_EINFEASIBLE: return CL_EXIT_SOLVER;
+    case CL_EBLOWUP: return CL_EXIT_BLOWUP;
+    case CL_EBUDGET: return CL_EXIT_BUDGET;
+    case CL_EINTR: return CL_EXIT_INTERRUPTED;
+    case CL_EIO: return CL_EXIT_IO;
+    case CL_ENOMEM: break;
+    }
+    return CL_EXIT_OTHER;
+}
+
 int cl_cli_fail(const cl_error *err)
 {
     fprintf(stderr, "clothode: %s\n", err->msg[0] ? err->msg
                                                   : cl_status_name(err->code));
-    return 1;
+    return cl_cli_exit_status(err->code);
 }
 
 int cl_cli_usage_error(const char *cmd, const char *fmt, ...)
@@ -128,6 +146,19 @@ cl_status cl_cli_ignore_run(cl_config *cfg, void *settings, cl_error *err)
     (void)err;
     cl_config_ignore_section(cfg, "run");
     return CL_OK;
+}
+
+cl_status cl_cli_check_output(const char *dir, const char *name,
+                              cl_error *err)
+{
+    char path[4200];
+    struct stat st;
+    if (stat(dir, &st) == 0 && !S_ISDIR(st.st_mode))
+        return cl_error_set(err, CL_EIO, "cannot use '%s' as the output "
+                            "directory: it exists and is not a directory",
+                            dir);
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    return cl_output_check(path, err);
 }
 
 cl_status cl_cli_write_csv(const char *dir, const char *name,

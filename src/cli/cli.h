@@ -16,8 +16,24 @@ typedef struct {
     const char *summary;
 } cl_command;
 
-/* Print "clothode: message" to stderr and return the exit status 1; the
- * form every subcommand uses to fail. */
+/* The exit status of each class of failure (README "Exit status",
+ * docs/clothode.1, `clothode --help`). */
+enum {
+    CL_EXIT_OK = 0,
+    CL_EXIT_OTHER = 1,       /* out of memory; replay: outputs differ */
+    CL_EXIT_INPUT = 2,       /* bad input: usage, options, problem files */
+    CL_EXIT_SOLVER = 3,      /* a solver failed */
+    CL_EXIT_BLOWUP = 4,      /* the state blew up */
+    CL_EXIT_BUDGET = 5,      /* --max-wall or --max-steps reached */
+    CL_EXIT_INTERRUPTED = 6, /* SIGINT or SIGTERM */
+    CL_EXIT_IO = 7           /* a file or stdout could not be written */
+};
+
+/* The exit status of a failure of class `code`. */
+int cl_cli_exit_status(cl_status code);
+
+/* Print "clothode: message" to stderr and return the exit status of its
+ * class (cl_cli_exit_status); the form every subcommand uses to fail. */
 int cl_cli_fail(const cl_error *err);
 int cl_cli_usage_error(const char *cmd, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
@@ -51,8 +67,8 @@ typedef cl_status (*cl_cli_work_fn)(cl_model *m, const cl_cli_job *job,
  * (a cl_cli_args first), load the problem with its assignments, read the
  * table's keys, check() the values against each other (NULL: nothing to
  * check), make the model, refuse keys nobody read, then work().  Returns
- * the exit status: 0, 1 with the one-line message of a failure, 2 for a
- * usage error. */
+ * the exit status: 0, that of the failure's class with its one-line
+ * message (cl_cli_fail), 2 for a usage error. */
 int cl_cli_problem_main(int argc, char **argv, const cl_cli_table *t,
                         void *settings, cl_cli_check_fn check,
                         cl_cli_work_fn work);
@@ -66,6 +82,12 @@ cl_status cl_cli_ignore_run(cl_config *cfg, void *settings, cl_error *err);
  * error), then return work(settings), the exit status. */
 int cl_cli_args_main(int argc, char **argv, const cl_cli_table *t,
                      void *settings, int (*work)(void *settings));
+
+/* Whether DIR/NAME can receive an output, checked before any work: DIR
+ * absent or a directory, DIR/NAME absent or a regular file (CL_EIO naming
+ * what is there otherwise, io/atomic.h). */
+cl_status cl_cli_check_output(const char *dir, const char *name,
+                              cl_error *err);
 
 /* Write DIR/NAME atomically (DIR made first): write(fp, ctx, n) puts the
  * rows of the first n results of ctx. */
@@ -94,6 +116,8 @@ typedef struct {
     double max_stretch;
     long threads, samples, frames; /* run's outputs (the studies hide */
     unsigned format;               /* them); format: CL_CLI_FMT_ bits */
+    double budget_wall;            /* run's budgets, 0: none (also */
+    long budget_steps;             /* hidden by the studies) */
 } cl_cli_run;
 extern const cl_cli_opt cl_cli_run_rows[];
 
@@ -101,7 +125,8 @@ extern const cl_cli_opt cl_cli_run_rows[];
 enum { CL_CLI_FMT_CSV = 1u, CL_CLI_FMT_VTK = 2u, CL_CLI_FMT_OBJ = 4u };
 
 /* The options of cl_cli_run_rows that only run offers. */
-#define CL_CLI_RUN_OUTPUTS "threads samples frames format"
+#define CL_CLI_RUN_OUTPUTS \
+    "threads samples frames format max-wall max-steps"
 
 /* One entry of [run] integrator, a list "NAME[:LINSOL],...": the
  * integrator, its options (a LINSOL given here overrides [run] linsol)

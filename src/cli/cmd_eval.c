@@ -96,6 +96,20 @@ static cl_status write_jacobians(cl_model *m, const eval_args *a,
     return rc;
 }
 
+/* Every output path is a regular file or absent, before any work. */
+static cl_status check_outputs(const eval_args *a, const char *dir,
+                               cl_error *err)
+{
+    cl_status rc = cl_cli_check_output(dir, "forces.csv", err);
+    if (!rc)
+        rc = cl_cli_check_output(dir, "energy.csv", err);
+    if (!rc && *a->jac_x)
+        rc = cl_output_check(a->jac_x, err);
+    if (!rc && *a->jac_v)
+        rc = cl_output_check(a->jac_v, err);
+    return rc;
+}
+
 static cl_status evaluate(cl_model *m, const cl_cli_job *job, void *ctx,
                          cl_error *err)
 {
@@ -106,7 +120,8 @@ static cl_status evaluate(cl_model *m, const cl_cli_job *job, void *ctx,
     cl_energy e;
     cl_status rc = x && v && f ? CL_OK
                                : cl_error_set(err, CL_ENOMEM, "no memory");
-    if (!rc && !(rc = cl_state_read(a->state, np, x, v, err)) &&
+    if (!rc && !(rc = check_outputs(a, job->outdir, err)) &&
+        !(rc = cl_state_read(a->state, np, x, v, err)) &&
         !(rc = cl_model_eval_full(m, a->t, x, v, f, &e, err)) &&
         !(rc = cl_mkdir_p(job->outdir, err)) &&
         !(rc = write_forces(job->outdir, np, f, err)) &&

@@ -6,12 +6,16 @@
 #include "analysis/simulate.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
+#include "cli/manifest.h"
+#include "cli/outdir.h"
 
 typedef struct {
     cl_cli_args a;
     cl_cli_methods integrator; /* one */
     cl_cli_run run;
     cl_sim_opts so;
+    int argc;                  /* the command line, for run.json */
+    char **argv;
 } run_setup;
 
 static const cl_cli_opt run_rows[] = {
@@ -29,8 +33,13 @@ static const cl_cli_table run_table = {
     .rows = run_rows,
     .about =
     "Integrate PROBLEM (a .ini file, or a name under problems/) and write\n"
-    "series.csv, frames, final.csv and stats.csv into the output\n"
-    "directory.\n"};
+    "series.csv, frames, final.csv, stats.csv, config.ini and run.json (its\n"
+    "provenance) into the output directory, after removing the files of an\n"
+    "earlier run there.  SIGINT, SIGTERM and the budgets stop the run at\n"
+    "the next output time with everything computed written.\n",
+    .notes =
+    "exit status: 0 success, 2 bad input, 3 solver failure, 4 blow-up,\n"
+    "5 budget, 6 interrupted, 7 I/O error (1 out of memory)\n"};
 
 static cl_status check_run(cl_config *cfg, void *ctx, cl_error *err)
 {
@@ -41,6 +50,8 @@ static cl_status check_run(cl_config *cfg, void *ctx, cl_error *err)
     r->so.frames = r->run.frames;
     r->so.vtk = r->run.format & CL_CLI_FMT_VTK;
     r->so.obj = r->run.format & CL_CLI_FMT_OBJ;
+    r->so.max_wall = r->run.budget_wall;
+    r->so.max_steps = r->run.budget_steps;
     return cl_cli_methods_check(cfg, &r->integrator, &r->run.io,
                                 CL_CLI_DT_ALL, err);
 }
@@ -99,27 +110,34 @@ static cl_status run_work(cl_model *m, const cl_cli_job *job, void *ctx,
 {
     run_setup *r = ctx;
     cl_sim_result res = {0};
+    cl_manifest mf = {0};
+    cl_error later;
     cl_status rc = cl_model_set_threads(m, (int)r->run.threads, err);
     r->so.outdir = job->outdir;
     r->so.progress = cl_cli_progress;
-    if (!rc)
-        rc = cl_simulate(m, r->integrator.m[0].type, &r->integrator.m[0].io,
-                         &r->so, &res, err);
+    if (rc || (rc = cl_cli_outdir_prepare(job->outdir, err)) ||
+        (rc = cl_manifest_begin(&mf, job, r->argc, r->argv, r->run.threads,
+                                err)))
+        return rc;
+    rc = cl_simulate(m, r->integrator.m[0].type, &r->integrator.m[0].io,
+                     &r->so, &res, err);
     if (!job->quiet && res.rows > 0)
         print_summary(job->problem, r, m, &res);
     if (res.rows > 0) {
         char path[4200];
-        cl_error ignored;
         snprintf(path, sizeof path, "%s/config.ini", job->outdir);
-        cl_config_write(job->cfg, path, &ignored);
+        cl_status rc2 = cl_config_write(job->cfg, path, rc ? &later : err);
+        rc = rc ? rc : rc2;
     }
     free(res.xfinal);
-    return rc;
+    cl_status rc2 = cl_manifest_end(&mf, rc, err, &res.stats,
+                                    rc ? &later : err);
+    return rc ? rc : rc2;
 }
 
 int cl_cmd_run(int argc, char **argv)
 {
-    run_setup r = {0};
+    run_setup r = {.argc = argc, .argv = argv};
     return cl_cli_problem_main(argc, argv, &run_table, &r, check_run,
                                run_work);
 }

@@ -72,7 +72,8 @@ static cl_status spectrum(cl_model *m, const cl_cli_job *job, void *ctx,
     cl_spectrum sp = {0};
     cl_status rc = x && v ? cl_cli_free_state(m, s->state, x, v, err)
                           : cl_error_set(err, CL_ENOMEM, "out of memory");
-    if (!rc && !(rc = cl_spectrum_compute(m, s->t, x, v, &sp, err)) &&
+    if (!rc && !(rc = cl_cli_check_output(job->outdir, "spectrum.csv", err)) &&
+        !(rc = cl_spectrum_compute(m, s->t, x, v, &sp, err)) &&
         !(rc = cl_cli_write_csv(job->outdir, "spectrum.csv", write_rows, &sp,
                                 1, err)) && !job->quiet) {
         print_summary(job, &sp);

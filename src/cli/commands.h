@@ -13,5 +13,6 @@ int cl_cmd_spectrum(int argc, char **argv);
 int cl_cmd_energy(int argc, char **argv);
 int cl_cmd_asinc(int argc, char **argv);
 int cl_cmd_contact(int argc, char **argv);
+int cl_cmd_replay(int argc, char **argv);
 
 #endif

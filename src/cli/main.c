@@ -1,10 +1,13 @@
 /* clothode: particle cloth as a stiff ODE, integrators side by side.
  * One program, subcommands (README "Using it", docs/clothode.1). */
+#include <errno.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "cli/cli.h"
 #include "cli/commands.h"
+#include "cli/version.h"
+#include "core/stop.h"
 
 static const cl_command commands[] = {
     {"run", cl_cmd_run, "integrate a problem, write series, frames, stats"},
@@ -24,27 +27,62 @@ static const cl_command commands[] = {
      "the exact inverse sinc beside Jiao's polynomial"},
     {"counts", cl_cmd_counts, "connection counts beside Jiao's formulas"},
     {"list", cl_cmd_list, "problems, integrators and force terms"},
+    {"replay", cl_cmd_replay,
+     "rerun a run from its run.json, check every output is identical"},
 };
 
 static int usage(FILE *fp)
 {
     fprintf(fp, "usage: clothode COMMAND [options]   (COMMAND --help for "
-                "more)\ncommands:\n");
+                "more)\n       clothode --version\ncommands:\n");
     for (size_t k = 0; k < sizeof commands / sizeof *commands; k++)
         fprintf(fp, "  %-13s %s\n", commands[k].name, commands[k].summary);
-    return fp == stdout ? 0 : 2;
+    fprintf(fp, "exit status: 0 success, 1 out of memory (replay: outputs "
+                "differ), 2 bad input,\n  3 solver failure, 4 blow-up, 5 "
+                "budget (--max-wall, --max-steps), 6 interrupted\n  (SIGINT, "
+                "SIGTERM), 7 I/O error (a file or stdout)\n");
+    return fp == stdout ? 0 : CL_EXIT_INPUT;
 }
 
-int main(int argc, char **argv)
+static int dispatch(int argc, char **argv)
 {
     if (argc < 2)
         return usage(stderr);
     if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") ||
         !strcmp(argv[1], "help"))
         return usage(stdout);
+    if (!strcmp(argv[1], "--version"))
+        return cl_cli_version(stdout);
     for (size_t k = 0; k < sizeof commands / sizeof *commands; k++)
         if (!strcmp(argv[1], commands[k].name))
             return commands[k].main(argc - 1, argv + 1);
     fprintf(stderr, "clothode: unknown command '%s'\n", argv[1]);
     return usage(stderr);
+}
+
+/* Everything written to stdout must have reached it: a failed write (a
+ * full disk, a closed pipe) is an I/O error. */
+static int close_stdout(int status)
+{
+    int bad = ferror(stdout);
+    int e = errno;
+    if (fflush(stdout) != 0 && !bad) {
+        bad = 1;
+        e = errno;
+    }
+    if (fclose(stdout) != 0 && !bad) {
+        bad = 1;
+        e = errno;
+    }
+    if (!bad)
+        return status;
+    fprintf(stderr, "clothode: cannot write standard output: %s\n",
+            strerror(e ? e : EIO));
+    return status ? status : CL_EXIT_IO;
+}
+
+int main(int argc, char **argv)
+{
+    cl_stop_install();
+    return close_stdout(dispatch(argc, argv));
 }

@@ -73,6 +73,16 @@ const cl_cli_opt cl_cli_run_rows[] = {
     {.name = "format", .arg = "LIST", .type = CL_CLI_NAMES, .key = "format",
      RUN_ROW(format), .sdef = "vtk,obj", .names = run_formats,
      .help = "frame formats among csv,vtk,obj (csv: the time series only)"},
+    {.name = "max-wall", .arg = "SECONDS", .type = CL_CLI_DOUBLE,
+     .key = "budget_wall", RUN_ROW(budget_wall), .def = 0, .lo = 0,
+     .hi = INFINITY,
+     .help = "end the run with status budget (exit 5) once it has run this "
+             "long, 0 for no limit"},
+    {.name = "max-steps", .arg = "N", .type = CL_CLI_LONG,
+     .key = "budget_steps", RUN_ROW(budget_steps), .def = 0, .lo = 0,
+     .hi = 1099511627776.0,
+     .help = "end the run with status budget (exit 5) once the integrator "
+             "has taken N steps, 0 for no limit"},
     {.type = CL_CLI_END}};
 
 /* Entry "name" or "name:linsol" of the list into m. */

@@ -3,6 +3,8 @@
 
 #include <stdlib.h>
 
+#include "core/stop.h"
+
 typedef struct {
     const cl_cli_study *st;
     const char *res;
@@ -22,17 +24,25 @@ cl_status cl_cli_study_run(cl_model *m, const cl_cli_job *job,
     char *res = calloc((size_t)n, st->size);
     if (!res)
         return cl_error_set(err, CL_ENOMEM, "out of memory");
-    cl_status rc = st->begin(m, job, ctx, err);
+    cl_status rc = cl_cli_check_output(job->outdir, st->csv, err);
+    if (!rc)
+        rc = st->begin(m, job, ctx, err);
     if (!rc && !job->quiet)
         puts(st->columns);
-    int done = 0;
+    int done = 0, ok = 0; /* runs started, runs finished */
     for (; !rc && done < n; done++) {
+        if (cl_stop_requested()) {
+            rc = cl_error_set(err, CL_EINTR, "interrupted by %s after %d "
+                              "of %d runs", cl_stop_signal_name(
+                                  cl_stop_requested()), done, n);
+            break;
+        }
         rc = st->run(m, ctx, done, res + (size_t)done * st->size, err);
         if (!rc && !job->quiet)
             st->print(res + (size_t)done * st->size);
+        ok += !rc;
         fflush(stdout);
     }
-    int ok = done - (rc ? 1 : 0);
     if (!rc && st->summary && !job->quiet)
         st->summary(res, ok);
     cl_error later;

@@ -35,6 +35,8 @@ const char *cl_status_name(cl_status code)
     case CL_EBLOWUP: return "blow-up";
     case CL_EUNSUPPORTED: return "unsupported";
     case CL_EINFEASIBLE: return "infeasible state";
+    case CL_EBUDGET: return "budget reached";
+    case CL_EINTR: return "interrupted";
     }
     return "unknown status";
 }

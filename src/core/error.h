@@ -15,9 +15,11 @@ typedef enum {
     CL_ESOLVER,     /* a solver reported failure */
     CL_EBLOWUP,     /* state became non-finite or ran away */
     CL_EUNSUPPORTED, /* valid request this build or problem cannot serve */
-    CL_EINFEASIBLE  /* a state outside the feasible set (a particle at
+    CL_EINFEASIBLE, /* a state outside the feasible set (a particle at
                      * d <= 0 of a barrier obstacle): a smaller step may
                      * avoid it */
+    CL_EBUDGET,     /* a run reached its --max-wall or --max-steps budget */
+    CL_EINTR        /* a run stopped on SIGINT or SIGTERM (core/stop.h) */
 } cl_status;
 
 typedef struct {

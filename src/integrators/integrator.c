@@ -108,9 +108,10 @@ static void stats_counters(const cl_stats *s, long out[11])
     out[10] = s->lin_fallbacks;
 }
 
-/* human: one aligned block "label  value"; otherwise one "name,value" row
- * per counter (no header row), then the linear solver's name (only when
- * reported), then wall and cpu in seconds. */
+/* human: one aligned block "label  value", then wall and cpu in seconds;
+ * otherwise one "name,value" row per counter (no header row), then the
+ * linear solver's name (only when reported), without the times (stats.csv:
+ * identical runs write identical bytes; the times go to run.json). */
 void cl_stats_print(const cl_stats *s, FILE *fp, bool human)
 {
     enum { NC = sizeof cl_counter_names / sizeof cl_counter_names[0] };
@@ -133,8 +134,5 @@ void cl_stats_print(const cl_stats *s, FILE *fp, bool human)
     if (human) {
         fprintf(fp, "  %-28s %14.6f\n", "wall time [s]", s->wall);
         fprintf(fp, "  %-28s %14.6f\n", "cpu time [s]", s->cpu);
-    } else {
-        fprintf(fp, "wall,%.9g\n", s->wall);
-        fprintf(fp, "cpu,%.9g\n", s->cpu);
     }
 }

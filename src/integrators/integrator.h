@@ -89,7 +89,8 @@ cl_status cl_integrator_contact_at(const char *name, const cl_system *sys,
                                    bool record, cl_error *err);
 
 /* Write the statistics as an aligned human-readable block (human = true) or
- * as "name,value" CSV rows without header (human = false). */
+ * as "name,value" CSV rows without header and without the wall and CPU
+ * times (human = false). */
 void cl_stats_print(const cl_stats *s, FILE *fp, bool human);
 
 #endif

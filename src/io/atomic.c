@@ -39,14 +39,33 @@ static cl_status open_fail(cl_afile *af, int fd, const char *verb,
                         strerror(e));
 }
 
+cl_status cl_output_check(const char *path, cl_error *err)
+{
+    struct stat st;
+    if (!path || !*path)
+        return cl_error_set(err, CL_EINVAL, "output file name is empty");
+    if (lstat(path, &st) != 0 || S_ISREG(st.st_mode))
+        return CL_OK;
+    const char *what = S_ISDIR(st.st_mode)    ? "a directory"
+                       : S_ISLNK(st.st_mode)  ? "a symbolic link"
+                       : S_ISFIFO(st.st_mode) ? "a FIFO"
+                       : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)
+                           ? "a device"
+                           : "not a regular file";
+    return cl_error_set(err, CL_EIO, "cannot write '%s': it is %s; an output "
+                        "replaces only a regular file (choose another path)",
+                        path, what);
+}
+
 cl_status cl_afile_open(cl_afile *af, const char *path, cl_error *err)
 {
     static const char suffix[] = ".tmp.XXXXXX";
     af->fp = NULL;
     af->path = NULL;
     af->tmp = NULL;
-    if (!path || !*path)
-        return cl_error_set(err, CL_EINVAL, "output file name is empty");
+    cl_status rc = cl_output_check(path, err);
+    if (rc)
+        return rc;
 
     size_t n = strlen(path);
     af->path = dup_str(path);
@@ -103,6 +122,11 @@ cl_status cl_afile_commit(cl_afile *af, cl_error *err)
     if (!what && rc != 0) {
         what = "close failed";
         e = errno;
+    }
+    cl_error special;
+    if (!what && cl_output_check(af->path, &special)) {
+        what = "it is no longer a regular file";
+        e = EEXIST;
     }
     if (!what && rename(af->tmp, af->path) != 0) {
         what = "cannot rename temporary file onto it";

@@ -25,8 +25,16 @@ typedef struct {
     char *tmp;      /* temporary name */
 } cl_afile;
 
+/* Whether path may receive an output: CL_OK if it does not exist or is a
+ * regular file; CL_EIO naming what it is when it is anything else (a
+ * device such as /dev/full, a FIFO, a directory, a symbolic link), which
+ * the rename of an atomic write would replace; CL_EINVAL for "". */
+cl_status cl_output_check(const char *path, cl_error *err);
+
 /* Create the temporary file (mode 0666 minus umask) and open af->fp on it.
- * CL_EIO with the path and the system's reason if it cannot be created. */
+ * CL_EIO with the path and the system's reason if it cannot be created,
+ * and, before anything is created, if path is not a regular file
+ * (cl_output_check; checked again before the rename). */
 cl_status cl_afile_open(cl_afile *af, const char *path, cl_error *err);
 
 /* Check for earlier write errors, then fflush, fsync, fclose and rename the

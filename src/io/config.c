@@ -48,6 +48,7 @@ typedef struct {
 
 typedef struct {
     char *sec, *key;
+    char *def; /* the default a getter used when the key was absent */
 } cl_name;
 
 struct cl_config {
@@ -99,6 +100,7 @@ void cl_config_free(cl_config *cfg)
     for (size_t i = 0; i < cfg->nasked; i++) {
         free(cfg->asked[i].sec);
         free(cfg->asked[i].key);
+        free(cfg->asked[i].def);
     }
     for (size_t i = 0; i < cfg->nfiles; i++)
         free(cfg->files[i]);
@@ -180,6 +182,21 @@ static cl_entry *cl_lookup(cl_config *cfg, const char *sec, const char *key)
     if (e)
         e->used = true;
     return e;
+}
+
+/* Record the default a getter used for the absent (sec, key), the first
+ * time only (cl_config_resolved); like the asked list, a record lost to a
+ * lack of memory only leaves the default out of that list. */
+static void cl_note_default(cl_config *cfg, const char *sec, const char *key,
+                            const char *text)
+{
+    for (size_t i = 0; i < cfg->nasked; i++) {
+        cl_name *n = &cfg->asked[i];
+        if (!strcmp(n->sec, sec) && !strcmp(n->key, key) && !n->def) {
+            n->def = strdup(text);
+            return;
+        }
+    }
 }
 
 static void cl_origin_of(const cl_entry *e, char *buf, size_t len)
@@ -551,6 +568,11 @@ cl_status cl_config_double(cl_config *cfg, const char *sec, const char *key,
 {
     const cl_entry *e = cl_lookup(cfg, sec, key);
     double x = def;
+    if (!e) {
+        char text[32];
+        cl_fmt_double(text, sizeof text, def);
+        cl_note_default(cfg, sec, key, text);
+    }
     if (e && (!cl_parse_double(e->value, &x) || !(x >= lo && x <= hi))) {
         char what[128];
         cl_double_range(what, sizeof what, lo, hi);
@@ -565,6 +587,11 @@ cl_status cl_config_long(cl_config *cfg, const char *sec, const char *key,
 {
     const cl_entry *e = cl_lookup(cfg, sec, key);
     long x = def;
+    if (!e) {
+        char text[32];
+        snprintf(text, sizeof text, "%ld", def);
+        cl_note_default(cfg, sec, key, text);
+    }
     if (e && (!cl_parse_long(e->value, &x) || x < lo || x > hi)) {
         char what[128];
         cl_long_range(what, sizeof what, lo, hi);
@@ -581,6 +608,7 @@ cl_status cl_config_bool(cl_config *cfg, const char *sec, const char *key,
                                         "on",   "off",   "1",   "0"};
     const cl_entry *e = cl_lookup(cfg, sec, key);
     if (!e) {
+        cl_note_default(cfg, sec, key, def ? "true" : "false");
         *out = def;
         return CL_OK;
     }
@@ -616,6 +644,7 @@ cl_status cl_config_choice(cl_config *cfg, const char *sec, const char *key,
 {
     const cl_entry *e = cl_lookup(cfg, sec, key);
     if (!e) {
+        cl_note_default(cfg, sec, key, choices[def]);
         *out = def;
         return CL_OK;
     }
@@ -654,7 +683,22 @@ const char *cl_config_string(cl_config *cfg, const char *sec, const char *key,
                              const char *def)
 {
     const cl_entry *e = cl_lookup(cfg, sec, key);
+    if (!e && def)
+        cl_note_default(cfg, sec, key, def);
     return e ? e->value : def;
+}
+
+void cl_config_resolved(const cl_config *cfg, cl_config_visit_fn visit,
+                        void *ctx)
+{
+    for (size_t i = 0; i < cfg->nent; i++)
+        visit(ctx, cfg->ent[i].sec, cfg->ent[i].key, cfg->ent[i].value,
+              true);
+    for (size_t i = 0; i < cfg->nasked; i++)
+        if (cfg->asked[i].def &&
+            !cl_find(cfg, cfg->asked[i].sec, cfg->asked[i].key))
+            visit(ctx, cfg->asked[i].sec, cfg->asked[i].key,
+                  cfg->asked[i].def, false);
 }
 
 /* ----------------------------------------------------------- unused keys */

@@ -101,6 +101,17 @@ cl_status cl_config_path_of(cl_config *cfg, const char *sec, const char *key,
  * deliberately do not read that section. */
 void cl_config_ignore_section(cl_config *cfg, const char *sec);
 
+/* The fully resolved configuration: visit(ctx, sec, key, value, given)
+ * for every entry (given, in the order set), then for every key a getter
+ * asked for that was absent, with the default it used (not given).  An
+ * absent key read without a default (cl_config_vector, whose caller keeps
+ * its own values, or a string getter given NULL) is not visited. */
+typedef void (*cl_config_visit_fn)(void *ctx, const char *sec,
+                                   const char *key, const char *value,
+                                   bool given);
+void cl_config_resolved(const cl_config *cfg, cl_config_visit_fn visit,
+                        void *ctx);
+
 /* Write every entry as INI (final values, grouped by section in order of
  * first appearance) so that a run records the exact configuration it used.
  * Atomic: written to "path.tmp.XXXXXX" and renamed onto path. */

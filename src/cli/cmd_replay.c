@@ -1,0 +1,214 @@
+/* clothode replay DIR: rerun the run recorded in DIR/run.json into a
+ * temporary directory (or --out) and compare every output it wrote, by
+ * SHA-256, with the recorded ones (README "Provenance"). */
+#include <errno.h>
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <jansson.h>
+
+#include "cli/cli.h"
+#include "cli/commands.h"
+#include "cli/outdir.h"
+
+typedef struct {
+    cl_cli_args a;
+} replay_args;
+
+static const cl_cli_opt replay_rows[] = {
+    {.name = "out", .arg = "DIR", .type = CL_CLI_STRING,
+     .field = offsetof(replay_args, a.out),
+     .help = "keep the rerun in DIR (default: a temporary directory, "
+             "removed afterwards)"},
+    CL_CLI_HELP_ROW,
+    {.type = CL_CLI_END}};
+
+static const cl_cli_table replay_table = {
+    .cmd = "replay", .synopsis = "DIR [--out DIR]", .npos = 1,
+    .rows = replay_rows,
+    .about =
+    "Rerun the run recorded in DIR/run.json (its command line, in its\n"
+    "working directory) and report for every file it wrote whether the\n"
+    "rerun wrote the same bytes.  run.json itself is not compared (its\n"
+    "times differ).\n",
+    .notes =
+    "exit status: 0 when every output is identical, 1 when one differs or\n"
+    "is missing, else that of the failure (2 bad input, 7 I/O error, ...)\n"};
+
+/* run.json of dir, checked to be a finished clothode run. */
+static cl_status load_manifest(const char *dir, json_t **out, cl_error *err)
+{
+    char path[4200];
+    json_error_t je;
+    snprintf(path, sizeof path, "%s/run.json", dir);
+    json_t *root = json_load_file(path, 0, &je);
+    if (!root)
+        return cl_error_set(err, CL_EIO, "%s:%d: cannot read run.json: %s",
+                            path, je.line, je.text);
+    const char *program = json_string_value(json_object_get(root, "program"));
+    const char *cmd = json_string_value(json_object_get(root, "command"));
+    json_t *argv = json_object_get(root, "argv");
+    *out = root;
+    if (!program || strcmp(program, "clothode") || !cmd ||
+        strcmp(cmd, "run") || !json_is_array(argv) ||
+        json_array_size(argv) < 3 || json_array_size(argv) > 240 ||
+        !json_is_string(json_object_get(root, "cwd")) ||
+        !json_is_array(json_object_get(root, "files")))
+        return cl_error_set(err, CL_EPARSE, "%s: not the run.json of a "
+                            "`clothode run` (expected program \"clothode\", "
+                            "command \"run\", argv, cwd and files)", path);
+    return CL_OK;
+}
+
+/* Run `clothode run` with the recorded arguments into outdir, from the
+ * recorded working directory; its exit status. */
+static int rerun(json_t *m, const char *outdir)
+{
+    json_t *argv = json_object_get(m, "argv");
+    char *args[256], here[PATH_MAX];
+    int n = 0;
+    for (size_t k = 1; k < json_array_size(argv); k++)
+        if (!(args[n++] = (char *)json_string_value(
+                  json_array_get(argv, k))))
+            return CL_EXIT_INPUT;
+    args[n++] = "--out";
+    args[n++] = (char *)outdir;
+    args[n++] = "--quiet";
+    args[n] = NULL;
+    const char *cwd = json_string_value(json_object_get(m, "cwd"));
+    if (!getcwd(here, sizeof here) || chdir(cwd) != 0) {
+        fprintf(stderr, "clothode: cannot enter the run's directory '%s': "
+                "%s\n", cwd, strerror(errno));
+        return CL_EXIT_IO;
+    }
+    int status = cl_cmd_run(n, args);
+    if (chdir(here) != 0) {
+        fprintf(stderr, "clothode: cannot return to '%s': %s\n", here,
+                strerror(errno));
+        return CL_EXIT_IO;
+    }
+    return status;
+}
+
+static const char *sha_of(json_t *files, const char *name)
+{
+    size_t k;
+    json_t *f;
+    json_array_foreach(files, k, f) {
+        const char *n = json_string_value(json_object_get(f, "name"));
+        if (n && !strcmp(n, name))
+            return json_string_value(json_object_get(f, "sha256"));
+    }
+    return NULL;
+}
+
+/* One line per file of either run; the number that differ. */
+static int compare(json_t *was, json_t *now)
+{
+    json_t *fa = json_object_get(was, "files"), *fb = json_object_get(now,
+                                                                      "files");
+    int bad = 0;
+    size_t k;
+    json_t *f;
+    json_array_foreach(fa, k, f) {
+        const char *name = json_string_value(json_object_get(f, "name"));
+        const char *a = json_string_value(json_object_get(f, "sha256"));
+        const char *b = name ? sha_of(fb, name) : NULL;
+        const char *verdict = !b ? "missing in the rerun"
+                              : a && !strcmp(a, b) ? "identical" : "differs";
+        bad += strcmp(verdict, "identical") != 0;
+        printf("%-24s %s\n", name ? name : "?", verdict);
+    }
+    json_array_foreach(fb, k, f) {
+        const char *name = json_string_value(json_object_get(f, "name"));
+        if (name && !sha_of(fa, name)) {
+            printf("%-24s only in the rerun\n", name);
+            bad++;
+        }
+    }
+    return bad;
+}
+
+/* The rerun's outputs removed, then its directory. */
+static void remove_rerun(const char *dir)
+{
+    cl_error ignored;
+    if (cl_cli_outdir_prepare(dir, &ignored) == CL_OK && rmdir(dir) != 0)
+        fprintf(stderr, "clothode: cannot remove '%s': %s\n", dir,
+                strerror(errno));
+}
+
+/* The rerun into out and its verdict, the exit status. */
+static int replay(const char *dir, json_t *was, const char *out)
+{
+    int status = rerun(was, out);
+    cl_error err = {0};
+    json_t *now = NULL;
+    if (load_manifest(out, &now, &err)) {
+        json_decref(now);
+        return status ? status : cl_cli_fail(&err);
+    }
+    json_t *pa = json_object_get(json_object_get(was, "problem"), "sha256");
+    json_t *pb = json_object_get(json_object_get(now, "problem"), "sha256");
+    printf("replay of %s: %s\n", dir,
+           json_string_value(json_object_get(was, "status")));
+    if (!json_equal(pa, pb))
+        printf("%-24s differs (the problem file changed since the run)\n",
+               "problem");
+    int bad = compare(was, now) + !json_equal(pa, pb);
+    json_t *xa = json_object_get(was, "exit_status");
+    json_t *xb = json_object_get(now, "exit_status");
+    if (!json_equal(xa, xb)) {
+        printf("%-24s %lld, was %lld\n", "exit status",
+               (long long)json_integer_value(xb),
+               (long long)json_integer_value(xa));
+        bad++;
+    }
+    printf("replay: %zu files, %s\n",
+           json_array_size(json_object_get(was, "files")),
+           bad ? "outputs differ" : "every output identical");
+    json_decref(now);
+    return bad ? CL_EXIT_OTHER : CL_EXIT_OK;
+}
+
+static int replay_dir(const char *dir, const char *keep)
+{
+    cl_error err = {0};
+    json_t *was = NULL;
+    char out[PATH_MAX], here[PATH_MAX];
+    const char *tmp = getenv("TMPDIR");
+    int status;
+    if (load_manifest(dir, &was, &err)) {
+        json_decref(was);
+        return cl_cli_fail(&err);
+    }
+    /* absolute: the rerun runs in the run's own working directory */
+    int len = keep && (keep[0] == '/' || !getcwd(here, sizeof here))
+                  ? snprintf(out, sizeof out, "%s", keep)
+              : keep ? snprintf(out, sizeof out, "%s/%s", here, keep)
+                     : snprintf(out, sizeof out, "%s/clothode-replay-XXXXXX",
+                                tmp && *tmp == '/' ? tmp : "/tmp");
+    if (len < 0 || (size_t)len >= sizeof out || (!keep && !mkdtemp(out))) {
+        json_decref(was);
+        return cl_cli_fail(&(cl_error){CL_EIO, "cannot create a temporary "
+                                               "directory"});
+    }
+    status = replay(dir, was, out);
+    if (!keep)
+        remove_rerun(out);
+    json_decref(was);
+    return status;
+}
+
+int cl_cmd_replay(int argc, char **argv)
+{
+    replay_args a = {0};
+    int at = cl_cli_parse(argc, argv, &replay_table, &a);
+    int status = at == -2  ? CL_EXIT_OK
+                 : at < 0 ? CL_EXIT_INPUT
+                          : replay_dir(argv[at], a.a.out);
+    cl_cli_sets_free(&a.a.sets);
+    return status;
+}

@@ -1,0 +1,25 @@
+/* The output directory of a run: nothing of an earlier run is left beside
+ * a new one (README "Provenance").  Before `run` writes anything, the
+ * files an earlier run wrote there (listed in its run.json, or named as a
+ * run names its outputs: series.csv, final.csv, stats.csv, config.ini,
+ * run.json, frame_NNNNN.vtk/.obj, obstacles_NNNNN.vtk/.obj, and their
+ * temporaries NAME.tmp.XXXXXX) are removed; the tables of the studies
+ * (stability.csv, ...) stay.  A directory holding any other file and no
+ * run.json of clothode's is not a clothode output and is refused. */
+#ifndef CL_CLI_OUTDIR_H
+#define CL_CLI_OUTDIR_H
+
+#include <stdbool.h>
+
+#include "core/error.h"
+
+/* Whether `name` (a file name without directory) is one a run writes. */
+bool cl_cli_run_output(const char *name);
+
+/* Clear dir of an earlier run's files, or refuse it (CL_EIO naming the
+ * directory and a file that is not clothode's, or an output name taken by
+ * something other than a regular file), then create it if missing.
+ * Nothing is removed when it is refused. */
+cl_status cl_cli_outdir_prepare(const char *dir, cl_error *err);
+
+#endif

@@ -1,0 +1,135 @@
+/* The build and host descriptions of version.h.  The BLAS and LAPACK are
+ * those the dynamic linker loaded (Debian's alternatives may point
+ * libblas.so.3 at OpenBLAS, ATLAS or the reference BLAS), found by the
+ * file that holds dgemm_ and dgetrf_ (dladdr). */
+#define _GNU_SOURCE
+#include "cli/version.h"
+
+#include <dlfcn.h>
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/utsname.h>
+#include <unistd.h>
+
+#include <SuiteSparse_config.h>
+#include <gsl/gsl_version.h>
+#include <nettle/version.h>
+#include <sundials/sundials_version.h>
+
+#include "buildinfo.h"
+
+/* The file (resolved through symbolic links) that holds `symbol`, or
+ * "unknown". */
+static json_t *library_of(const char *symbol)
+{
+    Dl_info info;
+    char real[PATH_MAX];
+    void *at = dlsym(RTLD_DEFAULT, symbol);
+    if (!at || !dladdr(at, &info) || !info.dli_fname)
+        return json_string("unknown");
+    if (!realpath(info.dli_fname, real))
+        return json_string(info.dli_fname);
+    return json_string(real);
+}
+
+/* OpenBLAS's own description of its build, when the BLAS is OpenBLAS. */
+static json_t *openblas_config(void)
+{
+    char *(*config)(void) = NULL;
+    *(void **)&config = dlsym(RTLD_DEFAULT, "openblas_get_config");
+    return config ? json_string(config()) : json_null();
+}
+
+static json_t *libraries_json(void)
+{
+    char sundials[64] = "unknown", text[64];
+    int ss[3] = {0, 0, 0};
+    SUNDIALSGetVersion(sundials, (int)sizeof sundials);
+    SuiteSparse_version(ss);
+    snprintf(text, sizeof text, "%d.%d.%d", ss[0], ss[1], ss[2]);
+    json_t *o = json_object();
+    json_object_set_new(o, "sundials", json_string(sundials));
+    json_object_set_new(o, "suitesparse", json_string(text));
+    json_object_set_new(o, "gsl", json_string(gsl_version));
+    json_object_set_new(o, "blas", library_of("dgemm_"));
+    json_object_set_new(o, "lapack", library_of("dgetrf_"));
+    json_object_set_new(o, "openblas", openblas_config());
+    json_object_set_new(o, "jansson", json_string(jansson_version_str()));
+    snprintf(text, sizeof text, "%d.%d", nettle_version_major(),
+             nettle_version_minor());
+    json_object_set_new(o, "nettle", json_string(text));
+    return o;
+}
+
+json_t *cl_cli_build_json(void)
+{
+    json_t *o = json_object();
+    json_object_set_new(o, "version", json_string(CL_BUILD_VERSION));
+    json_object_set_new(o, "commit", json_string(CL_BUILD_COMMIT));
+    json_object_set_new(o, "compiler",
+                        json_sprintf("%s (%s)", CL_BUILD_CC, __VERSION__));
+    json_object_set_new(o, "flags", json_string(CL_BUILD_FLAGS));
+    json_object_set_new(o, "libraries", libraries_json());
+    return o;
+}
+
+/* The first "model name" of /proc/cpuinfo, or "unknown". */
+static json_t *cpu_model(void)
+{
+    FILE *fp = fopen("/proc/cpuinfo", "r");
+    char line[512];
+    json_t *name = NULL;
+    while (fp && !name && fgets(line, sizeof line, fp)) {
+        char *colon = strchr(line, ':');
+        if (!strncmp(line, "model name", 10) && colon) {
+            colon += 1 + (colon[1] == ' ');
+            colon[strcspn(colon, "\n")] = '\0';
+            name = json_string(colon);
+        }
+    }
+    if (fp)
+        fclose(fp);
+    return name ? name : json_string("unknown");
+}
+
+json_t *cl_cli_host_json(void)
+{
+    struct utsname u;
+    json_t *o = json_object();
+    json_object_set_new(o, "cpu", cpu_model());
+    json_object_set_new(o, "cores",
+                        json_integer(sysconf(_SC_NPROCESSORS_ONLN)));
+    if (uname(&u) == 0) {
+        json_object_set_new(o, "system", json_sprintf("%s %s %s", u.sysname,
+                                                      u.release, u.machine));
+        json_object_set_new(o, "hostname", json_string(u.nodename));
+    }
+    return o;
+}
+
+static void print_object(FILE *fp, json_t *o)
+{
+    const char *key;
+    json_t *value;
+    json_object_foreach(o, key, value) {
+        if (json_is_object(value))
+            print_object(fp, value);
+        else if (json_is_string(value))
+            fprintf(fp, "%-12s %s\n", key, json_string_value(value));
+    }
+}
+
+int cl_cli_version(FILE *fp)
+{
+    json_t *b = cl_cli_build_json();
+    if (!b) {
+        fprintf(stderr, "clothode: out of memory\n");
+        return 1;
+    }
+    fprintf(fp, "clothode %s\n", CL_BUILD_VERSION);
+    json_object_del(b, "version");
+    print_object(fp, b);
+    json_decref(b);
+    return 0;
+}

@@ -1,0 +1,19 @@
+/* Stopping a run early and cleanly: SIGINT and SIGTERM set a flag that the
+ * run loops (analysis/simulate.c, analysis/trial.c, the study loop of the
+ * command line) look at between steps, so that what was computed is
+ * written before the program exits (README "Exit status").  A second
+ * signal of the same kind ends the program at once (the handler resets
+ * itself). */
+#ifndef CL_STOP_H
+#define CL_STOP_H
+
+/* Install the handler for SIGINT and SIGTERM (sigaction). */
+void cl_stop_install(void);
+
+/* The signal that asked to stop (SIGINT, SIGTERM), or 0. */
+int cl_stop_requested(void);
+
+/* "SIGINT", "SIGTERM" or "signal N", for messages. */
+const char *cl_stop_signal_name(int sig);
+
+#endif

@@ -1,0 +1,33 @@
+/* SHA-256 of a file (sha256.h). */
+#include "io/sha256.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <nettle/sha2.h>
+
+cl_status cl_sha256_file(const char *path, char hex[CL_SHA256_HEX],
+                         cl_error *err)
+{
+    FILE *fp = fopen(path, "rb");
+    if (!fp)
+        return cl_error_set(err, CL_EIO, "cannot read '%s': %s", path,
+                            strerror(errno));
+    struct sha256_ctx ctx;
+    unsigned char buf[65536], digest[SHA256_DIGEST_SIZE];
+    size_t n;
+    sha256_init(&ctx);
+    while ((n = fread(buf, 1, sizeof buf, fp)) > 0)
+        sha256_update(&ctx, n, buf);
+    int bad = ferror(fp);
+    int e = errno;
+    fclose(fp);
+    if (bad)
+        return cl_error_set(err, CL_EIO, "cannot read '%s': %s", path,
+                            strerror(e ? e : EIO));
+    sha256_digest(&ctx, SHA256_DIGEST_SIZE, digest);
+    for (size_t k = 0; k < SHA256_DIGEST_SIZE; k++)
+        snprintf(hex + 2 * k, 3, "%02x", digest[k]);
+    return CL_OK;
+}

@@ -1,0 +1,15 @@
+/* SHA-256 of a file (FIPS 180-4), by nettle: the problem file and every
+ * output a run lists in its run.json. */
+#ifndef CL_SHA256_H
+#define CL_SHA256_H
+
+#include "core/error.h"
+
+#define CL_SHA256_HEX 65 /* 64 hex digits and the NUL */
+
+/* The digest of the file at path as lowercase hex into hex; CL_EIO naming
+ * the path and the reason if it cannot be read. */
+cl_status cl_sha256_file(const char *path, char hex[CL_SHA256_HEX],
+                         cl_error *err);
+
+#endif

@@ -1,0 +1,77 @@
+/* Tests for clothode replay (cli/cmd_replay.c): a finished run replays to
+ * identical outputs; a recorded digest that does not match is reported. */
+#include "runcli.h"
+
+static void run_into(const char *dir)
+{
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "cloth.n=6", "--integrator",
+            "semi-bdf2", "--dt", "1e-2", "--t-end", "0.2", "--frames", "1",
+            "--out", dir, "--quiet", NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+}
+
+Test(replay, finished_run_replays_identically)
+{
+    char dir[64];
+    cli_result r;
+    tmp_mkdtemp(dir, sizeof dir, "replay");
+    run_into(dir);
+    cli_run(&r, "replay", dir, NULL);
+    cli_assert_ok(&r);
+    const char *files[] = {"series.csv", "final.csv", "stats.csv",
+                           "config.ini", "frame_00001.vtk",
+                           "frame_00001.obj"};
+    for (size_t k = 0; k < 6; k++) {
+        char want[64];
+        snprintf(want, sizeof want, "%-24s identical\n", files[k]);
+        cr_assert(strstr(r.out, want), "no \"%s\" in\n%s", want, r.out);
+    }
+    cr_assert(strstr(r.out, "replay: 8 files, every output identical"),
+              "%s", r.out);
+    cli_result_free(&r);
+    tmp_rm_rf(dir);
+}
+
+/* A recorded digest changed: that file differs, exit status 1, and the
+ * kept rerun (--out) holds the true outputs. */
+Test(replay, changed_digest_is_reported)
+{
+    char dir[64], keep[64], path[300], json[1 << 16];
+    cli_result r;
+    tmp_mkdtemp(dir, sizeof dir, "replay");
+    tmp_mkdtemp(keep, sizeof keep, "rerun");
+    run_into(dir);
+    snprintf(path, sizeof path, "%s/run.json", dir);
+    tmp_slurp(path, json, sizeof json);
+    char *at = strstr(json, "\"name\": \"final.csv\"");
+    cr_assert_not_null(at);
+    at = strstr(at, "\"sha256\": \"") + 11;
+    *at = *at == '0' ? '1' : '0';
+    tmp_put(path, json);
+    cli_run(&r, "replay", dir, "--out", keep, NULL);
+    cli_assert_no_crash(&r);
+    cr_assert_eq(r.status, 1, "status %d\n%s%s", r.status, r.out, r.err);
+    cr_assert(strstr(r.out, "final.csv                differs"), "%s", r.out);
+    cr_assert(strstr(r.out, "series.csv               identical"), "%s",
+              r.out);
+    cr_assert(strstr(r.out, "outputs differ"), "%s", r.out);
+    snprintf(path, sizeof path, "%s/final.csv", keep);
+    cr_assert(cli_exists(path));
+    cli_result_free(&r);
+    tmp_rm_rf(dir);
+    tmp_rm_rf(keep);
+}
+
+Test(replay, directory_without_run_json_is_refused)
+{
+    char dir[64];
+    cli_result r;
+    tmp_mkdtemp(dir, sizeof dir, "replay");
+    cli_run(&r, "replay", dir, NULL);
+    cli_assert_error(&r, 0, "run.json", NULL);
+    cr_assert_eq(r.status, 7);
+    cli_result_free(&r);
+    tmp_rm_rf(dir);
+}

@@ -1,0 +1,146 @@
+/* Tests for core/stop: the flag SIGINT and SIGTERM set, and end to end
+ * the runs they stop (analysis/simulate.c): everything computed is
+ * written. */
+#include "runcli.h"
+
+#include "core/stop.h"
+#include "timelimit.h"
+
+Test(stop, signal_sets_the_flag_and_names_it)
+{
+    cl_stop_install();
+    cr_assert_eq(cl_stop_requested(), 0);
+    cr_assert_eq(raise(SIGTERM), 0);
+    cr_assert_eq(cl_stop_requested(), SIGTERM);
+    cr_assert_str_eq(cl_stop_signal_name(SIGTERM), "SIGTERM");
+    cr_assert_str_eq(cl_stop_signal_name(SIGINT), "SIGINT");
+    cr_assert_str_eq(cl_stop_signal_name(SIGHUP), "signal 1");
+}
+
+/* The handler resets itself: a second signal ends the program. */
+Test(stop, second_signal_ends_the_program, .signal = SIGINT)
+{
+    cl_stop_install();
+    raise(SIGINT);
+    cr_assert_eq(cl_stop_requested(), SIGINT);
+    raise(SIGINT);
+}
+
+/* ---- runs stopped by a signal ----------------------------------------- */
+
+/* Start clothode with args (NULL-terminated, stdout and stderr to files in
+ * dir), send sig after `after` seconds, wait; the exit status, or -1 when
+ * it ended by a signal. */
+static int run_and_signal(const char *dir, const char *const *args, int sig,
+                          double after)
+{
+    char *argv[CLI_MAX_ARGS + 2], out[300], err[300];
+    size_t n = 0;
+    argv[n++] = (char *)cli_binary();
+    for (; args[n - 1]; n++)
+        argv[n] = (char *)args[n - 1];
+    argv[n] = NULL;
+    snprintf(out, sizeof out, "%s.stdout", dir);
+    snprintf(err, sizeof err, "%s.stderr", dir);
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, out,
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&fa, STDERR_FILENO, err,
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    pid_t pid;
+    int rc = posix_spawnp(&pid, argv[0], &fa, NULL, argv, environ);
+    posix_spawn_file_actions_destroy(&fa);
+    cr_assert_eq(rc, 0, "posix_spawn: %s", strerror(rc));
+    nanosleep(&(struct timespec){(time_t)after,
+                                 (long)((after - (long)after) * 1e9)}, NULL);
+    cr_assert_eq(kill(pid, sig), 0);
+    int ws;
+    cr_assert_eq(waitpid(pid, &ws, 0), pid);
+    unlink(out);
+    return WIFEXITED(ws) ? WEXITSTATUS(ws) : -1;
+}
+
+/* The kinetic energy of a state file of np particles of equal mass m. */
+static double kinetic_of(const char *path, size_t np, double m)
+{
+    double *x = malloc(3 * np * sizeof *x), *v = malloc(3 * np * sizeof *v);
+    double e = 0;
+    cli_read_state(path, np, x, v);
+    for (size_t k = 0; k < 3 * np; k++)
+        e += 0.5 * m * v[k] * v[k];
+    free(x);
+    free(v);
+    return e;
+}
+
+/* A long run of a 32 x 32 hang (capped at 60 s of wall time) stopped by
+ * sig after 2 s: exit status 6; run.json "interrupted"; every series row
+ * complete and the last one at the time the message gives; final.csv the
+ * state at that time (its kinetic energy is the last row's); no
+ * temporaries. */
+static void interrupted_run(int sig)
+{
+    char dir[64], path[300], json[1 << 16];
+    tmp_mkdtemp(dir, sizeof dir, "stop");
+    const char *args[] = {"run", "hang", "--set", "cloth.n=32", "--t-end",
+                          "100", "--samples", "100000", "--frames", "0",
+                          "--max-wall", "60", "--out", dir, "--quiet", NULL};
+    int status = run_and_signal(dir, args, sig, 2.0);
+    snprintf(path, sizeof path, "%s.stderr", dir);
+    tmp_slurp(path, json, sizeof json);
+    unlink(path);
+    cr_assert_eq(status, 6, "exit status %d: %s", status, json);
+    double t_stop = -1;
+    const char *at = strstr(json, " at t = ");
+    cr_assert(strstr(json, cl_stop_signal_name(sig)) && at, "%s", json);
+    t_stop = strtod(at + 8, NULL);
+    cr_assert_gt(t_stop, 0.0);
+
+    snprintf(path, sizeof path, "%s/run.json", dir);
+    tmp_slurp(path, json, sizeof json);
+    cr_assert(strstr(json, "\"status\": \"interrupted\""), "%s", json);
+    cr_assert(strstr(json, "\"exit_status\": 6"));
+
+    cli_lines L;
+    snprintf(path, sizeof path, "%s/series.csv", dir);
+    cli_read_lines(path, &L);
+    size_t ncol = 1;
+    for (const char *p = L.line[0]; *p; p++)
+        ncol += *p == ',';
+    cr_assert_geq(L.n, 2);
+    double *row = malloc(ncol * sizeof *row), kinetic = 0, t = 0;
+    for (size_t k = 1; k < L.n; k++) {
+        cli_parse_row(L.line[k], row, ncol, path);
+        t = row[0];
+        kinetic = row[1];
+    }
+    free(row);
+    cli_lines_free(&L);
+    cr_assert_float_eq(t, t_stop, 1e-9 * t_stop);
+
+    snprintf(path, sizeof path, "%s/final.csv", dir);
+    double ke = kinetic_of(path, 32 * 32, 0.1 / (32 * 32));
+    cr_assert(fabs(ke - kinetic) <= 1e-8 * kinetic + 1e-15,
+              "final.csv kinetic %.10g, series %.10g", ke, kinetic);
+    snprintf(path, sizeof path, "%s/stats.csv", dir);
+    cr_assert(cli_exists(path));
+
+    char names[16][256];
+    size_t n = tmp_list_dir(dir, names, 16);
+    for (size_t k = 0; k < n && k < 16; k++)
+        cr_assert(!strstr(names[k], ".tmp."), "leftover %s", names[k]);
+    tmp_rm_rf(dir);
+}
+
+Test(stop, sigint_stops_a_run_with_everything_written)
+{
+    time_limit(120);
+    interrupted_run(SIGINT);
+}
+
+Test(stop, sigterm_stops_a_run_with_everything_written)
+{
+    time_limit(120);
+    interrupted_run(SIGTERM);
+}
