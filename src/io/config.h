@@ -16,6 +16,13 @@
 
 typedef struct cl_config cl_config;
 
+/* The largest magnitude of a number in a problem file: beyond it a value is
+ * no physical parameter (ks = 1e300 would run for hours), and the message
+ * gives the allowed range.  Underflow to a subnormal or zero, nan and inf
+ * are refused too (README "Strict inputs"). */
+#define CL_CONFIG_MAX_ABS 1e12
+#define CL_CONFIG_MAX_ABS_TEXT "1e12"
+
 cl_config *cl_config_alloc(void);
 void cl_config_free(cl_config *cfg);
 
