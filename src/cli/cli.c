@@ -153,8 +153,8 @@ cl_status cl_cli_apply(cl_config *cfg, const cl_cli_sets *sets,
     for (int k = 0; rc == CL_OK && k < sets->n; k++) {
         if (sets->label[k])
             snprintf(label, sizeof label, "--%s", sets->label[k]);
-        rc = cl_config_set_as(cfg, sets->v[k], sets->label[k] ? label : NULL,
-                              err);
+        rc = cl_config_set_once(cfg, sets->v[k],
+                                sets->label[k] ? label : NULL, err);
     }
     return rc;
 }

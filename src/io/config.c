@@ -234,6 +234,9 @@ static char *cl_dup_trim(const char *s, size_t n)
 #define CL_STR_(x) #x
 #define CL_STR(x) CL_STR_(x)
 _Static_assert(CL_INI_LINE == CL_INI_LINE_VALUE, "inih's line length");
+/* inih copies a section name into a buffer of MAX_SECTION = 50 bytes
+ * (ini.c), cutting longer names silently. */
+#define CL_INI_SECTION 49
 
 typedef struct {
     const char *text; /* the whole file, NUL-free */
@@ -272,6 +275,11 @@ static bool cl_check_header(cl_reader *r, const char *s)
     const char *close = strchr(s, ']');
     if (*s != '[' || !close)
         return true;
+    if (close - s - 1 > CL_INI_SECTION)
+        return cl_reader_fail(r, CL_EPARSE,
+                              "section name of %td characters; the INI"
+                              " parser reads names of at most %d",
+                              close - s - 1, CL_INI_SECTION);
     char *name = cl_dup_trim(s + 1, (size_t)(close - s - 1));
     if (!name)
         return cl_reader_fail(r, CL_ENOMEM, "out of memory");
@@ -333,6 +341,9 @@ static int cl_ini_entry(void *user, const char *sec, const char *name,
                               "indented line continues the value of [%s] %s;"
                               " multi-line values are not supported (remove"
                               " the indentation)", sec, name);
+    if (!*name)
+        return cl_reader_fail(r, CL_EPARSE, "'=' without a key name before"
+                              " it (expected key = value)");
     /* inih trims keys and values but not "[ section ]" */
     char *s = cl_dup_trim(sec, strlen(sec));
     if (!s)
@@ -491,14 +502,16 @@ static const char *cl_set_problem(const char *sec, const char *key,
                " '[' or '#'";
     if (strpbrk(value, "\n\r"))
         return "value may not contain a line break";
-    if (strlen(sec) + 2 > CL_INI_LINE ||
-        strlen(key) + 1 + strlen(value) > CL_INI_LINE)
+    if (strlen(sec) > CL_INI_SECTION)
+        return "section name longer than the INI parser reads (at most"
+               " 49 characters)";
+    if (strlen(key) + 1 + strlen(value) > CL_INI_LINE)
         return "too long for a line of the INI file written back (at most "
-               CL_STR(CL_INI_LINE_VALUE) " characters for [section] and for"
-               " key=value)";
+               CL_STR(CL_INI_LINE_VALUE) " characters for key=value)";
     for (const char *p = strchr(value, ';'); p; p = strchr(p + 1, ';'))
-        if (p > value && isspace((unsigned char)p[-1]))
-            return "value may not contain ' ;', which starts a comment";
+        if (p == value || isspace((unsigned char)p[-1]))
+            return "value may not start with ';' nor contain ' ;', which"
+                   " starts a comment";
     return NULL;
 }
 
@@ -516,7 +529,7 @@ static const char *cl_set_twice(const cl_config *cfg, const char *sec,
 }
 
 static cl_status cl_set_split(cl_config *cfg, const char *a, const char *dot,
-                              const char *eq, const char *label,
+                              const char *eq, const char *label, bool once,
                               cl_error *err)
 {
     char *sec = cl_dup_trim(a, (size_t)(dot - a));
@@ -530,7 +543,7 @@ static cl_status cl_set_split(cl_config *cfg, const char *a, const char *dot,
         rc = cl_error_set(err, CL_EINVAL,
                           "--set \"%s\": %s (expected section.key=value)",
                           a, why);
-    else if ((why = cl_set_twice(cfg, sec, key)))
+    else if (once && (why = cl_set_twice(cfg, sec, key)))
         rc = cl_error_set(err, CL_EINVAL, "--set \"%s\": [%s] %s %s", a, sec,
                           key, why);
     else if (cl_put(cfg, sec, key, value,
@@ -543,13 +556,8 @@ static cl_status cl_set_split(cl_config *cfg, const char *a, const char *dot,
     return rc;
 }
 
-cl_status cl_config_set(cl_config *cfg, const char *assignment, cl_error *err)
-{
-    return cl_config_set_as(cfg, assignment, NULL, err);
-}
-
-cl_status cl_config_set_as(cl_config *cfg, const char *assignment,
-                           const char *label, cl_error *err)
+static cl_status cl_set_assign(cl_config *cfg, const char *assignment,
+                               const char *label, bool once, cl_error *err)
 {
     const char *eq = strchr(assignment, '=');
     if (!eq)
@@ -566,7 +574,24 @@ cl_status cl_config_set_as(cl_config *cfg, const char *assignment,
                             "--set \"%s\": missing '.' between section and"
                             " key (expected section.key=value)",
                             assignment);
-    return cl_set_split(cfg, assignment, dot, eq, label, err);
+    return cl_set_split(cfg, assignment, dot, eq, label, once, err);
+}
+
+cl_status cl_config_set(cl_config *cfg, const char *assignment, cl_error *err)
+{
+    return cl_set_assign(cfg, assignment, NULL, false, err);
+}
+
+cl_status cl_config_set_as(cl_config *cfg, const char *assignment,
+                           const char *label, cl_error *err)
+{
+    return cl_set_assign(cfg, assignment, label, false, err);
+}
+
+cl_status cl_config_set_once(cl_config *cfg, const char *assignment,
+                             const char *label, cl_error *err)
+{
+    return cl_set_assign(cfg, assignment, label, true, err);
 }
 
 /* ---------------------------------------------------------- value parsing */
@@ -579,8 +604,10 @@ static bool cl_only_space(const char *s)
 }
 
 /* strtod with clothode's rules for a number: NULL if *x is one, else why
- * not ("" for text that is no number at all). */
-static const char *cl_strtod(const char *s, char **end, double *x)
+ * not ("" for text that is no number at all).  `cap`: a parameter, at most
+ * CL_CONFIG_MAX_ABS in magnitude (not a vector's component: a direction
+ * such as a plane's normal may have any length). */
+static const char *cl_strtod(const char *s, char **end, double *x, bool cap)
 {
     errno = 0;
     *x = strtod(s, end);
@@ -591,7 +618,7 @@ static const char *cl_strtod(const char *s, char **end, double *x)
                                : "not a finite number";
     if (errno == ERANGE)
         return "so small that it rounds to a subnormal number or zero";
-    if (fabs(*x) > CL_CONFIG_MAX_ABS)
+    if (cap && fabs(*x) > CL_CONFIG_MAX_ABS)
         return "larger in magnitude than any physical parameter"
                " (at most " CL_CONFIG_MAX_ABS_TEXT ")";
     return NULL;
@@ -600,7 +627,7 @@ static const char *cl_strtod(const char *s, char **end, double *x)
 static const char *cl_parse_double(const char *s, double *out)
 {
     char *end;
-    const char *why = cl_strtod(s, &end, out);
+    const char *why = cl_strtod(s, &end, out, true);
     return why ? why : cl_only_space(end) ? NULL : "";
 }
 
@@ -682,7 +709,7 @@ static const char *cl_parse_vector(const char *s, size_t count, double *out)
         }
         char *end;
         double x;
-        const char *why = cl_strtod(s, &end, &x);
+        const char *why = cl_strtod(s, &end, &x, false);
         if (why)
             return why;
         if (*end && *end != ',' && !isspace((unsigned char)*end))
@@ -797,9 +824,8 @@ cl_status cl_config_vector(cl_config *cfg, const char *sec, const char *key,
     if (why) {
         char what[224];
         snprintf(what, sizeof what,
-                 "%zu number%s of magnitude at most " CL_CONFIG_MAX_ABS_TEXT
-                 " separated by commas or spaces%s%s%s", count,
-                 count == 1 ? "" : "s", *why ? " (one is " : "", why,
+                 "%zu finite number%s separated by commas or spaces%s%s%s",
+                 count, count == 1 ? "" : "s", *why ? " (one is " : "", why,
                  *why ? ")" : "");
         return cl_bad_value(e, what, err);
     }
@@ -955,17 +981,21 @@ static const cl_entry *cl_find_section(const cl_config *cfg, const char *sec)
     return NULL;
 }
 
+/* A section after other lines is set off by a blank line. */
 static void cl_write_section(const cl_config *cfg, const cl_entry *first,
-                             FILE *f)
+                             bool after, FILE *f)
 {
     if (*first->sec)
-        fprintf(f, "%s[%s]\n", first > cfg->ent ? "\n" : "", first->sec);
+        fprintf(f, "%s[%s]\n", after ? "\n" : "", first->sec);
     for (const cl_entry *e = first; e < cfg->ent + cfg->nent; e++) {
         if (strcmp(e->sec, first->sec) != 0)
             continue;
         const char *value = e->path ? e->path : e->value;
-        if (strlen(e->key) + 3 + strlen(value) > CL_INI_LINE)
-            fprintf(f, "%s=%s\n", e->key, value); /* fits, as read */
+        /* "key = ;x" would start a comment: such a value was read from
+         * "key=;x", as is a value too long for the spaced form */
+        if (strlen(e->key) + 3 + strlen(value) > CL_INI_LINE ||
+            value[0] == ';')
+            fprintf(f, "%s=%s\n", e->key, value);
         else if (*value)
             fprintf(f, "%s = %s\n", e->key, value);
         else
@@ -978,11 +1008,14 @@ static void cl_write_section(const cl_config *cfg, const cl_entry *first,
 static void cl_write_entries(const cl_config *cfg, FILE *f)
 {
     const cl_entry *top = cl_find_section(cfg, "");
+    bool after = top != NULL;
     if (top)
-        cl_write_section(cfg, top, f);
+        cl_write_section(cfg, top, false, f);
     for (const cl_entry *e = cfg->ent; e < cfg->ent + cfg->nent; e++)
-        if (*e->sec && cl_find_section(cfg, e->sec) == e)
-            cl_write_section(cfg, e, f);
+        if (*e->sec && cl_find_section(cfg, e->sec) == e) {
+            cl_write_section(cfg, e, after, f);
+            after = true;
+        }
 }
 
 cl_status cl_config_write(const cl_config *cfg, const char *path,
