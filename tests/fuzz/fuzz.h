@@ -39,4 +39,15 @@ static inline int fuzz_file(const uint8_t *data, size_t size, char *path,
     return fd;
 }
 
+/* Hand data[0..size) to read() as a file. */
+static inline int fuzz_read(const uint8_t *data, size_t size,
+                            void (*read)(const char *path))
+{
+    char path[64];
+    int fd = fuzz_file(data, size, path, sizeof path);
+    read(path);
+    close(fd);
+    return 0;
+}
+
 #endif
