@@ -2,14 +2,19 @@
  * typed getters, detection of unused keys and atomic write-back.
  *
  * Storage is a flat array of entries (section, key, value, origin) in order
- * of first appearance; a later occurrence of the same section and key
- * replaces the value and the origin but keeps the position.  Configurations
- * are small, so lookups are linear.
+ * of first appearance; a later file or --set of the same section and key
+ * replaces the value and the origin but keeps the position.  Within one
+ * file a key or a section given twice is refused, as is a key given twice
+ * on one command line (cl_config_set_once).  Configurations are small, so
+ * lookups are linear.
  *
  * Line numbers: Debian's inih is built without INI_HANDLER_LINENO, so the
- * file is fed through our own reader, which counts lines; the handler then
- * knows the line of every entry.  A line that does not fit inih's line buffer
- * stops the parse and is reported instead of being split silently.
+ * file, read whole (and refused if it holds a NUL byte), is fed through our
+ * own reader, which counts lines; the handler then knows the line of every
+ * entry.  A line that does not fit inih's line buffer, or a section name
+ * inih would cut, stops the parse and is reported instead of being split
+ * silently; so that the written file reads back, --set refuses what would
+ * make such a line, and a long key = value is written as key=value.
  *
  * inih treats an indented line after a key as a continuation of that key's
  * value (python-configparser style) and calls the handler again with the
