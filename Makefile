@@ -46,7 +46,7 @@ JOBS     ?= 2
 PREFIX  ?= /usr/local
 VERSION := 0.1
 
-.PHONY: all deps demo test bench report paper install clean FORCE
+.PHONY: all deps demo test bench report paper install clean fuzz memcheck FORCE
 
 all: $(BIN)
 
@@ -146,8 +146,45 @@ install: $(BIN)
 	    -e 's|@LIBS@|$(filter -fsanitize%,$(LDFLAGS)) $(LDLIBS)|' \
 	    scripts/clothode.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/clothode.pc
 
+# Fuzzing (README "Fuzzing"): libFuzzer harnesses tests/fuzz/fuzz_*.c on
+# the readers, built by clang-14 with ASan + UBSan into build-fuzz/; each
+# runs FUZZ_SECONDS from its seed corpus tests/fuzz/NAME/ (new inputs go to
+# build-fuzz/corpus/NAME/), leaks detected; a crash stops make.
+FUZZ_SECONDS ?= 60
+FUZZ_CC      := clang-14
+FUZZ_FLAGS   := -std=c11 -g -O1 -Wall -Wextra -Werror -fno-omit-frame-pointer \
+                -fsanitize=fuzzer,address,undefined \
+                -fno-sanitize-recover=undefined
+FUZZ_LIB     := $(wildcard src/core/*.c src/io/*.c) src/linalg/bpattern.c
+FUZZ_NAMES   := config state obj mtx
+
+build-fuzz/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz.h $(FUZZ_LIB) \
+                   $(wildcard src/*/*.h)
+	@mkdir -p build-fuzz
+	$(FUZZ_CC) $(CPPFLAGS) $(FUZZ_FLAGS) $< $(FUZZ_LIB) -linih -lm -o $@
+
+fuzz:
+	@scripts/install-deps.sh fuzz
+	$(MAKE) $(FUZZ_NAMES:%=build-fuzz/fuzz_%)
+	set -e; for h in $(FUZZ_NAMES); do \
+	    mkdir -p build-fuzz/corpus/$$h; \
+	    echo "fuzz: $$h, $(FUZZ_SECONDS) s"; \
+	    ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	    build-fuzz/fuzz_$$h -max_total_time=$(FUZZ_SECONDS) \
+	        -print_final_stats=1 -artifact_prefix=build-fuzz/$$h- \
+	        build-fuzz/corpus/$$h tests/fuzz/$$h 2>&1 | \
+	        tee build-fuzz/$$h.log | grep -E "^stat::number_of_executed_units|ERROR|SUMMARY"; \
+	    test $${PIPESTATUS[0]} -eq 0; \
+	done
+
+# A short hang run under valgrind's memcheck (README "Fuzzing").
+memcheck: $(BIN)
+	valgrind --tool=memcheck --leak-check=full --error-exitcode=1 \
+	    $(BIN) run hang --t-end 0.05 --frames 1 --out $(BUILD)/memcheck \
+	    --quiet
+
 clean:
-	rm -rf build build-san
+	rm -rf build build-san build-fuzz
 
 -include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d) $(TEST_OBJ:.o=.d) \
     $(BENCH_OBJ:.o=.d) $(BUILD)/src/bench/main.d

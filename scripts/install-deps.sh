@@ -22,6 +22,11 @@ if [[ ${1:-} == paper ]]; then
     pkgs+=(texlive-latex-base texlive-latex-recommended
            texlive-fonts-recommended lmodern)
 fi
+# `install-deps.sh fuzz`: clang-14 and its runtime (libFuzzer, the
+# sanitizers), for make fuzz only; valgrind for make memcheck.
+if [[ ${1:-} == fuzz ]]; then
+    pkgs+=(clang-14 libclang-rt-14-dev valgrind)
+fi
 
 missing=()
 for p in "${pkgs[@]}"; do

@@ -13,6 +13,7 @@
 #include <string.h>
 #include <sys/sysmacros.h>
 
+#include "cli/cli.h"
 #include "io/config.h"
 #include "io/mtx.h"
 #include "io/state.h"
@@ -467,6 +468,208 @@ Test(cli, pin_outside_the_grid)
                    LIST("99"));
 }
 
+/* The files of `names` hold the same lines in directories a and b. */
+static void assert_same_files(const char *a, const char *b,
+                              const char *const *names)
+{
+    for (; *names; names++) {
+        char pa[1300], pb[1300];
+        cli_lines la, lb;
+        snprintf(pa, sizeof pa, "%s/%s", a, *names);
+        snprintf(pb, sizeof pb, "%s/%s", b, *names);
+        cli_read_lines(pa, &la);
+        cli_read_lines(pb, &lb);
+        cr_assert_eq(la.n, lb.n, "%s: %zu and %zu lines", *names, la.n,
+                     lb.n);
+        for (size_t k = 0; k < la.n; k++)
+            cr_assert_str_eq(la.line[k], lb.line[k], "%s line %zu differs",
+                             *names, k + 1);
+        cli_lines_free(&la);
+        cli_lines_free(&lb);
+    }
+}
+
+/* ---- strict inputs: each refused with file, line and key -------------- */
+
+/* Run the problem `text` (written to the scratch directory as p.ini, each
+ * '@' as a NUL byte) with the arguments `extra`; it must be refused with
+ * one message naming p.ini:LINE and holding every string of want, and
+ * write nothing. */
+static void expect_file_refused(const char *text, int line,
+                                const char *const *extra,
+                                const char *const *want)
+{
+    char ini[1024], where[1100], out[1024];
+    in_tmp(ini, "p.ini");
+    FILE *f = fopen(ini, "wb");
+    cr_assert_not_null(f);
+    for (const char *c = text; *c; c++)
+        fputc(*c == '@' ? '\0' : *c, f);
+    cr_assert_eq(fclose(f), 0);
+    const char *argv[CLI_MAX_ARGS + 1] = {"run", ini, "--out",
+                                          in_tmp(out, "o")};
+    size_t n = 4;
+    for (; extra && *extra; extra++)
+        argv[n++] = *extra;
+    argv[n] = NULL;
+    cli_result r;
+    cli_runv(&r, argv);
+    snprintf(where, sizeof where, "%s:%d: ", ini, line);
+    cli_assert_error(&r, 0, where, NULL);
+    cli_assert_error_list(&r, 0, want);
+    cli_result_free(&r);
+    cr_assert(!cli_exists(out), "%s: output written for a refused input",
+              out);
+}
+
+Test(cli, duplicate_key_refused)
+{
+    expect_file_refused("[cloth]\nn = 6\nsize = 1\nn = 8\n", 4, NULL,
+                        LIST("duplicate key [cloth] n (first on line 2)"));
+}
+
+Test(cli, duplicate_section_refused)
+{
+    expect_file_refused("[cloth]\nn = 6\n[type1]\nks = 200\n[cloth]\n"
+                        "size = 1\n", 5, NULL,
+                        LIST("duplicate section [cloth] (opened on line 1)"));
+}
+
+Test(cli, nul_byte_refused)
+{
+    expect_file_refused("[cloth]\nn = 6\n[type1]\nks = 2@00\n", 4, NULL,
+                        LIST("NUL byte at column 7"));
+}
+
+Test(cli, empty_file_refused)
+{
+    expect_file_refused("", 1, NULL, LIST("no key = value line"));
+    expect_file_refused("; only a comment\n[cloth]\n", 1, NULL,
+                        LIST("no key = value line"));
+}
+
+Test(cli, pin_index_overflow_refused)
+{
+    expect_file_refused("[cloth]\nn = 6\n[pins]\nat = 0,0 4294967296,0\n",
+                        4, NULL,
+                        LIST("[pins] at: \"4294967296\": index beyond"
+                             " the range of an int"));
+}
+
+Test(cli, integer_overflow_refused)
+{
+    expect_file_refused("[cloth]\nn = 99999999999999999999\n", 2, NULL,
+                        LIST("[cloth] n = \"99999999999999999999\":"
+                             " expected an integer in [2, 4096]"));
+}
+
+Test(cli, non_finite_and_absurd_values_refused)
+{
+    expect_file_refused("[cloth]\nn = 6\n[type1]\nks = inf\n", 4, NULL,
+                        LIST("[type1] ks = \"inf\": expected a number in"
+                             " [0, 1e+12] (this is not a finite number)"));
+    expect_file_refused("[cloth]\nn = 6\n[type1]\nks = 1e300\n", 4, NULL,
+                        LIST("[type1] ks = \"1e300\": expected a number in"
+                             " [0, 1e+12]"));
+    expect_file_refused("[cloth]\nn = 6\n[damping]\nkd = 1e-999\n", 4,
+                        NULL, LIST("[damping] kd = \"1e-999\"",
+                                   "rounds to a subnormal number or zero"));
+}
+
+Test(cli, over_long_line_refused)
+{
+    char text[512] = "[cloth]\nn = 6\n; ";
+    memset(text + strlen(text), 'x', 300);
+    strcat(text, "\n");
+    expect_file_refused(text, 3, NULL,
+                        LIST("line of 302 characters; the INI parser reads"
+                             " lines of at most 197"));
+}
+
+Test(cli, key_set_twice_refused)
+{
+    expect_refused(LIST("run", "hang", "--set", "type1.ks=100", "--set",
+                        "type1.ks=300"), 0,
+                   LIST("[type1] ks is already set by an earlier --set"));
+    expect_refused(LIST("run", "hang", "--rtol", "1e-5", "--set",
+                        "run.rtol=1e-6"), 0,
+                   LIST("[run] rtol is already set by an option"));
+}
+
+/* A problem whose files are named relative to it reads back from the
+ * config.ini its run wrote elsewhere: same series, same final state. */
+Test(cli, config_ini_of_a_mesh_problem_reads_back)
+{
+    char out[1024], again[1024], path[1200];
+    cli_result r;
+    cli_run(&r, "run", "skirt", "--t-end", "0.002", "--frames", "0",
+            "--out", in_tmp(out, "first"), "--quiet", NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    snprintf(path, sizeof path, "%s/config.ini", out);
+    cli_run(&r, "run", path, "--out", in_tmp(again, "again"), "--quiet",
+            NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    assert_same_files(out, again,
+                      LIST("series.csv", "final.csv", "config.ini"));
+}
+
+/* problems/NAME.ini goes to out/NAME, any other NAME.ini to
+ * out/NAME-HASH: two problems of one name never share a directory. */
+Test(cli, default_out_is_problem_specific)
+{
+    char a[1024], b[1024], buf[4096], first[4096];
+    cl_cli_default_out("problems/hang.ini", buf, sizeof buf);
+    cr_assert_str_eq(buf, "out/hang");
+    tmp_put(in_tmp(a, "hang.ini"), "[cloth]\nn = 6\n");
+    snprintf(b, sizeof b, "%s/sub", tmp);
+    cr_assert_eq(mkdir(b, 0700), 0);
+    tmp_put(in_tmp(b, "sub/hang.ini"), "[cloth]\nn = 6\n");
+    cl_cli_default_out(a, first, sizeof first);
+    cl_cli_default_out(b, buf, sizeof buf);
+    cr_assert(!strncmp(first, "out/hang-", 9) && strlen(first) == 17,
+              "%s", first);
+    cr_assert(!strncmp(buf, "out/hang-", 9) && strlen(buf) == 17, "%s",
+              buf);
+    cr_assert_str_neq(first, buf);
+    cl_cli_default_out("x/hang.coarse.ini", buf, sizeof buf);
+    cr_assert(!strncmp(buf, "out/hang.coarse", 15), "%s", buf);
+}
+
+/* ---- the memory guard --------------------------------------------------- */
+
+/* 200 x 200 particles: the dense Newton matrix alone is 2 (2n)^2 8 bytes
+ * = 922 GB, refused before anything is allocated or written. */
+Test(cli, memory_guard_refuses_a_dense_solver_on_a_large_cloth)
+{
+    char out[1024];
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "cloth.n=200", "--integrator",
+            "cvode-bdf-dense", "--out", in_tmp(out, "o"), NULL);
+    cli_assert_error(&r, 0, "cvode-bdf-dense: the Jacobian and the factors"
+                     " of the Newton matrix need about 922 GB (119994"
+                     " unknowns), more than the", "--force", NULL);
+    cli_result_free(&r);
+    cr_assert(!cli_exists(out), "output directory made for a refused run");
+    /* --force passes the guard: the dense solver's own limit speaks */
+    cli_run(&r, "run", "hang", "--set", "cloth.n=200", "--integrator",
+            "cvode-bdf-dense", "--force", "--out", out, NULL);
+    cli_assert_error(&r, 0, "the dense solver is limited to", NULL);
+    cli_result_free(&r);
+}
+
+/* ---- solver failures name the option to change --------------------------- */
+
+Test(cli, solver_failure_names_the_option)
+{
+    expect_refused(LIST("run", "hang", "--set", "cloth.n=6", "--set",
+                        "run.max_steps=2", "--t-end", "0.5", "--quiet"), 0,
+                   LIST("CV_TOO_MUCH_WORK", "to change: raise the steps"
+                        " allowed per output interval (--set"
+                        " run.max_steps=N"));
+}
+
 Test(cli, eval_without_state)
 {
     expect_refused(LIST("eval", "hang"), 1,
@@ -676,20 +879,7 @@ Test(cli, run_config_ini_reproduces_the_run)
     cli_result_free(&r);
 
     /* the same series (samples, formats: the defaults again) and state */
-    static const char *const files[] = {"series.csv", "final.csv"};
-    for (int f = 0; f < 2; f++) {
-        cli_lines a, b;
-        snprintf(path, sizeof path, "%s/%s", out, files[f]);
-        cli_read_lines(path, &a);
-        snprintf(path, sizeof path, "%s/%s", again, files[f]);
-        cli_read_lines(path, &b);
-        cr_assert_eq(a.n, b.n, "%s: %zu and %zu lines", files[f], a.n, b.n);
-        for (size_t k = 0; k < a.n; k++)
-            cr_assert_str_eq(a.line[k], b.line[k], "%s line %zu differs",
-                             files[f], k + 1);
-        cli_lines_free(&a);
-        cli_lines_free(&b);
-    }
+    assert_same_files(out, again, LIST("series.csv", "final.csv"));
 }
 
 Test(cli, run_format_csv_writes_no_frames)

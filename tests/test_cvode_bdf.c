@@ -199,6 +199,9 @@ Test(cvode_bdf, max_steps_is_a_solver_failure)
     cr_assert_eq(cvb()->advance(st, 100.0, x, v, &err), CL_ESOLVER);
     cr_assert_not_null(strstr(err.msg, "CV_TOO_MUCH_WORK"), "%s", err.msg);
     cr_assert_not_null(strstr(err.msg, "t = "), "%s", err.msg);
+    cr_assert_not_null(strstr(err.msg, "to change: raise the steps allowed"
+                                       " per output interval (--set"
+                                       " run.max_steps=N"), "%s", err.msg);
     cvb()->free(st);
     ts_free(&ts);
 }

@@ -399,7 +399,8 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
      * response it cannot apply, ...) stops the run before any output */
     if (!rc && !(rc = make_schedule(type, iopts, so, &sch, err)) &&
         !(rc = sim_alloc(&s, err)) &&
-        !(rc = type->create(s.sys, iopts, 0.0, s.x, s.v, &state, err)) &&
+        !(rc = cl_integrator_create(type, s.sys, iopts, 0.0, s.x, s.v,
+                                    &state, err)) &&
         !(rc = cl_mkdir_p(so->outdir, err)) &&
         !(rc = open_series(&s, err)) && !(rc = sample(&s, 0.0, res, err))) {
         cl_energy_keep(&res->e0, &res->e1, s.e0_terms);

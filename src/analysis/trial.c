@@ -92,7 +92,8 @@ cl_status cl_trial_run(cl_trial *t, const cl_integrator_type *type,
     if (!rc && t->hook)
         rc = t->hook(t->hook_ctx, 0.0, t->x, t->v, err);
     if (!rc)
-        rc = type->create(sys, io, 0.0, t->x, t->v, &state, err);
+        rc = cl_integrator_create(type, sys, io, 0.0, t->x, t->v, &state,
+                                  err);
     for (long k = 1; !rc && k <= checks; k++) {
         double tk = check_time(type, io->dt, T, k, checks);
         if (tk <= last)

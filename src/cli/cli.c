@@ -2,6 +2,8 @@
 #include "cli/cli.h"
 
 #include <stdarg.h>
+#include <stdbool.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -183,8 +185,8 @@ cl_status cl_cli_apply(cl_config *cfg, const cl_cli_sets *sets,
     for (int k = 0; rc == CL_OK && k < sets->n; k++) {
         if (sets->label[k])
             snprintf(label, sizeof label, "--%s", sets->label[k]);
-        rc = cl_config_set_as(cfg, sets->v[k], sets->label[k] ? label : NULL,
-                              err);
+        rc = cl_config_set_once(cfg, sets->v[k],
+                                sets->label[k] ? label : NULL, err);
     }
     return rc;
 }
@@ -196,12 +198,41 @@ cl_status cl_cli_load(cl_config *cfg, const char *problem,
     return rc ? rc : cl_cli_apply(cfg, sets, err);
 }
 
+/* Whether the file `path` lies in the problems directory. */
+static bool in_problems_dir(const char *path)
+{
+    char *file = realpath(path, NULL);
+    char *dir = realpath(cl_cli_problems_dir(), NULL);
+    char *slash = file ? strrchr(file, '/') : NULL;
+    bool in = slash && dir && (size_t)(slash - file) == strlen(dir) &&
+              !strncmp(file, dir, strlen(dir));
+    free(file);
+    free(dir);
+    return in;
+}
+
+/* 32-bit FNV-1a hash of a string (Fowler, Noll and Vo). */
+static unsigned long fnv1a(const char *s)
+{
+    uint32_t h = 2166136261u;
+    for (; *s; s++)
+        h = (h ^ (unsigned char)*s) * 16777619u;
+    return h;
+}
+
 void cl_cli_default_out(const char *problem, char *buf, size_t len)
 {
     const char *base = strrchr(problem, '/');
     base = base ? base + 1 : problem;
-    size_t n = strcspn(base, ".");
-    snprintf(buf, len, "out/%.*s", (int)n, base);
+    const char *dot = strrchr(base, '.');
+    size_t n = dot && !strcmp(dot, ".ini") ? (size_t)(dot - base)
+                                             : strlen(base);
+    char *abs = in_problems_dir(problem) ? NULL : realpath(problem, NULL);
+    if (abs)
+        snprintf(buf, len, "out/%.*s-%08lx", (int)n, base, fnv1a(abs));
+    else
+        snprintf(buf, len, "out/%.*s", (int)n, base);
+    free(abs);
 }
 
 void cl_cli_progress(void *ctx, double fraction)

@@ -105,7 +105,9 @@ cl_status cl_cli_apply(cl_config *cfg, const cl_cli_sets *sets,
 cl_status cl_cli_load(cl_config *cfg, const char *problem,
                       const cl_cli_sets *sets, cl_error *err);
 
-/* Directory where a problem's outputs go by default: out/BASENAME. */
+/* Directory where a problem's outputs go by default: out/NAME for
+ * problems/NAME.ini, out/NAME-HASH for NAME.ini elsewhere (HASH: 8 hex
+ * digits of its absolute path), so that two problems never share it. */
 void cl_cli_default_out(const char *problem, char *buf, size_t len);
 
 /* The [run] keys of the commands that run integrators (run, stability,

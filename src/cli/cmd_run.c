@@ -16,6 +16,7 @@ typedef struct {
     cl_sim_opts so;
     int argc;                  /* the command line, for run.json */
     char **argv;
+    bool force;
 } run_setup;
 
 static const cl_cli_opt run_rows[] = {
@@ -25,6 +26,9 @@ static const cl_cli_opt run_rows[] = {
      .help = "integrator, or NAME:LINSOL (clothode list)"},
     {.type = CL_CLI_GROUP, .group = cl_cli_run_rows,
      .field = offsetof(run_setup, run)},
+    {.name = "force", .type = CL_CLI_FLAG, .field = offsetof(run_setup, force),
+     .help = "run even if the memory estimate of the Jacobian and its "
+             "factors exceeds the available memory"},
     CL_CLI_TAIL(run_setup, "no summary on stdout"),
     {.type = CL_CLI_END}};
 
@@ -52,6 +56,7 @@ static cl_status check_run(cl_config *cfg, void *ctx, cl_error *err)
     r->so.obj = r->run.format & CL_CLI_FMT_OBJ;
     r->so.max_wall = r->run.budget_wall;
     r->so.max_steps = r->run.budget_steps;
+    r->run.io.force = r->force;
     return cl_cli_methods_check(cfg, &r->integrator, &r->run.io,
                                 CL_CLI_DT_ALL, err);
 }

@@ -213,7 +213,8 @@ cl_status cl_cli_methods_try(cl_model *model, const cl_cli_methods *ms,
         if (m->type->fixed_step && !(io.dt > 0))
             io.dt = 1.0; /* a search (stability) sets the step later */
         cl_error why = {0};
-        if ((rc = m->type->create(sys, &io, 0.0, x, v, &state, &why)))
+        if ((rc = cl_integrator_create(m->type, sys, &io, 0.0, x, v, &state,
+                                       &why)))
             cl_error_set(err, rc, "%s: %s", m->label, why.msg);
         if (state)
             m->type->free(state);

@@ -65,6 +65,7 @@ const cl_integrator_type cl_integrator_cvode_bdf_dense = {
     .fixed_step = false,
     .takes_max_order = true,
     .takes_linsol = false,
+    .dense_jacobian = true,
     .create = dense_create,
     .advance = cl_sun_advance,
     .stats = cl_sun_stats,

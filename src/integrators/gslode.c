@@ -13,6 +13,7 @@
 #include <gsl/gsl_errno.h>
 
 #include "core/check.h"
+#include "integrators/hint.h"
 
 #define CL_GSL_RTOL 1e-6
 #define CL_GSL_ATOL 1e-8
@@ -185,7 +186,8 @@ static cl_status gslode_error(const cl_gslode *s, int rc, double t_out,
     if (rc == GSL_EMAXITER)
         return cl_error_set(err, CL_ESOLVER, "%s: more than %lu steps in "
                             "one advance, stopped at t = %.9g on the way to "
-                            "%.9g", name, s->drv->nmax, s->t, t_out);
+                            "%.9g; to change: %s", name, s->drv->nmax, s->t,
+                            t_out, cl_solver_hint("GSL_EMAXITER"));
     if (s->fail != CL_OK)
         return cl_error_set(err, s->fail, "%s: %s at t = %.9g; the "
                             "integration stopped at t = %.9g on the way to "
@@ -194,8 +196,9 @@ static cl_status gslode_error(const cl_gslode *s, int rc, double t_out,
                                                   : "force evaluation failed",
                             s->fail_t, s->t, t_out, gsl_strerror(rc));
     return cl_error_set(err, CL_ESOLVER, "%s: gsl_odeiv2_driver_apply "
-                        "failed at t = %.9g on the way to %.9g: %s (%d)",
-                        name, s->t, t_out, gsl_strerror(rc), rc);
+                        "failed at t = %.9g on the way to %.9g: %s (%d); to"
+                        " change: %s", name, s->t, t_out, gsl_strerror(rc),
+                        rc, cl_solver_hint(NULL));
 }
 
 /* Tearing at an output time: the system's step_done, and a driver reset

@@ -7,9 +7,23 @@
  * whatever the number of output times in between. */
 #include "integrators/integrator.h"
 
+#include "integrators/memguard.h"
+
 #include <limits.h>
 #include <math.h>
 #include <string.h>
+
+cl_status cl_integrator_create(const cl_integrator_type *type,
+                               const cl_system *sys,
+                               const cl_integrator_opts *o, double t0,
+                               const double *x0, const double *v0,
+                               void **state, cl_error *err)
+{
+    cl_status rc = o->force ? CL_OK
+                            : cl_memguard_check(type, sys, o->linsol, err);
+    *state = NULL;
+    return rc ? rc : type->create(sys, o, t0, x0, v0, state, err);
+}
 
 const cl_integrator_type *cl_integrator_find(const char *name)
 {

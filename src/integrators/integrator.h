@@ -35,6 +35,7 @@ typedef struct {
     int max_order;       /* highest order of the variable-order methods
                           * (takes_max_order; 0: the solver's own, 5 for
                           * BDF, 12 for Adams) */
+    bool force;          /* skip the memory guard (memguard.h; --force) */
 } cl_integrator_opts;
 
 /* The linear solver's part of the options. */
@@ -51,6 +52,7 @@ typedef struct {
     bool fixed_step;     /* true: needs dt; false: uses rtol/atol */
     bool takes_linsol;   /* accepts opts->linsol (cl_linsol registry) */
     bool takes_max_order; /* accepts opts->max_order */
+    bool dense_jacobian; /* factorises a dense 2n x 2n Newton matrix */
     const cl_region *region; /* linear stability region (region.h) */
     cl_status (*create)(const cl_system *sys, const cl_integrator_opts *o,
                         double t0, const double *x0, const double *v0,
@@ -64,6 +66,14 @@ typedef struct {
 } cl_integrator_type;
 
 extern const cl_integrator_type *const cl_integrator_registry[];
+
+/* type->create behind the memory guard (memguard.h): refused with the
+ * estimate when it exceeds the available memory, unless o->force. */
+cl_status cl_integrator_create(const cl_integrator_type *type,
+                               const cl_system *sys,
+                               const cl_integrator_opts *o, double t0,
+                               const double *x0, const double *v0,
+                               void **state, cl_error *err);
 
 /* Registry lookup by name; NULL if unknown. */
 const cl_integrator_type *cl_integrator_find(const char *name);

@@ -24,6 +24,7 @@
 
 #include "core/check.h"
 #include "integrators/fixed_step.h"
+#include "integrators/hint.h"
 #include "integrators/sun_adapter.h"
 #include "linalg/linsol.h"
 
@@ -447,9 +448,10 @@ static cl_status kin_stepfail(cl_kin *s, int flag, long nni, cl_error *err)
     cl_status st = cl_error_set(
         err, CL_ESOLVER, "%s: Newton solve failed in step %ld (t = %.9g -> "
         "%.9g, dt = %g): %s (%d) after %ld iterations (cap %ld), scaled "
-        "residual %.3g, tolerance %.3g%s%s", name, s->done + 1, t, t1, s->h,
-        fname ? fname : "?", flag, nni, s->maxit, s->rmax, s->tol,
-        s->kmsg[0] ? "; " : "", s->kmsg);
+        "residual %.3g, tolerance %.3g%s%s; to change: %s", name,
+        s->done + 1, t, t1, s->h, fname ? fname : "?", flag, nni, s->maxit,
+        s->rmax, s->tol, s->kmsg[0] ? "; " : "", s->kmsg,
+        cl_solver_hint(fname));
     free(fname);
     return st;
 }

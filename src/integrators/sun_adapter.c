@@ -16,6 +16,7 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include "core/check.h"
+#include "integrators/hint.h"
 #include "linalg/nvec.h"
 
 _Static_assert(sizeof(sunrealtype) == sizeof(double),
@@ -303,9 +304,11 @@ cl_status cl_sun_fail(cl_sun *s, const char *fn, int flag, cl_error *err)
         s->api->get_current_time(s->mem, &t);
     char *name = s->api->flag_name(flag);
     cl_status st = cl_error_set(err, CL_ESOLVER,
-                                "%s: %s failed with %s (%d) at t = %.9g%s%s",
-                                s->name, fn, name ? name : "?", flag,
-                                (double)t, s->msg[0] ? ": " : "", s->msg);
+                                "%s: %s failed with %s (%d) at t = %.9g%s%s;"
+                                " to change: %s", s->name, fn,
+                                name ? name : "?", flag, (double)t,
+                                s->msg[0] ? ": " : "", s->msg,
+                                cl_solver_hint(name));
     free(name);
     return st;
 }
@@ -734,7 +737,8 @@ static cl_status sun_advance_fail(cl_sun *s, int flag, double t_out,
     cl_status st = cl_error_set(
         err, sys_st,
         "%s: %s evaluation failed (%s%s) at t = %.9g; state reached t = %.9g "
-        "on the way to %.9g; %s gave up with %s", s->name,
+        "on the way to %.9g; %s gave up with %s; to change: reduce --rtol or"
+        " check the parameters for a blow-up", s->name,
         s->fail_rhs != CL_OK ? "force" : "Jacobian", cl_status_name(sys_st),
         s->fail_nonfinite ? ": values not finite" : "", s->fail_t, (double)t,
         t_out, s->api->solve_name, name ? name : "?");

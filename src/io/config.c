@@ -2,14 +2,19 @@
  * typed getters, detection of unused keys and atomic write-back.
  *
  * Storage is a flat array of entries (section, key, value, origin) in order
- * of first appearance; a later occurrence of the same section and key
- * replaces the value and the origin but keeps the position.  Configurations
- * are small, so lookups are linear.
+ * of first appearance; a later file or --set of the same section and key
+ * replaces the value and the origin but keeps the position.  Within one
+ * file a key or a section given twice is refused, as is a key given twice
+ * on one command line (cl_config_set_once).  Configurations are small, so
+ * lookups are linear.
  *
  * Line numbers: Debian's inih is built without INI_HANDLER_LINENO, so the
- * file is fed through our own reader, which counts lines; the handler then
- * knows the line of every entry.  A line that does not fit inih's line buffer
- * stops the parse and is reported instead of being split silently.
+ * file, read whole (and refused if it holds a NUL byte), is fed through our
+ * own reader, which counts lines; the handler then knows the line of every
+ * entry.  A line that does not fit inih's line buffer, or a section name
+ * inih would cut, stops the parse and is reported instead of being split
+ * silently; so that the written file reads back, --set refuses what would
+ * make such a line, and a long key = value is written as key=value.
  *
  * inih treats an indented line after a key as a continuation of that key's
  * value (python-configparser style) and calls the handler again with the
@@ -41,6 +46,7 @@
 
 typedef struct {
     char *sec, *key, *value;
+    char *path;       /* a file name's absolute form, for write-back */
     const char *file; /* interned in cl_config.files; NULL for --set */
     long line;        /* 1-based; 0 for --set */
     bool used;
@@ -96,6 +102,7 @@ void cl_config_free(cl_config *cfg)
         free(cfg->ent[i].sec);
         free(cfg->ent[i].key);
         free(cfg->ent[i].value);
+        free(cfg->ent[i].path);
     }
     for (size_t i = 0; i < cfg->nasked; i++) {
         free(cfg->asked[i].sec);
@@ -151,7 +158,9 @@ static cl_status cl_put(cl_config *cfg, const char *sec, const char *key,
         *e = (cl_entry){.sec = s, .key = k};
     }
     free(e->value);
+    free(e->path);
     e->value = v;
+    e->path = NULL;
     e->file = file;
     e->line = line;
     return CL_OK;
@@ -239,69 +248,108 @@ static char *cl_dup_trim(const char *s, size_t n)
     return strndup(s, n);
 }
 
+/* The longest line (without its line break) inih reads whole: its buffer
+ * holds INI_MAX_LINE bytes, 3 more than the longest line ('\r', '\n' and
+ * '\0', as ini.h says). */
+#define CL_INI_LINE (INI_MAX_LINE - 3)
+#define CL_INI_LINE_VALUE 197 /* CL_INI_LINE, for messages */
+#define CL_STR_(x) #x
+#define CL_STR(x) CL_STR_(x)
+_Static_assert(CL_INI_LINE == CL_INI_LINE_VALUE, "inih's line length");
+/* inih copies a section name into a buffer of MAX_SECTION = 50 bytes
+ * (ini.c), cutting longer names silently. */
+#define CL_INI_SECTION 49
+
 typedef struct {
-    FILE *fp;
+    const char *text; /* the whole file, NUL-free */
+    size_t size, pos;
     cl_config *cfg;
     const char *file;
     long line;       /* line of the chunk inih is parsing */
     const char *buf; /* inih's line buffer, as last handed to the reader */
     size_t lead;     /* leading white space of that line */
-    long long_line;  /* line too long for inih's buffer, or 0 */
-    int read_errno;  /* errno of a read error, or 0 */
-    cl_error herr;   /* first error raised in the handler ... */
+    char **heads;    /* section headers met so far in this file ... */
+    long *head_line; /* ... and their lines */
+    size_t nhead, cap_head, cap_head_line;
+    cl_error herr;   /* first error raised while reading or handling ... */
     long herr_line;  /* ... and its line, or 0 */
 } cl_reader;
 
-/* A full buffer without '\n' is a complete line only if the line ends
- * right there; the '\n' is consumed so the next call starts a new line. */
-static bool cl_line_fits(FILE *fp)
-{
-    int c = getc(fp);
-    if (c == '\n' || c == EOF)
-        return true;
-    ungetc(c, fp);
-    return false;
-}
-
-/* fgets-style reader for ini_parse_stream: one call per line. */
-static char *cl_ini_read(char *str, int num, void *stream)
-{
-    cl_reader *r = stream;
-    if (r->long_line || !fgets(str, num, r->fp)) {
-        if (ferror(r->fp) && !r->read_errno)
-            r->read_errno = errno ? errno : EIO;
-        return NULL;
-    }
-    r->line++;
-    size_t len = strlen(str);
-    if (num > 1 && len == (size_t)num - 1 && str[len - 1] != '\n' &&
-        !cl_line_fits(r->fp)) {
-        r->long_line = r->line; /* stop before inih parses half a line */
-        return NULL;
-    }
-    r->buf = str;
-    r->lead = 0;
-    while (str[r->lead] && isspace((unsigned char)str[r->lead]))
-        r->lead++;
-    return str;
-}
-
-static int cl_handler_error(cl_reader *r, cl_status code, const char *sec,
-                            const char *name)
+/* Record the first error of the parse; returns 0 for inih's handler. */
+static int cl_reader_fail(cl_reader *r, cl_status code, const char *fmt, ...)
 {
     if (r->herr_line)
         return 0;
+    va_list ap;
+    char msg[sizeof r->herr.msg];
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
     r->herr_line = r->line;
-    if (code == CL_ENOMEM)
-        cl_error_set(&r->herr, CL_ENOMEM, "%s:%ld: out of memory", r->file,
-                     r->line);
-    else
-        cl_error_set(&r->herr, code,
-                     "%s:%ld: indented line continues the value of [%s] %s;"
-                     " multi-line values are not supported (remove the"
-                     " indentation)",
-                     r->file, r->line, sec, name);
+    cl_error_set(&r->herr, code, "%s:%ld: %s", r->file, r->line, msg);
     return 0;
+}
+
+/* A "[name]" line opens a section once per file: a second header of the
+ * same name would merge silently into the first. */
+static bool cl_check_header(cl_reader *r, const char *s)
+{
+    const char *close = strchr(s, ']');
+    if (*s != '[' || !close)
+        return true;
+    if (close - s - 1 > CL_INI_SECTION)
+        return cl_reader_fail(r, CL_EPARSE,
+                              "section name of %td characters; the INI"
+                              " parser reads names of at most %d",
+                              close - s - 1, CL_INI_SECTION);
+    char *name = cl_dup_trim(s + 1, (size_t)(close - s - 1));
+    if (!name)
+        return cl_reader_fail(r, CL_ENOMEM, "out of memory");
+    for (size_t i = 0; i < r->nhead; i++)
+        if (!strcmp(r->heads[i], name)) {
+            cl_reader_fail(r, CL_EPARSE,
+                           "duplicate section [%s] (opened on line %ld);"
+                           " each section may appear once: merge the two",
+                           name, r->head_line[i]);
+            free(name);
+            return false;
+        }
+    if (!cl_grow((void **)&r->heads, &r->cap_head, r->nhead + 1,
+                 sizeof *r->heads) ||
+        !cl_grow((void **)&r->head_line, &r->cap_head_line, r->nhead + 1,
+                 sizeof *r->head_line)) {
+        free(name);
+        return cl_reader_fail(r, CL_ENOMEM, "out of memory");
+    }
+    r->heads[r->nhead] = name;
+    r->head_line[r->nhead++] = r->line;
+    return true;
+}
+
+/* fgets-style reader for ini_parse_stream over the file's text: one call
+ * per line.  A line too long for inih's buffer stops the parse before inih
+ * sees half of it. */
+static char *cl_ini_read(char *str, int num, void *stream)
+{
+    cl_reader *r = stream;
+    if (r->herr_line || r->pos >= r->size)
+        return NULL;
+    const char *s = r->text + r->pos;
+    const char *nl = memchr(s, '\n', r->size - r->pos);
+    size_t len = nl ? (size_t)(nl - s) : r->size - r->pos;
+    r->line++;
+    if (len > CL_INI_LINE || len + 2 >= (size_t)num) {
+        cl_reader_fail(r, CL_EPARSE,
+                       "line of %zu characters; the INI parser reads lines"
+                       " of at most %d (shorten it)", len, CL_INI_LINE);
+        return NULL;
+    }
+    memcpy(str, s, len + (nl != NULL));
+    str[len + (nl != NULL)] = '\0';
+    r->pos += len + (nl != NULL);
+    r->buf = str;
+    r->lead = strspn(str, " \t\r\v\f");
+    return cl_check_header(r, str + r->lead) ? str : NULL;
 }
 
 static int cl_ini_entry(void *user, const char *sec, const char *name,
@@ -311,15 +359,28 @@ static int cl_ini_entry(void *user, const char *sec, const char *name,
     /* inih passes a continuation's text starting at the first non-blank
      * character of the indented line; an ordinary value starts after '='. */
     if (r->lead > 0 && value == r->buf + r->lead)
-        return cl_handler_error(r, CL_EPARSE, sec, name);
+        return cl_reader_fail(r, CL_EPARSE,
+                              "indented line continues the value of [%s] %s;"
+                              " multi-line values are not supported (remove"
+                              " the indentation)", sec, name);
+    if (!*name)
+        return cl_reader_fail(r, CL_EPARSE, "'=' without a key name before"
+                              " it (expected key = value)");
     /* inih trims keys and values but not "[ section ]" */
     char *s = cl_dup_trim(sec, strlen(sec));
-    cl_status rc =
-        s ? cl_put(r->cfg, s, name, value, r->file, r->line) : CL_ENOMEM;
+    if (!s)
+        return cl_reader_fail(r, CL_ENOMEM, "out of memory");
+    const cl_entry *e = cl_find(r->cfg, s, name);
+    if (e && e->file == r->file) {
+        cl_reader_fail(r, CL_EPARSE,
+                       "duplicate key [%s] %s (first on line %ld); each key"
+                       " may appear once per section", s, name, e->line);
+        free(s);
+        return 0;
+    }
+    cl_status rc = cl_put(r->cfg, s, name, value, r->file, r->line);
     free(s);
-    if (rc != CL_OK)
-        return cl_handler_error(r, CL_ENOMEM, sec, name);
-    return 1;
+    return rc == CL_OK ? 1 : cl_reader_fail(r, CL_ENOMEM, "out of memory");
 }
 
 static const char *cl_intern_file(cl_config *cfg, const char *path)
@@ -332,6 +393,15 @@ static const char *cl_intern_file(cl_config *cfg, const char *path)
     }
     cfg->files[cfg->nfiles++] = p;
     return p;
+}
+
+/* Whether some entry came from this load of a file. */
+static bool cl_file_has_keys(const cl_config *cfg, const char *file)
+{
+    for (size_t i = 0; i < cfg->nent; i++)
+        if (cfg->ent[i].file == file)
+            return true;
+    return false;
 }
 
 /* Pick the first problem found while parsing (by line). */
@@ -349,14 +419,71 @@ static cl_status cl_parse_result(const cl_reader *r, int rc, cl_error *err)
             *err = r->herr;
         return r->herr.code;
     }
-    if (r->long_line)
+    if (!cl_file_has_keys(r->cfg, r->file))
         return cl_error_set(err, CL_EPARSE,
-                            "%s:%ld: line too long for the INI parser",
-                            r->file, r->long_line);
-    if (r->read_errno)
-        return cl_error_set(err, CL_EIO, "cannot read %s: %s", r->file,
-                            strerror(r->read_errno));
+                            "%s:1: no key = value line: the file is empty or"
+                            " holds only comments and section headers",
+                            r->file);
     return CL_OK;
+}
+
+/* The whole of the open file fp in a malloc'd buffer (*size bytes). */
+static cl_status cl_slurp(FILE *fp, const char *path, char **text,
+                         size_t *size, cl_error *err)
+{
+    char *buf = NULL;
+    size_t len = 0, cap = 0;
+    for (;;) {
+        if (!cl_grow((void **)&buf, &cap, len + 4096, 1)) {
+            free(buf);
+            return cl_error_set(err, CL_ENOMEM, "%s: out of memory", path);
+        }
+        size_t got = fread(buf + len, 1, cap - len, fp);
+        len += got;
+        if (got == 0)
+            break;
+    }
+    if (ferror(fp)) {
+        free(buf);
+        return cl_error_set(err, CL_EIO, "cannot read %s: %s", path,
+                            strerror(errno ? errno : EIO));
+    }
+    *text = buf;
+    *size = len;
+    return CL_OK;
+}
+
+/* A problem file is text: a NUL byte would end inih's view of its line. */
+static cl_status cl_check_nul(const char *text, size_t size,
+                              const char *path, cl_error *err)
+{
+    const char *nul = memchr(text, '\0', size);
+    if (!nul)
+        return CL_OK;
+    long line = 1;
+    const char *start = text;
+    for (const char *c = text; c < nul; c++)
+        if (*c == '\n') {
+            line++;
+            start = c + 1;
+        }
+    return cl_error_set(err, CL_EPARSE,
+                        "%s:%ld: NUL byte at column %td; a problem file is"
+                        " text without NUL bytes", path, line,
+                        nul - start + 1);
+}
+
+static cl_status cl_parse_text(cl_config *cfg, const char *file,
+                               const char *text, size_t size, cl_error *err)
+{
+    cl_reader r = {.text = text, .size = size, .cfg = cfg, .file = file};
+    int rc = ini_parse_stream(cl_ini_read, &r, cl_ini_entry, &r);
+    cl_status st = cl_parse_result(&r, rc, err);
+    for (size_t i = 0; i < r.nhead; i++)
+        free(r.heads[i]);
+    free(r.heads);
+    free(r.head_line);
+    return st;
 }
 
 cl_status cl_config_load(cl_config *cfg, const char *path, cl_error *err)
@@ -365,14 +492,19 @@ cl_status cl_config_load(cl_config *cfg, const char *path, cl_error *err)
     if (!fp)
         return cl_error_set(err, CL_EIO, "cannot open %s: %s", path,
                             strerror(errno));
-    cl_reader r = {.fp = fp, .cfg = cfg, .file = cl_intern_file(cfg, path)};
-    if (!r.file) {
-        fclose(fp);
-        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", path);
-    }
-    int rc = ini_parse_stream(cl_ini_read, &r, cl_ini_entry, &r);
+    char *text = NULL;
+    size_t size = 0;
+    const char *file = cl_intern_file(cfg, path);
+    cl_status rc = file ? cl_slurp(fp, path, &text, &size, err)
+                        : cl_error_set(err, CL_ENOMEM, "%s: out of memory",
+                                       path);
     fclose(fp);
-    return cl_parse_result(&r, rc, err);
+    if (!rc)
+        rc = cl_check_nul(text, size, path, err);
+    if (!rc)
+        rc = cl_parse_text(cfg, file, text, size, err);
+    free(text);
+    return rc;
 }
 
 /* ------------------------------------------------------------------ --set */
@@ -392,14 +524,34 @@ static const char *cl_set_problem(const char *sec, const char *key,
                " '[' or '#'";
     if (strpbrk(value, "\n\r"))
         return "value may not contain a line break";
+    if (strlen(sec) > CL_INI_SECTION)
+        return "section name longer than the INI parser reads (at most"
+               " 49 characters)";
+    if (strlen(key) + 1 + strlen(value) > CL_INI_LINE)
+        return "too long for a line of the INI file written back (at most "
+               CL_STR(CL_INI_LINE_VALUE) " characters for key=value)";
     for (const char *p = strchr(value, ';'); p; p = strchr(p + 1, ';'))
-        if (p > value && isspace((unsigned char)p[-1]))
-            return "value may not contain ' ;', which starts a comment";
+        if (p == value || isspace((unsigned char)p[-1]))
+            return "value may not start with ';' nor contain ' ;', which"
+                   " starts a comment";
     return NULL;
 }
 
+/* A command line gives each key once: a second --set (or option) of the
+ * same key would silently replace the first. */
+static const char *cl_set_twice(const cl_config *cfg, const char *sec,
+                                const char *key)
+{
+    const cl_entry *e = cl_find(cfg, sec, key);
+    if (!e || e->line > 0)
+        return NULL;
+    return e->file ? "is already set by an option; give each key once"
+                   : "is already set by an earlier --set; give each key"
+                     " once";
+}
+
 static cl_status cl_set_split(cl_config *cfg, const char *a, const char *dot,
-                              const char *eq, const char *label,
+                              const char *eq, const char *label, bool once,
                               cl_error *err)
 {
     char *sec = cl_dup_trim(a, (size_t)(dot - a));
@@ -413,6 +565,9 @@ static cl_status cl_set_split(cl_config *cfg, const char *a, const char *dot,
         rc = cl_error_set(err, CL_EINVAL,
                           "--set \"%s\": %s (expected section.key=value)",
                           a, why);
+    else if (once && (why = cl_set_twice(cfg, sec, key)))
+        rc = cl_error_set(err, CL_EINVAL, "--set \"%s\": [%s] %s %s", a, sec,
+                          key, why);
     else if (cl_put(cfg, sec, key, value,
                     label ? cl_intern_file(cfg, label) : NULL,
                     label ? -1 : 0) != CL_OK)
@@ -423,13 +578,8 @@ static cl_status cl_set_split(cl_config *cfg, const char *a, const char *dot,
     return rc;
 }
 
-cl_status cl_config_set(cl_config *cfg, const char *assignment, cl_error *err)
-{
-    return cl_config_set_as(cfg, assignment, NULL, err);
-}
-
-cl_status cl_config_set_as(cl_config *cfg, const char *assignment,
-                           const char *label, cl_error *err)
+static cl_status cl_set_assign(cl_config *cfg, const char *assignment,
+                               const char *label, bool once, cl_error *err)
 {
     const char *eq = strchr(assignment, '=');
     if (!eq)
@@ -446,7 +596,24 @@ cl_status cl_config_set_as(cl_config *cfg, const char *assignment,
                             "--set \"%s\": missing '.' between section and"
                             " key (expected section.key=value)",
                             assignment);
-    return cl_set_split(cfg, assignment, dot, eq, label, err);
+    return cl_set_split(cfg, assignment, dot, eq, label, once, err);
+}
+
+cl_status cl_config_set(cl_config *cfg, const char *assignment, cl_error *err)
+{
+    return cl_set_assign(cfg, assignment, NULL, false, err);
+}
+
+cl_status cl_config_set_as(cl_config *cfg, const char *assignment,
+                           const char *label, cl_error *err)
+{
+    return cl_set_assign(cfg, assignment, label, false, err);
+}
+
+cl_status cl_config_set_once(cl_config *cfg, const char *assignment,
+                             const char *label, cl_error *err)
+{
+    return cl_set_assign(cfg, assignment, label, true, err);
 }
 
 /* ---------------------------------------------------------- value parsing */
@@ -458,15 +625,32 @@ static bool cl_only_space(const char *s)
     return *s == '\0';
 }
 
-static bool cl_parse_double(const char *s, double *out)
+/* strtod with clothode's rules for a number: NULL if *x is one, else why
+ * not ("" for text that is no number at all).  `cap`: a parameter, at most
+ * CL_CONFIG_MAX_ABS in magnitude (not a vector's component: a direction
+ * such as a plane's normal may have any length). */
+static const char *cl_strtod(const char *s, char **end, double *x, bool cap)
+{
+    errno = 0;
+    *x = strtod(s, end);
+    if (*end == s)
+        return "";
+    if (!isfinite(*x))
+        return errno == ERANGE ? "beyond the range of a double"
+                               : "not a finite number";
+    if (errno == ERANGE)
+        return "so small that it rounds to a subnormal number or zero";
+    if (cap && fabs(*x) > CL_CONFIG_MAX_ABS)
+        return "larger in magnitude than any physical parameter"
+               " (at most " CL_CONFIG_MAX_ABS_TEXT ")";
+    return NULL;
+}
+
+static const char *cl_parse_double(const char *s, double *out)
 {
     char *end;
-    errno = 0;
-    double x = strtod(s, &end);
-    if (end == s || !cl_only_space(end) || !isfinite(x))
-        return false;
-    *out = x;
-    return true;
+    const char *why = cl_strtod(s, &end, out, true);
+    return why ? why : cl_only_space(end) ? NULL : "";
 }
 
 static bool cl_parse_long(const char *s, long *out)
@@ -504,17 +688,14 @@ static void cl_range_text(char *buf, size_t len, const char *noun,
         snprintf(buf, len, "%s", noun);
 }
 
-/* "a number >= 0", "a number in [0.1, 1]", "a finite number". */
+/* "a number >= 0", "a number in [0.1, 1]"; open ends are closed at the
+ * largest magnitude a number may have. */
 static void cl_double_range(char *buf, size_t len, double lo, double hi)
 {
     char l[32], h[32];
-    bool has_lo = lo > -INFINITY, has_hi = hi < INFINITY;
-    if (has_lo)
-        cl_fmt_double(l, sizeof l, lo);
-    if (has_hi)
-        cl_fmt_double(h, sizeof h, hi);
-    cl_range_text(buf, len, has_lo || has_hi ? "a number" : "a finite number",
-                  has_lo ? l : NULL, has_hi ? h : NULL);
+    cl_fmt_double(l, sizeof l, fmax(lo, -CL_CONFIG_MAX_ABS));
+    cl_fmt_double(h, sizeof h, fmin(hi, CL_CONFIG_MAX_ABS));
+    cl_range_text(buf, len, "a number", l, h);
 }
 
 static void cl_long_range(char *buf, size_t len, long lo, long hi)
@@ -536,9 +717,9 @@ static cl_status cl_bad_value(const cl_entry *e, const char *what,
                         origin, e->sec, e->key, e->value, what);
 }
 
-/* Parse `count` finite numbers separated by commas and/or white space into
- * out (if not NULL). */
-static bool cl_parse_vector(const char *s, size_t count, double *out)
+/* Parse `count` numbers separated by commas and/or white space into out
+ * (if not NULL); NULL, or why not (as cl_strtod). */
+static const char *cl_parse_vector(const char *s, size_t count, double *out)
 {
     for (size_t i = 0; i < count; i++) {
         while (isspace((unsigned char)*s))
@@ -549,15 +730,17 @@ static bool cl_parse_vector(const char *s, size_t count, double *out)
                 s++;
         }
         char *end;
-        double x = strtod(s, &end);
-        if (end == s || !isfinite(x) ||
-            (*end && *end != ',' && !isspace((unsigned char)*end)))
-            return false;
+        double x;
+        const char *why = cl_strtod(s, &end, &x, false);
+        if (why)
+            return why;
+        if (*end && *end != ',' && !isspace((unsigned char)*end))
+            return "";
         if (out)
             out[i] = x;
         s = end;
     }
-    return cl_only_space(s);
+    return cl_only_space(s) ? NULL : "";
 }
 
 /* ---------------------------------------------------------------- getters */
@@ -573,9 +756,12 @@ cl_status cl_config_double(cl_config *cfg, const char *sec, const char *key,
         cl_fmt_double(text, sizeof text, def);
         cl_note_default(cfg, sec, key, text);
     }
-    if (e && (!cl_parse_double(e->value, &x) || !(x >= lo && x <= hi))) {
-        char what[128];
-        cl_double_range(what, sizeof what, lo, hi);
+    const char *why = e ? cl_parse_double(e->value, &x) : NULL;
+    if (e && (why || !(x >= lo && x <= hi))) {
+        char range[96], what[224];
+        cl_double_range(range, sizeof range, lo, hi);
+        snprintf(what, sizeof what, why && *why ? "%s (this is %s)" : "%s",
+                 range, why);
         return cl_bad_value(e, what, err);
     }
     *out = x;
@@ -668,11 +854,13 @@ cl_status cl_config_vector(cl_config *cfg, const char *sec, const char *key,
     const cl_entry *e = cl_lookup(cfg, sec, key);
     if (!e)
         return CL_OK;
-    if (!cl_parse_vector(e->value, count, NULL)) {
-        char what[128];
+    const char *why = cl_parse_vector(e->value, count, NULL);
+    if (why) {
+        char what[224];
         snprintf(what, sizeof what,
-                 "%zu finite number%s separated by commas or spaces", count,
-                 count == 1 ? "" : "s");
+                 "%zu finite number%s separated by commas or spaces%s%s%s",
+                 count, count == 1 ? "" : "s", *why ? " (one is " : "", why,
+                 *why ? ")" : "");
         return cl_bad_value(e, what, err);
     }
     cl_parse_vector(e->value, count, out);
@@ -811,7 +999,7 @@ cl_status cl_config_path_of(cl_config *cfg, const char *sec, const char *key,
                             char *buf, size_t len, cl_error *err)
 {
     const char *name = cl_config_string(cfg, sec, key, "");
-    const cl_entry *e = cl_lookup(cfg, sec, key);
+    cl_entry *e = cl_lookup(cfg, sec, key);
     cl_origin_buf origin;
     if (!*name)
         return cl_error_set(err, CL_EINVAL, "[%s] %s: a file name is "
@@ -824,6 +1012,10 @@ cl_status cl_config_path_of(cl_config *cfg, const char *sec, const char *key,
         return cl_error_set(err, CL_EINVAL, "%s: [%s] %s = \"%s\": path too "
                             "long (at most %zu bytes)", origin, sec, key, name,
                             len - 1);
+    /* A relative name is relative to its file: config.ini, written
+     * elsewhere, names the file absolutely to read back the same run. */
+    free(e->path);
+    e->path = realpath(buf, NULL);
     return CL_OK;
 }
 
@@ -838,16 +1030,23 @@ static const cl_entry *cl_find_section(const cl_config *cfg, const char *sec)
     return NULL;
 }
 
+/* A section after other lines is set off by a blank line. */
 static void cl_write_section(const cl_config *cfg, const cl_entry *first,
-                             FILE *f)
+                             bool after, FILE *f)
 {
     if (*first->sec)
-        fprintf(f, "%s[%s]\n", first > cfg->ent ? "\n" : "", first->sec);
+        fprintf(f, "%s[%s]\n", after ? "\n" : "", first->sec);
     for (const cl_entry *e = first; e < cfg->ent + cfg->nent; e++) {
         if (strcmp(e->sec, first->sec) != 0)
             continue;
-        if (*e->value)
-            fprintf(f, "%s = %s\n", e->key, e->value);
+        const char *value = e->path ? e->path : e->value;
+        /* "key = ;x" would start a comment: such a value was read from
+         * "key=;x", as is a value too long for the spaced form */
+        if (strlen(e->key) + 3 + strlen(value) > CL_INI_LINE ||
+            value[0] == ';')
+            fprintf(f, "%s=%s\n", e->key, value);
+        else if (*value)
+            fprintf(f, "%s = %s\n", e->key, value);
         else
             fprintf(f, "%s =\n", e->key);
     }
@@ -858,11 +1057,14 @@ static void cl_write_section(const cl_config *cfg, const cl_entry *first,
 static void cl_write_entries(const cl_config *cfg, FILE *f)
 {
     const cl_entry *top = cl_find_section(cfg, "");
+    bool after = top != NULL;
     if (top)
-        cl_write_section(cfg, top, f);
+        cl_write_section(cfg, top, false, f);
     for (const cl_entry *e = cfg->ent; e < cfg->ent + cfg->nent; e++)
-        if (*e->sec && cl_find_section(cfg, e->sec) == e)
-            cl_write_section(cfg, e, f);
+        if (*e->sec && cl_find_section(cfg, e->sec) == e) {
+            cl_write_section(cfg, e, after, f);
+            after = true;
+        }
 }
 
 cl_status cl_config_write(const cl_config *cfg, const char *path,

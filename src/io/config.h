@@ -16,6 +16,14 @@
 
 typedef struct cl_config cl_config;
 
+/* The largest magnitude of a number (cl_config_double) in a problem file:
+ * beyond it a value is no physical parameter (ks = 1e300 would run for
+ * hours), and the message gives the allowed range.  Numbers that overflow
+ * or underflow to a subnormal or zero, nan and inf are refused in vectors
+ * too (README "Strict inputs"). */
+#define CL_CONFIG_MAX_ABS 1e12
+#define CL_CONFIG_MAX_ABS_TEXT "1e12"
+
 cl_config *cl_config_alloc(void);
 void cl_config_free(cl_config *cfg);
 
@@ -38,6 +46,11 @@ cl_status cl_config_set(cl_config *cfg, const char *assignment, cl_error *err);
  * command-line option that stands for a key); NULL means "--set". */
 cl_status cl_config_set_as(cl_config *cfg, const char *assignment,
                            const char *label, cl_error *err);
+/* cl_config_set_as for a command line, which gives each key once: a key
+ * already set by an earlier assignment (not by a file) is refused with
+ * CL_EINVAL instead of replaced. */
+cl_status cl_config_set_once(cl_config *cfg, const char *assignment,
+                             const char *label, cl_error *err);
 
 /* The file name given to the first cl_config_load (for messages and
  * outputs), or NULL if no file was loaded. */

@@ -153,6 +153,11 @@ cl_status cl_mtx_read(const char *path, cl_triplets *t, cl_error *err)
     errno = 0;
     while (st == CL_OK && (len = getline(&line, &cap, fp)) >= 0) {
         lineno++;
+        if (memchr(line, '\0', (size_t)len)) {
+            st = cl_error_set(err, CL_EPARSE, "%s:%zu: NUL byte (a Matrix"
+                              " Market file is text)", path, lineno);
+            break;
+        }
         if (lineno == 1) {
             st = check_banner(path, line, err);
             continue;

@@ -159,6 +159,11 @@ cl_status cl_state_read(const char *path, size_t np, double *x, double *v,
     errno = 0;
     while (st == CL_OK && (len = getline(&line, &cap, fp)) >= 0) {
         lineno++;
+        if (memchr(line, '\0', (size_t)len)) {
+            st = cl_error_set(err, CL_EPARSE, "%s:%zu: NUL byte (a state"
+                              " file is text)", path, lineno);
+            break;
+        }
         chomp(line, (size_t)len);
         if (!header_ok) {
             if (strcmp(line, STATE_HEADER) != 0) {

@@ -77,6 +77,9 @@ typedef struct {
      * another one also writes the names into linsol. */
     void (*stats)(const void *state, cl_stats *s);
     void (*free)(void *state);
+    /* Triangular factors kept: 2 (LU), 1 (Cholesky), 0 (iterative), for
+     * the memory guard's estimate (integrators/memguard.c). */
+    int factors;
 } cl_linsol_type;
 
 extern const cl_linsol_type *const cl_linsol_registry[];

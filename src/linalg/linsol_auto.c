@@ -261,6 +261,7 @@ static void auto_stats(const void *state, cl_stats *out)
 
 const cl_linsol_type cl_linsol_auto = {
     .name = "auto",
+    .factors = 2, /* cholmod, or klu when A is not SPD */
     .doc = "pcg, or cholmod (klu if not SPD) while a factorisation is "
            "cheaper or after pcg failed",
     .create = auto_create,

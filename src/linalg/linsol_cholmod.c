@@ -335,6 +335,7 @@ static void chol_stats(const void *state, cl_stats *out)
 
 const cl_linsol_type cl_linsol_cholmod = {
     .name = "cholmod",
+    .factors = 1,
     .doc = "supernodal sparse Cholesky (CHOLMOD): analyse once, factorise "
            "per setup; klu when A is not SPD",
     .create = chol_create,

@@ -179,6 +179,7 @@ static void lklu_stats(const void *state, cl_stats *out)
 
 const cl_linsol_type cl_linsol_klu = {
     .name = "klu",
+    .factors = 2,
     .doc = "sparse LU (KLU, AMD ordering): analyse once, refactor per setup",
     .create = lklu_create,
     .setup = lklu_setup,

@@ -2,9 +2,13 @@
  * motion. */
 #include "model/pins.h"
 
+#include <ctype.h>
+#include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 typedef struct {
@@ -12,30 +16,87 @@ typedef struct {
     double stop;
 } pin_motion;
 
+enum { PIN_INT, PIN_NONE, PIN_OVERFLOW };
+
+/* An int at s + *used after optional blanks, or after "NAME =" when name is
+ * not NULL; *used grows by what was read.  PIN_NONE if there is none,
+ * PIN_OVERFLOW if it does not fit an int (strtol saturates; sscanf's %d is
+ * undefined there). */
+static int pin_int(const char *s, const char *name, int *k, int *used)
+{
+    const char *p = s + *used;
+    if (name) {
+        p += strspn(p, " \t");
+        if (strncmp(p, name, strlen(name)) != 0)
+            return PIN_NONE;
+        p += strspn(p + strlen(name), " \t") + strlen(name);
+        if (*p++ != '=')
+            return PIN_NONE;
+    }
+    p += strspn(p, " \t");
+    if (!(isdigit((unsigned char)*p) ||
+          ((*p == '-' || *p == '+') && isdigit((unsigned char)p[1]))))
+        return PIN_NONE;
+    char *end;
+    errno = 0;
+    long v = strtol(p, &end, 10);
+    *used = (int)(end - s);
+    if (errno == ERANGE || v < INT_MIN || v > INT_MAX)
+        return PIN_OVERFLOW;
+    *k = (int)v;
+    return PIN_INT;
+}
+
+/* "i , j": two ints separated by a comma. */
+static int pin_pair(const char *s, int *i, int *j, int *used)
+{
+    int rc = pin_int(s, NULL, i, used);
+    if (rc != PIN_INT)
+        return rc;
+    *used += (int)strspn(s + *used, " \t");
+    if (s[*used] != ',')
+        return PIN_NONE;
+    ++*used;
+    return pin_int(s, NULL, j, used);
+}
+
+/* The message on an index that does not fit an int. */
+static cl_status pin_overflow(const char *s, int used, cl_error *err)
+{
+    return cl_error_set(err, CL_EINVAL,
+                        "\"%.*s\": index beyond the range of an int (%d .. %d);"
+                        " allowed: 0 .. n-1, or negative from the end",
+                        used, s, INT_MIN, INT_MAX);
+}
+
 /* Pin one token: "p=K", or on a grid "i,j", "i=K" or "j=K"; *used is its
- * length. */
+ * length.  CL_EPARSE (without a message) for a token of no known form. */
 static cl_status pin_token(cl_cloth *c, const char *s, const pin_motion *pm,
                            int *used, cl_error *err)
 {
-    int i, j, k;
+    int i, j, k, got;
     cl_status rc = CL_OK;
     *used = 0;
-    if (sscanf(s, "p = %d%n", &k, used) == 1) {
+    if ((got = pin_int(s, "p", &k, used)) == PIN_INT) {
         rc = cl_cloth_pin_particle(c, k, pm->w, pm->stop, err);
-    } else if (c->kind == CL_CLOTH_MESH) {
+    } else if (got == PIN_NONE && c->kind == CL_CLOTH_MESH) {
         return CL_EPARSE;
-    } else if (sscanf(s, "i = %d%n", &k, used) == 1) {
+    } else if (got == PIN_NONE &&
+               (got = pin_int(s, "i", &k, used)) == PIN_INT) {
         for (j = 0; rc == CL_OK && j < c->nv; j++)
             rc = cl_cloth_pin(c, k, j, pm->w, pm->stop, err);
-    } else if (sscanf(s, "j = %d%n", &k, used) == 1) {
+    } else if (got == PIN_NONE &&
+               (got = pin_int(s, "j", &k, used)) == PIN_INT) {
         for (i = 0; rc == CL_OK && i < c->nu; i++)
             rc = cl_cloth_pin(c, i, k, pm->w, pm->stop, err);
-    } else if (sscanf(s, "%d , %d%n", &i, &j, used) == 2) {
+    } else if (got == PIN_NONE &&
+               (got = pin_pair(s, &i, &j, used)) == PIN_INT) {
         rc = cl_cloth_pin(c, i, j, pm->w, pm->stop, err);
-    } else {
-        return CL_EPARSE;
     }
-    if (rc == CL_OK && s[*used] && s[*used] != ' ' && s[*used] != '\t')
+    if (got == PIN_OVERFLOW)
+        return pin_overflow(s, *used, err);
+    if (got == PIN_NONE ||
+        (rc == CL_OK && s[*used] && s[*used] != ' ' && s[*used] != '\t'))
         return CL_EPARSE;
     return rc;
 }

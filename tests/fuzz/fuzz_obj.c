@@ -1,0 +1,17 @@
+/* libFuzzer harness: the OBJ mesh reader (io/obj). */
+#define _GNU_SOURCE
+#include "io/obj.h"
+#include "fuzz.h"
+
+static void read_obj(const char *path)
+{
+    cl_error err;
+    cl_obj m;
+    if (cl_obj_read(path, &m, &err) == CL_OK)
+        cl_obj_free(&m);
+}
+
+int CL_FUZZ_ENTRY(const uint8_t *data, size_t size)
+{
+    return fuzz_read(data, size, read_obj);
+}
