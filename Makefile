@@ -26,6 +26,7 @@ LDLIBS := -lsundials_cvode -lsundials_ida -lsundials_kinsol \
           -lsundials_sunlinsolpcg -lsundials_sunnonlinsolfixedpoint \
           -lklu -lcholmod -lamd -lcolamd -lbtf \
           -lsuitesparseconfig -lgsl -llapacke -llapack -lblas -linih -lm
+LDLIBS += -ljansson
 
 # The library holds the numerics; the benchmark harness (src/bench) is a
 # program of its own on it, clothode-bench.

@@ -15,6 +15,10 @@ pkgs=(build-essential libsundials-dev libsuitesparse-dev libgsl-dev
       liblapacke-dev libopenblas0-serial
       gnuplot-nox libinih-dev libcriterion-dev python3-numpy python3-scipy
       pkg-config)
+# Sweeps (README "Sweeps"): the manifest is JSON (Jansson); the jobs run on
+# GNU parallel, over ssh, or on Slurm (scripts/slurm-local.sh starts a
+# single-node one with munge); the tests start their own sshd.
+pkgs+=(libjansson-dev parallel openssh-server openssh-client slurm-wlm munge)
 # `install-deps.sh paper`: also LaTeX, for make paper only.
 if [[ ${1:-} == paper ]]; then
     pkgs+=(texlive-latex-base texlive-latex-recommended

@@ -107,6 +107,7 @@ int cl_cli_args_main(int argc, char **argv, const cl_cli_table *t,
     int at = cl_cli_parse(argc, argv, t, settings), status = 2;
     cl_error err = {0};
     cl_config *cfg = at >= 0 ? cl_config_alloc() : NULL;
+    a->arg = at >= 0 && at < argc ? argv[at] : NULL;
     if (at == -2)
         status = 0;
     else if (at >= 0 && !cfg)

@@ -63,7 +63,8 @@ cl_status cl_cli_ignore_run(cl_config *cfg, void *settings, cl_error *err);
 
 /* main() of a subcommand without a problem: parse argv by t, read the
  * keys of the command line alone into settings (a refused value is a usage
- * error), then return work(settings), the exit status. */
+ * error), then return work(settings), the exit status.  A positional
+ * argument (t->npos 1) is in the settings' cl_cli_args arg. */
 int cl_cli_args_main(int argc, char **argv, const cl_cli_table *t,
                      void *settings, int (*work)(void *settings));
 

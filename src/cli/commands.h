@@ -12,5 +12,6 @@ int cl_cmd_stability(int argc, char **argv);
 int cl_cmd_spectrum(int argc, char **argv);
 int cl_cmd_energy(int argc, char **argv);
 int cl_cmd_asinc(int argc, char **argv);
+int cl_cmd_sweep(int argc, char **argv);
 
 #endif

@@ -22,6 +22,8 @@ static const cl_command commands[] = {
      "the exact inverse sinc beside Jiao's polynomial"},
     {"counts", cl_cmd_counts, "connection counts beside Jiao's formulas"},
     {"list", cl_cmd_list, "problems, integrators and force terms"},
+    {"sweep", cl_cmd_sweep,
+     "parameter sweeps: plan, run (GNU parallel, ssh, Slurm), collect"},
 };
 
 static int usage(FILE *fp)
