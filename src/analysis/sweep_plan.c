@@ -26,12 +26,14 @@ static char *dup_n(const char *s, size_t n)
     return d;
 }
 
-/* The shortest "%.*g" of x that reads back as x. */
+/* The shortest "%.*g" of x that reads back as x, without an exponent
+ * between 1e-4 and 1e15 (200, not 2e+02). */
 static void shortest(double x, char *buf, size_t len)
 {
+    bool plain = fabs(x) >= 1e-4 && fabs(x) < 1e15;
     for (int p = 1; p <= 17; p++) {
         snprintf(buf, len, "%.*g", p, x);
-        if (strtod(buf, NULL) == x)
+        if (strtod(buf, NULL) == x && !(plain && strchr(buf, 'e')))
             return;
     }
 }
@@ -143,7 +145,11 @@ static cl_status read_integrators(cl_config *cfg, cl_sweep *sw,
     cl_sweep_axis list = {0};
     bool ok = false;
     const char *v = cl_config_string(cfg, "sweep", "integrator", "");
-    cl_status rc = *v ? listed(&list, v, &ok) : CL_OK;
+    if (!*v)
+        return cl_error_set(err, CL_EINVAL, "%s: [sweep] integrator: "
+                            "NAME[:LINSOL], ... is required",
+                            cl_config_path(cfg));
+    cl_status rc = listed(&list, v, &ok);
     char name[64];
     for (int k = 0; ok && !rc && k < list.n; k++) {
         snprintf(name, sizeof name, "%.*s", (int)strcspn(list.v[k], ":"),
@@ -199,8 +205,8 @@ cl_status cl_sweep_read(cl_config *cfg, cl_sweep *sw, cl_error *err)
     double ref = 0;
     cl_status rc = read_integrators(cfg, sw, err);
     if (!rc && !*problem)
-        rc = cl_config_refuse(cfg, "sweep", "problem", CL_EINVAL,
-                              "a problem file is required", err);
+        rc = cl_error_set(err, CL_EINVAL, "%s: [sweep] problem: a problem "
+                          "file is required", cl_config_path(cfg));
     if (!rc && !(sw->problem = strdup(problem)))
         rc = cl_error_set(err, CL_ENOMEM, "out of memory");
     if (!rc)

@@ -175,20 +175,30 @@ static int all_jobs(const cl_sweep *sw, int *todo)
     return sw->njob;
 }
 
-static int pending_jobs(const cl_sweep *sw, int *todo, cl_error *err)
+/* Every job's outcome (allocated), or NULL with err set. */
+static cl_sweep_outcome *outcomes_of(const cl_sweep *sw, cl_sweep_counts *c,
+                                     cl_error *err)
 {
     cl_sweep_outcome *out = calloc((size_t)sw->njob + 1, sizeof *out);
-    cl_sweep_counts c;
-    int n = 0;
-    if (!out || cl_sweep_outcomes(sw, out, &c, err)) {
+    if (!out)
+        cl_error_set(err, CL_ENOMEM, "out of memory");
+    if (out && cl_sweep_outcomes(sw, out, c, err)) {
         free(out);
-        return -1;
+        out = NULL;
     }
-    for (int k = 0; k < sw->njob; k++)
+    return out;
+}
+
+static int pending_jobs(const cl_sweep *sw, int *todo, cl_error *err)
+{
+    cl_sweep_counts c;
+    cl_sweep_outcome *out = outcomes_of(sw, &c, err);
+    int n = 0;
+    for (int k = 0; out && k < sw->njob; k++)
         if (out[k].state != CL_SWEEP_COMPLETE)
             todo[n++] = k;
     free(out);
-    return n;
+    return out ? n : -1;
 }
 
 /* DIR/pending.txt: the commands of todo, for GNU parallel. */
@@ -201,6 +211,19 @@ static cl_status write_pending(const cl_sweep *sw, const int *todo, int n,
     for (int k = 0; !rc && k < n; k++)
         fprintf(af.fp, "%s\n", sw->job[todo[k]].command);
     return rc ? rc : cl_afile_commit(&af, err);
+}
+
+/* "N complete, M failed, K missing" once the engine is done. */
+static int summary(const cl_sweep *sw, cl_error *err)
+{
+    cl_sweep_counts c;
+    cl_sweep_outcome *out = outcomes_of(sw, &c, err);
+    if (!out)
+        return cl_cli_fail(err);
+    printf("%d complete, %d failed, %d missing (sweep collect %s)\n",
+           c.complete, c.failed, c.missing, sw->dir);
+    free(out);
+    return 0;
 }
 
 static int engine_run(cl_sweep *sw, cl_sweep_run_args *r, int *todo,
@@ -220,7 +243,8 @@ static int engine_run(cl_sweep *sw, cl_sweep_run_args *r, int *todo,
     snprintf(list, sizeof list, "%s/jobs.txt", sw->dir);
     if (r->resume && write_pending(sw, todo, n, list, sizeof list, err))
         return cl_cli_fail(err);
-    return cl_sweep_parallel(sw, r, list, r->resume);
+    int status = cl_sweep_parallel(sw, r, list, r->resume);
+    return status || r->a.quiet ? status : summary(sw, err);
 }
 
 static int run(void *settings)
@@ -303,10 +327,10 @@ static int collect(void *settings)
     /* the jobs' outputs where the sweep is now (copied from a cluster) */
     free(sw.dir);
     sw.dir = strdup(a->arg);
-    if (!rc && (!sw.dir || !(out = calloc((size_t)sw.njob + 1, sizeof *out))))
+    if (!rc && !sw.dir)
         rc = cl_error_set(&err, CL_ENOMEM, "out of memory");
-    if (!rc)
-        rc = cl_sweep_outcomes(&sw, out, &c, &err);
+    if (!rc && !(out = outcomes_of(&sw, &c, &err)))
+        rc = err.code;
     snprintf(table, sizeof table, "%s", a->out ? a->out : "collected.csv");
     snprintf(dir, sizeof dir, "%s", a->out ? "." : a->arg);
     char *slash = a->out ? strrchr(table, '/') : NULL;

@@ -3,6 +3,8 @@
 
 #include <errno.h>
 #include <math.h>
+#include <signal.h>
+#include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,7 +16,40 @@
 #include "core/clock.h"
 #include "io/atomic.h"
 
+extern char **environ;
+
 /* ---- GNU parallel ------------------------------------------------------- */
+
+static volatile sig_atomic_t engine_pid;
+
+/* SIGINT and SIGTERM go on to the engine, which stops its jobs. */
+static void forward(int sig)
+{
+    if (engine_pid > 0)
+        kill((pid_t)engine_pid, sig);
+}
+
+/* Run argv, forwarding SIGINT and SIGTERM; its wait status, or -1. */
+static int spawn_forwarding(const char *const *argv)
+{
+    struct sigaction sa = {.sa_handler = forward}, old_int, old_term;
+    pid_t pid;
+    int status = -1;
+    fflush(stdout);
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, &old_int);
+    sigaction(SIGTERM, &sa, &old_term);
+    if (posix_spawnp(&pid, argv[0], NULL, NULL, (char *const *)argv,
+                     environ) == 0) {
+        engine_pid = pid;
+        while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+            ;
+    }
+    engine_pid = 0;
+    sigaction(SIGINT, &old_int, NULL);
+    sigaction(SIGTERM, &old_term, NULL);
+    return status;
+}
 
 int cl_sweep_parallel(const cl_sweep *sw, const cl_sweep_run_args *r,
                       const char *list, bool append)
@@ -43,10 +78,19 @@ int cl_sweep_parallel(const cl_sweep *sw, const cl_sweep_run_args *r,
     argv[n++] = "-a";
     argv[n++] = list;
     argv[n] = NULL;
-    fflush(stdout);
-    execvp("parallel", (char *const *)argv);
-    fprintf(stderr, "clothode: cannot run GNU parallel: %s (apt-get install "
-                    "parallel)\n", strerror(errno));
+    int st = spawn_forwarding(argv);
+    /* parallel's exit status counts the failed jobs (at most 100); above
+     * that it was stopped or could not run */
+    if (st >= 0 && WIFEXITED(st) && WEXITSTATUS(st) <= 100)
+        return 0;
+    if (st < 0 || (WIFEXITED(st) && WEXITSTATUS(st) == 127))
+        fprintf(stderr, "clothode: sweep run: cannot run GNU parallel "
+                        "(apt-get install parallel)\n");
+    else
+        fprintf(stderr, "clothode: sweep run: GNU parallel stopped before "
+                        "the end (%s %d); 'sweep run --resume' runs the "
+                        "rest\n", WIFEXITED(st) ? "exit status" : "signal",
+                WIFEXITED(st) ? WEXITSTATUS(st) : WTERMSIG(st));
     return 1;
 }
 

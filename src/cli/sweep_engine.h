@@ -24,9 +24,10 @@ typedef struct {
 } cl_sweep_run_args;
 
 /* Run the commands of the file `list` (DIR/jobs.txt, or the pending ones)
- * with GNU parallel, its joblog DIR/joblog started afresh or appended to;
- * replaces the process (the exit status is parallel's).  Returns 1 with a
- * message if parallel cannot be started. */
+ * with GNU parallel, its joblog DIR/joblog started afresh or appended to,
+ * SIGINT and SIGTERM passed on to it.  0 when it has run every job (failed
+ * ones included: collect reports them); 1 with a message when it could
+ * not start or was stopped. */
 int cl_sweep_parallel(const cl_sweep *sw, const cl_sweep_run_args *r,
                       const char *list, bool append);
 
