@@ -132,7 +132,7 @@ Test(sweep, dt_snapped_to_whole_steps)
                            "dt = 1e-5, 3.1622776601683795e-05, -1\nt_end = 0.05\n",
                            &sw, &err), CL_OK, "%s", err.msg);
     /* 0.05 / 3.16e-5 = 1581.1 steps -> 1581 */
-    cr_assert_str_eq(id_of(&sw, "symplectic-euler", "3.162555344718533e-05"),
+    cr_assert_str_eq(id_of(&sw, "symplectic-euler", "3.16255534471853e-05"),
                      sw.job[1].id);
     cr_assert_str_eq(sw.job[0].value[0], "1e-05");
     cr_assert_str_eq(sw.job[2].value[0], "-1"); /* left for run to refuse */
@@ -304,4 +304,62 @@ Test(sweep, collect_cli_summary)
              sw.job[2].id);
     cr_assert(strstr(text, line), "%s", text);
     cl_sweep_free(&sw);
+}
+
+/* Parts: fixed-step methods over dt, adaptive ones over rtol with atol
+ * following it, one reference for both. */
+Test(sweep, parts_and_derived_axes)
+{
+    cl_sweep sw;
+    cl_error err = {0};
+    cr_assert_eq(plan_text("[sweep]\nproblem = p.ini\nreference = 1e-11\n"
+                           "t_end = 0.2\n"
+                           "[sweep.fixed]\nintegrator = rk4, semi-bdf2:pcg\n"
+                           "dt = 1e-3, 5e-4\n"
+                           "[sweep.adaptive]\nintegrator = cvode-bdf:pcg\n"
+                           "rtol = logspace(-4, -6, 3)\natol = rtol / 100\n",
+                           &sw, &err), CL_OK, "%s", err.msg);
+    cr_assert_eq(sw.nplan, 2);
+    cr_assert_eq(sw.njob, 4 + 3 + 1);
+    cr_assert_eq(sw.naxis, 4);
+    cr_assert_str_eq(sw.axis[0].key, "run.t_end");
+    cr_assert_str_eq(sw.axis[1].key, "run.dt");
+    cr_assert_str_eq(sw.axis[2].key, "run.rtol");
+    cr_assert_str_eq(sw.axis[3].key, "run.atol");
+    cr_assert_str_eq(sw.job[1].integrator, "rk4");
+    cr_assert_str_eq(sw.job[1].value[1], "0.0005");
+    cr_assert_null(sw.job[1].value[2]);
+    cr_assert_str_eq(sw.job[5].integrator, "cvode-bdf:pcg");
+    cr_assert_null(sw.job[5].value[1]);
+    cr_assert_str_eq(sw.job[5].value[2], "1e-05");
+    cr_assert_str_eq(sw.job[5].value[3], "1e-07");
+    cr_assert_str_eq(sw.job[6].value[3], "1e-08");
+    for (int k = 0; k < 7; k++)
+        cr_assert_eq(sw.job[k].ref, 7);
+    cr_assert_str_eq(sw.job[7].value[0], "0.2");
+    cl_sweep_free(&sw);
+}
+
+Test(sweep, refused_parts)
+{
+    static const struct {
+        const char *text, *want;
+    } bad[] = {
+        {"[sweep]\nproblem = p.ini\n[sweep.a]\ndt = 1\n",
+         "[sweep.a] integrator: NAME[:LINSOL], ... is required"},
+        {"[sweep]\nproblem = p.ini\nintegrator = rk4\n[sweep.a]\n"
+         "reference = 1e-9\n", "[sweep.a] reference = \"1e-9\": belongs in "
+                               "[sweep]"},
+        {"[sweep]\nproblem = p.ini\nintegrator = rk4\natol = rtol / 100\n",
+         "or KEY * C or KEY / C of a numeric axis above"},
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
+        cl_sweep sw;
+        cl_error err = {0};
+        cr_assert_eq(plan_text(bad[k].text, &sw, &err), CL_EINVAL, "%s",
+                     bad[k].text);
+        cr_assert(strstr(err.msg, bad[k].want), "%s\ngot: %s\nwant: %s",
+                  bad[k].text, err.msg, bad[k].want);
+        cl_sweep_free(&sw);
+    }
 }

@@ -25,8 +25,11 @@ static void setup(void)
     tmp_mkdtemp(tmp, sizeof tmp, "sweepeng");
 }
 
+static void stop_servers(void);
+
 static void teardown(void)
 {
+    stop_servers();
     tmp_rm_rf(tmp);
 }
 
@@ -249,6 +252,15 @@ static void stop_sshd(const char *d)
     sh("test -f %s/sshd.pid && kill $(cat %s/sshd.pid)", d, d);
 }
 
+/* The daemons a test started, also after a failed assertion. */
+static void stop_servers(void)
+{
+    char d[1100];
+    stop_sshd(in_tmp(d, "sshd"));
+    if (!access(in_tmp(d, "slurm-state/slurm.conf"), F_OK))
+        sh("scripts/slurm-local.sh stop %s/slurm-state", tmp);
+}
+
 Test(sweep_engine, ssh_gives_the_local_table)
 {
     char dir[1024], ssh_dir[1024], local[1100], remote[1100], logins[1100];
@@ -257,7 +269,6 @@ Test(sweep_engine, ssh_gives_the_local_table)
     mkdir(dir, 0700);
     const char *why = start_sshd(dir, 20000 + (int)(getpid() % 20000));
     if (why) {
-        stop_sshd(dir);
         skip("ssh_gives_the_local_table", why);
         return;
     }
@@ -268,7 +279,6 @@ Test(sweep_engine, ssh_gives_the_local_table)
     cli_result r;
     cli_run(&r, "sweep", "run", ssh_dir, "--engine", "ssh", "--sshloginfile",
             logins, "--quiet", NULL);
-    stop_sshd(dir);
     cli_assert_ok(&r);
     cli_result_free(&r);
     collect(local, summary, sizeof summary);
@@ -299,7 +309,6 @@ Test(sweep_engine, slurm_array_failed_job_and_resume)
     }
     if (sh("SLURM_LOCAL_PORT=%d scripts/slurm-local.sh start %s > %s.log "
            "2>&1", 26817 + (int)(getpid() % 1000) * 2, state, state)) {
-        sh("scripts/slurm-local.sh stop %s", state);
         skip("slurm_array_failed_job_and_resume", "scripts/slurm-local.sh "
              "could not start Slurm (see its log)");
         return;
@@ -334,7 +343,6 @@ Test(sweep_engine, slurm_array_failed_job_and_resume)
     /* --resume submits the two failed jobs, and only them */
     cli_run(&r, "sweep", "run", sl, "--engine", "slurm", "--resume",
             "--wait", NULL);
-    sh("scripts/slurm-local.sh stop %s", state);
     cli_assert_ok(&r);
     cr_assert(strstr(r.out, "resume     2 of 6 jobs failed or have no "
                             "result\nslurm      2 jobs in 2 array tasks"),

@@ -7,21 +7,28 @@
  *
  * The sweep file ([sweep] section, read with io/config.h):
  *   problem     = path of the problem file (required)
- *   integrator  = NAME[:LINSOL], ...            (required)
+ *   integrator  = NAME[:LINSOL], ...
  *   reference   = R: one cvode-bdf run at rtol R (atol R/100) per
  *                 combination of the problem's axes, against whose final
  *                 state collect measures every job's error (optional)
  *   KEY = VALUES   an axis; KEY is dt, rtol, atol, t_end (the [run] keys),
  *                  n ([cloth] n) or any SECTION.KEY of the problem; VALUES
  *                  a comma-separated list, linspace(a, b, k) (k values from
- *                  a to b, evenly spaced) or logspace(a, b, k) (10^a to
- *                  10^b, evenly spaced exponents).  One value is a
- *                  constant of every job.  When the sweep gives one
- *                  t_end T, every dt is made T / N with N = round(T / dt),
- *                  so that fixed-step runs end exactly at T.
+ *                  a to b, evenly spaced), logspace(a, b, k) (10^a to
+ *                  10^b, evenly spaced exponents), or OTHER * C, OTHER / C
+ *                  with OTHER an axis above: the values follow OTHER's job
+ *                  by job (atol = rtol / 100) instead of multiplying the
+ *                  jobs.  One value is a constant of every job.  When the
+ *                  part gives one t_end T, every dt is made T / N with
+ *                  N = round(T / dt), so that fixed-step runs end exactly
+ *                  at T.
+ * Sections [sweep.NAME] are parts: each takes [sweep]'s integrators and
+ * axes, replaces or adds its own, and the jobs are the union of the
+ * parts' cross products (fixed-step methods over dt, adaptive ones over
+ * rtol, in one sweep).
  *
- * Jobs are ordered integrator first, then the axes in file order, the last
- * fastest.  A job's id is the FNV-1a hash of its sorted assignments
+ * Jobs are ordered by part, integrator, then the axes in file order, the
+ * last fastest.  A job's id is the FNV-1a hash of its sorted assignments
  * ("integrator=rk4", "run.dt=1e-05", ...), so it stays the same when the
  * plan is expanded again, whatever the order of the axes or the values
  * added around it. */
@@ -38,11 +45,24 @@
 #define CL_SWEEP_MAX_VALUES 100000
 #define CL_SWEEP_ID_LEN 13 /* 12 hex digits and the NUL */
 
+#define CL_SWEEP_MAX_PARTS 17
+
 typedef struct {
     char *key;   /* "run.dt", "cloth.n", "type1.ks" */
     int n;
     char **v;    /* the values as written into the job's --set */
+    int from;    /* a part's axis following another one's values job by
+                  * job (OTHER / C): that axis's index, else -1 */
 } cl_sweep_axis;
+
+/* [sweep] or a [sweep.NAME] part, as read. */
+typedef struct {
+    char *name;  /* "sweep.NAME", NULL for [sweep] */
+    int nint;
+    char **integrator;
+    int naxis;
+    cl_sweep_axis axis[CL_SWEEP_MAX_AXES];
+} cl_sweep_part;
 
 typedef struct {
     char id[CL_SWEEP_ID_LEN];
@@ -58,24 +78,28 @@ typedef struct {
     char *dir;        /* the sweep directory, absolute */
     char *problem;    /* the problem file, absolute */
     char *clothode;   /* the clothode binary the jobs run, absolute */
-    int nint;
+    int npart, nplan; /* parts read; part[0 .. nplan) make the jobs */
+    cl_sweep_part part[CL_SWEEP_MAX_PARTS];
+    int nint;         /* every integrator of the jobs */
     char **integrator;
-    int naxis;
+    int naxis;        /* every axis of the jobs, the distinct values */
     cl_sweep_axis axis[CL_SWEEP_MAX_AXES];
     char ref_rtol[32]; /* "" without references */
     int njob;
     cl_sweep_job *job;
 } cl_sweep;
 
-/* Read the [sweep] section of cfg (problem into sw->problem as written,
- * for the caller to resolve; integrators; axes with their values
- * expanded).  Refused keys and values: CL_EINVAL naming file, line, key,
- * value and what is allowed. */
+/* Read the [sweep] sections of cfg into sw's parts (problem into
+ * sw->problem as written, for the caller to resolve; integrators; axes
+ * with their values expanded).  Refused keys and values: CL_EINVAL naming
+ * file, line, key, value and what is allowed. */
 cl_status cl_sweep_read(cl_config *cfg, cl_sweep *sw, cl_error *err);
+void cl_sweep_parts_free(cl_sweep *sw);
 
-/* The job list of sw (sw->dir, ->problem and ->clothode set): the cross
- * product with ids and commands, then the reference jobs.  CL_EINVAL when
- * two jobs are the same (a value listed twice). */
+/* The job list of sw (sw->dir, ->problem and ->clothode set): each part's
+ * cross product with ids and commands, then the reference jobs; the
+ * union of the parts' integrators and axes in sw.  CL_EINVAL when two
+ * jobs are the same (a value listed twice). */
 cl_status cl_sweep_expand(cl_sweep *sw, cl_error *err);
 
 /* The job's assignments "key=value", sorted, joined by '\n' into buf

@@ -99,6 +99,7 @@ static cl_status load_axes(json_t *root, cl_sweep *sw)
         return CL_EPARSE;
     json_array_foreach(axes, i, a) {
         cl_sweep_axis *ax = &sw->axis[sw->naxis++];
+        ax->from = -1;
         json_t *vals = json_object_get(a, "values");
         if (!(ax->key = text_of(a, "key")) || !json_is_array(vals) ||
             !(ax->v = calloc(json_array_size(vals) + 1, sizeof *ax->v)))

@@ -1,5 +1,5 @@
-/* A sweep's plan (analysis/sweep.h): the sweep file read, its axes
- * expanded, the cross product with stable ids and the job commands. */
+/* A sweep's plan (analysis/sweep.h): the parts' cross products with
+ * stable ids and the job commands. */
 #include "analysis/sweep.h"
 
 #include <math.h>
@@ -8,220 +8,6 @@
 #include <string.h>
 
 #include "integrators/integrator.h"
-
-/* The keys of [sweep] that are not axes. */
-static bool reserved(const char *key)
-{
-    return !strcmp(key, "problem") || !strcmp(key, "integrator") ||
-           !strcmp(key, "reference");
-}
-
-static char *dup_n(const char *s, size_t n)
-{
-    char *d = malloc(n + 1);
-    if (d) {
-        memcpy(d, s, n);
-        d[n] = '\0';
-    }
-    return d;
-}
-
-/* The shortest "%.*g" of x that reads back as x, without an exponent
- * between 1e-4 and 1e15 (200, not 2e+02). */
-static void shortest(double x, char *buf, size_t len)
-{
-    bool plain = fabs(x) >= 1e-4 && fabs(x) < 1e15;
-    for (int p = 1; p <= 17; p++) {
-        snprintf(buf, len, "%.*g", p, x);
-        if (strtod(buf, NULL) == x && !(plain && strchr(buf, 'e')))
-            return;
-    }
-}
-
-static const char *trimmed(const char *s, size_t *n)
-{
-    while (*n && (*s == ' ' || *s == '\t'))
-        s++, (*n)--;
-    while (*n && (s[*n - 1] == ' ' || s[*n - 1] == '\t'))
-        (*n)--;
-    return s;
-}
-
-static cl_status add_value(cl_sweep_axis *a, const char *s, size_t n)
-{
-    char **grown = realloc(a->v, (size_t)(a->n + 1) * sizeof *grown);
-    char *v = grown ? dup_n(s, n) : NULL;
-    if (grown)
-        a->v = grown;
-    if (!v)
-        return CL_ENOMEM;
-    a->v[a->n++] = v;
-    return CL_OK;
-}
-
-/* linspace(a, b, k) or logspace(a, b, k): k values (1 .. MAX) from a to b,
- * evenly spaced, or 10 to the power of evenly spaced exponents a .. b. */
-static cl_status spaced(cl_sweep_axis *a, const char *v, bool log, bool *ok)
-{
-    double lo, hi, k;
-    int used = 0;
-    *ok = sscanf(v + 9, " %lf , %lf , %lf ) %n", &lo, &hi, &k, &used) == 3 &&
-          v[9 + used] == '\0' && isfinite(lo) && isfinite(hi) && k >= 1 &&
-          k <= CL_SWEEP_MAX_VALUES && k == floor(k);
-    cl_status rc = CL_OK;
-    for (int i = 0; *ok && !rc && i < (int)k; i++) {
-        double e = k == 1 ? lo : lo + (hi - lo) * i / (k - 1);
-        char buf[32];
-        shortest(log ? pow(10, e) : e, buf, sizeof buf);
-        rc = add_value(a, buf, strlen(buf));
-    }
-    return rc;
-}
-
-/* A comma-separated list of non-empty values. */
-static cl_status listed(cl_sweep_axis *a, const char *v, bool *ok)
-{
-    cl_status rc = CL_OK;
-    *ok = true;
-    for (const char *p = v; *ok && !rc; p += strcspn(p, ",") + 1) {
-        size_t n = strcspn(p, ",");
-        const char *s = trimmed(p, &n);
-        *ok = n > 0;
-        rc = *ok ? add_value(a, s, n) : CL_OK;
-        if (!p[strcspn(p, ",")])
-            break;
-    }
-    return rc;
-}
-
-/* dt, rtol, atol, t_end: [run]; n: [cloth] n; else SECTION.KEY. */
-static char *axis_key(const char *key)
-{
-    static const char *const run_keys[] = {"dt", "rtol", "atol", "t_end",
-                                           NULL};
-    char buf[256];
-    for (int k = 0; run_keys[k]; k++)
-        if (!strcmp(key, run_keys[k])) {
-            snprintf(buf, sizeof buf, "run.%s", key);
-            return strdup(buf);
-        }
-    if (!strcmp(key, "n"))
-        return strdup("cloth.n");
-    const char *dot = strrchr(key, '.');
-    return dot && dot != key && dot[1] ? strdup(key) : NULL;
-}
-
-static cl_status read_axis(cl_config *cfg, const char *key, cl_sweep *sw,
-                           cl_error *err)
-{
-    if (sw->naxis == CL_SWEEP_MAX_AXES)
-        return cl_config_refuse(cfg, "sweep", key, CL_EINVAL,
-                                "too many axes (at most 16)", err);
-    cl_sweep_axis *a = &sw->axis[sw->naxis];
-    const char *v = cl_config_string(cfg, "sweep", key, "");
-    bool ok = false;
-    if (!(a->key = axis_key(key)))
-        return cl_config_refuse(cfg, "sweep", key, CL_EINVAL,
-                                "expected problem, integrator, reference, an "
-                                "axis dt, rtol, atol, t_end, n or "
-                                "SECTION.KEY", err);
-    sw->naxis++;
-    cl_status rc = !strncmp(v, "linspace(", 9) ? spaced(a, v, false, &ok)
-                   : !strncmp(v, "logspace(", 9) ? spaced(a, v, true, &ok)
-                                                 : listed(a, v, &ok);
-    if (rc)
-        return cl_error_set(err, rc, "out of memory");
-    return ok ? CL_OK
-              : cl_config_refuse(cfg, "sweep", key, CL_EINVAL,
-                                 "expected a list v1, v2, ... of non-empty "
-                                 "values, linspace(a, b, k) or logspace(a, "
-                                 "b, k) with 1 <= k <= 100000", err);
-}
-
-/* "NAME[:LINSOL], ...", each NAME an integrator of the registry. */
-static cl_status read_integrators(cl_config *cfg, cl_sweep *sw,
-                                  cl_error *err)
-{
-    cl_sweep_axis list = {0};
-    bool ok = false;
-    const char *v = cl_config_string(cfg, "sweep", "integrator", "");
-    if (!*v)
-        return cl_error_set(err, CL_EINVAL, "%s: [sweep] integrator: "
-                            "NAME[:LINSOL], ... is required",
-                            cl_config_path(cfg));
-    cl_status rc = listed(&list, v, &ok);
-    char name[64];
-    for (int k = 0; ok && !rc && k < list.n; k++) {
-        snprintf(name, sizeof name, "%.*s", (int)strcspn(list.v[k], ":"),
-                 list.v[k]);
-        ok = cl_integrator_find(name) != NULL;
-    }
-    sw->integrator = list.v;
-    sw->nint = list.n;
-    if (rc)
-        return cl_error_set(err, rc, "out of memory");
-    return ok ? CL_OK
-              : cl_config_refuse(cfg, "sweep", "integrator", CL_EINVAL,
-                                 "expected NAME[:LINSOL], ... with each NAME "
-                                 "an integrator (clothode list)", err);
-}
-
-static cl_sweep_axis *find_axis(cl_sweep *sw, const char *key)
-{
-    for (int a = 0; a < sw->naxis; a++)
-        if (!strcmp(sw->axis[a].key, key))
-            return &sw->axis[a];
-    return NULL;
-}
-
-/* With one t_end T, every dt becomes T / N, N = round(T / dt) >= 1, so
- * that a fixed-step run ends exactly at T (as in the stability study);
- * values that are not positive numbers are left for the run to refuse. */
-static void snap_dt(cl_sweep *sw)
-{
-    cl_sweep_axis *dt = find_axis(sw, "run.dt"), *te = find_axis(sw,
-                                                                "run.t_end");
-    char *end;
-    double T = te && te->n == 1 ? strtod(te->v[0], &end) : NAN;
-    if (!dt || !(T > 0) || *end)
-        return;
-    for (int k = 0; k < dt->n; k++) {
-        double h = strtod(dt->v[k], &end), n = round(T / h);
-        char buf[32];
-        if (!(h > 0) || *end || !isfinite(n) || n > 1e15)
-            continue;
-        shortest(T / fmax(n, 1), buf, sizeof buf);
-        char *v = strdup(buf);
-        if (v) {
-            free(dt->v[k]);
-            dt->v[k] = v;
-        }
-    }
-}
-
-cl_status cl_sweep_read(cl_config *cfg, cl_sweep *sw, cl_error *err)
-{
-    const char *problem = cl_config_string(cfg, "sweep", "problem", "");
-    double ref = 0;
-    cl_status rc = read_integrators(cfg, sw, err);
-    if (!rc && !*problem)
-        rc = cl_error_set(err, CL_EINVAL, "%s: [sweep] problem: a problem "
-                          "file is required", cl_config_path(cfg));
-    if (!rc && !(sw->problem = strdup(problem)))
-        rc = cl_error_set(err, CL_ENOMEM, "out of memory");
-    if (!rc)
-        rc = cl_config_double(cfg, "sweep", "reference", 0, 1e-15, 1e-4,
-                              &ref, err);
-    if (!rc && ref > 0)
-        shortest(ref, sw->ref_rtol, sizeof sw->ref_rtol);
-    const char *key;
-    for (size_t k = 0; !rc && (key = cl_config_key_at(cfg, "sweep", k)); k++)
-        if (!reserved(key))
-            rc = read_axis(cfg, key, sw, err);
-    if (!rc)
-        snap_dt(sw);
-    return rc;
-}
 
 /* ---- ids and commands --------------------------------------------------- */
 
@@ -342,7 +128,7 @@ static bool method_axis(const char *key)
 static cl_status add_reference(cl_sweep *sw, int k, cl_error *err)
 {
     cl_sweep_job *r = &sw->job[sw->njob];
-    r->value = calloc((size_t)sw->naxis + 1, sizeof *r->value);
+    r->value = calloc(CL_SWEEP_MAX_AXES + 1, sizeof *r->value);
     if (!r->value)
         return cl_error_set(err, CL_ENOMEM, "out of memory");
     for (int a = 0; a < sw->naxis; a++)
@@ -366,17 +152,92 @@ static cl_status add_reference(cl_sweep *sw, int k, cl_error *err)
     return finish_job(sw, sw->njob - 1, &dup, err);
 }
 
-static long product(const cl_sweep *sw)
+/* ---- the union of the parts -------------------------------------------- */
+
+/* The index of sw's axis `key`, added if new; -1 if there are too many. */
+static int union_axis(cl_sweep *sw, const char *key)
 {
-    long n = sw->nint;
-    for (int a = 0; a < sw->naxis && n <= CL_SWEEP_MAX_VALUES; a++)
-        n *= sw->axis[a].n;
+    for (int a = 0; a < sw->naxis; a++)
+        if (!strcmp(sw->axis[a].key, key))
+            return a;
+    if (sw->naxis == CL_SWEEP_MAX_AXES)
+        return -1;
+    sw->axis[sw->naxis] = (cl_sweep_axis){.key = strdup(key), .from = -1};
+    return sw->axis[sw->naxis].key ? sw->naxis++ : -1;
+}
+
+/* The list's own copy of the string v, added if new; NULL without
+ * memory. */
+static const char *union_value(char ***list, int *n, const char *v)
+{
+    for (int k = 0; k < *n; k++)
+        if (!strcmp((*list)[k], v))
+            return (*list)[k];
+    char **grown = realloc(*list, (size_t)(*n + 1) * sizeof *grown);
+    if (!grown)
+        return NULL;
+    *list = grown;
+    return (grown[*n] = strdup(v)) ? grown[(*n)++] : NULL;
+}
+
+/* The jobs of a part: integrators times its axes' values (derived axes
+ * following their source). */
+static long part_size(const cl_sweep_part *p)
+{
+    long n = p->nint;
+    for (int a = 0; a < p->naxis && n <= CL_SWEEP_MAX_VALUES; a++)
+        n *= p->axis[a].from < 0 ? p->axis[a].n : 1;
     return n;
+}
+
+/* Job k of part p: its value of every axis, the last axis fastest. */
+static cl_status fill_job(cl_sweep *sw, const cl_sweep_part *p,
+                          const int *map, long k, cl_sweep_job *j)
+{
+    int idx[CL_SWEEP_MAX_AXES];
+    long rest = k;
+    for (int a = p->naxis - 1; a >= 0; a--)
+        if (p->axis[a].from < 0) {
+            idx[a] = (int)(rest % p->axis[a].n);
+            rest /= p->axis[a].n;
+        }
+    for (int a = 0; a < p->naxis; a++) {
+        cl_sweep_axis *u = &sw->axis[map[a]];
+        int at = p->axis[a].from < 0 ? idx[a] : idx[p->axis[a].from];
+        if (!(j->value[map[a]] = union_value(&u->v, &u->n,
+                                             p->axis[a].v[at])))
+            return CL_ENOMEM;
+    }
+    j->integrator = union_value(&sw->integrator, &sw->nint,
+                                p->integrator[rest]);
+    j->ref = -1;
+    return j->integrator ? CL_OK : CL_ENOMEM;
+}
+
+static cl_status expand_part(cl_sweep *sw, const cl_sweep_part *p,
+                             cl_error *err)
+{
+    int map[CL_SWEEP_MAX_AXES], dup;
+    for (int a = 0; a < p->naxis; a++)
+        if ((map[a] = union_axis(sw, p->axis[a].key)) < 0)
+            return cl_error_set(err, CL_EINVAL, "sweep: more than %d axes "
+                                "over all parts", CL_SWEEP_MAX_AXES);
+    cl_status rc = CL_OK;
+    for (long k = 0; !rc && k < part_size(p); k++) {
+        cl_sweep_job *j = &sw->job[sw->njob++];
+        if (!(j->value = calloc(CL_SWEEP_MAX_AXES + 1, sizeof *j->value)) ||
+            fill_job(sw, p, map, k, j))
+            return cl_error_set(err, CL_ENOMEM, "out of memory");
+        rc = finish_job(sw, sw->njob - 1, &dup, err);
+    }
+    return rc;
 }
 
 cl_status cl_sweep_expand(cl_sweep *sw, cl_error *err)
 {
-    long n = product(sw);
+    long n = 0;
+    for (int p = 0; p < sw->nplan; p++)
+        n += part_size(&sw->part[p]);
     if (n > CL_SWEEP_MAX_VALUES)
         return cl_error_set(err, CL_EINVAL, "sweep: more than %d jobs",
                             CL_SWEEP_MAX_VALUES);
@@ -385,21 +246,8 @@ cl_status cl_sweep_expand(cl_sweep *sw, cl_error *err)
     if (!sw->job)
         return cl_error_set(err, CL_ENOMEM, "out of memory");
     cl_status rc = CL_OK;
-    for (long k = 0; !rc && k < n; k++) {
-        cl_sweep_job *j = &sw->job[sw->njob++];
-        long rest = k;
-        j->value = calloc((size_t)sw->naxis + 1, sizeof *j->value);
-        if (!j->value)
-            return cl_error_set(err, CL_ENOMEM, "out of memory");
-        for (int a = sw->naxis - 1; a >= 0; a--) { /* the last fastest */
-            j->value[a] = sw->axis[a].v[rest % sw->axis[a].n];
-            rest /= sw->axis[a].n;
-        }
-        j->integrator = sw->integrator[rest];
-        j->ref = -1;
-        int dup;
-        rc = finish_job(sw, (int)k, &dup, err);
-    }
+    for (int p = 0; !rc && p < sw->nplan; p++)
+        rc = expand_part(sw, &sw->part[p], err);
     for (long k = 0; !rc && sw->ref_rtol[0] && k < n; k++)
         rc = add_reference(sw, (int)k, err);
     return rc;
@@ -424,5 +272,6 @@ void cl_sweep_free(cl_sweep *sw)
     free(sw->dir);
     free(sw->problem);
     free(sw->clothode);
+    cl_sweep_parts_free(sw);
     memset(sw, 0, sizeof *sw);
 }

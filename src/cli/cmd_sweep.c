@@ -89,13 +89,11 @@ static int plan(void *settings)
         int refs = 0;
         for (int k = 0; k < sw.njob; k++)
             refs += sw.job[k].reference;
-        printf("sweep      %s: %d jobs (%d integrators", sw.problem,
-               sw.njob - refs, sw.nint);
+        printf("sweep      %s: %d jobs, %d references; %d integrators",
+               sw.problem, sw.njob - refs, refs, sw.nint);
         for (int k = 0; k < sw.naxis; k++)
-            printf(" x %d %s", sw.axis[k].n, sw.axis[k].key);
-        printf(")%s%.0d%s\noutput     %s/jobs.txt, %s/sweep.json\n",
-               refs ? ", " : "", refs, refs ? " references" : "", sw.dir,
-               sw.dir);
+            printf(", %d %s", sw.axis[k].n, sw.axis[k].key);
+        printf("\noutput     %s/jobs.txt, %s/sweep.json\n", sw.dir, sw.dir);
     }
     cl_sweep_free(&sw);
     cl_config_free(cfg);
