@@ -172,17 +172,3 @@ void cl_cli_default_out(const char *problem, char *buf, size_t len)
     size_t n = strcspn(base, ".");
     snprintf(buf, len, "out/%.*s", (int)n, base);
 }
-
-void cl_cli_progress(void *ctx, double fraction)
-{
-    (void)ctx;
-    if (!isatty(STDERR_FILENO))
-        return;
-    int width = 40, done = (int)(fraction * width + 0.5);
-    fprintf(stderr, "\r[%.*s%*s] %3.0f%%", done,
-            "########################################", width - done, "",
-            100.0 * fraction);
-    if (fraction >= 1.0)
-        fputc('\n', stderr);
-    fflush(stderr);
-}

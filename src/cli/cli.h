@@ -144,7 +144,4 @@ cl_status cl_cli_methods_check(cl_config *cfg, cl_cli_methods *ms,
 cl_status cl_cli_methods_try(cl_model *model, const cl_cli_methods *ms,
                              cl_error *err);
 
-/* Progress bar on stderr (only when stderr is a terminal). */
-void cl_cli_progress(void *ctx, double fraction);
-
 #endif

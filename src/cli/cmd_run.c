@@ -6,6 +6,7 @@
 #include "analysis/simulate.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
+#include "cli/progress.h"
 
 typedef struct {
     cl_cli_args a;
@@ -81,12 +82,16 @@ static cl_status run_work(cl_model *m, const cl_cli_job *job, void *ctx,
 {
     run_setup *r = ctx;
     cl_sim_result res = {0};
+    cl_cli_progress_line line;
     cl_status rc = cl_model_set_threads(m, (int)r->run.threads, err);
+    cl_cli_progress_start(&line, job->quiet, "t =", "s", r->so.t_end);
     r->so.outdir = job->outdir;
     r->so.progress = cl_cli_progress;
+    r->so.progress_ctx = &line;
     if (!rc)
         rc = cl_simulate(m, r->integrator.m[0].type, &r->integrator.m[0].io,
                          &r->so, &res, err);
+    cl_cli_progress_clear(&line);
     if (!job->quiet && res.rows > 0)
         print_summary(job->problem, r, m, &res);
     if (res.rows > 0) {

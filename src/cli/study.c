@@ -1,6 +1,8 @@
 /* The study loop of convergence, stability and energy (see study.h). */
 #include "cli/study.h"
 
+#include "cli/progress.h"
+
 #include <stdlib.h>
 
 typedef struct {
@@ -26,8 +28,12 @@ cl_status cl_cli_study_run(cl_model *m, const cl_cli_job *job,
     if (!rc && !job->quiet)
         puts(st->columns);
     int done = 0;
+    cl_cli_progress_line line;
+    cl_cli_progress_start(&line, job->quiet, "integrators", "integrators", n);
     for (; !rc && done < n; done++) {
+        cl_cli_progress_show(&line, done);
         rc = st->run(m, ctx, done, res + (size_t)done * st->size, err);
+        cl_cli_progress_clear(&line);
         if (!rc && !job->quiet)
             st->print(res + (size_t)done * st->size);
         fflush(stdout);
