@@ -202,6 +202,22 @@ static void skip(const char *what, const char *why)
     cr_skip_test("skipped: %s", why);
 }
 
+/* Why ssh failed: the last line of D/NAME. */
+static const char *last_line(const char *d, const char *name)
+{
+    static char why[600];
+    char path[1100], line[512] = "no message";
+    snprintf(path, sizeof path, "%s/%s", d, name);
+    FILE *fp = fopen(path, "r");
+    while (fp && fgets(line, sizeof line, fp))
+        ;
+    if (fp)
+        fclose(fp);
+    snprintf(why, sizeof why, "ssh to the test's sshd failed: %.*s",
+             (int)strcspn(line, "\n"), line);
+    return why;
+}
+
 /* An sshd of its own on 127.0.0.1:PORT with a generated host key and an
  * authorized key, and a login file naming this machine twice; 0, or why
  * not. */
@@ -232,12 +248,13 @@ static const char *start_sshd(const char *d, int port)
                       "-o LogLevel=ERROR";
     char login[1400];
     snprintf(login, sizeof login, ssh, port, d);
-    for (int k = 0; k < 50; k++) {
-        if (!sh("%s root@127.0.0.1 true 2>/dev/null", login))
-            break;
-        if (k == 49)
-            return "sshd does not accept the generated key";
-        nanosleep(&(struct timespec){0, 100000000}, NULL);
+    /* up to 30 s: a loaded machine starts sshd slowly */
+    for (double t0 = cli_now();
+         sh("%s -o ConnectTimeout=10 root@127.0.0.1 true 2>>%s/ssh.log",
+            login, d);) {
+        if (cli_now() - t0 > 30)
+            return last_line(d, "ssh.log");
+        nanosleep(&(struct timespec){0, 200000000}, NULL);
     }
     fp = fopen(strcat(strcpy((char[1100]){0}, d), "/logins"), "w");
     if (!fp)

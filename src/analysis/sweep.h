@@ -121,6 +121,9 @@ cl_status cl_sweep_load(const char *dir, cl_sweep *sw, cl_error *err);
 
 void cl_sweep_free(cl_sweep *sw);
 
+/* Free the strings v[0 .. n) and the array v. */
+void cl_sweep_strings_free(char **v, int n);
+
 /* Index of the job with id, or -1. */
 int cl_sweep_find(const cl_sweep *sw, const char *id);
 

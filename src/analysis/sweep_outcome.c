@@ -61,9 +61,7 @@ cl_status cl_sweep_joblog_read(const char *dir, cl_sweep_joblog *log,
 
 void cl_sweep_joblog_free(cl_sweep_joblog *log)
 {
-    for (int k = 0; k < log->n; k++)
-        free(log->command[k]);
-    free(log->command);
+    cl_sweep_strings_free(log->command, log->n);
     free(log->exitval);
     free(log->signal);
     memset(log, 0, sizeof *log);

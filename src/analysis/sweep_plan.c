@@ -253,6 +253,13 @@ cl_status cl_sweep_expand(cl_sweep *sw, cl_error *err)
     return rc;
 }
 
+void cl_sweep_strings_free(char **v, int n)
+{
+    for (int k = 0; k < n; k++)
+        free(v[k]);
+    free(v);
+}
+
 void cl_sweep_free(cl_sweep *sw)
 {
     for (int k = 0; k < sw->njob; k++) {
@@ -261,14 +268,10 @@ void cl_sweep_free(cl_sweep *sw)
     }
     free(sw->job);
     for (int a = 0; a < sw->naxis; a++) {
-        for (int k = 0; k < sw->axis[a].n; k++)
-            free(sw->axis[a].v[k]);
-        free(sw->axis[a].v);
+        cl_sweep_strings_free(sw->axis[a].v, sw->axis[a].n);
         free(sw->axis[a].key);
     }
-    for (int k = 0; k < sw->nint; k++)
-        free(sw->integrator[k]);
-    free(sw->integrator);
+    cl_sweep_strings_free(sw->integrator, sw->nint);
     free(sw->dir);
     free(sw->problem);
     free(sw->clothode);

@@ -149,9 +149,7 @@ static cl_status derived(cl_sweep_part *p, int self, const char *v, bool *ok,
 
 static void free_axis(cl_sweep_axis *a)
 {
-    for (int k = 0; k < a->n; k++)
-        free(a->v[k]);
-    free(a->v);
+    cl_sweep_strings_free(a->v, a->n);
     free(a->key);
     memset(a, 0, sizeof *a);
 }
@@ -303,9 +301,7 @@ void cl_sweep_parts_free(cl_sweep *sw)
         cl_sweep_part *part = &sw->part[p];
         for (int a = 0; a < part->naxis; a++)
             free_axis(&part->axis[a]);
-        for (int k = 0; k < part->nint; k++)
-            free(part->integrator[k]);
-        free(part->integrator);
+        cl_sweep_strings_free(part->integrator, part->nint);
         free(part->name);
     }
     sw->npart = 0;

@@ -1,6 +1,8 @@
 /* A collected sweep table read back as a study's runs (sweep_table.h). */
 #include "analysis/sweep_table.h"
 
+#include "analysis/sweep.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -75,12 +77,8 @@ cl_status cl_sweep_table_read(const char *path, cl_sweep_table *t,
 
 void cl_sweep_table_free(cl_sweep_table *t)
 {
-    for (int k = 0; k < t->ncol; k++)
-        free(t->head[k]);
-    for (int k = 0; k < t->ncell; k++)
-        free(t->cell[k]);
-    free(t->head);
-    free(t->cell);
+    cl_sweep_strings_free(t->head, t->ncol);
+    cl_sweep_strings_free(t->cell, t->ncell);
     free(t->keep);
     free(t->path);
     memset(t, 0, sizeof *t);

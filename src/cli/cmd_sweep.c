@@ -14,14 +14,17 @@
 
 /* ---- plan --------------------------------------------------------------- */
 
-static const cl_cli_opt plan_rows[] = {
-    {.name = "out", .arg = "DIR", .type = CL_CLI_STRING,
-     .field = offsetof(cl_cli_args, out),
-     .help = "sweep directory (default out/sweep-NAME for NAME.ini)"},
-    {.name = "quiet", .type = CL_CLI_FLAG,
-     .field = offsetof(cl_cli_args, quiet), .help = "no summary on stdout"},
-    CL_CLI_HELP_ROW,
-    {.type = CL_CLI_END}};
+/* The rows of plan and collect: --out ARG, --quiet, --help. */
+#define SWEEP_OUT_ROWS(arg_name, out_help)                                  \
+    {{.name = "out", .arg = (arg_name), .type = CL_CLI_STRING,             \
+      .field = offsetof(cl_cli_args, out), .help = (out_help)},            \
+     {.name = "quiet", .type = CL_CLI_FLAG,                                \
+      .field = offsetof(cl_cli_args, quiet), .help = "no summary on stdout"},\
+     CL_CLI_HELP_ROW,                                                      \
+     {.type = CL_CLI_END}}
+
+static const cl_cli_opt plan_rows[] = SWEEP_OUT_ROWS(
+    "DIR", "sweep directory (default out/sweep-NAME for NAME.ini)");
 
 static const cl_cli_table plan_table = {
     .cmd = "sweep plan", .synopsis = "SWEEP.ini [--out DIR]", .npos = 1,
@@ -269,15 +272,8 @@ static int run(void *settings)
 
 /* ---- collect ------------------------------------------------------------ */
 
-static const cl_cli_opt collect_rows[] = {
-    {.name = "out", .arg = "TABLE", .type = CL_CLI_STRING,
-     .field = offsetof(cl_cli_args, out),
-     .help = "the CSV table (default DIR/collected.csv)"},
-    {.name = "quiet", .type = CL_CLI_FLAG,
-     .field = offsetof(cl_cli_args, quiet),
-     .help = "no summary on stdout"},
-    CL_CLI_HELP_ROW,
-    {.type = CL_CLI_END}};
+static const cl_cli_opt collect_rows[] = SWEEP_OUT_ROWS(
+    "TABLE", "the CSV table (default DIR/collected.csv)");
 
 static const cl_cli_table collect_table = {
     .cmd = "sweep collect", .synopsis = "DIR [--out TABLE.csv]", .npos = 1,
