@@ -35,7 +35,7 @@ sweep() { # name dir
     "$bin" sweep plan "sweeps/$name.ini" --out "$dir/sweep" --quiet
     "$bin" sweep run "$dir/sweep" --engine local --jobs "${REPORT_JOBS:-0}" \
         --quiet
-    "$bin" sweep collect "$dir/sweep" --out "$dir/sweep.csv" | tail -1
+    "$bin" sweep collect "$dir/sweep" --out "$dir/sweep.csv" | grep " complete, "
 }
 
 # Draw plots/NAME.png and plots/NAME.pdf with plots/NAME.gp.

@@ -88,11 +88,15 @@ Test(sweep, axes_expand_lists_linspace_logspace)
     cr_assert_str_eq(sw.job[1].value[2], "8");
     cr_assert_str_eq(sw.job[2].value[1], "125");
     cr_assert_str_eq(sw.job[30].integrator, "semi-bdf2:pcg");
+    char tail[2200];
+    snprintf(tail, sizeof tail, " --out %s/d/jobs/%s --quiet 2> %s/d/jobs/%s/"
+             "stderr", tmp, sw.job[1].id, tmp, sw.job[1].id);
     cr_assert(strstr(sw.job[1].command,
                      " run p.ini --integrator rk4 --frames 0 --set "
                      "run.dt=0.0001 --set type1.ks=100 --set cloth.n=8 "
                      "--out "),
               "%s", sw.job[1].command);
+    cr_assert(strstr(sw.job[1].command, tail), "%s", sw.job[1].command);
     for (int a = 0; a < sw.njob; a++)
         for (int b = a + 1; b < sw.njob; b++)
             cr_assert_str_neq(sw.job[a].id, sw.job[b].id);
@@ -292,12 +296,14 @@ Test(sweep, collect_cli_summary)
     put_job_file(&sw, 0, "exit", "0\n");
     put_job_file(&sw, 0, "stats.csv", "steps,50\n");
     put_job_file(&sw, 1, "exit", "3\n");
+    put_job_file(&sw, 1, "stderr", "clothode: it broke, here\nmore\n");
     char table[1024], line[512];
     snprintf(table, sizeof table, "%s/t.csv", tmp);
     cli_result r;
     cli_run(&r, "sweep", "collect", sw.dir, "--out", table, NULL);
     cli_assert_ok(&r);
-    snprintf(line, sizeof line, "failed     %s rk4 run.dt=2e-3 (exit-3)\n"
+    snprintf(line, sizeof line, "failed     %s rk4 run.dt=2e-3 (exit-3): "
+             "clothode: it broke, here\n"
              "missing    %s rk4 run.dt=4e-3\n"
              "1 complete, 1 failed, 1 missing\n", sw.job[1].id,
              sw.job[2].id);
@@ -311,6 +317,8 @@ Test(sweep, collect_cli_summary)
     snprintf(line, sizeof line, "\n%s,job,rk4,4e-3,missing,missing,NA,",
              sw.job[2].id);
     cr_assert(strstr(text, line), "%s", text);
+    cr_assert(strstr(text, ",NA,NA,\"clothode: it broke, here\"\n"), "%s",
+              text);
     cl_sweep_free(&sw);
 }
 

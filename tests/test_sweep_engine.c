@@ -213,7 +213,7 @@ static const char *last_line(const char *d, const char *name)
         ;
     if (fp)
         fclose(fp);
-    snprintf(why, sizeof why, "ssh to the test's sshd failed: %.*s",
+    snprintf(why, sizeof why, "ssh to the test's sshd failed (%s): %.*s", name,
              (int)strcspn(line, "\n"), line);
     return why;
 }
@@ -236,12 +236,15 @@ static const char *start_sshd(const char *d, int port)
     if (!fp)
         return "cannot write sshd_config";
     fprintf(fp, "Port %d\nListenAddress 127.0.0.1\nHostKey %s/host\n"
-                "AuthorizedKeysFile %s/authorized_keys\nPidFile %s/sshd.pid\n"
+                "AuthorizedKeysFile %s/authorized_keys\nPidFile none\n"
                 "PasswordAuthentication no\nKbdInteractiveAuthentication no\n"
                 "PermitRootLogin prohibit-password\nStrictModes no\n"
-                "UsePAM no\n", port, d, d, d);
+                "UsePAM no\n", port, d, d);
     fclose(fp);
-    if (sh("/usr/sbin/sshd -f %s/sshd_config -E %s/sshd.log", d, d))
+    /* in the foreground (-D) of a background shell job: daemon() can
+     * fail under the test runner */
+    if (sh("/usr/sbin/sshd -D -f %s/sshd_config -E %s/sshd.log "
+           "</dev/null >/dev/null 2>&1 & echo $! > %s/sshd.pid", d, d, d))
         return "sshd did not start";
     const char *ssh = "ssh -p %d -i %s/key -o StrictHostKeyChecking=no "
                       "-o UserKnownHostsFile=/dev/null -o BatchMode=yes "
@@ -253,7 +256,7 @@ static const char *start_sshd(const char *d, int port)
          sh("%s -o ConnectTimeout=10 root@127.0.0.1 true 2>>%s/ssh.log",
             login, d);) {
         if (cli_now() - t0 > 30)
-            return last_line(d, "ssh.log");
+            return last_line(d, "sshd.log");
         nanosleep(&(struct timespec){0, 200000000}, NULL);
     }
     fp = fopen(strcat(strcpy((char[1100]){0}, d), "/logins"), "w");
@@ -284,7 +287,8 @@ Test(sweep_engine, ssh_gives_the_local_table)
     char summary[256];
     in_tmp(dir, "sshd");
     mkdir(dir, 0700);
-    const char *why = start_sshd(dir, 20000 + (int)(getpid() % 20000));
+    /* ports apart from the Slurm test's (30000 .. 31999) */
+    const char *why = start_sshd(dir, 40000 + (int)(getpid() % 10000));
     if (why) {
         skip("ssh_gives_the_local_table", why);
         return;
@@ -325,7 +329,7 @@ Test(sweep_engine, slurm_array_failed_job_and_resume)
         return;
     }
     if (sh("SLURM_LOCAL_PORT=%d scripts/slurm-local.sh start %s > %s.log "
-           "2>&1", 26817 + (int)(getpid() % 1000) * 2, state, state)) {
+           "2>&1", 30000 + (int)(getpid() % 1000) * 2, state, state)) {
         skip("slurm_array_failed_job_and_resume", "scripts/slurm-local.sh "
              "could not start Slurm (see its log)");
         return;
@@ -348,8 +352,9 @@ Test(sweep_engine, slurm_array_failed_job_and_resume)
     collect(sl, summary, sizeof summary);
     cr_assert_str_eq(summary, "4 complete, 2 failed, 0 missing");
     cli_run(&r, "sweep", "collect", sl, "--out", "/dev/null", NULL);
-    cr_assert(strstr(r.out, "run.dt=-1 run.t_end=0.05 (error)\n"), "%s",
-              r.out);
+    cr_assert(strstr(r.out, "run.dt=-1 run.t_end=0.05 (error): clothode: "
+                            "--set: [run] dt = \"-1\": expected a number >= "
+                            "0\n"), "%s", r.out);
     cli_result_free(&r);
     collect(local, summary, sizeof summary);
     snprintf(local + strlen(local), 8, ".csv");

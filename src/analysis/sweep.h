@@ -148,6 +148,7 @@ typedef struct {
     double t_reached;     /* last time in series.csv (NAN: none) */
     double stat[CL_SWEEP_NSTAT]; /* NAN where absent ("NA") */
     double err_x, err_v;  /* against the reference's final state (NAN) */
+    char message[256];    /* the first line of its stderr, or "" */
 } cl_sweep_outcome;
 
 /* The exit statuses recorded by the engines: GNU parallel's joblog
@@ -165,7 +166,8 @@ cl_status cl_sweep_joblog_read(const char *dir, cl_sweep_joblog *log,
 void cl_sweep_joblog_free(cl_sweep_joblog *log);
 
 /* Everything known of job k: its exit status (status file first, then the
- * joblog), its statistics (stats.csv) and how far it got (series.csv).
+ * joblog), its statistics (stats.csv), how far it got (series.csv) and
+ * the first line of its messages (stderr).
  * The one place that knows a job directory's files. */
 void cl_sweep_outcome_read(const cl_sweep *sw, int k,
                            const cl_sweep_joblog *log, cl_sweep_outcome *o);
@@ -185,7 +187,8 @@ cl_status cl_sweep_outcomes(const cl_sweep *sw, cl_sweep_outcome *out,
                             cl_sweep_counts *c, cl_error *err);
 
 /* The table: a header, then a row per job in job order:
- * id,role,integrator,<axis keys>,status,exit,t_reached,<stats>,err_x,err_v */
+ * id,role,integrator,<axis keys>,status,exit,t_reached,<stats>,err_x,err_v,
+ * message */
 void cl_sweep_write_table(FILE *fp, const cl_sweep *sw,
                           const cl_sweep_outcome *out);
 

@@ -67,7 +67,7 @@ void cl_sweep_write_table(FILE *fp, const cl_sweep *sw,
     fprintf(fp, ",status,exit,t_reached");
     for (int s = 0; s < CL_SWEEP_NSTAT; s++)
         fprintf(fp, ",%s", cl_sweep_stat_names[s]);
-    fprintf(fp, ",err_x,err_v\n");
+    fprintf(fp, ",err_x,err_v,message\n");
     for (int k = 0; k < sw->njob; k++) {
         const cl_sweep_job *j = &sw->job[k];
         const cl_sweep_outcome *o = &out[k];
@@ -81,6 +81,7 @@ void cl_sweep_write_table(FILE *fp, const cl_sweep *sw,
             number(fp, o->stat[s]);
         number(fp, o->err_x);
         number(fp, o->err_v);
+        field(fp, o->message);
         fputc('\n', fp);
     }
 }

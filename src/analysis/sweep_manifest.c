@@ -56,6 +56,11 @@ cl_status cl_sweep_write(const cl_sweep *sw, cl_error *err)
     char path[4200];
     cl_afile af;
     cl_status rc = cl_mkdir_p(sw->dir, err);
+    /* every job's directory, where its command sends its stderr */
+    for (int k = 0; !rc && k < sw->njob; k++) {
+        snprintf(path, sizeof path, "%s/jobs/%s", sw->dir, sw->job[k].id);
+        rc = cl_mkdir_p(path, err);
+    }
     snprintf(path, sizeof path, "%s/jobs.txt", sw->dir);
     if (rc || (rc = cl_afile_open(&af, path, err)))
         return rc;

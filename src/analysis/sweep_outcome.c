@@ -139,6 +139,16 @@ static double reached(const cl_sweep *sw, int k)
     return t;
 }
 
+/* The first line of the job's stderr. */
+static void first_message(const cl_sweep *sw, int k, cl_sweep_outcome *o)
+{
+    FILE *fp = job_file(sw, k, "stderr");
+    if (fp && fgets(o->message, sizeof o->message, fp))
+        o->message[strcspn(o->message, "\n")] = '\0';
+    if (fp)
+        fclose(fp);
+}
+
 static void classify(cl_sweep_outcome *o, bool found, bool stats)
 {
     if (!found) {
@@ -174,6 +184,8 @@ void cl_sweep_outcome_read(const cl_sweep *sw, int k,
     bool found = exit_status(sw, k, log, o);
     bool stats = found && read_stats(sw, k, o);
     o->t_reached = found ? reached(sw, k) : NAN;
+    if (found)
+        first_message(sw, k, o);
     classify(o, found, stats);
 }
 

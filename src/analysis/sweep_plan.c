@@ -82,8 +82,11 @@ static cl_status make_command(const cl_sweep *sw, cl_sweep_job *j)
         u += (size_t)snprintf(buf + u, sizeof buf - u, " --out ");
     if (u < sizeof buf)
         u += cl_sweep_quote(set, buf + u, sizeof buf - u);
+    if (u < sizeof buf) /* its messages kept beside its outputs */
+        u += (size_t)snprintf(buf + u, sizeof buf - u, " --quiet 2> ");
+    snprintf(set, sizeof set, "%s/jobs/%s/stderr", sw->dir, j->id);
     if (u < sizeof buf)
-        u += (size_t)snprintf(buf + u, sizeof buf - u, " --quiet");
+        u += cl_sweep_quote(set, buf + u, sizeof buf - u);
     if (u >= sizeof buf)
         return CL_EINVAL;
     return (j->command = strdup(buf)) ? CL_OK : CL_ENOMEM;

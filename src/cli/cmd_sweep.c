@@ -297,7 +297,8 @@ static void list_unfinished(const cl_sweep *sw, const cl_sweep_outcome *out)
             if (sw->job[k].value[a])
                 printf(" %s=%s", sw->axis[a].key, sw->job[k].value[a]);
         if (out[k].state == CL_SWEEP_FAILED)
-            printf(" (%s)", out[k].exit_class);
+            printf(" (%s)%s%s", out[k].exit_class, *out[k].message ? ": " : "",
+                   out[k].message);
         putchar('\n');
     }
 }

@@ -202,9 +202,8 @@ static int write_ids(const cl_sweep *sw, const int *todo, int n, char *path,
     return fp && fclose(fp) == 0 ? 0 : 1;
 }
 
-/* The array script: each task runs its chunk of the ids, every job with
- * its stderr in DIR/jobs/ID/stderr and its exit status in DIR/jobs/ID/exit
- * (written last, through a rename). */
+/* The array script: each task runs its chunk of the ids, every job's exit
+ * status into DIR/jobs/ID/exit (written last, through a rename). */
 static int write_script(const cl_sweep *sw, const cl_sweep_run_args *r,
                         const char *ids, int n, long minutes, long mb,
                         char *path, size_t len)
@@ -230,9 +229,8 @@ static int write_script(const cl_sweep *sw, const cl_sweep_run_args *r,
             "first=$((SLURM_ARRAY_TASK_ID * %ld + 1))\n"
             "sed -n \"${first},$((first + %ld - 1))p\" %s |\n"
             "while read -r id line; do\n"
-            "    mkdir -p \"$dir/jobs/$id\"\n"
             "    cmd=$(sed -n \"${line}p\" \"$dir/jobs.txt\")\n"
-            "    bash -c \"$cmd\" < /dev/null 2> \"$dir/jobs/$id/stderr\"\n"
+            "    bash -c \"$cmd\" < /dev/null\n"
             "    echo $? > \"$dir/jobs/$id/exit.tmp\"\n"
             "    mv \"$dir/jobs/$id/exit.tmp\" \"$dir/jobs/$id/exit\"\n"
             "done\n"
