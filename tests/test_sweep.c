@@ -355,3 +355,27 @@ Test(sweep, parts_and_derived_axes)
     cr_assert_str_eq(sw.job[7].value[0], "0.2");
     cl_sweep_free(&sw);
 }
+
+/* The options of sweep run are the command line's own: --help names no
+ * key of a sweep file; a sweep directory that is not one is refused. */
+Test(sweep, run_help_and_refusals)
+{
+    cli_result r;
+    cli_run(&r, "sweep", "run", "--help", NULL);
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "--chunk C          slurm: jobs per array task; "
+                            "1 .. 100000, default 1\n"), "%s", r.out);
+    cr_assert_null(strstr(r.out, "[sweep]"), "%s", r.out);
+    cli_result_free(&r);
+    cli_run(&r, "sweep", "run", tmp, NULL);
+    cli_assert_error(&r, 0, "sweep.json: cannot read it; a sweep directory "
+                     "is made by 'clothode sweep plan'", NULL);
+    cli_result_free(&r);
+    cli_run(&r, "sweep", "run", tmp, "--engine", "ssh", NULL);
+    cli_assert_error(&r, 1, "--sshloginfile FILE goes with --engine ssh",
+                     NULL);
+    cli_result_free(&r);
+    cli_run(&r, "sweep", "frobnicate", NULL);
+    cr_assert_eq(r.status, 2);
+    cli_result_free(&r);
+}

@@ -189,10 +189,14 @@ cl_status cl_sweep_load(const char *dir, cl_sweep *sw, cl_error *err)
     json_error_t jerr;
     snprintf(path, sizeof path, "%s/sweep.json", dir);
     json_t *root = json_load_file(path, 0, &jerr);
-    if (!root)
-        return cl_error_set(err, CL_EIO, "%s: %s (line %d); a sweep "
+    if (!root && jerr.line < 1)
+        return cl_error_set(err, CL_EIO, "%s: cannot read it; a sweep "
                             "directory is made by 'clothode sweep plan'",
-                            path, jerr.text, jerr.line);
+                            path);
+    if (!root)
+        return cl_error_set(err, CL_EPARSE, "%s:%d: %s; a sweep directory is "
+                            "made by 'clothode sweep plan'", path, jerr.line,
+                            jerr.text);
     const char *ref = json_string_value(json_object_get(root,
                                                         "reference_rtol"));
     snprintf(sw->ref_rtol, sizeof sw->ref_rtol, "%s", ref ? ref : "");

@@ -316,7 +316,8 @@ void cl_cli_help(const cl_cli_table *t, FILE *fp)
             continue;
         snprintf(lead, sizeof lead, "  --%s%s%s", r->name, r->arg ? " " : "",
                  r->arg ? r->arg : "");
-        describe(r, t->npos == 1, text, sizeof text); /* keys of a problem */
+        describe(r, t->npos == 1 && !t->pos, text, sizeof text); /* keys of
+                                                      * a problem */
         wrapped(fp, lead, text);
     }
     if (keys)
