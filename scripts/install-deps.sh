@@ -17,6 +17,10 @@ pkgs=(build-essential libsundials-dev libsuitesparse-dev libgsl-dev
       pkg-config)
 # libjansson-dev, nettle-dev: run.json (JSON, SHA-256 of the files)
 pkgs+=(libjansson-dev nettle-dev)
+# Sweeps (README "Sweeps"): the manifest is JSON (Jansson); the jobs run on
+# GNU parallel, over ssh, or on Slurm (scripts/slurm-local.sh starts a
+# single-node one with munge); the tests start their own sshd.
+pkgs+=(parallel openssh-server openssh-client slurm-wlm munge)
 # `install-deps.sh paper`: also LaTeX, for make paper only.
 if [[ ${1:-} == paper ]]; then
     pkgs+=(texlive-latex-base texlive-latex-recommended

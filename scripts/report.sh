@@ -27,6 +27,17 @@ split_csv() { # csv dir col...
         END { for (i = 1; i <= m; i++) printf "%s%s", (i > 1 ? " " : ""), order[i] }' "$csv"
 }
 
+# Plan sweeps/NAME.ini into DIR/sweep, run it on GNU parallel (REPORT_JOBS
+# jobs at a time, default one per core) and collect it into DIR/sweep.csv.
+sweep() { # name dir
+    local name=$1 dir=$2
+    rm -rf "$dir/sweep"
+    "$bin" sweep plan "sweeps/$name.ini" --out "$dir/sweep" --quiet
+    "$bin" sweep run "$dir/sweep" --engine local --jobs "${REPORT_JOBS:-0}" \
+        --quiet
+    "$bin" sweep collect "$dir/sweep" --out "$dir/sweep.csv" | grep " complete, "
+}
+
 # Draw plots/NAME.png and plots/NAME.pdf with plots/NAME.gp.
 draw() { # name gnuplot-assignments
     local name=$1 vars=$2
@@ -44,9 +55,10 @@ echo "report: convergence (spring2)"
 names=$(split_csv "$res/convergence/convergence.csv" "$res/convergence/dat" 3 4)
 draw convergence "dir='$res/convergence/dat'; names='$names'; title_text='spring2, T = 1 s: position error against dt'; xlabel_text='dt (s)'"
 
-echo "report: work-precision (hang, T = 0.2 s)"
+echo "report: work-precision (hang, T = 0.2 s), the runs of sweeps/workprecision.ini"
+sweep workprecision "$res/workprecision"
 "$bin" workprecision hang --quiet --out "$res/workprecision" --t-end 0.2 \
-    --dt 1e-3 --rtol 1e-4 --atol 1e-6 --levels 4 --integrator \
+    --from-sweep "$res/workprecision/sweep.csv" --integrator \
     cvode-bdf:klu,cvode-bdf:pcg,semi-bdf2:klu,semi-bdf2:pcg,rk4
 names=$(split_csv "$res/workprecision/workprecision.csv" "$res/workprecision/dat" 4 10)
 draw workprecision "dir='$res/workprecision/dat'; names='$names'; title_text='hang 16 x 16, T = 0.2 s: CPU time against error'"
@@ -61,12 +73,13 @@ draw energy "dir='$res/energy/dat'; names='$names'; title_text='hang-smooth, dt 
 echo "report: explicit step limits, spectrum against stability"
 # The spectral predictions and the measured brackets of the integrators
 # LIST on hang-like PROBLEM (T = 2 s) into DIR/limits.txt, one row
-# "integrator predicted largest-stable smallest-unstable" each.
+# "integrator predicted largest-stable smallest-unstable" each; with
+# from=TABLE the brackets come from a collected sweep.
 limits() { # dir problem list [--set ...]
     local dir=$1 problem=$2 list=$3
     shift 3
     "$bin" stability "$problem" "$@" --quiet --out "$dir" --t-end 2 \
-        --integrator "$list"
+        --integrator "$list" ${from:+--from-sweep "$from"}
     "$bin" spectrum "$problem" "$@" --out "$dir" |
         awk '$2 ~ /^[0-9.e+-]+$/ && NF >= 3 { print $1, $2 }' \
             > "$dir/predicted.txt"
@@ -83,12 +96,15 @@ for p in hang-smooth hang; do
     draw "spectrum-$p" "data='$res/limits/$p/spectrum.csv'; title_text='$p at rest: first-order eigenvalues'" spectrum
 done
 
-echo "report: stability map, explicit limits of hang against the grid size"
-# "n method predicted largest-stable smallest-unstable" per size and method.
+echo "report: stability map, explicit limits of hang against the grid size (sweeps/map.ini)"
+# "n method predicted largest-stable smallest-unstable" per size and method,
+# the brackets from the sweep's grid of steps.
 map=$res/limits/map
 rm -rf "$map" && mkdir -p "$map"
+sweep map "$map"
 for n in 6 8 12 16; do
-    limits "$map/n$n" hang symplectic-euler,rk4 --set cloth.n="$n"
+    from=$map/sweep.csv limits "$map/n$n" hang symplectic-euler,rk4 \
+        --set cloth.n="$n"
     awk -v n="$n" '{ print n, $0 }' "$map/n$n/limits.txt" >> "$map/map.txt"
 done
 sort -k2,2 -k1,1n "$map/map.txt" -o "$map/map.txt"

@@ -97,18 +97,20 @@ cl_status cl_conv_check(const cl_integrator_type *type,
     return cl_trial_whole_steps(type, io->dt, o->t_end, err);
 }
 
-/* Orders between consecutive levels and the least-squares fit. */
-static void fit_orders(cl_conv_result *r)
+void cl_conv_fit(cl_conv_result *r)
 {
-    double q = log(r->fixed ? 2.0 : 10.0);
+    double step = r->fixed ? 2.0 : 10.0, q = log(step);
     double lp[CL_CONV_MAX_LEVELS], lx[CL_CONV_MAX_LEVELS],
         lv[CL_CONV_MAX_LEVELS];
     r->nfit = 0;
     for (int k = 0; k < r->nlev; k++) {
         cl_conv_level *l = &r->lev[k], *prev = k ? &r->lev[k - 1] : NULL;
+        /* levels of a sweep need not be a factor 2 (10) apart */
+        double ratio = prev ? prev->param / l->param : step;
+        double qk = fabs(ratio - step) <= 1e-9 * step ? q : log(ratio);
         l->order = prev && !prev->rc && !l->rc && prev->err_x > 0 &&
                            l->err_x > 0
-                       ? log(prev->err_x / l->err_x) / q
+                       ? log(prev->err_x / l->err_x) / qk
                        : NAN;
         if (!l->fitted)
             continue;
@@ -154,7 +156,7 @@ cl_status cl_convergence(cl_model *m, const cl_integrator_type *type,
         if (l->rc == CL_EINTR) /* a stopped study keeps no part-row */
             rc = cl_error_set(err, CL_EINTR, "%s", l->why.msg);
     }
-    fit_orders(r);
+    cl_conv_fit(r);
     cl_trial_free(&t);
     return rc;
 }

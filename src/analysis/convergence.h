@@ -89,6 +89,11 @@ cl_status cl_convergence(cl_model *m, const cl_integrator_type *type,
                          const cl_conv_opts *o, const cl_conv_ref *ref,
                          cl_conv_result *r, cl_error *err);
 
+/* The orders between consecutive levels (over the ratio of their
+ * parameters) and the least-squares fit over the fitted levels, from
+ * r->lev[0 .. nlev) with param, rc, err_x, err_v and fitted set. */
+void cl_conv_fit(cl_conv_result *r);
+
 /* Work-precision: the least CPU time of the levels that ran and reached
  * e_x <= target (NAN if none did). */
 double cl_conv_cheapest(const cl_conv_result *r, double target);

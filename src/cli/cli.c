@@ -128,6 +128,7 @@ int cl_cli_args_main(int argc, char **argv, const cl_cli_table *t,
     int at = cl_cli_parse(argc, argv, t, settings), status = 2;
     cl_error err = {0};
     cl_config *cfg = at >= 0 ? cl_config_alloc() : NULL;
+    a->arg = at >= 0 && at < argc ? argv[at] : NULL;
     if (at == -2)
         status = 0;
     else if (at >= 0 && !cfg)
@@ -233,20 +234,6 @@ void cl_cli_default_out(const char *problem, char *buf, size_t len)
     else
         snprintf(buf, len, "out/%.*s", (int)n, base);
     free(abs);
-}
-
-void cl_cli_progress(void *ctx, double fraction)
-{
-    (void)ctx;
-    if (!isatty(STDERR_FILENO))
-        return;
-    int width = 40, done = (int)(fraction * width + 0.5);
-    fprintf(stderr, "\r[%.*s%*s] %3.0f%%", done,
-            "########################################", width - done, "",
-            100.0 * fraction);
-    if (fraction >= 1.0)
-        fputc('\n', stderr);
-    fflush(stderr);
 }
 
 cl_status cl_cli_free_state(cl_model *m, const char *path, double *x,

@@ -79,7 +79,8 @@ cl_status cl_cli_ignore_run(cl_config *cfg, void *settings, cl_error *err);
 
 /* main() of a subcommand without a problem: parse argv by t, read the
  * keys of the command line alone into settings (a refused value is a usage
- * error), then return work(settings), the exit status. */
+ * error), then return work(settings), the exit status.  A positional
+ * argument (t->npos 1) is in the settings' cl_cli_args arg. */
 int cl_cli_args_main(int argc, char **argv, const cl_cli_table *t,
                      void *settings, int (*work)(void *settings));
 
@@ -174,8 +175,5 @@ cl_status cl_cli_methods_try(cl_model *model, const cl_cli_methods *ms,
  * or its initial state when path is "". */
 cl_status cl_cli_free_state(cl_model *m, const char *path, double *x,
                             double *v, cl_error *err);
-
-/* Progress bar on stderr (only when stderr is a terminal). */
-void cl_cli_progress(void *ctx, double fraction);
 
 #endif

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "analysis/convergence.h"
+#include "analysis/sweep_table.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
 #include "cli/study.h"
@@ -18,6 +19,8 @@ typedef struct {
     cl_conv_opts co;
     cl_conv_ref ref;
     const cl_cli_study *study; /* convergence or workprecision */
+    const char *from;          /* --from-sweep TABLE, or NULL */
+    cl_sweep_table table;      /* its rows of this problem */
 } conv_setup;
 
 static const cl_cli_opt conv_rows[] = {
@@ -38,6 +41,10 @@ static const cl_cli_opt conv_rows[] = {
      .sec = "convergence", .key = "ref_rtol", .def = 1e-11, .lo = 1e-15,
      .hi = 1e-4, .field = offsetof(conv_setup, co.ref_rtol),
      .help = "reference tolerance (atol R/100)"},
+    {.name = "from-sweep", .arg = "TABLE", .type = CL_CLI_STRING,
+     .field = offsetof(conv_setup, from),
+     .help = "take the levels from a table of 'clothode sweep collect' "
+             "(a sweep with a reference) instead of running them"},
     CL_CLI_TAIL(conv_setup, "no table on stdout"),
     {.type = CL_CLI_END}};
 
@@ -47,7 +54,10 @@ static const char conv_notes[] =
     "reference's floor is its distance to a run at 10x its rtol; levels\n"
     "below the floor, and failed levels (as in run, a final stretch d/L\n"
     "beyond [run] max_stretch counts as a blow-up), are left out of the fit.\n"
-    "Problems that tear are refused.\n";
+    "Problems that tear are refused.  With --from-sweep the levels are the\n"
+    "sweep's runs of each integrator (its dt or rtol axis; the rows whose\n"
+    "other axes match this problem's values) and their errors against the\n"
+    "sweep's reference; every complete level is fitted.\n";
 
 static const cl_cli_table conv_table = {
     .cmd = "convergence", .synopsis = "PROBLEM [options]", .npos = 1,
@@ -74,13 +84,17 @@ static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
 {
     conv_setup *s = ctx;
     cl_status rc = cl_cli_methods_check(cfg, &s->integrators, &s->run.io,
-                                        CL_CLI_DT_FIXED, err);
+                                        s->from ? CL_CLI_DT_NONE
+                                                : CL_CLI_DT_FIXED, err);
     s->co.ref_linsol = "";
     s->co.t_end = s->run.t_end;
     s->co.max_stretch = s->run.max_stretch;
-    for (int k = 0; !rc && k < s->integrators.n; k++)
+    for (int k = 0; !rc && !s->from && k < s->integrators.n; k++)
         rc = cl_conv_check(s->integrators.m[k].type, &s->integrators.m[k].io,
                            (int)s->levels, &s->co, err);
+    if (!rc && s->from && !(rc = cl_sweep_table_read(s->from, &s->table,
+                                                     err)))
+        rc = cl_sweep_table_select(&s->table, cfg, err);
     return rc;
 }
 
@@ -119,15 +133,20 @@ static cl_status begin(cl_model *m, const cl_cli_job *job, void *ctx,
     conv_setup *s = ctx;
     const cl_cloth *c = cl_model_cloth(m);
     cl_status rc = cl_cli_methods_try(m, &s->integrators, err);
-    if (rc || (rc = cl_conv_reference(m, &s->co, &s->ref, err)) ||
+    if (rc || (!s->from && (rc = cl_conv_reference(m, &s->co, &s->ref,
+                                                   err))) ||
         job->quiet)
         return rc;
     char shape[96];
     printf("problem    %s (%s, %zu free), T = %g s\n", job->problem,
            cl_cloth_shape(c, shape, sizeof shape), c->nfree, s->co.t_end);
-    printf("reference  cvode-bdf rtol %g: %ld steps, floor %.2e m "
-           "(distance to rtol %g)\n", s->co.ref_rtol, s->ref.stats.steps,
-           s->ref.err_x, 10 * s->co.ref_rtol);
+    if (s->from)
+        printf("runs       from the sweep table %s (errors against its "
+               "reference)\n", s->from);
+    else
+        printf("reference  cvode-bdf rtol %g: %ld steps, floor %.2e m "
+               "(distance to rtol %g)\n", s->co.ref_rtol,
+               s->ref.stats.steps, s->ref.err_x, 10 * s->co.ref_rtol);
     return CL_OK;
 }
 
@@ -137,8 +156,11 @@ static cl_status run_one(cl_model *m, void *ctx, int k, void *result,
     const conv_setup *s = ctx;
     cl_conv_result *r = result;
     const cl_cli_method *mk = &s->integrators.m[k];
-    cl_status rc = cl_convergence(m, mk->type, &mk->io, (int)s->levels,
-                                  &s->co, &s->ref, r, err);
+    cl_status rc = s->from ? cl_conv_from_sweep(&s->table, mk->label,
+                                                mk->type, r, err)
+                           : cl_convergence(m, mk->type, &mk->io,
+                                            (int)s->levels, &s->co, &s->ref,
+                                            r, err);
     r->label = mk->label;
     return rc;
 }
@@ -151,6 +173,7 @@ static void rows(FILE *fp, const void *result, bool header)
 static void end(void *ctx)
 {
     cl_conv_ref_free(&((conv_setup *)ctx)->ref);
+    cl_sweep_table_free(&((conv_setup *)ctx)->table);
 }
 
 /* ---- workprecision: the same runs, ranked by CPU time per accuracy ---- */
@@ -233,16 +256,23 @@ static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
     return cl_cli_study_run(m, job, s->study, s->integrators.n, ctx, err);
 }
 
+/* The table is freed by end() once the study started, else here. */
+static int conv_main(int argc, char **argv, const cl_cli_table *t,
+                     conv_setup *s)
+{
+    int status = cl_cli_problem_main(argc, argv, t, s, check_setup, study);
+    cl_sweep_table_free(&s->table);
+    return status;
+}
+
 int cl_cmd_convergence(int argc, char **argv)
 {
     conv_setup s = {.study = &conv_study};
-    return cl_cli_problem_main(argc, argv, &conv_table, &s, check_setup,
-                               study);
+    return conv_main(argc, argv, &conv_table, &s);
 }
 
 int cl_cmd_workprecision(int argc, char **argv)
 {
     conv_setup s = {.study = &wp_study};
-    return cl_cli_problem_main(argc, argv, &wp_table, &s, check_setup,
-                               study);
+    return conv_main(argc, argv, &wp_table, &s);
 }

@@ -8,6 +8,7 @@
 #include "cli/commands.h"
 #include "cli/manifest.h"
 #include "cli/outdir.h"
+#include "cli/progress.h"
 
 typedef struct {
     cl_cli_args a;
@@ -117,15 +118,19 @@ static cl_status run_work(cl_model *m, const cl_cli_job *job, void *ctx,
     cl_sim_result res = {0};
     cl_manifest mf = {0};
     cl_error later;
+    cl_cli_progress_line line;
     cl_status rc = cl_model_set_threads(m, (int)r->run.threads, err);
     r->so.outdir = job->outdir;
     r->so.progress = cl_cli_progress;
+    r->so.progress_ctx = &line;
     if (rc || (rc = cl_cli_outdir_prepare(job->outdir, err)) ||
         (rc = cl_manifest_begin(&mf, job, r->argc, r->argv, r->run.threads,
                                 err)))
         return rc;
+    cl_cli_progress_start(&line, job->quiet, "t =", "s", r->so.t_end);
     rc = cl_simulate(m, r->integrator.m[0].type, &r->integrator.m[0].io,
                      &r->so, &res, err);
+    cl_cli_progress_clear(&line);
     if (!job->quiet && res.rows > 0)
         print_summary(job->problem, r, m, &res);
     if (res.rows > 0) {

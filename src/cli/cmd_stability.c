@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "analysis/stability.h"
+#include "analysis/sweep_table.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
 #include "cli/study.h"
@@ -14,6 +15,8 @@ typedef struct {
     cl_cli_methods integrators;
     cl_cli_run run;
     cl_stab_opts so;
+    const char *from;      /* --from-sweep TABLE, or NULL */
+    cl_sweep_table table;  /* its rows of this problem */
 } stab_setup;
 
 /* dt_max: T/100 by default, at most T/10 (a run of a few steps has no room
@@ -57,6 +60,10 @@ static const cl_cli_opt stab_rows[] = {
      .key = "checks", .def = 20, .lo = 1, .hi = 100000,
      .field = offsetof(stab_setup, so.checks),
      .help = "stretch tests per run"},
+    {.name = "from-sweep", .arg = "TABLE", .type = CL_CLI_STRING,
+     .field = offsetof(stab_setup, from),
+     .help = "take the runs from a table of 'clothode sweep collect' "
+             "instead of searching"},
     CL_CLI_TAIL(stab_setup, "no table on stdout"),
     {.type = CL_CLI_END}};
 
@@ -73,7 +80,11 @@ static const cl_cli_table stab_table = {
     .notes =
     "The other [run] keys apply as in run; [run] dt is not used.  Stability\n"
     "need not be monotone in dt: the bracket is the one the search found.\n"
-    "Problems that tear are refused.\n"};
+    "Problems that tear are refused.  With --from-sweep the runs are the\n"
+    "sweep's (its dt axis; the rows whose other axes match this problem's\n"
+    "values): complete runs are stable, failed runs that got going are not;\n"
+    "the bracket is the smallest unstable dt and the largest stable one\n"
+    "below it.\n"};
 
 /* Only fixed-step integrators have a step to limit. */
 static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
@@ -92,6 +103,9 @@ static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
                                 s->integrators.m[k].type->name);
     s->so.t_end = s->run.t_end;
     s->so.max_stretch = s->run.max_stretch;
+    if (!rc && s->from && !(rc = cl_sweep_table_read(s->from, &s->table,
+                                                     err)))
+        rc = cl_sweep_table_select(&s->table, cfg, err);
     return rc;
 }
 
@@ -126,6 +140,8 @@ static cl_status begin(cl_model *m, const cl_cli_job *job, void *ctx,
            "checks per run\n", job->problem,
            cl_cloth_shape(c, shape, sizeof shape), c->nfree, s->so.t_end,
            s->so.max_stretch, s->so.checks);
+    if (s->from)
+        printf("runs       from the sweep table %s\n", s->from);
     return CL_OK;
 }
 
@@ -135,7 +151,10 @@ static cl_status run_one(cl_model *m, void *ctx, int k, void *result,
     const stab_setup *s = ctx;
     cl_stab_result *r = result;
     const cl_cli_method *mk = &s->integrators.m[k];
-    cl_status rc = cl_stability(m, mk->type, &mk->io, &s->so, r, err);
+    cl_status rc = s->from ? cl_stab_from_sweep(&s->table, mk->label,
+                                                mk->type, r, err)
+                           : cl_stability(m, mk->type, &mk->io, &s->so, r,
+                                          err);
     r->label = mk->label;
     return rc;
 }
@@ -145,12 +164,17 @@ static void rows(FILE *fp, const void *result, bool header)
     cl_stab_write_rows(fp, result, header);
 }
 
+static void end(void *ctx)
+{
+    cl_sweep_table_free(&((stab_setup *)ctx)->table);
+}
+
 static const cl_cli_study stab_study = {
     .csv = "stability.csv",
     .columns = "integrator           stable dt unstable dt  runs  why the "
                "unstable run failed",
     .size = sizeof(cl_stab_result), .begin = begin,
-    .run = run_one, .print = print_result, .rows = rows};
+    .run = run_one, .print = print_result, .rows = rows, .end = end};
 
 static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
                        cl_error *err)
@@ -163,6 +187,8 @@ static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
 int cl_cmd_stability(int argc, char **argv)
 {
     stab_setup s = {0};
-    return cl_cli_problem_main(argc, argv, &stab_table, &s, check_setup,
-                               study);
+    int status = cl_cli_problem_main(argc, argv, &stab_table, &s,
+                                     check_setup, study);
+    cl_sweep_table_free(&s.table); /* when the study did not start */
+    return status;
 }

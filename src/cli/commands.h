@@ -14,5 +14,6 @@ int cl_cmd_energy(int argc, char **argv);
 int cl_cmd_asinc(int argc, char **argv);
 int cl_cmd_contact(int argc, char **argv);
 int cl_cmd_replay(int argc, char **argv);
+int cl_cmd_sweep(int argc, char **argv);
 
 #endif

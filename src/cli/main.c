@@ -29,6 +29,8 @@ static const cl_command commands[] = {
     {"list", cl_cmd_list, "problems, integrators and force terms"},
     {"replay", cl_cmd_replay,
      "rerun a run from its run.json, check every output is identical"},
+    {"sweep", cl_cmd_sweep,
+     "parameter sweeps: plan, run (GNU parallel, ssh, Slurm), collect"},
 };
 
 static int usage(FILE *fp)

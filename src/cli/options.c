@@ -123,8 +123,8 @@ static int check_given(const cl_cli_table *t, int argc, char **argv,
                        const opt_flat *f, int n, const bool *given)
 {
     if (t->npos == 1 && optind != argc - 1)
-        return refused(t, "expected exactly one PROBLEM, got %d",
-                       argc - optind);
+        return refused(t, "expected exactly one %s, got %d",
+                       t->pos ? t->pos : "PROBLEM", argc - optind);
     if (t->npos == 0 && optind != argc)
         return refused(t, "unexpected argument '%s'", argv[optind]);
     for (int k = 0; k < n; k++)
@@ -316,7 +316,8 @@ void cl_cli_help(const cl_cli_table *t, FILE *fp)
             continue;
         snprintf(lead, sizeof lead, "  --%s%s%s", r->name, r->arg ? " " : "",
                  r->arg ? r->arg : "");
-        describe(r, t->npos == 1, text, sizeof text); /* keys of a problem */
+        describe(r, t->npos == 1 && !t->pos, text, sizeof text); /* keys of
+                                                      * a problem */
         wrapped(fp, lead, text);
     }
     if (keys)

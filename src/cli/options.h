@@ -63,6 +63,8 @@ typedef struct {
     const char *about;     /* what the command does, before the options */
     const char *notes;     /* after the options, or NULL */
     int npos;              /* positional arguments: 1 (PROBLEM) or 0 */
+    const char *pos;       /* the positional argument's name in messages,
+                            * NULL for PROBLEM */
     const cl_cli_opt *rows;
 } cl_cli_table;
 
@@ -86,6 +88,8 @@ typedef struct {
     cl_cli_sets sets;  /* the assignments, in command-line order */
     const char *out;   /* --out DIR, or NULL */
     bool quiet;        /* --quiet */
+    const char *arg;   /* the positional argument of a command without a
+                        * problem (cl_cli_args_main), or NULL */
 } cl_cli_args;
 
 /* --set SEC.KEY=VAL and --help, rows of most tables. */

@@ -3,6 +3,7 @@
 
 #include <stdlib.h>
 
+#include "cli/progress.h"
 #include "core/stop.h"
 
 typedef struct {
@@ -30,6 +31,8 @@ cl_status cl_cli_study_run(cl_model *m, const cl_cli_job *job,
     if (!rc && !job->quiet)
         puts(st->columns);
     int done = 0, ok = 0; /* runs started, runs finished */
+    cl_cli_progress_line line;
+    cl_cli_progress_start(&line, job->quiet, "integrators", "integrators", n);
     for (; !rc && done < n; done++) {
         if (cl_stop_requested()) {
             rc = cl_error_set(err, CL_EINTR, "interrupted by %s after %d "
@@ -37,7 +40,9 @@ cl_status cl_cli_study_run(cl_model *m, const cl_cli_job *job,
                                   cl_stop_requested()), done, n);
             break;
         }
+        cl_cli_progress_show(&line, done);
         rc = st->run(m, ctx, done, res + (size_t)done * st->size, err);
+        cl_cli_progress_clear(&line);
         if (!rc && !job->quiet)
             st->print(res + (size_t)done * st->size);
         ok += !rc;

@@ -995,6 +995,16 @@ const char *cl_config_section_at(const cl_config *cfg, const char *prefix,
     return NULL;
 }
 
+const char *cl_config_key_at(const cl_config *cfg, const char *sec,
+                             size_t k)
+{
+    size_t seen = 0;
+    for (const cl_entry *e = cfg->ent; e < cfg->ent + cfg->nent; e++)
+        if (!strcmp(e->sec, sec) && seen++ == k)
+            return e->key;
+    return NULL;
+}
+
 cl_status cl_config_path_of(cl_config *cfg, const char *sec, const char *key,
                             char *buf, size_t len, cl_error *err)
 {

@@ -103,6 +103,12 @@ cl_status cl_config_check_unused(const cl_config *cfg, cl_error *err);
 const char *cl_config_section_at(const cl_config *cfg, const char *prefix,
                                  size_t k);
 
+/* The k-th (0-based) key of section `sec` in order of first appearance,
+ * or NULL when it has k or fewer; for sections whose keys are names of
+ * the caller's choosing (a sweep's axes).  Does not mark it used. */
+const char *cl_config_key_at(const cl_config *cfg, const char *sec,
+                             size_t k);
+
 /* A file named by a key, relative to the directory of the file that set
  * it (an entry from --set: relative to the working directory), into buf;
  * CL_EINVAL naming the entry if the key is absent or empty or the path

@@ -1,0 +1,231 @@
+/* What a sweep's job left behind (analysis/sweep.h): its exit status as
+ * the engine recorded it, its statistics and how far it got.  Every file
+ * of a job directory that collect reads is read here. */
+#include "analysis/sweep.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char *const cl_sweep_stat_names[CL_SWEEP_NSTAT] = {
+    "steps", "rhs_evals", "jac_evals", "lin_setups", "lin_solves",
+    "lin_iters", "nonlin_iters", "nonlin_fails", "err_fails",
+    "symbolic_facts", "lin_fallbacks", "wall", "cpu"};
+
+/* ---- GNU parallel's joblog ---------------------------------------------- */
+
+/* One joblog line: Seq Host Starttime JobRuntime Send Receive Exitval
+ * Signal Command, tab-separated, the command last. */
+static cl_status joblog_line(char *line, cl_sweep_joblog *log)
+{
+    char *f = line;
+    for (int k = 0; k < 6 && f; k++)
+        f = strchr(f, '\t') ? strchr(f, '\t') + 1 : NULL;
+    int exitval, sig, at = 0;
+    if (!f || sscanf(f, "%d\t%d\t%n", &exitval, &sig, &at) != 2 || !at)
+        return CL_OK; /* the header, or a line cut short */
+    f[at + strcspn(f + at, "\n")] = '\0';
+    char **c = realloc(log->command, (size_t)(log->n + 1) * sizeof *c);
+    int *e = c ? realloc(log->exitval, (size_t)(log->n + 1) * sizeof *e) : NULL;
+    if (c)
+        log->command = c;
+    if (e)
+        log->exitval = e;
+    int *s = e ? realloc(log->signal, (size_t)(log->n + 1) * sizeof *s) : NULL;
+    if (s)
+        log->signal = s;
+    if (!s || !(log->command[log->n] = strdup(f + at)))
+        return CL_ENOMEM;
+    log->exitval[log->n] = exitval;
+    log->signal[log->n++] = sig;
+    return CL_OK;
+}
+
+cl_status cl_sweep_joblog_read(const char *dir, cl_sweep_joblog *log,
+                               cl_error *err)
+{
+    char path[4200];
+    snprintf(path, sizeof path, "%s/joblog", dir);
+    FILE *fp = fopen(path, "r");
+    if (!fp)
+        return CL_OK; /* not run by GNU parallel (yet) */
+    char *line = NULL;
+    size_t cap = 0;
+    cl_status rc = CL_OK;
+    while (!rc && getline(&line, &cap, fp) > 0)
+        rc = joblog_line(line, log);
+    free(line);
+    fclose(fp);
+    return rc ? cl_error_set(err, rc, "%s: out of memory", path) : CL_OK;
+}
+
+void cl_sweep_joblog_free(cl_sweep_joblog *log)
+{
+    cl_sweep_strings_free(log->command, log->n);
+    free(log->exitval);
+    free(log->signal);
+    memset(log, 0, sizeof *log);
+}
+
+/* ---- one job ------------------------------------------------------------ */
+
+static FILE *job_file(const cl_sweep *sw, int k, const char *name)
+{
+    char path[4200];
+    snprintf(path, sizeof path, "%s/jobs/%s/%s", sw->dir, sw->job[k].id,
+             name);
+    return fopen(path, "r");
+}
+
+/* The exit status: the status file the Slurm wrapper writes (bash's $?,
+ * 128 + N after signal N), else the joblog's last entry of the command. */
+static bool exit_status(const cl_sweep *sw, int k, const cl_sweep_joblog *log,
+                        cl_sweep_outcome *o)
+{
+    FILE *fp = job_file(sw, k, "exit");
+    int v;
+    bool found = fp && fscanf(fp, "%d", &v) == 1;
+    if (fp)
+        fclose(fp);
+    if (found) {
+        o->exitval = v > 128 ? -1 : v;
+        o->signal = v > 128 ? v - 128 : 0;
+        return true;
+    }
+    for (int i = log->n - 1; i >= 0; i--)
+        if (!strcmp(log->command[i], sw->job[k].command)) {
+            o->exitval = log->signal[i] ? -1 : log->exitval[i];
+            o->signal = log->signal[i];
+            return true;
+        }
+    return false;
+}
+
+/* stats.csv's "name,value" rows; false if there is none. */
+static bool read_stats(const cl_sweep *sw, int k, cl_sweep_outcome *o)
+{
+    FILE *fp = job_file(sw, k, "stats.csv");
+    char line[256];
+    if (!fp)
+        return false;
+    while (fgets(line, sizeof line, fp)) {
+        size_t n = strcspn(line, ",");
+        for (int s = 0; line[n] && s < CL_SWEEP_NSTAT; s++)
+            if (strlen(cl_sweep_stat_names[s]) == n &&
+                !strncmp(line, cl_sweep_stat_names[s], n)) {
+                char *end;
+                double v = strtod(line + n + 1, &end);
+                o->stat[s] = end > line + n + 1 ? v : NAN; /* "NA" */
+            }
+    }
+    fclose(fp);
+    return true;
+}
+
+/* The time of series.csv's last row. */
+static double reached(const cl_sweep *sw, int k)
+{
+    FILE *fp = job_file(sw, k, "series.csv");
+    char line[1024];
+    double t = NAN;
+    while (fp && fgets(line, sizeof line, fp)) {
+        char *end;
+        double v = strtod(line, &end);
+        if (end > line && *end == ',')
+            t = v;
+    }
+    if (fp)
+        fclose(fp);
+    return t;
+}
+
+/* The first line of the job's stderr. */
+static void first_message(const cl_sweep *sw, int k, cl_sweep_outcome *o)
+{
+    FILE *fp = job_file(sw, k, "stderr");
+    if (fp && fgets(o->message, sizeof o->message, fp))
+        o->message[strcspn(o->message, "\n")] = '\0';
+    if (fp)
+        fclose(fp);
+}
+
+static void classify(cl_sweep_outcome *o, bool found, bool stats)
+{
+    if (!found) {
+        o->state = CL_SWEEP_MISSING;
+        snprintf(o->exit_class, sizeof o->exit_class, "missing");
+    } else if (o->signal) {
+        o->state = CL_SWEEP_FAILED;
+        snprintf(o->exit_class, sizeof o->exit_class, "signal-%d",
+                 o->signal);
+    } else if (o->exitval == 0) {
+        /* exit 0 without statistics: the outputs were lost */
+        o->state = stats ? CL_SWEEP_COMPLETE : CL_SWEEP_FAILED;
+        snprintf(o->exit_class, sizeof o->exit_class, "%s",
+                 stats ? "ok" : "no-output");
+    } else {
+        o->state = CL_SWEEP_FAILED;
+        snprintf(o->exit_class, sizeof o->exit_class, "%s",
+                 o->exitval == 1   ? "error"
+                 : o->exitval == 2 ? "usage"
+                                   : "exit");
+        if (o->exitval > 2)
+            snprintf(o->exit_class, sizeof o->exit_class, "exit-%d",
+                     o->exitval);
+    }
+}
+
+void cl_sweep_outcome_read(const cl_sweep *sw, int k,
+                           const cl_sweep_joblog *log, cl_sweep_outcome *o)
+{
+    *o = (cl_sweep_outcome){.exitval = -1, .err_x = NAN, .err_v = NAN};
+    for (int s = 0; s < CL_SWEEP_NSTAT; s++)
+        o->stat[s] = NAN;
+    bool found = exit_status(sw, k, log, o);
+    bool stats = found && read_stats(sw, k, o);
+    o->t_reached = found ? reached(sw, k) : NAN;
+    if (found)
+        first_message(sw, k, o);
+    classify(o, found, stats);
+}
+
+/* ---- errors against the reference --------------------------------------- */
+
+/* final.csv's rows "p,x,y,z,vx,vy,vz" of two runs: the largest distance
+ * of positions and of velocities; false if the files do not match. */
+static bool distances(FILE *a, FILE *b, double *dx, double *dv)
+{
+    char la[512], lb[512];
+    double u[7], w[7];
+    *dx = *dv = 0;
+    if (!fgets(la, sizeof la, a) || !fgets(lb, sizeof lb, b))
+        return false; /* the headers */
+    while (fgets(la, sizeof la, a)) {
+        if (!fgets(lb, sizeof lb, b) ||
+            sscanf(la, "%lf,%lf,%lf,%lf,%lf,%lf,%lf", &u[0], &u[1], &u[2],
+                   &u[3], &u[4], &u[5], &u[6]) != 7 ||
+            sscanf(lb, "%lf,%lf,%lf,%lf,%lf,%lf,%lf", &w[0], &w[1], &w[2],
+                   &w[3], &w[4], &w[5], &w[6]) != 7)
+            return false;
+        *dx = fmax(*dx, hypot(hypot(u[1] - w[1], u[2] - w[2]), u[3] - w[3]));
+        *dv = fmax(*dv, hypot(hypot(u[4] - w[4], u[5] - w[5]), u[6] - w[6]));
+    }
+    return !fgets(lb, sizeof lb, b);
+}
+
+void cl_sweep_outcome_error(const cl_sweep *sw, int k, cl_sweep_outcome *o)
+{
+    int r = sw->job[k].ref;
+    if (r < 0 || o->state != CL_SWEEP_COMPLETE)
+        return;
+    FILE *a = job_file(sw, k, "final.csv"), *b = job_file(sw, r, "final.csv");
+    double dx, dv;
+    if (a && b && distances(a, b, &dx, &dv)) {
+        o->err_x = dx;
+        o->err_v = dv;
+    }
+    if (a)
+        fclose(a);
+    if (b)
+        fclose(b);
+}

@@ -1,0 +1,283 @@
+/* A sweep's plan (analysis/sweep.h): the parts' cross products with
+ * stable ids and the job commands. */
+#include "analysis/sweep.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "integrators/integrator.h"
+
+/* ---- ids and commands --------------------------------------------------- */
+
+static int by_text(const void *a, const void *b)
+{
+    return strcmp(*(const char *const *)a, *(const char *const *)b);
+}
+
+void cl_sweep_canonical(const cl_sweep *sw, const cl_sweep_job *j, char *buf,
+                        size_t len)
+{
+    char line[CL_SWEEP_MAX_AXES + 2][320];
+    const char *sorted[CL_SWEEP_MAX_AXES + 2];
+    int n = 0;
+    for (int a = 0; a < sw->naxis; a++)
+        if (j->value[a])
+            snprintf(line[n++], sizeof line[0], "%s=%s", sw->axis[a].key,
+                     j->value[a]);
+    if (j->reference) /* the reference's tolerance is part of the run */
+        snprintf(line[n++], sizeof line[0], "reference=%s", sw->ref_rtol);
+    for (int k = 0; k < n; k++)
+        sorted[k] = line[k];
+    qsort(sorted, (size_t)n, sizeof *sorted, by_text);
+    size_t u = (size_t)snprintf(buf, len, "integrator=%s", j->integrator);
+    for (int k = 0; k < n && u < len; k++)
+        u += (size_t)snprintf(buf + u, len - u, "\n%s", sorted[k]);
+}
+
+/* FNV-1a, 64 bits (Fowler, Noll and Vo), its top 48 bits in hex. */
+static void make_id(const char *text, char id[CL_SWEEP_ID_LEN])
+{
+    uint64_t h = 14695981039346656037ull;
+    for (const unsigned char *p = (const unsigned char *)text; *p; p++)
+        h = (h ^ *p) * 1099511628211ull;
+    snprintf(id, CL_SWEEP_ID_LEN, "%012llx", (unsigned long long)(h >> 16));
+}
+
+size_t cl_sweep_quote(const char *s, char *buf, size_t len)
+{
+    if (*s && strspn(s, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                        "0123456789_./:=,+-@%") == strlen(s))
+        return (size_t)snprintf(buf, len, "%s", s);
+    size_t u = (size_t)snprintf(buf, len, "'");
+    for (; *s && u < len; s++)
+        u += (size_t)snprintf(buf + u, len - u, *s == '\'' ? "'\\''" : "%c",
+                              *s);
+    return u + (size_t)snprintf(buf + u, u < len ? len - u : 0, "'");
+}
+
+static cl_status make_command(const cl_sweep *sw, cl_sweep_job *j)
+{
+    char buf[8192], set[512];
+    size_t u = cl_sweep_quote(sw->clothode, buf, sizeof buf);
+    u += (size_t)snprintf(buf + u, sizeof buf - u, " run ");
+    u += cl_sweep_quote(sw->problem, buf + u, sizeof buf - u);
+    u += (size_t)snprintf(buf + u, sizeof buf - u, " --integrator ");
+    u += cl_sweep_quote(j->integrator, buf + u, sizeof buf - u);
+    /* no frames unless the sweep asks for them ([run] frames after this) */
+    u += (size_t)snprintf(buf + u, sizeof buf - u, " --frames 0");
+    for (int a = 0; a < sw->naxis && u < sizeof buf; a++)
+        if (j->value[a]) {
+            snprintf(set, sizeof set, "%s=%s", sw->axis[a].key, j->value[a]);
+            u += (size_t)snprintf(buf + u, sizeof buf - u, " --set ");
+            u += cl_sweep_quote(set, buf + u, sizeof buf - u);
+        }
+    if (j->reference && u < sizeof buf)
+        u += (size_t)snprintf(buf + u, sizeof buf - u,
+                              " --rtol %s --atol %.6g", sw->ref_rtol,
+                              strtod(sw->ref_rtol, NULL) / 100);
+    snprintf(set, sizeof set, "%s/jobs/%s", sw->dir, j->id);
+    if (u < sizeof buf)
+        u += (size_t)snprintf(buf + u, sizeof buf - u, " --out ");
+    if (u < sizeof buf)
+        u += cl_sweep_quote(set, buf + u, sizeof buf - u);
+    if (u < sizeof buf) /* its messages kept beside its outputs */
+        u += (size_t)snprintf(buf + u, sizeof buf - u, " --quiet 2> ");
+    snprintf(set, sizeof set, "%s/jobs/%s/stderr", sw->dir, j->id);
+    if (u < sizeof buf)
+        u += cl_sweep_quote(set, buf + u, sizeof buf - u);
+    if (u >= sizeof buf)
+        return CL_EINVAL;
+    return (j->command = strdup(buf)) ? CL_OK : CL_ENOMEM;
+}
+
+int cl_sweep_find(const cl_sweep *sw, const char *id)
+{
+    for (int k = 0; k < sw->njob; k++)
+        if (!strcmp(sw->job[k].id, id))
+            return k;
+    return -1;
+}
+
+/* Set job k's id and command; CL_EINVAL (and *dup its twin) when an earlier
+ * job has the same id. */
+static cl_status finish_job(cl_sweep *sw, int k, int *dup, cl_error *err)
+{
+    char text[8192];
+    cl_sweep_job *j = &sw->job[k];
+    cl_sweep_canonical(sw, j, text, sizeof text);
+    make_id(text, j->id);
+    *dup = cl_sweep_find(sw, j->id);
+    if (*dup >= 0 && *dup < k)
+        return cl_error_set(err, CL_EINVAL, "sweep: two jobs are the same "
+                            "run (a value listed twice?): %s",
+                            strchr(text, '\n') ? strchr(text, '\n') + 1
+                                               : text);
+    cl_status rc = make_command(sw, j);
+    return rc ? cl_error_set(err, rc, "sweep: job %s: command too long or "
+                             "no memory", j->id) : CL_OK;
+}
+
+/* An axis of a method's options ([run] keys other than t_end), which a
+ * reference run does not take over from its jobs. */
+static bool method_axis(const char *key)
+{
+    return !strncmp(key, "run.", 4) && strcmp(key, "run.t_end") != 0;
+}
+
+/* The reference of job k: the cvode-bdf run with job k's values on the
+ * problem's axes, added after the jobs unless it is one already. */
+static cl_status add_reference(cl_sweep *sw, int k, cl_error *err)
+{
+    cl_sweep_job *r = &sw->job[sw->njob];
+    r->value = calloc(CL_SWEEP_MAX_AXES + 1, sizeof *r->value);
+    if (!r->value)
+        return cl_error_set(err, CL_ENOMEM, "out of memory");
+    for (int a = 0; a < sw->naxis; a++)
+        r->value[a] = method_axis(sw->axis[a].key) ? NULL
+                                                   : sw->job[k].value[a];
+    r->integrator = "cvode-bdf";
+    r->reference = true;
+    r->ref = -1;
+    char text[8192];
+    cl_sweep_canonical(sw, r, text, sizeof text);
+    make_id(text, r->id);
+    int at = cl_sweep_find(sw, r->id);
+    if (at >= 0 && at < sw->njob) {
+        free(r->value);
+        memset(r, 0, sizeof *r);
+        sw->job[k].ref = at;
+        return CL_OK;
+    }
+    sw->job[k].ref = sw->njob++;
+    int dup;
+    return finish_job(sw, sw->njob - 1, &dup, err);
+}
+
+/* ---- the union of the parts -------------------------------------------- */
+
+/* The index of sw's axis `key`, added if new; -1 if there are too many. */
+static int union_axis(cl_sweep *sw, const char *key)
+{
+    for (int a = 0; a < sw->naxis; a++)
+        if (!strcmp(sw->axis[a].key, key))
+            return a;
+    if (sw->naxis == CL_SWEEP_MAX_AXES)
+        return -1;
+    sw->axis[sw->naxis] = (cl_sweep_axis){.key = strdup(key), .from = -1};
+    return sw->axis[sw->naxis].key ? sw->naxis++ : -1;
+}
+
+/* The list's own copy of the string v, added if new; NULL without
+ * memory. */
+static const char *union_value(char ***list, int *n, const char *v)
+{
+    for (int k = 0; k < *n; k++)
+        if (!strcmp((*list)[k], v))
+            return (*list)[k];
+    char **grown = realloc(*list, (size_t)(*n + 1) * sizeof *grown);
+    if (!grown)
+        return NULL;
+    *list = grown;
+    return (grown[*n] = strdup(v)) ? grown[(*n)++] : NULL;
+}
+
+/* The jobs of a part: integrators times its axes' values (derived axes
+ * following their source). */
+static long part_size(const cl_sweep_part *p)
+{
+    long n = p->nint;
+    for (int a = 0; a < p->naxis && n <= CL_SWEEP_MAX_VALUES; a++)
+        n *= p->axis[a].from < 0 ? p->axis[a].n : 1;
+    return n;
+}
+
+/* Job k of part p: its value of every axis, the last axis fastest. */
+static cl_status fill_job(cl_sweep *sw, const cl_sweep_part *p,
+                          const int *map, long k, cl_sweep_job *j)
+{
+    int idx[CL_SWEEP_MAX_AXES];
+    long rest = k;
+    for (int a = p->naxis - 1; a >= 0; a--)
+        if (p->axis[a].from < 0) {
+            idx[a] = (int)(rest % p->axis[a].n);
+            rest /= p->axis[a].n;
+        }
+    for (int a = 0; a < p->naxis; a++) {
+        cl_sweep_axis *u = &sw->axis[map[a]];
+        int at = p->axis[a].from < 0 ? idx[a] : idx[p->axis[a].from];
+        if (!(j->value[map[a]] = union_value(&u->v, &u->n,
+                                             p->axis[a].v[at])))
+            return CL_ENOMEM;
+    }
+    j->integrator = union_value(&sw->integrator, &sw->nint,
+                                p->integrator[rest]);
+    j->ref = -1;
+    return j->integrator ? CL_OK : CL_ENOMEM;
+}
+
+static cl_status expand_part(cl_sweep *sw, const cl_sweep_part *p,
+                             cl_error *err)
+{
+    int map[CL_SWEEP_MAX_AXES], dup;
+    for (int a = 0; a < p->naxis; a++)
+        if ((map[a] = union_axis(sw, p->axis[a].key)) < 0)
+            return cl_error_set(err, CL_EINVAL, "sweep: more than %d axes "
+                                "over all parts", CL_SWEEP_MAX_AXES);
+    cl_status rc = CL_OK;
+    for (long k = 0; !rc && k < part_size(p); k++) {
+        cl_sweep_job *j = &sw->job[sw->njob++];
+        if (!(j->value = calloc(CL_SWEEP_MAX_AXES + 1, sizeof *j->value)) ||
+            fill_job(sw, p, map, k, j))
+            return cl_error_set(err, CL_ENOMEM, "out of memory");
+        rc = finish_job(sw, sw->njob - 1, &dup, err);
+    }
+    return rc;
+}
+
+cl_status cl_sweep_expand(cl_sweep *sw, cl_error *err)
+{
+    long n = 0;
+    for (int p = 0; p < sw->nplan; p++)
+        n += part_size(&sw->part[p]);
+    if (n > CL_SWEEP_MAX_VALUES)
+        return cl_error_set(err, CL_EINVAL, "sweep: more than %d jobs",
+                            CL_SWEEP_MAX_VALUES);
+    /* at most one reference per job */
+    sw->job = calloc((size_t)n * (sw->ref_rtol[0] ? 2 : 1), sizeof *sw->job);
+    if (!sw->job)
+        return cl_error_set(err, CL_ENOMEM, "out of memory");
+    cl_status rc = CL_OK;
+    for (int p = 0; !rc && p < sw->nplan; p++)
+        rc = expand_part(sw, &sw->part[p], err);
+    for (long k = 0; !rc && sw->ref_rtol[0] && k < n; k++)
+        rc = add_reference(sw, (int)k, err);
+    return rc;
+}
+
+void cl_sweep_strings_free(char **v, int n)
+{
+    for (int k = 0; k < n; k++)
+        free(v[k]);
+    free(v);
+}
+
+void cl_sweep_free(cl_sweep *sw)
+{
+    for (int k = 0; k < sw->njob; k++) {
+        free(sw->job[k].value);
+        free(sw->job[k].command);
+    }
+    free(sw->job);
+    for (int a = 0; a < sw->naxis; a++) {
+        cl_sweep_strings_free(sw->axis[a].v, sw->axis[a].n);
+        free(sw->axis[a].key);
+    }
+    cl_sweep_strings_free(sw->integrator, sw->nint);
+    free(sw->dir);
+    free(sw->problem);
+    free(sw->clothode);
+    cl_sweep_parts_free(sw);
+    memset(sw, 0, sizeof *sw);
+}

@@ -1,0 +1,290 @@
+/* A collected sweep table read back as a study's runs (sweep_table.h). */
+#include "analysis/sweep_table.h"
+
+#include "analysis/sweep.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- reading ------------------------------------------------------------ */
+
+/* The fields of one CSV line (RFC 4180 quoting), appended to *cells. */
+static int split(const char *line, char ***cells, int *n)
+{
+    int count = 0;
+    for (const char *p = line;; count++) {
+        char *f = malloc(strlen(p) + 1), *o = f;
+        char **grown = f ? realloc(*cells, (size_t)(*n + 1) * sizeof *grown)
+                         : NULL;
+        if (!grown) {
+            free(f);
+            return -1;
+        }
+        *cells = grown;
+        bool quoted = *p == '"';
+        for (p += quoted; *p && (quoted || (*p != ',' && *p != '\n'));) {
+            if (quoted && *p == '"' && p[1] == '"')
+                *o++ = '"', p += 2;
+            else if (quoted && *p == '"')
+                quoted = false, p++;
+            else
+                *o++ = *p++;
+        }
+        *o = '\0';
+        (*cells)[(*n)++] = f;
+        if (*p != ',')
+            return count + 1;
+        p++;
+    }
+}
+
+cl_status cl_sweep_table_read(const char *path, cl_sweep_table *t,
+                              cl_error *err)
+{
+    memset(t, 0, sizeof *t);
+    FILE *fp = fopen(path, "r");
+    if (!fp)
+        return cl_error_set(err, CL_EIO, "--from-sweep %s: cannot read it",
+                            path);
+    char *line = NULL;
+    size_t cap = 0;
+    int nf;
+    cl_status rc = CL_OK;
+    t->path = strdup(path);
+    if (getline(&line, &cap, fp) > 0 && split(line, &t->head, &t->ncol) < 0)
+        rc = cl_error_set(err, CL_ENOMEM, "out of memory");
+    while (!rc && getline(&line, &cap, fp) > 0) {
+        nf = split(line, &t->cell, &t->ncell);
+        if (nf < 0)
+            rc = cl_error_set(err, CL_ENOMEM, "out of memory");
+        else if (nf != t->ncol)
+            rc = cl_error_set(err, CL_EPARSE, "%s:%d: %d fields, the header "
+                              "has %d", path, t->nrow + 2, nf, t->ncol);
+        else
+            t->nrow++;
+    }
+    free(line);
+    fclose(fp);
+    t->keep = rc ? NULL : malloc((size_t)t->nrow + 1);
+    for (int k = 0; t->keep && k < t->nrow; k++)
+        t->keep[k] = true;
+    if (!rc && (!t->keep || !t->path))
+        rc = cl_error_set(err, CL_ENOMEM, "out of memory");
+    return rc;
+}
+
+void cl_sweep_table_free(cl_sweep_table *t)
+{
+    cl_sweep_strings_free(t->head, t->ncol);
+    cl_sweep_strings_free(t->cell, t->ncell);
+    free(t->keep);
+    free(t->path);
+    memset(t, 0, sizeof *t);
+}
+
+static int column(const cl_sweep_table *t, const char *name)
+{
+    for (int k = 0; k < t->ncol; k++)
+        if (!strcmp(t->head[k], name))
+            return k;
+    return -1;
+}
+
+static const char *at(const cl_sweep_table *t, int row, int col)
+{
+    return col < 0 ? "NA" : t->cell[(size_t)row * t->ncol + col];
+}
+
+static double number_at(const cl_sweep_table *t, int row, int col)
+{
+    char *end;
+    const char *s = at(t, row, col);
+    double v = strtod(s, &end);
+    return end > s && !*end ? v : NAN;
+}
+
+/* ---- selecting the rows of the study's problem -------------------------- */
+
+static bool same_value(const char *a, const char *b)
+{
+    char *ea, *eb;
+    double x = strtod(a, &ea), y = strtod(b, &eb);
+    if (ea > a && !*ea && eb > b && !*eb)
+        return fabs(x - y) <= 1e-12 * fmax(fabs(x), fabs(y));
+    return !strcmp(a, b);
+}
+
+/* A problem axis: not a method's [run] key (the levels and steps). */
+static bool problem_axis(const char *key)
+{
+    return strncmp(key, "run.", 4) || !strcmp(key, "run.t_end");
+}
+
+static cl_status select_axis(cl_sweep_table *t, cl_config *cfg, int c,
+                             cl_error *err)
+{
+    char sec[128];
+    const char *key = t->head[c], *dot = strrchr(key, '.');
+    snprintf(sec, sizeof sec, "%.*s", (int)(dot - key), key);
+    const char *want = cl_config_string(cfg, sec, dot + 1, NULL);
+    const char *first = NULL;
+    for (int r = 0; r < t->nrow; r++) {
+        if (!t->keep[r] || !strcmp(at(t, r, column(t, "role")), "reference"))
+            continue;
+        if (want)
+            t->keep[r] = same_value(at(t, r, c), want);
+        else if (!first)
+            first = at(t, r, c);
+        else if (!same_value(first, at(t, r, c)))
+            return cl_error_set(err, CL_EINVAL, "--from-sweep %s: the sweep "
+                                "has several values of %s (%s, %s, ...): "
+                                "give one with --set %s=VALUE", t->path, key,
+                                first, at(t, r, c), key);
+    }
+    return CL_OK;
+}
+
+cl_status cl_sweep_table_select(cl_sweep_table *t, cl_config *cfg,
+                                cl_error *err)
+{
+    int lo = column(t, "integrator"), hi = column(t, "status");
+    if (lo < 0 || hi < lo || column(t, "role") < 0)
+        return cl_error_set(err, CL_EPARSE, "--from-sweep %s: not a table "
+                            "of 'clothode sweep collect' (no role, "
+                            "integrator or status column)", t->path);
+    cl_status rc = CL_OK;
+    for (int c = lo + 1; !rc && c < hi; c++)
+        if (problem_axis(t->head[c]) && strchr(t->head[c], '.'))
+            rc = select_axis(t, cfg, c, err);
+    return rc;
+}
+
+/* ---- the rows of one method --------------------------------------------- */
+
+typedef struct {
+    int row;
+    double param;
+} row_param;
+
+static int by_param_down(const void *a, const void *b)
+{
+    double x = ((const row_param *)a)->param, y = ((const row_param *)b)->param;
+    return (x < y) - (x > y);
+}
+
+/* The kept job rows of `label` with a number in column `param`, largest
+ * first; how many (at most max), or -1 with err set. */
+static int method_rows(const cl_sweep_table *t, const char *label,
+                       const char *param, row_param *out, int max,
+                       cl_error *err)
+{
+    int cp = column(t, param), ci = column(t, "integrator"), n = 0;
+    if (cp < 0)
+        return cl_error_set(err, CL_EINVAL, "--from-sweep %s: no %s column "
+                            "for %s", t->path, param, label), -1;
+    for (int r = 0; r < t->nrow; r++) {
+        if (!t->keep[r] || strcmp(at(t, r, ci), label) ||
+            strcmp(at(t, r, column(t, "role")), "job") ||
+            isnan(number_at(t, r, cp)))
+            continue;
+        if (n == max)
+            return cl_error_set(err, CL_EINVAL, "--from-sweep %s: more than "
+                                "%d runs of %s", t->path, max, label), -1;
+        out[n++] = (row_param){r, number_at(t, r, cp)};
+    }
+    if (n == 0)
+        return cl_error_set(err, CL_EINVAL, "--from-sweep %s: no runs of %s "
+                            "(with this problem's axis values)", t->path,
+                            label), -1;
+    qsort(out, (size_t)n, sizeof *out, by_param_down);
+    return n;
+}
+
+static void row_stats(const cl_sweep_table *t, int r, cl_stats *s)
+{
+    double steps = number_at(t, r, column(t, "steps")),
+           rhs = number_at(t, r, column(t, "rhs_evals"));
+    s->steps = isnan(steps) ? 0 : (long)steps;
+    s->rhs_evals = isnan(rhs) ? 0 : (long)rhs;
+    s->cpu = number_at(t, r, column(t, "cpu"));
+    s->wall = number_at(t, r, column(t, "wall"));
+}
+
+static bool complete(const cl_sweep_table *t, int r)
+{
+    return !strcmp(at(t, r, column(t, "status")), "complete");
+}
+
+/* A failed run that got going (a time reached): it became unstable. */
+static bool went_unstable(const cl_sweep_table *t, int r)
+{
+    return !strcmp(at(t, r, column(t, "status")), "failed") &&
+           !isnan(number_at(t, r, column(t, "t_reached")));
+}
+
+cl_status cl_stab_from_sweep(const cl_sweep_table *t, const char *label,
+                             const cl_integrator_type *type,
+                             cl_stab_result *r, cl_error *err)
+{
+    row_param rows[CL_STAB_MAX_TRIALS];
+    int n = method_rows(t, label, "run.dt", rows, CL_STAB_MAX_TRIALS, err);
+    memset(r, 0, sizeof *r);
+    r->type = type;
+    r->label = label;
+    r->dt_stable = r->dt_unstable = NAN;
+    r->failed = -1;
+    for (int k = 0; k < n; k++) {
+        int row = rows[k].row;
+        if (!complete(t, row) && !went_unstable(t, row))
+            continue; /* never ran, or refused its input */
+        cl_stab_trial *tr = &r->trial[r->ntrial];
+        tr->dt = rows[k].param;
+        tr->rc = complete(t, row) ? CL_OK : CL_EBLOWUP;
+        row_stats(t, row, &tr->stats);
+        tr->nsteps = tr->stats.steps;
+        if (tr->rc)
+            snprintf(tr->why.msg, sizeof tr->why.msg, "failed at t = %g s "
+                     "(%s)", number_at(t, row, column(t, "t_reached")),
+                     at(t, row, column(t, "exit")));
+        if (tr->rc) /* the smallest unstable step: rows go down in dt */
+            r->failed = r->ntrial;
+        r->ntrial++;
+    }
+    if (r->failed >= 0)
+        r->dt_unstable = r->trial[r->failed].dt;
+    for (int k = r->ntrial - 1; k >= 0; k--)
+        if (!r->trial[k].rc && !(r->trial[k].dt >= r->dt_unstable))
+            r->dt_stable = r->trial[k].dt;
+    return n < 0 ? err->code : CL_OK;
+}
+
+cl_status cl_conv_from_sweep(const cl_sweep_table *t, const char *label,
+                             const cl_integrator_type *type,
+                             cl_conv_result *r, cl_error *err)
+{
+    row_param rows[CL_CONV_MAX_LEVELS];
+    memset(r, 0, sizeof *r);
+    r->type = type;
+    r->label = label;
+    r->fixed = type->fixed_step;
+    int n = method_rows(t, label, r->fixed ? "run.dt" : "run.rtol", rows,
+                        CL_CONV_MAX_LEVELS, err);
+    for (int k = 0; k < n; k++) {
+        int row = rows[k].row;
+        cl_conv_level *l = &r->lev[r->nlev++];
+        l->param = rows[k].param;
+        l->rc = complete(t, row) ? CL_OK : CL_EBLOWUP;
+        if (l->rc)
+            snprintf(l->why.msg, sizeof l->why.msg, "%s (%s)",
+                     at(t, row, column(t, "status")),
+                     at(t, row, column(t, "exit")));
+        l->err_x = number_at(t, row, column(t, "err_x"));
+        l->err_v = number_at(t, row, column(t, "err_v"));
+        l->fitted = !l->rc && l->err_x > 0;
+        row_stats(t, row, &l->stats);
+    }
+    cl_conv_fit(r);
+    return n < 0 ? err->code : CL_OK;
+}

@@ -1,0 +1,373 @@
+/* clothode sweep plan|run|collect: parameter sweeps (analysis/sweep.h),
+ * run by GNU parallel or Slurm (cli/sweep_engine.h). */
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "analysis/sweep.h"
+#include "cli/cli.h"
+#include "cli/commands.h"
+#include "cli/sweep_engine.h"
+#include "io/atomic.h"
+
+/* ---- plan --------------------------------------------------------------- */
+
+/* The rows of plan and collect: --out ARG, --quiet, --help. */
+#define SWEEP_OUT_ROWS(arg_name, out_help)                                  \
+    {{.name = "out", .arg = (arg_name), .type = CL_CLI_STRING,             \
+      .field = offsetof(cl_cli_args, out), .help = (out_help)},            \
+     {.name = "quiet", .type = CL_CLI_FLAG,                                \
+      .field = offsetof(cl_cli_args, quiet), .help = "no summary on stdout"},\
+     CL_CLI_HELP_ROW,                                                      \
+     {.type = CL_CLI_END}}
+
+static const cl_cli_opt plan_rows[] = SWEEP_OUT_ROWS(
+    "DIR", "sweep directory (default out/sweep-NAME for NAME.ini)");
+
+static const cl_cli_table plan_table = {
+    .cmd = "sweep plan", .synopsis = "SWEEP.ini [--out DIR]", .npos = 1,
+    .pos = "SWEEP.ini", .rows = plan_rows,
+    .about =
+    "Expand a sweep file ([sweep] problem, integrator, reference and the\n"
+    "axes: lists, linspace(a, b, k), logspace(a, b, k) over dt, rtol, atol,\n"
+    "t_end, n or any SECTION.KEY) into DIR/jobs.txt, one 'clothode run'\n"
+    "line per job writing into DIR/jobs/ID, and the manifest\n"
+    "DIR/sweep.json.  Ids hash each job's parameters: they stay when the\n"
+    "plan is expanded again.\n"};
+
+/* The problem: relative to the sweep file's directory if it is there,
+ * else as `run` finds it (a path, or a name under problems/); absolute. */
+static cl_status resolve_problem(cl_config *cfg, const char *spec,
+                                 cl_sweep *sw, cl_error *err)
+{
+    char rel[4200], named[4200], *abs;
+    struct stat st;
+    const char *slash = strrchr(spec, '/');
+    snprintf(rel, sizeof rel, "%.*s%s", slash ? (int)(slash - spec + 1) : 0,
+             spec, sw->problem);
+    const char *path = sw->problem[0] != '/' && stat(rel, &st) == 0
+                           ? rel
+                           : cl_cli_problem_path(sw->problem, named,
+                                                 sizeof named);
+    if (!(abs = realpath(path, NULL)))
+        return cl_config_refuse(cfg, "sweep", "problem", CL_EINVAL,
+                                "no such problem file", err);
+    free(sw->problem);
+    sw->problem = abs;
+    return CL_OK;
+}
+
+static cl_status plan_dirs(const cl_cli_args *a, cl_sweep *sw, cl_error *err)
+{
+    char def[4200];
+    if (!a->out)
+        cl_cli_default_out(a->arg, def, sizeof def);
+    if (!a->out) /* out/NAME -> out/sweep-NAME */
+        memmove(def + 10, def + 4, strlen(def + 4) + 1),
+            memcpy(def + 4, "sweep-", 6);
+    const char *dir = a->out ? a->out : def;
+    cl_status rc = cl_mkdir_p(dir, err);
+    if (!rc && !(sw->dir = realpath(dir, NULL)))
+        rc = cl_error_set(err, CL_EIO, "%s: cannot resolve", dir);
+    if (!rc && !(sw->clothode = realpath("/proc/self/exe", NULL)))
+        rc = cl_error_set(err, CL_EIO, "cannot find the clothode binary");
+    return rc;
+}
+
+static int plan(void *settings)
+{
+    cl_cli_args *a = settings;
+    cl_sweep sw = {0};
+    cl_error err = {0};
+    cl_config *cfg = cl_config_alloc();
+    cl_status rc = cfg ? cl_config_load(cfg, a->arg, &err) : CL_ENOMEM;
+    if (!rc && !(rc = cl_sweep_read(cfg, &sw, &err)) &&
+        !(rc = cl_config_check_unused(cfg, &err)) &&
+        !(rc = resolve_problem(cfg, a->arg, &sw, &err)) &&
+        !(rc = plan_dirs(a, &sw, &err)) && !(rc = cl_sweep_expand(&sw, &err)))
+        rc = cl_sweep_write(&sw, &err);
+    if (!rc && !a->quiet) {
+        int refs = 0;
+        for (int k = 0; k < sw.njob; k++)
+            refs += sw.job[k].reference;
+        printf("sweep      %s: %d jobs, %d references; %d integrators",
+               sw.problem, sw.njob - refs, refs, sw.nint);
+        for (int k = 0; k < sw.naxis; k++)
+            printf(", %d %s", sw.axis[k].n, sw.axis[k].key);
+        printf("\noutput     %s/jobs.txt, %s/sweep.json\n", sw.dir, sw.dir);
+    }
+    cl_sweep_free(&sw);
+    cl_config_free(cfg);
+    return rc ? cl_cli_fail(&err) : 0;
+}
+
+/* ---- run ---------------------------------------------------------------- */
+
+static const char *const engines[] = {"local", "ssh", "slurm", NULL};
+
+static const cl_cli_opt run_rows[] = {
+    {.name = "engine", .arg = "NAME", .type = CL_CLI_NAMES, .sec = "sweep",
+     .key = "engine", .sdef = "local", .names = engines,
+     .field = offsetof(cl_sweep_run_args, engine),
+     .help = "local (GNU parallel), ssh (GNU parallel --sshloginfile) or "
+             "slurm (an sbatch --array job)"},
+    {.name = "jobs", .arg = "N", .type = CL_CLI_LONG, .sec = "sweep",
+     .key = "jobs", .lo = 0, .hi = 100000,
+     .field = offsetof(cl_sweep_run_args, jobs),
+     .help = "jobs at a time (per ssh login), 0 for one per core"},
+    {.name = "resume", .type = CL_CLI_FLAG,
+     .field = offsetof(cl_sweep_run_args, resume),
+     .help = "run only the jobs that failed or have no result"},
+    {.name = "sshloginfile", .arg = "FILE", .type = CL_CLI_STRING,
+     .field = offsetof(cl_sweep_run_args, sshloginfile),
+     .help = "ssh logins, one a line (GNU parallel's format); required "
+             "with --engine ssh"},
+    {.name = "chunk", .arg = "C", .type = CL_CLI_LONG, .sec = "sweep",
+     .key = "chunk", .def = 1, .lo = 1, .hi = 100000,
+     .field = offsetof(cl_sweep_run_args, chunk),
+     .help = "slurm: jobs per array task"},
+    {.name = "throttle", .arg = "K", .type = CL_CLI_LONG, .sec = "sweep",
+     .key = "throttle", .lo = 0, .hi = 100000,
+     .field = offsetof(cl_sweep_run_args, throttle),
+     .help = "slurm: at most K array tasks at a time (--array=...%K), 0 for "
+             "no limit"},
+    {.name = "time", .arg = "MIN", .type = CL_CLI_LONG, .sec = "sweep",
+     .key = "time", .lo = 0, .hi = 10000000,
+     .field = offsetof(cl_sweep_run_args, time_min),
+     .help = "slurm: minutes per array task, 0 to estimate from a pilot "
+             "run"},
+    {.name = "mem", .arg = "MB", .type = CL_CLI_LONG, .sec = "sweep",
+     .key = "mem", .lo = 0, .hi = 100000000,
+     .field = offsetof(cl_sweep_run_args, mem_mb),
+     .help = "slurm: memory per array task, 0 to estimate from a pilot run"},
+    {.name = "wait", .type = CL_CLI_FLAG,
+     .field = offsetof(cl_sweep_run_args, wait),
+     .help = "slurm: return when the array job has ended (sbatch --wait)"},
+    {.name = "quiet", .type = CL_CLI_FLAG,
+     .field = offsetof(cl_sweep_run_args, a.quiet),
+     .help = "no progress bar and no summary"},
+    CL_CLI_HELP_ROW,
+    {.type = CL_CLI_END}};
+
+static const cl_cli_table run_table = {
+    .cmd = "sweep run", .synopsis = "DIR [options]", .npos = 1, .pos = "DIR",
+    .rows = run_rows,
+    .about =
+    "Run the jobs of a planned sweep: --engine local runs DIR/jobs.txt with\n"
+    "GNU parallel (joblog DIR/joblog, its --bar on a terminal), ssh the same\n"
+    "over parallel --sshloginfile (the sweep directory and the binary at the\n"
+    "same paths on every host), slurm submits an sbatch --array script\n"
+    "(DIR/slurm/array.sh).  --resume runs only the jobs that failed or have\n"
+    "no result, as 'sweep collect' finds them.\n"};
+
+/* Without --resume: every job, and the status files of an earlier run
+ * removed so that they cannot stand for this one's. */
+static int all_jobs(const cl_sweep *sw, int *todo)
+{
+    char path[4200];
+    for (int k = 0; k < sw->njob; k++) {
+        snprintf(path, sizeof path, "%s/jobs/%s/exit", sw->dir,
+                 sw->job[k].id);
+        unlink(path);
+        todo[k] = k;
+    }
+    return sw->njob;
+}
+
+/* Every job's outcome (allocated), or NULL with err set. */
+static cl_sweep_outcome *outcomes_of(const cl_sweep *sw, cl_sweep_counts *c,
+                                     cl_error *err)
+{
+    cl_sweep_outcome *out = calloc((size_t)sw->njob + 1, sizeof *out);
+    if (!out)
+        cl_error_set(err, CL_ENOMEM, "out of memory");
+    if (out && cl_sweep_outcomes(sw, out, c, err)) {
+        free(out);
+        out = NULL;
+    }
+    return out;
+}
+
+static int pending_jobs(const cl_sweep *sw, int *todo, cl_error *err)
+{
+    cl_sweep_counts c;
+    cl_sweep_outcome *out = outcomes_of(sw, &c, err);
+    int n = 0;
+    for (int k = 0; out && k < sw->njob; k++)
+        if (out[k].state != CL_SWEEP_COMPLETE)
+            todo[n++] = k;
+    free(out);
+    return out ? n : -1;
+}
+
+/* DIR/pending.txt: the commands of todo, for GNU parallel. */
+static cl_status write_pending(const cl_sweep *sw, const int *todo, int n,
+                               char *path, size_t len, cl_error *err)
+{
+    cl_afile af;
+    snprintf(path, len, "%s/pending.txt", sw->dir);
+    cl_status rc = cl_afile_open(&af, path, err);
+    for (int k = 0; !rc && k < n; k++)
+        fprintf(af.fp, "%s\n", sw->job[todo[k]].command);
+    return rc ? rc : cl_afile_commit(&af, err);
+}
+
+/* "N complete, M failed, K missing" once the engine is done. */
+static int summary(const cl_sweep *sw, cl_error *err)
+{
+    cl_sweep_counts c;
+    cl_sweep_outcome *out = outcomes_of(sw, &c, err);
+    if (!out)
+        return cl_cli_fail(err);
+    printf("%d complete, %d failed, %d missing (sweep collect %s)\n",
+           c.complete, c.failed, c.missing, sw->dir);
+    free(out);
+    return 0;
+}
+
+static int engine_run(cl_sweep *sw, cl_sweep_run_args *r, int *todo,
+                      cl_error *err)
+{
+    char list[4300];
+    int n = r->resume ? pending_jobs(sw, todo, err) : all_jobs(sw, todo);
+    if (n < 0)
+        return cl_cli_fail(err);
+    if (r->resume && !r->a.quiet)
+        printf("resume     %d of %d jobs failed or have no result\n", n,
+               sw->njob);
+    if (n == 0)
+        return 0;
+    if (r->engine == CL_SWEEP_SLURM)
+        return cl_sweep_slurm(sw, r, todo, n);
+    snprintf(list, sizeof list, "%s/jobs.txt", sw->dir);
+    if (r->resume && write_pending(sw, todo, n, list, sizeof list, err))
+        return cl_cli_fail(err);
+    int status = cl_sweep_parallel(sw, r, list, r->resume);
+    return status || r->a.quiet ? status : summary(sw, err);
+}
+
+static int run(void *settings)
+{
+    cl_sweep_run_args *r = settings;
+    cl_sweep sw = {0};
+    cl_error err = {0};
+    if (r->engine != CL_SWEEP_LOCAL && r->engine != CL_SWEEP_SSH &&
+        r->engine != CL_SWEEP_SLURM)
+        return cl_cli_usage_error(run_table.cmd, "--engine: one of local, "
+                                  "ssh, slurm");
+    if ((r->engine == CL_SWEEP_SSH) != (r->sshloginfile != NULL))
+        return cl_cli_usage_error(run_table.cmd, "--sshloginfile FILE goes "
+                                  "with --engine ssh, and only with it");
+    if (cl_sweep_load(r->a.arg, &sw, &err))
+        return cl_cli_fail(&err);
+    int *todo = malloc(((size_t)sw.njob + 1) * sizeof *todo);
+    int status = todo ? engine_run(&sw, r, todo, &err)
+                      : cl_cli_fail(&(cl_error){CL_ENOMEM, "out of memory"});
+    free(todo);
+    cl_sweep_free(&sw);
+    return status;
+}
+
+/* ---- collect ------------------------------------------------------------ */
+
+static const cl_cli_opt collect_rows[] = SWEEP_OUT_ROWS(
+    "TABLE", "the CSV table (default DIR/collected.csv)");
+
+static const cl_cli_table collect_table = {
+    .cmd = "sweep collect", .synopsis = "DIR [--out TABLE.csv]", .npos = 1,
+    .pos = "DIR", .rows = collect_rows,
+    .about =
+    "One CSV row per job of the sweep in DIR: id, role (job or reference),\n"
+    "integrator, every axis, status (complete, failed, missing), exit\n"
+    "class, the time reached, the statistics of stats.csv and the errors\n"
+    "err_x, err_v against the reference's final state; then the failed and\n"
+    "missing jobs by id and 'N complete, M failed, K missing'.\n"};
+
+static void list_unfinished(const cl_sweep *sw, const cl_sweep_outcome *out)
+{
+    for (int k = 0; k < sw->njob; k++) {
+        if (out[k].state == CL_SWEEP_COMPLETE)
+            continue;
+        printf("%-10s %s %s", out[k].state == CL_SWEEP_FAILED ? "failed"
+                                                              : "missing",
+               sw->job[k].id, sw->job[k].integrator);
+        for (int a = 0; a < sw->naxis; a++)
+            if (sw->job[k].value[a])
+                printf(" %s=%s", sw->axis[a].key, sw->job[k].value[a]);
+        if (out[k].state == CL_SWEEP_FAILED)
+            printf(" (%s)%s%s", out[k].exit_class, *out[k].message ? ": " : "",
+                   out[k].message);
+        putchar('\n');
+    }
+}
+
+static void table_rows(FILE *fp, const void *ctx, int n)
+{
+    const void *const *p = ctx;
+    (void)n;
+    cl_sweep_write_table(fp, p[0], p[1]);
+}
+
+static int collect(void *settings)
+{
+    cl_cli_args *a = settings;
+    cl_sweep sw = {0};
+    cl_error err = {0};
+    cl_sweep_counts c;
+    cl_sweep_outcome *out = NULL;
+    char table[4200], dir[4200];
+    cl_status rc = cl_sweep_load(a->arg, &sw, &err);
+    /* the jobs' outputs where the sweep is now (copied from a cluster) */
+    free(sw.dir);
+    sw.dir = strdup(a->arg);
+    if (!rc && !sw.dir)
+        rc = cl_error_set(&err, CL_ENOMEM, "out of memory");
+    if (!rc && !(out = outcomes_of(&sw, &c, &err)))
+        rc = err.code;
+    snprintf(table, sizeof table, "%s", a->out ? a->out : "collected.csv");
+    snprintf(dir, sizeof dir, "%s", a->out ? "." : a->arg);
+    char *slash = a->out ? strrchr(table, '/') : NULL;
+    if (slash) /* TABLE as DIR/NAME for the atomic writer */
+        snprintf(dir, sizeof dir, "%.*s", (int)(slash - table), table),
+            memmove(table, slash + 1, strlen(slash));
+    const void *ctx[2] = {&sw, out};
+    if (!rc)
+        rc = cl_cli_write_csv(dir, table, table_rows, ctx, 1, &err);
+    if (!rc && !a->quiet) {
+        list_unfinished(&sw, out);
+        printf("%d complete, %d failed, %d missing\noutput     %s/%s\n",
+               c.complete, c.failed, c.missing, dir, table);
+    }
+    free(out);
+    cl_sweep_free(&sw);
+    return rc ? cl_cli_fail(&err) : 0;
+}
+
+/* ---- dispatch ----------------------------------------------------------- */
+
+int cl_cmd_sweep(int argc, char **argv)
+{
+    const char *what = argc > 1 ? argv[1] : "";
+    if (!strcmp(what, "plan")) {
+        cl_cli_args a = {0};
+        return cl_cli_args_main(argc - 1, argv + 1, &plan_table, &a, plan);
+    }
+    if (!strcmp(what, "run")) {
+        cl_sweep_run_args r = {0};
+        return cl_cli_args_main(argc - 1, argv + 1, &run_table, &r, run);
+    }
+    if (!strcmp(what, "collect")) {
+        cl_cli_args a = {0};
+        return cl_cli_args_main(argc - 1, argv + 1, &collect_table, &a,
+                                collect);
+    }
+    FILE *fp = strcmp(what, "--help") ? stderr : stdout;
+    fprintf(fp, "usage: clothode sweep plan SWEEP.ini [--out DIR]\n"
+                "       clothode sweep run DIR [--engine local|ssh|slurm] "
+                "[--jobs N] [--resume] ...\n"
+                "       clothode sweep collect DIR [--out TABLE.csv]\n"
+                "(clothode sweep plan|run|collect --help for more)\n");
+    return fp == stdout ? 0 : 2;
+}

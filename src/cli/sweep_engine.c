@@ -1,0 +1,292 @@
+/* The engines of `clothode sweep run` (see sweep_engine.h). */
+#include "cli/sweep_engine.h"
+
+#include <errno.h>
+#include <math.h>
+#include <signal.h>
+#include <spawn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "core/clock.h"
+#include "io/atomic.h"
+
+extern char **environ;
+
+/* ---- GNU parallel ------------------------------------------------------- */
+
+static volatile sig_atomic_t engine_pid;
+
+/* SIGINT and SIGTERM go on to the engine, which stops its jobs. */
+static void forward(int sig)
+{
+    if (engine_pid > 0)
+        kill((pid_t)engine_pid, sig);
+}
+
+/* Run argv, forwarding SIGINT and SIGTERM; its wait status, or -1. */
+static int spawn_forwarding(const char *const *argv)
+{
+    struct sigaction sa = {.sa_handler = forward}, old_int, old_term;
+    pid_t pid;
+    int status = -1;
+    fflush(stdout);
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, &old_int);
+    sigaction(SIGTERM, &sa, &old_term);
+    if (posix_spawnp(&pid, argv[0], NULL, NULL, (char *const *)argv,
+                     environ) == 0) {
+        engine_pid = pid;
+        while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+            ;
+    }
+    engine_pid = 0;
+    sigaction(SIGINT, &old_int, NULL);
+    sigaction(SIGTERM, &old_term, NULL);
+    return status;
+}
+
+int cl_sweep_parallel(const cl_sweep *sw, const cl_sweep_run_args *r,
+                      const char *list, bool append)
+{
+    char joblog[4200], jobs[32];
+    const char *argv[16];
+    int n = 0;
+    snprintf(joblog, sizeof joblog, "%s%s/joblog", append ? "+" : "",
+             sw->dir);
+    argv[n++] = "parallel";
+    argv[n++] = "--will-cite";
+    if (r->jobs > 0) {
+        snprintf(jobs, sizeof jobs, "%ld", r->jobs);
+        argv[n++] = "--jobs";
+        argv[n++] = jobs;
+    }
+    argv[n++] = "--joblog";
+    argv[n++] = joblog;
+    if (r->engine == CL_SWEEP_SSH) {
+        argv[n++] = "--sshloginfile";
+        argv[n++] = r->sshloginfile;
+    }
+    /* the progress bar on a terminal only, so that logs stay clean */
+    if (isatty(STDERR_FILENO) && !r->a.quiet)
+        argv[n++] = "--bar";
+    argv[n++] = "-a";
+    argv[n++] = list;
+    argv[n] = NULL;
+    int st = spawn_forwarding(argv);
+    /* parallel's exit status counts the failed jobs (at most 100); above
+     * that it was stopped or could not run */
+    if (st >= 0 && WIFEXITED(st) && WEXITSTATUS(st) <= 100)
+        return 0;
+    if (st < 0 || (WIFEXITED(st) && WEXITSTATUS(st) == 127))
+        fprintf(stderr, "clothode: sweep run: cannot run GNU parallel "
+                        "(apt-get install parallel)\n");
+    else
+        fprintf(stderr, "clothode: sweep run: GNU parallel stopped before "
+                        "the end (%s %d); 'sweep run --resume' runs the "
+                        "rest\n", WIFEXITED(st) ? "exit status" : "signal",
+                WIFEXITED(st) ? WEXITSTATUS(st) : WTERMSIG(st));
+    return 1;
+}
+
+/* ---- Slurm -------------------------------------------------------------- */
+
+static FILE *open_in(const cl_sweep *sw, const char *name, char *path,
+                     size_t len)
+{
+    snprintf(path, len, "%s/slurm/%s", sw->dir, name);
+    return fopen(path, "w");
+}
+
+/* Record job k's exit status as the array's wrapper does. */
+static void record_exit(const cl_sweep *sw, int k, int status)
+{
+    char path[4200], tmp[4300];
+    snprintf(path, sizeof path, "%s/jobs/%s", sw->dir, sw->job[k].id);
+    cl_error ignored;
+    cl_mkdir_p(path, &ignored);
+    snprintf(tmp, sizeof tmp, "%s/exit.tmp", path);
+    strcat(path, "/exit");
+    FILE *fp = fopen(tmp, "w");
+    if (fp && fprintf(fp, "%d\n", status) > 0 && fclose(fp) == 0)
+        rename(tmp, path);
+    else if (fp)
+        fclose(fp);
+}
+
+/* Run job k here, as the pilot: its wall time and peak memory. */
+static int pilot(const cl_sweep *sw, int k, double *wall, long *rss_kb)
+{
+    struct rusage ru;
+    int status = 0;
+    double t0 = cl_clock_wall();
+    pid_t pid = fork();
+    if (pid == 0) {
+        execl("/bin/sh", "sh", "-c", sw->job[k].command, (char *)NULL);
+        _exit(127);
+    }
+    /* the children's peak: the pilots are this process's only children */
+    if (pid < 0 || waitpid(pid, &status, 0) != pid ||
+        getrusage(RUSAGE_CHILDREN, &ru))
+        return -1;
+    *wall = cl_clock_wall() - t0;
+    *rss_kb = ru.ru_maxrss;
+    int code = WIFEXITED(status) ? WEXITSTATUS(status)
+                                 : 128 + WTERMSIG(status);
+    record_exit(sw, k, code);
+    return code;
+}
+
+/* Time (minutes) and memory (MB) of an array task: given, kept from an
+ * earlier submission of the sweep (DIR/slurm/estimate), or three times
+ * the pilot's wall time per job of a chunk plus a minute and twice its
+ * peak memory plus 100 MB.  The pilot is the first job of todo that
+ * completes (of at most three tried); its result stands. */
+static int estimate(const cl_sweep *sw, const cl_sweep_run_args *r,
+                    const int *todo, int n, long *minutes, long *mb,
+                    int *piloted)
+{
+    char path[4200];
+    FILE *fp;
+    *piloted = 0;
+    snprintf(path, sizeof path, "%s/slurm/estimate", sw->dir);
+    if ((fp = fopen(path, "r"))) {
+        if (fscanf(fp, "%ld %ld", minutes, mb) != 2)
+            *minutes = *mb = 0;
+        fclose(fp);
+    }
+    double wall = 0;
+    long rss = 0;
+    int code = -1;
+    while ((!*minutes || !*mb) && code != 0 && *piloted < n && *piloted < 3)
+        code = pilot(sw, todo[(*piloted)++], &wall, &rss);
+    if (code == 0) {
+        *minutes = (long)ceil((3 * wall * r->chunk + 60) / 60);
+        *mb = (long)ceil(2 * rss / 1024.0) + 100;
+        if (!r->a.quiet)
+            printf("pilot      job %s: %.3g s, %ld MB peak\n",
+                   sw->job[todo[*piloted - 1]].id, wall, rss / 1024);
+    }
+    if ((fp = open_in(sw, "estimate", path, sizeof path))) {
+        fprintf(fp, "%ld %ld\n", *minutes, *mb);
+        fclose(fp);
+    }
+    *minutes = r->time_min ? r->time_min : *minutes;
+    *mb = r->mem_mb ? r->mem_mb : *mb;
+    if (*minutes && *mb)
+        return 0;
+    fprintf(stderr, "clothode: sweep run: no pilot job completed; give "
+                    "--time MIN and --mem MB\n");
+    return 1;
+}
+
+/* The job list of this submission, "ID LINE" (LINE in jobs.txt). */
+static int write_ids(const cl_sweep *sw, const int *todo, int n, char *path,
+                     size_t len)
+{
+    char name[64];
+    struct stat st;
+    int s = 1;
+    do {
+        snprintf(name, sizeof name, "ids-%d.txt", s++);
+        snprintf(path, len, "%s/slurm/%s", sw->dir, name);
+    } while (stat(path, &st) == 0);
+    FILE *fp = open_in(sw, name, path, len);
+    for (int k = 0; fp && k < n; k++)
+        fprintf(fp, "%s %d\n", sw->job[todo[k]].id, todo[k] + 1);
+    return fp && fclose(fp) == 0 ? 0 : 1;
+}
+
+/* The array script: each task runs its chunk of the ids, every job's exit
+ * status into DIR/jobs/ID/exit (written last, through a rename). */
+static int write_script(const cl_sweep *sw, const cl_sweep_run_args *r,
+                        const char *ids, int n, long minutes, long mb,
+                        char *path, size_t len)
+{
+    char dir[4400], qids[4400], throttle[32] = "";
+    cl_sweep_quote(sw->dir, dir, sizeof dir);
+    cl_sweep_quote(ids, qids, sizeof qids);
+    if (r->throttle > 0)
+        snprintf(throttle, sizeof throttle, "%%%ld", r->throttle);
+    FILE *fp = open_in(sw, "array.sh", path, len);
+    if (!fp)
+        return 1;
+    long tasks = (n + r->chunk - 1) / r->chunk;
+    fprintf(fp,
+            "#!/bin/bash\n"
+            "#SBATCH --job-name=clothode-sweep\n"
+            "#SBATCH --array=0-%ld%s\n"
+            "#SBATCH --time=%ld\n"
+            "#SBATCH --mem=%ldM\n"
+            "#SBATCH --output=%s/slurm/task-%%A_%%a.out\n"
+            "# clothode sweep: %ld jobs a task, the jobs in %s\n"
+            "dir=%s\n"
+            "first=$((SLURM_ARRAY_TASK_ID * %ld + 1))\n"
+            "sed -n \"${first},$((first + %ld - 1))p\" %s |\n"
+            "while read -r id line; do\n"
+            "    cmd=$(sed -n \"${line}p\" \"$dir/jobs.txt\")\n"
+            "    bash -c \"$cmd\" < /dev/null\n"
+            "    echo $? > \"$dir/jobs/$id/exit.tmp\"\n"
+            "    mv \"$dir/jobs/$id/exit.tmp\" \"$dir/jobs/$id/exit\"\n"
+            "done\n"
+            "exit 0\n",
+            tasks - 1, throttle, minutes, mb, sw->dir, r->chunk, ids, dir,
+            r->chunk, r->chunk, qids);
+    return fclose(fp) == 0 ? 0 : 1;
+}
+
+static int sbatch(const char *script, bool wait)
+{
+    const char *argv[] = {"sbatch", "--parsable", script, NULL, NULL};
+    if (wait) {
+        argv[2] = "--wait";
+        argv[3] = script;
+    }
+    fflush(stdout);
+    pid_t pid = fork();
+    if (pid == 0) {
+        execvp("sbatch", (char *const *)argv);
+        fprintf(stderr, "clothode: cannot run sbatch: %s (apt-get install "
+                        "slurm-client; SLURM_CONF)\n", strerror(errno));
+        _exit(127);
+    }
+    int status = 1;
+    if (pid < 0 || waitpid(pid, &status, 0) != pid)
+        return 1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+}
+
+int cl_sweep_slurm(const cl_sweep *sw, const cl_sweep_run_args *r,
+                   const int *todo, int n)
+{
+    char dir[4200], ids[4300], script[4300];
+    long minutes = 0, mb = 0;
+    int piloted;
+    cl_error err;
+    snprintf(dir, sizeof dir, "%s/slurm", sw->dir);
+    if (cl_mkdir_p(dir, &err))
+        return fprintf(stderr, "clothode: %s\n", err.msg), 1;
+    if (estimate(sw, r, todo, n, &minutes, &mb, &piloted))
+        return 1;
+    todo += piloted;
+    n -= piloted;
+    if (n == 0) {
+        if (!r->a.quiet)
+            printf("slurm      nothing left to submit\n");
+        return 0;
+    }
+    if (write_ids(sw, todo, n, ids, sizeof ids) ||
+        write_script(sw, r, ids, n, minutes, mb, script, sizeof script))
+        return fprintf(stderr, "clothode: cannot write %s/slurm/: %s\n",
+                       sw->dir, strerror(errno)), 1;
+    if (!r->a.quiet)
+        printf("slurm      %d jobs in %ld array tasks of %ld, %ld min and "
+               "%ld MB each: %s\n", n, (n + r->chunk - 1) / r->chunk,
+               r->chunk, minutes, mb, script);
+    return sbatch(script, r->wait);
+}

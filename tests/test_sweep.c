@@ -1,0 +1,381 @@
+/* Sweeps (analysis/sweep.h): the plan's axes, ids and commands, the
+ * manifest read back, and collect's outcomes of complete, failed and
+ * missing jobs. */
+#include <criterion/criterion.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analysis/sweep.h"
+#include "io/atomic.h"
+#include "io/config.h"
+#include "runcli.h"
+#include "timelimit.h"
+
+static char tmp[512];
+
+static void setup(void)
+{
+    time_limit(120);
+    tmp_mkdtemp(tmp, sizeof tmp, "sweep");
+}
+
+static void teardown(void)
+{
+    tmp_rm_rf(tmp);
+}
+
+TestSuite(sweep, .init = setup, .fini = teardown);
+
+/* The sweep file `text` read and expanded into sw (into tmp/d). */
+static cl_status plan_text(const char *text, cl_sweep *sw, cl_error *err)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/s.ini", tmp);
+    tmp_put(path, text);
+    cl_config *cfg = cl_config_alloc();
+    memset(sw, 0, sizeof *sw);
+    cl_status rc = cl_config_load(cfg, path, err);
+    if (!rc)
+        rc = cl_sweep_read(cfg, sw, err);
+    if (!rc) {
+        char dir[1024];
+        snprintf(dir, sizeof dir, "%s/d", tmp);
+        sw->dir = strdup(dir);
+        sw->clothode = strdup("/bin/clothode");
+        rc = cl_sweep_expand(sw, err);
+    }
+    cl_config_free(cfg);
+    return rc;
+}
+
+static const char *id_of(const cl_sweep *sw, const char *integrator,
+                         const char *dt)
+{
+    for (int k = 0; k < sw->njob; k++)
+        if (!strcmp(sw->job[k].integrator, integrator) &&
+            !strcmp(sw->job[k].value[0], dt))
+            return sw->job[k].id;
+    cr_assert_fail("no job %s dt=%s", integrator, dt);
+    return NULL;
+}
+
+Test(sweep, axes_expand_lists_linspace_logspace)
+{
+    cl_sweep sw;
+    cl_error err = {0};
+    cr_assert_eq(plan_text("[sweep]\nproblem = p.ini\n"
+                           "integrator = rk4, semi-bdf2:pcg\n"
+                           "dt = logspace(-4, -2, 3)\n"
+                           "type1.ks = linspace(100, 200, 5)\n"
+                           "n = 6, 8\n", &sw, &err), CL_OK, "%s", err.msg);
+    cr_assert_eq(sw.naxis, 3);
+    cr_assert_str_eq(sw.axis[0].key, "run.dt");
+    cr_assert_str_eq(sw.axis[0].v[0], "0.0001");
+    cr_assert_str_eq(sw.axis[0].v[1], "0.001");
+    cr_assert_str_eq(sw.axis[0].v[2], "0.01");
+    cr_assert_str_eq(sw.axis[1].key, "type1.ks");
+    cr_assert_eq(sw.axis[1].n, 5);
+    cr_assert_str_eq(sw.axis[1].v[1], "125");
+    cr_assert_str_eq(sw.axis[1].v[4], "200");
+    cr_assert_str_eq(sw.axis[2].key, "cloth.n");
+    cr_assert_str_eq(sw.axis[2].v[1], "8");
+    cr_assert_eq(sw.njob, 2 * 3 * 5 * 2);
+    /* integrator slowest, the last axis fastest */
+    cr_assert_str_eq(sw.job[0].integrator, "rk4");
+    cr_assert_str_eq(sw.job[1].value[2], "8");
+    cr_assert_str_eq(sw.job[2].value[1], "125");
+    cr_assert_str_eq(sw.job[30].integrator, "semi-bdf2:pcg");
+    char tail[2200];
+    snprintf(tail, sizeof tail, " --out %s/d/jobs/%s --quiet 2> %s/d/jobs/%s/"
+             "stderr", tmp, sw.job[1].id, tmp, sw.job[1].id);
+    cr_assert(strstr(sw.job[1].command,
+                     " run p.ini --integrator rk4 --frames 0 --set "
+                     "run.dt=0.0001 --set type1.ks=100 --set cloth.n=8 "
+                     "--out "),
+              "%s", sw.job[1].command);
+    cr_assert(strstr(sw.job[1].command, tail), "%s", sw.job[1].command);
+    for (int a = 0; a < sw.njob; a++)
+        for (int b = a + 1; b < sw.njob; b++)
+            cr_assert_str_neq(sw.job[a].id, sw.job[b].id);
+    cl_sweep_free(&sw);
+}
+
+/* Ids hash the parameters: the same job keeps its id when the axes are
+ * reordered and values added around it. */
+Test(sweep, ids_are_stable)
+{
+    cl_sweep a, b;
+    cl_error err = {0};
+    cr_assert_eq(plan_text("[sweep]\nproblem = p.ini\nintegrator = rk4\n"
+                           "dt = 1e-3, 2e-3\nn = 6\n", &a, &err), CL_OK);
+    cr_assert_eq(plan_text("[sweep]\nproblem = p.ini\n"
+                           "integrator = fe, rk4\nn = 6\n"
+                           "dt = 5e-4, 1e-3, 2e-3\n", &b, &err), CL_OK);
+    cr_assert_str_eq(a.job[0].id, "ca0465cfe9cf");
+    char text[512];
+    cl_sweep_canonical(&a, &a.job[0], text, sizeof text);
+    cr_assert_str_eq(text, "integrator=rk4\ncloth.n=6\nrun.dt=1e-3");
+    for (int k = 0; k < b.njob; k++)
+        if (!strcmp(b.job[k].integrator, "rk4") &&
+            !strcmp(b.job[k].value[1], "1e-3"))
+            cr_assert_str_eq(b.job[k].id, a.job[0].id);
+    cl_sweep_free(&a);
+    cl_sweep_free(&b);
+}
+
+/* With one t_end, dt becomes T / round(T / dt): whole steps. */
+Test(sweep, dt_snapped_to_whole_steps)
+{
+    cl_sweep sw;
+    cl_error err = {0};
+    cr_assert_eq(plan_text("[sweep]\nproblem = p.ini\n"
+                           "integrator = symplectic-euler\n"
+                           "dt = 1e-5, 3.1622776601683795e-05, -1\nt_end = 0.05\n",
+                           &sw, &err), CL_OK, "%s", err.msg);
+    /* 0.05 / 3.16e-5 = 1581.1 steps -> 1581 */
+    cr_assert_str_eq(id_of(&sw, "symplectic-euler", "3.16255534471853e-05"),
+                     sw.job[1].id);
+    cr_assert_str_eq(sw.job[0].value[0], "1e-05");
+    cr_assert_str_eq(sw.job[2].value[0], "-1"); /* left for run to refuse */
+    cl_sweep_free(&sw);
+}
+
+Test(sweep, refused_keys_and_values)
+{
+    static const struct {
+        const char *text, *want;
+    } bad[] = {
+        {"[sweep]\nproblem = p.ini\nintegrator = rk4\ndt = linspace(1, 2)\n",
+         "s.ini:4: [sweep] dt = \"linspace(1, 2)\": expected a list"},
+        {"[sweep]\nproblem = p.ini\nintegrator = rk5\n",
+         "[sweep] integrator = \"rk5\": expected NAME[:LINSOL]"},
+        {"[sweep]\nproblem = p.ini\nintegrator = rk4\nks = 1, 2\n",
+         "[sweep] ks = \"1, 2\": expected problem, integrator, reference, an "
+         "axis dt"},
+        {"[sweep]\nintegrator = rk4\n", "a problem file is required"},
+        {"[sweep]\nproblem = p.ini\nintegrator = rk4\ndt = 1e-3, 1e-3\n",
+         "two jobs are the same run"},
+        {"[sweep]\nproblem = p.ini\nintegrator = rk4\ndt = 1e-3, ,2\n",
+         "expected a list"},
+        /* parts */
+        {"[sweep]\nproblem = p.ini\n[sweep.a]\ndt = 1\n",
+         "[sweep.a] integrator: NAME[:LINSOL], ... is required"},
+        {"[sweep]\nproblem = p.ini\nintegrator = rk4\n[sweep.a]\n"
+         "reference = 1e-9\n", "[sweep.a] reference = \"1e-9\": belongs in "
+                               "[sweep]"},
+        {"[sweep]\nproblem = p.ini\nintegrator = rk4\natol = rtol / 100\n",
+         "or KEY * C or KEY / C of a numeric axis above"},
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
+        cl_sweep sw;
+        cl_error err = {0};
+        cr_assert_eq(plan_text(bad[k].text, &sw, &err), CL_EINVAL, "%s",
+                     bad[k].text);
+        cr_assert(strstr(err.msg, bad[k].want), "%s\ngot: %s\nwant: %s",
+                  bad[k].text, err.msg, bad[k].want);
+        cl_sweep_free(&sw);
+    }
+}
+
+/* Reference runs: one per combination of the problem's axes, shared by
+ * the methods' values. */
+Test(sweep, references_per_problem_axis)
+{
+    cl_sweep sw;
+    cl_error err = {0};
+    cr_assert_eq(plan_text("[sweep]\nproblem = p.ini\nreference = 1e-10\n"
+                           "integrator = rk4, semi-bdf2\n"
+                           "dt = 1e-3, 2e-3\nn = 6, 8\n", &sw, &err), CL_OK,
+                 "%s", err.msg);
+    cr_assert_eq(sw.njob, 8 + 2);
+    cr_assert(sw.job[8].reference && sw.job[9].reference);
+    cr_assert_null(sw.job[8].value[0]);
+    cr_assert_str_eq(sw.job[8].value[1], "6");
+    for (int k = 0; k < 8; k++)
+        cr_assert_eq(sw.job[k].ref, 8 + (k % 2), "job %d", k);
+    cr_assert(strstr(sw.job[9].command, "--integrator cvode-bdf --frames 0 "
+                                        "--set cloth.n=8 --rtol 1e-10 "
+                                        "--atol 1e-12 --out"),
+              "%s", sw.job[9].command);
+    cl_sweep_free(&sw);
+}
+
+/* The manifest written and read back gives the same plan. */
+Test(sweep, manifest_round_trip)
+{
+    cl_sweep a, b = {0};
+    cl_error err = {0};
+    cr_assert_eq(plan_text("[sweep]\nproblem = p q.ini\nreference = 1e-9\n"
+                           "integrator = rk4\ndt = 1e-3, 2e-3\n"
+                           "gravity.g = 0 -9.81 0, 0 -1 0\n", &a, &err),
+                 CL_OK, "%s", err.msg);
+    cr_assert(strstr(a.job[0].command, "'p q.ini'"), "%s", a.job[0].command);
+    cr_assert_eq(cl_sweep_write(&a, &err), CL_OK, "%s", err.msg);
+    cr_assert_eq(cl_sweep_load(a.dir, &b, &err), CL_OK, "%s", err.msg);
+    cr_assert_eq(b.njob, a.njob);
+    cr_assert_eq(b.naxis, 2);
+    cr_assert_str_eq(b.ref_rtol, "1e-09");
+    for (int k = 0; k < a.njob; k++) {
+        cr_assert_str_eq(b.job[k].id, a.job[k].id);
+        cr_assert_str_eq(b.job[k].command, a.job[k].command);
+        cr_assert_eq(b.job[k].ref, a.job[k].ref);
+        cr_assert_eq(b.job[k].reference, a.job[k].reference);
+    }
+    cr_assert_str_eq(b.job[1].value[1], "0 -1 0");
+    cl_sweep_free(&a);
+    cl_sweep_free(&b);
+}
+
+static void put_job_file(const cl_sweep *sw, int k, const char *name,
+                         const char *text)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/jobs/%s", sw->dir, sw->job[k].id);
+    cl_error err;
+    cr_assert_eq(cl_mkdir_p(path, &err), CL_OK);
+    strcat(path, "/");
+    strcat(path, name);
+    tmp_put(path, text);
+}
+
+/* Four jobs: complete (status file), failed (joblog, exit 1), killed
+ * (joblog, signal 2) and missing; the joblog's last entry counts. */
+Test(sweep, collect_complete_failed_missing)
+{
+    cl_sweep sw;
+    cl_error err = {0};
+    cr_assert_eq(plan_text("[sweep]\nproblem = p.ini\nintegrator = rk4\n"
+                           "dt = 1e-3, 2e-3, 4e-3, 8e-3\n", &sw, &err),
+                 CL_OK);
+    cr_assert_eq(cl_sweep_write(&sw, &err), CL_OK, "%s", err.msg);
+    put_job_file(&sw, 0, "exit", "0\n");
+    put_job_file(&sw, 0, "stats.csv", "steps,50\nrhs_evals,200\n"
+                                      "nonlin_iters,NA\ncpu,0.25\n");
+    put_job_file(&sw, 0, "series.csv", "t,kinetic\n0,0\n0.025,1\n0.05,2\n");
+    char log[8192], path[1024];
+    snprintf(log, sizeof log,
+             "Seq\tHost\tStarttime\tJobRuntime\tSend\tReceive\tExitval\t"
+             "Signal\tCommand\n"
+             "2\t:\t1.0\t0.1\t0\t0\t0\t0\t%s\n"
+             "2\t:\t2.0\t0.1\t0\t0\t1\t0\t%s\n"
+             "3\t:\t2.0\t0.1\t0\t0\t0\t2\t%s\n",
+             sw.job[1].command, sw.job[1].command, sw.job[2].command);
+    snprintf(path, sizeof path, "%s/joblog", sw.dir);
+    tmp_put(path, log);
+    cl_sweep_outcome out[4];
+    cl_sweep_counts c;
+    cr_assert_eq(cl_sweep_outcomes(&sw, out, &c, &err), CL_OK);
+    cr_assert_eq(c.complete, 1);
+    cr_assert_eq(c.failed, 2);
+    cr_assert_eq(c.missing, 1);
+    cr_assert_str_eq(out[0].exit_class, "ok");
+    cr_assert_eq(out[0].stat[0], 50);
+    cr_assert_eq(out[0].stat[1], 200);
+    cr_assert(isnan(out[0].stat[6]));
+    cr_assert_eq(out[0].stat[12], 0.25);
+    cr_assert_eq(out[0].t_reached, 0.05);
+    cr_assert_str_eq(out[1].exit_class, "error");
+    cr_assert_str_eq(out[2].exit_class, "signal-2");
+    cr_assert_eq(out[3].state, CL_SWEEP_MISSING);
+    cr_assert_str_eq(out[3].exit_class, "missing");
+    cl_sweep_free(&sw);
+}
+
+/* The command line: the table has a row per job, the summary names the
+ * failed and the missing ones. */
+Test(sweep, collect_cli_summary)
+{
+    cl_sweep sw;
+    cl_error err = {0};
+    cr_assert_eq(plan_text("[sweep]\nproblem = p.ini\nintegrator = rk4\n"
+                           "dt = 1e-3, 2e-3, 4e-3\n", &sw, &err), CL_OK);
+    cr_assert_eq(cl_sweep_write(&sw, &err), CL_OK, "%s", err.msg);
+    put_job_file(&sw, 0, "exit", "0\n");
+    put_job_file(&sw, 0, "stats.csv", "steps,50\n");
+    put_job_file(&sw, 1, "exit", "3\n");
+    put_job_file(&sw, 1, "stderr", "clothode: it broke, here\nmore\n");
+    char table[1024], line[512];
+    snprintf(table, sizeof table, "%s/t.csv", tmp);
+    cli_result r;
+    cli_run(&r, "sweep", "collect", sw.dir, "--out", table, NULL);
+    cli_assert_ok(&r);
+    snprintf(line, sizeof line, "failed     %s rk4 run.dt=2e-3 (exit-3): "
+             "clothode: it broke, here\n"
+             "missing    %s rk4 run.dt=4e-3\n"
+             "1 complete, 1 failed, 1 missing\n", sw.job[1].id,
+             sw.job[2].id);
+    cr_assert(strstr(r.out, line), "%s", r.out);
+    cli_result_free(&r);
+    char text[4096];
+    tmp_slurp(table, text, sizeof text);
+    cr_assert_eq(cli_count_lines(text), 4);
+    cr_assert(!strncmp(text, "id,role,integrator,run.dt,status,exit,"
+                             "t_reached,steps,", 38), "%s", text);
+    snprintf(line, sizeof line, "\n%s,job,rk4,4e-3,missing,missing,NA,",
+             sw.job[2].id);
+    cr_assert(strstr(text, line), "%s", text);
+    cr_assert(strstr(text, ",NA,NA,\"clothode: it broke, here\"\n"), "%s",
+              text);
+    cl_sweep_free(&sw);
+}
+
+/* Parts: fixed-step methods over dt, adaptive ones over rtol with atol
+ * following it, one reference for both. */
+Test(sweep, parts_and_derived_axes)
+{
+    cl_sweep sw;
+    cl_error err = {0};
+    cr_assert_eq(plan_text("[sweep]\nproblem = p.ini\nreference = 1e-11\n"
+                           "t_end = 0.2\n"
+                           "[sweep.fixed]\nintegrator = rk4, semi-bdf2:pcg\n"
+                           "dt = 1e-3, 5e-4\n"
+                           "[sweep.adaptive]\nintegrator = cvode-bdf:pcg\n"
+                           "rtol = logspace(-4, -6, 3)\natol = rtol / 100\n",
+                           &sw, &err), CL_OK, "%s", err.msg);
+    cr_assert_eq(sw.nplan, 2);
+    cr_assert_eq(sw.njob, 4 + 3 + 1);
+    cr_assert_eq(sw.naxis, 4);
+    cr_assert_str_eq(sw.axis[0].key, "run.t_end");
+    cr_assert_str_eq(sw.axis[1].key, "run.dt");
+    cr_assert_str_eq(sw.axis[2].key, "run.rtol");
+    cr_assert_str_eq(sw.axis[3].key, "run.atol");
+    cr_assert_str_eq(sw.job[1].integrator, "rk4");
+    cr_assert_str_eq(sw.job[1].value[1], "0.0005");
+    cr_assert_null(sw.job[1].value[2]);
+    cr_assert_str_eq(sw.job[5].integrator, "cvode-bdf:pcg");
+    cr_assert_null(sw.job[5].value[1]);
+    cr_assert_str_eq(sw.job[5].value[2], "1e-05");
+    cr_assert_str_eq(sw.job[5].value[3], "1e-07");
+    cr_assert_str_eq(sw.job[6].value[3], "1e-08");
+    for (int k = 0; k < 7; k++)
+        cr_assert_eq(sw.job[k].ref, 7);
+    cr_assert_str_eq(sw.job[7].value[0], "0.2");
+    cl_sweep_free(&sw);
+}
+
+/* The options of sweep run are the command line's own: --help names no
+ * key of a sweep file; a sweep directory that is not one is refused. */
+Test(sweep, run_help_and_refusals)
+{
+    cli_result r;
+    cli_run(&r, "sweep", "run", "--help", NULL);
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "--chunk C          slurm: jobs per array task; "
+                            "1 .. 100000, default 1\n"), "%s", r.out);
+    cr_assert_null(strstr(r.out, "[sweep]"), "%s", r.out);
+    cli_result_free(&r);
+    cli_run(&r, "sweep", "run", tmp, NULL);
+    cli_assert_error(&r, 0, "sweep.json: cannot read it; a sweep directory "
+                     "is made by 'clothode sweep plan'", NULL);
+    cli_result_free(&r);
+    cli_run(&r, "sweep", "run", tmp, "--engine", "ssh", NULL);
+    cli_assert_error(&r, 1, "--sshloginfile FILE goes with --engine ssh",
+                     NULL);
+    cli_result_free(&r);
+    cli_run(&r, "sweep", "frobnicate", NULL);
+    cr_assert_eq(r.status, 2);
+    cli_result_free(&r);
+}

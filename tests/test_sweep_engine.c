@@ -1,0 +1,379 @@
+/* The engines of `clothode sweep run` (cli/sweep_engine.h), end to end
+ * through the command line: GNU parallel interrupted by SIGINT and
+ * resumed; the same plan over ssh (an sshd started on loopback) and on a
+ * single-node Slurm (scripts/slurm-local.sh), each giving the table of the
+ * local run.  The ssh and Slurm tests say "skipped: REASON" when their
+ * servers cannot be started. */
+#include <criterion/criterion.h>
+
+#include <signal.h>
+#include <spawn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "runcli.h"
+#include "timelimit.h"
+
+static char tmp[512];
+
+static void setup(void)
+{
+    time_limit(600);
+    tmp_mkdtemp(tmp, sizeof tmp, "sweepeng");
+}
+
+static void stop_servers(void);
+
+static void teardown(void)
+{
+    stop_servers();
+    tmp_rm_rf(tmp);
+}
+
+TestSuite(sweep_engine, .init = setup, .fini = teardown);
+
+static const char *in_tmp(char *buf, const char *name)
+{
+    snprintf(buf, 1024, "%s/%s", tmp, name);
+    return buf;
+}
+
+/* 2 integrators x 5 steps on hang to T = 0.1 s: jobs of 0.1 to 3 s. */
+static const char *const spec =
+    "[sweep]\nproblem = problems/hang.ini\n"
+    "integrator = symplectic-euler, rk4\n"
+    "dt = logspace(-5, -4, 5)\nt_end = 0.1\n";
+
+static void plan(const char *dir, const char *text)
+{
+    char path[1024];
+    tmp_put(in_tmp(path, "s.ini"), text);
+    cli_result r;
+    cli_run(&r, "sweep", "plan", path, "--out", dir, "--quiet", NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+}
+
+/* collect DIR into DIR.csv; its summary line */
+static void collect(const char *dir, char *summary, size_t len)
+{
+    char table[1100];
+    snprintf(table, sizeof table, "%s.csv", dir);
+    cli_result r;
+    cli_run(&r, "sweep", "collect", dir, "--out", table, NULL);
+    cli_assert_ok(&r);
+    const char *s = strstr(r.out, " complete, ");
+    cr_assert_not_null(s, "%s", r.out);
+    while (s > r.out && s[-1] != '\n')
+        s--;
+    snprintf(summary, len, "%.*s", (int)strcspn(s, "\n"), s);
+    cli_result_free(&r);
+}
+
+static size_t lines_of(const char *path)
+{
+    static char text[1 << 16];
+    tmp_slurp(path, text, sizeof text);
+    return cli_count_lines(text);
+}
+
+/* The table without its wall and cpu columns (they differ from run to
+ * run): every other field is compared. */
+static void table_without_times(const char *path, char *out, size_t len)
+{
+    static char text[1 << 16];
+    tmp_slurp(path, text, sizeof text);
+    size_t u = 0;
+    int wall = -1, col = 0;
+    for (const char *p = text; *p && u + 2 < len; p++) {
+        if (wall < 0 && !strncmp(p, "wall,cpu,", 9))
+            wall = col;
+        bool skip = wall >= 0 && (col == wall || col == wall + 1);
+        if (*p == ',')
+            col++;
+        if (*p == '\n')
+            col = 0;
+        if (!skip || *p == '\n')
+            out[u++] = *p;
+    }
+    out[u] = '\0';
+}
+
+static void assert_same_table(const char *a, const char *b)
+{
+    static char ta[1 << 16], tb[1 << 16];
+    table_without_times(a, ta, sizeof ta);
+    table_without_times(b, tb, sizeof tb);
+    cr_assert_str_eq(ta, tb, "%s and %s differ", a, b);
+}
+
+/* Failed jobs (their messages pass through on stderr) do not fail the
+ * run: collect reports them. */
+static void run_local(const char *dir)
+{
+    cli_result r;
+    cli_run(&r, "sweep", "run", dir, "--jobs", "2", "--quiet", NULL);
+    cli_assert_no_crash(&r);
+    cr_assert_eq(r.status, 0, "%s: exit status %d\n%s", r.cmd, r.status,
+                 r.err);
+    cli_result_free(&r);
+}
+
+static size_t joblog_entries(const char *dir)
+{
+    char path[1100], text[8192];
+    snprintf(path, sizeof path, "%s/joblog", dir);
+    FILE *fp = fopen(path, "r");
+    if (!fp)
+        return 0;
+    fclose(fp);
+    tmp_slurp(path, text, sizeof text);
+    size_t n = cli_count_lines(text);
+    return n ? n - 1 : 0;
+}
+
+/* Interrupted by SIGINT once two jobs are done, resumed, collected:
+ * every job once, none missing. */
+Test(sweep_engine, local_interrupted_and_resumed)
+{
+    char dir[1024], table[1100], summary[256];
+    plan(in_tmp(dir, "local"), spec);
+    char *argv[] = {(char *)cli_binary(), "sweep", "run", dir, "--jobs", "2",
+                    "--quiet", NULL};
+    pid_t pid;
+    cr_assert_eq(posix_spawnp(&pid, argv[0], NULL, NULL, argv, environ), 0);
+    for (int k = 0; k < 6000 && joblog_entries(dir) < 2; k++)
+        nanosleep(&(struct timespec){0, 10000000}, NULL);
+    kill(pid, SIGINT);
+    int ws;
+    waitpid(pid, &ws, 0);
+    collect(dir, summary, sizeof summary);
+    int done, failed, missing;
+    cr_assert_eq(sscanf(summary, "%d complete, %d failed, %d missing", &done,
+                        &failed, &missing), 3, "%s", summary);
+    cr_assert(done >= 2 && done < 10 && done + failed + missing == 10,
+              "after SIGINT: %s", summary);
+
+    cli_result r;
+    cli_run(&r, "sweep", "run", dir, "--jobs", "2", "--resume", NULL);
+    cli_assert_ok(&r);
+    char want[64];
+    snprintf(want, sizeof want, "resume     %d of 10 jobs", 10 - done);
+    cr_assert(strstr(r.out, want), "%s", r.out);
+    cli_result_free(&r);
+    collect(dir, summary, sizeof summary);
+    cr_assert_str_eq(summary, "10 complete, 0 failed, 0 missing");
+    snprintf(table, sizeof table, "%s.csv", dir);
+    cr_assert_eq(lines_of(table), 11);
+    /* every row a distinct id, every one complete */
+    static char text[1 << 16];
+    tmp_slurp(table, text, sizeof text);
+    char ids[10][16];
+    const char *p = strchr(text, '\n') + 1;
+    for (int k = 0; k < 10; k++, p = strchr(p, '\n') + 1) {
+        snprintf(ids[k], sizeof ids[k], "%.12s", p);
+        cr_assert(strstr(p, ",complete,ok,0.1,") < strchr(p, '\n') &&
+                      strstr(p, ",complete,ok,0.1,"), "%.200s", p);
+        for (int j = 0; j < k; j++)
+            cr_assert_str_neq(ids[j], ids[k]);
+    }
+}
+
+/* ---- ssh ------------------------------------------------------------- */
+
+static int sh(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+static int sh(const char *fmt, ...)
+{
+    char cmd[4096];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(cmd, sizeof cmd, fmt, ap);
+    va_end(ap);
+    int st = system(cmd);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+static void skip(const char *what, const char *why)
+{
+    fprintf(stderr, "sweep_engine::%s: skipped: %s\n", what, why);
+    cr_skip_test("skipped: %s", why);
+}
+
+/* Why ssh failed: the last line of D/NAME. */
+static const char *last_line(const char *d, const char *name)
+{
+    static char why[600];
+    char path[1100], line[512] = "no message";
+    snprintf(path, sizeof path, "%s/%s", d, name);
+    FILE *fp = fopen(path, "r");
+    while (fp && fgets(line, sizeof line, fp))
+        ;
+    if (fp)
+        fclose(fp);
+    snprintf(why, sizeof why, "ssh to the test's sshd failed (%s): %.*s", name,
+             (int)strcspn(line, "\n"), line);
+    return why;
+}
+
+/* An sshd of its own on 127.0.0.1:PORT with a generated host key and an
+ * authorized key, and a login file naming this machine twice; 0, or why
+ * not. */
+static const char *start_sshd(const char *d, int port)
+{
+    if (geteuid() != 0)
+        return "not root: cannot start an sshd of its own";
+    if (access("/usr/sbin/sshd", X_OK) || sh("command -v ssh-keygen ssh "
+                                             ">/dev/null"))
+        return "openssh-server or openssh-client is not installed";
+    if (sh("mkdir -p /run/sshd && cd %s && ssh-keygen -q -t ed25519 -N '' "
+           "-f host && ssh-keygen -q -t ed25519 -N '' -f key && "
+           "cp key.pub authorized_keys && chmod 600 authorized_keys", d))
+        return "ssh-keygen failed";
+    FILE *fp = fopen(strcat(strcpy((char[1100]){0}, d), "/sshd_config"), "w");
+    if (!fp)
+        return "cannot write sshd_config";
+    fprintf(fp, "Port %d\nListenAddress 127.0.0.1\nHostKey %s/host\n"
+                "AuthorizedKeysFile %s/authorized_keys\nPidFile none\n"
+                "PasswordAuthentication no\nKbdInteractiveAuthentication no\n"
+                "PermitRootLogin prohibit-password\nStrictModes no\n"
+                "UsePAM no\n", port, d, d);
+    fclose(fp);
+    /* in the foreground (-D) of a background shell job: daemon() can
+     * fail under the test runner */
+    if (sh("/usr/sbin/sshd -D -f %s/sshd_config -E %s/sshd.log "
+           "</dev/null >/dev/null 2>&1 & echo $! > %s/sshd.pid", d, d, d))
+        return "sshd did not start";
+    const char *ssh = "ssh -p %d -i %s/key -o StrictHostKeyChecking=no "
+                      "-o UserKnownHostsFile=/dev/null -o BatchMode=yes "
+                      "-o LogLevel=ERROR";
+    char login[1400];
+    snprintf(login, sizeof login, ssh, port, d);
+    /* up to 30 s: a loaded machine starts sshd slowly */
+    for (double t0 = cli_now();
+         sh("%s -o ConnectTimeout=10 root@127.0.0.1 true 2>>%s/ssh.log",
+            login, d);) {
+        if (cli_now() - t0 > 30)
+            return last_line(d, "sshd.log");
+        nanosleep(&(struct timespec){0, 200000000}, NULL);
+    }
+    fp = fopen(strcat(strcpy((char[1100]){0}, d), "/logins"), "w");
+    if (!fp)
+        return "cannot write the login file";
+    fprintf(fp, "1/%s root@127.0.0.1\n1/%s root@localhost\n", login, login);
+    fclose(fp);
+    return NULL;
+}
+
+static void stop_sshd(const char *d)
+{
+    sh("test -f %s/sshd.pid && kill $(cat %s/sshd.pid)", d, d);
+}
+
+/* The daemons a test started, also after a failed assertion. */
+static void stop_servers(void)
+{
+    char d[1100];
+    stop_sshd(in_tmp(d, "sshd"));
+    if (!access(in_tmp(d, "slurm-state/slurm.conf"), F_OK))
+        sh("scripts/slurm-local.sh stop %s/slurm-state", tmp);
+}
+
+Test(sweep_engine, ssh_gives_the_local_table)
+{
+    char dir[1024], ssh_dir[1024], local[1100], remote[1100], logins[1100];
+    char summary[256];
+    in_tmp(dir, "sshd");
+    mkdir(dir, 0700);
+    /* ports apart from the Slurm test's (30000 .. 31999) */
+    const char *why = start_sshd(dir, 40000 + (int)(getpid() % 10000));
+    if (why) {
+        skip("ssh_gives_the_local_table", why);
+        return;
+    }
+    plan(in_tmp(local, "local"), spec);
+    plan(in_tmp(ssh_dir, "ssh"), spec);
+    run_local(local);
+    snprintf(logins, sizeof logins, "%s/logins", dir);
+    cli_result r;
+    cli_run(&r, "sweep", "run", ssh_dir, "--engine", "ssh", "--sshloginfile",
+            logins, "--quiet", NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    collect(local, summary, sizeof summary);
+    collect(ssh_dir, summary, sizeof summary);
+    cr_assert_str_eq(summary, "10 complete, 0 failed, 0 missing");
+    /* both hosts took jobs */
+    char log[1100], text[1 << 14];
+    snprintf(log, sizeof log, "%s/joblog", ssh_dir);
+    tmp_slurp(log, text, sizeof text);
+    cr_assert(strstr(text, "root@127.0.0.1\t") && strstr(text,
+                                                          "root@localhost\t"),
+              "%s", text);
+    snprintf(local + strlen(local), 8, ".csv");
+    snprintf(remote, sizeof remote, "%s.csv", ssh_dir);
+    assert_same_table(local, remote);
+}
+
+/* ---- Slurm ----------------------------------------------------------- */
+
+Test(sweep_engine, slurm_array_failed_job_and_resume)
+{
+    char state[1024], conf[1100], local[1100], sl[1024], summary[256];
+    in_tmp(state, "slurm-state");
+    if (geteuid() != 0) {
+        skip("slurm_array_failed_job_and_resume", "not root: cannot start "
+             "slurmctld and slurmd");
+        return;
+    }
+    if (sh("SLURM_LOCAL_PORT=%d scripts/slurm-local.sh start %s > %s.log "
+           "2>&1", 30000 + (int)(getpid() % 1000) * 2, state, state)) {
+        skip("slurm_array_failed_job_and_resume", "scripts/slurm-local.sh "
+             "could not start Slurm (see its log)");
+        return;
+    }
+    snprintf(conf, sizeof conf, "%s/slurm.conf", state);
+    setenv("SLURM_CONF", conf, 1);
+    /* dt = -1 is a bad parameter: its jobs fail, the others complete */
+    const char *failing = "[sweep]\nproblem = problems/hang.ini\n"
+                          "integrator = symplectic-euler, rk4\n"
+                          "dt = 1e-4, 2e-4, -1\nt_end = 0.05\n";
+    plan(in_tmp(local, "local"), failing);
+    plan(in_tmp(sl, "slurm"), failing);
+    run_local(local);
+    cli_result r;
+    cli_run(&r, "sweep", "run", sl, "--engine", "slurm", "--chunk", "2",
+            "--throttle", "2", "--wait", NULL);
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "pilot      job "), "%s", r.out);
+    cli_result_free(&r);
+    collect(sl, summary, sizeof summary);
+    cr_assert_str_eq(summary, "4 complete, 2 failed, 0 missing");
+    cli_run(&r, "sweep", "collect", sl, "--out", "/dev/null", NULL);
+    cr_assert(strstr(r.out, "run.dt=-1 run.t_end=0.05 (error): clothode: "
+                            "--set: [run] dt = \"-1\": expected a number >= "
+                            "0\n"), "%s", r.out);
+    cli_result_free(&r);
+    collect(local, summary, sizeof summary);
+    snprintf(local + strlen(local), 8, ".csv");
+    char sl_csv[1100];
+    snprintf(sl_csv, sizeof sl_csv, "%s.csv", sl);
+    assert_same_table(local, sl_csv);
+
+    /* --resume submits the two failed jobs, and only them */
+    cli_run(&r, "sweep", "run", sl, "--engine", "slurm", "--resume",
+            "--wait", NULL);
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "resume     2 of 6 jobs failed or have no "
+                            "result\nslurm      2 jobs in 2 array tasks"),
+              "%s", r.out);
+    cli_result_free(&r);
+    char ids[1100], text[1024];
+    snprintf(ids, sizeof ids, "%s/slurm/ids-2.txt", sl);
+    tmp_slurp(ids, text, sizeof text);
+    cr_assert_eq(cli_count_lines(text), 2, "%s", text);
+    collect(sl, summary, sizeof summary);
+    cr_assert_str_eq(summary, "4 complete, 2 failed, 0 missing");
+}

@@ -1,0 +1,158 @@
+/* A collected sweep table as a study's runs (analysis/sweep_table.h):
+ * rows selected by the problem's axis values, stability brackets and
+ * convergence levels from them, and the command line's --from-sweep. */
+#include <criterion/criterion.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "analysis/sweep_table.h"
+#include "integrators/integrator.h"
+#include "io/config.h"
+#include "runcli.h"
+#include "timelimit.h"
+
+static char tmp[512];
+
+static void setup(void)
+{
+    time_limit(120);
+    tmp_mkdtemp(tmp, sizeof tmp, "sweeptab");
+}
+
+static void teardown(void)
+{
+    tmp_rm_rf(tmp);
+}
+
+TestSuite(sweep_table, .init = setup, .fini = teardown);
+
+#define HEAD "id,role,integrator,cloth.n,run.dt,run.t_end,status,exit," \
+             "t_reached,steps,rhs_evals,cpu,err_x,err_v\n"
+
+/* rk4 on two sizes: at n = 6 stable up to 4e-3, blown up at 8e-3 and
+ * 1.6e-2, one run missing and one refused; symplectic-euler never
+ * unstable. */
+static const char *const table =
+    HEAD
+    "a1,job,rk4,6,0.001,2,complete,ok,2,2000,8000,0.5,4e-9,1e-8\n"
+    "a2,job,rk4,6,0.002,2,complete,ok,2,1000,4000,0.25,6.4e-8,1.6e-7\n"
+    "a3,job,rk4,6,0.004,2,complete,ok,2,500,2000,0.125,1.024e-6,2.56e-6\n"
+    "a4,job,rk4,6,0.008,2,failed,error,0.72,NA,NA,NA,NA,NA\n"
+    "a5,job,rk4,6,0.016,2,failed,error,0.1,NA,NA,NA,NA,NA\n"
+    "a6,job,rk4,6,0.0005,2,missing,missing,NA,NA,NA,NA,NA,NA\n"
+    "a7,job,rk4,6,0.03,2,failed,usage,NA,NA,NA,NA,NA,NA\n"
+    "b1,job,rk4,8,0.001,2,failed,error,1.5,NA,NA,NA,NA,NA\n"
+    "c1,job,symplectic-euler,6,0.001,2,complete,ok,2,2000,2000,0.1,1e-3,"
+    "1e-2\n"
+    "c2,job,symplectic-euler,6,0.002,2,complete,ok,2,1000,1000,0.05,2e-3,"
+    "2e-2\n"
+    "r1,reference,cvode-bdf,6,NA,2,complete,ok,2,900,1800,2,NA,NA\n";
+
+static void load(cl_sweep_table *t, const char *const *sets, cl_status want,
+                 cl_error *err)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/t.csv", tmp);
+    tmp_put(path, table);
+    cl_config *cfg = cl_config_alloc();
+    for (int k = 0; sets[k]; k++)
+        cr_assert_eq(cl_config_set(cfg, sets[k], err), CL_OK);
+    cr_assert_eq(cl_sweep_table_read(path, t, err), CL_OK, "%s", err->msg);
+    cr_assert_eq(cl_sweep_table_select(t, cfg, err), want, "%s", err->msg);
+    cl_config_free(cfg);
+}
+
+Test(sweep_table, stability_bracket_from_rows)
+{
+    cl_sweep_table t;
+    cl_error err = {0};
+    cl_stab_result r;
+    load(&t, (const char *const[]){"cloth.n=6", "run.t_end=2", NULL}, CL_OK,
+         &err);
+    const cl_integrator_type *rk4 = cl_integrator_find("rk4");
+    cr_assert_eq(cl_stab_from_sweep(&t, "rk4", rk4, &r, &err), CL_OK, "%s",
+                 err.msg);
+    /* the missing and the refused runs are no trials */
+    cr_assert_eq(r.ntrial, 5);
+    cr_assert_eq(r.trial[0].dt, 0.016);
+    cr_assert_eq(r.trial[4].dt, 0.001);
+    cr_assert_eq(r.dt_unstable, 0.008);
+    cr_assert_eq(r.dt_stable, 0.004);
+    cr_assert_eq(r.trial[r.failed].rc, CL_EBLOWUP);
+    cr_assert_str_eq(r.trial[r.failed].why.msg,
+                     "failed at t = 0.72 s (error)");
+    cr_assert_eq(r.trial[2].stats.steps, 500);
+    cr_assert_eq(r.trial[2].stats.cpu, 0.125);
+    cl_stab_result se;
+    cr_assert_eq(cl_stab_from_sweep(&t, "symplectic-euler",
+                                    cl_integrator_find("symplectic-euler"),
+                                    &se, &err), CL_OK);
+    cr_assert(isnan(se.dt_unstable));
+    cr_assert_eq(se.dt_stable, 0.002);
+    cr_assert_eq(se.failed, -1);
+    cl_sweep_table_free(&t);
+}
+
+/* Errors 4^-k... against dt halving: order 4 between every pair. */
+Test(sweep_table, convergence_levels_from_rows)
+{
+    cl_sweep_table t;
+    cl_error err = {0};
+    cl_conv_result r;
+    load(&t, (const char *const[]){"cloth.n=6", NULL}, CL_OK, &err);
+    cr_assert_eq(cl_conv_from_sweep(&t, "rk4", cl_integrator_find("rk4"), &r,
+                                    &err), CL_OK, "%s", err.msg);
+    cr_assert_eq(r.nlev, 7);
+    cr_assert_eq(r.lev[0].param, 0.03);
+    cr_assert_eq(r.lev[0].rc, CL_EBLOWUP);
+    cr_assert_str_eq(r.lev[0].why.msg, "failed (usage)");
+    cr_assert_eq(r.nfit, 3);
+    cr_assert_float_eq(r.lev[4].order, 4.0, 1e-12);
+    cr_assert_float_eq(r.lev[5].order, 4.0, 1e-12);
+    cr_assert_float_eq(r.slope_x, 4.0, 1e-12);
+    cr_assert_float_eq(r.slope_v, 4.0, 1e-12);
+    cr_assert(!r.lev[6].fitted); /* missing */
+    cl_sweep_table_free(&t);
+}
+
+Test(sweep_table, rows_must_name_one_value_of_an_axis)
+{
+    cl_sweep_table t;
+    cl_error err = {0};
+    load(&t, (const char *const[]){NULL}, CL_EINVAL, &err);
+    cr_assert(strstr(err.msg, "the sweep has several values of cloth.n (6, "
+                              "8, ...): give one with --set cloth.n=VALUE"),
+              "%s", err.msg);
+    cl_sweep_table_free(&t);
+    load(&t, (const char *const[]){"cloth.n=12", NULL}, CL_OK, &err);
+    cl_stab_result r;
+    cr_assert_eq(cl_stab_from_sweep(&t, "rk4", cl_integrator_find("rk4"), &r,
+                                    &err), CL_EINVAL);
+    cr_assert(strstr(err.msg, "no runs of rk4"), "%s", err.msg);
+    cl_sweep_table_free(&t);
+}
+
+/* The command line: the study's table from the sweep's rows of n = 6. */
+Test(sweep_table, stability_cli_from_sweep)
+{
+    char path[1024], out[1024], csv[1100], text[4096];
+    snprintf(path, sizeof path, "%s/t.csv", tmp);
+    tmp_put(path, table);
+    snprintf(out, sizeof out, "%s/stab", tmp);
+    cli_result r;
+    cli_run(&r, "stability", "hang", "--set", "cloth.n=6", "--t-end", "2",
+            "--integrator", "rk4,symplectic-euler", "--from-sweep", path,
+            "--out", out, NULL);
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "rk4                      0.004       0.008     "
+                            "5  failed at t = 0.72 s (error)\n"), "%s",
+              r.out);
+    cr_assert(strstr(r.out, "symplectic-euler   stable at dt_max = 0.002 (2 "
+                            "run)\n"), "%s", r.out);
+    cli_result_free(&r);
+    snprintf(csv, sizeof csv, "%s/stability.csv", out);
+    tmp_slurp(csv, text, sizeof text);
+    cr_assert_eq(cli_count_lines(text), 1 + 5 + 2);
+}
