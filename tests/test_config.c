@@ -913,6 +913,8 @@ Test(config, resolved_lists_given_values_then_defaults)
                              "*run.integrator=symplectic-euler;"
                              "*run.linsol=klu;");
     cl_config_free(cfg);
+}
+
 /* ------------------------------------------------------------- fuzzing */
 
 /* Each seed and each input the fuzzer once failed on (crash-*: a section

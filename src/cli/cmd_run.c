@@ -122,15 +122,16 @@ static cl_status run_work(cl_model *m, const cl_cli_job *job, void *ctx,
     cl_status rc = cl_model_set_threads(m, (int)r->run.threads, err);
     r->so.outdir = job->outdir;
     r->so.progress = cl_cli_progress;
-    r->so.progress_ctx = &line;
     if (rc || (rc = cl_cli_outdir_prepare(job->outdir, err)) ||
         (rc = cl_manifest_begin(&mf, job, r->argc, r->argv, r->run.threads,
                                 err)))
         return rc;
     cl_cli_progress_start(&line, job->quiet, "t =", "s", r->so.t_end);
+    r->so.progress_ctx = &line;
     rc = cl_simulate(m, r->integrator.m[0].type, &r->integrator.m[0].io,
                      &r->so, &res, err);
     cl_cli_progress_clear(&line);
+    r->so.progress_ctx = NULL;
     if (!job->quiet && res.rows > 0)
         print_summary(job->problem, r, m, &res);
     if (res.rows > 0) {
