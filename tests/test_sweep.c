@@ -89,8 +89,9 @@ Test(sweep, axes_expand_lists_linspace_logspace)
     cr_assert_str_eq(sw.job[2].value[1], "125");
     cr_assert_str_eq(sw.job[30].integrator, "semi-bdf2:pcg");
     char tail[2200];
-    snprintf(tail, sizeof tail, " --out %s/d/jobs/%s --quiet 2> %s/d/jobs/%s/"
-             "stderr", tmp, sw.job[1].id, tmp, sw.job[1].id);
+    snprintf(tail, sizeof tail,
+             " --out %s/d/jobs/%s/run --quiet 2> %s/d/jobs/%s/stderr", tmp,
+             sw.job[1].id, tmp, sw.job[1].id);
     cr_assert(strstr(sw.job[1].command,
                      " run p.ini --integrator rk4 --frames 0 --set "
                      "run.dt=0.0001 --set type1.ks=100 --set cloth.n=8 "
@@ -233,11 +234,13 @@ static void put_job_file(const cl_sweep *sw, int k, const char *name,
                          const char *text)
 {
     char path[1024];
-    snprintf(path, sizeof path, "%s/jobs/%s", sw->dir, sw->job[k].id);
+    snprintf(path, sizeof path, "%s/jobs/%s/%s", sw->dir, sw->job[k].id,
+             name);
+    *strrchr(path, '/') = '\0';
     cl_error err;
     cr_assert_eq(cl_mkdir_p(path, &err), CL_OK);
     strcat(path, "/");
-    strcat(path, name);
+    strcat(path, strrchr(name, '/') ? strrchr(name, '/') + 1 : name);
     tmp_put(path, text);
 }
 
@@ -252,9 +255,10 @@ Test(sweep, collect_complete_failed_missing)
                  CL_OK);
     cr_assert_eq(cl_sweep_write(&sw, &err), CL_OK, "%s", err.msg);
     put_job_file(&sw, 0, "exit", "0\n");
-    put_job_file(&sw, 0, "stats.csv", "steps,50\nrhs_evals,200\n"
+    put_job_file(&sw, 0, "run/stats.csv", "steps,50\nrhs_evals,200\n"
                                       "nonlin_iters,NA\ncpu,0.25\n");
-    put_job_file(&sw, 0, "series.csv", "t,kinetic\n0,0\n0.025,1\n0.05,2\n");
+    put_job_file(&sw, 0, "run/series.csv",
+                 "t,kinetic\n0,0\n0.025,1\n0.05,2\n");
     char log[8192], path[1024];
     snprintf(log, sizeof log,
              "Seq\tHost\tStarttime\tJobRuntime\tSend\tReceive\tExitval\t"
@@ -277,7 +281,7 @@ Test(sweep, collect_complete_failed_missing)
     cr_assert(isnan(out[0].stat[6]));
     cr_assert_eq(out[0].stat[12], 0.25);
     cr_assert_eq(out[0].t_reached, 0.05);
-    cr_assert_str_eq(out[1].exit_class, "error");
+    cr_assert_str_eq(out[1].exit_class, "other");
     cr_assert_str_eq(out[2].exit_class, "signal-2");
     cr_assert_eq(out[3].state, CL_SWEEP_MISSING);
     cr_assert_str_eq(out[3].exit_class, "missing");
@@ -294,7 +298,7 @@ Test(sweep, collect_cli_summary)
                            "dt = 1e-3, 2e-3, 4e-3\n", &sw, &err), CL_OK);
     cr_assert_eq(cl_sweep_write(&sw, &err), CL_OK, "%s", err.msg);
     put_job_file(&sw, 0, "exit", "0\n");
-    put_job_file(&sw, 0, "stats.csv", "steps,50\n");
+    put_job_file(&sw, 0, "run/stats.csv", "steps,50\n");
     put_job_file(&sw, 1, "exit", "3\n");
     put_job_file(&sw, 1, "stderr", "clothode: it broke, here\nmore\n");
     char table[1024], line[512];
@@ -302,7 +306,7 @@ Test(sweep, collect_cli_summary)
     cli_result r;
     cli_run(&r, "sweep", "collect", sw.dir, "--out", table, NULL);
     cli_assert_ok(&r);
-    snprintf(line, sizeof line, "failed     %s rk4 run.dt=2e-3 (exit-3): "
+    snprintf(line, sizeof line, "failed     %s rk4 run.dt=2e-3 (solver): "
              "clothode: it broke, here\n"
              "missing    %s rk4 run.dt=4e-3\n"
              "1 complete, 1 failed, 1 missing\n", sw.job[1].id,

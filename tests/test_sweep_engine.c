@@ -352,9 +352,9 @@ Test(sweep_engine, slurm_array_failed_job_and_resume)
     collect(sl, summary, sizeof summary);
     cr_assert_str_eq(summary, "4 complete, 2 failed, 0 missing");
     cli_run(&r, "sweep", "collect", sl, "--out", "/dev/null", NULL);
-    cr_assert(strstr(r.out, "run.dt=-1 run.t_end=0.05 (error): clothode: "
-                            "--set: [run] dt = \"-1\": expected a number >= "
-                            "0\n"), "%s", r.out);
+    cr_assert(strstr(r.out, "run.dt=-1 run.t_end=0.05 (input): clothode: "
+                            "--set: [run] dt = \"-1\": expected a number in "
+                            "[0, 1e+12]\n"), "%s", r.out);
     cli_result_free(&r);
     collect(local, summary, sizeof summary);
     snprintf(local + strlen(local), 8, ".csv");

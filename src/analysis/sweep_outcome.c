@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/exit.h"
+
 const char *const cl_sweep_stat_names[CL_SWEEP_NSTAT] = {
     "steps", "rhs_evals", "jac_evals", "lin_setups", "lin_solves",
     "lin_iters", "nonlin_iters", "nonlin_fails", "err_fails",
@@ -104,7 +106,7 @@ static bool exit_status(const cl_sweep *sw, int k, const cl_sweep_joblog *log,
 /* stats.csv's "name,value" rows; false if there is none. */
 static bool read_stats(const cl_sweep *sw, int k, cl_sweep_outcome *o)
 {
-    FILE *fp = job_file(sw, k, "stats.csv");
+    FILE *fp = job_file(sw, k, "run/stats.csv");
     char line[256];
     if (!fp)
         return false;
@@ -125,7 +127,7 @@ static bool read_stats(const cl_sweep *sw, int k, cl_sweep_outcome *o)
 /* The time of series.csv's last row. */
 static double reached(const cl_sweep *sw, int k)
 {
-    FILE *fp = job_file(sw, k, "series.csv");
+    FILE *fp = job_file(sw, k, "run/series.csv");
     char line[1024];
     double t = NAN;
     while (fp && fgets(line, sizeof line, fp)) {
@@ -165,11 +167,10 @@ static void classify(cl_sweep_outcome *o, bool found, bool stats)
                  stats ? "ok" : "no-output");
     } else {
         o->state = CL_SWEEP_FAILED;
-        snprintf(o->exit_class, sizeof o->exit_class, "%s",
-                 o->exitval == 1   ? "error"
-                 : o->exitval == 2 ? "usage"
-                                   : "exit");
-        if (o->exitval > 2)
+        const char *name = cl_exit_name(o->exitval);
+        if (name)
+            snprintf(o->exit_class, sizeof o->exit_class, "%s", name);
+        else
             snprintf(o->exit_class, sizeof o->exit_class, "exit-%d",
                      o->exitval);
     }
@@ -218,7 +219,8 @@ void cl_sweep_outcome_error(const cl_sweep *sw, int k, cl_sweep_outcome *o)
     int r = sw->job[k].ref;
     if (r < 0 || o->state != CL_SWEEP_COMPLETE)
         return;
-    FILE *a = job_file(sw, k, "final.csv"), *b = job_file(sw, r, "final.csv");
+    FILE *a = job_file(sw, k, "run/final.csv");
+    FILE *b = job_file(sw, r, "run/final.csv");
     double dx, dv;
     if (a && b && distances(a, b, &dx, &dv)) {
         o->err_x = dx;

@@ -77,12 +77,14 @@ static cl_status make_command(const cl_sweep *sw, cl_sweep_job *j)
         u += (size_t)snprintf(buf + u, sizeof buf - u,
                               " --rtol %s --atol %.6g", sw->ref_rtol,
                               strtod(sw->ref_rtol, NULL) / 100);
-    snprintf(set, sizeof set, "%s/jobs/%s", sw->dir, j->id);
+    /* the run's outputs in jobs/ID/run, its messages and exit status
+     * beside them: a run's directory holds nothing but its own outputs */
+    snprintf(set, sizeof set, "%s/jobs/%s/run", sw->dir, j->id);
     if (u < sizeof buf)
         u += (size_t)snprintf(buf + u, sizeof buf - u, " --out ");
     if (u < sizeof buf)
         u += cl_sweep_quote(set, buf + u, sizeof buf - u);
-    if (u < sizeof buf) /* its messages kept beside its outputs */
+    if (u < sizeof buf)
         u += (size_t)snprintf(buf + u, sizeof buf - u, " --quiet 2> ");
     snprintf(set, sizeof set, "%s/jobs/%s/stderr", sw->dir, j->id);
     if (u < sizeof buf)

@@ -6,6 +6,7 @@
 #include <stdio.h>
 
 #include "cli/options.h"
+#include "core/exit.h"
 #include "integrators/integrator.h"
 #include "io/config.h"
 #include "system/model.h"
@@ -15,19 +16,6 @@ typedef struct {
     int (*main)(int argc, char **argv);
     const char *summary;
 } cl_command;
-
-/* The exit status of each class of failure (README "Exit status",
- * docs/clothode.1, `clothode --help`). */
-enum {
-    CL_EXIT_OK = 0,
-    CL_EXIT_OTHER = 1,       /* out of memory; replay: outputs differ */
-    CL_EXIT_INPUT = 2,       /* bad input: usage, options, problem files */
-    CL_EXIT_SOLVER = 3,      /* a solver failed */
-    CL_EXIT_BLOWUP = 4,      /* the state blew up */
-    CL_EXIT_BUDGET = 5,      /* --max-wall or --max-steps reached */
-    CL_EXIT_INTERRUPTED = 6, /* SIGINT or SIGTERM */
-    CL_EXIT_IO = 7           /* a file or stdout could not be written */
-};
 
 /* The exit status of a failure of class `code`. */
 int cl_cli_exit_status(cl_status code);
