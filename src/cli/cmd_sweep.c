@@ -238,8 +238,10 @@ static int engine_run(cl_sweep *sw, cl_sweep_run_args *r, int *todo,
                sw->njob);
     if (n == 0)
         return 0;
-    if (r->engine == CL_SWEEP_SLURM)
-        return cl_sweep_slurm(sw, r, todo, n);
+    if (r->engine == CL_SWEEP_SLURM) {
+        int status = cl_sweep_slurm(sw, r, todo, n);
+        return status || r->a.quiet || !r->wait ? status : summary(sw, err);
+    }
     snprintf(list, sizeof list, "%s/jobs.txt", sw->dir);
     if (r->resume && write_pending(sw, todo, n, list, sizeof list, err))
         return cl_cli_fail(err);
