@@ -112,10 +112,11 @@ stop_daemons() {
         [[ -f $state/$d.pid ]] || continue
         pid=$(cat "$state/$d.pid")
         kill "$pid" 2>/dev/null || continue
-        for _ in $(seq 50); do
+        for _ in $(seq 100); do
             kill -0 "$pid" 2>/dev/null || break
             sleep 0.1
         done
+        kill -KILL "$pid" 2>/dev/null || true  # still there after 10 s
         rm -f "$state/$d.pid"
     done
 }

@@ -62,11 +62,10 @@ static cl_status resolve_problem(cl_config *cfg, const char *spec,
 static cl_status plan_dirs(const cl_cli_args *a, cl_sweep *sw, cl_error *err)
 {
     char def[4200];
-    if (!a->out)
-        cl_cli_default_out(a->arg, def, sizeof def);
-    if (!a->out) /* out/NAME -> out/sweep-NAME */
-        memmove(def + 10, def + 4, strlen(def + 4) + 1),
-            memcpy(def + 4, "sweep-", 6);
+    const char *base = strrchr(a->arg, '/') ? strrchr(a->arg, '/') + 1
+                                            : a->arg;
+    snprintf(def, sizeof def, "out/sweep-%.*s", (int)strcspn(base, "."),
+             base);
     const char *dir = a->out ? a->out : def;
     cl_status rc = cl_mkdir_p(dir, err);
     if (!rc && !(sw->dir = realpath(dir, NULL)))
@@ -239,8 +238,10 @@ static int engine_run(cl_sweep *sw, cl_sweep_run_args *r, int *todo,
                sw->njob);
     if (n == 0)
         return 0;
-    if (r->engine == CL_SWEEP_SLURM)
-        return cl_sweep_slurm(sw, r, todo, n);
+    if (r->engine == CL_SWEEP_SLURM) {
+        int status = cl_sweep_slurm(sw, r, todo, n);
+        return status || r->a.quiet || !r->wait ? status : summary(sw, err);
+    }
     snprintf(list, sizeof list, "%s/jobs.txt", sw->dir);
     if (r->resume && write_pending(sw, todo, n, list, sizeof list, err))
         return cl_cli_fail(err);
