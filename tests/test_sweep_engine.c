@@ -351,7 +351,9 @@ Test(sweep_engine, slurm_array_failed_job_and_resume)
     cli_result_free(&r);
     collect(sl, summary, sizeof summary);
     cr_assert_str_eq(summary, "4 complete, 2 failed, 0 missing");
-    cli_run(&r, "sweep", "collect", sl, "--out", "/dev/null", NULL);
+    char listing[1024];
+    cli_run(&r, "sweep", "collect", sl, "--out", in_tmp(listing, "l.csv"),
+            NULL);
     cr_assert(strstr(r.out, "run.dt=-1 run.t_end=0.05 (input): clothode: "
                             "--set: [run] dt = \"-1\": expected a number in "
                             "[0, 1e+12]\n"), "%s", r.out);
