@@ -49,19 +49,18 @@ typedef struct {
     double *x, *v;        /* --k: the free state of the prediction */
 } ct_setup;
 
-/* --k's search range: dt_max T/100 by default, at most T/10 (as
- * stability's); dt_min at most dt_max. */
-static void dt_max_bounds(const void *settings, double *def, double *hi)
+/* --k's search range, as stability's: dt_max (read first, while the
+ * field is still 0) defaults to T/100 and is at most T/10; dt_min is at
+ * most dt_max. */
+static void search_bounds(const void *settings, double *def, double *hi)
 {
     const ct_setup *s = settings;
-    *def = s->run.t_end / 100;
-    *hi = s->run.t_end / 10;
-}
-
-static void dt_min_bounds(const void *settings, double *def, double *hi)
-{
-    (void)def;
-    *hi = ((const ct_setup *)settings)->dt_max;
+    if (s->dt_max == 0.0) {
+        *def = s->run.t_end / 100;
+        *hi = s->run.t_end / 10;
+    } else {
+        *hi = s->dt_max;
+    }
 }
 
 static const cl_cli_opt ct_rows[] = {
@@ -99,11 +98,11 @@ static const cl_cli_opt ct_rows[] = {
      .field = offsetof(ct_setup, t),
      .help = "--k: the time of that state (moving obstacles and pins)"},
     {.name = "dt-max", .arg = "H", .type = CL_CLI_DOUBLE, .sec = "contact",
-     .key = "dt_max", .lo = 1e-300, .bounds = dt_max_bounds,
+     .key = "dt_max", .lo = 1e-300, .bounds = search_bounds,
      .field = offsetof(ct_setup, dt_max),
      .help = "--k: largest step tried, at most T/10 (default T/100)"},
     {.name = "dt-min", .arg = "H", .type = CL_CLI_DOUBLE, .sec = "contact",
-     .key = "dt_min", .def = 1e-7, .lo = 1e-300, .bounds = dt_min_bounds,
+     .key = "dt_min", .def = 1e-7, .lo = 1e-300, .bounds = search_bounds,
      .field = offsetof(ct_setup, dt_min),
      .help = "--k: give up below this step, at most dt_max"},
     {.name = "rel", .arg = "R", .type = CL_CLI_DOUBLE, .sec = "contact",
