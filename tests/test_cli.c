@@ -489,6 +489,17 @@ static void assert_same_files(const char *a, const char *b,
     }
 }
 
+/* Run the config.ini a run wrote into `out` again, into `again`. */
+static void rerun_config(const char *out, const char *again)
+{
+    char path[1200];
+    cli_result r;
+    snprintf(path, sizeof path, "%s/config.ini", out);
+    cli_run(&r, "run", path, "--out", again, "--quiet", NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+}
+
 /* ---- strict inputs: each refused with file, line and key -------------- */
 
 /* Run the problem `text` (written to the scratch directory as p.ini, each
@@ -600,17 +611,13 @@ Test(cli, key_set_twice_refused)
  * config.ini its run wrote elsewhere: same series, same final state. */
 Test(cli, config_ini_of_a_mesh_problem_reads_back)
 {
-    char out[1024], again[1024], path[1200];
+    char out[1024], again[1024];
     cli_result r;
     cli_run(&r, "run", "skirt", "--t-end", "0.002", "--frames", "0",
             "--out", in_tmp(out, "first"), "--quiet", NULL);
     cli_assert_ok(&r);
     cli_result_free(&r);
-    snprintf(path, sizeof path, "%s/config.ini", out);
-    cli_run(&r, "run", path, "--out", in_tmp(again, "again"), "--quiet",
-            NULL);
-    cli_assert_ok(&r);
-    cli_result_free(&r);
+    rerun_config(out, in_tmp(again, "again"));
     assert_same_files(out, again,
                       LIST("series.csv", "final.csv", "config.ini"));
 }
@@ -863,7 +870,7 @@ Test(cli, run_writes_its_outputs)
  * series and final state, bit for bit. */
 Test(cli, run_config_ini_reproduces_the_run)
 {
-    char out[1024], again[1024], path[1200];
+    char out[1024], again[1024];
     cli_result r;
     cli_run(&r, "run", "hang", "--set", "cloth.n=6", "--t-end", "0.01",
             "--integrator", "symplectic-euler", "--dt", "1e-4", "--frames",
@@ -872,11 +879,7 @@ Test(cli, run_config_ini_reproduces_the_run)
     cli_assert_ok(&r);
     cr_assert_str_empty(r.out, "--quiet printed:\n%s", r.out);
     cli_result_free(&r);
-    snprintf(path, sizeof path, "%s/config.ini", out);
-    cli_run(&r, "run", path, "--out", in_tmp(again, "again"), "--quiet",
-            NULL);
-    cli_assert_ok(&r);
-    cli_result_free(&r);
+    rerun_config(out, in_tmp(again, "again"));
 
     /* the same series (samples, formats: the defaults again) and state */
     assert_same_files(out, again, LIST("series.csv", "final.csv"));
