@@ -41,7 +41,8 @@ int cl_stab_try(cl_trial *t, const cl_integrator_type *type,
     tr->nsteps = nsteps;
     tr->rc = cl_trial_run(t, type, &to, o->t_end, o->checks, o->max_stretch,
                           &tr->stats, &tr->why);
-    if (tr->rc == CL_OK || tr->rc == CL_EBLOWUP || tr->rc == CL_ESOLVER)
+    if (tr->rc == CL_OK || tr->rc == CL_EBLOWUP || tr->rc == CL_ESOLVER ||
+        tr->rc == CL_EINFEASIBLE) /* a run stopped by its state: unstable */
         return tr->rc == CL_OK;
     *err = tr->why;
     return -1;

@@ -70,7 +70,8 @@ cl_status cl_stability(cl_model *m, const cl_integrator_type *type,
 
 /* One run of the search: `type` with nsteps steps (dt = t_end / nsteps) on
  * the trial t, recorded in *tr.  Returns 1 when the run is stable, 0 when
- * it is unstable (CL_EBLOWUP or CL_ESOLVER, the definition above), or -1
+ * it is unstable (CL_EBLOWUP, CL_ESOLVER, or CL_EINFEASIBLE: a barrier
+ * obstacle entered; the definition above), or -1
  * with err set for any other failure.  Other studies that ask whether a
  * run stays stable (`clothode contact`) use it, so that they mean what
  * `stability` means. */
