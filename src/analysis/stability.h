@@ -5,8 +5,10 @@
  *
  * A run is unstable when it blows up (CL_EBLOWUP: a non-finite state, or a
  * stretch d/L beyond max_stretch at one of `checks` evenly spread times,
- * analysis/trial.h) or its solver gives up (CL_ESOLVER: e.g. KINSOL's
- * Newton iteration does not converge at that step).  Any other failure
+ * analysis/trial.h), its solver gives up (CL_ESOLVER: e.g. KINSOL's
+ * Newton iteration does not converge at that step) or it reaches a state
+ * with a particle inside a barrier obstacle (CL_EINFEASIBLE, an explicit
+ * method's end there; docs/model.md 4.6).  Any other failure
  * (bad options, no memory) ends the search with that error.
  *
  * Search: N_0 = ceil(T / dt_max).  If the run at N_0 is stable, the limit is
@@ -70,9 +72,8 @@ cl_status cl_stability(cl_model *m, const cl_integrator_type *type,
 
 /* One run of the search: `type` with nsteps steps (dt = t_end / nsteps) on
  * the trial t, recorded in *tr.  Returns 1 when the run is stable, 0 when
- * it is unstable (CL_EBLOWUP, CL_ESOLVER, or CL_EINFEASIBLE: a barrier
- * obstacle entered; the definition above), or -1
- * with err set for any other failure.  Other studies that ask whether a
+ * it is unstable (the definition above), or -1 with err set for any other
+ * failure.  Other studies that ask whether a
  * run stays stable (`clothode contact`) use it, so that they mean what
  * `stability` means. */
 int cl_stab_try(cl_trial *t, const cl_integrator_type *type,
