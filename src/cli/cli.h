@@ -153,6 +153,11 @@ cl_status cl_cli_methods_check(cl_config *cfg, cl_cli_methods *ms,
                                const cl_integrator_opts *io, cl_cli_dt_use dt,
                                cl_error *err);
 
+/* Refuse a method whose integrator chooses its own steps: command `cmd`
+ * (stability, contact) takes fixed-step integrators only. */
+cl_status cl_cli_methods_fixed(cl_config *cfg, const cl_cli_methods *ms,
+                               const char *cmd, cl_error *err);
+
 /* Create and free every method on the model's initial state, so that an
  * option it refuses (an unknown linear solver, a cloth too large for a
  * dense method) stops a study before it starts. */

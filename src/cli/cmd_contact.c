@@ -354,23 +354,18 @@ static cl_status try_variants(ct_setup *s, cl_error *err)
 static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
 {
     ct_setup *s = ctx;
-    char where[256];
     s->cfg = cfg;
     s->variant_of = -1;
     cl_status rc = cl_cli_methods_check(cfg, &s->integrators, &s->run.io,
                                         CL_CLI_DT_NONE, err);
-    for (int k = 0; !rc && k < s->integrators.n; k++)
-        if (!s->integrators.m[k].type->fixed_step)
-            return cl_error_set(err, CL_EINVAL, "%s: [run] integrator: %s "
-                                "chooses its own steps by error control; "
-                                "contact takes fixed-step integrators",
-                                cl_config_origin(cfg, "run", "integrator",
-                                                 where, sizeof where),
-                                s->integrators.m[k].type->name);
+    if (!rc)
+        rc = cl_cli_methods_fixed(cfg, &s->integrators, "contact", err);
+    if (rc)
+        return rc;
     s->so = (cl_stab_opts){.t_end = s->run.t_end, .checks = s->checks,
                            .max_stretch = s->run.max_stretch, .rel = s->rel,
                            .dt_max = s->dt_max, .dt_min = s->dt_min};
-    if (!rc && !(rc = read_lists(cfg, s, err)) &&
+    if (!(rc = read_lists(cfg, s, err)) &&
         !(rc = save_obstacles(cfg, s, err)))
         rc = try_variants(s, err);
     return rc;

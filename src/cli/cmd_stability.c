@@ -90,21 +90,15 @@ static const cl_cli_table stab_table = {
 static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
 {
     stab_setup *s = ctx;
-    char where[256];
     cl_status rc = cl_cli_methods_check(cfg, &s->integrators, &s->run.io,
                                         CL_CLI_DT_NONE, err);
-    for (int k = 0; !rc && k < s->integrators.n; k++)
-        if (!s->integrators.m[k].type->fixed_step)
-            return cl_error_set(err, CL_EINVAL, "%s: [run] integrator: %s "
-                                "chooses its own steps by error control; "
-                                "stability takes fixed-step integrators",
-                                cl_config_origin(cfg, "run", "integrator",
-                                                 where, sizeof where),
-                                s->integrators.m[k].type->name);
+    if (!rc)
+        rc = cl_cli_methods_fixed(cfg, &s->integrators, "stability", err);
+    if (rc)
+        return rc;
     s->so.t_end = s->run.t_end;
     s->so.max_stretch = s->run.max_stretch;
-    if (!rc && s->from && !(rc = cl_sweep_table_read(s->from, &s->table,
-                                                     err)))
+    if (s->from && !(rc = cl_sweep_table_read(s->from, &s->table, err)))
         rc = cl_sweep_table_select(&s->table, cfg, err);
     return rc;
 }

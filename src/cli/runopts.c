@@ -199,6 +199,21 @@ cl_status cl_cli_methods_check(cl_config *cfg, cl_cli_methods *ms,
     return rc;
 }
 
+cl_status cl_cli_methods_fixed(cl_config *cfg, const cl_cli_methods *ms,
+                               const char *cmd, cl_error *err)
+{
+    char where[256];
+    for (int k = 0; k < ms->n; k++)
+        if (!ms->m[k].type->fixed_step)
+            return cl_error_set(err, CL_EINVAL, "%s: [run] integrator: %s "
+                                "chooses its own steps by error control; "
+                                "%s takes fixed-step integrators",
+                                cl_config_origin(cfg, "run", "integrator",
+                                                 where, sizeof where),
+                                ms->m[k].type->name, cmd);
+    return CL_OK;
+}
+
 cl_status cl_cli_methods_try(cl_model *model, const cl_cli_methods *ms,
                              cl_error *err)
 {
