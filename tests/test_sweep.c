@@ -281,6 +281,12 @@ Test(sweep, collect_complete_failed_missing)
     cr_assert(isnan(out[0].stat[6]));
     cr_assert_eq(out[0].stat[12], 0.25);
     cr_assert_eq(out[0].t_reached, 0.05);
+    /* a run.json's integrator times stand for stats.csv's */
+    put_job_file(&sw, 0, "run/run.json", "{\"times\": {\"wall\": 9, "
+                 "\"integrator_wall\": 2.5, \"integrator_cpu\": 1.5}}\n");
+    cr_assert_eq(cl_sweep_outcomes(&sw, out, &c, &err), CL_OK);
+    cr_assert_eq(out[0].stat[11], 2.5);
+    cr_assert_eq(out[0].stat[12], 1.5);
     cr_assert_str_eq(out[1].exit_class, "other");
     cr_assert_str_eq(out[2].exit_class, "signal-2");
     cr_assert_eq(out[3].state, CL_SWEEP_MISSING);

@@ -3,6 +3,7 @@
  * of a job directory that collect reads is read here. */
 #include "analysis/sweep.h"
 
+#include <jansson.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,7 +13,8 @@
 const char *const cl_sweep_stat_names[CL_SWEEP_NSTAT] = {
     "steps", "rhs_evals", "jac_evals", "lin_setups", "lin_solves",
     "lin_iters", "nonlin_iters", "nonlin_fails", "err_fails",
-    "symbolic_facts", "lin_fallbacks", "wall", "cpu"};
+    "symbolic_facts", "lin_fallbacks", "wall", "cpu"}; /* these two last:
+                                                          read_times() */
 
 /* ---- GNU parallel's joblog ---------------------------------------------- */
 
@@ -103,6 +105,26 @@ static bool exit_status(const cl_sweep *sw, int k, const cl_sweep_joblog *log,
     return false;
 }
 
+/* The integrator's wall and CPU seconds from the run's run.json
+ * ("times", README "Provenance"; stats.csv holds no timings, so that
+ * identical runs write identical bytes): the statistics "wall" and "cpu",
+ * the last two, where run.json has them. */
+static void read_times(const cl_sweep *sw, int k, cl_sweep_outcome *o)
+{
+    static const char *const key[2] = {"integrator_wall", "integrator_cpu"};
+    char path[4200];
+    snprintf(path, sizeof path, "%s/jobs/%s/run/run.json", sw->dir,
+             sw->job[k].id);
+    json_t *root = json_load_file(path, 0, NULL);
+    json_t *times = json_object_get(root, "times");
+    for (int i = 0; i < 2; i++) {
+        json_t *v = json_object_get(times, key[i]);
+        if (json_is_number(v))
+            o->stat[CL_SWEEP_NSTAT - 2 + i] = json_number_value(v);
+    }
+    json_decref(root);
+}
+
 /* stats.csv's "name,value" rows; false if there is none. */
 static bool read_stats(const cl_sweep *sw, int k, cl_sweep_outcome *o)
 {
@@ -184,6 +206,8 @@ void cl_sweep_outcome_read(const cl_sweep *sw, int k,
         o->stat[s] = NAN;
     bool found = exit_status(sw, k, log, o);
     bool stats = found && read_stats(sw, k, o);
+    if (stats)
+        read_times(sw, k, o);
     o->t_reached = found ? reached(sw, k) : NAN;
     if (found)
         first_message(sw, k, o);
