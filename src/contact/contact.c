@@ -3,9 +3,11 @@
 #include "contact/contact.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "contact/constraint.h"
 #include "contact/penalty.h"
 #include "contact/project.h"
 
@@ -21,7 +23,9 @@ struct cl_contact {
     unsigned char *cache;    /* the shapes' caches the memos point into */
     size_t *near;            /* scratch: the particles near one obstacle */
     cl_contact_point *hit;   /* scratch: their contact points */
-    bool penalizes, projects;
+    bool penalizes, projects, constrains;
+    cl_constraint *cons;     /* np: each particle's constraint (constrains) */
+    size_t *cons_obs;        /* np: the obstacle it is on */
     long passes;             /* projection passes */
     long *slot;              /* diagonal block of each particle, or -1 */
     double last_t;           /* time of the last projection */
@@ -46,8 +50,12 @@ bool cl_contact_projects_friction(const cl_contact *c)
     return false;
 }
 
+bool cl_contact_constrains(const cl_contact *c) { return c->constrains; }
+
 void cl_contact_restart(cl_contact *c)
 {
+    for (size_t p = 0; c->constrains && p < c->cloth->np; p++)
+        c->cons[p].mode = CL_CONSTRAINT_FREE;
     c->last_t = 0.0;
     c->proj_force = c->proj_friction = 0.0;
 }
@@ -83,6 +91,8 @@ static void contact_free(void *state)
     free(c->slot);
     free(c->eval_x);
     free(c->eval_worst);
+    free(c->cons);
+    free(c->cons_obs);
     free(c);
 }
 
@@ -139,11 +149,16 @@ static cl_status contact_create(cl_config *cfg, const cl_cloth *cloth,
         }
         c->penalizes |= o->resp.kind == CL_RESPONSE_PENALTY;
         c->projects |= o->resp.kind == CL_RESPONSE_PROJECT;
+        c->constrains |= o->resp.kind == CL_RESPONSE_CONSTRAINT;
         if (o->resp.kind == CL_RESPONSE_PROJECT && o->resp.iterations >
                                                        c->passes)
             c->passes = o->resp.iterations;
     }
     cl_status rc = start_memos(c, err);
+    if (!rc && c->constrains &&
+        (!(c->cons = calloc(cloth->np, sizeof *c->cons)) ||
+         !(c->cons_obs = calloc(cloth->np, sizeof *c->cons_obs))))
+        rc = cl_error_set(err, CL_ENOMEM, "out of memory (obstacles)");
     if (rc) {
         contact_free(c);
         return rc;
@@ -359,4 +374,77 @@ size_t cl_contact_project(cl_contact *c, double t, double *x, double *v)
     c->proj_friction = dt > 0.0 ? tally.friction_energy / dt : 0.0;
     c->last_t = t;
     return tally.moved;
+}
+
+/* ---- Baraff-Witkin constraints ---------------------------------------- */
+
+/* The constraint obstacle particle p (at x, velocity v) is closest to
+ * relative to its offset, among those it touches (d <= offset + 1e-9 m,
+ * or, when it was constrained to that obstacle through the last step,
+ * d <= offset + 1e-9 m + h |v - u|: a particle sliding on a curved surface
+ * drifts off it by O(h^2 |v|^2 / radius) a step and stays constrained
+ * until its constraint pulls); SIZE_MAX if none. */
+static size_t constraint_obstacle(cl_contact *c, size_t p, double h,
+                                  const double *x, const double *v,
+                                  cl_contact_point *best)
+{
+    size_t pick = SIZE_MAX;
+    bool held = c->cons[p].mode != CL_CONSTRAINT_FREE;
+    for (size_t k = 0; k < c->nobs; k++) {
+        const cl_obstacle *o = &c->obs[k];
+        cl_contact_point q;
+        bool mine = held && c->cons_obs[p] == k;
+        if (o->resp.kind != CL_RESPONSE_CONSTRAINT ||
+            !cl_obstacle_near(o, &c->pose[k], x, mine ? INFINITY : reach(
+                              &o->resp), memo_of(c, k, p), &q))
+            continue;
+        double w2 = 0.0;
+        for (int i = 0; i < 3; i++)
+            w2 += (v[i] - q.u[i]) * (v[i] - q.u[i]);
+        double gap = q.d - o->resp.offset;
+        if (gap > ON_SURFACE + (mine ? h * sqrt(w2) : 0.0) ||
+            (pick != SIZE_MAX && gap >= best->d - c->obs[pick].resp.offset))
+            continue;
+        pick = k;
+        *best = q;
+    }
+    return pick;
+}
+
+void cl_contact_constrain(cl_contact *c, double t, double h, const double *x,
+                          const double *v, double *S, double *z, double *y,
+                          double *g)
+{
+    const cl_cloth *cl = c->cloth;
+    place(c, t);
+    for (size_t p = 0; p < cl->np; p++) {
+        int i = cl->dof[p];
+        if (i < 0)
+            continue;
+        cl_contact_point q;
+        size_t k = constraint_obstacle(c, p, h, x + 3 * p, v + 3 * p, &q);
+        if (k == SIZE_MAX) {
+            c->cons[p].mode = CL_CONSTRAINT_FREE;
+            cl_constraint_none(S + 9 * i, z + 3 * i, y + 3 * i, g + 3 * i);
+            continue;
+        }
+        c->cons_obs[p] = k;
+        cl_constraint_start(&c->obs[k].resp, &q, v + 3 * p, &c->cons[p],
+                            S + 9 * i, z + 3 * i, y + 3 * i, g + 3 * i);
+    }
+}
+
+bool cl_contact_release(cl_contact *c, const double *impulse, double *S,
+                        double *z, double *y, double *g)
+{
+    const cl_cloth *cl = c->cloth;
+    bool changed = false;
+    for (size_t p = 0; p < cl->np; p++) {
+        int i = cl->dof[p];
+        if (i >= 0 && c->cons[p].mode != CL_CONSTRAINT_FREE)
+            changed |= cl_constraint_release(
+                c->obs[c->cons_obs[p]].resp.mu, impulse + 3 * i, &c->cons[p],
+                S + 9 * i, z + 3 * i, y + 3 * i, g + 3 * i);
+    }
+    return changed;
 }

@@ -35,6 +35,8 @@ typedef struct {
 bool cl_contact_projects(const cl_contact *c);
 /* Some projecting obstacle has friction (mu > 0) or zero_velocity. */
 bool cl_contact_projects_friction(const cl_contact *c);
+/* Some obstacle has response = constraint. */
+bool cl_contact_constrains(const cl_contact *c);
 size_t cl_contact_obstacles(const cl_contact *c);
 const cl_obstacle *cl_contact_obstacle(const cl_contact *c, size_t k);
 
@@ -52,5 +54,19 @@ double cl_contact_penetration(cl_contact *c, double t, const double *x);
  * projecting obstacle, `iterations` passes (the largest of theirs), in
  * place on full-particle arrays; returns the particles moved. */
 size_t cl_contact_project(cl_contact *c, double t, double *x, double *v);
+
+/* Baraff-Witkin constraints (contact/constraint.h; docs/model.md, eqs.
+ * C10-C13) of the step of length h from (t, x, v), full-particle arrays:
+ * every free particle's S, z, y, g (indexed by its dof) from the
+ * constraint obstacle it touches (the nearest to its offset, if several),
+ * laid out as cl_constraint_set (system/system.h). */
+void cl_contact_constrain(cl_contact *c, double t, double h, const double *x,
+                          const double *v, double *S, double *z, double *y,
+                          double *g);
+
+/* Release or demote the constraints by the impulses (per free particle)
+ * the last solve needed; whether any changed. */
+bool cl_contact_release(cl_contact *c, const double *impulse, double *S,
+                        double *z, double *y, double *g);
 
 #endif

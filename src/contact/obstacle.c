@@ -319,27 +319,38 @@ static cl_status read_project(cl_config *cfg, const char *sec,
         (rc = cl_config_bool(cfg, sec, "zero_velocity", false,
                              &r->zero_velocity, err)) ||
         (rc = cl_config_long(cfg, sec, "iterations", 1, 1, 1000,
-                             &r->iterations, err)))
+                             &r->iterations, err)) ||
+        (rc = cl_config_bool(cfg, sec, "ccd", false, &r->ccd, err)))
         return rc;
     return CL_OK;
+}
+
+static cl_status read_constraint(cl_config *cfg, const char *sec,
+                                 cl_response_params *r, cl_error *err)
+{
+    return cl_config_double(cfg, sec, "offset", 0.0, 0.0, INFINITY,
+                            &r->offset, err);
 }
 
 static cl_status read_response(cl_config *cfg, const char *sec,
                                cl_response_params *r, cl_error *err)
 {
-    static const char *const kinds[] = {"penalty", "project", NULL};
+    static const char *const kinds[] = {"penalty", "project", "constraint",
+                                        NULL};
+    static cl_status (*const read[])(cl_config *, const char *,
+                                      cl_response_params *, cl_error *) = {
+        read_penalty, read_project, read_constraint};
     int k;
     cl_status rc;
     if (!cl_config_string(cfg, sec, "response", NULL))
         return cl_error_set(err, CL_EINVAL, "[%s] needs a response "
-                            "(penalty or project)", sec);
+                            "(penalty, project or constraint)", sec);
     if ((rc = cl_config_choice(cfg, sec, "response", kinds, 0, &k, err)) ||
         (rc = cl_config_double(cfg, sec, "mu", 0.0, 0.0, INFINITY, &r->mu,
                                err)))
         return rc;
-    r->kind = k == 0 ? CL_RESPONSE_PENALTY : CL_RESPONSE_PROJECT;
-    return k == 0 ? read_penalty(cfg, sec, r, err)
-                  : read_project(cfg, sec, r, err);
+    r->kind = (cl_response)k; /* the order of kinds[] */
+    return read[k](cfg, sec, r, err);
 }
 
 static cl_status read_shape(cl_config *cfg, const char *sec, cl_obstacle *o,

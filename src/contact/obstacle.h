@@ -10,12 +10,16 @@
  *               none, the obstacle stays put)
  *   omega     = constant angular velocity (rad/s, vector, default 0),
  *               about the shape's pivot carried along the path
- *   response  = penalty | project
+ *   response  = penalty | project | constraint
  *   penalty:  k (N/m, > 0), eps (band, m, >= 0), damping (Hunt-Crossley,
  *             s/m, >= 0, default 0), mu (>= 0, default 0), v_smooth (m/s, > 0,
  *             default 1e-3: the friction's smoothing speed)
  *   project:  offset (m, >= 0, default 0), zero_velocity (default false),
- *             mu (>= 0, default 0), iterations (>= 1, default 1)
+ *             mu (>= 0, default 0), iterations (>= 1, default 1),
+ *             ccd (default false: continuous detection, contact/ccd.h)
+ *   constraint: offset (m, >= 0, default 0), mu (>= 0, default 0):
+ *             Baraff-Witkin constraints in the linear solve of semi-be
+ *             and semi-bdf2 (contact/constraint.h)
  *
  * The position of a shape point X at time t is
  *     x(t) = q + R(t) (X - q) + s(t),   R(t) = exp(t [omega]x),
@@ -28,15 +32,20 @@
 
 #include "contact/shape.h"
 
-typedef enum { CL_RESPONSE_PENALTY, CL_RESPONSE_PROJECT } cl_response;
+typedef enum {
+    CL_RESPONSE_PENALTY,
+    CL_RESPONSE_PROJECT,
+    CL_RESPONSE_CONSTRAINT
+} cl_response;
 
 typedef struct {
     cl_response kind;
     double k, eps, damping, v_smooth; /* penalty */
-    double offset;                    /* project */
+    double offset;                    /* project, constraint */
     bool zero_velocity;               /* project */
+    bool ccd;                         /* project: continuous detection */
     long iterations;                  /* project */
-    double mu;                        /* both: Coulomb friction */
+    double mu;                        /* all: Coulomb friction */
 } cl_response_params;
 
 typedef struct {

@@ -62,6 +62,18 @@ cl_status cl_integrator_refuse_projection(const char *name,
                         "another integrator", name);
 }
 
+cl_status cl_integrator_refuse_constraints(const char *name,
+                                           const cl_system *sys,
+                                           cl_error *err)
+{
+    if (!sys->constrain)
+        return CL_OK;
+    return cl_error_set(err, CL_EUNSUPPORTED, "%s cannot apply a contact "
+                        "response = constraint (only semi-be and semi-bdf2 "
+                        "can, inside their linear solve); use response = "
+                        "penalty or project, or one of those two", name);
+}
+
 cl_status cl_integrator_contact_at(const char *name, const cl_system *sys,
                                    double t, double *x, double *v,
                                    bool record, cl_error *err)
