@@ -1,6 +1,8 @@
 /* Bounding-volume hierarchy of a triangle mesh (contact/bvh.h). */
 #include "contact/bvh.h"
 
+#include "contact/segment.h"
+
 #include <limits.h>
 #include <math.h>
 #include <stdbool.h>
@@ -356,4 +358,33 @@ void cl_bvh_nearest_brute(const cl_bvh *b, const double x[3],
     for (size_t t = 0; t < b->ntri; t++)
         try_triangle(b, (int)t, x, &k);
     hit_of(&k, hit);
+}
+
+bool cl_bvh_first_crossing(const cl_bvh *b, const double p[3],
+                           const double d[3], double *s)
+{
+    int stack[STACK], top = 0;
+    double best = 1.0, enter;
+    bool found = false;
+    stack[top++] = 0;
+    while (top > 0) {
+        const cl_bvh_node *nd = &b->node[stack[--top]];
+        if (!cl_segment_box(nd->lo, nd->hi, p, d, best, &enter))
+            continue;
+        for (int i = 0; i < nd->count; i++) {
+            const int *v = b->tri[b->order[nd->first + i]];
+            double si;
+            if (cl_segment_triangle(b->vert + 3 * v[0], b->vert + 3 * v[1],
+                                    b->vert + 3 * v[2], p, d, best, &si)) {
+                best = si;
+                found = true;
+            }
+        }
+        if (nd->count)
+            continue;
+        stack[top++] = nd->first;                       /* right */
+        stack[top++] = (int)(nd - b->node) + 1;         /* left */
+    }
+    *s = best;
+    return found;
 }

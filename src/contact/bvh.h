@@ -96,6 +96,13 @@ bool cl_bvh_nearest_cached(const cl_bvh *b, const double x[3],
  * bound of the distance to any of them. */
 double cl_bvh_box_distance(const cl_bvh *b, const double x[3]);
 
+/* The least s in [0, 1] at which the segment p + s d crosses a triangle
+ * (contact/segment.h), by a depth-first walk that skips every box the
+ * segment misses before the best crossing found so far; false if it
+ * crosses none. */
+bool cl_bvh_first_crossing(const cl_bvh *b, const double p[3],
+                           const double d[3], double *s);
+
 /* The same answer by trying every triangle: the reference of the tests and
  * of the benchmark. */
 void cl_bvh_nearest_brute(const cl_bvh *b, const double x[3],

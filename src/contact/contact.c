@@ -12,7 +12,7 @@
 #include "contact/project.h"
 
 #define PREFIX "obstacle."
-#define ON_SURFACE 1e-9 /* m: a projected particle counts as touching */
+#define ON_SURFACE CL_ON_SURFACE /* a projected particle counts as touching */
 
 struct cl_contact {
     const cl_cloth *cloth;
@@ -23,7 +23,11 @@ struct cl_contact {
     unsigned char *cache;    /* the shapes' caches the memos point into */
     size_t *near;            /* scratch: the particles near one obstacle */
     cl_contact_point *hit;   /* scratch: their contact points */
-    bool penalizes, projects, constrains;
+    bool penalizes, projects, constrains, sweeps;
+    double *swept_x;         /* positions after the last projection (sweeps:
+                              * some obstacle has ccd), at swept_t */
+    double swept_t;
+    bool swept;              /* swept_x holds them */
     cl_constraint *cons;     /* np: each particle's constraint (constrains) */
     size_t *cons_obs;        /* np: the obstacle it is on */
     long passes;             /* projection passes */
@@ -54,6 +58,7 @@ bool cl_contact_constrains(const cl_contact *c) { return c->constrains; }
 
 void cl_contact_restart(cl_contact *c)
 {
+    c->swept = false;
     for (size_t p = 0; c->constrains && p < c->cloth->np; p++)
         c->cons[p].mode = CL_CONSTRAINT_FREE;
     c->last_t = 0.0;
@@ -93,6 +98,7 @@ static void contact_free(void *state)
     free(c->eval_worst);
     free(c->cons);
     free(c->cons_obs);
+    free(c->swept_x);
     free(c);
 }
 
@@ -150,6 +156,7 @@ static cl_status contact_create(cl_config *cfg, const cl_cloth *cloth,
         c->penalizes |= o->resp.kind == CL_RESPONSE_PENALTY;
         c->projects |= o->resp.kind == CL_RESPONSE_PROJECT;
         c->constrains |= o->resp.kind == CL_RESPONSE_CONSTRAINT;
+        c->sweeps |= o->resp.kind == CL_RESPONSE_PROJECT && o->resp.ccd;
         if (o->resp.kind == CL_RESPONSE_PROJECT && o->resp.iterations >
                                                        c->passes)
             c->passes = o->resp.iterations;
@@ -158,6 +165,9 @@ static cl_status contact_create(cl_config *cfg, const cl_cloth *cloth,
     if (!rc && c->constrains &&
         (!(c->cons = calloc(cloth->np, sizeof *c->cons)) ||
          !(c->cons_obs = calloc(cloth->np, sizeof *c->cons_obs))))
+        rc = cl_error_set(err, CL_ENOMEM, "out of memory (obstacles)");
+    if (!rc && c->sweeps &&
+        !(c->swept_x = malloc(3 * cloth->np * sizeof *c->swept_x)))
         rc = cl_error_set(err, CL_ENOMEM, "out of memory (obstacles)");
     if (rc) {
         contact_free(c);
@@ -345,11 +355,58 @@ double cl_contact_penetration(cl_contact *c, double t, const double *x)
     return worst;
 }
 
+/* Continuous detection (docs/model.md, eq. C14): every free particle's
+ * path from its position after the last projection (at swept_t) to x,
+ * against every obstacle with ccd; the first hit over them stops it
+ * there, with projection's velocity response.  The first projection of
+ * a run has no earlier one: its paths run back from x along v over the
+ * step (from the position before the step for the methods whose step
+ * ends x_{n+1} = x_n + h v_{n+1}: symplectic Euler, semi-be). */
+static void sweep(cl_contact *c, double t, double *x, double *v,
+                  cl_project_tally *tally)
+{
+    const cl_cloth *cl = c->cloth;
+    if (!c->swept) {
+        for (size_t i = 0; i < 3 * cl->np; i++)
+            c->swept_x[i] = x[i] - (t - c->last_t) * v[i];
+        c->swept_t = c->last_t;
+    }
+    for (size_t p = 0; p < cl->np; p++) {
+        double first = INFINITY, s, at[3], hit[3];
+        size_t k_hit = 0;
+        for (size_t k = 0; k < c->nobs && cl->dof[p] >= 0; k++) {
+            const cl_obstacle *o = &c->obs[k];
+            cl_pose P0;
+            if (o->resp.kind != CL_RESPONSE_PROJECT || !o->resp.ccd)
+                continue;
+            cl_obstacle_pose(o, c->swept_t, &P0);
+            if (cl_obstacle_sweep(o, &P0, &c->pose[k], c->swept_x + 3 * p,
+                                  x + 3 * p, o->resp.offset, &s, at) &&
+                s < first) {
+                first = s;
+                k_hit = k;
+                memcpy(hit, at, sizeof hit);
+            }
+        }
+        if (first > 1.0)
+            continue;
+        const cl_obstacle *o = &c->obs[k_hit];
+        cl_contact_point q;
+        memcpy(x + 3 * p, hit, sizeof hit);
+        cl_obstacle_near(o, &c->pose[k_hit], x + 3 * p, INFINITY,
+                         memo_of(c, k_hit, p), &q);
+        cl_project_hit(&o->resp, &q, cl->mass[p], x + 3 * p, v + 3 * p,
+                       tally);
+    }
+}
+
 size_t cl_contact_project(cl_contact *c, double t, double *x, double *v)
 {
     const cl_cloth *cl = c->cloth;
     cl_project_tally tally = {0, 0.0, 0.0};
     place(c, t);
+    if (c->sweeps && (c->swept ? c->swept_t : c->last_t) < t)
+        sweep(c, t, x, v, &tally);
     for (long pass = 0; pass < c->passes; pass++)
         for (size_t k = 0; k < c->nobs; k++) {
             const cl_obstacle *o = &c->obs[k];
@@ -373,6 +430,11 @@ size_t cl_contact_project(cl_contact *c, double t, double *x, double *v)
     c->proj_force = dt > 0.0 ? tally.impulse / dt : 0.0;
     c->proj_friction = dt > 0.0 ? tally.friction_energy / dt : 0.0;
     c->last_t = t;
+    if (c->sweeps) {
+        memcpy(c->swept_x, x, 3 * cl->np * sizeof *x);
+        c->swept_t = t;
+        c->swept = true;
+    }
     return tally.moved;
 }
 

@@ -213,6 +213,29 @@ size_t cl_obstacle_screen(const cl_obstacle *o, const cl_pose *P,
     return n;
 }
 
+bool cl_obstacle_sweep(const cl_obstacle *o, const cl_pose *P0,
+                       const cl_pose *P1, const double x0[3],
+                       const double x1[3], double offset, double *s,
+                       double xhit[3])
+{
+    double r0[3], r1[3], X0[3], X1[3], X[3], y[3];
+    to_shape(o, P0, x0, r0, X0);
+    to_shape(o, P1, x1, r1, X1);
+    *s = o->type->toi(o->shape, X0, X1, offset);
+    if (!(*s <= 1.0))
+        return false;
+    cl_shape_query q;
+    o->type->query(o->shape, X0, NULL, &q);
+    if (q.d <= offset + CL_ON_SURFACE)
+        return false;
+    for (int i = 0; i < 3; i++)
+        X[i] = X0[i] + *s * (X1[i] - X0[i]) - o->pivot[i];
+    rotate(P1, X, y);
+    for (int i = 0; i < 3; i++)
+        xhit[i] = o->pivot[i] + P1->s[i] + y[i];
+    return true;
+}
+
 cl_status cl_obstacle_surface(const cl_obstacle *o, double t,
                               cl_shape_surface *s, cl_error *err)
 {
@@ -400,6 +423,9 @@ cl_status cl_obstacle_create(cl_config *cfg, const char *sec, cl_obstacle *o,
         (rc = cl_config_vector(cfg, sec, "omega", 3, o->omega, err)) ||
         (rc = read_response(cfg, sec, &o->resp, err)))
         return rc;
+    if (o->resp.ccd && !o->type->toi)
+        return cl_config_refuse(cfg, sec, "ccd", CL_EINVAL, "false: this "
+                                "shape has no continuous detection", err);
     return CL_OK;
 }
 

@@ -123,6 +123,25 @@ size_t cl_obstacle_screen(const cl_obstacle *o, const cl_pose *P,
                           const double *x, size_t np, double dmax,
                           const cl_contact_memo *memo, size_t *near);
 
+/* A particle within this distance of the offset surface touches it
+ * (m). */
+#define CL_ON_SURFACE 1e-9
+
+/* Continuous detection (docs/model.md, eq. C14) of a particle's straight
+ * path from x0 (the obstacle at pose P0) to x1 (at P1), taken in the
+ * shape's frame as the segment between the two shape-frame points (the
+ * relative path exactly when the obstacle translates along a path linear
+ * over the step; its chord when it turns): true if it comes within offset
+ * of the surface (the shape's toi), with the fraction s of the path and
+ * the shape-frame point reached then placed at pose P1 in xhit (the
+ * particle carried along by the obstacle since the impact).  False when
+ * there is no hit, and when x0 is already within offset + CL_ON_SURFACE
+ * of the surface (the discrete check answers for a touching particle). */
+bool cl_obstacle_sweep(const cl_obstacle *o, const cl_pose *P0,
+                       const cl_pose *P1, const double x0[3],
+                       const double x1[3], double offset, double *s,
+                       double xhit[3]);
+
 /* The obstacle's drawing surface at time t, in the world frame. */
 cl_status cl_obstacle_surface(const cl_obstacle *o, double t,
                               cl_shape_surface *s, cl_error *err);

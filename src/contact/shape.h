@@ -57,6 +57,16 @@ typedef struct {
      * the query (a mesh: the distance to its bounding box), so that
      * particles far from the shape skip the query. */
     double (*lower_bound)(const void *shape, const double x[3]);
+    /* Optional (NULL: the shape has no continuous detection): the least
+     * s in [0, 1] at which the point a + s (b - a) of a segment that
+     * starts farther than `offset` from the surface comes within it,
+     * INFINITY if it does not (a and b in the shape's frame; docs/model.md,
+     * eq. C14).  A sphere and a plane answer exactly, a box for the box
+     * grown by offset (exact for offset 0, a little early near edges and
+     * corners otherwise), a mesh where the segment crosses the surface
+     * itself (contact/bvh.h). */
+    double (*toi)(const void *shape, const double a[3], const double b[3],
+                  double offset);
     /* Allocate the drawing surface (free with cl_shape_surface_free). */
     cl_status (*surface)(const void *shape, cl_shape_surface *s,
                          cl_error *err);

@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "contact/segment.h"
 #include "contact/shape_impl.h"
 #include "core/vec3.h"
 
@@ -88,6 +89,20 @@ static void box_query(const void *shape, const double x[3],
         query_inside(b, x, p, q);
 }
 
+/* The entry into the box grown by offset on every side. */
+static double box_toi(const void *shape, const double a[3],
+                      const double b[3], double offset)
+{
+    const box *bx = shape;
+    double lo[3], hi[3], d[3], s;
+    for (int i = 0; i < 3; i++) {
+        lo[i] = bx->c[i] - bx->h[i] - offset;
+        hi[i] = bx->c[i] + bx->h[i] + offset;
+    }
+    cl_v3_sub(b, a, d);
+    return cl_segment_box(lo, hi, a, d, 1.0, &s) ? s : INFINITY;
+}
+
 static cl_status box_surface(const void *shape, cl_shape_surface *s,
                              cl_error *err)
 {
@@ -112,6 +127,7 @@ const cl_shape_type cl_shape_box = {
            "> 0)",
     .create = box_create,
     .query = box_query,
+    .toi = box_toi,
     .surface = box_surface,
     .free = free,
 };

@@ -336,6 +336,17 @@ static cl_status mesh_surface(const void *shape, cl_shape_surface *s,
     return rc;
 }
 
+/* The first crossing of the surface (the start is outside). */
+static double mesh_toi(const void *shape, const double a[3],
+                       const double b[3], double offset)
+{
+    const mesh *m = shape;
+    double d[3], s;
+    (void)offset;
+    cl_v3_sub(b, a, d);
+    return cl_bvh_first_crossing(&m->bvh, a, d, &s) ? s : INFINITY;
+}
+
 /* The distance from x to the box of all triangles: d is at least that. */
 static double mesh_lower_bound(const void *shape, const double x[3])
 {
@@ -349,6 +360,7 @@ const cl_shape_type cl_shape_mesh = {
            "scale (> 0), translate (vector)",
     .create = mesh_create,
     .query = mesh_query,
+    .toi = mesh_toi,
     .cache_size = sizeof(cl_bvh_cache),
     .surface = mesh_surface,
     .free = mesh_free,

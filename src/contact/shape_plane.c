@@ -56,6 +56,20 @@ static void plane_query(const void *shape, const double x[3],
     memset(q->G, 0, sizeof q->G);
 }
 
+/* Where n . (x - p) - offset, linear along the segment, reaches 0. */
+static double plane_toi(const void *shape, const double a[3],
+                        const double b[3], double offset)
+{
+    const plane *s = shape;
+    double ra[3], rb[3];
+    cl_v3_sub(a, s->p, ra);
+    cl_v3_sub(b, s->p, rb);
+    double da = cl_v3_dot(s->n, ra) - offset, db = cl_v3_dot(s->n, rb) - offset;
+    if (da <= 0.0)
+        return 0.0;
+    return db > 0.0 ? INFINITY : da / (da - db);
+}
+
 /* Unit u, v in the plane with u x v = n. */
 static void tangents(const double n[3], double u[3], double v[3])
 {
@@ -95,6 +109,7 @@ const cl_shape_type cl_shape_plane = {
            "(drawn square's side, > 0)",
     .create = plane_create,
     .query = plane_query,
+    .toi = plane_toi,
     .surface = plane_surface,
     .free = free,
 };

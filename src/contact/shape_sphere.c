@@ -49,6 +49,26 @@ static void sphere_query(const void *shape, const double x[3],
         memset(q->G, 0, sizeof q->G);
 }
 
+/* The entry into the sphere of radius r + offset: the lesser root of
+ * |e + s d|^2 = (r + offset)^2, e = a - c, d = b - a, written as
+ * C / (-B + sqrt(B^2 - A C)) to keep its digits when the path grazes. */
+static double sphere_toi(const void *shape, const double a[3],
+                         const double b[3], double offset)
+{
+    const sphere *s = shape;
+    double e[3], d[3], rho = s->r + offset;
+    cl_v3_sub(a, s->c, e);
+    cl_v3_sub(b, a, d);
+    double A = cl_v3_dot(d, d), B = cl_v3_dot(e, d);
+    double C = cl_v3_dot(e, e) - rho * rho, disc = B * B - A * C;
+    if (C <= 0.0)
+        return 0.0;
+    if (!(B < 0.0) || !(disc >= 0.0))
+        return INFINITY;
+    double t = C / (-B + sqrt(disc));
+    return t <= 1.0 ? t : INFINITY;
+}
+
 static cl_status sphere_surface(const void *shape, cl_shape_surface *s,
                                 cl_error *err)
 {
@@ -61,6 +81,7 @@ const cl_shape_type cl_shape_sphere = {
     .doc = "sphere: center (vector), radius (> 0)",
     .create = sphere_create,
     .query = sphere_query,
+    .toi = sphere_toi,
     .surface = sphere_surface,
     .free = free,
 };
