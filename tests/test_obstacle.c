@@ -1,7 +1,9 @@
 /* Obstacles (contact/obstacle.h): the scripted path (keyframes held before
  * the first and after the last, linear in between), the rotation about
  * the pivot, the exact velocity field against the motion of a shape point,
- * queries on a moved and turned shape, names and refusals. */
+ * queries on a moved and turned shape, names and refusals, the
+ * constraint response's keys, and continuous detection against a moving
+ * box. */
 #include <criterion/criterion.h>
 
 #include <math.h>
@@ -218,5 +220,59 @@ Test(obstacle, memo_skips_only_what_cannot_matter)
                               "obstacle.o.k = 1", NULL};
     make(&o, mesh);
     memo_walk(&o, (double[]){0.51, 0.1, 0.1});
+    cl_obstacle_free(&o);
+}
+
+Test(obstacle, constraint_response_and_ccd_are_read)
+{
+    cl_obstacle o;
+    const char *c[NSET] = {"obstacle.o.shape = plane",
+                           "obstacle.o.normal = 0, 1, 0",
+                           "obstacle.o.response = constraint",
+                           "obstacle.o.offset = 0.002",
+                           "obstacle.o.mu = 0.3", NULL};
+    make(&o, c);
+    cr_assert_eq(o.resp.kind, CL_RESPONSE_CONSTRAINT);
+    cr_assert_eq(o.resp.offset, 0.002);
+    cr_assert_eq(o.resp.mu, 0.3);
+    cl_obstacle_free(&o);
+    const char *p[NSET] = {"obstacle.o.shape = plane",
+                           "obstacle.o.normal = 0, 1, 0",
+                           "obstacle.o.response = project",
+                           "obstacle.o.ccd = true", NULL};
+    make(&o, p);
+    cr_assert(o.resp.ccd);
+    cl_obstacle_free(&o);
+}
+
+/* A box 2 cm wide along x moving at 100 m/s along +x after a particle
+ * that moves at 10 m/s along +x: over the step [0.01, 0.02] s their gap
+ * of 0.5 m closes at s = 0.5 / 0.9; the hit point is the box's +x face
+ * where the box is at 0.02 s.  A particle touching the face at the start
+ * is left to the discrete check. */
+Test(obstacle, sweep_meets_a_moving_box)
+{
+    cl_obstacle o;
+    const char *b[NSET] = {"obstacle.o.shape = box",
+                           "obstacle.o.size = 0.02, 1, 1",
+                           "obstacle.o.path = 0: 0, 0, 0; 1: 100, 0, 0",
+                           "obstacle.o.response = project",
+                           "obstacle.o.ccd = true", NULL};
+    make(&o, b);
+    cl_pose P0, P1;
+    cl_obstacle_pose(&o, 0.01, &P0);
+    cl_obstacle_pose(&o, 0.02, &P1);
+    /* the face at 1 + 0.01 = 1.01 at 0.01 s; the particle at 1.51 */
+    double x0[3] = {1.51, 0.1, 0}, x1[3] = {1.61, 0.1, 0}, s, hit[3];
+    cr_assert(cl_obstacle_sweep(&o, &P0, &P1, x0, x1, 0.0, &s, hit));
+    cr_assert_float_eq(s, 0.5 / 0.9, 1e-12);
+    cr_assert_float_eq(hit[0], 2.0 + 0.01, 1e-12);
+    cr_assert_float_eq(hit[1], 0.1, 1e-15);
+    double slow[3] = {1.515, 0.1, 0};   /* 0.465 m ahead at 0.0105 s */
+    cl_obstacle_pose(&o, 0.0105, &P1);
+    cr_assert_not(cl_obstacle_sweep(&o, &P0, &P1, x0, slow, 0.0, &s, hit));
+    double on[3] = {1.01, 0.1, 0};      /* touching at the start */
+    cl_obstacle_pose(&o, 0.02, &P1);
+    cr_assert_not(cl_obstacle_sweep(&o, &P0, &P1, on, x1, 0.0, &s, hit));
     cl_obstacle_free(&o);
 }
