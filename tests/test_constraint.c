@@ -119,9 +119,7 @@ Test(constraint, release_and_demotion_follow_the_impulse)
  * 2 rad/s about z, response = constraint with friction mu. */
 static void sphere_problem(pr_problem *p, char *dir, double mu)
 {
-    char path[600], text[2048];
-    tmp_mkdtemp(dir, 512, "constraint");
-    snprintf(path, sizeof path, "%s/p.ini", dir);
+    char text[2048];
     snprintf(text, sizeof text,
              "[cloth]\nnu = 3\nnv = 3\nsize = 0.1\nparticle_mass = 0.1\n"
              "[pins]\nat =\n[type1]\nenabled = false\n[type2]\n"
@@ -130,8 +128,7 @@ static void sphere_problem(pr_problem *p, char *dir, double mu)
              "[obstacle.ball]\nshape = sphere\ncenter = 0, 0, 0\n"
              "radius = 0.5\npath = 0: 0, 0, 0; 10: 1, 2, 0.5\n"
              "omega = 0, 0, 2\nresponse = constraint\nmu = %g\n", mu);
-    tmp_put(path, text);
-    pr_load(p, path, NULL, NULL);
+    pr_load_text(p, dir, "constraint", text);
 }
 
 /* On the sphere within 0.35 rad of its top, sliding across it at 0.3 m/s

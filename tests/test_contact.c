@@ -23,17 +23,14 @@
  * (an [obstacle.floor] section body). */
 static void particle(pr_problem *p, char *dir, const char *obstacle)
 {
-    char path[600], text[2048];
-    tmp_mkdtemp(dir, 512, "contact");
-    snprintf(path, sizeof path, "%s/p.ini", dir);
+    char text[2048];
     snprintf(text, sizeof text,
              "[cloth]\nnu = 1\nnv = 2\nsize = 0.1\nparticle_mass = 0.1\n"
              "[pins]\nat =\n[type1]\nenabled = false\n[type2]\n"
              "enabled = false\n[damping]\nkd = 0\n"
              "[gravity]\ng = 0, -9.81, 0\n"
              "[obstacle.floor]\n%s\n", obstacle);
-    tmp_put(path, text);
-    pr_load(p, path, NULL, NULL);
+    pr_load_text(p, dir, "contact", text);
 }
 
 /* Run `name` from x0 (at rest) to T in `steps` output steps; the lowest

@@ -7,6 +7,7 @@
 #include <criterion/criterion.h>
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "contact/obstacle.h"
@@ -223,24 +224,32 @@ Test(obstacle, memo_skips_only_what_cannot_matter)
     cl_obstacle_free(&o);
 }
 
+/* make() from the lines "key = value\n..." of [obstacle.o]. */
+static void make_lines(cl_obstacle *o, const char *lines)
+{
+    char copy[1024], set[NSET][128];
+    const char *sets[NSET + 1] = {NULL};
+    int n = 0;
+    snprintf(copy, sizeof copy, "%s", lines);
+    for (char *l = strtok(copy, "\n"); l && n < NSET; l = strtok(NULL, "\n")) {
+        snprintf(set[n], sizeof set[n], "obstacle.o.%s", l);
+        sets[n] = set[n];
+        n++;
+    }
+    make(o, sets);
+}
+
 Test(obstacle, constraint_response_and_ccd_are_read)
 {
     cl_obstacle o;
-    const char *c[NSET] = {"obstacle.o.shape = plane",
-                           "obstacle.o.normal = 0, 1, 0",
-                           "obstacle.o.response = constraint",
-                           "obstacle.o.offset = 0.002",
-                           "obstacle.o.mu = 0.3", NULL};
-    make(&o, c);
+    make_lines(&o, "shape = plane\nnormal = 0, 1, 0\nresponse = constraint\n"
+                   "offset = 0.002\nmu = 0.3");
     cr_assert_eq(o.resp.kind, CL_RESPONSE_CONSTRAINT);
     cr_assert_eq(o.resp.offset, 0.002);
     cr_assert_eq(o.resp.mu, 0.3);
     cl_obstacle_free(&o);
-    const char *p[NSET] = {"obstacle.o.shape = plane",
-                           "obstacle.o.normal = 0, 1, 0",
-                           "obstacle.o.response = project",
-                           "obstacle.o.ccd = true", NULL};
-    make(&o, p);
+    make_lines(&o, "shape = plane\nnormal = 0, 1, 0\nresponse = project\n"
+                   "ccd = true");
     cr_assert(o.resp.ccd);
     cl_obstacle_free(&o);
 }
@@ -253,12 +262,9 @@ Test(obstacle, constraint_response_and_ccd_are_read)
 Test(obstacle, sweep_meets_a_moving_box)
 {
     cl_obstacle o;
-    const char *b[NSET] = {"obstacle.o.shape = box",
-                           "obstacle.o.size = 0.02, 1, 1",
-                           "obstacle.o.path = 0: 0, 0, 0; 1: 100, 0, 0",
-                           "obstacle.o.response = project",
-                           "obstacle.o.ccd = true", NULL};
-    make(&o, b);
+    make_lines(&o, "shape = box\nsize = 0.02, 1, 1\n"
+                   "path = 0: 0, 0, 0; 1: 100, 0, 0\nresponse = project\n"
+                   "ccd = true");
     cl_pose P0, P1;
     cl_obstacle_pose(&o, 0.01, &P0);
     cl_obstacle_pose(&o, 0.02, &P1);
