@@ -1,6 +1,8 @@
 /* Contact with obstacles: every [obstacle.NAME] section of a problem
- * (contact/obstacle.h), as one force term for the penalty responses and a
- * projection for the `project` responses (docs/model.md, contact).
+ * (contact/obstacle.h), as one force term for the penalty responses, a
+ * projection (with continuous detection where asked) for the `project`
+ * responses and Baraff-Witkin constraints for the `constraint` responses
+ * (docs/model.md, contact).
  *
  * cl_contact_term is a cl_term_type named "contact": its create reads the
  * obstacles (state NULL when there is none), its eval adds the penalty
