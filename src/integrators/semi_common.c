@@ -223,7 +223,7 @@ cl_status cl_semi_solve_constrained(cl_semi *s, double t, void *state,
         fill_rhs(state);
         return cl_semi_solve(s, a, b, err);
     }
-    bool changed = true;
+    bool changed;
     cl_status st = semi_constrain(s, t, NULL, &changed, err);
     /* every pass releases or demotes a constraint: at most 2 nb + 1 */
     for (changed = true; st == CL_OK && changed;) {
