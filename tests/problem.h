@@ -7,8 +7,11 @@
 
 #include <criterion/criterion.h>
 
+#include <stdio.h>
+
 #include "io/config.h"
 #include "system/model.h"
+#include "tmpdir.h"
 
 typedef struct {
     cl_config *cfg;
@@ -28,6 +31,18 @@ static inline void pr_load(pr_problem *p, const char *path, const char *set1,
             cr_assert_eq(cl_config_set(p->cfg, sets[k], &err), CL_OK, "%s",
                          err.msg);
     cr_assert_eq(cl_model_create(p->cfg, &p->m, &err), CL_OK, "%s", err.msg);
+}
+
+/* The problem `text` written to p.ini in a fresh temporary directory
+ * (its path into dir, 512 bytes, named after tag) and loaded. */
+static inline void pr_load_text(pr_problem *p, char *dir, const char *tag,
+                                const char *text)
+{
+    char path[600];
+    tmp_mkdtemp(dir, 512, tag);
+    snprintf(path, sizeof path, "%s/p.ini", dir);
+    tmp_put(path, text);
+    pr_load(p, path, NULL, NULL);
 }
 
 static inline void pr_free(pr_problem *p)

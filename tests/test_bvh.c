@@ -1,10 +1,12 @@
 /* Tests for contact/bvh: the tree's structure (every triangle once, leaves
  * of at most CL_BVH_LEAF, boxes nested, depth), the nearest triangle
- * against trying them all, and the refusals. */
+ * against trying them all, the first crossing of a segment against trying
+ * them all, and the refusals. */
 #include <criterion/criterion.h>
 
 #include "contact/bvh.h"
 #include "contact/icosphere.h"
+#include "contact/triangle.h"
 #include "core/vec3.h"
 #include "fdcheck.h"
 
@@ -181,4 +183,39 @@ Test(bvh, one_triangle_and_no_triangle)
     cr_assert(strstr(err.msg, "of 0 triangles"), "%s", err.msg);
     cr_assert_null(b.node);
     cl_bvh_free(&b);
+}
+
+/* 2000 segments between random points of [-1.5, 1.5]^3 against an
+ * icosphere of radius 1: the walk's first crossing is the least fraction
+ * of all triangles'. */
+Test(bvh, first_crossing_equals_brute_force)
+{
+    cl_shape_surface sf;
+    cl_bvh b;
+    cl_error err = {0};
+    cr_assert_eq(cl_icosphere(3, (double[]){0, 0, 0}, 1, &sf, &err), CL_OK);
+    cr_assert_eq(cl_bvh_build(&b, sf.vert, sf.ntri,
+                              (const int(*)[3])sf.tri, &err), CL_OK);
+    fd_rng r = {11};
+    int crossings = 0;
+    for (int k = 0; k < 2000; k++) {
+        double p[3], q[3], d[3], best = INFINITY;
+        for (int i = 0; i < 3; i++) {
+            p[i] = 1.5 * fd_rand(&r);
+            q[i] = 1.5 * fd_rand(&r);
+            d[i] = q[i] - p[i];
+        }
+        for (size_t t = 0; t < sf.ntri; t++) {
+            const int *v = sf.tri[t];
+            best = fmin(best, cl_tri_segment(p, d, sf.vert + 3 * v[0],
+                                             sf.vert + 3 * v[1],
+                                             sf.vert + 3 * v[2]));
+        }
+        double s = cl_bvh_segment(&b, p, q);
+        cr_assert_eq(s, best, "segment %d: %.17g, brute %.17g", k, s, best);
+        crossings += s <= 1.0;
+    }
+    cr_assert_gt(crossings, 500);
+    cl_bvh_free(&b);
+    cl_shape_surface_free(&sf);
 }

@@ -4,10 +4,12 @@
  * (slides with a = g (sin theta - mu cos theta), sticks when
  * mu > tan theta) with either response, the energy balance with contact
  * and friction, the refusal of projection by the methods that cannot
- * apply it, and the contact hook's worst penetration; the barrier: the
- * filter of a straight move, a particle dropped on a barrier plane kept
- * outside by kinsol-be and by cvode-bdf, and the energy balance with the
- * barrier and its friction. */
+ * apply it, the contact hook's worst penetration, and continuous
+ * detection (ccd) stopping a fast particle at a thin box and a small fast
+ * sphere catching a particle, which pass through with it off; the barrier:
+ * the filter of a straight move, a particle dropped on a barrier plane
+ * kept outside by kinsol-be and by cvode-bdf, and the energy balance with
+ * the barrier and its friction. */
 #include <criterion/criterion.h>
 
 #include <math.h>
@@ -25,17 +27,14 @@
  * (an [obstacle.floor] section body). */
 static void particle(pr_problem *p, char *dir, const char *obstacle)
 {
-    char path[600], text[2048];
-    tmp_mkdtemp(dir, 512, "contact");
-    snprintf(path, sizeof path, "%s/p.ini", dir);
+    char text[2048];
     snprintf(text, sizeof text,
              "[cloth]\nnu = 1\nnv = 2\nsize = 0.1\nparticle_mass = 0.1\n"
              "[pins]\nat =\n[type1]\nenabled = false\n[type2]\n"
              "enabled = false\n[damping]\nkd = 0\n"
              "[gravity]\ng = 0, -9.81, 0\n"
              "[obstacle.floor]\n%s\n", obstacle);
-    tmp_put(path, text);
-    pr_load(p, path, NULL, NULL);
+    pr_load_text(p, dir, "contact", text);
 }
 
 /* Run `name` from x0 (at rest) to T in `steps` output steps; the lowest
@@ -315,6 +314,40 @@ Test(contact, barrier_filter_is_the_safety_fraction_of_the_impact)
     tmp_rm_rf(dir);
 }
 
+/* Both particles of particle() with the obstacle `obstacle` + "ccd = ccd",
+ * from x0 (the second 0.1 m along z) with velocity v0, by symplectic Euler
+ * in `steps` steps of 0.01 s; the first particle's x and v at the end. */
+static void fly(const char *obstacle, bool ccd, const double x0[3],
+                const double v0[3], int steps, double x[3], double v[3])
+{
+    pr_problem p;
+    char dir[512], body[512];
+    snprintf(body, sizeof body, "%s\nccd = %s", obstacle,
+             ccd ? "true" : "false");
+    particle(&p, dir, body);
+    cl_model_contact_start(p.m, false);
+    const cl_system *sys = cl_model_system(p.m);
+    double xs[6], vs[6];
+    for (int i = 0; i < 3; i++) {
+        xs[i] = xs[3 + i] = x0[i];
+        vs[i] = vs[3 + i] = v0[i];
+    }
+    xs[5] += 0.1;
+    cl_integrator_opts io = {.dt = 0.01};
+    const cl_integrator_type *type = cl_integrator_find("symplectic-euler");
+    void *st = NULL;
+    cl_error err = {0};
+    cr_assert_eq(type->create(sys, &io, 0.0, xs, vs, &st, &err), CL_OK, "%s",
+                 err.msg);
+    cr_assert_eq(type->advance(st, 0.01 * steps, xs, vs, &err), CL_OK, "%s",
+                 err.msg);
+    memcpy(x, xs, 3 * sizeof *x);
+    memcpy(v, vs, 3 * sizeof *v);
+    type->free(st);
+    pr_free(&p);
+    tmp_rm_rf(dir);
+}
+
 /* Dropped from 0.2 m at rest onto the barrier plane (m = 0.1 kg, 2 m/s
  * at the plane): the particle never reaches it, with kinsol-be and
  * kinsol-bdf2 (dt = 0.02: 4 cm a step, 4 dhat; the filtered Newton loop),
@@ -369,4 +402,44 @@ Test(contact, energy_balance_closes_with_barrier_and_friction)
     sphere_drop_balance("response = barrier\nkappa = 1000\ndhat = 0.02\n"
                         "mu = 0.3\neps_v = 0.05\n",
                         6000, 2e-2, -0.1);
+}
+
+/* 100 m/s toward a box 1 mm thick, 0.45 m ahead: one step of 0.01 s
+ * carries the particle 0.55 m past it.  With detection it stops on the
+ * near face, x = 0.5 - 0.0005, its normal velocity removed; without, the
+ * discrete check finds it outside at the end of every step. */
+Test(contact, continuous_detection_stops_a_fast_particle_at_a_thin_box)
+{
+    const char *box = "shape = box\ncenter = 0.5, 1, 0\nsize = 0.001, 1, 1\n"
+                      "response = project";
+    const double x0[3] = {0.05, 1, 0}, v0[3] = {100, 0, 0};
+    double x[3], v[3];
+    fly(box, true, x0, v0, 3, x, v);
+    cr_assert_float_eq(x[0], 0.4995, 1e-12, "stopped at x = %.17g", x[0]);
+    cr_assert_eq(v[0], 0.0, "vx = %g", v[0]);
+    fly(box, false, x0, v0, 3, x, v);
+    cr_assert_float_eq(x[0], 3.05, 1e-12, "passed through to %.17g", x[0]);
+    cr_assert_eq(v[0], 100.0);
+}
+
+/* A sphere of radius 1 cm at 50 m/s along x (its path), 0.25 m from a
+ * particle at rest at t = 0.01 s and 0.25 m past it at 0.02 s: with
+ * detection the relative path hits the sphere's front at s = 0.48 and the
+ * particle is carried along in front of it (x = 0.5 + 0.01 at 0.02 s,
+ * moving with it); without, it stays where it was (x; it falls). */
+Test(contact, continuous_detection_catches_a_small_fast_sphere)
+{
+    const char *ball = "shape = sphere\ncenter = 0, 1, 0\nradius = 0.01\n"
+                       "path = 0: -0.5, 0, 0; 1: 49.5, 0, 0\n"
+                       "response = project";
+    const double x0[3] = {0.25, 1, 0}, v0[3] = {0, 0, 0};
+    double x[3], v[3];
+    fly(ball, true, x0, v0, 2, x, v);
+    cr_assert_float_eq(x[0], 0.51, 2e-3, "carried to x = %.17g", x[0]);
+    /* the normal at the hit leans 0.2 rad down (the particle has fallen
+     * 2 mm by then): vx = 50 cos^2 of it */
+    cr_assert(v[0] > 47.0 && v[0] <= 50.0, "vx = %g", v[0]);
+    fly(ball, false, x0, v0, 2, x, v);
+    cr_assert_float_eq(x[0], 0.25, 1e-15, "x = %.17g", x[0]);
+    cr_assert_eq(v[0], 0.0);
 }

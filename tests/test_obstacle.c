@@ -1,12 +1,14 @@
 /* Obstacles (contact/obstacle.h): the scripted path (keyframes held before
  * the first and after the last, linear in between), the rotation about
  * the pivot, the exact velocity field against the motion of a shape point,
- * queries on a moved and turned shape, names and refusals, and the times
- * of impact of straight moves (continuous collision detection) against
- * every shape, static and moving. */
+ * queries on a moved and turned shape, names and refusals, the
+ * constraint response's keys, the times of impact of straight moves
+ * (continuous collision detection) against every shape, static and
+ * moving, and project's continuous detection against a moving box. */
 #include <criterion/criterion.h>
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "contact/obstacle.h"
@@ -287,7 +289,7 @@ static double toi(const cl_obstacle *o, const double x0[3],
 {
     cl_pose P;
     cl_obstacle_pose(o, 0.0, &P);
-    return cl_obstacle_toi(o, &P, x0, &P, x1);
+    return cl_obstacle_toi(o, &P, x0, &P, x1, 0.0);
 }
 
 #define BARRIER "obstacle.o.response = barrier", "obstacle.o.kappa = 1", \
@@ -355,6 +357,65 @@ Test(obstacle, time_of_impact_mesh_and_moving)
     cl_obstacle_pose(&o, 0.0, &P0);
     cl_obstacle_pose(&o, 1.0, &P1);
     double x[3] = {0.3, 0.5, -0.2};
-    cr_expect_float_eq(cl_obstacle_toi(&o, &P0, x, &P1, x), 0.5, 1e-15);
+    cr_expect_float_eq(cl_obstacle_toi(&o, &P0, x, &P1, x, 0.0), 0.5, 1e-15);
+    cl_obstacle_free(&o);
+}
+
+/* make() from the lines "key = value\n..." of [obstacle.o]. */
+static void make_lines(cl_obstacle *o, const char *lines)
+{
+    char copy[1024], set[NSET][128];
+    const char *sets[NSET + 1] = {NULL};
+    int n = 0;
+    snprintf(copy, sizeof copy, "%s", lines);
+    for (char *l = strtok(copy, "\n"); l && n < NSET; l = strtok(NULL, "\n")) {
+        snprintf(set[n], sizeof set[n], "obstacle.o.%s", l);
+        sets[n] = set[n];
+        n++;
+    }
+    make(o, sets);
+}
+
+Test(obstacle, constraint_response_and_ccd_are_read)
+{
+    cl_obstacle o;
+    make_lines(&o, "shape = plane\nnormal = 0, 1, 0\nresponse = constraint\n"
+                   "offset = 0.002\nmu = 0.3");
+    cr_assert_eq(o.resp.kind, CL_RESPONSE_CONSTRAINT);
+    cr_assert_eq(o.resp.offset, 0.002);
+    cr_assert_eq(o.resp.mu, 0.3);
+    cl_obstacle_free(&o);
+    make_lines(&o, "shape = plane\nnormal = 0, 1, 0\nresponse = project\n"
+                   "ccd = true");
+    cr_assert(o.resp.ccd);
+    cl_obstacle_free(&o);
+}
+
+/* A box 2 cm wide along x moving at 100 m/s along +x after a particle
+ * that moves at 10 m/s along +x: over the step [0.01, 0.02] s their gap
+ * of 0.5 m closes at s = 0.5 / 0.9; the hit point is the box's +x face
+ * where the box is at 0.02 s.  A particle touching the face at the start
+ * is left to the discrete check. */
+Test(obstacle, sweep_meets_a_moving_box)
+{
+    cl_obstacle o;
+    make_lines(&o, "shape = box\nsize = 0.02, 1, 1\n"
+                   "path = 0: 0, 0, 0; 1: 100, 0, 0\nresponse = project\n"
+                   "ccd = true");
+    cl_pose P0, P1;
+    cl_obstacle_pose(&o, 0.01, &P0);
+    cl_obstacle_pose(&o, 0.02, &P1);
+    /* the face at 1 + 0.01 = 1.01 at 0.01 s; the particle at 1.51 */
+    double x0[3] = {1.51, 0.1, 0}, x1[3] = {1.61, 0.1, 0}, s, hit[3];
+    cr_assert(cl_obstacle_sweep(&o, &P0, &P1, x0, x1, 0.0, &s, hit));
+    cr_assert_float_eq(s, 0.5 / 0.9, 1e-12);
+    cr_assert_float_eq(hit[0], 2.0 + 0.01, 1e-12);
+    cr_assert_float_eq(hit[1], 0.1, 1e-15);
+    double slow[3] = {1.515, 0.1, 0};   /* 0.465 m ahead at 0.0105 s */
+    cl_obstacle_pose(&o, 0.0105, &P1);
+    cr_assert_not(cl_obstacle_sweep(&o, &P0, &P1, x0, slow, 0.0, &s, hit));
+    double on[3] = {1.01, 0.1, 0};      /* touching at the start */
+    cl_obstacle_pose(&o, 0.02, &P1);
+    cr_assert_not(cl_obstacle_sweep(&o, &P0, &P1, on, x1, 0.0, &s, hit));
     cl_obstacle_free(&o);
 }

@@ -3,7 +3,9 @@
  * block pattern (random non-symmetric blocks, a pattern with a pinned
  * particle), structure (column pointers, strictly ascending rows, every
  * diagonal entry stored at diagpos), refill with other a, b; block values,
- * block products and diagonal blocks against dense products; mass checks. */
+ * block products and diagonal blocks against dense products; the
+ * Baraff-Witkin filter S B S against filtering the product's argument and
+ * result; mass checks. */
 #include <criterion/criterion.h>
 
 #include <math.h>
@@ -189,5 +191,43 @@ Test(reduced, rejects_bad_masses)
         cr_assert_not_null(strstr(err.msg, "mass[4]"), "%s", err.msg);
         cr_assert_null(r.colptr);
     }
+    rd_free(&c);
+}
+
+/* Filters of the three kinds (I, I - n n^T, 0) by turns: the filtered
+ * blocks' product is S (B (S p)) for every p, and S is a projector. */
+Test(reduced, filter_is_s_b_s)
+{
+    rd_case c;
+    rd_init(&c, 5);
+    unsigned long seed = 7;
+    double S[9 * NB], p[N], sp[N], y[N], yref[N];
+    for (size_t i = 0; i < NB; i++) {
+        double n[3], nn = 0.0;
+        for (int r = 0; r < 3; r++) {
+            n[r] = bc_rand(&seed);
+            nn += n[r] * n[r];
+        }
+        for (int r = 0; r < 3; r++)
+            for (int q = 0; q < 3; q++)
+                S[9 * i + 3 * r + q] = i % 3 == 0 ? (r == q)
+                                     : i % 3 == 1 ? (r == q) - n[r] * n[q] / nn
+                                                  : 0.0;
+    }
+    for (size_t i = 0; i < N; i++)
+        p[i] = bc_rand(&seed);
+    double *f = malloc(9 * c.pat.nnzb * sizeof *f);
+    cl_reduced_filter(&c.pat, S, c.dfdx, f);
+    cl_bmatvec(&c.pat, f, p, y);
+    cl_bdiag_apply(NB, S, p, sp);
+    cl_bmatvec(&c.pat, c.dfdx, sp, yref);
+    cl_bdiag_apply(NB, S, yref, yref);
+    rd_assert_close(y, yref, N, "S B S p");
+    cl_bdiag_apply(NB, S, sp, y);       /* S S p = S p, in place too */
+    rd_assert_close(y, sp, N, "S S p");
+    for (size_t i = 0; i < NB; i++)     /* the zero filter: exactly 0 */
+        for (int r = 0; i % 3 == 2 && r < 3; r++)
+            cr_assert_eq(sp[3 * i + r], 0.0);
+    free(f);
     rd_free(&c);
 }

@@ -125,3 +125,17 @@ Test(shape_box, drawn_with_twelve_triangles)
     sc_check_surface(&s, 12, 0);
     sc_free(&s);
 }
+
+/* Continuous detection: the entry into the box grown by the offset. */
+Test(shape_box, time_of_impact)
+{
+    sc_shape s;
+    sc_create(&s, "box", SC_SETS("center = 1, 0, 0", "size = 1, 1, 1"));
+    cr_assert_float_eq(s.type->toi(s.shape, (double[]){-1, 0, 0},
+                                   (double[]){3, 0, 0}, 0.1), 0.35, 1e-15);
+    cr_assert_float_eq(s.type->toi(s.shape, (double[]){-1, 0, 0},
+                                   (double[]){3, 0, 0}, 0.0), 0.375, 1e-15);
+    cr_assert(isinf(s.type->toi(s.shape, (double[]){-1, 0.7, 0},
+                                (double[]){3, 0.7, 0}, 0.1)));
+    sc_free(&s);
+}

@@ -420,3 +420,34 @@ Test(shape_mesh, bad_keys_refused)
     sc_refused_from("mesh", sc_config(SC_SETS(path)), SC_SEC, CL_EIO,
                     "--set: [ob] file: cannot open", "none.obj");
 }
+
+
+/* Continuous detection: the cube's first crossing is the box's entry, for
+ * segments from outside (offset 0). */
+Test(shape_mesh, time_of_impact_of_the_cube_is_the_box_s)
+{
+    sc_shape m, box;
+    mesh_shape(&m, cube_obj, "");
+    sc_create(&box, "box", SC_SETS("size = 1, 1, 1"));
+    fd_rng r = {23};
+    int hits = 0;
+    for (int k = 0; k < 1000; k++) {
+        double a[3], b[3];
+        for (int i = 0; i < 3; i++) {
+            a[i] = 1.5 * fd_rand(&r);
+            b[i] = 1.5 * fd_rand(&r);
+        }
+        if (fmax(fabs(a[0]), fmax(fabs(a[1]), fabs(a[2]))) <= 0.5)
+            continue;
+        double sm = m.type->toi(m.shape, a, b, 0.0);
+        double sb = box.type->toi(box.shape, a, b, 0.0);
+        cr_assert(isinf(sm) == isinf(sb), "segment %d: mesh %g, box %g", k,
+                  sm, sb);
+        if (!isinf(sm))
+            cr_assert_float_eq(sm, sb, 1e-12, "segment %d", k);
+        hits += !isinf(sm);
+    }
+    cr_assert_gt(hits, 200);
+    sc_free(&m);
+    sc_free(&box);
+}

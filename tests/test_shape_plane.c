@@ -81,3 +81,17 @@ Test(shape_plane, drawn_as_a_square)
     cl_shape_surface_free(&sf);
     sc_free(&s);
 }
+
+/* Continuous detection: where n . (x - p) reaches the offset. */
+Test(shape_plane, time_of_impact)
+{
+    sc_shape s;
+    sc_create(&s, "plane", SC_SETS("point = 0, 1, 0", "normal = 0, 2, 0"));
+    cr_assert_float_eq(s.type->toi(s.shape, (double[]){3, 3, 0},
+                                   (double[]){5, -1, 1}, 0.5), 0.375, 1e-15);
+    cr_assert(isinf(s.type->toi(s.shape, (double[]){3, 3, 0},
+                                (double[]){3, 2, 0}, 0.5)));
+    cr_assert_eq(s.type->toi(s.shape, (double[]){3, 1.2, 0},
+                             (double[]){3, 2, 0}, 0.5), 0.0);
+    sc_free(&s);
+}

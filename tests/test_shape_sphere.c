@@ -74,3 +74,28 @@ Test(shape_sphere, non_finite_point_does_not_crash)
     cr_assert(isnan(q.d));
     sc_free(&s);
 }
+
+/* Continuous detection: the entry into the sphere grown by the offset. */
+Test(shape_sphere, time_of_impact)
+{
+    sc_shape s;
+    sc_create(&s, "sphere", SC_SETS("center = 1, 2, 3", "radius = 0.5"));
+    double (*toi)(const void *, const double *, const double *, double) =
+        s.type->toi;
+    /* straight at the centre: z = 3.6 reached at s = 2.4 / 4 */
+    cr_assert_float_eq(toi(s.shape, (double[]){1, 2, 6}, (double[]){1, 2, 2},
+                           0.1), 0.6, 1e-15);
+    /* 0.55 from the centre: missed with offset 0, grazed with 0.1 at
+     * z = 3 + sqrt(0.6^2 - 0.55^2) */
+    cr_assert(isinf(toi(s.shape, (double[]){1.55, 2, 6},
+                        (double[]){1.55, 2, 0}, 0.0)));
+    cr_assert_float_eq(toi(s.shape, (double[]){1.55, 2, 6},
+                           (double[]){1.55, 2, 0}, 0.1),
+                       (3 - sqrt(0.0575)) / 6, 1e-15);
+    /* moving away, or stopping short */
+    cr_assert(isinf(toi(s.shape, (double[]){1, 2, 6}, (double[]){1, 2, 9},
+                        0.0)));
+    cr_assert(isinf(toi(s.shape, (double[]){1, 2, 6}, (double[]){1, 2, 4},
+                        0.0)));
+    sc_free(&s);
+}

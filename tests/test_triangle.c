@@ -76,3 +76,22 @@ Test(triangle, random_points)
             }
     }
 }
+
+/* cl_tri_segment at known answers: a crossing, through an edge, beyond
+ * the segment's end, outside the triangle, in its plane. */
+Test(triangle, segment_crossings)
+{
+    cr_assert_float_eq(cl_tri_segment((double[]){0.25, 0.25, 2},
+                                      (double[]){0, 0, -5}, A, B, C),
+                       0.4, 1e-15);
+    /* from below, slanted, through the edge B-C at the segment's end */
+    cr_assert_float_eq(cl_tri_segment((double[]){0, 0, -1},
+                                      (double[]){0.5, 0.5, 1}, A, B, C),
+                       1.0, 1e-15);
+    cr_assert_eq(cl_tri_segment((double[]){0.25, 0.25, 2},
+                                (double[]){0, 0, -1.95}, A, B, C), INFINITY);
+    cr_assert_eq(cl_tri_segment((double[]){0.75, 0.75, 2},
+                                (double[]){0, 0, -10}, A, B, C), INFINITY);
+    cr_assert_eq(cl_tri_segment((double[]){-1, 0.2, 0},
+                                (double[]){10, 0, 0}, A, B, C), INFINITY);
+}

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "contact/segment.h"
 #include "core/vec3.h"
 
 /* Pending nodes of a query: at most one per level plus one (depth <= 30). */
@@ -348,24 +349,16 @@ bool cl_bvh_nearest_cached(const cl_bvh *b, const double x[3],
 }
 
 /* The fraction at which x0 + a D enters the node's box widened by pad
- * (0 if x0 is inside), INFINITY if the segment misses it (the slab
- * method). */
+ * (0 if x0 is inside), INFINITY if the segment misses it. */
 static double box_entry(const cl_bvh_node *nd, const double x0[3],
                         const double D[3], double pad)
 {
-    double enter = 0.0, leave = 1.0;
+    double lo[3], hi[3], a;
     for (int i = 0; i < 3; i++) {
-        double lo = nd->lo[i] - pad, hi = nd->hi[i] + pad;
-        if (D[i] == 0.0) {
-            if (x0[i] < lo || x0[i] > hi)
-                return INFINITY;
-            continue;
-        }
-        double a0 = (lo - x0[i]) / D[i], a1 = (hi - x0[i]) / D[i];
-        enter = fmax(enter, fmin(a0, a1));
-        leave = fmin(leave, fmax(a0, a1));
+        lo[i] = nd->lo[i] - pad;
+        hi[i] = nd->hi[i] + pad;
     }
-    return enter <= leave ? enter : INFINITY;
+    return cl_segment_box(lo, hi, x0, D, 1.0, &a) ? a : INFINITY;
 }
 
 double cl_bvh_segment(const cl_bvh *b, const double x0[3],

@@ -3,15 +3,17 @@
 #include "contact/contact.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "contact/barrier.h"
+#include "contact/constraint.h"
 #include "contact/penalty.h"
 #include "contact/project.h"
 
 #define PREFIX "obstacle."
-#define ON_SURFACE 1e-9 /* m: a projected particle counts as touching */
+#define ON_SURFACE CL_ON_SURFACE /* a projected particle counts as touching */
 
 struct cl_contact {
     const cl_cloth *cloth;
@@ -22,13 +24,19 @@ struct cl_contact {
     unsigned char *cache;    /* the shapes' caches the memos point into */
     size_t *near;            /* scratch: the particles near one obstacle */
     cl_contact_point *hit;   /* scratch: their contact points */
-    bool penalizes, projects;
     bool barriers;           /* some obstacle has response = barrier */
     bool infeasible;         /* the last evaluation had a free particle at
                                 d <= 0 of a barrier obstacle */
     double *lambda;          /* np per obstacle: the lagged normal force
                                 of a barrier's friction (barrier.h) */
     double (*lag_n)[3];      /* ... and the lagged normal */
+    bool penalizes, projects, constrains, sweeps;
+    double *swept_x;         /* positions after the last projection (sweeps:
+                              * some obstacle has ccd), at swept_t */
+    double swept_t;
+    bool swept;              /* swept_x holds them */
+    cl_constraint *cons;     /* np: each particle's constraint (constrains) */
+    size_t *cons_obs;        /* np: the obstacle it is on */
     long passes;             /* projection passes */
     long *slot;              /* diagonal block of each particle, or -1 */
     double last_t;           /* time of the last projection */
@@ -53,8 +61,13 @@ bool cl_contact_projects_friction(const cl_contact *c)
     return false;
 }
 
+bool cl_contact_constrains(const cl_contact *c) { return c->constrains; }
+
 void cl_contact_restart(cl_contact *c)
 {
+    c->swept = false;
+    for (size_t p = 0; c->constrains && p < c->cloth->np; p++)
+        c->cons[p].mode = CL_CONSTRAINT_FREE;
     c->last_t = 0.0;
     c->proj_force = c->proj_friction = 0.0;
     memset(c->lambda, 0, c->nobs * c->cloth->np * sizeof *c->lambda);
@@ -94,6 +107,9 @@ static void contact_free(void *state)
     free(c->eval_worst);
     free(c->lambda);
     free(c->lag_n);
+    free(c->cons);
+    free(c->cons_obs);
+    free(c->swept_x);
     free(c);
 }
 
@@ -154,11 +170,20 @@ static cl_status contact_create(cl_config *cfg, const cl_cloth *cloth,
         c->penalizes |= o->resp.kind == CL_RESPONSE_PENALTY;
         c->projects |= o->resp.kind == CL_RESPONSE_PROJECT;
         c->barriers |= o->resp.kind == CL_RESPONSE_BARRIER;
+        c->constrains |= o->resp.kind == CL_RESPONSE_CONSTRAINT;
+        c->sweeps |= o->resp.kind == CL_RESPONSE_PROJECT && o->resp.ccd;
         if (o->resp.kind == CL_RESPONSE_PROJECT && o->resp.iterations >
                                                        c->passes)
             c->passes = o->resp.iterations;
     }
     cl_status rc = start_memos(c, err);
+    if (!rc && c->constrains &&
+        (!(c->cons = calloc(cloth->np, sizeof *c->cons)) ||
+         !(c->cons_obs = calloc(cloth->np, sizeof *c->cons_obs))))
+        rc = cl_error_set(err, CL_ENOMEM, "out of memory (obstacles)");
+    if (!rc && c->sweeps &&
+        !(c->swept_x = malloc(3 * cloth->np * sizeof *c->swept_x)))
+        rc = cl_error_set(err, CL_ENOMEM, "out of memory (obstacles)");
     if (rc) {
         contact_free(c);
         return rc;
@@ -446,11 +471,58 @@ double cl_contact_penetration(cl_contact *c, double t, const double *x)
     return worst;
 }
 
+/* Continuous detection (docs/model.md, eq. C14): every free particle's
+ * path from its position after the last projection (at swept_t) to x,
+ * against every obstacle with ccd; the first hit over them stops it
+ * there, with projection's velocity response.  The first projection of
+ * a run has no earlier one: its paths run back from x along v over the
+ * step (from the position before the step for the methods whose step
+ * ends x_{n+1} = x_n + h v_{n+1}: symplectic Euler, semi-be). */
+static void sweep(cl_contact *c, double t, double *x, double *v,
+                  cl_project_tally *tally)
+{
+    const cl_cloth *cl = c->cloth;
+    if (!c->swept) {
+        for (size_t i = 0; i < 3 * cl->np; i++)
+            c->swept_x[i] = x[i] - (t - c->last_t) * v[i];
+        c->swept_t = c->last_t;
+    }
+    for (size_t p = 0; p < cl->np; p++) {
+        double first = INFINITY, s, at[3], hit[3];
+        size_t k_hit = 0;
+        for (size_t k = 0; k < c->nobs && cl->dof[p] >= 0; k++) {
+            const cl_obstacle *o = &c->obs[k];
+            cl_pose P0;
+            if (o->resp.kind != CL_RESPONSE_PROJECT || !o->resp.ccd)
+                continue;
+            cl_obstacle_pose(o, c->swept_t, &P0);
+            if (cl_obstacle_sweep(o, &P0, &c->pose[k], c->swept_x + 3 * p,
+                                  x + 3 * p, o->resp.offset, &s, at) &&
+                s < first) {
+                first = s;
+                k_hit = k;
+                memcpy(hit, at, sizeof hit);
+            }
+        }
+        if (first > 1.0)
+            continue;
+        const cl_obstacle *o = &c->obs[k_hit];
+        cl_contact_point q;
+        memcpy(x + 3 * p, hit, sizeof hit);
+        cl_obstacle_near(o, &c->pose[k_hit], x + 3 * p, INFINITY,
+                         memo_of(c, k_hit, p), &q);
+        cl_project_hit(&o->resp, &q, cl->mass[p], x + 3 * p, v + 3 * p,
+                       tally);
+    }
+}
+
 size_t cl_contact_project(cl_contact *c, double t, double *x, double *v)
 {
     const cl_cloth *cl = c->cloth;
     cl_project_tally tally = {0, 0.0, 0.0};
     place(c, t);
+    if (c->sweeps && (c->swept ? c->swept_t : c->last_t) < t)
+        sweep(c, t, x, v, &tally);
     for (long pass = 0; pass < c->passes; pass++)
         for (size_t k = 0; k < c->nobs; k++) {
             const cl_obstacle *o = &c->obs[k];
@@ -474,6 +546,11 @@ size_t cl_contact_project(cl_contact *c, double t, double *x, double *v)
     c->proj_force = dt > 0.0 ? tally.impulse / dt : 0.0;
     c->proj_friction = dt > 0.0 ? tally.friction_energy / dt : 0.0;
     c->last_t = t;
+    if (c->sweeps) {
+        memcpy(c->swept_x, x, 3 * cl->np * sizeof *x);
+        c->swept_t = t;
+        c->swept = true;
+    }
     return tally.moved;
 }
 
@@ -551,7 +628,80 @@ double cl_contact_step_fraction(cl_contact *c, double t0, const double *x0,
         cl_obstacle_pose(o, t1, &P1);
         for (size_t i = 0; i < cl->nfree; i++)
             toi = fmin(toi, cl_obstacle_toi(o, &P0, x0 + 3 * i, &P1,
-                                            x1 + 3 * i));
+                                            x1 + 3 * i, 0.0));
     }
     return toi <= 1.0 ? CL_BARRIER_SAFETY * toi : 1.0;
+}
+
+/* ---- Baraff-Witkin constraints ---------------------------------------- */
+
+/* The constraint obstacle particle p (at x, velocity v) is closest to
+ * relative to its offset, among those it touches (d <= offset + 1e-9 m,
+ * or, when it was constrained to that obstacle through the last step,
+ * d <= offset + 1e-9 m + h |v - u|: a particle sliding on a curved surface
+ * drifts off it by O(h^2 |v|^2 / radius) a step and stays constrained
+ * until its constraint pulls); SIZE_MAX if none. */
+static size_t constraint_obstacle(cl_contact *c, size_t p, double h,
+                                  const double *x, const double *v,
+                                  cl_contact_point *best)
+{
+    size_t pick = SIZE_MAX;
+    bool held = c->cons[p].mode != CL_CONSTRAINT_FREE;
+    for (size_t k = 0; k < c->nobs; k++) {
+        const cl_obstacle *o = &c->obs[k];
+        cl_contact_point q;
+        bool mine = held && c->cons_obs[p] == k;
+        if (o->resp.kind != CL_RESPONSE_CONSTRAINT ||
+            !cl_obstacle_near(o, &c->pose[k], x, mine ? INFINITY : reach(
+                              &o->resp), memo_of(c, k, p), &q))
+            continue;
+        double w2 = 0.0;
+        for (int i = 0; i < 3; i++)
+            w2 += (v[i] - q.u[i]) * (v[i] - q.u[i]);
+        double gap = q.d - o->resp.offset;
+        if (gap > ON_SURFACE + (mine ? h * sqrt(w2) : 0.0) ||
+            (pick != SIZE_MAX && gap >= best->d - c->obs[pick].resp.offset))
+            continue;
+        pick = k;
+        *best = q;
+    }
+    return pick;
+}
+
+void cl_contact_constrain(cl_contact *c, double t, double h, const double *x,
+                          const double *v, double *S, double *z, double *y,
+                          double *g)
+{
+    const cl_cloth *cl = c->cloth;
+    place(c, t);
+    for (size_t p = 0; p < cl->np; p++) {
+        int i = cl->dof[p];
+        if (i < 0)
+            continue;
+        cl_contact_point q;
+        size_t k = constraint_obstacle(c, p, h, x + 3 * p, v + 3 * p, &q);
+        if (k == SIZE_MAX) {
+            c->cons[p].mode = CL_CONSTRAINT_FREE;
+            cl_constraint_none(S + 9 * i, z + 3 * i, y + 3 * i, g + 3 * i);
+            continue;
+        }
+        c->cons_obs[p] = k;
+        cl_constraint_start(&c->obs[k].resp, &q, v + 3 * p, &c->cons[p],
+                            S + 9 * i, z + 3 * i, y + 3 * i, g + 3 * i);
+    }
+}
+
+bool cl_contact_release(cl_contact *c, const double *impulse, double *S,
+                        double *z, double *y, double *g)
+{
+    const cl_cloth *cl = c->cloth;
+    bool changed = false;
+    for (size_t p = 0; p < cl->np; p++) {
+        int i = cl->dof[p];
+        if (i >= 0 && c->cons[p].mode != CL_CONSTRAINT_FREE)
+            changed |= cl_constraint_release(
+                c->obs[c->cons_obs[p]].resp.mu, impulse + 3 * i, &c->cons[p],
+                S + 9 * i, z + 3 * i, y + 3 * i, g + 3 * i);
+    }
+    return changed;
 }

@@ -1,6 +1,8 @@
 /* Contact with obstacles: every [obstacle.NAME] section of a problem
- * (contact/obstacle.h), as one force term for the penalty responses and a
- * projection for the `project` responses (docs/model.md, contact).
+ * (contact/obstacle.h), as one force term for the penalty responses, a
+ * projection (with continuous detection where asked) for the `project`
+ * responses and Baraff-Witkin constraints for the `constraint` responses
+ * (docs/model.md, contact).
  *
  * cl_contact_term is a cl_term_type named "contact": its create reads the
  * obstacles (state NULL when there is none), its eval adds the penalty
@@ -39,6 +41,8 @@ typedef struct {
 bool cl_contact_projects(const cl_contact *c);
 /* Some projecting obstacle has friction (mu > 0) or zero_velocity. */
 bool cl_contact_projects_friction(const cl_contact *c);
+/* Some obstacle has response = constraint. */
+bool cl_contact_constrains(const cl_contact *c);
 size_t cl_contact_obstacles(const cl_contact *c);
 const cl_obstacle *cl_contact_obstacle(const cl_contact *c, size_t k);
 
@@ -89,5 +93,18 @@ double cl_contact_min_distance(cl_contact *c, double t, const double *x);
  * [0, 1).  x0 must be feasible (every d > 0). */
 double cl_contact_step_fraction(cl_contact *c, double t0, const double *x0,
                                 double t1, const double *x1);
+/* Baraff-Witkin constraints (contact/constraint.h; docs/model.md, eqs.
+ * C10-C13) of the step of length h from (t, x, v), full-particle arrays:
+ * every free particle's S, z, y, g (indexed by its dof) from the
+ * constraint obstacle it touches (the nearest to its offset, if several),
+ * laid out as cl_constraint_set (system/system.h). */
+void cl_contact_constrain(cl_contact *c, double t, double h, const double *x,
+                          const double *v, double *S, double *z, double *y,
+                          double *g);
+
+/* Release or demote the constraints by the impulses (per free particle)
+ * the last solve needed; whether any changed. */
+bool cl_contact_release(cl_contact *c, const double *impulse, double *S,
+                        double *z, double *y, double *g);
 
 #endif

@@ -264,12 +264,35 @@ size_t cl_obstacle_screen(const cl_obstacle *o, const cl_pose *P,
 
 double cl_obstacle_toi(const cl_obstacle *o, const cl_pose *P0,
                        const double x0[3], const cl_pose *P1,
-                       const double x1[3])
+                       const double x1[3], double offset)
 {
     double r[3], X0[3], X1[3];
     to_shape(o, P0, x0, r, X0);
     to_shape(o, P1, x1, r, X1);
-    return o->type->toi(o->shape, X0, X1);
+    return o->type->toi(o->shape, X0, X1, offset);
+}
+
+bool cl_obstacle_sweep(const cl_obstacle *o, const cl_pose *P0,
+                       const cl_pose *P1, const double x0[3],
+                       const double x1[3], double offset, double *s,
+                       double xhit[3])
+{
+    *s = cl_obstacle_toi(o, P0, x0, P1, x1, offset);
+    if (!(*s <= 1.0))
+        return false;
+    double r[3], X0[3], X1[3], X[3], y[3];
+    to_shape(o, P0, x0, r, X0);
+    to_shape(o, P1, x1, r, X1);
+    cl_shape_query q;
+    o->type->query(o->shape, X0, NULL, &q);
+    if (q.d <= offset + CL_ON_SURFACE)
+        return false;
+    for (int i = 0; i < 3; i++)
+        X[i] = X0[i] + *s * (X1[i] - X0[i]) - o->pivot[i];
+    rotate(P1, X, y);
+    for (int i = 0; i < 3; i++)
+        xhit[i] = o->pivot[i] + P1->s[i] + y[i];
+    return true;
 }
 
 cl_status cl_obstacle_surface(const cl_obstacle *o, double t,
@@ -378,7 +401,8 @@ static cl_status read_project(cl_config *cfg, const char *sec,
         (rc = cl_config_bool(cfg, sec, "zero_velocity", false,
                              &r->zero_velocity, err)) ||
         (rc = cl_config_long(cfg, sec, "iterations", 1, 1, 1000,
-                             &r->iterations, err)))
+                             &r->iterations, err)) ||
+        (rc = cl_config_bool(cfg, sec, "ccd", false, &r->ccd, err)))
         return rc;
     return CL_OK;
 }
@@ -402,27 +426,33 @@ static cl_status read_barrier(cl_config *cfg, const char *sec,
     return CL_OK;
 }
 
+static cl_status read_constraint(cl_config *cfg, const char *sec,
+                                 cl_response_params *r, cl_error *err)
+{
+    return cl_config_double(cfg, sec, "offset", 0.0, 0.0, INFINITY,
+                            &r->offset, err);
+}
+
 static cl_status read_response(cl_config *cfg, const char *sec,
                                cl_response_params *r, cl_error *err)
 {
     static const char *const kinds[] = {"penalty", "project", "barrier",
-                                        NULL};
+                                        "constraint", NULL};
+    static cl_status (*const read[])(cl_config *, const char *,
+                                      cl_response_params *, cl_error *) = {
+        read_penalty, read_project, read_barrier, read_constraint};
     int k;
     cl_status rc;
     if (!cl_config_string(cfg, sec, "response", NULL))
         return cl_error_set(err, CL_EINVAL, "[%s] needs a response "
-                            "(penalty, project or barrier)", sec);
+                            "(penalty, project, barrier or constraint)",
+                            sec);
     if ((rc = cl_config_choice(cfg, sec, "response", kinds, 0, &k, err)) ||
         (rc = cl_config_double(cfg, sec, "mu", 0.0, 0.0, INFINITY, &r->mu,
                                err)))
         return rc;
-    if (k == 2) {
-        r->kind = CL_RESPONSE_BARRIER;
-        return read_barrier(cfg, sec, r, err);
-    }
-    r->kind = k == 0 ? CL_RESPONSE_PENALTY : CL_RESPONSE_PROJECT;
-    return k == 0 ? read_penalty(cfg, sec, r, err)
-                  : read_project(cfg, sec, r, err);
+    r->kind = (cl_response)k; /* the order of kinds[] */
+    return read[k](cfg, sec, r, err);
 }
 
 static cl_status read_shape(cl_config *cfg, const char *sec, cl_obstacle *o,
@@ -476,6 +506,9 @@ cl_status cl_obstacle_create(cl_config *cfg, const char *sec, cl_obstacle *o,
         return cl_error_set(err, CL_EINVAL, "[%s] response = barrier: shape "
                             "%s has no time of impact (continuous collision "
                             "detection)", sec, o->type->name);
+    if (o->resp.ccd && !o->type->toi)
+        return cl_config_refuse(cfg, sec, "ccd", CL_EINVAL, "false: this "
+                                "shape has no continuous detection", err);
     return CL_OK;
 }
 

@@ -10,15 +10,19 @@
  *               none, the obstacle stays put)
  *   omega     = constant angular velocity (rad/s, vector, default 0),
  *               about the shape's pivot carried along the path
- *   response  = penalty | project
+ *   response  = penalty | project | constraint
  *   penalty:  k (N/m, > 0), eps (band, m, >= 0), damping (Hunt-Crossley,
  *             s/m, >= 0, default 0), mu (>= 0, default 0), v_smooth (m/s, > 0,
  *             default 1e-3: the friction's smoothing speed)
  *   project:  offset (m, >= 0, default 0), zero_velocity (default false),
- *             mu (>= 0, default 0), iterations (>= 1, default 1)
+ *             mu (>= 0, default 0), iterations (>= 1, default 1),
+ *             ccd (default false: continuous detection, docs/model.md 4.8)
  *   barrier:  kappa (J/m^2, > 0), dhat (m, > 0), psd (default true),
  *             mu (>= 0, default 0), eps_v (m/s, > 0, default 1e-3)
  *             (contact/barrier.h; the shape needs a time of impact)
+ *   constraint: offset (m, >= 0, default 0), mu (>= 0, default 0):
+ *             Baraff-Witkin constraints in the linear solve of semi-be
+ *             and semi-bdf2 (contact/constraint.h)
  *
  * The position of a shape point X at time t is
  *     x(t) = q + R(t) (X - q) + s(t),   R(t) = exp(t [omega]x),
@@ -34,14 +38,16 @@
 typedef enum {
     CL_RESPONSE_PENALTY,
     CL_RESPONSE_PROJECT,
-    CL_RESPONSE_BARRIER
+    CL_RESPONSE_BARRIER,
+    CL_RESPONSE_CONSTRAINT
 } cl_response;
 
 typedef struct {
     cl_response kind;
     double k, eps, damping, v_smooth; /* penalty */
-    double offset;                    /* project */
+    double offset;                    /* project, constraint */
     bool zero_velocity;               /* project */
+    bool ccd;                         /* project: continuous detection */
     long iterations;                  /* project */
     double mu;                        /* all: Coulomb friction */
     double kappa, dhat, eps_v;        /* barrier */
@@ -129,14 +135,34 @@ size_t cl_obstacle_screen(const cl_obstacle *o, const cl_pose *P,
 void cl_obstacle_velocity(const cl_obstacle *o, const cl_pose *P,
                           const double x[3], double u[3]);
 
-/* The time of impact of a straight move (contact/barrier.h): the least
- * fraction a in [0, 1] at which the point moving from x0 (the obstacle at
- * pose P0, x0 outside it) to x1 (at pose P1) reaches the surface, the path
- * taken straight in the shape's frame; INFINITY when it stays outside.
- * The obstacle's shape has a toi (cl_shape_type). */
+/* The time of impact of a straight move (docs/model.md, eq. C14;
+ * contact/barrier.h with offset 0): the least fraction s in [0, 1] at
+ * which the point moving from x0 (the obstacle at pose P0, x0 farther
+ * than offset from it) to x1 (at pose P1) comes within offset of the
+ * surface, the path taken straight in the shape's frame as the segment
+ * between the two shape-frame points (the relative path exactly when the
+ * obstacle translates along a path linear over the step; its chord when
+ * it turns); INFINITY when it stays outside.  The obstacle's shape has a
+ * toi (cl_shape_type). */
 double cl_obstacle_toi(const cl_obstacle *o, const cl_pose *P0,
                        const double x0[3], const cl_pose *P1,
-                       const double x1[3]);
+                       const double x1[3], double offset);
+
+/* A particle within this distance of the offset surface touches it
+ * (m). */
+#define CL_ON_SURFACE 1e-9
+
+/* Continuous detection for project (docs/model.md, eq. C14): true if the
+ * path of cl_obstacle_toi comes within offset of the surface, with its
+ * fraction s and the shape-frame point reached then placed at pose P1 in
+ * xhit (the particle carried along by the obstacle since the impact).
+ * False when there is no hit, and when x0 is already within offset +
+ * CL_ON_SURFACE of the surface (the discrete check answers for a touching
+ * particle). */
+bool cl_obstacle_sweep(const cl_obstacle *o, const cl_pose *P0,
+                       const cl_pose *P1, const double x0[3],
+                       const double x1[3], double offset, double *s,
+                       double xhit[3]);
 
 /* The obstacle's drawing surface at time t, in the world frame. */
 cl_status cl_obstacle_surface(const cl_obstacle *o, double t,

@@ -3,12 +3,9 @@
 
 #include <math.h>
 
-bool cl_project_particle(const cl_response_params *r,
-                         const cl_contact_point *q, double m, double x[3],
-                         double v[3], cl_project_tally *t)
+void cl_project_hit(const cl_response_params *r, const cl_contact_point *q,
+                    double m, double x[3], double v[3], cl_project_tally *t)
 {
-    if (!(q->d < r->offset))
-        return false;
     double w[3], wt[3], wn = 0.0, wt2 = 0.0;
     for (int i = 0; i < 3; i++) {
         x[i] += (r->offset - q->d) * q->n[i];
@@ -34,5 +31,14 @@ bool cl_project_particle(const cl_response_params *r,
     t->moved++;
     t->impulse += m * sqrt(dv2);
     t->friction_energy -= 0.5 * m * (1.0 - keep * keep) * wt2;
+}
+
+bool cl_project_particle(const cl_response_params *r,
+                         const cl_contact_point *q, double m, double x[3],
+                         double v[3], cl_project_tally *t)
+{
+    if (!(q->d < r->offset))
+        return false;
+    cl_project_hit(r, q, m, x, v, t);
     return true;
 }

@@ -31,4 +31,10 @@ bool cl_project_particle(const cl_response_params *r,
                          const cl_contact_point *q, double m, double x[3],
                          double v[3], cl_project_tally *t);
 
+/* The same response whatever d (the particle moved to d = offset, also
+ * from d > offset): for a particle that continuous detection stopped at
+ * the surface (contact/obstacle.h, cl_obstacle_sweep). */
+void cl_project_hit(const cl_response_params *r, const cl_contact_point *q,
+                    double m, double x[3], double v[3], cl_project_tally *t);
+
 #endif

@@ -61,11 +61,18 @@ typedef struct {
      * offset c, d(x) = n . x - c, so that a screen of many points is a dot
      * product each instead of a look at each point's memo (obstacle.h). */
     void (*halfspace)(const void *shape, double n[3], double *c);
-    /* Optional (NULL: none; response = barrier needs it): the time of
-     * impact of the straight move from X0 (outside, d > 0) to X1, the
-     * least fraction a in [0, 1] at which X0 + a (X1 - X0) reaches the
-     * surface (d = 0), or INFINITY when the segment stays outside. */
-    double (*toi)(const void *shape, const double X0[3], const double X1[3]);
+    /* Optional (NULL: the shape has no time of impact; response =
+     * barrier and project's ccd need it): the least s in [0, 1] at which
+     * the point a + s (b - a) of a segment that starts farther than
+     * `offset` from the surface comes within it (the barrier asks offset
+     * 0: where d reaches 0), INFINITY if it does not (a and b in the
+     * shape's frame; docs/model.md, eq. C14).  A sphere and a plane answer
+     * exactly, a box for the box grown by offset (exact for offset 0, a
+     * little early near edges and corners otherwise), a mesh where the
+     * segment crosses the surface itself, whatever the offset
+     * (contact/bvh.h). */
+    double (*toi)(const void *shape, const double a[3], const double b[3],
+                  double offset);
     /* Allocate the drawing surface (free with cl_shape_surface_free). */
     cl_status (*surface)(const void *shape, cl_shape_surface *s,
                          cl_error *err);

@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "contact/segment.h"
 #include "contact/shape_impl.h"
 #include "core/vec3.h"
 
@@ -88,27 +89,18 @@ static void box_query(const void *shape, const double x[3],
         query_inside(b, x, p, q);
 }
 
-/* The slab method (Kay and Kajiya, "Ray tracing complex scenes", 1986):
- * the segment is inside the box where it is inside all three slabs
- * |p_i| <= h_i; it enters at the latest of the three entry fractions if
- * that is before the earliest exit. */
-static double box_toi(const void *shape, const double X0[3],
-                      const double X1[3])
+/* The entry into the box grown by offset on every side. */
+static double box_toi(const void *shape, const double a[3],
+                      const double b[3], double offset)
 {
-    const box *b = shape;
-    double enter = 0.0, leave = 1.0;
+    const box *bx = shape;
+    double lo[3], hi[3], d[3], s;
     for (int i = 0; i < 3; i++) {
-        double p = X0[i] - b->c[i], D = X1[i] - X0[i];
-        if (D == 0.0) {
-            if (fabs(p) > b->h[i])
-                return INFINITY;
-            continue;
-        }
-        double a0 = (-b->h[i] - p) / D, a1 = (b->h[i] - p) / D;
-        enter = fmax(enter, fmin(a0, a1));
-        leave = fmin(leave, fmax(a0, a1));
+        lo[i] = bx->c[i] - bx->h[i] - offset;
+        hi[i] = bx->c[i] + bx->h[i] + offset;
     }
-    return enter <= leave ? enter : INFINITY;
+    cl_v3_sub(b, a, d);
+    return cl_segment_box(lo, hi, a, d, 1.0, &s) ? s : INFINITY;
 }
 
 static cl_status box_surface(const void *shape, cl_shape_surface *s,

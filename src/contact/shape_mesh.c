@@ -336,12 +336,14 @@ static cl_status mesh_surface(const void *shape, cl_shape_surface *s,
     return rc;
 }
 
-/* The first crossing of a triangle (contact/bvh.h): X0 is outside, so
- * the segment reaches the surface there. */
-static double mesh_toi(const void *shape, const double X0[3],
-                       const double X1[3])
+/* The first crossing of the surface itself (contact/bvh.h), whatever the
+ * offset: the start is outside, so the segment reaches the surface
+ * there. */
+static double mesh_toi(const void *shape, const double a[3],
+                       const double b[3], double offset)
 {
-    return cl_bvh_segment(&((const mesh *)shape)->bvh, X0, X1);
+    (void)offset;
+    return cl_bvh_segment(&((const mesh *)shape)->bvh, a, b);
 }
 
 /* The distance from x to the box of all triangles: d is at least that. */

@@ -63,18 +63,18 @@ static void plane_halfspace(const void *shape, double n[3], double *c)
     *c = cl_v3_dot(s->n, s->p);
 }
 
-/* d is linear along the segment: it reaches 0 at d0 / (d0 - d1). */
-static double plane_toi(const void *shape, const double X0[3],
-                        const double X1[3])
+/* Where n . (x - p) - offset, linear along the segment, reaches 0. */
+static double plane_toi(const void *shape, const double a[3],
+                        const double b[3], double offset)
 {
     const plane *s = shape;
-    double r0[3], r1[3];
-    cl_v3_sub(X0, s->p, r0);
-    cl_v3_sub(X1, s->p, r1);
-    double d0 = cl_v3_dot(s->n, r0), d1 = cl_v3_dot(s->n, r1);
-    if (d0 <= 0.0)
+    double ra[3], rb[3];
+    cl_v3_sub(a, s->p, ra);
+    cl_v3_sub(b, s->p, rb);
+    double da = cl_v3_dot(s->n, ra) - offset, db = cl_v3_dot(s->n, rb) - offset;
+    if (da <= 0.0)
         return 0.0;
-    return d1 <= 0.0 ? d0 / (d0 - d1) : INFINITY;
+    return db > 0.0 ? INFINITY : da / (da - db);
 }
 
 /* Unit u, v in the plane with u x v = n. */

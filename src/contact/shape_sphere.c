@@ -49,24 +49,24 @@ static void sphere_query(const void *shape, const double x[3],
         memset(q->G, 0, sizeof q->G);
 }
 
-/* |X0 + a D - c|^2 = r^2, D = X1 - X0: A a^2 + 2 B a + C = 0 with
- * A = D.D, B = D.(X0 - c), C = |X0 - c|^2 - r^2; its least root, written
- * a = C / (-B + sqrt(B^2 - A C)) so that no difference cancels. */
-static double sphere_toi(const void *shape, const double X0[3],
-                         const double X1[3])
+/* The entry into the sphere of radius r + offset: the lesser root of
+ * |e + s d|^2 = (r + offset)^2, e = a - c, d = b - a, written as
+ * C / (-B + sqrt(B^2 - A C)) to keep its digits when the path grazes. */
+static double sphere_toi(const void *shape, const double a[3],
+                         const double b[3], double offset)
 {
     const sphere *s = shape;
-    double D[3], e[3];
-    cl_v3_sub(X1, X0, D);
-    cl_v3_sub(X0, s->c, e);
-    double A = cl_v3_dot(D, D), B = cl_v3_dot(D, e);
-    double C = cl_v3_dot(e, e) - s->r * s->r, disc = B * B - A * C;
+    double e[3], d[3], rho = s->r + offset;
+    cl_v3_sub(a, s->c, e);
+    cl_v3_sub(b, a, d);
+    double A = cl_v3_dot(d, d), B = cl_v3_dot(e, d);
+    double C = cl_v3_dot(e, e) - rho * rho, disc = B * B - A * C;
     if (C <= 0.0)
         return 0.0;
-    if (B >= 0.0 || disc < 0.0)
+    if (!(B < 0.0) || !(disc >= 0.0))
         return INFINITY;
-    double a = C / (-B + sqrt(disc));
-    return a <= 1.0 ? a : INFINITY;
+    double t = C / (-B + sqrt(disc));
+    return t <= 1.0 ? t : INFINITY;
 }
 
 static cl_status sphere_surface(const void *shape, cl_shape_surface *s,

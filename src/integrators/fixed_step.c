@@ -71,6 +71,8 @@ cl_status cl_fixed_create(const cl_fixed_method *m, const cl_system *sys,
         return cl_error_set(err, CL_EINVAL, "%s: %zu work arrays, at most "
                             "%d", m->name, m->nwork, CL_FIXED_MAXWORK);
     cl_status st = fixed_check_args(m, sys, o, t0, err);
+    if (st == CL_OK)
+        st = cl_integrator_refuse_constraints(m->name, sys, err);
     if (st != CL_OK)
         return st;
     size_t n = sys->n;

@@ -72,7 +72,8 @@ static cl_status gslode_check_system(const cl_gslode_method *m,
     if (m->jacobian && (!sys->jacobian || !sys->pattern))
         return cl_error_set(err, CL_EINVAL, "%s: the system has no "
                             "Jacobian", m->name);
-    return cl_integrator_refuse_projection(m->name, sys, err);
+    cl_status st = cl_integrator_refuse_projection(m->name, sys, err);
+    return st ? st : cl_integrator_refuse_constraints(m->name, sys, err);
 }
 
 static cl_status gslode_check_args(const char *name, const cl_system *sys,

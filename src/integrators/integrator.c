@@ -64,16 +64,35 @@ cl_status cl_fixed_steps_to(double t_out, double dt, long done, long *nsteps,
     return CL_OK;
 }
 
+/* CL_EUNSUPPORTED for a contact response the method cannot apply. */
+static cl_status refuse_response(const char *name, const char *response,
+                                 const char *instead, cl_error *err)
+{
+    return cl_error_set(err, CL_EUNSUPPORTED, "%s cannot apply a contact "
+                        "response = %s; %s", name, response, instead);
+}
+
 cl_status cl_integrator_refuse_projection(const char *name,
                                           const cl_system *sys,
                                           cl_error *err)
 {
-    if (!sys->projects)
-        return CL_OK;
-    return cl_error_set(err, CL_EUNSUPPORTED, "%s cannot apply a contact "
-                        "response = project (only the fixed-step methods "
-                        "and CVODE BDF can); use response = penalty, or "
-                        "another integrator", name);
+    return sys->projects
+               ? refuse_response(name, "project (only the fixed-step "
+                                 "methods and CVODE BDF can)", "use response "
+                                 "= penalty, or another integrator", err)
+               : CL_OK;
+}
+
+cl_status cl_integrator_refuse_constraints(const char *name,
+                                           const cl_system *sys,
+                                           cl_error *err)
+{
+    return sys->constrain
+               ? refuse_response(name, "constraint (only semi-be and "
+                                 "semi-bdf2 can, inside their linear solve)",
+                                 "use response = penalty or project, or one "
+                                 "of those two", err)
+               : CL_OK;
 }
 
 cl_status cl_integrator_contact_at(const char *name, const cl_system *sys,

@@ -90,6 +90,13 @@ cl_status cl_integrator_refuse_projection(const char *name,
                                           const cl_system *sys,
                                           cl_error *err);
 
+/* Baraff-Witkin constraints (system/system.h, constrain): CL_EUNSUPPORTED
+ * naming the method if the system has them; every integrator but semi-be
+ * and semi-bdf2 calls it when created. */
+cl_status cl_integrator_refuse_constraints(const char *name,
+                                           const cl_system *sys,
+                                           cl_error *err);
+
 /* The system's contact hook at an output time t of an adaptive method, if
  * it has one: the contact figures (record), and for CVODE BDF the
  * projection of the interpolated output, not recorded (its steps are

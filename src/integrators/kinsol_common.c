@@ -356,6 +356,8 @@ cl_status cl_kin_create(const cl_kin_scheme *sc, const cl_system *sys,
 {
     *state = NULL;
     cl_status st = kin_check_args(sc, sys, o, t0, err);
+    if (st == CL_OK)
+        st = cl_integrator_refuse_constraints(sc->name, sys, err);
     if (st != CL_OK)
         return st;
     cl_kin *s = calloc(1, sizeof *s);

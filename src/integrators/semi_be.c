@@ -19,7 +19,8 @@
  * (linalg/linsol.h: klu, pcg, pcg-jacobi; default klu); shared machinery in
  * integrators/semi_common.h.  Statistics: steps, rhs_evals = jac_evals =
  * one force + Jacobian evaluation per step, the solver's lin_setups and
- * lin_solves (one each per step), lin_iters (Krylov), symbolic_facts (KLU:
+ * lin_solves (one each per step; under contact constraints one each per
+ * pass, docs/integrators.md 3.4), lin_iters (Krylov), symbolic_facts (KLU:
  * 1); no nonlinear iterations. */
 #include "integrators/semi_common.h"
 

@@ -36,6 +36,24 @@ static cl_status semi_check_args(const char *name, const cl_system *sys,
     return cl_check_masses(sys->mass, sys->n, name, err);
 }
 
+/* The arrays of the constraints, when the system has them. */
+static cl_status semi_alloc_constraints(cl_semi *s, cl_error *err)
+{
+    size_t n = s->n, nval = 9 * s->sys->pattern->nnzb;
+    if (!s->sys->constrain)
+        return CL_OK;
+    double **vec[] = {&s->cs.z, &s->cs.y, &s->cs.g, &s->pres, &s->imp};
+    for (size_t i = 0; i < sizeof vec / sizeof vec[0]; i++)
+        *vec[i] = calloc(n, sizeof(double));
+    s->cs.S = calloc(3 * n, sizeof *s->cs.S);
+    s->fdx = calloc(nval, sizeof *s->fdx);
+    s->fdv = calloc(nval, sizeof *s->fdv);
+    if (!s->cs.z || !s->cs.y || !s->cs.g || !s->pres || !s->imp ||
+        !s->cs.S || !s->fdx || !s->fdv)
+        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
+    return CL_OK;
+}
+
 static cl_status semi_alloc(cl_semi *s, cl_error *err)
 {
     size_t n = s->n, nval = 9 * s->sys->pattern->nnzb;
@@ -47,7 +65,7 @@ static cl_status semi_alloc(cl_semi *s, cl_error *err)
     if (!s->x || !s->v || !s->f || !s->rhs || !s->sol || !s->work ||
         !s->dfdx || !s->dfdv)
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
-    return CL_OK;
+    return semi_alloc_constraints(s, err);
 }
 
 cl_status cl_semi_init(cl_semi *s, const char *name, const cl_system *sys,
@@ -90,6 +108,14 @@ void cl_semi_release(cl_semi *s)
     free(s->rhs);
     free(s->sol);
     free(s->work);
+    free(s->cs.S);
+    free(s->cs.z);
+    free(s->cs.y);
+    free(s->cs.g);
+    free(s->fdx);
+    free(s->fdv);
+    free(s->pres);
+    free(s->imp);
     memset(s, 0, sizeof *s);
 }
 
@@ -114,12 +140,15 @@ cl_status cl_semi_linearise(cl_semi *s, double t, cl_error *err)
     return CL_OK;
 }
 
-cl_status cl_semi_solve(cl_semi *s, double a, double b, cl_error *err)
+/* Set up with dfdx, dfdv and solve for s->sol from rhs. */
+static cl_status semi_linsolve(cl_semi *s, double a, double b,
+                               const double *dfdx, const double *dfdv,
+                               const double *rhs, cl_error *err)
 {
     cl_error inner = {0};
-    cl_status st = s->lst->setup(s->ls, a, b, s->dfdx, s->dfdv, &inner);
+    cl_status st = s->lst->setup(s->ls, a, b, dfdx, dfdv, &inner);
     if (st == CL_OK)
-        st = s->lst->solve(s->ls, s->rhs, s->sol, &inner);
+        st = s->lst->solve(s->ls, rhs, s->sol, &inner);
     if (st != CL_OK)
         return cl_error_set(err, st, "%s: linear solve failed at t = %.9g "
                             "(step %ld, dt = %g): %s", s->name,
@@ -139,16 +168,139 @@ double cl_semi_filter(cl_semi *s, const double *dx)
     return sys->step_fraction(sys->data, t, s->x, t + s->h, s->work);
 }
 
-cl_status cl_semi_be_step(cl_semi *s, cl_error *err)
+cl_status cl_semi_solve(cl_semi *s, double a, double b, cl_error *err)
 {
-    double h = s->h;
-    cl_status st = cl_semi_linearise(s, s->t0 + (double)s->done * h, err);
+    return semi_linsolve(s, a, b, s->dfdx, s->dfdv, s->rhs, err);
+}
+
+/* ---- Baraff-Witkin constraints (docs/integrators.md, 3.4) ------------- */
+
+/* s->pres = coef[0] (I - S) v + coef[1] z + coef[2] y. */
+static void semi_prescribe(cl_semi *s, const double coef[3])
+{
+    cl_bdiag_apply(s->n / 3, s->cs.S, s->v, s->pres);
+    for (size_t i = 0; i < s->n; i++)
+        s->pres[i] = coef[0] * (s->v[i] - s->pres[i]) + coef[1] * s->cs.z[i] +
+                     coef[2] * s->cs.y[i];
+}
+
+/* One filtered solve (BW98 section 5.3, as the projected system
+ * S A S w = S r, solved by any linear solver: with pcg it is their
+ * modified conjugate gradient; docs/integrators.md, 3.4), then the
+ * impulses. */
+static cl_status semi_filtered_solve(cl_semi *s, double a, double b,
+                                     cl_error *err)
+{
+    const cl_bpattern *pat = s->sys->pattern;
+    const double *m = s->sys->mass, *S = s->cs.S;
+    size_t nb = s->n / 3;
+    cl_reduced_matvec(pat, m, a, b, s->dfdx, s->dfdv, s->pres, s->work);
+    for (size_t i = 0; i < s->n; i++)
+        s->work[i] = s->rhs[i] + s->cs.g[i] - s->work[i];
+    cl_bdiag_apply(nb, S, s->work, s->imp);
+    cl_reduced_filter(pat, S, s->dfdx, s->fdx);
+    cl_reduced_filter(pat, S, s->dfdv, s->fdv);
+    cl_status st = semi_linsolve(s, a, b, s->fdx, s->fdv, s->imp, err);
     if (st != CL_OK)
         return st;
+    cl_bdiag_apply(nb, S, s->sol, s->sol);
+    for (size_t i = 0; i < s->n; i++)
+        s->sol[i] += s->pres[i];
+    cl_reduced_matvec(pat, m, a, b, s->dfdx, s->dfdv, s->sol, s->imp);
+    for (size_t i = 0; i < s->n; i++)
+        s->imp[i] -= s->rhs[i] + s->cs.g[i];
+    return CL_OK;
+}
+
+static cl_status semi_constrain(cl_semi *s, double t, const double *impulse,
+                                bool *changed, cl_error *err)
+{
+    const cl_system *sys = s->sys;
+    cl_status st = sys->constrain(sys->data, t, s->h, s->x, s->v, impulse,
+                                  &s->cs, changed);
+    if (st != CL_OK)
+        return cl_error_set(err, st, "%s: contact constraints failed (%s) "
+                            "at t = %.9g (step %ld, dt = %g)", s->name,
+                            cl_status_name(st), t, s->done, s->h);
+    return CL_OK;
+}
+
+cl_status cl_semi_solve_constrained(cl_semi *s, double t, void *state,
+                                    cl_semi_rhs_fn fill_rhs, double a,
+                                    double b, const double coef[3],
+                                    cl_error *err)
+{
+    if (!s->sys->constrain) {
+        fill_rhs(state);
+        return cl_semi_solve(s, a, b, err);
+    }
+    bool changed;
+    cl_status st = semi_constrain(s, t, NULL, &changed, err);
+    /* every pass releases or demotes a constraint: at most 2 nb + 1 */
+    for (changed = true; st == CL_OK && changed;) {
+        fill_rhs(state);
+        semi_prescribe(s, coef);
+        st = semi_filtered_solve(s, a, b, err);
+        if (st == CL_OK)
+            st = semi_constrain(s, t, s->imp, &changed, err);
+    }
+    return st;
+}
+
+/* a_i = S_i a_i + (I - S_i) b_i, with s->work */
+static void semi_keep_filtered(cl_semi *s, double *a, const double *b)
+{
+    for (size_t i = 0; i < s->n; i++)
+        s->work[i] = a[i] - b[i];
+    cl_bdiag_apply(s->n / 3, s->cs.S, s->work, s->work);
+    for (size_t i = 0; i < s->n; i++)
+        a[i] = s->work[i] + b[i];
+}
+
+void cl_semi_hold_velocity(cl_semi *s, const double *vold)
+{
+    if (!s->sys->constrain)
+        return;
+    for (size_t i = 0; i < s->n; i++)
+        s->sol[i] = vold[i] + s->cs.z[i];
+    semi_keep_filtered(s, s->v, s->sol);
+}
+
+void cl_semi_hold_history(cl_semi *s, double *xprev, double *vprev)
+{
+    if (!s->sys->constrain)
+        return;
+    for (size_t i = 0; i < s->n; i++)
+        s->sol[i] = s->x[i] - s->h * s->v[i];
+    semi_keep_filtered(s, xprev, s->sol);
+    semi_keep_filtered(s, vprev, s->v);
+}
+
+/* ---- the linearised backward-Euler step ------------------------------- */
+
+/* rhs = h (f + h K v), and + h K y under constraints (BW98 eq. 18). */
+static void semi_be_rhs(void *state)
+{
+    cl_semi *s = state;
+    double h = s->h;
     cl_bmatvec(s->sys->pattern, s->dfdx, s->v, s->work);
     for (size_t i = 0; i < s->n; i++)
         s->rhs[i] = h * (s->f[i] + h * s->work[i]);
-    st = cl_semi_solve(s, h, h * h, err);
+    if (!s->sys->constrain)
+        return;
+    cl_bmatvec(s->sys->pattern, s->dfdx, s->cs.y, s->work);
+    for (size_t i = 0; i < s->n; i++)
+        s->rhs[i] += h * s->work[i];
+}
+
+cl_status cl_semi_be_step(cl_semi *s, cl_error *err)
+{
+    static const double coef[3] = {0.0, 1.0, 0.0}; /* dv's part: z */
+    double h = s->h, t = s->t0 + (double)s->done * h;
+    cl_status st = cl_semi_linearise(s, t, err);
+    if (st == CL_OK)
+        st = cl_semi_solve_constrained(s, t, s, semi_be_rhs, h, h * h, coef,
+                                       err);
     if (st != CL_OK)
         return st;
     for (size_t i = 0; s->sys->step_fraction && i < s->n; i++)
@@ -158,6 +310,8 @@ cl_status cl_semi_be_step(cl_semi *s, cl_error *err)
         s->v[i] = a * (s->v[i] + s->sol[i]);
         s->x[i] += h * s->v[i];
     }
+    for (size_t i = 0; s->cs.y && i < s->n; i++)
+        s->x[i] += s->cs.y[i];
     return CL_OK;
 }
 

@@ -13,7 +13,9 @@
  *     v1 = v0 + dv,   x1 = x0 + h v1,
  *
  * f0 = f(t0, x0, v0) and the Jacobians at (t0, x0, v0) (Baraff & Witkin
- * 1998, section 2.3; docs/integrators.md, 3.1).  Every array is allocated
+ * 1998, section 2.3; docs/integrators.md, 3.1); and the filtered solve of
+ * a system with Baraff-Witkin constraints (section 5; docs/integrators.md,
+ * 3.3).  Every array is allocated
  * at creation; a step allocates nothing (the KLU fall-back
  * refactorisation excepted, see linalg/linsol_klu.c). */
 #ifndef CL_SEMI_COMMON_H
@@ -36,7 +38,15 @@ typedef struct {
     double *f;                  /* force at the last linearisation */
     double *dfdx, *dfdv;        /* its Jacobians (9 nnzb each) */
     double *rhs, *sol, *work;   /* n each */
+    /* Baraff-Witkin constraints (sys->constrain, else all NULL): */
+    cl_constraint_set cs;       /* the step's S (9 nb), z, y, g (n each) */
+    double *fdx, *fdv;          /* the filtered Jacobians S K S, S D S */
+    double *pres, *imp;         /* prescribed part of sol, constraint
+                                 * impulses A sol - rhs - g (n each) */
 } cl_semi;
+
+/* Fills s->rhs for the method's linear system (may use s->work, s->sol). */
+typedef void (*cl_semi_rhs_fn)(void *state);
 
 /* Check the arguments (dt > 0, finite t0, n = 3 nb, force and Jacobian
  * present, masses finite > 0), pick the linear solver by opts->linsol
@@ -64,9 +74,34 @@ cl_status cl_semi_solve(cl_semi *s, double a, double b, cl_error *err);
  * barriers (dx not read).  Uses s->work. */
 double cl_semi_filter(cl_semi *s, const double *dx);
 
+/* The linear solve of a step under the system's constraints (docs/
+ * integrators.md, 3.4; none: fill_rhs(state), then cl_semi_solve).  The
+ * constraints of the step from (t, s->x, s->v); then, until no constraint
+ * is released or demoted, fill_rhs(state) and the filtered solve
+ *     S A S w = S (rhs + g - A p),   sol = p + S w,
+ *     p = coef[0] (I - S) v + coef[1] z + coef[2] y,
+ * (S, z, y, g: s->cs) whose impulses A sol - rhs - g go to the system. */
+cl_status cl_semi_solve_constrained(cl_semi *s, double t, void *state,
+                                    cl_semi_rhs_fn fill_rhs, double a,
+                                    double b, const double coef[3],
+                                    cl_error *err);
+
+/* A constrained particle's velocity after a step whose unknown is the
+ * position change (semi-bdf2): v_i = S_i v_i + (I - S_i)(vold_i + z_i),
+ * its constrained part that of semi-be's step (nothing without
+ * constraints). */
+void cl_semi_hold_velocity(cl_semi *s, const double *vold);
+
+/* The history of a two-step method (x^n, v^n in xprev, vprev) made that
+ * of a uniform motion in a constrained particle's constrained part,
+ * x^n = x^{n+1} - h v^{n+1}, v^n = v^{n+1}, so that the next step does not
+ * carry the velocity jump the constraint made (nothing without
+ * constraints). */
+void cl_semi_hold_history(cl_semi *s, double *xprev, double *vprev);
+
 /* One linearised backward-Euler step of x, v in place (done unchanged):
- * v_{n+1} = a (v_n + dv), x_{n+1} = x_n + h v_{n+1}, a = 1 but for a
- * filtered step (cl_semi_filter). */
+ * v_{n+1} = a (v_n + dv), x_{n+1} = x_n + h v_{n+1} (+ y under
+ * constraints), a = 1 but for a filtered step (cl_semi_filter). */
 cl_status cl_semi_be_step(cl_semi *s, cl_error *err);
 
 /* Take the steps up to t_out with `step` (one step of s->x, s->v in

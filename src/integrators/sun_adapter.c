@@ -504,7 +504,8 @@ cl_status cl_sun_alloc(size_t size, const char *name, const cl_sun_api *api,
     cl_status st = sun_check(name, sys, o, t0, need_jac, err);
     if (st != CL_OK)
         return st;
-    if (!projects && (st = cl_integrator_refuse_projection(name, sys, err)))
+    if ((!projects && (st = cl_integrator_refuse_projection(name, sys, err))) ||
+        (st = cl_integrator_refuse_constraints(name, sys, err)))
         return st;
     cl_sun *s = calloc(1, size);
     if (!s)

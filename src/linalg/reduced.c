@@ -167,3 +167,36 @@ void cl_reduced_diag_blocks(const cl_bpattern *pat, const double *mass,
             d[9 * i + 4 * r] += mass[3 * i + r];
     }
 }
+
+/* ---- filters ----------------------------------------------------------- */
+
+/* C = A B for row-major 3x3 blocks (C distinct from A and B). */
+static void red_mul3(const double *A, const double *B, double *C)
+{
+    for (size_t r = 0; r < 3; r++)
+        for (size_t c = 0; c < 3; c++)
+            C[3 * r + c] = A[3 * r] * B[c] + A[3 * r + 1] * B[3 + c] +
+                           A[3 * r + 2] * B[6 + c];
+}
+
+void cl_reduced_filter(const cl_bpattern *pat, const double *S,
+                       const double *blk, double *out)
+{
+    for (size_t bi = 0; bi < pat->nb; bi++)
+        for (size_t k = pat->rowptr[bi]; k < pat->rowptr[bi + 1]; k++) {
+            double T[9];
+            red_mul3(S + 9 * bi, blk + 9 * k, T);
+            red_mul3(T, S + 9 * pat->col[k], out + 9 * k);
+        }
+}
+
+void cl_bdiag_apply(size_t nb, const double *S, const double *p, double *y)
+{
+    for (size_t i = 0; i < nb; i++) {
+        const double *B = S + 9 * i, *q = p + 3 * i;
+        double q0 = q[0], q1 = q[1], q2 = q[2];
+        for (size_t r = 0; r < 3; r++)
+            y[3 * i + r] = B[3 * r] * q0 + B[3 * r + 1] * q1 +
+                           B[3 * r + 2] * q2;
+    }
+}

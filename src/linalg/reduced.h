@@ -76,4 +76,15 @@ void cl_reduced_diag_blocks(const cl_bpattern *pat, const double *mass,
                             double a, double b, const double *dfdx,
                             const double *dfdv, double *d);
 
+/* ---- filters (Baraff-Witkin constraints; docs/integrators.md, 3.4) ----- */
+
+/* out = S B S block by block: out_k = S_bi B_k S_bj for every stored block
+ * k = (bi, bj) of blk (9 nnzb), S the per-row 3x3 filters (9 nb,
+ * row-major). */
+void cl_reduced_filter(const cl_bpattern *pat, const double *S,
+                       const double *blk, double *out);
+
+/* y_i = S_i p_i for the nb blocks (p, y: 3 nb; may be the same array). */
+void cl_bdiag_apply(size_t nb, const double *S, const double *p, double *y);
+
 #endif

@@ -400,6 +400,26 @@ static cl_status sys_contact(void *data, double t, double *x, double *v,
     return cl_all_finite(x, n) && cl_all_finite(v, n) ? CL_OK : CL_EBLOWUP;
 }
 
+/* Baraff-Witkin constraints (system/system.h): those of the step from
+ * (t, x, v), or their release by the impulses of the last solve. */
+static cl_status sys_constrain(void *data, double t, double h,
+                               const double *x, const double *v,
+                               const double *impulse, cl_constraint_set *cs,
+                               bool *changed)
+{
+    cl_model *m = data;
+    *changed = false;
+    if (impulse) {
+        *changed = cl_contact_release(m->contact, impulse, cs->S, cs->z,
+                                      cs->y, cs->g);
+        return CL_OK;
+    }
+    cl_cloth_scatter(&m->cloth, t, x, v, m->xf, m->vf);
+    cl_contact_constrain(m->contact, t, h, m->xf, m->vf, cs->S, cs->z, cs->y,
+                         cs->g);
+    return CL_OK;
+}
+
 static bool any_hook(const cl_model *m, size_t offset)
 {
     for (size_t k = 0; k < m->nterm; k++)
@@ -460,6 +480,8 @@ cl_status cl_model_create(cl_config *cfg, cl_model **model, cl_error *err)
         .contact = m->contact ? sys_contact : NULL,
         .step_fraction = m->contact && cl_contact_barriers(m->contact)
                              ? sys_step_fraction : NULL,
+        .constrain = m->contact && cl_contact_constrains(m->contact)
+                         ? sys_constrain : NULL,
         .projects = m->contact && cl_contact_projects(m->contact),
         .projects_friction =
             m->contact && cl_contact_projects_friction(m->contact)};

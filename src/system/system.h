@@ -43,6 +43,20 @@ static inline void cl_energy_keep(cl_energy *dst, const cl_energy *src,
     dst->value = keep;
 }
 
+/* Baraff-Witkin constraints of one step (Baraff & Witkin, "Large Steps in
+ * Cloth Simulation", 1998, section 5; docs/model.md, eqs. C10-C13), per
+ * free particle i, arrays allocated by the integrator (nb = n / 3):
+ *   S[9i..9i+8]  the filter, row-major: I (free), I - n n^T (constrained
+ *                along the normal n) or 0 (constrained fully);
+ *   z[3i..]      the prescribed velocity change, in the range of I - S;
+ *   y[3i..]      the position correction, in the range of I - S;
+ *   g[3i..]      a friction impulse added to the right-hand side of the
+ *                step's linear system (a sliding constrained particle),
+ *                in that system's own units. */
+typedef struct {
+    double *S, *z, *y, *g;
+} cl_constraint_set;
+
 typedef struct cl_system {
     size_t n;                    /* 3 * free particles */
     const double *mass;          /* n diagonal masses */
@@ -94,6 +108,17 @@ typedef struct cl_system {
      * a particle at d <= 0 of a barrier obstacle. */
     double (*step_fraction)(void *data, double t0, const double *x0,
                             double t1, const double *x1);
+    /* Baraff-Witkin constraints (response = constraint), NULL if no
+     * obstacle has them: with impulse NULL, the constraints of the step of
+     * length h from (t, x, v) into cs; else impulse (n entries, the
+     * constraint impulses A sol - rhs - g the last solve needed, in its
+     * units) releases the constraints that pull and demotes the sticking
+     * ones that leave the friction cone, updating cs, and *changed says
+     * whether any did.  Only semi-be and semi-bdf2 apply them; every other
+     * integrator refuses such a system (cl_integrator_refuse_constraints). */
+    cl_status (*constrain)(void *data, double t, double h, const double *x,
+                           const double *v, const double *impulse,
+                           cl_constraint_set *cs, bool *changed);
     bool projects;  /* some obstacle has response = project */
     bool projects_friction; /* ... with friction: mu > 0 or zero_velocity
                              * (a velocity-level law that CVODE's error
