@@ -31,7 +31,10 @@ LDLIBS += -ljansson -lnettle -ldl
 
 # The library holds the numerics; the benchmark harness (src/bench) is a
 # program of its own on it, clothode-bench.
-LIB_SRC  := $(filter-out src/cli/main.c src/bench/%,$(wildcard src/*/*.c))
+# The files NAME_petsc.c form the plug-in clothode-petsc.so (linalg/plugin.h).
+PETSC_SRC := $(wildcard src/*/*_petsc.c)
+LIB_SRC  := $(filter-out src/cli/main.c src/bench/% $(PETSC_SRC),\
+                         $(wildcard src/*/*.c))
 LIB_OBJ  := $(LIB_SRC:%.c=$(BUILD)/%.o)
 CLI_OBJ  := $(BUILD)/src/cli/main.o
 BENCH_SRC := $(filter-out src/bench/main.c,$(wildcard src/bench/*.c))
@@ -74,17 +77,32 @@ $(BUILD)/src/cli/version.o: $(BUILD)/buildinfo.h
 $(BUILD)/src/cli/version.o: CPPFLAGS += -I$(BUILD)
 FORCE:
 
+# The PETSc plug-in: position-independent objects in $(BUILD)/pic, PETSc's
+# and MPI's headers as system headers (their warnings are not ours).
+PETSC_OBJ    := $(PETSC_SRC:%.c=$(BUILD)/pic/%.o)
+PETSC_SO     := $(BUILD)/clothode-petsc.so
+PETSC_CFLAGS := $(patsubst -I%,-isystem %,\
+                  $(shell pkg-config --cflags petsc mpi 2>/dev/null))
+PETSC_LIBS   := $(shell pkg-config --libs petsc mpi 2>/dev/null)
+
+$(BUILD)/pic/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) $(PETSC_CFLAGS) $(CFLAGS) -fPIC -MMD -MP -c $< -o $@
+
+$(PETSC_SO): $(PETSC_OBJ)
+	$(CC) $(LDFLAGS) -shared $^ $(PETSC_LIBS) -o $@
+
 $(BUILD)/libclothode.a: $(LIB_OBJ)
 	rm -f $@
 	ar rcs $@ $^
 
-$(BIN): $(CLI_OBJ) $(BUILD)/libclothode.a
+$(BIN): $(CLI_OBJ) $(BUILD)/libclothode.a | $(PETSC_SO)
 	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
 $(BENCHBIN): $(BUILD)/src/bench/main.o $(BENCH_OBJ) $(BUILD)/libclothode.a
 	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
-$(TESTBIN): $(TEST_OBJ) $(BENCH_OBJ) $(BUILD)/libclothode.a
+$(TESTBIN): $(TEST_OBJ) $(BENCH_OBJ) $(BUILD)/libclothode.a | $(PETSC_SO)
 	$(CC) $(LDFLAGS) $^ -lcriterion $(LDLIBS) -o $@
 
 demo: deps
@@ -137,6 +155,8 @@ install: $(BIN)
 	    $(DESTDIR)$(PREFIX)/share/clothode $(DESTDIR)$(PREFIX)/share/man/man1
 	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/clothode
 	install -m 644 $(BUILD)/libclothode.a $(DESTDIR)$(PREFIX)/lib/
+	install -D -m 755 $(PETSC_SO) \
+	    $(DESTDIR)$(PREFIX)/lib/clothode/clothode-petsc.so
 	for h in src/*/*.h; do \
 	    install -D -m 644 $$h $(DESTDIR)$(PREFIX)/include/clothode/$${h#src/}; \
 	done
@@ -187,4 +207,4 @@ clean:
 	rm -rf build build-san build-fuzz
 
 -include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d) $(TEST_OBJ:.o=.d) \
-    $(BENCH_OBJ:.o=.d) $(BUILD)/src/bench/main.d
+    $(BENCH_OBJ:.o=.d) $(BUILD)/src/bench/main.d $(PETSC_OBJ:.o=.d)

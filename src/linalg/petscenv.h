@@ -1,0 +1,17 @@
+/* PETSc, started once per process and only when a solver on it is used
+ * (linalg/plugin.h: it lives in the plug-in clothode-petsc.so).
+ *
+ * MPI comes up as a singleton of this process alone (no mpirun, no
+ * daemon), PETSc with its signal handlers off (core/stop.h keeps SIGINT
+ * and SIGTERM) and errors returned, not printed; both are finalised at
+ * exit. */
+#ifndef CL_PETSCENV_H
+#define CL_PETSCENV_H
+
+#include "core/error.h"
+
+/* Load the plug-in and start PETSc, the first time; later calls return
+ * CL_OK at once. */
+cl_status cl_petsc_start(cl_error *err);
+
+#endif
