@@ -340,8 +340,8 @@ static void contact_eval(void *state, cl_eval *ev)
 
 const cl_term_type cl_contact_term = {
     .name = "contact",
-    .doc = "obstacles [obstacle.NAME]: penalty and barrier forces "
-           "(projection after the steps)",
+    .doc = "obstacles [obstacle.NAME]: penalty and barrier forces; "
+           "projection after the steps; constraints in semi-be/semi-bdf2",
     .conservative = true,
     .create = contact_create,
     .couplings = contact_couplings,

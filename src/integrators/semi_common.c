@@ -236,8 +236,16 @@ cl_status cl_semi_solve_constrained(cl_semi *s, double t, void *state,
     }
     bool changed;
     cl_status st = semi_constrain(s, t, NULL, &changed, err);
-    /* every pass releases or demotes a constraint: at most 2 nb + 1 */
-    for (changed = true; st == CL_OK && changed;) {
+    /* every pass but the last releases or demotes a constraint (from
+     * sticking to sliding to free), so at most 2 nb + 1 passes; more
+     * would be a fault of the release rule, reported, not looped on */
+    long pass = 0, most = 2 * (long)(s->n / 3) + 1;
+    for (changed = true; st == CL_OK && changed; pass++) {
+        if (pass == most)
+            return cl_error_set(err, CL_ESOLVER, "%s: contact constraints "
+                                "still changing after %ld passes at t = "
+                                "%.9g (step %ld, dt = %g)", s->name, most, t,
+                                s->done, s->h);
         fill_rhs(state);
         semi_prescribe(s, coef);
         st = semi_filtered_solve(s, a, b, err);
