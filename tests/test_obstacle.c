@@ -407,15 +407,15 @@ Test(obstacle, sweep_meets_a_moving_box)
     cl_obstacle_pose(&o, 0.02, &P1);
     /* the face at 1 + 0.01 = 1.01 at 0.01 s; the particle at 1.51 */
     double x0[3] = {1.51, 0.1, 0}, x1[3] = {1.61, 0.1, 0}, s, hit[3];
-    cr_assert(cl_obstacle_sweep(&o, &P0, &P1, x0, x1, 0.0, &s, hit));
+    cr_assert(cl_obstacle_sweep(&o, &P0, x0, &P1, x1, 0.0, &s, hit));
     cr_assert_float_eq(s, 0.5 / 0.9, 1e-12);
     cr_assert_float_eq(hit[0], 2.0 + 0.01, 1e-12);
     cr_assert_float_eq(hit[1], 0.1, 1e-15);
     double slow[3] = {1.515, 0.1, 0};   /* 0.465 m ahead at 0.0105 s */
     cl_obstacle_pose(&o, 0.0105, &P1);
-    cr_assert_not(cl_obstacle_sweep(&o, &P0, &P1, x0, slow, 0.0, &s, hit));
+    cr_assert_not(cl_obstacle_sweep(&o, &P0, x0, &P1, slow, 0.0, &s, hit));
     double on[3] = {1.01, 0.1, 0};      /* touching at the start */
     cl_obstacle_pose(&o, 0.02, &P1);
-    cr_assert_not(cl_obstacle_sweep(&o, &P0, &P1, on, x1, 0.0, &s, hit));
+    cr_assert_not(cl_obstacle_sweep(&o, &P0, on, &P1, x1, 0.0, &s, hit));
     cl_obstacle_free(&o);
 }

@@ -496,7 +496,7 @@ static void sweep(cl_contact *c, double t, double *x, double *v,
             if (o->resp.kind != CL_RESPONSE_PROJECT || !o->resp.ccd)
                 continue;
             cl_obstacle_pose(o, c->swept_t, &P0);
-            if (cl_obstacle_sweep(o, &P0, &c->pose[k], c->swept_x + 3 * p,
+            if (cl_obstacle_sweep(o, &P0, c->swept_x + 3 * p, &c->pose[k],
                                   x + 3 * p, o->resp.offset, &s, at) &&
                 s < first) {
                 first = s;

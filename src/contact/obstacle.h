@@ -160,7 +160,7 @@ double cl_obstacle_toi(const cl_obstacle *o, const cl_pose *P0,
  * CL_ON_SURFACE of the surface (the discrete check answers for a touching
  * particle). */
 bool cl_obstacle_sweep(const cl_obstacle *o, const cl_pose *P0,
-                       const cl_pose *P1, const double x0[3],
+                       const double x0[3], const cl_pose *P1,
                        const double x1[3], double offset, double *s,
                        double xhit[3]);
 
