@@ -351,16 +351,18 @@ static void fly(const char *obstacle, bool ccd, const double x0[3],
 /* Dropped from 0.2 m at rest onto the barrier plane (m = 0.1 kg, 2 m/s
  * at the plane): the particle never reaches it, with kinsol-be and
  * kinsol-bdf2 (dt = 0.02: 4 cm a step, 4 dhat; the filtered Newton loop),
- * semi-be and semi-bdf2 (the filtered step) and cvode-bdf (steps leaving
- * the feasible set retried smaller); with kinsol-be it comes to rest
+ * semi-be and semi-bdf2 (the filtered step), cvode-bdf (steps leaving
+ * the feasible set retried smaller) and kinsol-midpoint (dt = 0.005; its
+ * end point filtered too); with kinsol-be it comes to rest
  * where kappa (-b'(d)) = m g. */
 Test(contact, barrier_keeps_a_dropped_particle_outside)
 {
-    const char *names[5] = {"kinsol-be", "kinsol-bdf2", "semi-be",
-                            "semi-bdf2", "cvode-bdf"};
-    cl_integrator_opts io[5] = {{.dt = 0.02}, {.dt = 0.02}, {.dt = 0.02},
-                                {.dt = 0.02}, {.rtol = 1e-6, .atol = 1e-9}};
-    for (int k = 0; k < 5; k++) {
+    const char *names[6] = {"kinsol-be", "kinsol-bdf2", "semi-be",
+                            "semi-bdf2", "cvode-bdf", "kinsol-midpoint"};
+    cl_integrator_opts io[6] = {{.dt = 0.02}, {.dt = 0.02}, {.dt = 0.02},
+                                {.dt = 0.02}, {.rtol = 1e-6, .atol = 1e-9},
+                                {.dt = 0.005}};
+    for (int k = 0; k < 6; k++) {
         pr_problem p;
         char dir[512];
         particle(&p, dir, BARRIER_FLOOR);
@@ -382,6 +384,45 @@ Test(contact, barrier_keeps_a_dropped_particle_outside)
         pr_free(&p);
         tmp_rm_rf(dir);
     }
+}
+
+/* The midpoint rule evaluates at the middle of its step; its end point,
+ * twice as far from x_n, is filtered too.  At dt = 0.02 the bounce has no
+ * feasible midpoint step (the end point of the step's exact solution lies
+ * inside): the step fails as a solver failure instead of being accepted
+ * with its end inside the plane (unfiltered, step 32 ended 4.1 mm inside;
+ * the next step's first evaluation was infeasible). */
+Test(contact, barrier_midpoint_never_accepts_an_end_inside)
+{
+    pr_problem p;
+    char dir[512];
+    particle(&p, dir, BARRIER_FLOOR);
+    cl_model_contact_start(p.m, false);
+    const cl_system *sys = cl_model_system(p.m);
+    const cl_integrator_type *type = cl_integrator_find("kinsol-midpoint");
+    cl_integrator_opts io = {.dt = 0.02};
+    double xs[6], v[6] = {0.0};
+    void *st = NULL;
+    cl_error err = {0};
+    cl_model_initial_state(p.m, xs, v);
+    xs[4] += 0.2 - xs[1];
+    xs[1] = 0.2;
+    cr_assert_eq(type->create(sys, &io, 0.0, xs, v, &st, &err), CL_OK, "%s",
+                 err.msg);
+    cl_status rc = CL_OK;
+    long k = 1;
+    for (; k <= 100 && rc == CL_OK; k++) {
+        rc = type->advance(st, 0.02 * (double)k, xs, v, &err);
+        if (rc == CL_OK)
+            cr_expect_gt(xs[1], 0.0, "step %ld ended inside: %.6g m", k,
+                         xs[1]);
+    }
+    cr_log_info("kinsol-midpoint, dt = 0.02: %ld steps, then %s", k - 1,
+                rc == CL_OK ? "done" : err.msg);
+    cr_expect(rc == CL_OK || rc == CL_ESOLVER, "%s", err.msg);
+    type->free(st);
+    pr_free(&p);
+    tmp_rm_rf(dir);
 }
 
 /* A cloth falling onto a barrier sphere, cvode-bdf tight: the barrier

@@ -501,15 +501,28 @@ static int kin_try(cl_kin *s, double lam)
 }
 
 /* The fraction of the Newton step du the barriers' filter allows: the
- * evaluation point moves straight from xe(u) to xe(u + du) (s->x1 is
- * free scratch until kin_commit). */
+ * evaluation point moves straight from xe(u) to xe(u + du), and, for a
+ * scheme that evaluates inside the step (the midpoint rule), the step's
+ * end point from x1(u) to x1(u + du) as well, so that neither crosses an
+ * obstacle (s->x1 is free scratch until kin_commit, s->xe until the next
+ * kin_point). */
 static double kin_filter(cl_kin *s)
 {
-    const double *du = N_VGetArrayPointer(s->du);
-    kin_point(s, N_VGetArrayPointer(s->u));
+    const double *u = N_VGetArrayPointer(s->u), *du = N_VGetArrayPointer(s->du);
+    kin_point(s, u);
     for (size_t i = 0; i < s->n; i++)
         s->x1[i] = s->xe[i] + s->alpha * du[i];
-    return s->sys->step_fraction(s->sys->data, s->te, s->xe, s->te, s->x1);
+    double lam = s->sys->step_fraction(s->sys->data, s->te, s->xe, s->te,
+                                       s->x1);
+    double t1 = s->t + s->h;
+    if (s->te == t1)
+        return lam; /* x1(u) = xe(u) */
+    for (size_t i = 0; i < s->n; i++) {
+        s->xe[i] = s->x1b[i] + s->alpha1 * u[i];
+        s->x1[i] = s->xe[i] + s->alpha1 * du[i];
+    }
+    return fmin(lam, s->sys->step_fraction(s->sys->data, t1, s->xe, t1,
+                                           s->x1));
 }
 
 /* One filtered Newton iteration from u, whose residual is in s->r with
