@@ -36,6 +36,10 @@ typedef struct {
                           * (takes_max_order; 0: the solver's own, 5 for
                           * BDF, 12 for Adams) */
     bool force;          /* skip the memory guard (memguard.h; --force) */
+    double rho_inf;      /* kinsol-galpha's spectral radius at infinite
+                          * step, in [0, 1] (1: no numerical damping;
+                          * [run] rho_inf, default 0.5; a zero-initialised
+                          * opts means 0, the most damping) */
 } cl_integrator_opts;
 
 /* The linear solver's part of the options. */

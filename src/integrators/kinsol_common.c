@@ -39,7 +39,8 @@ _Static_assert(sizeof(sunrealtype) == sizeof(double),
 #define CL_KIN_ARMIJO 1e-4  /* ... and the decrease it must give */
 
 typedef struct {
-    const cl_kin_scheme *sc;
+    const cl_kin_scheme *sc;  /* &own */
+    cl_kin_scheme own;        /* the scheme, configured by the options */
     const cl_system *sys;
     size_t n;
     double t0, h;
@@ -47,6 +48,7 @@ typedef struct {
     long maxit;             /* Newton iterations per step */
     double tol;             /* newton_tol (or DBL_MIN in one-step mode) */
     double *x, *v, *xp, *vp, *x1;     /* history and new position */
+    double *acc;                      /* carried acceleration (finish) */
     double *vb, *ve0, *x1b, *pred;    /* scheme data of the step */
     double *xe, *ve, *f;              /* evaluation point and force */
     double *dfdx, *dfdv;              /* block values, 9 nnzb each */
@@ -204,7 +206,8 @@ void cl_kin_free(void *state)
     if (s->ctx)
         SUNContext_Free(&s->ctx);
     double *arr[] = {s->x, s->v, s->xp, s->vp, s->x1, s->vb, s->ve0,
-                     s->x1b, s->pred, s->xe, s->ve, s->f, s->dfdx, s->dfdv};
+                     s->x1b, s->pred, s->xe, s->ve, s->f, s->dfdx, s->dfdv,
+                     s->acc};
     for (size_t k = 0; k < sizeof arr / sizeof arr[0]; k++)
         free(arr[k]);
     free(s);
@@ -240,6 +243,8 @@ static cl_status kin_alloc(cl_kin *s, cl_error *err)
     bool ok = true;
     for (size_t k = 0; k < sizeof arr / sizeof arr[0]; k++)
         ok = (*arr[k] = calloc(n, sizeof(double))) != NULL && ok;
+    if (s->sc->finish)
+        ok = (s->acc = calloc(n, sizeof(double))) != NULL && ok;
     s->dfdx = calloc(nval ? nval : 1, sizeof(double));
     s->dfdv = calloc(nval ? nval : 1, sizeof(double));
     if (!ok || !s->dfdx || !s->dfdv)
@@ -349,6 +354,23 @@ static cl_status kin_kinsol(cl_kin *s, const cl_integrator_opts *o,
     return CL_OK;
 }
 
+/* The carried acceleration's start, a_0 = M^-1 f(t0, x0, v0). */
+static cl_status kin_initial_acc(cl_kin *s, cl_error *err)
+{
+    cl_status st = s->sys->force(s->sys->data, s->t0, s->x, s->v, s->acc);
+    s->nrhs++;
+    if (st != CL_OK)
+        return cl_error_set(err, st, "%s: force evaluation at the initial "
+                            "state failed (%s)", s->sc->name,
+                            cl_status_name(st));
+    for (size_t i = 0; i < s->n; i++)
+        s->acc[i] /= s->sys->mass[i];
+    if (!cl_all_finite(s->acc, s->n))
+        return cl_error_set(err, CL_EBLOWUP, "%s: initial acceleration not "
+                            "finite", s->sc->name);
+    return CL_OK;
+}
+
 cl_status cl_kin_create(const cl_kin_scheme *sc, const cl_system *sys,
                         const cl_integrator_opts *o, double t0,
                         const double *x0, const double *v0, void **state,
@@ -363,12 +385,16 @@ cl_status cl_kin_create(const cl_kin_scheme *sc, const cl_system *sys,
     cl_kin *s = calloc(1, sizeof *s);
     if (!s)
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", sc->name);
-    s->sc = sc;
+    s->own = *sc;
+    s->sc = &s->own;
     s->sys = sys;
     s->n = sys->n;
     s->t0 = t0;
     s->h = o->dt;
-    st = kin_alloc(s, err);
+    if (sc->configure)
+        st = sc->configure(o, &s->own, err);
+    if (st == CL_OK)
+        st = kin_alloc(s, err);
     if (st == CL_OK)
         st = kin_vectors(s, err);
     if (st == CL_OK)
@@ -379,6 +405,10 @@ cl_status cl_kin_create(const cl_kin_scheme *sc, const cl_system *sys,
     }
     memcpy(s->x, x0, s->n * sizeof *s->x);
     memcpy(s->v, v0, s->n * sizeof *s->v);
+    if (s->acc && (st = kin_initial_acc(s, err)) != CL_OK) {
+        cl_kin_free(s);
+        return st;
+    }
     *state = s;
     return CL_OK;
 }
@@ -400,7 +430,7 @@ static void kin_scheme(cl_kin *s)
     s->te = s->t + sc->te * h;
     s->step = (cl_kin_step){
         .n = s->n, .h = h, .x = s->x, .v = s->v, .xp = s->xp, .vp = s->vp,
-        .vb = s->vb, .ve0 = s->ve0, .x1b = s->x1b, .pred = s->pred,
+        .sc = sc, .acc = s->acc, .vb = s->vb, .ve0 = s->ve0, .x1b = s->x1b, .pred = s->pred,
     };
     sc->prepare(&s->step);
     memcpy(N_VGetArrayPointer(s->u), s->pred, s->n * sizeof *s->pred);
@@ -463,6 +493,8 @@ static cl_status kin_stepfail(cl_kin *s, int flag, long nni, cl_error *err)
 static void kin_commit(cl_kin *s)
 {
     const double *u = N_VGetArrayPointer(s->u);
+    if (s->step.sc->finish)
+        s->step.sc->finish(&s->step, u);
     for (size_t i = 0; i < s->n; i++)
         s->x1[i] = s->x1b[i] + s->alpha1 * u[i];
     double *tx = s->xp, *tv = s->vp;

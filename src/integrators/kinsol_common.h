@@ -107,13 +107,20 @@
 #include "integrators/define.h"
 #include "integrators/integrator.h"
 
+struct cl_kin_scheme;
+
 /* One step's vectors.  Inputs (filled by the common code): n, h, x, v
- * (x_n, v_n) and xp, vp (x_{n-1}, v_{n-1}).  Outputs (n each, filled by
- * the scheme): vb, ve0, x1b and pred (the predictor p of v1). */
+ * (x_n, v_n), xp, vp (x_{n-1}, v_{n-1}), the step's scheme sc and, for a
+ * scheme with a finish hook, acc (its carried acceleration a_n, kept by
+ * the common code: M^-1 f(t0, x0, v0) before the first step, then what
+ * finish wrote).  Outputs (n each, filled by the scheme): vb, ve0, x1b
+ * and pred (the predictor p of v1). */
 typedef struct {
     size_t n;
     double h;
     const double *x, *v, *xp, *vp;
+    const struct cl_kin_scheme *sc;
+    double *acc;
     double *vb, *ve0, *x1b, *pred;
 } cl_kin_step;
 
@@ -127,6 +134,16 @@ typedef struct cl_kin_scheme {
     /* scheme of the first step (no x_{-1}, v_{-1} yet); NULL: this one */
     const struct cl_kin_scheme *start;
     void (*prepare)(cl_kin_step *st); /* fill the outputs of st */
+    /* A scheme whose scalars depend on the options (generalized-alpha's
+     * rho_inf): configure checks them and sets c, alpha, beta, alpha1,
+     * te and par in the state's own copy of the scheme; NULL: fixed. */
+    cl_status (*configure)(const cl_integrator_opts *o,
+                           struct cl_kin_scheme *own, cl_error *err);
+    /* A scheme that carries an acceleration: after each converged step,
+     * before the history moves on, finish sets st->acc to a_{n+1} from
+     * the new velocity v1 (st->v is still v_n); NULL: none. */
+    void (*finish)(cl_kin_step *st, const double *v1);
+    double par[4];     /* the scheme's parameters, set by configure */
 } cl_kin_scheme;
 
 cl_status cl_kin_create(const cl_kin_scheme *sc, const cl_system *sys,
