@@ -162,7 +162,7 @@ extern const cl_kin_scheme cl_kin_scheme_be;
  * stability region region_. */
 #define CL_KIN_INTEGRATOR(ident, scheme, name_, region_, doc_)              \
     CL_INTEGRATOR_DEFINE(ident, scheme, cl_kin_create, name_, region_,      \
-                         doc_, true, true, false, cl_kin_advance,           \
+                         doc_, true, true, false, true, cl_kin_advance,     \
                          cl_kin_stats, cl_kin_free)
 
 #endif
