@@ -16,7 +16,10 @@
  *      x1 = x0 + h v0 + (1/2 - beta) A0 + beta A1,
  *      h v1 = h v0 + (1 - gamma) A0 + gamma A1;
  *    its eigenvalues by GSL (gsl_eigen_nonsymm).  It tends to rho_inf as
- *    W -> infinity (eq. 25) and is 1 at W = 0. */
+ *    W -> infinity (eq. 25) and is 1 at W = 0.  Where the three roots
+ *    nearly coincide (rho_inf near 1 or 0 at large W) the eigenvalues are
+ *    computed to about the cube root of round-off (1e-5 at rho_inf = 1,
+ *    W = 1e6, where the exact radius is 1). */
 #include "integrators/region.h"
 
 #include <complex.h>
