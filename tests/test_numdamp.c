@@ -1,0 +1,105 @@
+/* The numerical damping study (analysis/numdamp.c) on spring2: the
+ * measured amplitude ratio per step against the theory, |R(i w h)| =
+ * 1/sqrt(1 + (w h)^2) for backward Euler (kinsol-be, semi-be) and 1 for
+ * the implicit midpoint rule, at w h = 1 and 10; generalized-alpha's
+ * spectral radius at rho_inf = 0.5; the registry's implicit fixed-step
+ * integrators selected by their tables; bad requests refused. */
+#include <criterion/criterion.h>
+
+#include <math.h>
+
+#include "analysis/numdamp.h"
+#include "problem.h"
+
+static cl_numdamp_result nd_measure(const char *name, double rho,
+                                    const double *wh, int n)
+{
+    pr_problem p;
+    pr_load(&p, "problems/spring2.ini", NULL, NULL);
+    const cl_integrator_type *type = cl_integrator_find(name);
+    cr_assert_not_null(type, "%s", name);
+    cl_integrator_opts io = {.rho_inf = rho};
+    cl_numdamp_result r;
+    cl_error err = {0};
+    double w;
+    cr_assert_eq(cl_numdamp_frequency(p.m, &w, &err), CL_OK, "%s", err.msg);
+    cr_assert_float_eq(w, 10.0, 1e-9, "spring2: w = sqrt(ks/m)");
+    cr_assert_eq(cl_numdamp_run(p.m, type, &io, w, wh, n, 200, &r, &err),
+                 CL_OK, "%s", err.msg);
+    for (int i = 0; i < r.n; i++) {
+        cr_assert_eq(r.p[i].rc, CL_OK, "%s: %s", name, r.p[i].why.msg);
+        cr_log_info("%s w h = %g: measured %.9f theory %.9f (%ld fitted)",
+                    name, r.p[i].wh, r.p[i].measured, r.p[i].theory,
+                    r.p[i].fitted);
+    }
+    pr_free(&p);
+    return r;
+}
+
+Test(numdamp, backward_euler_and_midpoint_match_theory)
+{
+    const double wh[] = {1.0, 10.0};
+    const char *const be[] = {"kinsol-be", "semi-be"};
+    for (int k = 0; k < 2; k++) {
+        cl_numdamp_result r = nd_measure(be[k], 0, wh, 2);
+        for (int i = 0; i < 2; i++) {
+            double R = 1.0 / sqrt(1.0 + wh[i] * wh[i]);
+            cr_assert_float_eq(r.p[i].theory, R, 1e-15);
+            cr_assert(fabs(r.p[i].measured / R - 1.0) < 1e-6, "%s %g: %g",
+                      be[k], wh[i], r.p[i].measured);
+        }
+    }
+    cl_numdamp_result r = nd_measure("kinsol-midpoint", 0, wh, 2);
+    for (int i = 0; i < 2; i++) {
+        cr_assert_eq(r.p[i].theory, 1.0);
+        cr_assert(fabs(r.p[i].measured - 1.0) < 1e-9, "%g",
+                  r.p[i].measured);
+        cr_assert_lt(fabs(r.p[i].loss_period), 1e-8);
+    }
+}
+
+Test(numdamp, galpha_matches_its_spectral_radius)
+{
+    const double wh[] = {1.0, 10.0};
+    cl_numdamp_result r = nd_measure("kinsol-galpha", 0.5, wh, 2);
+    for (int i = 0; i < 2; i++)
+        cr_assert(fabs(r.p[i].measured / r.p[i].theory - 1.0) < 1e-3,
+                  "%g: %g vs %g", wh[i], r.p[i].measured, r.p[i].theory);
+}
+
+Test(numdamp, implicit_fixed_step_integrators_selected)
+{
+    const char *const in[] = {"kinsol-be", "kinsol-bdf2", "kinsol-midpoint",
+                              "kinsol-galpha", "semi-be", "semi-bdf2"};
+    const char *const out[] = {"fe", "rk4", "symplectic-euler", "verlet",
+                               "cvode-bdf", "ida", "gsl-msbdf"};
+    for (size_t k = 0; k < sizeof in / sizeof *in; k++) {
+        const cl_integrator_type *t = cl_integrator_find(in[k]);
+        cr_assert(t && cl_numdamp_selects(t), "%s", in[k]);
+        cr_assert_not_null(t->region->amplification, "%s", in[k]);
+    }
+    for (size_t k = 0; k < sizeof out / sizeof *out; k++)
+        cr_assert(!cl_numdamp_selects(cl_integrator_find(out[k])), "%s",
+                  out[k]);
+}
+
+Test(numdamp, bad_requests_refused)
+{
+    pr_problem p;
+    pr_load(&p, "problems/spring2.ini", NULL, NULL);
+    cl_integrator_opts io = {0};
+    cl_numdamp_result r;
+    cl_error err = {0};
+    const double wh[] = {1.0};
+    cr_assert_eq(cl_numdamp_run(p.m, cl_integrator_find("kinsol-be"), &io,
+                                10.0, wh, 1, 3, &r, &err), CL_EINVAL);
+    cr_assert_eq(cl_numdamp_run(p.m, cl_integrator_find("cvode-bdf"), &io,
+                                10.0, wh, 1, 10, &r, &err), CL_EINVAL);
+    cr_assert(strstr(err.msg, "fixed-step"), "%s", err.msg);
+    pr_free(&p);
+    pr_load(&p, "problems/spring2.ini", "type1.ks=0", NULL);
+    double w;
+    cr_assert_eq(cl_numdamp_frequency(p.m, &w, &err), CL_EINVAL);
+    cr_assert(strstr(err.msg, "no oscillating mode"), "%s", err.msg);
+    pr_free(&p);
+}
