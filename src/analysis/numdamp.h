@@ -73,4 +73,50 @@ cl_status cl_numdamp_run(cl_model *m, const cl_integrator_type *type,
 void cl_numdamp_write_rows(FILE *fp, const cl_numdamp_result *r,
                            bool header);
 
+/* ---- on the cloth: energy per eigenmode (numdamp_modes.c) ------------
+ *
+ * The problem's initial state x0 must be at rest (max |M^-1 f(0, x0, 0)|
+ * <= 1e-8 m/s^2: e.g. hang-smooth without gravity).  Its modes at x0
+ * (cl_spectrum_modes: mu_k, phi_k) define the modal coordinates q_k =
+ * phi_k . M^1/2 (x - x0), p_k = phi_k . M^1/2 v and the modal energies
+ * E_k = (p_k^2 + mu_k q_k^2)/2, which a linear motion keeps mode by mode.
+ * Every oscillating mode (mu_k > 1e-6 mu_max) is given the same energy at
+ * t = 0: v0 = s M^-1/2 sum_k phi_k, s such that max |v0| = `speed` (small,
+ * so that the motion stays linear).  Each integrator runs from (x0, v0)
+ * to T in steps of dt; its ratio E_k(T)/E_k(0) per mode is its numerical
+ * damping of that mode, against the theory amplification(w_k dt)^(2 T /
+ * dt) (NAN without a formula). */
+typedef struct {
+    size_t n;             /* unknowns, = modes */
+    double *mu, *phi;     /* the modes at x0 */
+    double *sqm;          /* sqrt of the masses */
+    double *x0, *v0;      /* the start */
+    size_t nosc;          /* the oscillating modes: the last nosc */
+} cl_numdamp_modes;
+
+typedef struct {
+    const cl_integrator_type *type;
+    const char *label;
+    double dt, T;
+    size_t nosc;
+    double *w, *ratio, *theory; /* per oscillating mode, ascending w */
+    cl_status rc;         /* CL_OK, or how the run failed ... */
+    cl_error why;
+} cl_numdamp_modal;
+
+cl_status cl_numdamp_modes_init(cl_model *m, double speed,
+                                cl_numdamp_modes *b, cl_error *err);
+void cl_numdamp_modes_free(cl_numdamp_modes *b);
+
+/* One integrator's run: a failing run is recorded in r (rc), not
+ * returned; CL_EINVAL when T is not a whole number of steps dt. */
+cl_status cl_numdamp_modal_run(cl_model *m, const cl_numdamp_modes *b,
+                               const cl_integrator_type *type,
+                               const cl_integrator_opts *io, double dt,
+                               double T, cl_numdamp_modal *r, cl_error *err);
+void cl_numdamp_modal_free(cl_numdamp_modal *r);
+
+/* integrator,mode,w,wh,ratio,theory,status rows, header first. */
+void cl_numdamp_modal_rows(FILE *fp, const cl_numdamp_modal *r, bool header);
+
 #endif

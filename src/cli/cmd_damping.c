@@ -15,9 +15,11 @@ typedef struct {
     cl_cli_run run;
     const char *range;   /* --wh LO:HI:N */
     long steps;
+    double modes_t, modes_dt, speed; /* the cloth study (modes_t > 0) */
     double wh[CL_NUMDAMP_MAX_WH];
     int nwh;
     double w;
+    cl_numdamp_modes basis;
 } nd_setup;
 
 /* The registry's implicit fixed-step integrators, the default of
@@ -39,6 +41,19 @@ static cl_cli_opt nd_rows[] = {
     {.name = "steps", .arg = "N", .type = CL_CLI_LONG, .sec = "damping",
      .key = "steps", .def = 200, .lo = 4, .hi = 10000000,
      .field = offsetof(nd_setup, steps), .help = "steps of each run"},
+    {.name = "modes", .arg = "T", .type = CL_CLI_DOUBLE, .sec = "damping",
+     .key = "modes_t", .def = 0, .lo = 0, .hi = INFINITY,
+     .field = offsetof(nd_setup, modes_t),
+     .help = "the cloth study instead: energy per eigenmode after T s, 0 "
+             "for the oscillator study"},
+    {.name = "modes-dt", .arg = "H", .type = CL_CLI_DOUBLE, .sec = "damping",
+     .key = "modes_dt", .def = 1e-2, .lo = 1e-300, .hi = INFINITY,
+     .field = offsetof(nd_setup, modes_dt),
+     .help = "--modes: the step (s), dividing T"},
+    {.name = "speed", .arg = "V", .type = CL_CLI_DOUBLE, .sec = "damping",
+     .key = "speed", .def = 1e-3, .lo = 1e-300, .hi = INFINITY,
+     .field = offsetof(nd_setup, speed),
+     .help = "--modes: the largest initial particle speed (m/s)"},
     CL_CLI_TAIL(nd_setup, "no table on stdout"),
     {.type = CL_CLI_END}};
 
@@ -53,7 +68,11 @@ static const cl_cli_table nd_table = {
     "amplification on the undamped oscillator: backward Euler\n"
     "1/sqrt(1 + (w h)^2), the midpoint rule 1, BDF2, generalized-alpha at\n"
     "[run] rho_inf) and the loss per period, 1 - r^(2 pi/(w h)).  Writes\n"
-    "damping.csv.  Meant for an undamped linear oscillator: spring2.\n",
+    "damping.csv.  Meant for an undamped linear oscillator: spring2.\n"
+    "With --modes T, on a cloth at rest instead: every oscillating mode of\n"
+    "the linearised cloth gets the same energy, each integrator runs to T\n"
+    "in steps of --modes-dt, and the energy left in each mode, beside the\n"
+    "theory amplification(w dt)^(2 T/dt), goes to damping-modes.csv.\n",
     .notes =
     "The default integrators are every implicit fixed-step one of the\n"
     "registry (clothode list), found by its table; the problem's [run]\n"
@@ -141,11 +160,87 @@ static const cl_cli_study nd_study = {
     .size = sizeof(cl_numdamp_result), .begin = begin, .run = run_one,
     .print = print_result, .rows = rows};
 
+/* ---- the cloth study (--modes) ------------------------------------------ */
+
+/* The mean energy ratio of the modes k/3 of the way up in w (thirds). */
+static double third_mean(const cl_numdamp_modal *r, int third)
+{
+    size_t a = r->nosc * (size_t)third / 3, b = r->nosc * (size_t)(third + 1) / 3;
+    double sum = 0.0;
+    for (size_t k = a; k < b; k++)
+        sum += r->ratio[k];
+    return b > a ? sum / (double)(b - a) : NAN;
+}
+
+static void print_modal(const void *result)
+{
+    const cl_numdamp_modal *r = result;
+    printf("%-18s %12.4g %12.4g %12.4g%s%s\n", r->label, third_mean(r, 0),
+           third_mean(r, 1), third_mean(r, 2), r->rc ? "  failed: " : "",
+           r->rc ? r->why.msg : "");
+}
+
+static cl_status begin_modal(cl_model *m, const cl_cli_job *job, void *ctx,
+                             cl_error *err)
+{
+    nd_setup *s = ctx;
+    cl_status rc = cl_cli_methods_try(m, &s->integrators, err);
+    if (!rc)
+        rc = cl_numdamp_modes_init(m, s->speed, &s->basis, err);
+    if (rc || job->quiet)
+        return rc;
+    printf("problem    %s, %zu oscillating modes, w %.4g .. %.4g rad/s, T = "
+           "%g s, dt = %g s\n", job->problem, s->basis.nosc,
+           sqrt(s->basis.mu[s->basis.n - s->basis.nosc]),
+           sqrt(s->basis.mu[s->basis.n - 1]), s->modes_t, s->modes_dt);
+    printf("energy left E(T)/E(0), mean over the slowest, middle and fastest "
+           "third of the modes\n");
+    return CL_OK;
+}
+
+static cl_status run_modal(cl_model *m, void *ctx, int k, void *result,
+                           cl_error *err)
+{
+    nd_setup *s = ctx;
+    cl_numdamp_modal *r = result;
+    const cl_cli_method *mk = &s->integrators.m[k];
+    cl_status rc = cl_numdamp_modal_run(m, &s->basis, mk->type, &mk->io,
+                                        s->modes_dt, s->modes_t, r, err);
+    r->label = mk->label;
+    return rc;
+}
+
+static void rows_modal(FILE *fp, const void *result, bool header)
+{
+    cl_numdamp_modal_rows(fp, result, header);
+}
+
+static void release_modal(void *result)
+{
+    cl_numdamp_modal_free(result);
+}
+
+static void end_modal(void *ctx)
+{
+    nd_setup *s = ctx;
+    cl_numdamp_modes_free(&s->basis);
+}
+
+static const cl_cli_study nd_modal_study = {
+    .csv = "damping-modes.csv",
+    .columns = "integrator          slowest third  middle third  fastest "
+               "third",
+    .size = sizeof(cl_numdamp_modal), .begin = begin_modal, .run = run_modal,
+    .print = print_modal, .rows = rows_modal, .release = release_modal,
+    .end = end_modal};
+
 static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
                        cl_error *err)
 {
     const nd_setup *s = ctx;
-    return cl_cli_study_run(m, job, &nd_study, s->integrators.n, ctx, err);
+    return cl_cli_study_run(m, job, s->modes_t > 0 ? &nd_modal_study
+                                                   : &nd_study,
+                            s->integrators.n, ctx, err);
 }
 
 /* nd_default: the names of the integrators cl_numdamp_selects. */
