@@ -1,6 +1,7 @@
-/* KINSOL plumbing of kinsol-be, kinsol-bdf2, kinsol-midpoint (see
- * kinsol_common.h for the equations, the predictor, the tolerance and
- * iteration-cap rules and the failure policy).
+/* KINSOL plumbing of kinsol-be, kinsol-bdf2, kinsol-midpoint and
+ * kinsol-galpha (see kinsol_common.h for the equations, the predictor, the
+ * tolerance and iteration-cap rules, the failure policy and Rayleigh
+ * damping).
  *
  * Per step:  the scheme fills vb, ve0, x1b, the predictor p and c, alpha,
  * beta, alpha1, te;  u (the KINSOL unknown) starts at p;  the scales are

@@ -1,6 +1,6 @@
 /* Shared plumbing of the fixed-step fully implicit integrators solved by
  * KINSOL (docs/model.md, 1; docs/integrators.md, 4): kinsol-be,
- * kinsol-bdf2, kinsol-midpoint.
+ * kinsol-bdf2, kinsol-midpoint, kinsol-galpha.
  *
  * Reduced velocity form.  For x' = v, M v' = f(t, x, v) each step from
  * t_n to t_{n+1} = t_n + h solves for the new velocity v1 (3 per free
@@ -94,8 +94,25 @@
  * the one-step mode are KINSOL's; iterations are counted the same way.
  * Systems without barriers use KINSOL as above, unchanged.
  *
+ * Rayleigh damping (opts->rayleigh_alpha, rayleigh_beta; docs/
+ * integrators.md 4.4).  With either > 0 the force in R is
+ * f - (ra M + rb K*) ve, K* = -df/dx at (te, x_n + (te - t_n) v_n, v_n),
+ * evaluated once per step before the Newton solve (the predicted
+ * evaluation point: O(h^2) from it, so a second-order method stays
+ * second order).  The Newton matrix is exact: sr M - a (df/dv - rb K*)
+ * - b df/dx, sr = 1 + a ra, which the linear solver gets as
+ * M - (a/sr) df/dv' - (b/sr) df/dx (df/dv' = df/dv + rb df/dx*), and the
+ * solution is divided by sr.  Without it nothing changes (outputs
+ * byte-identical).
+ *
+ * Carried acceleration (cl_kin_scheme.finish; generalized-alpha): M^-1 f
+ * at the initial state (one force evaluation in create, counted), then
+ * what finish sets after each converged step; a contact projection after
+ * the step moves x and v, not it.
+ *
  * Statistics: steps; rhs_evals = force evaluations (residuals); jac_evals
- * = system Jacobian evaluations; lin_setups, lin_solves, lin_iters,
+ * = system Jacobian evaluations (Rayleigh's K* included); lin_setups,
+ * lin_solves, lin_iters,
  * symbolic_facts from the linear solver's counters; nonlin_iters = the sum
  * of KINGetNumNonlinSolvIters over the steps; nonlin_fails = steps whose
  * solve failed.  Output times must be whole multiples of h from t0
