@@ -1,10 +1,11 @@
-/* What kinsol-be, kinsol-bdf2, kinsol-midpoint and kinsol-galpha share (integrators/
- * kinsol_common.c), checked for each of them: registry rows, option
- * checks, output times, one Newton iteration per step on a linear model
- * with one KLU symbolic analysis per run, the tolerance, the iteration-cap
- * rules (newton_maxit = 1 never fails; a capped solve that does not
- * converge stops the run with CL_ESOLVER and its time), failing forces,
- * other linear solvers, Rayleigh damping.  Helpers: kinsol_test.h. */
+/* What kinsol-be, kinsol-bdf2, kinsol-midpoint and kinsol-galpha share
+ * (integrators/kinsol_common.c), checked for each of them: registry rows,
+ * option checks, output times, one Newton iteration per step on a linear
+ * model with one KLU symbolic analysis per run, the tolerance, the
+ * iteration-cap rules (newton_maxit = 1 never fails; a capped solve that
+ * does not converge stops the run with CL_ESOLVER and its time), failing
+ * forces, other linear solvers; Rayleigh damping (kinsol-midpoint).
+ * Helpers: kinsol_test.h. */
 #include <criterion/criterion.h>
 
 #include "kinsol_test.h"

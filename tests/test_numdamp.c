@@ -9,7 +9,9 @@
 #include <math.h>
 
 #include "analysis/numdamp.h"
+#include "integrators/region.h"
 #include "problem.h"
+#include "runcli.h"
 
 static cl_numdamp_result nd_measure(const char *name, double rho,
                                     const double *wh, int n)
@@ -143,4 +145,36 @@ Test(numdamp, modal_energy_on_the_cloth)
     cr_assert_eq(cl_numdamp_modes_init(p.m, 1e-3, &b, &err), CL_EINVAL);
     cr_assert(strstr(err.msg, "at rest"), "%s", err.msg);
     pr_free(&p);
+}
+
+/* The command line: by default every implicit fixed-step integrator,
+ * damping.csv with one row per integrator and w h; rho_inf reaches
+ * kinsol-galpha's theory; an adaptive integrator and a bad range are
+ * refused. */
+Test(numdamp, command_line)
+{
+    char dir[512], path[600], csv[16384];
+    cli_result r;
+    tmp_mkdtemp(dir, sizeof dir, "numdamp");
+    cli_run(&r, "damping", "spring2", "--wh", "1:10:2", "--steps", "50",
+            "--rho-inf", "0", "--quiet", "--out", dir, NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    snprintf(path, sizeof path, "%s/damping.csv", dir);
+    tmp_slurp(path, csv, sizeof csv);
+    cr_assert_eq(cli_count_lines(csv), 1 + 6 * 2, "%s", csv);
+    cr_assert(strstr(csv, "kinsol-be,1,0.1,0.707106"), "%s", csv);
+    cr_assert(strstr(csv, "kinsol-galpha,10,1,"), "%s", csv);
+    char want[64];
+    snprintf(want, sizeof want, ",%.9g,", cl_region_galpha.amplification(
+                                             10.0, 0.0));
+    cr_assert(strstr(csv, want), "theory at rho_inf 0 (%s): %s", want, csv);
+    cli_run(&r, "damping", "spring2", "--integrator", "cvode-bdf", "--out",
+            dir, NULL);
+    cli_assert_error(&r, 0, "cvode-bdf", "fixed-step", NULL);
+    cli_result_free(&r);
+    cli_run(&r, "damping", "spring2", "--wh", "10:1:3", "--out", dir, NULL);
+    cli_assert_error(&r, 0, "LO:HI:N", NULL);
+    cli_result_free(&r);
+    tmp_rm_rf(dir);
 }

@@ -165,7 +165,8 @@ static const cl_cli_study nd_study = {
 /* The mean energy ratio of the modes k/3 of the way up in w (thirds). */
 static double third_mean(const cl_numdamp_modal *r, int third)
 {
-    size_t a = r->nosc * (size_t)third / 3, b = r->nosc * (size_t)(third + 1) / 3;
+    size_t a = r->nosc * (size_t)third / 3;
+    size_t b = r->nosc * (size_t)(third + 1) / 3;
     double sum = 0.0;
     for (size_t k = a; k < b; k++)
         sum += r->ratio[k];

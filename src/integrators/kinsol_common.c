@@ -479,7 +479,8 @@ static void kin_scheme(cl_kin *s)
     s->te = s->t + sc->te * h;
     s->step = (cl_kin_step){
         .n = s->n, .h = h, .x = s->x, .v = s->v, .xp = s->xp, .vp = s->vp,
-        .sc = sc, .acc = s->acc, .vb = s->vb, .ve0 = s->ve0, .x1b = s->x1b, .pred = s->pred,
+        .sc = sc, .acc = s->acc, .vb = s->vb, .ve0 = s->ve0, .x1b = s->x1b,
+        .pred = s->pred,
     };
     sc->prepare(&s->step);
     memcpy(N_VGetArrayPointer(s->u), s->pred, s->n * sizeof *s->pred);
