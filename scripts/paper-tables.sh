@@ -32,6 +32,29 @@ awk -F, 'NR > 1 { e[$1] = $5; w[$1] = $6; b[$1] = $7
                printf "%s & %.3e & %.3e & %.3e \\\\\n", k, b[k], m[k], e[k] } }' \
     "$res/energy/energy.csv" > "$tex/energy.tex"
 
+# Numerical damping on spring2: the amplitude ratio per step at w h = 1
+# and 10, measured and theory, per integrator.
+awk -F, 'NR > 1 && $NF == "ok" { k = 0
+         if ($2 > 0.999 && $2 < 1.001) k = 1
+         if ($2 > 9.99 && $2 < 10.01) k = 10
+         if (!k) next
+         if (!($1 in seen)) { seen[$1] = 1; order[++n] = $1 }
+         m[$1, k] = $4; t[$1, k] = $5 }
+         END { for (i = 1; i <= n; i++) { q = order[i]
+               printf "%s & %.6f & %.6f & %.4g & %.4g \\\\\n", q, m[q, 1],
+                      t[q, 1], m[q, 10], t[q, 10] } }' \
+    "$res/damping/damping.csv" > "$tex/damping.tex"
+# ... and the energy left per mode of hang-smooth, mean over the slowest,
+# middle and fastest third of the modes.
+awk -F, 'NR > 1 && $NF == "ok" { if (!($1 in seen)) { seen[$1] = 1; order[++n] = $1 }
+         c[$1]++; r[$1, c[$1]] = $5 }
+         END { for (i = 1; i <= n; i++) { q = order[i]; line = q
+               for (j = 0; j < 3; j++) { a = int(c[q] * j / 3) + 1; b = int(c[q] * (j + 1) / 3)
+                   s = 0; for (k = a; k <= b; k++) s += r[q, k]
+                   line = line sprintf(" & %.3g", s / (b - a + 1)) }
+               print line " \\\\" } }' \
+    "$res/damping/damping-modes.csv" > "$tex/damping-modes.tex"
+
 # Work-precision: every level that ran, error and CPU time.
 awk -F, 'NR > 1 && $NF == "ok" {
          printf "%s & %s & %.3g & %.3e & %.3f & %d \\\\\n",

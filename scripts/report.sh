@@ -219,6 +219,17 @@ done
 cat "$cs/jiao-sphere/contact.csv" "$cs"/tunnel-*.dat
 draw contact-study "dir='$cs'; title_text='contact study'"
 
+echo "report: numerical damping (spring2 against w h; hang-smooth's modes)"
+nd=$res/damping
+rm -rf "$nd" && mkdir -p "$nd"
+"$bin" damping spring2 --quiet --out "$nd" --wh 0.1:100:13 --steps 200
+names=$(split_csv "$nd/damping.csv" "$nd/dat" 2 4 5)
+draw damping "dir='$nd/dat'; names='$names'; title_text='spring2: amplitude ratio per step, measured (points) and theory (lines), rho_inf = 0.5'"
+"$bin" damping hang-smooth --out "$nd" --set gravity.g=0,0,0 --modes 1 \
+    --modes-dt 1e-2
+names=$(split_csv "$nd/damping-modes.csv" "$nd/modes" 4 5 6)
+draw damping-modes "dir='$nd/modes'; names='$names'; title_text='hang-smooth at rest, no gravity: energy left per mode after 1 s at dt = 0.01'"
+
 echo "report: animation (hang, cvode-bdf, 2 s)"
 "$bin" run hang --quiet --out "$res/hang" --frames 40 --format obj
 gnuplot -e "dir='$res/hang'; nframes=40; nv=16; outfile='plots/hang.gif'; xr0=-0.6; xr1=1.1; zr0=0; zr1=1; yr0=-1.1; yr1=0.1" plots/animation.gp

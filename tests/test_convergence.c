@@ -81,7 +81,8 @@ Test(convergence, reference_and_floor)
 Test(convergence, fixed_step_orders)
 {
     static const struct { const char *name; double order; } m[] = {
-        {"fe", 1.0}, {"semi-bdf2", 2.0}, {"rk4", 4.0}};
+        {"fe", 1.0}, {"semi-bdf2", 2.0}, {"rk4", 4.0},
+        {"kinsol-midpoint", 2.0}, {"kinsol-galpha", 2.0}};
     cv_case c;
     cv_open(&c, NULL, 1.0);
     for (size_t i = 0; i < sizeof m / sizeof m[0]; i++) {

@@ -70,6 +70,7 @@ static const ei_case ei_cases[] = {
     {"semi-bdf2", 1e-4, 1.5e-7, 2e-5},    /* 7.4e-8, 9.1e-6 */
     {"kinsol-bdf2", 1e-4, 2.5e-7, 2e-5},  /* 1.2e-7, 9.2e-6 */
     {"kinsol-midpoint", 1e-4, 2.5e-8, 5e-6}, /* 1.1e-8, 2.3e-6 */
+    {"kinsol-galpha", 1e-4, 3.5e-7, 2.6e-5}, /* 1.7e-7, 1.3e-5 (rho_inf 0) */
     /* fourth order, at a ten times larger step */
     {"rk4", 1e-3, 4e-8, 2e-5},            /* 2.1e-8, 8.9e-6 */
 };

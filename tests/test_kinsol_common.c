@@ -1,10 +1,11 @@
-/* What kinsol-be, kinsol-bdf2 and kinsol-midpoint share (integrators/
- * kinsol_common.c), checked for each of them: registry rows, option
- * checks, output times, one Newton iteration per step on a linear model
- * with one KLU symbolic analysis per run, the tolerance, the iteration-cap
- * rules (newton_maxit = 1 never fails; a capped solve that does not
- * converge stops the run with CL_ESOLVER and its time), failing forces,
- * other linear solvers.  Helpers: kinsol_test.h. */
+/* What kinsol-be, kinsol-bdf2, kinsol-midpoint and kinsol-galpha share
+ * (integrators/kinsol_common.c), checked for each of them: registry rows,
+ * option checks, output times, one Newton iteration per step on a linear
+ * model with one KLU symbolic analysis per run, the tolerance, the
+ * iteration-cap rules (newton_maxit = 1 never fails; a capped solve that
+ * does not converge stops the run with CL_ESOLVER and its time), failing
+ * forces, other linear solvers; Rayleigh damping (kinsol-midpoint).
+ * Helpers: kinsol_test.h. */
 #include <criterion/criterion.h>
 
 #include "kinsol_test.h"
@@ -12,8 +13,8 @@
 #include "testsys.h"
 
 static const char *const kt_methods[] = {"kinsol-be", "kinsol-bdf2",
-                                         "kinsol-midpoint"};
-enum { KT_NMETHODS = 3 };
+                                         "kinsol-midpoint", "kinsol-galpha"};
+enum { KT_NMETHODS = 4 };
 
 /* A stiff, strongly nonlinear spring2: ks = 1e4 (w = 100) and a fast
  * transverse initial velocity that swings the spring round. */
@@ -97,7 +98,8 @@ Test(kinsol_common, output_times) { kt_each(NULL, output_times); }
 /* spring2 is linear: one full Newton step from any predictor solves each
  * step's system to round-off, so every step takes exactly one iteration,
  * one Jacobian, one factorisation, one solve and two force evaluations
- * (predictor and new iterate); KLU analyses once for the whole run, over
+ * (predictor and new iterate; kinsol-galpha one more at the start, its
+ * initial acceleration); KLU analyses once for the whole run, over
  * several advance calls. */
 static void linear_one_iteration(const char *name,
                                  const cl_integrator_type *it,
@@ -123,7 +125,8 @@ static void linear_one_iteration(const char *name,
     cr_assert_eq(s.jac_evals, 100);
     cr_assert_eq(s.lin_setups, 100);
     cr_assert_eq(s.lin_solves, 100);
-    cr_assert_eq(s.rhs_evals, 200);
+    /* kinsol-galpha: one more for its initial acceleration */
+    cr_assert_eq(s.rhs_evals, 200 + !strcmp(name, "kinsol-galpha"));
     cr_assert_eq(s.symbolic_facts, 1);
     cr_assert_eq(s.nonlin_fails + s.err_fails + s.lin_iters, 0);
 }
@@ -252,4 +255,78 @@ Test(kinsol_common, linear_solvers_agree)
 {
     const char *const sets[] = {"init.velocity=1,0.8,0", NULL};
     kt_each(sets, linear_solvers);
+}
+
+/* spring2 with `sets` by kinsol-midpoint with Rayleigh damping (ra, rb)
+ * to T = 1 in steps of dt into x, v. */
+static void kt_rayleigh_run(const char *const *sets, double ra, double rb,
+                            double dt, double *x, double *v)
+{
+    s2_problem p;
+    st_load(&p, sets);
+    cl_integrator_opts o = {.dt = dt, .rayleigh_alpha = ra,
+                            .rayleigh_beta = rb, .newton_tol = 1e-13};
+    cl_stats s;
+    kt_run("kinsol-midpoint", &p, &o, 1.0, x, v, &s);
+    s2_free(&p);
+}
+
+/* On spring2 (one particle, motion along the spring) Rayleigh damping is
+ * Choi-Ko damping: alpha M v = kd v for kd = alpha m (m = 1 kg), and
+ * beta K v = beta ks v along the axis, kd = beta ks (ks = 100 N/m). */
+Test(kinsol_common, rayleigh_equals_pair_damping_on_spring2)
+{
+    const char *const kd07[] = {"damping.kd=0.7", NULL};
+    const char *const kd05[] = {"damping.kd=0.5", NULL};
+    double xa[3], va[3], xb[3], vb[3];
+    kt_rayleigh_run(NULL, 0.7, 0.0, 0.01, xa, va);
+    kt_rayleigh_run(kd07, 0.0, 0.0, 0.01, xb, vb);
+    double da = fmax(kt_diff3(xa, xb), kt_diff3(va, vb));
+    kt_rayleigh_run(NULL, 0.0, 0.005, 0.01, xa, va);
+    kt_rayleigh_run(kd05, 0.0, 0.0, 0.01, xb, vb);
+    double db = fmax(kt_diff3(xa, xb), kt_diff3(va, vb));
+    cr_log_info("Rayleigh vs pair damping on spring2: alpha %.3e, beta "
+                "%.3e (final v %.6f)", da, db, va[0]);
+    cr_assert_lt(da, 1e-12);
+    cr_assert_lt(db, 1e-12);
+    cr_assert_lt(fabs(va[0]), 0.8, "damped: the undamped v(1) is -0.839");
+}
+
+/* With K frozen at the predicted midpoint the midpoint rule stays second
+ * order: on spring2 swung round (K varies along the motion) the
+ * differences between runs at dt and dt/2 fall by 4 per halving. */
+Test(kinsol_common, rayleigh_midpoint_second_order)
+{
+    const char *const swing[] = {"init.velocity=1,3,0", NULL};
+    double x[5][3], v[5][3], d[4];
+    for (int k = 0; k < 5; k++)
+        kt_rayleigh_run(swing, 0.3, 0.01, 0.02 / (1 << k), x[k], v[k]);
+    for (int k = 0; k < 4; k++)
+        d[k] = kt_diff3(x[k], x[k + 1]);
+    for (int k = 1; k < 4; k++) {
+        cr_log_info("Rayleigh midpoint: difference ratio %.3f",
+                    d[k - 1] / d[k]);
+        cr_assert(fabs(log2(d[k - 1] / d[k]) - 2.0) < 0.2, "%g",
+                  d[k - 1] / d[k]);
+    }
+}
+
+Test(kinsol_common, rayleigh_refused_elsewhere)
+{
+    s2_problem p;
+    st_load(&p, NULL);
+    cl_integrator_opts o = {.dt = 0.01, .rayleigh_beta = 0.01, .force = true};
+    void *st = NULL;
+    cl_error err = {0};
+    cr_assert_eq(cl_integrator_create(cl_integrator_find("semi-be"), p.sys,
+                                      &o, 0.0, p.x0, p.v0, &st, &err),
+                 CL_EUNSUPPORTED);
+    cr_assert_null(st);
+    cr_assert(strstr(err.msg, "semi-be") && strstr(err.msg, "Rayleigh"),
+              "%s", err.msg);
+    o.rayleigh_beta = -1.0;
+    cr_assert_eq(cl_integrator_create(cl_integrator_find("kinsol-midpoint"),
+                                      p.sys, &o, 0.0, p.x0, p.v0, &st, &err),
+                 CL_EINVAL);
+    s2_free(&p);
 }

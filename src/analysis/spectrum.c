@@ -153,6 +153,39 @@ cl_status cl_spectrum_compute(cl_model *m, double t, const double *x,
     return rc;
 }
 
+cl_status cl_spectrum_modes(cl_model *m, double t, const double *x,
+                            const double *v, double *mu, double *phi,
+                            cl_error *err)
+{
+    const cl_system *sys = cl_model_system(m);
+    spec_work w = {0};
+    if (sys->n > CL_SPECTRUM_MAX_N)
+        return cl_error_set(err, CL_EUNSUPPORTED, "modes: %zu unknowns, at "
+                            "most %d (dense eigensolver)", sys->n,
+                            CL_SPECTRUM_MAX_N);
+    cl_status rc = work_fill(m, t, x, v, &w, err);
+    gsl_eigen_symmv_workspace *ws = rc ? NULL : gsl_eigen_symmv_alloc(w.n);
+    if (!rc && !ws)
+        rc = cl_error_set(err, CL_ENOMEM, "out of memory (eigensolver)");
+    if (!rc) {
+        stiffness_matrix(sys->pattern, &w);
+        gsl_matrix_view A = gsl_matrix_view_array(w.A, w.n, w.n);
+        gsl_matrix_view Z = gsl_matrix_view_array(phi, w.n, w.n);
+        gsl_vector_view ev = gsl_vector_view_array(mu, w.n);
+        int grc = gsl_eigen_symmv(&A.matrix, &ev.vector, &Z.matrix, ws);
+        if (grc)
+            rc = cl_error_set(err, CL_ESOLVER, "symmetric eigensolver "
+                              "failed (GSL %d)", grc);
+        else
+            gsl_eigen_symmv_sort(&ev.vector, &Z.matrix,
+                                 GSL_EIGEN_SORT_VAL_ASC);
+    }
+    if (ws)
+        gsl_eigen_symmv_free(ws);
+    work_free(&w);
+    return rc;
+}
+
 void cl_spectrum_free(cl_spectrum *s)
 {
     free(s->mu);

@@ -81,4 +81,14 @@ size_t cl_spectrum_limits(const cl_spectrum *s,
 /* kind,index,re,im rows (kind "mu" with im 0, or "lambda"), header first. */
 void cl_spectrum_write(FILE *fp, const cl_spectrum *s);
 
+/* The stiffness problem's modes at the free state (x, v) and time t
+ * (n = sys->n <= CL_SPECTRUM_MAX_N): mu (n, ascending) and phi (n x n,
+ * row-major, column k the orthonormal eigenvector of mu[k] in the
+ * mass-weighted coordinates y = M^1/2 x), by GSL's gsl_eigen_symmv:
+ * a displacement dx oscillates in mode k with amplitude phi_k . M^1/2 dx.
+ * CL_EUNSUPPORTED above CL_SPECTRUM_MAX_N unknowns. */
+cl_status cl_spectrum_modes(cl_model *m, double t, const double *x,
+                            const double *v, double *mu, double *phi,
+                            cl_error *err);
+
 #endif

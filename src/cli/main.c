@@ -31,6 +31,8 @@ static const cl_command commands[] = {
      "rerun a run from its run.json, check every output is identical"},
     {"sweep", cl_cmd_sweep,
      "parameter sweeps: plan, run (GNU parallel, ssh, Slurm), collect"},
+    {"damping", cl_cmd_damping,
+     "numerical damping per step against w h, beside the theory"},
 };
 
 static int usage(FILE *fp)

@@ -55,6 +55,18 @@ const cl_cli_opt cl_cli_run_rows[] = {
      .lo = 0, .hi = 0.999999,
      .help = "velocity damping of the Verlet integrators (the Verlet-and-PBD "
              "report)"},
+    {.name = "rho-inf", .arg = "RHO", .type = CL_CLI_DOUBLE,
+     .key = "rho_inf", RUN_ROW(io.rho_inf), .def = 0.5, .lo = 0, .hi = 1,
+     .help = "kinsol-galpha's spectral radius at infinite step (1: no "
+             "numerical damping, 0: the most)"},
+    {.type = CL_CLI_DOUBLE, .key = "rayleigh_alpha",
+     RUN_ROW(io.rayleigh_alpha), .lo = 0, .hi = INFINITY,
+     .help = "Rayleigh damping of the kinsol-* integrators, mass part "
+             "alpha M (1/s)"},
+    {.type = CL_CLI_DOUBLE, .key = "rayleigh_beta",
+     RUN_ROW(io.rayleigh_beta), .lo = 0, .hi = INFINITY,
+     .help = "Rayleigh damping of the kinsol-* integrators, stiffness part "
+             "beta K (s)"},
     {.type = CL_CLI_DOUBLE, .key = "max_stretch", RUN_ROW(max_stretch),
      .def = 10.0, .lo = 1.0, .hi = INFINITY,
      .help = "a stretch d/L beyond this counts as a blow-up"},

@@ -6,8 +6,8 @@
  *   static create function  ident_create(sys, opts, t0, x0, v0, state, err)
  *                           = module_create(&method, sys, ...)
  *   const cl_integrator_type ident = {name_, region_, doc_, fixed_,
- *                           linsol_, dense_, ident_create, advance_, stats_,
- *                           free_}
+ *                           linsol_, dense_, rayleigh_, ident_create,
+ *                           advance_, stats_, free_}
  *
  * for one row of the registry (integrators/registry.c). */
 #ifndef CL_DEFINE_H
@@ -16,8 +16,8 @@
 #include "integrators/integrator.h"
 
 #define CL_INTEGRATOR_DEFINE(ident, method, create_, name_, region_, doc_, \
-                             fixed_, linsol_, dense_, advance_, stats_,    \
-                             free_)                                         \
+                             fixed_, linsol_, dense_, rayleigh_, advance_, \
+                             stats_, free_)                                 \
     static cl_status ident##_create(const cl_system *sys,                   \
                                     const cl_integrator_opts *o, double t0, \
                                     const double *x0, const double *v0,     \
@@ -32,6 +32,7 @@
         .fixed_step = (fixed_),                                             \
         .takes_linsol = (linsol_),                                          \
         .dense_jacobian = (dense_),                                         \
+        .takes_rayleigh = (rayleigh_),                                      \
         .create = ident##_create,                                           \
         .advance = (advance_),                                              \
         .stats = (stats_),                                                  \

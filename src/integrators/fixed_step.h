@@ -127,7 +127,7 @@ cl_status cl_fixed_accel(cl_fixed *s, double t, const double *x,
         .step = (step_),                                                    \
     };                                                                      \
     CL_INTEGRATOR_DEFINE(ident, ident##_method, cl_fixed_create, name_,     \
-                         region_, doc_, true, false, false,                 \
+                         region_, doc_, true, false, false, false,          \
                          cl_fixed_advance, cl_fixed_stats, cl_fixed_free)
 
 #endif

@@ -22,6 +22,12 @@ cl_status cl_integrator_create(const cl_integrator_type *type,
     cl_status rc = o->force ? CL_OK
                             : cl_memguard_check(type, sys, o->linsol, err);
     *state = NULL;
+    if (!rc && !type->takes_rayleigh &&
+        (o->rayleigh_alpha != 0.0 || o->rayleigh_beta != 0.0))
+        rc = cl_error_set(err, CL_EUNSUPPORTED, "%s: no Rayleigh damping "
+                          "(rayleigh_alpha = %g, rayleigh_beta = %g; the "
+                          "kinsol-* integrators take it)", type->name,
+                          o->rayleigh_alpha, o->rayleigh_beta);
     return rc ? rc : type->create(sys, o, t0, x0, v0, state, err);
 }
 

@@ -36,6 +36,14 @@ typedef struct {
                           * (takes_max_order; 0: the solver's own, 5 for
                           * BDF, 12 for Adams) */
     bool force;          /* skip the memory guard (memguard.h; --force) */
+    double rho_inf;      /* kinsol-galpha's spectral radius at infinite
+                          * step, in [0, 1] (1: no numerical damping;
+                          * [run] rho_inf, default 0.5; a zero-initialised
+                          * opts means 0, the most damping) */
+    double rayleigh_alpha; /* Rayleigh damping -(alpha M + beta K) v of the
+                            * KINSOL methods (takes_rayleigh; 1/s, >= 0) */
+    double rayleigh_beta;  /* ... its stiffness part (s, >= 0); 0 and 0:
+                            * none (kinsol_common.h, "Rayleigh damping") */
 } cl_integrator_opts;
 
 /* The linear solver's part of the options. */
@@ -53,6 +61,7 @@ typedef struct {
     bool takes_linsol;   /* accepts opts->linsol (cl_linsol registry) */
     bool takes_max_order; /* accepts opts->max_order */
     bool dense_jacobian; /* factorises a dense 2n x 2n Newton matrix */
+    bool takes_rayleigh; /* accepts opts->rayleigh_alpha, rayleigh_beta */
     const cl_region *region; /* linear stability region (region.h) */
     cl_status (*create)(const cl_system *sys, const cl_integrator_opts *o,
                         double t0, const double *x0, const double *v0,

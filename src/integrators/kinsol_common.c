@@ -1,6 +1,7 @@
-/* KINSOL plumbing of kinsol-be, kinsol-bdf2, kinsol-midpoint (see
- * kinsol_common.h for the equations, the predictor, the tolerance and
- * iteration-cap rules and the failure policy).
+/* KINSOL plumbing of kinsol-be, kinsol-bdf2, kinsol-midpoint and
+ * kinsol-galpha (see kinsol_common.h for the equations, the predictor, the
+ * tolerance and iteration-cap rules, the failure policy and Rayleigh
+ * damping).
  *
  * Per step:  the scheme fills vb, ve0, x1b, the predictor p and c, alpha,
  * beta, alpha1, te;  u (the KINSOL unknown) starts at p;  the scales are
@@ -27,6 +28,7 @@
 #include "integrators/hint.h"
 #include "integrators/sun_adapter.h"
 #include "linalg/linsol.h"
+#include "linalg/reduced.h"
 
 _Static_assert(sizeof(sunrealtype) == sizeof(double),
                "clothode needs SUNDIALS built in double precision");
@@ -39,7 +41,8 @@ _Static_assert(sizeof(sunrealtype) == sizeof(double),
 #define CL_KIN_ARMIJO 1e-4  /* ... and the decrease it must give */
 
 typedef struct {
-    const cl_kin_scheme *sc;
+    const cl_kin_scheme *sc;  /* &own */
+    cl_kin_scheme own;        /* the scheme, configured by the options */
     const cl_system *sys;
     size_t n;
     double t0, h;
@@ -47,9 +50,13 @@ typedef struct {
     long maxit;             /* Newton iterations per step */
     double tol;             /* newton_tol (or DBL_MIN in one-step mode) */
     double *x, *v, *xp, *vp, *x1;     /* history and new position */
+    double *acc;                      /* carried acceleration (finish) */
     double *vb, *ve0, *x1b, *pred;    /* scheme data of the step */
     double *xe, *ve, *f;              /* evaluation point and force */
     double *dfdx, *dfdv;              /* block values, 9 nnzb each */
+    double ra, rb;                    /* Rayleigh alpha, beta */
+    double *kfz, *kv;                 /* frozen df/dx (rb > 0), its
+                                         product with ve */
     cl_kin_step step;                 /* the scheme's view of the step */
     /* this step: t_n and the scheme's scalars (times h where due) */
     double t, c, alpha, beta, alpha1, te;
@@ -97,6 +104,20 @@ static int kin_sysfail(cl_kin *s, cl_status st, bool jac, bool nonfinite)
     return -1;
 }
 
+/* Rayleigh damping added to the force: f -= (ra M + rb K*) ve, K* = -kfz
+ * (kinsol_common.h, "Rayleigh damping"). */
+static void kin_rayleigh(cl_kin *s)
+{
+    const double *m = s->sys->mass;
+    if (s->rb > 0.0)
+        cl_bmatvec(s->sys->pattern, s->kfz, s->ve, s->kv);
+    for (size_t i = 0; i < s->n; i++) {
+        s->f[i] -= s->ra * m[i] * s->ve[i];
+        if (s->rb > 0.0)
+            s->f[i] += s->rb * s->kv[i];
+    }
+}
+
 static int kin_residual(N_Vector uv, N_Vector rv, void *data)
 {
     cl_kin *s = data;
@@ -109,6 +130,8 @@ static int kin_residual(N_Vector uv, N_Vector rv, void *data)
     s->nrhs++;
     if (st != CL_OK)
         return kin_sysfail(s, st, false, false);
+    if (s->ra > 0.0 || s->rb > 0.0)
+        kin_rayleigh(s);
     for (size_t i = 0; i < s->n; i++) {
         r[i] = m[i] * (u[i] - s->vb[i]) - c * s->f[i];
         rmax = fmax(rmax, fabs(r[i]) * fs[i]);
@@ -134,6 +157,8 @@ static int kin_jac(N_Vector uv, N_Vector fu, SUNMatrix J, void *data,
         return kin_sysfail(s, st, true, false);
     if (!cl_all_finite(s->dfdx, nval) || !cl_all_finite(s->dfdv, nval))
         return kin_sysfail(s, CL_EBLOWUP, true, true);
+    for (size_t k = 0; s->rb > 0.0 && k < nval; k++)
+        s->dfdv[k] += s->rb * s->kfz[k]; /* dR/dv of rb K* ve */
     cl_linsol_jacobian(s->lt, s->lstate, s->dfdx, s->dfdv);
     return 0;
 }
@@ -149,13 +174,25 @@ static void kin_errhandler(int code, const char *module, const char *function,
 
 /* ---- the cl_linsol as KINSOL's direct solver (sun_adapter.h) ---------- */
 
-/* A = M - (c beta) df/dv - (c alpha) df/dx at the iterate of kin_jac. */
+/* The Newton matrix's factor sr of M under Rayleigh damping (1 without):
+ * dR/dv1 = sr M - (c beta) df/dv' - (c alpha) df/dx, sr = 1 + c beta ra,
+ * df/dv' = df/dv + rb K* (kin_jac); the linear solver gets it divided by
+ * sr, and ls_solve divides the solution by sr. */
+static double kin_mass_factor(const cl_kin *s)
+{
+    return 1.0 + s->c * s->beta * s->ra;
+}
+
+/* A = M - (c beta) df/dv - (c alpha) df/dx at the iterate of kin_jac
+ * (over kin_mass_factor under Rayleigh damping). */
 static int ls_setup(void *data, SUNMatrix A)
 {
     cl_kin *s = data;
+    double sr = kin_mass_factor(s);
     (void)A;
-    s->lin_st = s->lt->setup(s->lstate, s->c * s->beta, s->c * s->alpha,
-                             s->dfdx, s->dfdv, &s->lin_err);
+    s->lin_st = s->lt->setup(s->lstate, s->c * s->beta / sr,
+                             s->c * s->alpha / sr, s->dfdx, s->dfdv,
+                             &s->lin_err);
     return s->lin_st == CL_OK ? SUNLS_SUCCESS : SUNLS_PACKAGE_FAIL_UNREC;
 }
 
@@ -167,6 +204,9 @@ static int ls_solve(void *data, SUNMatrix A, N_Vector x, N_Vector b,
     (void)A, (void)tol;
     s->lin_st = s->lt->solve(s->lstate, N_VGetArrayPointer(b), xd,
                              &s->lin_err);
+    double sr = kin_mass_factor(s);
+    for (size_t i = 0; sr != 1.0 && i < s->n; i++)
+        xd[i] /= sr;
     if (s->lin_st == CL_OK && !cl_all_finite(xd, s->n))
         s->lin_st = cl_error_set(&s->lin_err, CL_EBLOWUP, "%s solve: "
                                  "Newton step not finite", s->lt->name);
@@ -204,7 +244,8 @@ void cl_kin_free(void *state)
     if (s->ctx)
         SUNContext_Free(&s->ctx);
     double *arr[] = {s->x, s->v, s->xp, s->vp, s->x1, s->vb, s->ve0,
-                     s->x1b, s->pred, s->xe, s->ve, s->f, s->dfdx, s->dfdv};
+                     s->x1b, s->pred, s->xe, s->ve, s->f, s->dfdx, s->dfdv,
+                     s->acc, s->kfz, s->kv};
     for (size_t k = 0; k < sizeof arr / sizeof arr[0]; k++)
         free(arr[k]);
     free(s);
@@ -223,6 +264,11 @@ static cl_status kin_check_args(const cl_kin_scheme *sc, const cl_system *sys,
         return cl_error_set(err, CL_EINVAL, "%s: step dt = %g and initial "
                             "time %g must be finite, dt > 0", sc->name, o->dt,
                             t0);
+    if (!(o->rayleigh_alpha >= 0.0 && o->rayleigh_alpha < INFINITY) ||
+        !(o->rayleigh_beta >= 0.0 && o->rayleigh_beta < INFINITY))
+        return cl_error_set(err, CL_EINVAL, "%s: rayleigh_alpha = %g, "
+                            "rayleigh_beta = %g (need finite >= 0)",
+                            sc->name, o->rayleigh_alpha, o->rayleigh_beta);
     if (!isfinite(o->newton_tol) || o->newton_tol < 0.0 ||
         o->newton_maxit < 0)
         return cl_error_set(err, CL_EINVAL, "%s: newton_tol = %g, "
@@ -240,6 +286,12 @@ static cl_status kin_alloc(cl_kin *s, cl_error *err)
     bool ok = true;
     for (size_t k = 0; k < sizeof arr / sizeof arr[0]; k++)
         ok = (*arr[k] = calloc(n, sizeof(double))) != NULL && ok;
+    if (s->sc->finish)
+        ok = (s->acc = calloc(n, sizeof(double))) != NULL && ok;
+    if (s->rb > 0.0) {
+        ok = (s->kv = calloc(n, sizeof(double))) != NULL && ok;
+        ok = (s->kfz = calloc(nval ? nval : 1, sizeof(double))) != NULL && ok;
+    }
     s->dfdx = calloc(nval ? nval : 1, sizeof(double));
     s->dfdv = calloc(nval ? nval : 1, sizeof(double));
     if (!ok || !s->dfdx || !s->dfdv)
@@ -349,6 +401,23 @@ static cl_status kin_kinsol(cl_kin *s, const cl_integrator_opts *o,
     return CL_OK;
 }
 
+/* The carried acceleration's start, a_0 = M^-1 f(t0, x0, v0). */
+static cl_status kin_initial_acc(cl_kin *s, cl_error *err)
+{
+    cl_status st = s->sys->force(s->sys->data, s->t0, s->x, s->v, s->acc);
+    s->nrhs++;
+    if (st != CL_OK)
+        return cl_error_set(err, st, "%s: force evaluation at the initial "
+                            "state failed (%s)", s->sc->name,
+                            cl_status_name(st));
+    for (size_t i = 0; i < s->n; i++)
+        s->acc[i] /= s->sys->mass[i];
+    if (!cl_all_finite(s->acc, s->n))
+        return cl_error_set(err, CL_EBLOWUP, "%s: initial acceleration not "
+                            "finite", s->sc->name);
+    return CL_OK;
+}
+
 cl_status cl_kin_create(const cl_kin_scheme *sc, const cl_system *sys,
                         const cl_integrator_opts *o, double t0,
                         const double *x0, const double *v0, void **state,
@@ -363,12 +432,18 @@ cl_status cl_kin_create(const cl_kin_scheme *sc, const cl_system *sys,
     cl_kin *s = calloc(1, sizeof *s);
     if (!s)
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", sc->name);
-    s->sc = sc;
+    s->own = *sc;
+    s->sc = &s->own;
     s->sys = sys;
     s->n = sys->n;
     s->t0 = t0;
     s->h = o->dt;
-    st = kin_alloc(s, err);
+    s->ra = o->rayleigh_alpha;
+    s->rb = o->rayleigh_beta;
+    if (sc->configure)
+        st = sc->configure(o, &s->own, err);
+    if (st == CL_OK)
+        st = kin_alloc(s, err);
     if (st == CL_OK)
         st = kin_vectors(s, err);
     if (st == CL_OK)
@@ -379,6 +454,10 @@ cl_status cl_kin_create(const cl_kin_scheme *sc, const cl_system *sys,
     }
     memcpy(s->x, x0, s->n * sizeof *s->x);
     memcpy(s->v, v0, s->n * sizeof *s->v);
+    if (s->acc && (st = kin_initial_acc(s, err)) != CL_OK) {
+        cl_kin_free(s);
+        return st;
+    }
     *state = s;
     return CL_OK;
 }
@@ -400,7 +479,8 @@ static void kin_scheme(cl_kin *s)
     s->te = s->t + sc->te * h;
     s->step = (cl_kin_step){
         .n = s->n, .h = h, .x = s->x, .v = s->v, .xp = s->xp, .vp = s->vp,
-        .vb = s->vb, .ve0 = s->ve0, .x1b = s->x1b, .pred = s->pred,
+        .sc = sc, .acc = s->acc, .vb = s->vb, .ve0 = s->ve0, .x1b = s->x1b,
+        .pred = s->pred,
     };
     sc->prepare(&s->step);
     memcpy(N_VGetArrayPointer(s->u), s->pred, s->n * sizeof *s->pred);
@@ -463,6 +543,8 @@ static cl_status kin_stepfail(cl_kin *s, int flag, long nni, cl_error *err)
 static void kin_commit(cl_kin *s)
 {
     const double *u = N_VGetArrayPointer(s->u);
+    if (s->step.sc->finish)
+        s->step.sc->finish(&s->step, u);
     for (size_t i = 0; i < s->n; i++)
         s->x1[i] = s->x1b[i] + s->alpha1 * u[i];
     double *tx = s->xp, *tv = s->vp;
@@ -588,6 +670,25 @@ static cl_status kin_filtered_solve(cl_kin *s, cl_error *err)
     return CL_OK;
 }
 
+/* Rayleigh's K* = -df/dx frozen for the step at the predicted evaluation
+ * point (te, x_n + (te - t_n) v_n, v_n) into kfz (s->xe, s->dfdv are
+ * scratch until the Newton solve); 0, or -1 when the evaluation failed. */
+static int kin_freeze_stiffness(cl_kin *s)
+{
+    const cl_system *sys = s->sys;
+    double dt = s->te - s->t;
+    for (size_t i = 0; i < s->n; i++)
+        s->xe[i] = s->x[i] + dt * s->v[i];
+    cl_status st = sys->jacobian(sys->data, s->te, s->xe, s->v, NULL,
+                                 s->kfz, s->dfdv);
+    s->njac++;
+    if (st != CL_OK)
+        return kin_sysfail(s, st, true, false);
+    if (!cl_all_finite(s->kfz, 9 * sys->pattern->nnzb))
+        return kin_sysfail(s, CL_EBLOWUP, true, true);
+    return 0;
+}
+
 static cl_status kin_step(void *state, cl_error *err)
 {
     cl_kin *s = state;
@@ -595,6 +696,8 @@ static cl_status kin_step(void *state, cl_error *err)
     kin_scales(s);
     s->sys_st = s->lin_st = CL_OK;
     s->kmsg[0] = '\0';
+    if (s->rb > 0.0 && kin_freeze_stiffness(s) != 0)
+        return kin_stepfail(s, KIN_SYSFUNC_FAIL, 0, err);
     if (s->sys->step_fraction)
         return kin_filtered_solve(s, err);
     int flag = KINSol(s->mem, s->u, KIN_NONE, s->uscale, s->fscale);

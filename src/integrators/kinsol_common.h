@@ -1,6 +1,6 @@
 /* Shared plumbing of the fixed-step fully implicit integrators solved by
  * KINSOL (docs/model.md, 1; docs/integrators.md, 4): kinsol-be,
- * kinsol-bdf2, kinsol-midpoint.
+ * kinsol-bdf2, kinsol-midpoint, kinsol-galpha.
  *
  * Reduced velocity form.  For x' = v, M v' = f(t, x, v) each step from
  * t_n to t_{n+1} = t_n + h solves for the new velocity v1 (3 per free
@@ -94,8 +94,25 @@
  * the one-step mode are KINSOL's; iterations are counted the same way.
  * Systems without barriers use KINSOL as above, unchanged.
  *
+ * Rayleigh damping (opts->rayleigh_alpha, rayleigh_beta; docs/
+ * integrators.md 4.4).  With either > 0 the force in R is
+ * f - (ra M + rb K*) ve, K* = -df/dx at (te, x_n + (te - t_n) v_n, v_n),
+ * evaluated once per step before the Newton solve (the predicted
+ * evaluation point: O(h^2) from it, so a second-order method stays
+ * second order).  The Newton matrix is exact: sr M - a (df/dv - rb K*)
+ * - b df/dx, sr = 1 + a ra, which the linear solver gets as
+ * M - (a/sr) df/dv' - (b/sr) df/dx (df/dv' = df/dv + rb df/dx*), and the
+ * solution is divided by sr.  Without it nothing changes (outputs
+ * byte-identical).
+ *
+ * Carried acceleration (cl_kin_scheme.finish; generalized-alpha): M^-1 f
+ * at the initial state (one force evaluation in create, counted), then
+ * what finish sets after each converged step; a contact projection after
+ * the step moves x and v, not it.
+ *
  * Statistics: steps; rhs_evals = force evaluations (residuals); jac_evals
- * = system Jacobian evaluations; lin_setups, lin_solves, lin_iters,
+ * = system Jacobian evaluations (Rayleigh's K* included); lin_setups,
+ * lin_solves, lin_iters,
  * symbolic_facts from the linear solver's counters; nonlin_iters = the sum
  * of KINGetNumNonlinSolvIters over the steps; nonlin_fails = steps whose
  * solve failed.  Output times must be whole multiples of h from t0
@@ -107,13 +124,20 @@
 #include "integrators/define.h"
 #include "integrators/integrator.h"
 
+struct cl_kin_scheme;
+
 /* One step's vectors.  Inputs (filled by the common code): n, h, x, v
- * (x_n, v_n) and xp, vp (x_{n-1}, v_{n-1}).  Outputs (n each, filled by
- * the scheme): vb, ve0, x1b and pred (the predictor p of v1). */
+ * (x_n, v_n), xp, vp (x_{n-1}, v_{n-1}), the step's scheme sc and, for a
+ * scheme with a finish hook, acc (its carried acceleration a_n, kept by
+ * the common code: M^-1 f(t0, x0, v0) before the first step, then what
+ * finish wrote).  Outputs (n each, filled by the scheme): vb, ve0, x1b
+ * and pred (the predictor p of v1). */
 typedef struct {
     size_t n;
     double h;
     const double *x, *v, *xp, *vp;
+    const struct cl_kin_scheme *sc;
+    double *acc;
     double *vb, *ve0, *x1b, *pred;
 } cl_kin_step;
 
@@ -127,6 +151,16 @@ typedef struct cl_kin_scheme {
     /* scheme of the first step (no x_{-1}, v_{-1} yet); NULL: this one */
     const struct cl_kin_scheme *start;
     void (*prepare)(cl_kin_step *st); /* fill the outputs of st */
+    /* A scheme whose scalars depend on the options (generalized-alpha's
+     * rho_inf): configure checks them and sets c, alpha, beta, alpha1,
+     * te and par in the state's own copy of the scheme; NULL: fixed. */
+    cl_status (*configure)(const cl_integrator_opts *o,
+                           struct cl_kin_scheme *own, cl_error *err);
+    /* A scheme that carries an acceleration: after each converged step,
+     * before the history moves on, finish sets st->acc to a_{n+1} from
+     * the new velocity v1 (st->v is still v_n); NULL: none. */
+    void (*finish)(cl_kin_step *st, const double *v1);
+    double par[4];     /* the scheme's parameters, set by configure */
 } cl_kin_scheme;
 
 cl_status cl_kin_create(const cl_kin_scheme *sc, const cl_system *sys,
@@ -145,7 +179,7 @@ extern const cl_kin_scheme cl_kin_scheme_be;
  * stability region region_. */
 #define CL_KIN_INTEGRATOR(ident, scheme, name_, region_, doc_)              \
     CL_INTEGRATOR_DEFINE(ident, scheme, cl_kin_create, name_, region_,      \
-                         doc_, true, true, false, cl_kin_advance,           \
+                         doc_, true, true, false, true, cl_kin_advance,     \
                          cl_kin_stats, cl_kin_free)
 
 #endif

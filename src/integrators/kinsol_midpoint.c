@@ -37,6 +37,6 @@ static const cl_kin_scheme kin_midpoint = {
 
 CL_KIN_INTEGRATOR(cl_integrator_kinsol_midpoint, kin_midpoint,
                   "kinsol-midpoint",
-                  &cl_region_a_stable,
+                  &cl_region_midpoint,
                   "implicit midpoint rule, KINSOL Newton + linsol (default "
                   "klu), fixed step dt");

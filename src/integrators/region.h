@@ -36,6 +36,14 @@ typedef struct {
     cl_region_kind kind;
     int degree;    /* CL_REGION_TAYLOR: p, 1..4 */
     double alpha;  /* CL_REGION_SECTOR: the angle alpha, degrees */
+    /* The amplification of one step on the undamped oscillator x'' =
+     * -w^2 x at w h = wh: the spectral radius of the step's map of the
+     * method's state (|R(i wh)| of a one-step method; the largest root of
+     * a multistep method's characteristic polynomial), to which the
+     * amplitude ratio per step tends over many steps; param is the
+     * method's parameter (generalized-alpha: rho_inf), ignored by the
+     * others.  NULL where no formula is given. */
+    double (*amplification)(double wh, double param);
 } cl_region;
 
 extern const cl_region cl_region_taylor1;   /* fe */
@@ -44,6 +52,24 @@ extern const cl_region cl_region_symplectic;
 /* Backward Euler, BDF2, the implicit midpoint rule, and the linearised
  * semi-implicit BE and BDF2, which coincide with them on a linear system. */
 extern const cl_region cl_region_a_stable;
+/* The same A-stable region with the amplification of each method
+ * (region_amplification.c, docs/integrators.md 4.3): backward Euler
+ * 1/sqrt(1 + wh^2), BDF2, the implicit midpoint rule 1, and
+ * generalized-alpha (Chung and Hulbert 1993) at param = rho_inf. */
+extern const cl_region cl_region_be;
+extern const cl_region cl_region_bdf2;
+extern const cl_region cl_region_midpoint;
+extern const cl_region cl_region_galpha;
+
+/* Generalized-alpha's parameters for rho_inf in [0, 1] (Chung and
+ * Hulbert 1993, eqs. 25 and 17): alpha_m = (2 rho - 1)/(rho + 1),
+ * alpha_f = rho/(rho + 1), gamma = 1/2 - alpha_m + alpha_f,
+ * beta = (1 - alpha_m + alpha_f)^2 / 4. */
+typedef struct {
+    double am, af, gamma, beta;
+} cl_galpha;
+
+cl_galpha cl_galpha_params(double rho_inf);
 /* Variable-order BDF up to order 5 (CVODE, IDA, GSL msbdf at their default
  * highest order): the order-5 sector, alpha = 51.84 degrees (Hairer and
  * Wanner, V.2, table 2.3); orders 1 and 2 alone are A-stable. */

@@ -20,6 +20,7 @@
  *   gsl-rk8pd         GSL odeiv2 rk8pd, explicit adaptive reference
  *   gsl-msbdf         GSL odeiv2 msbdf, BDF with dense Jacobian (n <= 1728)
  *   kinsol-be, kinsol-bdf2, kinsol-midpoint  fully implicit, KINSOL Newton
+ *   kinsol-galpha     generalized-alpha (Chung and Hulbert), KINSOL Newton
  *   semi-be           Baraff-Witkin linearised backward Euler
  *   semi-bdf2         Choi-Ko semi-implicit BDF2 (Jiao, eq. 15) */
 #include "integrators/integrator.h"
@@ -43,6 +44,7 @@
     X(kinsol_be)                                                            \
     X(kinsol_bdf2)                                                          \
     X(kinsol_midpoint)                                                      \
+    X(kinsol_galpha)                                                        \
     X(semi_be)                                                              \
     X(semi_bdf2)                                                            \
 

@@ -191,7 +191,7 @@ static void sbdf2_stats(const void *state, cl_stats *out)
 
 const cl_integrator_type cl_integrator_semi_bdf2 = {
     .name = "semi-bdf2",
-    .region = &cl_region_a_stable,
+    .region = &cl_region_bdf2,
     .doc = "Choi-Ko semi-implicit BDF2 (Jiao, eq. 15), one linear solve per "
            "step, first step semi-be, fixed step dt",
     .fixed_step = true,

@@ -70,7 +70,7 @@ static void sbe_stats(const void *state, cl_stats *out)
 
 const cl_integrator_type cl_integrator_semi_be = {
     .name = "semi-be",
-    .region = &cl_region_a_stable,
+    .region = &cl_region_be,
     .doc = "Baraff-Witkin linearised backward Euler, one linear solve per "
            "step, fixed step dt",
     .fixed_step = true,

@@ -1,0 +1,180 @@
+/* The numerical damping study (analysis/numdamp.c) on spring2: the
+ * measured amplitude ratio per step against the theory, |R(i w h)| =
+ * 1/sqrt(1 + (w h)^2) for backward Euler (kinsol-be, semi-be) and 1 for
+ * the implicit midpoint rule, at w h = 1 and 10; generalized-alpha's
+ * spectral radius at rho_inf = 0.5; the registry's implicit fixed-step
+ * integrators selected by their tables; bad requests refused. */
+#include <criterion/criterion.h>
+
+#include <math.h>
+
+#include "analysis/numdamp.h"
+#include "integrators/region.h"
+#include "problem.h"
+#include "runcli.h"
+
+static cl_numdamp_result nd_measure(const char *name, double rho,
+                                    const double *wh, int n)
+{
+    pr_problem p;
+    pr_load(&p, "problems/spring2.ini", NULL, NULL);
+    const cl_integrator_type *type = cl_integrator_find(name);
+    cr_assert_not_null(type, "%s", name);
+    cl_integrator_opts io = {.rho_inf = rho};
+    cl_numdamp_result r;
+    cl_error err = {0};
+    double w;
+    cr_assert_eq(cl_numdamp_frequency(p.m, &w, &err), CL_OK, "%s", err.msg);
+    cr_assert_float_eq(w, 10.0, 1e-9, "spring2: w = sqrt(ks/m)");
+    cr_assert_eq(cl_numdamp_run(p.m, type, &io, w, wh, n, 200, &r, &err),
+                 CL_OK, "%s", err.msg);
+    for (int i = 0; i < r.n; i++) {
+        cr_assert_eq(r.p[i].rc, CL_OK, "%s: %s", name, r.p[i].why.msg);
+        cr_log_info("%s w h = %g: measured %.9f theory %.9f (%ld fitted)",
+                    name, r.p[i].wh, r.p[i].measured, r.p[i].theory,
+                    r.p[i].fitted);
+    }
+    pr_free(&p);
+    return r;
+}
+
+Test(numdamp, backward_euler_and_midpoint_match_theory)
+{
+    const double wh[] = {1.0, 10.0};
+    const char *const be[] = {"kinsol-be", "semi-be"};
+    for (int k = 0; k < 2; k++) {
+        cl_numdamp_result r = nd_measure(be[k], 0, wh, 2);
+        for (int i = 0; i < 2; i++) {
+            double R = 1.0 / sqrt(1.0 + wh[i] * wh[i]);
+            cr_assert_float_eq(r.p[i].theory, R, 1e-15);
+            cr_assert(fabs(r.p[i].measured / R - 1.0) < 1e-6, "%s %g: %g",
+                      be[k], wh[i], r.p[i].measured);
+        }
+    }
+    cl_numdamp_result r = nd_measure("kinsol-midpoint", 0, wh, 2);
+    for (int i = 0; i < 2; i++) {
+        cr_assert_eq(r.p[i].theory, 1.0);
+        cr_assert(fabs(r.p[i].measured - 1.0) < 1e-9, "%g",
+                  r.p[i].measured);
+        cr_assert_lt(fabs(r.p[i].loss_period), 1e-8);
+    }
+}
+
+Test(numdamp, galpha_matches_its_spectral_radius)
+{
+    const double wh[] = {1.0, 10.0};
+    cl_numdamp_result r = nd_measure("kinsol-galpha", 0.5, wh, 2);
+    for (int i = 0; i < 2; i++)
+        cr_assert(fabs(r.p[i].measured / r.p[i].theory - 1.0) < 1e-3,
+                  "%g: %g vs %g", wh[i], r.p[i].measured, r.p[i].theory);
+}
+
+Test(numdamp, implicit_fixed_step_integrators_selected)
+{
+    const char *const in[] = {"kinsol-be", "kinsol-bdf2", "kinsol-midpoint",
+                              "kinsol-galpha", "semi-be", "semi-bdf2"};
+    const char *const out[] = {"fe", "rk4", "symplectic-euler", "verlet",
+                               "cvode-bdf", "ida", "gsl-msbdf"};
+    for (size_t k = 0; k < sizeof in / sizeof *in; k++) {
+        const cl_integrator_type *t = cl_integrator_find(in[k]);
+        cr_assert(t && cl_numdamp_selects(t), "%s", in[k]);
+        cr_assert_not_null(t->region->amplification, "%s", in[k]);
+    }
+    for (size_t k = 0; k < sizeof out / sizeof *out; k++)
+        cr_assert(!cl_numdamp_selects(cl_integrator_find(out[k])), "%s",
+                  out[k]);
+}
+
+Test(numdamp, bad_requests_refused)
+{
+    pr_problem p;
+    pr_load(&p, "problems/spring2.ini", NULL, NULL);
+    cl_integrator_opts io = {0};
+    cl_numdamp_result r;
+    cl_error err = {0};
+    const double wh[] = {1.0};
+    cr_assert_eq(cl_numdamp_run(p.m, cl_integrator_find("kinsol-be"), &io,
+                                10.0, wh, 1, 3, &r, &err), CL_EINVAL);
+    cr_assert_eq(cl_numdamp_run(p.m, cl_integrator_find("cvode-bdf"), &io,
+                                10.0, wh, 1, 10, &r, &err), CL_EINVAL);
+    cr_assert(strstr(err.msg, "fixed-step"), "%s", err.msg);
+    pr_free(&p);
+    pr_load(&p, "problems/spring2.ini", "type1.ks=0", NULL);
+    double w;
+    cr_assert_eq(cl_numdamp_frequency(p.m, &w, &err), CL_EINVAL);
+    cr_assert(strstr(err.msg, "no oscillating mode"), "%s", err.msg);
+    pr_free(&p);
+}
+
+/* The cloth study on hang-smooth (5 x 5, no gravity: at rest), 20 steps
+ * of 0.01 s: backward Euler leaves each mode |R(i w dt)|^40 of its energy
+ * (to 1 %, where it is above 1e-12), the midpoint rule all of it (to
+ * 1e-3); with gravity the state is not at rest and the study refuses. */
+Test(numdamp, modal_energy_on_the_cloth)
+{
+    pr_problem p;
+    pr_load(&p, "problems/hang-smooth.ini", "cloth.n=5",
+            "gravity.g=0,0,0");
+    cl_numdamp_modes b;
+    cl_error err = {0};
+    cr_assert_eq(cl_numdamp_modes_init(p.m, 1e-3, &b, &err), CL_OK, "%s",
+                 err.msg);
+    cr_assert_eq(b.nosc, 46, "in-plane modes of 23 free particles");
+    const char *const names[] = {"kinsol-be", "kinsol-midpoint"};
+    for (int k = 0; k < 2; k++) {
+        cl_integrator_opts io = {0};
+        cl_numdamp_modal r;
+        double worst = 0.0;
+        cr_assert_eq(cl_numdamp_modal_run(p.m, &b, cl_integrator_find(
+                                              names[k]), &io, 0.01, 0.2, &r,
+                                          &err), CL_OK, "%s", err.msg);
+        cr_assert_eq(r.rc, CL_OK, "%s", r.why.msg);
+        for (size_t j = 0; j < r.nosc; j++)
+            if (r.ratio[j] > 1e-12)
+                worst = fmax(worst, fabs(r.ratio[j] / r.theory[j] - 1.0));
+        cr_log_info("%s: modes %.4g .. %.4g rad/s, energy left %.3e .. "
+                    "%.3e, worst relative difference from theory %.3e",
+                    names[k], r.w[0], r.w[r.nosc - 1], r.ratio[0],
+                    r.ratio[r.nosc - 1], worst);
+        cr_assert_lt(worst, k ? 1e-3 : 1e-2);
+        cl_numdamp_modal_free(&r);
+    }
+    cl_numdamp_modes_free(&b);
+    pr_free(&p);
+    pr_load(&p, "problems/hang-smooth.ini", "cloth.n=5", NULL);
+    cr_assert_eq(cl_numdamp_modes_init(p.m, 1e-3, &b, &err), CL_EINVAL);
+    cr_assert(strstr(err.msg, "at rest"), "%s", err.msg);
+    pr_free(&p);
+}
+
+/* The command line: by default every implicit fixed-step integrator,
+ * damping.csv with one row per integrator and w h; rho_inf reaches
+ * kinsol-galpha's theory; an adaptive integrator and a bad range are
+ * refused. */
+Test(numdamp, command_line)
+{
+    char dir[512], path[600], csv[16384];
+    cli_result r;
+    tmp_mkdtemp(dir, sizeof dir, "numdamp");
+    cli_run(&r, "damping", "spring2", "--wh", "1:10:2", "--steps", "50",
+            "--rho-inf", "0", "--quiet", "--out", dir, NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    snprintf(path, sizeof path, "%s/damping.csv", dir);
+    tmp_slurp(path, csv, sizeof csv);
+    cr_assert_eq(cli_count_lines(csv), 1 + 6 * 2, "%s", csv);
+    cr_assert(strstr(csv, "kinsol-be,1,0.1,0.707106"), "%s", csv);
+    cr_assert(strstr(csv, "kinsol-galpha,10,1,"), "%s", csv);
+    char want[64];
+    snprintf(want, sizeof want, ",%.9g,", cl_region_galpha.amplification(
+                                             10.0, 0.0));
+    cr_assert(strstr(csv, want), "theory at rho_inf 0 (%s): %s", want, csv);
+    cli_run(&r, "damping", "spring2", "--integrator", "cvode-bdf", "--out",
+            dir, NULL);
+    cli_assert_error(&r, 0, "cvode-bdf", "fixed-step", NULL);
+    cli_result_free(&r);
+    cli_run(&r, "damping", "spring2", "--wh", "10:1:3", "--out", dir, NULL);
+    cli_assert_error(&r, 0, "LO:HI:N", NULL);
+    cli_result_free(&r);
+    tmp_rm_rf(dir);
+}
