@@ -105,6 +105,18 @@ static double number_at(const cl_sweep_table *t, int row, int col)
     return end > s && !*end ? v : NAN;
 }
 
+const char *cl_sweep_table_text(const cl_sweep_table *t, int row,
+                                const char *name)
+{
+    return at(t, row, column(t, name));
+}
+
+double cl_sweep_table_value(const cl_sweep_table *t, int row,
+                            const char *name)
+{
+    return number_at(t, row, column(t, name));
+}
+
 /* ---- selecting the rows of the study's problem -------------------------- */
 
 static bool same_value(const char *a, const char *b)
@@ -155,6 +167,8 @@ cl_status cl_sweep_table_select(cl_sweep_table *t, cl_config *cfg,
                             "of 'clothode sweep collect' (no role, "
                             "integrator or status column)", t->path);
     cl_status rc = CL_OK;
+    for (int r = 0; r < t->nrow; r++)
+        t->keep[r] = true;
     for (int c = lo + 1; !rc && c < hi; c++)
         if (problem_axis(t->head[c]) && strchr(t->head[c], '.'))
             rc = select_axis(t, cfg, c, err);
@@ -163,21 +177,14 @@ cl_status cl_sweep_table_select(cl_sweep_table *t, cl_config *cfg,
 
 /* ---- the rows of one method --------------------------------------------- */
 
-typedef struct {
-    int row;
-    double param;
-} row_param;
-
 static int by_param_down(const void *a, const void *b)
 {
-    double x = ((const row_param *)a)->param, y = ((const row_param *)b)->param;
+    double x = ((const cl_sweep_row *)a)->param, y = ((const cl_sweep_row *)b)->param;
     return (x < y) - (x > y);
 }
 
-/* The kept job rows of `label` with a number in column `param`, largest
- * first; how many (at most max), or -1 with err set. */
-static int method_rows(const cl_sweep_table *t, const char *label,
-                       const char *param, row_param *out, int max,
+int cl_sweep_table_rows(const cl_sweep_table *t, const char *label,
+                       const char *param, cl_sweep_row *out, int max,
                        cl_error *err)
 {
     int cp = column(t, param), ci = column(t, "integrator"), n = 0;
@@ -192,7 +199,7 @@ static int method_rows(const cl_sweep_table *t, const char *label,
         if (n == max)
             return cl_error_set(err, CL_EINVAL, "--from-sweep %s: more than "
                                 "%d runs of %s", t->path, max, label), -1;
-        out[n++] = (row_param){r, number_at(t, r, cp)};
+        out[n++] = (cl_sweep_row){r, number_at(t, r, cp)};
     }
     if (n == 0)
         return cl_error_set(err, CL_EINVAL, "--from-sweep %s: no runs of %s "
@@ -208,6 +215,8 @@ static void row_stats(const cl_sweep_table *t, int r, cl_stats *s)
            rhs = number_at(t, r, column(t, "rhs_evals"));
     s->steps = isnan(steps) ? 0 : (long)steps;
     s->rhs_evals = isnan(rhs) ? 0 : (long)rhs;
+    double newton = number_at(t, r, column(t, "nonlin_iters"));
+    s->nonlin_iters = isnan(newton) ? 0 : (long)newton;
     s->cpu = number_at(t, r, column(t, "cpu"));
     s->wall = number_at(t, r, column(t, "wall"));
 }
@@ -224,30 +233,39 @@ static bool went_unstable(const cl_sweep_table *t, int r)
            !isnan(number_at(t, r, column(t, "t_reached")));
 }
 
+bool cl_sweep_table_trial(const cl_sweep_table *t, cl_sweep_row row,
+                          cl_stab_trial *tr)
+{
+    int r = row.row;
+    memset(tr, 0, sizeof *tr);
+    if (!complete(t, r) && !went_unstable(t, r))
+        return false;
+    tr->dt = row.param;
+    tr->rc = complete(t, r) ? CL_OK : CL_EBLOWUP;
+    row_stats(t, r, &tr->stats);
+    tr->nsteps = tr->stats.steps;
+    if (tr->rc)
+        snprintf(tr->why.msg, sizeof tr->why.msg, "failed at t = %g s (%s)",
+                 number_at(t, r, column(t, "t_reached")),
+                 at(t, r, column(t, "exit")));
+    return true;
+}
+
 cl_status cl_stab_from_sweep(const cl_sweep_table *t, const char *label,
                              const cl_integrator_type *type,
                              cl_stab_result *r, cl_error *err)
 {
-    row_param rows[CL_STAB_MAX_TRIALS];
-    int n = method_rows(t, label, "run.dt", rows, CL_STAB_MAX_TRIALS, err);
+    cl_sweep_row rows[CL_STAB_MAX_TRIALS];
+    int n = cl_sweep_table_rows(t, label, "run.dt", rows, CL_STAB_MAX_TRIALS, err);
     memset(r, 0, sizeof *r);
     r->type = type;
     r->label = label;
     r->dt_stable = r->dt_unstable = NAN;
     r->failed = -1;
     for (int k = 0; k < n; k++) {
-        int row = rows[k].row;
-        if (!complete(t, row) && !went_unstable(t, row))
-            continue; /* never ran, or refused its input */
         cl_stab_trial *tr = &r->trial[r->ntrial];
-        tr->dt = rows[k].param;
-        tr->rc = complete(t, row) ? CL_OK : CL_EBLOWUP;
-        row_stats(t, row, &tr->stats);
-        tr->nsteps = tr->stats.steps;
-        if (tr->rc)
-            snprintf(tr->why.msg, sizeof tr->why.msg, "failed at t = %g s "
-                     "(%s)", number_at(t, row, column(t, "t_reached")),
-                     at(t, row, column(t, "exit")));
+        if (!cl_sweep_table_trial(t, rows[k], tr))
+            continue; /* never ran, or refused its input */
         if (tr->rc) /* the smallest unstable step: rows go down in dt */
             r->failed = r->ntrial;
         r->ntrial++;
@@ -264,12 +282,12 @@ cl_status cl_conv_from_sweep(const cl_sweep_table *t, const char *label,
                              const cl_integrator_type *type,
                              cl_conv_result *r, cl_error *err)
 {
-    row_param rows[CL_CONV_MAX_LEVELS];
+    cl_sweep_row rows[CL_CONV_MAX_LEVELS];
     memset(r, 0, sizeof *r);
     r->type = type;
     r->label = label;
     r->fixed = type->fixed_step;
-    int n = method_rows(t, label, r->fixed ? "run.dt" : "run.rtol", rows,
+    int n = cl_sweep_table_rows(t, label, r->fixed ? "run.dt" : "run.rtol", rows,
                         CL_CONV_MAX_LEVELS, err);
     for (int k = 0; k < n; k++) {
         int row = rows[k].row;
