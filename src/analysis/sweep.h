@@ -102,6 +102,13 @@ void cl_sweep_parts_free(cl_sweep *sw);
  * jobs are the same (a value listed twice). */
 cl_status cl_sweep_expand(cl_sweep *sw, cl_error *err);
 
+/* One more job of sw (sw->dir, ->problem, ->clothode and the axes set):
+ * `integrator` and value[a] for each axis a (NULL: unset), added to the
+ * axes' values; its id and command as cl_sweep_expand makes them.
+ * CL_EINVAL when it is a job sw has already. */
+cl_status cl_sweep_add_job(cl_sweep *sw, const char *integrator,
+                           const char *const *value, cl_error *err);
+
 /* The job's assignments "key=value", sorted, joined by '\n' into buf
  * (integrator first as "integrator=NAME"); the text its id hashes. */
 void cl_sweep_canonical(const cl_sweep *sw, const cl_sweep_job *j, char *buf,

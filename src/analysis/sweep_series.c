@@ -13,16 +13,15 @@ static cl_status read_series(const cl_sweep_table *t, int row,
                              cl_sweep_table *s, cl_error *err)
 {
     char path[4096];
-    const char *slash = strrchr(t->path, '/');
-    int dirlen = slash ? (int)(slash - t->path) : 1;
+    const char *table = t->paths[t->src[row]], *slash = strrchr(table, '/');
+    int dirlen = slash ? (int)(slash - table) : 1;
     snprintf(path, sizeof path, "%.*s/jobs/%s/run/series.csv", dirlen,
-             slash ? t->path : ".", cl_sweep_table_text(t, row, "id"));
+             slash ? table : ".", cl_sweep_table_text(t, row, "id"));
     cl_status rc = cl_sweep_table_read(path, s, err);
     if (rc == CL_EIO)
         rc = cl_error_set(err, CL_EIO, "--from-sweep %s: no series %s (the "
                           "jobs are read from jobs/ beside the table: "
-                          "collect into the sweep directory)", t->path,
-                          path);
+                          "collect into the sweep directory)", table, path);
     else if (!rc && s->nrow == 0)
         rc = cl_error_set(err, CL_EPARSE, "%s: no rows", path);
     return rc;

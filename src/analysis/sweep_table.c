@@ -40,37 +40,68 @@ static int split(const char *line, char ***cells, int *n)
     }
 }
 
-cl_status cl_sweep_table_read(const char *path, cl_sweep_table *t,
-                              cl_error *err)
+/* One file's rows appended to t (its header the first file's). */
+static cl_status read_one(const char *path, int src, cl_sweep_table *t,
+                          cl_error *err)
 {
-    memset(t, 0, sizeof *t);
     FILE *fp = fopen(path, "r");
     if (!fp)
         return cl_error_set(err, CL_EIO, "--from-sweep %s: cannot read it",
                             path);
-    char *line = NULL;
+    char *line = NULL, **head = NULL;
     size_t cap = 0;
-    int nf;
+    int nf, nhead = 0;
     cl_status rc = CL_OK;
-    t->path = strdup(path);
-    if (getline(&line, &cap, fp) > 0 && split(line, &t->head, &t->ncol) < 0)
+    if (getline(&line, &cap, fp) > 0 &&
+        split(line, src ? &head : &t->head, src ? &nhead : &t->ncol) < 0)
         rc = cl_error_set(err, CL_ENOMEM, "out of memory");
+    for (int k = 0; !rc && src && k < t->ncol; k++)
+        if (nhead != t->ncol || strcmp(head[k], t->head[k]))
+            rc = cl_error_set(err, CL_EPARSE, "--from-sweep %s: its columns "
+                              "are not those of %s (tables of the stages "
+                              "of one sweep are)", path, t->paths[0]);
+    cl_sweep_strings_free(head, nhead);
     while (!rc && getline(&line, &cap, fp) > 0) {
-        nf = split(line, &t->cell, &t->ncell);
+        int *grown = realloc(t->src, (size_t)(t->nrow + 1) * sizeof *grown);
+        nf = grown ? split(line, &t->cell, &t->ncell) : -1;
+        if (grown)
+            t->src = grown;
         if (nf < 0)
             rc = cl_error_set(err, CL_ENOMEM, "out of memory");
         else if (nf != t->ncol)
             rc = cl_error_set(err, CL_EPARSE, "%s:%d: %d fields, the header "
                               "has %d", path, t->nrow + 2, nf, t->ncol);
         else
-            t->nrow++;
+            t->src[t->nrow++] = src;
     }
     free(line);
     fclose(fp);
+    return rc;
+}
+
+cl_status cl_sweep_table_read(const char *list, cl_sweep_table *t,
+                              cl_error *err)
+{
+    memset(t, 0, sizeof *t);
+    t->path = strdup(list);
+    cl_status rc = t->path ? CL_OK
+                           : cl_error_set(err, CL_ENOMEM, "out of memory");
+    for (const char *p = list; !rc && *p; p += *p == ',') {
+        size_t len = strcspn(p, ",");
+        char **grown = realloc(t->paths, (size_t)(t->npath + 1) *
+                                             sizeof *grown);
+        if (grown)
+            t->paths = grown;
+        if (!grown || !(t->paths[t->npath] = strndup(p, len)))
+            rc = cl_error_set(err, CL_ENOMEM, "out of memory");
+        else
+            rc = read_one(t->paths[t->npath], t->npath, t, err), t->npath++;
+        p += len;
+    }
     t->keep = rc ? NULL : malloc((size_t)t->nrow + 1);
     for (int k = 0; t->keep && k < t->nrow; k++)
         t->keep[k] = true;
-    if (!rc && (!t->keep || !t->path))
+    if (!rc && !t->keep)
         rc = cl_error_set(err, CL_ENOMEM, "out of memory");
     return rc;
 }
@@ -81,6 +112,8 @@ void cl_sweep_table_free(cl_sweep_table *t)
     cl_sweep_strings_free(t->cell, t->ncell);
     free(t->keep);
     free(t->path);
+    cl_sweep_strings_free(t->paths, t->npath);
+    free(t->src);
     memset(t, 0, sizeof *t);
 }
 
@@ -119,7 +152,7 @@ double cl_sweep_table_value(const cl_sweep_table *t, int row,
 
 /* ---- selecting the rows of the study's problem -------------------------- */
 
-static bool same_value(const char *a, const char *b)
+bool cl_sweep_same_value(const char *a, const char *b)
 {
     char *ea, *eb;
     double x = strtod(a, &ea), y = strtod(b, &eb);
@@ -146,10 +179,10 @@ static cl_status select_axis(cl_sweep_table *t, cl_config *cfg, int c,
         if (!t->keep[r] || !strcmp(at(t, r, column(t, "role")), "reference"))
             continue;
         if (want)
-            t->keep[r] = same_value(at(t, r, c), want);
+            t->keep[r] = cl_sweep_same_value(at(t, r, c), want);
         else if (!first)
             first = at(t, r, c);
-        else if (!same_value(first, at(t, r, c)))
+        else if (!cl_sweep_same_value(first, at(t, r, c)))
             return cl_error_set(err, CL_EINVAL, "--from-sweep %s: the sweep "
                                 "has several values of %s (%s, %s, ...): "
                                 "give one with --set %s=VALUE", t->path, key,

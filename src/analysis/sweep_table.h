@@ -11,6 +11,7 @@
 #include "analysis/contact_study.h"
 #include "analysis/convergence.h"
 #include "analysis/energy_balance.h"
+#include "analysis/sweep.h"
 #include "analysis/stability.h"
 #include "core/error.h"
 #include "io/config.h"
@@ -18,7 +19,10 @@
 #define CL_SWEEP_TABLE_MAX_ROWS 1024 /* rows of one method a study takes */
 
 typedef struct {
-    char *path;
+    char *path;   /* as given: one table, or several separated by commas */
+    int npath;
+    char **paths; /* the tables */
+    int *src;     /* the table of each row (index into paths) */
     int ncol, nrow;
     char **head;  /* column names */
     char **cell;  /* nrow x ncol fields, row-major */
@@ -26,6 +30,8 @@ typedef struct {
     bool *keep;   /* rows still selected */
 } cl_sweep_table;
 
+/* The table at path, or the rows of several tables with the same columns
+ * (the stages of one sweep, `sweep refine`) given as "A.csv,B.csv". */
 cl_status cl_sweep_table_read(const char *path, cl_sweep_table *t,
                               cl_error *err);
 void cl_sweep_table_free(cl_sweep_table *t);
@@ -87,9 +93,21 @@ cl_status cl_conv_from_sweep(const cl_sweep_table *t, const char *label,
                              const cl_integrator_type *type,
                              cl_conv_result *r, cl_error *err);
 
+/* The next stage of the sweep sw over dt into next (its dir, problem
+ * and binary set): for every line of sw (an integrator and the values of
+ * the other axes) whose rows in t bracket a limit (cl_stab_from_sweep's
+ * smallest unstable dt and largest stable one below it, lo and hi) with
+ * hi > lo (1 + rel), `points` steps lo (hi/lo)^(i/(points+1)), each made
+ * T/N when the line has a t_end T.  next gets sw's axes, in sw's order
+ * (so that its collected table has the same columns), and no references;
+ * *brackets counts the lines refined.  CL_EINVAL without a dt axis. */
+cl_status cl_sweep_refine(const cl_sweep *sw, const cl_sweep_table *t,
+                          int points, double rel, cl_sweep *next,
+                          int *brackets, cl_error *err);
+
 /* The studies that need a run's time series read it from
- * DIR/jobs/ID/run/series.csv, DIR the table's directory (collect's default
- * output, DIR/collected.csv): CL_EIO naming the file when it is not
+ * DIR/jobs/ID/run/series.csv, DIR the directory of the row's table
+ * (collect's default output, DIR/collected.csv): CL_EIO naming the file when it is not
  * there. */
 
 /* The energy balance of `label` from its one row at the method's level
