@@ -89,6 +89,11 @@ typedef struct {
     cl_sweep_job *job;
 } cl_sweep;
 
+/* The values v of an axis appended to a->v: a comma-separated list,
+ * linspace(a, b, k) or logspace(a, b, k) (numbers written as the plan
+ * writes them); *ok false when v is none of these.  CL_ENOMEM. */
+cl_status cl_sweep_axis_values(cl_sweep_axis *a, const char *v, bool *ok);
+
 /* Read the [sweep] sections of cfg into sw's parts (problem into
  * sw->problem as written, for the caller to resolve; integrators; axes
  * with their values expanded).  Refused keys and values: CL_EINVAL naming
