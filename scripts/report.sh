@@ -125,6 +125,38 @@ for m in symplectic-euler rk4; do
 done
 draw map "dir='$map'; names='symplectic-euler rk4'; title_text='hang, T = 2 s: explicit step limit against grid size'"
 
+echo "report: stability against stiffness (hang n = 6, type1.ks = 1e2 .. 1e7)"
+# Every fixed-step method of the registry (list --integrators): the search
+# at each ks beside the spectrum's prediction, one process per kind and
+# value on GNU parallel; "NAME.dat: ks stable unstable predicted" and the
+# fitted slopes of log dt against log ks (slopes.txt).
+st=$res/stiffness
+rm -rf "$st" && mkdir -p "$st"
+stiff() { # kind ks
+    "$bin" stability hang --quiet --set cloth.n=6 --t-end 0.1 --dt-max 0.01 \
+        --dt-min 1e-6 --rel 0.05 --out "$st/$1-$2" --axis "type1.ks=$2" \
+        --integrator "$("$bin" list --integrators "$1")"
+}
+export -f stiff
+export bin st
+parallel -j "${REPORT_JOBS:-100%}" stiff ::: explicit implicit ::: \
+    1e2 1e3 1e4 1e5 1e6 1e7
+awk -F, -v dir="$st" 'FNR > 1 { print $2, $3, $4, $5 > (dir "/" $1 ".dat") }' \
+    "$st"/*/limits.csv
+for f in "$st"/*.dat; do sort -g "$f" -o "$f"; done
+awk 'function fit(n, x, y,   i, sx, sy, sxx, sxy) {
+         for (i = 1; i <= n; i++) {
+             sx += x[i]; sy += y[i]; sxx += x[i] * x[i]; sxy += x[i] * y[i] }
+         return n < 2 ? "nan" : sprintf("%.3f", (n * sxy - sx * sy) / (n * sxx - sx * sx)) }
+     FNR == 1 { if (m) out(); m = split(FILENAME, p, "/"); name = p[m]
+                sub(/\.dat$/, "", name); nm = np = 0 }
+     $2 + 0 > 0 && $3 + 0 > 0 { nm++; xm[nm] = log($1); ym[nm] = log(sqrt($2 * $3)) }
+     $4 + 0 > 0 && $4 != "inf" { np++; xp[np] = log($1); yp[np] = log($4) }
+     function out() { print name, fit(nm, xm, ym), fit(np, xp, yp) }
+     END { out() }' "$st"/*.dat | tee "$st/slopes.txt"
+names=$(cd "$st" && ls ./*.dat | sed 's|^\./||; s|\.dat$||' | tr '\n' ' ')
+draw stiffness "dir='$st'; names='$names'; title_text='hang 6 x 6, T = 0.1 s: largest stable step against ks'"
+
 echo "report: inverse sinc and counts"
 "$bin" asinc --points 1000 --csv > "$res/asinc.csv"
 draw asinc "data='$res/asinc.csv'; title_text='Type2 curvature: asinc against the polynomial of Jiao'"
