@@ -63,6 +63,42 @@ sweep workprecision "$res/workprecision"
 names=$(split_csv "$res/workprecision/workprecision.csv" "$res/workprecision/dat" 4 10)
 draw workprecision "dir='$res/workprecision/dat'; names='$names'; title_text='hang 16 x 16, T = 0.2 s: CPU time against error'"
 
+echo "report: work-precision of every method on hang n = 16 and 32 (T = 0.02 s)"
+# Every integrator of the registry (list --integrators fixed, adaptive):
+# one sweep over both sizes, fixed steps T/20 .. T/160, tolerances 1e-4 ..
+# 1e-7, against cvode-bdf at rtol 1e-11; a figure per size.
+wpa=$res/workprecision-all
+rm -rf "$wpa" && mkdir -p "$wpa"
+fixed=$("$bin" list --integrators fixed)
+adaptive=$("$bin" list --integrators adaptive)
+cat > "$wpa/all.ini" <<EOF
+[sweep]
+problem = $PWD/problems/hang.ini
+reference = 1e-11
+t_end = 0.02
+n = 16, 32
+run.samples = 2
+
+[sweep.fixed]
+integrator = $fixed
+dt = 1e-3, 5e-4, 2.5e-4, 1.25e-4
+
+[sweep.adaptive]
+integrator = $adaptive
+rtol = 1e-4, 1e-5, 1e-6, 1e-7
+atol = rtol / 100
+EOF
+"$bin" sweep plan "$wpa/all.ini" --out "$wpa/sweep" --quiet
+"$bin" sweep run "$wpa/sweep" --engine local --jobs "${REPORT_JOBS:-0}" --quiet
+"$bin" sweep collect "$wpa/sweep" --out "$wpa/sweep.csv" | grep " complete, "
+for n in 16 32; do
+    "$bin" workprecision hang --quiet --out "$wpa/n$n" --t-end 0.02 \
+        --set cloth.n="$n" --from-sweep "$wpa/sweep.csv" \
+        --integrator "$fixed,$adaptive"
+    names=$(split_csv "$wpa/n$n/workprecision.csv" "$wpa/n$n/dat" 4 10)
+    draw "workprecision-$n" "dir='$wpa/n$n/dat'; names='$names'; title_text='hang $n x $n, T = 0.02 s: CPU time against error, every method'" workprecision
+done
+
 echo "report: energy balance (hang-smooth, undamped)"
 "$bin" energy hang-smooth --quiet --out "$res/energy" --t-end 2 --dt 5e-4 \
     --samples 2000 --integrator \

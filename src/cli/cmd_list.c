@@ -67,7 +67,8 @@ static const cl_cli_opt list_rows[] = {
      .help = "only the names of the integrators of one kind, "
              "comma-separated: explicit (fixed step, a Taylor or symplectic "
              "stability region), implicit (fixed step, a sector region), "
-             "fixed (every fixed-step one) or all"},
+             "fixed (every fixed-step one), adaptive (error control) or "
+             "all"},
     CL_CLI_HELP_ROW,
     {.type = CL_CLI_END}};
 
@@ -87,6 +88,8 @@ static bool of_kind(const cl_integrator_type *t, const char *kind)
                (r == CL_REGION_TAYLOR || r == CL_REGION_SYMPLECTIC);
     if (!strcmp(kind, "implicit"))
         return t->fixed_step && r == CL_REGION_SECTOR;
+    if (!strcmp(kind, "adaptive"))
+        return !t->fixed_step;
     return !strcmp(kind, "all") || t->fixed_step;
 }
 
@@ -94,9 +97,10 @@ static bool of_kind(const cl_integrator_type *t, const char *kind)
 static int list_kind(const char *kind)
 {
     if (strcmp(kind, "explicit") && strcmp(kind, "implicit") &&
-        strcmp(kind, "fixed") && strcmp(kind, "all")) {
+        strcmp(kind, "fixed") && strcmp(kind, "adaptive") &&
+        strcmp(kind, "all")) {
         fprintf(stderr, "clothode: list --integrators %s: expected "
-                        "explicit, implicit, fixed or all\n", kind);
+                        "explicit, implicit, fixed, adaptive or all\n", kind);
         return 2;
     }
     const char *sep = "";
