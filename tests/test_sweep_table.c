@@ -208,9 +208,9 @@ Test(sweep_table, stability_axis_from_sweep)
             "--integrator", "rk4", "--axis", "type1.ks=1000,4000",
             "--from-sweep", path, "--out", out, NULL);
     cli_assert_ok(&r);
-    cr_assert(strstr(r.out, "rk4                       1000       0.002 "
+    cr_assert(strstr(r.out, "rk4                      1000       0.002 "
                             "      0.004"), "%s", r.out);
-    cr_assert(strstr(r.out, "rk4                       4000       0.001 "
+    cr_assert(strstr(r.out, "rk4                      4000       0.001 "
                             "      0.002"), "%s", r.out);
     cr_assert(strstr(r.out, "rk4                                  -0.500 "
                             "     -0.500"), "%s", r.out);

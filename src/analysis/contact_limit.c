@@ -20,6 +20,13 @@ cl_status cl_climit_predict(cl_model *m, const cl_integrator_type *type,
     return rc;
 }
 
+void cl_climit_print(FILE *fp, const cl_climit_result *r)
+{
+    fprintf(fp, "%-18s %10.4g %11.4g %11.4g %11.4g %10.4g %5d\n", r->label,
+            r->k, r->stab.dt_stable, r->stab.dt_unstable, r->predicted,
+            r->w_max, r->stab.ntrial);
+}
+
 void cl_climit_write_row(FILE *fp, const cl_climit_result *r, bool header)
 {
     if (header)

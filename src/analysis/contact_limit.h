@@ -34,6 +34,10 @@ cl_status cl_climit_predict(cl_model *m, const cl_integrator_type *type,
                             double t, const double *x, const double *v,
                             cl_climit_result *r, cl_error *err);
 
+/* One line of the table a study prints: integrator, k, stable dt,
+ * unstable dt, predicted dt, w_max, runs. */
+void cl_climit_print(FILE *fp, const cl_climit_result *r);
+
 /* One CSV row, header first when `header`:
  * integrator,k,dt_stable,dt_unstable,predicted,w_max,runs */
 void cl_climit_write_row(FILE *fp, const cl_climit_result *r, bool header);

@@ -472,10 +472,7 @@ static const cl_cli_study step_study = {
 
 static void print_k_result(const void *result)
 {
-    const cl_climit_result *r = result;
-    printf("%-18s %10.4g %11.4g %11.4g %11.4g %10.4g %5d\n", r->label, r->k,
-           r->stab.dt_stable, r->stab.dt_unstable, r->predicted, r->w_max,
-           r->stab.ntrial);
+    cl_climit_print(stdout, result);
 }
 
 static cl_status begin_k(cl_model *m, const cl_cli_job *job, void *ctx,

@@ -185,10 +185,7 @@ static double log_slope(const double *x, const double *y, int n)
 
 static void print_axis_result(const void *result)
 {
-    const cl_climit_result *r = result;
-    printf("%-18s %11.4g %11.4g %11.4g %11.4g %10.4g %5d\n", r->label, r->k,
-           r->stab.dt_stable, r->stab.dt_unstable, r->predicted, r->w_max,
-           r->stab.ntrial);
+    cl_climit_print(stdout, result);
 }
 
 static cl_status begin_axis(cl_model *m, const cl_cli_job *job, void *ctx,
@@ -281,7 +278,7 @@ static void end_axis(void *ctx)
 
 static const cl_cli_study axis_study = {
     .csv = "limits.csv",
-    .columns = "integrator               value   stable dt unstable dt "
+    .columns = "integrator              value   stable dt unstable dt "
                "predicted dt w_max [1/s]  runs",
     .size = sizeof(cl_climit_result), .begin = begin_axis,
     .run = run_axis, .print = print_axis_result, .summary = axis_summary,
