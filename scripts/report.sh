@@ -95,11 +95,21 @@ EOF
 "$bin" sweep plan "$wpa/all.ini" --out "$wpa/sweep" --quiet
 "$bin" sweep run "$wpa/sweep" --engine local --jobs "${REPORT_JOBS:-0}" --quiet
 "$bin" sweep collect "$wpa/sweep" --out "$wpa/sweep.csv" | grep " complete, "
+# The methods of KIND with a complete run at size N (a method the problem
+# refuses, verlet-pbd without [pbd], a dense one above its size, has none).
+ran() { # kind n
+    awk -F, -v list="${!1}" -v n="$2" '
+        NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+        $2 == "job" && $c["cloth.n"] == n && $c["status"] == "complete" { ok[$3] = 1 }
+        END { m = split(list, l, ","); s = ""
+              for (i = 1; i <= m; i++) if (l[i] in ok) s = s (s == "" ? "" : ",") l[i]
+              print s }' "$wpa/sweep.csv"
+}
 for n in 16 32; do
     for kind in fixed adaptive; do # two lists: a --set line is short
         "$bin" workprecision hang --quiet --out "$wpa/n$n/$kind" \
             --t-end 0.01 --set cloth.n="$n" --from-sweep "$wpa/sweep.csv" \
-            --integrator "${!kind}"
+            --integrator "$(ran "$kind" "$n")"
     done
     cat "$wpa/n$n/fixed/workprecision.csv" > "$wpa/n$n/workprecision.csv"
     tail -n +2 "$wpa/n$n/adaptive/workprecision.csv" >> "$wpa/n$n/workprecision.csv"
