@@ -63,6 +63,60 @@ sweep workprecision "$res/workprecision"
 names=$(split_csv "$res/workprecision/workprecision.csv" "$res/workprecision/dat" 4 10)
 draw workprecision "dir='$res/workprecision/dat'; names='$names'; title_text='hang 16 x 16, T = 0.2 s: CPU time against error'"
 
+echo "report: work-precision of every method on hang n = 16 and 32 (T = 0.01 s)"
+# Every integrator of the registry (list --integrators fixed, adaptive):
+# one sweep over both sizes, fixed steps T/10 .. T/80, tolerances 1e-4 ..
+# 1e-7, against cvode-bdf at rtol 1e-11; a figure per size.  Each run
+# stops after 2 s of wall time, checked at its 20 samples (status budget,
+# left out of the figure): the fully implicit KINSOL methods take seconds
+# per step at n = 32.
+wpa=$res/workprecision-all
+rm -rf "$wpa" && mkdir -p "$wpa"
+fixed=$("$bin" list --integrators fixed)
+adaptive=$("$bin" list --integrators adaptive)
+cat > "$wpa/all.ini" <<EOF
+[sweep]
+problem = $PWD/problems/hang.ini
+reference = 1e-11
+t_end = 0.01
+n = 16, 32
+run.samples = 20
+run.budget_wall = 2
+
+[sweep.fixed]
+integrator = $fixed
+dt = 1e-3, 5e-4, 2.5e-4, 1.25e-4
+
+[sweep.adaptive]
+integrator = $adaptive
+rtol = 1e-4, 1e-5, 1e-6, 1e-7
+atol = rtol / 100
+EOF
+"$bin" sweep plan "$wpa/all.ini" --out "$wpa/sweep" --quiet
+"$bin" sweep run "$wpa/sweep" --engine local --jobs "${REPORT_JOBS:-0}" --quiet
+"$bin" sweep collect "$wpa/sweep" --out "$wpa/sweep.csv" | grep " complete, "
+# The methods of KIND with a complete run at size N (a method the problem
+# refuses, verlet-pbd without [pbd], a dense one above its size, has none).
+ran() { # kind n
+    awk -F, -v list="${!1}" -v n="$2" '
+        NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+        $2 == "job" && $c["cloth.n"] == n && $c["status"] == "complete" { ok[$3] = 1 }
+        END { m = split(list, l, ","); s = ""
+              for (i = 1; i <= m; i++) if (l[i] in ok) s = s (s == "" ? "" : ",") l[i]
+              print s }' "$wpa/sweep.csv"
+}
+for n in 16 32; do
+    for kind in fixed adaptive; do # two lists: a --set line is short
+        "$bin" workprecision hang --quiet --out "$wpa/n$n/$kind" \
+            --t-end 0.01 --set cloth.n="$n" --from-sweep "$wpa/sweep.csv" \
+            --integrator "$(ran "$kind" "$n")"
+    done
+    cat "$wpa/n$n/fixed/workprecision.csv" > "$wpa/n$n/workprecision.csv"
+    tail -n +2 "$wpa/n$n/adaptive/workprecision.csv" >> "$wpa/n$n/workprecision.csv"
+    names=$(split_csv "$wpa/n$n/workprecision.csv" "$wpa/n$n/dat" 4 10)
+    draw "workprecision-$n" "dir='$wpa/n$n/dat'; names='$names'; title_text='hang $n x $n, T = 0.01 s: CPU time against error, every method'" workprecision
+done
+
 echo "report: energy balance (hang-smooth, undamped)"
 "$bin" energy hang-smooth --quiet --out "$res/energy" --t-end 2 --dt 5e-4 \
     --samples 2000 --integrator \
@@ -102,8 +156,19 @@ echo "report: stability map, explicit limits of hang against the grid size (swee
 map=$res/limits/map
 rm -rf "$map" && mkdir -p "$map"
 sweep map "$map"
+# two more stages inside the brackets (sweep refine): 62 % -> 10 % -> 2 %
+tables=$map/sweep.csv
+for stage in 1 2; do
+    "$bin" sweep refine "$map/sweep" --table "$tables" --points 4 \
+        --out "$map/refine$stage" --quiet
+    "$bin" sweep run "$map/refine$stage" --engine local \
+        --jobs "${REPORT_JOBS:-0}" --quiet
+    "$bin" sweep collect "$map/refine$stage" --out "$map/refine$stage.csv" |
+        grep " complete, "
+    tables=$tables,$map/refine$stage.csv
+done
 for n in 6 8 12 16; do
-    from=$map/sweep.csv limits "$map/n$n" hang symplectic-euler,rk4 \
+    from=$tables limits "$map/n$n" hang symplectic-euler,rk4 \
         --set cloth.n="$n"
     awk -v n="$n" '{ print n, $0 }' "$map/n$n/limits.txt" >> "$map/map.txt"
 done
@@ -113,6 +178,38 @@ for m in symplectic-euler rk4; do
     awk -v m="$m" '$2 == m { print $1, $3, $4 }' "$map/map.txt" > "$map/$m.dat"
 done
 draw map "dir='$map'; names='symplectic-euler rk4'; title_text='hang, T = 2 s: explicit step limit against grid size'"
+
+echo "report: stability against stiffness (hang n = 6, type1.ks = 1e2 .. 1e7)"
+# Every fixed-step method of the registry (list --integrators): the search
+# at each ks beside the spectrum's prediction, one process per kind and
+# value on GNU parallel; "NAME.dat: ks stable unstable predicted" and the
+# fitted slopes of log dt against log ks (slopes.txt).
+st=$res/stiffness
+rm -rf "$st" && mkdir -p "$st"
+stiff() { # kind ks
+    "$bin" stability hang --quiet --set cloth.n=6 --t-end 0.1 --dt-max 0.01 \
+        --dt-min 1e-6 --rel 0.05 --out "$st/$1-$2" --axis "type1.ks=$2" \
+        --integrator "$("$bin" list --integrators "$1")"
+}
+export -f stiff
+export bin st
+parallel -j "${REPORT_JOBS:-100%}" stiff ::: explicit implicit ::: \
+    1e2 1e3 1e4 1e5 1e6 1e7
+awk -F, -v dir="$st" 'FNR > 1 { print $2, $3, $4, $5 > (dir "/" $1 ".dat") }' \
+    "$st"/*/limits.csv
+for f in "$st"/*.dat; do sort -g "$f" -o "$f"; done
+awk 'function fit(n, x, y,   i, sx, sy, sxx, sxy) {
+         for (i = 1; i <= n; i++) {
+             sx += x[i]; sy += y[i]; sxx += x[i] * x[i]; sxy += x[i] * y[i] }
+         return n < 2 ? "nan" : sprintf("%.3f", (n * sxy - sx * sy) / (n * sxx - sx * sx)) }
+     FNR == 1 { if (m) out(); m = split(FILENAME, p, "/"); name = p[m]
+                sub(/\.dat$/, "", name); nm = np = 0 }
+     $2 + 0 > 0 && $3 + 0 > 0 { nm++; xm[nm] = log($1); ym[nm] = log(sqrt($2 * $3)) }
+     $4 + 0 > 0 && $4 != "inf" { np++; xp[np] = log($1); yp[np] = log($4) }
+     function out() { print name, fit(nm, xm, ym), fit(np, xp, yp) }
+     END { out() }' "$st"/*.dat | tee "$st/slopes.txt"
+names=$(cd "$st" && ls ./*.dat | sed 's|^\./||; s|\.dat$||' | tr '\n' ' ')
+draw stiffness "dir='$st'; names='$names'; title_text='hang 6 x 6, T = 0.1 s: largest stable step against ks'"
 
 echo "report: inverse sinc and counts"
 "$bin" asinc --points 1000 --csv > "$res/asinc.csv"

@@ -156,3 +156,63 @@ Test(sweep_table, stability_cli_from_sweep)
     tmp_slurp(csv, text, sizeof text);
     cr_assert_eq(cli_count_lines(text), 1 + 5 + 2);
 }
+
+/* stability --axis on a small hang: symplectic Euler's limit falls as
+ * ks^(-1/2) (the stiffest Type1 spring, h < 2 / w_max with w_max ~
+ * sqrt(ks)): the fitted slope of the measured brackets within 0.1 of
+ * -1/2, the spectrum's exactly -1/2, and the measured limit above the
+ * prediction at rest by less than 1.6x. */
+Test(sweep_table, stability_axis_slope_is_minus_one_half)
+{
+    char out[1024], csv[1100], text[4096];
+    snprintf(out, sizeof out, "%s/axis", tmp);
+    cli_result r;
+    cli_run(&r, "stability", "hang", "--set", "cloth.n=6", "--t-end", "0.2",
+            "--integrator", "symplectic-euler", "--axis",
+            "type1.ks=logspace(3, 5, 3)", "--out", out, NULL);
+    cli_assert_ok(&r);
+    double measured, predicted;
+    const char *s = strstr(r.out, "\nsymplectic-euler    ");
+    s = s ? strstr(s + 1, "\nsymplectic-euler    ") : NULL;
+    s = s ? strstr(s + 1, "\nsymplectic-euler    ") : NULL;
+    s = s ? strstr(s + 1, "\nsymplectic-euler    ") : NULL; /* the slope */
+    cr_assert(s && sscanf(s, " symplectic-euler %lf %lf", &measured,
+                          &predicted) == 2, "%s", r.out);
+    cr_assert_float_eq(measured, -0.5, 0.1, "%s", r.out);
+    cr_assert_float_eq(predicted, -0.5, 1e-3, "%s", r.out);
+    cli_result_free(&r);
+    snprintf(csv, sizeof csv, "%s/limits.csv", out);
+    tmp_slurp(csv, text, sizeof text);
+    cr_assert_eq(cli_count_lines(text), 1 + 3);
+    double ks, lo, hi, pred;
+    const char *row = strstr(text, "symplectic-euler,10000,");
+    cr_assert(row && sscanf(row, "symplectic-euler,%lf,%lf,%lf,%lf", &ks,
+                            &lo, &hi, &pred) == 4, "%s", text);
+    cr_assert(lo >= pred && hi < 1.6 * pred, "%s", text);
+}
+
+/* The same from a sweep over type1.ks x dt: each value's rows. */
+Test(sweep_table, stability_axis_from_sweep)
+{
+    char path[1024], out[1024];
+    snprintf(path, sizeof path, "%s/ks.csv", tmp);
+    tmp_put(path, "id,role,integrator,type1.ks,run.dt,status,exit,"
+                  "t_reached,steps,cpu\n"
+                  "a,job,rk4,1000,0.002,complete,ok,0.2,100,0.1\n"
+                  "b,job,rk4,1000,0.004,failed,blow-up,0.1,NA,NA\n"
+                  "c,job,rk4,4000,0.001,complete,ok,0.2,200,0.1\n"
+                  "d,job,rk4,4000,0.002,failed,blow-up,0.1,NA,NA\n");
+    snprintf(out, sizeof out, "%s/axis", tmp);
+    cli_result r;
+    cli_run(&r, "stability", "hang", "--set", "cloth.n=6", "--t-end", "0.2",
+            "--integrator", "rk4", "--axis", "type1.ks=1000,4000",
+            "--from-sweep", path, "--out", out, NULL);
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "rk4                      1000       0.002 "
+                            "      0.004"), "%s", r.out);
+    cr_assert(strstr(r.out, "rk4                      4000       0.001 "
+                            "      0.002"), "%s", r.out);
+    cr_assert(strstr(r.out, "rk4                                  -0.500 "
+                            "     -0.500"), "%s", r.out);
+    cli_result_free(&r);
+}

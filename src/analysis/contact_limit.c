@@ -5,10 +5,9 @@
 
 #include "analysis/spectrum.h"
 
-cl_status cl_climit_run(cl_model *m, const cl_integrator_type *type,
-                        const cl_integrator_opts *io, const cl_stab_opts *o,
-                        double t, const double *x, const double *v,
-                        cl_climit_result *r, cl_error *err)
+cl_status cl_climit_predict(cl_model *m, const cl_integrator_type *type,
+                            double t, const double *x, const double *v,
+                            cl_climit_result *r, cl_error *err)
 {
     cl_spectrum sp = {0};
     r->predicted = r->w_max = NAN;
@@ -18,7 +17,14 @@ cl_status cl_climit_run(cl_model *m, const cl_integrator_type *type,
         r->w_max = sp.w_max;
     }
     cl_spectrum_free(&sp);
-    return rc ? rc : cl_stability(m, type, io, o, &r->stab, err);
+    return rc;
+}
+
+void cl_climit_print(FILE *fp, const cl_climit_result *r)
+{
+    fprintf(fp, "%-18s %10.4g %11.4g %11.4g %11.4g %10.4g %5d\n", r->label,
+            r->k, r->stab.dt_stable, r->stab.dt_unstable, r->predicted,
+            r->w_max, r->stab.ntrial);
 }
 
 void cl_climit_write_row(FILE *fp, const cl_climit_result *r, bool header)

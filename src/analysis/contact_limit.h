@@ -27,12 +27,16 @@ typedef struct {
     double w_max;         /* sqrt(mu_max) at the initial state (rad/s) */
 } cl_climit_result;
 
-/* The search from m's initial state and the prediction at the free state
- * (x, v) at time t for `type`. */
-cl_status cl_climit_run(cl_model *m, const cl_integrator_type *type,
-                        const cl_integrator_opts *io, const cl_stab_opts *o,
-                        double t, const double *x, const double *v,
-                        cl_climit_result *r, cl_error *err);
+/* The prediction (r->predicted, r->w_max) at the free state (x, v) at
+ * time t for `type`; the search (r->stab) is cl_stability's from m's
+ * initial state, or the sweep's (cl_stab_from_sweep). */
+cl_status cl_climit_predict(cl_model *m, const cl_integrator_type *type,
+                            double t, const double *x, const double *v,
+                            cl_climit_result *r, cl_error *err);
+
+/* One line of the table a study prints: integrator, k, stable dt,
+ * unstable dt, predicted dt, w_max, runs. */
+void cl_climit_print(FILE *fp, const cl_climit_result *r);
 
 /* One CSV row, header first when `header`:
  * integrator,k,dt_stable,dt_unstable,predicted,w_max,runs */

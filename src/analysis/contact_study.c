@@ -46,8 +46,7 @@ static void measure(cl_trial *t, const cl_stab_opts *o, cl_cstudy_row *row)
     cl_model_contact_worst(t->m, &row->worst_pen, &row->worst_t);
 }
 
-/* The smallest unstable dt and the largest stable one below it. */
-static void bracket(cl_cstudy_result *r)
+void cl_cstudy_bracket(cl_cstudy_result *r)
 {
     r->dt_unstable = r->dt_stable = NAN;
     for (int k = 0; k < r->n; k++)
@@ -85,7 +84,7 @@ cl_status cl_cstudy_run(cl_model *m, const cl_integrator_type *type,
         r->n = k + 1;
     }
     cl_trial_free(&t);
-    bracket(r);
+    cl_cstudy_bracket(r);
     return rc;
 }
 

@@ -59,6 +59,9 @@ cl_status cl_cstudy_run(cl_model *m, const cl_integrator_type *type,
                         const double *dt, int ndt, cl_cstudy_result *r,
                         cl_error *err);
 
+/* r->dt_unstable and r->dt_stable from its rows. */
+void cl_cstudy_bracket(cl_cstudy_result *r);
+
 /* One CSV row per run, header first when `header`:
  * integrator,response,dt,steps,stable,status,worst_penetration,worst_t,
  * rest_penetration,rest_contacts,max_stretch,newton_iters,cpu,reason */

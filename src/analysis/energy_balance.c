@@ -14,34 +14,40 @@ typedef struct {
     double trapz;   /* int P dt so far, by the trapezoidal rule */
 } ebal_ctx;
 
-/* One sample: energies at (t, x, v), W by the trapezoidal rule from the
- * previous sample. */
-static cl_status sample(void *vctx, double t, const double *x,
-                        const double *v, cl_error *err)
+cl_status cl_ebal_add(cl_ebal_result *r, size_t cap, double *trapz,
+                      double t, const cl_energy *e)
 {
-    ebal_ctx *c = vctx;
-    cl_ebal_result *r = c->r;
-    const cl_system *sys = cl_model_system(c->m);
-    cl_energy e;
-    cl_status rc = sys->energy(sys->data, t, x, v, &e);
-    if (rc)
-        return cl_error_set(err, rc, "energy at t = %g failed", t);
-    if (r->n == c->cap)
-        return cl_error_set(err, CL_EINVAL, "more samples than planned");
+    if (r->n == cap)
+        return CL_EINVAL;
     cl_ebal_sample *s = &r->s[r->n], *p = r->n ? s - 1 : NULL;
     s->t = t;
-    s->kinetic = e.kinetic;
-    s->potential = e.potential;
-    s->total = e.total;
-    s->power = e.power_diss;
+    s->kinetic = e->kinetic;
+    s->potential = e->potential;
+    s->total = e->total;
+    s->power = e->power_diss;
     if (p)
-        c->trapz += 0.5 * (t - p->t) * (p->power + s->power);
-    s->dissipated = c->trapz + e.contact_work;
+        *trapz += 0.5 * (t - p->t) * (p->power + s->power);
+    s->dissipated = *trapz + e->contact_work;
     s->balance = p ? s->total - r->s[0].total - s->dissipated : 0.0;
     r->scale = fmax(r->scale, fmax(fabs(r->s[0].total), s->kinetic));
     r->scale = fmax(r->scale, fabs(s->potential - r->s[0].potential));
     r->balance_max = fmax(r->balance_max, fabs(s->balance));
     r->n++;
+    return CL_OK;
+}
+
+/* One sample: energies at (t, x, v). */
+static cl_status sample(void *vctx, double t, const double *x,
+                        const double *v, cl_error *err)
+{
+    ebal_ctx *c = vctx;
+    const cl_system *sys = cl_model_system(c->m);
+    cl_energy e;
+    cl_status rc = sys->energy(sys->data, t, x, v, &e);
+    if (rc)
+        return cl_error_set(err, rc, "energy at t = %g failed", t);
+    if (cl_ebal_add(c->r, c->cap, &c->trapz, t, &e))
+        return cl_error_set(err, CL_EINVAL, "more samples than planned");
     return CL_OK;
 }
 

@@ -59,6 +59,13 @@ cl_status cl_ebal_run(cl_model *m, const cl_integrator_type *type,
                       double max_stretch, cl_ebal_result *r, cl_error *err);
 void cl_ebal_free(cl_ebal_result *r);
 
+/* One more sample of r (r->s holding cap): energies e at t (kinetic,
+ * potential, total, power_diss, contact_work), W by the trapezoidal rule
+ * from the previous sample (*trapz, 0 before the first); CL_EINVAL when r
+ * is full. */
+cl_status cl_ebal_add(cl_ebal_result *r, size_t cap, double *trapz,
+                      double t, const cl_energy *e);
+
 /* integrator,t,kinetic,potential,total,dissipated,balance rows, header
  * first when `header`. */
 void cl_ebal_write_rows(FILE *fp, const cl_ebal_result *r, bool header);

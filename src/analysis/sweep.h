@@ -89,6 +89,11 @@ typedef struct {
     cl_sweep_job *job;
 } cl_sweep;
 
+/* The values v of an axis appended to a->v: a comma-separated list,
+ * linspace(a, b, k) or logspace(a, b, k) (numbers written as the plan
+ * writes them); *ok false when v is none of these.  CL_ENOMEM. */
+cl_status cl_sweep_axis_values(cl_sweep_axis *a, const char *v, bool *ok);
+
 /* Read the [sweep] sections of cfg into sw's parts (problem into
  * sw->problem as written, for the caller to resolve; integrators; axes
  * with their values expanded).  Refused keys and values: CL_EINVAL naming
@@ -101,6 +106,13 @@ void cl_sweep_parts_free(cl_sweep *sw);
  * union of the parts' integrators and axes in sw.  CL_EINVAL when two
  * jobs are the same (a value listed twice). */
 cl_status cl_sweep_expand(cl_sweep *sw, cl_error *err);
+
+/* One more job of sw (sw->dir, ->problem, ->clothode and the axes set):
+ * `integrator` and value[a] for each axis a (NULL: unset), added to the
+ * axes' values; its id and command as cl_sweep_expand makes them.
+ * CL_EINVAL when it is a job sw has already. */
+cl_status cl_sweep_add_job(cl_sweep *sw, const char *integrator,
+                           const char *const *value, cl_error *err);
 
 /* The job's assignments "key=value", sorted, joined by '\n' into buf
  * (integrator first as "integrator=NAME"); the text its id hashes. */

@@ -258,6 +258,31 @@ cl_status cl_sweep_expand(cl_sweep *sw, cl_error *err)
     return rc;
 }
 
+cl_status cl_sweep_add_job(cl_sweep *sw, const char *integrator,
+                           const char *const *value, cl_error *err)
+{
+    cl_sweep_job *grown = realloc(sw->job, (size_t)(sw->njob + 1) *
+                                               sizeof *grown);
+    if (!grown)
+        return cl_error_set(err, CL_ENOMEM, "out of memory");
+    sw->job = grown;
+    cl_sweep_job *j = &sw->job[sw->njob];
+    *j = (cl_sweep_job){.ref = -1};
+    if (!(j->value = calloc(CL_SWEEP_MAX_AXES + 1, sizeof *j->value)))
+        return cl_error_set(err, CL_ENOMEM, "out of memory");
+    sw->njob++;
+    for (int a = 0; a < sw->naxis; a++)
+        if (value[a] && !(j->value[a] = union_value(&sw->axis[a].v,
+                                                    &sw->axis[a].n,
+                                                    value[a])))
+            return cl_error_set(err, CL_ENOMEM, "out of memory");
+    if (!(j->integrator = union_value(&sw->integrator, &sw->nint,
+                                      integrator)))
+        return cl_error_set(err, CL_ENOMEM, "out of memory");
+    int dup;
+    return finish_job(sw, sw->njob - 1, &dup, err);
+}
+
 void cl_sweep_strings_free(char **v, int n)
 {
     for (int k = 0; k < n; k++)

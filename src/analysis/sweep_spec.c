@@ -95,6 +95,13 @@ static cl_status listed(cl_sweep_axis *a, const char *v, bool *ok)
     return rc;
 }
 
+cl_status cl_sweep_axis_values(cl_sweep_axis *a, const char *v, bool *ok)
+{
+    return !strncmp(v, "linspace(", 9)   ? spaced(a, v, false, ok)
+           : !strncmp(v, "logspace(", 9) ? spaced(a, v, true, ok)
+                                         : listed(a, v, ok);
+}
+
 /* dt, rtol, atol, t_end: [run]; n: [cloth] n; else SECTION.KEY. */
 static char *axis_key(const char *key)
 {
@@ -175,13 +182,9 @@ static cl_status read_axis(cl_config *cfg, const char *sec, const char *key,
     free_axis(&p->axis[self]);
     p->axis[self] = (cl_sweep_axis){.key = name, .from = -1};
     bool ok = false, is = false;
-    cl_status rc = !strncmp(v, "linspace(", 9)
-                       ? spaced(&p->axis[self], v, false, &ok)
-                   : !strncmp(v, "logspace(", 9)
-                       ? spaced(&p->axis[self], v, true, &ok)
-                       : derived(p, self, v, &ok, &is);
-    if (!rc && !is && strncmp(v, "linspace(", 9) && strncmp(v, "logspace(", 9))
-        rc = listed(&p->axis[self], v, &ok);
+    cl_status rc = derived(p, self, v, &ok, &is);
+    if (!rc && !is)
+        rc = cl_sweep_axis_values(&p->axis[self], v, &ok);
     if (rc)
         return cl_error_set(err, rc, "out of memory");
     return ok ? CL_OK

@@ -40,37 +40,68 @@ static int split(const char *line, char ***cells, int *n)
     }
 }
 
-cl_status cl_sweep_table_read(const char *path, cl_sweep_table *t,
-                              cl_error *err)
+/* One file's rows appended to t (its header the first file's). */
+static cl_status read_one(const char *path, int src, cl_sweep_table *t,
+                          cl_error *err)
 {
-    memset(t, 0, sizeof *t);
     FILE *fp = fopen(path, "r");
     if (!fp)
         return cl_error_set(err, CL_EIO, "--from-sweep %s: cannot read it",
                             path);
-    char *line = NULL;
+    char *line = NULL, **head = NULL;
     size_t cap = 0;
-    int nf;
+    int nf, nhead = 0;
     cl_status rc = CL_OK;
-    t->path = strdup(path);
-    if (getline(&line, &cap, fp) > 0 && split(line, &t->head, &t->ncol) < 0)
+    if (getline(&line, &cap, fp) > 0 &&
+        split(line, src ? &head : &t->head, src ? &nhead : &t->ncol) < 0)
         rc = cl_error_set(err, CL_ENOMEM, "out of memory");
+    for (int k = 0; !rc && src && k < t->ncol; k++)
+        if (nhead != t->ncol || strcmp(head[k], t->head[k]))
+            rc = cl_error_set(err, CL_EPARSE, "--from-sweep %s: its columns "
+                              "are not those of %s (tables of the stages "
+                              "of one sweep are)", path, t->paths[0]);
+    cl_sweep_strings_free(head, nhead);
     while (!rc && getline(&line, &cap, fp) > 0) {
-        nf = split(line, &t->cell, &t->ncell);
+        int *grown = realloc(t->src, (size_t)(t->nrow + 1) * sizeof *grown);
+        nf = grown ? split(line, &t->cell, &t->ncell) : -1;
+        if (grown)
+            t->src = grown;
         if (nf < 0)
             rc = cl_error_set(err, CL_ENOMEM, "out of memory");
         else if (nf != t->ncol)
             rc = cl_error_set(err, CL_EPARSE, "%s:%d: %d fields, the header "
                               "has %d", path, t->nrow + 2, nf, t->ncol);
         else
-            t->nrow++;
+            t->src[t->nrow++] = src;
     }
     free(line);
     fclose(fp);
+    return rc;
+}
+
+cl_status cl_sweep_table_read(const char *list, cl_sweep_table *t,
+                              cl_error *err)
+{
+    memset(t, 0, sizeof *t);
+    t->path = strdup(list);
+    cl_status rc = t->path ? CL_OK
+                           : cl_error_set(err, CL_ENOMEM, "out of memory");
+    for (const char *p = list; !rc && *p; p += *p == ',') {
+        size_t len = strcspn(p, ",");
+        char **grown = realloc(t->paths, (size_t)(t->npath + 1) *
+                                             sizeof *grown);
+        if (grown)
+            t->paths = grown;
+        if (!grown || !(t->paths[t->npath] = strndup(p, len)))
+            rc = cl_error_set(err, CL_ENOMEM, "out of memory");
+        else
+            rc = read_one(t->paths[t->npath], t->npath, t, err), t->npath++;
+        p += len;
+    }
     t->keep = rc ? NULL : malloc((size_t)t->nrow + 1);
     for (int k = 0; t->keep && k < t->nrow; k++)
         t->keep[k] = true;
-    if (!rc && (!t->keep || !t->path))
+    if (!rc && !t->keep)
         rc = cl_error_set(err, CL_ENOMEM, "out of memory");
     return rc;
 }
@@ -81,6 +112,8 @@ void cl_sweep_table_free(cl_sweep_table *t)
     cl_sweep_strings_free(t->cell, t->ncell);
     free(t->keep);
     free(t->path);
+    cl_sweep_strings_free(t->paths, t->npath);
+    free(t->src);
     memset(t, 0, sizeof *t);
 }
 
@@ -105,9 +138,21 @@ static double number_at(const cl_sweep_table *t, int row, int col)
     return end > s && !*end ? v : NAN;
 }
 
+const char *cl_sweep_table_text(const cl_sweep_table *t, int row,
+                                const char *name)
+{
+    return at(t, row, column(t, name));
+}
+
+double cl_sweep_table_value(const cl_sweep_table *t, int row,
+                            const char *name)
+{
+    return number_at(t, row, column(t, name));
+}
+
 /* ---- selecting the rows of the study's problem -------------------------- */
 
-static bool same_value(const char *a, const char *b)
+bool cl_sweep_same_value(const char *a, const char *b)
 {
     char *ea, *eb;
     double x = strtod(a, &ea), y = strtod(b, &eb);
@@ -134,10 +179,10 @@ static cl_status select_axis(cl_sweep_table *t, cl_config *cfg, int c,
         if (!t->keep[r] || !strcmp(at(t, r, column(t, "role")), "reference"))
             continue;
         if (want)
-            t->keep[r] = same_value(at(t, r, c), want);
+            t->keep[r] = cl_sweep_same_value(at(t, r, c), want);
         else if (!first)
             first = at(t, r, c);
-        else if (!same_value(first, at(t, r, c)))
+        else if (!cl_sweep_same_value(first, at(t, r, c)))
             return cl_error_set(err, CL_EINVAL, "--from-sweep %s: the sweep "
                                 "has several values of %s (%s, %s, ...): "
                                 "give one with --set %s=VALUE", t->path, key,
@@ -155,6 +200,8 @@ cl_status cl_sweep_table_select(cl_sweep_table *t, cl_config *cfg,
                             "of 'clothode sweep collect' (no role, "
                             "integrator or status column)", t->path);
     cl_status rc = CL_OK;
+    for (int r = 0; r < t->nrow; r++)
+        t->keep[r] = true;
     for (int c = lo + 1; !rc && c < hi; c++)
         if (problem_axis(t->head[c]) && strchr(t->head[c], '.'))
             rc = select_axis(t, cfg, c, err);
@@ -163,21 +210,14 @@ cl_status cl_sweep_table_select(cl_sweep_table *t, cl_config *cfg,
 
 /* ---- the rows of one method --------------------------------------------- */
 
-typedef struct {
-    int row;
-    double param;
-} row_param;
-
 static int by_param_down(const void *a, const void *b)
 {
-    double x = ((const row_param *)a)->param, y = ((const row_param *)b)->param;
+    double x = ((const cl_sweep_row *)a)->param, y = ((const cl_sweep_row *)b)->param;
     return (x < y) - (x > y);
 }
 
-/* The kept job rows of `label` with a number in column `param`, largest
- * first; how many (at most max), or -1 with err set. */
-static int method_rows(const cl_sweep_table *t, const char *label,
-                       const char *param, row_param *out, int max,
+int cl_sweep_table_rows(const cl_sweep_table *t, const char *label,
+                       const char *param, cl_sweep_row *out, int max,
                        cl_error *err)
 {
     int cp = column(t, param), ci = column(t, "integrator"), n = 0;
@@ -192,7 +232,7 @@ static int method_rows(const cl_sweep_table *t, const char *label,
         if (n == max)
             return cl_error_set(err, CL_EINVAL, "--from-sweep %s: more than "
                                 "%d runs of %s", t->path, max, label), -1;
-        out[n++] = (row_param){r, number_at(t, r, cp)};
+        out[n++] = (cl_sweep_row){r, number_at(t, r, cp)};
     }
     if (n == 0)
         return cl_error_set(err, CL_EINVAL, "--from-sweep %s: no runs of %s "
@@ -208,6 +248,8 @@ static void row_stats(const cl_sweep_table *t, int r, cl_stats *s)
            rhs = number_at(t, r, column(t, "rhs_evals"));
     s->steps = isnan(steps) ? 0 : (long)steps;
     s->rhs_evals = isnan(rhs) ? 0 : (long)rhs;
+    double newton = number_at(t, r, column(t, "nonlin_iters"));
+    s->nonlin_iters = isnan(newton) ? 0 : (long)newton;
     s->cpu = number_at(t, r, column(t, "cpu"));
     s->wall = number_at(t, r, column(t, "wall"));
 }
@@ -224,30 +266,39 @@ static bool went_unstable(const cl_sweep_table *t, int r)
            !isnan(number_at(t, r, column(t, "t_reached")));
 }
 
+bool cl_sweep_table_trial(const cl_sweep_table *t, cl_sweep_row row,
+                          cl_stab_trial *tr)
+{
+    int r = row.row;
+    memset(tr, 0, sizeof *tr);
+    if (!complete(t, r) && !went_unstable(t, r))
+        return false;
+    tr->dt = row.param;
+    tr->rc = complete(t, r) ? CL_OK : CL_EBLOWUP;
+    row_stats(t, r, &tr->stats);
+    tr->nsteps = tr->stats.steps;
+    if (tr->rc)
+        snprintf(tr->why.msg, sizeof tr->why.msg, "failed at t = %g s (%s)",
+                 number_at(t, r, column(t, "t_reached")),
+                 at(t, r, column(t, "exit")));
+    return true;
+}
+
 cl_status cl_stab_from_sweep(const cl_sweep_table *t, const char *label,
                              const cl_integrator_type *type,
                              cl_stab_result *r, cl_error *err)
 {
-    row_param rows[CL_STAB_MAX_TRIALS];
-    int n = method_rows(t, label, "run.dt", rows, CL_STAB_MAX_TRIALS, err);
+    cl_sweep_row rows[CL_STAB_MAX_TRIALS];
+    int n = cl_sweep_table_rows(t, label, "run.dt", rows, CL_STAB_MAX_TRIALS, err);
     memset(r, 0, sizeof *r);
     r->type = type;
     r->label = label;
     r->dt_stable = r->dt_unstable = NAN;
     r->failed = -1;
     for (int k = 0; k < n; k++) {
-        int row = rows[k].row;
-        if (!complete(t, row) && !went_unstable(t, row))
-            continue; /* never ran, or refused its input */
         cl_stab_trial *tr = &r->trial[r->ntrial];
-        tr->dt = rows[k].param;
-        tr->rc = complete(t, row) ? CL_OK : CL_EBLOWUP;
-        row_stats(t, row, &tr->stats);
-        tr->nsteps = tr->stats.steps;
-        if (tr->rc)
-            snprintf(tr->why.msg, sizeof tr->why.msg, "failed at t = %g s "
-                     "(%s)", number_at(t, row, column(t, "t_reached")),
-                     at(t, row, column(t, "exit")));
+        if (!cl_sweep_table_trial(t, rows[k], tr))
+            continue; /* never ran, or refused its input */
         if (tr->rc) /* the smallest unstable step: rows go down in dt */
             r->failed = r->ntrial;
         r->ntrial++;
@@ -264,12 +315,12 @@ cl_status cl_conv_from_sweep(const cl_sweep_table *t, const char *label,
                              const cl_integrator_type *type,
                              cl_conv_result *r, cl_error *err)
 {
-    row_param rows[CL_CONV_MAX_LEVELS];
+    cl_sweep_row rows[CL_CONV_MAX_LEVELS];
     memset(r, 0, sizeof *r);
     r->type = type;
     r->label = label;
     r->fixed = type->fixed_step;
-    int n = method_rows(t, label, r->fixed ? "run.dt" : "run.rtol", rows,
+    int n = cl_sweep_table_rows(t, label, r->fixed ? "run.dt" : "run.rtol", rows,
                         CL_CONV_MAX_LEVELS, err);
     for (int k = 0; k < n; k++) {
         int row = rows[k].row;

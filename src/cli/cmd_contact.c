@@ -16,6 +16,7 @@
 
 #include "analysis/contact_limit.h"
 #include "analysis/contact_study.h"
+#include "analysis/sweep_table.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
 #include "cli/study.h"
@@ -47,6 +48,8 @@ typedef struct {
     cl_model *variant;    /* the model of the variant being run */
     int variant_of;       /* ... its index, -1 none */
     double *x, *v;        /* --k: the free state of the prediction */
+    const char *from;     /* --from-sweep TABLE, or NULL */
+    cl_sweep_table table; /* its rows of the variant being run */
 } ct_setup;
 
 /* --k's search range, as stability's: dt_max (read first, while the
@@ -109,6 +112,11 @@ static const cl_cli_opt ct_rows[] = {
      .key = "rel", .def = 0.02, .lo = 1e-6, .hi = 0.5,
      .field = offsetof(ct_setup, rel),
      .help = "--k: bracket width relative to the step"},
+    {.name = "from-sweep", .arg = "TABLE", .type = CL_CLI_STRING,
+     .field = offsetof(ct_setup, from),
+     .help = "take the runs from a table of 'clothode sweep collect' (each "
+             "job's series from jobs/ beside it): the step table over the "
+             "sweep's dt, or with --k the search's bracket on them"},
     CL_CLI_TAIL(ct_setup, "no table on stdout"),
     {.type = CL_CLI_END}};
 
@@ -133,7 +141,13 @@ static const cl_cli_table ct_table = {
     "--set (e.g. --set obstacle.ball.k=1e4 for penalty), and a --set applies\n"
     "to every run (e.g. a continuous detection key of a response).  The\n"
     "other [run] keys apply as in run; [run] dt is not used.  Problems that\n"
-    "tear are refused.\n"};
+    "tear are refused.  With --from-sweep TABLE the runs are the sweep's\n"
+    "(its dt axis; for each response and k, the rows whose other axes hold\n"
+    "the variant's values): --dt is not given; the worst penetration and\n"
+    "the largest stretch are those of the run's series samples (sweep with\n"
+    "[run] samples = T/dt and --checks T/dt for the study's figures), the\n"
+    "rest state its last row; with --k the bracket is the sweep's smallest\n"
+    "unstable dt and the largest stable one below it.\n"};
 
 /* ---- the lists ---------------------------------------------------------- */
 
@@ -189,10 +203,14 @@ static bool read_names(const char *s, char (*out)[32], int max, int *n)
 static cl_status read_lists(cl_config *cfg, ct_setup *s, cl_error *err)
 {
     char why[160];
-    if (!*s->dts && !*s->ks)
+    if (!*s->dts && !*s->ks && !s->from)
         return cl_error_set(err, CL_EINVAL, "contact needs steps to run "
                             "(--dt LIST) or stiffnesses to search (--k "
                             "LIST)");
+    if (*s->dts && s->from)
+        return cl_config_refuse(cfg, "contact", "dt", CL_EINVAL, "with "
+                                "--from-sweep the steps are the sweep's",
+                                err);
     if (*s->dts && !read_steps(s->dts, s->dt, &s->ndt)) {
         snprintf(why, sizeof why, "expected steps > 0 separated by commas "
                  "(at most %d) or LO:HI:N with 0 < LO < HI and 2 <= N <= %d",
@@ -285,11 +303,18 @@ static cl_status restore(ct_setup *s, cl_error *err)
     return rc;
 }
 
+/* Whether the step table is made: --dt, or a sweep's steps without --k. */
+static bool step_table(const ct_setup *s)
+{
+    return s->ndt > 0 || (s->from && s->nk == 0);
+}
+
 /* Variants 0 .. nresp-1 (or one, the problem as it is, without
- * --response) are the responses, none without --dt, then one per k. */
+ * --response) are the responses, none without the step table, then one
+ * per k. */
 static int dt_variants(const ct_setup *s)
 {
-    return s->ndt == 0 ? 0 : s->nresp > 0 ? s->nresp : 1;
+    return !step_table(s) ? 0 : s->nresp > 0 ? s->nresp : 1;
 }
 
 static const char *variant_response(const ct_setup *s, int v)
@@ -312,6 +337,8 @@ static cl_status build(ct_setup *s, int v, cl_error *err)
         snprintf(k, sizeof k, "%.17g", s->k[v - dt_variants(s)]);
         rc = set_all(s, "k", k, "--k", err);
     }
+    if (!rc && s->from) /* the sweep's rows of this variant */
+        rc = cl_sweep_table_select(&s->table, s->cfg, err);
     if (!rc && !(rc = cl_model_create(s->cfg, &s->variant, err)))
         s->variant_of = v;
     return rc;
@@ -339,7 +366,8 @@ static cl_status try_variants(ct_setup *s, cl_error *err)
             (rc = cl_cli_methods_try(s->variant, &s->integrators, err)))
             break;
         for (int i = 0; !rc && i < s->integrators.n; i++)
-            rc = v < dt_variants(s)
+            rc = s->from && v < dt_variants(s) ? CL_OK /* the sweep's */
+                 : v < dt_variants(s)
                      ? cl_cstudy_check(s->variant, s->integrators.m[i].type,
                                        &s->so, s->dt, s->ndt, err)
                      : cl_stab_check(s->variant, s->integrators.m[i].type,
@@ -365,7 +393,9 @@ static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
     s->so = (cl_stab_opts){.t_end = s->run.t_end, .checks = s->checks,
                            .max_stretch = s->run.max_stretch, .rel = s->rel,
                            .dt_max = s->dt_max, .dt_min = s->dt_min};
-    if (!(rc = read_lists(cfg, s, err)) &&
+    if (s->from)
+        rc = cl_sweep_table_read(s->from, &s->table, err);
+    if (!rc && !(rc = read_lists(cfg, s, err)) &&
         !(rc = save_obstacles(cfg, s, err)))
         rc = try_variants(s, err);
     return rc;
@@ -396,10 +426,14 @@ static cl_status begin_steps(cl_model *m, const cl_cli_job *job, void *ctx,
     const ct_setup *s = ctx;
     (void)m;
     (void)err;
-    if (!job->quiet)
-        printf("problem    %s, T = %g s, max_stretch %g, %ld checks per run, "
-               "%d steps\n", job->problem, s->so.t_end, s->so.max_stretch,
-               s->so.checks, s->ndt);
+    if (job->quiet)
+        return CL_OK;
+    printf("problem    %s, T = %g s, max_stretch %g, %ld checks per run, ",
+           job->problem, s->so.t_end, s->so.max_stretch, s->so.checks);
+    if (s->from)
+        printf("the steps of the sweep table %s\n", s->from);
+    else
+        printf("%d steps\n", s->ndt);
     return CL_OK;
 }
 
@@ -413,8 +447,10 @@ static cl_status run_steps(cl_model *m, void *ctx, int k, void *result,
     cl_status rc = use_variant(s, v, err);
     (void)m;
     if (!rc)
-        rc = cl_cstudy_run(s->variant, mk->type, &mk->io, &s->so, s->dt,
-                           s->ndt, r, err);
+        rc = s->from ? cl_cstudy_from_sweep(&s->table, mk->label, &s->so, r,
+                                            err)
+                     : cl_cstudy_run(s->variant, mk->type, &mk->io, &s->so,
+                                     s->dt, s->ndt, r, err);
     r->label = mk->label;
     r->response = s->nresp ? s->resp[v] : "problem";
     return rc;
@@ -436,10 +472,7 @@ static const cl_cli_study step_study = {
 
 static void print_k_result(const void *result)
 {
-    const cl_climit_result *r = result;
-    printf("%-18s %10.4g %11.4g %11.4g %11.4g %10.4g %5d\n", r->label, r->k,
-           r->stab.dt_stable, r->stab.dt_unstable, r->predicted, r->w_max,
-           r->stab.ntrial);
+    cl_climit_print(stdout, result);
 }
 
 static cl_status begin_k(cl_model *m, const cl_cli_job *job, void *ctx,
@@ -472,8 +505,13 @@ static cl_status run_k(cl_model *m, void *ctx, int k, void *result,
     cl_status rc = use_variant(s, v, err);
     (void)m;
     if (!rc)
-        rc = cl_climit_run(s->variant, mk->type, &mk->io, &s->so, s->t,
-                           s->x, s->v, r, err);
+        rc = cl_climit_predict(s->variant, mk->type, s->t, s->x, s->v, r,
+                               err);
+    if (!rc)
+        rc = s->from ? cl_stab_from_sweep(&s->table, mk->label, mk->type,
+                                          &r->stab, err)
+                     : cl_stability(s->variant, mk->type, &mk->io, &s->so,
+                                    &r->stab, err);
     r->label = mk->label;
     r->k = s->k[v - dt_variants(s)];
     return rc;
@@ -503,7 +541,7 @@ static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
                        cl_error *err)
 {
     ct_setup *s = ctx;
-    cl_status rc = s->ndt == 0 ? CL_OK
+    cl_status rc = !step_table(s) ? CL_OK
                    : cl_cli_study_run(m, job, &step_study,
                                       dt_variants(s) * s->integrators.n, ctx,
                                       err);
@@ -523,5 +561,6 @@ int cl_cmd_contact(int argc, char **argv)
     free_obstacles(&s);
     free(s.x);
     free(s.v);
+    cl_sweep_table_free(&s.table);
     return status;
 }

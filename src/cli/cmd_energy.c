@@ -4,6 +4,7 @@
 #include <stdlib.h>
 
 #include "analysis/energy_balance.h"
+#include "analysis/sweep_table.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
 #include "cli/study.h"
@@ -13,6 +14,8 @@ typedef struct {
     cl_cli_methods integrators;
     cl_cli_run run;
     long samples;
+    const char *from;      /* --from-sweep TABLE, or NULL */
+    cl_sweep_table table;  /* its rows of this problem */
 } eb_setup;
 
 static const cl_cli_opt eb_rows[] = {
@@ -27,6 +30,10 @@ static const cl_cli_opt eb_rows[] = {
      .field = offsetof(eb_setup, samples),
      .help = "samples after t = 0 (a fixed-step method is sampled at most "
              "at every step)"},
+    {.name = "from-sweep", .arg = "TABLE", .type = CL_CLI_STRING,
+     .field = offsetof(eb_setup, from),
+     .help = "take the runs from a table of 'clothode sweep collect' (each "
+             "job's series from jobs/ beside it) instead of making them"},
     CL_CLI_TAIL(eb_setup, "no table on stdout"),
     {.type = CL_CLI_END}};
 
@@ -44,13 +51,22 @@ static const cl_cli_table eb_table = {
     "W's quadrature error falls with the square of the sample spacing:\n"
     "sample densely when the damping is strong.  Moving pins do work that\n"
     "shows in B.  A run that blows up (as in run) is reported with the\n"
-    "samples before it.  Problems that tear are refused.\n"};
+    "samples before it.  Problems that tear are refused.  With --from-sweep\n"
+    "each integrator's run is the sweep's at its dt (fixed step) or rtol\n"
+    "(the rows whose other axes match this problem's values), its samples\n"
+    "the rows of the run's series.csv (the sweep's [run] samples; --samples\n"
+    "is not used), read from TABLE's directory (collect's default output);\n"
+    "contact projections are refused (their work is not in the series).\n"};
 
 static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
 {
     eb_setup *s = ctx;
-    return cl_cli_methods_check(cfg, &s->integrators, &s->run.io,
-                                CL_CLI_DT_FIXED, err);
+    cl_status rc = cl_cli_methods_check(cfg, &s->integrators, &s->run.io,
+                                        CL_CLI_DT_FIXED, err);
+    if (!rc && s->from && !(rc = cl_sweep_table_read(s->from, &s->table,
+                                                      err)))
+        rc = cl_sweep_table_select(&s->table, cfg, err);
+    return rc;
 }
 
 static void print_result(const void *result)
@@ -78,10 +94,18 @@ static cl_status begin(cl_model *m, const cl_cli_job *job, void *ctx,
         rc = cl_ebal_check(m, s->integrators.m[k].type,
                            &s->integrators.m[k].io, s->run.t_end, s->samples,
                            err);
+    if (!rc && s->from && cl_model_system(m)->projects)
+        rc = cl_error_set(err, CL_EUNSUPPORTED, "--from-sweep: the work of "
+                          "the contact projections is not in a run's "
+                          "series; run the study here");
     if (rc || job->quiet)
         return rc;
-    printf("problem    %s, T = %g s, %ld samples\n", job->problem,
-           s->run.t_end, s->samples);
+    if (s->from)
+        printf("problem    %s, T = %g s, samples of the sweep table %s\n",
+               job->problem, s->run.t_end, s->from);
+    else
+        printf("problem    %s, T = %g s, %ld samples\n", job->problem,
+               s->run.t_end, s->samples);
     return CL_OK;
 }
 
@@ -91,8 +115,13 @@ static cl_status run_one(cl_model *m, void *ctx, int k, void *result,
     const eb_setup *s = ctx;
     cl_ebal_result *r = result;
     const cl_cli_method *mk = &s->integrators.m[k];
-    cl_status rc = cl_ebal_run(m, mk->type, &mk->io, s->run.t_end,
-                               s->samples, s->run.max_stretch, r, err);
+    bool fixed = mk->type->fixed_step;
+    cl_status rc = s->from
+        ? cl_ebal_from_sweep(&s->table, mk->label, mk->type,
+                             fixed ? "run.dt" : "run.rtol",
+                             fixed ? mk->io.dt : mk->io.rtol, r, err)
+        : cl_ebal_run(m, mk->type, &mk->io, s->run.t_end, s->samples,
+                      s->run.max_stretch, r, err);
     r->label = mk->label;
     return rc;
 }
@@ -107,13 +136,18 @@ static void release(void *result)
     cl_ebal_free(result);
 }
 
+static void end(void *ctx)
+{
+    cl_sweep_table_free(&((eb_setup *)ctx)->table);
+}
+
 static const cl_cli_study eb_study = {
     .csv = "energy.csv",
     .columns = "integrator            E(0) [J]        E(T)        W(T)       "
                " B(T)     max |B|  max|B|/S    steps  cpu [s]",
     .size = sizeof(cl_ebal_result), .begin = begin,
     .run = run_one, .print = print_result, .rows = rows,
-    .release = release};
+    .release = release, .end = end};
 
 static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
                        cl_error *err)
@@ -125,6 +159,8 @@ static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
 int cl_cmd_energy(int argc, char **argv)
 {
     eb_setup s = {0};
-    return cl_cli_problem_main(argc, argv, &eb_table, &s, check_setup,
-                               study);
+    int status = cl_cli_problem_main(argc, argv, &eb_table, &s, check_setup,
+                                     study);
+    cl_sweep_table_free(&s.table); /* when the study did not start */
+    return status;
 }

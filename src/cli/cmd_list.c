@@ -56,18 +56,68 @@ static void list_problems(void)
     free(names);
 }
 
+typedef struct {
+    cl_cli_args a;
+    const char *kind; /* --integrators KIND, or NULL */
+} list_args;
+
 static const cl_cli_opt list_rows[] = {
+    {.name = "integrators", .arg = "KIND", .type = CL_CLI_STRING,
+     .field = offsetof(list_args, kind),
+     .help = "only the names of the integrators of one kind, "
+             "comma-separated: explicit (fixed step, a Taylor or symplectic "
+             "stability region), implicit (fixed step, a sector region), "
+             "fixed (every fixed-step one), adaptive (error control) or "
+             "all"},
     CL_CLI_HELP_ROW,
     {.type = CL_CLI_END}};
 
 static const cl_cli_table list_table = {
     .cmd = "list", .synopsis = "", .npos = 0, .rows = list_rows,
     .about = "Names the problems (problems/*.ini or $CLOTHODE_PROBLEMS), the\n"
-             "integrators, the force terms and the obstacle shapes.\n"};
+             "integrators, the force terms and the obstacle shapes; with\n"
+             "--integrators KIND only the integrators of that kind, on one\n"
+             "line (for scripts: the registry's methods of a study).\n"};
+
+/* Whether integrator t is of the kind named. */
+static bool of_kind(const cl_integrator_type *t, const char *kind)
+{
+    cl_region_kind r = t->region->kind;
+    if (!strcmp(kind, "explicit"))
+        return t->fixed_step &&
+               (r == CL_REGION_TAYLOR || r == CL_REGION_SYMPLECTIC);
+    if (!strcmp(kind, "implicit"))
+        return t->fixed_step && r == CL_REGION_SECTOR;
+    if (!strcmp(kind, "adaptive"))
+        return !t->fixed_step;
+    return !strcmp(kind, "all") || t->fixed_step;
+}
+
+/* --integrators KIND: the names, comma-separated, on one line. */
+static int list_kind(const char *kind)
+{
+    if (strcmp(kind, "explicit") && strcmp(kind, "implicit") &&
+        strcmp(kind, "fixed") && strcmp(kind, "adaptive") &&
+        strcmp(kind, "all")) {
+        fprintf(stderr, "clothode: list --integrators %s: expected "
+                        "explicit, implicit, fixed, adaptive or all\n", kind);
+        return 2;
+    }
+    const char *sep = "";
+    for (size_t k = 0; cl_integrator_registry[k]; k++)
+        if (of_kind(cl_integrator_registry[k], kind)) {
+            printf("%s%s", sep, cl_integrator_registry[k]->name);
+            sep = ",";
+        }
+    putchar('\n');
+    return 0;
+}
 
 static int list(void *settings)
 {
-    (void)settings;
+    const list_args *l = settings;
+    if (l->kind)
+        return list_kind(l->kind);
     list_problems();
     printf("integrators:\n");
     for (size_t k = 0; cl_integrator_registry[k]; k++)
@@ -87,6 +137,6 @@ static int list(void *settings)
 
 int cl_cmd_list(int argc, char **argv)
 {
-    cl_cli_args a = {0};
-    return cl_cli_args_main(argc, argv, &list_table, &a, list);
+    list_args l = {0};
+    return cl_cli_args_main(argc, argv, &list_table, &l, list);
 }

@@ -4,7 +4,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "analysis/contact_limit.h"
 #include "analysis/stability.h"
+#include "analysis/sweep.h"
 #include "analysis/sweep_table.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
@@ -17,6 +19,13 @@ typedef struct {
     cl_stab_opts so;
     const char *from;      /* --from-sweep TABLE, or NULL */
     cl_sweep_table table;  /* its rows of this problem */
+    const char *axis;      /* --axis SECTION.KEY=VALUES, or "" */
+    char key[128];         /* ... its key */
+    char *original;        /* the problem's value of it (NULL: none) */
+    cl_sweep_axis values;  /* ... and its values */
+    cl_config *cfg;        /* the command's, where the values are set */
+    cl_model *variant;     /* the model at the value being run ... */
+    int variant_of;        /* ... its index, -1 none */
 } stab_setup;
 
 /* dt_max: T/100 by default, at most T/10 (a run of a few steps has no room
@@ -64,6 +73,12 @@ static const cl_cli_opt stab_rows[] = {
      .field = offsetof(stab_setup, from),
      .help = "take the runs from a table of 'clothode sweep collect' "
              "instead of searching"},
+    {.name = "axis", .arg = "KEY=VALUES", .type = CL_CLI_STRING,
+     .sec = "stability", .key = "axis", .field = offsetof(stab_setup, axis),
+     .help = "the search at every value of a problem key (SECTION.KEY = a "
+             "list, linspace(a, b, k) or logspace(a, b, k), as a sweep "
+             "axis), beside the spectrum's prediction at the initial state; "
+             "writes limits.csv"},
     CL_CLI_TAIL(stab_setup, "no table on stdout"),
     {.type = CL_CLI_END}};
 
@@ -84,7 +99,192 @@ static const cl_cli_table stab_table = {
     "sweep's (its dt axis; the rows whose other axes match this problem's\n"
     "values): complete runs are stable, failed runs that got going are not;\n"
     "the bracket is the smallest unstable dt and the largest stable one\n"
-    "below it.\n"};
+    "below it.  With --axis KEY=VALUES (e.g. type1.ks=logspace(2, 7, 6))\n"
+    "the search is made at every value of KEY (the sweep's rows of that\n"
+    "value with --from-sweep), beside the spectrum's prediction at the\n"
+    "initial state (as clothode spectrum), and the slope of log dt against\n"
+    "log KEY is fitted for each method, measured (the geometric mean of\n"
+    "each bracket) and predicted; writes limits.csv.\n"};
+
+/* ---- --axis: the search at every value of a key ------------------------- */
+
+/* The model at value v into s->variant, the table's rows of it selected
+ * (the key set as --set would, then put back). */
+static cl_status use_value(stab_setup *s, int v, cl_error *err)
+{
+    char a[512];
+    if (s->variant_of == v)
+        return CL_OK;
+    cl_model_free(s->variant);
+    s->variant = NULL;
+    s->variant_of = -1;
+    snprintf(a, sizeof a, "%s=%s", s->key, s->values.v[v]);
+    cl_status rc = cl_config_set_as(s->cfg, a, "--axis", err);
+    if (!rc && s->from)
+        rc = cl_sweep_table_select(&s->table, s->cfg, err);
+    if (!rc && !(rc = cl_model_create(s->cfg, &s->variant, err)))
+        s->variant_of = v;
+    snprintf(a, sizeof a, "%s=%s", s->key, s->original ? s->original : "");
+    if (s->original && !rc)
+        rc = cl_config_set(s->cfg, a, err);
+    return rc;
+}
+
+/* KEY=VALUES read, and the model at every value built and checked. */
+static cl_status read_axis(cl_config *cfg, stab_setup *s, cl_error *err)
+{
+    const char *eq = strchr(s->axis, '='), *dot;
+    bool ok = eq && eq - s->axis < (long)sizeof s->key;
+    if (ok) {
+        snprintf(s->key, sizeof s->key, "%.*s", (int)(eq - s->axis),
+                 s->axis);
+        dot = strrchr(s->key, '.');
+        ok = dot && dot > s->key && dot[1];
+    }
+    cl_status rc = ok ? cl_sweep_axis_values(&s->values, eq + 1, &ok)
+                      : CL_OK;
+    if (rc)
+        return cl_error_set(err, rc, "out of memory");
+    if (!ok)
+        return cl_config_refuse(cfg, "stability", "axis", CL_EINVAL,
+                                "expected SECTION.KEY=VALUES, the values a "
+                                "list, linspace(a, b, k) or logspace(a, b, "
+                                "k)", err);
+    char sec[128];
+    snprintf(sec, sizeof sec, "%.*s", (int)(strrchr(s->key, '.') - s->key),
+             s->key);
+    const char *was = cl_config_string(cfg, sec, strrchr(s->key, '.') + 1,
+                                       NULL);
+    if (was && !(s->original = strdup(was)))
+        return cl_error_set(err, CL_ENOMEM, "out of memory");
+    for (int v = 0; !rc && v < s->values.n; v++) {
+        if (!(rc = use_value(s, v, err)) &&
+            !(rc = cl_cli_methods_try(s->variant, &s->integrators, err)))
+            for (int k = 0; !rc && k < s->integrators.n; k++)
+                rc = cl_stab_check(s->variant, s->integrators.m[k].type,
+                                   &s->so, err);
+    }
+    return rc;
+}
+
+/* Least-squares slope of log y against log x over the pairs with both
+ * finite and > 0; NaN with fewer than two. */
+static double log_slope(const double *x, const double *y, int n)
+{
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    int m = 0;
+    for (int k = 0; k < n; k++) {
+        if (!(x[k] > 0 && y[k] > 0 && isfinite(x[k]) && isfinite(y[k])))
+            continue;
+        double a = log(x[k]), b = log(y[k]);
+        sx += a, sy += b, sxx += a * a, sxy += a * b, m++;
+    }
+    double d = m * sxx - sx * sx;
+    return m >= 2 && d > 0 ? (m * sxy - sx * sy) / d : NAN;
+}
+
+static void print_axis_result(const void *result)
+{
+    cl_climit_print(stdout, result);
+}
+
+static cl_status begin_axis(cl_model *m, const cl_cli_job *job, void *ctx,
+                            cl_error *err)
+{
+    const stab_setup *s = ctx;
+    (void)m;
+    (void)err;
+    if (!job->quiet)
+        printf("problem    %s, T = %g s, max_stretch %g, %ld checks per run; "
+               "%d values of %s%s%s\n", job->problem, s->so.t_end,
+               s->so.max_stretch, s->so.checks, s->values.n, s->key,
+               s->from ? ", runs from the sweep table " : "",
+               s->from ? s->from : "");
+    return CL_OK;
+}
+
+static cl_status run_axis(cl_model *m, void *ctx, int k, void *result,
+                          cl_error *err)
+{
+    stab_setup *s = ctx;
+    cl_climit_result *r = result;
+    const cl_cli_method *mk = &s->integrators.m[k % s->integrators.n];
+    int v = k / s->integrators.n;
+    (void)m;
+    cl_status rc = use_value(s, v, err);
+    size_t n = rc ? 0 : cl_model_system(s->variant)->n;
+    double *x = rc ? NULL : malloc(2 * n * sizeof *x);
+    if (!rc && !x)
+        rc = cl_error_set(err, CL_ENOMEM, "out of memory");
+    if (!rc && cl_model_initial_state(s->variant, x, x + n))
+        rc = cl_error_set(err, CL_EINVAL, "no initial state at %s = %s",
+                          s->key, s->values.v[v]);
+    if (!rc)
+        rc = cl_climit_predict(s->variant, mk->type, 0.0, x, x + n, r, err);
+    free(x);
+    if (!rc)
+        rc = s->from ? cl_stab_from_sweep(&s->table, mk->label, mk->type,
+                                          &r->stab, err)
+                     : cl_stability(s->variant, mk->type, &mk->io, &s->so,
+                                    &r->stab, err);
+    r->label = mk->label;
+    r->k = strtod(s->values.v[v], NULL);
+    return rc;
+}
+
+/* For each method, the fitted slopes of log dt against log KEY. */
+static void axis_summary(const void *results, int n)
+{
+    const cl_climit_result *r = results;
+    printf("slope of log dt against log KEY   measured   predicted\n");
+    for (int i = 0; i < n; i++) {
+        double x[64], yo[64], yp[64];
+        int m = 0;
+        bool first = true;
+        for (int j = 0; j < i && first; j++)
+            first = strcmp(r[j].label, r[i].label) != 0;
+        for (int j = i; first && j < n && m < 64; j++) {
+            if (strcmp(r[j].label, r[i].label))
+                continue;
+            x[m] = r[j].k;
+            yo[m] = sqrt(r[j].stab.dt_stable * r[j].stab.dt_unstable);
+            yp[m++] = r[j].predicted;
+        }
+        if (first)
+            printf("%-33s %9.3f %11.3f\n", r[i].label, log_slope(x, yo, m),
+                   log_slope(x, yp, m));
+    }
+}
+
+static void axis_rows(FILE *fp, const void *result, bool header)
+{
+    const cl_climit_result *r = result;
+    if (header)
+        fputs("integrator,value,dt_stable,dt_unstable,predicted,w_max,"
+              "runs\n", fp);
+    fprintf(fp, "%s,%.9g,%.9g,%.9g,%.9g,%.9g,%d\n", r->label, r->k,
+            r->stab.dt_stable, r->stab.dt_unstable, r->predicted, r->w_max,
+            r->stab.ntrial);
+}
+
+static void end_axis(void *ctx)
+{
+    stab_setup *s = ctx;
+    cl_model_free(s->variant);
+    s->variant = NULL;
+    s->variant_of = -1;
+    cl_sweep_table_free(&s->table);
+}
+
+static const cl_cli_study axis_study = {
+    .csv = "limits.csv",
+    .columns = "integrator              value   stable dt unstable dt "
+               "predicted dt w_max [1/s]  runs",
+    .size = sizeof(cl_climit_result), .begin = begin_axis,
+    .run = run_axis, .print = print_axis_result, .summary = axis_summary,
+    .rows = axis_rows, .end = end_axis};
+
+/* ---- the command -------------------------------------------------------- */
 
 /* Only fixed-step integrators have a step to limit. */
 static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
@@ -98,8 +298,13 @@ static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
         return rc;
     s->so.t_end = s->run.t_end;
     s->so.max_stretch = s->run.max_stretch;
-    if (s->from && !(rc = cl_sweep_table_read(s->from, &s->table, err)))
+    s->cfg = cfg;
+    s->variant_of = -1;
+    if (s->from && !(rc = cl_sweep_table_read(s->from, &s->table, err)) &&
+        !*s->axis)
         rc = cl_sweep_table_select(&s->table, cfg, err);
+    if (!rc && *s->axis)
+        rc = read_axis(cfg, s, err);
     return rc;
 }
 
@@ -174,6 +379,9 @@ static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
                        cl_error *err)
 {
     const stab_setup *s = ctx;
+    if (*s->axis)
+        return cl_cli_study_run(m, job, &axis_study,
+                                s->values.n * s->integrators.n, ctx, err);
     return cl_cli_study_run(m, job, &stab_study, s->integrators.n, ctx,
                             err);
 }
@@ -184,5 +392,8 @@ int cl_cmd_stability(int argc, char **argv)
     int status = cl_cli_problem_main(argc, argv, &stab_table, &s,
                                      check_setup, study);
     cl_sweep_table_free(&s.table); /* when the study did not start */
+    cl_model_free(s.variant);
+    cl_sweep_strings_free(s.values.v, s.values.n);
+    free(s.original);
     return status;
 }

@@ -1,4 +1,4 @@
-/* clothode sweep plan|run|collect: parameter sweeps (analysis/sweep.h),
+/* clothode sweep plan|run|collect|refine: parameter sweeps (analysis/sweep.h),
  * run by GNU parallel or Slurm (cli/sweep_engine.h). */
 #include <limits.h>
 #include <stdlib.h>
@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "analysis/sweep.h"
+#include "analysis/sweep_table.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
 #include "cli/sweep_engine.h"
@@ -346,6 +347,85 @@ static int collect(void *settings)
     return rc ? cl_cli_fail(&err) : 0;
 }
 
+/* ---- refine ------------------------------------------------------------- */
+
+typedef struct {
+    cl_cli_args a;
+    const char *tables;   /* --table LIST, default DIR/collected.csv */
+    long points;
+    double rel;
+} refine_args;
+
+static const cl_cli_opt refine_rows[] = {
+    {.name = "table", .arg = "LIST", .type = CL_CLI_STRING,
+     .field = offsetof(refine_args, tables),
+     .help = "the collected tables of the stages so far, comma-separated "
+             "(default DIR/collected.csv)"},
+    {.name = "points", .arg = "K", .type = CL_CLI_LONG, .sec = "sweep",
+     .key = "points", .def = 8, .lo = 1, .hi = 1000,
+     .field = offsetof(refine_args, points),
+     .help = "steps planned inside each bracket"},
+    {.name = "rel", .arg = "R", .type = CL_CLI_DOUBLE, .sec = "sweep",
+     .key = "rel", .def = 0.02, .lo = 1e-9, .hi = 100,
+     .field = offsetof(refine_args, rel),
+     .help = "leave brackets narrower than 1 + R (the stability search's "
+             "--rel)"},
+    {.name = "out", .arg = "DIR2", .type = CL_CLI_STRING,
+     .field = offsetof(refine_args, a.out),
+     .help = "the next stage's sweep directory (default DIR-refine)"},
+    {.name = "quiet", .type = CL_CLI_FLAG,
+     .field = offsetof(refine_args, a.quiet), .help = "no summary on stdout"},
+    CL_CLI_HELP_ROW,
+    {.type = CL_CLI_END}};
+
+static const cl_cli_table refine_table = {
+    .cmd = "sweep refine", .synopsis = "DIR [--table LIST] [--out DIR2]",
+    .npos = 1, .pos = "DIR", .rows = refine_rows,
+    .about =
+    "Plan the next stage of a sweep over dt: for every line of the sweep in\n"
+    "DIR (an integrator and the values of the other axes) whose collected\n"
+    "runs bracket a stability limit (the smallest unstable dt, the largest\n"
+    "stable one below it, as 'stability --from-sweep' reads them) wider than\n"
+    "1 + R, K steps evenly spread in log inside the bracket (each made T/N\n"
+    "when the sweep gives one t_end).  DIR2 is a sweep of its own (same\n"
+    "problem, binary and axes, no references): run and collect it, then give\n"
+    "the studies both tables, --from-sweep A.csv,B.csv; refine again with\n"
+    "--table A.csv,B.csv.\n"};
+
+static int refine(void *settings)
+{
+    refine_args *r = settings;
+    cl_sweep sw = {0}, next = {0};
+    cl_sweep_table t = {0};
+    cl_error err = {0};
+    char table[4200], out[4200];
+    int brackets = 0;
+    snprintf(table, sizeof table, "%s/collected.csv", r->a.arg);
+    snprintf(out, sizeof out, "%s-refine", r->a.arg);
+    r->a.out = r->a.out ? r->a.out : out;
+    cl_status rc = cl_sweep_load(r->a.arg, &sw, &err);
+    if (!rc)
+        rc = cl_sweep_table_read(r->tables ? r->tables : table, &t, &err);
+    if (!rc && !(rc = cl_mkdir_p(r->a.out, &err)) &&
+        (!(next.dir = realpath(r->a.out, NULL)) ||
+         !(next.problem = strdup(sw.problem)) ||
+         !(next.clothode = strdup(sw.clothode))))
+        rc = cl_error_set(&err, CL_ENOMEM, "%s: cannot resolve", r->a.out);
+    if (!rc)
+        rc = cl_sweep_refine(&sw, &t, (int)r->points, r->rel, &next,
+                             &brackets, &err);
+    if (!rc)
+        rc = cl_sweep_write(&next, &err);
+    if (!rc && !r->a.quiet)
+        printf("refine     %d jobs inside %d brackets wider than 1 + %g\n"
+               "output     %s/jobs.txt, %s/sweep.json\n", next.njob,
+               brackets, r->rel, next.dir, next.dir);
+    cl_sweep_table_free(&t);
+    cl_sweep_free(&next);
+    cl_sweep_free(&sw);
+    return rc ? cl_cli_fail(&err) : 0;
+}
+
 /* ---- dispatch ----------------------------------------------------------- */
 
 int cl_cmd_sweep(int argc, char **argv)
@@ -364,11 +444,18 @@ int cl_cmd_sweep(int argc, char **argv)
         return cl_cli_args_main(argc - 1, argv + 1, &collect_table, &a,
                                 collect);
     }
+    if (!strcmp(what, "refine")) {
+        refine_args r = {0};
+        return cl_cli_args_main(argc - 1, argv + 1, &refine_table, &r,
+                                refine);
+    }
     FILE *fp = strcmp(what, "--help") ? stderr : stdout;
     fprintf(fp, "usage: clothode sweep plan SWEEP.ini [--out DIR]\n"
                 "       clothode sweep run DIR [--engine local|ssh|slurm] "
                 "[--jobs N] [--resume] ...\n"
                 "       clothode sweep collect DIR [--out TABLE.csv]\n"
-                "(clothode sweep plan|run|collect --help for more)\n");
+                "       clothode sweep refine DIR [--table LIST] [--points K] "
+                "[--out DIR2]\n"
+                "(clothode sweep plan|run|collect|refine --help for more)\n");
     return fp == stdout ? 0 : 2;
 }

@@ -1,0 +1,106 @@
+/* The next stage of a sweep over dt (analysis/sweep_refine.c, `clothode
+ * sweep refine`): steps inside the brackets of the collected stages, made
+ * whole steps of T, and the stages read together by --from-sweep. */
+#include <criterion/criterion.h>
+
+#include <stdio.h>
+#include <string.h>
+
+#include "runcli.h"
+#include "timelimit.h"
+
+static char tmp[512];
+
+static void setup(void)
+{
+    time_limit(120);
+    tmp_mkdtemp(tmp, sizeof tmp, "sweepref");
+}
+
+static void teardown(void)
+{
+    tmp_rm_rf(tmp);
+}
+
+TestSuite(sweep_refine, .init = setup, .fini = teardown);
+
+static void ok(const char *a0, const char *a1, const char *a2,
+               const char *a3, const char *a4, const char *a5)
+{
+    cli_result r;
+    cli_runv(&r, (const char *const[]){a0, a1, a2, a3, a4, a5, "--quiet",
+                                       NULL});
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+}
+
+/* A particle on a penalty floor, symplectic Euler over 0.2 s: the grid
+ * 2, 4, 8, 16 ms brackets the limit between 8 and 16 ms; three points
+ * 8 ms 2^(i/4) made 0.2/N: 0.2/21, 0.2/18, 0.2/15; with both stages the
+ * bracket narrows to 9.52 .. 11.1 ms. */
+Test(sweep_refine, steps_inside_the_bracket)
+{
+    char ini[600], dir[600], fine[700], t1[700], t2[700], both[1500],
+        out[700], text[65536];
+    snprintf(ini, sizeof ini, "%s/s.ini", tmp);
+    snprintf(dir, sizeof dir, "%s/s", tmp);
+    snprintf(fine, sizeof fine, "%s/s-refine", tmp);
+    tmp_put(ini, "[sweep]\nproblem = problems/particle-floor.ini\n"
+                 "integrator = symplectic-euler\n"
+                 "dt = 0.002, 0.004, 0.008, 0.016\nt_end = 0.2\n");
+    ok("sweep", "plan", ini, "--out", dir, "--quiet");
+    ok("sweep", "run", dir, "--jobs", "2", "--quiet");
+    snprintf(t1, sizeof t1, "%s/coarse.csv", tmp);
+    ok("sweep", "collect", dir, "--out", t1, "--quiet");
+    cli_result r;
+    cli_run(&r, "sweep", "refine", dir, "--table", t1, "--points", "3",
+            NULL);
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "refine     3 jobs inside 1 brackets wider than "
+                            "1 + 0.02\n"), "%s", r.out);
+    cli_result_free(&r);
+    char manifest[800];
+    snprintf(manifest, sizeof manifest, "%s/sweep.json", fine);
+    tmp_slurp(manifest, text, sizeof text);
+    cr_assert(strstr(text, "\"run.dt\": \"0.00952380952380952\"") &&
+              strstr(text, "\"run.dt\": \"0.0111111111111111\"") &&
+              strstr(text, "\"run.dt\": \"0.0133333333333333\""), "%s",
+              text);
+    ok("sweep", "run", fine, "--jobs", "2", "--quiet");
+    snprintf(t2, sizeof t2, "%s/fine.csv", tmp);
+    ok("sweep", "collect", fine, "--out", t2, "--quiet");
+    snprintf(both, sizeof both, "%s,%s", t1, t2);
+    snprintf(out, sizeof out, "%s/st", tmp);
+    cli_run(&r, "stability", "particle-floor", "--t-end", "0.2",
+            "--integrator", "symplectic-euler", "--from-sweep", both,
+            "--out", out, NULL);
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "symplectic-euler      0.009524     0.01111     "
+                            "7  failed at t = 0.1 s (blow-up)\n"), "%s",
+              r.out);
+    cli_result_free(&r);
+    /* narrow enough: nothing left to plan */
+    cli_run(&r, "sweep", "refine", dir, "--table", both, "--rel", "0.2",
+            "--out", fine, NULL);
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "refine     0 jobs inside 0 brackets"), "%s",
+              r.out);
+    cli_result_free(&r);
+}
+
+Test(sweep_refine, stages_must_have_the_same_columns)
+{
+    char a[600], b[600], both[1300], out[600];
+    snprintf(a, sizeof a, "%s/a.csv", tmp);
+    snprintf(b, sizeof b, "%s/b.csv", tmp);
+    tmp_put(a, "id,role,integrator,run.dt,status\n");
+    tmp_put(b, "id,role,integrator,cloth.n,run.dt,status\n");
+    snprintf(both, sizeof both, "%s,%s", a, b);
+    snprintf(out, sizeof out, "%s/st", tmp);
+    cli_result r;
+    cli_run(&r, "stability", "particle-floor", "--integrator",
+            "symplectic-euler", "--from-sweep", both, "--out", out, NULL);
+    cr_assert_neq(r.status, 0);
+    cr_assert(strstr(r.err, "its columns are not those of"), "%s", r.err);
+    cli_result_free(&r);
+}
