@@ -139,16 +139,19 @@ cl_status cl_bvh_build(cl_bvh *b, const double *vert, size_t ntri,
     return CL_OK;
 }
 
+/* The distance from x to [lo, hi] along one axis (0 inside). */
+static inline double axis_gap(double x, double lo, double hi)
+{
+    return x < lo ? lo - x : x > hi ? x - hi : 0.0;
+}
+
 /* Squared distance from x to the node's box (0 inside). */
 static double box_dist2(const cl_bvh_node *nd, const double x[3])
 {
-    double s = 0;
-    for (int i = 0; i < 3; i++) {
-        double d = x[i] < nd->lo[i] ? nd->lo[i] - x[i]
-                   : x[i] > nd->hi[i] ? x[i] - nd->hi[i] : 0.0;
-        s += d * d;
-    }
-    return s;
+    double d0 = axis_gap(x[0], nd->lo[0], nd->hi[0]);
+    double d1 = axis_gap(x[1], nd->lo[1], nd->hi[1]);
+    double d2 = axis_gap(x[2], nd->lo[2], nd->hi[2]);
+    return d0 * d0 + d1 * d1 + d2 * d2;
 }
 
 /* The triangles nearest to a point found so far: at most cap of them
