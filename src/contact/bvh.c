@@ -146,7 +146,7 @@ static inline double axis_gap(double x, double lo, double hi)
 }
 
 /* Squared distance from x to the node's box (0 inside). */
-static double box_dist2(const cl_bvh_node *nd, const double x[3])
+static inline double box_dist2(const cl_bvh_node *nd, const double x[3])
 {
     double d0 = axis_gap(x[0], nd->lo[0], nd->hi[0]);
     double d1 = axis_gap(x[1], nd->lo[1], nd->hi[1]);
