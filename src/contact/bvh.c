@@ -182,10 +182,17 @@ static bool farther(const kept *k, double d2)
 }
 
 /* The order of the list: by distance, then by index, so that the answer
- * does not depend on the order the triangles are tried in. */
+ * does not depend on the order the triangles are tried in.  Whether
+ * triangle t at squared distance d2 comes before triangle u at e2. */
+static bool precedes(double d2, int t, double e2, int u)
+{
+    return d2 < e2 || (d2 == e2 && t < u);
+}
+
+/* Whether triangle t at squared distance d2 comes before entry i. */
 static bool before(double d2, int t, const kept *k, int i)
 {
-    return d2 < k->p[i].dist2 || (d2 == k->p[i].dist2 && t < k->tri[i]);
+    return precedes(d2, t, k->p[i].dist2, k->tri[i]);
 }
 
 /* The closest point of triangle t to x. */
@@ -310,21 +317,22 @@ static void reanchor(const double x[3], double moved, int ntried,
 static bool nearest_from_cache(const cl_bvh *b, const double x[3],
                                cl_bvh_cache *c, cl_bvh_hit *hit)
 {
-    kept k;
-    kept_start(&k, 1);
     double e[3], best = INFINITY;
     cl_tri_point at[CL_BVH_KEEP];
+    int first = 0;  /* the first of those measured in the list's order */
     cl_v3_sub(x, c->x0, e);
     double moved = sqrt(cl_v3_dot(e, e));
     int i = 0;
     for (; i < c->n && c->dist[i] - moved <= best; i++) {
         measure(b, c->tri[i], x, &at[i]);
-        keep(&k, c->tri[i], &at[i]);
-        best = sqrt(k.p[0].dist2);
+        if (precedes(at[i].dist2, c->tri[i], at[first].dist2, c->tri[first]))
+            first = i;
+        best = sqrt(at[first].dist2);
     }
     if (!(best < c->r0 - moved))
         return false;
-    hit_of(&k, hit);
+    hit->tri = c->tri[first];
+    hit->p = at[first];
     if (i > CL_BVH_TRIED)
         reanchor(x, moved, i, at, c);
     return true;
