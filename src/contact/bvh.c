@@ -139,16 +139,19 @@ cl_status cl_bvh_build(cl_bvh *b, const double *vert, size_t ntri,
     return CL_OK;
 }
 
-/* Squared distance from x to the node's box (0 inside). */
-static double box_dist2(const cl_bvh_node *nd, const double x[3])
+/* The distance from x to [lo, hi] along one axis (0 inside). */
+static inline double axis_gap(double x, double lo, double hi)
 {
-    double s = 0;
-    for (int i = 0; i < 3; i++) {
-        double d = x[i] < nd->lo[i] ? nd->lo[i] - x[i]
-                   : x[i] > nd->hi[i] ? x[i] - nd->hi[i] : 0.0;
-        s += d * d;
-    }
-    return s;
+    return x < lo ? lo - x : x > hi ? x - hi : 0.0;
+}
+
+/* Squared distance from x to the node's box (0 inside). */
+static inline double box_dist2(const cl_bvh_node *nd, const double x[3])
+{
+    double d0 = axis_gap(x[0], nd->lo[0], nd->hi[0]);
+    double d1 = axis_gap(x[1], nd->lo[1], nd->hi[1]);
+    double d2 = axis_gap(x[2], nd->lo[2], nd->hi[2]);
+    return d0 * d0 + d1 * d1 + d2 * d2;
 }
 
 /* The triangles nearest to a point found so far: at most cap of them
@@ -179,10 +182,17 @@ static bool farther(const kept *k, double d2)
 }
 
 /* The order of the list: by distance, then by index, so that the answer
- * does not depend on the order the triangles are tried in. */
+ * does not depend on the order the triangles are tried in.  Whether
+ * triangle t at squared distance d2 comes before triangle u at e2. */
+static bool precedes(double d2, int t, double e2, int u)
+{
+    return d2 < e2 || (d2 == e2 && t < u);
+}
+
+/* Whether triangle t at squared distance d2 comes before entry i. */
 static bool before(double d2, int t, const kept *k, int i)
 {
-    return d2 < k->p[i].dist2 || (d2 == k->p[i].dist2 && t < k->tri[i]);
+    return precedes(d2, t, k->p[i].dist2, k->tri[i]);
 }
 
 /* The closest point of triangle t to x. */
@@ -307,21 +317,22 @@ static void reanchor(const double x[3], double moved, int ntried,
 static bool nearest_from_cache(const cl_bvh *b, const double x[3],
                                cl_bvh_cache *c, cl_bvh_hit *hit)
 {
-    kept k;
-    kept_start(&k, 1);
     double e[3], best = INFINITY;
     cl_tri_point at[CL_BVH_KEEP];
+    int first = 0;  /* the first of those measured in the list's order */
     cl_v3_sub(x, c->x0, e);
     double moved = sqrt(cl_v3_dot(e, e));
     int i = 0;
     for (; i < c->n && c->dist[i] - moved <= best; i++) {
         measure(b, c->tri[i], x, &at[i]);
-        keep(&k, c->tri[i], &at[i]);
-        best = sqrt(k.p[0].dist2);
+        if (precedes(at[i].dist2, c->tri[i], at[first].dist2, c->tri[first]))
+            first = i;
+        best = sqrt(at[first].dist2);
     }
     if (!(best < c->r0 - moved))
         return false;
-    hit_of(&k, hit);
+    hit->tri = c->tri[first];
+    hit->p = at[first];
     if (i > CL_BVH_TRIED)
         reanchor(x, moved, i, at, c);
     return true;

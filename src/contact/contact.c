@@ -11,6 +11,7 @@
 #include "contact/constraint.h"
 #include "contact/penalty.h"
 #include "contact/project.h"
+#include "core/vec3.h"
 
 #define PREFIX "obstacle."
 #define ON_SURFACE CL_ON_SURFACE /* a projected particle counts as touching */
@@ -250,8 +251,8 @@ static void add_particle(cl_contact *c, cl_eval *ev, size_t p,
                          const double f[3], const double dfdx[9],
                          const double dfdv[9])
 {
-    for (int i = 0; ev->f && i < 3; i++)
-        ev->f[3 * p + i] += f[i];
+    if (ev->f)
+        cl_v3_add(ev->f + 3 * p, f, ev->f + 3 * p);
     if (ev->dfdx)
         add_block(ev->dfdx, c->slot[p], dfdx);
     if (ev->dfdv)

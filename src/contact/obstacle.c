@@ -70,12 +70,17 @@ static inline void to_shape(const cl_obstacle *o, const cl_pose *P,
                      const double x[3], double r[3], double X[3])
 {
     const double *R = P->R;
-    for (int i = 0; i < 3; i++)
-        r[i] = x[i] - o->pivot[i] - P->s[i];
-    for (int i = 0; i < 3; i++)
-        X[i] = o->pivot[i] + (P->rotates ? R[i] * r[0] + R[3 + i] * r[1] +
-                                               R[6 + i] * r[2]
-                                         : r[i]);
+    double y[3];
+    cl_v3_sub(x, o->pivot, r);
+    cl_v3_sub(r, P->s, r);
+    if (P->rotates) {
+        y[0] = R[0] * r[0] + R[3] * r[1] + R[6] * r[2];
+        y[1] = R[1] * r[0] + R[4] * r[1] + R[7] * r[2];
+        y[2] = R[2] * r[0] + R[5] * r[1] + R[8] * r[2];
+    } else {
+        memcpy(y, r, sizeof y);
+    }
+    cl_v3_add(o->pivot, y, X);
 }
 
 /* y = R b (b itself when the obstacle does not rotate). */
@@ -143,11 +148,10 @@ static void query_at(const cl_obstacle *o, const cl_pose *P,
                      const double r[3], const double X[3], void *cache,
                      cl_contact_point *q)
 {
-    double cb[3], c[3];
+    double cb[3], c[3], qs[3];
     cl_shape_query b;
     o->type->query(o->shape, X, cache, &b);
-    for (int i = 0; i < 3; i++)
-        cb[i] = b.c[i] - o->pivot[i];
+    cl_v3_sub(b.c, o->pivot, cb);
     q->d = b.d;
     if (P->rotates) {
         rotate(P, b.n, q->n);
@@ -156,8 +160,8 @@ static void query_at(const cl_obstacle *o, const cl_pose *P,
         memcpy(q->n, b.n, sizeof q->n);
         memcpy(c, cb, sizeof c);
     }
-    for (int i = 0; i < 3; i++)
-        q->c[i] = o->pivot[i] + P->s[i] + c[i];
+    cl_v3_add(o->pivot, P->s, qs);    /* q + s + c */
+    cl_v3_add(qs, c, q->c);
     rotate_hessian(P, b.G, q->G);
     velocity_at(o, P, r, q->u);
     memcpy(q->W, P->W, sizeof q->W);

@@ -79,21 +79,18 @@ bool cl_penalty_eval(const cl_response_params *r, const cl_contact_point *q,
     if (!(q->d < r->eps))
         return false;
     double w[3], vt[3], g[3] = {0.0, 0.0, 0.0}, s = 0.0;
-    for (int i = 0; i < 3; i++)
-        w[i] = v[i] - q->u[i];
+    cl_v3_sub(v, q->u, w);
     double fe = r->k * (r->eps - q->d), wn = cl_v3_dot(w, q->n);
-    for (int i = 0; i < 3; i++)
-        o->f[i] = fe * (1.0 - r->damping * wn) * q->n[i];
+    cl_v3_scale(fe * (1.0 - r->damping * wn), q->n, o->f);
     o->energy = 0.5 * r->k * (r->eps - q->d) * (r->eps - q->d);
     o->friction_power = 0.0;
     if (r->mu != 0.0) { /* without friction, g is not needed */
-        for (int i = 0; i < 3; i++)
-            vt[i] = w[i] - wn * q->n[i];
+        cl_v3_axpy(w, -wn, q->n, vt);   /* w - w_n n */
         s = sqrt(cl_v3_dot(vt, vt) + r->v_smooth * r->v_smooth);
-        for (int i = 0; i < 3; i++) {
-            g[i] = vt[i] / s;
-            o->f[i] -= r->mu * fe * g[i];
-        }
+        g[0] = vt[0] / s;
+        g[1] = vt[1] / s;
+        g[2] = vt[2] / s;
+        cl_v3_axpy(o->f, -(r->mu * fe), g, o->f);
         o->friction_power = -r->mu * fe * cl_v3_dot(g, vt);
     }
     o->power = -r->damping * fe * wn * wn + o->friction_power;

@@ -15,20 +15,44 @@ static inline double cl_v3_norm(const double a[3])
     return sqrt(cl_v3_dot(a, a));
 }
 
+/* The component operations below are written out rather than looped:
+ * GCC at -O2 keeps a three-trip loop as a loop, which holds the result in
+ * memory (stored, then loaded back by the next operation) instead of in
+ * registers.  The same operations, so the same results. */
+
+/* out = a + b (out may alias a or b). */
+static inline void cl_v3_add(const double a[3], const double b[3],
+                             double out[3])
+{
+    out[0] = a[0] + b[0];
+    out[1] = a[1] + b[1];
+    out[2] = a[2] + b[2];
+}
+
 /* out = a - b (out may alias a or b). */
 static inline void cl_v3_sub(const double a[3], const double b[3],
                              double out[3])
 {
-    for (int i = 0; i < 3; i++)
-        out[i] = a[i] - b[i];
+    out[0] = a[0] - b[0];
+    out[1] = a[1] - b[1];
+    out[2] = a[2] - b[2];
 }
 
 /* out = a + s b (out may alias a or b). */
 static inline void cl_v3_axpy(const double a[3], double s, const double b[3],
                               double out[3])
 {
-    for (int i = 0; i < 3; i++)
-        out[i] = a[i] + s * b[i];
+    out[0] = a[0] + s * b[0];
+    out[1] = a[1] + s * b[1];
+    out[2] = a[2] + s * b[2];
+}
+
+/* out = s a (out may alias a). */
+static inline void cl_v3_scale(double s, const double a[3], double out[3])
+{
+    out[0] = s * a[0];
+    out[1] = s * a[1];
+    out[2] = s * a[2];
 }
 
 /* out = a x b (out must not alias a or b). */
