@@ -36,6 +36,10 @@ typedef struct {
                           * (takes_max_order; 0: the solver's own, 5 for
                           * BDF, 12 for Adams) */
     bool force;          /* skip the memory guard (memguard.h; --force) */
+    long substeps;       /* substeps per step of the constraint-based
+                          * methods (takes_iterations; 0: 1) */
+    long iterations;     /* their constraint iterations per substep
+                          * (0: the method's default) */
 } cl_integrator_opts;
 
 /* The linear solver's part of the options. */
@@ -52,6 +56,7 @@ typedef struct {
     bool fixed_step;     /* true: needs dt; false: uses rtol/atol */
     bool takes_linsol;   /* accepts opts->linsol (cl_linsol registry) */
     bool takes_max_order; /* accepts opts->max_order */
+    bool takes_iterations; /* accepts opts->substeps, opts->iterations */
     bool dense_jacobian; /* factorises a dense 2n x 2n Newton matrix */
     const cl_region *region; /* linear stability region (region.h) */
     cl_status (*create)(const cl_system *sys, const cl_integrator_opts *o,
