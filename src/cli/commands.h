@@ -15,5 +15,6 @@ int cl_cmd_asinc(int argc, char **argv);
 int cl_cmd_contact(int argc, char **argv);
 int cl_cmd_replay(int argc, char **argv);
 int cl_cmd_sweep(int argc, char **argv);
+int cl_cmd_budget(int argc, char **argv);
 
 #endif
