@@ -219,6 +219,20 @@ done
 cat "$cs/jiao-sphere/contact.csv" "$cs"/tunnel-*.dat
 draw contact-study "dir='$cs'; title_text='contact study'"
 
+echo "report: equal budget (xpbd-chain; ms-hang springs), substeps against iterations"
+bd=$res/budget
+rm -rf "$bd" && mkdir -p "$bd"
+"$bin" budget xpbd-chain --quiet --out "$bd/chain" --integrator xpbd \
+    --budget 20 --dt 0.01 --t-end 1 --ref-rtol 0
+awk -F, 'NR > 1 { print $3, $7, $8 }' "$bd/chain/budget.csv" > "$bd/chain.dat"
+"$bin" budget ms-hang --quiet --out "$bd/hang" --budget 8 --dt 0.01 \
+    --t-end 0.5 --ref-rtol 1e-8 --set pbd.enabled=false \
+    --set spring-damping.kd=0 \
+    --integrator xpbd,pd,kinsol-be,semi-be,kinsol-bdf2,semi-bdf2
+names=$(split_csv "$bd/hang/budget.csv" "$bd/dat" 3 6 13)
+cat "$bd/chain/budget.csv" "$bd/hang/budget.csv"
+draw budget "chain='$bd/chain.dat'; dir='$bd/dat'; names='$names'; title_text='equal budget: substeps against iterations'"
+
 echo "report: animation (hang, cvode-bdf, 2 s)"
 "$bin" run hang --quiet --out "$res/hang" --frames 40 --format obj
 gnuplot -e "dir='$res/hang'; nframes=40; nv=16; outfile='plots/hang.gif'; xr0=-0.6; xr1=1.1; zr0=0; zr1=1; yr0=-1.1; yr1=0.1" plots/animation.gp
