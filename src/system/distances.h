@@ -1,5 +1,5 @@
 /* The distance constraints of a model (system/system.h, cl_distances;
- * docs/model.md, 3.5): the pairs of every term with a `distances` hook
+ * docs/model.md, 3.6): the pairs of every term with a `distances` hook
  * (forces/term.h), in term order, with their ends numbered for the
  * integrators (free index, or -1 - j for the pinned particle of pin j). */
 #ifndef CL_DISTANCES_H

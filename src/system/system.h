@@ -57,7 +57,7 @@ typedef struct {
     double *S, *z, *y, *g;
 } cl_constraint_set;
 
-/* Distance constraints (docs/model.md, 3.5): the pairs of the terms that
+/* Distance constraints (docs/model.md, 3.6): the pairs of the terms that
  * are spring networks (springs: stiffness k; pbd: infinitely stiff), for
  * the constraint-based integrators (xpbd, pd), built once with the model.
  * Constraint c keeps |x_a - x_b| at rest[c] with compliance 1/stiffness[c]
