@@ -2,11 +2,9 @@
  * constraint_common.h. */
 #include "integrators/constraint_common.h"
 
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/check.h"
 #include "integrators/fixed_step.h"
 
 void cl_cdyn_free(void *state)
@@ -29,13 +27,9 @@ static cl_status cdyn_check(const cl_cdyn_method *m, const cl_system *sys,
                             const cl_integrator_opts *o, double t0,
                             cl_error *err)
 {
-    if (!isfinite(o->dt) || !(o->dt > 0.0))
-        return cl_error_set(err, CL_EINVAL,
-                            "%s: step dt = %g, must be finite and > 0",
-                            m->name, o->dt);
-    if (!isfinite(t0))
-        return cl_error_set(err, CL_EINVAL, "%s: initial time %g", m->name,
-                            t0);
+    cl_status st = cl_fixed_check(m->name, sys, o->dt, t0, err);
+    if (st)
+        return st;
     if (o->substeps < 0 || o->iterations < 0)
         return cl_error_set(err, CL_EINVAL, "%s: substeps = %ld, iterations "
                             "= %ld (need >= 0; 0: the default)", m->name,
@@ -45,8 +39,7 @@ static cl_status cdyn_check(const cl_cdyn_method *m, const cl_system *sys,
                             "a springs or pbd term (springs.enabled or "
                             "pbd.enabled = true) and no tearing (tear.cut "
                             "= 0)", m->name);
-    cl_status st = cl_integrator_refuse_constraints(m->name, sys, err);
-    return st ? st : cl_check_masses(sys->mass, sys->n, m->name, err);
+    return cl_integrator_refuse_constraints(m->name, sys, err);
 }
 
 static cl_status cdyn_alloc(cl_cdyn *s, size_t n, size_t na, cl_error *err)
