@@ -94,7 +94,7 @@ cl_status cl_cdyn_create(const cl_cdyn_method *m, const cl_system *sys,
 static cl_status cdyn_substep(cl_cdyn *s, double t, cl_error *err)
 {
     const cl_system *sys = s->sys;
-    double h = s->h, *a = s->y;
+    double h = s->h, *a = s->y; /* f_other into y, read before y is set */
     cl_status st = sys->force_other(sys->data, t, s->x, s->v, a);
     s->nrhs++;
     if (st)

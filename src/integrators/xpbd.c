@@ -27,12 +27,34 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* lambda per constraint (dc->n) */
+/* Per constraint (dc->n each): lambda, and alpha~ = 1 / (k h^2), fixed
+ * for the run (0 for a hard constraint). */
+typedef struct {
+    double *lambda, *a_tilde;
+} xpbd_state;
+
+static void xpbd_free(void *own)
+{
+    xpbd_state *x = own;
+    free(x->lambda);
+    free(x->a_tilde);
+    free(x);
+}
+
 static cl_status xpbd_setup(cl_cdyn *s, cl_error *err)
 {
-    s->own = calloc(s->dc->n + 1, sizeof(double));
-    return s->own ? CL_OK : cl_error_set(err, CL_ENOMEM, "xpbd: out of "
-                                         "memory");
+    size_t n = s->dc->n;
+    xpbd_state *x = calloc(1, sizeof *x);
+    if (!x)
+        return cl_error_set(err, CL_ENOMEM, "xpbd: out of memory");
+    s->own = x;
+    x->lambda = malloc((n + 1) * sizeof *x->lambda);
+    x->a_tilde = malloc((n + 1) * sizeof *x->a_tilde);
+    if (!x->lambda || !x->a_tilde)
+        return cl_error_set(err, CL_ENOMEM, "xpbd: out of memory");
+    for (size_t j = 0; j < n; j++)
+        x->a_tilde[j] = 1.0 / (s->dc->stiffness[j] * s->h * s->h);
+    return CL_OK;
 }
 
 /* One constraint update (the equations above); a_tilde = alpha / h^2. */
@@ -58,13 +80,12 @@ static void xpbd_constraint(cl_cdyn *s, size_t j, double a_tilde,
 
 static cl_status xpbd_solve(cl_cdyn *s, double t, double h, cl_error *err)
 {
-    (void)t, (void)err;
-    double *lambda = s->own;
-    memset(lambda, 0, s->dc->n * sizeof *lambda);
+    (void)t, (void)h, (void)err;
+    xpbd_state *x = s->own;
+    memset(x->lambda, 0, s->dc->n * sizeof *x->lambda);
     for (long it = 0; it < s->iterations; it++)
         for (size_t j = 0; j < s->dc->n; j++)
-            xpbd_constraint(s, j, 1.0 / (s->dc->stiffness[j] * h * h),
-                            &lambda[j]);
+            xpbd_constraint(s, j, x->a_tilde[j], &x->lambda[j]);
     return CL_OK;
 }
 
@@ -73,7 +94,7 @@ static const cl_cdyn_method xpbd_method = {
     .default_iterations = 1,
     .setup = xpbd_setup,
     .solve = xpbd_solve,
-    .free = free,
+    .free = xpbd_free,
 };
 
 CL_CDYN_INTEGRATOR(cl_integrator_xpbd, xpbd_method, "xpbd",
