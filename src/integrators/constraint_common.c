@@ -28,7 +28,7 @@ static cl_status cdyn_check(const cl_cdyn_method *m, const cl_system *sys,
                             cl_error *err)
 {
     cl_status st = cl_fixed_check(m->name, sys, o->dt, t0, err);
-    if (st)
+    if (st || (st = cl_integrator_refuse_constraints(m->name, sys, err)))
         return st;
     if (o->substeps < 0 || o->iterations < 0)
         return cl_error_set(err, CL_EINVAL, "%s: substeps = %ld, iterations "
@@ -39,7 +39,7 @@ static cl_status cdyn_check(const cl_cdyn_method *m, const cl_system *sys,
                             "a springs or pbd term (springs.enabled or "
                             "pbd.enabled = true) and no tearing (tear.cut "
                             "= 0)", m->name);
-    return cl_integrator_refuse_constraints(m->name, sys, err);
+    return CL_OK;
 }
 
 static cl_status cdyn_alloc(cl_cdyn *s, size_t n, size_t na, cl_error *err)
