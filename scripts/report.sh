@@ -326,6 +326,19 @@ draw damping "dir='$nd/dat'; names='$names'; title_text='spring2: amplitude rati
     --modes-dt 1e-2
 names=$(split_csv "$nd/damping-modes.csv" "$nd/modes" 4 5 6)
 draw damping-modes "dir='$nd/modes'; names='$names'; title_text='hang-smooth at rest, no gravity: energy left per mode after 1 s at dt = 0.01'"
+echo "report: equal budget (xpbd-chain; ms-hang springs), substeps against iterations"
+bd=$res/budget
+rm -rf "$bd" && mkdir -p "$bd"
+"$bin" budget xpbd-chain --quiet --out "$bd/chain" --integrator xpbd \
+    --budget 20 --dt 0.01 --t-end 1 --ref-rtol 0
+awk -F, 'NR > 1 { print $3, $7, $8 }' "$bd/chain/budget.csv" > "$bd/chain.dat"
+"$bin" budget ms-hang --quiet --out "$bd/hang" --budget 8 --dt 0.01 \
+    --t-end 0.5 --ref-rtol 1e-8 --set pbd.enabled=false \
+    --set spring-damping.kd=0 \
+    --integrator xpbd,pd,kinsol-be,semi-be,kinsol-bdf2,semi-bdf2
+names=$(split_csv "$bd/hang/budget.csv" "$bd/dat" 3 6 13)
+cat "$bd/chain/budget.csv" "$bd/hang/budget.csv"
+draw budget "chain='$bd/chain.dat'; dir='$bd/dat'; names='$names'; title_text='equal budget: substeps against iterations'"
 
 echo "report: animation (hang, cvode-bdf, 2 s)"
 "$bin" run hang --quiet --out "$res/hang" --frames 40 --format obj

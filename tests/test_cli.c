@@ -412,6 +412,18 @@ Test(cli, max_order_only_for_cvode_and_ida)
                         "0.01"), 0, LIST("max_order", "13"));
 }
 
+Test(cli, substeps_and_iterations_only_for_xpbd_and_pd)
+{
+    expect_refused(LIST("run", "hang", "--integrator", "semi-be", "--dt",
+                        "1e-3", "--substeps", "4", "--t-end", "0.01"), 0,
+                   LIST("substeps", "semi-be", "xpbd and pd"));
+    expect_refused(LIST("run", "hang", "--iterations", "3", "--t-end",
+                        "0.01"), 0, LIST("iterations", "cvode-bdf"));
+    expect_refused(LIST("run", "hang", "--integrator", "xpbd", "--dt",
+                        "1e-3", "--t-end", "0.01"), 0,
+                   LIST("xpbd needs distance constraints"));
+}
+
 Test(cli, fixed_step_without_dt)
 {
     expect_refused(LIST("run", "hang", "--integrator", "symplectic-euler",

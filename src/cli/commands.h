@@ -16,5 +16,6 @@ int cl_cmd_contact(int argc, char **argv);
 int cl_cmd_replay(int argc, char **argv);
 int cl_cmd_sweep(int argc, char **argv);
 int cl_cmd_damping(int argc, char **argv);
+int cl_cmd_budget(int argc, char **argv);
 
 #endif

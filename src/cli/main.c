@@ -22,6 +22,8 @@ static const cl_command commands[] = {
      "observed orders against a tight reference"},
     {"workprecision", cl_cmd_workprecision,
      "error against CPU time, the fastest method per accuracy"},
+    {"budget", cl_cmd_budget,
+     "substeps against iterations at an equal budget per step"},
     {"eval", cl_cmd_eval, "forces, energies and Jacobians at a given state"},
     {"asinc", cl_cmd_asinc,
      "the exact inverse sinc beside Jiao's polynomial"},

@@ -67,6 +67,14 @@ const cl_cli_opt cl_cli_run_rows[] = {
      RUN_ROW(io.rayleigh_beta), .lo = 0, .hi = INFINITY,
      .help = "Rayleigh damping of the kinsol-* integrators, stiffness part "
              "beta K (s)"},
+    {.name = "substeps", .arg = "S", .type = CL_CLI_LONG, .key = "substeps",
+     RUN_ROW(io.substeps), .lo = 0, .hi = 1000000,
+     .help = "substeps per step of xpbd and pd, 0 for 1 (Macklin et al., "
+             "\"Small steps in physics simulation\")"},
+    {.name = "iterations", .arg = "K", .type = CL_CLI_LONG,
+     .key = "iterations", RUN_ROW(io.iterations), .lo = 0, .hi = 1000000,
+     .help = "constraint iterations per substep of xpbd and pd, 0 for "
+             "theirs (xpbd 1, pd 10)"},
     {.type = CL_CLI_DOUBLE, .key = "max_stretch", RUN_ROW(max_stretch),
      .def = 10.0, .lo = 1.0, .hi = INFINITY,
      .help = "a stretch d/L beyond this counts as a blow-up"},
@@ -188,6 +196,13 @@ static cl_status check_method(cl_config *cfg, const cl_cli_method *m,
         return refuse_number(cfg, "max_order", m->io.max_order, type,
                              "has no choice of order (CVODE and IDA have)",
                              err);
+    if (m->io.substeps && !type->takes_iterations)
+        return refuse_number(cfg, "substeps", m->io.substeps, type,
+                             "takes no substeps (xpbd and pd do)", err);
+    if (m->io.iterations && !type->takes_iterations)
+        return refuse_number(cfg, "iterations", m->io.iterations, type,
+                             "has no constraint iterations (xpbd and pd "
+                             "have)", err);
     if (dt != CL_CLI_DT_NONE && type->fixed_step && !(m->io.dt > 0))
         return refuse_number(cfg, "dt", m->io.dt, type, "takes fixed steps "
                              "and needs dt > 0 (--dt H)", err);

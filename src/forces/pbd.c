@@ -55,6 +55,17 @@ static void pbd_eval(void *state, cl_eval *ev)
     }
 }
 
+/* The same pairs as hard distance constraints (XPBD with compliance 0);
+ * K and the sweeps are the projection's own and are not passed on. */
+static size_t pbd_distances(const void *state, const cl_pair **pair,
+                            const double **k)
+{
+    const pbd_state *st = state;
+    *pair = st->pt.set.pair;
+    *k = NULL;
+    return st->pt.set.n;
+}
+
 static size_t pbd_couplings(const void *state, const int (**pairs)[2])
 {
     (void)state;
@@ -161,6 +172,7 @@ const cl_term_type cl_term_pbd = {
     .bind = pbd_bind,
     .eval = pbd_eval,
     .project = pbd_project,
+    .distances = pbd_distances,
     .step_done = cl_pairterm_step_done,
     .broken = cl_pairterm_broken,
     .free = pbd_free,

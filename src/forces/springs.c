@@ -258,6 +258,17 @@ static void springs_free(void *state)
     free(st);
 }
 
+/* Every spring is the distance constraint of its pair with stiffness k
+ * (compliance 1/k: XPBD, projective dynamics). */
+static size_t springs_distances(const void *state, const cl_pair **pair,
+                                const double **k)
+{
+    const springs_state *st = state;
+    *pair = st->pt.set.pair;
+    *k = st->k;
+    return st->pt.set.n;
+}
+
 static cl_status springs_create(cl_config *cfg, const cl_cloth *cloth,
                                 const cl_term_opts *opts, void **state,
                                 cl_error *err)
@@ -299,6 +310,7 @@ const cl_term_type cl_term_springs = {
     .couplings = cl_pairterm_couplings,
     .bind = cl_pairterm_bind,
     .eval = cl_pairterm_eval,
+    .distances = springs_distances,
     .step_done = cl_pairterm_step_done,
     .broken = cl_pairterm_broken,
     .free = springs_free,

@@ -17,6 +17,7 @@
 #include "io/config.h"
 #include "linalg/bpattern.h"
 #include "model/cloth.h"
+#include "model/pairs.h"
 
 /* Options shared by every term (docs/model.md 3.1: jacobian.transverse;
  * 3.4: tearing). */
@@ -64,6 +65,12 @@ typedef struct {
      * constraints (the Verlet-and-PBD report); dof[p] < 0 marks particles
      * that must not move (pinned). */
     void (*project)(void *state, double *x, const int *dof);
+    /* Distance constraints (system/system.h, cl_distances) that stand for
+     * this term's forces in the constraint-based integrators (xpbd, pd):
+     * returns their number, *pair their particles and rest lengths, *k
+     * their stiffnesses (N/m), or *k = NULL for hard constraints. */
+    size_t (*distances)(const void *state, const cl_pair **pair,
+                        const double **k);
     /* After an accepted step: irreversible updates (tearing: a pair breaks
      * when d > cut L); returns the number of newly broken connections. */
     size_t (*step_done)(void *state, const double *x, const double *v);

@@ -26,19 +26,17 @@ void cl_fixed_free(void *state)
     free(s);
 }
 
-static cl_status fixed_check_args(const cl_fixed_method *m,
-                                  const cl_system *sys,
-                                  const cl_integrator_opts *o, double t0,
-                                  cl_error *err)
+cl_status cl_fixed_check(const char *name, const cl_system *sys, double dt,
+                         double t0, cl_error *err)
 {
-    if (!isfinite(o->dt) || !(o->dt > 0.0))
+    if (!isfinite(dt) || !(dt > 0.0))
         return cl_error_set(err, CL_EINVAL,
                             "%s: step dt = %g, must be finite and > 0",
-                            m->name, o->dt);
+                            name, dt);
     if (!isfinite(t0))
-        return cl_error_set(err, CL_EINVAL, "%s: initial time %g", m->name,
+        return cl_error_set(err, CL_EINVAL, "%s: initial time %g", name,
                             t0);
-    return cl_check_masses(sys->mass, sys->n, m->name, err);
+    return cl_check_masses(sys->mass, sys->n, name, err);
 }
 
 /* The state with all its arrays, or NULL when out of memory. */
@@ -70,7 +68,7 @@ cl_status cl_fixed_create(const cl_fixed_method *m, const cl_system *sys,
     if (m->nwork > CL_FIXED_MAXWORK)
         return cl_error_set(err, CL_EINVAL, "%s: %zu work arrays, at most "
                             "%d", m->name, m->nwork, CL_FIXED_MAXWORK);
-    cl_status st = fixed_check_args(m, sys, o, t0, err);
+    cl_status st = cl_fixed_check(m->name, sys, o->dt, t0, err);
     if (st == CL_OK)
         st = cl_integrator_refuse_constraints(m->name, sys, err);
     if (st != CL_OK)

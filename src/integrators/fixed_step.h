@@ -109,6 +109,12 @@ cl_status cl_fixed_run(const cl_fixed_clock *c, cl_fixed_step_fn step,
                        void *state, double t_out, double *x_out,
                        double *v_out, cl_error *err);
 
+/* The checks every fixed-step method makes when created: dt finite and
+ * > 0, t0 finite, the system's masses finite and > 0 (CL_EINVAL naming
+ * the method). */
+cl_status cl_fixed_check(const char *name, const cl_system *sys, double dt,
+                         double t0, cl_error *err);
+
 /* a = M^-1 f(t, x, v) (n entries), counted in rhs_evals.  A force that
  * fails returns its status with a message naming the method, the time and
  * the step. */

@@ -44,6 +44,10 @@ typedef struct {
                             * KINSOL methods (takes_rayleigh; 1/s, >= 0) */
     double rayleigh_beta;  /* ... its stiffness part (s, >= 0); 0 and 0:
                             * none (kinsol_common.h, "Rayleigh damping") */
+    long substeps;       /* substeps per step of the constraint-based
+                          * methods (takes_iterations; 0: 1) */
+    long iterations;     /* their constraint iterations per substep
+                          * (0: the method's default) */
 } cl_integrator_opts;
 
 /* The linear solver's part of the options. */
@@ -60,6 +64,7 @@ typedef struct {
     bool fixed_step;     /* true: needs dt; false: uses rtol/atol */
     bool takes_linsol;   /* accepts opts->linsol (cl_linsol registry) */
     bool takes_max_order; /* accepts opts->max_order */
+    bool takes_iterations; /* accepts opts->substeps, opts->iterations */
     bool dense_jacobian; /* factorises a dense 2n x 2n Newton matrix */
     bool takes_rayleigh; /* accepts opts->rayleigh_alpha, rayleigh_beta */
     const cl_region *region; /* linear stability region (region.h) */

@@ -22,7 +22,9 @@
  *   kinsol-be, kinsol-bdf2, kinsol-midpoint  fully implicit, KINSOL Newton
  *   kinsol-galpha     generalized-alpha (Chung and Hulbert), KINSOL Newton
  *   semi-be           Baraff-Witkin linearised backward Euler
- *   semi-bdf2         Choi-Ko semi-implicit BDF2 (Jiao, eq. 15) */
+ *   semi-bdf2         Choi-Ko semi-implicit BDF2 (Jiao, eq. 15)
+ *   xpbd              XPBD on the distance constraints, with substeps
+ *   pd                projective dynamics on the springs, CHOLMOD */
 #include "integrators/integrator.h"
 
 /* Every row ends in a backslash; the blank line closes the list. */
@@ -47,6 +49,8 @@
     X(kinsol_galpha)                                                        \
     X(semi_be)                                                              \
     X(semi_bdf2)                                                            \
+    X(xpbd)                                                                 \
+    X(pd)                                                                   \
 
 #define CL_INTEGRATOR_DECLARE(ident) \
     extern const cl_integrator_type cl_integrator_##ident;

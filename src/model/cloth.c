@@ -271,14 +271,20 @@ void cl_cloth_scatter(const cl_cloth *c, double t, const double *x,
     }
     for (size_t k = 0; k < c->npin; k++) {
         const cl_pin *pin = &c->pins[k];
-        bool moving = t < pin->t_stop;
-        double tm = moving ? t : pin->t_stop;
-        for (int d = 0; d < 3; d++) {
-            xfull[3 * pin->p + d] = c->X0[3 * pin->p + d] + pin->w[d] * tm;
-            if (v)
-                vfull[3 * pin->p + d] = moving ? pin->w[d] : 0.0;
-        }
+        cl_cloth_pin_position(c, k, t, xfull + 3 * pin->p);
+        if (v)
+            for (int d = 0; d < 3; d++)
+                vfull[3 * pin->p + d] = t < pin->t_stop ? pin->w[d] : 0.0;
     }
+}
+
+void cl_cloth_pin_position(const cl_cloth *c, size_t k, double t,
+                           double x[3])
+{
+    const cl_pin *pin = &c->pins[k];
+    double tm = t < pin->t_stop ? t : pin->t_stop;
+    for (int d = 0; d < 3; d++)
+        x[d] = c->X0[3 * pin->p + d] + pin->w[d] * tm;
 }
 
 void cl_cloth_gather(const cl_cloth *c, const double *full, double *freev)

@@ -99,6 +99,10 @@ static inline int cl_cloth_index(const cl_cloth *c, int i, int j)
 void cl_cloth_scatter(const cl_cloth *c, double t, const double *x,
                       const double *v, double *xfull, double *vfull);
 
+/* The prescribed position at time t of pin k (0 .. npin - 1). */
+void cl_cloth_pin_position(const cl_cloth *c, size_t k, double t,
+                           double x[3]);
+
 /* Free state (3*nfree) from full arrays (3*np). */
 void cl_cloth_gather(const cl_cloth *c, const double *full, double *freev);
 

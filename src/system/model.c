@@ -6,6 +6,7 @@
 #include "forces/selfcontact.h"
 #include "model/cloth_read.h"
 #include "model/pins.h"
+#include "system/distances.h"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_rng.h>
@@ -49,6 +50,7 @@ struct cl_model {
     bool track_work;      /* account the projections' energy change */
     double contact_work;  /* their sum so far (J) */
     double *xw, *vw;      /* the state before a projection (track_work) */
+    cl_distance_set dist; /* distance constraints (system.h) */
     cl_system sys;
 };
 
@@ -292,6 +294,31 @@ static cl_status sys_energy(void *data, double t, const double *x,
     return isfinite(e->total) ? CL_OK : CL_EBLOWUP;
 }
 
+/* f without the terms that the distance constraints stand for. */
+static cl_status sys_force_other(void *data, double t, const double *x,
+                                 const double *v, double *f)
+{
+    cl_model *m = data;
+    cl_cloth_scatter(&m->cloth, t, x, v, m->xf, m->vf);
+    memset(m->ff, 0, 3 * m->cloth.np * sizeof *m->ff);
+    for (size_t k = 0; k < m->nterm; k++) {
+        cl_eval ev = {.t = t, .x = m->xf, .v = m->vf, .f = m->ff};
+        if (!m->type[k]->distances)
+            m->type[k]->eval(m->state[k], &ev);
+    }
+    cl_cloth_gather(&m->cloth, m->ff, f);
+    if (m->contact && cl_contact_infeasible(m->contact))
+        return CL_EINFEASIBLE;
+    return cl_all_finite(f, 3 * m->cloth.nfree) ? CL_OK : CL_EBLOWUP;
+}
+
+static void sys_anchors(void *data, double t, double *xa)
+{
+    const cl_model *m = data;
+    for (size_t k = 0; k < m->cloth.npin; k++)
+        cl_cloth_pin_position(&m->cloth, k, t, xa + 3 * k);
+}
+
 /* Position-based constraints of every term that has them. */
 static cl_status sys_project(void *data, double t, double *x)
 {
@@ -462,7 +489,9 @@ cl_status cl_model_create(cl_config *cfg, cl_model **model, cl_error *err)
         (rc = create_terms(cfg, m, err)) || (rc = name_terms(m, err)) ||
         (rc = build_pattern(m, m->cloth.dof, m->cloth.nfree, &m->pattern,
                             err)) ||
-        (rc = alloc_work(m, err))) {
+        (rc = alloc_work(m, err)) ||
+        (rc = cl_distance_set_build(&m->cloth, m->nterm, m->type, m->state,
+                                    &m->dist, err))) {
         cl_model_free(m);
         return rc;
     }
@@ -485,6 +514,11 @@ cl_status cl_model_create(cl_config *cfg, cl_model **model, cl_error *err)
         .projects = m->contact && cl_contact_projects(m->contact),
         .projects_friction =
             m->contact && cl_contact_projects_friction(m->contact)};
+    if (m->dist.d.n && !m->tears) {
+        m->sys.distances = &m->dist.d;
+        m->sys.force_other = sys_force_other;
+        m->sys.anchors = sys_anchors;
+    }
     *model = m;
     return CL_OK;
 }
@@ -510,6 +544,7 @@ void cl_model_free(cl_model *m)
     free(m->torn);
     free(m->xw);
     free(m->vw);
+    cl_distance_set_free(&m->dist);
     free(m);
 }
 

@@ -57,6 +57,21 @@ typedef struct {
     double *S, *z, *y, *g;
 } cl_constraint_set;
 
+/* Distance constraints (docs/model.md, 3.6): the pairs of the terms that
+ * are spring networks (springs: stiffness k; pbd: infinitely stiff), for
+ * the constraint-based integrators (xpbd, pd), built once with the model.
+ * Constraint c keeps |x_a - x_b| at rest[c] with compliance 1/stiffness[c]
+ * (0 for stiffness INFINITY, a hard constraint); its ends end[c][0..1] are
+ * free particle indices (0 .. n/3 - 1), or -1 - j for anchor j, a pinned
+ * particle whose position at time t the system's `anchors` hook gives. */
+typedef struct {
+    size_t n;                 /* constraints */
+    const int (*end)[2];      /* free index, or -1 - anchor */
+    const double *rest;       /* L (m) */
+    const double *stiffness;  /* k (N/m), > 0, INFINITY: hard */
+    size_t nanchor;           /* pinned particles that constraints reach */
+} cl_distances;
+
 typedef struct cl_system {
     size_t n;                    /* 3 * free particles */
     const double *mass;          /* n diagonal masses */
@@ -77,6 +92,16 @@ typedef struct cl_system {
      * toward satisfying the constraints, in place.  Used by position-based
      * integrators (verlet-pbd) only. */
     cl_status (*project)(void *data, double t, double *x);
+    /* Distance constraints (above), NULL if the model has none (or tears:
+     * a torn network changes them).  With them, `force_other` is f(t, x,
+     * v) without the forces of the constrained terms (gravity, damping,
+     * ...: the external forces of XPBD's and projective dynamics'
+     * predictor) and `anchors` writes the positions of the anchors at t
+     * (3 * nanchor). */
+    const cl_distances *distances;
+    cl_status (*force_other)(void *data, double t, const double *x,
+                             const double *v, double *f);
+    void (*anchors)(void *data, double t, double *xa);
     /* Changes of the model after an accepted step (tearing, the lag of
      * the barriers' friction), NULL if the model has none.  *changed is set when the force law
      * changed, so that multistep and adaptive methods restart from (t, x,
