@@ -36,6 +36,8 @@ typedef struct {
                           * (takes_max_order; 0: the solver's own, 5 for
                           * BDF, 12 for Adams) */
     bool force;          /* skip the memory guard (memguard.h; --force) */
+    const char *table;   /* Butcher table of the ARKODE methods (--table;
+                          * takes_table); NULL or "" for the default */
 } cl_integrator_opts;
 
 /* The linear solver's part of the options. */
@@ -52,6 +54,7 @@ typedef struct {
     bool fixed_step;     /* true: needs dt; false: uses rtol/atol */
     bool takes_linsol;   /* accepts opts->linsol (cl_linsol registry) */
     bool takes_max_order; /* accepts opts->max_order */
+    bool takes_table;    /* accepts opts->table */
     bool dense_jacobian; /* factorises a dense 2n x 2n Newton matrix */
     const cl_region *region; /* linear stability region (region.h) */
     cl_status (*create)(const cl_system *sys, const cl_integrator_opts *o,

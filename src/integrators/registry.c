@@ -21,7 +21,9 @@
  *   gsl-msbdf         GSL odeiv2 msbdf, BDF with dense Jacobian (n <= 1728)
  *   kinsol-be, kinsol-bdf2, kinsol-midpoint  fully implicit, KINSOL Newton
  *   semi-be           Baraff-Witkin linearised backward Euler
- *   semi-bdf2         Choi-Ko semi-implicit BDF2 (Jiao, eq. 15) */
+ *   semi-bdf2         Choi-Ko semi-implicit BDF2 (Jiao, eq. 15)
+ *   arkode-dirk, arkode-dirk-fixed  ARKODE DIRK tables, adaptive / fixed
+ *   arkode-imex, arkode-imex-fixed  ARKODE IMEX pairs, adaptive / fixed */
 #include "integrators/integrator.h"
 
 /* Every row ends in a backslash; the blank line closes the list. */
@@ -45,6 +47,10 @@
     X(kinsol_midpoint)                                                      \
     X(semi_be)                                                              \
     X(semi_bdf2)                                                            \
+    X(arkode_dirk)                                                          \
+    X(arkode_dirk_fixed)                                                    \
+    X(arkode_imex)                                                          \
+    X(arkode_imex_fixed)                                                    \
 
 #define CL_INTEGRATOR_DECLARE(ident) \
     extern const cl_integrator_type cl_integrator_##ident;
