@@ -285,6 +285,7 @@ static cl_status ark_memory(cl_ark *a, const cl_integrator_opts *o,
                             s->name, o->dt);
     if (a->m->fixed)
         ARK_SET(s, err, ARKStepSetFixedStep, o->dt);
+    ARK_SET(s, err, ARKStepSetDeduceImplicitRhs, SUNTRUE);
     return CL_OK;
 }
 
