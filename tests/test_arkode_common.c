@@ -215,3 +215,35 @@ Test(arkode, one_linearisation_equals_baraff_witkin)
 {
     ak_check_be(1, 1e-13);
 }
+
+/* ---- refusals ---------------------------------------------------------- */
+
+static void ak_refused(const char *name, const char *table,
+                       const char *needle)
+{
+    pr_problem p;
+    pr_load(&p, "problems/spring2.ini", NULL, NULL);
+    const cl_system *sys = cl_model_system(p.m);
+    double x0[3], v0[3];
+    cl_model_initial_state(p.m, x0, v0);
+    cl_integrator_opts o = {.dt = 1e-2, .table = table};
+    void *st = NULL;
+    cl_error err = {0};
+    cr_assert_eq(cl_integrator_find(name)->create(sys, &o, 0.0, x0, v0, &st,
+                                                  &err),
+                 CL_EINVAL, "%s %s", name, table);
+    cr_assert_null(st);
+    cr_assert_not_null(strstr(err.msg, needle), "\"%s\" lacks \"%s\"",
+                       err.msg, needle);
+    pr_free(&p);
+}
+
+/* Unknown names list the known ones; the tables without an embedded
+ * estimate take fixed steps only; a DIRK table is no IMEX pair. */
+Test(arkode, refused_tables)
+{
+    ak_refused("arkode-dirk", "NO_SUCH", "expected one of SDIRK_2_1_2");
+    ak_refused("arkode-dirk", "BACKWARD_EULER_1_1", "no embedded");
+    ak_refused("arkode-imex-fixed", "SDIRK_2_1_2", "ARK548L2SA)");
+    ak_refused("arkode-dirk-fixed", "ARK436L2SA", "IMPLICIT_MIDPOINT_1_2");
+}

@@ -244,7 +244,7 @@ static cl_status ark_tables(cl_ark *a, const cl_integrator_opts *o,
     } while (0)
 
 /* Newton options (arkode_common.h). */
-static cl_status ark_newton(cl_sun *s, const cl_integrator_opts *o,
+static cl_status ark_newton(cl_sun *s, bool fixed, const cl_integrator_opts *o,
                             cl_error *err)
 {
     if (!(o->newton_tol >= 0.0) || o->newton_maxit < 0 ||
@@ -253,8 +253,10 @@ static cl_status ark_newton(cl_sun *s, const cl_integrator_opts *o,
                             "newton_maxit = %ld (need >= 0, 0 .. 1000000; "
                             "0: ARKODE's default)", s->name, o->newton_tol,
                             o->newton_maxit);
-    if (o->newton_maxit > 0)
-        ARK_SET(s, err, ARKStepSetMaxNonlinIters, (int)o->newton_maxit);
+    if (o->newton_maxit > 0 || fixed)
+        ARK_SET(s, err, ARKStepSetMaxNonlinIters,
+                o->newton_maxit > 0 ? (int)o->newton_maxit
+                                    : CL_ARK_FIXED_MAXIT);
     if (o->newton_maxit == 1) {
         ARK_SET(s, err, ARKStepSetNonlinConvCoef, DBL_MAX);
         ARK_SET(s, err, ARKStepSetJacEvalFrequency, 1L);
@@ -331,7 +333,7 @@ cl_status cl_ark_create(const cl_ark_method *m, const cl_system *sys,
     if (st == CL_OK)
         st = cl_sunred_attach(s, o, false, err);
     if (st == CL_OK)
-        st = ark_newton(s, o, err);
+        st = ark_newton(s, m->fixed, o, err);
     return cl_sun_finish(s, st, cl_sun_free, state);
 }
 

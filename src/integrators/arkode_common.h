@@ -42,7 +42,11 @@
  *
  * Newton (ARKODE's own modified Newton iteration on every implicit stage):
  * opts->newton_maxit > 0 sets its iterations per stage
- * (ARKStepSetMaxNonlinIters, default 3); opts->newton_tol > 0 its
+ * (ARKStepSetMaxNonlinIters; default ARKODE's 3 for adaptive steps,
+ * CL_ARK_FIXED_MAXIT = 10 for fixed ones, which cannot retry a failed
+ * stage with a smaller step: on hang at n = 6, dt = 1e-3, the IMEX pair's
+ * modified Newton, whose Jacobian ARKODE keeps for up to 51 steps, needs
+ * 3.5 per stage on average and fails with 3); opts->newton_tol > 0 its
  * convergence coefficient (ARKStepSetNonlinConvCoef: the WRMS norm of the
  * last correction, in the weights of rtol and atol, below it; default
  * 0.1).  newton_maxit = 1 is one linearisation per stage: the test is
@@ -63,6 +67,7 @@
 /* The default tables. */
 #define CL_ARK_DIRK_DEFAULT "ARK436L2SA_DIRK_6_3_4"
 #define CL_ARK_IMEX_DEFAULT "ARK436L2SA"
+#define CL_ARK_FIXED_MAXIT 10
 
 typedef struct {
     const char *name;   /* integrator name */
