@@ -243,7 +243,11 @@ static cl_status ark_tables(cl_ark *a, const cl_integrator_opts *o,
             return cl_sun_fail((s), #fn, flag_, (err));                     \
     } while (0)
 
-/* Newton options (arkode_common.h). */
+/* Newton options (arkode_common.h).  One linearisation: a coefficient
+ * no finite correction exceeds, and the iterative linear solvers' factor
+ * (their tolerance is factor x coefficient) scaled down by as much, so
+ * that they solve to ARKODE's default 0.05 x 0.1. */
+#define CL_ARK_ONE_COEF 1e100
 static cl_status ark_newton(cl_sun *s, bool fixed, const cl_integrator_opts *o,
                             cl_error *err)
 {
@@ -258,7 +262,8 @@ static cl_status ark_newton(cl_sun *s, bool fixed, const cl_integrator_opts *o,
                 o->newton_maxit > 0 ? (int)o->newton_maxit
                                     : CL_ARK_FIXED_MAXIT);
     if (o->newton_maxit == 1) {
-        ARK_SET(s, err, ARKStepSetNonlinConvCoef, DBL_MAX);
+        ARK_SET(s, err, ARKStepSetNonlinConvCoef, CL_ARK_ONE_COEF);
+        ARK_SET(s, err, ARKStepSetEpsLin, 0.05 * 0.1 / CL_ARK_ONE_COEF);
         ARK_SET(s, err, ARKStepSetJacEvalFrequency, 1L);
         ARK_SET(s, err, ARKStepSetLSetupFrequency, 1);
     } else if (o->newton_tol > 0) {
