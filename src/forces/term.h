@@ -49,7 +49,7 @@ typedef struct {
     const char *doc;    /* one line for `clothode list` */
     bool conservative;  /* energy is a potential (else: dissipative power) */
     bool soft;          /* explicit by default in an IMEX split (the
-                         * term's `imex` key; docs/integrators.md 8) */
+                         * term's `imex` key; docs/integrators.md 9) */
     bool splits;        /* eval honours cl_eval part/nparts (its work is a
                          * loop over independent items, e.g. pairs) */
     cl_status (*create)(cl_config *cfg, const cl_cloth *cloth,

@@ -1,4 +1,4 @@
-/* SUNDIALS ARKODE's ARKStep (docs/integrators.md, 8): the module behind
+/* SUNDIALS ARKODE's ARKStep (docs/integrators.md, 9): the module behind
  * arkode-dirk, arkode-dirk-fixed, arkode-imex and arkode-imex-fixed, on
  * the SUNDIALS adapter (sun_adapter.h) and its Newton linear solvers
  * (sun_reduced.h) exactly as cvode-bdf uses them.

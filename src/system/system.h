@@ -121,7 +121,7 @@ typedef struct cl_system {
                            const double *v, const double *impulse,
                            cl_constraint_set *cs, bool *changed);
     /* The force terms one by one, for methods that treat them apart (the
-     * IMEX methods, docs/integrators.md 8): a term mask has bit k for the
+     * IMEX methods, docs/integrators.md 9): a term mask has bit k for the
      * k-th of the nterm <= 64 terms (cl_model_terms order); force_terms and
      * jacobian_terms are force and jacobian over the terms of mask alone
      * (UINT64_MAX: all, the same numbers as force and jacobian), NULL
