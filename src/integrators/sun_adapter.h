@@ -1,9 +1,10 @@
 /* The SUNDIALS adapter (docs/integrators.md, 7): the one place where
  * clothode meets SUNDIALS' objects.  The packages plug into it:
  *
- * - CVODE (cvode-bdf, cvode-bdf-dense, cvode-bdf-gmres, cvode-adams) and
- *   IDA (ida) through a package table (cl_sun_api: CVODE's is
- *   cl_sun_cvode_api, IDA's is in ida.c; ARKODE's would be one more) and
+ * - CVODE (cvode-bdf, cvode-bdf-dense, cvode-bdf-gmres, cvode-adams),
+ *   IDA (ida) and ARKODE's ARKStep (arkode-*) through a package table
+ *   (cl_sun_api: CVODE's is cl_sun_cvode_api, IDA's is in ida.c,
+ *   ARKStep's in arkode_common.c) and
  *   the integrator state cl_sun below, whose create, advance, statistics
  *   and free serve every such integrator;
  * - KINSOL (kinsol_common.c) and the half-size Newton solvers of CVODE and
@@ -17,7 +18,7 @@
  *   last failure, its release), so that the integrator's table entries
  *   stay cl_sun_advance, cl_sun_stats and cl_sun_free.
  *
- * The CVODE and IDA integrators integrate y = (x, v), 2n unknowns, in a serial N_Vector
+ * The CVODE, IDA and ARKODE integrators integrate y = (x, v), 2n unknowns, in a serial N_Vector
  * under one SUNContext, and share:
  *
  * - options: scalar tolerances opts->rtol, opts->atol (defaults when 0:
