@@ -4,7 +4,6 @@
  * advance. */
 #include "integrators/arkode_common.h"
 
-#include <float.h>
 #include <stdio.h>
 #include <string.h>
 

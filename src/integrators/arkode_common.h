@@ -50,10 +50,17 @@
  * convergence coefficient (ARKStepSetNonlinConvCoef: the WRMS norm of the
  * last correction, in the weights of rtol and atol, below it; default
  * 0.1).  newton_maxit = 1 is one linearisation per stage: the test is
- * switched off (coefficient DBL_MAX) and the Jacobian and Newton matrix
- * are renewed at every step (ARKStepSetJacEvalFrequency and
- * ARKStepSetLSetupFrequency 1), so that backward Euler with one iteration
+ * switched off (coefficient 1e100, and ARKStepSetEpsLin scaled down by as
+ * much, so that the iterative linear solvers keep their tolerance of
+ * 0.05 x 0.1) and the Jacobian and Newton matrix are renewed at every
+ * step (ARKStepSetJacEvalFrequency and ARKStepSetLSetupFrequency 1), so
+ * that backward Euler with one iteration
  * is Baraff-Witkin's linearised step, like kinsol-be's.
+ *
+ * A solved stage's f_I is deduced from the stage equation
+ * (ARKStepSetDeduceImplicitRhs), not evaluated anew: y_{n+1} is then the
+ * last stage itself for the stiffly accurate tables, whatever the Newton
+ * iterations (docs/integrators.md 9).
  *
  * Statistics: those of the adapter (sun_adapter.h), rhs_evals = ARKODE's
  * evaluations of f_E and f_I together (each of them a force evaluation of
