@@ -20,6 +20,7 @@ CFLAGS  += -O2
 endif
 LDFLAGS += -fopenmp
 LDLIBS := -lsundials_cvode -lsundials_ida -lsundials_kinsol \
+          -lsundials_arkode \
           -lsundials_nvecserial -lsundials_sunmatrixsparse \
           -lsundials_sunmatrixdense \
           -lsundials_sunlinsolklu -lsundials_sunlinsolspgmr \

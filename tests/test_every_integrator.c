@@ -73,6 +73,12 @@ static const ei_case ei_cases[] = {
     {"kinsol-galpha", 1e-4, 3.5e-7, 2.6e-5}, /* 1.7e-7, 1.3e-5 (rho_inf 0) */
     /* fourth order, at a ten times larger step */
     {"rk4", 1e-3, 4e-8, 2e-5},            /* 2.1e-8, 8.9e-6 */
+    /* ARKODE, default tables (fourth order; the fixed-step runs' velocity
+     * error is the Newton test's, weighed by rtol 1e-6) */
+    {"arkode-dirk", 0, EI_AX, EI_AV},           /* 2.7e-8, 3.3e-6 */
+    {"arkode-imex", 0, EI_AX, EI_AV},           /* 4.9e-8, 1.1e-6 */
+    {"arkode-dirk-fixed", 1e-3, 1e-7, 1e-5},    /* 2.4e-8, 2.9e-6 */
+    {"arkode-imex-fixed", 1e-3, 1e-7, 1e-5},    /* 2.4e-8, 2.8e-6 */
 };
 
 /* The constraint-based methods see the springs term only (its pairs are

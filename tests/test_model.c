@@ -601,3 +601,59 @@ Test(model, n2_with_type2)
     cr_assert_eq(cl_model_cloth(m)->nfree, 2);
     cl_model_free(m);
 }
+
+/* The term masks (system.h force_terms, jacobian_terms): the default
+ * implicit set (type1, damping; gravity and type2 soft), a key that moves
+ * a term, and the two halves adding up to the whole force and Jacobian,
+ * bit for bit with all terms. */
+static void check_halves(cl_model *m, uint64_t implicit, fd_rng *r)
+{
+    const cl_system *sys = cl_model_system(m);
+    size_t n = sys->n, nv = 9 * sys->pattern->nnzb;
+    cr_assert_eq(sys->implicit_terms, implicit);
+    uint64_t all = (UINT64_C(1) << sys->nterm) - 1;
+    double *x = fd_vec(n), *v = fd_vec(n), *f = fd_vec(n), *fi = fd_vec(n),
+           *fe = fd_vec(n), *fa = fd_vec(n);
+    double *kx = fd_vec(nv), *kv = fd_vec(nv), *kxi = fd_vec(nv),
+           *kvi = fd_vec(nv), *kxe = fd_vec(nv), *kve = fd_vec(nv);
+    hang_state(m, r, x, v);
+    cr_assert_eq(sys->force(sys->data, 0.1, x, v, f), CL_OK);
+    cr_assert_eq(sys->force_terms(sys->data, all, 0.1, x, v, fa), CL_OK);
+    cr_assert_eq(memcmp(f, fa, n * sizeof *f), 0);
+    cr_assert_eq(sys->force_terms(sys->data, implicit, 0.1, x, v, fi), CL_OK);
+    cr_assert_eq(sys->force_terms(sys->data, all & ~implicit, 0.1, x, v, fe),
+                 CL_OK);
+    cr_assert_eq(sys->jacobian(sys->data, 0.1, x, v, NULL, kx, kv), CL_OK);
+    cr_assert_eq(sys->jacobian_terms(sys->data, implicit, 0.1, x, v, NULL,
+                                     kxi, kvi), CL_OK);
+    cr_assert_eq(sys->jacobian_terms(sys->data, all & ~implicit, 0.1, x, v,
+                                     NULL, kxe, kve), CL_OK);
+    double big = 0, fbig = 0;
+    for (size_t i = 0; i < n; i++) {
+        cr_assert_float_eq(fi[i] + fe[i], f[i], 1e-12 * (1 + fabs(f[i])));
+        fbig = fmax(fbig, fabs(fe[i]));
+    }
+    for (size_t i = 0; i < nv; i++) {
+        cr_assert_float_eq(kxi[i] + kxe[i], kx[i], 1e-12 * (1 + fabs(kx[i])));
+        cr_assert_float_eq(kvi[i] + kve[i], kv[i], 1e-12 * (1 + fabs(kv[i])));
+        big = fmax(big, fmax(fabs(kxe[i]), fabs(kve[i])));
+    }
+    cr_assert_gt(fbig, 0.0, "the explicit half has a force");
+    cr_assert_gt(big, 0.0, "the explicit half has a Jacobian");
+    free(x), free(v), free(f), free(fi), free(fe), free(fa);
+    free(kx), free(kv), free(kxi), free(kvi), free(kxe), free(kve);
+}
+
+Test(model, term_masks_split_force_and_jacobian)
+{
+    fd_rng r = {76};
+    /* terms: type1, type2, damping, gravity */
+    cl_model *m = HANG("damping.kd=0.05");
+    check_halves(m, 0x5, &r);
+    cl_model_free(m);
+    m = HANG("damping.kd=0.05", "type2.imex=implicit", "damping.imex=explicit");
+    check_halves(m, 0x3, &r);
+    cl_model_free(m);
+    const char *const bad[] = {"cloth.n=4", "type1.imex=both", NULL};
+    expect_error(bad, "imex");
+}

@@ -26,6 +26,10 @@ const cl_cli_opt cl_cli_run_rows[] = {
      RUN_ROW(io.linsol),
      .help = "linear solver of implicit integrators (klu, pcg, ...; "
              "clothode list)"},
+    {.name = "table", .arg = "NAME", .type = CL_CLI_STRING, .key = "table",
+     RUN_ROW(io.table),
+     .help = "Butcher table of the arkode-* integrators (SDIRK_2_1_2, "
+             "ARK436L2SA, ...; clothode list)"},
     {.name = "max-order", .arg = "K", .type = CL_CLI_INT, .key = "max_order",
      RUN_ROW(io.max_order), .lo = 0, .hi = 12,
      .help = "highest order of CVODE / IDA, 0 for theirs (5 for BDF, 12 for "
@@ -41,10 +45,10 @@ const cl_cli_opt cl_cli_run_rows[] = {
      .lo = 0, .hi = 1,
      .help = "Newton tolerance of the fixed-step implicit integrators, 0 for "
              "theirs"},
-    {.type = CL_CLI_LONG, .key = "newton_maxit", RUN_ROW(io.newton_maxit),
-     .lo = 0, .hi = 1000000,
-     .help = "Newton iterations per step of the fixed-step implicit "
-             "integrators, 0 for theirs"},
+    {.name = "max-newton", .arg = "N", .type = CL_CLI_LONG,
+     .key = "newton_maxit", RUN_ROW(io.newton_maxit), .lo = 0, .hi = 1000000,
+     .help = "Newton iterations per step of kinsol-* (per stage of "
+             "arkode-*), 0 for theirs; 1: one linearisation"},
     {.type = CL_CLI_DOUBLE, .key = "lin_tol", RUN_ROW(io.lin_tol), .lo = 0,
      .hi = 1, .help = "tolerance of the iterative linear solvers, 0 for "
                       "theirs"},
@@ -203,6 +207,11 @@ static cl_status check_method(cl_config *cfg, const cl_cli_method *m,
         return refuse_number(cfg, "iterations", m->io.iterations, type,
                              "has no constraint iterations (xpbd and pd "
                              "have)", err);
+    if (m->io.table && *m->io.table && !type->takes_table) {
+        snprintf(why, sizeof why, "integrator %s has no choice of table "
+                 "(the arkode-* integrators have)", type->name);
+        return cl_config_refuse(cfg, "run", "table", CL_EINVAL, why, err);
+    }
     if (dt != CL_CLI_DT_NONE && type->fixed_step && !(m->io.dt > 0))
         return refuse_number(cfg, "dt", m->io.dt, type, "takes fixed steps "
                              "and needs dt > 0 (--dt H)", err);

@@ -72,6 +72,7 @@ const cl_term_type cl_term_gravity = {
     .name = "gravity",
     .doc = "uniform body force m g + F per particle",
     .conservative = true,
+    .soft = true,
     .create = gravity_create,
     .couplings = gravity_couplings,
     .bind = gravity_bind,

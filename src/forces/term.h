@@ -49,6 +49,8 @@ typedef struct {
     const char *name;   /* also the energy column and INI section */
     const char *doc;    /* one line for `clothode list` */
     bool conservative;  /* energy is a potential (else: dissipative power) */
+    bool soft;          /* explicit by default in an IMEX split (the
+                         * term's `imex` key; docs/integrators.md 10) */
     bool splits;        /* eval honours cl_eval part/nparts (its work is a
                          * loop over independent items, e.g. pairs) */
     cl_status (*create)(cl_config *cfg, const cl_cloth *cloth,

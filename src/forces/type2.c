@@ -412,6 +412,7 @@ const cl_term_type cl_term_type2 = {
     .doc = "Choi-Ko Type2: buckling f_b = kb kappa^2/(cos - sinc) with "
            "imperfection max(f_b, cb (d-L)) on interlaced pairs",
     .conservative = true,
+    .soft = true,
     .splits = true,
     .create = type2_create,
     .couplings = cl_pairterm_couplings,

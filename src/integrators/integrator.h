@@ -48,6 +48,8 @@ typedef struct {
                           * methods (takes_iterations; 0: 1) */
     long iterations;     /* their constraint iterations per substep
                           * (0: the method's default) */
+    const char *table;   /* Butcher table of the ARKODE methods (--table;
+                          * takes_table); NULL or "" for the default */
 } cl_integrator_opts;
 
 /* The linear solver's part of the options. */
@@ -65,6 +67,7 @@ typedef struct {
     bool takes_linsol;   /* accepts opts->linsol (cl_linsol registry) */
     bool takes_max_order; /* accepts opts->max_order */
     bool takes_iterations; /* accepts opts->substeps, opts->iterations */
+    bool takes_table;    /* accepts opts->table */
     bool dense_jacobian; /* factorises a dense 2n x 2n Newton matrix */
     bool takes_rayleigh; /* accepts opts->rayleigh_alpha, rayleigh_beta */
     const cl_region *region; /* linear stability region (region.h) */

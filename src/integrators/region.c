@@ -9,3 +9,4 @@ const cl_region cl_region_a_stable = {.kind = CL_REGION_SECTOR,
 const cl_region cl_region_bdf5 = {.kind = CL_REGION_SECTOR, .alpha = 51.84};
 const cl_region cl_region_adaptive = {.kind = CL_REGION_ADAPTIVE};
 const cl_region cl_region_projected = {.kind = CL_REGION_PROJECTED};
+const cl_region cl_region_split = {.kind = CL_REGION_SPLIT};

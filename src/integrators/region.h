@@ -20,7 +20,10 @@
  *    control chooses (explicit Runge-Kutta pairs, Adams with fixed-point
  *    iteration): no fixed step to predict;
  *  - CL_REGION_PROJECTED: the step ends with a nonlinear projection onto
- *    constraints, which linear stability does not describe. */
+ *    constraints, which linear stability does not describe;
+ *  - CL_REGION_SPLIT: an implicit-explicit (IMEX) method at a fixed step:
+ *    bounded by its explicit half on the terms it treats explicitly, a
+ *    limit that the spectrum of the whole linearisation does not give. */
 #ifndef CL_REGION_H
 #define CL_REGION_H
 
@@ -30,6 +33,7 @@ typedef enum {
     CL_REGION_SECTOR,
     CL_REGION_ADAPTIVE,
     CL_REGION_PROJECTED,
+    CL_REGION_SPLIT,
 } cl_region_kind;
 
 typedef struct {
@@ -76,5 +80,6 @@ cl_galpha cl_galpha_params(double rho_inf);
 extern const cl_region cl_region_bdf5;
 extern const cl_region cl_region_adaptive;
 extern const cl_region cl_region_projected;
+extern const cl_region cl_region_split;
 
 #endif

@@ -24,7 +24,9 @@
  *   semi-be           Baraff-Witkin linearised backward Euler
  *   semi-bdf2         Choi-Ko semi-implicit BDF2 (Jiao, eq. 15)
  *   xpbd              XPBD on the distance constraints, with substeps
- *   pd                projective dynamics on the springs, CHOLMOD */
+ *   pd                projective dynamics on the springs, CHOLMOD
+ *   arkode-dirk, arkode-dirk-fixed  ARKODE DIRK tables, adaptive / fixed
+ *   arkode-imex, arkode-imex-fixed  ARKODE IMEX pairs, adaptive / fixed */
 #include "integrators/integrator.h"
 
 /* Every row ends in a backslash; the blank line closes the list. */
@@ -51,6 +53,10 @@
     X(semi_bdf2)                                                            \
     X(xpbd)                                                                 \
     X(pd)                                                                   \
+    X(arkode_dirk)                                                          \
+    X(arkode_dirk_fixed)                                                    \
+    X(arkode_imex)                                                          \
+    X(arkode_imex_fixed)                                                    \
 
 #define CL_INTEGRATOR_DECLARE(ident) \
     extern const cl_integrator_type cl_integrator_##ident;

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include <cvode/cvode.h>
+#include <cvode/cvode_ls.h>
 #include <cvode/cvode_proj.h>
 #include <sundials/sundials_matrix.h>
 #include <sunlinsol/sunlinsol_klu.h>
@@ -279,6 +280,8 @@ const cl_sun_api cl_sun_cvode_api = {
     .set_linear_solver = CVodeSetLinearSolver,
     .get_current_time = CVodeGetCurrentTime,
     .get_current_step = CVodeGetCurrentStep,
+    .get_gamma = CVodeGetCurrentGamma,
+    .set_jac_fn = CVodeSetJacFn,
     .flag_name = CVodeGetReturnFlagName,
     .collapse_warning = CV_WARNING,
     .free_mem = CVodeFree,
@@ -388,6 +391,15 @@ int cl_sun_force(cl_sun *s, double t, const double *x, const double *v,
     return st == CL_OK ? 0 : sun_sysfail(s, &s->fail_rhs, st, t, false);
 }
 
+int cl_sun_force_terms(cl_sun *s, uint64_t mask, double t, const double *x,
+                       const double *v, double *f)
+{
+    if (s->fatal)
+        return -1;
+    cl_status st = s->sys->force_terms(s->sys->data, mask, t, x, v, f);
+    return st == CL_OK ? 0 : sun_sysfail(s, &s->fail_rhs, st, t, false);
+}
+
 int cl_sun_rhs_finite(cl_sun *s, const double *out, size_t len, double t)
 {
     if (!cl_all_finite(out, len))
@@ -401,8 +413,12 @@ int cl_sun_jacobian(cl_sun *s, double t, const double *x, const double *v)
     if (s->fatal)
         return -1;
     s->njac++;
-    cl_status st = s->sys->jacobian(s->sys->data, t, x, v, NULL, s->dfdx,
-                                    s->dfdv);
+    const cl_system *sys = s->sys;
+    cl_status st = s->split ? sys->jacobian_terms(sys->data, s->implicit, t,
+                                                  x, v, NULL, s->dfdx,
+                                                  s->dfdv)
+                            : sys->jacobian(sys->data, t, x, v, NULL, s->dfdx,
+                                            s->dfdv);
     if (st != CL_OK)
         return sun_sysfail(s, &s->fail_jac, st, t, false);
     if (!cl_all_finite(s->dfdx, s->nval) || !cl_all_finite(s->dfdv, s->nval))
@@ -545,6 +561,9 @@ cl_status cl_sun_configure(cl_sun *s, const cl_integrator_opts *o,
     CL_SUN_SET(s, err, set_max_num_steps, "SetMaxNumSteps", mxs);
     if (o->dt > 0)
         CL_SUN_SET(s, err, set_init_step, "SetInitStep", o->dt);
+    if (o->max_order > 0 && !s->api->set_max_ord)
+        return cl_error_set(err, CL_EINVAL, "%s: max_order = %d: the method "
+                            "has no choice of order", s->name, o->max_order);
     if (o->max_order > 0)
         CL_SUN_SET(s, err, set_max_ord, "SetMaxOrd", o->max_order);
     return CL_OK;

@@ -1,9 +1,10 @@
 /* The SUNDIALS adapter (docs/integrators.md, 7): the one place where
  * clothode meets SUNDIALS' objects.  The packages plug into it:
  *
- * - CVODE (cvode-bdf, cvode-bdf-dense, cvode-bdf-gmres, cvode-adams) and
- *   IDA (ida) through a package table (cl_sun_api: CVODE's is
- *   cl_sun_cvode_api, IDA's is in ida.c; ARKODE's would be one more) and
+ * - CVODE (cvode-bdf, cvode-bdf-dense, cvode-bdf-gmres, cvode-adams),
+ *   IDA (ida) and ARKODE's ARKStep (arkode-*) through a package table
+ *   (cl_sun_api: CVODE's is cl_sun_cvode_api, IDA's is in ida.c,
+ *   ARKStep's in arkode_common.c) and
  *   the integrator state cl_sun below, whose create, advance, statistics
  *   and free serve every such integrator;
  * - KINSOL (kinsol_common.c) and the half-size Newton solvers of CVODE and
@@ -17,7 +18,7 @@
  *   last failure, its release), so that the integrator's table entries
  *   stay cl_sun_advance, cl_sun_stats and cl_sun_free.
  *
- * The CVODE and IDA integrators integrate y = (x, v), 2n unknowns, in a serial N_Vector
+ * The CVODE, IDA and ARKODE integrators integrate y = (x, v), 2n unknowns, in a serial N_Vector
  * under one SUNContext, and share:
  *
  * - options: scalar tolerances opts->rtol, opts->atol (defaults when 0:
@@ -89,6 +90,7 @@
 #define CL_SUN_ADAPTER_H
 
 #include <stdbool.h>
+#include <stdint.h>
 
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
@@ -131,13 +133,18 @@ SUNLinearSolver cl_sun_shell_linsol(const cl_sun_lsdef *def, void *data,
  * nothing, clone gives another shell; NULL if out of memory. */
 SUNMatrix cl_sun_shell_matrix(SUNContext ctx);
 
-/* ---- CVODE, IDA (and ARKODE next): the integrator state ---------------- */
+/* ---- CVODE, IDA, ARKODE: the integrator state ------------------------- */
 
 typedef struct cl_sun cl_sun;
 
 typedef void (*cl_sun_errfn)(int code, const char *module,
                              const char *function, char *msg, void *data);
 typedef int (*cl_sun_getter)(void *mem, long *value);
+/* The Jacobian function of the packages on y' = f(t, y) (CVLsJacFn,
+ * ARKLsJacFn: one signature). */
+typedef int (*cl_sun_jacfn)(sunrealtype t, N_Vector y, N_Vector fy,
+                            SUNMatrix J, void *data, N_Vector t1,
+                            N_Vector t2, N_Vector t3);
 
 /* The solver package: CVODE and IDA name their functions alike and give
  * them the same signatures. */
@@ -150,10 +157,14 @@ typedef struct {
     int (*sstolerances)(void *mem, sunrealtype rtol, sunrealtype atol);
     int (*set_max_num_steps)(void *mem, long mxsteps);
     int (*set_init_step)(void *mem, sunrealtype h);
-    int (*set_max_ord)(void *mem, int maxord);
+    int (*set_max_ord)(void *mem, int maxord); /* NULL: no choice */
     int (*set_linear_solver)(void *mem, SUNLinearSolver ls, SUNMatrix A);
     int (*get_current_time)(void *mem, sunrealtype *t);
     int (*get_current_step)(void *mem, sunrealtype *h);
+    /* y' = f packages (CVODE, ARKODE): the Newton matrix I - gamma J's
+     * gamma, and the Jacobian function's setter (NULL for IDA) */
+    int (*get_gamma)(void *mem, sunrealtype *gamma);
+    int (*set_jac_fn)(void *mem, cl_sun_jacfn jac);
     char *(*flag_name)(long flag);
     int collapse_warning;   /* code of the "t + h = t" warning (0: none) */
     void (*free_mem)(void **mem);
@@ -214,6 +225,9 @@ struct cl_sun {
     bool fail_nonfinite;     /* it was our finiteness check that failed */
     char msg[512];           /* last error message of the solver */
     cl_stats before;         /* solver counters before re-initialisations */
+    bool split;              /* the Jacobian is that of the terms in
+                              * `implicit` alone (IMEX, system.h) */
+    uint64_t implicit;
 };
 
 /* Check the arguments, allocate a zeroed state of `size` bytes (a struct
@@ -280,8 +294,12 @@ int cl_sun_force(cl_sun *s, double t, const double *x, const double *v,
 /* Finiteness of a user function's output: 0 (and the last force failure
  * is forgotten), or the blow-up return code. */
 int cl_sun_rhs_finite(cl_sun *s, const double *out, size_t len, double t);
-/* The system's block Jacobians at (t, x, v) into s->dfdx, s->dfdv: 0 or
- * the user-function return code; counts s->njac. */
+/* cl_sun_force over the terms of mask alone (system.h force_terms). */
+int cl_sun_force_terms(cl_sun *s, uint64_t mask, double t, const double *x,
+                       const double *v, double *f);
+/* The system's block Jacobians at (t, x, v) into s->dfdx, s->dfdv (of the
+ * terms in s->implicit alone when s->split): 0 or the user-function
+ * return code; counts s->njac. */
 int cl_sun_jacobian(cl_sun *s, double t, const double *x, const double *v);
 
 /* CVODE's right-hand side y' = (v, M^-1 f(t, x, v)). */

@@ -14,7 +14,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <cvode/cvode.h>
 #include <ida/ida.h>
 
 #include "linalg/bsym.h"
@@ -120,7 +119,7 @@ static int red_setup(void *data, SUNMatrix A)
     sunrealtype g = 0;
     (void)A;
     int flag = r->ida ? IDAGetCurrentCj(b->mem, &g)
-                      : CVodeGetCurrentGamma(b->mem, &g);
+                      : b->api->get_gamma(b->mem, &g);
     if (flag < 0 || !(g > 0))
         return SUNLS_PACKAGE_FAIL_UNREC;
     r->g = g;
@@ -219,14 +218,17 @@ static const cl_sun_lsdef red_iterative = {
 
 /* ---- the half-size solver as the integrator's plug -------------------- */
 
-/* The package's Jacobian function: cv for CVODE, id for IDA. */
-static cl_status red_jacfn(cl_sun *s, bool ida, CVLsJacFn cv, IDALsJacFn id,
-                           cl_error *err)
+/* The package's Jacobian function: cv for the y' = f packages (CVODE,
+ * ARKODE), id for IDA. */
+static cl_status red_jacfn(cl_sun *s, bool ida, cl_sun_jacfn cv,
+                           IDALsJacFn id, cl_error *err)
 {
-    int flag = ida ? IDASetJacFn(s->mem, id) : CVodeSetJacFn(s->mem, cv);
-    if (flag < 0)
-        return cl_sun_fail(s, ida ? "IDASetJacFn" : "CVodeSetJacFn", flag,
-                           err);
+    int flag = ida ? IDASetJacFn(s->mem, id) : s->api->set_jac_fn(s->mem, cv);
+    if (flag < 0) {
+        char fn[64];
+        snprintf(fn, sizeof fn, "%sSetJacFn", s->api->pkg);
+        return cl_sun_fail(s, fn, flag, err);
+    }
     return CL_OK;
 }
 

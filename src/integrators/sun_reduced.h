@@ -8,7 +8,9 @@
  * (the system's block Jacobians, evaluated at the solver's request),
  * r = (rx, rv) the right-hand side, z = (zx, zv) the solution.
  *
- * CVODE (y' = (v, M^-1 f)): the Newton matrix is I - gamma J with
+ * CVODE (y' = (v, M^-1 f)), and ARKODE's ARKStep on the same form with
+ * gamma = h a_ii of the stage (arkode_common.h): the Newton matrix is
+ * I - gamma J with
  * J = [[0, I], [M^-1 Kx, M^-1 Kv]]:
  *
  *     zx - gamma zv = rx
@@ -127,7 +129,8 @@
 #define CL_SUNRED_DEFAULT "auto"
 
 /* The Newton linear solver named by o->linsol (NULL or "":
- * CL_SUNRED_DEFAULT) on s, CVODE's when ida is false, IDA's otherwise
+ * CL_SUNRED_DEFAULT) on s, for the y' = f form (CVODE, ARKStep: the
+ * package's get_gamma and set_jac_fn) when ida is false, IDA's otherwise
  * (s->mem, s->dfdx, s->dfdv must exist), attached with its Jacobian
  * function and plugged into s (sun_adapter.h), which releases it:
  *

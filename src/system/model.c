@@ -13,6 +13,7 @@
 #include <limits.h>
 #include <math.h>
 #include <stddef.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -47,6 +48,7 @@ struct cl_model {
     double min_dist;      /* least distance to a barrier obstacle seen by
                            * the contact hook */
     double min_dist_t;    /* ... and when */
+    uint64_t implicit;    /* terms with imex = implicit (cl_system) */
     bool track_work;      /* account the projections' energy change */
     double contact_work;  /* their sum so far (J) */
     double *xw, *vw;      /* the state before a projection (track_work) */
@@ -147,6 +149,28 @@ static cl_status name_terms(cl_model *m, cl_error *err)
     return CL_OK;
 }
 
+/* The implicit part of an IMEX split (cl_system implicit_terms): each
+ * term's `imex` key in its own section, implicit by default unless the
+ * term is soft (cl_term_type.soft: gravity, Type2 bending). */
+static cl_status read_imex(cl_config *cfg, cl_model *m, cl_error *err)
+{
+    static const char *const parts[] = {"implicit", "explicit", NULL};
+    if (m->nterm > 64)
+        return cl_error_set(err, CL_EINVAL, "%zu force terms: a term mask "
+                            "holds at most 64", m->nterm);
+    for (size_t k = 0; k < m->nterm; k++) {
+        int part;
+        cl_status rc = cl_config_choice(cfg, m->type[k]->name, "imex", parts,
+                                        m->type[k]->soft ? 1 : 0, &part,
+                                        err);
+        if (rc)
+            return rc;
+        if (part == 0)
+            m->implicit |= UINT64_C(1) << k;
+    }
+    return CL_OK;
+}
+
 /* Pattern over the particles with dof[p] >= 0, bound to every term. */
 static cl_status build_pattern(cl_model *m, const int *dof, size_t nb,
                                cl_bpattern *pat, cl_error *err)
@@ -177,15 +201,18 @@ static cl_status build_pattern(cl_model *m, const int *dof, size_t nb,
 
 /* ---- evaluation ------------------------------------------------------- */
 
-/* Run every term on the full arrays m->xf, m->vf. */
-static void eval_terms(cl_model *m, double t, double *f, double *dfdx,
-                       double *dfdv, cl_energy *e)
+/* Run the terms of mask (bit k: the k-th term) on the full arrays m->xf,
+ * m->vf. */
+static void eval_terms(cl_model *m, uint64_t mask, double t, double *f,
+                       double *dfdx, double *dfdv, cl_energy *e)
 {
     if (f)
         memset(f, 0, 3 * m->cloth.np * sizeof *f);
     if (e)
         *e = (cl_energy){.name = m->pot_name, .value = m->pot_value};
     for (size_t k = 0; k < m->nterm; k++) {
+        if (!(mask >> k & 1))
+            continue;
         cl_eval ev = {.t = t, .x = m->xf, .v = m->vf, .f = f,
                       .dfdx = dfdx, .dfdv = dfdv, .want_energy = e != NULL};
         m->type[k]->eval(m->state[k], &ev);
@@ -206,7 +233,7 @@ static void eval_terms(cl_model *m, double t, double *f, double *dfdx,
  * (part 0: m->ff), then the arrays are added in part order, entry by
  * entry.  The parts are loop iterations, so the result does not depend on
  * how many threads the runtime actually gives. */
-static void eval_forces_split(cl_model *m, double t)
+static void eval_forces_split(cl_model *m, uint64_t mask, double t)
 {
     size_t n3 = 3 * m->cloth.np;
     unsigned parts = (unsigned)m->threads;
@@ -218,7 +245,7 @@ static void eval_forces_split(cl_model *m, double t)
             memset(f, 0, n3 * sizeof *f);
             for (size_t k = 0; k < m->nterm; k++) {
                 bool splits = m->type[k]->splits;
-                if (!splits && p > 0)
+                if ((!splits && p > 0) || !(mask >> k & 1))
                     continue;
                 cl_eval ev = {.t = t, .x = m->xf, .v = m->vf, .f = f,
                               .part = p, .nparts = splits ? parts : 1};
@@ -232,37 +259,50 @@ static void eval_forces_split(cl_model *m, double t)
     }
 }
 
-static cl_status sys_force(void *data, double t, const double *x,
-                           const double *v, double *f)
+static cl_status sys_force_terms(void *data, uint64_t mask, double t,
+                                 const double *x, const double *v, double *f)
 {
     cl_model *m = data;
     cl_cloth_scatter(&m->cloth, t, x, v, m->xf, m->vf);
     if (m->threads > 1)
-        eval_forces_split(m, t);
+        eval_forces_split(m, mask, t);
     else
-        eval_terms(m, t, m->ff, NULL, NULL, NULL);
+        eval_terms(m, mask, t, m->ff, NULL, NULL, NULL);
     cl_cloth_gather(&m->cloth, m->ff, f);
     if (m->contact && cl_contact_infeasible(m->contact))
         return CL_EINFEASIBLE;
     return cl_all_finite(f, 3 * m->cloth.nfree) ? CL_OK : CL_EBLOWUP;
 }
 
-static cl_status sys_jacobian(void *data, double t, const double *x,
-                              const double *v, double *f, double *dfdx,
-                              double *dfdv)
+static cl_status sys_force(void *data, double t, const double *x,
+                           const double *v, double *f)
+{
+    return sys_force_terms(data, UINT64_MAX, t, x, v, f);
+}
+
+static cl_status sys_jacobian_terms(void *data, uint64_t mask, double t,
+                                    const double *x, const double *v,
+                                    double *f, double *dfdx, double *dfdv)
 {
     cl_model *m = data;
     size_t nval = 9 * m->pattern.nnzb;
     memset(dfdx, 0, nval * sizeof *dfdx);
     memset(dfdv, 0, nval * sizeof *dfdv);
     cl_cloth_scatter(&m->cloth, t, x, v, m->xf, m->vf);
-    eval_terms(m, t, f ? m->ff : NULL, dfdx, dfdv, NULL);
+    eval_terms(m, mask, t, f ? m->ff : NULL, dfdx, dfdv, NULL);
     if (f)
         cl_cloth_gather(&m->cloth, m->ff, f);
     if (m->contact && cl_contact_infeasible(m->contact))
         return CL_EINFEASIBLE;
     return cl_all_finite(dfdx, nval) && cl_all_finite(dfdv, nval) ? CL_OK
                                                             : CL_EBLOWUP;
+}
+
+static cl_status sys_jacobian(void *data, double t, const double *x,
+                              const double *v, double *f, double *dfdx,
+                              double *dfdv)
+{
+    return sys_jacobian_terms(data, UINT64_MAX, t, x, v, f, dfdx, dfdv);
 }
 
 static double sys_step_fraction(void *data, double t0, const double *x0,
@@ -288,7 +328,7 @@ static cl_status sys_energy(void *data, double t, const double *x,
 {
     cl_model *m = data;
     cl_cloth_scatter(&m->cloth, t, x, v, m->xf, m->vf);
-    eval_terms(m, t, NULL, NULL, NULL, e);
+    eval_terms(m, UINT64_MAX, t, NULL, NULL, NULL, e);
     e->kinetic = kinetic_free(&m->cloth, m->vf);
     e->total = e->kinetic + e->potential;
     return isfinite(e->total) ? CL_OK : CL_EBLOWUP;
@@ -487,6 +527,7 @@ cl_status cl_model_create(cl_config *cfg, cl_model **model, cl_error *err)
         (rc = cl_cloth_finalize(&m->cloth, err)) ||
         (rc = read_opts(cfg, &m->opts, err)) ||
         (rc = create_terms(cfg, m, err)) || (rc = name_terms(m, err)) ||
+        (rc = read_imex(cfg, m, err)) ||
         (rc = build_pattern(m, m->cloth.dof, m->cloth.nfree, &m->pattern,
                             err)) ||
         (rc = alloc_work(m, err)) ||
@@ -502,7 +543,9 @@ cl_status cl_model_create(cl_config *cfg, cl_model **model, cl_error *err)
     m->sys = (cl_system){
         .n = 3 * m->cloth.nfree, .mass = m->mass3, .pattern = &m->pattern,
         .data = m, .force = sys_force, .jacobian = sys_jacobian,
-        .energy = sys_energy,
+        .energy = sys_energy, .nterm = m->nterm,
+        .implicit_terms = m->implicit, .force_terms = sys_force_terms,
+        .jacobian_terms = sys_jacobian_terms,
         .project = any_hook(m, offsetof(cl_term_type, project)) ? sys_project
                                                                  : NULL,
         .step_done = m->tears || m->lags ? sys_step_done : NULL,
@@ -608,7 +651,7 @@ cl_status cl_model_eval_full(cl_model *m, double t, const double *x,
     size_t n3 = 3 * m->cloth.np;
     memcpy(m->xf, x, n3 * sizeof *x);
     memcpy(m->vf, v, n3 * sizeof *v);
-    eval_terms(m, t, f, NULL, NULL, e);
+    eval_terms(m, UINT64_MAX, t, f, NULL, NULL, e);
     e->kinetic = kinetic_free(&m->cloth, v);
     e->total = e->kinetic + e->potential;
     if (!cl_all_finite(f, n3) || !isfinite(e->total))
@@ -636,7 +679,7 @@ cl_status cl_model_jacobian_full(cl_model *m, double t, const double *x,
     if (!rc) {
         memcpy(m->xf, x, 3 * np * sizeof *x);
         memcpy(m->vf, v, 3 * np * sizeof *v);
-        eval_terms(m, t, NULL, *dfdx, *dfdv, NULL);
+        eval_terms(m, UINT64_MAX, t, NULL, *dfdx, *dfdv, NULL);
     }
     /* Terms go back to the free-particle pattern the system uses. */
     cl_error ignored;

@@ -12,6 +12,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 #include <string.h>
 
 #include "core/error.h"
@@ -144,6 +145,20 @@ typedef struct cl_system {
     cl_status (*constrain)(void *data, double t, double h, const double *x,
                            const double *v, const double *impulse,
                            cl_constraint_set *cs, bool *changed);
+    /* The force terms one by one, for methods that treat them apart (the
+     * IMEX methods, docs/integrators.md 10): a term mask has bit k for the
+     * k-th of the nterm <= 64 terms (cl_model_terms order); force_terms and
+     * jacobian_terms are force and jacobian over the terms of mask alone
+     * (UINT64_MAX: all, the same numbers as force and jacobian), NULL
+     * when the system is not made of terms.  implicit_terms: the terms
+     * an IMEX method treats implicitly (each term's `imex` key). */
+    size_t nterm;
+    uint64_t implicit_terms;
+    cl_status (*force_terms)(void *data, uint64_t mask, double t,
+                             const double *x, const double *v, double *f);
+    cl_status (*jacobian_terms)(void *data, uint64_t mask, double t,
+                                const double *x, const double *v, double *f,
+                                double *dfdx, double *dfdv);
     bool projects;  /* some obstacle has response = project */
     bool projects_friction; /* ... with friction: mu > 0 or zero_velocity
                              * (a velocity-level law that CVODE's error
