@@ -8,7 +8,10 @@
  *   pcg-jacobi  the same with the point-Jacobi (diagonal) preconditioner
  *   cholmod     supernodal sparse Cholesky (CHOLMOD), klu when A is not
  *               symmetric positive definite
- *   auto        pcg, or cholmod / klu where pcg costs more or fails */
+ *   auto        pcg, or cholmod / klu where pcg costs more or fails
+ *   amg         PETSc CG + GAMG (smoothed aggregation), the hierarchy reused
+ *               across setups (plug-in clothode-petsc.so)
+ *   amg-hypre   PETSc CG + hypre BoomerAMG, nodal coarsening */
 #include "linalg/linsol.h"
 
 #include <stdio.h>
@@ -19,6 +22,8 @@ extern const cl_linsol_type cl_linsol_pcg;
 extern const cl_linsol_type cl_linsol_pcg_jacobi;
 extern const cl_linsol_type cl_linsol_cholmod;
 extern const cl_linsol_type cl_linsol_auto;
+extern const cl_linsol_type cl_linsol_amg;
+extern const cl_linsol_type cl_linsol_amg_hypre;
 
 const cl_linsol_type *const cl_linsol_registry[] = {
     &cl_linsol_klu,
@@ -26,6 +31,8 @@ const cl_linsol_type *const cl_linsol_registry[] = {
     &cl_linsol_pcg_jacobi,
     &cl_linsol_cholmod,
     &cl_linsol_auto,
+    &cl_linsol_amg,
+    &cl_linsol_amg_hypre,
     NULL,
 };
 
