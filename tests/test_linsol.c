@@ -17,7 +17,7 @@ Test(linsol, registry)
 {
     char buf[128];
     cr_assert_str_eq(cl_linsol_names(buf, sizeof buf),
-                     "klu, pcg, pcg-jacobi, cholmod, auto");
+                     "klu, pcg, pcg-jacobi, cholmod, auto, amg, amg-hypre");
     cr_assert_str_eq(cl_linsol_find(NULL)->name, "klu");
     cr_assert_str_eq(cl_linsol_find("")->name, "klu");
     cr_assert_str_eq(ls_find("pcg")->name, "pcg");
@@ -39,12 +39,13 @@ Test(linsol, get_or_refuse)
     cr_assert_str_eq(lt->name, "cholmod");
     cr_assert_eq(cl_linsol_get("semi-be", "lu", NULL, &lt, &err), CL_EINVAL);
     cr_assert_str_eq(err.msg, "semi-be: unknown linear solver \"lu\" "
-                     "(known: klu, pcg, pcg-jacobi, cholmod, auto)");
+                     "(known: klu, pcg, pcg-jacobi, cholmod, auto, amg, "
+                     "amg-hypre)");
     cr_assert_eq(cl_linsol_get("ida", "lu", "klu-full", &lt, &err),
                  CL_EINVAL);
     cr_assert_str_eq(err.msg, "ida: unknown linear solver \"lu\" "
                      "(known: klu-full, klu, pcg, pcg-jacobi, cholmod, "
-                     "auto)");
+                     "auto, amg, amg-hypre)");
 }
 
 static void ls_solve_spd(const char *name)
