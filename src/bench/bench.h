@@ -68,11 +68,12 @@
 
 #include "core/error.h"
 
-#define CL_BENCH_WORKLOADS 9
+#define CL_BENCH_WORKLOADS 12
 
 typedef struct {
     bool quick;
-    unsigned only;          /* bit w (1..9) selects workload w; 0: all */
+    unsigned only;          /* bit w (1..12) selects workload w; 0: all
+                             * but 12 */
     const char *problems;   /* directory of the problem files */
     const char *peer;       /* the peer script */
     const char *self;       /* the clothode-bench program, for child runs */

@@ -16,19 +16,6 @@
 #define W3_CASE_CAP 20.0   /* skip a case predicted to take longer (s) */
 #define W5_CHUNK 100       /* explicit steps per advance call */
 
-/* A timed stretch of fixed steps. */
-typedef struct {
-    cl_status rc;
-    char msg[200];
-    double cpu, wall;      /* of the timed steps */
-    long steps;
-} fixed_time;
-
-typedef struct {
-    long warm, chunk, min_steps;
-    double budget;         /* stop once the timed steps took this (s) */
-} fixed_plan;
-
 static cl_status timed_steps(void *state, const cl_integrator_type *type,
                              double dt, const fixed_plan *fp, double *x,
                              double *v, fixed_time *ft, cl_error *err)
@@ -50,10 +37,9 @@ static cl_status timed_steps(void *state, const cl_integrator_type *type,
     return rc;
 }
 
-/* Create the integrator on the model's initial state and time steps. */
-static void time_fixed(cl_model *m, const cl_integrator_type *type,
-                       const cl_integrator_opts *io, const fixed_plan *fp,
-                       fixed_time *ft)
+void cl_bench_time_fixed(cl_model *m, const cl_integrator_type *type,
+                         const cl_integrator_opts *io, const fixed_plan *fp,
+                         fixed_time *ft)
 {
     const cl_system *sys = cl_model_system(m);
     double *x = malloc(sys->n * sizeof *x), *v = malloc(sys->n * sizeof *v);
@@ -64,8 +50,10 @@ static void time_fixed(cl_model *m, const cl_integrator_type *type,
                           : cl_error_set(&err, CL_ENOMEM, "out of memory");
     if (!rc && !(rc = type->create(sys, io, 0.0, x, v, &state, &err)))
         rc = timed_steps(state, type, io->dt, fp, x, v, ft, &err);
-    if (state)
+    if (state) {
+        type->stats(state, &ft->stats);
         type->free(state);
+    }
     ft->rc = rc;
     if (rc)
         cl_bench_copy(ft->msg, sizeof ft->msg, err.msg);
@@ -99,7 +87,7 @@ static void w3_case(cl_bctx *c, w3_sweep *s, double dt, int i, int j,
     fixed_plan fp = {W3_WARM, 1, W3_MIN_STEPS, c->plan.w3_budget};
     fixed_time ft;
     cl_bench_log(c, "  semi-bdf2 %s, dt = %g, n = %d ...", s->name[j], dt, n);
-    time_fixed(m, cl_integrator_find("semi-bdf2"), &io, &fp, &ft);
+    cl_bench_time_fixed(m, cl_integrator_find("semi-bdf2"), &io, &fp, &ft);
     if (ft.rc) {
         s->stop[j] = true;
         cl_bench_note(row, "failed: %s", ft.msg);
@@ -356,7 +344,7 @@ static void w5_one(cl_bctx *c, const w5_case *wc)
         fixed_time ft = {
             .rc = cl_bench_fixed_opts(bm.cfg, wc->dt, &io, &err)};
         if (!ft.rc)
-            time_fixed(bm.m, type, &io, &fp, &ft);
+            cl_bench_time_fixed(bm.m, type, &io, &fp, &ft);
         if (ft.rc)
             cl_bench_note(row, "failed: %s", *ft.msg ? ft.msg : err.msg);
         row->cpu_a = ft.cpu;
