@@ -283,19 +283,7 @@ static void ls_indefinite_coupling(const char *name)
 {
     ls_case c;
     ls_init(&c, 9);
-    size_t nval = 9 * c.pat.nnzb;
-    memset(c.dfdx, 0, nval * sizeof *c.dfdx);
-    memset(c.dfdv, 0, nval * sizeof *c.dfdv);
-    for (size_t i = 0; i < LS_N; i++)
-        c.mass[i] = 1.0;
-    for (int i = 0; i + 1 < LS_NB; i++) {
-        long k1 = cl_bpattern_find(&c.pat, i, i + 1);
-        long k2 = cl_bpattern_find(&c.pat, i + 1, i);
-        for (int r = 0; r < 3; r++) {
-            c.dfdx[9 * k1 + 4 * r] = -2.0;
-            c.dfdx[9 * k2 + 4 * r] = -2.0;
-        }
-    }
+    ls_fill_indefinite_chain(&c);
     const cl_linsol_type *t = ls_find(name);
     cl_linsol_opts o = {0};
     cl_error err = {0};

@@ -56,15 +56,11 @@ static void w10_case(cl_bctx *c, w10_sweep *s, double dt, int i, int j,
     fixed_time ft;
     cl_bench_log(c, "  semi-bdf2 %s, dt = %g, n = %d ...", w10_solver[j],
                  dt, c->plan.w10_n[i]);
-    cl_bench_time_fixed(m, cl_integrator_find("semi-bdf2"), &io, &fp, &ft);
-    if (ft.rc) {
+    if (!cl_bench_semi_step(m, &io, &fp, row, &ft)) {
         s->stop[j] = true;
-        cl_bench_note(row, "failed: %s", ft.msg);
         cl_bench_log_row(c, row);
         return;
     }
-    row->cpu_a = ft.cpu / (double)ft.steps;
-    row->wall_a = ft.wall / (double)ft.steps;
     s->per_step[j][i] = row->cpu_a;
     const cl_stats *st = &ft.stats;
     cl_bench_note(row, "%ld timed steps; %.0f unknowns; %.1f iterations "
@@ -77,24 +73,6 @@ static void w10_case(cl_bctx *c, w10_sweep *s, double dt, int i, int j,
     s->stop[j] = 5.0 * row->cpu_a * (W10_WARM + W10_MIN_STEPS) >
                  W10_CASE_CAP;
     cl_bench_log_row(c, row);
-}
-
-/* Least-squares slope of log(time per step) against log(unknowns). */
-static double w10_exponent(const w10_sweep *s, int j, int nn, int *used)
-{
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    int k = 0;
-    for (int i = 0; i < nn; i++)
-        if (isfinite(s->per_step[j][i])) {
-            double lx = log(s->unknowns[i]), ly = log(s->per_step[j][i]);
-            sx += lx;
-            sy += ly;
-            sxx += lx * lx;
-            sxy += lx * ly;
-            k++;
-        }
-    *used = k;
-    return k < 2 ? NAN : (k * sxy - sx * sy) / (k * sxx - sx * sx);
 }
 
 /* The fastest of solvers [j0, j1) at size i, or -1. */
@@ -115,7 +93,7 @@ static void w10_fits(cl_bctx *c, const w10_sweep *s, double dt)
     snprintf(kase, sizeof kase, "dt=%g fit", dt);
     for (int j = 0; j < W10_NS; j++) {
         int used;
-        double e = w10_exponent(s, j, nn, &used);
+        double e = cl_bench_exponent(s->unknowns, s->per_step[j], nn, &used);
         bool goal = j == best && dt == 1e-2;
         cl_bench_row *row = cl_bench_row_add(c, 10, kase);
         snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 %s",

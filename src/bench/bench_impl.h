@@ -115,6 +115,17 @@ void cl_bench_time_fixed(cl_model *m, const cl_integrator_type *type,
                          const cl_integrator_opts *io, const fixed_plan *fp,
                          fixed_time *ft);
 
+/* cl_bench_time_fixed of semi-bdf2: CPU and wall time per step into
+ * row->cpu_a, wall_a; false, the failure noted in row, if it failed. */
+bool cl_bench_semi_step(cl_model *m, const cl_integrator_opts *io,
+                        const fixed_plan *fp, cl_bench_row *row,
+                        fixed_time *ft);
+
+/* Least-squares slope of log(per_step) against log(unknowns) over the
+ * nn sizes with a finite time (their count into used; NaN under two). */
+double cl_bench_exponent(const double *unknowns, const double *per_step,
+                         int nn, int *used);
+
 /* Process CPU and monotonic wall clocks (s). */
 void cl_bench_clock(double *cpu, double *wall);
 

@@ -14,6 +14,7 @@
  *   amg-hypre   PETSc CG + hypre BoomerAMG, nodal coarsening */
 #include "linalg/linsol.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -74,4 +75,17 @@ const char *cl_linsol_names(char *buf, size_t len)
         used += (size_t)w;
     }
     return buf;
+}
+
+cl_status cl_linsol_check_opts(const char *name, const cl_bpattern *pat,
+                               const cl_linsol_opts *o, cl_error *err)
+{
+    if (!pat || pat->nb == 0)
+        return cl_error_set(err, CL_EINVAL, "%s: empty system (no free "
+                            "particles)", name);
+    if (!isfinite(o->tol) || o->tol < 0.0 || o->maxit < 0)
+        return cl_error_set(err, CL_EINVAL, "%s: lin_tol = %g, lin_maxit = "
+                            "%ld: need finite >= 0 (0: defaults)", name,
+                            o->tol, o->maxit);
+    return CL_OK;
 }

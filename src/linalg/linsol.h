@@ -104,6 +104,11 @@ static inline void cl_linsol_jacobian(const cl_linsol_type *lt, void *ls,
         lt->jacobian(ls, dfdx, dfdv);
 }
 
+/* The iterative solvers' checks at create: CL_EINVAL naming `name` for an
+ * empty pattern, or a lin_tol or lin_maxit that is not finite >= 0. */
+cl_status cl_linsol_check_opts(const char *name, const cl_bpattern *pat,
+                               const cl_linsol_opts *o, cl_error *err);
+
 /* "klu, pcg": the names, for messages. */
 const char *cl_linsol_names(char *buf, size_t len);
 

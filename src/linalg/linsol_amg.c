@@ -132,13 +132,9 @@ static cl_status amg_create_named(const char *name, int hypre,
                                   cl_error *err)
 {
     *state = NULL;
-    if (!pat || pat->nb == 0)
-        return cl_error_set(err, CL_EINVAL, "%s: empty system (no free "
-                            "particles)", name);
-    if (!isfinite(o->tol) || o->tol < 0.0 || o->maxit < 0)
-        return cl_error_set(err, CL_EINVAL, "%s: lin_tol = %g, lin_maxit = "
-                            "%ld: need finite >= 0 (0: defaults)", name,
-                            o->tol, o->maxit);
+    cl_status st = cl_linsol_check_opts(name, pat, o, err);
+    if (st != CL_OK)
+        return st;
     cl_amg *s = calloc(1, sizeof *s);
     if (!s)
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", name);
@@ -149,7 +145,7 @@ static cl_status amg_create_named(const char *name, int hypre,
     maxit = maxit > CL_AMG_MAXIT_MIN || o->maxit ? maxit : CL_AMG_MAXIT_MIN;
     amg_create_fn create = NULL;
     cl_plugin_msg msg = {.text = ""};
-    cl_status st = amg_alloc(s, mass, err);
+    st = amg_alloc(s, mass, err);
     if (st == CL_OK)
         st = amg_symbols(s, &create, err);
     if (st == CL_OK && create(pat->nb, pat->rowptr, pat->col, hypre, maxit,
