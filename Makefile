@@ -100,7 +100,7 @@ $(BUILD)/libclothode.a: $(LIB_OBJ)
 $(BIN): $(CLI_OBJ) $(BUILD)/libclothode.a | $(PETSC_SO)
 	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
-$(BENCHBIN): $(BUILD)/src/bench/main.o $(BENCH_OBJ) $(BUILD)/libclothode.a
+$(BENCHBIN): $(BUILD)/src/bench/main.o $(BENCH_OBJ) $(BUILD)/libclothode.a | $(PETSC_SO)
 	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
 $(TESTBIN): $(TEST_OBJ) $(BENCH_OBJ) $(BUILD)/libclothode.a | $(PETSC_SO)

@@ -116,6 +116,28 @@ static inline void ls_init(ls_case *c, unsigned long seed)
     ls_fill(c, seed, 1.0);
 }
 
+/* Unit masses, df/dv = 0, and df/dx = -2 I on the blocks coupling
+ * neighbours on the chain: with a = 0, b = 1, A = M (I + 2 P), P the path
+ * adjacency, whose smallest eigenvalue is ~ 1 - 4 < 0 while every
+ * diagonal block is positive: indefinite, as only a Krylov iteration can
+ * tell. */
+static inline void ls_fill_indefinite_chain(ls_case *c)
+{
+    size_t nval = 9 * c->pat.nnzb;
+    memset(c->dfdx, 0, nval * sizeof *c->dfdx);
+    memset(c->dfdv, 0, nval * sizeof *c->dfdv);
+    for (size_t i = 0; i < LS_N; i++)
+        c->mass[i] = 1.0;
+    for (int i = 0; i + 1 < LS_NB; i++) {
+        long k1 = cl_bpattern_find(&c->pat, i, i + 1);
+        long k2 = cl_bpattern_find(&c->pat, i + 1, i);
+        for (int r = 0; r < 3; r++) {
+            c->dfdx[9 * k1 + 4 * r] = -2.0;
+            c->dfdx[9 * k2 + 4 * r] = -2.0;
+        }
+    }
+}
+
 static inline void ls_free(ls_case *c)
 {
     cl_bpattern_free(&c->pat);

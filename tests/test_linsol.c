@@ -17,7 +17,7 @@ Test(linsol, registry)
 {
     char buf[128];
     cr_assert_str_eq(cl_linsol_names(buf, sizeof buf),
-                     "klu, pcg, pcg-jacobi, cholmod, auto");
+                     "klu, pcg, pcg-jacobi, cholmod, auto, amg, amg-hypre");
     cr_assert_str_eq(cl_linsol_find(NULL)->name, "klu");
     cr_assert_str_eq(cl_linsol_find("")->name, "klu");
     cr_assert_str_eq(ls_find("pcg")->name, "pcg");
@@ -39,12 +39,13 @@ Test(linsol, get_or_refuse)
     cr_assert_str_eq(lt->name, "cholmod");
     cr_assert_eq(cl_linsol_get("semi-be", "lu", NULL, &lt, &err), CL_EINVAL);
     cr_assert_str_eq(err.msg, "semi-be: unknown linear solver \"lu\" "
-                     "(known: klu, pcg, pcg-jacobi, cholmod, auto)");
+                     "(known: klu, pcg, pcg-jacobi, cholmod, auto, amg, "
+                     "amg-hypre)");
     cr_assert_eq(cl_linsol_get("ida", "lu", "klu-full", &lt, &err),
                  CL_EINVAL);
     cr_assert_str_eq(err.msg, "ida: unknown linear solver \"lu\" "
                      "(known: klu-full, klu, pcg, pcg-jacobi, cholmod, "
-                     "auto)");
+                     "auto, amg, amg-hypre)");
 }
 
 static void ls_solve_spd(const char *name)
@@ -282,19 +283,7 @@ static void ls_indefinite_coupling(const char *name)
 {
     ls_case c;
     ls_init(&c, 9);
-    size_t nval = 9 * c.pat.nnzb;
-    memset(c.dfdx, 0, nval * sizeof *c.dfdx);
-    memset(c.dfdv, 0, nval * sizeof *c.dfdv);
-    for (size_t i = 0; i < LS_N; i++)
-        c.mass[i] = 1.0;
-    for (int i = 0; i + 1 < LS_NB; i++) {
-        long k1 = cl_bpattern_find(&c.pat, i, i + 1);
-        long k2 = cl_bpattern_find(&c.pat, i + 1, i);
-        for (int r = 0; r < 3; r++) {
-            c.dfdx[9 * k1 + 4 * r] = -2.0;
-            c.dfdx[9 * k2 + 4 * r] = -2.0;
-        }
-    }
+    ls_fill_indefinite_chain(&c);
     const cl_linsol_type *t = ls_find(name);
     cl_linsol_opts o = {0};
     cl_error err = {0};

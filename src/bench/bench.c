@@ -16,6 +16,8 @@ static const cl_bplan full_plan = {
     .w2_n = 32, .w2_t = 2.0, .w2_large = true, .w2_cap = 600.0,
     .w3_nn = 4, .w3_n = {16, 32, 64, 128}, .w3_budget = 1.0,
     .eval_budget = 1.0, .w6_n = 128,
+    .w10_nn = 3, .w10_n = {64, 128, 256}, .w10_budget = 2.0,
+    .w12_n = 256, .w12_t = 2.0,
 };
 
 static const cl_bplan quick_plan = {
@@ -24,11 +26,14 @@ static const cl_bplan quick_plan = {
     .w2_n = 16, .w2_t = 0.5, .w2_large = false,
     .w3_nn = 2, .w3_n = {16, 32}, .w3_budget = 0.3,
     .eval_budget = 0.25, .w6_n = 32,
+    .w10_nn = 2, .w10_n = {16, 32}, .w10_budget = 0.3,
+    .w12_n = 32, .w12_t = 0.1,
 };
 
+/* Workload 12 (CPU minutes) runs only when named by --only. */
 static bool selected(const cl_bctx *c, int w)
 {
-    return !c->o->only || (c->o->only >> w & 1u);
+    return c->o->only ? (c->o->only >> w & 1u) != 0 : w != 12;
 }
 
 /* Rows by workload, keeping the order within each (insertion sort). */
@@ -57,9 +62,10 @@ cl_status cl_bench_run(const cl_bench_opts *o, cl_bench_table *t,
     void (*const work[])(cl_bctx *) = {NULL,        NULL,        cl_bench_w2,
                                        cl_bench_w3, cl_bench_w4, cl_bench_w5,
                                        cl_bench_w6, cl_bench_w7, cl_bench_w8,
-                                       cl_bench_w9};
+                                       cl_bench_w9, cl_bench_w10,
+                                       NULL,        cl_bench_w12};
     for (int w = 2; w <= CL_BENCH_WORKLOADS; w++)
-        if (selected(&c, w) && !c.nomem)
+        if (work[w] && selected(&c, w) && !c.nomem)
             work[w](&c);
     if (selected(&c, 1) && !c.nomem)
         cl_bench_w1(&c);

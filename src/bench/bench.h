@@ -1,6 +1,6 @@
 /* Benchmarks (`clothode-bench`, README "Benchmarks"): cost of the
  * integrators and linear solvers on the default problem, against goals.
- * Nine workloads:
+ * Workloads:
  *
  *   1  hang, cvode-bdf with the best linear solver against the scipy peer
  *      (scripts/peers/hang_scipy.py: solve_ivp BDF, analytic sparse
@@ -49,6 +49,13 @@
  *      self-contact term's evaluations of a step (spatial hash, close
  *      pairs, forces, lumped Jacobian) over that of the step; goal <=
  *      10 %.
+ *  10  algebraic multigrid: semi-bdf2 on hang, dt = 1e-3 and 1e-2, n = 64,
+ *      128, 256: time per step of amg and amg-hypre beside pcg, cholmod
+ *      and klu, exponents against unknowns (goal <= 1.15 for the fastest
+ *      at dt = 1e-2), amg against the fastest one-level solver at n = 256
+ *      (goals >= 3x at dt = 1e-2, >= 1.5x at dt = 1e-3) (bench_amg.c).
+ *  12  hang n = 256, T = 2 s by semi-bdf2 --linsol amg at dt = 1e-2: CPU
+ *      seconds, goal <= 600; run only when named (--only 12).
  *
  * The best solver for cvode-bdf is picked once per run: every name of the
  * linear-solver registry plus klu-full, timed on the first case of
@@ -68,11 +75,12 @@
 
 #include "core/error.h"
 
-#define CL_BENCH_WORKLOADS 9
+#define CL_BENCH_WORKLOADS 12
 
 typedef struct {
     bool quick;
-    unsigned only;          /* bit w (1..9) selects workload w; 0: all */
+    unsigned only;          /* bit w (1..12) selects workload w; 0: all
+                             * but 12 */
     const char *problems;   /* directory of the problem files */
     const char *peer;       /* the peer script */
     const char *self;       /* the clothode-bench program, for child runs */

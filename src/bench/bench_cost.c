@@ -16,19 +16,6 @@
 #define W3_CASE_CAP 20.0   /* skip a case predicted to take longer (s) */
 #define W5_CHUNK 100       /* explicit steps per advance call */
 
-/* A timed stretch of fixed steps. */
-typedef struct {
-    cl_status rc;
-    char msg[200];
-    double cpu, wall;      /* of the timed steps */
-    long steps;
-} fixed_time;
-
-typedef struct {
-    long warm, chunk, min_steps;
-    double budget;         /* stop once the timed steps took this (s) */
-} fixed_plan;
-
 static cl_status timed_steps(void *state, const cl_integrator_type *type,
                              double dt, const fixed_plan *fp, double *x,
                              double *v, fixed_time *ft, cl_error *err)
@@ -50,10 +37,9 @@ static cl_status timed_steps(void *state, const cl_integrator_type *type,
     return rc;
 }
 
-/* Create the integrator on the model's initial state and time steps. */
-static void time_fixed(cl_model *m, const cl_integrator_type *type,
-                       const cl_integrator_opts *io, const fixed_plan *fp,
-                       fixed_time *ft)
+void cl_bench_time_fixed(cl_model *m, const cl_integrator_type *type,
+                         const cl_integrator_opts *io, const fixed_plan *fp,
+                         fixed_time *ft)
 {
     const cl_system *sys = cl_model_system(m);
     double *x = malloc(sys->n * sizeof *x), *v = malloc(sys->n * sizeof *v);
@@ -64,13 +50,29 @@ static void time_fixed(cl_model *m, const cl_integrator_type *type,
                           : cl_error_set(&err, CL_ENOMEM, "out of memory");
     if (!rc && !(rc = type->create(sys, io, 0.0, x, v, &state, &err)))
         rc = timed_steps(state, type, io->dt, fp, x, v, ft, &err);
-    if (state)
+    if (state) {
+        type->stats(state, &ft->stats);
         type->free(state);
+    }
     ft->rc = rc;
     if (rc)
         cl_bench_copy(ft->msg, sizeof ft->msg, err.msg);
     free(x);
     free(v);
+}
+
+bool cl_bench_semi_step(cl_model *m, const cl_integrator_opts *io,
+                        const fixed_plan *fp, cl_bench_row *row,
+                        fixed_time *ft)
+{
+    cl_bench_time_fixed(m, cl_integrator_find("semi-bdf2"), io, fp, ft);
+    if (ft->rc) {
+        cl_bench_note(row, "failed: %s", ft->msg);
+        return false;
+    }
+    row->cpu_a = ft->cpu / (double)ft->steps;
+    row->wall_a = ft->wall / (double)ft->steps;
+    return true;
 }
 
 /* ---- workload 3 ------------------------------------------------------- */
@@ -99,15 +101,11 @@ static void w3_case(cl_bctx *c, w3_sweep *s, double dt, int i, int j,
     fixed_plan fp = {W3_WARM, 1, W3_MIN_STEPS, c->plan.w3_budget};
     fixed_time ft;
     cl_bench_log(c, "  semi-bdf2 %s, dt = %g, n = %d ...", s->name[j], dt, n);
-    time_fixed(m, cl_integrator_find("semi-bdf2"), &io, &fp, &ft);
-    if (ft.rc) {
+    if (!cl_bench_semi_step(m, &io, &fp, row, &ft)) {
         s->stop[j] = true;
-        cl_bench_note(row, "failed: %s", ft.msg);
         cl_bench_log_row(c, row);
         return;
     }
-    row->cpu_a = ft.cpu / (double)ft.steps;
-    row->wall_a = ft.wall / (double)ft.steps;
     s->per_step[j][i] = row->cpu_a;
     cl_bench_note(row, "%ld timed steps; %.0f unknowns", ft.steps,
                   s->unknowns[i]);
@@ -116,14 +114,14 @@ static void w3_case(cl_bctx *c, w3_sweep *s, double dt, int i, int j,
     cl_bench_log_row(c, row);
 }
 
-/* Least-squares slope of log(time) against log(unknowns). */
-static double w3_exponent(const w3_sweep *s, int j, int nn, int *used)
+double cl_bench_exponent(const double *unknowns, const double *per_step,
+                         int nn, int *used)
 {
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
     int k = 0;
     for (int i = 0; i < nn; i++)
-        if (isfinite(s->per_step[j][i])) {
-            double lx = log(s->unknowns[i]), ly = log(s->per_step[j][i]);
+        if (isfinite(per_step[i])) {
+            double lx = log(unknowns[i]), ly = log(per_step[i]);
             sx += lx;
             sy += ly;
             sxx += lx * lx;
@@ -157,7 +155,8 @@ static void w3_fits(cl_bctx *c, const w3_sweep *s, double dt, int best)
     snprintf(kase, sizeof kase, "dt=%g fit", dt);
     for (int j = 0; j < s->nsolver; j++) {
         int used;
-        double e = w3_exponent(s, j, c->plan.w3_nn, &used);
+        double e = cl_bench_exponent(s->unknowns, s->per_step[j],
+                                     c->plan.w3_nn, &used);
         cl_bench_row *row = cl_bench_row_add(c, 3, kase);
         snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 %s",
                  s->name[j]);
@@ -356,7 +355,7 @@ static void w5_one(cl_bctx *c, const w5_case *wc)
         fixed_time ft = {
             .rc = cl_bench_fixed_opts(bm.cfg, wc->dt, &io, &err)};
         if (!ft.rc)
-            time_fixed(bm.m, type, &io, &fp, &ft);
+            cl_bench_time_fixed(bm.m, type, &io, &fp, &ft);
         if (ft.rc)
             cl_bench_note(row, "failed: %s", *ft.msg ? ft.msg : err.msg);
         row->cpu_a = ft.cpu;

@@ -26,6 +26,11 @@ typedef struct {
     double w3_budget;        /* CPU seconds per (solver, n, dt) */
     double eval_budget;      /* workloads 4, 5, 7, 8: seconds per case */
     int w6_n;
+    int w10_nn;              /* workload 10: sizes */
+    int w10_n[3];
+    double w10_budget;       /* CPU seconds per (solver, n, dt) */
+    int w12_n;               /* workload 12: n, T */
+    double w12_t;
 } cl_bplan;
 
 /* A timed cvode-bdf run on hang, kept for the whole bench run. */
@@ -88,6 +93,38 @@ void cl_bench_model_free(cl_bmodel *bm);
  * > 0 given: that one instead of [run] dt). */
 cl_status cl_bench_fixed_opts(cl_config *cfg, double dt,
                               cl_integrator_opts *io, cl_error *err);
+
+/* A timed stretch of fixed steps. */
+typedef struct {
+    cl_status rc;
+    char msg[200];
+    double cpu, wall;      /* of the timed steps */
+    long steps;
+    cl_stats stats;        /* the integrator's, over all steps */
+} fixed_time;
+
+typedef struct {
+    long warm, chunk, min_steps;
+    double budget;         /* stop once the timed steps took this (s) */
+} fixed_plan;
+
+/* Create the integrator on the model's initial state, take fp->warm
+ * untimed steps, then time steps (fp->chunk per advance) until at least
+ * fp->min_steps and fp->budget CPU seconds (bench_cost.c). */
+void cl_bench_time_fixed(cl_model *m, const cl_integrator_type *type,
+                         const cl_integrator_opts *io, const fixed_plan *fp,
+                         fixed_time *ft);
+
+/* cl_bench_time_fixed of semi-bdf2: CPU and wall time per step into
+ * row->cpu_a, wall_a; false, the failure noted in row, if it failed. */
+bool cl_bench_semi_step(cl_model *m, const cl_integrator_opts *io,
+                        const fixed_plan *fp, cl_bench_row *row,
+                        fixed_time *ft);
+
+/* Least-squares slope of log(per_step) against log(unknowns) over the
+ * nn sizes with a finite time (their count into used; NaN under two). */
+double cl_bench_exponent(const double *unknowns, const double *per_step,
+                         int nn, int *used);
 
 /* Process CPU and monotonic wall clocks (s). */
 void cl_bench_clock(double *cpu, double *wall);
@@ -155,5 +192,10 @@ void cl_bench_w8(cl_bctx *c);
 /* ---- bench_selfcontact.c: workload 9 --------------------------------- */
 
 void cl_bench_w9(cl_bctx *c);
+
+/* ---- bench_amg.c: workloads 10 and 12 -------------------------------- */
+
+void cl_bench_w10(cl_bctx *c);
+void cl_bench_w12(cl_bctx *c);
 
 #endif

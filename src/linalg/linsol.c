@@ -8,9 +8,13 @@
  *   pcg-jacobi  the same with the point-Jacobi (diagonal) preconditioner
  *   cholmod     supernodal sparse Cholesky (CHOLMOD), klu when A is not
  *               symmetric positive definite
- *   auto        pcg, or cholmod / klu where pcg costs more or fails */
+ *   auto        pcg, or cholmod / klu where pcg costs more or fails
+ *   amg         PETSc CG + GAMG (smoothed aggregation), the hierarchy reused
+ *               across setups (plug-in clothode-petsc.so)
+ *   amg-hypre   PETSc CG + hypre BoomerAMG, nodal coarsening */
 #include "linalg/linsol.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -19,6 +23,8 @@ extern const cl_linsol_type cl_linsol_pcg;
 extern const cl_linsol_type cl_linsol_pcg_jacobi;
 extern const cl_linsol_type cl_linsol_cholmod;
 extern const cl_linsol_type cl_linsol_auto;
+extern const cl_linsol_type cl_linsol_amg;
+extern const cl_linsol_type cl_linsol_amg_hypre;
 
 const cl_linsol_type *const cl_linsol_registry[] = {
     &cl_linsol_klu,
@@ -26,6 +32,8 @@ const cl_linsol_type *const cl_linsol_registry[] = {
     &cl_linsol_pcg_jacobi,
     &cl_linsol_cholmod,
     &cl_linsol_auto,
+    &cl_linsol_amg,
+    &cl_linsol_amg_hypre,
     NULL,
 };
 
@@ -67,4 +75,17 @@ const char *cl_linsol_names(char *buf, size_t len)
         used += (size_t)w;
     }
     return buf;
+}
+
+cl_status cl_linsol_check_opts(const char *name, const cl_bpattern *pat,
+                               const cl_linsol_opts *o, cl_error *err)
+{
+    if (!pat || pat->nb == 0)
+        return cl_error_set(err, CL_EINVAL, "%s: empty system (no free "
+                            "particles)", name);
+    if (!isfinite(o->tol) || o->tol < 0.0 || o->maxit < 0)
+        return cl_error_set(err, CL_EINVAL, "%s: lin_tol = %g, lin_maxit = "
+                            "%ld: need finite >= 0 (0: defaults)", name,
+                            o->tol, o->maxit);
+    return CL_OK;
 }

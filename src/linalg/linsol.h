@@ -23,6 +23,9 @@
  *               that a factorisation would have done cheaper or that
  *               failed; a failed pcg solve is redone directly
  *               (linsol_auto.c).
+ *   amg         CG preconditioned by PETSc's GAMG (smoothed aggregation),
+ *               the hierarchy kept across setups; amg-hypre: by hypre's
+ *               BoomerAMG (linsol_amg.c, on the PETSc plug-in).
  *
  * Usage: create once (the pattern must outlive the solver; mass is
  * copied), then per Newton matrix one setup and any number of solves; a
@@ -100,6 +103,11 @@ static inline void cl_linsol_jacobian(const cl_linsol_type *lt, void *ls,
     if (lt->jacobian)
         lt->jacobian(ls, dfdx, dfdv);
 }
+
+/* The iterative solvers' checks at create: CL_EINVAL naming `name` for an
+ * empty pattern, or a lin_tol or lin_maxit that is not finite >= 0. */
+cl_status cl_linsol_check_opts(const char *name, const cl_bpattern *pat,
+                               const cl_linsol_opts *o, cl_error *err);
 
 /* "klu, pcg": the names, for messages. */
 const char *cl_linsol_names(char *buf, size_t len);

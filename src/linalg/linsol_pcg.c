@@ -234,19 +234,6 @@ static cl_status pcg_sunfail(const cl_pcg *s, const char *fn, int flag,
                         fn, flag);
 }
 
-static cl_status pcg_check_opts(const char *name, const cl_bpattern *pat,
-                                const cl_linsol_opts *o, cl_error *err)
-{
-    if (!pat || pat->nb == 0)
-        return cl_error_set(err, CL_EINVAL, "%s: empty system (no free "
-                            "particles)", name);
-    if (!isfinite(o->tol) || o->tol < 0.0 || o->maxit < 0)
-        return cl_error_set(err, CL_EINVAL, "%s: lin_tol = %g, lin_maxit = "
-                            "%ld: need finite >= 0 (0: defaults)", name,
-                            o->tol, o->maxit);
-    return CL_OK;
-}
-
 static cl_status pcg_alloc(cl_pcg *s, const double *mass, cl_error *err)
 {
     size_t nval = 9 * s->pat->nnzb;
@@ -310,7 +297,7 @@ static cl_status pcg_create_named(const char *name, bool block,
                                   cl_error *err)
 {
     *state = NULL;
-    cl_status st = pcg_check_opts(name, pat, o, err);
+    cl_status st = cl_linsol_check_opts(name, pat, o, err);
     if (st != CL_OK)
         return st;
     cl_pcg *s = calloc(1, sizeof *s);

@@ -1,0 +1,230 @@
+/* Benchmark workloads 10 and 12 (bench/bench.h): algebraic multigrid
+ * (--linsol amg, linalg/linsol_amg.c) against the one-level solvers.
+ *
+ * 10  semi-bdf2 on hang at dt = 1e-3 and 1e-2, n = 64, 128, 256 (--quick:
+ *     16, 32): CPU time per step (after two untimed steps: the semi-be
+ *     start and the first BDF2 step, which include the first multigrid
+ *     build; later rebuilds are timed) of amg, amg-hypre and the one-level
+ *     solvers pcg (block Jacobi), cholmod and klu; a solver predicted to
+ *     take more than W10_CASE_CAP seconds at the next size is skipped
+ *     there.  Then per dt: the exponent p of time per step ~ unknowns^p of
+ *     each solver (goal <= 1.15 for the fastest at the largest n at dt =
+ *     1e-2), and amg against the fastest one-level solver at the largest
+ *     n (goals >= 3x at dt = 1e-2, >= 1.5x at dt = 1e-3).
+ * 12  hang at n = 256, T = 2 s (--quick: n = 32, T = 0.1 s) by semi-bdf2
+ *     --linsol amg at dt = 1e-2: CPU seconds, goal <= 600.  Long (CPU
+ *     minutes): run only when named, `clothode-bench --only 12`; stopped
+ *     after W12_CAP CPU seconds, the time then a lower bound. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bench/bench_impl.h"
+#include "linalg/linsol.h"
+
+#define W10_NS 5
+#define W10_ONE_LEVEL 3     /* the first three: the one-level solvers */
+#define W10_WARM 2
+#define W10_MIN_STEPS 3
+#define W10_CASE_CAP 60.0   /* skip a case predicted to take longer (s) */
+#define W12_DT 1e-2
+#define W12_CAP 1200.0      /* CPU seconds before workload 12 stops */
+
+static const char *const w10_solver[W10_NS] = {"pcg", "cholmod", "klu",
+                                               "amg", "amg-hypre"};
+
+typedef struct {
+    double per_step[W10_NS][3];  /* NaN: not measured */
+    double unknowns[3];
+    bool stop[W10_NS];
+} w10_sweep;
+
+static void w10_case(cl_bctx *c, w10_sweep *s, double dt, int i, int j,
+                     cl_model *m)
+{
+    char kase[48];
+    snprintf(kase, sizeof kase, "dt=%g n=%d", dt, c->plan.w10_n[i]);
+    cl_bench_row *row = cl_bench_row_add(c, 10, kase);
+    snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 %s",
+             w10_solver[j]);
+    if (s->stop[j]) {
+        cl_bench_note(row, "skipped (failed or too slow at a smaller n)");
+        return;
+    }
+    cl_integrator_opts io = {.dt = dt, .linsol = w10_solver[j]};
+    fixed_plan fp = {W10_WARM, 1, W10_MIN_STEPS, c->plan.w10_budget};
+    fixed_time ft;
+    cl_bench_log(c, "  semi-bdf2 %s, dt = %g, n = %d ...", w10_solver[j],
+                 dt, c->plan.w10_n[i]);
+    if (!cl_bench_semi_step(m, &io, &fp, row, &ft)) {
+        s->stop[j] = true;
+        cl_bench_log_row(c, row);
+        return;
+    }
+    s->per_step[j][i] = row->cpu_a;
+    const cl_stats *st = &ft.stats;
+    cl_bench_note(row, "%ld timed steps; %.0f unknowns; %.1f iterations "
+                  "per solve; %ld of %ld setups built anew", ft.steps,
+                  s->unknowns[i],
+                  st->lin_solves ? (double)st->lin_iters / st->lin_solves
+                                 : 0.0,
+                  st->symbolic_facts, st->lin_setups);
+    /* the next size has 4x the unknowns: 5x the time is a fair guess */
+    s->stop[j] = 5.0 * row->cpu_a * (W10_WARM + W10_MIN_STEPS) >
+                 W10_CASE_CAP;
+    cl_bench_log_row(c, row);
+}
+
+/* The fastest of solvers [j0, j1) at size i, or -1. */
+static int w10_fastest(const w10_sweep *s, int i, int j0, int j1)
+{
+    int best = -1;
+    for (int j = j0; j < j1; j++)
+        if (isfinite(s->per_step[j][i]) &&
+            (best < 0 || s->per_step[j][i] < s->per_step[best][i]))
+            best = j;
+    return best;
+}
+
+static void w10_fits(cl_bctx *c, const w10_sweep *s, double dt)
+{
+    int nn = c->plan.w10_nn, best = w10_fastest(s, nn - 1, 0, W10_NS);
+    char kase[48];
+    snprintf(kase, sizeof kase, "dt=%g fit", dt);
+    for (int j = 0; j < W10_NS; j++) {
+        int used;
+        double e = cl_bench_exponent(s->unknowns, s->per_step[j], nn, &used);
+        bool goal = j == best && dt == 1e-2;
+        cl_bench_row *row = cl_bench_row_add(c, 10, kase);
+        snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 %s",
+                 w10_solver[j]);
+        cl_bench_judge(row, e, "exponent", goal ? "<=" : "", 1.15);
+        cl_bench_note(row, "time per step ~ unknowns^p over %d sizes%s",
+                      used, j == best ? "; fastest at the largest n" : "");
+        cl_bench_log_row(c, row);
+    }
+}
+
+/* amg against the fastest one-level solver at the largest n. */
+static void w10_speedup(cl_bctx *c, const w10_sweep *s, double dt)
+{
+    int i = c->plan.w10_nn - 1, amg = W10_ONE_LEVEL;
+    int one = w10_fastest(s, i, 0, W10_ONE_LEVEL);
+    char kase[48];
+    snprintf(kase, sizeof kase, "dt=%g n=%d", dt, c->plan.w10_n[i]);
+    cl_bench_row *row = cl_bench_row_add(c, 10, kase);
+    snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 amg");
+    snprintf(row->side_b, sizeof row->side_b, "semi-bdf2 %s",
+             one >= 0 ? w10_solver[one] : "(one-level)");
+    if (one < 0 || !isfinite(s->per_step[amg][i])) {
+        cl_bench_note(row, "not measured at this n");
+        cl_bench_log_row(c, row);
+        return;
+    }
+    row->cpu_a = s->per_step[amg][i];
+    row->cpu_b = s->per_step[one][i];
+    cl_bench_judge(row, row->cpu_b / row->cpu_a, "x", ">=",
+                   dt == 1e-2 ? 3.0 : 1.5);
+    cl_bench_note(row, "per step; against the fastest of pcg, cholmod, "
+                  "klu");
+    cl_bench_log_row(c, row);
+}
+
+static void w10_dt(cl_bctx *c, double dt)
+{
+    w10_sweep s = {0};
+    for (int i = 0; i < c->plan.w10_nn; i++) {
+        char nset[32];
+        snprintf(nset, sizeof nset, "cloth.n=%d", c->plan.w10_n[i]);
+        const char *sets[] = {nset, NULL};
+        cl_bmodel bm;
+        cl_error err = {0};
+        for (int j = 0; j < W10_NS; j++)
+            s.per_step[j][i] = NAN;
+        if (cl_bench_model(c, "hang", sets, &bm, &err)) {
+            cl_bench_note(cl_bench_row_add(c, 10, nset), "%s", err.msg);
+            continue;
+        }
+        s.unknowns[i] = (double)cl_model_system(bm.m)->n;
+        for (int j = 0; j < W10_NS; j++)
+            w10_case(c, &s, dt, i, j, bm.m);
+        cl_bench_model_free(&bm);
+    }
+    w10_fits(c, &s, dt);
+    w10_speedup(c, &s, dt);
+}
+
+void cl_bench_w10(cl_bctx *c)
+{
+    static const double dts[2] = {1e-3, 1e-2};
+    for (int k = 0; k < 2; k++)
+        w10_dt(c, dts[k]);
+}
+
+/* ---- workload 12 ------------------------------------------------------ */
+
+static cl_status w12_run(cl_bmodel *bm, cl_bench_row *row, double t_end,
+                         double *t, cl_error *err)
+{
+    const cl_system *sys = cl_model_system(bm->m);
+    const cl_integrator_type *type = cl_integrator_find("semi-bdf2");
+    cl_integrator_opts io = {.dt = W12_DT, .linsol = "amg"};
+    double *x = malloc(sys->n * sizeof *x), *v = malloc(sys->n * sizeof *v);
+    void *state = NULL;
+    double c0, w0, c1 = 0, w1 = 0;
+    cl_status rc = x && v ? cl_model_initial_state(bm->m, x, v)
+                          : cl_error_set(err, CL_ENOMEM, "out of memory");
+    cl_bench_clock(&c0, &w0);
+    if (!rc)
+        rc = type->create(sys, &io, 0.0, x, v, &state, err);
+    /* in chunks of 0.1 s, so that the cap can stop it */
+    for (*t = 0.0; !rc && *t < t_end - 1e-12 && c1 - c0 < W12_CAP;) {
+        *t = fmin(t_end, *t + 0.1);
+        rc = type->advance(state, *t, x, v, err);
+        cl_bench_clock(&c1, &w1);
+    }
+    cl_stats st = {0};
+    if (state) {
+        type->stats(state, &st);
+        type->free(state);
+    }
+    row->cpu_a = c1 - c0;
+    row->wall_a = w1 - w0;
+    cl_bench_note(row, "%ld steps; %ld multigrid builds, %ld setups, %.1f "
+                  "CG iterations per solve", st.steps, st.symbolic_facts,
+                  st.lin_setups,
+                  st.lin_solves ? (double)st.lin_iters / st.lin_solves : 0);
+    free(x);
+    free(v);
+    return rc;
+}
+
+void cl_bench_w12(cl_bctx *c)
+{
+    char nset[32], kase[48];
+    snprintf(nset, sizeof nset, "cloth.n=%d", c->plan.w12_n);
+    snprintf(kase, sizeof kase, "hang n=%d T=%g", c->plan.w12_n,
+             c->plan.w12_t);
+    cl_bench_row *row = cl_bench_row_add(c, 12, kase);
+    snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 amg dt=%g",
+             W12_DT);
+    const char *sets[] = {nset, NULL};
+    cl_bmodel bm;
+    cl_error err = {0};
+    double t = 0.0;
+    cl_bench_log(c, "  hang n = %d to T = %g s, semi-bdf2 amg ...",
+                 c->plan.w12_n, c->plan.w12_t);
+    if (cl_bench_model(c, "hang", sets, &bm, &err)) {
+        cl_bench_note(row, "%s", err.msg);
+    } else if (w12_run(&bm, row, c->plan.w12_t, &t, &err)) {
+        cl_bench_note(row, "failed at t = %g s: %s", t, err.msg);
+    } else {
+        cl_bench_judge(row, row->cpu_a, "s", "<=", 600.0);
+        if (t < c->plan.w12_t - 1e-12)
+            cl_bench_note(row, "stopped at t = %g s after %g s CPU: a "
+                          "lower bound", t, W12_CAP);
+    }
+    if (bm.m)
+        cl_bench_model_free(&bm);
+    cl_bench_log_row(c, row);
+}

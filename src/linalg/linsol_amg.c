@@ -1,0 +1,307 @@
+/* amg, amg-hypre: conjugate gradients preconditioned by algebraic
+ * multigrid on the reduced matrix A = M - a df/dv - b df/dx (docs/model.md,
+ * 1; docs/integrators.md, 5), by PETSc in the plug-in clothode-petsc.so
+ * (linalg/plugin.h; its side: linsol_amg_petsc.c):
+ *
+ *   amg        PCGAMG, smoothed aggregation (Vanek, Mandel and Brezina,
+ *              "Algebraic multigrid by smoothed aggregation for second and
+ *              fourth order elliptic problems") with block size 3 (the
+ *              three translations per particle as near-null space),
+ *              Chebyshev smoothing with 3x3 point-block Jacobi;
+ *   amg-hypre  hypre's BoomerAMG (classical Ruge-Stueben coarsening) with
+ *              nodal coarsening and vector interpolation for the 3 unknowns
+ *              per particle.
+ *
+ * The pattern is built once (create); a setup writes A's values into the
+ * PETSc matrix's slots and sets the preconditioner up, either afresh (a
+ * rebuild: coarsening, interpolation, coarse operators, smoothers) or
+ * reusing the hierarchy.  For amg the reuse keeps the interpolation and
+ * recomputes the coarse operators P^T A P and the smoothers from the new
+ * values; for amg-hypre it keeps the whole preconditioner.  The hierarchy
+ * is rebuilt at the first setup, and when the last solve took more than
+ * CL_AMG_REGROW times the iterations of the first solve after the last
+ * rebuild; a solve that fails on a reused hierarchy is redone once on a
+ * fresh one.  Nothing is allocated by setup or solve on this side (PETSc
+ * allocates within a rebuild).
+ *
+ * Tolerance: solve stops at ||b - A x||_2 <= lin_tol ||b||_2 (default
+ * 1e-10, as pcg); solve_tol at ||w .* (b - A x)||_2 <= delta, ensured by
+ * ||b - A x||_2 <= delta / max(w) (since ||w .* r||_2 <= max(w) ||r||_2).
+ * CG needs A symmetric positive definite: an indefinite A (or
+ * preconditioner), a breakdown or no convergence within lin_maxit
+ * (default max(1000, 2n)) is CL_ESOLVER with PETSc's reason.
+ *
+ * Statistics: lin_setups (setups), lin_solves, lin_iters (CG iterations),
+ * symbolic_facts (hierarchy rebuilds; the other setups reused it). */
+#include "linalg/linsol.h"
+
+#include <math.h>
+#include <stdbool.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/check.h"
+#include "linalg/bsym.h"
+#include "linalg/petscenv.h"
+#include "linalg/plugin.h"
+#include "linalg/reduced.h"
+
+#define CL_AMG_TOL 1e-10
+#define CL_AMG_MAXIT_MIN 1000L
+#define CL_AMG_REGROW 1.5
+
+typedef int (*amg_create_fn)(size_t nb, const size_t *rowptr,
+                             const size_t *col, int hypre, long maxit,
+                             void **handle, cl_plugin_msg *msg);
+typedef int (*amg_setup_fn)(void *handle, const double *ablk,
+                            int symmetric, int rebuild, cl_plugin_msg *msg);
+typedef int (*amg_solve_fn)(void *handle, const double *rhs, double *x,
+                            double rtol, double atol, long *iters,
+                            cl_plugin_msg *msg);
+typedef void (*amg_free_fn)(void *handle);
+
+typedef struct {
+    const char *name;
+    const cl_bpattern *pat;  /* borrowed: the system's pattern */
+    size_t n;
+    double *mass;            /* n */
+    double *ablk;            /* 9 nnzb: A's block values */
+    cl_bsym sym;             /* A's halves: is it symmetric? */
+    bool symmetric;          /* df/dx and df/dv as last told (jacobian) */
+    double tol;
+    amg_setup_fn setup;
+    amg_solve_fn solve;
+    amg_free_fn free;
+    void *h;                 /* the plug-in's solver */
+    bool ready;              /* a setup succeeded */
+    bool fresh;              /* the hierarchy was built at the last setup */
+    long base_iters;         /* first solve after the last rebuild; -1 */
+    long last_iters;         /* the last solve's */
+    long setups, rebuilds, solves, iters;
+} cl_amg;
+
+static void amg_free(void *state)
+{
+    cl_amg *s = state;
+    if (!s)
+        return;
+    if (s->h)
+        s->free(s->h);
+    free(s->mass);
+    free(s->ablk);
+    cl_bsym_free(&s->sym);
+    free(s);
+}
+
+/* The plug-in's entry points clp_amg_*. */
+static cl_status amg_symbols(cl_amg *s, amg_create_fn *create,
+                             cl_error *err)
+{
+    void *sym[4];
+    const char *const names[4] = {"clp_amg_create", "clp_amg_setup",
+                                  "clp_amg_solve", "clp_amg_free"};
+    cl_status st = cl_petsc_start(err);
+    for (int k = 0; k < 4 && st == CL_OK; k++)
+        st = cl_plugin_symbol("petsc", names[k], &sym[k], err);
+    if (st != CL_OK)
+        return st;
+    *create = (amg_create_fn)sym[0];
+    s->setup = (amg_setup_fn)sym[1];
+    s->solve = (amg_solve_fn)sym[2];
+    s->free = (amg_free_fn)sym[3];
+    return CL_OK;
+}
+
+static cl_status amg_alloc(cl_amg *s, const double *mass, cl_error *err)
+{
+    s->mass = malloc(s->n * sizeof *s->mass);
+    s->ablk = calloc(9 * s->pat->nnzb, sizeof *s->ablk);
+    if (!s->mass || !s->ablk)
+        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
+    cl_status st = cl_bsym_create(s->pat, &s->sym, err);
+    if (st == CL_OK)
+        st = cl_check_masses(mass, s->n, s->name, err);
+    if (st == CL_OK)
+        memcpy(s->mass, mass, s->n * sizeof *s->mass);
+    return st;
+}
+
+static cl_status amg_create_named(const char *name, int hypre,
+                                  const cl_bpattern *pat, const double *mass,
+                                  const cl_linsol_opts *o, void **state,
+                                  cl_error *err)
+{
+    *state = NULL;
+    cl_status st = cl_linsol_check_opts(name, pat, o, err);
+    if (st != CL_OK)
+        return st;
+    cl_amg *s = calloc(1, sizeof *s);
+    if (!s)
+        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", name);
+    *s = (cl_amg){.name = name, .pat = pat, .n = 3 * pat->nb,
+                  .tol = o->tol > 0.0 ? o->tol : CL_AMG_TOL,
+                  .base_iters = -1};
+    long maxit = o->maxit ? o->maxit : (long)(2 * s->n);
+    maxit = maxit > CL_AMG_MAXIT_MIN || o->maxit ? maxit : CL_AMG_MAXIT_MIN;
+    amg_create_fn create = NULL;
+    cl_plugin_msg msg = {.text = ""};
+    st = amg_alloc(s, mass, err);
+    if (st == CL_OK)
+        st = amg_symbols(s, &create, err);
+    if (st == CL_OK && create(pat->nb, pat->rowptr, pat->col, hypre, maxit,
+                              &s->h, &msg) != 0)
+        st = cl_error_set(err, CL_ESOLVER, "%s: %s", name, msg.text);
+    if (st != CL_OK) {
+        amg_free(s);
+        return st;
+    }
+    *state = s;
+    return CL_OK;
+}
+
+static cl_status amg_create(const cl_bpattern *pat, const double *mass,
+                            const cl_linsol_opts *o, void **state,
+                            cl_error *err)
+{
+    return amg_create_named("amg", 0, pat, mass, o, state, err);
+}
+
+static cl_status amg_create_hypre(const cl_bpattern *pat, const double *mass,
+                                  const cl_linsol_opts *o, void **state,
+                                  cl_error *err)
+{
+    return amg_create_named("amg-hypre", 1, pat, mass, o, state, err);
+}
+
+/* Set the preconditioner up on s->ablk, afresh or reusing the hierarchy. */
+static cl_status amg_prepare(cl_amg *s, bool rebuild, cl_error *err)
+{
+    cl_plugin_msg msg = {.text = ""};
+    s->ready = false;
+    if (s->setup(s->h, s->ablk, s->symmetric, rebuild, &msg) != 0)
+        return cl_error_set(err, CL_ESOLVER, "%s: %s", s->name, msg.text);
+    s->ready = true;
+    s->fresh = rebuild;
+    if (rebuild) {
+        s->rebuilds++;
+        s->base_iters = -1;
+        s->last_iters = 0;
+    }
+    return CL_OK;
+}
+
+static cl_status amg_setup(void *state, double a, double b,
+                           const double *dfdx, const double *dfdv,
+                           cl_error *err)
+{
+    cl_amg *s = state;
+    cl_reduced_blocks(s->pat, s->mass, a, b, dfdx, dfdv, s->ablk);
+    if (!cl_all_finite(s->ablk, 9 * s->pat->nnzb)) {
+        s->ready = false;
+        return cl_error_set(err, CL_ESOLVER, "%s: the matrix M - a df/dv - "
+                            "b df/dx has entries that are not finite",
+                            s->name);
+    }
+    bool rebuild = s->rebuilds == 0 ||
+                   (s->base_iters > 0 &&
+                    (double)s->last_iters > CL_AMG_REGROW * s->base_iters);
+    cl_status st = amg_prepare(s, rebuild, err);
+    if (st == CL_OK)
+        s->setups++;
+    return st;
+}
+
+static void amg_jacobian(void *state, const double *dfdx, const double *dfdv)
+{
+    cl_amg *s = state;
+    s->symmetric = cl_bsym_check(&s->sym, dfdx, CL_BSYM_TOL) &&
+                   cl_bsym_check(&s->sym, dfdv, CL_BSYM_TOL);
+}
+
+/* CG to ||r||_2 <= max(rtol ||b||_2, atol); on a reused hierarchy that
+ * fails, once more on a fresh one. */
+static cl_status amg_run(cl_amg *s, const double *rhs, double *x,
+                         double rtol, double atol, cl_error *err)
+{
+    if (!s->ready)
+        return cl_error_set(err, CL_EINVAL, "%s: solve without a successful "
+                            "setup", s->name);
+    if (!cl_all_finite(rhs, s->n))
+        return cl_error_set(err, CL_ESOLVER, "%s: right-hand side not "
+                            "finite", s->name);
+    cl_plugin_msg msg = {.text = ""};
+    long its = 0;
+    int bad = s->solve(s->h, rhs, x, rtol, atol, &its, &msg);
+    s->solves++;
+    s->iters += its;
+    if (bad && !s->fresh) {
+        cl_status st = amg_prepare(s, true, err);
+        if (st != CL_OK)
+            return st;
+        msg.text[0] = '\0';
+        bad = s->solve(s->h, rhs, x, rtol, atol, &its, &msg);
+        s->solves++;
+        s->iters += its;
+    }
+    if (bad)
+        return cl_error_set(err, CL_ESOLVER, "%s: %s", s->name, msg.text);
+    s->last_iters = its;
+    if (s->base_iters < 0 && its > 0)
+        s->base_iters = its;
+    return CL_OK;
+}
+
+static cl_status amg_solve(void *state, const double *rhs, double *x,
+                           cl_error *err)
+{
+    cl_amg *s = state;
+    return amg_run(s, rhs, x, s->tol, 0.0, err);
+}
+
+static cl_status amg_solve_tol(void *state, const double *rhs, double *x,
+                               const double *w, double delta, cl_error *err)
+{
+    cl_amg *s = state;
+    double wmax = 0.0;
+    for (size_t i = 0; i < s->n; i++)
+        wmax = w[i] > wmax ? w[i] : wmax;
+    if (!(wmax > 0.0) || !isfinite(wmax) || !(delta > 0.0))
+        return cl_error_set(err, CL_EINVAL, "%s: weights (largest %g) and "
+                            "delta %g must be positive and finite", s->name,
+                            wmax, delta);
+    return amg_run(s, rhs, x, 0.0, delta / wmax, err);
+}
+
+static void amg_stats(const void *state, cl_stats *out)
+{
+    const cl_amg *s = state;
+    out->lin_setups += s->setups;
+    out->lin_solves += s->solves;
+    out->lin_iters += s->iters;
+    out->symbolic_facts += s->rebuilds;
+}
+
+const cl_linsol_type cl_linsol_amg = {
+    .name = "amg",
+    .doc = "PETSc CG + GAMG smoothed aggregation (block size 3, Chebyshev/"
+           "point-block Jacobi), hierarchy reused across setups (A SPD)",
+    .create = amg_create,
+    .jacobian = amg_jacobian,
+    .setup = amg_setup,
+    .solve = amg_solve,
+    .solve_tol = amg_solve_tol,
+    .stats = amg_stats,
+    .free = amg_free,
+};
+
+const cl_linsol_type cl_linsol_amg_hypre = {
+    .name = "amg-hypre",
+    .doc = "PETSc CG + hypre BoomerAMG, nodal coarsening (A SPD)",
+    .create = amg_create_hypre,
+    .jacobian = amg_jacobian,
+    .setup = amg_setup,
+    .solve = amg_solve,
+    .solve_tol = amg_solve_tol,
+    .stats = amg_stats,
+    .free = amg_free,
+};
