@@ -36,6 +36,8 @@ typedef struct {
                           * (takes_max_order; 0: the solver's own, 5 for
                           * BDF, 12 for Adams) */
     bool force;          /* skip the memory guard (memguard.h; --force) */
+    const char *petsc;   /* PETSc options of the petsc-ts integrators
+                          * (takes_petsc; --petsc); NULL or "" for none */
 } cl_integrator_opts;
 
 /* The linear solver's part of the options. */
@@ -53,6 +55,7 @@ typedef struct {
     bool takes_linsol;   /* accepts opts->linsol (cl_linsol registry) */
     bool takes_max_order; /* accepts opts->max_order */
     bool dense_jacobian; /* factorises a dense 2n x 2n Newton matrix */
+    bool takes_petsc;    /* accepts opts->petsc (integrators/petsc_ts.h) */
     const cl_region *region; /* linear stability region (region.h) */
     cl_status (*create)(const cl_system *sys, const cl_integrator_opts *o,
                         double t0, const double *x0, const double *v0,

@@ -21,7 +21,9 @@
  *   gsl-msbdf         GSL odeiv2 msbdf, BDF with dense Jacobian (n <= 1728)
  *   kinsol-be, kinsol-bdf2, kinsol-midpoint  fully implicit, KINSOL Newton
  *   semi-be           Baraff-Witkin linearised backward Euler
- *   semi-bdf2         Choi-Ko semi-implicit BDF2 (Jiao, eq. 15) */
+ *   semi-bdf2         Choi-Ko semi-implicit BDF2 (Jiao, eq. 15)
+ *   petsc-bdf, petsc-alpha2, petsc-arkimex, petsc-rosw  PETSc's TS
+ *                     (integrators/petsc_ts.h, in the PETSc plug-in) */
 #include "integrators/integrator.h"
 
 /* Every row ends in a backslash; the blank line closes the list. */
@@ -45,6 +47,10 @@
     X(kinsol_midpoint)                                                      \
     X(semi_be)                                                              \
     X(semi_bdf2)                                                            \
+    X(petsc_bdf)                                                            \
+    X(petsc_alpha2)                                                         \
+    X(petsc_arkimex)                                                        \
+    X(petsc_rosw)                                                           \
 
 #define CL_INTEGRATOR_DECLARE(ident) \
     extern const cl_integrator_type cl_integrator_##ident;
