@@ -4,8 +4,8 @@
  * the second-order form M x'' = f(x, x') (integrators/petsc_ts.h;
  * docs/integrators.md, "PETSc TS"): second order, A-stable, its high-
  * frequency damping set by the spectral radius rho_inf at infinity
- * (--petsc "-ts_alpha_radius R", PETSc's default 0.5; 1 conserves the
- * energy of a linear oscillator). */
+ * (--petsc "-ts_alpha_radius R", PETSc's default 1: no dissipation, the
+ * energy of a linear oscillator conserved). */
 #include "integrators/petsc_ts.h"
 
 CL_PETSC_TS_DEFINE(petsc_alpha2, "petsc-alpha2", "alpha2", true, false,
