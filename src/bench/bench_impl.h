@@ -26,6 +26,9 @@ typedef struct {
     double w3_budget;        /* CPU seconds per (solver, n, dt) */
     double eval_budget;      /* workloads 4, 5, 7, 8: seconds per case */
     int w6_n;
+    int w11_nn;              /* workload 11: sizes, T */
+    int w11_n[3];
+    double w11_t;
 } cl_bplan;
 
 /* A timed cvode-bdf run on hang, kept for the whole bench run. */
@@ -34,6 +37,8 @@ typedef struct {
     double t_end, rtol, atol;
     char linsol[32];         /* as asked ("" for the default) */
     int max_order;           /* CVODE's highest BDF order (0: its 5) */
+    char method[32];         /* "" for cvode-bdf, else a petsc-* method */
+    char petsc[160];         /* its PETSc options */
     cl_status rc;
     char msg[240];           /* the failure, if rc */
     double cpu, wall;        /* create + advance + free */
@@ -99,6 +104,19 @@ const cl_brun *cl_bench_hang(cl_bctx *c, int n, double t_end,
                              const char *linsol, int max_order, double rtol,
                              double atol);
 
+/* The petsc-* integrator `method` with PETSc options `petsc` on hang,
+ * cached as cl_bench_hang's runs. */
+const cl_brun *cl_bench_hang_petsc(cl_bctx *c, int n, double t_end,
+                                   const char *method, const char *petsc,
+                                   double rtol, double atol);
+
+/* cvode-bdf with the best solver (max_order) on hang at n, T from rtol
+ * 1e-4, tightened 10x at a time (down to 1e-8) until its distance to the
+ * reference ref, *err_a, is not above err_b. */
+const cl_brun *cl_bench_match(cl_bctx *c, int n, double T, int max_order,
+                              const cl_brun *ref, double err_b,
+                              double *err_a);
+
 /* Free the cached runs. */
 void cl_bench_runs_free(cl_bctx *c);
 
@@ -155,5 +173,9 @@ void cl_bench_w8(cl_bctx *c);
 /* ---- bench_selfcontact.c: workload 9 --------------------------------- */
 
 void cl_bench_w9(cl_bctx *c);
+
+/* ---- bench_petscts.c: workload 11 ------------------------------------ */
+
+void cl_bench_w11(cl_bctx *c);
 
 #endif

@@ -1,0 +1,71 @@
+/* Benchmark workload 11 (bench/bench.h): clothode's best method, cvode-bdf
+ * with the best linear solver (and workload 2's order cap when it ran),
+ * against the best configuration of the petsc-ts family
+ * (integrators/petsc_ts.h) on hang at n = 32, 64, 128, T = 2 s, at equal
+ * or better error against the reference (cvode-bdf at rtol 1e-8): the
+ * PETSc run at rtol 1e-4, clothode's rtol tightened until its error is
+ * not above PETSc's.  Goal: clothode >= 3x faster (CPU time).
+ *
+ * The PETSc configuration, by measurement on hang (n = 16, T = 0.5 s and
+ * n = 32, T = 0.25 s, README "Benchmarks"): TSROSW (ra34pw2), a
+ * Rosenbrock-W method, one Jacobian and LU per step and no Newton
+ * iteration; TSBDF with PETSc's Newton refactorises at every iteration
+ * and TSALPHA2 takes three times as many steps. */
+#include <math.h>
+#include <string.h>
+
+#include "analysis/diagnostics.h"
+#include "bench/bench_impl.h"
+
+#define W11_RTOL 1e-4
+#define W11_ATOL 1e-6
+#define W11_METHOD "petsc-rosw"
+#define W11_OPTIONS ""
+
+static void w11_case(cl_bctx *c, int n, double T)
+{
+    char kase[48];
+    double err_a = NAN;
+    snprintf(kase, sizeof kase, "hang n=%d T=%g", n, T);
+    cl_bench_row *row = cl_bench_row_add(c, 11, kase);
+    snprintf(row->side_b, sizeof row->side_b, "%s %s rtol %g", W11_METHOD,
+             *W11_OPTIONS ? W11_OPTIONS : "(default)", W11_RTOL);
+    const cl_brun *ref = cl_bench_hang(c, n, T, c->best, 0, 1e-8, 1e-10);
+    const cl_brun *b = cl_bench_hang_petsc(c, n, T, W11_METHOD, W11_OPTIONS,
+                                           W11_RTOL, W11_ATOL);
+    if (!ref || ref->rc || !b || b->rc) {
+        cl_bench_note(row, "%s failed: %s", !ref || ref->rc ? "reference"
+                      : W11_METHOD, !ref || ref->rc ? (ref ? ref->msg : "")
+                                                   : (b ? b->msg : ""));
+        cl_bench_log_row(c, row);
+        return;
+    }
+    row->cpu_b = b->cpu;
+    row->wall_b = b->wall;
+    row->error_b = cl_max_distance(b->x, ref->x, ref->nfree);
+    const cl_brun *a = cl_bench_match(c, n, T, c->best_order, ref,
+                                      row->error_b, &err_a);
+    if (!a || a->rc) {
+        cl_bench_note(row, "clothode failed: %s", a ? a->msg : "");
+        cl_bench_log_row(c, row);
+        return;
+    }
+    cl_bench_side(row->side_a, sizeof row->side_a, c->best, c->best_order);
+    row->cpu_a = a->cpu;
+    row->wall_a = a->wall;
+    row->error_a = err_a;
+    cl_bench_judge(row, row->cpu_b / row->cpu_a, "x", ">=", 3.0);
+    if (row->error_a > row->error_b) {
+        row->met = 0;
+        cl_bench_note(row, "error above PETSc's at rtol %g", a->rtol);
+    }
+    cl_bench_note(row, "cvode rtol %g, %ld vs %ld steps", a->rtol, a->steps,
+                  b->steps);
+    cl_bench_log_row(c, row);
+}
+
+void cl_bench_w11(cl_bctx *c)
+{
+    for (int k = 0; k < c->plan.w11_nn; k++)
+        w11_case(c, c->plan.w11_n[k], c->plan.w11_t);
+}
