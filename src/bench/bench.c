@@ -16,7 +16,7 @@ static const cl_bplan full_plan = {
     .w2_n = 32, .w2_t = 2.0, .w2_large = true, .w2_cap = 600.0,
     .w3_nn = 4, .w3_n = {16, 32, 64, 128}, .w3_budget = 1.0,
     .eval_budget = 1.0, .w6_n = 128,
-    .w11_nn = 3, .w11_n = {32, 64, 128}, .w11_t = 2.0,
+    .w11_nn = 3, .w11_n = {32, 64, 128}, .w11_t = 2.0, .w11_budget = 60.0,
 };
 
 static const cl_bplan quick_plan = {
@@ -25,7 +25,7 @@ static const cl_bplan quick_plan = {
     .w2_n = 16, .w2_t = 0.5, .w2_large = false,
     .w3_nn = 2, .w3_n = {16, 32}, .w3_budget = 0.3,
     .eval_budget = 0.25, .w6_n = 32,
-    .w11_nn = 1, .w11_n = {16}, .w11_t = 0.25,
+    .w11_nn = 1, .w11_n = {16}, .w11_t = 0.25, .w11_budget = 20.0,
 };
 
 static bool selected(const cl_bctx *c, int w)

@@ -26,9 +26,10 @@ typedef struct {
     double w3_budget;        /* CPU seconds per (solver, n, dt) */
     double eval_budget;      /* workloads 4, 5, 7, 8: seconds per case */
     int w6_n;
-    int w11_nn;              /* workload 11: sizes, T */
+    int w11_nn;              /* workload 11: sizes, T, PETSc's budget */
     int w11_n[3];
     double w11_t;
+    double w11_budget;       /* CPU seconds per PETSc run */
 } cl_bplan;
 
 /* A timed cvode-bdf run on hang, kept for the whole bench run. */
@@ -39,6 +40,8 @@ typedef struct {
     int max_order;           /* CVODE's highest BDF order (0: its 5) */
     char method[32];         /* "" for cvode-bdf, else a petsc-* method */
     char petsc[160];         /* its PETSc options */
+    double budget;           /* CPU seconds, 0 for none (CL_EBUDGET) */
+    double t_reached;        /* the last output time reached */
     cl_status rc;
     char msg[240];           /* the failure, if rc */
     double cpu, wall;        /* create + advance + free */
@@ -105,10 +108,11 @@ const cl_brun *cl_bench_hang(cl_bctx *c, int n, double t_end,
                              double atol);
 
 /* The petsc-* integrator `method` with PETSc options `petsc` on hang,
- * cached as cl_bench_hang's runs. */
+ * cached as cl_bench_hang's runs; stopped with rc = CL_EBUDGET at the
+ * first twentieth of t_end past `budget` CPU seconds. */
 const cl_brun *cl_bench_hang_petsc(cl_bctx *c, int n, double t_end,
                                    const char *method, const char *petsc,
-                                   double rtol, double atol);
+                                   double rtol, double atol, double budget);
 
 /* cvode-bdf with the best solver (max_order) on hang at n, T from rtol
  * 1e-4, tightened 10x at a time (down to 1e-8) until its distance to the

@@ -90,8 +90,17 @@ static cl_status timed_run(cl_model *m, cl_brun *r, cl_error *err)
     void *state = NULL;
     cl_stats st = {0};
     cl_bench_clock(&c0, &w0);
-    if (!rc && !(rc = type->create(sys, &io, 0.0, r->x, v, &state, err)))
-        rc = type->advance(state, r->t_end, r->x, v, err);
+    if (!rc)
+        rc = type->create(sys, &io, 0.0, r->x, v, &state, err);
+    /* with a budget, in twentieths of t_end, stopping once it is spent */
+    int parts = r->budget > 0 ? 20 : 1;
+    for (int k = 1; !rc && k <= parts; k++) {
+        rc = type->advance(state, r->t_end * k / parts, r->x, v, err);
+        r->t_reached = rc ? r->t_reached : r->t_end * k / parts;
+        if (!rc && k < parts && cl_clock_cpu() - c0 > r->budget)
+            rc = cl_error_set(err, CL_EBUDGET, "stopped by its budget of "
+                              "%g s CPU at t = %g", r->budget, r->t_reached);
+    }
     if (state) {
         type->stats(state, &st);
         type->free(state);
@@ -178,9 +187,10 @@ const cl_brun *cl_bench_hang(cl_bctx *c, int n, double t_end,
 
 const cl_brun *cl_bench_hang_petsc(cl_bctx *c, int n, double t_end,
                                    const char *method, const char *petsc,
-                                   double rtol, double atol)
+                                   double rtol, double atol, double budget)
 {
-    cl_brun want = {.n = n, .t_end = t_end, .rtol = rtol, .atol = atol};
+    cl_brun want = {.n = n, .t_end = t_end, .rtol = rtol, .atol = atol,
+                    .budget = budget};
     cl_bench_copy(want.method, sizeof want.method, method);
     cl_bench_copy(want.petsc, sizeof want.petsc, petsc);
     return cached_run(c, &want);
