@@ -305,14 +305,7 @@ static void w1_case(cl_bctx *c, int k)
     }
     snprintf(row->side_a, sizeof row->side_a, "cvode-bdf %s rtol %g",
              *c->best ? c->best : "(default)", a->rtol);
-    row->cpu_a = a->cpu;
-    row->wall_a = a->wall;
-    row->error_a = err_a;
-    cl_bench_judge(row, row->cpu_b / row->cpu_a, "x", ">=", 100.0);
-    if (row->error_a > row->error_b) {
-        row->met = 0;
-        cl_bench_note(row, "error above the peer's at rtol %g", a->rtol);
-    }
+    cl_bench_judge_matched(row, a, err_a, 100.0, "the peer's");
     if (*a->used && strcmp(a->used, a->linsol))
         cl_bench_note(row, "solver used: %s", a->used);
 }

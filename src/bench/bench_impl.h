@@ -131,6 +131,12 @@ cl_bench_row *cl_bench_row_add(cl_bctx *c, int workload, const char *kase);
 void cl_bench_judge(cl_bench_row *r, double ratio, const char *unit,
                     const char *goal, double target);
 
+/* Side a's run `a` at error err_a into the row (side b's CPU time and
+ * error set): the speed-up cpu_b / cpu_a judged against >= target, not
+ * met when err_a is above side b's error (`other`, "the peer's"). */
+void cl_bench_judge_matched(cl_bench_row *r, const cl_brun *a, double err_a,
+                            double target, const char *other);
+
 /* Copy src into dst[len], cut if need be. */
 void cl_bench_copy(char *dst, size_t len, const char *src);
 

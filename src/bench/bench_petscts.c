@@ -59,14 +59,7 @@ static void w11_matched(cl_bctx *c, cl_bench_row *row, const cl_brun *b,
         cl_bench_note(row, "clothode failed: %s", a ? a->msg : "");
         return;
     }
-    row->cpu_a = a->cpu;
-    row->wall_a = a->wall;
-    row->error_a = err_a;
-    cl_bench_judge(row, row->cpu_b / row->cpu_a, "x", ">=", 3.0);
-    if (row->error_a > row->error_b) {
-        row->met = 0;
-        cl_bench_note(row, "error above PETSc's at rtol %g", a->rtol);
-    }
+    cl_bench_judge_matched(row, a, err_a, 3.0, "PETSc's");
     cl_bench_note(row, "cvode rtol %g, %ld vs %ld steps", a->rtol, a->steps,
                   b->steps);
 }

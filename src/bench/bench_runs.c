@@ -243,6 +243,19 @@ void cl_bench_judge(cl_bench_row *r, double ratio, const char *unit,
         r->met = goal[0] == '>' ? ratio >= target : ratio <= target;
 }
 
+void cl_bench_judge_matched(cl_bench_row *r, const cl_brun *a, double err_a,
+                            double target, const char *other)
+{
+    r->cpu_a = a->cpu;
+    r->wall_a = a->wall;
+    r->error_a = err_a;
+    cl_bench_judge(r, r->cpu_b / r->cpu_a, "x", ">=", target);
+    if (r->error_a > r->error_b) {
+        r->met = 0;
+        cl_bench_note(r, "error above %s at rtol %g", other, a->rtol);
+    }
+}
+
 void cl_bench_copy(char *dst, size_t len, const char *src)
 {
     size_t n = strlen(src);
