@@ -45,21 +45,26 @@ static void sort_rows(cl_bench_table *t)
     }
 }
 
+/* The workloads after 1, by number (1 runs last, after the peers). */
+static void (*const work[CL_BENCH_WORKLOADS + 1])(cl_bctx *) = {
+    NULL,        NULL,        cl_bench_w2, cl_bench_w3,
+    cl_bench_w4, cl_bench_w5, cl_bench_w6, cl_bench_w7,
+    cl_bench_w8, cl_bench_w9, NULL,        cl_bench_w11};
+
 cl_status cl_bench_run(const cl_bench_opts *o, cl_bench_table *t,
                        cl_error *err)
 {
     if (o->only >> (CL_BENCH_WORKLOADS + 1) || (o->only & 1u))
         return cl_error_set(err, CL_EINVAL, "workloads are 1..%d",
                             CL_BENCH_WORKLOADS);
+    for (int w = 2; w <= CL_BENCH_WORKLOADS; w++)
+        if ((o->only >> w & 1u) && !work[w])
+            return cl_error_set(err, CL_EINVAL, "there is no workload %d", w);
     cl_bctx c = {.o = o, .t = t, .plan = o->quick ? quick_plan : full_plan};
     if (selected(&c, 1))
         cl_bench_peers_start(&c);
     if (selected(&c, 1) || selected(&c, 2) || selected(&c, 6))
         cl_bench_choose(&c);
-    void (*const work[])(cl_bctx *) = {NULL,        NULL,        cl_bench_w2,
-                                       cl_bench_w3, cl_bench_w4, cl_bench_w5,
-                                       cl_bench_w6, cl_bench_w7, cl_bench_w8,
-                                       cl_bench_w9, NULL,        cl_bench_w11};
     for (int w = 2; w <= CL_BENCH_WORKLOADS; w++)
         if (work[w] && selected(&c, w) && !c.nomem)
             work[w](&c);
