@@ -54,6 +54,10 @@
  *      and klu, exponents against unknowns (goal <= 1.15 for the fastest
  *      at dt = 1e-2), amg against the fastest one-level solver at n = 256
  *      (goals >= 3x at dt = 1e-2, >= 1.5x at dt = 1e-3) (bench_amg.c).
+ *  11  hang, T = 2 s, n = 32, 64, 128: cvode-bdf with the best solver
+ *      against the best petsc-ts configuration (bench_petscts.c) at equal
+ *      or better error (clothode's rtol tightened from 1e-4 as in
+ *      workload 1); goal: clothode >= 3x faster.
  *  12  hang n = 256, T = 2 s by semi-bdf2 --linsol amg at dt = 1e-2: CPU
  *      seconds, goal <= 600; run only when named (--only 12).
  *

@@ -261,18 +261,20 @@ static double *w1_peer(cl_bctx *c, const cl_bpeer *p, cl_bench_row *row,
 }
 
 /* clothode at rtol, tightened until its error is not above err_b. */
-static const cl_brun *w1_match(cl_bctx *c, int n, double T,
-                               const cl_brun *ref, double err_b,
-                               double *err_a)
+const cl_brun *cl_bench_match(cl_bctx *c, int n, double T, int max_order,
+                              const cl_brun *ref, double err_b,
+                              double *err_a)
 {
     double rtol = RTOL;
-    const cl_brun *a = cl_bench_hang(c, n, T, c->best, 0, rtol, ATOL);
+    const cl_brun *a = cl_bench_hang(c, n, T, c->best, max_order, rtol,
+                                     ATOL);
     while (a && !a->rc) {
         *err_a = cl_max_distance(a->x, ref->x, a->nfree);
         if (!(*err_a > err_b) || rtol <= TIGHTEST * 1.01)
             break;
         rtol *= 0.1;
-        a = cl_bench_hang(c, n, T, c->best, 0, rtol, ATOL * rtol / RTOL);
+        a = cl_bench_hang(c, n, T, c->best, max_order, rtol,
+                          ATOL * rtol / RTOL);
     }
     return a;
 }
@@ -295,21 +297,15 @@ static void w1_case(cl_bctx *c, int k)
     if (xb)
         row->error_b = cl_max_distance(xb, ref->x, ref->nfree);
     free(xb);
-    const cl_brun *a = w1_match(c, n, T, ref, row->error_b, &err_a);
+    const cl_brun *a = cl_bench_match(c, n, T, 0, ref, row->error_b,
+                                      &err_a);
     if (!a || a->rc) {
         cl_bench_note(row, "clothode failed: %s", a ? a->msg : "");
         return;
     }
     snprintf(row->side_a, sizeof row->side_a, "cvode-bdf %s rtol %g",
              *c->best ? c->best : "(default)", a->rtol);
-    row->cpu_a = a->cpu;
-    row->wall_a = a->wall;
-    row->error_a = err_a;
-    cl_bench_judge(row, row->cpu_b / row->cpu_a, "x", ">=", 100.0);
-    if (row->error_a > row->error_b) {
-        row->met = 0;
-        cl_bench_note(row, "error above the peer's at rtol %g", a->rtol);
-    }
+    cl_bench_judge_matched(row, a, err_a, 100.0, "the peer's");
     if (*a->used && strcmp(a->used, a->linsol))
         cl_bench_note(row, "solver used: %s", a->used);
 }

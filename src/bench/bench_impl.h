@@ -31,6 +31,10 @@ typedef struct {
     double w10_budget;       /* CPU seconds per (solver, n, dt) */
     int w12_n;               /* workload 12: n, T */
     double w12_t;
+    int w11_nn;              /* workload 11: sizes, T, PETSc's budget */
+    int w11_n[3];
+    double w11_t;
+    double w11_budget;       /* CPU seconds per PETSc run */
 } cl_bplan;
 
 /* A timed cvode-bdf run on hang, kept for the whole bench run. */
@@ -39,6 +43,10 @@ typedef struct {
     double t_end, rtol, atol;
     char linsol[32];         /* as asked ("" for the default) */
     int max_order;           /* CVODE's highest BDF order (0: its 5) */
+    char method[32];         /* "" for cvode-bdf, else a petsc-* method */
+    char petsc[160];         /* its PETSc options */
+    double budget;           /* CPU seconds, 0 for none (CL_EBUDGET) */
+    double t_reached;        /* the last output time reached */
     cl_status rc;
     char msg[240];           /* the failure, if rc */
     double cpu, wall;        /* create + advance + free */
@@ -136,6 +144,20 @@ const cl_brun *cl_bench_hang(cl_bctx *c, int n, double t_end,
                              const char *linsol, int max_order, double rtol,
                              double atol);
 
+/* The petsc-* integrator `method` with PETSc options `petsc` on hang,
+ * cached as cl_bench_hang's runs; stopped with rc = CL_EBUDGET at the
+ * first twentieth of t_end past `budget` CPU seconds. */
+const cl_brun *cl_bench_hang_petsc(cl_bctx *c, int n, double t_end,
+                                   const char *method, const char *petsc,
+                                   double rtol, double atol, double budget);
+
+/* cvode-bdf with the best solver (max_order) on hang at n, T from rtol
+ * 1e-4, tightened 10x at a time (down to 1e-8) until its distance to the
+ * reference ref, *err_a, is not above err_b. */
+const cl_brun *cl_bench_match(cl_bctx *c, int n, double T, int max_order,
+                              const cl_brun *ref, double err_b,
+                              double *err_a);
+
 /* Free the cached runs. */
 void cl_bench_runs_free(cl_bctx *c);
 
@@ -145,6 +167,12 @@ cl_bench_row *cl_bench_row_add(cl_bctx *c, int workload, const char *kase);
 /* Set the figure, its unit and goal, and whether it is met. */
 void cl_bench_judge(cl_bench_row *r, double ratio, const char *unit,
                     const char *goal, double target);
+
+/* Side a's run `a` at error err_a into the row (side b's CPU time and
+ * error set): the speed-up cpu_b / cpu_a judged against >= target, not
+ * met when err_a is above side b's error (`other`, "the peer's"). */
+void cl_bench_judge_matched(cl_bench_row *r, const cl_brun *a, double err_a,
+                            double target, const char *other);
 
 /* Copy src into dst[len], cut if need be. */
 void cl_bench_copy(char *dst, size_t len, const char *src);
@@ -197,5 +225,8 @@ void cl_bench_w9(cl_bctx *c);
 
 void cl_bench_w10(cl_bctx *c);
 void cl_bench_w12(cl_bctx *c);
+/* ---- bench_petscts.c: workload 11 ------------------------------------ */
+
+void cl_bench_w11(cl_bctx *c);
 
 #endif

@@ -70,13 +70,14 @@ void cl_bench_side(char *buf, size_t len, const char *linsol, int max_order)
 
 /* Integrate: create, advance to t_end, statistics, free; times around
  * all of it. */
-static cl_status timed_cvode(cl_model *m, cl_brun *r, cl_error *err)
+static cl_status timed_run(cl_model *m, cl_brun *r, cl_error *err)
 {
     const cl_system *sys = cl_model_system(m);
-    const cl_integrator_type *type = cl_integrator_find("cvode-bdf");
+    const cl_integrator_type *type =
+        cl_integrator_find(*r->method ? r->method : "cvode-bdf");
     cl_integrator_opts io = {.rtol = r->rtol, .atol = r->atol,
                              .linsol = r->linsol,
-                             .max_order = r->max_order};
+                             .max_order = r->max_order, .petsc = r->petsc};
     double *v = malloc(sys->n * sizeof *v);
     r->x = malloc(sys->n * sizeof *r->x);
     r->nfree = sys->n / 3;
@@ -89,8 +90,17 @@ static cl_status timed_cvode(cl_model *m, cl_brun *r, cl_error *err)
     void *state = NULL;
     cl_stats st = {0};
     cl_bench_clock(&c0, &w0);
-    if (!rc && !(rc = type->create(sys, &io, 0.0, r->x, v, &state, err)))
-        rc = type->advance(state, r->t_end, r->x, v, err);
+    if (!rc)
+        rc = type->create(sys, &io, 0.0, r->x, v, &state, err);
+    /* with a budget, in twentieths of t_end, stopping once it is spent */
+    int parts = r->budget > 0 ? 20 : 1;
+    for (int k = 1; !rc && k <= parts; k++) {
+        rc = type->advance(state, r->t_end * k / parts, r->x, v, err);
+        r->t_reached = rc ? r->t_reached : r->t_end * k / parts;
+        if (!rc && k < parts && cl_clock_cpu() - c0 > r->budget)
+            rc = cl_error_set(err, CL_EBUDGET, "stopped by its budget of "
+                              "%g s CPU at t = %g", r->budget, r->t_reached);
+    }
     if (state) {
         type->stats(state, &st);
         type->free(state);
@@ -104,13 +114,15 @@ static cl_status timed_cvode(cl_model *m, cl_brun *r, cl_error *err)
     return rc;
 }
 
-static const cl_brun *find_run(const cl_bctx *c, int n, double t_end,
-                               const char *linsol, int max_order, double rtol)
+static const cl_brun *find_run(const cl_bctx *c, const cl_brun *want)
 {
     for (size_t k = 0; k < c->nrun; k++) {
         const cl_brun *r = c->runs[k];
-        if (r->n == n && r->t_end == t_end && r->rtol == rtol &&
-            r->max_order == max_order && !strcmp(r->linsol, linsol))
+        if (r->n == want->n && r->t_end == want->t_end &&
+            r->rtol == want->rtol && r->max_order == want->max_order &&
+            !strcmp(r->linsol, want->linsol) &&
+            !strcmp(r->method, want->method) &&
+            !strcmp(r->petsc, want->petsc))
             return r;
     }
     return NULL;
@@ -123,13 +135,16 @@ static void run_hang(cl_bctx *c, cl_brun *r)
     const char *sets[] = {nset, NULL};
     cl_bmodel bm;
     cl_error err = {0};
-    char side[64];
-    cl_bench_side(side, sizeof side, r->linsol, r->max_order);
+    char side[224];
+    if (*r->method)
+        snprintf(side, sizeof side, "%s %s", r->method, r->petsc);
+    else
+        cl_bench_side(side, sizeof side, r->linsol, r->max_order);
     cl_bench_log(c, "  %s on hang n = %d, T = %g, rtol %g ...", side, r->n,
                  r->t_end, r->rtol);
     r->rc = cl_bench_model(c, "hang", sets, &bm, &err);
     if (!r->rc) {
-        r->rc = timed_cvode(bm.m, r, &err);
+        r->rc = timed_run(bm.m, r, &err);
         cl_bench_model_free(&bm);
     }
     if (r->rc)
@@ -138,11 +153,11 @@ static void run_hang(cl_bctx *c, cl_brun *r)
                  "done", r->cpu, r->steps, r->rc ? ": " : "", r->msg);
 }
 
-const cl_brun *cl_bench_hang(cl_bctx *c, int n, double t_end,
-                             const char *linsol, int max_order, double rtol,
-                             double atol)
+/* The run `want` (n, t_end, tolerances, solver, method), from the cache
+ * or made. */
+static const cl_brun *cached_run(cl_bctx *c, const cl_brun *want)
 {
-    const cl_brun *have = find_run(c, n, t_end, linsol, max_order, rtol);
+    const cl_brun *have = find_run(c, want);
     if (have)
         return have;
     cl_brun **grown = realloc(c->runs, (c->nrun + 1) * sizeof *grown);
@@ -154,12 +169,31 @@ const cl_brun *cl_bench_hang(cl_bctx *c, int n, double t_end,
         c->nomem = true;
         return NULL;
     }
-    *r = (cl_brun){.n = n, .t_end = t_end, .rtol = rtol, .atol = atol,
-                   .max_order = max_order};
-    cl_bench_copy(r->linsol, sizeof r->linsol, linsol);
+    *r = *want;
     c->runs[c->nrun++] = r;
     run_hang(c, r);
     return r;
+}
+
+const cl_brun *cl_bench_hang(cl_bctx *c, int n, double t_end,
+                             const char *linsol, int max_order, double rtol,
+                             double atol)
+{
+    cl_brun want = {.n = n, .t_end = t_end, .rtol = rtol, .atol = atol,
+                    .max_order = max_order};
+    cl_bench_copy(want.linsol, sizeof want.linsol, linsol);
+    return cached_run(c, &want);
+}
+
+const cl_brun *cl_bench_hang_petsc(cl_bctx *c, int n, double t_end,
+                                   const char *method, const char *petsc,
+                                   double rtol, double atol, double budget)
+{
+    cl_brun want = {.n = n, .t_end = t_end, .rtol = rtol, .atol = atol,
+                    .budget = budget};
+    cl_bench_copy(want.method, sizeof want.method, method);
+    cl_bench_copy(want.petsc, sizeof want.petsc, petsc);
+    return cached_run(c, &want);
 }
 
 void cl_bench_runs_free(cl_bctx *c)
@@ -207,6 +241,19 @@ void cl_bench_judge(cl_bench_row *r, double ratio, const char *unit,
         r->met = -1;
     else
         r->met = goal[0] == '>' ? ratio >= target : ratio <= target;
+}
+
+void cl_bench_judge_matched(cl_bench_row *r, const cl_brun *a, double err_a,
+                            double target, const char *other)
+{
+    r->cpu_a = a->cpu;
+    r->wall_a = a->wall;
+    r->error_a = err_a;
+    cl_bench_judge(r, r->cpu_b / r->cpu_a, "x", ">=", target);
+    if (r->error_a > r->error_b) {
+        r->met = 0;
+        cl_bench_note(r, "error above %s at rtol %g", other, a->rtol);
+    }
 }
 
 void cl_bench_copy(char *dst, size_t len, const char *src)

@@ -30,6 +30,10 @@ const cl_cli_opt cl_cli_run_rows[] = {
      RUN_ROW(io.table),
      .help = "Butcher table of the arkode-* integrators (SDIRK_2_1_2, "
              "ARK436L2SA, ...; clothode list)"},
+    {.name = "petsc", .arg = "OPTIONS", .type = CL_CLI_STRING,
+     .key = "petsc", RUN_ROW(io.petsc),
+     .help = "PETSc options of the petsc-* integrators (\"-ts_adapt_type "
+             "basic -pc_type gamg\"), over clothode's own choices"},
     {.name = "max-order", .arg = "K", .type = CL_CLI_INT, .key = "max_order",
      RUN_ROW(io.max_order), .lo = 0, .hi = 12,
      .help = "highest order of CVODE / IDA, 0 for theirs (5 for BDF, 12 for "
@@ -196,6 +200,10 @@ static cl_status check_method(cl_config *cfg, const cl_cli_method *m,
                                                        : "linsol",
                                 CL_EINVAL, why, err);
     }
+    if (m->io.petsc && *m->io.petsc && !type->takes_petsc)
+        return cl_config_refuse(cfg, "run", "petsc", CL_EINVAL,
+                                "only the petsc-* integrators take PETSc "
+                                "options", err);
     if (m->io.max_order && !type->takes_max_order)
         return refuse_number(cfg, "max_order", m->io.max_order, type,
                              "has no choice of order (CVODE and IDA have)",

@@ -50,6 +50,8 @@ typedef struct {
                           * (0: the method's default) */
     const char *table;   /* Butcher table of the ARKODE methods (--table;
                           * takes_table); NULL or "" for the default */
+    const char *petsc;   /* PETSc options of the petsc-ts integrators
+                          * (takes_petsc; --petsc); NULL or "" for none */
 } cl_integrator_opts;
 
 /* The linear solver's part of the options. */
@@ -70,6 +72,7 @@ typedef struct {
     bool takes_table;    /* accepts opts->table */
     bool dense_jacobian; /* factorises a dense 2n x 2n Newton matrix */
     bool takes_rayleigh; /* accepts opts->rayleigh_alpha, rayleigh_beta */
+    bool takes_petsc;    /* accepts opts->petsc (integrators/petsc_ts.h) */
     const cl_region *region; /* linear stability region (region.h) */
     cl_status (*create)(const cl_system *sys, const cl_integrator_opts *o,
                         double t0, const double *x0, const double *v0,

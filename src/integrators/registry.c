@@ -26,7 +26,9 @@
  *   xpbd              XPBD on the distance constraints, with substeps
  *   pd                projective dynamics on the springs, CHOLMOD
  *   arkode-dirk, arkode-dirk-fixed  ARKODE DIRK tables, adaptive / fixed
- *   arkode-imex, arkode-imex-fixed  ARKODE IMEX pairs, adaptive / fixed */
+ *   arkode-imex, arkode-imex-fixed  ARKODE IMEX pairs, adaptive / fixed
+ *   petsc-bdf, petsc-alpha2, petsc-arkimex, petsc-rosw  PETSc's TS
+ *                     (integrators/petsc_ts.h, in the PETSc plug-in) */
 #include "integrators/integrator.h"
 
 /* Every row ends in a backslash; the blank line closes the list. */
@@ -57,6 +59,10 @@
     X(arkode_dirk_fixed)                                                    \
     X(arkode_imex)                                                          \
     X(arkode_imex_fixed)                                                    \
+    X(petsc_bdf)                                                            \
+    X(petsc_alpha2)                                                         \
+    X(petsc_arkimex)                                                        \
+    X(petsc_rosw)                                                           \
 
 #define CL_INTEGRATOR_DECLARE(ident) \
     extern const cl_integrator_type cl_integrator_##ident;

@@ -1,0 +1,588 @@
+/* The plug-in's side of the petsc-ts integrators (integrators/petsc_ts.h,
+ * the entry points of integrators/petsc_ts_abi.h; docs/integrators.md,
+ * "PETSc TS").  Built into clothode-petsc.so only; it calls nothing of the
+ * library: the model comes in as its pattern, masses and two callbacks.
+ *
+ * First-order methods (TSBDF, TSARKIMEX fully implicit, TSROSW) solve
+ * the implicit form on y = (x, v), 2n unknowns,
+ *
+ *   F(t, y, y') = [x' - v; M v' - f(t, x, v)] = 0,
+ *   dF/dy + a dF/dy' = [[a I, -I], [-df/dx, a M - df/dv]],
+ *
+ * TSALPHA2 (Chung and Hulbert, "A time integration algorithm for
+ * structural dynamics with improved numerical dissipation: the
+ * generalized-alpha method", 1993) the second-order form on x, n unknowns,
+ *
+ *   F(t, x, x', x'') = M x'' - f(t, x, x') = 0,
+ *   dF/dx + s_v dF/dx' + s_a dF/dx'' = s_a M - s_v df/dv - df/dx,
+ *
+ * the half-size matrix of docs/integrators.md.  Either matrix is a
+ * SeqAIJ whose pattern is built once from the block pattern; the slot of
+ * every value in its value array is looked up once, and each Jacobian
+ * writes its values straight into them.  Nothing is allocated per step on
+ * this side. */
+#include <petscts.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "integrators/petsc_ts_abi.h"
+
+int clp_ts_create(const clp_ts_setup *s, void **ts, cl_plugin_msg *msg);
+int clp_ts_advance(void *ts, double t_out, double *x, double *v,
+                   cl_plugin_msg *msg);
+int clp_ts_restart(void *ts, cl_plugin_msg *msg);
+void clp_ts_stats(const void *ts, cl_stats *st);
+void clp_ts_free(void *ts);
+
+typedef struct {
+    clp_ts_setup s;       /* the library's set-up (its arrays stay its) */
+    TS ts;
+    Mat J;
+    Vec y, yv;            /* y = (x, v), or x and v (second order) */
+    PetscOptions opts;    /* --petsc, this integrator's own */
+    PetscScalar *dfdx, *dfdv;    /* 9 nnzb each */
+    PetscInt *slot_x, *slot_v;   /* 9 nnzb: where -df/dx, -df/dv go */
+    PetscInt *slot_m;            /* n: the mass diagonal */
+    PetscInt *slot_xx, *slot_xv; /* n: a I and -I (first order) */
+    int cb;               /* the last callback's status */
+    char linsol[32];      /* "petsc:KSP+PC" as set up */
+    long steps, nfun, njac, nsolve, nkspit, nnewton, nsnesfail, nreject;
+} clp_ts;
+
+/* ---- pattern and slots ------------------------------------------------- */
+
+/* Unknowns and the first row of the force rows. */
+static PetscInt nrows(const clp_ts *p)
+{
+    return (PetscInt)(p->s.second_order ? p->s.n : 2 * p->s.n);
+}
+
+static PetscInt force_row0(const clp_ts *p)
+{
+    return p->s.second_order ? 0 : (PetscInt)p->s.n;
+}
+
+/* The columns of row r (cols: room for 6 nnzb / nb + 2), returned count. */
+static PetscInt row_cols(const clp_ts *p, PetscInt r, PetscInt *cols)
+{
+    const clp_ts_setup *s = &p->s;
+    PetscInt n = (PetscInt)s->n, r0 = force_row0(p), c = 0;
+    if (r < r0) { /* x' - v */
+        cols[0] = r;
+        cols[1] = n + r;
+        return 2;
+    }
+    size_t i = (size_t)(r - r0) / 3;
+    for (size_t k = s->rowptr[i]; k < s->rowptr[i + 1]; k++)
+        for (PetscInt b = 0; b < 3; b++)
+            cols[c++] = 3 * (PetscInt)s->col[k] + b;
+    if (!s->second_order)
+        for (size_t k = s->rowptr[i]; k < s->rowptr[i + 1]; k++)
+            for (PetscInt b = 0; b < 3; b++)
+                cols[c++] = n + 3 * (PetscInt)s->col[k] + b;
+    return c;
+}
+
+static PetscErrorCode make_matrix(clp_ts *p)
+{
+    PetscInt N = nrows(p), maxrow = 2, *nnz, *cols;
+    PetscScalar *zero;
+    PetscFunctionBeginUser;
+    for (size_t i = 0; i < p->s.nb; i++) {
+        PetscInt len = 6 * (PetscInt)(p->s.rowptr[i + 1] - p->s.rowptr[i]);
+        maxrow = len > maxrow ? len : maxrow;
+    }
+    PetscCall(PetscMalloc1(N, &nnz));
+    PetscCall(PetscMalloc1(maxrow, &cols));
+    PetscCall(PetscCalloc1(maxrow, &zero));
+    for (PetscInt r = 0; r < N; r++)
+        nnz[r] = row_cols(p, r, cols);
+    PetscCall(MatCreateSeqAIJ(PETSC_COMM_SELF, N, N, 0, nnz, &p->J));
+    for (PetscInt r = 0; r < N; r++)
+        PetscCall(MatSetValues(p->J, 1, &r, row_cols(p, r, cols), cols, zero,
+                               INSERT_VALUES));
+    PetscCall(MatAssemblyBegin(p->J, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(p->J, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatSetOption(p->J, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
+    PetscCall(PetscFree(nnz));
+    PetscCall(PetscFree(cols));
+    PetscCall(PetscFree(zero));
+    PetscFunctionReturn(0);
+}
+
+/* Index of (r, c) in the CSR arrays ia, ja (present by construction). */
+static PetscInt find_slot(const PetscInt *ia, const PetscInt *ja, PetscInt r,
+                          PetscInt c)
+{
+    PetscInt lo = ia[r], hi = ia[r + 1] - 1;
+    while (lo < hi) {
+        PetscInt mid = (lo + hi) / 2;
+        if (ja[mid] < c)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+static void fill_slots(clp_ts *p, const PetscInt *ia, const PetscInt *ja)
+{
+    const clp_ts_setup *s = &p->s;
+    PetscInt n = (PetscInt)s->n, r0 = force_row0(p),
+             vo = s->second_order ? 0 : n;
+    for (size_t i = 0; i < s->nb; i++)
+        for (size_t k = s->rowptr[i]; k < s->rowptr[i + 1]; k++)
+            for (PetscInt a = 0; a < 3; a++)
+                for (PetscInt b = 0; b < 3; b++) {
+                    PetscInt r = r0 + 3 * (PetscInt)i + a,
+                             c = 3 * (PetscInt)s->col[k] + b;
+                    size_t e = 9 * k + (size_t)(3 * a + b);
+                    p->slot_x[e] = find_slot(ia, ja, r, c);
+                    p->slot_v[e] = find_slot(ia, ja, r, vo + c);
+                }
+    for (PetscInt i = 0; i < n; i++) {
+        p->slot_m[i] = find_slot(ia, ja, r0 + i, vo + i);
+        if (!s->second_order) {
+            p->slot_xx[i] = find_slot(ia, ja, i, i);
+            p->slot_xv[i] = find_slot(ia, ja, i, n + i);
+        }
+    }
+}
+
+static PetscErrorCode make_slots(clp_ts *p)
+{
+    size_t nval = 9 * p->s.nnzb;
+    const PetscInt *ia, *ja;
+    PetscInt nr;
+    PetscBool done;
+    PetscFunctionBeginUser;
+    PetscCall(PetscMalloc2(nval, &p->dfdx, nval, &p->dfdv));
+    PetscCall(PetscMalloc2(nval, &p->slot_x, nval, &p->slot_v));
+    PetscCall(PetscMalloc3(p->s.n, &p->slot_m, p->s.n, &p->slot_xx, p->s.n,
+                           &p->slot_xv));
+    PetscCall(MatGetRowIJ(p->J, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja,
+                          &done));
+    PetscCheck(done, PETSC_COMM_SELF, PETSC_ERR_PLIB, "no CSR of the matrix");
+    fill_slots(p, ia, ja);
+    PetscCall(MatRestoreRowIJ(p->J, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia,
+                              &ja, &done));
+    PetscFunctionReturn(0);
+}
+
+/* ---- the callbacks ------------------------------------------------------ */
+
+/* A callback's status into PETSc's: 1 a domain error (the step is retried
+ * smaller), -1 an error that ends the solve. */
+static PetscErrorCode callback_status(clp_ts *p, int rc, PetscBool jac)
+{
+    SNES snes;
+    p->cb = rc;
+    if (rc == 0)
+        return 0;
+    if (rc < 0)
+        return PETSC_ERR_USER;
+    PetscCall(TSGetSNES(p->ts, &snes));
+    PetscCall(jac ? SNESSetJacobianDomainError(snes)
+                  : SNESSetFunctionDomainError(snes));
+    return 0;
+}
+
+static PetscErrorCode ifunction(TS ts, PetscReal t, Vec Y, Vec Yd, Vec F,
+                                void *ctx)
+{
+    clp_ts *p = ctx;
+    size_t n = p->s.n;
+    const PetscScalar *y, *yd;
+    PetscScalar *f;
+    (void)ts;
+    PetscCall(VecGetArrayRead(Y, &y));
+    PetscCall(VecGetArrayRead(Yd, &yd));
+    PetscCall(VecGetArray(F, &f));
+    int rc = p->s.force(p->s.ctx, t, y, y + n, f + n);
+    p->nfun++;
+    for (size_t i = 0; rc == 0 && i < n; i++) {
+        f[i] = yd[i] - y[n + i];
+        f[n + i] = p->s.mass[i] * yd[n + i] - f[n + i];
+    }
+    PetscCall(VecRestoreArray(F, &f));
+    PetscCall(VecRestoreArrayRead(Yd, &yd));
+    PetscCall(VecRestoreArrayRead(Y, &y));
+    return callback_status(p, rc, PETSC_FALSE);
+}
+
+static PetscErrorCode ijacobian(TS ts, PetscReal t, Vec Y, Vec Yd,
+                                PetscReal a, Mat A, Mat P, void *ctx)
+{
+    clp_ts *p = ctx;
+    const PetscScalar *y;
+    PetscScalar *val;
+    (void)ts, (void)Yd, (void)A;
+    PetscCall(VecGetArrayRead(Y, &y));
+    int rc = p->s.jacobian(p->s.ctx, t, y, y + p->s.n, p->dfdx, p->dfdv);
+    PetscCall(VecRestoreArrayRead(Y, &y));
+    p->njac++;
+    if (rc != 0)
+        return callback_status(p, rc, PETSC_TRUE);
+    PetscCall(MatSeqAIJGetArray(P, &val));
+    for (size_t e = 0; e < 9 * p->s.nnzb; e++) {
+        val[p->slot_x[e]] = -p->dfdx[e];
+        val[p->slot_v[e]] = -p->dfdv[e];
+    }
+    for (size_t i = 0; i < p->s.n; i++) {
+        val[p->slot_m[i]] += a * p->s.mass[i];
+        val[p->slot_xx[i]] = a;
+        val[p->slot_xv[i]] = -1.0;
+    }
+    PetscCall(MatSeqAIJRestoreArray(P, &val));
+    PetscCall(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY));
+    return callback_status(p, 0, PETSC_TRUE);
+}
+
+static PetscErrorCode i2function(TS ts, PetscReal t, Vec X, Vec V, Vec A,
+                                 Vec F, void *ctx)
+{
+    clp_ts *p = ctx;
+    const PetscScalar *x, *v, *acc;
+    PetscScalar *f;
+    (void)ts;
+    PetscCall(VecGetArrayRead(X, &x));
+    PetscCall(VecGetArrayRead(V, &v));
+    PetscCall(VecGetArrayRead(A, &acc));
+    PetscCall(VecGetArray(F, &f));
+    int rc = p->s.force(p->s.ctx, t, x, v, f);
+    p->nfun++;
+    for (size_t i = 0; rc == 0 && i < p->s.n; i++)
+        f[i] = p->s.mass[i] * acc[i] - f[i];
+    PetscCall(VecRestoreArray(F, &f));
+    PetscCall(VecRestoreArrayRead(A, &acc));
+    PetscCall(VecRestoreArrayRead(V, &v));
+    PetscCall(VecRestoreArrayRead(X, &x));
+    return callback_status(p, rc, PETSC_FALSE);
+}
+
+static PetscErrorCode i2jacobian(TS ts, PetscReal t, Vec X, Vec V, Vec A,
+                                 PetscReal sv, PetscReal sa, Mat J, Mat P,
+                                 void *ctx)
+{
+    clp_ts *p = ctx;
+    const PetscScalar *x, *v;
+    PetscScalar *val;
+    (void)ts, (void)A, (void)J;
+    PetscCall(VecGetArrayRead(X, &x));
+    PetscCall(VecGetArrayRead(V, &v));
+    int rc = p->s.jacobian(p->s.ctx, t, x, v, p->dfdx, p->dfdv);
+    PetscCall(VecRestoreArrayRead(V, &v));
+    PetscCall(VecRestoreArrayRead(X, &x));
+    p->njac++;
+    if (rc != 0)
+        return callback_status(p, rc, PETSC_TRUE);
+    PetscCall(MatSeqAIJGetArray(P, &val));
+    for (size_t e = 0; e < 9 * p->s.nnzb; e++)
+        val[p->slot_x[e]] = -p->dfdx[e] - sv * p->dfdv[e];
+    for (size_t i = 0; i < p->s.n; i++)
+        val[p->slot_m[i]] += sa * p->s.mass[i];
+    PetscCall(MatSeqAIJRestoreArray(P, &val));
+    PetscCall(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY));
+    return callback_status(p, 0, PETSC_TRUE);
+}
+
+/* ---- counters ----------------------------------------------------------- */
+
+static PetscErrorCode count_step(TS ts)
+{
+    clp_ts *p;
+    PetscCall(TSGetApplicationContext(ts, &p));
+    p->steps++;
+    return 0;
+}
+
+static PetscErrorCode count_solve(KSP ksp, Vec b, Vec x, void *ctx)
+{
+    clp_ts *p = ctx;
+    PetscInt its;
+    (void)b, (void)x;
+    PetscCall(KSPGetIterationNumber(ksp, &its));
+    p->nsolve++;
+    p->nkspit += its;
+    return 0;
+}
+
+static PetscErrorCode count_newton(SNES snes, PetscInt it, PetscReal norm,
+                                   void *ctx)
+{
+    clp_ts *p = ctx;
+    (void)snes, (void)norm;
+    p->nnewton += it > 0;
+    return 0;
+}
+
+/* ---- set-up ------------------------------------------------------------- */
+
+static PetscErrorCode make_vectors(clp_ts *p)
+{
+    const clp_ts_setup *s = &p->s;
+    PetscInt n = (PetscInt)s->n;
+    PetscScalar *y;
+    PetscFunctionBeginUser;
+    PetscCall(VecCreateSeq(PETSC_COMM_SELF, nrows(p), &p->y));
+    PetscCall(VecGetArray(p->y, &y));
+    memcpy(y, s->x0, s->n * sizeof *y);
+    if (!s->second_order)
+        memcpy(y + n, s->v0, s->n * sizeof *y);
+    PetscCall(VecRestoreArray(p->y, &y));
+    if (s->second_order) {
+        PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &p->yv));
+        PetscCall(VecGetArray(p->yv, &y));
+        memcpy(y, s->v0, s->n * sizeof *y);
+        PetscCall(VecRestoreArray(p->yv, &y));
+    }
+    PetscFunctionReturn(0);
+}
+
+/* The equations, the Jacobian and the linear solver's default, by
+ * measurement on hang (README "Benchmarks", workload 11): for the
+ * half-size matrix (9.4) of TSALPHA2, symmetric and positive definite at
+ * the steps it takes, CG preconditioned by PETSc's algebraic multigrid
+ * GAMG (3.8x faster than LU at n = 16); for the nonsymmetric matrix (9.2)
+ * of the first-order form, a direct sparse LU (PETSc's own,
+ * nested-dissection ordering). */
+static PetscErrorCode set_problem(clp_ts *p)
+{
+    SNES snes;
+    KSP ksp;
+    PC pc;
+    PetscFunctionBeginUser;
+    if (p->s.second_order) {
+        PetscCall(TSSetI2Function(p->ts, NULL, i2function, p));
+        PetscCall(TSSetI2Jacobian(p->ts, p->J, p->J, i2jacobian, p));
+        PetscCall(TS2SetSolution(p->ts, p->y, p->yv));
+    } else {
+        PetscCall(TSSetIFunction(p->ts, NULL, ifunction, p));
+        PetscCall(TSSetIJacobian(p->ts, p->J, p->J, ijacobian, p));
+        PetscCall(TSSetSolution(p->ts, p->y));
+    }
+    PetscCall(TSGetSNES(p->ts, &snes));
+    PetscCall(SNESMonitorSet(snes, count_newton, p, NULL));
+    PetscCall(SNESGetKSP(snes, &ksp));
+    PetscCall(KSPGetPC(ksp, &pc));
+    if (p->s.second_order) {
+        PetscCall(KSPSetType(ksp, KSPCG));
+        PetscCall(PCSetType(pc, PCGAMG));
+    } else {
+        PetscCall(KSPSetType(ksp, KSPPREONLY));
+        PetscCall(PCSetType(pc, PCLU));
+        PetscCall(PCFactorSetMatOrderingType(pc, MATORDERINGND));
+    }
+    PetscCall(KSPSetPostSolve(ksp, count_solve, p));
+    PetscFunctionReturn(0);
+}
+
+/* The method, steps and tolerances, then the user's options over them. */
+static PetscErrorCode set_method(clp_ts *p)
+{
+    const clp_ts_setup *s = &p->s;
+    TSAdapt adapt;
+    PetscFunctionBeginUser;
+    PetscCall(TSSetType(p->ts, s->ts_type));
+    if (s->order > 0)
+        PetscCall(TSBDFSetOrder(p->ts, s->order));
+    if (strcmp(s->ts_type, TSARKIMEX) == 0)
+        PetscCall(TSARKIMEXSetFullyImplicit(p->ts, PETSC_TRUE));
+    PetscCall(TSSetTime(p->ts, s->t0));
+    PetscCall(TSSetTimeStep(p->ts, s->dt));
+    PetscCall(TSSetExactFinalTime(p->ts, TS_EXACTFINALTIME_MATCHSTEP));
+    PetscCall(TSSetTolerances(p->ts, s->atol, NULL, s->rtol, NULL));
+    PetscCall(TSGetAdapt(p->ts, &adapt));
+    /* TSALPHA2 would not adapt unless told; a failed Newton solve
+     * retries a smaller step, as in CVODE */
+    PetscCall(TSAdaptSetType(adapt, s->fixed ? TSADAPTNONE : TSADAPTBASIC));
+    if (!s->fixed)
+        PetscCall(TSSetMaxSNESFailures(p->ts, -1));
+    PetscCall(TSSetApplicationContext(p->ts, p));
+    PetscCall(TSSetPostStep(p->ts, count_step));
+    PetscCall(TSSetFromOptions(p->ts));
+    PetscCall(TSSetUp(p->ts));
+    PetscFunctionReturn(0);
+}
+
+/* The linear solver's name after the options, "petsc:preonly+lu". */
+static PetscErrorCode name_linsol(clp_ts *p)
+{
+    SNES snes;
+    KSP ksp;
+    PC pc;
+    KSPType kt;
+    PCType pt;
+    PetscFunctionBeginUser;
+    PetscCall(TSGetSNES(p->ts, &snes));
+    PetscCall(SNESGetKSP(snes, &ksp));
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(KSPGetType(ksp, &kt));
+    PetscCall(PCGetType(pc, &pt));
+    snprintf(p->linsol, sizeof p->linsol, "petsc:%s+%s", kt ? kt : "?",
+             pt ? pt : "?");
+    PetscFunctionReturn(0);
+}
+
+static PetscErrorCode setup(clp_ts *p)
+{
+    PetscFunctionBeginUser;
+    PetscCall(make_matrix(p));
+    PetscCall(make_slots(p));
+    PetscCall(make_vectors(p));
+    PetscCall(TSCreate(PETSC_COMM_SELF, &p->ts));
+    /* before the SNES, KSP, PC and TSAdapt are made: they inherit them */
+    PetscCall(PetscOptionsCreate(&p->opts));
+    PetscCall(PetscOptionsInsertString(p->opts, p->s.options ? p->s.options
+                                                             : ""));
+    PetscCall(PetscObjectSetOptions((PetscObject)p->ts, p->opts));
+    PetscCall(set_problem(p));
+    PetscCall(set_method(p));
+    PetscCall(name_linsol(p));
+    PetscFunctionReturn(0);
+}
+
+/* PETSc's message for error code ec. */
+static void petsc_message(PetscErrorCode ec, const char *what,
+                          const char *name, cl_plugin_msg *msg)
+{
+    const char *text = NULL;
+    char *specific = NULL;
+    PetscErrorMessage(ec, &text, &specific);
+    snprintf(msg->text, sizeof msg->text, "%s: %s failed: %s%s%s", name, what,
+             text ? text : "PETSc error",
+             specific && *specific ? ": " : "", specific ? specific : "");
+}
+
+void clp_ts_free(void *ts)
+{
+    clp_ts *p = ts;
+    if (!p)
+        return;
+    TSDestroy(&p->ts);
+    MatDestroy(&p->J);
+    VecDestroy(&p->y);
+    VecDestroy(&p->yv);
+    PetscOptionsDestroy(&p->opts);
+    PetscFree2(p->dfdx, p->dfdv);
+    PetscFree2(p->slot_x, p->slot_v);
+    PetscFree3(p->slot_m, p->slot_xx, p->slot_xv);
+    PetscFree(p);
+}
+
+int clp_ts_create(const clp_ts_setup *s, void **ts, cl_plugin_msg *msg)
+{
+    clp_ts *p = NULL;
+    *ts = NULL;
+    PetscErrorCode ec = PetscNew(&p);
+    if (ec == 0) {
+        p->s = *s;
+        ec = setup(p);
+    }
+    if (ec != 0) {
+        petsc_message(ec, "setting up PETSc's TS (check --petsc)", s->name,
+                      msg);
+        clp_ts_free(p);
+        return 1;
+    }
+    *ts = p;
+    return 0;
+}
+
+/* ---- stepping ------------------------------------------------------------ */
+
+static PetscErrorCode copy_state(clp_ts *p, double *x, double *v)
+{
+    const PetscScalar *y;
+    size_t n = p->s.n;
+    PetscFunctionBeginUser;
+    PetscCall(VecGetArrayRead(p->y, &y));
+    memcpy(x, y, n * sizeof *x);
+    if (!p->s.second_order)
+        memcpy(v, y + n, n * sizeof *v);
+    PetscCall(VecRestoreArrayRead(p->y, &y));
+    if (p->s.second_order) {
+        PetscCall(VecGetArrayRead(p->yv, &y));
+        memcpy(v, y, n * sizeof *v);
+        PetscCall(VecRestoreArrayRead(p->yv, &y));
+    }
+    PetscFunctionReturn(0);
+}
+
+static PetscErrorCode solve_to(clp_ts *p, double t_out)
+{
+    PetscInt steps, rejected, failed;
+    PetscFunctionBeginUser;
+    PetscCall(TSGetStepNumber(p->ts, &steps));
+    PetscCall(TSSetMaxSteps(p->ts, p->s.max_steps > 0
+                                       ? steps + (PetscInt)p->s.max_steps
+                                       : PETSC_MAX_INT));
+    PetscCall(TSSetMaxTime(p->ts, t_out));
+    PetscErrorCode ec = TSSolve(p->ts, NULL);
+    /* both counted per TSSolve */
+    PetscCall(TSGetStepRejections(p->ts, &rejected));
+    PetscCall(TSGetSNESFailures(p->ts, &failed));
+    p->nreject += rejected;
+    p->nsnesfail += failed;
+    PetscCall(ec);
+    PetscFunctionReturn(0);
+}
+
+int clp_ts_advance(void *ts, double t_out, double *x, double *v,
+                   cl_plugin_msg *msg)
+{
+    clp_ts *p = ts;
+    PetscReal t;
+    TSConvergedReason why = TS_CONVERGED_ITERATING;
+    p->cb = 0;
+    PetscErrorCode ec = TSGetTime(p->ts, &t);
+    if (ec == 0 && t < t_out)
+        ec = solve_to(p, t_out);
+    if (ec == 0)
+        ec = TSGetConvergedReason(p->ts, &why);
+    if (ec == 0)
+        ec = copy_state(p, x, v);
+    if (ec == 0)
+        ec = TSGetTime(p->ts, &t);
+    if (ec != 0) {
+        petsc_message(ec, "TSSolve", p->s.name, msg);
+        return 1;
+    }
+    if (why < 0 || t < t_out) {
+        snprintf(msg->text, sizeof msg->text, "%s: PETSc's TS stopped at t = "
+                 "%.9g on the way to %.9g: %s%s", p->s.name, t, t_out,
+                 TSConvergedReasons[why],
+                 why == TS_CONVERGED_ITS ? " (more than [run] max_steps "
+                                           "steps in one output interval)"
+                                         : "");
+        return 1;
+    }
+    return 0;
+}
+
+int clp_ts_restart(void *ts, cl_plugin_msg *msg)
+{
+    clp_ts *p = ts;
+    PetscErrorCode ec = TSRestartStep(p->ts);
+    if (ec != 0)
+        petsc_message(ec, "TSRestartStep", p->s.name, msg);
+    return ec != 0;
+}
+
+void clp_ts_stats(const void *ts, cl_stats *st)
+{
+    const clp_ts *p = ts;
+    memset(st, 0, sizeof *st);
+    st->steps = p->steps;
+    st->rhs_evals = p->nfun;
+    st->jac_evals = p->njac;
+    st->lin_setups = p->njac;
+    st->lin_solves = p->nsolve;
+    st->lin_iters = p->nkspit;
+    st->nonlin_iters = p->nnewton;
+    st->nonlin_fails = p->nsnesfail;
+    st->err_fails = p->nreject;
+    memcpy(st->linsol, p->linsol, sizeof st->linsol);
+}

@@ -1,0 +1,189 @@
+/* Tests of the petsc-ts integrators (integrators/petsc_ts.h): observed
+ * orders at fixed steps on spring2 through the convergence study
+ * (analysis/convergence.h), an adaptive run on hang-smooth against
+ * cvode-bdf at the same tolerances, the energy of TSALPHA2 with
+ * rho_inf = 1 on spring2, and the refusals. */
+#include <criterion/criterion.h>
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analysis/convergence.h"
+#include "problem.h"
+#include "spring2.h"
+
+/* A fixed-step view of a petsc-* row: dt > 0 makes its steps fixed
+ * (petsc_ts.h), and the convergence study halves dt when the type says
+ * fixed_step. */
+static cl_integrator_type fixed_view(const char *name)
+{
+    const cl_integrator_type *t = cl_integrator_find(name);
+    cr_assert_not_null(t, "%s", name);
+    cl_integrator_type f = *t;
+    f.fixed_step = true;
+    return f;
+}
+
+/* The fitted order of `name` on spring2 to T = 1 at dt = 1e-2 .. 1.25e-3,
+ * every level exactly 100 * 2^k steps. */
+static double order_on_spring2(const char *name, const char *petsc)
+{
+    pr_problem p;
+    cl_error err = {0};
+    pr_load(&p, "problems/spring2.ini", NULL, NULL);
+    cl_conv_opts o = {.t_end = 1.0, .max_stretch = 10, .ref_rtol = 1e-11,
+                      .ref_linsol = ""};
+    cl_conv_ref ref;
+    cr_assert_eq(cl_conv_reference(p.m, &o, &ref, &err), CL_OK, "%s",
+                 err.msg);
+    cl_integrator_type t = fixed_view(name);
+    cl_integrator_opts io = {.dt = 1e-2, .petsc = petsc};
+    cl_conv_result r;
+    cr_assert_eq(cl_convergence(p.m, &t, &io, 4, &o, &ref, &r, &err), CL_OK,
+                 "%s: %s", name, err.msg);
+    for (int k = 0; k < r.nlev; k++) {
+        cr_log_info("%s dt %g: err_x %.3e err_v %.3e order %.3f steps %ld",
+                    name, r.lev[k].param, r.lev[k].err_x, r.lev[k].err_v,
+                    r.lev[k].order, r.lev[k].stats.steps);
+        cr_assert_eq(r.lev[k].rc, CL_OK, "%s: %s", name, r.lev[k].why.msg);
+        cr_assert_eq(r.lev[k].stats.steps, 100L << k, "%s", name);
+    }
+    cr_assert_eq(r.nfit, 4);
+    cl_conv_ref_free(&ref);
+    pr_free(&p);
+    return r.slope_x;
+}
+
+/* TSBDF at its default order 2 (measured slope 2.00). */
+Test(petsc_ts, bdf2_is_second_order_on_spring2)
+{
+    double q = order_on_spring2("petsc-bdf", "");
+    cr_assert_lt(fabs(q - 2.0), 0.2, "slope %.3f", q);
+}
+
+/* TSALPHA2 at rho_inf = 0.5, with numerical dissipation (measured slope
+ * 2.00; PETSc's default rho_inf = 1 is tested for its energy below). */
+Test(petsc_ts, alpha2_is_second_order_on_spring2)
+{
+    double q = order_on_spring2("petsc-alpha2", "-ts_alpha_radius 0.5");
+    cr_assert_lt(fabs(q - 2.0), 0.2, "slope %.3f", q);
+}
+
+/* Generalized-alpha with rho_inf = 1 has no numerical dissipation: on the
+ * linear spring its energy is that of the start to the Newton tolerance
+ * (the method is then the trapezoidal rule on M x'' = -K x, which
+ * conserves the quadratic energy exactly), over 1000 steps of 1e-2 s
+ * (16 periods). */
+Test(petsc_ts, alpha2_with_radius_1_conserves_energy_on_spring2)
+{
+    s2_problem p;
+    s2_load(&p);
+    cl_integrator_opts o = {.dt = 1e-2, .petsc = "-ts_alpha_radius 1"};
+    const cl_integrator_type *t = cl_integrator_find("petsc-alpha2");
+    void *st = NULL;
+    cl_error err = {0};
+    double x[3], v[3];
+    cl_energy e0, e1;
+    cr_assert_eq(p.sys->energy(p.sys->data, 0.0, p.x0, p.v0, &e0), CL_OK);
+    cr_assert_eq(t->create(p.sys, &o, 0.0, p.x0, p.v0, &st, &err), CL_OK,
+                 "%s", err.msg);
+    cr_assert_eq(t->advance(st, 10.0, x, v, &err), CL_OK, "%s", err.msg);
+    t->free(st);
+    cr_assert_eq(p.sys->energy(p.sys->data, 10.0, x, v, &e1), CL_OK);
+    double drift = fabs(e1.total - e0.total) / e0.total;
+    cr_log_info("energy %.12g -> %.12g, relative %.3e", e0.total, e1.total,
+                drift);
+    cr_assert_lt(drift, 1e-9);
+    /* with rho_inf = 0.5 the same run loses energy */
+    o.petsc = "-ts_alpha_radius 0.5";
+    cr_assert_eq(t->create(p.sys, &o, 0.0, p.x0, p.v0, &st, &err), CL_OK,
+                 "%s", err.msg);
+    cr_assert_eq(t->advance(st, 10.0, x, v, &err), CL_OK, "%s", err.msg);
+    t->free(st);
+    cr_assert_eq(p.sys->energy(p.sys->data, 10.0, x, v, &e1), CL_OK);
+    cr_log_info("rho_inf 0.5: energy %.12g", e1.total);
+    cr_assert_lt(e1.total, 0.999 * e0.total);
+    s2_free(&p);
+}
+
+/* Final state of `name` on hang-smooth (8 x 8) at T = 0.2 s, rtol 1e-6,
+ * atol 1e-8. */
+static void hang_smooth_final(const char *name, const char *petsc, double *x,
+                              double *v, cl_stats *s)
+{
+    pr_problem p;
+    cl_error err = {0};
+    pr_load(&p, "problems/hang-smooth.ini", "cloth.n=8", NULL);
+    const cl_system *sys = cl_model_system(p.m);
+    double *x0 = malloc(sys->n * sizeof *x0), *v0 = malloc(sys->n * sizeof *v0);
+    cr_assert(x0 && v0);
+    cl_model_initial_state(p.m, x0, v0);
+    const cl_integrator_type *t = cl_integrator_find(name);
+    cl_integrator_opts o = {.rtol = 1e-6, .atol = 1e-8, .petsc = petsc};
+    void *st = NULL;
+    cr_assert_eq(t->create(sys, &o, 0.0, x0, v0, &st, &err), CL_OK, "%s: %s",
+                 name, err.msg);
+    for (int k = 1; k <= 4; k++)
+        cr_assert_eq(t->advance(st, 0.05 * k, x, v, &err), CL_OK, "%s: %s",
+                     name, err.msg);
+    t->stats(st, s);
+    t->free(st);
+    free(x0);
+    free(v0);
+    pr_free(&p);
+}
+
+/* petsc-bdf (order 2) and petsc-rosw against cvode-bdf, all at rtol 1e-6:
+ * the final positions within 2e-5 m (measured 4.1e-6 and 7.7e-7 m; the
+ * cloth's corners have fallen about 0.2 m), and PETSc's counters
+ * filled. */
+Test(petsc_ts, adaptive_runs_agree_with_cvode_on_hang_smooth)
+{
+    enum { N = 3 * 62 };
+    double xc[N], vc[N], xp[N], vp[N];
+    cl_stats sc, sp;
+    hang_smooth_final("cvode-bdf", NULL, xc, vc, &sc);
+    static const char *const names[] = {"petsc-bdf", "petsc-rosw"};
+    for (int m = 0; m < 2; m++) {
+        hang_smooth_final(names[m], "", xp, vp, &sp);
+        double d = 0.0;
+        for (int i = 0; i < N; i++)
+            d = fmax(d, fabs(xp[i] - xc[i]));
+        cr_log_info("%s: |x - x_cvode| %.3e, %ld steps (cvode %ld), %ld "
+                    "rhs, %ld jac, %ld solves, %ld rejected", names[m], d,
+                    sp.steps, sc.steps, sp.rhs_evals, sp.jac_evals,
+                    sp.lin_solves, sp.err_fails);
+        cr_assert_lt(d, 2e-5, "%s", names[m]);
+        cr_assert_gt(sp.steps, 0);
+        cr_assert_geq(sp.rhs_evals, sp.steps);
+        cr_assert_gt(sp.jac_evals, 0);
+        cr_assert_gt(sp.lin_solves, 0);
+        cr_assert_str_eq(sp.linsol, "petsc:preonly+lu");
+    }
+}
+
+/* A bad PETSc option and an order TSBDF does not have are refused with a
+ * message naming the integrator. */
+Test(petsc_ts, refuses_bad_options_and_orders)
+{
+    s2_problem p;
+    s2_load(&p);
+    void *st = NULL;
+    cl_error err = {0};
+    const cl_integrator_type *t = cl_integrator_find("petsc-bdf");
+    cl_integrator_opts o = {.petsc = "-ts_bdf_order 9"};
+    cr_assert_eq(t->create(p.sys, &o, 0.0, p.x0, p.v0, &st, &err),
+                 CL_EINVAL);
+    cr_assert_null(st);
+    cr_assert(strstr(err.msg, "petsc-bdf"), "%s", err.msg);
+    o = (cl_integrator_opts){.max_order = 7};
+    cr_assert_eq(t->create(p.sys, &o, 0.0, p.x0, p.v0, &st, &err),
+                 CL_EINVAL);
+    cr_assert(strstr(err.msg, "1 .. 6"), "%s", err.msg);
+    o = (cl_integrator_opts){.max_order = 3};
+    t = cl_integrator_find("petsc-alpha2");
+    cr_assert_eq(t->create(p.sys, &o, 0.0, p.x0, p.v0, &st, &err),
+                 CL_EINVAL);
+    s2_free(&p);
+}
