@@ -278,24 +278,27 @@ static void buckling_simd(const type2_state *st, size_t n, const size_t *idx,
     }
 }
 
-/* Pairs [0, m) of at most CL_PAIRKERN_CHUNK. */
+/* Pairs [0, m) of at most CL_PAIRKERN_CHUNK.  s is the same with and
+ * without ds (the Jacobian's forces are the right-hand side's, bit for
+ * bit); s' of the f_b branch comes from the scalar law. */
 static void type2_piece(const type2_state *st, size_t m, const double *d,
                         const double *L, double *s, double *ds)
 {
-    double dsw[CL_PAIRKERN_CHUNK];
+    double dsw[CL_PAIRKERN_CHUNK], sw;
     unsigned char need[CL_PAIRKERN_CHUNK];
     size_t idx[CL_PAIRKERN_CHUNK], n = 0;
+    bool exact = st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT;
     linear_branches(st, m, d, L, s, ds ? ds : dsw, need);
     for (size_t i = 0; i < m; i++)
         if (need[i])
             idx[n++] = i;
-    if (!ds && st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT) {
+    if (exact)
         buckling_simd(st, n, idx, d, L, s);
-        return;
+    for (size_t j = 0; j < n && (ds || !exact); j++) {
+        size_t i = idx[j];
+        compression_law(st, d[i], L[i], ds != NULL, exact ? &sw : &s[i],
+                        ds ? &ds[i] : &dsw[i]);
     }
-    for (size_t j = 0; j < n; j++)
-        compression_law(st, d[idx[j]], L[idx[j]], ds != NULL, &s[idx[j]],
-                        ds ? &ds[idx[j]] : &dsw[idx[j]]);
 }
 
 /* The law over pairs [k0, k0 + m) (cl_pairlaw_batch_fn). */
