@@ -15,7 +15,7 @@ static const cl_bplan full_plan = {
     .peer_budget = 800.0,
     .w2_n = 32, .w2_t = 2.0, .w2_large = true, .w2_cap = 600.0,
     .w3_nn = 4, .w3_n = {16, 32, 64, 128}, .w3_budget = 1.0,
-    .eval_budget = 1.0, .w6_n = 128,
+    .eval_budget = 1.0, .w6_n = 128, .w13_n = 128,
 };
 
 static const cl_bplan quick_plan = {
@@ -23,7 +23,7 @@ static const cl_bplan quick_plan = {
     .peer_budget = 60.0,
     .w2_n = 16, .w2_t = 0.5, .w2_large = false,
     .w3_nn = 2, .w3_n = {16, 32}, .w3_budget = 0.3,
-    .eval_budget = 0.25, .w6_n = 32,
+    .eval_budget = 0.25, .w6_n = 32, .w13_n = 64,
 };
 
 static bool selected(const cl_bctx *c, int w)
@@ -57,9 +57,10 @@ cl_status cl_bench_run(const cl_bench_opts *o, cl_bench_table *t,
     void (*const work[])(cl_bctx *) = {NULL,        NULL,        cl_bench_w2,
                                        cl_bench_w3, cl_bench_w4, cl_bench_w5,
                                        cl_bench_w6, cl_bench_w7, cl_bench_w8,
-                                       cl_bench_w9};
+                                       cl_bench_w9, NULL,        NULL,
+                                       NULL,        cl_bench_w13};
     for (int w = 2; w <= CL_BENCH_WORKLOADS; w++)
-        if (selected(&c, w) && !c.nomem)
+        if (work[w] && selected(&c, w) && !c.nomem)
             work[w](&c);
     if (selected(&c, 1) && !c.nomem)
         cl_bench_w1(&c);

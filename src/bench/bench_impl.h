@@ -26,6 +26,7 @@ typedef struct {
     double w3_budget;        /* CPU seconds per (solver, n, dt) */
     double eval_budget;      /* workloads 4, 5, 7, 8: seconds per case */
     int w6_n;
+    int w13_n;               /* workload 13: the cloth size */
 } cl_bplan;
 
 /* A timed cvode-bdf run on hang, kept for the whole bench run. */
@@ -138,11 +139,12 @@ void cl_bench_w2(cl_bctx *c);
 void cl_bench_w6(cl_bctx *c);
 void cl_bench_peers_stop(cl_bctx *c);
 
-/* ---- bench_cost.c: workloads 3, 4, 5 -------------------------------- */
+/* ---- bench_cost.c: workloads 3, 4, 5, 13 ---------------------------- */
 
 void cl_bench_w3(cl_bctx *c);
 void cl_bench_w4(cl_bctx *c);
 void cl_bench_w5(cl_bctx *c);
+void cl_bench_w13(cl_bctx *c);
 
 /* ---- bench_mesh.c: workload 7 --------------------------------------- */
 
