@@ -66,13 +66,13 @@ static void kcase_open(kcase *c, const cl_term_type *type,
 
 static void kcase_close(kcase *c)
 {
+    void *arr[] = {c->dof, c->x, c->v};
     c->type->free(c->state);
     cl_bpattern_free(&c->pat);
     cl_model_free(c->m);
     cl_config_free(c->cfg);
-    free(c->dof);
-    free(c->x);
-    free(c->v);
+    for (size_t i = 0; i < sizeof arr / sizeof *arr; i++)
+        free(arr[i]);
 }
 
 static double max_abs(const double *a, size_t n)

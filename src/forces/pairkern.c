@@ -217,18 +217,10 @@ static void forces_serial(const cl_pairkern *pk, size_t k0, size_t k1,
     const int *restrict ia = pk->ia, *restrict ib = pk->ib;
     const double *restrict f0 = pk->f0 - base, *restrict f1 = pk->f1 - base;
     const double *restrict f2 = pk->f2 - base;
-    for (size_t k = k0; k < k1; k++) {
-        if (torn && torn[k])
-            continue;
-        double *fa = f + 3 * (size_t)ia[k], *fb = f + 3 * (size_t)ib[k];
-        double g0 = f0[k], g1 = f1[k], g2 = f2[k];
-        fa[0] += g0;
-        fa[1] += g1;
-        fa[2] += g2;
-        fb[0] -= g0;
-        fb[1] -= g1;
-        fb[2] -= g2;
-    }
+    for (size_t k = k0; k < k1; k++)
+        if (!torn || !torn[k])
+            cl_pairkern_scatter(f, (size_t)ia[k], (size_t)ib[k], f0[k], f1[k],
+                                f2[k]);
 }
 
 /* Phase 2 by threads: each particle's contributions in increasing k. */

@@ -40,6 +40,20 @@
 #define CL_PAIR_KERNEL
 #endif
 
+/* f_a += (f0, f1, f2), f_b -= (f0, f1, f2) for particles a, b (3 entries
+ * each in f): a pair's force into a force array. */
+static inline void cl_pairkern_scatter(double *restrict f, size_t a, size_t b,
+                                       double f0, double f1, double f2)
+{
+    double *fa = f + 3 * a, *fb = f + 3 * b;
+    fa[0] += f0;
+    fa[1] += f1;
+    fa[2] += f2;
+    fb[0] -= f0;
+    fb[1] -= f1;
+    fb[2] -= f2;
+}
+
 /* Pairs per chunk of phase 1: serially, phase 2 follows each chunk, so
  * the buffers hold one chunk; with threads they hold every pair. */
 #define CL_PAIRKERN_CHUNK 256

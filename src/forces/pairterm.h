@@ -85,13 +85,7 @@ static inline bool cl_pairterm_is_torn(const cl_pairterm *pt, size_t k)
 static inline void cl_pair_scatter(double *restrict f, const cl_pair *pr,
                                    double f0, double f1, double f2)
 {
-    double *fa = f + 3 * pr->a, *fb = f + 3 * pr->b;
-    fa[0] += f0;
-    fa[1] += f1;
-    fa[2] += f2;
-    fb[0] -= f0;
-    fb[1] -= f1;
-    fb[2] -= f2;
+    cl_pairkern_scatter(f, (size_t)pr->a, (size_t)pr->b, f0, f1, f2);
 }
 
 /* The block K of docs/model.md (3.1) (row-major 3x3) for direction u,
