@@ -43,6 +43,17 @@ static void sort_rows(cl_bench_table *t)
     }
 }
 
+/* Workloads by number (10 .. 12: none). */
+static void (*const work[CL_BENCH_WORKLOADS + 1])(cl_bctx *) = {
+    NULL,        NULL,        cl_bench_w2, cl_bench_w3, cl_bench_w4,
+    cl_bench_w5, cl_bench_w6, cl_bench_w7, cl_bench_w8, cl_bench_w9,
+    NULL,        NULL,        NULL,        cl_bench_w13};
+
+bool cl_bench_workload_exists(int w)
+{
+    return w == 1 || (w >= 2 && w <= CL_BENCH_WORKLOADS && work[w]);
+}
+
 cl_status cl_bench_run(const cl_bench_opts *o, cl_bench_table *t,
                        cl_error *err)
 {
@@ -54,11 +65,6 @@ cl_status cl_bench_run(const cl_bench_opts *o, cl_bench_table *t,
         cl_bench_peers_start(&c);
     if (selected(&c, 1) || selected(&c, 2) || selected(&c, 6))
         cl_bench_choose(&c);
-    void (*const work[])(cl_bctx *) = {NULL,        NULL,        cl_bench_w2,
-                                       cl_bench_w3, cl_bench_w4, cl_bench_w5,
-                                       cl_bench_w6, cl_bench_w7, cl_bench_w8,
-                                       cl_bench_w9, NULL,        NULL,
-                                       NULL,        cl_bench_w13};
     for (int w = 2; w <= CL_BENCH_WORKLOADS; w++)
         if (work[w] && selected(&c, w) && !c.nomem)
             work[w](&c);

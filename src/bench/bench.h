@@ -73,6 +73,9 @@
 
 #define CL_BENCH_WORKLOADS 13
 
+/* Whether workload w (1 .. CL_BENCH_WORKLOADS) exists. */
+bool cl_bench_workload_exists(int w);
+
 typedef struct {
     bool quick;
     unsigned only;          /* bit w (1..9) selects workload w; 0: all */

@@ -75,6 +75,7 @@ static int parse_only(const char *s, unsigned *bits)
         char *end;
         long w = strtol(p, &end, 10);
         if (end == p || w < 1 || w > CL_BENCH_WORKLOADS ||
+            !cl_bench_workload_exists((int)w) ||
             (*end && *end != ','))
             return -1;
         *bits |= 1u << w;
