@@ -61,6 +61,13 @@ $(BUILD)/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -MMD -MP -c $< -o $@
 
+# The pair kernels (src/forces/pairkern.h): GCC vectorises their sqrt and
+# selects only without errno and FP-trap semantics; no value changes.
+KERNEL_SRC := src/forces/pairkern.c src/forces/asinc_simd.c \
+              src/forces/type1.c src/forces/type2.c src/forces/springs.c \
+              src/forces/pairdamp.c
+$(KERNEL_SRC:%.c=$(BUILD)/%.o): CFLAGS += -fno-math-errno -fno-trapping-math
+
 # The version, git commit (`git describe --always --dirty`, "unknown"
 # outside a git checkout), compiler and flags that `clothode --version` and
 # run.json name (src/cli/version.c); the header changes only when they do.

@@ -307,51 +307,52 @@ Test(model, system_force_equals_gathered_full_force)
 
 /* The free-particle blocks of the system Jacobian equal the corresponding
  * blocks of the full-particle Jacobian (same state, pins in place). */
-/* Threaded forces (cl_model_set_threads) equal the serial ones to 1e-12
- * of the largest force, for 2, 3 and 7 parts (a count that does not
- * divide the pairs evenly), on a 12 x 12 hang with every pair term active
- * (Type1 taut and slack, Type2 on its f_b branch, damping) and springs;
- * a repeated threaded evaluation is bitwise the same; bad counts are
- * refused. */
+/* Threaded forces and Jacobians (cl_model_set_threads) are bitwise the
+ * serial ones for 2, 3 and 7 threads (a count that does not divide the
+ * pairs evenly), on a 12 x 12 hang with every pair term active (Type1
+ * taut and slack, Type2 on its f_b branch, damping) and on springs with
+ * axial damping; bad counts are refused. */
+static void eval_all(const cl_system *sys, const double *x, const double *v,
+                     double *f, double *fj, double *jx, double *jv)
+{
+    cr_assert_eq(sys->force(sys->data, 0.3, x, v, f), CL_OK);
+    cr_assert_eq(sys->jacobian(sys->data, 0.3, x, v, fj, jx, jv), CL_OK);
+}
+
 static void check_threads(cl_model *m, fd_rng *r)
 {
     const cl_system *sys = cl_model_system(m);
-    size_t n = sys->n;
-    double *x = fd_vec(n), *v = fd_vec(n), *f1 = fd_vec(n), *fk = fd_vec(n),
-           *again = fd_vec(n);
+    size_t n = sys->n, nv = 9 * sys->pattern->nnzb;
+    double *x = fd_vec(n), *v = fd_vec(n), *f1 = fd_vec(n), *fk = fd_vec(n);
+    double *fj1 = fd_vec(n), *fjk = fd_vec(n), *jx1 = fd_vec(nv),
+           *jxk = fd_vec(nv), *jv1 = fd_vec(nv), *jvk = fd_vec(nv);
     hang_state(m, r, x, v);
-    cr_assert_eq(sys->force(sys->data, 0.3, x, v, f1), CL_OK);
+    eval_all(sys, x, v, f1, fj1, jx1, jv1);
     double big = 0.0;
     for (size_t i = 0; i < n; i++)
         big = fmax(big, fabs(f1[i]));
     cr_assert_gt(big, 0.0);
-    static const int counts[] = {2, 3, 7};
-    for (size_t c = 0; c < 3; c++) {
+    static const int counts[] = {2, 3, 7, 1};
+    for (size_t c = 0; c < 4; c++) {
         cr_assert_eq(cl_model_set_threads(m, counts[c], NULL), CL_OK);
-        cr_assert_eq(sys->force(sys->data, 0.3, x, v, fk), CL_OK);
-        cr_assert_eq(sys->force(sys->data, 0.3, x, v, again), CL_OK);
-        cr_assert_eq(memcmp(fk, again, n * sizeof *fk), 0);
-        double worst = 0.0;
-        for (size_t i = 0; i < n; i++)
-            worst = fmax(worst, fabs(fk[i] - f1[i]));
-        cr_assert_leq(worst, 1e-12 * big, "%d threads: %.3g of %.3g",
-                      counts[c], worst, big);
+        cr_assert_eq(sys->threads, counts[c]);
+        eval_all(sys, x, v, fk, fjk, jxk, jvk);
+        cr_assert_eq(memcmp(fk, f1, n * sizeof *fk), 0, "%d threads",
+                     counts[c]);
+        cr_assert_eq(memcmp(fjk, fj1, n * sizeof *fk), 0);
+        cr_assert_eq(memcmp(jxk, jx1, nv * sizeof *jxk), 0);
+        cr_assert_eq(memcmp(jvk, jv1, nv * sizeof *jvk), 0);
     }
-    cr_assert_eq(cl_model_set_threads(m, 1, NULL), CL_OK);
-    cr_assert_eq(sys->force(sys->data, 0.3, x, v, fk), CL_OK);
-    cr_assert_eq(memcmp(fk, f1, n * sizeof *fk), 0);
     cl_error err = {0};
     cr_assert_eq(cl_model_set_threads(m, 0, &err), CL_EINVAL);
     cr_assert_eq(cl_model_set_threads(m, CL_MODEL_MAX_THREADS + 1, &err),
                  CL_EINVAL);
-    free(x);
-    free(v);
-    free(f1);
-    free(fk);
-    free(again);
+    double *arr[] = {x, v, f1, fk, fj1, fjk, jx1, jxk, jv1, jvk};
+    for (size_t i = 0; i < sizeof arr / sizeof *arr; i++)
+        free(arr[i]);
 }
 
-Test(model, threaded_force_equals_serial)
+Test(model, threaded_force_and_jacobian_are_bitwise_serial)
 {
     fd_rng r = {75};
     cl_model *m = FD_MODEL("cloth.n=12", "damping.kd=0.05");

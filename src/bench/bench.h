@@ -60,6 +60,9 @@
  *      workload 1); goal: clothode >= 3x faster.
  *  12  hang n = 256, T = 2 s by semi-bdf2 --linsol amg at dt = 1e-2: CPU
  *      seconds, goal <= 600; run only when named (--only 12).
+ *  13  semi-bdf2 with pcg on hang at n = 128 (--quick: 64): wall time
+ *      per step with one thread over that with --threads 2 (forces,
+ *      Jacobians, the solver's products; system/model.h); goal >= 1.6x.
  *
  * The best solver for cvode-bdf is picked once per run: every name of the
  * linear-solver registry plus klu-full, timed on the first case of
@@ -79,11 +82,11 @@
 
 #include "core/error.h"
 
-#define CL_BENCH_WORKLOADS 12
+#define CL_BENCH_WORKLOADS 13
 
 typedef struct {
     bool quick;
-    unsigned only;          /* bit w (1..12) selects workload w; 0: all
+    unsigned only;          /* bit w (1..13) selects workload w; 0: all
                              * but 12 */
     const char *problems;   /* directory of the problem files */
     const char *peer;       /* the peer script */

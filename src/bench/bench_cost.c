@@ -389,3 +389,57 @@ void cl_bench_w5(cl_bctx *c)
         w5_one(c, &cases[k]);
     }
 }
+
+/* ---- workload 13 ------------------------------------------------------ */
+
+#define W13_DT 1e-3
+
+/* Wall seconds per semi-bdf2 (pcg) step of model m on `threads` threads,
+ * or NaN (a note on row). */
+static double w13_per_step(cl_bctx *c, cl_model *m, int threads,
+                           cl_bench_row *row)
+{
+    cl_error err = {0};
+    cl_integrator_opts io = {.dt = W13_DT, .linsol = "pcg"};
+    fixed_plan fp = {W3_WARM, 1, W3_MIN_STEPS, c->plan.w3_budget};
+    fixed_time ft;
+    if (cl_model_set_threads(m, threads, &err)) {
+        cl_bench_note(row, "%s", err.msg);
+        return NAN;
+    }
+    time_fixed(m, cl_integrator_find("semi-bdf2"), &io, &fp, &ft);
+    if (ft.rc) {
+        cl_bench_note(row, "failed: %s", ft.msg);
+        return NAN;
+    }
+    return ft.wall / (double)ft.steps;
+}
+
+void cl_bench_w13(cl_bctx *c)
+{
+    char nset[32], kase[48];
+    snprintf(nset, sizeof nset, "cloth.n=%d", c->plan.w13_n);
+    snprintf(kase, sizeof kase, "hang n=%d", c->plan.w13_n);
+    const char *sets[] = {nset, NULL};
+    cl_bench_row *row = cl_bench_row_add(c, 13, kase);
+    snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 pcg --threads 2");
+    snprintf(row->side_b, sizeof row->side_b, "semi-bdf2 pcg --threads 1");
+    cl_bmodel bm;
+    cl_error err = {0};
+    if (cl_bench_model(c, "hang", sets, &bm, &err)) {
+        cl_bench_note(row, "%s", err.msg);
+        return;
+    }
+    cl_bench_log(c, "  semi-bdf2 pcg, n = %d, 1 and 2 threads ...",
+                 c->plan.w13_n);
+    row->wall_b = w13_per_step(c, bm.m, 1, row);
+    row->wall_a = isfinite(row->wall_b) ? w13_per_step(c, bm.m, 2, row)
+                                        : NAN;
+    if (isfinite(row->wall_a)) {
+        cl_bench_judge(row, row->wall_b / row->wall_a, "x", ">=", 1.6);
+        cl_bench_note(row, "wall time per step (dt = %g), serial over "
+                      "2 threads", W13_DT);
+    }
+    cl_bench_model_free(&bm);
+    cl_bench_log_row(c, row);
+}

@@ -35,6 +35,7 @@ typedef struct {
     int w11_n[3];
     double w11_t;
     double w11_budget;       /* CPU seconds per PETSc run */
+    int w13_n;               /* workload 13: the cloth size */
 } cl_bplan;
 
 /* A timed cvode-bdf run on hang, kept for the whole bench run. */
@@ -203,11 +204,12 @@ void cl_bench_w2(cl_bctx *c);
 void cl_bench_w6(cl_bctx *c);
 void cl_bench_peers_stop(cl_bctx *c);
 
-/* ---- bench_cost.c: workloads 3, 4, 5 -------------------------------- */
+/* ---- bench_cost.c: workloads 3, 4, 5, 13 ---------------------------- */
 
 void cl_bench_w3(cl_bctx *c);
 void cl_bench_w4(cl_bctx *c);
 void cl_bench_w5(cl_bctx *c);
+void cl_bench_w13(cl_bctx *c);
 
 /* ---- bench_mesh.c: workload 7 --------------------------------------- */
 

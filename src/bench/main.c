@@ -33,6 +33,7 @@ static const char bench_help[] =
     "     >= 50x for points near the surface\n"
     "  8  skirt step (over the sphere, on the floor): contact term + hook\n"
     "     <= 25 % of a step\n"
+    " 13  semi-bdf2 pcg at n = 128: wall time with --threads 2, >= 1.6x\n"
     "\n"
     "  --quick        a reduced set (smaller n and T), about two minutes\n"
     "  --only LIST    only these workloads, e.g. --only 3,4\n"

@@ -3,13 +3,16 @@
 
 #include <math.h>
 
+/* a * 0 is +-0 for finite a and NaN for an infinity or NaN, and a sum of
+ * zeros is zero in any order: a reduction without an early exit, which
+ * GCC vectorises (it runs on every force evaluation). */
 bool cl_all_finite(const double *a, size_t n)
 {
-    for (size_t i = 0; i < n; i++) {
-        if (!isfinite(a[i]))
-            return false;
-    }
-    return true;
+    double acc = 0.0;
+#pragma omp simd reduction(+ : acc)
+    for (size_t i = 0; i < n; i++)
+        acc += a[i] * 0.0;
+    return acc == 0.0;
 }
 
 cl_status cl_check_masses(const double *mass, size_t n, const char *who,

@@ -121,7 +121,7 @@ const cl_term_type cl_term_damping = {
     .doc = "Choi-Ko pair damping on Type1 and Type2 pairs: linear "
            "-kd (v_i - v_j) (Jiao eq. 14) or axial",
     .conservative = false,
-    .splits = true,
+    .threads = cl_pairterm_threads,
     .create = damping_create,
     .couplings = cl_pairterm_couplings,
     .bind = cl_pairterm_bind,

@@ -18,6 +18,18 @@ static void gravity_eval(void *state, cl_eval *ev)
 {
     const gravity_state *st = state;
     double energy = 0.0;
+    if (ev->f && !ev->want_energy) { /* every right-hand side */
+        const double *mass = st->cloth->mass;
+        double g[3] = {st->g[0], st->g[1], st->g[2]};
+        double F[3] = {st->F[0], st->F[1], st->F[2]};
+        double *restrict f = ev->f;
+        for (size_t p = 0; p < st->cloth->np; p++) {
+            f[3 * p] += mass[p] * g[0] + F[0];
+            f[3 * p + 1] += mass[p] * g[1] + F[1];
+            f[3 * p + 2] += mass[p] * g[2] + F[2];
+        }
+        return;
+    }
     for (size_t p = 0; p < st->cloth->np; p++)
         for (int i = 0; i < 3; i++) {
             double f = st->cloth->mass[p] * st->g[i] + st->F[i];

@@ -8,7 +8,7 @@ cl_status cl_pairdamp_init(cl_pairdamp *pd, cl_pairset set, double kd,
 {
     pd->kd = kd;
     pd->model = model;
-    return cl_pairterm_init(&pd->pt, set, NULL, NULL, false, err);
+    return cl_pairterm_init(&pd->pt, set, NULL, NULL, NULL, false, 2, err);
 }
 
 void cl_pairdamp_free(cl_pairdamp *pd)
@@ -108,73 +108,142 @@ static double damp_axial(double kd, const cl_pair *pr, const long *s,
     return add_pair_force(ev, pr, fa);
 }
 
-/* Axial damping's force (f0, f1, f2) on a of pair a-b:
- * kd (u . (v_b - v_a)) u, the arithmetic of damp_axial; none for
- * coincident particles.  Scalars, not an array: a force stored entry by
- * entry and read back two at a time stalls on store forwarding. */
-static inline void axial_force(double kd, const double *xa, const double *xb,
-                               const double *va, const double *vb,
-                               double *f0, double *f1, double *f2)
+typedef struct {
+    const cl_pairdamp *pd;
+    const double *x, *v;
+    bool dv, dx;     /* blocks: df/dv (block 0), df/dx (block 1) */
+} damp_job;
+
+/* Linear damping of pairs [k0, k1): f = -kd (v_a - v_b), df/dv block
+ * kd I (forces/pairkern.h phase 1). */
+CL_PAIR_KERNEL
+static void linear_chunk(void *ctx, cl_pairkern *pk, size_t k0, size_t k1,
+                         size_t base)
 {
-    double d = cl_dist(xa, xb), uw = 0.0;
-    if (!(d > 0)) {
-        *f0 = *f1 = *f2 = 0.0;
-        return;
+    const damp_job *j = ctx;
+    const double *restrict v = j->v;
+    double kd = j->pd->kd, *restrict f0 = pk->f0 - base;
+    double *restrict f1 = pk->f1 - base, *restrict f2 = pk->f2 - base;
+    const int *ia = pk->ia, *ib = pk->ib;
+#pragma omp simd
+    for (size_t k = k0; k < k1; k++) {
+        int a = 3 * ia[k], b = 3 * ib[k];
+        f0[k] = -kd * (v[a] - v[b]);
+        f1[k] = -kd * (v[a + 1] - v[b + 1]);
+        f2[k] = -kd * (v[a + 2] - v[b + 2]);
     }
-    double u0 = (xb[0] - xa[0]) / d, u1 = (xb[1] - xa[1]) / d;
-    double u2 = (xb[2] - xa[2]) / d;
-    uw += u0 * (vb[0] - va[0]);
-    uw += u1 * (vb[1] - va[1]);
-    uw += u2 * (vb[2] - va[2]);
-    *f0 = kd * uw * u0;
-    *f1 = kd * uw * u1;
-    *f2 = kd * uw * u2;
+    for (size_t k = k0; j->dv && k < k1; k++)
+        for (int i = 0; i < 9; i++)
+            pk->blk[18 * (k - base) + i] = i % 4 ? 0.0 : kd;
 }
 
-/* Forces only, linear or axial: the path of every right-hand side. */
-static void damp_forces(const cl_pairdamp *pd, size_t k0, size_t k1,
-                        const double *restrict x, const double *restrict v,
-                        double *restrict f)
+/* u . w with w = v_b - v_a, summed as damp_axial sums it. */
+static inline double axial_uw(double u0, double u1, double u2, double w0,
+                              double w1, double w2)
 {
-    const cl_pair *pair = pd->pt.set.pair;
-    double kd = pd->kd;
-    bool axial = pd->model == CL_DAMP_AXIAL;
+    double uw = 0.0;
+    uw += u0 * w0;
+    uw += u1 * w1;
+    uw += u2 * w2;
+    return uw;
+}
+
+/* Entry e = (r, q) of kd u u^T into Bk[e] and of G into Bk[9 + e], as
+ * damp_axial and axial_dx_block round them (c = kd/d, pwq = (P w)_q,
+ * delta = 1 on the diagonal); zeros where z is false (d = 0). */
+static inline void axial_entry(double *Bk, int e, bool z, double kd,
+                               double c, double uw, double ur, double uq,
+                               double pwq, double delta)
+{
+    double bv = kd * ur * uq, g = c * (ur * pwq + uw * (delta - ur * uq));
+    Bk[e] = z ? bv : 0.0;
+    Bk[9 + e] = z ? g : 0.0;
+}
+
+/* The df/dv block kd u u^T and the df/dx block G (forces/pairdamp.h) of
+ * pairs [k0, k1) into blocks 0 and 1; zeros for coincident particles. */
+CL_PAIR_KERNEL
+static void axial_blocks(const cl_pairdamp *pd, cl_pairkern *pk, size_t k0,
+                         size_t k1, size_t base, const double *v)
+{
+    double kd = pd->kd, *restrict B = pk->blk - 18 * base;
+    const int *ia = pk->ia, *ib = pk->ib;
+    const double *restrict d = pk->d - base, *restrict u0 = pk->u0 - base;
+    const double *restrict u1 = pk->u1 - base, *restrict u2 = pk->u2 - base;
+#pragma omp simd
     for (size_t k = k0; k < k1; k++) {
-        if (cl_pairterm_is_torn(&pd->pt, k))
-            continue;
-        const double *va = v + 3 * pair[k].a, *vb = v + 3 * pair[k].b;
-        double f0, f1, f2;
-        if (axial) {
-            axial_force(kd, x + 3 * pair[k].a, x + 3 * pair[k].b, va, vb,
-                        &f0, &f1, &f2);
-        } else {
-            f0 = -kd * (va[0] - vb[0]);
-            f1 = -kd * (va[1] - vb[1]);
-            f2 = -kd * (va[2] - vb[2]);
-        }
-        cl_pair_scatter(f, &pair[k], f0, f1, f2);
+        int a = 3 * ia[k], b = 3 * ib[k];
+        double w0 = v[b] - v[a], w1 = v[b + 1] - v[a + 1];
+        double w2 = v[b + 2] - v[a + 2];
+        double uw = axial_uw(u0[k], u1[k], u2[k], w0, w1, w2);
+        double c = kd / d[k], x = u0[k], y = u1[k], q = u2[k];
+        double p0 = w0 - uw * x, p1 = w1 - uw * y, p2 = w2 - uw * q;
+        double *Bk = B + 18 * k;
+        bool z = d[k] > 0;
+        axial_entry(Bk, 0, z, kd, c, uw, x, x, p0, 1.0);
+        axial_entry(Bk, 1, z, kd, c, uw, x, y, p1, 0.0);
+        axial_entry(Bk, 2, z, kd, c, uw, x, q, p2, 0.0);
+        axial_entry(Bk, 3, z, kd, c, uw, y, x, p0, 0.0);
+        axial_entry(Bk, 4, z, kd, c, uw, y, y, p1, 1.0);
+        axial_entry(Bk, 5, z, kd, c, uw, y, q, p2, 0.0);
+        axial_entry(Bk, 6, z, kd, c, uw, q, x, p0, 0.0);
+        axial_entry(Bk, 7, z, kd, c, uw, q, y, p1, 0.0);
+        axial_entry(Bk, 8, z, kd, c, uw, q, q, p2, 1.0);
     }
+}
+
+/* Axial damping of pairs [k0, k1), the arithmetic of damp_axial:
+ * f = kd (u . w) u, none for coincident particles; and the blocks. */
+CL_PAIR_KERNEL
+static void axial_chunk(void *ctx, cl_pairkern *pk, size_t k0, size_t k1,
+                        size_t base)
+{
+    const damp_job *j = ctx;
+    const double *restrict v = j->v;
+    double kd = j->pd->kd;
+    cl_pairkern_geometry(pk, k0, k1, base, j->x);
+    const double *restrict d = pk->d - base, *restrict u0 = pk->u0 - base;
+    const double *restrict u1 = pk->u1 - base, *restrict u2 = pk->u2 - base;
+    double *restrict f0 = pk->f0 - base, *restrict f1 = pk->f1 - base;
+    double *restrict f2 = pk->f2 - base;
+    const int *ia = pk->ia, *ib = pk->ib;
+#pragma omp simd
+    for (size_t k = k0; k < k1; k++) {
+        int a = 3 * ia[k], b = 3 * ib[k];
+        double uw = axial_uw(u0[k], u1[k], u2[k], v[b] - v[a],
+                             v[b + 1] - v[a + 1], v[b + 2] - v[a + 2]);
+        bool some = d[k] > 0;
+        f0[k] = some ? kd * uw * u0[k] : 0.0;
+        f1[k] = some ? kd * uw * u1[k] : 0.0;
+        f2[k] = some ? kd * uw * u2[k] : 0.0;
+    }
+    if (j->dv || j->dx)
+        axial_blocks(j->pd, pk, k0, k1, base, v);
 }
 
 void cl_pairdamp_eval(cl_pairdamp *pd, cl_eval *ev, cl_pairdamp_keep keep,
                       const void *ctx)
 {
-    size_t k0, k1;
-    cl_eval_share(ev, pd->pt.set.n, &k0, &k1);
-    if (!keep && !ev->dfdx && !ev->dfdv && !ev->want_energy) {
-        if (ev->f)
-            damp_forces(pd, k0, k1, ev->x, ev->v, ev->f);
+    bool axial = pd->model == CL_DAMP_AXIAL;
+    if (!keep && !ev->want_energy) {
+        damp_job j = {pd, ev->x, ev->v, ev->dfdv != NULL,
+                      axial && ev->dfdx != NULL};
+        double *vals[2] = {ev->dfdv, axial ? ev->dfdx : NULL};
+        if (ev->f || j.dv || j.dx)
+            cl_pairkern_eval(&pd->pt.kern, axial ? axial_chunk : linear_chunk,
+                             &j, pd->pt.torn, ev->f, vals);
         return;
     }
+    /* Engaged pairs only, or energies: the scalar loop, pair by pair. */
     double power = 0.0;
-    for (size_t k = k0; k < k1; k++) {
+    for (size_t k = 0; k < pd->pt.set.n; k++) {
         if (cl_pairterm_is_torn(&pd->pt, k) ||
             (keep && !keep(ctx, k, ev->x)))
             continue;
         const cl_pair *pr = &pd->pt.set.pair[k];
         const long *s = pd->pt.slot ? pd->pt.slot + 4 * k : NULL;
-        power += pd->model == CL_DAMP_AXIAL ? damp_axial(pd->kd, pr, s, ev)
-                                            : damp_linear(pd->kd, pr, s, ev);
+        power += axial ? damp_axial(pd->kd, pr, s, ev)
+                       : damp_linear(pd->kd, pr, s, ev);
     }
     if (ev->want_energy) {
         ev->energy = 0.0;

@@ -6,12 +6,13 @@
 #include <string.h>
 
 cl_status cl_pairterm_init(cl_pairterm *pt, cl_pairset set, cl_pairlaw_fn law,
-                           const void *params, bool clamp_transverse,
-                           cl_error *err)
+                           cl_pairlaw_batch_fn batch, const void *params,
+                           bool clamp_transverse, int nblk, cl_error *err)
 {
     memset(pt, 0, sizeof *pt);
     pt->set = set;
     pt->law = law;
+    pt->batch = batch;
     pt->params = params;
     pt->clamp_transverse = clamp_transverse;
     pt->couple = malloc((set.n + 1) * sizeof *pt->couple);
@@ -21,7 +22,7 @@ cl_status cl_pairterm_init(cl_pairterm *pt, cl_pairset set, cl_pairlaw_fn law,
         pt->couple[k][0] = set.pair[k].a;
         pt->couple[k][1] = set.pair[k].b;
     }
-    return CL_OK;
+    return cl_pairkern_init(&pt->kern, &pt->set, nblk, err);
 }
 
 void cl_pairterm_free(cl_pairterm *pt)
@@ -31,6 +32,7 @@ void cl_pairterm_free(cl_pairterm *pt)
     free(pt->slot);
     free(pt->torn);
     free(pt->broken);
+    cl_pairkern_free(&pt->kern);
     memset(pt, 0, sizeof *pt);
 }
 
@@ -118,16 +120,14 @@ cl_status cl_pairterm_bind(void *state, const cl_bpattern *pat,
                            const int *dof, cl_error *err)
 {
     cl_pairterm *pt = state;
-    return cl_pair_slots(&pt->set, pat, dof, &pt->slot, err);
+    cl_status rc = cl_pair_slots(&pt->set, pat, dof, &pt->slot, err);
+    return rc ? rc : cl_pairkern_bind(&pt->kern, pt->slot, pat->nnzb, err);
 }
 
-/* Add the four blocks +-K of one pair into vals. */
-static void add_pair_blocks(double *vals, const long *s, const double K[9])
+cl_status cl_pairterm_threads(void *state, int threads, cl_error *err)
 {
-    cl_block_add(vals, s[0], -1.0, K);
-    cl_block_add(vals, s[1], -1.0, K);
-    cl_block_add(vals, s[2], 1.0, K);
-    cl_block_add(vals, s[3], 1.0, K);
+    cl_pairterm *pt = state;
+    return cl_pairkern_threads(&pt->kern, threads, err);
 }
 
 /* f_a += s u, f_b -= s u: one expression for both evaluation paths, so
@@ -148,62 +148,53 @@ static inline double pair_dir(const double *xa, const double *xb, double d,
     return d > 0 ? (xb[i] - xa[i]) / d : 0.0;
 }
 
-/* Forces only (no Jacobian, no energy): the path of every right-hand
- * side. */
-static void pairterm_forces(const cl_pairterm *pt, size_t k0, size_t k1,
-                            const double *restrict x, double *restrict f)
+typedef struct {
+    const cl_pairterm *pt;
+    const double *x;
+    bool blocks;
+} pair_job;
+
+/* Phase 1 (forces/pairkern.h): geometry, law, force and block K. */
+static void pair_chunk(void *ctx, cl_pairkern *pk, size_t k0, size_t k1,
+                       size_t base)
 {
-    const cl_pair *pair = pt->set.pair;
-    for (size_t k = k0; k < k1; k++) {
-        if (cl_pairterm_is_torn(pt, k))
-            continue;
-        const double *xa = x + 3 * pair[k].a, *xb = x + 3 * pair[k].b;
-        double d = cl_dist(xa, xb);
-        cl_pairlaw law;
-        pt->law(pt->params, k, d, pair[k].rest, false, false, &law);
-        pair_add_force(f, &pair[k], law.s, pair_dir(xa, xb, d, 0),
-                       pair_dir(xa, xb, d, 1), pair_dir(xa, xb, d, 2));
-    }
+    const pair_job *j = ctx;
+    size_t i = k0 - base;
+    cl_pairkern_geometry(pk, k0, k1, base, j->x);
+    j->pt->batch(j->pt->params, k0, k1 - k0, pk->d + i, pk->L,
+                 pk->s + i, j->blocks ? pk->ds + i : NULL);
+    cl_pairkern_central(pk, k0, k1, base, j->blocks,
+                        j->pt->clamp_transverse);
 }
 
 void cl_pairterm_eval(void *state, cl_eval *ev)
 {
     cl_pairterm *pt = state;
-    size_t k0, k1;
-    cl_eval_share(ev, pt->set.n, &k0, &k1);
-    if (!ev->dfdx && !ev->want_energy) {
-        if (ev->f)
-            pairterm_forces(pt, k0, k1, ev->x, ev->f);
+    pair_job j = {pt, ev->x, ev->dfdx != NULL};
+    double *vals[2] = {ev->dfdx, NULL};
+    /* Forces and blocks by the kernels; with energies, forces by the
+     * scalar loop below (equal to the kernels' to rounding). */
+    double *f = ev->want_energy ? NULL : ev->f;
+    if (f || ev->dfdx)
+        cl_pairkern_eval(&pt->kern, pair_chunk, &j, pt->torn, f, vals);
+    if (!ev->want_energy)
         return;
-    }
     double energy = 0.0;
-    for (size_t k = k0; k < k1; k++) {
+    for (size_t k = 0; k < pt->set.n; k++) {
         if (cl_pairterm_is_torn(pt, k))
             continue; /* no force, energy or Jacobian values */
         const cl_pair *pr = &pt->set.pair[k];
         const double *xa = ev->x + 3 * pr->a, *xb = ev->x + 3 * pr->b;
         double d = cl_dist(xa, xb);
         cl_pairlaw law;
-        pt->law(pt->params, k, d, pr->rest, ev->want_energy,
-                ev->dfdx != NULL, &law);
+        pt->law(pt->params, k, d, pr->rest, true, false, &law);
         energy += law.e;
         /* Coincident particles have no direction: no force, isotropic K. */
         const double u[3] = {pair_dir(xa, xb, d, 0), pair_dir(xa, xb, d, 1),
                              pair_dir(xa, xb, d, 2)};
         if (ev->f)
             pair_add_force(ev->f, pr, law.s, u[0], u[1], u[2]);
-        if (ev->dfdx) {
-            double K[9];
-            if (d > 0)
-                cl_pair_block(u, d, law.s, law.ds, pt->clamp_transverse, K);
-            else
-                for (int i = 0; i < 9; i++)
-                    K[i] = (i % 4 == 0) ? law.ds : 0.0;
-            add_pair_blocks(ev->dfdx, pt->slot + 4 * k, K);
-        }
     }
-    if (ev->want_energy) {
-        ev->energy = energy;
-        ev->power = 0.0; /* conservative: its power is -dE/dt, not dissipated */
-    }
+    ev->energy = energy;
+    ev->power = 0.0; /* conservative: its power is -dE/dt, not dissipated */
 }

@@ -24,6 +24,7 @@
 
 #include <stdbool.h>
 
+#include "forces/pairkern.h"
 #include "forces/term.h"
 #include "model/pairs.h"
 
@@ -40,12 +41,21 @@ typedef void (*cl_pairlaw_fn)(const void *params, size_t k, double d,
                               double L, bool want_energy, bool want_ds,
                               cl_pairlaw *out);
 
+/* The law of pairs [k0, k0 + m): s[i] (and ds[i] if ds is not NULL) at
+ * distance d[i], rest length L[k0 + i]; the same values as the scalar law
+ * to rounding (forces/pairkern.h: vectorised, run-time dispatched). */
+typedef void (*cl_pairlaw_batch_fn)(const void *params, size_t k0, size_t m,
+                                    const double *d, const double *L,
+                                    double *s, double *ds);
+
 typedef struct {
     cl_pairset set;
     int (*couple)[2];   /* set.pair as plain (a, b) rows for the pattern */
     long *slot;         /* per pair: blocks aa, bb, ab, ba (-1: not a dof) */
     cl_pairlaw_fn law;
+    cl_pairlaw_batch_fn batch; /* forces and Jacobians (NULL: pairdamp) */
     const void *params;
+    cl_pairkern kern;   /* the vectorised, threaded evaluation */
     bool clamp_transverse;
     double cut;         /* tearing: a pair breaks when d > cut L (0: never) */
     unsigned char *torn; /* per pair, nonzero once broken (NULL: no cut) */
@@ -53,10 +63,11 @@ typedef struct {
     size_t nbroken;
 } cl_pairterm;
 
-/* Takes ownership of `set`. */
+/* Takes ownership of `set`; nblk Jacobian blocks per pair in the kernel
+ * buffers (1; 2 for pair damping's df/dv and df/dx). */
 cl_status cl_pairterm_init(cl_pairterm *pt, cl_pairset set, cl_pairlaw_fn law,
-                           const void *params, bool clamp_transverse,
-                           cl_error *err);
+                           cl_pairlaw_batch_fn batch, const void *params,
+                           bool clamp_transverse, int nblk, cl_error *err);
 void cl_pairterm_free(cl_pairterm *pt);
 
 /* Switch tearing on for cut > 0 (allocates the per-pair flags once); cut = 0
@@ -74,13 +85,7 @@ static inline bool cl_pairterm_is_torn(const cl_pairterm *pt, size_t k)
 static inline void cl_pair_scatter(double *restrict f, const cl_pair *pr,
                                    double f0, double f1, double f2)
 {
-    double *fa = f + 3 * pr->a, *fb = f + 3 * pr->b;
-    fa[0] += f0;
-    fa[1] += f1;
-    fa[2] += f2;
-    fb[0] -= f0;
-    fb[1] -= f1;
-    fb[2] -= f2;
+    cl_pairkern_scatter(f, (size_t)pr->a, (size_t)pr->b, f0, f1, f2);
 }
 
 /* The block K of docs/model.md (3.1) (row-major 3x3) for direction u,
@@ -100,6 +105,8 @@ size_t cl_pairterm_couplings(const void *state, const int (**pairs)[2]);
 cl_status cl_pairterm_bind(void *state, const cl_bpattern *pat,
                            const int *dof, cl_error *err);
 void cl_pairterm_eval(void *state, cl_eval *ev);
+/* cl_term_type.threads for the same kind of state. */
+cl_status cl_pairterm_threads(void *state, int threads, cl_error *err);
 /* Tearing hooks for the same kind of state: step_done breaks every intact
  * pair with d > cut L at full-particle positions x and returns how many
  * broke now (0 without tearing); broken lists those broken so far. */

@@ -120,7 +120,8 @@ static cl_status pbd_setup(pbd_state *st, const cl_cloth *cloth, long levels,
         cl_pairs_free(&set);
         return rc;
     }
-    if ((rc = cl_pairterm_init(&st->pt, set, NULL, NULL, false, err)))
+    if ((rc = cl_pairterm_init(&st->pt, set, NULL, NULL, NULL, false, 1,
+                                   err)))
         return rc;
     return cl_pairterm_tear(&st->pt, cut, err);
 }

@@ -75,7 +75,7 @@ const cl_term_type cl_term_spring_damping = {
     .doc = "dashpots on the spring pairs: axial kd (u.(v_j - v_i)) u "
            "(Verlet-and-PBD spring and friction) or linear -kd (v_i - v_j)",
     .conservative = false,
-    .splits = true,
+    .threads = cl_pairterm_threads,
     .create = spring_damping_create,
     .couplings = cl_pairterm_couplings,
     .bind = cl_pairterm_bind,

@@ -248,6 +248,21 @@ static void springs_law(const void *params, size_t k, double d, double L,
     out->e = want_energy ? 0.5 * st->k[k] * stretch * stretch : 0.0;
 }
 
+/* The law over pairs [k0, k0 + m) (cl_pairlaw_batch_fn). */
+CL_PAIR_KERNEL
+static void springs_batch(const void *params, size_t k0, size_t m,
+                          const double *d, const double *L, double *s,
+                          double *ds)
+{
+    const springs_state *st = params;
+    const double *restrict kk = st->k + k0, *restrict LL = L + k0;
+#pragma omp simd
+    for (size_t i = 0; i < m; i++)
+        s[i] = kk[i] * (d[i] - LL[i]);
+    for (size_t i = 0; ds && i < m; i++)
+        ds[i] = kk[i];
+}
+
 static void springs_free(void *state)
 {
     springs_state *st = state;
@@ -289,8 +304,9 @@ static cl_status springs_create(cl_config *cfg, const cl_cloth *cloth,
         return rc;
     }
     st->k = net.k;
-    if ((rc = cl_pairterm_init(&st->pt, net.set, springs_law, st,
-                               opts->clamp_transverse, err)) ||
+    if ((rc = cl_pairterm_init(&st->pt, net.set, springs_law,
+                               springs_batch, st, opts->clamp_transverse, 1,
+                               err)) ||
         (rc = cl_pairterm_tear(&st->pt, opts->tear_cut, err))) {
         springs_free(st);
         return rc;
@@ -305,7 +321,7 @@ const cl_term_type cl_term_springs = {
            "shear, bend pairs or levels 1..k (Zischg, Chea and Aigner; "
            "Verlet-and-PBD report)",
     .conservative = true,
-    .splits = true,
+    .threads = cl_pairterm_threads,
     .create = springs_create,
     .couplings = cl_pairterm_couplings,
     .bind = cl_pairterm_bind,

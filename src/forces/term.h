@@ -35,11 +35,6 @@ typedef struct {
     double *dfdx;     /* blocks added into pattern slots, or NULL */
     double *dfdv;     /* likewise for the velocity Jacobian, or NULL */
     bool want_energy;
-    /* Threaded force evaluation (cl_model_set_threads): a term whose type
-     * `splits` evaluates only share `part` of `nparts` of its work
-     * (cl_eval_share); nparts 0 or 1: all of it.  Only with forces alone
-     * (dfdx, dfdv NULL, want_energy false). */
-    unsigned part, nparts;
     double energy;    /* out (if want_energy): this term's potential energy */
     double power;     /* out (if want_energy): sum of f . v of a dissipative
                        * term (damping); 0 for conservative terms */
@@ -51,8 +46,6 @@ typedef struct {
     bool conservative;  /* energy is a potential (else: dissipative power) */
     bool soft;          /* explicit by default in an IMEX split (the
                          * term's `imex` key; docs/integrators.md 10) */
-    bool splits;        /* eval honours cl_eval part/nparts (its work is a
-                         * loop over independent items, e.g. pairs) */
     cl_status (*create)(cl_config *cfg, const cl_cloth *cloth,
                         const cl_term_opts *opts, void **state,
                         cl_error *err);
@@ -79,21 +72,12 @@ typedef struct {
     /* Connections (particle pairs) broken so far, for leaving torn
      * triangles out of frames. */
     size_t (*broken)(const void *state, const int (**pairs)[2]);
+    /* Evaluate forces and Jacobians with `threads` OpenMP threads from now
+     * on (cl_model_set_threads), with results bitwise independent of the
+     * count (forces/pairkern.h); allocates what that needs, once. */
+    cl_status (*threads)(void *state, int threads, cl_error *err);
     void (*free)(void *state);
 } cl_term_type;
-
-/* The items [*k0, *k1) of n that share ev->part of ev->nparts takes. */
-static inline void cl_eval_share(const cl_eval *ev, size_t n, size_t *k0,
-                                 size_t *k1)
-{
-    if (ev->nparts <= 1) {
-        *k0 = 0;
-        *k1 = n;
-        return;
-    }
-    *k0 = n * ev->part / ev->nparts;
-    *k1 = n * (ev->part + 1) / ev->nparts;
-}
 
 /* Registry (forces/registry.c), NULL-terminated, in evaluation order. */
 extern const cl_term_type *const cl_term_registry[];

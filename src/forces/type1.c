@@ -38,6 +38,26 @@ static void type1_law(const void *params, size_t k, double d, double L,
     }
 }
 
+/* The law over pairs [k0, k0 + m) (cl_pairlaw_batch_fn). */
+CL_PAIR_KERNEL
+static void type1_batch(const void *params, size_t k0, size_t m,
+                        const double *d, const double *L, double *s,
+                        double *ds)
+{
+    const type1_state *st = params;
+    const double *restrict LL = L + k0;
+    double ks = st->ks;
+    bool linear = st->linear;
+#pragma omp simd
+    for (size_t i = 0; i < m; i++) {
+        double stretch = d[i] - LL[i], v = ks * stretch;
+        bool on = stretch >= 0 || linear;
+        s[i] = on ? v : 0.0;
+        if (ds)
+            ds[i] = on ? ks : 0.0;
+    }
+}
+
 static void type1_free(void *state)
 {
     type1_state *st = state;
@@ -75,8 +95,8 @@ static cl_status type1_create(cl_config *cfg, const cl_cloth *cloth,
     st->linear = ck == 1;
     cl_pairset set;
     if ((rc = cl_pairs_type1(cloth, &set, err)) ||
-        (rc = cl_pairterm_init(&st->pt, set, type1_law, st,
-                               opts->clamp_transverse, err)) ||
+        (rc = cl_pairterm_init(&st->pt, set, type1_law, type1_batch, st,
+                               opts->clamp_transverse, 1, err)) ||
         (rc = cl_pairterm_tear(&st->pt, opts->tear_cut, err))) {
         type1_free(st);
         return rc;
@@ -90,7 +110,7 @@ const cl_term_type cl_term_type1 = {
     .doc = "Choi-Ko Type1: tension-only springs on sequential pairs "
            "(axis and diagonal neighbours)",
     .conservative = true,
-    .splits = true,
+    .threads = cl_pairterm_threads,
     .create = type1_create,
     .couplings = cl_pairterm_couplings,
     .bind = cl_pairterm_bind,

@@ -237,6 +237,81 @@ static void type2_law(const void *params, size_t k, double d, double L,
         out->e = compression_energy(st, &st->len[st->len_of[k]], d);
 }
 
+/* The linear branches over pairs [0, m) (tension ks (d - L), and
+ * cb (d - L) where it must win); need[i] marks the pairs left to f_b. */
+CL_PAIR_KERNEL
+static void linear_branches(const type2_state *st, size_t m, const double *d,
+                            const double *L, double *s, double *ds,
+                            unsigned char *need)
+{
+    double ks = st->tension == TENSION_SPRING ? st->ks : 0.0;
+    double cb = st->cb, kb = st->kb;
+    bool exact = st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT;
+#pragma omp simd
+    for (size_t i = 0; i < m; i++) {
+        double dd = d[i], l = L[i], lin = cb * (dd - l);
+        bool tension = dd >= l;
+        s[i] = tension ? ks * (dd - l) : lin;
+        ds[i] = tension ? ks : cb;
+        need[i] = !tension && !(exact && lin >= -12.0 * kb / (l * l));
+    }
+}
+
+/* f_b by the vectorised inverse sinc for the n pairs idx[] of a chunk
+ * (exact model, forces only), s = max(f_b, cb (d - L)); the scalar path
+ * where cl_asinc_1m_simd declines. */
+static void buckling_simd(const type2_state *st, size_t n, const size_t *idx,
+                          const double *d, const double *L, double *s)
+{
+    double e[CL_PAIRKERN_CHUNK], t[CL_PAIRKERN_CHUNK], D[CL_PAIRKERN_CHUNK];
+    unsigned char ok[CL_PAIRKERN_CHUNK];
+    for (size_t j = 0; j < n; j++)
+        e[j] = (L[idx[j]] - d[idx[j]]) / L[idx[j]];
+    cl_asinc_1m_simd(n, e, t, D, ok);
+    for (size_t j = 0; j < n; j++) {
+        size_t i = idx[j];
+        double l = L[i], c = 4.0 * st->kb / (l * l);
+        double fb = ok[j] ? c * (t[j] * t[j] / D[j])
+                          : buckling_force(st, d[i], l, NULL);
+        double lin = st->cb * (d[i] - l);
+        s[i] = lin >= fb ? lin : fb;
+    }
+}
+
+/* Pairs [0, m) of at most CL_PAIRKERN_CHUNK.  s is the same with and
+ * without ds (the Jacobian's forces are the right-hand side's, bit for
+ * bit); s' of the f_b branch comes from the scalar law. */
+static void type2_piece(const type2_state *st, size_t m, const double *d,
+                        const double *L, double *s, double *ds)
+{
+    double dsw[CL_PAIRKERN_CHUNK], sw;
+    unsigned char need[CL_PAIRKERN_CHUNK];
+    size_t idx[CL_PAIRKERN_CHUNK], n = 0;
+    bool exact = st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT;
+    linear_branches(st, m, d, L, s, ds ? ds : dsw, need);
+    for (size_t i = 0; i < m; i++)
+        if (need[i])
+            idx[n++] = i;
+    if (exact)
+        buckling_simd(st, n, idx, d, L, s);
+    for (size_t j = 0; j < n && (ds || !exact); j++) {
+        size_t i = idx[j];
+        compression_law(st, d[i], L[i], ds != NULL, exact ? &sw : &s[i],
+                        ds ? &ds[i] : &dsw[i]);
+    }
+}
+
+/* The law over pairs [k0, k0 + m) (cl_pairlaw_batch_fn). */
+static void type2_batch(const void *params, size_t k0, size_t m,
+                        const double *d, const double *L, double *s,
+                        double *ds)
+{
+    for (size_t i = 0; i < m; i += CL_PAIRKERN_CHUNK) {
+        size_t p = m - i < CL_PAIRKERN_CHUNK ? m - i : CL_PAIRKERN_CHUNK;
+        type2_piece(params, p, d + i, L + k0 + i, s + i, ds ? ds + i : NULL);
+    }
+}
+
 /* Sign changes of cb (d - L) - f_b(d) on [0, L], refined by Brent. */
 static cl_status find_crossings(type2_state *st, rest_length *rl,
                                 cl_error *err)
@@ -349,8 +424,8 @@ static cl_status type2_setup(type2_state *st, const cl_cloth *cloth,
     if (!st->quad)
         return cl_error_set(err, CL_ENOMEM, "out of memory (quadrature)");
     if ((rc = cl_pairs_type2(cloth, &set, err)) ||
-        (rc = cl_pairterm_init(&st->pt, set, type2_law, st,
-                               opts->clamp_transverse, err)) ||
+        (rc = cl_pairterm_init(&st->pt, set, type2_law, type2_batch, st,
+                               opts->clamp_transverse, 1, err)) ||
         (rc = cl_pairterm_tear(&st->pt, opts->tear_cut, err)))
         return rc;
     return build_lengths(st, err);
@@ -413,7 +488,7 @@ const cl_term_type cl_term_type2 = {
            "imperfection max(f_b, cb (d-L)) on interlaced pairs",
     .conservative = true,
     .soft = true,
-    .splits = true,
+    .threads = cl_pairterm_threads,
     .create = type2_create,
     .couplings = cl_pairterm_couplings,
     .bind = cl_pairterm_bind,

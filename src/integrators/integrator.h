@@ -54,11 +54,12 @@ typedef struct {
                           * (takes_petsc; --petsc); NULL or "" for none */
 } cl_integrator_opts;
 
-/* The linear solver's part of the options. */
+/* The linear solver's part of the options (threads: the system's). */
 static inline cl_linsol_opts cl_integrator_linsol_opts(
-    const cl_integrator_opts *o)
+    const cl_integrator_opts *o, const cl_system *sys)
 {
-    return (cl_linsol_opts){.tol = o->lin_tol, .maxit = o->lin_maxit};
+    return (cl_linsol_opts){.tol = o->lin_tol, .maxit = o->lin_maxit,
+                            .threads = sys->threads};
 }
 
 

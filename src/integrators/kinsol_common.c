@@ -336,7 +336,7 @@ static cl_status kin_linsol(cl_kin *s, const cl_integrator_opts *o,
                                  err);
     if (st != CL_OK)
         return st;
-    cl_linsol_opts lo = cl_integrator_linsol_opts(o);
+    cl_linsol_opts lo = cl_integrator_linsol_opts(o, s->sys);
     st = s->lt->create(s->sys->pattern, s->sys->mass, &lo,
                                  &s->lstate, err);
     if (st != CL_OK)

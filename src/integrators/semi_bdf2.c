@@ -121,7 +121,8 @@ static void sbdf2_rhs(void *state)
     double h = b->h;
     for (size_t i = 0; i < b->n; i++)
         b->work[i] = (b->x[i] - s->xprev[i]) + 2.0 * h * b->v[i];
-    cl_bmatvec(b->sys->pattern, b->dfdv, b->work, b->sol);
+    cl_bmatvec_threads(b->sys->pattern, b->dfdv, b->work, b->sol,
+                       b->sys->threads);
     for (size_t i = 0; i < b->n; i++) {
         double d = b->x[i] - s->xprev[i];
         b->rhs[i] = m[i] * (d / 3.0 + h / 9.0 * (8.0 * b->v[i] -

@@ -84,7 +84,7 @@ cl_status cl_semi_init(cl_semi *s, const char *name, const cl_system *sys,
     s->t0 = t0;
     s->h = o->dt;
     st = semi_alloc(s, err);
-    cl_linsol_opts lo = cl_integrator_linsol_opts(o);
+    cl_linsol_opts lo = cl_integrator_linsol_opts(o, sys);
     if (st == CL_OK)
         st = s->lst->create(sys->pattern, sys->mass, &lo, &s->ls, err);
     if (st != CL_OK) {
@@ -291,12 +291,14 @@ static void semi_be_rhs(void *state)
 {
     cl_semi *s = state;
     double h = s->h;
-    cl_bmatvec(s->sys->pattern, s->dfdx, s->v, s->work);
+    cl_bmatvec_threads(s->sys->pattern, s->dfdx, s->v, s->work,
+                       s->sys->threads);
     for (size_t i = 0; i < s->n; i++)
         s->rhs[i] = h * (s->f[i] + h * s->work[i]);
     if (!s->sys->constrain)
         return;
-    cl_bmatvec(s->sys->pattern, s->dfdx, s->cs.y, s->work);
+    cl_bmatvec_threads(s->sys->pattern, s->dfdx, s->cs.y, s->work,
+                       s->sys->threads);
     for (size_t i = 0; i < s->n; i++)
         s->rhs[i] += h * s->work[i];
 }

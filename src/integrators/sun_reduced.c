@@ -291,7 +291,7 @@ static cl_status red_alloc(cl_sun *s, cl_sunred *r, const cl_integrator_opts *o,
     r->kupper = malloc((9 * r->sym.ne + 1) * sizeof *r->kupper);
     if (!r->kdiag || !r->kupper)
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
-    cl_linsol_opts lo = cl_integrator_linsol_opts(o);
+    cl_linsol_opts lo = cl_integrator_linsol_opts(o, s->sys);
     st = r->lt->create(s->sys->pattern, s->sys->mass, &lo, &r->lstate,
                        &inner);
     if (st != CL_OK)

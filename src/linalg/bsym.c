@@ -11,6 +11,9 @@ void cl_bsym_free(cl_bsym *s)
     free(s->col);
     free(s->up);
     free(s->low);
+    free(s->tstart);
+    free(s->tlist);
+    free(s->trow);
     memset(s, 0, sizeof *s);
 }
 
@@ -201,4 +204,80 @@ void cl_bsym_matvec(const cl_bsym *s, cl_bsym_kind kind,
         bsym_product(s, true, d, u, p, y);
     else
         bsym_product(s, false, d, u, p, y);
+}
+
+cl_status cl_bsym_transpose(cl_bsym *s, cl_error *err)
+{
+    free(s->tstart);
+    free(s->tlist);
+    free(s->trow);
+    s->tstart = calloc(s->nb + 1, sizeof *s->tstart);
+    s->tlist = malloc((s->ne + 1) * sizeof *s->tlist);
+    s->trow = malloc((s->ne + 1) * sizeof *s->trow);
+    if (!s->tstart || !s->tlist || !s->trow)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (symmetric "
+                            "blocks by column, %zu)", s->ne);
+    for (size_t e = 0; e < s->ne; e++)
+        s->tstart[s->col[e] + 1]++;
+    for (size_t i = 0; i < s->nb; i++)
+        s->tstart[i + 1] += s->tstart[i];
+    /* Rows in order, so each column's list increases; tstart[c] runs to
+     * the end of column c and is shifted back below. */
+    for (size_t j = 0; j < s->nb; j++)
+        for (size_t e = s->rowptr[j]; e < s->rowptr[j + 1]; e++) {
+            size_t at = s->tstart[s->col[e]]++;
+            s->tlist[at] = e;
+            s->trow[at] = j;
+        }
+    memmove(s->tstart + 1, s->tstart, s->nb * sizeof *s->tstart);
+    s->tstart[0] = 0;
+    return CL_OK;
+}
+
+/* Row i of the product, each contribution formed as bsym_product forms it
+ * and added in its order: the transposed blocks of the rows above (in
+ * increasing row), the diagonal block, the upper blocks. */
+static inline void bsym_row_all(const cl_bsym *s, bool six, size_t i,
+                                const double *restrict d,
+                                const double *restrict u,
+                                const double *restrict p, double *restrict y)
+{
+    const int *at = six ? bsym_at6 : bsym_at9;
+    size_t w = six ? 6 : 9;
+    double y0 = 0.0, y1 = 0.0, y2 = 0.0;
+    for (size_t t = s->tstart[i]; t < s->tstart[i + 1]; t++) {
+        const double *B = u + w * s->tlist[t], *q = p + 3 * s->trow[t];
+        y0 += B[at[0]] * q[0] + B[at[3]] * q[1] + B[at[6]] * q[2];
+        y1 += B[at[1]] * q[0] + B[at[4]] * q[1] + B[at[7]] * q[2];
+        y2 += B[at[2]] * q[0] + B[at[5]] * q[1] + B[at[8]] * q[2];
+    }
+    const double *D = d + 9 * i, *pi = p + 3 * i;
+    y0 = y0 + bsym_row(D, 0, pi[0], pi[1], pi[2]);
+    y1 = y1 + bsym_row(D, 1, pi[0], pi[1], pi[2]);
+    y2 = y2 + bsym_row(D, 2, pi[0], pi[1], pi[2]);
+    for (size_t e = s->rowptr[i]; e < s->rowptr[i + 1]; e++) {
+        const double *B = u + w * e, *q = p + 3 * s->col[e];
+        y0 += B[at[0]] * q[0] + B[at[1]] * q[1] + B[at[2]] * q[2];
+        y1 += B[at[3]] * q[0] + B[at[4]] * q[1] + B[at[5]] * q[2];
+        y2 += B[at[6]] * q[0] + B[at[7]] * q[1] + B[at[8]] * q[2];
+    }
+    y[3 * i] = y0;
+    y[3 * i + 1] = y1;
+    y[3 * i + 2] = y2;
+}
+
+void cl_bsym_matvec_threads(const cl_bsym *s, cl_bsym_kind kind,
+                            const double *restrict d,
+                            const double *restrict u,
+                            const double *restrict p, double *restrict y,
+                            int threads)
+{
+    if (threads <= 1 || !s->tstart) {
+        cl_bsym_matvec(s, kind, d, u, p, y);
+        return;
+    }
+    bool six = kind == CL_BSYM_BLOCKS;
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (size_t i = 0; i < s->nb; i++)
+        bsym_row_all(s, six, i, d, u, p, y);
 }

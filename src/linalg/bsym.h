@@ -42,6 +42,11 @@ typedef struct {
     size_t *up;         /* ne: pattern index of block (i, j) */
     size_t *low;        /* ne: pattern index of block (j, i) */
     size_t *diag;       /* nb: pattern index of block (i, i) (borrowed) */
+    /* For the threaded product (cl_bsym_transpose; NULL until then): the
+     * upper blocks (j, i), j < i, of each block row i: */
+    size_t *tstart;     /* nb + 1 */
+    size_t *tlist;      /* ne: upper block e, increasing */
+    size_t *trow;       /* ne: the row j of upper block tlist[.] */
 } cl_bsym;
 
 /* The halves of `pat` (which must outlive s: its diagonal index is shared);
@@ -73,6 +78,19 @@ cl_bsym_kind cl_bsym_check(const cl_bsym *s, const double *blk, double tol);
 void cl_bsym_pack(const cl_bsym *s, cl_bsym_kind kind, double ca,
                   const double *x, double cb, const double *y,
                   const double *mass, double *d, double *u);
+
+/* The column lists of the upper blocks, for cl_bsym_matvec_threads. */
+cl_status cl_bsym_transpose(cl_bsym *s, cl_error *err);
+
+/* y = B p as cl_bsym_matvec, by `threads` OpenMP threads (which needs
+ * cl_bsym_transpose first; without it, serially), bitwise equal to it for
+ * every count: row i sums the transposed upper blocks of the rows above,
+ * its diagonal block and its upper blocks, in cl_bsym_matvec's order. */
+void cl_bsym_matvec_threads(const cl_bsym *s, cl_bsym_kind kind,
+                            const double *restrict d,
+                            const double *restrict u,
+                            const double *restrict p, double *restrict y,
+                            int threads);
 
 /* y = B p for B packed as `kind`; p and y have 3 nb entries and must not
  * overlap. */

@@ -76,6 +76,7 @@ typedef struct {
     double *pinv;            /* 9 nb (block) or n (point): P^-1 */
     double tol;
     int maxit;
+    int threads;             /* of the matrix-vector products */
     SUNContext ctx;
     N_Vector b, x, ones, w;  /* w: the caller's weights (solve_tol) */
     SUNLinearSolver ls;
@@ -94,9 +95,10 @@ static int pcg_atimes(void *data, N_Vector v, N_Vector z)
     const double *vp = N_VGetArrayPointer(v);
     double *zp = N_VGetArrayPointer(z), curv = 0.0, vv = 0.0;
     if (s->kind != CL_BSYM_NONE)
-        cl_bsym_matvec(&s->sym, s->kind, s->sdiag, s->supper, vp, zp);
+        cl_bsym_matvec_threads(&s->sym, s->kind, s->sdiag, s->supper, vp,
+                               zp, s->threads);
     else
-        cl_bmatvec(s->pat, s->ablk, vp, zp);
+        cl_bmatvec_threads(s->pat, s->ablk, vp, zp, s->threads);
     s->nprod++;
     for (size_t i = 0; i < s->n; i++)
         curv += vp[i] * zp[i];
@@ -243,6 +245,8 @@ static cl_status pcg_alloc(cl_pcg *s, const double *mass, cl_error *err)
     if (!s->mass || !s->ablk || !s->pinv)
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
     cl_status st = cl_bsym_create(s->pat, &s->sym, err);
+    if (st == CL_OK && s->threads > 1)
+        st = cl_bsym_transpose(&s->sym, err);
     if (st != CL_OK)
         return st;
     s->sdiag = malloc(9 * s->sym.nb * sizeof *s->sdiag);
@@ -309,6 +313,7 @@ static cl_status pcg_create_named(const char *name, bool block,
     s->block = block;
     s->tol = o->tol > 0.0 ? o->tol : CL_PCG_TOL;
     s->maxit = pcg_maxit(o->maxit, s->n);
+    s->threads = o->threads;
     st = pcg_alloc(s, mass, err);
     if (st == CL_OK)
         st = pcg_sundials(s, err);

@@ -121,22 +121,40 @@ static void red_block_axpy(double s, const double *B, const double *p3,
 /* The row sums stay in registers (y may not alias blk or p), which makes
  * this, the inner loop of every matrix-free solve, about twice as fast as
  * accumulating into y block by block. */
+/* Block row bi of y = B p. */
+static inline void bmatvec_row(const cl_bpattern *pat, const double *blk,
+                               const double *p, double *y, size_t bi)
+{
+    double y0 = 0.0, y1 = 0.0, y2 = 0.0;
+    for (size_t k = pat->rowptr[bi]; k < pat->rowptr[bi + 1]; k++) {
+        const double *B = blk + 9 * k, *q = p + 3 * pat->col[k];
+        double q0 = q[0], q1 = q[1], q2 = q[2];
+        y0 += B[0] * q0 + B[1] * q1 + B[2] * q2;
+        y1 += B[3] * q0 + B[4] * q1 + B[5] * q2;
+        y2 += B[6] * q0 + B[7] * q1 + B[8] * q2;
+    }
+    y[3 * bi] = y0;
+    y[3 * bi + 1] = y1;
+    y[3 * bi + 2] = y2;
+}
+
 void cl_bmatvec(const cl_bpattern *pat, const double *blk, const double *p,
                 double *y)
 {
-    for (size_t bi = 0; bi < pat->nb; bi++) {
-        double y0 = 0.0, y1 = 0.0, y2 = 0.0;
-        for (size_t k = pat->rowptr[bi]; k < pat->rowptr[bi + 1]; k++) {
-            const double *B = blk + 9 * k, *q = p + 3 * pat->col[k];
-            double q0 = q[0], q1 = q[1], q2 = q[2];
-            y0 += B[0] * q0 + B[1] * q1 + B[2] * q2;
-            y1 += B[3] * q0 + B[4] * q1 + B[5] * q2;
-            y2 += B[6] * q0 + B[7] * q1 + B[8] * q2;
-        }
-        y[3 * bi] = y0;
-        y[3 * bi + 1] = y1;
-        y[3 * bi + 2] = y2;
+    for (size_t bi = 0; bi < pat->nb; bi++)
+        bmatvec_row(pat, blk, p, y, bi);
+}
+
+void cl_bmatvec_threads(const cl_bpattern *pat, const double *blk,
+                        const double *p, double *y, int threads)
+{
+    if (threads <= 1) {
+        cl_bmatvec(pat, blk, p, y);
+        return;
     }
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (size_t bi = 0; bi < pat->nb; bi++)
+        bmatvec_row(pat, blk, p, y, bi);
 }
 
 void cl_reduced_matvec(const cl_bpattern *pat, const double *mass, double a,

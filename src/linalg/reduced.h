@@ -64,6 +64,10 @@ void cl_reduced_blocks(const cl_bpattern *pat, const double *mass, double a,
  * p and y have 3 nb entries and must not overlap. */
 void cl_bmatvec(const cl_bpattern *pat, const double *blk, const double *p,
                 double *y);
+/* The same by `threads` OpenMP threads, each computing whole block rows:
+ * bitwise equal to cl_bmatvec for every count. */
+void cl_bmatvec_threads(const cl_bpattern *pat, const double *blk,
+                        const double *p, double *y, int threads);
 
 /* y = A p = M p - a dfdv p - b dfdx p without forming A (p, y: 3 nb, not
  * overlapping). */

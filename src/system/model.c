@@ -36,8 +36,6 @@ struct cl_model {
     cl_bpattern pattern;  /* blocks over free particles */
     double *mass3;        /* 3 * nfree */
     double *xf, *vf, *ff; /* full-particle work arrays, 3 * np */
-    int threads;          /* force evaluation: parts (cl_model_set_threads) */
-    double *tf;           /* forces of parts 1 .. threads-1, 3 np each */
     int (*torn)[2];       /* distinct connections torn so far, sorted */
     size_t ntorn;
     cl_contact *contact;  /* the obstacles (also a term), or NULL */
@@ -228,46 +226,12 @@ static void eval_terms(cl_model *m, uint64_t mask, double t, double *f,
         e->contact_work = m->contact_work;
 }
 
-/* Forces into m->ff by m->threads parts: part p runs its share of every
- * term that splits (and part 0 the other terms whole) into its own array
- * (part 0: m->ff), then the arrays are added in part order, entry by
- * entry.  The parts are loop iterations, so the result does not depend on
- * how many threads the runtime actually gives. */
-static void eval_forces_split(cl_model *m, uint64_t mask, double t)
-{
-    size_t n3 = 3 * m->cloth.np;
-    unsigned parts = (unsigned)m->threads;
-#pragma omp parallel num_threads(m->threads)
-    {
-#pragma omp for schedule(static, 1)
-        for (unsigned p = 0; p < parts; p++) {
-            double *f = p == 0 ? m->ff : m->tf + (p - 1) * n3;
-            memset(f, 0, n3 * sizeof *f);
-            for (size_t k = 0; k < m->nterm; k++) {
-                bool splits = m->type[k]->splits;
-                if ((!splits && p > 0) || !(mask >> k & 1))
-                    continue;
-                cl_eval ev = {.t = t, .x = m->xf, .v = m->vf, .f = f,
-                              .part = p, .nparts = splits ? parts : 1};
-                m->type[k]->eval(m->state[k], &ev);
-            }
-        }
-#pragma omp for schedule(static)
-        for (size_t i = 0; i < n3; i++)
-            for (unsigned p = 1; p < parts; p++)
-                m->ff[i] += m->tf[(p - 1) * n3 + i];
-    }
-}
-
 static cl_status sys_force_terms(void *data, uint64_t mask, double t,
                                  const double *x, const double *v, double *f)
 {
     cl_model *m = data;
     cl_cloth_scatter(&m->cloth, t, x, v, m->xf, m->vf);
-    if (m->threads > 1)
-        eval_forces_split(m, mask, t);
-    else
-        eval_terms(m, mask, t, m->ff, NULL, NULL, NULL);
+    eval_terms(m, mask, t, m->ff, NULL, NULL, NULL);
     cl_cloth_gather(&m->cloth, m->ff, f);
     if (m->contact && cl_contact_infeasible(m->contact))
         return CL_EINFEASIBLE;
@@ -542,6 +506,7 @@ cl_status cl_model_create(cl_config *cfg, cl_model **model, cl_error *err)
     m->lags = m->contact && cl_contact_lags(m->contact);
     m->sys = (cl_system){
         .n = 3 * m->cloth.nfree, .mass = m->mass3, .pattern = &m->pattern,
+        .threads = 1,
         .data = m, .force = sys_force, .jacobian = sys_jacobian,
         .energy = sys_energy, .nterm = m->nterm,
         .implicit_terms = m->implicit, .force_terms = sys_force_terms,
@@ -583,7 +548,6 @@ void cl_model_free(cl_model *m)
     free(m->xf);
     free(m->vf);
     free(m->ff);
-    free(m->tf);
     free(m->torn);
     free(m->xw);
     free(m->vw);
@@ -596,17 +560,14 @@ cl_status cl_model_set_threads(cl_model *m, int threads, cl_error *err)
     if (threads < 1 || threads > CL_MODEL_MAX_THREADS)
         return cl_error_set(err, CL_EINVAL, "threads = %d: need 1 .. %d",
                             threads, CL_MODEL_MAX_THREADS);
-    size_t n3 = 3 * m->cloth.np;
-    double *tf = NULL;
-    if (threads > 1) {
-        tf = malloc((size_t)(threads - 1) * n3 * sizeof *tf);
-        if (!tf)
-            return cl_error_set(err, CL_ENOMEM, "out of memory (%d force "
-                                "arrays)", threads - 1);
+    for (size_t k = 0; k < m->nterm; k++) {
+        cl_status rc = m->type[k]->threads
+                           ? m->type[k]->threads(m->state[k], threads, err)
+                           : CL_OK;
+        if (rc)
+            return rc;
     }
-    free(m->tf);
-    m->tf = tf;
-    m->threads = threads;
+    m->sys.threads = threads;
     return CL_OK;
 }
 

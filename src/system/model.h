@@ -30,13 +30,14 @@ typedef struct cl_model cl_model;
 cl_status cl_model_create(cl_config *cfg, cl_model **model, cl_error *err);
 void cl_model_free(cl_model *m);
 
-/* Force evaluations (the system's force: every right-hand side) split the
- * work of every pair term (Type1, Type2, damping, springs, spring
- * damping: cl_term_type.splits) into `threads` parts run by as many OpenMP
- * threads, each adding into its own force array; the arrays are summed in
- * a fixed order, so a run is reproducible for a given count and equals the
- * serial one to round-off (the sums are reordered).  Jacobians, energies
- * and every other term stay serial.  1 (the default) is serial. */
+/* Forces and Jacobians of every pair term (Type1, Type2, damping,
+ * springs, spring damping: cl_term_type.threads) run on `threads` OpenMP
+ * threads: per-pair results first, then each thread adds those of its own
+ * particles and Jacobian slots in the serial order (forces/pairkern.h), so
+ * results are bitwise the same for every count.  The count is also the
+ * system's (cl_system.threads: the Krylov solvers' matrix-vector
+ * products).  Energies and every other term stay serial.  1 (the default)
+ * is serial. */
 #define CL_MODEL_MAX_THREADS 64
 cl_status cl_model_set_threads(cl_model *m, int threads, cl_error *err);
 

@@ -77,6 +77,9 @@ typedef struct cl_system {
     size_t n;                    /* 3 * free particles */
     const double *mass;          /* n diagonal masses */
     const cl_bpattern *pattern;  /* blocks over free particles */
+    int threads;                 /* OpenMP threads for forces, Jacobians and
+                                  * the linear solvers' products (>= 1;
+                                  * results do not depend on it) */
     void *data;
     /* f(t, x, v) on the free particles (n entries). */
     cl_status (*force)(void *data, double t, const double *x,
