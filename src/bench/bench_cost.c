@@ -407,7 +407,7 @@ static double w13_per_step(cl_bctx *c, cl_model *m, int threads,
         cl_bench_note(row, "%s", err.msg);
         return NAN;
     }
-    time_fixed(m, cl_integrator_find("semi-bdf2"), &io, &fp, &ft);
+    cl_bench_time_fixed(m, cl_integrator_find("semi-bdf2"), &io, &fp, &ft);
     if (ft.rc) {
         cl_bench_note(row, "failed: %s", ft.msg);
         return NAN;
