@@ -184,3 +184,33 @@ Test(bsym, reduced_matrix_of_symmetric_jacobians_packs)
     free(a);
     bs_free(&c);
 }
+
+/* The threaded products (cl_bsym_matvec_threads after cl_bsym_transpose,
+ * cl_bmatvec_threads) are bitwise the serial ones for 1, 2 and 3
+ * threads, with 6-value and 9-value halves. */
+Test(bsym, threaded_products_are_bitwise_serial)
+{
+    static const cl_bsym_kind kinds[] = {CL_BSYM_BLOCKS, CL_BSYM_HALVES};
+    bs_case c;
+    bs_init(&c, true);
+    cr_assert_eq(cl_bsym_transpose(&c.sym, NULL), CL_OK);
+    unsigned long seed = 5;
+    double p[N], y[N], z[N];
+    for (size_t i = 0; i < N; i++)
+        p[i] = bc_rand(&seed);
+    for (int k = 0; k < 2; k++) {
+        cl_bsym_pack(&c.sym, kinds[k], 1.0, c.blk, 0.0, NULL, c.mass, c.d,
+                     c.u);
+        cl_bsym_matvec(&c.sym, kinds[k], c.d, c.u, p, y);
+        for (int t = 1; t <= 3; t++) {
+            cl_bsym_matvec_threads(&c.sym, kinds[k], c.d, c.u, p, z, t);
+            cr_assert_eq(memcmp(y, z, sizeof y), 0, "%d threads", t);
+        }
+    }
+    cl_bmatvec(&c.pat, c.blk, p, y);
+    for (int t = 1; t <= 3; t++) {
+        cl_bmatvec_threads(&c.pat, c.blk, p, z, t);
+        cr_assert_eq(memcmp(y, z, sizeof y), 0, "%d threads", t);
+    }
+    bs_free(&c);
+}
