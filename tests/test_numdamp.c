@@ -9,6 +9,7 @@
 #include <math.h>
 
 #include "analysis/numdamp.h"
+#include "integrators/integrator.h"
 #include "integrators/region.h"
 #include "problem.h"
 #include "runcli.h"
@@ -162,7 +163,11 @@ Test(numdamp, command_line)
     cli_result_free(&r);
     snprintf(path, sizeof path, "%s/damping.csv", dir);
     tmp_slurp(path, csv, sizeof csv);
-    cr_assert_eq(cli_count_lines(csv), 1 + 6 * 2, "%s", csv);
+    size_t nsel = 0; /* the study's own choice from the registry */
+    for (size_t i = 0; cl_integrator_registry[i]; i++)
+        nsel += cl_numdamp_selects(cl_integrator_registry[i]);
+    cr_assert_geq(nsel, 6);
+    cr_assert_eq(cli_count_lines(csv), 1 + nsel * 2, "%s", csv);
     cr_assert(strstr(csv, "kinsol-be,1,0.1,0.707106"), "%s", csv);
     cr_assert(strstr(csv, "kinsol-galpha,10,1,"), "%s", csv);
     char want[64];

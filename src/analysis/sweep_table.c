@@ -311,6 +311,15 @@ cl_status cl_stab_from_sweep(const cl_sweep_table *t, const char *label,
     return n < 0 ? err->code : CL_OK;
 }
 
+cl_status cl_stab_limit(const cl_sweep_table *t, cl_model *m,
+                        const char *label, const cl_integrator_type *type,
+                        const cl_integrator_opts *io, const cl_stab_opts *o,
+                        cl_stab_result *r, cl_error *err)
+{
+    return t ? cl_stab_from_sweep(t, label, type, r, err)
+             : cl_stability(m, type, io, o, r, err);
+}
+
 cl_status cl_conv_from_sweep(const cl_sweep_table *t, const char *label,
                              const cl_integrator_type *type,
                              cl_conv_result *r, cl_error *err)

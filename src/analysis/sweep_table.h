@@ -86,6 +86,14 @@ cl_status cl_stab_from_sweep(const cl_sweep_table *t, const char *label,
                              const cl_integrator_type *type,
                              cl_stab_result *r, cl_error *err);
 
+/* The step limit of `type` (labelled `label`) on model m: from the sweep's
+ * rows when t is not NULL (cl_stab_from_sweep), else by the search
+ * (cl_stability with io and o). */
+cl_status cl_stab_limit(const cl_sweep_table *t, cl_model *m,
+                        const char *label, const cl_integrator_type *type,
+                        const cl_integrator_opts *io, const cl_stab_opts *o,
+                        cl_stab_result *r, cl_error *err);
+
 /* The convergence levels of `label` from its rows: by dt for a fixed-step
  * method, by rtol otherwise, largest first; errors from the table (against
  * the sweep's reference run), every complete level with an error fitted. */

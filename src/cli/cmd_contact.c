@@ -508,10 +508,8 @@ static cl_status run_k(cl_model *m, void *ctx, int k, void *result,
         rc = cl_climit_predict(s->variant, mk->type, s->t, s->x, s->v, r,
                                err);
     if (!rc)
-        rc = s->from ? cl_stab_from_sweep(&s->table, mk->label, mk->type,
-                                          &r->stab, err)
-                     : cl_stability(s->variant, mk->type, &mk->io, &s->so,
-                                    &r->stab, err);
+        rc = cl_stab_limit(s->from ? &s->table : NULL, s->variant, mk->label,
+                           mk->type, &mk->io, &s->so, &r->stab, err);
     r->label = mk->label;
     r->k = s->k[v - dt_variants(s)];
     return rc;

@@ -223,10 +223,8 @@ static cl_status run_axis(cl_model *m, void *ctx, int k, void *result,
         rc = cl_climit_predict(s->variant, mk->type, 0.0, x, x + n, r, err);
     free(x);
     if (!rc)
-        rc = s->from ? cl_stab_from_sweep(&s->table, mk->label, mk->type,
-                                          &r->stab, err)
-                     : cl_stability(s->variant, mk->type, &mk->io, &s->so,
-                                    &r->stab, err);
+        rc = cl_stab_limit(s->from ? &s->table : NULL, s->variant, mk->label,
+                           mk->type, &mk->io, &s->so, &r->stab, err);
     r->label = mk->label;
     r->k = strtod(s->values.v[v], NULL);
     return rc;
@@ -350,10 +348,8 @@ static cl_status run_one(cl_model *m, void *ctx, int k, void *result,
     const stab_setup *s = ctx;
     cl_stab_result *r = result;
     const cl_cli_method *mk = &s->integrators.m[k];
-    cl_status rc = s->from ? cl_stab_from_sweep(&s->table, mk->label,
-                                                mk->type, r, err)
-                           : cl_stability(m, mk->type, &mk->io, &s->so, r,
-                                          err);
+    cl_status rc = cl_stab_limit(s->from ? &s->table : NULL, m, mk->label,
+                                 mk->type, &mk->io, &s->so, r, err);
     r->label = mk->label;
     return rc;
 }

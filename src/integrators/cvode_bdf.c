@@ -11,7 +11,7 @@
  *   klu-full  SUNLinSol_KLU with AMD ordering (SUNLinSol_KLUSetOrdering(LS,
  *             0)) on the full 2n x 2n matrix, J assembled in CSC from the
  *             pattern computed once (linalg/firstorder.h): the baseline;
- *   klu, pcg, pcg-jacobi, cholmod, auto (the default)
+ *   any solver of the linear-solver registry (auto the default):
  *             the half-size system (M - gamma df/dv - gamma^2 df/dx) dv =
  *             M rv + gamma df/dx rx, dx = rx + gamma dv solved by that
  *             cl_linsol (sun_reduced.h, linalg/linsol.h).
@@ -55,8 +55,8 @@ static cl_status cvb_create(const cl_system *sys, const cl_integrator_opts *o,
 const cl_integrator_type cl_integrator_cvode_bdf = {
     .name = "cvode-bdf",
     .region = &cl_region_bdf5,
-    .doc = "CVODE BDF, Newton, analytic Jacobian; --linsol auto (default), "
-           "klu, pcg, pcg-jacobi, cholmod on the half-size matrix, klu-full",
+    .doc = "CVODE BDF, Newton, analytic Jacobian; --linsol auto (default) "
+           "or any half-size solver (clothode list), klu-full",
     .fixed_step = false,
     .takes_max_order = true,
     .takes_linsol = true,

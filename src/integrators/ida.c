@@ -19,7 +19,8 @@
  *             stored; column pointers and row indices are rewritten on every
  *             call because IDA's SUNMatZero wipes them), so KLU analyses
  *             once and refactors numerically afterwards: the baseline;
- *   klu, pcg, pcg-jacobi, cholmod, auto (the default, as for cvode-bdf)
+ *   every solver of the linear-solver registry, auto the default (as for
+ *   cvode-bdf)
  *             the half-size system (M - df/dv / c_j - df/dx / c_j^2) dx =
  *             (rv + c_j M rx - df/dv rx) / c_j^2, dv = c_j dx - rx solved by
  *             that cl_linsol (sun_reduced.h, linalg/linsol.h).
