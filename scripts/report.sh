@@ -81,7 +81,7 @@ reference = 1e-11
 t_end = 0.01
 n = 16, 32
 run.samples = 20
-run.budget_wall = 2
+run.budget_wall = 5
 EOF
 # One section per six methods: an INI line holds at most 197 characters.
 sections() { # kind list axis-lines...
