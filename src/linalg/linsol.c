@@ -14,6 +14,7 @@
  *   amg-hypre   PETSc CG + hypre BoomerAMG, nodal coarsening */
 #include "linalg/linsol.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -75,6 +76,17 @@ const char *cl_linsol_names(char *buf, size_t len)
         used += (size_t)w;
     }
     return buf;
+}
+
+#define CL_LINSOL_MAXIT_MIN 1000L
+
+int cl_linsol_maxit(long lin_maxit, size_t n)
+{
+    long m = lin_maxit;
+    if (m == 0)
+        m = (long)(2 * n) > CL_LINSOL_MAXIT_MIN ? (long)(2 * n)
+                                                : CL_LINSOL_MAXIT_MIN;
+    return m < INT_MAX ? (int)m : INT_MAX;
 }
 
 cl_status cl_linsol_check_opts(const char *name, const cl_bpattern *pat,

@@ -111,6 +111,10 @@ static inline void cl_linsol_jacobian(const cl_linsol_type *lt, void *ls,
 cl_status cl_linsol_check_opts(const char *name, const cl_bpattern *pat,
                                const cl_linsol_opts *o, cl_error *err);
 
+/* The iterative solvers' iteration cap: lin_maxit, or max(1000, 2 n) when
+ * it is 0; at most INT_MAX. */
+int cl_linsol_maxit(long lin_maxit, size_t n);
+
 /* "klu, pcg": the names, for messages. */
 const char *cl_linsol_names(char *buf, size_t len);
 

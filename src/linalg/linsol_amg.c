@@ -47,7 +47,6 @@
 #include "linalg/reduced.h"
 
 #define CL_AMG_TOL 1e-10
-#define CL_AMG_MAXIT_MIN 1000L
 #define CL_AMG_REGROW 1.5
 
 typedef int (*amg_create_fn)(size_t nb, const size_t *rowptr,
@@ -141,8 +140,7 @@ static cl_status amg_create_named(const char *name, int hypre,
     *s = (cl_amg){.name = name, .pat = pat, .n = 3 * pat->nb,
                   .tol = o->tol > 0.0 ? o->tol : CL_AMG_TOL,
                   .base_iters = -1};
-    long maxit = o->maxit ? o->maxit : (long)(2 * s->n);
-    maxit = maxit > CL_AMG_MAXIT_MIN || o->maxit ? maxit : CL_AMG_MAXIT_MIN;
+    long maxit = cl_linsol_maxit(o->maxit, s->n);
     amg_create_fn create = NULL;
     cl_plugin_msg msg = {.text = ""};
     st = amg_alloc(s, mass, err);

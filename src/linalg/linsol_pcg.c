@@ -42,7 +42,6 @@
  * iterations, SUNLinSolNumIters summed over solves). */
 #include "linalg/linsol.h"
 
-#include <limits.h>
 #include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
@@ -59,7 +58,6 @@
 #include "linalg/reduced.h"
 
 #define CL_PCG_TOL 1e-10
-#define CL_PCG_MAXIT_MIN 1000L
 
 typedef struct {
     const char *name;
@@ -285,16 +283,6 @@ static cl_status pcg_sundials(cl_pcg *s, cl_error *err)
     return CL_OK;
 }
 
-/* opts->maxit, or max(1000, 2n) when 0; at most INT_MAX. */
-static int pcg_maxit(long lin_maxit, size_t n)
-{
-    long m = lin_maxit;
-    if (m == 0)
-        m = (long)(2 * n) > CL_PCG_MAXIT_MIN ? (long)(2 * n)
-                                             : CL_PCG_MAXIT_MIN;
-    return m < INT_MAX ? (int)m : INT_MAX;
-}
-
 static cl_status pcg_create_named(const char *name, bool block,
                                   const cl_bpattern *pat, const double *mass,
                                   const cl_linsol_opts *o, void **state,
@@ -312,7 +300,7 @@ static cl_status pcg_create_named(const char *name, bool block,
     s->n = 3 * pat->nb;
     s->block = block;
     s->tol = o->tol > 0.0 ? o->tol : CL_PCG_TOL;
-    s->maxit = pcg_maxit(o->maxit, s->n);
+    s->maxit = cl_linsol_maxit(o->maxit, s->n);
     s->threads = o->threads;
     st = pcg_alloc(s, mass, err);
     if (st == CL_OK)
