@@ -13,20 +13,9 @@
 #include "problem.h"
 #include "spring2.h"
 
-/* A fixed-step view of a petsc-* row: dt > 0 makes its steps fixed
- * (petsc_ts.h), and the convergence study halves dt when the type says
- * fixed_step. */
-static cl_integrator_type fixed_view(const char *name)
-{
-    const cl_integrator_type *t = cl_integrator_find(name);
-    cr_assert_not_null(t, "%s", name);
-    cl_integrator_type f = *t;
-    f.fixed_step = true;
-    return f;
-}
-
 /* The fitted order of `name` on spring2 to T = 1 at dt = 1e-2 .. 1.25e-3,
- * every level exactly 100 * 2^k steps. */
+ * every level exactly 100 * 2^k steps: a dt > 0 makes a petsc-* run take
+ * fixed steps (cl_integrator_fixed), and the convergence study halves it. */
 static double order_on_spring2(const char *name, const char *petsc)
 {
     pr_problem p;
@@ -37,10 +26,10 @@ static double order_on_spring2(const char *name, const char *petsc)
     cl_conv_ref ref;
     cr_assert_eq(cl_conv_reference(p.m, &o, &ref, &err), CL_OK, "%s",
                  err.msg);
-    cl_integrator_type t = fixed_view(name);
+    const cl_integrator_type *t = cl_integrator_find(name);
     cl_integrator_opts io = {.dt = 1e-2, .petsc = petsc};
     cl_conv_result r;
-    cr_assert_eq(cl_convergence(p.m, &t, &io, 4, &o, &ref, &r, &err), CL_OK,
+    cr_assert_eq(cl_convergence(p.m, t, &io, 4, &o, &ref, &r, &err), CL_OK,
                  "%s: %s", name, err.msg);
     for (int k = 0; k < r.nlev; k++) {
         cr_log_info("%s dt %g: err_x %.3e err_v %.3e order %.3f steps %ld",
@@ -161,6 +150,37 @@ Test(petsc_ts, adaptive_runs_agree_with_cvode_on_hang_smooth)
         cr_assert_gt(sp.lin_solves, 0);
         cr_assert_str_eq(sp.linsol, "petsc:preonly+lu");
     }
+}
+
+/* With --dt the steps are fixed: whole steps of dt to each output time,
+ * however many (3000 summed steps of 1e-3 s end half a step from the
+ * rounding that once cut a 1e-19 s step and kept it), and an output time
+ * between steps is refused rather than reached by a cut step. */
+Test(petsc_ts, fixed_steps_are_whole_steps_of_dt)
+{
+    s2_problem p;
+    s2_load(&p);
+    const char *names[] = {"petsc-bdf", "petsc-alpha2"};
+    for (int k = 0; k < 2; k++) {
+        const cl_integrator_type *t = cl_integrator_find(names[k]);
+        cr_assert(cl_integrator_fixed(t, 1e-3) && !cl_integrator_fixed(t, 0));
+        cl_integrator_opts o = {.dt = 1e-3};
+        void *st = NULL;
+        cl_error err = {0};
+        double x[3], v[3];
+        cl_stats s;
+        cr_assert_eq(t->create(p.sys, &o, 0.0, p.x0, p.v0, &st, &err),
+                     CL_OK, "%s", err.msg);
+        cr_assert_eq(t->advance(st, 3.0, x, v, &err), CL_OK, "%s", err.msg);
+        cr_assert_eq(t->advance(st, 3.001, x, v, &err), CL_OK, "%s",
+                     err.msg);
+        t->stats(st, &s);
+        cr_assert_eq(s.steps, 3001, "%s: %ld steps", names[k], s.steps);
+        cr_assert_eq(t->advance(st, 3.0015, x, v, &err), CL_EINVAL);
+        cr_assert(strstr(err.msg, "not a multiple"), "%s", err.msg);
+        t->free(st);
+    }
+    s2_free(&p);
 }
 
 /* A bad PETSc option and an order TSBDF does not have are refused with a

@@ -70,7 +70,7 @@ static cl_integrator_opts level_opts(const cl_integrator_type *type,
                                      double *param)
 {
     cl_integrator_opts o = *io;
-    if (type->fixed_step) {
+    if (cl_integrator_fixed(type, io->dt)) {
         o.dt = ldexp(io->dt, -k);
         *param = o.dt;
     } else {
@@ -89,7 +89,7 @@ cl_status cl_conv_check(const cl_integrator_type *type,
     if (levels < 2 || levels > CL_CONV_MAX_LEVELS)
         return cl_error_set(err, CL_EINVAL, "levels = %d: expected 2 .. %d",
                             levels, CL_CONV_MAX_LEVELS);
-    if (!type->fixed_step &&
+    if (!cl_integrator_fixed(type, io->dt) &&
         io->rtol * pow(10.0, 1 - levels) < 1e-15)
         return cl_error_set(err, CL_EINVAL, "rtol = %g over %d levels goes "
                             "down to %g: below 1e-15", io->rtol, levels,
@@ -141,7 +141,7 @@ cl_status cl_convergence(cl_model *m, const cl_integrator_type *type,
     memset(r, 0, sizeof *r);
     r->type = type;
     r->label = type->name;
-    r->fixed = type->fixed_step;
+    r->fixed = cl_integrator_fixed(type, io->dt);
     cl_status rc = cl_conv_check(type, io, levels, o, err);
     if (!rc)
         rc = cl_trial_init(&t, m, err);

@@ -58,6 +58,8 @@ typedef struct {
 typedef struct {
     long nticks;   /* output times are tick * dt_tick */
     double dt_tick;
+    bool fixed;    /* fixed steps of dt_tick: the last tick is a step's
+                    * end, not t_end itself */
 } schedule;
 
 static cl_status make_schedule(const cl_integrator_type *type,
@@ -65,7 +67,8 @@ static cl_status make_schedule(const cl_integrator_type *type,
                                const cl_sim_opts *so, schedule *s,
                                cl_error *err)
 {
-    if (!type->fixed_step) {
+    s->fixed = cl_integrator_fixed(type, o->dt);
+    if (!s->fixed) {
         s->nticks = so->samples * (so->frames > 0 ? so->frames : 1);
         s->dt_tick = so->t_end / (double)s->nticks;
         return CL_OK;
@@ -309,7 +312,7 @@ static cl_status reach(sim *s, const cl_integrator_type *type, void *state,
                        const schedule *sch, long tick, cl_sim_result *res,
                        cl_error *err)
 {
-    double t = tick == sch->nticks && !type->fixed_step
+    double t = tick == sch->nticks && !sch->fixed
                    ? s->so->t_end : (double)tick * sch->dt_tick;
     double w0 = cl_clock_wall();
     double c0 = cl_clock_cpu();

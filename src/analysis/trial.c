@@ -22,7 +22,7 @@ cl_status cl_trial_whole_steps(const cl_integrator_type *type, double dt,
                                double T, cl_error *err)
 {
     double steps = T / dt;
-    if (type->fixed_step &&
+    if (cl_integrator_fixed(type, dt) &&
         !(dt > 0 && fabs(steps - round(steps)) <= 1e-9 * steps))
         return cl_error_set(err, CL_EINVAL, "t_end = %g is not a whole "
                             "number of steps dt = %g (%s takes fixed steps)",
@@ -72,7 +72,7 @@ static cl_status check_stretch(cl_trial *t, double time, double max_stretch,
 static double check_time(const cl_integrator_type *type, double dt, double T,
                          long k, long checks)
 {
-    if (!type->fixed_step)
+    if (!cl_integrator_fixed(type, dt))
         return k == checks ? T : T * (double)k / (double)checks;
     double steps = nearbyint(T / dt);
     return dt * nearbyint(steps * (double)k / (double)checks);

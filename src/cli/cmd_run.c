@@ -85,7 +85,7 @@ static void print_summary(const char *problem, const run_setup *r,
     printf("problem      %s (%s, %zu free)\n", problem,
            cl_cloth_shape(c, shape, sizeof shape), c->nfree);
     printf("integrator   %s", im->type->name);
-    if (im->type->fixed_step)
+    if (cl_integrator_fixed(im->type, im->io.dt))
         printf(" (dt = %g)\n", im->io.dt);
     else
         printf(" (rtol = %g, atol = %g)\n", im->io.rtol, im->io.atol);

@@ -67,6 +67,9 @@ typedef struct {
     const char *name;
     const char *doc;     /* one line for `clothode list` */
     bool fixed_step;     /* true: needs dt; false: uses rtol/atol */
+    bool dt_fixes_step;  /* adaptive, but a dt > 0 in the options means
+                          * fixed steps of dt (the petsc-ts family);
+                          * cl_integrator_fixed */
     bool takes_linsol;   /* accepts opts->linsol (cl_linsol registry) */
     bool takes_max_order; /* accepts opts->max_order */
     bool takes_iterations; /* accepts opts->substeps, opts->iterations */
@@ -87,6 +90,14 @@ typedef struct {
 } cl_integrator_type;
 
 extern const cl_integrator_type *const cl_integrator_registry[];
+
+/* Whether a run of `type` with the option dt takes fixed steps of dt, so
+ * that its output times must be multiples of it (cl_fixed_steps_to). */
+static inline bool cl_integrator_fixed(const cl_integrator_type *type,
+                                       double dt)
+{
+    return type->fixed_step || (type->dt_fixes_step && dt > 0.0);
+}
 
 /* type->create behind the memory guard (memguard.h): refused with the
  * estimate when it exceeds the available memory, unless o->force. */

@@ -30,6 +30,9 @@ typedef struct {
     cl_error fail;        /* why a callback failed (fail.code != CL_OK) */
     double fail_t;
     double t;
+    double t0;
+    double dt;            /* > 0: fixed steps of dt (TSAdapt none) */
+    long done;            /* fixed steps taken */
 } cl_pts;
 
 /* ---- callbacks ------------------------------------------------------------ */
@@ -174,6 +177,8 @@ cl_status cl_petsc_ts_create(const cl_petsc_ts_method *m,
     s->m = m;
     s->sys = sys;
     s->t = t0;
+    s->t0 = t0;
+    s->dt = o->dt;
     clp_ts_create_fn create = NULL;
     if ((st = pts_symbols(s, &create, err)) != CL_OK) {
         free(s);
@@ -215,6 +220,13 @@ cl_status cl_petsc_ts_advance(void *state, double t_out, double *x,
         return cl_error_set(err, CL_EINVAL, "%s: output time %.17g lies "
                             "behind the current time %.17g", s->m->name,
                             t_out, s->t);
+    long nsteps = 0;
+    if (s->dt > 0.0) {
+        cl_status st = cl_fixed_steps_to(t_out - s->t0, s->dt, s->done,
+                                         &nsteps, err);
+        if (st != CL_OK)
+            return st;
+    }
     cl_plugin_msg msg = {.text = ""};
     cl_error_clear(&s->fail);
     int bad = s->advance(s->ts, t_out, x, v, &msg);
@@ -224,6 +236,7 @@ cl_status cl_petsc_ts_advance(void *state, double t_out, double *x,
     if (bad)
         return cl_error_set(err, CL_ESOLVER, "%s", msg.text);
     s->t = t_out;
+    s->done += nsteps;
     if (!cl_all_finite(x, s->sys->n) || !cl_all_finite(v, s->sys->n))
         return cl_error_set(err, CL_EBLOWUP, "%s: state not finite at t = "
                             "%.9g", s->m->name, s->t);

@@ -60,6 +60,7 @@ void cl_petsc_ts_free(void *state);
         .region = (region_),                                                \
         .doc = (doc_),                                                      \
         .fixed_step = false,                                                \
+        .dt_fixes_step = true,                                              \
         .takes_max_order = (order_),                                        \
         .takes_petsc = true,                                                \
         .create = ident##_create,                                           \

@@ -411,7 +411,11 @@ static PetscErrorCode set_method(clp_ts *p)
         PetscCall(TSARKIMEXSetFullyImplicit(p->ts, PETSC_TRUE));
     PetscCall(TSSetTime(p->ts, s->t0));
     PetscCall(TSSetTimeStep(p->ts, s->dt));
-    PetscCall(TSSetExactFinalTime(p->ts, TS_EXACTFINALTIME_MATCHSTEP));
+    /* fixed steps: whole steps of dt up to the output time (stop_time);
+     * adaptive: the step that would pass an output time ends on it */
+    PetscCall(TSSetExactFinalTime(p->ts, s->fixed
+                                             ? TS_EXACTFINALTIME_STEPOVER
+                                             : TS_EXACTFINALTIME_MATCHSTEP));
     PetscCall(TSSetTolerances(p->ts, s->atol, NULL, s->rtol, NULL));
     PetscCall(TSGetAdapt(p->ts, &adapt));
     /* TSALPHA2 would not adapt unless told; a failed Newton solve
@@ -533,6 +537,15 @@ static PetscErrorCode copy_state(clp_ts *p, double *x, double *v)
     PetscFunctionReturn(0);
 }
 
+/* The time TSSolve runs to for output time t_out: t_out itself, or with
+ * fixed steps half a step before it, so that the step ending on t_out up to
+ * the rounding of the summed steps is the last (a cut last step would leave
+ * TSAdapt none with the cut, 1e-19 s, as its step from then on). */
+static double stop_time(const clp_ts *p, double t_out)
+{
+    return p->s.fixed ? t_out - 0.5 * p->s.dt : t_out;
+}
+
 static PetscErrorCode solve_to(clp_ts *p, double t_out)
 {
     PetscInt steps, rejected, failed;
@@ -541,7 +554,7 @@ static PetscErrorCode solve_to(clp_ts *p, double t_out)
     PetscCall(TSSetMaxSteps(p->ts, p->s.max_steps > 0
                                        ? steps + (PetscInt)p->s.max_steps
                                        : PETSC_MAX_INT));
-    PetscCall(TSSetMaxTime(p->ts, t_out));
+    PetscCall(TSSetMaxTime(p->ts, stop_time(p, t_out)));
     PetscErrorCode ec = TSSolve(p->ts, NULL);
     /* both counted per TSSolve */
     PetscCall(TSGetStepRejections(p->ts, &rejected));
@@ -560,7 +573,7 @@ int clp_ts_advance(void *ts, double t_out, double *x, double *v,
     TSConvergedReason why = TS_CONVERGED_ITERATING;
     p->cb = 0;
     PetscErrorCode ec = TSGetTime(p->ts, &t);
-    if (ec == 0 && t < t_out)
+    if (ec == 0 && t < stop_time(p, t_out))
         ec = solve_to(p, t_out);
     if (ec == 0)
         ec = TSGetConvergedReason(p->ts, &why);
@@ -572,7 +585,7 @@ int clp_ts_advance(void *ts, double t_out, double *x, double *v,
         petsc_message(ec, "TSSolve", p->s.name, msg);
         return 1;
     }
-    if (why < 0 || t < t_out) {
+    if (why < 0 || t < stop_time(p, t_out)) {
         snprintf(msg->text, sizeof msg->text, "%s: PETSc's TS stopped at t = "
                  "%.9g on the way to %.9g: %s%s", p->s.name, t, t_out,
                  TSConvergedReasons[why],
