@@ -40,6 +40,14 @@
 #define CL_PAIR_KERNEL
 #endif
 
+/* A loop body inlined into every kernel that calls it (compiled for that
+ * kernel's target, with its constant arguments folded). */
+#if defined(__GNUC__)
+#define CL_PAIR_INLINE static inline __attribute__((always_inline))
+#else
+#define CL_PAIR_INLINE static inline
+#endif
+
 /* f_a += (f0, f1, f2), f_b -= (f0, f1, f2) for particles a, b (3 entries
  * each in f): a pair's force into a force array. */
 static inline void cl_pairkern_scatter(double *restrict f, size_t a, size_t b,

@@ -199,6 +199,17 @@ static cl_status build_pattern(cl_model *m, const int *dof, size_t nb,
 
 /* ---- evaluation ------------------------------------------------------- */
 
+/* Whether term k evaluated the forces of term k + 1 with its own
+ * (forces alone, both in mask: forces/term.h, fuse). */
+static bool fused_with_next(cl_model *m, uint64_t mask, size_t k,
+                            cl_eval *ev)
+{
+    const cl_term_type *t = m->type[k];
+    return ev->f && !ev->dfdx && !ev->dfdv && !ev->want_energy && t->fuse &&
+           k + 1 < m->nterm && (mask >> (k + 1) & 1) &&
+           t->fuse(m->state[k], m->type[k + 1], m->state[k + 1], ev);
+}
+
 /* Run the terms of mask (bit k: the k-th term) on the full arrays m->xf,
  * m->vf. */
 static void eval_terms(cl_model *m, uint64_t mask, double t, double *f,
@@ -213,6 +224,10 @@ static void eval_terms(cl_model *m, uint64_t mask, double t, double *f,
             continue;
         cl_eval ev = {.t = t, .x = m->xf, .v = m->vf, .f = f,
                       .dfdx = dfdx, .dfdv = dfdv, .want_energy = e != NULL};
+        if (fused_with_next(m, mask, k, &ev)) {
+            k++;
+            continue;
+        }
         m->type[k]->eval(m->state[k], &ev);
         if (!e)
             continue;
