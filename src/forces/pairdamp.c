@@ -8,7 +8,10 @@ cl_status cl_pairdamp_init(cl_pairdamp *pd, cl_pairset set, double kd,
 {
     pd->kd = kd;
     pd->model = model;
-    return cl_pairterm_init(&pd->pt, set, NULL, NULL, NULL, false, 2, err);
+    cl_status rc = cl_pairterm_init(&pd->pt, set, NULL, NULL, NULL, false, 2,
+                                    err);
+    pd->pt.kern.diag = model == CL_DAMP_LINEAR; /* df/dv = kd I */
+    return rc;
 }
 
 void cl_pairdamp_free(cl_pairdamp *pd)
@@ -246,8 +249,8 @@ static void linear_chunk(void *ctx, cl_pairkern *pk, size_t k0, size_t k1,
     double kd = j->pd->kd;
     damp_forces(j->pd, pk, j->v, k0, k1, base, false);
     for (size_t k = k0; j->dv && k < k1; k++)
-        for (int i = 0; i < 9; i++)
-            pk->blk[18 * (k - base) + i] = i % 4 ? 0.0 : kd;
+        for (int i = 0; i < 9; i += 4) /* a diagonal block */
+            pk->blk[18 * (k - base) + i] = kd;
 }
 
 /* Axial damping of pairs [k0, k1): geometry, forces and the blocks. */

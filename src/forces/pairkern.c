@@ -248,26 +248,48 @@ static void forces_threaded(const cl_pairkern *pk, const unsigned char *torn,
     }
 }
 
-/* vals[slot] += sign B, sign -1 for the aa, bb blocks (j < 2). */
-static inline void add_block(double *vals, long slot, int j, const double *B)
+/* vals[slot] -= B for the aa, bb blocks (j < 2), += B for ab, ba (the
+ * same roundings as adding -1 B).  A diagonal block adds its diagonal
+ * alone: adding its zeros would change nothing, as entries start at +0
+ * and sums and differences of them are never -0. */
+static inline void add_block(double *restrict vals, long slot, int j,
+                             const double *restrict B, bool diag)
 {
-    double sign = j < 2 ? -1.0 : 1.0, *dst = vals + 9 * slot;
-    for (int i = 0; i < 9; i++)
-        dst[i] += sign * B[i];
+    double *restrict dst = vals + 9 * slot;
+    if (diag && j < 2) {
+        dst[0] -= B[0];
+        dst[4] -= B[4];
+        dst[8] -= B[8];
+    } else if (diag) {
+        dst[0] += B[0];
+        dst[4] += B[4];
+        dst[8] += B[8];
+    } else if (j < 2) {
+#pragma omp simd
+        for (int i = 0; i < 9; i++)
+            dst[i] -= B[i];
+    } else {
+#pragma omp simd
+        for (int i = 0; i < 9; i++)
+            dst[i] += B[i];
+    }
 }
 
+CL_PAIR_KERNEL
 static void blocks_serial(const cl_pairkern *pk, size_t k0, size_t k1,
                           size_t base, const unsigned char *torn, int b,
                           double *vals)
 {
     size_t w = 9 * (size_t)pk->nblk;
+    bool diag = pk->diag >> b & 1;
     for (size_t k = k0; k < k1; k++) {
         if (is_torn(torn, k))
             continue;
         const double *B = pk->blk + w * (k - base) + 9 * (size_t)b;
+        const long *s = pk->slot + 4 * k;
         for (int j = 0; j < 4; j++)
-            if (pk->slot[4 * k + j] >= 0)
-                add_block(vals, pk->slot[4 * k + j], j, B);
+            if (s[j] >= 0)
+                add_block(vals, s[j], j, B, diag);
     }
 }
 
@@ -275,13 +297,14 @@ static void blocks_threaded(const cl_pairkern *pk, const unsigned char *torn,
                             int b, double *vals)
 {
     size_t w = 9 * (size_t)pk->nblk;
+    bool diag = pk->diag >> b & 1;
 #pragma omp parallel for num_threads(pk->threads) schedule(static)
     for (size_t q = 0; q < pk->nslot; q++)
         for (size_t e = pk->sstart[q]; e < pk->sstart[q + 1]; e++) {
             size_t k = (size_t)pk->sinc[e] >> 2;
             if (!is_torn(torn, k))
                 add_block(vals, (long)q, (int)(pk->sinc[e] & 3),
-                          pk->blk + w * k + 9 * (size_t)b);
+                          pk->blk + w * k + 9 * (size_t)b, diag);
         }
 }
 

@@ -69,6 +69,8 @@ static inline void cl_pairkern_scatter(double *restrict f, size_t a, size_t b,
 typedef struct {
     size_t n;              /* pairs */
     int nblk;              /* blocks per pair: 1 or 2 */
+    unsigned diag;         /* bit b: block b is diagonal (entries 0, 4, 8;
+                            * the others are neither read nor added) */
     int *ia, *ib;          /* particle indices a, b */
     double *L;             /* rest lengths */
     /* Per-pair buffers, index k - base (base = k0 of the chunk serially, 0
