@@ -199,15 +199,28 @@ static cl_status build_pattern(cl_model *m, const int *dof, size_t nb,
 
 /* ---- evaluation ------------------------------------------------------- */
 
-/* Whether term k evaluated the forces of term k + 1 with its own
- * (forces alone, both in mask: forces/term.h, fuse). */
+/* Whether term k evaluated term k + 1 with it (both in mask, no
+ * energies): their forces in one pass (forces/term.h, fuse), then their
+ * Jacobian blocks, if asked for, term by term; so that a Jacobian's
+ * forces are bitwise those of the force evaluation. */
 static bool fused_with_next(cl_model *m, uint64_t mask, size_t k,
-                            cl_eval *ev)
+                            const cl_eval *ev)
 {
-    const cl_term_type *t = m->type[k];
-    return ev->f && !ev->dfdx && !ev->dfdv && !ev->want_energy && t->fuse &&
-           k + 1 < m->nterm && (mask >> (k + 1) & 1) &&
-           t->fuse(m->state[k], m->type[k + 1], m->state[k + 1], ev);
+    const cl_term_type *t = m->type[k], *next;
+    if (!ev->f || ev->want_energy || !t->fuse || k + 1 >= m->nterm ||
+        !(mask >> (k + 1) & 1))
+        return false;
+    next = m->type[k + 1];
+    cl_eval forces = *ev, blocks = *ev;
+    forces.dfdx = forces.dfdv = NULL;
+    if (!t->fuse(m->state[k], next, m->state[k + 1], &forces))
+        return false;
+    blocks.f = NULL;
+    if (blocks.dfdx || blocks.dfdv) {
+        t->eval(m->state[k], &blocks);
+        next->eval(m->state[k + 1], &blocks);
+    }
+    return true;
 }
 
 /* Run the terms of mask (bit k: the k-th term) on the full arrays m->xf,
