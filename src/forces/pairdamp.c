@@ -259,7 +259,7 @@ static void axial_chunk(void *ctx, cl_pairkern *pk, size_t k0, size_t k1,
 {
     const damp_job *j = ctx;
     const double *v = j->v;
-    cl_pairkern_geometry(pk, k0, k1, base, j->x);
+    cl_pairkern_geometry(pk, k0, k1, base, j->x, false);
     damp_forces(j->pd, pk, v, k0, k1, base, false);
     if (j->dv || j->dx)
         axial_blocks(j->pd, pk, k0, k1, base, v);
@@ -290,7 +290,7 @@ static void fused_chunk(void *ctx, cl_pairkern *pk, size_t k0, size_t k1,
                         size_t base)
 {
     const fused_job *j = ctx;
-    cl_pairterm_phase1(j->pt, j->x, false, k0, k1, base);
+    cl_pairterm_phase1(j->pt, j->x, false, true, k0, k1, base);
     damp_forces(j->pd, pk, j->v, k0, k1, base, true);
 }
 

@@ -108,9 +108,11 @@ cl_status cl_pairkern_threads(cl_pairkern *pk, int threads, cl_error *err);
 cl_status cl_pairkern_bind(cl_pairkern *pk, const long *slot, size_t nslot,
                            cl_error *err);
 
-/* d, u of pairs [k0, k1) at positions x (cl_dist's arithmetic). */
+/* d, u of pairs [k0, k1) at positions x (cl_dist's arithmetic); u =
+ * x_ab/d, or with recip x_ab (1/d) (one division instead of three; u
+ * then differs from x_ab/d in the last bit). */
 void cl_pairkern_geometry(cl_pairkern *pk, size_t k0, size_t k1,
-                          size_t base, const double *x);
+                          size_t base, const double *x, bool recip);
 
 /* Central forces f = s u of pairs [k0, k1) and, with blocks, K of
  * docs/model.md (3.1) (isotropic s' I for d = 0; clamp_transverse drops
