@@ -222,3 +222,16 @@ Test(pairkern, springs_and_dashpots_fused_match_two_passes)
     compare_fused("axial");
     compare_fused("linear");
 }
+
+/* The clone the kernels run is the one the CPU test picks. */
+Test(pairkern, isa_is_the_resolvers_choice)
+{
+    const char *isa = cl_pairkern_isa();
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+    __builtin_cpu_init();
+    cr_assert_str_eq(isa, __builtin_cpu_supports("avx2") ? "avx2"
+                                                         : "default");
+#else
+    cr_assert_str_eq(isa, "default");
+#endif
+}

@@ -158,6 +158,16 @@ CL_PAIR_INLINE void geometry(cl_pairkern *pk, size_t k0, size_t k1,
     }
 }
 
+const char *cl_pairkern_isa(void)
+{
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") ? "avx2" : "default";
+#else
+    return "default";
+#endif
+}
+
 CL_PAIR_KERNEL
 void cl_pairkern_geometry(cl_pairkern *pk, size_t k0, size_t k1,
                           size_t base, const double *x, bool recip)

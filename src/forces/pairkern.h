@@ -62,6 +62,10 @@ static inline void cl_pairkern_scatter(double *restrict f, size_t a, size_t b,
     fb[2] -= f2;
 }
 
+/* The clone of the kernels this CPU runs: "avx2" or "default" (the
+ * choice target_clones' resolver makes, by the same CPU test). */
+const char *cl_pairkern_isa(void);
+
 /* Pairs per chunk of phase 1: serially, phase 2 follows each chunk, so
  * the buffers hold one chunk; with threads they hold every pair. */
 #define CL_PAIRKERN_CHUNK 256
