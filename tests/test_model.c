@@ -311,7 +311,8 @@ Test(model, system_force_equals_gathered_full_force)
  * serial ones for 2, 3 and 7 threads (a count that does not divide the
  * pairs evenly), on a 12 x 12 hang with every pair term active (Type1
  * taut and slack, Type2 on its f_b branch, damping) and on springs with
- * axial damping; bad counts are refused. */
+ * axial damping (forces in one pass with the springs', forces/term.h
+ * fuse; the Jacobian's forces are theirs); bad counts are refused. */
 static void eval_all(const cl_system *sys, const double *x, const double *v,
                      double *f, double *fj, double *jx, double *jv)
 {
@@ -328,6 +329,8 @@ static void check_threads(cl_model *m, fd_rng *r)
            *jxk = fd_vec(nv), *jv1 = fd_vec(nv), *jvk = fd_vec(nv);
     hang_state(m, r, x, v);
     eval_all(sys, x, v, f1, fj1, jx1, jv1);
+    cr_assert_eq(memcmp(fj1, f1, n * sizeof *f1), 0,
+                 "the Jacobian's forces are the force evaluation's");
     double big = 0.0;
     for (size_t i = 0; i < n; i++)
         big = fmax(big, fabs(f1[i]));

@@ -10,6 +10,7 @@
 #include <criterion/criterion.h>
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -177,4 +178,60 @@ Test(pairkern, damping_matches_scalar)
     compare_paths(&cl_term_spring_damping, false,
                   BUCKLED("springs.enabled=true", "type1.enabled=false",
                          "type2.enabled=false", "spring-damping.kd=0.02"));
+}
+
+/* Springs and their dashpots in one pass (forces/term.h, fuse) against
+ * the two terms one after the other: the same forces to 1e-13 relative
+ * (per-pair sums round differently); not fused where the pairs differ or
+ * Jacobians are asked for. */
+static void compare_fused(const char *model)
+{
+    char set[64];
+    snprintf(set, sizeof set, "spring-damping.model=%s", model);
+    kcase c;
+    kcase_open(&c, &cl_term_springs,
+               BUCKLED("springs.enabled=true", "type1.enabled=false",
+                       "type2.enabled=false", "spring-damping.kd=0.02", set));
+    void *damp = NULL;
+    cl_error err = {0};
+    cl_term_opts opts = {0};
+    cr_assert_eq(cl_term_spring_damping.create(c.cfg, cl_model_cloth(c.m),
+                                               &opts, &damp, &err), CL_OK);
+    double *fs = fd_vec(c.n3), *ff = fd_vec(c.n3), *jx = fd_vec(c.nv);
+    cl_eval two = {.x = c.x, .v = c.v, .f = fs};
+    cl_term_springs.eval(c.state, &two);
+    cl_term_spring_damping.eval(damp, &two);
+    cl_eval one = {.x = c.x, .v = c.v, .f = ff};
+    cr_assert(cl_term_springs.fuse(c.state, &cl_term_spring_damping, damp,
+                                   &one));
+    assert_close(ff, fs, c.n3, "fused forces");
+    cl_eval jac = {.x = c.x, .v = c.v, .f = ff, .dfdx = jx};
+    cr_assert_not(cl_term_springs.fuse(c.state, &cl_term_spring_damping,
+                                       damp, &jac));
+    cr_assert_not(cl_term_springs.fuse(c.state, &cl_term_damping, damp,
+                                       &one));
+    cl_term_spring_damping.free(damp);
+    free(fs);
+    free(ff);
+    free(jx);
+    kcase_close(&c);
+}
+
+Test(pairkern, springs_and_dashpots_fused_match_two_passes)
+{
+    compare_fused("axial");
+    compare_fused("linear");
+}
+
+/* The clone the kernels run is the one the CPU test picks. */
+Test(pairkern, isa_is_the_resolvers_choice)
+{
+    const char *isa = cl_pairkern_isa();
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+    __builtin_cpu_init();
+    cr_assert_str_eq(isa, __builtin_cpu_supports("avx2") ? "avx2"
+                                                         : "default");
+#else
+    cr_assert_str_eq(isa, "default");
+#endif
 }

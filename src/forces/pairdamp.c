@@ -8,7 +8,10 @@ cl_status cl_pairdamp_init(cl_pairdamp *pd, cl_pairset set, double kd,
 {
     pd->kd = kd;
     pd->model = model;
-    return cl_pairterm_init(&pd->pt, set, NULL, NULL, NULL, false, 2, err);
+    cl_status rc = cl_pairterm_init(&pd->pt, set, NULL, NULL, NULL, false, 2,
+                                    err);
+    pd->pt.kern.diag = model == CL_DAMP_LINEAR; /* df/dv = kd I */
+    return rc;
 }
 
 void cl_pairdamp_free(cl_pairdamp *pd)
@@ -114,27 +117,25 @@ typedef struct {
     bool dv, dx;     /* blocks: df/dv (block 0), df/dx (block 1) */
 } damp_job;
 
-/* Linear damping of pairs [k0, k1): f = -kd (v_a - v_b), df/dv block
- * kd I (forces/pairkern.h phase 1). */
-CL_PAIR_KERNEL
-static void linear_chunk(void *ctx, cl_pairkern *pk, size_t k0, size_t k1,
-                         size_t base)
+/* Linear damping forces f = -kd (v_a - v_b) of pairs [k0, k1) into the
+ * buffers of pk, or added to the forces there (add: a fused pass); add
+ * is a constant where it is inlined, so each loop has no select. */
+CL_PAIR_INLINE void linear_forces(double kd, cl_pairkern *pk,
+                                  const double *v, size_t k0, size_t k1,
+                                  size_t base, bool add)
 {
-    const damp_job *j = ctx;
-    const double *restrict v = j->v;
-    double kd = j->pd->kd, *restrict f0 = pk->f0 - base;
-    double *restrict f1 = pk->f1 - base, *restrict f2 = pk->f2 - base;
+    double *restrict f0 = pk->f0 - base, *restrict f1 = pk->f1 - base;
+    double *restrict f2 = pk->f2 - base;
     const int *ia = pk->ia, *ib = pk->ib;
 #pragma omp simd
     for (size_t k = k0; k < k1; k++) {
         int a = 3 * ia[k], b = 3 * ib[k];
-        f0[k] = -kd * (v[a] - v[b]);
-        f1[k] = -kd * (v[a + 1] - v[b + 1]);
-        f2[k] = -kd * (v[a + 2] - v[b + 2]);
+        double g0 = -kd * (v[a] - v[b]), g1 = -kd * (v[a + 1] - v[b + 1]);
+        double g2 = -kd * (v[a + 2] - v[b + 2]);
+        f0[k] = add ? f0[k] + g0 : g0;
+        f1[k] = add ? f1[k] + g1 : g1;
+        f2[k] = add ? f2[k] + g2 : g2;
     }
-    for (size_t k = k0; j->dv && k < k1; k++)
-        for (int i = 0; i < 9; i++)
-            pk->blk[18 * (k - base) + i] = i % 4 ? 0.0 : kd;
 }
 
 /* u . w with w = v_b - v_a, summed as damp_axial sums it. */
@@ -192,16 +193,14 @@ static void axial_blocks(const cl_pairdamp *pd, cl_pairkern *pk, size_t k0,
     }
 }
 
-/* Axial damping of pairs [k0, k1), the arithmetic of damp_axial:
- * f = kd (u . w) u, none for coincident particles; and the blocks. */
-CL_PAIR_KERNEL
-static void axial_chunk(void *ctx, cl_pairkern *pk, size_t k0, size_t k1,
-                        size_t base)
+/* Axial damping forces of pairs [k0, k1) from the geometry in pk, the
+ * arithmetic of damp_axial: f = kd (u . w) u, none for coincident
+ * particles; into the buffers, or added to the forces there (add, a
+ * constant where it is inlined). */
+CL_PAIR_INLINE void axial_forces(double kd, cl_pairkern *pk,
+                                 const double *v, size_t k0, size_t k1,
+                                 size_t base, bool add)
 {
-    const damp_job *j = ctx;
-    const double *restrict v = j->v;
-    double kd = j->pd->kd;
-    cl_pairkern_geometry(pk, k0, k1, base, j->x);
     const double *restrict d = pk->d - base, *restrict u0 = pk->u0 - base;
     const double *restrict u1 = pk->u1 - base, *restrict u2 = pk->u2 - base;
     double *restrict f0 = pk->f0 - base, *restrict f1 = pk->f1 - base;
@@ -213,12 +212,96 @@ static void axial_chunk(void *ctx, cl_pairkern *pk, size_t k0, size_t k1,
         double uw = axial_uw(u0[k], u1[k], u2[k], v[b] - v[a],
                              v[b + 1] - v[a + 1], v[b + 2] - v[a + 2]);
         bool some = d[k] > 0;
-        f0[k] = some ? kd * uw * u0[k] : 0.0;
-        f1[k] = some ? kd * uw * u1[k] : 0.0;
-        f2[k] = some ? kd * uw * u2[k] : 0.0;
+        double g0 = some ? kd * uw * u0[k] : 0.0;
+        double g1 = some ? kd * uw * u1[k] : 0.0;
+        double g2 = some ? kd * uw * u2[k] : 0.0;
+        f0[k] = add ? f0[k] + g0 : g0;
+        f1[k] = add ? f1[k] + g1 : g1;
+        f2[k] = add ? f2[k] + g2 : g2;
     }
+}
+
+/* The damping forces of pairs [k0, k1), model by model, into pk's
+ * buffers or (add) added to the forces there: each loop inlined with add
+ * a constant. */
+CL_PAIR_KERNEL
+static void damp_forces(const cl_pairdamp *pd, cl_pairkern *pk,
+                        const double *v, size_t k0, size_t k1, size_t base,
+                        bool add)
+{
+    double kd = pd->kd;
+    if (pd->model == CL_DAMP_AXIAL && add)
+        axial_forces(kd, pk, v, k0, k1, base, true);
+    else if (pd->model == CL_DAMP_AXIAL)
+        axial_forces(kd, pk, v, k0, k1, base, false);
+    else if (add)
+        linear_forces(kd, pk, v, k0, k1, base, true);
+    else
+        linear_forces(kd, pk, v, k0, k1, base, false);
+}
+
+/* Linear damping of pairs [k0, k1): forces and the df/dv block kd I
+ * (forces/pairkern.h phase 1). */
+static void linear_chunk(void *ctx, cl_pairkern *pk, size_t k0, size_t k1,
+                         size_t base)
+{
+    const damp_job *j = ctx;
+    double kd = j->pd->kd;
+    damp_forces(j->pd, pk, j->v, k0, k1, base, false);
+    for (size_t k = k0; j->dv && k < k1; k++)
+        for (int i = 0; i < 9; i += 4) /* a diagonal block */
+            pk->blk[18 * (k - base) + i] = kd;
+}
+
+/* Axial damping of pairs [k0, k1): geometry, forces and the blocks. */
+static void axial_chunk(void *ctx, cl_pairkern *pk, size_t k0, size_t k1,
+                        size_t base)
+{
+    const damp_job *j = ctx;
+    const double *v = j->v;
+    cl_pairkern_geometry(pk, k0, k1, base, j->x, false);
+    damp_forces(j->pd, pk, v, k0, k1, base, false);
     if (j->dv || j->dx)
         axial_blocks(j->pd, pk, k0, k1, base, v);
+}
+
+/* Whether pd damps exactly the pairs of pt, in the same order (decided
+ * once per pt: pair sets do not change). */
+static bool same_pairs(cl_pairdamp *pd, const cl_pairterm *pt)
+{
+    const cl_pairkern *a = &pd->pt.kern, *b = &pt->kern;
+    if (pd->fuse_with == pt)
+        return pd->fuse_same;
+    pd->fuse_with = pt;
+    pd->fuse_same = a->n == b->n;
+    for (size_t k = 0; pd->fuse_same && k < a->n; k++)
+        pd->fuse_same = a->ia[k] == b->ia[k] && a->ib[k] == b->ib[k];
+    return pd->fuse_same;
+}
+
+typedef struct {
+    cl_pairterm *pt;
+    const cl_pairdamp *pd;
+    const double *x, *v;
+} fused_job;
+
+/* Phase 1 of the fused pass: pt's forces, then the damping's added. */
+static void fused_chunk(void *ctx, cl_pairkern *pk, size_t k0, size_t k1,
+                        size_t base)
+{
+    const fused_job *j = ctx;
+    cl_pairterm_phase1(j->pt, j->x, false, true, k0, k1, base);
+    damp_forces(j->pd, pk, j->v, k0, k1, base, true);
+}
+
+bool cl_pairdamp_fused(cl_pairterm *pt, cl_pairdamp *pd, cl_eval *ev)
+{
+    if (!ev->f || ev->dfdx || ev->dfdv || ev->want_energy || pt->torn ||
+        pd->pt.torn || !pt->batch || !same_pairs(pd, pt))
+        return false;
+    fused_job j = {pt, pd, ev->x, ev->v};
+    cl_pairkern_eval(&pt->kern, fused_chunk, &j, NULL, ev->f, NULL);
+    return true;
 }
 
 void cl_pairdamp_eval(cl_pairdamp *pd, cl_eval *ev, cl_pairdamp_keep keep,

@@ -35,6 +35,8 @@ typedef struct {
     cl_pairterm pt; /* first member: pairs, couplings, slots */
     double kd;      /* N s/m */
     cl_damp_model model;
+    const cl_pairterm *fuse_with; /* cl_pairdamp_fused: the pair term last */
+    bool fuse_same;               /* compared, and whether its pairs are ours */
 } cl_pairdamp;
 
 /* Whether pair k is damped at positions x (ctx: the caller's state). */
@@ -55,5 +57,14 @@ cl_status cl_pairdamp_read_model(cl_config *cfg, const char *sec,
  * f.v. */
 void cl_pairdamp_eval(cl_pairdamp *pd, cl_eval *ev, cl_pairdamp_keep keep,
                       const void *ctx);
+
+/* Forces alone (ev asks for no Jacobian and no energy) of the central
+ * pair term pt and of pd on the same pairs, in one pass (forces/term.h,
+ * fuse): pt's phase 1 (geometry, law, s u), pd's force added to each
+ * pair's, one scatter.  Per pair f = s u + f_damp, then f_a += f, f_b -= f:
+ * the same terms as two passes, summed in another order (differences of
+ * the order of the rounding of the forces).  Returns false, doing nothing,
+ * when the pairs differ, either term tears, or ev asks for more. */
+bool cl_pairdamp_fused(cl_pairterm *pt, cl_pairdamp *pd, cl_eval *ev);
 
 #endif

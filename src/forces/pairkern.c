@@ -134,9 +134,10 @@ cl_status cl_pairkern_bind(cl_pairkern *pk, const long *slot, size_t nslot,
     return slot_incidence(pk, err);
 }
 
-CL_PAIR_KERNEL
-void cl_pairkern_geometry(cl_pairkern *pk, size_t k0, size_t k1,
-                          size_t base, const double *x)
+/* The geometry loop; recip (a constant where it is inlined): u = x_ab
+ * (1/d), one division instead of three. */
+CL_PAIR_INLINE void geometry(cl_pairkern *pk, size_t k0, size_t k1,
+                             size_t base, const double *x, bool recip)
 {
     const int *ia = pk->ia, *ib = pk->ib;
     double *restrict d = pk->d - base, *restrict u0 = pk->u0 - base;
@@ -146,13 +147,35 @@ void cl_pairkern_geometry(cl_pairkern *pk, size_t k0, size_t k1,
         int a = 3 * ia[k], b = 3 * ib[k];
         double dx = x[b] - x[a], dy = x[b + 1] - x[a + 1];
         double dz = x[b + 2] - x[a + 2];
-        double dk = sqrt(dx * dx + dy * dy + dz * dz);
-        double r0 = dx / dk, r1 = dy / dk, r2 = dz / dk;
+        double dk = sqrt(dx * dx + dy * dy + dz * dz), rk = 1.0 / dk;
+        double r0 = recip ? dx * rk : dx / dk;
+        double r1 = recip ? dy * rk : dy / dk;
+        double r2 = recip ? dz * rk : dz / dk;
         d[k] = dk;
         u0[k] = dk > 0 ? r0 : 0.0;
         u1[k] = dk > 0 ? r1 : 0.0;
         u2[k] = dk > 0 ? r2 : 0.0;
     }
+}
+
+const char *cl_pairkern_isa(void)
+{
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") ? "avx2" : "default";
+#else
+    return "default";
+#endif
+}
+
+CL_PAIR_KERNEL
+void cl_pairkern_geometry(cl_pairkern *pk, size_t k0, size_t k1,
+                          size_t base, const double *x, bool recip)
+{
+    if (recip)
+        geometry(pk, k0, k1, base, x, true);
+    else
+        geometry(pk, k0, k1, base, x, false);
 }
 
 /* Entry (r, c) of K = (s' - t) u u^T + t I, rounded as cl_pair_block
@@ -248,26 +271,48 @@ static void forces_threaded(const cl_pairkern *pk, const unsigned char *torn,
     }
 }
 
-/* vals[slot] += sign B, sign -1 for the aa, bb blocks (j < 2). */
-static inline void add_block(double *vals, long slot, int j, const double *B)
+/* vals[slot] -= B for the aa, bb blocks (j < 2), += B for ab, ba (the
+ * same roundings as adding -1 B).  A diagonal block adds its diagonal
+ * alone: adding its zeros would change nothing, as entries start at +0
+ * and sums and differences of them are never -0. */
+static inline void add_block(double *restrict vals, long slot, int j,
+                             const double *restrict B, bool diag)
 {
-    double sign = j < 2 ? -1.0 : 1.0, *dst = vals + 9 * slot;
-    for (int i = 0; i < 9; i++)
-        dst[i] += sign * B[i];
+    double *restrict dst = vals + 9 * slot;
+    if (diag && j < 2) {
+        dst[0] -= B[0];
+        dst[4] -= B[4];
+        dst[8] -= B[8];
+    } else if (diag) {
+        dst[0] += B[0];
+        dst[4] += B[4];
+        dst[8] += B[8];
+    } else if (j < 2) {
+#pragma omp simd
+        for (int i = 0; i < 9; i++)
+            dst[i] -= B[i];
+    } else {
+#pragma omp simd
+        for (int i = 0; i < 9; i++)
+            dst[i] += B[i];
+    }
 }
 
+CL_PAIR_KERNEL
 static void blocks_serial(const cl_pairkern *pk, size_t k0, size_t k1,
                           size_t base, const unsigned char *torn, int b,
                           double *vals)
 {
     size_t w = 9 * (size_t)pk->nblk;
+    bool diag = pk->diag >> b & 1;
     for (size_t k = k0; k < k1; k++) {
         if (is_torn(torn, k))
             continue;
         const double *B = pk->blk + w * (k - base) + 9 * (size_t)b;
+        const long *s = pk->slot + 4 * k;
         for (int j = 0; j < 4; j++)
-            if (pk->slot[4 * k + j] >= 0)
-                add_block(vals, pk->slot[4 * k + j], j, B);
+            if (s[j] >= 0)
+                add_block(vals, s[j], j, B, diag);
     }
 }
 
@@ -275,13 +320,14 @@ static void blocks_threaded(const cl_pairkern *pk, const unsigned char *torn,
                             int b, double *vals)
 {
     size_t w = 9 * (size_t)pk->nblk;
+    bool diag = pk->diag >> b & 1;
 #pragma omp parallel for num_threads(pk->threads) schedule(static)
     for (size_t q = 0; q < pk->nslot; q++)
         for (size_t e = pk->sstart[q]; e < pk->sstart[q + 1]; e++) {
             size_t k = (size_t)pk->sinc[e] >> 2;
             if (!is_torn(torn, k))
                 add_block(vals, (long)q, (int)(pk->sinc[e] & 3),
-                          pk->blk + w * k + 9 * (size_t)b);
+                          pk->blk + w * k + 9 * (size_t)b, diag);
         }
 }
 

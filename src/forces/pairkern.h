@@ -40,6 +40,14 @@
 #define CL_PAIR_KERNEL
 #endif
 
+/* A loop body inlined into every kernel that calls it (compiled for that
+ * kernel's target, with its constant arguments folded). */
+#if defined(__GNUC__)
+#define CL_PAIR_INLINE static inline __attribute__((always_inline))
+#else
+#define CL_PAIR_INLINE static inline
+#endif
+
 /* f_a += (f0, f1, f2), f_b -= (f0, f1, f2) for particles a, b (3 entries
  * each in f): a pair's force into a force array. */
 static inline void cl_pairkern_scatter(double *restrict f, size_t a, size_t b,
@@ -54,6 +62,10 @@ static inline void cl_pairkern_scatter(double *restrict f, size_t a, size_t b,
     fb[2] -= f2;
 }
 
+/* The clone of the kernels this CPU runs: "avx2" or "default" (the
+ * choice target_clones' resolver makes, by the same CPU test). */
+const char *cl_pairkern_isa(void);
+
 /* Pairs per chunk of phase 1: serially, phase 2 follows each chunk, so
  * the buffers hold one chunk; with threads they hold every pair. */
 #define CL_PAIRKERN_CHUNK 256
@@ -61,6 +73,8 @@ static inline void cl_pairkern_scatter(double *restrict f, size_t a, size_t b,
 typedef struct {
     size_t n;              /* pairs */
     int nblk;              /* blocks per pair: 1 or 2 */
+    unsigned diag;         /* bit b: block b is diagonal (entries 0, 4, 8;
+                            * the others are neither read nor added) */
     int *ia, *ib;          /* particle indices a, b */
     double *L;             /* rest lengths */
     /* Per-pair buffers, index k - base (base = k0 of the chunk serially, 0
@@ -98,9 +112,11 @@ cl_status cl_pairkern_threads(cl_pairkern *pk, int threads, cl_error *err);
 cl_status cl_pairkern_bind(cl_pairkern *pk, const long *slot, size_t nslot,
                            cl_error *err);
 
-/* d, u of pairs [k0, k1) at positions x (cl_dist's arithmetic). */
+/* d, u of pairs [k0, k1) at positions x (cl_dist's arithmetic); u =
+ * x_ab/d, or with recip x_ab (1/d) (one division instead of three; u
+ * then differs from x_ab/d in the last bit). */
 void cl_pairkern_geometry(cl_pairkern *pk, size_t k0, size_t k1,
-                          size_t base, const double *x);
+                          size_t base, const double *x, bool recip);
 
 /* Central forces f = s u of pairs [k0, k1) and, with blocks, K of
  * docs/model.md (3.1) (isotropic s' I for d = 0; clamp_transverse drops

@@ -148,8 +148,19 @@ static inline double pair_dir(const double *xa, const double *xb, double d,
     return d > 0 ? (xb[i] - xa[i]) / d : 0.0;
 }
 
+void cl_pairterm_phase1(cl_pairterm *pt, const double *x, bool blocks,
+                        bool recip, size_t k0, size_t k1, size_t base)
+{
+    cl_pairkern *pk = &pt->kern;
+    size_t i = k0 - base;
+    cl_pairkern_geometry(pk, k0, k1, base, x, recip);
+    pt->batch(pt->params, k0, k1 - k0, pk->d + i, pk->L, pk->s + i,
+              blocks ? pk->ds + i : NULL);
+    cl_pairkern_central(pk, k0, k1, base, blocks, pt->clamp_transverse);
+}
+
 typedef struct {
-    const cl_pairterm *pt;
+    cl_pairterm *pt;
     const double *x;
     bool blocks;
 } pair_job;
@@ -159,12 +170,8 @@ static void pair_chunk(void *ctx, cl_pairkern *pk, size_t k0, size_t k1,
                        size_t base)
 {
     const pair_job *j = ctx;
-    size_t i = k0 - base;
-    cl_pairkern_geometry(pk, k0, k1, base, j->x);
-    j->pt->batch(j->pt->params, k0, k1 - k0, pk->d + i, pk->L,
-                 pk->s + i, j->blocks ? pk->ds + i : NULL);
-    cl_pairkern_central(pk, k0, k1, base, j->blocks,
-                        j->pt->clamp_transverse);
+    (void)pk; /* j->pt's own */
+    cl_pairterm_phase1(j->pt, j->x, j->blocks, false, k0, k1, base);
 }
 
 void cl_pairterm_eval(void *state, cl_eval *ev)

@@ -100,6 +100,12 @@ cl_status cl_pair_slots(const cl_pairset *set, const cl_bpattern *pat,
 /* Add +sign*B to block `slot` of vals (no-op for slot < 0). */
 void cl_block_add(double *vals, long slot, double sign, const double B[9]);
 
+/* Phase 1 of pairs [k0, k1) into pt's kernel buffers (forces/pairkern.h):
+ * geometry (recip: cl_pairkern_geometry's), law, forces s u and, with
+ * blocks, K. */
+void cl_pairterm_phase1(cl_pairterm *pt, const double *x, bool blocks,
+                        bool recip, size_t k0, size_t k1, size_t base);
+
 /* cl_term_type hooks for a cl_pairterm stored first in a term's state. */
 size_t cl_pairterm_couplings(const void *state, const int (**pairs)[2]);
 cl_status cl_pairterm_bind(void *state, const cl_bpattern *pat,

@@ -16,7 +16,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "forces/pairterm.h"
+#include "forces/pairdamp.h"
 #include "model/cloth_read.h"
 
 #define SEC "springs"
@@ -284,6 +284,16 @@ static size_t springs_distances(const void *state, const cl_pair **pair,
     return st->pt.set.n;
 }
 
+/* The springs and their dashpots (spring-damping, evaluated next) in one
+ * pass over the pairs, for forces alone (forces/term.h, fuse). */
+static bool springs_fuse(void *state, const cl_term_type *next,
+                         void *next_state, cl_eval *ev)
+{
+    springs_state *st = state;
+    return next == &cl_term_spring_damping &&
+           cl_pairdamp_fused(&st->pt, next_state, ev);
+}
+
 static cl_status springs_create(cl_config *cfg, const cl_cloth *cloth,
                                 const cl_term_opts *opts, void **state,
                                 cl_error *err)
@@ -329,5 +339,6 @@ const cl_term_type cl_term_springs = {
     .distances = springs_distances,
     .step_done = cl_pairterm_step_done,
     .broken = cl_pairterm_broken,
+    .fuse = springs_fuse,
     .free = springs_free,
 };

@@ -40,7 +40,7 @@ typedef struct {
                        * term (damping); 0 for conservative terms */
 } cl_eval;
 
-typedef struct {
+typedef struct cl_term_type {
     const char *name;   /* also the energy column and INI section */
     const char *doc;    /* one line for `clothode list` */
     bool conservative;  /* energy is a potential (else: dissipative power) */
@@ -76,6 +76,14 @@ typedef struct {
      * on (cl_model_set_threads), with results bitwise independent of the
      * count (forces/pairkern.h); allocates what that needs, once. */
     cl_status (*threads)(void *state, int threads, cl_error *err);
+    /* Forces alone (ev asks for no Jacobian and no energy) of this term
+     * and of `next`, the term evaluated right after it, in one pass over
+     * the pairs they share; returns false, having done nothing, where it
+     * cannot (then each term evaluates on its own).  Per-pair forces are
+     * summed before they are added, so the sums round differently from
+     * two passes. */
+    bool (*fuse)(void *state, const struct cl_term_type *next,
+                 void *next_state, cl_eval *ev);
     void (*free)(void *state);
 } cl_term_type;
 
