@@ -54,6 +54,17 @@ awk -F, 'NR > 1 && $NF == "ok" { if (!($1 in seen)) { seen[$1] = 1; order[++n] =
                    line = line sprintf(" & %.3g", s / (b - a + 1)) }
                print line " \\\\" } }' \
     "$res/damping/damping-modes.csv" > "$tex/damping-modes.tex"
+# ... and of the prestressed hanging cloth: the in-plane and the
+# out-of-plane (normal fraction > 1/2) modes, each by thirds.
+awk -F, 'NR > 1 && $NF == "ok" { if (!($1 in seen)) { seen[$1] = 1; order[++n] = $1 }
+         g = $7 > 0.5; c[$1, g]++; r[$1, g, c[$1, g]] = $5 }
+         END { for (i = 1; i <= n; i++) { q = order[i]; line = q
+               for (g = 0; g < 2; g++) for (j = 0; j < 3; j++) {
+                   a = int(c[q, g] * j / 3) + 1; b = int(c[q, g] * (j + 1) / 3)
+                   s = 0; for (k = a; k <= b; k++) s += r[q, g, k]
+                   line = line sprintf(" & %.3g", s / (b - a + 1)) }
+               print line " \\\\" } }' \
+    "$res/damping/hanging/damping-modes.csv" > "$tex/damping-wrinkles.tex"
 
 # Work-precision: every level that ran, error and CPU time.
 awk -F, 'NR > 1 && $NF == "ok" {

@@ -28,6 +28,7 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#include "analysis/equilibrium.h"
 #include "integrators/integrator.h"
 #include "system/model.h"
 
@@ -85,13 +86,25 @@ void cl_numdamp_write_rows(FILE *fp, const cl_numdamp_result *r,
  * so that the motion stays linear).  Each integrator runs from (x0, v0)
  * to T in steps of dt; its ratio E_k(T)/E_k(0) per mode is its numerical
  * damping of that mode, against the theory amplification(w_k dt)^(2 T /
- * dt) (NAN without a formula). */
+ * dt) (NAN without a formula).
+ *
+ * With `equilibrium`, x0 is first moved to the static equilibrium at
+ * t = 0 (analysis/equilibrium.h; max |M^-1 f| <= 1e-9 m/s^2): e.g. the
+ * hanging cloth under gravity, whose tension gives the out-of-plane
+ * (bending, wrinkle) modes a stiffness they lack on the flat cloth at
+ * rest.  Each mode is classed by its normal fraction: the part of its
+ * mass-weighted squared amplitude sum_i phi_ki^2 along the normal of the
+ * plane that fits x0 best (least squares: the covariance's least
+ * eigenvector); above 1/2 it is out-of-plane. */
 typedef struct {
     size_t n;             /* unknowns, = modes */
     double *mu, *phi;     /* the modes at x0 */
     double *sqm;          /* sqrt of the masses */
     double *x0, *v0;      /* the start */
     size_t nosc;          /* the oscillating modes: the last nosc */
+    double *normal;       /* n: each mode's normal fraction */
+    size_t nneg;          /* modes with mu_k < -1e-6 mu_max (buckling) */
+    cl_equilibrium_info eq; /* the equilibrium's steps (0: not sought) */
 } cl_numdamp_modes;
 
 typedef struct {
@@ -100,12 +113,14 @@ typedef struct {
     double dt, T;
     size_t nosc;
     double *w, *ratio, *theory; /* per oscillating mode, ascending w */
+    double *normal;       /* per oscillating mode, its normal fraction */
     cl_status rc;         /* CL_OK, or how the run failed ... */
     cl_error why;
 } cl_numdamp_modal;
 
 cl_status cl_numdamp_modes_init(cl_model *m, double speed,
-                                cl_numdamp_modes *b, cl_error *err);
+                                bool equilibrium, cl_numdamp_modes *b,
+                                cl_error *err);
 void cl_numdamp_modes_free(cl_numdamp_modes *b);
 
 /* One integrator's run: a failing run is recorded in r (rc), not
@@ -116,7 +131,7 @@ cl_status cl_numdamp_modal_run(cl_model *m, const cl_numdamp_modes *b,
                                double T, cl_numdamp_modal *r, cl_error *err);
 void cl_numdamp_modal_free(cl_numdamp_modal *r);
 
-/* integrator,mode,w,wh,ratio,theory,status rows, header first. */
+/* integrator,mode,w,wh,ratio,theory,normal,status rows, header first. */
 void cl_numdamp_modal_rows(FILE *fp, const cl_numdamp_modal *r, bool header);
 
 #endif

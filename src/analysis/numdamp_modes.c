@@ -6,11 +6,16 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <gsl/gsl_eigen.h>
+
 #include "analysis/spectrum.h"
 #include "analysis/trial.h"
 
 #define ND_REST_TOL 1e-8  /* m/s^2: max |M^-1 f| of a state at rest */
 #define ND_OSC_TOL 1e-6   /* mu_k / mu_max of an oscillating mode */
+#define ND_EQ_TOL 1e-9    /* m/s^2: max |M^-1 f| of the equilibrium (its
+                           * round-off floor is 1.5e-10 at 16 x 16) */
+#define ND_EQ_STEPS 200   /* its pseudo time steps, at most */
 
 void cl_numdamp_modes_free(cl_numdamp_modes *b)
 {
@@ -19,6 +24,7 @@ void cl_numdamp_modes_free(cl_numdamp_modes *b)
     free(b->sqm);
     free(b->x0);
     free(b->v0);
+    free(b->normal);
     memset(b, 0, sizeof *b);
 }
 
@@ -59,7 +65,68 @@ static void nd_excite(cl_numdamp_modes *b, double speed)
         b->v0[i] *= speed / vmax;
 }
 
-cl_status cl_numdamp_modes_init(cl_model *m, double speed,
+/* The unit normal of the plane that fits the free positions x best: the
+ * least eigenvector of their covariance (3 x 3, GSL). */
+static cl_status nd_plane_normal(const double *x, size_t n, double nrm[3],
+                                 cl_error *err)
+{
+    double c[3] = {0}, cov[9] = {0}, ev[3], vec[9];
+    size_t np = n / 3;
+    for (size_t i = 0; i < np; i++)
+        for (int a = 0; a < 3; a++)
+            c[a] += x[3 * i + a] / (double)np;
+    for (size_t i = 0; i < np; i++)
+        for (int a = 0; a < 3; a++)
+            for (int d = 0; d < 3; d++)
+                cov[3 * a + d] += (x[3 * i + a] - c[a]) *
+                                  (x[3 * i + d] - c[d]);
+    gsl_matrix_view C = gsl_matrix_view_array(cov, 3, 3);
+    gsl_matrix_view V = gsl_matrix_view_array(vec, 3, 3);
+    gsl_vector_view E = gsl_vector_view_array(ev, 3);
+    gsl_eigen_symmv_workspace *ws = gsl_eigen_symmv_alloc(3);
+    int grc = ws ? gsl_eigen_symmv(&C.matrix, &E.vector, &V.matrix, ws)
+                 : GSL_ENOMEM;
+    if (ws)
+        gsl_eigen_symmv_free(ws);
+    if (grc)
+        return cl_error_set(err, CL_ESOLVER, "damping: the cloth's plane "
+                            "(GSL %d)", grc);
+    gsl_eigen_symmv_sort(&E.vector, &V.matrix, GSL_EIGEN_SORT_VAL_ASC);
+    for (int a = 0; a < 3; a++)
+        nrm[a] = vec[3 * a];
+    return CL_OK;
+}
+
+/* Each mode's normal fraction sum_i (phi_ki . nrm)^2 into b->normal. */
+static cl_status nd_classify(cl_numdamp_modes *b, cl_error *err)
+{
+    double nrm[3];
+    size_t n = b->n;
+    cl_status rc = nd_plane_normal(b->x0, n, nrm, err);
+    for (size_t k = 0; !rc && k < n; k++) {
+        double s = 0.0;
+        for (size_t i = 0; i < n / 3; i++) {
+            double d = 0.0;
+            for (int a = 0; a < 3; a++)
+                d += b->phi[(3 * i + a) * n + k] * nrm[a];
+            s += d * d;
+        }
+        b->normal[k] = s;
+    }
+    return rc;
+}
+
+/* x0 moved to the equilibrium (ND_EQ_TOL) when asked. */
+static cl_status nd_equilibrium(cl_model *m, bool equilibrium,
+                                cl_numdamp_modes *b, cl_error *err)
+{
+    if (!equilibrium)
+        return CL_OK;
+    return cl_equilibrium_find(m, 0.0, b->x0, ND_EQ_TOL, ND_EQ_STEPS,
+                               &b->eq, err);
+}
+
+cl_status cl_numdamp_modes_init(cl_model *m, double speed, bool equilibrium,
                                 cl_numdamp_modes *b, cl_error *err)
 {
     const cl_system *sys = cl_model_system(m);
@@ -78,11 +145,14 @@ cl_status cl_numdamp_modes_init(cl_model *m, double speed,
     b->sqm = malloc(n * sizeof *b->sqm);
     b->x0 = malloc(n * sizeof *b->x0);
     b->v0 = malloc(n * sizeof *b->v0);
-    if (!b->mu || !b->phi || !b->sqm || !b->x0 || !b->v0)
+    b->normal = malloc(n * sizeof *b->normal);
+    if (!b->mu || !b->phi || !b->sqm || !b->x0 || !b->v0 || !b->normal)
         rc = cl_error_set(err, CL_ENOMEM, "damping: out of memory (%zu "
                           "modes)", n);
     if (!rc)
         rc = cl_model_initial_state(m, b->x0, b->v0);
+    if (!rc)
+        rc = nd_equilibrium(m, equilibrium, b, err);
     if (!rc)
         rc = nd_at_rest(sys, b, err);
     if (!rc)
@@ -90,7 +160,10 @@ cl_status cl_numdamp_modes_init(cl_model *m, double speed,
     for (size_t k = 0; !rc && k < n; k++) {
         b->sqm[k] = sqrt(sys->mass[k]);
         b->nosc += b->mu[k] > ND_OSC_TOL * b->mu[n - 1];
+        b->nneg += b->mu[k] < -ND_OSC_TOL * b->mu[n - 1];
     }
+    if (!rc)
+        rc = nd_classify(b, err);
     if (!rc && b->nosc == 0)
         rc = cl_error_set(err, CL_EINVAL, "damping: no oscillating mode at "
                           "the initial state");
@@ -122,7 +195,8 @@ static cl_status nd_modal_alloc(const cl_numdamp_modes *b,
     r->w = malloc(b->nosc * sizeof *r->w);
     r->ratio = malloc(b->nosc * sizeof *r->ratio);
     r->theory = malloc(b->nosc * sizeof *r->theory);
-    if (!r->w || !r->ratio || !r->theory)
+    r->normal = malloc(b->nosc * sizeof *r->normal);
+    if (!r->w || !r->ratio || !r->theory || !r->normal)
         return cl_error_set(err, CL_ENOMEM, "damping: out of memory");
     r->nosc = b->nosc;
     return CL_OK;
@@ -172,6 +246,7 @@ cl_status cl_numdamp_modal_run(cl_model *m, const cl_numdamp_modes *b,
         for (size_t k = 0; k < b->nosc; k++) {
             const cl_region *reg = type->region;
             r->w[k] = sqrt(b->mu[b->n - b->nosc + k]);
+            r->normal[k] = b->normal[b->n - b->nosc + k];
             r->ratio[k] = r->rc ? NAN : r->ratio[k] / e0[k];
             r->theory[k] = reg->amplification
                 ? pow(reg->amplification(r->w[k] * dt, io->rho_inf),
@@ -190,16 +265,18 @@ void cl_numdamp_modal_free(cl_numdamp_modal *r)
     free(r->w);
     free(r->ratio);
     free(r->theory);
-    r->w = r->ratio = r->theory = NULL;
+    free(r->normal);
+    r->w = r->ratio = r->theory = r->normal = NULL;
     r->nosc = 0;
 }
 
 void cl_numdamp_modal_rows(FILE *fp, const cl_numdamp_modal *r, bool header)
 {
     if (header)
-        fprintf(fp, "integrator,mode,w,wh,ratio,theory,status\n");
+        fprintf(fp, "integrator,mode,w,wh,ratio,theory,normal,status\n");
     for (size_t k = 0; k < r->nosc; k++)
-        fprintf(fp, "%s,%zu,%.9g,%.9g,%.9g,%.9g,%s\n", r->label, k, r->w[k],
-                r->w[k] * r->dt, r->ratio[k], r->theory[k],
+        fprintf(fp, "%s,%zu,%.9g,%.9g,%.9g,%.9g,%.6f,%s\n", r->label, k,
+                r->w[k], r->w[k] * r->dt, r->ratio[k], r->theory[k],
+                r->normal[k],
                 r->rc ? cl_status_name(r->rc) : "ok");
 }

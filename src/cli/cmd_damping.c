@@ -16,6 +16,7 @@ typedef struct {
     const char *range;   /* --wh LO:HI:N */
     long steps;
     double modes_t, modes_dt, speed; /* the cloth study (modes_t > 0) */
+    bool equilibrium;    /* ... from the static equilibrium */
     double wh[CL_NUMDAMP_MAX_WH];
     int nwh;
     double w;
@@ -54,6 +55,11 @@ static cl_cli_opt nd_rows[] = {
      .key = "speed", .def = 1e-3, .lo = 1e-300, .hi = INFINITY,
      .field = offsetof(nd_setup, speed),
      .help = "--modes: the largest initial particle speed (m/s)"},
+    {.name = "equilibrium", .type = CL_CLI_FLAG,
+     .field = offsetof(nd_setup, equilibrium),
+     .help = "--modes: from the static equilibrium of the problem (e.g. "
+             "the hanging cloth under gravity) instead of its initial "
+             "state"},
     CL_CLI_TAIL(nd_setup, "no table on stdout"),
     {.type = CL_CLI_END}};
 
@@ -72,7 +78,11 @@ static const cl_cli_table nd_table = {
     "With --modes T, on a cloth at rest instead: every oscillating mode of\n"
     "the linearised cloth gets the same energy, each integrator runs to T\n"
     "in steps of --modes-dt, and the energy left in each mode, beside the\n"
-    "theory amplification(w dt)^(2 T/dt), goes to damping-modes.csv.\n",
+    "theory amplification(w dt)^(2 T/dt), goes to damping-modes.csv.\n"
+    "With --equilibrium the modes are those of the static equilibrium\n"
+    "(the hanging cloth: tension gives the out-of-plane, wrinkle modes a\n"
+    "stiffness), each classed in-plane or out-of-plane by its normal\n"
+    "fraction (column normal).\n",
     .notes =
     "The default integrators are every implicit fixed-step one of the\n"
     "registry (clothode list), found by its table; the problem's [run]\n"
@@ -162,23 +172,33 @@ static const cl_cli_study nd_study = {
 
 /* ---- the cloth study (--modes) ------------------------------------------ */
 
-/* The mean energy ratio of the modes k/3 of the way up in w (thirds). */
-static double third_mean(const cl_numdamp_modal *r, int third)
+/* The mean energy ratio over the slowest, middle or fastest third (third
+ * 0, 1, 2) of the in-plane (out = false) or out-of-plane modes. */
+static double third_mean(const cl_numdamp_modal *r, bool out, int third)
 {
-    size_t a = r->nosc * (size_t)third / 3;
-    size_t b = r->nosc * (size_t)(third + 1) / 3;
+    size_t m = 0, j = 0, cnt = 0;
     double sum = 0.0;
-    for (size_t k = a; k < b; k++)
-        sum += r->ratio[k];
-    return b > a ? sum / (double)(b - a) : NAN;
+    for (size_t k = 0; k < r->nosc; k++)
+        m += (r->normal[k] > 0.5) == out;
+    for (size_t k = 0; k < r->nosc; k++) {
+        if ((r->normal[k] > 0.5) != out)
+            continue;
+        if (j >= m * (size_t)third / 3 && j < m * (size_t)(third + 1) / 3) {
+            sum += r->ratio[k];
+            cnt++;
+        }
+        j++;
+    }
+    return cnt ? sum / (double)cnt : NAN;
 }
 
 static void print_modal(const void *result)
 {
     const cl_numdamp_modal *r = result;
-    printf("%-18s %12.4g %12.4g %12.4g%s%s\n", r->label, third_mean(r, 0),
-           third_mean(r, 1), third_mean(r, 2), r->rc ? "  failed: " : "",
-           r->rc ? r->why.msg : "");
+    printf("%-18s", r->label);
+    for (int g = 0; g < 6; g++)
+        printf(" %9.3g", third_mean(r, g >= 3, g % 3));
+    printf("%s%s\n", r->rc ? "  failed: " : "", r->rc ? r->why.msg : "");
 }
 
 static cl_status begin_modal(cl_model *m, const cl_cli_job *job, void *ctx,
@@ -187,15 +207,24 @@ static cl_status begin_modal(cl_model *m, const cl_cli_job *job, void *ctx,
     nd_setup *s = ctx;
     cl_status rc = cl_cli_methods_try(m, &s->integrators, err);
     if (!rc)
-        rc = cl_numdamp_modes_init(m, s->speed, &s->basis, err);
+        rc = cl_numdamp_modes_init(m, s->speed, s->equilibrium, &s->basis,
+                                   err);
     if (rc || job->quiet)
         return rc;
-    printf("problem    %s, %zu oscillating modes, w %.4g .. %.4g rad/s, T = "
-           "%g s, dt = %g s\n", job->problem, s->basis.nosc,
+    size_t nout = 0, first = s->basis.n - s->basis.nosc;
+    for (size_t k = first; k < s->basis.n; k++)
+        nout += s->basis.normal[k] > 0.5;
+    if (s->equilibrium)
+        printf("equilibrium after %d steps, max |M^-1 f| = %.3g m/s^2; %zu "
+               "buckling modes (mu < 0) left out\n", s->basis.eq.steps,
+               s->basis.eq.residual, s->basis.nneg);
+    printf("problem    %s, %zu oscillating modes (%zu in-plane, %zu "
+           "out-of-plane), w %.4g .. %.4g rad/s, T = %g s, dt = %g s\n",
+           job->problem, s->basis.nosc, s->basis.nosc - nout, nout,
            sqrt(s->basis.mu[s->basis.n - s->basis.nosc]),
            sqrt(s->basis.mu[s->basis.n - 1]), s->modes_t, s->modes_dt);
     printf("energy left E(T)/E(0), mean over the slowest, middle and fastest "
-           "third of the modes\n");
+           "third of the in-plane and of the out-of-plane modes\n");
     return CL_OK;
 }
 
@@ -229,8 +258,8 @@ static void end_modal(void *ctx)
 
 static const cl_cli_study nd_modal_study = {
     .csv = "damping-modes.csv",
-    .columns = "integrator          slowest third  middle third  fastest "
-               "third",
+    .columns = "integrator           in slow    in mid   in fast  out slow   "
+               "out mid  out fast",
     .size = sizeof(cl_numdamp_modal), .begin = begin_modal, .run = run_modal,
     .print = print_modal, .rows = rows_modal, .release = release_modal,
     .end = end_modal};

@@ -11,6 +11,7 @@
 #include <arkode/arkode_butcher_dirk.h>
 #include <arkode/arkode_butcher_erk.h>
 
+#include "integrators/sun_newton.h"
 #include "integrators/sun_reduced.h"
 
 typedef struct {
@@ -256,6 +257,12 @@ static cl_status ark_newton(cl_sun *s, bool fixed, const cl_integrator_opts *o,
                             "newton_maxit = %ld (need >= 0, 0 .. 1000000; "
                             "0: ARKODE's default)", s->name, o->newton_tol,
                             o->newton_maxit);
+    if (fixed && o->newton_maxit != 1) {
+        s->nls = cl_sun_newton_full(s->y, s->ctx);
+        if (!s->nls)
+            return cl_sun_sunfail(s, "cl_sun_newton_full", 0, err);
+        ARK_SET(s, err, ARKStepSetNonlinearSolver, s->nls);
+    }
     if (o->newton_maxit > 0 || fixed)
         ARK_SET(s, err, ARKStepSetMaxNonlinIters,
                 o->newton_maxit > 0 ? (int)o->newton_maxit

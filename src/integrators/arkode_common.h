@@ -55,7 +55,10 @@
  * 0.05 x 0.1) and the Jacobian and Newton matrix are renewed at every
  * step (ARKStepSetJacEvalFrequency and ARKStepSetLSetupFrequency 1), so
  * that backward Euler with one iteration
- * is Baraff-Witkin's linearised step, like kinsol-be's.
+ * is Baraff-Witkin's linearised step, like kinsol-be's.  Otherwise the
+ * fixed-step methods solve their stages with sun_newton.h's solver:
+ * ARKODE's modified Newton iteration, then, where it fails to converge
+ * (a kink of the pair forces crossed within the stage), the full one.
  *
  * A solved stage's f_I is deduced from the stage equation
  * (ARKStepSetDeduceImplicitRhs), not evaluated anew: y_{n+1} is then the
