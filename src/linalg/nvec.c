@@ -10,8 +10,12 @@
  *   wrmsnorm   sqrt(sum (x_i w_i)^2 / N), mask: only id_i > 0;
  *   wl2norm    sqrt(sum (x_i w_i)^2);
  *   the others elementwise; dot products and unmasked weighted sums of
- *   squares in four interleaved partial sums (nv_sum4), the other
- *   reductions in index order.
+ *   squares in four interleaved partial sums (nv_sum4) per chunk of
+ *   CL_NVEC_CHUNK entries, the chunks' sums added in chunk order
+ *   (nv_reduce), the other reductions in index order.
+ * Threads (cl_nvec_threads): linearsum, scale, prod, const, the dot
+ * product and the unmasked weighted sums of squares split into the same
+ * chunks, so their results do not depend on the thread count.
  * Every loop reads entry i of each input before it writes entry i of the
  * output, so any of the vectors may be the same. */
 #include "linalg/nvec.h"
@@ -30,12 +34,13 @@
 
 /* ---- linear sums ------------------------------------------------------- */
 
+/* The kernels take entries [0, n) of raw arrays, so that a threaded call
+ * (nv_run) hands each of them one chunk. */
+
 /* y <- a x + y */
-static void nv_axpy(sunrealtype a, N_Vector x, N_Vector y)
+static void nv_axpy(sunrealtype a, sunindextype n, const sunrealtype *xd,
+                    sunrealtype *yd)
 {
-    sunindextype n = NV_N(x);
-    const sunrealtype *xd = NV_D(x);
-    sunrealtype *yd = NV_D(y);
     if (a == 1.0) {
         CL_SIMD
         for (sunindextype i = 0; i < n; i++)
@@ -52,11 +57,9 @@ static void nv_axpy(sunrealtype a, N_Vector x, N_Vector y)
 }
 
 /* z = sx x + sy y for the sign patterns (+1, +1), (+1, -1) */
-static void nv_sum(N_Vector x, N_Vector y, N_Vector z, bool diff)
+static void nv_sum(sunindextype n, const sunrealtype *xd,
+                   const sunrealtype *yd, sunrealtype *zd, bool diff)
 {
-    sunindextype n = NV_N(x);
-    const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
-    sunrealtype *zd = NV_D(z);
     if (diff) {
         CL_SIMD
         for (sunindextype i = 0; i < n; i++)
@@ -69,12 +72,9 @@ static void nv_sum(N_Vector x, N_Vector y, N_Vector z, bool diff)
 }
 
 /* z = a x + y (plus) or a x - y */
-static void nv_lin(sunrealtype a, N_Vector x, N_Vector y, N_Vector z,
-                   bool plus)
+static void nv_lin(sunrealtype a, sunindextype n, const sunrealtype *xd,
+                   const sunrealtype *yd, sunrealtype *zd, bool plus)
 {
-    sunindextype n = NV_N(x);
-    const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
-    sunrealtype *zd = NV_D(z);
     if (plus) {
         CL_SIMD
         for (sunindextype i = 0; i < n; i++)
@@ -87,12 +87,9 @@ static void nv_lin(sunrealtype a, N_Vector x, N_Vector y, N_Vector z,
 }
 
 /* z = c (x + y) (plus) or c (x - y) */
-static void nv_scalesum(sunrealtype c, N_Vector x, N_Vector y, N_Vector z,
-                        bool plus)
+static void nv_scalesum(sunrealtype c, sunindextype n, const sunrealtype *xd,
+                        const sunrealtype *yd, sunrealtype *zd, bool plus)
 {
-    sunindextype n = NV_N(x);
-    const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
-    sunrealtype *zd = NV_D(z);
     if (plus) {
         CL_SIMD
         for (sunindextype i = 0; i < n; i++)
@@ -104,45 +101,44 @@ static void nv_scalesum(sunrealtype c, N_Vector x, N_Vector y, N_Vector z,
     }
 }
 
-static void nv_linearsum(sunrealtype a, N_Vector x, sunrealtype b, N_Vector y,
-                         N_Vector z)
+/* z = a x + b y over n entries; z == y and z == x (the same vector) select
+ * the in-place cases as N_VLinearSum_Serial does. */
+static void nv_linearsum_n(sunrealtype a, const sunrealtype *xd,
+                           sunrealtype b, const sunrealtype *yd,
+                           sunrealtype *zd, sunindextype n)
 {
-    if (b == 1.0 && z == y) {
-        nv_axpy(a, x, y);
-    } else if (a == 1.0 && z == x) {
-        nv_axpy(b, y, x);
+    if (b == 1.0 && zd == yd) {
+        nv_axpy(a, n, xd, zd);
+    } else if (a == 1.0 && zd == xd) {
+        nv_axpy(b, n, yd, zd);
     } else if (a == 1.0 && b == 1.0) {
-        nv_sum(x, y, z, false);
+        nv_sum(n, xd, yd, zd, false);
     } else if (a == 1.0 && b == -1.0) {
-        nv_sum(x, y, z, true);
+        nv_sum(n, xd, yd, zd, true);
     } else if (a == -1.0 && b == 1.0) {
-        nv_sum(y, x, z, true);
+        nv_sum(n, yd, xd, zd, true);
     } else if (a == 1.0 || b == 1.0) {
-        nv_lin(a == 1.0 ? b : a, a == 1.0 ? y : x, a == 1.0 ? x : y, z,
-               true);
+        nv_lin(a == 1.0 ? b : a, n, a == 1.0 ? yd : xd, a == 1.0 ? xd : yd,
+               zd, true);
     } else if (a == -1.0 || b == -1.0) {
-        nv_lin(a == -1.0 ? b : a, a == -1.0 ? y : x, a == -1.0 ? x : y, z,
-               false);
+        nv_lin(a == -1.0 ? b : a, n, a == -1.0 ? yd : xd,
+               a == -1.0 ? xd : yd, zd, false);
     } else if (a == b) {
-        nv_scalesum(a, x, y, z, true);
+        nv_scalesum(a, n, xd, yd, zd, true);
     } else if (a == -b) {
-        nv_scalesum(a, x, y, z, false);
+        nv_scalesum(a, n, xd, yd, zd, false);
     } else {
-        sunindextype n = NV_N(x);
-        const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
-        sunrealtype *zd = NV_D(z);
         CL_SIMD
         for (sunindextype i = 0; i < n; i++)
             zd[i] = (a * xd[i]) + (b * yd[i]);
     }
 }
 
-static void nv_scale(sunrealtype c, N_Vector x, N_Vector z)
+/* z = c x over n entries (x *= c in place; copy for c = 1; -x for -1) */
+static void nv_scale_n(sunrealtype c, const sunrealtype *xd, sunrealtype *zd,
+                       sunindextype n)
 {
-    sunindextype n = NV_N(x);
-    const sunrealtype *xd = NV_D(x);
-    sunrealtype *zd = NV_D(z);
-    if (z == x) {
+    if (zd == xd) {
         CL_SIMD
         for (sunindextype i = 0; i < n; i++)
             zd[i] *= c;
@@ -161,25 +157,118 @@ static void nv_scale(sunrealtype c, N_Vector x, N_Vector z)
     }
 }
 
-/* ---- elementwise ------------------------------------------------------- */
+/* ---- threads ------------------------------------------------------------ */
 
-static void nv_const(sunrealtype c, N_Vector z)
+/* Threads of the operations called from this thread (cl_nvec_threads). */
+static _Thread_local int nv_threads = 1;
+
+int cl_nvec_threads(int threads)
 {
-    sunindextype n = NV_N(z);
-    sunrealtype *zd = NV_D(z);
+    int old = nv_threads;
+    nv_threads = threads > 1 ? threads : 1;
+    return old;
+}
+
+/* The entries of chunk k: [k c, min(n, (k + 1) c)), c = nv_chunk(n):
+ * CL_NVEC_CHUNK, or more for vectors of more than NV_MAXCHUNKS chunks (a
+ * multiple of 4).  Independent of the thread count. */
+#define NV_MAXCHUNKS 1024
+
+static sunindextype nv_chunk(sunindextype n)
+{
+    sunindextype c = CL_NVEC_CHUNK;
+    if (n > c * NV_MAXCHUNKS)
+        c = ((n + NV_MAXCHUNKS - 1) / NV_MAXCHUNKS + 3) / 4 * 4;
+    return c;
+}
+
+/* One elementwise operation of the threaded set, on raw arrays. */
+typedef enum { NV_LINEARSUM, NV_SCALE, NV_PROD, NV_CONST } nv_op;
+
+typedef struct {
+    nv_op op;
+    sunrealtype a, b;
+    const sunrealtype *x, *y;
+    sunrealtype *z;
+} nv_job;
+
+static void nv_prod_n(const sunrealtype *xd, const sunrealtype *yd,
+                      sunrealtype *zd, sunindextype n)
+{
+    CL_SIMD
+    for (sunindextype i = 0; i < n; i++)
+        zd[i] = xd[i] * yd[i];
+}
+
+static void nv_const_n(sunrealtype c, sunrealtype *zd, sunindextype n)
+{
     CL_SIMD
     for (sunindextype i = 0; i < n; i++)
         zd[i] = c;
 }
 
+/* Entries [lo, hi) of job j. */
+static void nv_apply(const nv_job *j, sunindextype lo, sunindextype hi)
+{
+    const sunrealtype *x = j->x + lo, *y = j->y ? j->y + lo : NULL;
+    sunrealtype *z = j->z + lo;
+    switch (j->op) {
+    case NV_LINEARSUM:
+        nv_linearsum_n(j->a, x, j->b, y, z, hi - lo);
+        break;
+    case NV_SCALE:
+        nv_scale_n(j->a, x, z, hi - lo);
+        break;
+    case NV_PROD:
+        nv_prod_n(x, y, z, hi - lo);
+        break;
+    case NV_CONST:
+        nv_const_n(j->a, z, hi - lo);
+        break;
+    }
+}
+
+/* Job j over n entries: whole when one thread (or one chunk), else chunk
+ * by chunk on nv_threads threads.  Elementwise: the same values for any
+ * split. */
+static void nv_run(const nv_job *j, sunindextype n)
+{
+    sunindextype c = nv_chunk(n), nc = (n + c - 1) / c;
+    int nt = nv_threads;
+    if (nt <= 1 || nc <= 1) {
+        nv_apply(j, 0, n);
+        return;
+    }
+#pragma omp parallel for num_threads(nt) schedule(static)
+    for (sunindextype k = 0; k < nc; k++)
+        nv_apply(j, k * c, k + 1 < nc ? (k + 1) * c : n);
+}
+
+static void nv_linearsum(sunrealtype a, N_Vector x, sunrealtype b, N_Vector y,
+                         N_Vector z)
+{
+    nv_job j = {NV_LINEARSUM, a, b, NV_D(x), NV_D(y), NV_D(z)};
+    nv_run(&j, NV_N(x));
+}
+
+static void nv_scale(sunrealtype c, N_Vector x, N_Vector z)
+{
+    nv_job j = {NV_SCALE, c, 0.0, NV_D(x), NULL, NV_D(z)};
+    nv_run(&j, NV_N(x));
+}
+
+/* ---- elementwise ------------------------------------------------------- */
+
+static void nv_const(sunrealtype c, N_Vector z)
+{
+    nv_job j = {NV_CONST, c, 0.0, NV_D(z), NULL, NV_D(z)};
+    nv_run(&j, NV_N(z));
+}
+
 static void nv_prod(N_Vector x, N_Vector y, N_Vector z)
 {
-    sunindextype n = NV_N(x);
-    const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
-    sunrealtype *zd = NV_D(z);
-    CL_SIMD
-    for (sunindextype i = 0; i < n; i++)
-        zd[i] = xd[i] * yd[i];
+    nv_job j = {NV_PROD, 0.0, 0.0, NV_D(x), NV_D(y), NV_D(z)};
+    nv_run(&j, NV_N(x));
 }
 
 static void nv_div(N_Vector x, N_Vector y, N_Vector z)
@@ -284,9 +373,40 @@ static sunrealtype nv_sum4(const sunrealtype *x, const sunrealtype *y,
     return sum;
 }
 
+/* sum x_i y_i (or (x_i y_i)^2) chunk by chunk (nv_chunk), each chunk by
+ * nv_sum4, the chunks' sums added in chunk order: the same value for any
+ * thread count.  A vector of one chunk is summed as by nv_sum4 alone. */
+static sunrealtype nv_reduce(const sunrealtype *x, const sunrealtype *y,
+                             sunindextype n, bool square, int threads)
+{
+    sunindextype c = nv_chunk(n), nc = (n + c - 1) / c;
+    if (nc <= 1)
+        return nv_sum4(x, y, n, square);
+    sunrealtype part[NV_MAXCHUNKS];
+    if (threads <= 1) {
+        for (sunindextype k = 0; k < nc; k++)
+            part[k] = nv_sum4(x + k * c, y + k * c,
+                              k + 1 < nc ? c : n - k * c, square);
+    } else {
+#pragma omp parallel for num_threads(threads) schedule(static)
+        for (sunindextype k = 0; k < nc; k++)
+            part[k] = nv_sum4(x + k * c, y + k * c,
+                              k + 1 < nc ? c : n - k * c, square);
+    }
+    sunrealtype sum = part[0];
+    for (sunindextype k = 1; k < nc; k++)
+        sum += part[k];
+    return sum;
+}
+
+double cl_nvec_dot(const double *x, const double *y, size_t n, int threads)
+{
+    return nv_reduce(x, y, (sunindextype)n, false, threads);
+}
+
 static sunrealtype nv_dotprod(N_Vector x, N_Vector y)
 {
-    return nv_sum4(NV_D(x), NV_D(y), NV_N(x), false);
+    return nv_reduce(NV_D(x), NV_D(y), NV_N(x), false, nv_threads);
 }
 
 static sunrealtype nv_maxnorm(N_Vector x)
@@ -308,7 +428,7 @@ static sunrealtype nv_wsqrsum(N_Vector x, N_Vector w, N_Vector id)
     const sunrealtype *xd = NV_D(x), *wd = NV_D(w);
     const sunrealtype *idd = id ? NV_D(id) : NULL;
     if (!idd)
-        return nv_sum4(xd, wd, n, true);
+        return nv_reduce(xd, wd, n, true, nv_threads);
     sunrealtype sum = 0.0;
     for (sunindextype i = 0; i < n; i++) {
         if (!(idd[i] > 0.0))

@@ -20,15 +20,36 @@
  * on the default x86-64 target), except the dot product and the weighted
  * norms: they sum in four interleaved partial sums (a fixed order, equal
  * to the serial sums to round-off), at every CVODE step and PCG iteration
- * ~4x faster than one running sum.  Clones inherit the operations
+ * ~4x faster than one running sum, chunk by chunk of CL_NVEC_CHUNK
+ * entries, the chunks' sums added in chunk order (a vector of at most
+ * one chunk: the four partial sums alone).
+ *
+ * Threads.  The operations SUNDIALS' PCG calls at every iteration
+ * (linearsum, scale, prod, const, dotprod) and the weighted sums of
+ * squares run on cl_nvec_threads(N) OpenMP threads, chunk by chunk; the
+ * chunks do not depend on N, so neither do the results (bitwise).  Clones inherit the operations
  * (N_VClone_Serial copies the operation table).  Fused and vector-array
  * operations stay disabled (NULL), as in N_VNew_Serial: SUNDIALS then
  * composes them from the operations above. */
 #ifndef CL_NVEC_H
 #define CL_NVEC_H
 
+#include <stddef.h>
+
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
+
+/* Entries per chunk of the threaded operations and of the sums (vectors
+ * of more than 1024 chunks take larger chunks). */
+#define CL_NVEC_CHUNK 4096
+
+/* Threads (>= 1; less counts as 1) of the operations called from the
+ * calling thread from now on; returns the previous count.  Default 1. */
+int cl_nvec_threads(int threads);
+
+/* sum_i x_i y_i over n entries in the order of the dot product above, on
+ * `threads` threads (the same value for every count). */
+double cl_nvec_dot(const double *x, const double *y, size_t n, int threads);
 
 /* Replace the operations of serial vector v (see above). */
 void cl_nvec_fast(N_Vector v);
