@@ -153,21 +153,25 @@ Test(nvec, clones_inherit_and_stay_serial)
 /* Several chunks and a tail (nvec.h: CL_NVEC_CHUNK). */
 #define NV_LONG (3 * CL_NVEC_CHUNK + 7)
 
-/* The documented order: per chunk four interleaved partial sums, added as
- * (s0 + s1) + (s2 + s3), then the chunk's tail; the chunks in order. */
+/* The documented order (nvec.h): P = ceil(n / CL_NVEC_CHUNK) chunks of
+ * c entries (a multiple of 4), the last the rest; per chunk four
+ * interleaved partial sums, added as (s0 + s1) + (s2 + s3), then the
+ * chunk's tail; the chunks in order. */
 static double nv_chunked_dot(const double *x, const double *y, size_t n)
 {
+    size_t p = (n + CL_NVEC_CHUNK - 1) / CL_NVEC_CHUNK;
+    size_t c = ((n + p - 1) / p + 3) / 4 * 4;
     double sum = 0.0;
-    for (size_t lo = 0; lo < n; lo += CL_NVEC_CHUNK) {
-        size_t hi = lo + CL_NVEC_CHUNK < n ? lo + CL_NVEC_CHUNK : n, i = lo;
+    for (size_t lo = 0; lo < n; lo += c) {
+        size_t hi = lo + c < n ? lo + c : n, i = lo;
         double s[4] = {0.0, 0.0, 0.0, 0.0};
         for (; i + 4 <= hi; i += 4)
             for (int q = 0; q < 4; q++)
                 s[q] += x[i + q] * y[i + q];
-        double c = (s[0] + s[1]) + (s[2] + s[3]);
+        double part = (s[0] + s[1]) + (s[2] + s[3]);
         for (; i < hi; i++)
-            c += x[i] * y[i];
-        sum = lo == 0 ? c : sum + c;
+            part += x[i] * y[i];
+        sum = lo == 0 ? part : sum + part;
     }
     return sum;
 }

@@ -104,8 +104,8 @@ Test(semi_bdf2, first_step_is_semi_be)
 
 Test(semi_bdf2, hang_statistics_klu) { st_expect_hang_stats(SBDF2, "klu"); }
 Test(semi_bdf2, hang_statistics_pcg) { st_expect_hang_stats(SBDF2, "pcg"); }
-/* hang at n = 40 (4794 unknowns: two pins; two chunks of the vector operations and
- * a tail, linalg/nvec.h), 20 steps with pcg: forces, Jacobians, the
+/* hang at n = 56 (9402 unknowns: two chunks of the vector operations,
+ * linalg/nvec.h), 20 steps with pcg: forces, Jacobians, the
  * Newton matrix, the preconditioner and every PCG operation threaded;
  * the states and the iteration counts agree bit for bit. */
 Test(semi_bdf2, pcg_threads_bitwise)
@@ -113,11 +113,11 @@ Test(semi_bdf2, pcg_threads_bitwise)
     double *x1, *v1, *xt, *vt;
     size_t n;
     cl_stats s1 = {0}, st = {0};
-    st_hang_run(SBDF2, "pcg", "cloth.n=40", 1, 0.02, &x1, &v1, &n, &s1);
-    cr_assert_eq(n, 3 * (40 * 40 - 2));
+    st_hang_run(SBDF2, "pcg", "cloth.n=56", 1, 0.02, &x1, &v1, &n, &s1);
+    cr_assert_eq(n, 3 * (56 * 56 - 2));
     cr_assert_gt(s1.lin_iters, 20);
     for (int t = 2; t <= 3; t++) {
-        st_hang_run(SBDF2, "pcg", "cloth.n=40", t, 0.02, &xt, &vt, &n, &st);
+        st_hang_run(SBDF2, "pcg", "cloth.n=56", t, 0.02, &xt, &vt, &n, &st);
         cr_assert_eq(memcmp(x1, xt, n * sizeof *xt), 0, "%d threads", t);
         cr_assert_eq(memcmp(v1, vt, n * sizeof *vt), 0, "%d threads", t);
         cr_assert_eq(st.lin_iters, s1.lin_iters);

@@ -10,9 +10,10 @@
  *   wrmsnorm   sqrt(sum (x_i w_i)^2 / N), mask: only id_i > 0;
  *   wl2norm    sqrt(sum (x_i w_i)^2);
  *   the others elementwise; dot products and unmasked weighted sums of
- *   squares in four interleaved partial sums (nv_sum4) per chunk of
- *   CL_NVEC_CHUNK entries, the chunks' sums added in chunk order
- *   (nv_reduce), the other reductions in index order.
+ *   squares in four interleaved partial sums (nv_sum4) per chunk
+ *   (nv_chunk: about equal parts of at most CL_NVEC_CHUNK entries), the
+ *   chunks' sums added in chunk order (nv_reduce), the other reductions
+ *   in index order.
  * Threads (cl_nvec_threads): linearsum, scale, prod, const, the dot
  * product and the unmasked weighted sums of squares split into the same
  * chunks, so their results do not depend on the thread count.
@@ -169,16 +170,20 @@ int cl_nvec_threads(int threads)
     return old;
 }
 
-/* The entries of chunk k: [k c, min(n, (k + 1) c)), c = nv_chunk(n):
- * CL_NVEC_CHUNK, or more for vectors of more than NV_MAXCHUNKS chunks (a
- * multiple of 4).  Independent of the thread count. */
+/* The chunks of an n-entry vector, independent of the thread count:
+ * P = ceil(n / CL_NVEC_CHUNK) (at most NV_MAXCHUNKS) about equal parts,
+ * each of c entries (c a multiple of 4) but the last, which has the
+ * rest; *nc of them (P, or fewer after the rounding).  A vector of at
+ * most CL_NVEC_CHUNK entries is one chunk. */
 #define NV_MAXCHUNKS 1024
 
-static sunindextype nv_chunk(sunindextype n)
+static sunindextype nv_chunk(sunindextype n, sunindextype *nc)
 {
-    sunindextype c = CL_NVEC_CHUNK;
-    if (n > c * NV_MAXCHUNKS)
-        c = ((n + NV_MAXCHUNKS - 1) / NV_MAXCHUNKS + 3) / 4 * 4;
+    sunindextype p = (n + CL_NVEC_CHUNK - 1) / CL_NVEC_CHUNK;
+    p = p < 1 ? 1 : p > NV_MAXCHUNKS ? NV_MAXCHUNKS : p;
+    sunindextype c = ((n + p - 1) / p + 3) / 4 * 4;
+    c = c < 4 ? 4 : c;
+    *nc = (n + c - 1) / c;
     return c;
 }
 
@@ -233,7 +238,7 @@ static void nv_apply(const nv_job *j, sunindextype lo, sunindextype hi)
  * split. */
 static void nv_run(const nv_job *j, sunindextype n)
 {
-    sunindextype c = nv_chunk(n), nc = (n + c - 1) / c;
+    sunindextype nc, c = nv_chunk(n, &nc);
     int nt = nv_threads;
     if (nt <= 1 || nc <= 1) {
         nv_apply(j, 0, n);
@@ -379,7 +384,7 @@ static sunrealtype nv_sum4(const sunrealtype *x, const sunrealtype *y,
 static sunrealtype nv_reduce(const sunrealtype *x, const sunrealtype *y,
                              sunindextype n, bool square, int threads)
 {
-    sunindextype c = nv_chunk(n), nc = (n + c - 1) / c;
+    sunindextype nc, c = nv_chunk(n, &nc);
     if (nc <= 1)
         return nv_sum4(x, y, n, square);
     sunrealtype part[NV_MAXCHUNKS];

@@ -20,9 +20,11 @@
  * on the default x86-64 target), except the dot product and the weighted
  * norms: they sum in four interleaved partial sums (a fixed order, equal
  * to the serial sums to round-off), at every CVODE step and PCG iteration
- * ~4x faster than one running sum, chunk by chunk of CL_NVEC_CHUNK
- * entries, the chunks' sums added in chunk order (a vector of at most
- * one chunk: the four partial sums alone).
+ * ~4x faster than one running sum, chunk by chunk, the chunks' sums
+ * added in chunk order: P = ceil(n / CL_NVEC_CHUNK) about equal chunks
+ * of a multiple of 4 entries each, the last one the rest (so a vector of
+ * at most CL_NVEC_CHUNK entries is summed as by the four partial sums
+ * alone, as before the threads).
  *
  * Threads.  The operations SUNDIALS' PCG calls at every iteration
  * (linearsum, scale, prod, const, dotprod) and the weighted sums of
@@ -39,9 +41,10 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 
-/* Entries per chunk of the threaded operations and of the sums (vectors
- * of more than 1024 chunks take larger chunks). */
-#define CL_NVEC_CHUNK 4096
+/* Most entries per chunk of the threaded operations and of the sums
+ * (beyond 1024 chunks the chunks grow): the chunks depend on the length
+ * alone, never on the thread count. */
+#define CL_NVEC_CHUNK 8192
 
 /* Threads (>= 1; less counts as 1) of the operations called from the
  * calling thread from now on; returns the previous count.  Default 1. */
