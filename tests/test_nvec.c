@@ -3,10 +3,10 @@
  * N_VLinearSum and N_VScale (factors 1, -1, a = b, a = -b, results in
  * place), gives bitwise the same numbers, the dot product and weighted
  * norms (four partial sums) the same to round-off; clones inherit the operations;
- * the vector is still a serial one.  Threads: on a vector of several
- * chunks, the operations give bitwise the same results for 1, 2 and 3
- * threads, and the dot product is the chunks' four partial sums added in
- * chunk order. */
+ * the vector is still a serial one.  Threads: on threaded vectors of
+ * several chunks, the operations give bitwise the same results for 1, 2
+ * and 3 threads, and the dot product is the chunks' four partial sums
+ * added in chunk order; on the other vectors it stays one chunk. */
 #include <criterion/criterion.h>
 
 #include <math.h>
@@ -153,13 +153,14 @@ Test(nvec, clones_inherit_and_stay_serial)
 /* Several chunks and a tail (nvec.h: CL_NVEC_CHUNK). */
 #define NV_LONG (3 * CL_NVEC_CHUNK + 7)
 
-/* The documented order (nvec.h): P = ceil(n / CL_NVEC_CHUNK) chunks of
+/* The documented order (nvec.h): P = ceil(n / most) chunks of
  * c entries (a multiple of 4), the last the rest; per chunk four
  * interleaved partial sums, added as (s0 + s1) + (s2 + s3), then the
  * chunk's tail; the chunks in order. */
-static double nv_chunked_dot(const double *x, const double *y, size_t n)
+static double nv_chunked_dot(const double *x, const double *y, size_t n,
+                             size_t most)
 {
-    size_t p = (n + CL_NVEC_CHUNK - 1) / CL_NVEC_CHUNK;
+    size_t p = (n + most - 1) / most;
     size_t c = ((n + p - 1) / p + 3) / 4 * 4;
     double sum = 0.0;
     for (size_t lo = 0; lo < n; lo += c) {
@@ -204,16 +205,27 @@ Test(nvec, threads_bitwise_and_chunk_order)
     cr_assert_eq(SUNContext_Create(NULL, &ctx), 0);
     N_Vector one[3], many[3];
     for (int k = 0; k < 3; k++) {
-        one[k] = cl_nvec_new(NV_LONG, ctx);
-        many[k] = cl_nvec_new(NV_LONG, ctx);
+        one[k] = cl_nvec_new_threaded(NV_LONG, ctx);
+        many[k] = N_VClone(one[k]); /* clones inherit the chunks */
         cr_assert(one[k] && many[k]);
     }
     double r1[4], rt[4];
     nv_pcg_ops(1, one, r1);
-    nv_same_value(r1[3], nv_chunked_dot(N_VGetArrayPointer(one[0]),
-                                        N_VGetArrayPointer(one[2]),
-                                        NV_LONG),
+    const double *x = N_VGetArrayPointer(one[0]),
+                 *z = N_VGetArrayPointer(one[2]);
+    nv_same_value(r1[3], nv_chunked_dot(x, z, NV_LONG, CL_NVEC_CHUNK),
                   "chunk order");
+    nv_same_value(N_VDotProd(one[0], one[2]), r1[3], "threaded vectors");
+    N_Vector plain = cl_nvec_new(NV_LONG, ctx), pz = N_VClone(plain);
+    cr_assert(plain && pz);
+    memcpy(N_VGetArrayPointer(plain), x, NV_LONG * sizeof *x);
+    memcpy(N_VGetArrayPointer(pz), z, NV_LONG * sizeof *z);
+    /* N_VDotProd(x, y) calls y's operation: both plain here */
+    nv_same_value(N_VDotProd(plain, pz),
+                  nv_chunked_dot(x, z, NV_LONG, NV_LONG),
+                  "other vectors: one chunk");
+    N_VDestroy(pz);
+    N_VDestroy(plain);
     for (int t = 2; t <= 3; t++) {
         nv_pcg_ops(t, many, rt);
         for (int k = 0; k < 3; k++)

@@ -306,12 +306,12 @@ static cl_status pcg_sundials(cl_pcg *s, cl_error *err)
     if (flag != 0)
         return pcg_sunfail(s, "SUNContext_Create", flag, err);
     sunindextype n = (sunindextype)s->n;
-    s->b = cl_nvec_new(n, s->ctx);
-    s->x = s->b ? cl_nvec_new(n, s->ctx) : NULL;
-    s->ones = s->x ? cl_nvec_new(n, s->ctx) : NULL;
-    s->w = s->ones ? cl_nvec_new(n, s->ctx) : NULL;
+    s->b = cl_nvec_new_threaded(n, s->ctx);
+    s->x = s->b ? cl_nvec_new_threaded(n, s->ctx) : NULL;
+    s->ones = s->x ? cl_nvec_new_threaded(n, s->ctx) : NULL;
+    s->w = s->ones ? cl_nvec_new_threaded(n, s->ctx) : NULL;
     if (!s->w)
-        return pcg_sunfail(s, "cl_nvec_new", 0, err);
+        return pcg_sunfail(s, "cl_nvec_new_threaded", 0, err);
     N_VConst(1.0, s->ones);
     s->ls = SUNLinSol_PCG(s->x, SUN_PREC_LEFT, s->maxit, s->ctx);
     if (!s->ls)

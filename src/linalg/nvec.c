@@ -10,13 +10,14 @@
  *   wrmsnorm   sqrt(sum (x_i w_i)^2 / N), mask: only id_i > 0;
  *   wl2norm    sqrt(sum (x_i w_i)^2);
  *   the others elementwise; dot products and unmasked weighted sums of
- *   squares in four interleaved partial sums (nv_sum4) per chunk
- *   (nv_chunk: about equal parts of at most CL_NVEC_CHUNK entries), the
- *   chunks' sums added in chunk order (nv_reduce), the other reductions
- *   in index order.
- * Threads (cl_nvec_threads): linearsum, scale, prod, const, the dot
- * product and the unmasked weighted sums of squares split into the same
- * chunks, so their results do not depend on the thread count.
+ *   squares in four interleaved partial sums (nv_sum4), the other
+ *   reductions in index order; the dot product of the threaded vectors
+ *   by nv_sum4 per chunk (nv_chunk: about equal parts of at most
+ *   CL_NVEC_CHUNK entries), the chunks' sums added in chunk order
+ *   (nv_reduce).
+ * Threads (cl_nvec_threads): linearsum, scale, prod, const and the
+ * threaded vectors' dot product split into those chunks, so their
+ * results do not depend on the thread count.
  * Every loop reads entry i of each input before it writes entry i of the
  * output, so any of the vectors may be the same. */
 #include "linalg/nvec.h"
@@ -411,6 +412,12 @@ double cl_nvec_dot(const double *x, const double *y, size_t n, int threads)
 
 static sunrealtype nv_dotprod(N_Vector x, N_Vector y)
 {
+    return nv_sum4(NV_D(x), NV_D(y), NV_N(x), false);
+}
+
+/* The dot product of the threaded vectors (cl_nvec_new_threaded). */
+static sunrealtype nv_dotprod_chunks(N_Vector x, N_Vector y)
+{
     return nv_reduce(NV_D(x), NV_D(y), NV_N(x), false, nv_threads);
 }
 
@@ -433,7 +440,7 @@ static sunrealtype nv_wsqrsum(N_Vector x, N_Vector w, N_Vector id)
     const sunrealtype *xd = NV_D(x), *wd = NV_D(w);
     const sunrealtype *idd = id ? NV_D(id) : NULL;
     if (!idd)
-        return nv_reduce(xd, wd, n, true, nv_threads);
+        return nv_sum4(xd, wd, n, true);
     sunrealtype sum = 0.0;
     for (sunindextype i = 0; i < n; i++) {
         if (!(idd[i] > 0.0))
@@ -527,5 +534,15 @@ N_Vector cl_nvec_new(sunindextype n, SUNContext ctx)
     N_Vector v = N_VNew_Serial(n, ctx);
     if (v)
         cl_nvec_fast(v);
+    return v;
+}
+
+N_Vector cl_nvec_new_threaded(sunindextype n, SUNContext ctx)
+{
+    N_Vector v = cl_nvec_new(n, ctx);
+    if (v) {
+        v->ops->nvdotprod = nv_dotprod_chunks;
+        v->ops->nvdotprodlocal = nv_dotprod_chunks;
+    }
     return v;
 }

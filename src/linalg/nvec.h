@@ -20,19 +20,22 @@
  * on the default x86-64 target), except the dot product and the weighted
  * norms: they sum in four interleaved partial sums (a fixed order, equal
  * to the serial sums to round-off), at every CVODE step and PCG iteration
- * ~4x faster than one running sum, chunk by chunk, the chunks' sums
- * added in chunk order: P = ceil(n / CL_NVEC_CHUNK) about equal chunks
- * of a multiple of 4 entries each, the last one the rest (so a vector of
- * at most CL_NVEC_CHUNK entries is summed as by the four partial sums
- * alone, as before the threads).
- *
- * Threads.  The operations SUNDIALS' PCG calls at every iteration
- * (linearsum, scale, prod, const, dotprod) and the weighted sums of
- * squares run on cl_nvec_threads(N) OpenMP threads, chunk by chunk; the
- * chunks do not depend on N, so neither do the results (bitwise).  Clones inherit the operations
+ * ~4x faster than one running sum.  Clones inherit the operations
  * (N_VClone_Serial copies the operation table).  Fused and vector-array
  * operations stay disabled (NULL), as in N_VNew_Serial: SUNDIALS then
- * composes them from the operations above. */
+ * composes them from the operations above.
+ *
+ * Threads.  The operations SUNDIALS' PCG calls at every iteration
+ * (linearsum, scale, prod, const, dotprod) run on cl_nvec_threads(N)
+ * OpenMP threads, split into chunks that depend on the vector's length
+ * alone: P = ceil(n / CL_NVEC_CHUNK) about equal chunks of a multiple of
+ * 4 entries each, the last one the rest.  The elementwise ones give the
+ * same values for any split; the dot product of the threaded vectors
+ * (cl_nvec_new_threaded: pcg's) sums each chunk by the four partial sums
+ * and adds the chunks' sums in chunk order, so it does not depend on N
+ * either, and a vector of at most CL_NVEC_CHUNK entries (one chunk) sums
+ * as the others do.  The other vectors (CVODE's, IDA's) keep one chunk
+ * at every length. */
 #ifndef CL_NVEC_H
 #define CL_NVEC_H
 
@@ -59,5 +62,10 @@ void cl_nvec_fast(N_Vector v);
 
 /* N_VNew_Serial(n, ctx) with cl_nvec_fast; NULL if out of memory. */
 N_Vector cl_nvec_new(sunindextype n, SUNContext ctx);
+
+/* cl_nvec_new with the chunked dot product (see Threads above), for
+ * vectors whose operations run on several threads; NULL if out of
+ * memory. */
+N_Vector cl_nvec_new_threaded(sunindextype n, SUNContext ctx);
 
 #endif
