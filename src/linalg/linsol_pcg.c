@@ -38,6 +38,13 @@
  * A is assumed symmetric (the Choi-Ko and spring Jacobians are); with a
  * nonsymmetric A, CG may fail to converge, which is then reported.
  *
+ * Threads (opts->threads, docs/architecture.md "Pair kernels and
+ * threads"): the products, the packing of A, the symmetry check, the
+ * block-Jacobi setup and solve (equal ranges of block rows) and, through
+ * cl_nvec_threads around each solve, SUNDIALS' vector operations on our
+ * vectors (linalg/nvec.h; dot products over chunks fixed by n) run on
+ * that many OpenMP threads, with results bitwise independent of it.
+ *
  * Statistics: lin_setups (setups), lin_solves (solves), lin_iters (PCG
  * iterations, SUNLinSolNumIters summed over solves). */
 #include "linalg/linsol.h"
