@@ -97,10 +97,14 @@ static inline void st_expect_order(const char *name, const char *linsol,
     cr_assert(fabs(q - want) < 0.2, "%s/%s: order %g", name, linsol, q);
 }
 
-/* problems/hang.ini with n = 8, 0.2 s in steps of 1e-3 by `name` with
- * `linsol`; statistics to *s; the cloth must have fallen (some y < 0) and
- * stay finite. */
-static inline void st_hang(const char *name, const char *linsol, cl_stats *s)
+/* problems/hang.ini with `nset` (cloth.n=...) on `threads` threads, to
+ * t_end in steps of 1e-3 by `name` with `linsol` (the first half, then
+ * the second); the final state into *x, *v (malloc'd, *n entries),
+ * statistics to *s. */
+static inline void st_hang_run(const char *name, const char *linsol,
+                               const char *nset, int threads, double t_end,
+                               double **x, double **v, size_t *n,
+                               cl_stats *s)
 {
     cl_error err = {0};
     cl_config *cfg = cl_config_alloc();
@@ -108,25 +112,42 @@ static inline void st_hang(const char *name, const char *linsol, cl_stats *s)
     cr_assert_not_null(cfg);
     cr_assert_eq(cl_config_load(cfg, "problems/hang.ini", &err), CL_OK, "%s",
                  err.msg);
-    cr_assert_eq(cl_config_set(cfg, "cloth.n=8", &err), CL_OK, "%s",
-                 err.msg);
+    cr_assert_eq(cl_config_set(cfg, nset, &err), CL_OK, "%s", err.msg);
     cr_assert_eq(cl_model_create(cfg, &m, &err), CL_OK, "%s", err.msg);
+    cr_assert_eq(cl_model_set_threads(m, threads, &err), CL_OK, "%s",
+                 err.msg);
     const cl_system *sys = cl_model_system(m);
-    double *x = malloc(sys->n * sizeof *x), *v = malloc(sys->n * sizeof *v);
-    cr_assert(x && v);
-    cl_model_initial_state(m, x, v);
+    *n = sys->n;
+    *x = malloc(sys->n * sizeof **x);
+    *v = malloc(sys->n * sizeof **v);
+    cr_assert(*x && *v);
+    cl_model_initial_state(m, *x, *v);
     const cl_integrator_type *it = cl_integrator_find(name);
     cr_assert_not_null(it);
     cl_integrator_opts o = {.dt = 1e-3, .linsol = linsol};
     void *st = NULL;
-    cr_assert_eq(it->create(sys, &o, 0.0, x, v, &st, &err), CL_OK, "%s",
+    cr_assert_eq(it->create(sys, &o, 0.0, *x, *v, &st, &err), CL_OK, "%s",
                  err.msg);
-    cr_assert_eq(it->advance(st, 0.1, x, v, &err), CL_OK, "%s", err.msg);
-    cr_assert_eq(it->advance(st, 0.2, x, v, &err), CL_OK, "%s", err.msg);
+    cr_assert_eq(it->advance(st, t_end / 2, *x, *v, &err), CL_OK, "%s",
+                 err.msg);
+    cr_assert_eq(it->advance(st, t_end, *x, *v, &err), CL_OK, "%s",
+                 err.msg);
     it->stats(st, s);
     it->free(st);
+    cl_model_free(m);
+    cl_config_free(cfg);
+}
+
+/* problems/hang.ini with n = 8, 0.2 s in steps of 1e-3 by `name` with
+ * `linsol`; statistics to *s; the cloth must have fallen (some y < 0) and
+ * stay finite. */
+static inline void st_hang(const char *name, const char *linsol, cl_stats *s)
+{
+    double *x, *v;
+    size_t n;
+    st_hang_run(name, linsol, "cloth.n=8", 1, 0.2, &x, &v, &n, s);
     double ymin = 0;
-    for (size_t i = 0; i < sys->n; i++) {
+    for (size_t i = 0; i < n; i++) {
         cr_assert(isfinite(x[i]) && isfinite(v[i]));
         if (i % 3 == 1)
             ymin = fmin(ymin, x[i]);
@@ -138,8 +159,6 @@ static inline void st_hang(const char *name, const char *linsol, cl_stats *s)
     cr_assert_lt(ymin, -0.05, "the cloth did not fall: %g", ymin);
     free(x);
     free(v);
-    cl_model_free(m);
-    cl_config_free(cfg);
 }
 
 /* The statistics of a 200-step run with one linear solve per step. */

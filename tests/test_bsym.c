@@ -214,3 +214,39 @@ Test(bsym, threaded_products_are_bitwise_serial)
     }
     bs_free(&c);
 }
+
+/* The threaded packing and symmetry check (cl_bsym_pack_threads,
+ * cl_bsym_check_threads) give the serial values bit for bit and the
+ * serial kind for 1, 2 and 3 threads: symmetric blocks, symmetric halves,
+ * and one asymmetric off-diagonal entry. */
+Test(bsym, threaded_pack_and_check_are_serial)
+{
+    static const cl_bsym_kind kinds[] = {CL_BSYM_BLOCKS, CL_BSYM_HALVES};
+    for (int k = 0; k < 2; k++) {
+        bs_case c;
+        bs_init(&c, k == 0);
+        size_t nu = (k == 0 ? 6 : 9) * c.sym.ne;
+        double *d = malloc(9 * NB * sizeof *d), *u = malloc(nu * sizeof *u);
+        cr_assert(d && u);
+        cl_bsym_pack(&c.sym, kinds[k], -0.3, c.blk, -0.01, c.blk, c.mass,
+                     c.d, c.u);
+        for (int t = 1; t <= 3; t++) {
+            cr_assert_eq(cl_bsym_check_threads(&c.sym, c.blk, CL_BSYM_TOL,
+                                               t),
+                         kinds[k], "%d threads", t);
+            cl_bsym_pack_threads(&c.sym, kinds[k], -0.3, c.blk, -0.01,
+                                 c.blk, c.mass, d, u, t);
+            cr_assert_eq(memcmp(d, c.d, 9 * NB * sizeof *d), 0,
+                         "%d threads", t);
+            cr_assert_eq(memcmp(u, c.u, nu * sizeof *u), 0, "%d threads", t);
+        }
+        c.blk[9 * c.sym.up[c.sym.ne - 1] + 1] += 1e-3; /* the last pair */
+        for (int t = 1; t <= 3; t++)
+            cr_assert_eq(cl_bsym_check_threads(&c.sym, c.blk, CL_BSYM_TOL,
+                                               t),
+                         CL_BSYM_NONE, "%d threads", t);
+        free(d);
+        free(u);
+        bs_free(&c);
+    }
+}

@@ -3,7 +3,10 @@
  * N_VLinearSum and N_VScale (factors 1, -1, a = b, a = -b, results in
  * place), gives bitwise the same numbers, the dot product and weighted
  * norms (four partial sums) the same to round-off; clones inherit the operations;
- * the vector is still a serial one. */
+ * the vector is still a serial one.  Threads: on threaded vectors of
+ * several chunks, the operations give bitwise the same results for 1, 2
+ * and 3 threads, and the dot product is the chunks' four partial sums
+ * added in chunk order; on the other vectors it stays one chunk. */
 #include <criterion/criterion.h>
 
 #include <math.h>
@@ -144,5 +147,98 @@ Test(nvec, clones_inherit_and_stay_serial)
     cr_assert_eq(NV_LENGTH_S(c), 5);
     N_VDestroy(c);
     N_VDestroy(v);
+    SUNContext_Free(&ctx);
+}
+
+/* Several chunks and a tail (nvec.h: CL_NVEC_CHUNK). */
+#define NV_LONG (3 * CL_NVEC_CHUNK + 7)
+
+/* The documented order (nvec.h): P = ceil(n / most) chunks of
+ * c entries (a multiple of 4), the last the rest; per chunk four
+ * interleaved partial sums, added as (s0 + s1) + (s2 + s3), then the
+ * chunk's tail; the chunks in order. */
+static double nv_chunked_dot(const double *x, const double *y, size_t n,
+                             size_t most)
+{
+    size_t p = (n + most - 1) / most;
+    size_t c = ((n + p - 1) / p + 3) / 4 * 4;
+    double sum = 0.0;
+    for (size_t lo = 0; lo < n; lo += c) {
+        size_t hi = lo + c < n ? lo + c : n, i = lo;
+        double s[4] = {0.0, 0.0, 0.0, 0.0};
+        for (; i + 4 <= hi; i += 4)
+            for (int q = 0; q < 4; q++)
+                s[q] += x[i + q] * y[i + q];
+        double part = (s[0] + s[1]) + (s[2] + s[3]);
+        for (; i < hi; i++)
+            part += x[i] * y[i];
+        sum = lo == 0 ? part : sum + part;
+    }
+    return sum;
+}
+
+/* PCG's operations on `threads` threads: the vectors and the reductions. */
+static void nv_pcg_ops(int threads, N_Vector v[3], double out[4])
+{
+    int old = cl_nvec_threads(threads);
+    for (int k = 0; k < 3; k++) {
+        double *d = N_VGetArrayPointer(v[k]);
+        for (int i = 0; i < NV_LONG; i++)
+            d[i] = sin(0.37 * (i + 1) * (k + 1)) + 0.5 * k;
+    }
+    out[0] = N_VDotProd(v[0], v[1]);
+    N_VLinearSum(0.37, v[0], -2.5, v[1], v[2]);
+    N_VLinearSum(1.0, v[2], 0.25, v[1], v[1]); /* y += a x */
+    N_VLinearSum(1.0, v[0], -0.75, v[2], v[0]); /* x += b y */
+    N_VScale(-1.5, v[1], v[2]);
+    N_VProd(v[0], v[2], v[2]);
+    out[1] = N_VDotProd(v[2], v[1]);
+    out[2] = N_VWrmsNorm(v[0], v[1]);
+    out[3] = cl_nvec_dot(N_VGetArrayPointer(v[0]),
+                         N_VGetArrayPointer(v[2]), NV_LONG, threads);
+    cr_assert_eq(cl_nvec_threads(old), threads);
+}
+
+Test(nvec, threads_bitwise_and_chunk_order)
+{
+    SUNContext ctx;
+    cr_assert_eq(SUNContext_Create(NULL, &ctx), 0);
+    N_Vector one[3], many[3];
+    for (int k = 0; k < 3; k++) {
+        one[k] = cl_nvec_new_threaded(NV_LONG, ctx);
+        many[k] = N_VClone(one[k]); /* clones inherit the chunks */
+        cr_assert(one[k] && many[k]);
+    }
+    double r1[4], rt[4];
+    nv_pcg_ops(1, one, r1);
+    const double *x = N_VGetArrayPointer(one[0]),
+                 *z = N_VGetArrayPointer(one[2]);
+    nv_same_value(r1[3], nv_chunked_dot(x, z, NV_LONG, CL_NVEC_CHUNK),
+                  "chunk order");
+    nv_same_value(N_VDotProd(one[0], one[2]), r1[3], "threaded vectors");
+    N_Vector plain = cl_nvec_new(NV_LONG, ctx), pz = N_VClone(plain);
+    cr_assert(plain && pz);
+    memcpy(N_VGetArrayPointer(plain), x, NV_LONG * sizeof *x);
+    memcpy(N_VGetArrayPointer(pz), z, NV_LONG * sizeof *z);
+    /* N_VDotProd(x, y) calls y's operation: both plain here */
+    nv_same_value(N_VDotProd(plain, pz),
+                  nv_chunked_dot(x, z, NV_LONG, NV_LONG),
+                  "other vectors: one chunk");
+    N_VDestroy(pz);
+    N_VDestroy(plain);
+    for (int t = 2; t <= 3; t++) {
+        nv_pcg_ops(t, many, rt);
+        for (int k = 0; k < 3; k++)
+            cr_assert_eq(memcmp(N_VGetArrayPointer(one[k]),
+                                N_VGetArrayPointer(many[k]),
+                                NV_LONG * sizeof(double)), 0,
+                         "%d threads: vector %d", t, k);
+        for (int q = 0; q < 4; q++)
+            nv_same_value(r1[q], rt[q], "threaded reduction");
+    }
+    for (int k = 0; k < 3; k++) {
+        N_VDestroy(one[k]);
+        N_VDestroy(many[k]);
+    }
     SUNContext_Free(&ctx);
 }

@@ -3,8 +3,9 @@
  * pin moving at constant velocity (f depends on t), and on the damped and
  * coupled systems of testsys.h; on a linear damped oscillator it is exactly
  * BDF2 (x' = v, M v' = f) started by one backward-Euler step; its first
- * step is the semi-be step; the reduced `hang` run's statistics; options
- * and failures. */
+ * step is the semi-be step; the reduced `hang` run's statistics; with pcg
+ * on 1, 2 and 3 threads bitwise the same steps (vectors of several
+ * chunks: every threaded part of a step); options and failures. */
 #include <criterion/criterion.h>
 
 #include <math.h>
@@ -103,6 +104,30 @@ Test(semi_bdf2, first_step_is_semi_be)
 
 Test(semi_bdf2, hang_statistics_klu) { st_expect_hang_stats(SBDF2, "klu"); }
 Test(semi_bdf2, hang_statistics_pcg) { st_expect_hang_stats(SBDF2, "pcg"); }
+/* hang at n = 56 (9402 unknowns: two chunks of the vector operations,
+ * linalg/nvec.h), 20 steps with pcg: forces, Jacobians, the
+ * Newton matrix, the preconditioner and every PCG operation threaded;
+ * the states and the iteration counts agree bit for bit. */
+Test(semi_bdf2, pcg_threads_bitwise)
+{
+    double *x1, *v1, *xt, *vt;
+    size_t n;
+    cl_stats s1 = {0}, st = {0};
+    st_hang_run(SBDF2, "pcg", "cloth.n=56", 1, 0.02, &x1, &v1, &n, &s1);
+    cr_assert_eq(n, 3 * (56 * 56 - 2));
+    cr_assert_gt(s1.lin_iters, 20);
+    for (int t = 2; t <= 3; t++) {
+        st_hang_run(SBDF2, "pcg", "cloth.n=56", t, 0.02, &xt, &vt, &n, &st);
+        cr_assert_eq(memcmp(x1, xt, n * sizeof *xt), 0, "%d threads", t);
+        cr_assert_eq(memcmp(v1, vt, n * sizeof *vt), 0, "%d threads", t);
+        cr_assert_eq(st.lin_iters, s1.lin_iters);
+        free(xt);
+        free(vt);
+    }
+    free(x1);
+    free(v1);
+}
+
 Test(semi_bdf2, registry_row) { st_expect_registry_row(SBDF2); }
 
 Test(semi_bdf2, rejects_unknown_linsol)

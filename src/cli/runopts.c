@@ -90,8 +90,9 @@ const cl_cli_opt cl_cli_run_rows[] = {
      * written for run serves the studies too (which hide them) */
     {.name = "threads", .arg = "N", .type = CL_CLI_LONG, .key = "threads",
      RUN_ROW(threads), .def = 1, .lo = 1, .hi = CL_MODEL_MAX_THREADS,
-     .help = "threads for the pair terms' forces and Jacobians and the "
-             "Krylov products; results are the same for every N"},
+     .help = "threads for the pair terms' forces and Jacobians, the "
+             "Krylov products and pcg's preconditioner and vector "
+             "operations; results are the same for every N"},
     {.name = "samples", .arg = "S", .type = CL_CLI_LONG, .key = "samples",
      RUN_ROW(samples), .def = 200, .lo = 1, .hi = 100000000,
      .help = "time-series rows after t = 0"},

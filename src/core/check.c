@@ -15,6 +15,20 @@ bool cl_all_finite(const double *a, size_t n)
     return acc == 0.0;
 }
 
+bool cl_all_finite_threads(const double *a, size_t n, int threads)
+{
+    if (threads <= 1)
+        return cl_all_finite(a, n);
+    bool all = true;
+    size_t nt = (size_t)threads;
+#pragma omp parallel for num_threads(threads) schedule(static) \
+    reduction(&& : all)
+    for (size_t t = 0; t < nt; t++)
+        all = cl_all_finite(a + n * t / nt, n * (t + 1) / nt - n * t / nt) &&
+              all;
+    return all;
+}
+
 cl_status cl_check_masses(const double *mass, size_t n, const char *who,
                           cl_error *err)
 {

@@ -10,6 +10,9 @@
 
 /* true if all n values of a are finite (n = 0: true). */
 bool cl_all_finite(const double *a, size_t n);
+/* cl_all_finite on `threads` OpenMP threads over equal ranges (for the
+ * Jacobians' values; the same answer for every count). */
+bool cl_all_finite_threads(const double *a, size_t n, int threads);
 
 /* CL_OK if all n masses are finite and > 0; otherwise CL_EINVAL with the
  * message "<who>: mass[i] = m, must be finite and > 0" for the first bad

@@ -127,7 +127,8 @@ cl_status cl_semi_linearise(cl_semi *s, double t, cl_error *err)
                                  s->dfdv);
     s->nlin++;
     bool finite = st == CL_OK && cl_all_finite(s->f, s->n) &&
-                  cl_all_finite(s->dfdx, nval) && cl_all_finite(s->dfdv, nval);
+                  cl_all_finite_threads(s->dfdx, nval, sys->threads) &&
+                  cl_all_finite_threads(s->dfdv, nval, sys->threads);
     if (st == CL_OK && !finite)
         st = CL_EBLOWUP;
     if (st != CL_OK)

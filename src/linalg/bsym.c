@@ -105,6 +105,23 @@ cl_bsym_kind cl_bsym_check(const cl_bsym *s, const double *blk, double tol)
     return kind;
 }
 
+cl_bsym_kind cl_bsym_check_threads(const cl_bsym *s, const double *blk,
+                                   double tol, int threads)
+{
+    if (threads <= 1)
+        return cl_bsym_check(s, blk, tol);
+    int kind = CL_BSYM_BLOCKS; /* the least kind of any pair: any order */
+#pragma omp parallel for num_threads(threads) schedule(static) \
+    reduction(min : kind)
+    for (size_t k = 0; k < s->nb + s->ne; k++) {
+        int kk = k < s->nb ? (int)bsym_pair(blk, s->diag[k], s->diag[k], tol)
+                           : (int)bsym_pair(blk, s->up[k - s->nb],
+                                            s->low[k - s->nb], tol);
+        kind = kk < kind ? kk : kind;
+    }
+    return (cl_bsym_kind)kind;
+}
+
 /* Entries (r <= c) of a symmetric block kept by CL_BSYM_BLOCKS. */
 static const int bsym_upper6[6] = {0, 1, 2, 4, 5, 8};
 
@@ -124,16 +141,14 @@ static inline void bsym_combine(double ca, const double *restrict x,
         out[q] = ca * x[q] + cb * y[q];
 }
 
-void cl_bsym_pack(const cl_bsym *s, cl_bsym_kind kind, double ca,
-                  const double *x, double cb, const double *y,
-                  const double *mass, double *d, double *u)
+/* Diagonal blocks [dlo, dhi) and upper blocks [elo, ehi) of the packing
+ * (cl_bsym_pack; y not NULL). */
+static void bsym_pack_range(const cl_bsym *s, bool six, double ca,
+                            const double *x, double cb, const double *y,
+                            const double *mass, double *d, double *u,
+                            const size_t range[4])
 {
-    /* Without Y: ca X + 0 X, the same values for finite X. */
-    if (!y) {
-        y = x;
-        cb = 0.0;
-    }
-    for (size_t i = 0; i < s->nb; i++) {
+    for (size_t i = range[0]; i < range[1]; i++) {
         double *b = d + 9 * i;
         bsym_combine(ca, x + 9 * s->diag[i], cb, y + 9 * s->diag[i], false,
                      b);
@@ -141,11 +156,42 @@ void cl_bsym_pack(const cl_bsym *s, cl_bsym_kind kind, double ca,
             for (int r = 0; r < 3; r++)
                 b[4 * r] += mass[3 * i + r];
     }
-    bool six = kind == CL_BSYM_BLOCKS;
     size_t w = six ? 6 : 9;
-    for (size_t e = 0; e < s->ne; e++)
+    for (size_t e = range[2]; e < range[3]; e++)
         bsym_combine(ca, x + 9 * s->up[e], cb, y + 9 * s->up[e], six,
                      u + w * e);
+}
+
+void cl_bsym_pack(const cl_bsym *s, cl_bsym_kind kind, double ca,
+                  const double *x, double cb, const double *y,
+                  const double *mass, double *d, double *u)
+{
+    cl_bsym_pack_threads(s, kind, ca, x, cb, y, mass, d, u, 1);
+}
+
+void cl_bsym_pack_threads(const cl_bsym *s, cl_bsym_kind kind, double ca,
+                          const double *x, double cb, const double *y,
+                          const double *mass, double *d, double *u,
+                          int threads)
+{
+    /* Without Y: ca X + 0 X, the same values for finite X. */
+    if (!y) {
+        y = x;
+        cb = 0.0;
+    }
+    bool six = kind == CL_BSYM_BLOCKS;
+    if (threads <= 1) {
+        const size_t all[4] = {0, s->nb, 0, s->ne};
+        bsym_pack_range(s, six, ca, x, cb, y, mass, d, u, all);
+        return;
+    }
+    size_t nb = s->nb, ne = s->ne, nt = (size_t)threads;
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (size_t t = 0; t < nt; t++) {
+        const size_t part[4] = {nb * t / nt, nb * (t + 1) / nt, ne * t / nt,
+                                ne * (t + 1) / nt};
+        bsym_pack_range(s, six, ca, x, cb, y, mass, d, u, part);
+    }
 }
 
 /* The products below keep row i's sum in registers; the transposed

@@ -68,6 +68,11 @@ typedef enum {
  * block). */
 cl_bsym_kind cl_bsym_check(const cl_bsym *s, const double *blk, double tol);
 
+/* cl_bsym_check on `threads` OpenMP threads (the same kind for every
+ * count: the least kind over the blocks). */
+cl_bsym_kind cl_bsym_check_threads(const cl_bsym *s, const double *blk,
+                                   double tol, int threads);
+
 /* Pack B = ca X + cb Y + diag(mass) (block values X, Y: 9 nnzb on the
  * pattern; Y and mass may be NULL, mass has 3 nb entries) into d (9 nb:
  * the diagonal blocks, all 9 entries) and u (the upper blocks, 9 ne values
@@ -78,6 +83,13 @@ cl_bsym_kind cl_bsym_check(const cl_bsym *s, const double *blk, double tol);
 void cl_bsym_pack(const cl_bsym *s, cl_bsym_kind kind, double ca,
                   const double *x, double cb, const double *y,
                   const double *mass, double *d, double *u);
+
+/* cl_bsym_pack block by block on `threads` OpenMP threads (the same
+ * values). */
+void cl_bsym_pack_threads(const cl_bsym *s, cl_bsym_kind kind, double ca,
+                          const double *x, double cb, const double *y,
+                          const double *mass, double *d, double *u,
+                          int threads);
 
 /* The column lists of the upper blocks, for cl_bsym_matvec_threads. */
 cl_status cl_bsym_transpose(cl_bsym *s, cl_error *err);

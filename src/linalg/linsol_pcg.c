@@ -38,6 +38,13 @@
  * A is assumed symmetric (the Choi-Ko and spring Jacobians are); with a
  * nonsymmetric A, CG may fail to converge, which is then reported.
  *
+ * Threads (opts->threads, docs/architecture.md "Pair kernels and
+ * threads"): the products, the packing of A, the symmetry check, the
+ * block-Jacobi setup and solve (equal ranges of block rows) and, through
+ * cl_nvec_threads around each solve, SUNDIALS' vector operations on our
+ * vectors (linalg/nvec.h; dot products over chunks fixed by n) run on
+ * that many OpenMP threads, with results bitwise independent of it.
+ *
  * Statistics: lin_setups (setups), lin_solves (solves), lin_iters (PCG
  * iterations, SUNLinSolNumIters summed over solves). */
 #include "linalg/linsol.h"
@@ -86,24 +93,23 @@ typedef struct {
 
 /* ---- SUNDIALS callbacks ------------------------------------------------ */
 
-/* z = A v, with the curvature check v^T A v > 0. */
+/* z = A v, with the curvature check v^T A v > 0 (summed as the dot
+ * products, linalg/nvec.h: the same value for every thread count). */
 static int pcg_atimes(void *data, N_Vector v, N_Vector z)
 {
     cl_pcg *s = data;
     const double *vp = N_VGetArrayPointer(v);
-    double *zp = N_VGetArrayPointer(z), curv = 0.0, vv = 0.0;
+    double *zp = N_VGetArrayPointer(z);
     if (s->kind != CL_BSYM_NONE)
         cl_bsym_matvec_threads(&s->sym, s->kind, s->sdiag, s->supper, vp,
                                zp, s->threads);
     else
         cl_bmatvec_threads(s->pat, s->ablk, vp, zp, s->threads);
     s->nprod++;
-    for (size_t i = 0; i < s->n; i++)
-        curv += vp[i] * zp[i];
+    double curv = cl_nvec_dot(vp, zp, s->n, s->threads);
     if (curv > 0.0 && isfinite(curv))
         return 0;
-    for (size_t i = 0; i < s->n; i++)
-        vv += vp[i] * vp[i];
+    double vv = cl_nvec_dot(vp, vp, s->n, s->threads);
     snprintf(s->why, sizeof s->why, "the matrix M - a df/dv - b df/dx is "
              "not positive definite: p^T A p = %.6g (|p|^2 = %.6g) for the "
              "search direction of iteration %d", curv, vv, s->nprod);
@@ -140,20 +146,47 @@ static const double *pcg_diag_block(const cl_pcg *s, size_t i)
                                    : s->ablk + 9 * s->pat->diag[i];
 }
 
+/* The first block of [lo, hi) whose symmetric part is not positive
+ * definite, or hi; every other block of the range inverted. */
+static size_t pcg_invert_blocks(cl_pcg *s, size_t lo, size_t hi)
+{
+    size_t bad = hi;
+    for (size_t i = lo; i < hi; i++) {
+        double minor[3];
+        if (!pcg_inv3(pcg_diag_block(s, i), s->pinv + 9 * i, minor) &&
+            bad == hi)
+            bad = i;
+    }
+    return bad;
+}
+
+/* Every block inverted, by s->threads threads over equal ranges of
+ * blocks; the message names the first block that is not positive
+ * definite. */
 static int pcg_psetup_block(cl_pcg *s)
 {
-    for (size_t i = 0; i < s->pat->nb; i++) {
-        double minor[3];
-        if (!pcg_inv3(pcg_diag_block(s, i), s->pinv + 9 * i, minor)) {
-            snprintf(s->why, sizeof s->why, "the matrix M - a df/dv - b "
-                     "df/dx is not positive definite: its diagonal block "
-                     "%zu is not (leading minors %.6g, %.6g, %.6g; no "
-                     "block-Jacobi preconditioner)", i, minor[0], minor[1],
-                     minor[2]);
-            return -1;
+    size_t nb = s->pat->nb, bad = nb;
+    int nt = s->threads;
+    if (nt <= 1) {
+        bad = pcg_invert_blocks(s, 0, nb);
+    } else {
+#pragma omp parallel for num_threads(nt) schedule(static) \
+    reduction(min : bad)
+        for (int t = 0; t < nt; t++) {
+            size_t hi = nb * (size_t)(t + 1) / (size_t)nt;
+            size_t b = pcg_invert_blocks(s, nb * (size_t)t / (size_t)nt, hi);
+            bad = b < hi && b < bad ? b : bad;
         }
     }
-    return 0;
+    if (bad == nb)
+        return 0;
+    double minor[3];
+    pcg_inv3(pcg_diag_block(s, bad), s->pinv + 9 * bad, minor);
+    snprintf(s->why, sizeof s->why, "the matrix M - a df/dv - b df/dx is "
+             "not positive definite: its diagonal block %zu is not (leading "
+             "minors %.6g, %.6g, %.6g; no block-Jacobi preconditioner)", bad,
+             minor[0], minor[1], minor[2]);
+    return -1;
 }
 
 static int pcg_psetup_point(cl_pcg *s)
@@ -177,25 +210,42 @@ static int pcg_psetup(void *data)
     return s->block ? pcg_psetup_block(s) : pcg_psetup_point(s);
 }
 
-/* z = P^-1 r */
+/* Block rows [lo, hi) of z = P^-1 r (entries, for point Jacobi). */
+static void pcg_precondition(const cl_pcg *s, const double *rp, double *zp,
+                             size_t lo, size_t hi)
+{
+    if (!s->block) {
+        for (size_t i = 3 * lo; i < 3 * hi; i++)
+            zp[i] = s->pinv[i] * rp[i];
+        return;
+    }
+    for (size_t i = lo; i < hi; i++) {
+        const double *P = s->pinv + 9 * i, *r3 = rp + 3 * i;
+        for (size_t q = 0; q < 3; q++)
+            zp[3 * i + q] = P[3 * q] * r3[0] + P[3 * q + 1] * r3[1] +
+                            P[3 * q + 2] * r3[2];
+    }
+}
+
+/* z = P^-1 r, on s->threads threads over equal ranges of block rows: the
+ * same values for every count. */
 static int pcg_psolve(void *data, N_Vector r, N_Vector z, sunrealtype tol,
                       int lr)
 {
     cl_pcg *s = data;
     const double *rp = N_VGetArrayPointer(r);
     double *zp = N_VGetArrayPointer(z);
+    size_t nb = s->pat->nb;
+    int nt = s->threads;
     (void)tol, (void)lr;
-    if (!s->block) {
-        for (size_t i = 0; i < s->n; i++)
-            zp[i] = s->pinv[i] * rp[i];
+    if (nt <= 1) {
+        pcg_precondition(s, rp, zp, 0, nb);
         return 0;
     }
-    for (size_t i = 0; i < s->pat->nb; i++) {
-        const double *P = s->pinv + 9 * i, *r3 = rp + 3 * i;
-        for (size_t q = 0; q < 3; q++)
-            zp[3 * i + q] = P[3 * q] * r3[0] + P[3 * q + 1] * r3[1] +
-                            P[3 * q + 2] * r3[2];
-    }
+#pragma omp parallel for num_threads(nt) schedule(static)
+    for (int t = 0; t < nt; t++)
+        pcg_precondition(s, rp, zp, nb * (size_t)t / (size_t)nt,
+                         nb * (size_t)(t + 1) / (size_t)nt);
     return 0;
 }
 
@@ -263,12 +313,12 @@ static cl_status pcg_sundials(cl_pcg *s, cl_error *err)
     if (flag != 0)
         return pcg_sunfail(s, "SUNContext_Create", flag, err);
     sunindextype n = (sunindextype)s->n;
-    s->b = cl_nvec_new(n, s->ctx);
-    s->x = s->b ? cl_nvec_new(n, s->ctx) : NULL;
-    s->ones = s->x ? cl_nvec_new(n, s->ctx) : NULL;
-    s->w = s->ones ? cl_nvec_new(n, s->ctx) : NULL;
+    s->b = cl_nvec_new_threaded(n, s->ctx);
+    s->x = s->b ? cl_nvec_new_threaded(n, s->ctx) : NULL;
+    s->ones = s->x ? cl_nvec_new_threaded(n, s->ctx) : NULL;
+    s->w = s->ones ? cl_nvec_new_threaded(n, s->ctx) : NULL;
     if (!s->w)
-        return pcg_sunfail(s, "cl_nvec_new", 0, err);
+        return pcg_sunfail(s, "cl_nvec_new_threaded", 0, err);
     N_VConst(1.0, s->ones);
     s->ls = SUNLinSol_PCG(s->x, SUN_PREC_LEFT, s->maxit, s->ctx);
     if (!s->ls)
@@ -336,8 +386,8 @@ static cl_status pcg_setup(void *state, double a, double b,
     cl_pcg *s = state;
     s->kind = s->jac_kind;
     if (s->kind != CL_BSYM_NONE)
-        cl_bsym_pack(&s->sym, s->kind, -a, dfdv, -b, dfdx, s->mass,
-                     s->sdiag, s->supper);
+        cl_bsym_pack_threads(&s->sym, s->kind, -a, dfdv, -b, dfdx,
+                             s->mass, s->sdiag, s->supper, s->threads);
     else
         cl_reduced_blocks(s->pat, s->mass, a, b, dfdx, dfdv, s->ablk);
     s->why[0] = '\0';
@@ -355,8 +405,10 @@ static cl_status pcg_setup(void *state, double a, double b,
 static void pcg_jacobian(void *state, const double *dfdx, const double *dfdv)
 {
     cl_pcg *s = state;
-    cl_bsym_kind kx = cl_bsym_check(&s->sym, dfdx, CL_BSYM_TOL);
-    cl_bsym_kind kv = kx ? cl_bsym_check(&s->sym, dfdv, CL_BSYM_TOL)
+    cl_bsym_kind kx = cl_bsym_check_threads(&s->sym, dfdx, CL_BSYM_TOL,
+                                            s->threads);
+    cl_bsym_kind kv = kx ? cl_bsym_check_threads(&s->sym, dfdv, CL_BSYM_TOL,
+                                                 s->threads)
                          : CL_BSYM_NONE;
     s->jac_kind = kx < kv ? kx : kv;
 }
@@ -390,7 +442,9 @@ static cl_status pcg_run(cl_pcg *s, N_Vector scale, double delta,
         return pcg_sunfail(s, "SUNLinSolSetZeroGuess", flag, err);
     s->why[0] = '\0';
     s->nprod = 0;
+    int outer = cl_nvec_threads(s->threads); /* PCG's vector operations */
     flag = SUNLinSolSolve(s->ls, NULL, s->x, s->b, delta);
+    cl_nvec_threads(outer);
     s->solves++;
     s->iters += SUNLinSolNumIters(s->ls);
     if (flag != SUNLS_SUCCESS)

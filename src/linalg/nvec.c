@@ -11,7 +11,13 @@
  *   wl2norm    sqrt(sum (x_i w_i)^2);
  *   the others elementwise; dot products and unmasked weighted sums of
  *   squares in four interleaved partial sums (nv_sum4), the other
- *   reductions in index order.
+ *   reductions in index order; the dot product of the threaded vectors
+ *   by nv_sum4 per chunk (nv_chunk: about equal parts of at most
+ *   CL_NVEC_CHUNK entries), the chunks' sums added in chunk order
+ *   (nv_reduce).
+ * Threads (cl_nvec_threads): linearsum, scale, prod, const and the
+ * threaded vectors' dot product split into those chunks, so their
+ * results do not depend on the thread count.
  * Every loop reads entry i of each input before it writes entry i of the
  * output, so any of the vectors may be the same. */
 #include "linalg/nvec.h"
@@ -30,12 +36,13 @@
 
 /* ---- linear sums ------------------------------------------------------- */
 
+/* The kernels take entries [0, n) of raw arrays, so that a threaded call
+ * (nv_run) hands each of them one chunk. */
+
 /* y <- a x + y */
-static void nv_axpy(sunrealtype a, N_Vector x, N_Vector y)
+static void nv_axpy(sunrealtype a, sunindextype n, const sunrealtype *xd,
+                    sunrealtype *yd)
 {
-    sunindextype n = NV_N(x);
-    const sunrealtype *xd = NV_D(x);
-    sunrealtype *yd = NV_D(y);
     if (a == 1.0) {
         CL_SIMD
         for (sunindextype i = 0; i < n; i++)
@@ -52,11 +59,9 @@ static void nv_axpy(sunrealtype a, N_Vector x, N_Vector y)
 }
 
 /* z = sx x + sy y for the sign patterns (+1, +1), (+1, -1) */
-static void nv_sum(N_Vector x, N_Vector y, N_Vector z, bool diff)
+static void nv_sum(sunindextype n, const sunrealtype *xd,
+                   const sunrealtype *yd, sunrealtype *zd, bool diff)
 {
-    sunindextype n = NV_N(x);
-    const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
-    sunrealtype *zd = NV_D(z);
     if (diff) {
         CL_SIMD
         for (sunindextype i = 0; i < n; i++)
@@ -69,12 +74,9 @@ static void nv_sum(N_Vector x, N_Vector y, N_Vector z, bool diff)
 }
 
 /* z = a x + y (plus) or a x - y */
-static void nv_lin(sunrealtype a, N_Vector x, N_Vector y, N_Vector z,
-                   bool plus)
+static void nv_lin(sunrealtype a, sunindextype n, const sunrealtype *xd,
+                   const sunrealtype *yd, sunrealtype *zd, bool plus)
 {
-    sunindextype n = NV_N(x);
-    const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
-    sunrealtype *zd = NV_D(z);
     if (plus) {
         CL_SIMD
         for (sunindextype i = 0; i < n; i++)
@@ -87,12 +89,9 @@ static void nv_lin(sunrealtype a, N_Vector x, N_Vector y, N_Vector z,
 }
 
 /* z = c (x + y) (plus) or c (x - y) */
-static void nv_scalesum(sunrealtype c, N_Vector x, N_Vector y, N_Vector z,
-                        bool plus)
+static void nv_scalesum(sunrealtype c, sunindextype n, const sunrealtype *xd,
+                        const sunrealtype *yd, sunrealtype *zd, bool plus)
 {
-    sunindextype n = NV_N(x);
-    const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
-    sunrealtype *zd = NV_D(z);
     if (plus) {
         CL_SIMD
         for (sunindextype i = 0; i < n; i++)
@@ -104,45 +103,44 @@ static void nv_scalesum(sunrealtype c, N_Vector x, N_Vector y, N_Vector z,
     }
 }
 
-static void nv_linearsum(sunrealtype a, N_Vector x, sunrealtype b, N_Vector y,
-                         N_Vector z)
+/* z = a x + b y over n entries; z == y and z == x (the same vector) select
+ * the in-place cases as N_VLinearSum_Serial does. */
+static void nv_linearsum_n(sunrealtype a, const sunrealtype *xd,
+                           sunrealtype b, const sunrealtype *yd,
+                           sunrealtype *zd, sunindextype n)
 {
-    if (b == 1.0 && z == y) {
-        nv_axpy(a, x, y);
-    } else if (a == 1.0 && z == x) {
-        nv_axpy(b, y, x);
+    if (b == 1.0 && zd == yd) {
+        nv_axpy(a, n, xd, zd);
+    } else if (a == 1.0 && zd == xd) {
+        nv_axpy(b, n, yd, zd);
     } else if (a == 1.0 && b == 1.0) {
-        nv_sum(x, y, z, false);
+        nv_sum(n, xd, yd, zd, false);
     } else if (a == 1.0 && b == -1.0) {
-        nv_sum(x, y, z, true);
+        nv_sum(n, xd, yd, zd, true);
     } else if (a == -1.0 && b == 1.0) {
-        nv_sum(y, x, z, true);
+        nv_sum(n, yd, xd, zd, true);
     } else if (a == 1.0 || b == 1.0) {
-        nv_lin(a == 1.0 ? b : a, a == 1.0 ? y : x, a == 1.0 ? x : y, z,
-               true);
+        nv_lin(a == 1.0 ? b : a, n, a == 1.0 ? yd : xd, a == 1.0 ? xd : yd,
+               zd, true);
     } else if (a == -1.0 || b == -1.0) {
-        nv_lin(a == -1.0 ? b : a, a == -1.0 ? y : x, a == -1.0 ? x : y, z,
-               false);
+        nv_lin(a == -1.0 ? b : a, n, a == -1.0 ? yd : xd,
+               a == -1.0 ? xd : yd, zd, false);
     } else if (a == b) {
-        nv_scalesum(a, x, y, z, true);
+        nv_scalesum(a, n, xd, yd, zd, true);
     } else if (a == -b) {
-        nv_scalesum(a, x, y, z, false);
+        nv_scalesum(a, n, xd, yd, zd, false);
     } else {
-        sunindextype n = NV_N(x);
-        const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
-        sunrealtype *zd = NV_D(z);
         CL_SIMD
         for (sunindextype i = 0; i < n; i++)
             zd[i] = (a * xd[i]) + (b * yd[i]);
     }
 }
 
-static void nv_scale(sunrealtype c, N_Vector x, N_Vector z)
+/* z = c x over n entries (x *= c in place; copy for c = 1; -x for -1) */
+static void nv_scale_n(sunrealtype c, const sunrealtype *xd, sunrealtype *zd,
+                       sunindextype n)
 {
-    sunindextype n = NV_N(x);
-    const sunrealtype *xd = NV_D(x);
-    sunrealtype *zd = NV_D(z);
-    if (z == x) {
+    if (zd == xd) {
         CL_SIMD
         for (sunindextype i = 0; i < n; i++)
             zd[i] *= c;
@@ -161,25 +159,122 @@ static void nv_scale(sunrealtype c, N_Vector x, N_Vector z)
     }
 }
 
-/* ---- elementwise ------------------------------------------------------- */
+/* ---- threads ------------------------------------------------------------ */
 
-static void nv_const(sunrealtype c, N_Vector z)
+/* Threads of the operations called from this thread (cl_nvec_threads). */
+static _Thread_local int nv_threads = 1;
+
+int cl_nvec_threads(int threads)
 {
-    sunindextype n = NV_N(z);
-    sunrealtype *zd = NV_D(z);
+    int old = nv_threads;
+    nv_threads = threads > 1 ? threads : 1;
+    return old;
+}
+
+/* The chunks of an n-entry vector, independent of the thread count:
+ * P = ceil(n / CL_NVEC_CHUNK) (at most NV_MAXCHUNKS) about equal parts,
+ * each of c entries (c a multiple of 4) but the last, which has the
+ * rest; *nc of them (P, or fewer after the rounding).  A vector of at
+ * most CL_NVEC_CHUNK entries is one chunk. */
+#define NV_MAXCHUNKS 1024
+
+static sunindextype nv_chunk(sunindextype n, sunindextype *nc)
+{
+    sunindextype p = (n + CL_NVEC_CHUNK - 1) / CL_NVEC_CHUNK;
+    p = p < 1 ? 1 : p > NV_MAXCHUNKS ? NV_MAXCHUNKS : p;
+    sunindextype c = ((n + p - 1) / p + 3) / 4 * 4;
+    c = c < 4 ? 4 : c;
+    *nc = (n + c - 1) / c;
+    return c;
+}
+
+/* One elementwise operation of the threaded set, on raw arrays. */
+typedef enum { NV_LINEARSUM, NV_SCALE, NV_PROD, NV_CONST } nv_op;
+
+typedef struct {
+    nv_op op;
+    sunrealtype a, b;
+    const sunrealtype *x, *y;
+    sunrealtype *z;
+} nv_job;
+
+static void nv_prod_n(const sunrealtype *xd, const sunrealtype *yd,
+                      sunrealtype *zd, sunindextype n)
+{
+    CL_SIMD
+    for (sunindextype i = 0; i < n; i++)
+        zd[i] = xd[i] * yd[i];
+}
+
+static void nv_const_n(sunrealtype c, sunrealtype *zd, sunindextype n)
+{
     CL_SIMD
     for (sunindextype i = 0; i < n; i++)
         zd[i] = c;
 }
 
+/* Entries [lo, hi) of job j. */
+static void nv_apply(const nv_job *j, sunindextype lo, sunindextype hi)
+{
+    const sunrealtype *x = j->x + lo, *y = j->y ? j->y + lo : NULL;
+    sunrealtype *z = j->z + lo;
+    switch (j->op) {
+    case NV_LINEARSUM:
+        nv_linearsum_n(j->a, x, j->b, y, z, hi - lo);
+        break;
+    case NV_SCALE:
+        nv_scale_n(j->a, x, z, hi - lo);
+        break;
+    case NV_PROD:
+        nv_prod_n(x, y, z, hi - lo);
+        break;
+    case NV_CONST:
+        nv_const_n(j->a, z, hi - lo);
+        break;
+    }
+}
+
+/* Job j over n entries: whole when one thread (or one chunk), else chunk
+ * by chunk on nv_threads threads.  Elementwise: the same values for any
+ * split. */
+static void nv_run(const nv_job *j, sunindextype n)
+{
+    sunindextype nc, c = nv_chunk(n, &nc);
+    int nt = nv_threads;
+    if (nt <= 1 || nc <= 1) {
+        nv_apply(j, 0, n);
+        return;
+    }
+#pragma omp parallel for num_threads(nt) schedule(static)
+    for (sunindextype k = 0; k < nc; k++)
+        nv_apply(j, k * c, k + 1 < nc ? (k + 1) * c : n);
+}
+
+static void nv_linearsum(sunrealtype a, N_Vector x, sunrealtype b, N_Vector y,
+                         N_Vector z)
+{
+    nv_job j = {NV_LINEARSUM, a, b, NV_D(x), NV_D(y), NV_D(z)};
+    nv_run(&j, NV_N(x));
+}
+
+static void nv_scale(sunrealtype c, N_Vector x, N_Vector z)
+{
+    nv_job j = {NV_SCALE, c, 0.0, NV_D(x), NULL, NV_D(z)};
+    nv_run(&j, NV_N(x));
+}
+
+/* ---- elementwise ------------------------------------------------------- */
+
+static void nv_const(sunrealtype c, N_Vector z)
+{
+    nv_job j = {NV_CONST, c, 0.0, NV_D(z), NULL, NV_D(z)};
+    nv_run(&j, NV_N(z));
+}
+
 static void nv_prod(N_Vector x, N_Vector y, N_Vector z)
 {
-    sunindextype n = NV_N(x);
-    const sunrealtype *xd = NV_D(x), *yd = NV_D(y);
-    sunrealtype *zd = NV_D(z);
-    CL_SIMD
-    for (sunindextype i = 0; i < n; i++)
-        zd[i] = xd[i] * yd[i];
+    nv_job j = {NV_PROD, 0.0, 0.0, NV_D(x), NV_D(y), NV_D(z)};
+    nv_run(&j, NV_N(x));
 }
 
 static void nv_div(N_Vector x, N_Vector y, N_Vector z)
@@ -284,9 +379,46 @@ static sunrealtype nv_sum4(const sunrealtype *x, const sunrealtype *y,
     return sum;
 }
 
+/* sum x_i y_i (or (x_i y_i)^2) chunk by chunk (nv_chunk), each chunk by
+ * nv_sum4, the chunks' sums added in chunk order: the same value for any
+ * thread count.  A vector of one chunk is summed as by nv_sum4 alone. */
+static sunrealtype nv_reduce(const sunrealtype *x, const sunrealtype *y,
+                             sunindextype n, bool square, int threads)
+{
+    sunindextype nc, c = nv_chunk(n, &nc);
+    if (nc <= 1)
+        return nv_sum4(x, y, n, square);
+    sunrealtype part[NV_MAXCHUNKS];
+    if (threads <= 1) {
+        for (sunindextype k = 0; k < nc; k++)
+            part[k] = nv_sum4(x + k * c, y + k * c,
+                              k + 1 < nc ? c : n - k * c, square);
+    } else {
+#pragma omp parallel for num_threads(threads) schedule(static)
+        for (sunindextype k = 0; k < nc; k++)
+            part[k] = nv_sum4(x + k * c, y + k * c,
+                              k + 1 < nc ? c : n - k * c, square);
+    }
+    sunrealtype sum = part[0];
+    for (sunindextype k = 1; k < nc; k++)
+        sum += part[k];
+    return sum;
+}
+
+double cl_nvec_dot(const double *x, const double *y, size_t n, int threads)
+{
+    return nv_reduce(x, y, (sunindextype)n, false, threads);
+}
+
 static sunrealtype nv_dotprod(N_Vector x, N_Vector y)
 {
     return nv_sum4(NV_D(x), NV_D(y), NV_N(x), false);
+}
+
+/* The dot product of the threaded vectors (cl_nvec_new_threaded). */
+static sunrealtype nv_dotprod_chunks(N_Vector x, N_Vector y)
+{
+    return nv_reduce(NV_D(x), NV_D(y), NV_N(x), false, nv_threads);
 }
 
 static sunrealtype nv_maxnorm(N_Vector x)
@@ -402,5 +534,15 @@ N_Vector cl_nvec_new(sunindextype n, SUNContext ctx)
     N_Vector v = N_VNew_Serial(n, ctx);
     if (v)
         cl_nvec_fast(v);
+    return v;
+}
+
+N_Vector cl_nvec_new_threaded(sunindextype n, SUNContext ctx)
+{
+    N_Vector v = cl_nvec_new(n, ctx);
+    if (v) {
+        v->ops->nvdotprod = nv_dotprod_chunks;
+        v->ops->nvdotprodlocal = nv_dotprod_chunks;
+    }
     return v;
 }

@@ -23,17 +23,49 @@
  * ~4x faster than one running sum.  Clones inherit the operations
  * (N_VClone_Serial copies the operation table).  Fused and vector-array
  * operations stay disabled (NULL), as in N_VNew_Serial: SUNDIALS then
- * composes them from the operations above. */
+ * composes them from the operations above.
+ *
+ * Threads.  The operations SUNDIALS' PCG calls at every iteration
+ * (linearsum, scale, prod, const, dotprod) run on cl_nvec_threads(N)
+ * OpenMP threads, split into chunks that depend on the vector's length
+ * alone: P = ceil(n / CL_NVEC_CHUNK) about equal chunks of a multiple of
+ * 4 entries each, the last one the rest.  The elementwise ones give the
+ * same values for any split; the dot product of the threaded vectors
+ * (cl_nvec_new_threaded: pcg's) sums each chunk by the four partial sums
+ * and adds the chunks' sums in chunk order, so it does not depend on N
+ * either, and a vector of at most CL_NVEC_CHUNK entries (one chunk) sums
+ * as the others do.  The other vectors (CVODE's, IDA's) keep one chunk
+ * at every length. */
 #ifndef CL_NVEC_H
 #define CL_NVEC_H
 
+#include <stddef.h>
+
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
+
+/* Most entries per chunk of the threaded operations and of the sums
+ * (beyond 1024 chunks the chunks grow): the chunks depend on the length
+ * alone, never on the thread count. */
+#define CL_NVEC_CHUNK 8192
+
+/* Threads (>= 1; less counts as 1) of the operations called from the
+ * calling thread from now on; returns the previous count.  Default 1. */
+int cl_nvec_threads(int threads);
+
+/* sum_i x_i y_i over n entries in the order of the dot product above, on
+ * `threads` threads (the same value for every count). */
+double cl_nvec_dot(const double *x, const double *y, size_t n, int threads);
 
 /* Replace the operations of serial vector v (see above). */
 void cl_nvec_fast(N_Vector v);
 
 /* N_VNew_Serial(n, ctx) with cl_nvec_fast; NULL if out of memory. */
 N_Vector cl_nvec_new(sunindextype n, SUNContext ctx);
+
+/* cl_nvec_new with the chunked dot product (see Threads above), for
+ * vectors whose operations run on several threads; NULL if out of
+ * memory. */
+N_Vector cl_nvec_new_threaded(sunindextype n, SUNContext ctx);
 
 #endif
