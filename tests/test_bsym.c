@@ -3,7 +3,7 @@
  * particle, a cycle, a repeated pair) for a random symmetric matrix; the
  * check tells symmetric blocks from symmetric halves, passes round-off
  * and refuses a non-symmetric matrix, an asymmetric diagonal block and a
- * NaN; the packed
+ * NaN, and a pair of matrices has the lesser kind of the two; the packed
  * A = M - a Kv - b Kx has the values of the full blocks bit for bit; the
  * halves of a pattern cover every off-diagonal block once. */
 #include <criterion/criterion.h>
@@ -148,6 +148,28 @@ Test(bsym, roundoff_asymmetry_passes_real_asymmetry_does_not)
     D[5] += 0.5; /* (1, 2) of a diagonal block, (2, 1) unchanged */
     cr_assert_eq(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL), CL_BSYM_NONE);
     bs_free(&c);
+}
+
+/* The kind of a pair is the lesser of the two: blocks with blocks,
+ * halves with blocks, none with anything. */
+Test(bsym, pair_takes_the_lesser_kind)
+{
+    bs_case c, h;
+    bs_init(&c, true);
+    bs_init(&h, false);
+    cr_assert_eq(cl_bsym_check_pair(&c.sym, c.blk, c.blk, CL_BSYM_TOL),
+                 CL_BSYM_BLOCKS);
+    cr_assert_eq(cl_bsym_check_pair(&c.sym, c.blk, h.blk, CL_BSYM_TOL),
+                 CL_BSYM_HALVES);
+    cr_assert_eq(cl_bsym_check_pair(&c.sym, h.blk, c.blk, CL_BSYM_TOL),
+                 CL_BSYM_HALVES);
+    h.blk[9 * h.sym.low[0] + 1] += 1e-6;
+    cr_assert_eq(cl_bsym_check_pair(&c.sym, c.blk, h.blk, CL_BSYM_TOL),
+                 CL_BSYM_NONE);
+    cr_assert_eq(cl_bsym_check_pair(&c.sym, h.blk, c.blk, CL_BSYM_TOL),
+                 CL_BSYM_NONE);
+    bs_free(&c);
+    bs_free(&h);
 }
 
 /* A = M - a Kv - b Kx packed from two symmetric Jacobians: the values of

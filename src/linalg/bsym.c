@@ -105,6 +105,14 @@ cl_bsym_kind cl_bsym_check(const cl_bsym *s, const double *blk, double tol)
     return kind;
 }
 
+cl_bsym_kind cl_bsym_check_pair(const cl_bsym *s, const double *x,
+                                const double *y, double tol)
+{
+    cl_bsym_kind kx = cl_bsym_check(s, x, tol);
+    cl_bsym_kind ky = kx ? cl_bsym_check(s, y, tol) : CL_BSYM_NONE;
+    return kx < ky ? kx : ky;
+}
+
 /* Entries (r <= c) of a symmetric block kept by CL_BSYM_BLOCKS. */
 static const int bsym_upper6[6] = {0, 1, 2, 4, 5, 8};
 

@@ -355,10 +355,7 @@ static cl_status pcg_setup(void *state, double a, double b,
 static void pcg_jacobian(void *state, const double *dfdx, const double *dfdv)
 {
     cl_pcg *s = state;
-    cl_bsym_kind kx = cl_bsym_check(&s->sym, dfdx, CL_BSYM_TOL);
-    cl_bsym_kind kv = kx ? cl_bsym_check(&s->sym, dfdv, CL_BSYM_TOL)
-                         : CL_BSYM_NONE;
-    s->jac_kind = kx < kv ? kx : kv;
+    s->jac_kind = cl_bsym_check_pair(&s->sym, dfdx, dfdv, CL_BSYM_TOL);
 }
 
 /* `test` says what delta is, for the message. */
