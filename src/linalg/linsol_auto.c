@@ -38,13 +38,13 @@
  * large steps) and ~350 with one solve per setup (semi-be).
  *
  * A pcg (or amg) setup or solve that fails (A not positive definite, no
- * convergence within lin_maxit) is not an error: the same A is factorised
- * by cholmod (or klu) and the solve repeated, and the next CL_AUTO_DIRECT setups go direct
- * too; such fallbacks are counted in cl_stats.lin_fallbacks.  For this,
- * dfdx and dfdv must keep their values from a setup to the last solve of
- * that setup (every integrator here only re-evaluates them before a
- * setup).  The choice depends on counts only, never on timings, so runs
- * are reproducible.
+ * convergence within lin_maxit) is not an error: the same A is factorised by
+ * cholmod (or klu) and the solve repeated, and the next CL_AUTO_DIRECT
+ * setups go direct too; such fallbacks are counted in
+ * cl_stats.lin_fallbacks.  For this, dfdx and dfdv must keep their values
+ * from a setup to the last solve of that setup (every integrator here only
+ * re-evaluates them before a setup).  The choice depends on counts only,
+ * never on timings, so runs are reproducible.
  *
  * The solvers are created when first needed (pcg at create, cholmod at the
  * first direct setup or cost comparison: one allocation and one symbolic
