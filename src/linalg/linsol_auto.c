@@ -16,8 +16,9 @@
  *             per iteration but keeps the iterations nearly flat in the
  *             size, so it pays where block Jacobi's iterations have grown
  *             (workload 10, paper/findings.md "Algebraic multigrid":
- *             semi-bdf2 on hang, dt = 1e-2, n = 128 (pcg ~400 iterations
- *             per solve) and 256 (~800)); without the plug-in pcg stays;
+ *             semi-bdf2 on hang, dt = 1e-2: a tie at n = 128, pcg 400-500
+ *             iterations per solve; 1.6x at n = 256, pcg ~1000); without
+ *             the plug-in pcg stays;
  *   cholmod   (linsol_cholmod.c, which itself hands a setup whose A is not
  *             symmetric positive definite to klu) for the next
  *             CL_AUTO_DIRECT setups when the last pcg setup cost more than
