@@ -11,7 +11,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "integrators/integrator.h"
 #include "lscase.h"
+#include "problem.h"
 
 Test(linsol, registry)
 {
@@ -165,6 +167,63 @@ Test(linsol, auto_picks_by_cost)
     cr_assert_eq(s.lin_fallbacks, 0);
     t->free(st);
     ls_free(&c);
+}
+
+/* semi-bdf2 on hang at n = `n`, dt = 1e-2, to t = 0.03 (three steps) with
+ * linear solver `linsol`: the positions (len of them), the statistics. */
+static double *ls_hang_run(int n, const char *linsol, cl_stats *st,
+                           size_t *len)
+{
+    char set[32];
+    snprintf(set, sizeof set, "cloth.n=%d", n);
+    pr_problem p;
+    pr_load(&p, "problems/hang.ini", set, NULL);
+    const cl_system *sys = cl_model_system(p.m);
+    double *x = malloc(sys->n * sizeof *x), *v = malloc(sys->n * sizeof *v);
+    cr_assert(x && v);
+    cr_assert_eq(cl_model_initial_state(p.m, x, v), CL_OK);
+    *len = sys->n;
+    const cl_integrator_type *it = cl_integrator_find("semi-bdf2");
+    cl_integrator_opts io = {.dt = 1e-2, .linsol = linsol};
+    cl_error err = {0};
+    void *state = NULL;
+    cr_assert_eq(it->create(sys, &io, 0.0, x, v, &state, &err), CL_OK, "%s",
+                 err.msg);
+    cr_assert_eq(it->advance(state, 0.03, x, v, &err), CL_OK, "%s",
+                 err.msg);
+    *st = (cl_stats){0};
+    it->stats(state, st);
+    it->free(state);
+    free(v);
+    pr_free(&p);
+    return x;
+}
+
+/* On hang at n = 128, dt = 1e-2, pcg's solves take 400-500 iterations
+ * from the second step on: auto goes to amg (CL_AUTO_AMG_*), which solves to
+ * the same tolerance: the positions agree with pcg's run to 1e-9. */
+Test(linsol, auto_goes_to_amg_on_long_pcg_solves)
+{
+    cl_stats sa, sp;
+    size_t n;
+    double *xa = ls_hang_run(128, "auto", &sa, &n);
+    double *xp = ls_hang_run(128, "pcg", &sp, &n);
+    cr_log_info("auto: %s, %ld iterations in %ld solves; pcg: %ld in %ld",
+                sa.linsol, sa.lin_iters, sa.lin_solves, sp.lin_iters,
+                sp.lin_solves);
+    cr_assert_str_eq(sa.linsol, "auto:pcg+amg");
+    cr_assert_eq(sa.lin_setups, 3);
+    cr_assert_eq(sa.lin_fallbacks, 0);
+    cr_assert_lt(sa.lin_iters, sp.lin_iters);
+    double d = 0.0, m = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        d = fmax(d, fabs(xa[i] - xp[i]));
+        m = fmax(m, fabs(xp[i]));
+    }
+    cr_assert_leq(d, 1e-9 * m, "max |x_auto - x_pcg| %.3g (max |x| %.3g)",
+                  d, m);
+    free(xa);
+    free(xp);
 }
 
 /* With one solve per setup a factorisation does not pay: auto stays with

@@ -10,6 +10,7 @@
  *  - the hierarchy is built once over setups whose values change slowly,
  *    and rebuilt when the iterations grow past CL_AMG_REGROW (1.5) times
  *    those after the last build (statistics: symbolic_facts = builds);
+ *  - the products by two threads give the solution of one, bit for bit;
  *  - an indefinite A is CL_ESOLVER saying so. */
 #include <criterion/criterion.h>
 
@@ -74,13 +75,14 @@ static void am_free(am_case *c)
     pr_free(&c->p);
 }
 
-/* Set up solver `name` for A and solve A x = rhs into out. */
-static void am_solve(am_case *c, const char *name, double *out,
-                     cl_stats *s)
+/* Set up solver `name` (its products by `threads`) for A and solve
+ * A x = rhs into out. */
+static void am_solve_threads(am_case *c, const char *name, int threads,
+                             double *out, cl_stats *s)
 {
     const cl_linsol_type *t = ls_find(name);
     const double a = 2.0 * AM_H / 3.0, b = 4.0 * AM_H * AM_H / 9.0;
-    cl_linsol_opts o = {0};
+    cl_linsol_opts o = {.threads = threads};
     cl_error err = {0};
     void *st = NULL;
     cr_assert_eq(t->create(c->sys->pattern, c->sys->mass, &o, &st, &err),
@@ -92,6 +94,12 @@ static void am_solve(am_case *c, const char *name, double *out,
     *s = (cl_stats){0};
     t->stats(st, s);
     t->free(st);
+}
+
+static void am_solve(am_case *c, const char *name, double *out,
+                     cl_stats *s)
+{
+    am_solve_threads(c, name, 1, out, s);
 }
 
 static double am_norm(const double *a, const double *b, size_t n)
@@ -137,6 +145,25 @@ Test(linsol_amg, drape_sphere_equals_klu)
 Test(linsol_amg, hypre_hang_equals_klu)
 {
     am_equals_klu("hang", "amg-hypre");
+}
+
+/* The products by two threads are bitwise those by one (linalg/bsym.h),
+ * so are CG's iterates: the same solution, bit for bit, in as many
+ * iterations. */
+Test(linsol_amg, threads_give_the_same_solution)
+{
+    am_case c;
+    am_load(&c, "hang");
+    size_t n = c.sys->n;
+    double *x2 = malloc(n * sizeof *x2);
+    cr_assert_not_null(x2);
+    cl_stats s1, s2;
+    am_solve_threads(&c, "amg", 1, c.x, &s1);
+    am_solve_threads(&c, "amg", 2, x2, &s2);
+    cr_assert_eq(s2.lin_iters, s1.lin_iters);
+    cr_assert_eq(memcmp(c.x, x2, n * sizeof *x2), 0);
+    free(x2);
+    am_free(&c);
 }
 
 /* Setups k = 0..5 with df/dx scaled by 1.01 each time: one build, five

@@ -122,6 +122,15 @@ cl_bsym_kind cl_bsym_check_threads(const cl_bsym *s, const double *blk,
     return (cl_bsym_kind)kind;
 }
 
+cl_bsym_kind cl_bsym_check_pair(const cl_bsym *s, const double *x,
+                                const double *y, double tol, int threads)
+{
+    cl_bsym_kind kx = cl_bsym_check_threads(s, x, tol, threads);
+    cl_bsym_kind ky = kx ? cl_bsym_check_threads(s, y, tol, threads)
+                         : CL_BSYM_NONE;
+    return kx < ky ? kx : ky;
+}
+
 /* Entries (r <= c) of a symmetric block kept by CL_BSYM_BLOCKS. */
 static const int bsym_upper6[6] = {0, 1, 2, 4, 5, 8};
 

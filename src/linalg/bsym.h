@@ -73,6 +73,12 @@ cl_bsym_kind cl_bsym_check(const cl_bsym *s, const double *blk, double tol);
 cl_bsym_kind cl_bsym_check_threads(const cl_bsym *s, const double *blk,
                                    double tol, int threads);
 
+/* The kind both x and y have (the lesser of theirs): that of any
+ * combination ca x + cb y + diag(mass), as cl_bsym_pack makes it; checked
+ * on `threads` threads. */
+cl_bsym_kind cl_bsym_check_pair(const cl_bsym *s, const double *x,
+                                const double *y, double tol, int threads);
+
 /* Pack B = ca X + cb Y + diag(mass) (block values X, Y: 9 nnzb on the
  * pattern; Y and mass may be NULL, mass has 3 nb entries) into d (9 nb:
  * the diagonal blocks, all 9 entries) and u (the upper blocks, 9 ne values

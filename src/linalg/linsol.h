@@ -44,7 +44,8 @@ typedef struct {
     double tol;   /* relative residual tolerance */
     long maxit;   /* iterations per solve */
     int threads;  /* OpenMP threads for the iterative solvers' products
-                   * (pcg; <= 1: serial; results do not depend on it) */
+                   * (pcg, amg; <= 1: serial; results do not depend on
+                   * it) */
 } cl_linsol_opts;
 
 typedef struct {

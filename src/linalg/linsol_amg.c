@@ -12,17 +12,25 @@
  *              nodal coarsening and vector interpolation for the 3 unknowns
  *              per particle.
  *
- * The pattern is built once (create); a setup writes A's values into the
- * PETSc matrix's slots and sets the preconditioner up, either afresh (a
- * rebuild: coarsening, interpolation, coarse operators, smoothers) or
- * reusing the hierarchy.  For amg the reuse keeps the interpolation and
- * recomputes the coarse operators P^T A P and the smoothers from the new
- * values; for amg-hypre it keeps the whole preconditioner.  The hierarchy
- * is rebuilt at the first setup, and when the last solve took more than
- * CL_AMG_REGROW times the iterations of the first solve after the last
- * rebuild; a solve that fails on a reused hierarchy is redone once on a
- * fresh one.  Nothing is allocated by setup or solve on this side (PETSc
- * allocates within a rebuild).
+ * The pattern is built once (create).  CG and the finest level of the
+ * multigrid cycle (its smoother and residual) multiply by A through this
+ * side's product, a callback the plug-in calls: for a symmetric A (the
+ * usual case) the diagonal and upper blocks only, each upper block by its
+ * 6 distinct entries when it is symmetric itself, as pcg (linalg/bsym.h),
+ * else every block (linalg/reduced.h).  That product reads under a third
+ * of the bytes of PETSc's SeqAIJ product, and about five of them are
+ * formed per CG iteration, so it sets the cost of an iteration.  A setup
+ * packs A's values for the product, writes them into the slots of PETSc's
+ * SeqAIJ copy (the preconditioner's), and sets the preconditioner up,
+ * either afresh (a rebuild: coarsening, interpolation, coarse operators,
+ * smoothers) or reusing the hierarchy.  For amg the reuse keeps the
+ * interpolation and recomputes the coarse operators P^T A P and the
+ * smoothers from the new values; for amg-hypre it keeps the whole
+ * preconditioner.  The hierarchy is rebuilt at the first setup, and when
+ * the last solve took more than CL_AMG_REGROW times the iterations of the
+ * first solve after the last rebuild; a solve that fails on a reused
+ * hierarchy is redone once on a fresh one.  Nothing is allocated by setup
+ * or solve on this side (PETSc allocates within a rebuild).
  *
  * Tolerance: solve stops at ||b - A x||_2 <= lin_tol ||b||_2 (default
  * 1e-10, as pcg); solve_tol at ||w .* (b - A x)||_2 <= delta, ensured by
@@ -49,11 +57,13 @@
 #define CL_AMG_TOL 1e-10
 #define CL_AMG_REGROW 1.5
 
+typedef void (*amg_mult_fn)(void *ctx, const double *x, double *y);
 typedef int (*amg_create_fn)(size_t nb, const size_t *rowptr,
                              const size_t *col, int hypre, long maxit,
-                             void **handle, cl_plugin_msg *msg);
-typedef int (*amg_setup_fn)(void *handle, const double *ablk,
-                            int symmetric, int rebuild, cl_plugin_msg *msg);
+                             amg_mult_fn mult, void *ctx, void **handle,
+                             cl_plugin_msg *msg);
+typedef int (*amg_setup_fn)(void *handle, const double *ablk, int rebuild,
+                            cl_plugin_msg *msg);
 typedef int (*amg_solve_fn)(void *handle, const double *rhs, double *x,
                             double rtol, double atol, long *iters,
                             cl_plugin_msg *msg);
@@ -65,8 +75,11 @@ typedef struct {
     size_t n;
     double *mass;            /* n */
     double *ablk;            /* 9 nnzb: A's block values */
-    cl_bsym sym;             /* A's halves: is it symmetric? */
-    bool symmetric;          /* df/dx and df/dv as last told (jacobian) */
+    cl_bsym sym;             /* A's halves, if it is symmetric: */
+    double *sdiag, *supper;  /* 9 nb, 9 ne: their values */
+    cl_bsym_kind jac_kind;   /* df/dx and df/dv as last told (jacobian) */
+    cl_bsym_kind kind;       /* the product's form since the last setup */
+    int threads;             /* of the products */
     double tol;
     amg_setup_fn setup;
     amg_solve_fn solve;
@@ -88,6 +101,8 @@ static void amg_free(void *state)
         s->free(s->h);
     free(s->mass);
     free(s->ablk);
+    free(s->sdiag);
+    free(s->supper);
     cl_bsym_free(&s->sym);
     free(s);
 }
@@ -113,16 +128,33 @@ static cl_status amg_symbols(cl_amg *s, amg_create_fn *create,
 
 static cl_status amg_alloc(cl_amg *s, const double *mass, cl_error *err)
 {
+    cl_status st = cl_bsym_create(s->pat, &s->sym, err);
+    if (st == CL_OK && s->threads > 1)
+        st = cl_bsym_transpose(&s->sym, err);
+    if (st != CL_OK)
+        return st;
     s->mass = malloc(s->n * sizeof *s->mass);
     s->ablk = calloc(9 * s->pat->nnzb, sizeof *s->ablk);
-    if (!s->mass || !s->ablk)
+    s->sdiag = malloc(9 * s->sym.nb * sizeof *s->sdiag);
+    s->supper = malloc((9 * s->sym.ne + 1) * sizeof *s->supper);
+    if (!s->mass || !s->ablk || !s->sdiag || !s->supper)
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
-    cl_status st = cl_bsym_create(s->pat, &s->sym, err);
     if (st == CL_OK)
         st = cl_check_masses(mass, s->n, s->name, err);
     if (st == CL_OK)
         memcpy(s->mass, mass, s->n * sizeof *s->mass);
     return st;
+}
+
+/* y = A x, the plug-in's operator: A's packed halves, or all its blocks. */
+static void amg_mult(void *ctx, const double *x, double *y)
+{
+    const cl_amg *s = ctx;
+    if (s->kind != CL_BSYM_NONE)
+        cl_bsym_matvec_threads(&s->sym, s->kind, s->sdiag, s->supper, x, y,
+                               s->threads);
+    else
+        cl_bmatvec_threads(s->pat, s->ablk, x, y, s->threads);
 }
 
 static cl_status amg_create_named(const char *name, int hypre,
@@ -139,7 +171,7 @@ static cl_status amg_create_named(const char *name, int hypre,
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", name);
     *s = (cl_amg){.name = name, .pat = pat, .n = 3 * pat->nb,
                   .tol = o->tol > 0.0 ? o->tol : CL_AMG_TOL,
-                  .base_iters = -1};
+                  .threads = o->threads, .base_iters = -1};
     long maxit = cl_linsol_maxit(o->maxit, s->n);
     amg_create_fn create = NULL;
     cl_plugin_msg msg = {.text = ""};
@@ -147,7 +179,7 @@ static cl_status amg_create_named(const char *name, int hypre,
     if (st == CL_OK)
         st = amg_symbols(s, &create, err);
     if (st == CL_OK && create(pat->nb, pat->rowptr, pat->col, hypre, maxit,
-                              &s->h, &msg) != 0)
+                              amg_mult, s, &s->h, &msg) != 0)
         st = cl_error_set(err, CL_ESOLVER, "%s: %s", name, msg.text);
     if (st != CL_OK) {
         amg_free(s);
@@ -176,7 +208,7 @@ static cl_status amg_prepare(cl_amg *s, bool rebuild, cl_error *err)
 {
     cl_plugin_msg msg = {.text = ""};
     s->ready = false;
-    if (s->setup(s->h, s->ablk, s->symmetric, rebuild, &msg) != 0)
+    if (s->setup(s->h, s->ablk, rebuild, &msg) != 0)
         return cl_error_set(err, CL_ESOLVER, "%s: %s", s->name, msg.text);
     s->ready = true;
     s->fresh = rebuild;
@@ -193,13 +225,17 @@ static cl_status amg_setup(void *state, double a, double b,
                            cl_error *err)
 {
     cl_amg *s = state;
+    s->ready = false;
     cl_reduced_blocks(s->pat, s->mass, a, b, dfdx, dfdv, s->ablk);
-    if (!cl_all_finite(s->ablk, 9 * s->pat->nnzb)) {
-        s->ready = false;
+    if (!cl_all_finite(s->ablk, 9 * s->pat->nnzb))
         return cl_error_set(err, CL_ESOLVER, "%s: the matrix M - a df/dv - "
                             "b df/dx has entries that are not finite",
                             s->name);
-    }
+    /* the product's halves, from A's blocks: the values pcg packs */
+    s->kind = s->jac_kind;
+    if (s->kind != CL_BSYM_NONE)
+        cl_bsym_pack(&s->sym, s->kind, 1.0, s->ablk, 0.0, NULL, NULL,
+                     s->sdiag, s->supper);
     bool rebuild = s->rebuilds == 0 ||
                    (s->base_iters > 0 &&
                     (double)s->last_iters > CL_AMG_REGROW * s->base_iters);
@@ -212,8 +248,8 @@ static cl_status amg_setup(void *state, double a, double b,
 static void amg_jacobian(void *state, const double *dfdx, const double *dfdv)
 {
     cl_amg *s = state;
-    s->symmetric = cl_bsym_check(&s->sym, dfdx, CL_BSYM_TOL) &&
-                   cl_bsym_check(&s->sym, dfdv, CL_BSYM_TOL);
+    s->jac_kind = cl_bsym_check_pair(&s->sym, dfdx, dfdv, CL_BSYM_TOL,
+                                     s->threads);
 }
 
 /* CG to ||r||_2 <= max(rtol ||b||_2, atol); on a reused hierarchy that

@@ -1,10 +1,20 @@
 /* The plug-in's side of the algebraic-multigrid solvers amg and amg-hypre
  * (linalg/linsol_amg.c): PETSc's KSP CG preconditioned by PCGAMG
- * (smoothed aggregation) or by hypre's BoomerAMG (PCHYPRE), on a SeqAIJ
- * matrix of block size 3 whose pattern is built once from the block
- * pattern; later setups only overwrite its values in place.  Built into
+ * (smoothed aggregation) or by hypre's BoomerAMG (PCHYPRE).  Built into
  * clothode-petsc.so only; it calls nothing of the library: the block
- * pattern and values come in as plain arrays.
+ * pattern and values come in as plain arrays, and the product y = A x as a
+ * callback (clp_amg_mult).
+ *
+ * Two matrices.  The operator (KSP's Amat) is a MATSHELL whose product is
+ * the caller's: CG, the residuals of the finest level and its smoother
+ * multiply through it (the library's block product reads, for a symmetric
+ * A, only the diagonal and upper 3x3 blocks, each by its 6 distinct
+ * entries: under a third of the bytes of a SeqAIJ product, and these
+ * products are bound by memory traffic).  The preconditioner is
+ * built on a SeqAIJ copy of A of block size 3 (Pmat: GAMG's graph and
+ * Galerkin products, the point-block Jacobi of the finest smoother, hypre)
+ * whose pattern is built once from the block pattern; each setup writes
+ * its values in place.
  *
  * Options are PETSc's own, under the prefix clamg_ (GAMG) or clamgh_
  * (hypre), set here unless the user set them first (PETSC_OPTIONS):
@@ -15,41 +25,43 @@
  *          and the vector interpolation for systems of PDEs
  *          (-pc_hypre_boomeramg_nodal_coarsen 6
  *          -pc_hypre_boomeramg_vec_interp_variant 2).
- * The preconditioner is built on a SeqAIJ copy of A (GAMG's graph and
- * Galerkin products need it); when A is symmetric (clp_amg_setup's
- * `symmetric`), CG, the residuals of the multigrid cycle and the finest
- * smoother multiply by a SeqSBAIJ copy instead (3x3 blocks, diagonal and
- * upper blocks only: about a third of the AIJ's memory traffic, and these
- * products are bound by memory traffic).
  * The Krylov test is ||b - A x||_2 <= max(rtol ||b||_2, atol) from x = 0
- * (KSP_NORM_UNPRECONDITIONED).
+ * (KSP_NORM_UNPRECONDITIONED).  The right-hand side and the solution are
+ * the caller's arrays (VecPlaceArray), not copies.
  *
  * Reuse (clp_amg_setup's `rebuild` = 0): GAMG keeps its prolongators
  * (PCGAMGSetReuseInterpolation) and recomputes the Galerkin coarse
  * operators P^T A P and the smoothers on the new values; hypre cannot
  * keep its interpolation, so its reuse keeps the whole preconditioner
- * (KSPSetReusePreconditioner). */
+ * (KSPSetReusePreconditioner).  GAMG's whole preconditioner, kept from
+ * one step of semi-bdf2 on hang to the next, was found indefinite by CG
+ * within two iterations: GAMG's reuse stops at the interpolation. */
 #include <petscksp.h>
 #include <stdio.h>
 
 #include "linalg/plugin.h"
 
+/* y = A x, the caller's product (ctx: its own). */
+typedef void (*clp_amg_mult)(void *ctx, const double *x, double *y);
+
 typedef struct {
     PetscInt n;             /* 3 nb */
     PetscInt nb;
     const size_t *rowptr;   /* borrowed: the block pattern */
-    const size_t *col;
-    Mat A;                  /* SeqAIJ, block size 3 */
-    Mat S;                  /* SeqSBAIJ: upper and diagonal 3x3 blocks */
-    Vec b, x;
+    Mat A;                  /* SeqAIJ, block size 3: the preconditioner's */
+    Mat op;                 /* MATSHELL: the caller's product */
+    clp_amg_mult mult;
+    void *ctx;
+    Vec b, x;               /* without arrays: the caller's are placed */
     KSP ksp;
     int hypre;
 } clp_amg;
 
 int clp_amg_create(size_t nb, const size_t *rowptr, const size_t *col,
-                   int hypre, long maxit, void **handle, cl_plugin_msg *msg);
-int clp_amg_setup(void *handle, const double *ablk, int symmetric,
-                  int rebuild, cl_plugin_msg *msg);
+                   int hypre, long maxit, clp_amg_mult mult, void *ctx,
+                   void **handle, cl_plugin_msg *msg);
+int clp_amg_setup(void *handle, const double *ablk, int rebuild,
+                  cl_plugin_msg *msg);
 int clp_amg_solve(void *handle, const double *rhs, double *x, double rtol,
                   double atol, long *iters, cl_plugin_msg *msg);
 void clp_amg_free(void *handle);
@@ -127,28 +139,34 @@ static PetscErrorCode amg_matrix(clp_amg *s, const size_t *col)
     return ec ? ec : ec2;
 }
 
-/* The SeqSBAIJ: block CSR of the blocks (i, j >= i), zero values. */
-static PetscErrorCode amg_upper(clp_amg *s, const size_t *col)
+static PetscErrorCode amg_shell_mult(Mat op, Vec x, Vec y)
 {
-    size_t nup = (s->rowptr[s->nb] + (size_t)s->nb) / 2;
-    PetscInt *ib = NULL, *jb = NULL;
-    PetscErrorCode ec = PetscMalloc2(s->nb + 1, &ib, nup, &jb);
-    if (ec)
+    clp_amg *s = NULL;
+    const PetscScalar *xp;
+    PetscScalar *yp;
+    PetscErrorCode ec = MatShellGetContext(op, &s);
+    if (ec || (ec = VecGetArrayRead(x, &xp)))
         return ec;
-    ib[0] = 0;
-    for (PetscInt i = 0; i < s->nb; i++) {
-        PetscInt at = ib[i];
-        for (size_t k = s->rowptr[i]; k < s->rowptr[i + 1]; k++)
-            if (col[k] >= (size_t)i && (size_t)at < nup)
-                jb[at++] = (PetscInt)col[k];
-        ib[i + 1] = at;
+    if ((ec = VecGetArrayWrite(y, &yp))) {
+        VecRestoreArrayRead(x, &xp);
+        return ec;
     }
-    if (!(ec = MatCreate(PETSC_COMM_SELF, &s->S)) &&
-        !(ec = MatSetSizes(s->S, s->n, s->n, s->n, s->n)) &&
-        !(ec = MatSetType(s->S, MATSEQSBAIJ)))
-        ec = MatSeqSBAIJSetPreallocationCSR(s->S, 3, ib, jb, NULL);
-    PetscErrorCode ec2 = PetscFree2(ib, jb);
-    return ec ? ec : ec2;
+    s->mult(s->ctx, xp, yp);
+    if ((ec = VecRestoreArrayWrite(y, &yp)))
+        return ec;
+    return VecRestoreArrayRead(x, &xp);
+}
+
+/* The operator: a MATSHELL of block size 3 calling s->mult. */
+static PetscErrorCode amg_shell(clp_amg *s)
+{
+    PetscErrorCode ec;
+    if ((ec = MatCreateShell(PETSC_COMM_SELF, s->n, s->n, s->n, s->n, s,
+                             &s->op)) ||
+        (ec = MatSetBlockSize(s->op, 3)))
+        return ec;
+    return MatShellSetOperation(s->op, MATOP_MULT,
+                                (void (*)(void))amg_shell_mult);
 }
 
 static PetscErrorCode amg_ksp(clp_amg *s, long maxit)
@@ -156,14 +174,17 @@ static PetscErrorCode amg_ksp(clp_amg *s, long maxit)
     const char *prefix = s->hypre ? "clamgh_" : "clamg_";
     PetscErrorCode ec;
     if ((ec = amg_options(prefix, s->hypre)) ||
-        (ec = MatCreateVecs(s->A, &s->x, &s->b)) ||
+        (ec = VecCreateSeqWithArray(PETSC_COMM_SELF, 3, s->n, NULL,
+                                    &s->b)) ||
+        (ec = VecCreateSeqWithArray(PETSC_COMM_SELF, 3, s->n, NULL,
+                                    &s->x)) ||
         (ec = KSPCreate(PETSC_COMM_SELF, &s->ksp)) ||
         (ec = KSPSetOptionsPrefix(s->ksp, prefix)) ||
         (ec = KSPSetType(s->ksp, KSPCG)) ||
         (ec = KSPSetNormType(s->ksp, KSP_NORM_UNPRECONDITIONED)) ||
         (ec = KSPSetTolerances(s->ksp, 1e-10, 0.0, PETSC_DEFAULT,
                                (PetscInt)maxit)) ||
-        (ec = KSPSetOperators(s->ksp, s->A, s->A)))
+        (ec = KSPSetOperators(s->ksp, s->op, s->A)))
         return ec;
     return KSPSetFromOptions(s->ksp);
 }
@@ -177,12 +198,13 @@ void clp_amg_free(void *handle)
     VecDestroy(&s->b);
     VecDestroy(&s->x);
     MatDestroy(&s->A);
-    MatDestroy(&s->S);
+    MatDestroy(&s->op);
     PetscFree(s);
 }
 
 int clp_amg_create(size_t nb, const size_t *rowptr, const size_t *col,
-                   int hypre, long maxit, void **handle, cl_plugin_msg *msg)
+                   int hypre, long maxit, clp_amg_mult mult, void *ctx,
+                   void **handle, cl_plugin_msg *msg)
 {
     clp_amg *s = NULL;
     *handle = NULL;
@@ -199,9 +221,10 @@ int clp_amg_create(size_t nb, const size_t *rowptr, const size_t *col,
     s->nb = (PetscInt)nb;
     s->n = 3 * s->nb;
     s->rowptr = rowptr;
-    s->col = col;
+    s->mult = mult;
+    s->ctx = ctx;
     s->hypre = hypre;
-    if ((ec = amg_matrix(s, col)) || (ec = amg_upper(s, col)))
+    if ((ec = amg_matrix(s, col)) || (ec = amg_shell(s)))
         amg_fail(msg, "building the matrices", ec);
     else if ((ec = amg_ksp(s, maxit)))
         amg_fail(msg, "setting up the KSP", ec);
@@ -231,33 +254,13 @@ static PetscErrorCode amg_values(clp_amg *s, const double *ablk)
     return MatSeqAIJRestoreArray(s->A, &a);
 }
 
-/* The blocks (i, j >= i) into the SeqSBAIJ, each stored by columns. */
-static PetscErrorCode amg_upper_values(clp_amg *s, const double *ablk)
-{
-    PetscScalar *a;
-    PetscErrorCode ec = MatSeqSBAIJGetArray(s->S, &a);
-    if (ec)
-        return ec;
-    for (PetscInt i = 0; i < s->nb; i++)
-        for (size_t k = s->rowptr[i]; k < s->rowptr[i + 1]; k++) {
-            if (s->col[k] < (size_t)i)
-                continue;
-            for (int r = 0; r < 3; r++)
-                for (int c = 0; c < 3; c++)
-                    a[3 * c + r] = ablk[9 * k + 3 * r + c];
-            a += 9;
-        }
-    return MatSeqSBAIJRestoreArray(s->S, &a);
-}
-
-int clp_amg_setup(void *handle, const double *ablk, int symmetric,
-                  int rebuild, cl_plugin_msg *msg)
+int clp_amg_setup(void *handle, const double *ablk, int rebuild,
+                  cl_plugin_msg *msg)
 {
     clp_amg *s = handle;
     PC pc;
     PetscErrorCode ec;
-    if ((ec = amg_values(s, ablk)) ||
-        (symmetric && (ec = amg_upper_values(s, ablk))))
+    if ((ec = amg_values(s, ablk)))
         return amg_fail(msg, "writing the matrix values", ec);
     if ((ec = KSPGetPC(s->ksp, &pc)))
         return amg_fail(msg, "KSPGetPC", ec);
@@ -269,10 +272,35 @@ int clp_amg_setup(void *handle, const double *ablk, int symmetric,
                                                      : PETSC_TRUE);
     if (ec)
         return amg_fail(msg, "setting the reuse", ec);
-    if ((ec = KSPSetOperators(s->ksp, symmetric ? s->S : s->A, s->A)) ||
+    if ((ec = KSPSetOperators(s->ksp, s->op, s->A)) ||
         (ec = KSPSetUp(s->ksp)))
         return amg_fail(msg, "the multigrid setup (KSPSetUp)", ec);
     return 0;
+}
+
+/* CG's outcome: 0 if it converged, else 1 with the message. */
+static int amg_outcome(clp_amg *s, long *iters, cl_plugin_msg *msg)
+{
+    KSPConvergedReason why;
+    PetscInt its = 0;
+    PetscReal res = 0.0;
+    PetscErrorCode ec;
+    if ((ec = KSPGetConvergedReason(s->ksp, &why)) ||
+        (ec = KSPGetIterationNumber(s->ksp, &its)) ||
+        (ec = KSPGetResidualNorm(s->ksp, &res)))
+        return amg_fail(msg, "KSPSolve", ec);
+    *iters = its;
+    if (why > 0)
+        return 0;
+    snprintf(msg->text, sizeof msg->text, "CG stopped after %d iterations: "
+             "%s (residual %.6g)%s", (int)its, KSPConvergedReasons[why],
+             (double)res,
+             why == KSP_DIVERGED_INDEFINITE_MAT ||
+                     why == KSP_DIVERGED_INDEFINITE_PC
+                 ? ": the matrix M - a df/dv - b df/dx (or its multigrid "
+                   "preconditioner) is not positive definite"
+                 : "");
+    return 1;
 }
 
 int clp_amg_solve(void *handle, const double *rhs, double *x, double rtol,
@@ -280,40 +308,19 @@ int clp_amg_solve(void *handle, const double *rhs, double *x, double rtol,
 {
     clp_amg *s = handle;
     PetscErrorCode ec;
-    PetscScalar *p;
-    KSPConvergedReason why;
-    PetscInt its = 0;
-    PetscReal res = 0.0;
     *iters = 0;
-    if ((ec = VecGetArray(s->b, &p)))
-        return amg_fail(msg, "VecGetArray", ec);
-    for (PetscInt i = 0; i < s->n; i++)
-        p[i] = rhs[i];
-    if ((ec = VecRestoreArray(s->b, &p)) ||
-        (ec = KSPSetTolerances(s->ksp, rtol, atol, PETSC_DEFAULT,
-                               PETSC_DEFAULT)) ||
-        (ec = KSPSolve(s->ksp, s->b, s->x)) ||
-        (ec = KSPGetConvergedReason(s->ksp, &why)) ||
-        (ec = KSPGetIterationNumber(s->ksp, &its)) ||
-        (ec = KSPGetResidualNorm(s->ksp, &res)))
-        return amg_fail(msg, "KSPSolve", ec);
-    *iters = its;
-    if (why <= 0) {
-        snprintf(msg->text, sizeof msg->text, "CG stopped after %d "
-                 "iterations: %s (residual %.6g)%s", (int)its,
-                 KSPConvergedReasons[why], (double)res,
-                 why == KSP_DIVERGED_INDEFINITE_MAT ||
-                         why == KSP_DIVERGED_INDEFINITE_PC
-                     ? ": the matrix M - a df/dv - b df/dx (or its "
-                       "multigrid preconditioner) is not positive definite"
-                     : "");
-        return 1;
+    if ((ec = VecPlaceArray(s->b, rhs)))
+        return amg_fail(msg, "VecPlaceArray", ec);
+    if ((ec = VecPlaceArray(s->x, x))) {
+        VecResetArray(s->b);
+        return amg_fail(msg, "VecPlaceArray", ec);
     }
-    const PetscScalar *q;
-    if ((ec = VecGetArrayRead(s->x, &q)))
-        return amg_fail(msg, "VecGetArrayRead", ec);
-    for (PetscInt i = 0; i < s->n; i++)
-        x[i] = q[i];
-    VecRestoreArrayRead(s->x, &q);
-    return 0;
+    if (!(ec = KSPSetTolerances(s->ksp, rtol, atol, PETSC_DEFAULT,
+                                PETSC_DEFAULT)))
+        ec = KSPSolve(s->ksp, s->b, s->x);
+    VecResetArray(s->b);
+    VecResetArray(s->x);
+    if (ec)
+        return amg_fail(msg, "KSPSolve", ec);
+    return amg_outcome(s, iters, msg);
 }

@@ -405,12 +405,8 @@ static cl_status pcg_setup(void *state, double a, double b,
 static void pcg_jacobian(void *state, const double *dfdx, const double *dfdv)
 {
     cl_pcg *s = state;
-    cl_bsym_kind kx = cl_bsym_check_threads(&s->sym, dfdx, CL_BSYM_TOL,
-                                            s->threads);
-    cl_bsym_kind kv = kx ? cl_bsym_check_threads(&s->sym, dfdv, CL_BSYM_TOL,
-                                                 s->threads)
-                         : CL_BSYM_NONE;
-    s->jac_kind = kx < kv ? kx : kv;
+    s->jac_kind = cl_bsym_check_pair(&s->sym, dfdx, dfdv, CL_BSYM_TOL,
+                                     s->threads);
 }
 
 /* `test` says what delta is, for the message. */
