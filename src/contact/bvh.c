@@ -274,6 +274,7 @@ static void hit_of(const kept *k, cl_bvh_hit *hit)
 {
     hit->tri = k->tri[0];
     hit->p = k->p[0];
+    hit->dist = sqrt(k->p[0].dist2);
 }
 
 void cl_bvh_nearest(const cl_bvh *b, const double x[3], cl_bvh_hit *hit)
@@ -325,14 +326,17 @@ static bool nearest_from_cache(const cl_bvh *b, const double x[3],
     int i = 0;
     for (; i < c->n && c->dist[i] - moved <= best; i++) {
         measure(b, c->tri[i], x, &at[i]);
-        if (precedes(at[i].dist2, c->tri[i], at[first].dist2, c->tri[first]))
+        if (i == 0 ||
+            precedes(at[i].dist2, c->tri[i], at[first].dist2, c->tri[first])) {
             first = i;
-        best = sqrt(at[first].dist2);
+            best = sqrt(at[first].dist2);
+        }
     }
     if (!(best < c->r0 - moved))
         return false;
     hit->tri = c->tri[first];
     hit->p = at[first];
+    hit->dist = best;
     if (i > CL_BVH_TRIED)
         reanchor(x, moved, i, at, c);
     return true;

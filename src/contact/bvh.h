@@ -49,6 +49,7 @@ typedef struct {
 typedef struct {
     int tri;                /* the nearest triangle */
     cl_tri_point p;         /* its closest point and feature */
+    double dist;            /* |x - p.c|, sqrt(p.dist2) */
 } cl_bvh_hit;
 
 /* The tree of ntri >= 1 triangles (at most INT_MAX / 2, none degenerate);

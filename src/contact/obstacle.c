@@ -164,15 +164,21 @@ static void query_at(const cl_obstacle *o, const cl_pose *P,
     memcpy(q->W, P->W, sizeof q->W);
 }
 
-/* cl_obstacle_near at the shape-frame point X of x (r = x - q - s). */
+/* cl_obstacle_near at the shape-frame point X of x (r = x - q - s).  A
+ * point that was within dmax at its last query (a particle in contact)
+ * is queried without the shape's lower bound, which would not skip it
+ * (a mesh's box holds the surface near it); the answer is the query's
+ * either way, only the memo may keep another bound. */
 static bool near_at(const cl_obstacle *o, const cl_pose *P,
                     const double r[3], const double X[3], double dmax,
                     cl_contact_memo *memo, cl_contact_point *q)
 {
     if (memo && memo_far_at(memo, X[0], X[1], X[2], dmax))
         return false;
-    double low = o->type->lower_bound ? o->type->lower_bound(o->shape, X)
-                                      : -INFINITY;
+    bool touched = memo && memo->exact && memo->d < dmax;
+    double low = o->type->lower_bound && !touched
+                     ? o->type->lower_bound(o->shape, X)
+                     : -INFINITY;
     if (low < dmax)
         query_at(o, P, r, X, memo ? memo->cache : NULL, q);
     if (memo) {
