@@ -44,6 +44,7 @@ typedef struct {
     cl_bvh_node *node;
     size_t nnode;
     double (*normal)[3];    /* unit normal of each triangle */
+    cl_tri_geom *geom;      /* vertices and edges of each triangle */
 } cl_bvh;
 
 typedef struct {
