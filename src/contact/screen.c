@@ -23,13 +23,16 @@ typedef long long m4 __attribute__((vector_size(32))); /* lanes 0 or -1 */
      (unsigned)(1 + (far)[2]) << 2 | (unsigned)(1 + (far)[3]) << 3)
 
 /* The first count (<= 4) points from p whose bit is set, into
- * near[n...]; the new n. */
+ * near[n...]; the new n.  Each point is written and counted if its bit is
+ * set, without a branch a point (near[n] is at most point p + i's own
+ * place: n <= p + i). */
 static inline size_t append(unsigned bits, size_t p, size_t count,
                             size_t *near, size_t n)
 {
-    for (size_t i = 0; bits && i < count; i++)
-        if (bits >> i & 1)
-            near[n++] = p + i;
+    for (size_t i = 0; bits && i < count; i++) {
+        near[n] = p + i;
+        n += bits >> i & 1;
+    }
     return n;
 }
 
