@@ -47,6 +47,23 @@ static bool halfspace_near(const double y[3], const double n[3], double c,
 static double x[3 * MAXP];
 static cl_contact_memo memo[MAXP];
 static size_t got[MAXP];
+static bool near[MAXP];
+
+/* The n points listed in got[] are those of the np whose near[] is set,
+ * in order. */
+static void same_list(size_t np, size_t n)
+{
+    size_t want = 0;
+    for (size_t p = 0; p < np; p++) {
+        if (!near[p])
+            continue;
+        cr_assert_lt(want, n, "%zu points: point %zu not listed", np, p);
+        cr_assert_eq(got[want], p, "%zu points: %zu listed, not %zu", np,
+                     got[want], p);
+        want++;
+    }
+    cr_assert_eq(n, want, "%zu points: %zu listed, %zu near", np, n, want);
+}
 
 /* Random points (every 37th not a number) and memos: empty, far, near or
  * exactly at the bound of their point. */
@@ -80,19 +97,12 @@ Test(screen, memos_list_exactly_the_scalar_rule)
     size_t counts[] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, MAXP};
     size_t listed = 0, total = 0;
     for (size_t k = 0; k < sizeof counts / sizeof *counts; k++) {
-        size_t np = counts[k], want = 0;
+        size_t np = counts[k];
         fill(np, q, s, dmax);
         size_t n = cl_screen_memos(x, np, q, s, memo, dmax, got);
-        for (size_t p = 0; p < np; p++) {
-            if (!memo_near(x + 3 * p, q, s, &memo[p], dmax))
-                continue;
-            cr_assert_lt(want, n, "%zu points: point %zu not listed", np, p);
-            cr_assert_eq(got[want], p, "%zu points: %zu listed, not %zu", np,
-                         got[want], p);
-            want++;
-        }
-        cr_assert_eq(n, want, "%zu points: %zu listed, %zu near", np, n,
-                     want);
+        for (size_t p = 0; p < np; p++)
+            near[p] = memo_near(x + 3 * p, q, s, &memo[p], dmax);
+        same_list(np, n);
         listed += n;
         total += np;
     }
@@ -110,7 +120,7 @@ Test(screen, halfspace_lists_exactly_the_scalar_rule)
     size_t counts[] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, MAXP};
     size_t listed = 0, total = 0;
     for (size_t k = 0; k < sizeof counts / sizeof *counts; k++) {
-        size_t np = counts[k], want = 0;
+        size_t np = counts[k];
         for (size_t p = 0; p < np; p++) {
             double *y = x + 3 * p;
             for (int i = 0; i < 3; i++)
@@ -123,16 +133,9 @@ Test(screen, halfspace_lists_exactly_the_scalar_rule)
             }
         }
         size_t n = cl_screen_halfspace(x, np, n3, c, scale, dmax, got);
-        for (size_t p = 0; p < np; p++) {
-            if (!halfspace_near(x + 3 * p, n3, c, scale, dmax))
-                continue;
-            cr_assert_lt(want, n, "%zu points: point %zu not listed", np, p);
-            cr_assert_eq(got[want], p, "%zu points: %zu listed, not %zu", np,
-                         got[want], p);
-            want++;
-        }
-        cr_assert_eq(n, want, "%zu points: %zu listed, %zu near", np, n,
-                     want);
+        for (size_t p = 0; p < np; p++)
+            near[p] = halfspace_near(x + 3 * p, n3, c, scale, dmax);
+        same_list(np, n);
         listed += n;
         total += np;
     }
