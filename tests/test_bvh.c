@@ -79,6 +79,8 @@ static void check_hit(const cl_bvh *b, const double x[3],
         slow = fmin(slow, p.dist2);
     }
     cr_assert(fast->tri >= 0);
+    cr_assert(fast->dist == sqrt(fast->p.dist2), "dist %.17g, dist2 %.17g",
+              fast->dist, fast->p.dist2);
     cr_assert(fabs(sqrt(fast->p.dist2) - sqrt(slow)) <= 1e-14,
               "tree %.17g, every triangle %.17g at (%g, %g, %g)",
               sqrt(fast->p.dist2), sqrt(slow), x[0], x[1], x[2]);

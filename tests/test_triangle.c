@@ -1,6 +1,7 @@
 /* Tests for contact/triangle: the closest point of a triangle and its
  * feature, in each of the seven Voronoi regions and at random points
- * against the optimality conditions and a dense sampling. */
+ * against the optimality conditions and a dense sampling (and from a
+ * triangle's kept record, the same bits). */
 #include <criterion/criterion.h>
 
 #include "contact/triangle.h"
@@ -51,8 +52,14 @@ Test(triangle, random_points)
                 v[i][j] = fd_rand(&r);
         for (int j = 0; j < 3; j++)
             x[j] = 2 * fd_rand(&r);
-        cl_tri_point p;
+        cl_tri_point p, pg;
+        cl_tri_geom g;
         cl_tri_closest(x, v[0], v[1], v[2], &p);
+        cl_tri_geom_set(v[0], v[1], v[2], &g);
+        cl_tri_closest_geom(x, &g, &pg);   /* the kept record: the same */
+        cr_assert(pg.c[0] == p.c[0] && pg.c[1] == p.c[1] &&
+                  pg.c[2] == p.c[2] && pg.dist2 == p.dist2 &&
+                  pg.feature == p.feature && pg.k == p.k);
         cl_v3_tri_cross(v[0], v[1], v[2], n);
         cl_v3_sub(x, p.c, u);
         if (p.feature == CL_TRI_FACE) {

@@ -23,6 +23,7 @@ void cl_bvh_free(cl_bvh *b)
     free(b->order);
     free(b->node);
     free(b->normal);
+    free(b->geom);
     *b = (cl_bvh){0};
 }
 
@@ -118,7 +119,8 @@ cl_status cl_bvh_build(cl_bvh *b, const double *vert, size_t ntri,
     b->order = malloc(ntri * sizeof *b->order);
     b->node = malloc(2 * ntri * sizeof *b->node);
     b->normal = malloc(ntri * sizeof *b->normal);
-    if (!cent || !b->order || !b->node || !b->normal) {
+    b->geom = malloc(ntri * sizeof *b->geom);
+    if (!cent || !b->order || !b->node || !b->normal || !b->geom) {
         free(cent);
         cl_bvh_free(b);
         return cl_error_set(err, CL_ENOMEM, "out of memory (bounding-volume "
@@ -129,6 +131,8 @@ cl_status cl_bvh_build(cl_bvh *b, const double *vert, size_t ntri,
         cl_v3_tri_cross(vert + 3 * tri[t][0], vert + 3 * tri[t][1],
                         vert + 3 * tri[t][2], b->normal[t]);
         cl_v3_normalize(b->normal[t]);
+        cl_tri_geom_set(vert + 3 * tri[t][0], vert + 3 * tri[t][1],
+                        vert + 3 * tri[t][2], &b->geom[t]);
         for (int i = 0; i < 3; i++)
             cent[3 * t + i] = (vert[3 * tri[t][0] + i] +
                                vert[3 * tri[t][1] + i] +
@@ -199,9 +203,7 @@ static bool before(double d2, int t, const kept *k, int i)
 static void measure(const cl_bvh *b, int t, const double x[3],
                     cl_tri_point *p)
 {
-    const int *v = b->tri[t];
-    cl_tri_closest(x, b->vert + 3 * v[0], b->vert + 3 * v[1],
-                   b->vert + 3 * v[2], p);
+    cl_tri_closest_geom(x, &b->geom[t], p);
 }
 
 /* Keep triangle t, at p, if there is room or it comes before the last (so
@@ -225,7 +227,7 @@ static void try_triangle(const cl_bvh *b, int t, const double x[3],
                          kept *k)
 {
     double ap[3];
-    cl_v3_sub(x, b->vert + 3 * b->tri[t][0], ap);
+    cl_v3_sub(x, b->geom[t].a, ap);
     double hgt = cl_v3_dot(ap, b->normal[t]);
     if (farther(k, hgt * hgt))
         return;
@@ -274,6 +276,7 @@ static void hit_of(const kept *k, cl_bvh_hit *hit)
 {
     hit->tri = k->tri[0];
     hit->p = k->p[0];
+    hit->dist = sqrt(k->p[0].dist2);
 }
 
 void cl_bvh_nearest(const cl_bvh *b, const double x[3], cl_bvh_hit *hit)
@@ -325,14 +328,17 @@ static bool nearest_from_cache(const cl_bvh *b, const double x[3],
     int i = 0;
     for (; i < c->n && c->dist[i] - moved <= best; i++) {
         measure(b, c->tri[i], x, &at[i]);
-        if (precedes(at[i].dist2, c->tri[i], at[first].dist2, c->tri[first]))
+        if (i == 0 ||
+            precedes(at[i].dist2, c->tri[i], at[first].dist2, c->tri[first])) {
             first = i;
-        best = sqrt(at[first].dist2);
+            best = sqrt(at[first].dist2);
+        }
     }
     if (!(best < c->r0 - moved))
         return false;
     hit->tri = c->tri[first];
     hit->p = at[first];
+    hit->dist = best;
     if (i > CL_BVH_TRIED)
         reanchor(x, moved, i, at, c);
     return true;

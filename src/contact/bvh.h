@@ -44,11 +44,13 @@ typedef struct {
     cl_bvh_node *node;
     size_t nnode;
     double (*normal)[3];    /* unit normal of each triangle */
+    cl_tri_geom *geom;      /* vertices and edges of each triangle */
 } cl_bvh;
 
 typedef struct {
     int tri;                /* the nearest triangle */
     cl_tri_point p;         /* its closest point and feature */
+    double dist;            /* |x - p.c|, sqrt(p.dist2) */
 } cl_bvh_hit;
 
 /* The tree of ntri >= 1 triangles (at most INT_MAX / 2, none degenerate);

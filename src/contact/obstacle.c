@@ -2,6 +2,7 @@
  * obstacle.h; docs/model.md, contact). */
 #include "contact/obstacle.h"
 
+#include "contact/screen.h"
 #include "core/vec3.h"
 
 #include <ctype.h>
@@ -59,10 +60,6 @@ void cl_obstacle_pose(const cl_obstacle *o, double t, cl_pose *P)
 }
 
 /* ---- queries ---------------------------------------------------------- */
-
-/* The relative slack of a screen computed in another order than the
- * query (a few units of rounding, 1.1e-16 each, with a wide margin). */
-#define SCREEN_SLACK 1e-12
 
 /* The shape-frame point X of the world point x (docs/model.md, eq. C2):
  * X = q + R^T (x - q - s), with r = x - q - s. */
@@ -167,15 +164,21 @@ static void query_at(const cl_obstacle *o, const cl_pose *P,
     memcpy(q->W, P->W, sizeof q->W);
 }
 
-/* cl_obstacle_near at the shape-frame point X of x (r = x - q - s). */
+/* cl_obstacle_near at the shape-frame point X of x (r = x - q - s).  A
+ * point that was within dmax at its last query (a particle in contact)
+ * is queried without the shape's lower bound, which would not skip it
+ * (a mesh's box holds the surface near it); the answer is the query's
+ * either way, only the memo may keep another bound. */
 static bool near_at(const cl_obstacle *o, const cl_pose *P,
                     const double r[3], const double X[3], double dmax,
                     cl_contact_memo *memo, cl_contact_point *q)
 {
     if (memo && memo_far_at(memo, X[0], X[1], X[2], dmax))
         return false;
-    double low = o->type->lower_bound ? o->type->lower_bound(o->shape, X)
-                                      : -INFINITY;
+    bool touched = memo && memo->exact && memo->d < dmax;
+    double low = o->type->lower_bound && !touched
+                     ? o->type->lower_bound(o->shape, X)
+                     : -INFINITY;
     if (low < dmax)
         query_at(o, P, r, X, memo ? memo->cache : NULL, q);
     if (memo) {
@@ -215,8 +218,8 @@ bool cl_obstacle_depth(const cl_obstacle *o, const cl_pose *P,
 /* The screen of a half-space that does not rotate (shape.h): d = n . x -
  * (c + n . s) in the world frame, a dot product a point, which differs
  * from the query's n . (q + (x - q - s) - p) by rounding only, far less
- * than the slack allowed for it (relative to the magnitudes involved);
- * NaN points are near, as with the memos. */
+ * than the slack allowed for it (relative to the magnitudes involved,
+ * contact/screen.h); NaN points are near, as with the memos. */
 static size_t screen_halfspace(const cl_obstacle *o, const cl_pose *P,
                                const double *x, size_t np, double dmax,
                                size_t *near)
@@ -226,16 +229,7 @@ static size_t screen_halfspace(const cl_obstacle *o, const cl_pose *P,
     double cw = c + cl_v3_dot(nrm, P->s);
     double scale = fabs(c) + fabs(cw) + cl_v3_norm(P->s) +
                    cl_v3_norm(o->pivot);
-    size_t n = 0;
-    for (size_t p = 0; p < np; p++) {
-        const double *y = x + 3 * p;
-        double d = nrm[0] * y[0] + nrm[1] * y[1] + nrm[2] * y[2] - cw;
-        double slack = SCREEN_SLACK * (scale + fabs(y[0]) + fabs(y[1]) +
-                                       fabs(y[2]));
-        if (!(d >= dmax + slack))
-            near[n++] = p;
-    }
-    return n;
+    return cl_screen_halfspace(x, np, nrm, cw, scale, dmax, near);
 }
 
 size_t cl_obstacle_screen(const cl_obstacle *o, const cl_pose *P,
@@ -245,22 +239,12 @@ size_t cl_obstacle_screen(const cl_obstacle *o, const cl_pose *P,
     size_t n = 0;
     if (!P->rotates && o->type->halfspace)
         return screen_halfspace(o, P, x, np, dmax, near);
-    if (P->rotates) {
-        for (size_t p = 0; p < np; p++) {
-            double r[3], X[3];
-            to_shape(o, P, x + 3 * p, r, X);
-            if (!memo_far_at(&memo[p], X[0], X[1], X[2], dmax))
-                near[n++] = p;
-        }
-        return n;
-    }
-    /* to_shape without the rotation, its terms in the same order */
-    const double q0 = o->pivot[0], q1 = o->pivot[1], q2 = o->pivot[2];
-    const double s0 = P->s[0], s1 = P->s[1], s2 = P->s[2];
+    if (!P->rotates) /* to_shape without the rotation, in the same order */
+        return cl_screen_memos(x, np, o->pivot, P->s, memo, dmax, near);
     for (size_t p = 0; p < np; p++) {
-        const double *y = x + 3 * p;
-        if (!memo_far_at(&memo[p], q0 + (y[0] - q0 - s0),
-                         q1 + (y[1] - q1 - s1), q2 + (y[2] - q2 - s2), dmax))
+        double r[3], X[3];
+        to_shape(o, P, x + 3 * p, r, X);
+        if (!memo_far_at(&memo[p], X[0], X[1], X[2], dmax))
             near[n++] = p;
     }
     return n;

@@ -314,7 +314,7 @@ static void mesh_query(const void *shape, const double x[3], void *cache,
     cl_v3_sub(x, h.p.c, r);
     double sign = cl_v3_dot(r, pn) >= 0 ? 1.0 : -1.0;
     if (h.p.feature == CL_TRI_FACE) {   /* exact, not (x - c) / |x - c| */
-        q->d = sign * cl_v3_norm(r);
+        q->d = sign * h.dist;
         memcpy(q->c, h.p.c, sizeof q->c);
         memcpy(q->n, m->bvh.normal[h.tri], sizeof q->n);
         memset(q->G, 0, sizeof q->G);

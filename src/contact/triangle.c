@@ -5,6 +5,7 @@
 #include "core/vec3.h"
 
 #include <math.h>
+#include <string.h>
 
 /* p->c = o + s u, on `feature` k. */
 static void found(const double o[3], double s, const double u[3],
@@ -16,12 +17,11 @@ static void found(const double o[3], double s, const double u[3],
 }
 
 /* The closest point with d1..d6 the dot products of Ericson's code. */
-static void classify(const double x[3], const double a[3], const double b[3],
-                     const double c[3], cl_tri_point *p)
+static void classify(const double x[3], const cl_tri_geom *g,
+                     cl_tri_point *p)
 {
-    double ab[3], ac[3], bc[3], ap[3], bp[3], cp[3];
-    cl_v3_sub(b, a, ab);
-    cl_v3_sub(c, a, ac);
+    const double *a = g->a, *b = g->b, *c = g->c, *ab = g->ab, *ac = g->ac;
+    double ap[3], bp[3], cp[3];
     cl_v3_sub(x, a, ap);
     double d1 = cl_v3_dot(ab, ap), d2 = cl_v3_dot(ac, ap);
     if (d1 <= 0 && d2 <= 0) {
@@ -51,9 +51,8 @@ static void classify(const double x[3], const double a[3], const double b[3],
         return;
     }
     double va = d3 * d6 - d5 * d4;
-    cl_v3_sub(c, b, bc);
     if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
-        found(b, (d4 - d3) / ((d4 - d3) + (d5 - d6)), bc, CL_TRI_EDGE, 1,
+        found(b, (d4 - d3) / ((d4 - d3) + (d5 - d6)), g->bc, CL_TRI_EDGE, 1,
               p);
         return;
     }
@@ -62,13 +61,32 @@ static void classify(const double x[3], const double a[3], const double b[3],
     cl_v3_axpy(p->c, w, ac, p->c);
 }
 
-void cl_tri_closest(const double x[3], const double a[3], const double b[3],
-                    const double c[3], cl_tri_point *p)
+void cl_tri_geom_set(const double a[3], const double b[3], const double c[3],
+                     cl_tri_geom *g)
 {
-    classify(x, a, b, c, p);
+    memcpy(g->a, a, sizeof g->a);
+    memcpy(g->b, b, sizeof g->b);
+    memcpy(g->c, c, sizeof g->c);
+    cl_v3_sub(b, a, g->ab);
+    cl_v3_sub(c, a, g->ac);
+    cl_v3_sub(c, b, g->bc);
+}
+
+void cl_tri_closest_geom(const double x[3], const cl_tri_geom *g,
+                         cl_tri_point *p)
+{
+    classify(x, g, p);
     double r[3];
     cl_v3_sub(x, p->c, r);
     p->dist2 = cl_v3_dot(r, r);
+}
+
+void cl_tri_closest(const double x[3], const double a[3], const double b[3],
+                    const double c[3], cl_tri_point *p)
+{
+    cl_tri_geom g;
+    cl_tri_geom_set(a, b, c, &g);
+    cl_tri_closest_geom(x, &g, p);
 }
 
 double cl_tri_segment(const double x0[3], const double D[3],

@@ -24,6 +24,22 @@ typedef struct {
 void cl_tri_closest(const double x[3], const double a[3], const double b[3],
                     const double c[3], cl_tri_point *p);
 
+/* A triangle's vertices and edge vectors, computed once (a mesh's
+ * bounding-volume tree keeps one a triangle), so that a closest point
+ * reads one record instead of the vertex indices and then the vertices. */
+typedef struct {
+    double a[3], b[3], c[3];
+    double ab[3], ac[3], bc[3];     /* b - a, c - a, c - b */
+} cl_tri_geom;
+
+void cl_tri_geom_set(const double a[3], const double b[3], const double c[3],
+                     cl_tri_geom *g);
+
+/* cl_tri_closest of the triangle g (the same operations: the same
+ * answer, bit for bit). */
+void cl_tri_closest_geom(const double x[3], const cl_tri_geom *g,
+                         cl_tri_point *p);
+
 /* The fraction a in [0, 1] at which the segment x0 + a D crosses the
  * triangle (Moeller and Trumbore, "Fast, minimum storage ray-triangle
  * intersection", 1997), INFINITY if it does not; barycentric coordinates

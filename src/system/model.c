@@ -446,9 +446,13 @@ static cl_status sys_contact(void *data, double t, double *x, double *v,
     bool barriers = m->sys.step_fraction != NULL;
     if (!projects && !record && !barriers)
         return CL_OK;                    /* nothing to record or move */
-    cl_cloth_scatter(&m->cloth, t, x, projects ? v : NULL, m->xf,
-                     projects ? m->vf : NULL);
-    double pen = record ? cl_contact_penetration(m->contact, t, m->xf) : 0.0;
+    const double *xf = x; /* without pins the free state is the cloth's */
+    if (projects || barriers || m->cloth.nfree < m->cloth.np) {
+        cl_cloth_scatter(&m->cloth, t, x, projects ? v : NULL, m->xf,
+                         projects ? m->vf : NULL);
+        xf = m->xf;
+    }
+    double pen = record ? cl_contact_penetration(m->contact, t, xf) : 0.0;
     if (pen > m->worst_pen) {
         m->worst_pen = pen;
         m->worst_t = t;
