@@ -133,20 +133,20 @@ Test(bsym, roundoff_asymmetry_passes_real_asymmetry_does_not)
     size_t k = c.sym.low[0];
     double keep = c.blk[9 * k + 1];
     c.blk[9 * k + 1] = keep * (1 + 4e-16);
-    cr_assert_eq(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL, 1), CL_BSYM_BLOCKS);
+    cr_assert_eq(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL), CL_BSYM_BLOCKS);
     c.blk[9 * k + 1] = keep + 1e-6;
-    cr_assert_eq(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL, 1), CL_BSYM_NONE);
+    cr_assert_eq(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL), CL_BSYM_NONE);
     c.blk[9 * k + 1] = NAN;
-    cr_assert_eq(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL, 1), CL_BSYM_NONE);
+    cr_assert_eq(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL), CL_BSYM_NONE);
     c.blk[9 * k + 1] = keep;
     /* an off-diagonal block and its partner made non-symmetric alike */
     double *b = c.blk + 9 * c.sym.up[0], *bt = c.blk + 9 * c.sym.low[0];
     b[1] += 0.25;
     bt[3] += 0.25;
-    cr_assert_eq(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL, 1), CL_BSYM_HALVES);
+    cr_assert_eq(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL), CL_BSYM_HALVES);
     double *D = c.blk + 9 * c.pat.diag[2];
     D[5] += 0.5; /* (1, 2) of a diagonal block, (2, 1) unchanged */
-    cr_assert_eq(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL, 1), CL_BSYM_NONE);
+    cr_assert_eq(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL), CL_BSYM_NONE);
     bs_free(&c);
 }
 
@@ -184,7 +184,7 @@ Test(bsym, reduced_matrix_of_symmetric_jacobians_packs)
     cr_assert(kv && a);
     memcpy(kv, c.blk, 9 * c.pat.nnzb * sizeof *kv);
     bs_symmetric(&c, 99, true);
-    cr_assert_eq(cl_bsym_check(&c.sym, kv, CL_BSYM_TOL, 1), CL_BSYM_BLOCKS);
+    cr_assert_eq(cl_bsym_check(&c.sym, kv, CL_BSYM_TOL), CL_BSYM_BLOCKS);
     cl_bsym_pack(&c.sym, CL_BSYM_BLOCKS, -0.3, kv, -0.09, c.blk, c.mass,
                  c.d, c.u);
     cl_reduced_blocks(&c.pat, c.mass, 0.3, 0.09, c.blk, kv, a);
