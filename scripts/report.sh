@@ -132,13 +132,24 @@ missing() { # n
               print s }' "$wpa/sweep.csv"
 }
 for n in 16 32; do
-    for kind in fixed adaptive; do # two lists: a --set line is short
-        "$bin" workprecision hang --quiet --out "$wpa/n$n/$kind" \
-            --t-end 0.01 --set cloth.n="$n" --from-sweep "$wpa/sweep.csv" \
-            --integrator "$(ran "$kind" "$n")"
+    # six methods a call, as in the sweep's sections: the integrator list
+    # is written back into an INI line of at most 197 characters
+    parts=()
+    for kind in fixed adaptive; do
+        k=0
+        for part in $(ran "$kind" "$n" | tr , '\n' | paste -d, - - - - - - |
+                      sed 's/,*$//'); do
+            k=$((k + 1))
+            "$bin" workprecision hang --quiet --out "$wpa/n$n/$kind$k" \
+                --t-end 0.01 --set cloth.n="$n" \
+                --from-sweep "$wpa/sweep.csv" --integrator "$part"
+            parts+=("$wpa/n$n/$kind$k/workprecision.csv")
+        done
     done
-    cat "$wpa/n$n/fixed/workprecision.csv" > "$wpa/n$n/workprecision.csv"
-    tail -n +2 "$wpa/n$n/adaptive/workprecision.csv" >> "$wpa/n$n/workprecision.csv"
+    head -n 1 "${parts[0]}" > "$wpa/n$n/workprecision.csv"
+    for f in "${parts[@]}"; do
+        tail -n +2 "$f" >> "$wpa/n$n/workprecision.csv"
+    done
     names=$(split_csv "$wpa/n$n/workprecision.csv" "$wpa/n$n/dat" 4 10)
     gone=$(missing "$n")
     echo "  n = $n, no point: ${gone:-none}" | sed 's/\\n/ /g'
