@@ -18,7 +18,7 @@ static const cl_bplan full_plan = {
     .eval_budget = 1.0, .w6_n = 128, .w13_n = 128,
     .w10_nn = 3, .w10_n = {64, 128, 256}, .w10_budget = 2.0,
     .w12_n = 256, .w12_t = 2.0,
-    .w11_nn = 3, .w11_n = {32, 64, 128}, .w11_t = 2.0, .w11_budget = 60.0,
+    .w11_nn = 3, .w11_n = {32, 64, 128}, .w11_t = 2.0,
 };
 
 static const cl_bplan quick_plan = {
@@ -29,7 +29,7 @@ static const cl_bplan quick_plan = {
     .eval_budget = 0.25, .w6_n = 32, .w13_n = 64,
     .w10_nn = 2, .w10_n = {16, 32}, .w10_budget = 0.3,
     .w12_n = 32, .w12_t = 0.1,
-    .w11_nn = 1, .w11_n = {16}, .w11_t = 0.25, .w11_budget = 20.0,
+    .w11_nn = 1, .w11_n = {16}, .w11_t = 0.25,
 };
 
 /* Workload 12 (CPU minutes) runs only when named by --only. */

@@ -31,10 +31,9 @@ typedef struct {
     double w10_budget;       /* CPU seconds per (solver, n, dt) */
     int w12_n;               /* workload 12: n, T */
     double w12_t;
-    int w11_nn;              /* workload 11: sizes, T, PETSc's budget */
+    int w11_nn;              /* workload 11: sizes, T */
     int w11_n[3];
     double w11_t;
-    double w11_budget;       /* CPU seconds per PETSc run */
     int w13_n;               /* workload 13: the cloth size */
 } cl_bplan;
 
