@@ -100,6 +100,35 @@ $(BUILD)/pic/%.o: %.c
 $(PETSC_SO): $(PETSC_OBJ)
 	$(CC) $(LDFLAGS) -shared $^ $(PETSC_LIBS) -o $@
 
+# The plug-in interface version (linalg/plugin.h): the SHA-256 of the
+# preprocessed text of the headers src/*/*_abi.h (the types of every entry
+# point, and what they include), remade whenever one of them changes.
+ABI_HDR := $(wildcard src/*/*_abi.h)
+ABI_USE := $(BUILD)/src/linalg/plugin.o \
+           $(BUILD)/pic/src/linalg/pluginabi_petsc.o $(BUILD)/tests/test_plugin.o
+$(BUILD)/pluginabi.h: $(ABI_HDR)
+	@mkdir -p $(BUILD)
+	@set -o pipefail; h=$$(printf '#include "%s"\n' $(ABI_HDR:src/%=%) | \
+	    $(CC) $(CPPFLAGS) -E -P -MMD -MP -MF $@.d -MT $@ -x c - | sha256sum) && \
+	printf '#define CL_PLUGIN_ABI "%.16s"\n' "$$h" > $@
+$(ABI_USE): $(BUILD)/pluginabi.h
+$(ABI_USE): CPPFLAGS += -I$(BUILD)
+
+# Test plug-ins (tests/test_plugin.c) from tests/plugins/probe.c: with
+# this build's interface version, with a wrong one, and with none.
+TESTPLUG_DIR := $(BUILD)/test-plugins
+TESTPLUG := $(TESTPLUG_DIR)/right/clothode-probe.so \
+            $(TESTPLUG_DIR)/wrong/clothode-petsc.so \
+            $(TESTPLUG_DIR)/none/clothode-petsc.so
+$(TESTPLUG_DIR)/right/%: PROBE_ABI := -include $(BUILD)/pluginabi.h \
+                                      -DPROBE_ABI=CL_PLUGIN_ABI
+$(TESTPLUG_DIR)/wrong/%: PROBE_ABI := -DPROBE_ABI='"0123456789abcdef"'
+$(TESTPLUG): tests/plugins/probe.c $(BUILD)/pluginabi.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -fPIC -shared $(LDFLAGS) $(PROBE_ABI) $< -o $@
+$(BUILD)/tests/test_plugin.o: CPPFLAGS += \
+    -DCL_TEST_PLUGINS='"$(abspath $(TESTPLUG_DIR))"'
+
 $(BUILD)/libclothode.a: $(LIB_OBJ)
 	rm -f $@
 	ar rcs $@ $^
@@ -110,7 +139,8 @@ $(BIN): $(CLI_OBJ) $(BUILD)/libclothode.a | $(PETSC_SO)
 $(BENCHBIN): $(BUILD)/src/bench/main.o $(BENCH_OBJ) $(BUILD)/libclothode.a | $(PETSC_SO)
 	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
-$(TESTBIN): $(TEST_OBJ) $(BENCH_OBJ) $(BUILD)/libclothode.a | $(PETSC_SO)
+$(TESTBIN): $(TEST_OBJ) $(BENCH_OBJ) $(BUILD)/libclothode.a | $(PETSC_SO) \
+            $(TESTPLUG)
 	$(CC) $(LDFLAGS) $^ -lcriterion $(LDLIBS) -o $@
 
 demo: deps
@@ -215,4 +245,5 @@ clean:
 	rm -rf build build-san build-fuzz
 
 -include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d) $(TEST_OBJ:.o=.d) \
-    $(BENCH_OBJ:.o=.d) $(BUILD)/src/bench/main.d $(PETSC_OBJ:.o=.d)
+    $(BENCH_OBJ:.o=.d) $(BUILD)/src/bench/main.d $(PETSC_OBJ:.o=.d) \
+    $(BUILD)/pluginabi.h.d

@@ -50,24 +50,13 @@
 
 #include "core/check.h"
 #include "linalg/bsym.h"
+#include "linalg/linsol_amg_abi.h"
 #include "linalg/petscenv.h"
 #include "linalg/plugin.h"
 #include "linalg/reduced.h"
 
 #define CL_AMG_TOL 1e-10
 #define CL_AMG_REGROW 1.5
-
-typedef void (*amg_mult_fn)(void *ctx, const double *x, double *y);
-typedef int (*amg_create_fn)(size_t nb, const size_t *rowptr,
-                             const size_t *col, int hypre, long maxit,
-                             amg_mult_fn mult, void *ctx, void **handle,
-                             cl_plugin_msg *msg);
-typedef int (*amg_setup_fn)(void *handle, const double *ablk, int rebuild,
-                            cl_plugin_msg *msg);
-typedef int (*amg_solve_fn)(void *handle, const double *rhs, double *x,
-                            double rtol, double atol, long *iters,
-                            cl_plugin_msg *msg);
-typedef void (*amg_free_fn)(void *handle);
 
 typedef struct {
     const char *name;
@@ -81,9 +70,9 @@ typedef struct {
     cl_bsym_kind kind;       /* the product's form since the last setup */
     int threads;             /* of the products */
     double tol;
-    amg_setup_fn setup;
-    amg_solve_fn solve;
-    amg_free_fn free;
+    clp_amg_setup_fn setup;
+    clp_amg_solve_fn solve;
+    clp_amg_free_fn free;
     void *h;                 /* the plug-in's solver */
     bool ready;              /* a setup succeeded */
     bool fresh;              /* the hierarchy was built at the last setup */
@@ -108,7 +97,7 @@ static void amg_free(void *state)
 }
 
 /* The plug-in's entry points clp_amg_*. */
-static cl_status amg_symbols(cl_amg *s, amg_create_fn *create,
+static cl_status amg_symbols(cl_amg *s, clp_amg_create_fn *create,
                              cl_error *err)
 {
     void *sym[4];
@@ -119,10 +108,10 @@ static cl_status amg_symbols(cl_amg *s, amg_create_fn *create,
         st = cl_plugin_symbol("petsc", names[k], &sym[k], err);
     if (st != CL_OK)
         return st;
-    *create = (amg_create_fn)sym[0];
-    s->setup = (amg_setup_fn)sym[1];
-    s->solve = (amg_solve_fn)sym[2];
-    s->free = (amg_free_fn)sym[3];
+    *create = (clp_amg_create_fn)sym[0];
+    s->setup = (clp_amg_setup_fn)sym[1];
+    s->solve = (clp_amg_solve_fn)sym[2];
+    s->free = (clp_amg_free_fn)sym[3];
     return CL_OK;
 }
 
@@ -173,7 +162,7 @@ static cl_status amg_create_named(const char *name, int hypre,
                   .tol = o->tol > 0.0 ? o->tol : CL_AMG_TOL,
                   .threads = o->threads, .base_iters = -1};
     long maxit = cl_linsol_maxit(o->maxit, s->n);
-    amg_create_fn create = NULL;
+    clp_amg_create_fn create = NULL;
     cl_plugin_msg msg = {.text = ""};
     st = amg_alloc(s, mass, err);
     if (st == CL_OK)

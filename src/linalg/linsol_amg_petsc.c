@@ -39,10 +39,7 @@
 #include <petscksp.h>
 #include <stdio.h>
 
-#include "linalg/plugin.h"
-
-/* y = A x, the caller's product (ctx: its own). */
-typedef void (*clp_amg_mult)(void *ctx, const double *x, double *y);
+#include "linalg/linsol_amg_abi.h"
 
 typedef struct {
     PetscInt n;             /* 3 nb */

@@ -1,9 +1,7 @@
 /* PETSc's start (linalg/petscenv.h): through the plug-in's entry point. */
 #include "linalg/petscenv.h"
 
-#include "linalg/plugin.h"
-
-typedef int (*start_fn)(cl_plugin_msg *msg);
+#include "linalg/petscenv_abi.h"
 
 cl_status cl_petsc_start(cl_error *err)
 {
@@ -15,7 +13,7 @@ cl_status cl_petsc_start(cl_error *err)
     if (rc != CL_OK)
         return rc;
     cl_plugin_msg msg = {.text = ""};
-    if (((start_fn)sym)(&msg) != 0)
+    if (((clp_petsc_start_fn)sym)(&msg) != 0)
         return cl_error_set(err, CL_ESOLVER, "%s", msg.text);
     started = 1;
     return CL_OK;

@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "linalg/plugin.h"
+#include "linalg/petscenv_abi.h"
 
 /* Under AddressSanitizer: what MPI allocates while it starts and stops
  * (Open MPI's components, hwloc's topology, PMIx) it keeps for the

@@ -1,5 +1,6 @@
 /* Plug-in loading (linalg/plugin.h): dlopen by name from the places the
- * header lists, each plug-in once per process. */
+ * header lists, each plug-in once per process, refused unless it was built
+ * for this program's plug-in interface (CL_PLUGIN_ABI). */
 #include "linalg/plugin.h"
 
 #include <dlfcn.h>
@@ -9,6 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+
+#include "pluginabi.h"
 
 #define CL_PLUGIN_MAX 4
 
@@ -45,29 +48,58 @@ static void *try_open(const char *path, char *tried, size_t len)
     return h;
 }
 
+/* The plug-in at path, just opened as h, against this program's interface
+ * version: closed and refused unless its clp_plugin_abi is
+ * CL_PLUGIN_ABI. */
+static cl_status check_abi(void *h, const char *path, cl_error *err)
+{
+    const char *abi = dlsym(h, "clp_plugin_abi");
+    if (abi && strncmp(abi, CL_PLUGIN_ABI, sizeof CL_PLUGIN_ABI) == 0)
+        return CL_OK;
+    cl_status rc =
+        abi ? cl_error_set(err, CL_EUNSUPPORTED, "plug-in %s was built for "
+                           "plug-in interface %.40s, this program for %s: "
+                           "build both from the same sources (`make`)",
+                           path, abi, CL_PLUGIN_ABI)
+            : cl_error_set(err, CL_EUNSUPPORTED, "plug-in %s has no "
+                           "plug-in interface version (clp_plugin_abi), "
+                           "this program's is %s: build both from the same "
+                           "sources (`make`)", path, CL_PLUGIN_ABI);
+    dlclose(h);
+    return rc;
+}
+
+/* The first of the places linalg/plugin.h lists that holds the plug-in,
+ * into *handle if its interface version is this program's. */
 static cl_status open_plugin(const char *name, void **handle, cl_error *err)
 {
     char file[64], dir[PATH_MAX], path[PATH_MAX + 96], tried[2048] = "";
     snprintf(file, sizeof file, "clothode-%s.so", name);
     const char *env = getenv("CLOTHODE_PLUGIN_DIR");
+    *handle = NULL;
     if (env && *env) {
         snprintf(path, sizeof path, "%s/%s", env, file);
-        if ((*handle = try_open(path, tried, sizeof tried)))
-            return CL_OK;
+        *handle = try_open(path, tried, sizeof tried);
     }
     program_dir(dir, sizeof dir);
-    if (dir[0]) {
+    if (!*handle && dir[0]) {
         snprintf(path, sizeof path, "%s/%s", dir, file);
-        if ((*handle = try_open(path, tried, sizeof tried)))
-            return CL_OK;
-        snprintf(path, sizeof path, "%s/../lib/clothode/%s", dir, file);
-        if ((*handle = try_open(path, tried, sizeof tried)))
-            return CL_OK;
+        *handle = try_open(path, tried, sizeof tried);
     }
-    return cl_error_set(err, CL_EUNSUPPORTED,
-                        "plug-in %s not found: tried %s; `make` builds it "
-                        "beside the program, CLOTHODE_PLUGIN_DIR names "
-                        "another folder", file, tried[0] ? tried : "nothing");
+    if (!*handle && dir[0]) {
+        snprintf(path, sizeof path, "%s/../lib/clothode/%s", dir, file);
+        *handle = try_open(path, tried, sizeof tried);
+    }
+    if (!*handle)
+        return cl_error_set(err, CL_EUNSUPPORTED,
+                            "plug-in %s not found: tried %s; `make` builds "
+                            "it beside the program, CLOTHODE_PLUGIN_DIR "
+                            "names another folder", file,
+                            tried[0] ? tried : "nothing");
+    cl_status rc = check_abi(*handle, path, err);
+    if (rc != CL_OK)
+        *handle = NULL;
+    return rc;
 }
 
 static cl_status find_plugin(const char *name, void **handle, cl_error *err)

@@ -11,7 +11,18 @@
  * The plug-in NAME is looked up as clothode-NAME.so in, in order:
  *   $CLOTHODE_PLUGIN_DIR, if set;
  *   the folder of the running program (the build tree);
- *   that folder's ../lib/clothode (an installed tree, `make install`). */
+ *   that folder's ../lib/clothode (an installed tree, `make install`).
+ *
+ * Interface version.  The types of every entry point live in the headers
+ * src/LAYER/NAME_abi.h; the build hashes their preprocessed text (and
+ * that of the headers they include) into CL_PLUGIN_ABI, 16 hexadecimal
+ * digits in the generated header pluginabi.h (Makefile), so that no change
+ * of the interface can leave the version as it was.  Every plug-in
+ * defines `const char clp_plugin_abi[] = CL_PLUGIN_ABI;` (for
+ * clothode-petsc.so: linalg/pluginabi_petsc.c), and the first plug-in
+ * file found is refused, with CL_EUNSUPPORTED naming the file and both
+ * versions, unless its version is the program's: a program and a plug-in
+ * built from different interfaces never call each other. */
 #ifndef CL_PLUGIN_H
 #define CL_PLUGIN_H
 

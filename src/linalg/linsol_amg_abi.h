@@ -1,0 +1,28 @@
+/* The entry points of the algebraic-multigrid solvers amg and amg-hypre
+ * in the plug-in clothode-petsc.so (linalg/plugin.h): plain C types and
+ * one callback, so that the plug-in calls nothing of the library.  Looked
+ * up as "clp_amg_create", ... by linalg/linsol_amg.c; defined by
+ * linalg/linsol_amg_petsc.c.  Each returns 0, or nonzero with msg
+ * filled. */
+#ifndef CL_LINSOL_AMG_ABI_H
+#define CL_LINSOL_AMG_ABI_H
+
+#include <stddef.h>
+
+#include "linalg/plugin.h"
+
+/* y = A x, the caller's product (ctx: its own). */
+typedef void (*clp_amg_mult)(void *ctx, const double *x, double *y);
+
+typedef int (*clp_amg_create_fn)(size_t nb, const size_t *rowptr,
+                                 const size_t *col, int hypre, long maxit,
+                                 clp_amg_mult mult, void *ctx, void **handle,
+                                 cl_plugin_msg *msg);
+typedef int (*clp_amg_setup_fn)(void *handle, const double *ablk,
+                                int rebuild, cl_plugin_msg *msg);
+typedef int (*clp_amg_solve_fn)(void *handle, const double *rhs, double *x,
+                                double rtol, double atol, long *iters,
+                                cl_plugin_msg *msg);
+typedef void (*clp_amg_free_fn)(void *handle);
+
+#endif
