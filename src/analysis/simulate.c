@@ -319,6 +319,11 @@ static cl_status reach(sim *s, const cl_integrator_type *type, void *state,
     cl_status rc = type->advance(state, t, s->x, s->v, err);
     res->stats.wall += cl_clock_wall() - w0;
     res->stats.cpu += cl_clock_cpu() - c0;
+    int sig = cl_stop_requested();
+    if (rc == CL_EINTR && sig) /* the system's evaluations stopped it */
+        return cl_error_set(err, CL_EINTR, "interrupted by %s at t = %g "
+                            "(during the advance to t = %g)",
+                            cl_stop_signal_name(sig), res->t_reached, t);
     return rc ? rc : sample(s, t, res, err);
 }
 

@@ -1,9 +1,11 @@
 /* Stopping a run early and cleanly: SIGINT and SIGTERM set a flag that the
  * run loops (analysis/simulate.c, analysis/trial.c, the study loop of the
- * command line) look at between steps, so that what was computed is
- * written before the program exits (README "Exit status").  A second
- * signal of the same kind ends the program at once (the handler resets
- * itself). */
+ * command line) look at between steps, and that the model's force and
+ * Jacobian evaluations look at too (system/system.h): they then fail with
+ * CL_EINTR, which ends an integrator's advance however long it was to be.
+ * What was computed up to the last output is written before the program
+ * exits (README "Exit status").  A second signal of the same kind ends the
+ * program at once (the handler resets itself). */
 #ifndef CL_STOP_H
 #define CL_STOP_H
 

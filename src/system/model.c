@@ -18,6 +18,7 @@
 #include <string.h>
 
 #include "core/check.h"
+#include "core/stop.h"
 
 struct cl_model {
     cl_cloth cloth;
@@ -258,6 +259,8 @@ static cl_status sys_force_terms(void *data, uint64_t mask, double t,
                                  const double *x, const double *v, double *f)
 {
     cl_model *m = data;
+    if (cl_stop_requested())
+        return CL_EINTR;
     cl_cloth_scatter(&m->cloth, t, x, v, m->xf, m->vf);
     eval_terms(m, mask, t, m->ff, NULL, NULL, NULL);
     cl_cloth_gather(&m->cloth, m->ff, f);
@@ -291,6 +294,8 @@ static cl_status sys_jacobian_terms(void *data, uint64_t mask, double t,
                                     double *f, double *dfdx, double *dfdv)
 {
     cl_model *m = data;
+    if (cl_stop_requested())
+        return CL_EINTR;
     size_t nval = 9 * m->pattern.nnzb;
     int nt = m->sys.threads;
     zero_threads(dfdx, nval, nt);
@@ -348,6 +353,8 @@ static cl_status sys_force_other(void *data, double t, const double *x,
                                  const double *v, double *f)
 {
     cl_model *m = data;
+    if (cl_stop_requested())
+        return CL_EINTR;
     cl_cloth_scatter(&m->cloth, t, x, v, m->xf, m->vf);
     memset(m->ff, 0, 3 * m->cloth.np * sizeof *m->ff);
     for (size_t k = 0; k < m->nterm; k++) {

@@ -6,7 +6,12 @@
  * pattern (`pattern`, block rows = free particles), so an integrator
  * assembles whatever matrix its linear solver wants from precomputed
  * maps.
- * Modelled on SUNDIALS' user-data pattern and GSL's gsl_odeiv2_system. */
+ * Modelled on SUNDIALS' user-data pattern and GSL's gsl_odeiv2_system.
+ *
+ * Once a stop is requested (SIGINT, SIGTERM: core/stop.h), force,
+ * jacobian, force_other, force_terms and jacobian_terms return CL_EINTR
+ * without evaluating, an error every integrator passes on unrecoverably:
+ * a run stops within one evaluation, not at the end of its advance. */
 #ifndef CL_SYSTEM_H
 #define CL_SYSTEM_H
 
