@@ -15,6 +15,12 @@ Test(stop, signal_sets_the_flag_and_names_it)
     cr_assert_str_eq(cl_stop_signal_name(SIGTERM), "SIGTERM");
     cr_assert_str_eq(cl_stop_signal_name(SIGINT), "SIGINT");
     cr_assert_str_eq(cl_stop_signal_name(SIGHUP), "signal 1");
+    cl_error err;
+    cr_assert_eq(cl_stop_error(&err, 1.5, NAN), CL_EINTR);
+    cr_assert_str_eq(err.msg, "interrupted by SIGTERM at t = 1.5");
+    cr_assert_eq(cl_stop_error(&err, 0, 100), CL_EINTR);
+    cr_assert_str_eq(err.msg, "interrupted by SIGTERM at t = 0 (during the "
+                     "advance to t = 100)");
 }
 
 /* The handler resets itself: a second signal ends the program. */

@@ -319,11 +319,8 @@ static cl_status reach(sim *s, const cl_integrator_type *type, void *state,
     cl_status rc = type->advance(state, t, s->x, s->v, err);
     res->stats.wall += cl_clock_wall() - w0;
     res->stats.cpu += cl_clock_cpu() - c0;
-    int sig = cl_stop_requested();
-    if (rc == CL_EINTR && sig) /* the system's evaluations stopped it */
-        return cl_error_set(err, CL_EINTR, "interrupted by %s at t = %g "
-                            "(during the advance to t = %g)",
-                            cl_stop_signal_name(sig), res->t_reached, t);
+    if (rc == CL_EINTR && cl_stop_requested()) /* the evaluations stopped */
+        return cl_stop_error(err, res->t_reached, t);
     return rc ? rc : sample(s, t, res, err);
 }
 
@@ -334,10 +331,8 @@ static cl_status check_stop(const sim *s, const cl_integrator_type *type,
                             cl_error *err)
 {
     const cl_sim_opts *so = s->so;
-    int sig = cl_stop_requested();
-    if (sig)
-        return cl_error_set(err, CL_EINTR, "interrupted by %s at t = %g",
-                            cl_stop_signal_name(sig), res->t_reached);
+    if (cl_stop_requested())
+        return cl_stop_error(err, res->t_reached, NAN);
     if (so->max_wall > 0 && cl_clock_wall() - s->wall0 >= so->max_wall)
         return cl_error_set(err, CL_EBUDGET, "budget --max-wall %g s "
                             "reached at t = %g", so->max_wall,

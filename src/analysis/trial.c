@@ -99,13 +99,14 @@ cl_status cl_trial_run(cl_trial *t, const cl_integrator_type *type,
         if (tk <= last)
             continue;
         if (cl_stop_requested()) {
-            rc = cl_error_set(err, CL_EINTR, "interrupted by %s at t = %g",
-                              cl_stop_signal_name(cl_stop_requested()), last);
+            rc = cl_stop_error(err, last, NAN);
             break;
         }
         if (!(rc = type->advance(state, tk, t->x, t->v, err)) &&
             !(rc = check_stretch(t, tk, max_stretch, err)) && t->hook)
             rc = t->hook(t->hook_ctx, tk, t->x, t->v, err);
+        if (rc == CL_EINTR && cl_stop_requested())
+            rc = cl_stop_error(err, last, tk);
         last = tk;
     }
     if (state) {

@@ -1,6 +1,7 @@
 /* The stop flag of core/stop.h. */
 #include "core/stop.h"
 
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
@@ -37,4 +38,14 @@ const char *cl_stop_signal_name(int sig)
         return "SIGTERM";
     snprintf(other, sizeof other, "signal %d", sig);
     return other;
+}
+
+cl_status cl_stop_error(cl_error *err, double t_reached, double t_to)
+{
+    const char *name = cl_stop_signal_name(cl_stop_requested());
+    if (isnan(t_to))
+        return cl_error_set(err, CL_EINTR, "interrupted by %s at t = %g",
+                            name, t_reached);
+    return cl_error_set(err, CL_EINTR, "interrupted by %s at t = %g (during "
+                        "the advance to t = %g)", name, t_reached, t_to);
 }

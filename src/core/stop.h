@@ -9,6 +9,8 @@
 #ifndef CL_STOP_H
 #define CL_STOP_H
 
+#include "core/error.h"
+
 /* Install the handler for SIGINT and SIGTERM (sigaction). */
 void cl_stop_install(void);
 
@@ -17,5 +19,10 @@ int cl_stop_requested(void);
 
 /* "SIGINT", "SIGTERM" or "signal N", for messages. */
 const char *cl_stop_signal_name(int sig);
+
+/* A run stopped by the requested stop: CL_EINTR, "interrupted by SIGINT
+ * at t = t_reached" (its last output time), and " (during the advance to
+ * t = t_to)" when t_to is not NaN (the evaluations stopped an advance). */
+cl_status cl_stop_error(cl_error *err, double t_reached, double t_to);
 
 #endif
