@@ -169,20 +169,10 @@ Test(stop, sigterm_stops_a_run_with_everything_written)
 }
 
 /* Inside one long advance: CVODE, a fixed-step method, PETSc's TSSolve. */
-Test(stop, sigint_stops_cvode_inside_an_advance)
+Test(stop, signals_stop_integrators_inside_an_advance)
 {
     time_limit(120);
     interrupted_run(SIGINT, "cvode-bdf", "1");
-}
-
-Test(stop, sigint_stops_a_fixed_step_method_inside_an_advance)
-{
-    time_limit(120);
     interrupted_run(SIGINT, "semi-bdf2", "1");
-}
-
-Test(stop, sigterm_stops_petsc_inside_an_advance)
-{
-    time_limit(120);
     interrupted_run(SIGTERM, "petsc-alpha2", "1");
 }
