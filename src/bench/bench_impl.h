@@ -146,7 +146,7 @@ const cl_brun *cl_bench_hang(cl_bctx *c, int n, double t_end,
 
 /* The petsc-* integrator `method` with PETSc options `petsc` on hang,
  * cached as cl_bench_hang's runs; stopped with rc = CL_EBUDGET at the
- * first hundredth of t_end past `budget` CPU seconds. */
+ * first twentieth of t_end past `budget` CPU seconds. */
 const cl_brun *cl_bench_hang_petsc(cl_bctx *c, int n, double t_end,
                                    const char *method, const char *petsc,
                                    double rtol, double atol, double budget);

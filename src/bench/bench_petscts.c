@@ -8,7 +8,7 @@
  *
  * clothode runs first, at rtol 1e-4; PETSc's run then gets a CPU budget
  * of W11_FACTOR (4) times clothode's CPU time, and is stopped at the
- * first hundredth of T past it.  So each case ends one of two ways:
+ * first twentieth of T past it.  So each case ends one of two ways:
  *   - PETSc stopped by the budget: it needs more than 4x clothode's CPU
  *     time to reach T, the ratio (clothode's run to T against PETSc's to
  *     where it stopped) is a lower bound of at least 4 and the speed goal
