@@ -95,7 +95,7 @@ static cl_status timed_run(cl_model *m, cl_brun *r, cl_error *err)
     /* with a budget, in twentieths of t_end, stopping once it is spent.
      * Not finer: a step that reaches an output time ends on it, and
      * PETSc's TSALPHA2 pays for that (hang n = 32 with hundredths reached
-     * t = 0.24 in 24.7 s CPU, with twentieths t = 0.5 in 20.8 s); the
+     * t = 0.24 in 4185 steps, with twentieths t = 0.5 in 5305); the
      * price is an overrun of up to a twentieth (workload 11's PETSc run
      * at n = 64: 310 s CPU for a budget of 166 s). */
     int parts = r->budget > 0 ? 20 : 1;
