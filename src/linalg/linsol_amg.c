@@ -49,6 +49,7 @@
 #include <string.h>
 
 #include "core/check.h"
+#include "linalg/amg_plugin.h"
 #include "linalg/bsym.h"
 #include "linalg/petscenv.h"
 #include "linalg/plugin.h"
@@ -56,13 +57,14 @@
 
 #define CL_AMG_TOL 1e-10
 #define CL_AMG_REGROW 1.5
+#define CL_AMG_COARSE_REGROW 1.1
 
 typedef void (*amg_mult_fn)(void *ctx, const double *x, double *y);
 typedef int (*amg_create_fn)(size_t nb, const size_t *rowptr,
                              const size_t *col, int hypre, long maxit,
                              amg_mult_fn mult, void *ctx, void **handle,
                              cl_plugin_msg *msg);
-typedef int (*amg_setup_fn)(void *handle, const double *ablk, int rebuild,
+typedef int (*amg_setup_fn)(void *handle, const double *ablk, int mode,
                             cl_plugin_msg *msg);
 typedef int (*amg_solve_fn)(void *handle, const double *rhs, double *x,
                             double rtol, double atol, long *iters,
@@ -86,8 +88,11 @@ typedef struct {
     amg_free_fn free;
     void *h;                 /* the plug-in's solver */
     bool ready;              /* a setup succeeded */
+    int hypre;
     bool fresh;              /* the hierarchy was built at the last setup */
+    bool coarse_fresh;       /* ... or its coarse operators recomputed */
     long base_iters;         /* first solve after the last rebuild; -1 */
+    long cbase_iters;        /* ... after the coarse operators' last; -1 */
     long last_iters;         /* the last solve's */
     long setups, rebuilds, solves, iters;
 } cl_amg;
@@ -171,7 +176,8 @@ static cl_status amg_create_named(const char *name, int hypre,
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", name);
     *s = (cl_amg){.name = name, .pat = pat, .n = 3 * pat->nb,
                   .tol = o->tol > 0.0 ? o->tol : CL_AMG_TOL,
-                  .threads = o->threads, .base_iters = -1};
+                  .threads = o->threads, .hypre = hypre, .base_iters = -1,
+                  .cbase_iters = -1};
     long maxit = cl_linsol_maxit(o->maxit, s->n);
     amg_create_fn create = NULL;
     cl_plugin_msg msg = {.text = ""};
@@ -203,21 +209,50 @@ static cl_status amg_create_hypre(const cl_bpattern *pat, const double *mass,
     return amg_create_named("amg-hypre", 1, pat, mass, o, state, err);
 }
 
-/* Set the preconditioner up on s->ablk, afresh or reusing the hierarchy. */
-static cl_status amg_prepare(cl_amg *s, bool rebuild, cl_error *err)
+/* Set the preconditioner up on s->ablk as `mode` says (amg_plugin.h). */
+static cl_status amg_prepare(cl_amg *s, int mode, cl_error *err)
 {
     cl_plugin_msg msg = {.text = ""};
     s->ready = false;
-    if (s->setup(s->h, s->ablk, rebuild, &msg) != 0)
+    if (s->setup(s->h, s->ablk, mode, &msg) != 0)
         return cl_error_set(err, CL_ESOLVER, "%s: %s", s->name, msg.text);
     s->ready = true;
-    s->fresh = rebuild;
-    if (rebuild) {
+    s->fresh = mode == CLP_AMG_BUILD;
+    s->coarse_fresh = mode != CLP_AMG_SMOOTHER;
+    if (s->coarse_fresh)
+        s->cbase_iters = -1;
+    if (s->fresh) {
         s->rebuilds++;
         s->base_iters = -1;
         s->last_iters = 0;
     }
     return CL_OK;
+}
+
+/* Whether the last solve took more than `factor` times `base`. */
+static bool amg_grew(const cl_amg *s, long base, double factor)
+{
+    return base > 0 && (double)s->last_iters > factor * (double)base;
+}
+
+/* What this setup recomputes: everything at the first; a new hierarchy
+ * when the last solve took more than CL_AMG_REGROW times the iterations of
+ * the first after the last build although the coarse operators were
+ * recomputed at the last setup (or for hypre, which keeps all or
+ * nothing); the coarse operators on the kept interpolation when it took
+ * more than CL_AMG_COARSE_REGROW times those of the first after they were
+ * last recomputed (or CL_AMG_REGROW times the build's); else the finest
+ * smoother only. */
+static int amg_mode(const cl_amg *s)
+{
+    if (s->rebuilds == 0)
+        return CLP_AMG_BUILD;
+    bool grew = amg_grew(s, s->base_iters, CL_AMG_REGROW);
+    if (grew && (s->coarse_fresh || s->hypre))
+        return CLP_AMG_BUILD;
+    if (grew || amg_grew(s, s->cbase_iters, CL_AMG_COARSE_REGROW))
+        return CLP_AMG_GALERKIN;
+    return CLP_AMG_SMOOTHER;
 }
 
 static cl_status amg_setup(void *state, double a, double b,
@@ -236,10 +271,7 @@ static cl_status amg_setup(void *state, double a, double b,
     if (s->kind != CL_BSYM_NONE)
         cl_bsym_pack(&s->sym, s->kind, 1.0, s->ablk, 0.0, NULL, NULL,
                      s->sdiag, s->supper);
-    bool rebuild = s->rebuilds == 0 ||
-                   (s->base_iters > 0 &&
-                    (double)s->last_iters > CL_AMG_REGROW * s->base_iters);
-    cl_status st = amg_prepare(s, rebuild, err);
+    cl_status st = amg_prepare(s, amg_mode(s), err);
     if (st == CL_OK)
         s->setups++;
     return st;
@@ -269,7 +301,7 @@ static cl_status amg_run(cl_amg *s, const double *rhs, double *x,
     s->solves++;
     s->iters += its;
     if (bad && !s->fresh) {
-        cl_status st = amg_prepare(s, true, err);
+        cl_status st = amg_prepare(s, CLP_AMG_BUILD, err);
         if (st != CL_OK)
             return st;
         msg.text[0] = '\0';
@@ -282,6 +314,8 @@ static cl_status amg_run(cl_amg *s, const double *rhs, double *x,
     s->last_iters = its;
     if (s->base_iters < 0 && its > 0)
         s->base_iters = its;
+    if (s->cbase_iters < 0 && its > 0)
+        s->cbase_iters = its;
     return CL_OK;
 }
 
