@@ -23,14 +23,22 @@
  * packs A's values for the product, writes them into the slots of PETSc's
  * SeqAIJ copy (the preconditioner's), and sets the preconditioner up,
  * either afresh (a rebuild: coarsening, interpolation, coarse operators,
- * smoothers) or reusing the hierarchy.  For amg the reuse keeps the
- * interpolation and recomputes the coarse operators P^T A P and the
- * smoothers from the new values; for amg-hypre it keeps the whole
+ * smoothers) or reusing the hierarchy (linalg/amg_plugin.h).  For amg a
+ * reuse keeps the coarse operators and their smoothers and sets up only
+ * the finest level's smoother on the new A (its 3x3 diagonal blocks and
+ * Chebyshev's eigenvalue bound: a V-cycle whose smoothers converge is
+ * symmetric positive definite whatever SPD coarse operators it uses, so
+ * stale ones cost iterations, not definiteness; a stale eigenvalue bound
+ * of the finest smoother made it indefinite); when the last solve took
+ * more than CL_AMG_COARSE_REGROW times the iterations of the first after
+ * the coarse operators were last computed, they are recomputed, P^T A P on
+ * the kept interpolation P.  For amg-hypre a reuse keeps the whole
  * preconditioner.  The hierarchy is rebuilt at the first setup, and when
  * the last solve took more than CL_AMG_REGROW times the iterations of the
- * first solve after the last rebuild; a solve that fails on a reused
- * hierarchy is redone once on a fresh one.  Nothing is allocated by setup
- * or solve on this side (PETSc allocates within a rebuild).
+ * first solve after the last rebuild although the coarse operators are
+ * fresh; a solve that fails on a reused hierarchy is redone once on a
+ * fresh one.  Nothing is allocated by setup or solve on this side (PETSc
+ * allocates within a rebuild).
  *
  * Tolerance: solve stops at ||b - A x||_2 <= lin_tol ||b||_2 (default
  * 1e-10, as pcg); solve_tol at ||w .* (b - A x)||_2 <= delta, ensured by

@@ -29,13 +29,17 @@
  * (KSP_NORM_UNPRECONDITIONED).  The right-hand side and the solution are
  * the caller's arrays (VecPlaceArray), not copies.
  *
- * Reuse (clp_amg_setup's `rebuild` = 0): GAMG keeps its prolongators
- * (PCGAMGSetReuseInterpolation) and recomputes the Galerkin coarse
- * operators P^T A P and the smoothers on the new values; hypre cannot
- * keep its interpolation, so its reuse keeps the whole preconditioner
- * (KSPSetReusePreconditioner).  GAMG's whole preconditioner, kept from
- * one step of semi-bdf2 on hang to the next, was found indefinite by CG
- * within two iterations: GAMG's reuse stops at the interpolation. */
+ * Reuse (clp_amg_setup's `mode`, linalg/amg_plugin.h): CLP_AMG_GALERKIN
+ * keeps GAMG's prolongators (PCGAMGSetReuseInterpolation) and recomputes
+ * the Galerkin coarse operators P^T A P and the smoothers on the new
+ * values; CLP_AMG_SMOOTHER keeps the whole preconditioner
+ * (KSPSetReusePreconditioner) but the finest level's smoother, whose
+ * operators are set anew so that KSPSetUp inverts the new diagonal blocks
+ * and Chebyshev estimates the new eigenvalue bound (the whole
+ * preconditioner kept with the old bound was found indefinite by CG
+ * within two iterations, one step of semi-bdf2 on hang later).  hypre
+ * cannot keep its interpolation, so either reuse keeps its whole
+ * preconditioner. */
 #include <petscksp.h>
 #include <stdio.h>
 
