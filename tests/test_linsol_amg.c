@@ -9,9 +9,8 @@
  *    below 1e-8);
  *  - the hierarchy is built once over setups whose values change slowly
  *    (only the finest smoother refreshed), its coarse operators recomputed
- *    when the iterations grow past CL_AMG_REGROW (1.5) times those after
- *    the last build, and rebuilt when they stay grown (statistics:
- *    symbolic_facts = builds);
+ *    when the iterations grow (statistics: symbolic_facts = builds);
+ *    amg-hypre's rebuilt;
  *  - a setup refreshing only the finest smoother solves hang's matrix to
  *    the tolerance, equal to KLU's solution;
  *  - the products by two threads give the solution of one, bit for bit;
@@ -170,51 +169,73 @@ Test(linsol_amg, threads_give_the_same_solution)
     am_free(&c);
 }
 
-/* Setups k = 0..5 with df/dx scaled by 1.01 each time: one build, five
- * refreshes of the finest smoother alone; then b 1e5 times larger (a far
- * stiffer A, whose true residual is held to 1e-8 only: the CG recurrence's
- * 1e-10 times its condition): the iterations grow past 1.5 times those
- * after the build, the next setup recomputes the coarse operators on the
- * kept interpolation, and as the iterations stay grown, the one after
- * builds a new hierarchy. */
-Test(linsol_amg, hierarchy_reused_then_rebuilt)
+/* Setups k = 0..5 with df/dx scaled by 1.01 each time, then three with b
+ * 1e5 times larger (a far stiffer A, whose true residual is held to 1e-8
+ * only: the CG recurrence's 1e-10 times its condition); returns the
+ * builds (symbolic_facts) and the CG iterations of each solve. */
+static void am_reuse_run(const char *name, long *builds, long *its)
 {
     ls_case c;
     ls_init(&c, 21);
-    const cl_linsol_type *t = ls_find("amg");
+    const cl_linsol_type *t = ls_find(name);
     cl_linsol_opts o = {0};
     void *st = ls_create(t, &c, &o);
     cl_linsol_jacobian(t, st, c.dfdx, c.dfdv);
     double rhs[LS_N], x[LS_N];
     size_t nval = 9 * c.pat.nnzb;
-    for (int k = 0; k < 6; k++) {
+    long done = 0;
+    for (int k = 0; k < 9; k++) {
         for (size_t i = 0; i < nval; i++)
-            c.dfdx[i] *= 1.0 + 0.01 * (k > 0);
-        cr_assert_leq(ls_setup_solve(t, st, &c, 1e-2, 1e-4, 30 + k, rhs, x),
-                      1e-10);
-    }
-    cl_stats s = {0};
-    t->stats(st, &s);
-    cr_assert_eq(s.lin_setups, 6);
-    cr_assert_eq(s.lin_solves, 6);
-    cr_assert_eq(s.symbolic_facts, 1);
-    long before = s.lin_iters;
-    long builds[3];
-    for (int k = 0; k < 3; k++) {
-        cr_assert_leq(ls_setup_solve(t, st, &c, 1e-2, 10.0, 40 + k, rhs, x),
-                      1e-8);
-        s = (cl_stats){0};
+            c.dfdx[i] *= 1.0 + 0.01 * (k > 0 && k < 6);
+        double b = k < 6 ? 1e-4 : 10.0;
+        cr_assert_leq(ls_setup_solve(t, st, &c, 1e-2, b, 30 + k, rhs, x),
+                      k < 6 ? 1e-10 : 1e-8);
+        cl_stats s = {0};
         t->stats(st, &s);
+        cr_assert_eq(s.lin_setups, k + 1);
+        cr_assert_eq(s.lin_solves, k + 1);
         builds[k] = s.symbolic_facts;
+        its[k] = s.lin_iters - done;
+        done = s.lin_iters;
     }
-    cr_log_info("iterations: %ld over 6 solves, then %ld over 3",
-                before, s.lin_iters - before);
-    cr_assert_eq(s.lin_setups, 9);
-    cr_assert_eq(builds[0], 1); /* the finest smoother refreshed */
-    cr_assert_eq(builds[1], 1); /* the coarse operators recomputed */
-    cr_assert_eq(builds[2], 2); /* a new hierarchy */
+    cr_log_info("%s iterations: %ld %ld %ld %ld %ld %ld, stiffer %ld %ld "
+                "%ld; builds after the last %ld", name, its[0], its[1],
+                its[2], its[3], its[4], its[5], its[6], its[7], its[8],
+                builds[8]);
     t->free(st);
     ls_free(&c);
+}
+
+/* amg: one build, then only the finest smoother refreshed while the
+ * iterations stay within 1.1 times the build's; on the stiffer A the
+ * refreshed smoother alone takes more than 1.5 times as many, so the
+ * next setup recomputes the coarse operators on the kept interpolation
+ * (no new hierarchy, and fewer iterations), and the one after builds a
+ * new hierarchy if and only if that still took more than 1.5 times the
+ * build's. */
+Test(linsol_amg, coarse_operators_recomputed_when_iterations_grow)
+{
+    long builds[9], its[9];
+    am_reuse_run("amg", builds, its);
+    for (int k = 0; k < 8; k++)
+        cr_assert_eq(builds[k], 1);
+    for (int k = 1; k < 6; k++)
+        cr_assert_leq((double)its[k], 1.1 * (double)its[0]);
+    cr_assert_gt((double)its[6], 1.5 * (double)its[0]);
+    cr_assert_lt(its[7], its[6]);
+    cr_assert_eq(builds[8],
+                 (double)its[7] > 1.5 * (double)its[0] ? 2 : 1);
+}
+
+/* amg-hypre keeps all or nothing: past 1.5 times the build's iterations
+ * the next setup builds a new hierarchy. */
+Test(linsol_amg, hypre_rebuilt_when_iterations_grow)
+{
+    long builds[9], its[9];
+    am_reuse_run("amg-hypre", builds, its);
+    cr_assert_eq(builds[5], 1);
+    cr_assert_gt((double)its[6], 1.5 * (double)its[0]);
+    cr_assert_eq(builds[7], 2);
 }
 
 /* A hierarchy built on hang's Newton matrix with df/dx and df/dv scaled

@@ -7,14 +7,14 @@
 enum {
     /* a new hierarchy: coarsening, interpolation, coarse operators,
      * smoothers */
-    CLP_AMG_BUILD = 1,
+    CLP_AMG_BUILD,
     /* the kept interpolation P: the coarse operators P^T A P and every
      * smoother recomputed (amg-hypre: the whole preconditioner kept) */
-    CLP_AMG_GALERKIN = 0,
+    CLP_AMG_GALERKIN,
     /* the coarse operators and their smoothers kept; only the finest
      * level's smoother (its diagonal blocks and eigenvalue bound) on the
      * new A (amg-hypre: the whole preconditioner kept) */
-    CLP_AMG_SMOOTHER = 2,
+    CLP_AMG_SMOOTHER,
 };
 
 #endif

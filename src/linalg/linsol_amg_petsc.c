@@ -283,7 +283,8 @@ int clp_amg_setup(void *handle, const double *ablk, int mode,
     PetscErrorCode ec;
     /* GAMG's smoother-only refresh keeps the whole preconditioner but the
      * finest smoother; hypre keeps all of it on any reuse */
-    int keep = mode == CLP_AMG_SMOOTHER || (s->hypre && mode != CLP_AMG_BUILD);
+    int keep = mode == CLP_AMG_SMOOTHER ||
+               (s->hypre && mode != CLP_AMG_BUILD);
     if ((ec = amg_values(s, ablk)))
         return amg_fail(msg, "writing the matrix values", ec);
     if ((ec = KSPGetPC(s->ksp, &pc)))
