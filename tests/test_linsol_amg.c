@@ -7,9 +7,12 @@
  *    relative residual <= 1e-10 (lin_tol's default), and |x - x_klu| <=
  *    1e-7 |x_klu| (the residual times A's condition number, measured
  *    below 1e-8);
- *  - the hierarchy is built once over setups whose values change slowly,
- *    and rebuilt when the iterations grow past CL_AMG_REGROW (1.5) times
- *    those after the last build (statistics: symbolic_facts = builds);
+ *  - the hierarchy is built once over setups whose values change slowly
+ *    (only the finest smoother refreshed), its coarse operators recomputed
+ *    when the iterations grow (statistics: symbolic_facts = builds);
+ *    amg-hypre's rebuilt;
+ *  - a setup refreshing only the finest smoother solves hang's matrix to
+ *    the tolerance, equal to KLU's solution;
  *  - the products by two threads give the solution of one, bit for bit;
  *  - an indefinite A is CL_ESOLVER saying so. */
 #include <criterion/criterion.h>
@@ -166,43 +169,130 @@ Test(linsol_amg, threads_give_the_same_solution)
     am_free(&c);
 }
 
-/* Setups k = 0..5 with df/dx scaled by 1.01 each time: one build, five
- * reuses; then b 1e5 times larger (a far stiffer A, whose true residual
- * is held to 1e-8 only: the CG recurrence's 1e-10 times its condition):
- * the iterations grow past 1.5 times those after the build, and the next
- * setup rebuilds. */
-Test(linsol_amg, hierarchy_reused_then_rebuilt)
+/* Setups k = 0..5 with df/dx scaled by 1.01 each time, then three with b
+ * 1e5 times larger (a far stiffer A, whose true residual is held to 1e-8
+ * only: the CG recurrence's 1e-10 times its condition); returns the
+ * builds (symbolic_facts) and the CG iterations of each solve. */
+static void am_reuse_run(const char *name, long *builds, long *its)
 {
     ls_case c;
     ls_init(&c, 21);
-    const cl_linsol_type *t = ls_find("amg");
+    const cl_linsol_type *t = ls_find(name);
     cl_linsol_opts o = {0};
     void *st = ls_create(t, &c, &o);
     cl_linsol_jacobian(t, st, c.dfdx, c.dfdv);
     double rhs[LS_N], x[LS_N];
     size_t nval = 9 * c.pat.nnzb;
-    for (int k = 0; k < 6; k++) {
+    long done = 0;
+    for (int k = 0; k < 9; k++) {
         for (size_t i = 0; i < nval; i++)
-            c.dfdx[i] *= 1.0 + 0.01 * (k > 0);
-        cr_assert_leq(ls_setup_solve(t, st, &c, 1e-2, 1e-4, 30 + k, rhs, x),
-                      1e-10);
+            c.dfdx[i] *= 1.0 + 0.01 * (k > 0 && k < 6);
+        double b = k < 6 ? 1e-4 : 10.0;
+        cr_assert_leq(ls_setup_solve(t, st, &c, 1e-2, b, 30 + k, rhs, x),
+                      k < 6 ? 1e-10 : 1e-8);
+        cl_stats s = {0};
+        t->stats(st, &s);
+        cr_assert_eq(s.lin_setups, k + 1);
+        cr_assert_eq(s.lin_solves, k + 1);
+        builds[k] = s.symbolic_facts;
+        its[k] = s.lin_iters - done;
+        done = s.lin_iters;
     }
-    cl_stats s = {0};
-    t->stats(st, &s);
-    cr_assert_eq(s.lin_setups, 6);
-    cr_assert_eq(s.lin_solves, 6);
-    cr_assert_eq(s.symbolic_facts, 1);
-    long before = s.lin_iters;
-    cr_assert_leq(ls_setup_solve(t, st, &c, 1e-2, 10.0, 40, rhs, x), 1e-8);
-    cr_assert_leq(ls_setup_solve(t, st, &c, 1e-2, 10.0, 41, rhs, x), 1e-8);
-    s = (cl_stats){0};
-    t->stats(st, &s);
-    cr_log_info("iterations: %ld over 6 solves, then %ld over 2",
-                before, s.lin_iters - before);
-    cr_assert_eq(s.lin_setups, 8);
-    cr_assert_eq(s.symbolic_facts, 2);
+    cr_log_info("%s iterations: %ld %ld %ld %ld %ld %ld, stiffer %ld %ld "
+                "%ld; builds after the last %ld", name, its[0], its[1],
+                its[2], its[3], its[4], its[5], its[6], its[7], its[8],
+                builds[8]);
     t->free(st);
     ls_free(&c);
+}
+
+/* amg: one build, then only the finest smoother refreshed while the
+ * iterations stay within 1.1 times the build's; on the stiffer A the
+ * refreshed smoother alone takes more than 1.5 times as many, so the
+ * next setup recomputes the coarse operators on the kept interpolation
+ * (no new hierarchy, and fewer iterations), and the one after builds a
+ * new hierarchy if and only if that still took more than 1.5 times the
+ * build's. */
+Test(linsol_amg, coarse_operators_recomputed_when_iterations_grow)
+{
+    long builds[9], its[9];
+    am_reuse_run("amg", builds, its);
+    for (int k = 0; k < 8; k++)
+        cr_assert_eq(builds[k], 1);
+    for (int k = 1; k < 6; k++)
+        cr_assert_leq((double)its[k], 1.1 * (double)its[0]);
+    cr_assert_gt((double)its[6], 1.5 * (double)its[0]);
+    cr_assert_lt(its[7], its[6]);
+    cr_assert_eq(builds[8],
+                 (double)its[7] > 1.5 * (double)its[0] ? 2 : 1);
+}
+
+/* amg-hypre keeps all or nothing: past 1.5 times the build's iterations
+ * the next setup builds a new hierarchy. */
+Test(linsol_amg, hypre_rebuilt_when_iterations_grow)
+{
+    long builds[9], its[9];
+    am_reuse_run("amg-hypre", builds, its);
+    cr_assert_eq(builds[5], 1);
+    cr_assert_gt((double)its[6], 1.5 * (double)its[0]);
+    cr_assert_eq(builds[7], 2);
+}
+
+/* A hierarchy built on hang's Newton matrix with df/dx and df/dv scaled
+ * by 0.9, then a setup on the matrix itself that refreshes only the finest
+ * smoother (the coarse operators those of the scaled matrix): the solution
+ * equals KLU's to the solver tolerance as a fresh build's does, in at most
+ * 1.5 times its iterations. */
+Test(linsol_amg, smoother_refresh_equals_klu)
+{
+    am_case c;
+    am_load(&c, "hang");
+    size_t n = c.sys->n, nval = 9 * c.sys->pattern->nnzb;
+    cl_stats sk, sf;
+    am_solve(&c, "klu", c.xk, &sk);
+    am_solve(&c, "amg", c.x, &sf);
+    const cl_linsol_type *t = ls_find("amg");
+    const double a = 2.0 * AM_H / 3.0, b = 4.0 * AM_H * AM_H / 9.0;
+    cl_linsol_opts o = {0};
+    cl_error err = {0};
+    void *st = NULL;
+    double *x = malloc(n * sizeof *x), *y = malloc(n * sizeof *y);
+    cr_assert(x && y);
+    cr_assert_eq(t->create(c.sys->pattern, c.sys->mass, &o, &st, &err),
+                 CL_OK, "%s", err.msg);
+    cl_linsol_jacobian(t, st, c.dfdx, c.dfdv);
+    for (size_t i = 0; i < nval; i++) {
+        c.dfdx[i] *= 0.9;
+        c.dfdv[i] *= 0.9;
+    }
+    cr_assert_eq(t->setup(st, a, b, c.dfdx, c.dfdv, &err), CL_OK, "%s",
+                 err.msg);
+    for (size_t i = 0; i < nval; i++) {
+        c.dfdx[i] /= 0.9;
+        c.dfdv[i] /= 0.9;
+    }
+    cr_assert_eq(t->setup(st, a, b, c.dfdx, c.dfdv, &err), CL_OK, "%s",
+                 err.msg);
+    cr_assert_eq(t->solve(st, c.rhs, x, &err), CL_OK, "%s", err.msg);
+    cl_stats s = {0};
+    t->stats(st, &s);
+    cl_reduced_matvec(c.sys->pattern, c.sys->mass, a, b, c.dfdx, c.dfdv, x,
+                      y);
+    double res = am_norm(c.rhs, y, n) / am_norm(c.rhs, NULL, n);
+    double diff = am_norm(x, c.xk, n) / am_norm(c.xk, NULL, n);
+    cr_log_info("refreshed: %ld iterations (fresh %ld), residual %.3e, "
+                "|x - x_klu| / |x_klu| %.3e", s.lin_iters, sf.lin_iters,
+                res, diff);
+    cr_assert_eq(s.lin_setups, 2);
+    cr_assert_eq(s.symbolic_facts, 1);
+    cr_assert_eq(s.lin_solves, 1);
+    cr_assert_leq(res, 1e-10);
+    cr_assert_leq(diff, 1e-7);
+    cr_assert_leq((double)s.lin_iters, 1.5 * (double)sf.lin_iters);
+    t->free(st);
+    free(x);
+    free(y);
+    am_free(&c);
 }
 
 /* The indefinite chain of lscase.h. */

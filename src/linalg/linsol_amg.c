@@ -23,14 +23,22 @@
  * packs A's values for the product, writes them into the slots of PETSc's
  * SeqAIJ copy (the preconditioner's), and sets the preconditioner up,
  * either afresh (a rebuild: coarsening, interpolation, coarse operators,
- * smoothers) or reusing the hierarchy.  For amg the reuse keeps the
- * interpolation and recomputes the coarse operators P^T A P and the
- * smoothers from the new values; for amg-hypre it keeps the whole
+ * smoothers) or reusing the hierarchy (linalg/linsol_amg_abi.h).  For amg a
+ * reuse keeps the coarse operators and their smoothers and sets up only
+ * the finest level's smoother on the new A (its 3x3 diagonal blocks and
+ * Chebyshev's eigenvalue bound: a V-cycle whose smoothers converge is
+ * symmetric positive definite whatever SPD coarse operators it uses, so
+ * stale ones cost iterations, not definiteness; a stale eigenvalue bound
+ * of the finest smoother made it indefinite); when the last solve took
+ * more than CL_AMG_COARSE_REGROW times the iterations of the first after
+ * the coarse operators were last computed, they are recomputed, P^T A P on
+ * the kept interpolation P.  For amg-hypre a reuse keeps the whole
  * preconditioner.  The hierarchy is rebuilt at the first setup, and when
  * the last solve took more than CL_AMG_REGROW times the iterations of the
- * first solve after the last rebuild; a solve that fails on a reused
- * hierarchy is redone once on a fresh one.  Nothing is allocated by setup
- * or solve on this side (PETSc allocates within a rebuild).
+ * first solve after the last rebuild although the coarse operators are
+ * fresh; a solve that fails on a reused hierarchy is redone once on a
+ * fresh one.  Nothing is allocated by setup or solve on this side (PETSc
+ * allocates within a rebuild).
  *
  * Tolerance: solve stops at ||b - A x||_2 <= lin_tol ||b||_2 (default
  * 1e-10, as pcg); solve_tol at ||w .* (b - A x)||_2 <= delta, ensured by
@@ -57,6 +65,7 @@
 
 #define CL_AMG_TOL 1e-10
 #define CL_AMG_REGROW 1.5
+#define CL_AMG_COARSE_REGROW 1.1
 
 typedef struct {
     const char *name;
@@ -75,8 +84,11 @@ typedef struct {
     clp_amg_free_fn free;
     void *h;                 /* the plug-in's solver */
     bool ready;              /* a setup succeeded */
+    int hypre;
     bool fresh;              /* the hierarchy was built at the last setup */
+    bool coarse_fresh;       /* ... or its coarse operators recomputed */
     long base_iters;         /* first solve after the last rebuild; -1 */
+    long cbase_iters;        /* ... after the coarse operators' last; -1 */
     long last_iters;         /* the last solve's */
     long setups, rebuilds, solves, iters;
 } cl_amg;
@@ -160,7 +172,8 @@ static cl_status amg_create_named(const char *name, int hypre,
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", name);
     *s = (cl_amg){.name = name, .pat = pat, .n = 3 * pat->nb,
                   .tol = o->tol > 0.0 ? o->tol : CL_AMG_TOL,
-                  .threads = o->threads, .base_iters = -1};
+                  .threads = o->threads, .hypre = hypre, .base_iters = -1,
+                  .cbase_iters = -1};
     long maxit = cl_linsol_maxit(o->maxit, s->n);
     clp_amg_create_fn create = NULL;
     cl_plugin_msg msg = {.text = ""};
@@ -192,21 +205,50 @@ static cl_status amg_create_hypre(const cl_bpattern *pat, const double *mass,
     return amg_create_named("amg-hypre", 1, pat, mass, o, state, err);
 }
 
-/* Set the preconditioner up on s->ablk, afresh or reusing the hierarchy. */
-static cl_status amg_prepare(cl_amg *s, bool rebuild, cl_error *err)
+/* Set the preconditioner up on s->ablk as `mode` says (linsol_amg_abi.h). */
+static cl_status amg_prepare(cl_amg *s, int mode, cl_error *err)
 {
     cl_plugin_msg msg = {.text = ""};
     s->ready = false;
-    if (s->setup(s->h, s->ablk, rebuild, &msg) != 0)
+    if (s->setup(s->h, s->ablk, mode, &msg) != 0)
         return cl_error_set(err, CL_ESOLVER, "%s: %s", s->name, msg.text);
     s->ready = true;
-    s->fresh = rebuild;
-    if (rebuild) {
+    s->fresh = mode == CLP_AMG_BUILD;
+    s->coarse_fresh = mode != CLP_AMG_SMOOTHER;
+    if (s->coarse_fresh)
+        s->cbase_iters = -1;
+    if (s->fresh) {
         s->rebuilds++;
         s->base_iters = -1;
         s->last_iters = 0;
     }
     return CL_OK;
+}
+
+/* Whether the last solve took more than `factor` times `base`. */
+static bool amg_grew(const cl_amg *s, long base, double factor)
+{
+    return base > 0 && (double)s->last_iters > factor * (double)base;
+}
+
+/* What this setup recomputes: everything at the first; a new hierarchy
+ * when the last solve took more than CL_AMG_REGROW times the iterations of
+ * the first after the last build although the coarse operators were
+ * recomputed at the last setup (or for hypre, which keeps all or
+ * nothing); the coarse operators on the kept interpolation when it took
+ * more than CL_AMG_COARSE_REGROW times those of the first after they were
+ * last recomputed (or CL_AMG_REGROW times the build's); else the finest
+ * smoother only. */
+static int amg_mode(const cl_amg *s)
+{
+    if (s->rebuilds == 0)
+        return CLP_AMG_BUILD;
+    bool grew = amg_grew(s, s->base_iters, CL_AMG_REGROW);
+    if (grew && (s->coarse_fresh || s->hypre))
+        return CLP_AMG_BUILD;
+    if (grew || amg_grew(s, s->cbase_iters, CL_AMG_COARSE_REGROW))
+        return CLP_AMG_GALERKIN;
+    return CLP_AMG_SMOOTHER;
 }
 
 static cl_status amg_setup(void *state, double a, double b,
@@ -225,10 +267,7 @@ static cl_status amg_setup(void *state, double a, double b,
     if (s->kind != CL_BSYM_NONE)
         cl_bsym_pack(&s->sym, s->kind, 1.0, s->ablk, 0.0, NULL, NULL,
                      s->sdiag, s->supper);
-    bool rebuild = s->rebuilds == 0 ||
-                   (s->base_iters > 0 &&
-                    (double)s->last_iters > CL_AMG_REGROW * s->base_iters);
-    cl_status st = amg_prepare(s, rebuild, err);
+    cl_status st = amg_prepare(s, amg_mode(s), err);
     if (st == CL_OK)
         s->setups++;
     return st;
@@ -258,7 +297,7 @@ static cl_status amg_run(cl_amg *s, const double *rhs, double *x,
     s->solves++;
     s->iters += its;
     if (bad && !s->fresh) {
-        cl_status st = amg_prepare(s, true, err);
+        cl_status st = amg_prepare(s, CLP_AMG_BUILD, err);
         if (st != CL_OK)
             return st;
         msg.text[0] = '\0';
@@ -271,6 +310,8 @@ static cl_status amg_run(cl_amg *s, const double *rhs, double *x,
     s->last_iters = its;
     if (s->base_iters < 0 && its > 0)
         s->base_iters = its;
+    if (s->cbase_iters < 0 && its > 0)
+        s->cbase_iters = its;
     return CL_OK;
 }
 

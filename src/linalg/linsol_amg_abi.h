@@ -11,6 +11,21 @@
 
 #include "linalg/plugin.h"
 
+/* What a setup of the multigrid preconditioner recomputes: the argument
+ * `mode` of clp_amg_setup. */
+enum {
+    /* a new hierarchy: coarsening, interpolation, coarse operators,
+     * smoothers */
+    CLP_AMG_BUILD,
+    /* the kept interpolation P: the coarse operators P^T A P and every
+     * smoother recomputed (amg-hypre: the whole preconditioner kept) */
+    CLP_AMG_GALERKIN,
+    /* the coarse operators and their smoothers kept; only the finest
+     * level's smoother (its diagonal blocks and eigenvalue bound) on the
+     * new A (amg-hypre: the whole preconditioner kept) */
+    CLP_AMG_SMOOTHER,
+};
+
 /* y = A x, the caller's product (ctx: its own). */
 typedef void (*clp_amg_mult)(void *ctx, const double *x, double *y);
 
@@ -19,7 +34,7 @@ typedef int (*clp_amg_create_fn)(size_t nb, const size_t *rowptr,
                                  clp_amg_mult mult, void *ctx, void **handle,
                                  cl_plugin_msg *msg);
 typedef int (*clp_amg_setup_fn)(void *handle, const double *ablk,
-                                int rebuild, cl_plugin_msg *msg);
+                                int mode, cl_plugin_msg *msg);
 typedef int (*clp_amg_solve_fn)(void *handle, const double *rhs, double *x,
                                 double rtol, double atol, long *iters,
                                 cl_plugin_msg *msg);

@@ -29,13 +29,17 @@
  * (KSP_NORM_UNPRECONDITIONED).  The right-hand side and the solution are
  * the caller's arrays (VecPlaceArray), not copies.
  *
- * Reuse (clp_amg_setup's `rebuild` = 0): GAMG keeps its prolongators
- * (PCGAMGSetReuseInterpolation) and recomputes the Galerkin coarse
- * operators P^T A P and the smoothers on the new values; hypre cannot
- * keep its interpolation, so its reuse keeps the whole preconditioner
- * (KSPSetReusePreconditioner).  GAMG's whole preconditioner, kept from
- * one step of semi-bdf2 on hang to the next, was found indefinite by CG
- * within two iterations: GAMG's reuse stops at the interpolation. */
+ * Reuse (clp_amg_setup's `mode`, linalg/linsol_amg_abi.h): CLP_AMG_GALERKIN
+ * keeps GAMG's prolongators (PCGAMGSetReuseInterpolation) and recomputes
+ * the Galerkin coarse operators P^T A P and the smoothers on the new
+ * values; CLP_AMG_SMOOTHER keeps the whole preconditioner
+ * (KSPSetReusePreconditioner) but the finest level's smoother, whose
+ * operators are set anew so that KSPSetUp inverts the new diagonal blocks
+ * and Chebyshev estimates the new eigenvalue bound (the whole
+ * preconditioner kept with the old bound was found indefinite by CG
+ * within two iterations, one step of semi-bdf2 on hang later).  hypre
+ * cannot keep its interpolation, so either reuse keeps its whole
+ * preconditioner. */
 #include <petscksp.h>
 #include <stdio.h>
 
@@ -57,7 +61,7 @@ typedef struct {
 int clp_amg_create(size_t nb, const size_t *rowptr, const size_t *col,
                    int hypre, long maxit, clp_amg_mult mult, void *ctx,
                    void **handle, cl_plugin_msg *msg);
-int clp_amg_setup(void *handle, const double *ablk, int rebuild,
+int clp_amg_setup(void *handle, const double *ablk, int mode,
                   cl_plugin_msg *msg);
 int clp_amg_solve(void *handle, const double *rhs, double *x, double rtol,
                   double atol, long *iters, cl_plugin_msg *msg);
@@ -251,27 +255,48 @@ static PetscErrorCode amg_values(clp_amg *s, const double *ablk)
     return MatSeqAIJRestoreArray(s->A, &a);
 }
 
-int clp_amg_setup(void *handle, const double *ablk, int rebuild,
+/* The finest level's smoother (GAMG's last level) set up again on the new
+ * values: its point-block Jacobi inverts the new diagonal blocks, and
+ * Chebyshev estimates the new largest eigenvalue of D^-1 A (its operators
+ * are set anew, so KSPSetUp redoes both). */
+static PetscErrorCode amg_fine_smoother(clp_amg *s, PC pc)
+{
+    PetscInt levels = 0;
+    KSP smooth;
+    PetscErrorCode ec;
+    if ((ec = PCMGGetLevels(pc, &levels)) ||
+        (ec = PCMGGetSmoother(pc, levels - 1, &smooth)) ||
+        (ec = KSPSetOperators(smooth, s->op, s->A)))
+        return ec;
+    return KSPSetUp(smooth);
+}
+
+int clp_amg_setup(void *handle, const double *ablk, int mode,
                   cl_plugin_msg *msg)
 {
     clp_amg *s = handle;
     PC pc;
     PetscErrorCode ec;
+    /* GAMG's smoother-only refresh keeps the whole preconditioner but the
+     * finest smoother; hypre keeps all of it on any reuse */
+    int keep = mode == CLP_AMG_SMOOTHER ||
+               (s->hypre && mode != CLP_AMG_BUILD);
     if ((ec = amg_values(s, ablk)))
         return amg_fail(msg, "writing the matrix values", ec);
     if ((ec = KSPGetPC(s->ksp, &pc)))
         return amg_fail(msg, "KSPGetPC", ec);
-    if (s->hypre)
-        ec = KSPSetReusePreconditioner(s->ksp, rebuild ? PETSC_FALSE
-                                                       : PETSC_TRUE);
-    else
-        ec = PCGAMGSetReuseInterpolation(pc, rebuild ? PETSC_FALSE
-                                                     : PETSC_TRUE);
+    ec = KSPSetReusePreconditioner(s->ksp, keep ? PETSC_TRUE : PETSC_FALSE);
+    if (!ec && !s->hypre)
+        ec = PCGAMGSetReuseInterpolation(pc, mode == CLP_AMG_BUILD
+                                                 ? PETSC_FALSE
+                                                 : PETSC_TRUE);
     if (ec)
         return amg_fail(msg, "setting the reuse", ec);
     if ((ec = KSPSetOperators(s->ksp, s->op, s->A)) ||
         (ec = KSPSetUp(s->ksp)))
         return amg_fail(msg, "the multigrid setup (KSPSetUp)", ec);
+    if (keep && !s->hypre && (ec = amg_fine_smoother(s, pc)))
+        return amg_fail(msg, "the finest smoother's setup", ec);
     return 0;
 }
 
