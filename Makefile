@@ -65,7 +65,7 @@ $(BUILD)/%.o: %.c
 # selects only without errno and FP-trap semantics; no value changes.
 KERNEL_SRC := src/forces/pairkern.c src/forces/asinc_simd.c \
               src/forces/type1.c src/forces/type2.c src/forces/springs.c \
-              src/forces/pairdamp.c
+              src/forces/pairdamp.c src/forces/pairgather.c
 $(KERNEL_SRC:%.c=$(BUILD)/%.o): CFLAGS += -fno-math-errno -fno-trapping-math
 
 # The version, git commit (`git describe --always --dirty`, "unknown"

@@ -58,6 +58,20 @@ static void type1_batch(const void *params, size_t k0, size_t m,
     }
 }
 
+/* Type1, Type2 (when it follows) and the damping of their pairs in one
+ * pass, for forces alone (forces/term.h, fuse). */
+static size_t type1_fuse(void *state, const cl_term_type *const *next,
+                         void *const *next_state, size_t nnext, cl_eval *ev)
+{
+    cl_pairterm *pt[2] = {state, NULL};
+    size_t npt = 1;
+    if (nnext >= 1 && next[0] == &cl_term_type2)
+        pt[npt++] = next_state[0];
+    if (nnext < npt || next[npt - 1] != &cl_term_damping)
+        return 0;
+    return cl_damping_fused(next_state[npt - 1], pt, npt, ev) ? npt : 0;
+}
+
 static void type1_free(void *state)
 {
     type1_state *st = state;
@@ -117,5 +131,6 @@ const cl_term_type cl_term_type1 = {
     .eval = cl_pairterm_eval,
     .step_done = cl_pairterm_step_done,
     .broken = cl_pairterm_broken,
+    .fuse = type1_fuse,
     .free = type1_free,
 };

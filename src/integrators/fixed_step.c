@@ -95,6 +95,14 @@ cl_status cl_fixed_create(const cl_fixed_method *m, const cl_system *sys,
     return CL_OK;
 }
 
+/* a *= w, elementwise. */
+static void scale(size_t n, const double *restrict w, double *restrict a)
+{
+#pragma omp simd
+    for (size_t i = 0; i < n; i++)
+        a[i] *= w[i];
+}
+
 cl_status cl_fixed_accel(cl_fixed *s, double t, const double *x,
                          const double *v, double *a, cl_error *err)
 {
@@ -105,8 +113,7 @@ cl_status cl_fixed_accel(cl_fixed *s, double t, const double *x,
         return cl_error_set(err, st, "%s: force evaluation failed (%s) at "
                             "t = %.9g (step %ld, dt = %g)", s->method->name,
                             cl_status_name(st), t, s->done, s->dt);
-    for (size_t i = 0; i < s->n; i++)
-        a[i] *= s->inv_mass[i];
+    scale(s->n, s->inv_mass, a);
     return CL_OK;
 }
 

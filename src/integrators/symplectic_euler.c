@@ -13,6 +13,17 @@
  * symplectic-euler-x (symplectic_euler_x.c). */
 #include "integrators/fixed_step.h"
 
+/* v += h a, then x += h v. */
+static void se_update(size_t n, double h, const double *restrict a,
+                      double *restrict x, double *restrict v)
+{
+#pragma omp simd
+    for (size_t i = 0; i < n; i++) {
+        v[i] += h * a[i];
+        x[i] += h * v[i];
+    }
+}
+
 /* w[0]: acceleration M^-1 f (n) */
 static cl_status se_step(cl_fixed *s, double t, double h, cl_error *err)
 {
@@ -20,10 +31,7 @@ static cl_status se_step(cl_fixed *s, double t, double h, cl_error *err)
     cl_status st = cl_fixed_accel(s, t, s->x, s->v, a, err);
     if (st != CL_OK)
         return st;
-    for (size_t i = 0; i < s->n; i++) {
-        s->v[i] += h * a[i];
-        s->x[i] += h * s->v[i];
-    }
+    se_update(s->n, h, a, s->x, s->v);
     return CL_OK;
 }
 

@@ -51,6 +51,30 @@ static cl_status verlet_project(cl_fixed *s, double t, double *xn,
     return CL_OK;
 }
 
+/* xn = x + keep (x - xo) + h^2 a. */
+static void verlet_predict(size_t n, double keep, double h,
+                           const double *restrict x,
+                           const double *restrict xo,
+                           const double *restrict a, double *restrict xn)
+{
+#pragma omp simd
+    for (size_t i = 0; i < n; i++)
+        xn[i] = x[i] + keep * (x[i] - xo[i]) + h * h * a[i];
+}
+
+/* v = (xn - x)/h, xo = x, x = xn. */
+static void verlet_shift(size_t n, double h, double *restrict x,
+                         double *restrict v, double *restrict xo,
+                         const double *restrict xn)
+{
+#pragma omp simd
+    for (size_t i = 0; i < n; i++) {
+        v[i] = (xn[i] - x[i]) / h;
+        xo[i] = x[i];
+        x[i] = xn[i];
+    }
+}
+
 /* w[0]: acceleration, w[1]: x_{k-1}, w[2]: x_{k+1} (n each) */
 cl_status cl_verlet_step(cl_fixed *s, double t, double h, bool project,
                          cl_error *err)
@@ -63,15 +87,10 @@ cl_status cl_verlet_step(cl_fixed *s, double t, double h, bool project,
         for (size_t i = 0; i < s->n; i++)
             xp[i] = s->x[i] - h * s->v[i] + 0.5 * h * h * a[i];
     }
-    for (size_t i = 0; i < s->n; i++)
-        xn[i] = s->x[i] + keep * (s->x[i] - xp[i]) + h * h * a[i];
+    verlet_predict(s->n, keep, h, s->x, xp, a, xn);
     if (project && (st = verlet_project(s, t + h, xn, err)) != CL_OK)
         return st;
-    for (size_t i = 0; i < s->n; i++) {
-        s->v[i] = (xn[i] - s->x[i]) / h;
-        xp[i] = s->x[i];
-        s->x[i] = xn[i];
-    }
+    verlet_shift(s->n, h, s->x, s->v, xp, xn);
     return CL_OK;
 }
 
