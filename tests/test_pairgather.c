@@ -18,10 +18,9 @@ Test(pairgather, sums_per_particle)
     cr_assert_eq(cl_pairgather_init(&g, ia, ib, 5, &err), CL_OK);
     cr_assert_eq(g.np, 5);
     for (size_t k = 0; k < 5; k++) {
-        g.f4[4 * k] = (double)(k + 1);
-        g.f4[4 * k + 1] = 10.0 * (double)(k + 1);
-        g.f4[4 * k + 2] = -1.0;
-        g.f4[4 * k + 3] = 0.0;
+        double fa[4] = {(double)(k + 1), 10.0 * (double)(k + 1), -1.0, 0.0};
+        for (int i = 0; i < 4; i++)
+            g.f4[4 * k + i] = fa[i];
     }
     double f[15];
     for (size_t i = 0; i < 15; i++)
@@ -55,7 +54,8 @@ Test(pairgather, threads_bitwise_equal)
     cr_assert_eq(cl_pairgather_init(&g, ia, ib, N, &err), CL_OK);
     for (size_t k = 0; k < 4 * (size_t)N; k++) {
         s = s * 6364136223846793005ULL + 1442695040888963407ULL;
-        g.f4[k] = k % 4 == 3 ? 0.0 : (double)(s >> 11) / 9007199254740992.0;
+        double v = k % 4 == 3 ? 0.0 : (double)(s >> 11) / 9007199254740992.0;
+        g.f4[k] = v;
     }
     double *f1 = calloc(3 * NP, sizeof *f1), *fk = calloc(3 * NP,
                                                            sizeof *fk);

@@ -130,16 +130,24 @@ typedef struct {
     double *o0, *o1, *o2, *o4;
 } force_out;
 
-/* Pair k's force (f0, f1, f2): o's arrays, or with `central` four to a
- * pair. */
+/* (f0, f1, f2, 0), pair k's place in a cl_pairgather. */
+CL_PAIR_INLINE void put_pair(double *restrict o4, size_t k, double f0,
+                             double f1, double f2)
+{
+    double *o = o4 + 4 * k;
+    o[0] = f0;
+    o[1] = f1;
+    o[2] = f2;
+    o[3] = 0.0;
+}
+
+/* Pair k's force (f0, f1, f2): o's arrays, or with `central` into the
+ * per-particle sums' buffer. */
 CL_PAIR_INLINE void put_force(force_out o, bool central, size_t k,
                               double f0, double f1, double f2)
 {
     if (central) {
-        o.o4[4 * k] = f0;
-        o.o4[4 * k + 1] = f1;
-        o.o4[4 * k + 2] = f2;
-        o.o4[4 * k + 3] = 0.0;
+        put_pair(o.o4, k, f0, f1, f2);
     } else {
         o.o0[k] = f0;
         o.o1[k] = f1;
@@ -386,10 +394,7 @@ CL_PAIR_INLINE void spring_dashpot(const fused_job *j, size_t k0, size_t k1,
             g1 = -kd * (v[a + 1] - v[b + 1]);
             g2 = -kd * (v[a + 2] - v[b + 2]);
         }
-        o4[4 * k] = s * u0 + g0;
-        o4[4 * k + 1] = s * u1 + g1;
-        o4[4 * k + 2] = s * u2 + g2;
-        o4[4 * k + 3] = 0.0;
+        put_pair(o4, k, s * u0 + g0, s * u1 + g1, s * u2 + g2);
     }
 }
 

@@ -21,7 +21,8 @@ cl_status cl_pairgather_init(cl_pairgather *g, const int *ia, const int *ib,
     if (!g->start || !g->list || !g->f4)
         return cl_error_set(err, CL_ENOMEM, "out of memory (per-particle "
                             "sums, %zu pairs)", n);
-    /* Counting sort by list 2p (p is a) or 2p + 1 (p is b), stable. */
+    /* Counting sort by list 2p (p is a) or 2p + 1 (p is b), stable:
+     * each list in increasing k. */
     for (size_t k = 0; k < n; k++) {
         g->start[2 * (size_t)ia[k] + 1]++;
         g->start[2 * (size_t)ib[k] + 2]++;
@@ -50,8 +51,8 @@ void cl_pairgather_free(cl_pairgather *g)
  * extensions; two in the default one). */
 typedef double v4d __attribute__((vector_size(32)));
 
-/* The sum of the per-pair forces in list [e0, e1) into *s, entry by
- * entry in the list's order. */
+/* The sum of the per-pair forces of list [e0, e1) into *s, in the
+ * list's order. */
 CL_PAIR_INLINE void list_sum(const double *restrict f4,
                              const long *restrict list, size_t e0, size_t e1,
                              v4d *s)

@@ -1,8 +1,7 @@
 /* Per-particle sums of per-pair forces (the fused force passes of
  * forces/term.h, fuse).  A pass writes, for every pair k = (a, b), the
  * force on a into f4[4k], f4[4k + 1], f4[4k + 2] and 0 into f4[4k + 3]
- * (four to a pair: one vector load each; the force on b is the
- * negative);
+ * (one vector load each; the force on b is its negative);
  * cl_pairgather_add then adds to each particle p
  *
  *     sum of f[k] over the pairs with a = p, in increasing k,
@@ -29,7 +28,7 @@ typedef struct {
     double *f4;          /* per pair: the force on a, and 0 (4 n) */
 } cl_pairgather;
 
-/* Lists for the n pairs (ia[k], ib[k]). */
+/* Lists for the n pairs (ia[k], ib[k]), ia[k] != ib[k]. */
 cl_status cl_pairgather_init(cl_pairgather *g, const int *ia, const int *ib,
                              size_t n, cl_error *err);
 void cl_pairgather_free(cl_pairgather *g);
