@@ -39,6 +39,8 @@
 #define CROSS_SAMPLES 512
 #define MAX_CROSS 8
 #define QUAD_LIMIT 200
+#define CHEB_PIECES 8   /* G(e) on [j/8, (j+1)/8], j = 0..7 */
+#define CHEB_TERMS 16   /* Chebyshev coefficients per piece */
 
 typedef enum { TENSION_SPRING, TENSION_NONE } tension_kind;
 typedef enum { ASINC_EXACT, ASINC_SEED_POLY } asinc_kind;
@@ -61,6 +63,8 @@ typedef struct {
     rest_length *len;      /* distinct rest lengths */
     size_t *len_of;        /* pair -> index into len */
     gsl_integration_workspace *quad;
+    /* The exact model's G(e) = t^2 / D(t) by pieces (buckling_cheb) */
+    double cheb[CHEB_PIECES][CHEB_TERMS];
 } type2_state;
 
 /* t = kappa L/2 at distance d < L, and dt/dd. */
@@ -257,24 +261,77 @@ static void linear_branches(const type2_state *st, size_t m, const double *d,
     }
 }
 
-/* f_b by the vectorised inverse sinc for the n pairs idx[] of a chunk
- * (exact model, forces only), s = max(f_b, cb (d - L)); the scalar path
- * where cl_asinc_1m_simd declines. */
-static void buckling_simd(const type2_state *st, size_t n, const size_t *idx,
-                          const double *d, const double *L, double *s)
+/* G(e) = t^2 / D(t) at t = asinc_1m(e) by the scalar functions (exact
+ * model): f_b = (4 kb / L^2) G (eq. 9) with e = (L - d) / L. */
+static double buckling_g(const type2_state *st, double e)
 {
-    double e[CL_PAIRKERN_CHUNK], t[CL_PAIRKERN_CHUNK], D[CL_PAIRKERN_CHUNK];
-    unsigned char ok[CL_PAIRKERN_CHUNK];
-    for (size_t j = 0; j < n; j++)
-        e[j] = (L[idx[j]] - d[idx[j]]) / L[idx[j]];
-    cl_asinc_1m_simd(n, e, t, D, ok);
-    for (size_t j = 0; j < n; j++) {
-        size_t i = idx[j];
-        double l = L[i], c = 4.0 * st->kb / (l * l);
-        double fb = ok[j] ? c * (t[j] * t[j] / D[j])
-                          : buckling_force(st, d[i], l, NULL);
-        double lin = st->cb * (d[i] - l);
-        s[i] = lin >= fb ? lin : fb;
+    double t = cl_asinc_1m(e), dD;
+    if (fabs(t) < 1e-8)
+        return -3.0; /* G(0) = 1 / (D''(0) / 2), D''(0) = -2/3 */
+    return t * t / denominator(st, t, &dD);
+}
+
+/* Chebyshev interpolation of G on each piece [j/P, (j+1)/P] of e in
+ * [0, 1] (P = CHEB_PIECES) at the CHEB_TERMS Chebyshev points of the
+ * first kind (Trefethen, "Approximation Theory and Approximation
+ * Practice", ch. 3 and 8).  G is analytic on [0, 1]: its nearest
+ * singularity is at e = 1.217 (t = 4.493, where g'(t) and D(t) vanish),
+ * so the last piece's coefficients fall by a factor of about 9 per
+ * degree and 16 terms leave an error below the scalar path's rounding
+ * (tests/test_type2.c: within 3.3e-15 relative of it over [0, 1]). */
+static void build_cheb(type2_state *st)
+{
+    const int N = CHEB_TERMS;
+    for (int j = 0; j < CHEB_PIECES; j++) {
+        double mid = (j + 0.5) / CHEB_PIECES, half = 0.5 / CHEB_PIECES;
+        double g[CHEB_TERMS];
+        for (int m = 0; m < N; m++)
+            g[m] = buckling_g(st, mid + half * cos(M_PI * (m + 0.5) / N));
+        for (int k = 0; k < N; k++) {
+            long double c = 0.0L;
+            for (int m = 0; m < N; m++)
+                c += (long double)g[m] * cos(M_PI * k * (m + 0.5) / N);
+            st->cheb[j][k] = (double)(c * (k ? 2.0L : 1.0L) / N);
+        }
+    }
+}
+
+/* G at e in [0, 1] from its piece's coefficients by Clenshaw's
+ * recurrence (Trefethen, ch. 3); the piece index clamped for e outside
+ * (the tension lanes, whose value is not used). */
+static inline double buckling_cheb(const double (*cheb)[CHEB_TERMS],
+                                   double e)
+{
+    double u = e * CHEB_PIECES;
+    int j = (int)u;
+    j = j < 0 ? 0 : j > CHEB_PIECES - 1 ? CHEB_PIECES - 1 : j;
+    double x = 2.0 * (u - j) - 1.0, b1 = 0.0, b2 = 0.0;
+#pragma GCC unroll 16
+    for (int k = CHEB_TERMS - 1; k > 0; k--) {
+        double b0 = cheb[j][k] + 2.0 * x * b1 - b2;
+        b2 = b1;
+        b1 = b0;
+    }
+    return cheb[j][0] + x * b1 - b2;
+}
+
+/* The exact model's law s over pairs [0, m) in one vectorised loop: the
+ * linear branches, and s = max(f_b, cb (d - L)) where f_b may win, f_b by
+ * buckling_cheb. */
+CL_PAIR_KERNEL
+static void exact_forces(const type2_state *st, size_t m, const double *d,
+                         const double *L, double *s)
+{
+    double ks = st->tension == TENSION_SPRING ? st->ks : 0.0;
+    double cb = st->cb, kb = st->kb;
+    const double(*cheb)[CHEB_TERMS] = st->cheb;
+#pragma omp simd
+    for (size_t i = 0; i < m; i++) {
+        double dd = d[i], l = L[i], lin = cb * (dd - l);
+        double c = 4.0 * kb / (l * l);
+        double fb = c * buckling_cheb(cheb, (l - dd) / l);
+        bool tension = dd >= l, linear = lin >= -12.0 * kb / (l * l);
+        s[i] = tension ? ks * (dd - l) : linear || lin >= fb ? lin : fb;
     }
 }
 
@@ -284,21 +341,18 @@ static void buckling_simd(const type2_state *st, size_t n, const size_t *idx,
 static void type2_piece(const type2_state *st, size_t m, const double *d,
                         const double *L, double *s, double *ds)
 {
-    double dsw[CL_PAIRKERN_CHUNK], sw;
+    double dsw[CL_PAIRKERN_CHUNK], sw[CL_PAIRKERN_CHUNK], one;
     unsigned char need[CL_PAIRKERN_CHUNK];
-    size_t idx[CL_PAIRKERN_CHUNK], n = 0;
     bool exact = st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT;
-    linear_branches(st, m, d, L, s, ds ? ds : dsw, need);
+    if (exact)
+        exact_forces(st, m, d, L, s);
+    if (exact && !ds)
+        return;
+    linear_branches(st, m, d, L, exact ? sw : s, ds ? ds : dsw, need);
     for (size_t i = 0; i < m; i++)
         if (need[i])
-            idx[n++] = i;
-    if (exact)
-        buckling_simd(st, n, idx, d, L, s);
-    for (size_t j = 0; j < n && (ds || !exact); j++) {
-        size_t i = idx[j];
-        compression_law(st, d[i], L[i], ds != NULL, exact ? &sw : &s[i],
-                        ds ? &ds[i] : &dsw[i]);
-    }
+            compression_law(st, d[i], L[i], ds != NULL, exact ? &one : &s[i],
+                            ds ? &ds[i] : &dsw[i]);
 }
 
 /* The law over pairs [k0, k0 + m) (cl_pairlaw_batch_fn). */
@@ -428,6 +482,8 @@ static cl_status type2_setup(type2_state *st, const cl_cloth *cloth,
                                opts->clamp_transverse, 1, err)) ||
         (rc = cl_pairterm_tear(&st->pt, opts->tear_cut, err)))
         return rc;
+    if (st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT)
+        build_cheb(st);
     return build_lengths(st, err);
 }
 
