@@ -336,43 +336,22 @@ typedef struct {
     const double *x, *v;
 } fused_job;
 
-/* Phase 1 of the fused pass, pairs [k0, k1) of pd's list: geometry once,
- * each central term's law on its own pairs, then f = s u + the damping's
- * force into the per-pair sums. */
-static void fused_chunk(void *ctx, cl_pairkern *pk, size_t k0, size_t k1,
-                        size_t base)
-{
-    const fused_job *j = ctx;
-    const cl_pairgather *g = &j->pd->gather;
-    size_t off = 0;
-    cl_pairkern_geometry(pk, k0, k1, base, j->x, true);
-    for (size_t i = 0; i < j->npt; i++) {
-        const cl_pairterm *pt = j->pt[i];
-        size_t lo = k0 > off ? k0 : off, end = off + pt->kern.n;
-        size_t hi = k1 < end ? k1 : end;
-        if (lo < hi)
-            pt->batch(pt->params, lo - off, hi - lo, pk->d + (lo - base),
-                      pt->kern.L, pk->s + (lo - base), NULL);
-        off = end;
-    }
-    force_out o = {pk->s - base, NULL, NULL, NULL, g->f4};
-    damp_forces(j->pd, pk, j->v, k0, k1, base, o);
-}
-
-/* Linear springs k (d - L) and the damping in one loop, pairs [k0, k1):
- * the arithmetic of fused_chunk's three loops (cl_pairkern_geometry with
- * recip, springs' law, damp_forces), so the same forces bit for bit,
- * without storing d, u and s in between (axial: a constant where it is
- * inlined). */
-CL_PAIR_INLINE void spring_dashpot(const fused_job *j, size_t k0, size_t k1,
+/* A linear law k (d - L) (forces/pairterm.h, k_linear; none below L if
+ * k_tension_only) and the damping in one loop, pairs [k0, k1) of pd's
+ * list, those of pt from `off` on: the arithmetic of the three loops of
+ * fused_segment (cl_pairkern_geometry with recip, the term's law,
+ * damp_forces), so the same forces bit for bit, without storing d, u
+ * and s in between (axial: a constant where it is inlined). */
+CL_PAIR_INLINE void linear_dashpot(const fused_job *j, const cl_pairterm *pt,
+                                   size_t off, size_t k0, size_t k1,
                                    bool axial)
 {
     const cl_pairkern *pk = &j->pd->pt.kern;
-    const cl_pairgather *g = &j->pd->gather;
     const int *ia = pk->ia, *ib = pk->ib;
-    const double *restrict L = pk->L, *restrict K = j->pt[0]->k_linear;
+    const double *restrict L = pk->L, *restrict K = pt->k_linear - off;
     const double *x = j->x, *v = j->v;
-    double kd = j->pd->kd, *restrict o4 = g->f4;
+    double kd = j->pd->kd, *restrict o4 = j->pd->gather.f4;
+    bool tension_only = pt->k_tension_only;
 #pragma omp simd
     for (size_t k = k0; k < k1; k++) {
         int a = 3 * ia[k], b = 3 * ib[k];
@@ -381,7 +360,8 @@ CL_PAIR_INLINE void spring_dashpot(const fused_job *j, size_t k0, size_t k1,
         double d = sqrt(dx * dx + dy * dy + dz * dz), r = 1.0 / d;
         bool some = d > 0;
         double u0 = some ? dx * r : 0.0, u1 = some ? dy * r : 0.0;
-        double u2 = some ? dz * r : 0.0, s = K[k] * (d - L[k]);
+        double u2 = some ? dz * r : 0.0, st = d - L[k], sv = K[k] * st;
+        double s = st >= 0 || !tension_only ? sv : 0.0;
         double g0, g1, g2;
         if (axial) {
             double uw = axial_uw(u0, u1, u2, v[b] - v[a],
@@ -399,15 +379,46 @@ CL_PAIR_INLINE void spring_dashpot(const fused_job *j, size_t k0, size_t k1,
 }
 
 CL_PAIR_KERNEL
-static void spring_dashpot_chunk(void *ctx, cl_pairkern *pk, size_t k0,
-                                 size_t k1, size_t base)
+static void linear_segment(const fused_job *j, const cl_pairterm *pt,
+                           size_t off, size_t k0, size_t k1)
+{
+    if (j->pd->model == CL_DAMP_AXIAL)
+        linear_dashpot(j, pt, off, k0, k1, true);
+    else
+        linear_dashpot(j, pt, off, k0, k1, false);
+}
+
+/* Pairs [k0, k1) of pd's list, those of pt from `off` on, by three
+ * loops: geometry, the term's law, f = s u + the damping's force. */
+static void fused_segment(const fused_job *j, const cl_pairterm *pt,
+                          size_t off, cl_pairkern *pk, size_t k0, size_t k1,
+                          size_t base)
+{
+    cl_pairkern_geometry(pk, k0, k1, base, j->x, true);
+    pt->batch(pt->params, k0 - off, k1 - k0, pk->d + (k0 - base),
+              pt->kern.L, pk->s + (k0 - base), NULL);
+    force_out o = {pk->s - base, NULL, NULL, NULL, j->pd->gather.f4};
+    damp_forces(j->pd, pk, j->v, k0, k1, base, o);
+}
+
+/* Phase 1 of the fused pass, pairs [k0, k1) of pd's list: each central
+ * term's pairs by its one loop (a linear law) or three, the forces into
+ * the per-pair sums' buffer. */
+static void fused_chunk(void *ctx, cl_pairkern *pk, size_t k0, size_t k1,
+                        size_t base)
 {
     const fused_job *j = ctx;
-    (void)pk, (void)base; /* no buffers of pk's */
-    if (j->pd->model == CL_DAMP_AXIAL)
-        spring_dashpot(j, k0, k1, true);
-    else
-        spring_dashpot(j, k0, k1, false);
+    size_t off = 0;
+    for (size_t i = 0; i < j->npt; i++) {
+        const cl_pairterm *pt = j->pt[i];
+        size_t lo = k0 > off ? k0 : off, end = off + pt->kern.n;
+        size_t hi = k1 < end ? k1 : end;
+        if (lo < hi && pt->k_linear)
+            linear_segment(j, pt, off, lo, hi);
+        else if (lo < hi)
+            fused_segment(j, pt, off, pk, lo, hi, base);
+        off = end;
+    }
 }
 
 bool cl_pairdamp_fused(cl_pairterm *const *pt, size_t npt, cl_pairdamp *pd,
@@ -421,10 +432,7 @@ bool cl_pairdamp_fused(cl_pairterm *const *pt, size_t npt, cl_pairdamp *pd,
     if (!same_pairs(pd, pt, npt))
         return false;
     fused_job j = {pt, npt, pd, ev->x, ev->v};
-    bool springs = npt == 1 && pt[0]->k_linear;
-    cl_pairkern_eval(&pd->pt.kern, springs ? spring_dashpot_chunk
-                                           : fused_chunk,
-                     &j, NULL, NULL, NULL);
+    cl_pairkern_eval(&pd->pt.kern, fused_chunk, &j, NULL, NULL, NULL);
     cl_pairgather_add(&pd->gather, pd->pt.kern.threads, ev->f);
     return true;
 }

@@ -65,6 +65,7 @@ typedef struct {
     gsl_integration_workspace *quad;
     /* The exact model's G(e) = t^2 / D(t) by pieces (buckling_cheb) */
     double cheb[CHEB_PIECES][CHEB_TERMS];
+    double *fbc, *fblim;   /* per pair: 4 kb/L^2 and -12 kb/L^2 */
 } type2_state;
 
 /* t = kappa L/2 at distance d < L, and dt/dd. */
@@ -296,6 +297,25 @@ static void build_cheb(type2_state *st)
     }
 }
 
+/* The exact model's tables: G's pieces, and per pair the factor
+ * 4 kb/L^2 of f_b and the bound -12 kb/L^2 above which cb (d - L) wins,
+ * formed once as the scalar law forms them. */
+static cl_status exact_setup(type2_state *st, cl_error *err)
+{
+    const cl_pairset *set = &st->pt.set;
+    build_cheb(st);
+    st->fbc = malloc((set->n + 1) * sizeof *st->fbc);
+    st->fblim = malloc((set->n + 1) * sizeof *st->fblim);
+    if (!st->fbc || !st->fblim)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (type2)");
+    for (size_t k = 0; k < set->n; k++) {
+        double L = set->pair[k].rest;
+        st->fbc[k] = 4.0 * st->kb / (L * L);
+        st->fblim[k] = -12.0 * st->kb / (L * L);
+    }
+    return CL_OK;
+}
+
 /* G at e in [0, 1] from its piece's coefficients by Clenshaw's
  * recurrence (Trefethen, ch. 3); the piece index clamped for e outside
  * (the tension lanes, whose value is not used). */
@@ -319,18 +339,18 @@ static inline double buckling_cheb(const double (*cheb)[CHEB_TERMS],
  * linear branches, and s = max(f_b, cb (d - L)) where f_b may win, f_b by
  * buckling_cheb. */
 CL_PAIR_KERNEL
-static void exact_forces(const type2_state *st, size_t m, const double *d,
-                         const double *L, double *s)
+static void exact_forces(const type2_state *st, size_t k0, size_t m,
+                         const double *d, const double *L, double *s)
 {
     double ks = st->tension == TENSION_SPRING ? st->ks : 0.0;
-    double cb = st->cb, kb = st->kb;
+    double cb = st->cb;
     const double(*cheb)[CHEB_TERMS] = st->cheb;
+    const double *restrict C = st->fbc + k0, *restrict lim = st->fblim + k0;
 #pragma omp simd
     for (size_t i = 0; i < m; i++) {
         double dd = d[i], l = L[i], lin = cb * (dd - l);
-        double c = 4.0 * kb / (l * l);
-        double fb = c * buckling_cheb(cheb, (l - dd) / l);
-        bool tension = dd >= l, linear = lin >= -12.0 * kb / (l * l);
+        double fb = C[i] * buckling_cheb(cheb, (l - dd) / l);
+        bool tension = dd >= l, linear = lin >= lim[i];
         s[i] = tension ? ks * (dd - l) : linear || lin >= fb ? lin : fb;
     }
 }
@@ -338,14 +358,15 @@ static void exact_forces(const type2_state *st, size_t m, const double *d,
 /* Pairs [0, m) of at most CL_PAIRKERN_CHUNK.  s is the same with and
  * without ds (the Jacobian's forces are the right-hand side's, bit for
  * bit); s' of the f_b branch comes from the scalar law. */
-static void type2_piece(const type2_state *st, size_t m, const double *d,
-                        const double *L, double *s, double *ds)
+static void type2_piece(const type2_state *st, size_t k0, size_t m,
+                        const double *d, const double *L, double *s,
+                        double *ds)
 {
     double dsw[CL_PAIRKERN_CHUNK], sw[CL_PAIRKERN_CHUNK], one;
     unsigned char need[CL_PAIRKERN_CHUNK];
     bool exact = st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT;
     if (exact)
-        exact_forces(st, m, d, L, s);
+        exact_forces(st, k0, m, d, L, s);
     if (exact && !ds)
         return;
     linear_branches(st, m, d, L, exact ? sw : s, ds ? ds : dsw, need);
@@ -362,7 +383,8 @@ static void type2_batch(const void *params, size_t k0, size_t m,
 {
     for (size_t i = 0; i < m; i += CL_PAIRKERN_CHUNK) {
         size_t p = m - i < CL_PAIRKERN_CHUNK ? m - i : CL_PAIRKERN_CHUNK;
-        type2_piece(params, p, d + i, L + k0 + i, s + i, ds ? ds + i : NULL);
+        type2_piece(params, k0 + i, p, d + i, L + k0 + i, s + i,
+                    ds ? ds + i : NULL);
     }
 }
 
@@ -437,6 +459,8 @@ static void type2_free(void *state)
     cl_pairterm_free(&st->pt);
     free(st->len);
     free(st->len_of);
+    free(st->fbc);
+    free(st->fblim);
     if (st->quad)
         gsl_integration_workspace_free(st->quad);
     free(st);
@@ -482,8 +506,9 @@ static cl_status type2_setup(type2_state *st, const cl_cloth *cloth,
                                opts->clamp_transverse, 1, err)) ||
         (rc = cl_pairterm_tear(&st->pt, opts->tear_cut, err)))
         return rc;
-    if (st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT)
-        build_cheb(st);
+    if (st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT &&
+        (rc = exact_setup(st, err)))
+        return rc;
     return build_lengths(st, err);
 }
 
