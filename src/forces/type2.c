@@ -335,24 +335,57 @@ static inline double buckling_cheb(const double (*cheb)[CHEB_TERMS],
     return cheb[j][0] + x * b1 - b2;
 }
 
-/* The exact model's law s over pairs [0, m) in one vectorised loop: the
- * linear branches, and s = max(f_b, cb (d - L)) where f_b may win, f_b by
- * buckling_cheb. */
+/* The exact model's linear branches over pairs [0, m) (those of the
+ * term from k0 on): s = ks (d - L) in tension, cb (d - L) in
+ * compression; need[i] where f_b may win (cb (d - L) < -12 kb/L^2), with
+ * e[i] = (L - d)/L. */
 CL_PAIR_KERNEL
-static void exact_forces(const type2_state *st, size_t k0, size_t m,
-                         const double *d, const double *L, double *s)
+static void exact_linear(const type2_state *st, size_t k0, size_t m,
+                         const double *d, const double *L, double *s,
+                         double *e, unsigned char *need)
 {
     double ks = st->tension == TENSION_SPRING ? st->ks : 0.0;
     double cb = st->cb;
-    const double(*cheb)[CHEB_TERMS] = st->cheb;
-    const double *restrict C = st->fbc + k0, *restrict lim = st->fblim + k0;
+    const double *restrict lim = st->fblim + k0;
 #pragma omp simd
     for (size_t i = 0; i < m; i++) {
         double dd = d[i], l = L[i], lin = cb * (dd - l);
-        double fb = C[i] * buckling_cheb(cheb, (l - dd) / l);
-        bool tension = dd >= l, linear = lin >= lim[i];
-        s[i] = tension ? ks * (dd - l) : linear || lin >= fb ? lin : fb;
+        bool tension = dd >= l;
+        s[i] = tension ? ks * (dd - l) : lin;
+        e[i] = (l - dd) / l;
+        need[i] = !tension && !(lin >= lim[i]);
     }
+}
+
+/* f_b = (4 kb/L^2) G(e) of the n pairs idx[] (buckling_cheb). */
+CL_PAIR_KERNEL
+static void exact_fb(const type2_state *st, size_t k0, size_t n,
+                     const size_t *idx, const double *e, double *fb)
+{
+    const double(*cheb)[CHEB_TERMS] = st->cheb;
+    const double *restrict C = st->fbc + k0;
+#pragma omp simd
+    for (size_t j = 0; j < n; j++)
+        fb[j] = C[idx[j]] * buckling_cheb(cheb, e[idx[j]]);
+}
+
+/* The exact model's law s over pairs [0, m) (at most CL_PAIRKERN_CHUNK):
+ * the linear branches for all, s = max(f_b, cb (d - L)) where f_b may
+ * win, f_b by buckling_cheb for those alone. */
+static void exact_forces(const type2_state *st, size_t k0, size_t m,
+                         const double *d, const double *L, double *s)
+{
+    double e[CL_PAIRKERN_CHUNK], fb[CL_PAIRKERN_CHUNK];
+    unsigned char need[CL_PAIRKERN_CHUNK];
+    size_t idx[CL_PAIRKERN_CHUNK], n = 0;
+    exact_linear(st, k0, m, d, L, s, e, need);
+    for (size_t i = 0; i < m; i++) {
+        idx[n] = i;
+        n += need[i];
+    }
+    exact_fb(st, k0, n, idx, e, fb);
+    for (size_t j = 0; j < n; j++)
+        s[idx[j]] = s[idx[j]] >= fb[j] ? s[idx[j]] : fb[j];
 }
 
 /* Pairs [0, m) of at most CL_PAIRKERN_CHUNK.  s is the same with and
