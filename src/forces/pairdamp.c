@@ -3,8 +3,6 @@
  * forces/pairdamp.h. */
 #include "forces/pairdamp.h"
 
-#include <math.h>
-
 cl_status cl_pairdamp_init(cl_pairdamp *pd, cl_pairset set, double kd,
                            cl_damp_model model, cl_error *err)
 {
@@ -355,12 +353,10 @@ CL_PAIR_INLINE void linear_dashpot(const fused_job *j, const cl_pairterm *pt,
 #pragma omp simd
     for (size_t k = k0; k < k1; k++) {
         int a = 3 * ia[k], b = 3 * ib[k];
-        double dx = x[b] - x[a], dy = x[b + 1] - x[a + 1];
-        double dz = x[b + 2] - x[a + 2];
-        double d = sqrt(dx * dx + dy * dy + dz * dz), r = 1.0 / d;
+        double d, u0, u1, u2;
+        cl_pairkern_dir(x, a, b, true, &d, &u0, &u1, &u2);
         bool some = d > 0;
-        double u0 = some ? dx * r : 0.0, u1 = some ? dy * r : 0.0;
-        double u2 = some ? dz * r : 0.0, st = d - L[k], sv = K[k] * st;
+        double st = d - L[k], sv = K[k] * st;
         double s = st >= 0 || !tension_only ? sv : 0.0;
         double g0, g1, g2;
         if (axial) {

@@ -15,35 +15,33 @@ cl_status cl_pairgather_init(cl_pairgather *g, const int *ia, const int *ib,
         size_t top = (size_t)(ia[k] > ib[k] ? ia[k] : ib[k]);
         g->np = top + 1 > g->np ? top + 1 : g->np;
     }
-    g->start = calloc(2 * g->np + 2, sizeof *g->start);
+    long *key = calloc(2 * n + 1, sizeof *key);
+    g->start = malloc((2 * g->np + 1) * sizeof *g->start);
     g->list = malloc((2 * n + 1) * sizeof *g->list);
     g->f4 = malloc((4 * n + 4) * sizeof *g->f4);
-    if (!g->start || !g->list || !g->f4)
+    if (!key || !g->start || !g->list || !g->f4) {
+        free(key);
         return cl_error_set(err, CL_ENOMEM, "out of memory (per-particle "
                             "sums, %zu pairs)", n);
-    /* Counting sort by list 2p (p is a) or 2p + 1 (p is b), stable:
-     * each list in increasing k. */
-    for (size_t k = 0; k < n; k++) {
-        g->start[2 * (size_t)ia[k] + 1]++;
-        g->start[2 * (size_t)ib[k] + 2]++;
     }
-    for (size_t q = 0; q < 2 * g->np; q++)
-        g->start[q + 1] += g->start[q];
+    /* Code 2k (p = a) in list 2p, code 2k + 1 (p = b) in list 2p + 1,
+     * in increasing k; then each code as pair k's place 4k in f4. */
     for (size_t k = 0; k < n; k++) {
-        g->list[g->start[2 * (size_t)ia[k]]++] = 4 * (long)k;
-        g->list[g->start[2 * (size_t)ib[k] + 1]++] = 4 * (long)k;
+        key[2 * k] = 2 * (long)ia[k];
+        key[2 * k + 1] = 2 * (long)ib[k] + 1;
     }
-    /* start[q] is now the end of list q: shift back by one list. */
-    memmove(g->start + 1, g->start, 2 * g->np * sizeof *g->start);
-    g->start[0] = 0;
+    cl_pairkern_incidence(key, 2 * n, 2 * g->np, g->start, g->list);
+    for (size_t e = 0; e < 2 * n; e++)
+        g->list[e] = 4 * (g->list[e] >> 1);
+    free(key);
     return CL_OK;
 }
 
 void cl_pairgather_free(cl_pairgather *g)
 {
-    free(g->start);
-    free(g->list);
-    free(g->f4);
+    void *arr[] = {g->start, g->list, g->f4};
+    for (size_t i = 0; i < sizeof arr / sizeof *arr; i++)
+        free(arr[i]);
     memset(g, 0, sizeof *g);
 }
 

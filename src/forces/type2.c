@@ -65,7 +65,8 @@ typedef struct {
     gsl_integration_workspace *quad;
     /* The exact model's G(e) = t^2 / D(t) by pieces (buckling_cheb) */
     double cheb[CHEB_PIECES][CHEB_TERMS];
-    double *fbc, *fblim;   /* per pair: 4 kb/L^2 and -12 kb/L^2 */
+    double *fbc, *fblim;   /* per pair: 4 kb/L^2 and -12 kb/L^2 (one
+                            * allocation, fbc first) */
 } type2_state;
 
 /* t = kappa L/2 at distance d < L, and dt/dd. */
@@ -304,14 +305,15 @@ static cl_status exact_setup(type2_state *st, cl_error *err)
 {
     const cl_pairset *set = &st->pt.set;
     build_cheb(st);
-    st->fbc = malloc((set->n + 1) * sizeof *st->fbc);
-    st->fblim = malloc((set->n + 1) * sizeof *st->fblim);
-    if (!st->fbc || !st->fblim)
+    /* one block: fbc[0 .. n), then fblim[0 .. n) */
+    st->fbc = malloc(2 * (set->n + 1) * sizeof *st->fbc);
+    if (!st->fbc)
         return cl_error_set(err, CL_ENOMEM, "out of memory (type2)");
+    st->fblim = st->fbc + set->n + 1;
     for (size_t k = 0; k < set->n; k++) {
-        double L = set->pair[k].rest;
-        st->fbc[k] = 4.0 * st->kb / (L * L);
-        st->fblim[k] = -12.0 * st->kb / (L * L);
+        double L2 = set->pair[k].rest * set->pair[k].rest;
+        st->fbc[k] = 4.0 * st->kb / L2;
+        st->fblim[k] = -12.0 * st->kb / L2;
     }
     return CL_OK;
 }
@@ -492,8 +494,7 @@ static void type2_free(void *state)
     cl_pairterm_free(&st->pt);
     free(st->len);
     free(st->len_of);
-    free(st->fbc);
-    free(st->fblim);
+    free(st->fbc); /* and fblim, in the same block */
     if (st->quad)
         gsl_integration_workspace_free(st->quad);
     free(st);
