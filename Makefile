@@ -63,9 +63,9 @@ $(BUILD)/%.o: %.c
 
 # The pair kernels (src/forces/pairkern.h): GCC vectorises their sqrt and
 # selects only without errno and FP-trap semantics; no value changes.
-KERNEL_SRC := src/forces/pairkern.c src/forces/asinc_simd.c \
+KERNEL_SRC := src/forces/pairkern.c \
               src/forces/type1.c src/forces/type2.c src/forces/springs.c \
-              src/forces/pairdamp.c
+              src/forces/pairdamp.c src/forces/pairgather.c
 $(KERNEL_SRC:%.c=$(BUILD)/%.o): CFLAGS += -fno-math-errno -fno-trapping-math
 
 # The version, git commit (`git describe --always --dirty`, "unknown"

@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "fdcheck.h"
+#include "forces/body.h"
 #include "forces/choiko.h"
 #include "forces/pairdamp.h"
 #include "forces/springs.h"
@@ -180,47 +181,78 @@ Test(pairkern, damping_matches_scalar)
                          "type2.enabled=false", "spring-damping.kd=0.02"));
 }
 
-/* Springs and their dashpots in one pass (forces/term.h, fuse) against
- * the two terms one after the other: the same forces to 1e-13 relative
- * (per-pair sums round differently); not fused where the pairs differ or
- * Jacobians are asked for. */
-static void compare_fused(const char *model)
+/* A term and the terms after it (next[0..nnext)) in one pass
+ * (forces/term.h, fuse) against the terms one after the other: the same
+ * forces to 1e-13 relative (per-particle sums round differently from the
+ * scatters); `expect` of them fused (0: not fused, nothing done); never
+ * where Jacobians are asked for, or the following terms differ. */
+static void compare_fused(const cl_term_type *lead,
+                          const cl_term_type *const *next, size_t nnext,
+                          size_t expect, const char *const *sets)
 {
-    char set[64];
-    snprintf(set, sizeof set, "spring-damping.model=%s", model);
     kcase c;
-    kcase_open(&c, &cl_term_springs,
-               BUCKLED("springs.enabled=true", "type1.enabled=false",
-                       "type2.enabled=false", "spring-damping.kd=0.02", set));
-    void *damp = NULL;
+    kcase_open(&c, lead, sets);
+    void *st[4] = {NULL};
     cl_error err = {0};
     cl_term_opts opts = {0};
-    cr_assert_eq(cl_term_spring_damping.create(c.cfg, cl_model_cloth(c.m),
-                                               &opts, &damp, &err), CL_OK);
+    for (size_t i = 0; i < nnext; i++) {
+        cr_assert_eq(next[i]->create(c.cfg, cl_model_cloth(c.m), &opts,
+                                     &st[i], &err), CL_OK, "%s", err.msg);
+        cr_assert_not_null(st[i]);
+    }
     double *fs = fd_vec(c.n3), *ff = fd_vec(c.n3), *jx = fd_vec(c.nv);
-    cl_eval two = {.x = c.x, .v = c.v, .f = fs};
-    cl_term_springs.eval(c.state, &two);
-    cl_term_spring_damping.eval(damp, &two);
+    cl_eval apart = {.x = c.x, .v = c.v, .f = fs};
+    lead->eval(c.state, &apart);
+    for (size_t i = 0; i < expect; i++)
+        next[i]->eval(st[i], &apart);
     cl_eval one = {.x = c.x, .v = c.v, .f = ff};
-    cr_assert(cl_term_springs.fuse(c.state, &cl_term_spring_damping, damp,
-                                   &one));
-    assert_close(ff, fs, c.n3, "fused forces");
+    cr_assert_eq(lead->fuse(c.state, next, st, nnext, &one), expect);
+    if (expect)
+        assert_close(ff, fs, c.n3, "fused forces");
     cl_eval jac = {.x = c.x, .v = c.v, .f = ff, .dfdx = jx};
-    cr_assert_not(cl_term_springs.fuse(c.state, &cl_term_spring_damping,
-                                       damp, &jac));
-    cr_assert_not(cl_term_springs.fuse(c.state, &cl_term_damping, damp,
-                                       &one));
-    cl_term_spring_damping.free(damp);
+    cr_assert_eq(lead->fuse(c.state, next, st, nnext, &jac), 0);
+    const cl_term_type *other[] = {&cl_term_gravity, &cl_term_gravity};
+    cr_assert_eq(lead->fuse(c.state, other, st, nnext, &one), 0);
+    for (size_t i = 0; i < nnext; i++)
+        next[i]->free(st[i]);
     free(fs);
     free(ff);
     free(jx);
     kcase_close(&c);
 }
 
+static void compare_springs(const char *model)
+{
+    char set[64];
+    snprintf(set, sizeof set, "spring-damping.model=%s", model);
+    const cl_term_type *next[] = {&cl_term_spring_damping};
+    compare_fused(&cl_term_springs, next, 1, 1,
+                  BUCKLED("springs.enabled=true", "type1.enabled=false",
+                          "type2.enabled=false", "spring-damping.kd=0.02",
+                          set));
+}
+
 Test(pairkern, springs_and_dashpots_fused_match_two_passes)
 {
-    compare_fused("axial");
-    compare_fused("linear");
+    compare_springs("axial");
+    compare_springs("linear");
+}
+
+/* Type1, Type2 (buckled: a third of its pairs on the f_b branch) and
+ * their damping in one pass; Type1 and the damping alone without Type2;
+ * not fused where the damping acts on engaged pairs only. */
+Test(pairkern, choiko_fused_matches_three_passes)
+{
+    const cl_term_type *next[] = {&cl_term_type2, &cl_term_damping};
+    const cl_term_type *damp[] = {&cl_term_damping};
+    compare_fused(&cl_term_type1, next, 2, 2,
+                  BUCKLED("damping.model=linear"));
+    compare_fused(&cl_term_type1, next, 2, 2,
+                  BUCKLED("damping.model=axial", "type2.kb=0.1"));
+    compare_fused(&cl_term_type1, damp, 1, 1,
+                  BUCKLED("type2.enabled=false"));
+    compare_fused(&cl_term_type1, next, 2, 0,
+                  BUCKLED("damping.where=engaged"));
 }
 
 /* The clone the kernels run is the one the CPU test picks. */

@@ -18,6 +18,7 @@
 #define W3_MIN_STEPS 3
 #define W3_CASE_CAP 20.0   /* skip a case predicted to take longer (s) */
 #define W5_CHUNK 100       /* explicit steps per advance call */
+#define W5_GOAL 25000.0    /* steps/s of the explicit mass-spring steps */
 
 static cl_status timed_steps(void *state, const cl_integrator_type *type,
                              double dt, const fixed_plan *fp, double *x,
@@ -345,6 +346,8 @@ typedef struct {
     const char *integrator, *problem, *what;
     const char *sets[4];   /* NULL-terminated */
     double dt;             /* 0: the problem's [run] dt */
+    bool goal;             /* judged against W5_GOAL (the mass-spring
+                            * rows); else reported without a goal */
 } w5_case;
 
 static void w5_one(cl_bctx *c, const w5_case *wc)
@@ -371,10 +374,14 @@ static void w5_one(cl_bctx *c, const w5_case *wc)
         row->cpu_a = ft.cpu;
         row->wall_a = ft.wall;
         if (!ft.rc) {
-            cl_bench_judge(row, (double)ft.steps / ft.cpu, "steps/s", ">=",
-                           25000.0);
-            cl_bench_note(row, "%ld steps of %g s (%s)", ft.steps, io.dt,
-                          wc->problem);
+            cl_bench_judge(row, (double)ft.steps / ft.cpu, "steps/s",
+                           wc->goal ? ">=" : "", W5_GOAL);
+            cl_bench_note(row, "%ld steps of %g s (%s); %s", ft.steps,
+                          io.dt, wc->problem,
+                          wc->goal ? "the goal is the mass-spring step's "
+                                     "(symplectic-euler, verlet)"
+                                   : "no goal (the 25,000 steps/s are the "
+                                     "mass-spring step's)");
         }
         cl_bench_model_free(&bm);
     }
@@ -385,15 +392,18 @@ void cl_bench_w5(cl_bctx *c)
 {
     static const w5_case cases[] = {
         {"symplectic-euler", "ms-hang", "springs",
-         {"cloth.n=30", "spring-damping.kd=0", "pbd.enabled=false"}, 2e-4},
+         {"cloth.n=30", "spring-damping.kd=0", "pbd.enabled=false"}, 2e-4,
+         true},
         {"verlet", "ms-hang", "springs",
-         {"cloth.n=30", "spring-damping.kd=0", "pbd.enabled=false"}, 2e-4},
+         {"cloth.n=30", "spring-damping.kd=0", "pbd.enabled=false"}, 2e-4,
+         true},
         {"symplectic-euler", "ms-hang", "springs + axial damping",
-         {"cloth.n=30", "pbd.enabled=false", NULL}, 2e-4},
+         {"cloth.n=30", "pbd.enabled=false", NULL}, 2e-4, true},
         {"verlet", "ms-hang", "springs + axial damping",
-         {"cloth.n=30", "pbd.enabled=false", NULL}, 2e-4},
+         {"cloth.n=30", "pbd.enabled=false", NULL}, 2e-4, true},
+        /* Position-based dynamics: no goal of its own, for the record. */
         {"verlet-pbd", "verlet-scene1", "PBD level 2, 10 iterations",
-         {"cloth.n=30", "pbd.levels=2", "pbd.iterations=10"}, 0.0},
+         {"cloth.n=30", "pbd.levels=2", "pbd.iterations=10"}, 0.0, false},
     };
     for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
         w5_one(c, &cases[k]);

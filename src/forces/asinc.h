@@ -105,7 +105,7 @@ double cl_asinc_1m_deriv(double t);
  * Prefer cl_asinc_1m near y = 1 (see the conditioning note above). */
 double cl_asinc(double y);
 
-/* ---- the tables of the exact inverse, and its vectorised form ---------- */
+/* ---- the tables of the exact inverse ------------------------------------ */
 
 /* Below CL_ASINC_SERIES_T, 1 - sinc and its derivative are summed from
  * their Taylor series (CL_ASINC_NSER terms, highest power first: g(t)/t^2
@@ -126,14 +126,7 @@ extern const double cl_asinc_rev_ser[7];
 extern const double cl_asinc_guess_edge[5];
 extern const double cl_asinc_guess_poly[4][8];
 
-/* For i < n: t[i] = cl_asinc_1m(e[i]) and D[i] = cos t - sinc t, as
- * forces/type2.c forms it ((1 - sinc t) - 2 sin^2(t/2)), in one loop that
- * GCC vectorises with glibc's vector sin and cos (libmvec, at most 4 ulp:
- * t and D agree with the scalar path to about 1e-15 relative).  It takes
- * the scalar path's one Newton step from the same initial guess; ok[i] = 0
- * where the scalar path would do more (a step outside the bracket [0, pi]
- * or above CL_ASINC_NEWTON_STOP t, e outside (0, 1), t < 1e-8): there the
- * caller uses the scalar functions. */
+/* Horner's rule for c[0] s^(n-1) + ... + c[n-1]. */
 static inline double cl_asinc_horner(const double *c, int n, double s)
 {
     double v = c[0];
@@ -146,8 +139,7 @@ static inline double cl_asinc_horner(const double *c, int n, double s)
 /* The initial guess sqrt(6e) phi(e) for e in [CL_ASINC_SERIES_E, 1]. */
 static inline double cl_asinc_guess(double e)
 {
-    /* The piece by selects rather than an index: the form GCC vectorises
-     * (forces/asinc_simd.c). */
+    /* The piece by selects rather than an index (branch-free). */
     const double *edge = cl_asinc_guess_edge;
     bool p1 = e >= edge[1], p2 = e >= edge[2], p3 = e >= edge[3];
 #define CL_ASINC_PIECE(v0, v1, v2, v3) (p3 ? (v3) : p2 ? (v2) : p1 ? (v1) : (v0))
@@ -162,9 +154,6 @@ static inline double cl_asinc_guess(double e)
 #undef CL_ASINC_PIECE
     return sqrt(6.0 * e) * phi;
 }
-
-void cl_asinc_1m_simd(size_t n, const double *e, double *t, double *D,
-                      unsigned char *ok);
 
 /* ---- Jiao's polynomial (Jiao, section 4.6) ------------------------------- */
 

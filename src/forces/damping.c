@@ -44,6 +44,13 @@ static void damping_eval(void *state, cl_eval *ev)
     cl_pairdamp_eval(&st->pd, ev, st->engaged_only ? engaged : NULL, st);
 }
 
+bool cl_damping_fused(void *state, cl_pairterm *const *pt, size_t npt,
+                      cl_eval *ev)
+{
+    damping_state *st = state;
+    return !st->engaged_only && cl_pairdamp_fused(pt, npt, &st->pd, ev);
+}
+
 static void damping_free(void *state)
 {
     damping_state *st = state;

@@ -12,36 +12,40 @@
 typedef struct {
     const cl_cloth *cloth;
     double g[3], F[3];
+    double *fp; /* m_p g + F of every particle (3 np), formed once */
 } gravity_state;
 
 static void gravity_eval(void *state, cl_eval *ev)
 {
     const gravity_state *st = state;
+    const double *restrict fp = st->fp;
+    size_t n = 3 * st->cloth->np;
     double energy = 0.0;
     if (ev->f && !ev->want_energy) { /* every right-hand side */
-        const double *mass = st->cloth->mass;
-        double g[3] = {st->g[0], st->g[1], st->g[2]};
-        double F[3] = {st->F[0], st->F[1], st->F[2]};
         double *restrict f = ev->f;
-        for (size_t p = 0; p < st->cloth->np; p++) {
-            f[3 * p] += mass[p] * g[0] + F[0];
-            f[3 * p + 1] += mass[p] * g[1] + F[1];
-            f[3 * p + 2] += mass[p] * g[2] + F[2];
-        }
+#pragma omp simd
+        for (size_t i = 0; i < n; i++)
+            f[i] += fp[i];
         return;
     }
-    for (size_t p = 0; p < st->cloth->np; p++)
-        for (int i = 0; i < 3; i++) {
-            double f = st->cloth->mass[p] * st->g[i] + st->F[i];
-            if (ev->f)
-                ev->f[3 * p + i] += f;
-            if (ev->want_energy) /* not on every right-hand side */
-                energy -= f * ev->x[3 * p + i];
-        }
+    for (size_t i = 0; i < n; i++) {
+        if (ev->f)
+            ev->f[i] += fp[i];
+        if (ev->want_energy) /* not on every right-hand side */
+            energy -= fp[i] * ev->x[i];
+    }
     if (ev->want_energy) {
         ev->energy = energy;
         ev->power = 0.0;
     }
+}
+
+static void gravity_free(void *state)
+{
+    gravity_state *st = state;
+    if (st)
+        free(st->fp);
+    free(st);
 }
 
 static size_t gravity_couplings(const void *state, const int (**pairs)[2])
@@ -63,7 +67,7 @@ static cl_status gravity_create(cl_config *cfg, const cl_cloth *cloth,
                                 cl_error *err)
 {
     (void)opts;
-    gravity_state st = {cloth, {0.0, -9.81, 0.0}, {0.0, 0.0, 0.0}};
+    gravity_state st = {cloth, {0.0, -9.81, 0.0}, {0.0, 0.0, 0.0}, NULL};
     cl_status rc;
     *state = NULL;
     if ((rc = cl_config_vector(cfg, "gravity", "g", 3, st.g, err)) ||
@@ -73,8 +77,15 @@ static cl_status gravity_create(cl_config *cfg, const cl_cloth *cloth,
     if (!st.g[0] && !st.g[1] && !st.g[2] && !st.F[0] && !st.F[1] && !st.F[2])
         return CL_OK;
     gravity_state *s = malloc(sizeof *s);
-    if (!s)
+    st.fp = malloc((3 * cloth->np + 1) * sizeof *st.fp);
+    if (!s || !st.fp) {
+        free(s);
+        free(st.fp);
         return cl_error_set(err, CL_ENOMEM, "out of memory (gravity)");
+    }
+    for (size_t p = 0; p < cloth->np; p++)
+        for (int i = 0; i < 3; i++)
+            st.fp[3 * p + i] = cloth->mass[p] * st.g[i] + st.F[i];
     *s = st;
     *state = s;
     return CL_OK;
@@ -89,5 +100,5 @@ const cl_term_type cl_term_gravity = {
     .couplings = gravity_couplings,
     .bind = gravity_bind,
     .eval = gravity_eval,
-    .free = free,
+    .free = gravity_free,
 };

@@ -11,12 +11,14 @@ cl_status cl_pairdamp_init(cl_pairdamp *pd, cl_pairset set, double kd,
     cl_status rc = cl_pairterm_init(&pd->pt, set, NULL, NULL, NULL, false, 2,
                                     err);
     pd->pt.kern.diag = model == CL_DAMP_LINEAR; /* df/dv = kd I */
-    return rc;
+    return rc ? rc : cl_pairgather_init(&pd->gather, pd->pt.kern.ia,
+                                        pd->pt.kern.ib, pd->pt.kern.n, err);
 }
 
 void cl_pairdamp_free(cl_pairdamp *pd)
 {
     cl_pairterm_free(&pd->pt);
+    cl_pairgather_free(&pd->gather);
 }
 
 cl_status cl_pairdamp_read_model(cl_config *cfg, const char *sec,
@@ -117,24 +119,58 @@ typedef struct {
     bool dv, dx;     /* blocks: df/dv (block 0), df/dx (block 1) */
 } damp_job;
 
-/* Linear damping forces f = -kd (v_a - v_b) of pairs [k0, k1) into the
- * buffers of pk, or added to the forces there (add: a fused pass); add
- * is a constant where it is inlined, so each loop has no select. */
-CL_PAIR_INLINE void linear_forces(double kd, cl_pairkern *pk,
-                                  const double *v, size_t k0, size_t k1,
-                                  size_t base, bool add)
+/* The outputs of a force loop: per pair k, o0[k], o1[k], o2[k] (the
+ * pointers offset by the caller); or with s (a fused pass) the central
+ * force s[k] u_k added to the damping's, into o4[4k .. 4k + 3]
+ * (forces/pairgather.h). */
+typedef struct {
+    const double *s;
+    double *o0, *o1, *o2, *o4;
+} force_out;
+
+/* (f0, f1, f2, 0), pair k's place in a cl_pairgather. */
+CL_PAIR_INLINE void put_pair(double *restrict o4, size_t k, double f0,
+                             double f1, double f2)
 {
-    double *restrict f0 = pk->f0 - base, *restrict f1 = pk->f1 - base;
-    double *restrict f2 = pk->f2 - base;
+    double *o = o4 + 4 * k;
+    o[0] = f0;
+    o[1] = f1;
+    o[2] = f2;
+    o[3] = 0.0;
+}
+
+/* Pair k's force (f0, f1, f2): o's arrays, or with `central` into the
+ * per-particle sums' buffer. */
+CL_PAIR_INLINE void put_force(force_out o, bool central, size_t k,
+                              double f0, double f1, double f2)
+{
+    if (central) {
+        put_pair(o.o4, k, f0, f1, f2);
+    } else {
+        o.o0[k] = f0;
+        o.o1[k] = f1;
+        o.o2[k] = f2;
+    }
+}
+
+/* Linear damping forces f = -kd (v_a - v_b) of pairs [k0, k1) (plus
+ * s u, central: a constant where it is inlined, so each loop has no
+ * select). */
+CL_PAIR_INLINE void linear_forces(double kd, const cl_pairkern *pk,
+                                  const double *v, size_t k0, size_t k1,
+                                  size_t base, bool central, force_out o)
+{
+    const double *restrict u0 = pk->u0 - base, *restrict u1 = pk->u1 - base;
+    const double *restrict u2 = pk->u2 - base, *restrict s = o.s;
     const int *ia = pk->ia, *ib = pk->ib;
 #pragma omp simd
     for (size_t k = k0; k < k1; k++) {
         int a = 3 * ia[k], b = 3 * ib[k];
         double g0 = -kd * (v[a] - v[b]), g1 = -kd * (v[a + 1] - v[b + 1]);
         double g2 = -kd * (v[a + 2] - v[b + 2]);
-        f0[k] = add ? f0[k] + g0 : g0;
-        f1[k] = add ? f1[k] + g1 : g1;
-        f2[k] = add ? f2[k] + g2 : g2;
+        put_force(o, central, k, central ? s[k] * u0[k] + g0 : g0,
+                  central ? s[k] * u1[k] + g1 : g1,
+                  central ? s[k] * u2[k] + g2 : g2);
     }
 }
 
@@ -195,16 +231,14 @@ static void axial_blocks(const cl_pairdamp *pd, cl_pairkern *pk, size_t k0,
 
 /* Axial damping forces of pairs [k0, k1) from the geometry in pk, the
  * arithmetic of damp_axial: f = kd (u . w) u, none for coincident
- * particles; into the buffers, or added to the forces there (add, a
- * constant where it is inlined). */
-CL_PAIR_INLINE void axial_forces(double kd, cl_pairkern *pk,
+ * particles (plus s u, central: a constant where it is inlined). */
+CL_PAIR_INLINE void axial_forces(double kd, const cl_pairkern *pk,
                                  const double *v, size_t k0, size_t k1,
-                                 size_t base, bool add)
+                                 size_t base, bool central, force_out o)
 {
     const double *restrict d = pk->d - base, *restrict u0 = pk->u0 - base;
     const double *restrict u1 = pk->u1 - base, *restrict u2 = pk->u2 - base;
-    double *restrict f0 = pk->f0 - base, *restrict f1 = pk->f1 - base;
-    double *restrict f2 = pk->f2 - base;
+    const double *restrict s = o.s;
     const int *ia = pk->ia, *ib = pk->ib;
 #pragma omp simd
     for (size_t k = k0; k < k1; k++) {
@@ -215,29 +249,36 @@ CL_PAIR_INLINE void axial_forces(double kd, cl_pairkern *pk,
         double g0 = some ? kd * uw * u0[k] : 0.0;
         double g1 = some ? kd * uw * u1[k] : 0.0;
         double g2 = some ? kd * uw * u2[k] : 0.0;
-        f0[k] = add ? f0[k] + g0 : g0;
-        f1[k] = add ? f1[k] + g1 : g1;
-        f2[k] = add ? f2[k] + g2 : g2;
+        put_force(o, central, k, central ? s[k] * u0[k] + g0 : g0,
+                  central ? s[k] * u1[k] + g1 : g1,
+                  central ? s[k] * u2[k] + g2 : g2);
     }
 }
 
-/* The damping forces of pairs [k0, k1), model by model, into pk's
- * buffers or (add) added to the forces there: each loop inlined with add
- * a constant. */
+/* The damping forces of pairs [k0, k1), model by model, into o (with
+ * o.s: a fused pass, s u added): each loop inlined with central a
+ * constant. */
 CL_PAIR_KERNEL
-static void damp_forces(const cl_pairdamp *pd, cl_pairkern *pk,
+static void damp_forces(const cl_pairdamp *pd, const cl_pairkern *pk,
                         const double *v, size_t k0, size_t k1, size_t base,
-                        bool add)
+                        force_out o)
 {
     double kd = pd->kd;
-    if (pd->model == CL_DAMP_AXIAL && add)
-        axial_forces(kd, pk, v, k0, k1, base, true);
+    if (pd->model == CL_DAMP_AXIAL && o.s)
+        axial_forces(kd, pk, v, k0, k1, base, true, o);
     else if (pd->model == CL_DAMP_AXIAL)
-        axial_forces(kd, pk, v, k0, k1, base, false);
-    else if (add)
-        linear_forces(kd, pk, v, k0, k1, base, true);
+        axial_forces(kd, pk, v, k0, k1, base, false, o);
+    else if (o.s)
+        linear_forces(kd, pk, v, k0, k1, base, true, o);
     else
-        linear_forces(kd, pk, v, k0, k1, base, false);
+        linear_forces(kd, pk, v, k0, k1, base, false, o);
+}
+
+/* Into pk's own force buffers (the separate evaluation). */
+static force_out own_buffers(const cl_pairkern *pk, size_t base)
+{
+    return (force_out){NULL, pk->f0 - base, pk->f1 - base, pk->f2 - base,
+                       NULL};
 }
 
 /* Linear damping of pairs [k0, k1): forces and the df/dv block kd I
@@ -247,7 +288,7 @@ static void linear_chunk(void *ctx, cl_pairkern *pk, size_t k0, size_t k1,
 {
     const damp_job *j = ctx;
     double kd = j->pd->kd;
-    damp_forces(j->pd, pk, j->v, k0, k1, base, false);
+    damp_forces(j->pd, pk, j->v, k0, k1, base, own_buffers(pk, base));
     for (size_t k = k0; j->dv && k < k1; k++)
         for (int i = 0; i < 9; i += 4) /* a diagonal block */
             pk->blk[18 * (k - base) + i] = kd;
@@ -260,47 +301,135 @@ static void axial_chunk(void *ctx, cl_pairkern *pk, size_t k0, size_t k1,
     const damp_job *j = ctx;
     const double *v = j->v;
     cl_pairkern_geometry(pk, k0, k1, base, j->x, false);
-    damp_forces(j->pd, pk, v, k0, k1, base, false);
+    damp_forces(j->pd, pk, v, k0, k1, base, own_buffers(pk, base));
     if (j->dv || j->dx)
         axial_blocks(j->pd, pk, k0, k1, base, v);
 }
 
-/* Whether pd damps exactly the pairs of pt, in the same order (decided
- * once per pt: pair sets do not change). */
-static bool same_pairs(cl_pairdamp *pd, const cl_pairterm *pt)
+/* Whether pd damps exactly the pairs of pt[0], ..., pt[npt - 1], one
+ * list after the other, in the same order (decided once per pt[0]: pair
+ * sets do not change). */
+static bool same_pairs(cl_pairdamp *pd, cl_pairterm *const *pt, size_t npt)
 {
-    const cl_pairkern *a = &pd->pt.kern, *b = &pt->kern;
-    if (pd->fuse_with == pt)
+    const cl_pairkern *a = &pd->pt.kern;
+    if (pd->fuse_with == pt[0])
         return pd->fuse_same;
-    pd->fuse_with = pt;
-    pd->fuse_same = a->n == b->n;
-    for (size_t k = 0; pd->fuse_same && k < a->n; k++)
-        pd->fuse_same = a->ia[k] == b->ia[k] && a->ib[k] == b->ib[k];
+    pd->fuse_with = pt[0];
+    size_t k = 0;
+    bool same = true;
+    for (size_t i = 0; same && i < npt; i++) {
+        const cl_pairkern *b = &pt[i]->kern;
+        same = k + b->n <= a->n;
+        for (size_t j = 0; same && j < b->n; j++, k++)
+            same = a->ia[k] == b->ia[j] && a->ib[k] == b->ib[j];
+    }
+    pd->fuse_same = same && k == a->n;
     return pd->fuse_same;
 }
 
 typedef struct {
-    cl_pairterm *pt;
+    cl_pairterm *const *pt;
+    size_t npt;
     const cl_pairdamp *pd;
     const double *x, *v;
 } fused_job;
 
-/* Phase 1 of the fused pass: pt's forces, then the damping's added. */
+/* A linear law k (d - L) (forces/pairterm.h, k_linear; none below L if
+ * k_tension_only) and the damping in one loop, pairs [k0, k1) of pd's
+ * list, those of pt from `off` on: the arithmetic of the three loops of
+ * fused_segment (cl_pairkern_geometry with recip, the term's law,
+ * damp_forces), so the same forces bit for bit, without storing d, u
+ * and s in between (axial: a constant where it is inlined). */
+CL_PAIR_INLINE void linear_dashpot(const fused_job *j, const cl_pairterm *pt,
+                                   size_t off, size_t k0, size_t k1,
+                                   bool axial)
+{
+    const cl_pairkern *pk = &j->pd->pt.kern;
+    const int *ia = pk->ia, *ib = pk->ib;
+    const double *restrict L = pk->L, *restrict K = pt->k_linear - off;
+    const double *x = j->x, *v = j->v;
+    double kd = j->pd->kd, *restrict o4 = j->pd->gather.f4;
+    bool tension_only = pt->k_tension_only;
+#pragma omp simd
+    for (size_t k = k0; k < k1; k++) {
+        int a = 3 * ia[k], b = 3 * ib[k];
+        double d, u0, u1, u2;
+        cl_pairkern_dir(x, a, b, true, &d, &u0, &u1, &u2);
+        bool some = d > 0;
+        double st = d - L[k], sv = K[k] * st;
+        double s = st >= 0 || !tension_only ? sv : 0.0;
+        double g0, g1, g2;
+        if (axial) {
+            double uw = axial_uw(u0, u1, u2, v[b] - v[a],
+                                 v[b + 1] - v[a + 1], v[b + 2] - v[a + 2]);
+            g0 = some ? kd * uw * u0 : 0.0;
+            g1 = some ? kd * uw * u1 : 0.0;
+            g2 = some ? kd * uw * u2 : 0.0;
+        } else {
+            g0 = -kd * (v[a] - v[b]);
+            g1 = -kd * (v[a + 1] - v[b + 1]);
+            g2 = -kd * (v[a + 2] - v[b + 2]);
+        }
+        put_pair(o4, k, s * u0 + g0, s * u1 + g1, s * u2 + g2);
+    }
+}
+
+CL_PAIR_KERNEL
+static void linear_segment(const fused_job *j, const cl_pairterm *pt,
+                           size_t off, size_t k0, size_t k1)
+{
+    if (j->pd->model == CL_DAMP_AXIAL)
+        linear_dashpot(j, pt, off, k0, k1, true);
+    else
+        linear_dashpot(j, pt, off, k0, k1, false);
+}
+
+/* Pairs [k0, k1) of pd's list, those of pt from `off` on, by three
+ * loops: geometry, the term's law, f = s u + the damping's force. */
+static void fused_segment(const fused_job *j, const cl_pairterm *pt,
+                          size_t off, cl_pairkern *pk, size_t k0, size_t k1,
+                          size_t base)
+{
+    cl_pairkern_geometry(pk, k0, k1, base, j->x, true);
+    pt->batch(pt->params, k0 - off, k1 - k0, pk->d + (k0 - base),
+              pt->kern.L, pk->s + (k0 - base), NULL);
+    force_out o = {pk->s - base, NULL, NULL, NULL, j->pd->gather.f4};
+    damp_forces(j->pd, pk, j->v, k0, k1, base, o);
+}
+
+/* Phase 1 of the fused pass, pairs [k0, k1) of pd's list: each central
+ * term's pairs by its one loop (a linear law) or three, the forces into
+ * the per-pair sums' buffer. */
 static void fused_chunk(void *ctx, cl_pairkern *pk, size_t k0, size_t k1,
                         size_t base)
 {
     const fused_job *j = ctx;
-    cl_pairterm_phase1(j->pt, j->x, false, true, k0, k1, base);
-    damp_forces(j->pd, pk, j->v, k0, k1, base, true);
+    size_t off = 0;
+    for (size_t i = 0; i < j->npt; i++) {
+        const cl_pairterm *pt = j->pt[i];
+        size_t lo = k0 > off ? k0 : off, end = off + pt->kern.n;
+        size_t hi = k1 < end ? k1 : end;
+        if (lo < hi && pt->k_linear)
+            linear_segment(j, pt, off, lo, hi);
+        else if (lo < hi)
+            fused_segment(j, pt, off, pk, lo, hi, base);
+        off = end;
+    }
 }
 
-bool cl_pairdamp_fused(cl_pairterm *pt, cl_pairdamp *pd, cl_eval *ev)
+bool cl_pairdamp_fused(cl_pairterm *const *pt, size_t npt, cl_pairdamp *pd,
+                       cl_eval *ev)
 {
-    if (!ev->f || ev->dfdx || ev->dfdv || ev->want_energy || pt->torn ||
-        pd->pt.torn || !pt->batch || !same_pairs(pd, pt))
+    if (!ev->f || ev->dfdx || ev->dfdv || ev->want_energy || pd->pt.torn)
         return false;
-    fused_job j = {pt, pd, ev->x, ev->v};
-    cl_pairkern_eval(&pt->kern, fused_chunk, &j, NULL, ev->f, NULL);
+    for (size_t i = 0; i < npt; i++)
+        if (pt[i]->torn || !pt[i]->batch)
+            return false;
+    if (!same_pairs(pd, pt, npt))
+        return false;
+    fused_job j = {pt, npt, pd, ev->x, ev->v};
+    cl_pairkern_eval(&pd->pt.kern, fused_chunk, &j, NULL, NULL, NULL);
+    cl_pairgather_add(&pd->gather, pd->pt.kern.threads, ev->f);
     return true;
 }
 

@@ -27,6 +27,7 @@
 #ifndef CL_PAIRDAMP_H
 #define CL_PAIRDAMP_H
 
+#include "forces/pairgather.h"
 #include "forces/pairterm.h"
 
 typedef enum { CL_DAMP_LINEAR, CL_DAMP_AXIAL } cl_damp_model;
@@ -35,8 +36,10 @@ typedef struct {
     cl_pairterm pt; /* first member: pairs, couplings, slots */
     double kd;      /* N s/m */
     cl_damp_model model;
-    const cl_pairterm *fuse_with; /* cl_pairdamp_fused: the pair term last */
-    bool fuse_same;               /* compared, and whether its pairs are ours */
+    const cl_pairterm *fuse_with; /* cl_pairdamp_fused: the first pair
+                                   * term last compared, */
+    bool fuse_same;               /* and whether its pairs are ours */
+    cl_pairgather gather;         /* the fused pass's per-particle sums */
 } cl_pairdamp;
 
 /* Whether pair k is damped at positions x (ctx: the caller's state). */
@@ -59,12 +62,16 @@ void cl_pairdamp_eval(cl_pairdamp *pd, cl_eval *ev, cl_pairdamp_keep keep,
                       const void *ctx);
 
 /* Forces alone (ev asks for no Jacobian and no energy) of the central
- * pair term pt and of pd on the same pairs, in one pass (forces/term.h,
- * fuse): pt's phase 1 (geometry, law, s u), pd's force added to each
- * pair's, one scatter.  Per pair f = s u + f_damp, then f_a += f, f_b -= f:
- * the same terms as two passes, summed in another order (differences of
- * the order of the rounding of the forces).  Returns false, doing nothing,
- * when the pairs differ, either term tears, or ev asks for more. */
-bool cl_pairdamp_fused(cl_pairterm *pt, cl_pairdamp *pd, cl_eval *ev);
+ * pair terms pt[0..npt) and of pd, whose pairs are theirs one list after
+ * the other, in one pass (forces/term.h, fuse): geometry once (u = x_ab
+ * (1/d), cl_pairkern_geometry's recip), each term's law on its pairs, per
+ * pair f = s u + f_damp, then per-particle sums (forces/pairgather.h)
+ * instead of a scatter per term.  The same terms as separate passes,
+ * summed in another order: the forces differ from theirs by a few ulp of
+ * the largest per-pair force.  Threads as the pair kernels' (results
+ * independent of the count).  Returns false, doing nothing, when the
+ * pairs differ, a term tears, or ev asks for more. */
+bool cl_pairdamp_fused(cl_pairterm *const *pt, size_t npt, cl_pairdamp *pd,
+                       cl_eval *ev);
 
 #endif

@@ -55,10 +55,8 @@ void cl_pairkern_free(cl_pairkern *pk)
     memset(pk, 0, sizeof *pk);
 }
 
-/* Counting sort of the m codes c whose key key[c] >= 0 (keys < nkey) into
- * start (nkey + 1) and list: stable, so each key's codes increase. */
-static void incidence(const long *key, size_t m, size_t nkey, size_t *start,
-                      long *list)
+void cl_pairkern_incidence(const long *key, size_t m, size_t nkey,
+                           size_t *start, long *list)
 {
     memset(start, 0, (nkey + 1) * sizeof *start);
     for (size_t c = 0; c < m; c++)
@@ -85,7 +83,8 @@ static cl_status slot_incidence(cl_pairkern *pk, cl_error *err)
     if (!pk->sstart || !pk->sinc)
         return cl_error_set(err, CL_ENOMEM, "out of memory (pair kernels, "
                             "slot incidence)");
-    incidence(pk->slot, 4 * pk->n, pk->nslot, pk->sstart, pk->sinc);
+    cl_pairkern_incidence(pk->slot, 4 * pk->n, pk->nslot, pk->sstart,
+                          pk->sinc);
     return CL_OK;
 }
 
@@ -106,7 +105,7 @@ static cl_status particle_incidence(cl_pairkern *pk, cl_error *err)
         key[2 * k] = pk->ia[k];
         key[2 * k + 1] = pk->ib[k];
     }
-    incidence(key, 2 * pk->n, pk->np, pk->pstart, pk->pinc);
+    cl_pairkern_incidence(key, 2 * pk->n, pk->np, pk->pstart, pk->pinc);
     free(key);
     return CL_OK;
 }
@@ -143,19 +142,9 @@ CL_PAIR_INLINE void geometry(cl_pairkern *pk, size_t k0, size_t k1,
     double *restrict d = pk->d - base, *restrict u0 = pk->u0 - base;
     double *restrict u1 = pk->u1 - base, *restrict u2 = pk->u2 - base;
 #pragma omp simd
-    for (size_t k = k0; k < k1; k++) {
-        int a = 3 * ia[k], b = 3 * ib[k];
-        double dx = x[b] - x[a], dy = x[b + 1] - x[a + 1];
-        double dz = x[b + 2] - x[a + 2];
-        double dk = sqrt(dx * dx + dy * dy + dz * dz), rk = 1.0 / dk;
-        double r0 = recip ? dx * rk : dx / dk;
-        double r1 = recip ? dy * rk : dy / dk;
-        double r2 = recip ? dz * rk : dz / dk;
-        d[k] = dk;
-        u0[k] = dk > 0 ? r0 : 0.0;
-        u1[k] = dk > 0 ? r1 : 0.0;
-        u2[k] = dk > 0 ? r2 : 0.0;
-    }
+    for (size_t k = k0; k < k1; k++)
+        cl_pairkern_dir(x, 3 * ia[k], 3 * ib[k], recip, &d[k], &u0[k],
+                        &u1[k], &u2[k]);
 }
 
 const char *cl_pairkern_isa(void)

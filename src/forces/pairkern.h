@@ -27,6 +27,7 @@
 #ifndef CL_PAIRKERN_H
 #define CL_PAIRKERN_H
 
+#include <math.h>
 #include <stdbool.h>
 #include <stddef.h>
 
@@ -47,6 +48,32 @@
 #else
 #define CL_PAIR_INLINE static inline
 #endif
+
+/* d = |x_b - x_a| and u = x_ab/d (with recip x_ab (1/d): one division
+ * instead of three, u then differs from x_ab/d in the last bit), u = 0
+ * for d = 0; a and b are 3 times the particle indices (cl_dist's
+ * arithmetic; a loop body, inlined). */
+CL_PAIR_INLINE void cl_pairkern_dir(const double *x, int a, int b,
+                                    bool recip, double *d, double *u0,
+                                    double *u1, double *u2)
+{
+    double dx = x[b] - x[a], dy = x[b + 1] - x[a + 1];
+    double dz = x[b + 2] - x[a + 2];
+    double dk = sqrt(dx * dx + dy * dy + dz * dz), rk = 1.0 / dk;
+    double r0 = recip ? dx * rk : dx / dk;
+    double r1 = recip ? dy * rk : dy / dk;
+    double r2 = recip ? dz * rk : dz / dk;
+    *d = dk;
+    *u0 = dk > 0 ? r0 : 0.0;
+    *u1 = dk > 0 ? r1 : 0.0;
+    *u2 = dk > 0 ? r2 : 0.0;
+}
+
+/* Counting sort of the m codes c whose key key[c] >= 0 (keys < nkey)
+ * into start (nkey + 1: key q's codes in [start[q], start[q + 1])) and
+ * list: stable, so each key's codes increase. */
+void cl_pairkern_incidence(const long *key, size_t m, size_t nkey,
+                           size_t *start, long *list);
 
 /* f_a += (f0, f1, f2), f_b -= (f0, f1, f2) for particles a, b (3 entries
  * each in f): a pair's force into a force array. */

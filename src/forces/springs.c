@@ -286,12 +286,14 @@ static size_t springs_distances(const void *state, const cl_pair **pair,
 
 /* The springs and their dashpots (spring-damping, evaluated next) in one
  * pass over the pairs, for forces alone (forces/term.h, fuse). */
-static bool springs_fuse(void *state, const cl_term_type *next,
-                         void *next_state, cl_eval *ev)
+static size_t springs_fuse(void *state, const cl_term_type *const *next,
+                           void *const *next_state, size_t nnext,
+                           cl_eval *ev)
 {
-    springs_state *st = state;
-    return next == &cl_term_spring_damping &&
-           cl_pairdamp_fused(&st->pt, next_state, ev);
+    cl_pairterm *pt = state;
+    return nnext >= 1 && next[0] == &cl_term_spring_damping &&
+                   cl_pairdamp_fused(&pt, 1, next_state[0], ev)
+               ? 1 : 0;
 }
 
 static cl_status springs_create(cl_config *cfg, const cl_cloth *cloth,
@@ -321,6 +323,7 @@ static cl_status springs_create(cl_config *cfg, const cl_cloth *cloth,
         springs_free(st);
         return rc;
     }
+    st->pt.k_linear = st->k;
     *state = st;
     return CL_OK;
 }

@@ -77,13 +77,14 @@ typedef struct cl_term_type {
      * count (forces/pairkern.h); allocates what that needs, once. */
     cl_status (*threads)(void *state, int threads, cl_error *err);
     /* Forces alone (ev asks for no Jacobian and no energy) of this term
-     * and of `next`, the term evaluated right after it, in one pass over
-     * the pairs they share; returns false, having done nothing, where it
-     * cannot (then each term evaluates on its own).  Per-pair forces are
-     * summed before they are added, so the sums round differently from
-     * two passes. */
-    bool (*fuse)(void *state, const struct cl_term_type *next,
-                 void *next_state, cl_eval *ev);
+     * and of the terms evaluated right after it, next[0..nnext) (states
+     * next_state[]), in one pass over the pairs they share; returns how
+     * many of them it evaluated with itself (the first ones), 0 having
+     * done nothing where it cannot (then each term evaluates on its own).
+     * Per-pair forces are summed before they are added, so the sums
+     * round differently from separate passes. */
+    size_t (*fuse)(void *state, const struct cl_term_type *const *next,
+                   void *const *next_state, size_t nnext, cl_eval *ev);
     void (*free)(void *state);
 } cl_term_type;
 

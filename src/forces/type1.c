@@ -19,6 +19,7 @@ typedef struct {
     cl_pairterm pt; /* first member: the pairterm hooks use it */
     double ks;
     bool linear;    /* compression = spring */
+    double *k;      /* ks for every pair (the fused pass's k_linear) */
 } type1_state;
 
 static void type1_law(const void *params, size_t k, double d, double L,
@@ -58,11 +59,43 @@ static void type1_batch(const void *params, size_t k0, size_t m,
     }
 }
 
+/* Type1, Type2 (when it follows) and the damping of their pairs in one
+ * pass, for forces alone (forces/term.h, fuse). */
+static size_t type1_fuse(void *state, const cl_term_type *const *next,
+                         void *const *next_state, size_t nnext, cl_eval *ev)
+{
+    cl_pairterm *pt[2] = {state, NULL};
+    size_t npt = 1;
+    if (nnext >= 1 && next[0] == &cl_term_type2)
+        pt[npt++] = next_state[0];
+    if (nnext < npt || next[npt - 1] != &cl_term_damping)
+        return 0;
+    return cl_damping_fused(next_state[npt - 1], pt, npt, ev) ? npt : 0;
+}
+
+/* The law as k (d - L) for the fused pass (forces/pairterm.h,
+ * k_linear): ks on every pair, nothing below L unless compression =
+ * spring. */
+static cl_status linear_law(type1_state *st, cl_error *err)
+{
+    size_t n = st->pt.set.n;
+    st->k = malloc((n + 1) * sizeof *st->k);
+    if (!st->k)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (type1)");
+    for (size_t k = 0; k < n; k++)
+        st->k[k] = st->ks;
+    st->pt.k_linear = st->k;
+    st->pt.k_tension_only = !st->linear;
+    return CL_OK;
+}
+
 static void type1_free(void *state)
 {
     type1_state *st = state;
-    if (st)
+    if (st) {
         cl_pairterm_free(&st->pt);
+        free(st->k);
+    }
     free(st);
 }
 
@@ -97,7 +130,8 @@ static cl_status type1_create(cl_config *cfg, const cl_cloth *cloth,
     if ((rc = cl_pairs_type1(cloth, &set, err)) ||
         (rc = cl_pairterm_init(&st->pt, set, type1_law, type1_batch, st,
                                opts->clamp_transverse, 1, err)) ||
-        (rc = cl_pairterm_tear(&st->pt, opts->tear_cut, err))) {
+        (rc = cl_pairterm_tear(&st->pt, opts->tear_cut, err)) ||
+        (rc = linear_law(st, err))) {
         type1_free(st);
         return rc;
     }
@@ -117,5 +151,6 @@ const cl_term_type cl_term_type1 = {
     .eval = cl_pairterm_eval,
     .step_done = cl_pairterm_step_done,
     .broken = cl_pairterm_broken,
+    .fuse = type1_fuse,
     .free = type1_free,
 };

@@ -39,6 +39,8 @@
 #define CROSS_SAMPLES 512
 #define MAX_CROSS 8
 #define QUAD_LIMIT 200
+#define CHEB_PIECES 8   /* G(e) on [j/8, (j+1)/8], j = 0..7 */
+#define CHEB_TERMS 16   /* Chebyshev coefficients per piece */
 
 typedef enum { TENSION_SPRING, TENSION_NONE } tension_kind;
 typedef enum { ASINC_EXACT, ASINC_SEED_POLY } asinc_kind;
@@ -61,6 +63,10 @@ typedef struct {
     rest_length *len;      /* distinct rest lengths */
     size_t *len_of;        /* pair -> index into len */
     gsl_integration_workspace *quad;
+    /* The exact model's G(e) = t^2 / D(t) by pieces (buckling_cheb) */
+    double cheb[CHEB_PIECES][CHEB_TERMS];
+    double *fbc, *fblim;   /* per pair: 4 kb/L^2 and -12 kb/L^2 (one
+                            * allocation, fbc first) */
 } type2_state;
 
 /* t = kappa L/2 at distance d < L, and dt/dd. */
@@ -257,48 +263,152 @@ static void linear_branches(const type2_state *st, size_t m, const double *d,
     }
 }
 
-/* f_b by the vectorised inverse sinc for the n pairs idx[] of a chunk
- * (exact model, forces only), s = max(f_b, cb (d - L)); the scalar path
- * where cl_asinc_1m_simd declines. */
-static void buckling_simd(const type2_state *st, size_t n, const size_t *idx,
-                          const double *d, const double *L, double *s)
+/* G(e) = t^2 / D(t) at t = asinc_1m(e) by the scalar functions (exact
+ * model): f_b = (4 kb / L^2) G (eq. 9) with e = (L - d) / L. */
+static double buckling_g(const type2_state *st, double e)
 {
-    double e[CL_PAIRKERN_CHUNK], t[CL_PAIRKERN_CHUNK], D[CL_PAIRKERN_CHUNK];
-    unsigned char ok[CL_PAIRKERN_CHUNK];
-    for (size_t j = 0; j < n; j++)
-        e[j] = (L[idx[j]] - d[idx[j]]) / L[idx[j]];
-    cl_asinc_1m_simd(n, e, t, D, ok);
-    for (size_t j = 0; j < n; j++) {
-        size_t i = idx[j];
-        double l = L[i], c = 4.0 * st->kb / (l * l);
-        double fb = ok[j] ? c * (t[j] * t[j] / D[j])
-                          : buckling_force(st, d[i], l, NULL);
-        double lin = st->cb * (d[i] - l);
-        s[i] = lin >= fb ? lin : fb;
+    double t = cl_asinc_1m(e), dD;
+    if (fabs(t) < 1e-8)
+        return -3.0; /* G(0) = 1 / (D''(0) / 2), D''(0) = -2/3 */
+    return t * t / denominator(st, t, &dD);
+}
+
+/* Chebyshev interpolation of G on each piece [j/P, (j+1)/P] of e in
+ * [0, 1] (P = CHEB_PIECES) at the CHEB_TERMS Chebyshev points of the
+ * first kind (Trefethen, "Approximation Theory and Approximation
+ * Practice", ch. 3 and 8).  G is analytic on [0, 1]: its nearest
+ * singularity is at e = 1.217 (t = 4.493, where g'(t) and D(t) vanish),
+ * so the last piece's coefficients fall by a factor of about 9 per
+ * degree and 16 terms leave an error below the scalar path's rounding
+ * (tests/test_type2.c: within 3.3e-15 relative of it over [0, 1]). */
+static void build_cheb(type2_state *st)
+{
+    const int N = CHEB_TERMS;
+    for (int j = 0; j < CHEB_PIECES; j++) {
+        double mid = (j + 0.5) / CHEB_PIECES, half = 0.5 / CHEB_PIECES;
+        double g[CHEB_TERMS];
+        for (int m = 0; m < N; m++)
+            g[m] = buckling_g(st, mid + half * cos(M_PI * (m + 0.5) / N));
+        for (int k = 0; k < N; k++) {
+            long double c = 0.0L;
+            for (int m = 0; m < N; m++)
+                c += (long double)g[m] * cos(M_PI * k * (m + 0.5) / N);
+            st->cheb[j][k] = (double)(c * (k ? 2.0L : 1.0L) / N);
+        }
     }
+}
+
+/* The exact model's tables: G's pieces, and per pair the factor
+ * 4 kb/L^2 of f_b and the bound -12 kb/L^2 above which cb (d - L) wins,
+ * formed once as the scalar law forms them. */
+static cl_status exact_setup(type2_state *st, cl_error *err)
+{
+    const cl_pairset *set = &st->pt.set;
+    build_cheb(st);
+    /* one block: fbc[0 .. n), then fblim[0 .. n) */
+    st->fbc = malloc(2 * (set->n + 1) * sizeof *st->fbc);
+    if (!st->fbc)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (type2)");
+    st->fblim = st->fbc + set->n + 1;
+    for (size_t k = 0; k < set->n; k++) {
+        double L2 = set->pair[k].rest * set->pair[k].rest;
+        st->fbc[k] = 4.0 * st->kb / L2;
+        st->fblim[k] = -12.0 * st->kb / L2;
+    }
+    return CL_OK;
+}
+
+/* G at e in [0, 1] from its piece's coefficients by Clenshaw's
+ * recurrence (Trefethen, ch. 3); the piece index clamped for e outside
+ * (the tension lanes, whose value is not used). */
+static inline double buckling_cheb(const double (*cheb)[CHEB_TERMS],
+                                   double e)
+{
+    double u = e * CHEB_PIECES;
+    int j = (int)u;
+    j = j < 0 ? 0 : j > CHEB_PIECES - 1 ? CHEB_PIECES - 1 : j;
+    double x = 2.0 * (u - j) - 1.0, b1 = 0.0, b2 = 0.0;
+#pragma GCC unroll 16
+    for (int k = CHEB_TERMS - 1; k > 0; k--) {
+        double b0 = cheb[j][k] + 2.0 * x * b1 - b2;
+        b2 = b1;
+        b1 = b0;
+    }
+    return cheb[j][0] + x * b1 - b2;
+}
+
+/* The exact model's linear branches over pairs [0, m) (those of the
+ * term from k0 on): s = ks (d - L) in tension, cb (d - L) in
+ * compression; need[i] where f_b may win (cb (d - L) < -12 kb/L^2), with
+ * e[i] = (L - d)/L. */
+CL_PAIR_KERNEL
+static void exact_linear(const type2_state *st, size_t k0, size_t m,
+                         const double *d, const double *L, double *s,
+                         double *e, unsigned char *need)
+{
+    double ks = st->tension == TENSION_SPRING ? st->ks : 0.0;
+    double cb = st->cb;
+    const double *restrict lim = st->fblim + k0;
+#pragma omp simd
+    for (size_t i = 0; i < m; i++) {
+        double dd = d[i], l = L[i], lin = cb * (dd - l);
+        bool tension = dd >= l;
+        s[i] = tension ? ks * (dd - l) : lin;
+        e[i] = (l - dd) / l;
+        need[i] = !tension && !(lin >= lim[i]);
+    }
+}
+
+/* f_b = (4 kb/L^2) G(e) of the n pairs idx[] (buckling_cheb). */
+CL_PAIR_KERNEL
+static void exact_fb(const type2_state *st, size_t k0, size_t n,
+                     const size_t *idx, const double *e, double *fb)
+{
+    const double(*cheb)[CHEB_TERMS] = st->cheb;
+    const double *restrict C = st->fbc + k0;
+#pragma omp simd
+    for (size_t j = 0; j < n; j++)
+        fb[j] = C[idx[j]] * buckling_cheb(cheb, e[idx[j]]);
+}
+
+/* The exact model's law s over pairs [0, m) (at most CL_PAIRKERN_CHUNK):
+ * the linear branches for all, s = max(f_b, cb (d - L)) where f_b may
+ * win, f_b by buckling_cheb for those alone. */
+static void exact_forces(const type2_state *st, size_t k0, size_t m,
+                         const double *d, const double *L, double *s)
+{
+    double e[CL_PAIRKERN_CHUNK], fb[CL_PAIRKERN_CHUNK];
+    unsigned char need[CL_PAIRKERN_CHUNK];
+    size_t idx[CL_PAIRKERN_CHUNK], n = 0;
+    exact_linear(st, k0, m, d, L, s, e, need);
+    for (size_t i = 0; i < m; i++) {
+        idx[n] = i;
+        n += need[i];
+    }
+    exact_fb(st, k0, n, idx, e, fb);
+    for (size_t j = 0; j < n; j++)
+        s[idx[j]] = s[idx[j]] >= fb[j] ? s[idx[j]] : fb[j];
 }
 
 /* Pairs [0, m) of at most CL_PAIRKERN_CHUNK.  s is the same with and
  * without ds (the Jacobian's forces are the right-hand side's, bit for
  * bit); s' of the f_b branch comes from the scalar law. */
-static void type2_piece(const type2_state *st, size_t m, const double *d,
-                        const double *L, double *s, double *ds)
+static void type2_piece(const type2_state *st, size_t k0, size_t m,
+                        const double *d, const double *L, double *s,
+                        double *ds)
 {
-    double dsw[CL_PAIRKERN_CHUNK], sw;
+    double dsw[CL_PAIRKERN_CHUNK], sw[CL_PAIRKERN_CHUNK], one;
     unsigned char need[CL_PAIRKERN_CHUNK];
-    size_t idx[CL_PAIRKERN_CHUNK], n = 0;
     bool exact = st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT;
-    linear_branches(st, m, d, L, s, ds ? ds : dsw, need);
+    if (exact)
+        exact_forces(st, k0, m, d, L, s);
+    if (exact && !ds)
+        return;
+    linear_branches(st, m, d, L, exact ? sw : s, ds ? ds : dsw, need);
     for (size_t i = 0; i < m; i++)
         if (need[i])
-            idx[n++] = i;
-    if (exact)
-        buckling_simd(st, n, idx, d, L, s);
-    for (size_t j = 0; j < n && (ds || !exact); j++) {
-        size_t i = idx[j];
-        compression_law(st, d[i], L[i], ds != NULL, exact ? &sw : &s[i],
-                        ds ? &ds[i] : &dsw[i]);
-    }
+            compression_law(st, d[i], L[i], ds != NULL, exact ? &one : &s[i],
+                            ds ? &ds[i] : &dsw[i]);
 }
 
 /* The law over pairs [k0, k0 + m) (cl_pairlaw_batch_fn). */
@@ -308,7 +418,8 @@ static void type2_batch(const void *params, size_t k0, size_t m,
 {
     for (size_t i = 0; i < m; i += CL_PAIRKERN_CHUNK) {
         size_t p = m - i < CL_PAIRKERN_CHUNK ? m - i : CL_PAIRKERN_CHUNK;
-        type2_piece(params, p, d + i, L + k0 + i, s + i, ds ? ds + i : NULL);
+        type2_piece(params, k0 + i, p, d + i, L + k0 + i, s + i,
+                    ds ? ds + i : NULL);
     }
 }
 
@@ -383,6 +494,7 @@ static void type2_free(void *state)
     cl_pairterm_free(&st->pt);
     free(st->len);
     free(st->len_of);
+    free(st->fbc); /* and fblim, in the same block */
     if (st->quad)
         gsl_integration_workspace_free(st->quad);
     free(st);
@@ -427,6 +539,9 @@ static cl_status type2_setup(type2_state *st, const cl_cloth *cloth,
         (rc = cl_pairterm_init(&st->pt, set, type2_law, type2_batch, st,
                                opts->clamp_transverse, 1, err)) ||
         (rc = cl_pairterm_tear(&st->pt, opts->tear_cut, err)))
+        return rc;
+    if (st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT &&
+        (rc = exact_setup(st, err)))
         return rc;
     return build_lengths(st, err);
 }

@@ -95,19 +95,34 @@ cl_status cl_fixed_create(const cl_fixed_method *m, const cl_system *sys,
     return CL_OK;
 }
 
-cl_status cl_fixed_accel(cl_fixed *s, double t, const double *x,
-                         const double *v, double *a, cl_error *err)
+/* a *= w, elementwise. */
+static void scale(size_t n, const double *restrict w, double *restrict a)
+{
+#pragma omp simd
+    for (size_t i = 0; i < n; i++)
+        a[i] *= w[i];
+}
+
+cl_status cl_fixed_force(cl_fixed *s, double t, const double *x,
+                         const double *v, double *f, cl_error *err)
 {
     const cl_system *sys = s->sys;
-    cl_status st = sys->force(sys->data, t, x, v, a);
+    cl_status st = sys->force(sys->data, t, x, v, f);
     s->nrhs++;
     if (st != CL_OK)
         return cl_error_set(err, st, "%s: force evaluation failed (%s) at "
                             "t = %.9g (step %ld, dt = %g)", s->method->name,
                             cl_status_name(st), t, s->done, s->dt);
-    for (size_t i = 0; i < s->n; i++)
-        a[i] *= s->inv_mass[i];
     return CL_OK;
+}
+
+cl_status cl_fixed_accel(cl_fixed *s, double t, const double *x,
+                         const double *v, double *a, cl_error *err)
+{
+    cl_status st = cl_fixed_force(s, t, x, v, a, err);
+    if (st == CL_OK)
+        scale(s->n, s->inv_mass, a);
+    return st;
 }
 
 /* The system's hooks after step `done`, if it has them: contact (the

@@ -120,6 +120,11 @@ cl_status cl_fixed_check(const char *name, const cl_system *sys, double dt,
  * the step. */
 cl_status cl_fixed_accel(cl_fixed *s, double t, const double *x,
                          const double *v, double *a, cl_error *err);
+/* f(t, x, v) alone, for a method that multiplies by s->inv_mass in its
+ * own loop (the same a = f M^-1, entry by entry); counted and checked as
+ * cl_fixed_accel. */
+cl_status cl_fixed_force(cl_fixed *s, double t, const double *x,
+                         const double *v, double *f, cl_error *err);
 
 /* Define the fixed-step method (registry name name_, stability region
  * region_, nwork_ work arrays, setup hook setup_ or NULL, step function

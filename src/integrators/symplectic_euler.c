@@ -13,17 +13,26 @@
  * symplectic-euler-x (symplectic_euler_x.c). */
 #include "integrators/fixed_step.h"
 
-/* w[0]: acceleration M^-1 f (n) */
+/* v += h a with a = f M^-1 (im: the inverse masses), then x += h v. */
+static void se_update(size_t n, double h, const double *restrict f,
+                      const double *restrict im, double *restrict x,
+                      double *restrict v)
+{
+#pragma omp simd
+    for (size_t i = 0; i < n; i++) {
+        v[i] += h * (f[i] * im[i]);
+        x[i] += h * v[i];
+    }
+}
+
+/* w[0]: the force f (n) */
 static cl_status se_step(cl_fixed *s, double t, double h, cl_error *err)
 {
-    double *a = s->w[0];
-    cl_status st = cl_fixed_accel(s, t, s->x, s->v, a, err);
+    double *f = s->w[0];
+    cl_status st = cl_fixed_force(s, t, s->x, s->v, f, err);
     if (st != CL_OK)
         return st;
-    for (size_t i = 0; i < s->n; i++) {
-        s->v[i] += h * a[i];
-        s->x[i] += h * s->v[i];
-    }
+    se_update(s->n, h, f, s->inv_mass, s->x, s->v);
     return CL_OK;
 }
 

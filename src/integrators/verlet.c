@@ -51,27 +51,74 @@ static cl_status verlet_project(cl_fixed *s, double t, double *xn,
     return CL_OK;
 }
 
-/* w[0]: acceleration, w[1]: x_{k-1}, w[2]: x_{k+1} (n each) */
+/* xo = x - h v + h^2/2 a, a = f M^-1 (im: the inverse masses): the
+ * consistent start. */
+static void verlet_start(size_t n, double h, const double *restrict x,
+                         const double *restrict v, const double *restrict f,
+                         const double *restrict im, double *restrict xo)
+{
+#pragma omp simd
+    for (size_t i = 0; i < n; i++)
+        xo[i] = x[i] - h * v[i] + 0.5 * h * h * (f[i] * im[i]);
+}
+
+/* xn = x + keep (x - xo) + h^2 a. */
+static void verlet_predict(size_t n, double keep, double h,
+                           const double *restrict x,
+                           const double *restrict xo,
+                           const double *restrict f,
+                           const double *restrict im, double *restrict xn)
+{
+#pragma omp simd
+    for (size_t i = 0; i < n; i++)
+        xn[i] = x[i] + keep * (x[i] - xo[i]) + h * h * (f[i] * im[i]);
+}
+
+/* v = (xn - x)/h, xo = x, x = xn. */
+static void verlet_shift(size_t n, double h, double *restrict x,
+                         double *restrict v, double *restrict xo,
+                         const double *restrict xn)
+{
+#pragma omp simd
+    for (size_t i = 0; i < n; i++) {
+        v[i] = (xn[i] - x[i]) / h;
+        xo[i] = x[i];
+        x[i] = xn[i];
+    }
+}
+
+/* verlet_predict and verlet_shift in one pass (no projection between). */
+static void verlet_both(size_t n, double keep, double h, double *restrict x,
+                        double *restrict v, double *restrict xo,
+                        const double *restrict f, const double *restrict im)
+{
+#pragma omp simd
+    for (size_t i = 0; i < n; i++) {
+        double xn = x[i] + keep * (x[i] - xo[i]) + h * h * (f[i] * im[i]);
+        v[i] = (xn - x[i]) / h;
+        xo[i] = x[i];
+        x[i] = xn;
+    }
+}
+
+/* w[0]: the force f, w[1]: x_{k-1}, w[2]: x_{k+1} (n each) */
 cl_status cl_verlet_step(cl_fixed *s, double t, double h, bool project,
                          cl_error *err)
 {
-    double *a = s->w[0], *xp = s->w[1], *xn = s->w[2], keep = 1.0 - s->param;
-    cl_status st = cl_fixed_accel(s, t, s->x, s->v, a, err);
+    double *f = s->w[0], *xp = s->w[1], *xn = s->w[2], keep = 1.0 - s->param;
+    cl_status st = cl_fixed_force(s, t, s->x, s->v, f, err);
     if (st != CL_OK)
         return st;
-    if (s->done == 0) {
-        for (size_t i = 0; i < s->n; i++)
-            xp[i] = s->x[i] - h * s->v[i] + 0.5 * h * h * a[i];
+    if (s->done == 0)
+        verlet_start(s->n, h, s->x, s->v, f, s->inv_mass, xp);
+    if (!project) {
+        verlet_both(s->n, keep, h, s->x, s->v, xp, f, s->inv_mass);
+        return CL_OK;
     }
-    for (size_t i = 0; i < s->n; i++)
-        xn[i] = s->x[i] + keep * (s->x[i] - xp[i]) + h * h * a[i];
-    if (project && (st = verlet_project(s, t + h, xn, err)) != CL_OK)
+    verlet_predict(s->n, keep, h, s->x, xp, f, s->inv_mass, xn);
+    if ((st = verlet_project(s, t + h, xn, err)) != CL_OK)
         return st;
-    for (size_t i = 0; i < s->n; i++) {
-        s->v[i] = (xn[i] - s->x[i]) / h;
-        xp[i] = s->x[i];
-        s->x[i] = xn[i];
-    }
+    verlet_shift(s->n, h, s->x, s->v, xp, xn);
     return CL_OK;
 }
 

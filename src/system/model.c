@@ -200,28 +200,30 @@ static cl_status build_pattern(cl_model *m, const int *dof, size_t nb,
 
 /* ---- evaluation ------------------------------------------------------- */
 
-/* Whether term k evaluated term k + 1 with it (both in mask, no
- * energies): their forces in one pass (forces/term.h, fuse), then their
- * Jacobian blocks, if asked for, term by term; so that a Jacobian's
+/* How many of the terms after k (all in mask, no energies) term k
+ * evaluated with it: their forces in one pass (forces/term.h, fuse), then
+ * their Jacobian blocks, if asked for, term by term; so that a Jacobian's
  * forces are bitwise those of the force evaluation. */
-static bool fused_with_next(cl_model *m, uint64_t mask, size_t k,
-                            const cl_eval *ev)
+static size_t fused_with_next(cl_model *m, uint64_t mask, size_t k,
+                              const cl_eval *ev)
 {
-    const cl_term_type *t = m->type[k], *next;
-    if (!ev->f || ev->want_energy || !t->fuse || k + 1 >= m->nterm ||
-        !(mask >> (k + 1) & 1))
-        return false;
-    next = m->type[k + 1];
+    const cl_term_type *t = m->type[k];
+    size_t nnext = 0;
+    if (!ev->f || ev->want_energy || !t->fuse)
+        return 0;
+    while (k + 1 + nnext < m->nterm && (mask >> (k + 1 + nnext) & 1))
+        nnext++;
+    if (!nnext)
+        return 0;
     cl_eval forces = *ev, blocks = *ev;
     forces.dfdx = forces.dfdv = NULL;
-    if (!t->fuse(m->state[k], next, m->state[k + 1], &forces))
-        return false;
+    size_t done = t->fuse(m->state[k], m->type + k + 1, m->state + k + 1,
+                          nnext, &forces);
     blocks.f = NULL;
-    if (blocks.dfdx || blocks.dfdv) {
-        t->eval(m->state[k], &blocks);
-        next->eval(m->state[k + 1], &blocks);
-    }
-    return true;
+    if (done && (blocks.dfdx || blocks.dfdv))
+        for (size_t j = 0; j <= done; j++)
+            m->type[k + j]->eval(m->state[k + j], &blocks);
+    return done;
 }
 
 /* Run the terms of mask (bit k: the k-th term) on the full arrays m->xf,
@@ -238,8 +240,9 @@ static void eval_terms(cl_model *m, uint64_t mask, double t, double *f,
             continue;
         cl_eval ev = {.t = t, .x = m->xf, .v = m->vf, .f = f,
                       .dfdx = dfdx, .dfdv = dfdv, .want_energy = e != NULL};
-        if (fused_with_next(m, mask, k, &ev)) {
-            k++;
+        size_t fused = fused_with_next(m, mask, k, &ev);
+        if (fused) {
+            k += fused;
             continue;
         }
         m->type[k]->eval(m->state[k], &ev);
