@@ -43,4 +43,10 @@ typedef struct {
 bool cl_penalty_eval(const cl_response_params *r, const cl_contact_point *q,
                      const double v[3], bool jac, cl_penalty_out *o);
 
+/* cl_penalty_eval without Jacobians (dfdx, dfdv left unset) of a contact
+ * point without derivatives (obstacle.h): the same force, energy and
+ * powers, bit for bit. */
+bool cl_penalty_force(const cl_response_params *r, const cl_contact_slim *q,
+                      const double v[3], cl_penalty_out *o);
+
 #endif
