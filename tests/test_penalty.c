@@ -2,11 +2,12 @@
  * exact Jacobians and its energy against central finite differences, on
  * every shape and region (sphere, plane, box face/edge/corner, a cube
  * mesh's face/edge/vertex), on moving and rotating obstacles, with damping
- * and friction. */
+ * and friction; the force without Jacobians against the full one. */
 #include <criterion/criterion.h>
 
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "contact/penalty.h"
 #include "obstaclecase.h"
@@ -162,4 +163,36 @@ Test(penalty, energy_and_law)
     double out[3] = {0.0, 1.2, 0.0};
     cr_expect_not(force_at(&o, 0.0, out, v, true, &a), "outside the band");
     cl_obstacle_free(&o);
+}
+
+/* cl_penalty_force gives cl_penalty_eval's force, energy and powers bit
+ * for bit, with and without friction and damping, in the band and out of
+ * it. */
+Test(penalty, force_without_jacobians_is_eval_s)
+{
+    static const double mu[] = {0.0, 0.5}, damping[] = {0.0, 1.0};
+    static const double d[] = {-0.003, 0.004, 0.012};
+    cl_response_params r = {.kind = CL_RESPONSE_PENALTY, .k = 20,
+                            .eps = 0.01, .v_smooth = 0.05};
+    const double v[3] = {0.3, -0.2, 0.05};
+    for (int a = 0; a < 2; a++)
+        for (int b = 0; b < 2; b++)
+            for (int c = 0; c < 3; c++) {
+                cl_contact_point q = {.d = d[c], .n = {0.6, 0.8, 0.0},
+                                      .u = {0.01, 0.0, -0.02}};
+                cl_contact_slim s = {.d = q.d, .n = {0.6, 0.8, 0.0},
+                                     .u = {0.01, 0.0, -0.02}};
+                cl_penalty_out e, f;
+                r.mu = mu[a];
+                r.damping = damping[b];
+                bool in = cl_penalty_eval(&r, &q, v, false, &e);
+                cr_assert_eq(cl_penalty_force(&r, &s, v, &f), in);
+                cr_assert_eq(in, d[c] < r.eps);
+                if (!in)
+                    continue;
+                cr_assert(!memcmp(e.f, f.f, sizeof e.f) &&
+                          e.energy == f.energy && e.power == f.power &&
+                          e.friction_power == f.friction_power);
+                cr_assert(e.energy > 0.0 && e.power <= 0.0);
+            }
 }
