@@ -309,8 +309,8 @@ static void reanchor(const double x[3], double moved, int ntried,
         tri[j] = c->tri[i];
     }
     memcpy(c->x0, x, sizeof c->x0);
-    memcpy(c->dist, dist, (size_t)c->n * sizeof *dist);
-    memcpy(c->tri, tri, (size_t)c->n * sizeof *tri);
+    memcpy(c->dist, dist, sizeof dist); /* whole: a fixed size, inlined */
+    memcpy(c->tri, tri, sizeof tri);
     c->r0 -= moved;
 }
 

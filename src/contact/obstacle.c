@@ -34,9 +34,13 @@ static void rotation(const double w[3], double t, double R[9])
 void cl_obstacle_pose(const cl_obstacle *o, double t, cl_pose *P)
 {
     P->t = t;
+    static const double identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     P->rotates = o->omega[0] != 0.0 || o->omega[1] != 0.0 ||
                  o->omega[2] != 0.0;
-    rotation(o->omega, t, P->R);
+    if (P->rotates)
+        rotation(o->omega, t, P->R);
+    else /* what rotation() gives for omega = 0, without sin and cos */
+        memcpy(P->R, identity, sizeof identity);
     const double *w = o->omega;
     double W[9] = {0.0, -w[2], w[1], w[2], 0.0, -w[0], -w[1], w[0], 0.0};
     memcpy(P->W, W, sizeof W);
@@ -81,12 +85,15 @@ static inline void to_shape(const cl_obstacle *o, const cl_pose *P,
 }
 
 /* y = R b (b itself when the obstacle does not rotate). */
-static void rotate(const cl_pose *P, const double b[3], double y[3])
+static inline void rotate(const cl_pose *P, const double b[3], double y[3])
 {
+    if (!P->rotates) {
+        memcpy(y, b, 3 * sizeof *y);
+        return;
+    }
     for (int i = 0; i < 3; i++)
-        y[i] = P->rotates ? P->R[3 * i] * b[0] + P->R[3 * i + 1] * b[1] +
-                                P->R[3 * i + 2] * b[2]
-                          : b[i];
+        y[i] = P->R[3 * i] * b[0] + P->R[3 * i + 1] * b[1] +
+               P->R[3 * i + 2] * b[2];
 }
 
 /* G = R Gb R^T */
