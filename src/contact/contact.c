@@ -282,16 +282,8 @@ static void penalty_forces(cl_contact *c, size_t k, const cl_pose *P,
 {
     const cl_obstacle *o = &c->obs[k];
     size_t nhit = gather_slim(c, k, P, ev, o->resp.eps);
-    for (size_t i = 0; i < nhit; i++) {
-        size_t p = c->near[i];
-        cl_penalty_out out;
-        if (!cl_penalty_force(&o->resp, &c->slim[i], ev->v + 3 * p, &out))
-            continue;
-        if (ev->f)
-            cl_v3_add(ev->f + 3 * p, out.f, ev->f + 3 * p);
-        *energy += out.energy;
-        *power += out.power;
-    }
+    cl_penalty_forces(&o->resp, c->slim, c->near, nhit, ev->v, ev->f, energy,
+                      power);
 }
 
 /* Add one particle's force and Jacobian blocks. */

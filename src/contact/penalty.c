@@ -76,10 +76,11 @@ static void penalty_jacobians(const cl_response_params *r,
 /* The law at distance d, normal n and obstacle velocity u: the force,
  * energy and powers into o; w = v - u, w_n, fe = k (eps - d), g and s
  * for the Jacobians. */
-static void law(const cl_response_params *r, double d, const double n[3],
-                const double u[3], const double v[3], double w[3],
-                double *wn, double *fe, double g[3], double *s,
-                cl_penalty_out *o)
+static inline void law(const cl_response_params *r, double d,
+                       const double n[3],
+                       const double u[3], const double v[3], double w[3],
+                       double *wn, double *fe, double g[3], double *s,
+                       cl_penalty_out *o)
 {
     double vt[3];
     cl_v3_sub(v, u, w);
@@ -113,12 +114,20 @@ bool cl_penalty_eval(const cl_response_params *r, const cl_contact_point *q,
     return true;
 }
 
-bool cl_penalty_force(const cl_response_params *r, const cl_contact_slim *q,
-                      const double v[3], cl_penalty_out *o)
+void cl_penalty_forces(const cl_response_params *r, const cl_contact_slim *q,
+                       const size_t *near, size_t n, const double *v,
+                       double *f, double *energy, double *power)
 {
-    if (!(q->d < r->eps))
-        return false;
-    double w[3], g[3], wn, fe, s;
-    law(r, q->d, q->n, q->u, v, w, &wn, &fe, g, &s, o);
-    return true;
+    for (size_t i = 0; i < n; i++) {
+        const double *vi = v + 3 * near[i];
+        double w[3], g[3], wn, fe, s;
+        cl_penalty_out o;
+        if (!(q[i].d < r->eps))
+            continue;
+        law(r, q[i].d, q[i].n, q[i].u, vi, w, &wn, &fe, g, &s, &o);
+        if (f)
+            cl_v3_add(f + 3 * near[i], o.f, f + 3 * near[i]);
+        *energy += o.energy;
+        *power += o.power;
+    }
 }
