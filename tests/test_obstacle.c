@@ -4,11 +4,13 @@
  * queries on a moved and turned shape, names and refusals, the
  * constraint response's keys, the times of impact of straight moves
  * (continuous collision detection) against every shape, static and
- * moving, and project's continuous detection against a moving box. */
+ * moving, project's continuous detection against a moving box, and the
+ * slim contact points (no derivatives) against the full ones. */
 #include <criterion/criterion.h>
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "contact/obstacle.h"
@@ -281,6 +283,119 @@ Test(obstacle, halfspace_screen_lists_exactly_the_near_points)
     cr_assert_eq(near[nnear - 1], NP - 1);
     cr_assert(closer > NP / 4 && closer < NP - NP / 4, "%zu", closer);
     cl_obstacle_free(&o);
+}
+
+/* Empty memos for np points, with their shape caches. */
+static cl_contact_memo *memos(const cl_obstacle *o, size_t np,
+                              unsigned char **cache)
+{
+    size_t size = o->type->cache_size;
+    cl_contact_memo *m = malloc(np * sizeof *m);
+    *cache = calloc(np, size ? size : 1);
+    cr_assert(m && *cache);
+    for (size_t p = 0; p < np; p++)
+        m[p] = (cl_contact_memo){.d = -INFINITY,
+                                 .cache = size ? *cache + p * size : NULL};
+    return m;
+}
+
+/* cl_obstacle_near_slim against cl_obstacle_near: NP points in a 12 cm
+ * shell about the surface take 200 small random steps, the obstacle
+ * moving; at each the points screened are queried both ways, each with
+ * its own memos, and the slim ones must be the points cl_obstacle_near
+ * finds within dmax, in order, with its d, n and u bit for bit. */
+static void slim_walk(const cl_obstacle *o, const double centre[3])
+{
+    enum { NP = 300 };
+    static double x[3 * NP];
+    static size_t listed[NP], kept[NP];
+    static cl_contact_slim slim[NP];
+    unsigned char *ca, *cb;
+    cl_contact_memo *ma = memos(o, NP, &ca), *mb = memos(o, NP, &cb);
+    unsigned long seed = 4242, found = 0;
+    for (size_t i = 0; i < 3 * NP; i++) {
+        seed = seed * 6364136223846793005UL + 1442695040888963407UL;
+        x[i] = centre[i % 3] +
+               (double)(seed >> 11) / 9007199254740992.0 - 0.5;
+    }
+    for (size_t p = 0; p < NP; p++) { /* to d in [-2, 10) cm */
+        cl_contact_point q;
+        cl_pose P;
+        cl_obstacle_pose(o, 0.0, &P);
+        cl_obstacle_near(o, &P, x + 3 * p, INFINITY, NULL, &q);
+        double move = q.d - (0.12 * (double)p / NP - 0.02);
+        for (int i = 0; i < 3; i++)
+            x[3 * p + i] -= move * q.n[i];
+    }
+    for (int step = 0; step < 200; step++) {
+        cl_pose P;
+        const double dmax = 0.01;
+        cl_obstacle_pose(o, 1e-3 * step, &P);
+        for (size_t i = 0; i < 3 * NP; i++) {
+            seed = seed * 6364136223846793005UL + 1442695040888963407UL;
+            x[i] += 2e-3 * ((double)(seed >> 11) / 9007199254740992.0 - 0.5);
+        }
+        size_t n = cl_obstacle_screen(o, &P, x, NP, dmax, mb, listed);
+        memcpy(kept, listed, n * sizeof *kept);
+        size_t nslim = cl_obstacle_near_slim(o, &P, x, dmax, mb, kept, n,
+                                             slim), k = 0;
+        for (size_t i = 0; i < n; i++) {
+            size_t p = listed[i];
+            cl_contact_point q;
+            if (!cl_obstacle_near(o, &P, x + 3 * p, dmax, &ma[p], &q))
+                continue;
+            cr_assert_lt(k, nslim, "step %d: point %zu missing", step, p);
+            cr_assert_eq(kept[k], p, "step %d", step);
+            cr_assert(slim[k].d == q.d &&
+                      !memcmp(slim[k].n, q.n, sizeof q.n) &&
+                      !memcmp(slim[k].u, q.u, sizeof q.u),
+                      "step %d, point %zu: d %.17g against %.17g", step, p,
+                      slim[k].d, q.d);
+            k++;
+        }
+        cr_assert_eq(k, nslim, "step %d", step);
+        found += k;
+    }
+    cr_assert_gt(found, 200 * NP / 20, "%lu points found", found);
+    free(ma);
+    free(mb);
+    free(ca);
+    free(cb);
+}
+
+Test(obstacle, slim_points_are_the_full_ones)
+{
+    static const char *const shapes[][NSET] = {
+        {"obstacle.o.shape = plane", "obstacle.o.point = 0.3, -1.2, 0.1",
+         "obstacle.o.normal = 0.1, 1, -0.2",
+         "obstacle.o.path = 0: 0, 0, 0; 1: 0.4, 0.2, 0", NULL},
+        {"obstacle.o.shape = plane", "obstacle.o.point = 0, -1, 0",
+         "obstacle.o.normal = 0, 1, 0", "obstacle.o.omega = 0.2, 0, 0.1",
+         NULL},
+        {"obstacle.o.shape = sphere", "obstacle.o.radius = 0.5",
+         "obstacle.o.path = 0: 0, 0, 0; 1: 0.3, 0, 0", NULL},
+        {"obstacle.o.shape = box", "obstacle.o.size = 1, 0.6, 0.8",
+         "obstacle.o.omega = 0, 0.3, 0", NULL},
+        {"obstacle.o.shape = mesh",
+         "obstacle.o.file = problems/meshes/sphere.obj",
+         "obstacle.o.scale = 0.5", NULL},
+        {"obstacle.o.shape = mesh",
+         "obstacle.o.file = problems/meshes/sphere.obj",
+         "obstacle.o.scale = 0.5", "obstacle.o.omega = 0, 0.3, 0.1",
+         "obstacle.o.path = 0: 0, 0, 0; 1: 0.2, 0, 0", NULL}};
+    static const double centre[][3] = {{0.3, -1.2, 0.1}, {0, -1, 0},
+                                       {0, 0, 0}, {0, 0, 0}, {0, 0, 0},
+                                       {0, 0, 0}};
+    for (size_t s = 0; s < sizeof shapes / sizeof *shapes; s++) {
+        const char *sets[NSET] = {"obstacle.o.response = penalty",
+                                  "obstacle.o.k = 1", NULL};
+        for (size_t k = 0; shapes[s][k]; k++)
+            sets[k + 2] = shapes[s][k];
+        cl_obstacle o;
+        make(&o, sets);
+        slim_walk(&o, centre[s]);
+        cl_obstacle_free(&o);
+    }
 }
 
 /* The time of impact of the move x0 -> x1 (obstacle o static at t = 0). */

@@ -2,11 +2,12 @@
  * exact Jacobians and its energy against central finite differences, on
  * every shape and region (sphere, plane, box face/edge/corner, a cube
  * mesh's face/edge/vertex), on moving and rotating obstacles, with damping
- * and friction. */
+ * and friction; the force without Jacobians against the full one. */
 #include <criterion/criterion.h>
 
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "contact/penalty.h"
 #include "obstaclecase.h"
@@ -162,4 +163,46 @@ Test(penalty, energy_and_law)
     double out[3] = {0.0, 1.2, 0.0};
     cr_expect_not(force_at(&o, 0.0, out, v, true, &a), "outside the band");
     cl_obstacle_free(&o);
+}
+
+/* cl_penalty_forces gives cl_penalty_eval's forces, energies and powers
+ * bit for bit, with and without friction and damping, in the band and out
+ * of it, summed in order; points out of the band add nothing. */
+Test(penalty, forces_without_jacobians_are_eval_s)
+{
+    static const double mu[] = {0.0, 0.5}, damping[] = {0.0, 1.0};
+    enum { N = 5 };
+    static const double d[N] = {-0.003, 0.004, 0.012, 0.0099, -1e-5};
+    static const size_t near[N] = {4, 0, 2, 1, 3};
+    cl_response_params r = {.kind = CL_RESPONSE_PENALTY, .k = 20,
+                            .eps = 0.01, .v_smooth = 0.05};
+    double v[3 * N];
+    for (int i = 0; i < 3 * N; i++)
+        v[i] = 0.1 * sin(1.0 + i);
+    for (int a = 0; a < 2; a++)
+        for (int b = 0; b < 2; b++) {
+            cl_contact_slim s[N];
+            double f[3 * N] = {0}, want[3 * N] = {0}, e = 0.5, p = -0.25;
+            double we = 0.5, wp = -0.25;
+            r.mu = mu[a];
+            r.damping = damping[b];
+            for (int i = 0; i < N; i++) {
+                cl_contact_point q = {.d = d[i], .n = {0.6, 0.0, 0.8},
+                                      .u = {0.01 * i, 0.0, -0.02}};
+                cl_penalty_out o;
+                s[i] = (cl_contact_slim){.d = q.d, .n = {0.6, 0.0, 0.8},
+                                         .u = {0.01 * i, 0.0, -0.02}};
+                if (!cl_penalty_eval(&r, &q, v + 3 * near[i], false, &o))
+                    continue;
+                for (int k = 0; k < 3; k++)
+                    want[3 * near[i] + k] += o.f[k];
+                we += o.energy;
+                wp += o.power;
+            }
+            cl_penalty_forces(&r, s, near, N, v, f, &e, &p);
+            cr_assert(!memcmp(f, want, sizeof f) && e == we && p == wp,
+                      "mu %g, damping %g", r.mu, r.damping);
+            cr_assert_eq(f[3 * near[2]], 0.0); /* out of the band */
+            cr_assert(e > 0.5 && (b == 0 && a == 0 ? p == -0.25 : p < -0.25));
+        }
 }

@@ -309,9 +309,20 @@ static void reanchor(const double x[3], double moved, int ntried,
         tri[j] = c->tri[i];
     }
     memcpy(c->x0, x, sizeof c->x0);
-    memcpy(c->dist, dist, (size_t)c->n * sizeof *dist);
-    memcpy(c->tri, tri, (size_t)c->n * sizeof *tri);
+    memcpy(c->dist, dist, sizeof dist); /* whole: a fixed size, inlined */
+    memcpy(c->tri, tri, sizeof tri);
     c->r0 -= moved;
+}
+
+/* Whether a triangle whose distance is at least `low` may be within the
+ * distance sqrt(best2) of the best so far: low <= sqrt(best2) without the
+ * square root, in squares with a slack of 1e-12 relative that covers
+ * their rounding (a triangle that low <= sqrt(best2) lets through is let
+ * through; one more let through is measured and found farther), so that
+ * the loop over the kept triangles does not wait for a square root. */
+static inline bool may_be_within(double low, double best2)
+{
+    return low <= 0.0 || low * low <= best2 * (1.0 + 1e-12);
 }
 
 /* The answer from the cache alone, if its certificate holds at x; the
@@ -320,20 +331,21 @@ static void reanchor(const double x[3], double moved, int ntried,
 static bool nearest_from_cache(const cl_bvh *b, const double x[3],
                                cl_bvh_cache *c, cl_bvh_hit *hit)
 {
-    double e[3], best = INFINITY;
+    double e[3], best2 = INFINITY;
     cl_tri_point at[CL_BVH_KEEP];
     int first = 0;  /* the first of those measured in the list's order */
     cl_v3_sub(x, c->x0, e);
     double moved = sqrt(cl_v3_dot(e, e));
     int i = 0;
-    for (; i < c->n && c->dist[i] - moved <= best; i++) {
+    for (; i < c->n && may_be_within(c->dist[i] - moved, best2); i++) {
         measure(b, c->tri[i], x, &at[i]);
         if (i == 0 ||
             precedes(at[i].dist2, c->tri[i], at[first].dist2, c->tri[first])) {
             first = i;
-            best = sqrt(at[first].dist2);
+            best2 = at[first].dist2;
         }
     }
+    double best = i > 0 ? sqrt(best2) : INFINITY;
     if (!(best < c->r0 - moved))
         return false;
     hit->tri = c->tri[first];

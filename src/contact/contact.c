@@ -25,6 +25,7 @@ struct cl_contact {
     unsigned char *cache;    /* the shapes' caches the memos point into */
     size_t *near;            /* scratch: the particles near one obstacle */
     cl_contact_point *hit;   /* scratch: their contact points */
+    cl_contact_slim *slim;   /* ... without derivatives (no Jacobian) */
     bool barriers;           /* some obstacle has response = barrier */
     bool infeasible;         /* the last evaluation had a free particle at
                                 d <= 0 of a barrier obstacle */
@@ -102,6 +103,7 @@ static void contact_free(void *state)
     free(c->cache);
     free(c->near);
     free(c->hit);
+    free(c->slim);
     free(c->slot);
     free(c->eval_x);
     free(c->eval_pose);
@@ -149,6 +151,7 @@ static cl_status contact_create(cl_config *cfg, const cl_cloth *cloth,
         !(c->memo = malloc(n * cloth->np * sizeof *c->memo)) ||
         !(c->near = malloc(cloth->np * sizeof *c->near)) ||
         !(c->hit = malloc(cloth->np * sizeof *c->hit)) ||
+        !(c->slim = malloc(cloth->np * sizeof *c->slim)) ||
         !(c->slot = malloc(cloth->np * sizeof *c->slot)) ||
         !(c->eval_x = malloc(3 * cloth->np * sizeof *c->eval_x)) ||
         !(c->eval_pose = calloc(n, sizeof *c->eval_pose)) ||
@@ -217,10 +220,23 @@ static void add_block(double *vals, long slot, const double b[9])
 }
 
 /* The particles with a block (the free particles; all of them for the
- * full Jacobian of `clothode eval`) within obstacle k's reach dmax at
- * pose P: their indices into c->near and contact points into c->hit, and
- * their number.  The deepest penetration of a free particle there is kept
- * in eval_worst[k] (every particle inside, d < 0 <= dmax, is within the
+ * full Jacobian of `clothode eval`) that obstacle k's screen at pose P
+ * does not show beyond its reach dmax, into c->near; their number. */
+static size_t screened(cl_contact *c, size_t k, const cl_pose *P,
+                       const cl_eval *ev, double dmax)
+{
+    size_t n = cl_obstacle_screen(&c->obs[k], P, ev->x, c->cloth->np, dmax,
+                                  memo_of(c, k, 0), c->near), m = 0;
+    for (size_t i = 0; i < n; i++)
+        if (c->slot[c->near[i]] >= 0)
+            c->near[m++] = c->near[i];
+    return m;
+}
+
+/* The particles with a block within obstacle k's reach dmax at pose P:
+ * their indices into c->near and contact points into c->hit, and their
+ * number.  The deepest penetration of a free particle there is kept in
+ * eval_worst[k] (every particle inside, d < 0 <= dmax, is within the
  * reach, so it is among those queried here).  The points are all queried
  * first and the laws applied after (by the caller), so that the laws
  * (square roots and divisions, independent of one another) overlap in the
@@ -229,21 +245,45 @@ static size_t gather(cl_contact *c, size_t k, const cl_pose *P,
                      const cl_eval *ev, double dmax)
 {
     const cl_obstacle *o = &c->obs[k];
-    size_t nnear = cl_obstacle_screen(o, P, ev->x, c->cloth->np, dmax,
-                                      memo_of(c, k, 0), c->near);
+    size_t nnear = screened(c, k, P, ev, dmax), nhit = 0;
     c->eval_worst[k] = 0.0;
-    size_t nhit = 0;
     for (size_t i = 0; i < nnear; i++) {
         size_t p = c->near[i];
         cl_contact_point *q = &c->hit[nhit];
-        if (c->slot[p] < 0 ||
-            !cl_obstacle_near(o, P, ev->x + 3 * p, dmax, memo_of(c, k, p), q))
+        if (!cl_obstacle_near(o, P, ev->x + 3 * p, dmax, memo_of(c, k, p), q))
             continue;
         if (c->cloth->dof[p] >= 0 && -q->d > c->eval_worst[k])
             c->eval_worst[k] = -q->d;  /* q.d < dmax: a number */
         c->near[nhit++] = p;
     }
     return nhit;
+}
+
+/* gather() without derivatives, the points into c->slim: what a force
+ * without its Jacobian reads. */
+static size_t gather_slim(cl_contact *c, size_t k, const cl_pose *P,
+                          const cl_eval *ev, double dmax)
+{
+    size_t nhit = cl_obstacle_near_slim(&c->obs[k], P, ev->x, dmax,
+                                        memo_of(c, k, 0), c->near,
+                                        screened(c, k, P, ev, dmax), c->slim);
+    c->eval_worst[k] = 0.0;
+    for (size_t i = 0; i < nhit; i++)
+        if (c->cloth->dof[c->near[i]] >= 0 &&
+            -c->slim[i].d > c->eval_worst[k])
+            c->eval_worst[k] = -c->slim[i].d;
+    return nhit;
+}
+
+/* The penalty forces of obstacle k (at pose P) without Jacobians, their
+ * energy and power added to *energy and *power. */
+static void penalty_forces(cl_contact *c, size_t k, const cl_pose *P,
+                           cl_eval *ev, double *energy, double *power)
+{
+    const cl_obstacle *o = &c->obs[k];
+    size_t nhit = gather_slim(c, k, P, ev, o->resp.eps);
+    cl_penalty_forces(&o->resp, c->slim, c->near, nhit, ev->v, ev->f, energy,
+                      power);
 }
 
 /* Add one particle's force and Jacobian blocks. */
@@ -311,6 +351,10 @@ static void contact_eval(void *state, cl_eval *ev)
         if (o->resp.kind == CL_RESPONSE_PROJECT)
             continue;
         cl_obstacle_pose(o, ev->t, P);
+        if (o->resp.kind == CL_RESPONSE_PENALTY && !jac) {
+            penalty_forces(c, k, P, ev, &energy, &power);
+            continue;
+        }
         bool barrier = o->resp.kind == CL_RESPONSE_BARRIER;
         size_t nhit = gather(c, k, P, ev,
                              barrier ? o->resp.dhat : o->resp.eps);

@@ -34,9 +34,13 @@ static void rotation(const double w[3], double t, double R[9])
 void cl_obstacle_pose(const cl_obstacle *o, double t, cl_pose *P)
 {
     P->t = t;
+    static const double identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     P->rotates = o->omega[0] != 0.0 || o->omega[1] != 0.0 ||
                  o->omega[2] != 0.0;
-    rotation(o->omega, t, P->R);
+    if (P->rotates)
+        rotation(o->omega, t, P->R);
+    else /* what rotation() gives for omega = 0, without sin and cos */
+        memcpy(P->R, identity, sizeof identity);
     const double *w = o->omega;
     double W[9] = {0.0, -w[2], w[1], w[2], 0.0, -w[0], -w[1], w[0], 0.0};
     memcpy(P->W, W, sizeof W);
@@ -81,12 +85,15 @@ static inline void to_shape(const cl_obstacle *o, const cl_pose *P,
 }
 
 /* y = R b (b itself when the obstacle does not rotate). */
-static void rotate(const cl_pose *P, const double b[3], double y[3])
+static inline void rotate(const cl_pose *P, const double b[3], double y[3])
 {
+    if (!P->rotates) {
+        memcpy(y, b, 3 * sizeof *y);
+        return;
+    }
     for (int i = 0; i < 3; i++)
-        y[i] = P->rotates ? P->R[3 * i] * b[0] + P->R[3 * i + 1] * b[1] +
-                                P->R[3 * i + 2] * b[2]
-                          : b[i];
+        y[i] = P->R[3 * i] * b[0] + P->R[3 * i + 1] * b[1] +
+               P->R[3 * i + 2] * b[2];
 }
 
 /* G = R Gb R^T */
@@ -140,38 +147,36 @@ void cl_obstacle_velocity(const cl_obstacle *o, const cl_pose *P,
     velocity_at(o, P, r, u);
 }
 
-/* The query at the shape-frame point X of x (r = x - q - s). */
-static void query_at(const cl_obstacle *o, const cl_pose *P,
-                     const double r[3], const double X[3], void *cache,
+/* The contact point of x (r = x - q - s) from the shape's answer b. */
+static void point_of(const cl_obstacle *o, const cl_pose *P,
+                     const double r[3], const cl_shape_query *b,
                      cl_contact_point *q)
 {
     double cb[3], c[3], qs[3];
-    cl_shape_query b;
-    o->type->query(o->shape, X, cache, &b);
-    cl_v3_sub(b.c, o->pivot, cb);
-    q->d = b.d;
+    cl_v3_sub(b->c, o->pivot, cb);
+    q->d = b->d;
     if (P->rotates) {
-        rotate(P, b.n, q->n);
+        rotate(P, b->n, q->n);
         rotate(P, cb, c);
     } else {
-        memcpy(q->n, b.n, sizeof q->n);
+        memcpy(q->n, b->n, sizeof q->n);
         memcpy(c, cb, sizeof c);
     }
     cl_v3_add(o->pivot, P->s, qs);    /* q + s + c */
     cl_v3_add(qs, c, q->c);
-    rotate_hessian(P, b.G, q->G);
+    rotate_hessian(P, b->G, q->G);
     velocity_at(o, P, r, q->u);
     memcpy(q->W, P->W, sizeof q->W);
 }
 
-/* cl_obstacle_near at the shape-frame point X of x (r = x - q - s).  A
- * point that was within dmax at its last query (a particle in contact)
- * is queried without the shape's lower bound, which would not skip it
- * (a mesh's box holds the surface near it); the answer is the query's
- * either way, only the memo may keep another bound. */
-static bool near_at(const cl_obstacle *o, const cl_pose *P,
-                    const double r[3], const double X[3], double dmax,
-                    cl_contact_memo *memo, cl_contact_point *q)
+/* The shape's answer b at the shape-frame point X, unless the memo (if
+ * not NULL) or the shape's lower bound of d shows d >= dmax; whether it
+ * was queried.  A point that was within dmax at its last query (a
+ * particle in contact) is queried without the shape's lower bound, which
+ * would not skip it (a mesh's box holds the surface near it).  The memo
+ * keeps the answer, or the bound. */
+static bool shape_at(const cl_obstacle *o, const double X[3], double dmax,
+                     cl_contact_memo *memo, cl_shape_query *b)
 {
     if (memo && memo_far_at(memo, X[0], X[1], X[2], dmax))
         return false;
@@ -180,13 +185,26 @@ static bool near_at(const cl_obstacle *o, const cl_pose *P,
                      ? o->type->lower_bound(o->shape, X)
                      : -INFINITY;
     if (low < dmax)
-        query_at(o, P, r, X, memo ? memo->cache : NULL, q);
+        o->type->query(o->shape, X, memo ? memo->cache : NULL, b);
     if (memo) {
         memcpy(memo->X, X, sizeof memo->X);
-        memo->d = low < dmax ? q->d : low;
+        memo->d = low < dmax ? b->d : low;
         memo->exact = low < dmax;
     }
-    return low < dmax && q->d < dmax;
+    return low < dmax;
+}
+
+/* cl_obstacle_near at the shape-frame point X of x (r = x - q - s); q is
+ * set whenever the shape was queried. */
+static bool near_at(const cl_obstacle *o, const cl_pose *P,
+                    const double r[3], const double X[3], double dmax,
+                    cl_contact_memo *memo, cl_contact_point *q)
+{
+    cl_shape_query b;
+    if (!shape_at(o, X, dmax, memo, &b))
+        return false;
+    point_of(o, P, r, &b, q);
+    return q->d < dmax;
 }
 
 bool cl_obstacle_near(const cl_obstacle *o, const cl_pose *P,
@@ -196,6 +214,54 @@ bool cl_obstacle_near(const cl_obstacle *o, const cl_pose *P,
     double r[3], X[3];
     to_shape(o, P, x, r, X);
     return near_at(o, P, r, X, dmax, memo, q);
+}
+
+/* cl_obstacle_near_slim of a half-space that does not rotate: d = n .
+ * (X - p), the shape's query itself (shape.h), without the memos. */
+static size_t halfspace_slim(const cl_obstacle *o, const cl_pose *P,
+                             const double *x, double dmax, size_t *near,
+                             size_t n, cl_contact_slim *q)
+{
+    double nrm[3], at[3];
+    size_t kept = 0;
+    o->type->halfspace(o->shape, nrm, at);
+    for (size_t i = 0; i < n; i++) {
+        size_t p = near[i];
+        double r[3], X[3], e[3];
+        to_shape(o, P, x + 3 * p, r, X);
+        cl_v3_sub(X, at, e);
+        double d = cl_v3_dot(nrm, e);
+        if (!(d < dmax))
+            continue;
+        q[kept].d = d;
+        memcpy(q[kept].n, nrm, sizeof nrm);
+        velocity_at(o, P, r, q[kept].u);
+        near[kept++] = p;
+    }
+    return kept;
+}
+
+size_t cl_obstacle_near_slim(const cl_obstacle *o, const cl_pose *P,
+                             const double *x, double dmax,
+                             cl_contact_memo *memo, size_t *near, size_t n,
+                             cl_contact_slim *q)
+{
+    if (!P->rotates && o->type->halfspace)
+        return halfspace_slim(o, P, x, dmax, near, n, q);
+    size_t kept = 0;
+    for (size_t i = 0; i < n; i++) {
+        size_t p = near[i];
+        double r[3], X[3];
+        cl_shape_query b;
+        to_shape(o, P, x + 3 * p, r, X);
+        if (!shape_at(o, X, dmax, &memo[p], &b) || !(b.d < dmax))
+            continue;
+        q[kept].d = b.d;
+        rotate(P, b.n, q[kept].n);
+        velocity_at(o, P, r, q[kept].u);
+        near[kept++] = p;
+    }
+    return kept;
 }
 
 bool cl_obstacle_depth(const cl_obstacle *o, const cl_pose *P,
@@ -224,9 +290,9 @@ static size_t screen_halfspace(const cl_obstacle *o, const cl_pose *P,
                                const double *x, size_t np, double dmax,
                                size_t *near)
 {
-    double nrm[3], c;
-    o->type->halfspace(o->shape, nrm, &c);
-    double cw = c + cl_v3_dot(nrm, P->s);
+    double nrm[3], at[3];
+    o->type->halfspace(o->shape, nrm, at);
+    double c = cl_v3_dot(nrm, at), cw = c + cl_v3_dot(nrm, P->s);
     double scale = fabs(c) + fabs(cw) + cl_v3_norm(P->s) +
                    cl_v3_norm(o->pivot);
     return cl_screen_halfspace(x, np, nrm, cw, scale, dmax, near);

@@ -60,6 +60,13 @@ typedef struct {
     double W[9];                /* du/dx = [omega]x, row-major */
 } cl_contact_point;
 
+/* A contact point without its derivatives (c, G, W): what a force
+ * without its Jacobian reads (cl_penalty_forces), 56 bytes a point of a
+ * scratch array instead of 224. */
+typedef struct {
+    double d, n[3], u[3];
+} cl_contact_slim;
+
 typedef struct {
     char name[64];
     const cl_shape_type *type;
@@ -112,6 +119,18 @@ typedef struct {
 bool cl_obstacle_near(const cl_obstacle *o, const cl_pose *P,
                       const double x[3], double dmax, cl_contact_memo *memo,
                       cl_contact_point *q);
+
+/* cl_obstacle_near of the points near[0..n) of x (3 per particle, the
+ * particles' indices in near[]; memo: the obstacle's memos, one per
+ * particle) without derivatives: those with d < dmax kept in near[], in
+ * their order, their points in q[]; their number.  d, n and u are
+ * cl_obstacle_near's, bit for bit.  A half-space that does not rotate
+ * (shape.h) answers without its memos: its distance is one dot product,
+ * and the memos it leaves stay valid bounds. */
+size_t cl_obstacle_near_slim(const cl_obstacle *o, const cl_pose *P,
+                             const double *x, double dmax,
+                             cl_contact_memo *memo, size_t *near, size_t n,
+                             cl_contact_slim *q);
 
 /* The signed distance d of x when it is below dmax (else false and d =
  * INFINITY): as cl_obstacle_near, but without a query when the memo has

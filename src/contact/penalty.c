@@ -73,28 +73,61 @@ static void penalty_jacobians(const cl_response_params *r,
     }
 }
 
+/* The law at distance d, normal n and obstacle velocity u: the force,
+ * energy and powers into o; w = v - u, w_n, fe = k (eps - d), g and s
+ * for the Jacobians. */
+static inline void law(const cl_response_params *r, double d,
+                       const double n[3],
+                       const double u[3], const double v[3], double w[3],
+                       double *wn, double *fe, double g[3], double *s,
+                       cl_penalty_out *o)
+{
+    double vt[3];
+    cl_v3_sub(v, u, w);
+    *fe = r->k * (r->eps - d);
+    *wn = cl_v3_dot(w, n);
+    cl_v3_scale(*fe * (1.0 - r->damping * *wn), n, o->f);
+    o->energy = 0.5 * r->k * (r->eps - d) * (r->eps - d);
+    o->friction_power = 0.0;
+    g[0] = g[1] = g[2] = *s = 0.0;
+    if (r->mu != 0.0) { /* without friction, g is not needed */
+        cl_v3_axpy(w, -*wn, n, vt);   /* w - w_n n */
+        *s = sqrt(cl_v3_dot(vt, vt) + r->v_smooth * r->v_smooth);
+        g[0] = vt[0] / *s;
+        g[1] = vt[1] / *s;
+        g[2] = vt[2] / *s;
+        cl_v3_axpy(o->f, -(r->mu * *fe), g, o->f);
+        o->friction_power = -r->mu * *fe * cl_v3_dot(g, vt);
+    }
+    o->power = -r->damping * *fe * *wn * *wn + o->friction_power;
+}
+
 bool cl_penalty_eval(const cl_response_params *r, const cl_contact_point *q,
                      const double v[3], bool jac, cl_penalty_out *o)
 {
     if (!(q->d < r->eps))
         return false;
-    double w[3], vt[3], g[3] = {0.0, 0.0, 0.0}, s = 0.0;
-    cl_v3_sub(v, q->u, w);
-    double fe = r->k * (r->eps - q->d), wn = cl_v3_dot(w, q->n);
-    cl_v3_scale(fe * (1.0 - r->damping * wn), q->n, o->f);
-    o->energy = 0.5 * r->k * (r->eps - q->d) * (r->eps - q->d);
-    o->friction_power = 0.0;
-    if (r->mu != 0.0) { /* without friction, g is not needed */
-        cl_v3_axpy(w, -wn, q->n, vt);   /* w - w_n n */
-        s = sqrt(cl_v3_dot(vt, vt) + r->v_smooth * r->v_smooth);
-        g[0] = vt[0] / s;
-        g[1] = vt[1] / s;
-        g[2] = vt[2] / s;
-        cl_v3_axpy(o->f, -(r->mu * fe), g, o->f);
-        o->friction_power = -r->mu * fe * cl_v3_dot(g, vt);
-    }
-    o->power = -r->damping * fe * wn * wn + o->friction_power;
+    double w[3], g[3], wn, fe, s;
+    law(r, q->d, q->n, q->u, v, w, &wn, &fe, g, &s, o);
     if (jac)
         penalty_jacobians(r, q, w, wn, fe, g, s, o);
     return true;
+}
+
+void cl_penalty_forces(const cl_response_params *r, const cl_contact_slim *q,
+                       const size_t *near, size_t n, const double *v,
+                       double *f, double *energy, double *power)
+{
+    for (size_t i = 0; i < n; i++) {
+        const double *vi = v + 3 * near[i];
+        double w[3], g[3], wn, fe, s;
+        cl_penalty_out o;
+        if (!(q[i].d < r->eps))
+            continue;
+        law(r, q[i].d, q[i].n, q[i].u, vi, w, &wn, &fe, g, &s, &o);
+        if (f)
+            cl_v3_add(f + 3 * near[i], o.f, f + 3 * near[i]);
+        *energy += o.energy;
+        *power += o.power;
+    }
 }

@@ -26,6 +26,7 @@
 #define CL_PENALTY_H
 
 #include <stdbool.h>
+#include <stddef.h>
 
 #include "contact/obstacle.h"
 
@@ -42,5 +43,15 @@ typedef struct {
  * jac is true. */
 bool cl_penalty_eval(const cl_response_params *r, const cl_contact_point *q,
                      const double v[3], bool jac, cl_penalty_out *o);
+
+/* cl_penalty_eval without Jacobians of n contact points without
+ * derivatives (obstacle.h), q[i] that of particle near[i] (velocity
+ * v + 3 near[i]): those in the band add their force to f + 3 near[i]
+ * (f may be NULL), their energy to *energy and their power to *power, in
+ * order; the same numbers as cl_penalty_eval's, bit for bit.  One loop
+ * with the law inlined, without a call a point. */
+void cl_penalty_forces(const cl_response_params *r, const cl_contact_slim *q,
+                       const size_t *near, size_t n, const double *v,
+                       double *f, double *energy, double *power);
 
 #endif

@@ -57,10 +57,13 @@ typedef struct {
      * the query (a mesh: the distance to its bounding box), so that
      * particles far from the shape skip the query. */
     double (*lower_bound)(const void *shape, const double x[3]);
-    /* Optional (NULL: none): a half-space's outward unit normal n and
-     * offset c, d(x) = n . x - c, so that a screen of many points is a dot
-     * product each instead of a look at each point's memo (obstacle.h). */
-    void (*halfspace)(const void *shape, double n[3], double *c);
+    /* Optional (NULL: none): a half-space's outward unit normal n and a
+     * point p of its boundary, d(x) = n . (x - p) computed as
+     * cl_v3_dot(n, x - p) (the query's d, bit for bit, with n its normal
+     * and G = 0), so that a screen of many points is a dot product each
+     * instead of a look at each point's memo, and a query without
+     * derivatives needs neither the query nor the memo (obstacle.h). */
+    void (*halfspace)(const void *shape, double n[3], double p[3]);
     /* Optional (NULL: the shape has no time of impact; response =
      * barrier and project's ccd need it): the least s in [0, 1] at which
      * the point a + s (b - a) of a segment that starts farther than

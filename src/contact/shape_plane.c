@@ -56,11 +56,11 @@ static void plane_query(const void *shape, const double x[3],
     memset(q->G, 0, sizeof q->G);
 }
 
-static void plane_halfspace(const void *shape, double n[3], double *c)
+static void plane_halfspace(const void *shape, double n[3], double p[3])
 {
     const plane *s = shape;
     memcpy(n, s->n, sizeof s->n);
-    *c = cl_v3_dot(s->n, s->p);
+    memcpy(p, s->p, sizeof s->p);
 }
 
 /* Where n . (x - p) - offset, linear along the segment, reaches 0. */
