@@ -159,8 +159,9 @@ test: deps
 	@! grep -E "(Address|Leak|UndefinedBehavior)Sanitizer|runtime error:" \
 	    $(BUILD)/test.log || (echo "sanitizer reports above" >&2; exit 1)
 
-# Benchmarks (README "Benchmarks"): the full set, under 20 minutes on two
-# cores; table on stdout, results/bench.csv.
+# Benchmarks (README "Benchmarks"): the full set (workloads 0-9 under 20
+# minutes on two cores, 10 and 11 tens of minutes each at their largest
+# sizes); table on stdout, results/bench.csv.
 bench: deps
 	$(MAKE) $(BENCHBIN)
 	$(BENCHBIN)
