@@ -5,8 +5,9 @@
  * branch).  The scalar forces are those of the energy path (the law pair
  * by pair); the scalar Jacobian is assembled here from the scalar law and
  * cl_pair_block (central pairs), or by the pair damping's own scalar loop.
- * Agreement to 1e-13 relative to the largest entry (Type2's f_b takes
- * libmvec's sin, a few ulp off glibc's scalar sin). */
+ * Agreement to 1e-13 relative to the largest entry (Type2's f_b comes
+ * from Chebyshev pieces of t^2/D(t), forces/type2.c, within a few ulp of
+ * the scalar law). */
 #include <criterion/criterion.h>
 
 #include <math.h>
