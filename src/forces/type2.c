@@ -65,8 +65,7 @@ typedef struct {
     gsl_integration_workspace *quad;
     /* The exact model's G(e) = t^2 / D(t) by pieces (buckling_cheb) */
     double cheb[CHEB_PIECES][CHEB_TERMS];
-    double *fbc, *fblim;   /* per pair: 4 kb/L^2 and -12 kb/L^2 (one
-                            * allocation, fbc first) */
+    double *fbc;           /* per pair: 4 kb/L^2 */
 } type2_state;
 
 /* t = kappa L/2 at distance d < L, and dt/dd. */
@@ -117,12 +116,19 @@ static double numerator_series(double t, double a)
     return sum * t;
 }
 
+/* The factor 4 kb/L^2 of f_b (eq. 9); exact f_b never exceeds -3 times
+ * it, the bound above which cb (d - L) wins. */
+static inline double buckling_scale(double kb, double L)
+{
+    return 4.0 * kb / (L * L);
+}
+
 /* f_b(d) and, if dfb is not NULL, df_b/dd (eq. 9 and its derivative). */
 static double buckling_force(const type2_state *st, double d, double L,
                              double *dfb)
 {
     double dt_dd, t = curvature_t(st, d, L, &dt_dd);
-    double c = 4.0 * st->kb / (L * L);
+    double c = buckling_scale(st->kb, L);
     if (fabs(t) < 1e-8) {
         /* G(t) = t^2/D(t) is even with G(0) = 1/(D''(0)/2). */
         double d2 = st->fbsinc == FBSINC_NORMALISED
@@ -151,7 +157,7 @@ static void compression_law(const type2_state *st, double d, double L,
     double lin = st->cb * (d - L);
     /* Exact f_b never exceeds -12 kb/L^2: skip asinc where cb wins. */
     if (st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT &&
-        lin >= -12.0 * st->kb / (L * L)) {
+        lin >= -3.0 * buckling_scale(st->kb, L)) {
         *s = lin;
         *ds = st->cb;
         return;
@@ -259,7 +265,8 @@ static void linear_branches(const type2_state *st, size_t m, const double *d,
         bool tension = dd >= l;
         s[i] = tension ? ks * (dd - l) : lin;
         ds[i] = tension ? ks : cb;
-        need[i] = !tension && !(exact && lin >= -12.0 * kb / (l * l));
+        need[i] =
+            !tension && !(exact && lin >= -3.0 * buckling_scale(kb, l));
     }
 }
 
@@ -299,21 +306,16 @@ static void build_cheb(type2_state *st)
 }
 
 /* The exact model's tables: G's pieces, and per pair the factor
- * 4 kb/L^2 of f_b and the bound -12 kb/L^2 above which cb (d - L) wins,
- * formed once as the scalar law forms them. */
+ * 4 kb/L^2 of f_b, formed once as the scalar law forms it. */
 static cl_status exact_setup(type2_state *st, cl_error *err)
 {
     const cl_pairset *set = &st->pt.set;
     build_cheb(st);
-    /* one block: fbc[0 .. n), then fblim[0 .. n) */
-    st->fbc = malloc(2 * (set->n + 1) * sizeof *st->fbc);
+    st->fbc = malloc((set->n + 1) * sizeof *st->fbc);
     if (!st->fbc)
         return cl_error_set(err, CL_ENOMEM, "out of memory (type2)");
-    st->fblim = st->fbc + set->n + 1;
     for (size_t k = 0; k < set->n; k++) {
-        double L2 = set->pair[k].rest * set->pair[k].rest;
-        st->fbc[k] = 4.0 * st->kb / L2;
-        st->fblim[k] = -12.0 * st->kb / L2;
+        st->fbc[k] = buckling_scale(st->kb, set->pair[k].rest);
     }
     return CL_OK;
 }
@@ -348,14 +350,14 @@ static void exact_linear(const type2_state *st, size_t k0, size_t m,
 {
     double ks = st->tension == TENSION_SPRING ? st->ks : 0.0;
     double cb = st->cb;
-    const double *restrict lim = st->fblim + k0;
+    const double *restrict C = st->fbc + k0;
 #pragma omp simd
     for (size_t i = 0; i < m; i++) {
         double dd = d[i], l = L[i], lin = cb * (dd - l);
         bool tension = dd >= l;
         s[i] = tension ? ks * (dd - l) : lin;
         e[i] = (l - dd) / l;
-        need[i] = !tension && !(lin >= lim[i]);
+        need[i] = !tension && !(lin >= -3.0 * C[i]);
     }
 }
 
@@ -494,7 +496,7 @@ static void type2_free(void *state)
     cl_pairterm_free(&st->pt);
     free(st->len);
     free(st->len_of);
-    free(st->fbc); /* and fblim, in the same block */
+    free(st->fbc);
     if (st->quad)
         gsl_integration_workspace_free(st->quad);
     free(st);

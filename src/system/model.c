@@ -258,13 +258,25 @@ static void eval_terms(cl_model *m, uint64_t mask, double t, double *f,
         e->contact_work = m->contact_work;
 }
 
+/* The state into the model's full arrays, after the stop check that
+ * makes every evaluation return CL_EINTR once a stop is requested
+ * (core/stop.h). */
+static cl_status model_scatter(cl_model *m, double t, const double *x,
+                               const double *v)
+{
+    if (cl_stop_requested())
+        return CL_EINTR;
+    cl_cloth_scatter(&m->cloth, t, x, v, m->xf, m->vf);
+    return CL_OK;
+}
+
 static cl_status sys_force_terms(void *data, uint64_t mask, double t,
                                  const double *x, const double *v, double *f)
 {
     cl_model *m = data;
-    if (cl_stop_requested())
-        return CL_EINTR;
-    cl_cloth_scatter(&m->cloth, t, x, v, m->xf, m->vf);
+    cl_status st = model_scatter(m, t, x, v);
+    if (st)
+        return st;
     eval_terms(m, mask, t, m->ff, NULL, NULL, NULL);
     cl_cloth_gather(&m->cloth, m->ff, f);
     if (m->contact && cl_contact_infeasible(m->contact))
@@ -297,13 +309,13 @@ static cl_status sys_jacobian_terms(void *data, uint64_t mask, double t,
                                     double *f, double *dfdx, double *dfdv)
 {
     cl_model *m = data;
-    if (cl_stop_requested())
-        return CL_EINTR;
+    cl_status st = model_scatter(m, t, x, v);
+    if (st)
+        return st;
     size_t nval = 9 * m->pattern.nnzb;
     int nt = m->sys.threads;
     zero_threads(dfdx, nval, nt);
     zero_threads(dfdv, nval, nt);
-    cl_cloth_scatter(&m->cloth, t, x, v, m->xf, m->vf);
     eval_terms(m, mask, t, f ? m->ff : NULL, dfdx, dfdv, NULL);
     if (f)
         cl_cloth_gather(&m->cloth, m->ff, f);
@@ -356,9 +368,9 @@ static cl_status sys_force_other(void *data, double t, const double *x,
                                  const double *v, double *f)
 {
     cl_model *m = data;
-    if (cl_stop_requested())
-        return CL_EINTR;
-    cl_cloth_scatter(&m->cloth, t, x, v, m->xf, m->vf);
+    cl_status st = model_scatter(m, t, x, v);
+    if (st)
+        return st;
     memset(m->ff, 0, 3 * m->cloth.np * sizeof *m->ff);
     for (size_t k = 0; k < m->nterm; k++) {
         cl_eval ev = {.t = t, .x = m->xf, .v = m->vf, .f = m->ff};
