@@ -14,6 +14,10 @@
  *  - a setup refreshing only the finest smoother solves hang's matrix to
  *    the tolerance, equal to KLU's solution;
  *  - the products by two threads give the solution of one, bit for bit;
+ *  - a solve whose preconditioner is made indefinite by a bad eigenvalue
+ *    bound (one estimate step, through PETSC_OPTIONS) is recovered: redone
+ *    on a hierarchy rebuilt with careful bounds, equal to KLU's solution,
+ *    counted once (lin_recoveries);
  *  - an indefinite A is CL_ESOLVER saying so. */
 #include <criterion/criterion.h>
 
@@ -134,6 +138,7 @@ static void am_equals_klu(const char *problem, const char *name)
     cr_assert_leq(diff, 1e-7);
     cr_assert_eq(sa.lin_setups, 1);
     cr_assert_eq(sa.symbolic_facts, 1);
+    cr_assert_eq(sa.lin_recoveries, 0);
     cr_assert_gt(sa.lin_iters, 0);
     free(y);
     am_free(&c);
@@ -291,6 +296,43 @@ Test(linsol_amg, smoother_refresh_equals_klu)
     cr_assert_leq((double)s.lin_iters, 1.5 * (double)sf.lin_iters);
     t->free(st);
     free(x);
+    free(y);
+    am_free(&c);
+}
+
+/* Chebyshev's bounds from one Lanczos step each (the Rayleigh quotient of
+ * a noisy vector, far below the largest eigenvalue of D^-1 A): the
+ * smoothers amplify the upper modes and CG finds the cycle indefinite at
+ * the first solve; the recovery rebuilds the hierarchy with
+ * CLP_AMG_RECOVER_STEPS steps per estimate (the option notwithstanding)
+ * and solves to the tolerance, equal to KLU's solution.  The option is
+ * read when PETSc starts, in this test's own process. */
+Test(linsol_amg, bad_bound_recovered)
+{
+    cr_assert_eq(setenv("PETSC_OPTIONS",
+                        "-clamg_mg_levels_ksp_chebyshev_esteig_steps 1", 1),
+                 0);
+    am_case c;
+    am_load(&c, "hang");
+    size_t n = c.sys->n;
+    cl_stats sk, sa;
+    am_solve(&c, "klu", c.xk, &sk);
+    am_solve(&c, "amg", c.x, &sa);
+    double *y = malloc(n * sizeof *y);
+    cr_assert_not_null(y);
+    const double a = 2.0 * AM_H / 3.0, b = 4.0 * AM_H * AM_H / 9.0;
+    cl_reduced_matvec(c.sys->pattern, c.sys->mass, a, b, c.dfdx, c.dfdv,
+                      c.x, y);
+    double res = am_norm(c.rhs, y, n) / am_norm(c.rhs, NULL, n);
+    double diff = am_norm(c.x, c.xk, n) / am_norm(c.xk, NULL, n);
+    cr_log_info("recovered: %ld solves, %ld iterations, residual %.3e, "
+                "|x - x_klu| / |x_klu| %.3e", sa.lin_solves, sa.lin_iters,
+                res, diff);
+    cr_assert_eq(sa.lin_recoveries, 1);
+    cr_assert_eq(sa.lin_solves, 2);
+    cr_assert_eq(sa.symbolic_facts, 2);
+    cr_assert_leq(res, 1e-10);
+    cr_assert_leq(diff, 1e-7);
     free(y);
     am_free(&c);
 }
