@@ -45,9 +45,9 @@
  * definite (MAT_SPD, for good: CG needs it so), and GAMG's Galerkin
  * operators inherit the mark; Chebyshev then estimates the largest
  * eigenvalue of D^-1 A on every level by Lanczos (CG, 10 steps) instead
- * of GMRES, whose 10 steps on the nonsymmetric D^-1 A fell short of the
- * largest eigenvalue by 17-25 % on hang (its Ritz values against 300
- * Lanczos steps; paper/findings.md).  The bound used is 1.1 times the
+ * of GMRES, whose 10 steps on the nonsymmetric D^-1 A fell 17 % short of
+ * the finest level's largest eigenvalue on hang at n = 64 and 256 (against
+ * 300 Lanczos steps; paper/findings.md, "Algebraic multigrid").  The bound used is 1.1 times the
  * estimate, and the degree-2 Chebyshev smoother over [0.1, 1.1] times the
  * estimate stops contracting in the energy norm above 1.2 times it
  * (where its residual polynomial reaches -1): an estimate short by more
@@ -305,7 +305,8 @@ static PetscErrorCode amg_careful_bounds(PC pc)
                                          &cheb)) || !cheb ||
             (ec = KSPChebyshevEstEigGetKSP(smooth, &est)) || !est)
             continue;
-        /* reset first: CG sizes its Lanczos coefficients by max_it */
+        /* reset first: CG sized its arrays of Lanczos coefficients by the
+         * max_it of its first setup */
         if (!(ec = KSPReset(est)) &&
             !(ec = KSPSetTolerances(est, PETSC_DEFAULT, PETSC_DEFAULT,
                                     PETSC_DEFAULT, CLP_AMG_RECOVER_STEPS)) &&
