@@ -144,6 +144,26 @@ Test(integrator, stats_csv_rows_parse_back)
     free(buf);
 }
 
+/* lin_recoveries (amg's recovered solves) is a row only when not 0, so
+ * that the stats.csv of every other run keeps its bytes. */
+Test(integrator, stats_recoveries_row_only_when_counted)
+{
+    cl_stats s = sample_stats();
+    char *buf = stats_text(&s, false);
+    cr_assert_null(strstr(buf, "recover"), "%s", buf);
+    free(buf);
+    s.lin_recoveries = 3;
+    buf = stats_text(&s, false);
+    cr_assert_not_null(strstr(buf, "\nlin_recoveries,3\n"), "%s", buf);
+    free(buf);
+    buf = stats_text(&s, true);
+    const char *row = strstr(buf, "linear solve recoveries");
+    cr_assert_not_null(row, "%s", buf);
+    cr_assert_eq(strtol(row + strlen("linear solve recoveries"), NULL, 10),
+                 3);
+    free(buf);
+}
+
 Test(integrator, stats_human_block_one_line_per_counter)
 {
     cl_stats s = sample_stats();

@@ -14,6 +14,10 @@
  *  - a setup refreshing only the finest smoother solves hang's matrix to
  *    the tolerance, equal to KLU's solution;
  *  - the products by two threads give the solution of one, bit for bit;
+ *  - a solve whose preconditioner is made indefinite by a bad eigenvalue
+ *    bound (one estimate step, through PETSC_OPTIONS) is recovered: redone
+ *    on a hierarchy rebuilt with careful bounds, equal to KLU's solution,
+ *    counted once (lin_recoveries);
  *  - an indefinite A is CL_ESOLVER saying so. */
 #include <criterion/criterion.h>
 
@@ -113,14 +117,16 @@ static double am_norm(const double *a, const double *b, size_t n)
     return sqrt(s);
 }
 
-static void am_equals_klu(const char *problem, const char *name)
+/* Solve `problem`'s system by KLU and by `name`: the latter's solution
+ * equals KLU's to the solver tolerance; its statistics into sa. */
+static void am_klu_run(const char *problem, const char *name, cl_stats *sa)
 {
     am_case c;
     am_load(&c, problem);
     size_t n = c.sys->n;
-    cl_stats sk, sa;
+    cl_stats sk;
     am_solve(&c, "klu", c.xk, &sk);
-    am_solve(&c, name, c.x, &sa);
+    am_solve(&c, name, c.x, sa);
     double *y = malloc(n * sizeof *y);
     cr_assert_not_null(y);
     const double a = 2.0 * AM_H / 3.0, b = 4.0 * AM_H * AM_H / 9.0;
@@ -128,15 +134,23 @@ static void am_equals_klu(const char *problem, const char *name)
                       c.x, y);
     double res = am_norm(c.rhs, y, n) / am_norm(c.rhs, NULL, n);
     double diff = am_norm(c.x, c.xk, n) / am_norm(c.xk, NULL, n);
-    cr_log_info("%s %s: %ld iterations, residual %.3e, |x - x_klu| / "
-                "|x_klu| %.3e", problem, name, sa.lin_iters, res, diff);
+    cr_log_info("%s %s: %ld solves, %ld iterations, residual %.3e, |x - "
+                "x_klu| / |x_klu| %.3e", problem, name, sa->lin_solves,
+                sa->lin_iters, res, diff);
     cr_assert_leq(res, 1e-10);
     cr_assert_leq(diff, 1e-7);
-    cr_assert_eq(sa.lin_setups, 1);
-    cr_assert_eq(sa.symbolic_facts, 1);
-    cr_assert_gt(sa.lin_iters, 0);
     free(y);
     am_free(&c);
+}
+
+static void am_equals_klu(const char *problem, const char *name)
+{
+    cl_stats sa;
+    am_klu_run(problem, name, &sa);
+    cr_assert_eq(sa.lin_setups, 1);
+    cr_assert_eq(sa.symbolic_facts, 1);
+    cr_assert_eq(sa.lin_recoveries, 0);
+    cr_assert_gt(sa.lin_iters, 0);
 }
 
 Test(linsol_amg, hang_equals_klu) { am_equals_klu("hang", "amg"); }
@@ -293,6 +307,25 @@ Test(linsol_amg, smoother_refresh_equals_klu)
     free(x);
     free(y);
     am_free(&c);
+}
+
+/* Chebyshev's bounds from one Lanczos step each (the Rayleigh quotient of
+ * a noisy vector, far below the largest eigenvalue of D^-1 A): the
+ * smoothers amplify the upper modes and CG finds the cycle indefinite at
+ * the first solve; the recovery rebuilds the hierarchy with
+ * CLP_AMG_RECOVER_STEPS steps per estimate (the option notwithstanding)
+ * and solves to the tolerance, equal to KLU's solution.  The option is
+ * read when PETSc starts, in this test's own process. */
+Test(linsol_amg, bad_bound_recovered)
+{
+    cr_assert_eq(setenv("PETSC_OPTIONS",
+                        "-clamg_mg_levels_ksp_chebyshev_esteig_steps 1", 1),
+                 0);
+    cl_stats sa;
+    am_klu_run("hang", "amg", &sa);
+    cr_assert_eq(sa.lin_recoveries, 1);
+    cr_assert_eq(sa.lin_solves, 2);
+    cr_assert_eq(sa.symbolic_facts, 2);
 }
 
 /* The indefinite chain of lscase.h. */

@@ -190,9 +190,9 @@ static cl_status w12_run(cl_bmodel *bm, cl_bench_row *row, double t_end,
     }
     row->cpu_a = c1 - c0;
     row->wall_a = w1 - w0;
-    cl_bench_note(row, "%ld steps; %ld multigrid builds, %ld setups, %.1f "
-                  "CG iterations per solve", st.steps, st.symbolic_facts,
-                  st.lin_setups,
+    cl_bench_note(row, "%ld steps; %ld multigrid builds, %ld setups, %ld "
+                  "recovered solves, %.1f CG iterations per solve", st.steps,
+                  st.symbolic_facts, st.lin_setups, st.lin_recoveries,
                   st.lin_solves ? (double)st.lin_iters / st.lin_solves : 0);
     free(x);
     free(v);

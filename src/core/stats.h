@@ -23,6 +23,8 @@ typedef struct {
     long lin_fallbacks;  /* setups a linear solver handed to another one
                           * (cholmod: matrix not SPD -> klu; auto: pcg
                           * failed -> direct) */
+    long lin_recoveries; /* failed linear solves redone on a rebuilt
+                          * preconditioner (amg); reported only if > 0 */
     char linsol[32];     /* linear solver(s) that did the work, '+'-joined
                           * ("klu-full", "cholmod+klu", "auto:pcg"); "" if
                           * none or not reported */

@@ -149,8 +149,9 @@ static void stats_counters(const cl_stats *s, long out[11])
 
 /* human: one aligned block "label  value", then wall and cpu in seconds;
  * otherwise one "name,value" row per counter (no header row), then the
- * linear solver's name (only when reported), without the times (stats.csv:
- * identical runs write identical bytes; the times go to run.json). */
+ * recovered linear solves and the linear solver's name (each only when
+ * reported), without the times (stats.csv: identical runs write identical
+ * bytes; the times go to run.json). */
 void cl_stats_print(const cl_stats *s, FILE *fp, bool human)
 {
     enum { NC = sizeof cl_counter_names / sizeof cl_counter_names[0] };
@@ -166,6 +167,11 @@ void cl_stats_print(const cl_stats *s, FILE *fp, bool human)
         else
             fprintf(fp, "%s,%ld\n", cl_counter_names[i].csv, c[i]);
     }
+    if (s->lin_recoveries > 0 && human)
+        fprintf(fp, "  %-28s %14ld\n", "linear solve recoveries",
+                s->lin_recoveries);
+    else if (s->lin_recoveries > 0)
+        fprintf(fp, "lin_recoveries,%ld\n", s->lin_recoveries);
     if (s->linsol[0] && human)
         fprintf(fp, "  %-28s %14s\n", "linear solver", s->linsol);
     else if (s->linsol[0])

@@ -259,6 +259,7 @@ static void red_stats(const void *data, cl_stats *out)
     out->lin_iters = ls.lin_iters;
     out->symbolic_facts = ls.symbolic_facts;
     out->lin_fallbacks = ls.lin_fallbacks;
+    out->lin_recoveries = ls.lin_recoveries;
     snprintf(out->linsol, sizeof out->linsol, "%s",
              ls.linsol[0] ? ls.linsol : r->lt->name);
 }

@@ -36,9 +36,14 @@
  * preconditioner.  The hierarchy is rebuilt at the first setup, and when
  * the last solve took more than CL_AMG_REGROW times the iterations of the
  * first solve after the last rebuild although the coarse operators are
- * fresh; a solve that fails on a reused hierarchy is redone once on a
- * fresh one.  Nothing is allocated by setup or solve on this side (PETSc
- * allocates within a rebuild).
+ * fresh.  Recovery: a solve that fails (CG finds the preconditioner
+ * indefinite, breaks down or reaches lin_maxit) is redone once on a
+ * hierarchy rebuilt from scratch whose smoothers' eigenvalue bounds are
+ * estimated with CLP_AMG_RECOVER_STEPS Lanczos steps instead of 10
+ * (linsol_amg_petsc.c), whether the failed hierarchy was reused or
+ * fresh; only if that fails too is the solve an error.  Nothing is
+ * allocated by setup or solve on this side (PETSc allocates within a
+ * rebuild).
  *
  * Tolerance: solve stops at ||b - A x||_2 <= lin_tol ||b||_2 (default
  * 1e-10, as pcg); solve_tol at ||w .* (b - A x)||_2 <= delta, ensured by
@@ -47,8 +52,10 @@
  * preconditioner), a breakdown or no convergence within lin_maxit
  * (default max(1000, 2n)) is CL_ESOLVER with PETSc's reason.
  *
- * Statistics: lin_setups (setups), lin_solves, lin_iters (CG iterations),
- * symbolic_facts (hierarchy rebuilds; the other setups reused it). */
+ * Statistics: lin_setups (setups), lin_solves, lin_iters (CG iterations,
+ * both attempts of a recovered solve), symbolic_facts (hierarchy
+ * rebuilds, recoveries' included; the other setups reused it),
+ * lin_recoveries (solves redone on a rebuilt hierarchy). */
 #include "linalg/linsol.h"
 
 #include <math.h>
@@ -85,12 +92,12 @@ typedef struct {
     void *h;                 /* the plug-in's solver */
     bool ready;              /* a setup succeeded */
     int hypre;
-    bool fresh;              /* the hierarchy was built at the last setup */
-    bool coarse_fresh;       /* ... or its coarse operators recomputed */
+    bool coarse_fresh;       /* the coarse operators computed at the last
+                              * setup (a build, or P^T A P on the kept P) */
     long base_iters;         /* first solve after the last rebuild; -1 */
     long cbase_iters;        /* ... after the coarse operators' last; -1 */
     long last_iters;         /* the last solve's */
-    long setups, rebuilds, solves, iters;
+    long setups, rebuilds, solves, iters, recoveries;
 } cl_amg;
 
 static void amg_free(void *state)
@@ -213,11 +220,10 @@ static cl_status amg_prepare(cl_amg *s, int mode, cl_error *err)
     if (s->setup(s->h, s->ablk, mode, &msg) != 0)
         return cl_error_set(err, CL_ESOLVER, "%s: %s", s->name, msg.text);
     s->ready = true;
-    s->fresh = mode == CLP_AMG_BUILD;
     s->coarse_fresh = mode != CLP_AMG_SMOOTHER;
     if (s->coarse_fresh)
         s->cbase_iters = -1;
-    if (s->fresh) {
+    if (mode == CLP_AMG_BUILD || mode == CLP_AMG_RECOVER) {
         s->rebuilds++;
         s->base_iters = -1;
         s->last_iters = 0;
@@ -280,8 +286,8 @@ static void amg_jacobian(void *state, const double *dfdx, const double *dfdv)
                                      s->threads);
 }
 
-/* CG to ||r||_2 <= max(rtol ||b||_2, atol); on a reused hierarchy that
- * fails, once more on a fresh one. */
+/* CG to ||r||_2 <= max(rtol ||b||_2, atol); if that fails, once more on
+ * a hierarchy rebuilt with careful eigenvalue bounds (CLP_AMG_RECOVER). */
 static cl_status amg_run(cl_amg *s, const double *rhs, double *x,
                          double rtol, double atol, cl_error *err)
 {
@@ -296,17 +302,20 @@ static cl_status amg_run(cl_amg *s, const double *rhs, double *x,
     int bad = s->solve(s->h, rhs, x, rtol, atol, &its, &msg);
     s->solves++;
     s->iters += its;
-    if (bad && !s->fresh) {
-        cl_status st = amg_prepare(s, CLP_AMG_BUILD, err);
+    if (bad) {
+        cl_status st = amg_prepare(s, CLP_AMG_RECOVER, err);
         if (st != CL_OK)
             return st;
+        s->recoveries++;
         msg.text[0] = '\0';
         bad = s->solve(s->h, rhs, x, rtol, atol, &its, &msg);
         s->solves++;
         s->iters += its;
     }
     if (bad)
-        return cl_error_set(err, CL_ESOLVER, "%s: %s", s->name, msg.text);
+        return cl_error_set(err, CL_ESOLVER, "%s: %s (also on a hierarchy "
+                            "rebuilt with careful eigenvalue bounds)",
+                            s->name, msg.text);
     s->last_iters = its;
     if (s->base_iters < 0 && its > 0)
         s->base_iters = its;
@@ -343,6 +352,7 @@ static void amg_stats(const void *state, cl_stats *out)
     out->lin_solves += s->solves;
     out->lin_iters += s->iters;
     out->symbolic_facts += s->rebuilds;
+    out->lin_recoveries += s->recoveries;
 }
 
 const cl_linsol_type cl_linsol_amg = {

@@ -24,7 +24,15 @@ enum {
      * level's smoother (its diagonal blocks and eigenvalue bound) on the
      * new A (amg-hypre: the whole preconditioner kept) */
     CLP_AMG_SMOOTHER,
+    /* a new hierarchy as CLP_AMG_BUILD, each level's Chebyshev bound
+     * estimated with CLP_AMG_RECOVER_STEPS Lanczos steps (the recovery
+     * from a failed solve; amg-hypre: as CLP_AMG_BUILD) */
+    CLP_AMG_RECOVER,
 };
+
+/* Lanczos steps of a recovery's eigenvalue estimates (PETSc's default for
+ * the other setups: 10). */
+#define CLP_AMG_RECOVER_STEPS 40
 
 /* y = A x, the caller's product (ctx: its own). */
 typedef void (*clp_amg_mult)(void *ctx, const double *x, double *y);

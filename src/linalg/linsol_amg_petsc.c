@@ -39,7 +39,22 @@
  * preconditioner kept with the old bound was found indefinite by CG
  * within two iterations, one step of semi-bdf2 on hang later).  hypre
  * cannot keep its interpolation, so either reuse keeps its whole
- * preconditioner. */
+ * preconditioner.
+ *
+ * Eigenvalue bounds.  The SeqAIJ copy is marked symmetric positive
+ * definite (MAT_SPD, for good: CG needs it so), and GAMG's Galerkin
+ * operators inherit the mark; Chebyshev then estimates the largest
+ * eigenvalue of D^-1 A on every level by Lanczos (CG, 10 steps) instead
+ * of GMRES, whose 10 steps on the nonsymmetric D^-1 A fell 17 % short of
+ * the finest level's largest eigenvalue on hang at n = 64 and 256 (against
+ * 300 Lanczos steps; paper/findings.md, "Algebraic multigrid").  The bound used is 1.1 times the
+ * estimate, and the degree-2 Chebyshev smoother over [0.1, 1.1] times the
+ * estimate stops contracting in the energy norm above 1.2 times it
+ * (where its residual polynomial reaches -1): an estimate short by more
+ * than that made the multigrid cycle indefinite.  CLP_AMG_RECOVER
+ * rebuilds the hierarchy and estimates every level's bound with
+ * CLP_AMG_RECOVER_STEPS Lanczos steps (kept by those levels until the
+ * next build). */
 #include <petscksp.h>
 #include <stdio.h>
 
@@ -134,8 +149,10 @@ static PetscErrorCode amg_matrix(clp_amg *s, const size_t *col)
     if (!(ec = MatCreate(PETSC_COMM_SELF, &s->A)) &&
         !(ec = MatSetSizes(s->A, s->n, s->n, s->n, s->n)) &&
         !(ec = MatSetBlockSize(s->A, 3)) &&
-        !(ec = MatSetType(s->A, MATSEQAIJ)))
-        ec = MatSeqAIJSetPreallocationCSR(s->A, ia, ja, NULL);
+        !(ec = MatSetType(s->A, MATSEQAIJ)) &&
+        !(ec = MatSeqAIJSetPreallocationCSR(s->A, ia, ja, NULL)) &&
+        !(ec = MatSetOption(s->A, MAT_SPD, PETSC_TRUE)))
+        ec = MatSetOption(s->A, MAT_SPD_ETERNAL, PETSC_TRUE);
     PetscErrorCode ec2 = PetscFree2(ia, ja);
     return ec ? ec : ec2;
 }
@@ -271,6 +288,37 @@ static PetscErrorCode amg_fine_smoother(clp_amg *s, PC pc)
     return KSPSetUp(smooth);
 }
 
+/* Every Chebyshev smoother's bound estimated again, by
+ * CLP_AMG_RECOVER_STEPS Lanczos steps: KSPChebyshevEstEigSet with the
+ * transform unchanged (PETSC_DECIDE) forgets the last estimate, and its
+ * operators set again make KSPSetUp make a new one. */
+static PetscErrorCode amg_careful_bounds(PC pc)
+{
+    PetscInt levels = 0;
+    PetscErrorCode ec = PCMGGetLevels(pc, &levels);
+    for (PetscInt l = 1; !ec && l < levels; l++) {
+        KSP smooth, est = NULL;
+        Mat op, pmat;
+        PetscBool cheb = PETSC_FALSE;
+        if ((ec = PCMGGetSmoother(pc, l, &smooth)) ||
+            (ec = PetscObjectTypeCompare((PetscObject)smooth, KSPCHEBYSHEV,
+                                         &cheb)) || !cheb ||
+            (ec = KSPChebyshevEstEigGetKSP(smooth, &est)) || !est)
+            continue;
+        /* reset first: CG sized its arrays of Lanczos coefficients by the
+         * max_it of its first setup */
+        if (!(ec = KSPReset(est)) &&
+            !(ec = KSPSetTolerances(est, PETSC_DEFAULT, PETSC_DEFAULT,
+                                    PETSC_DEFAULT, CLP_AMG_RECOVER_STEPS)) &&
+            !(ec = KSPChebyshevEstEigSet(smooth, PETSC_DECIDE, PETSC_DECIDE,
+                                         PETSC_DECIDE, PETSC_DECIDE)) &&
+            !(ec = KSPGetOperators(smooth, &op, &pmat)) &&
+            !(ec = KSPSetOperators(smooth, op, pmat)))
+            ec = KSPSetUp(smooth);
+    }
+    return ec;
+}
+
 int clp_amg_setup(void *handle, const double *ablk, int mode,
                   cl_plugin_msg *msg)
 {
@@ -279,17 +327,16 @@ int clp_amg_setup(void *handle, const double *ablk, int mode,
     PetscErrorCode ec;
     /* GAMG's smoother-only refresh keeps the whole preconditioner but the
      * finest smoother; hypre keeps all of it on any reuse */
-    int keep = mode == CLP_AMG_SMOOTHER ||
-               (s->hypre && mode != CLP_AMG_BUILD);
+    int build = mode == CLP_AMG_BUILD || mode == CLP_AMG_RECOVER;
+    int keep = mode == CLP_AMG_SMOOTHER || (s->hypre && !build);
     if ((ec = amg_values(s, ablk)))
         return amg_fail(msg, "writing the matrix values", ec);
     if ((ec = KSPGetPC(s->ksp, &pc)))
         return amg_fail(msg, "KSPGetPC", ec);
     ec = KSPSetReusePreconditioner(s->ksp, keep ? PETSC_TRUE : PETSC_FALSE);
     if (!ec && !s->hypre)
-        ec = PCGAMGSetReuseInterpolation(pc, mode == CLP_AMG_BUILD
-                                                 ? PETSC_FALSE
-                                                 : PETSC_TRUE);
+        ec = PCGAMGSetReuseInterpolation(pc, build ? PETSC_FALSE
+                                                   : PETSC_TRUE);
     if (ec)
         return amg_fail(msg, "setting the reuse", ec);
     if ((ec = KSPSetOperators(s->ksp, s->op, s->A)) ||
@@ -297,6 +344,9 @@ int clp_amg_setup(void *handle, const double *ablk, int mode,
         return amg_fail(msg, "the multigrid setup (KSPSetUp)", ec);
     if (keep && !s->hypre && (ec = amg_fine_smoother(s, pc)))
         return amg_fail(msg, "the finest smoother's setup", ec);
+    if (mode == CLP_AMG_RECOVER && !s->hypre &&
+        (ec = amg_careful_bounds(pc)))
+        return amg_fail(msg, "the smoothers' eigenvalue estimates", ec);
     return 0;
 }
 
@@ -314,11 +364,20 @@ static int amg_outcome(clp_amg *s, long *iters, cl_plugin_msg *msg)
     *iters = its;
     if (why > 0)
         return 0;
+    /* a Lanczos eigenvalue estimate of a smoother breaks down on an
+     * indefinite matrix: the preconditioner then fails */
+    PC pc;
+    PCFailedReason pcwhy = PC_NOERROR;
+    if (why == KSP_DIVERGED_PC_FAILED &&
+        ((ec = KSPGetPC(s->ksp, &pc)) || (ec = PCGetFailedReason(pc, &pcwhy))))
+        return amg_fail(msg, "KSPSolve", ec);
     snprintf(msg->text, sizeof msg->text, "CG stopped after %d iterations: "
-             "%s (residual %.6g)%s", (int)its, KSPConvergedReasons[why],
-             (double)res,
+             "%s%s%s (residual %.6g)%s", (int)its, KSPConvergedReasons[why],
+             pcwhy != PC_NOERROR ? " " : "",
+             pcwhy != PC_NOERROR ? PCFailedReasons[pcwhy] : "", (double)res,
              why == KSP_DIVERGED_INDEFINITE_MAT ||
-                     why == KSP_DIVERGED_INDEFINITE_PC
+                     why == KSP_DIVERGED_INDEFINITE_PC ||
+                     why == KSP_DIVERGED_PC_FAILED
                  ? ": the matrix M - a df/dv - b df/dx (or its multigrid "
                    "preconditioner) is not positive definite"
                  : "");

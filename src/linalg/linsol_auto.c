@@ -306,6 +306,7 @@ static void auto_stats(const void *state, cl_stats *out)
     out->lin_iters += d.lin_iters;
     out->symbolic_facts += d.symbolic_facts;
     out->lin_fallbacks += d.lin_fallbacks + s->fallbacks;
+    out->lin_recoveries += d.lin_recoveries;
     snprintf(out->linsol, sizeof out->linsol, "auto:%s%s%s%s%.18s",
              s->used_pcg ? "pcg" : "",
              s->used_pcg && s->used_amg ? "+" : "",
