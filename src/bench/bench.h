@@ -59,8 +59,9 @@
  *      or better error (clothode's rtol tightened from 1e-4 as in
  *      workload 1); goal: clothode >= 3x faster.  PETSc's CPU budget is 4
  *      times clothode's at rtol 1e-4: stopped there, the goal is met.
- *  12  hang n = 256, T = 2 s by semi-bdf2 --linsol amg at dt = 1e-2: CPU
- *      seconds, goal <= 600; run only when named (--only 12).
+ *  12  hang n = 256, T = 2 s by semi-bdf2 --linsol amg at dt = 1e-2, lin_tol
+ *      1e-6 (bench_amg.c): CPU seconds, goal <= 600; run only when named
+ *      (--only 12).
  *  13  semi-bdf2 with pcg on hang at n = 128 (--quick: 64): wall time
  *      per step with one thread over that with --threads 2 (forces,
  *      Jacobians, the solver's products; system/model.h); goal >= 1.6x.
