@@ -324,6 +324,7 @@ Test(linsol_amg, bad_bound_recovered)
     cl_stats sa;
     am_klu_run("hang", "amg", &sa);
     cr_assert_eq(sa.lin_recoveries, 1);
+    cr_assert_eq(sa.lin_setups, 1);
     cr_assert_eq(sa.lin_solves, 2);
     cr_assert_eq(sa.symbolic_facts, 2);
 }
@@ -350,6 +351,13 @@ Test(linsol_amg, indefinite_reported)
     cr_assert_not_null(strstr(err.msg, "amg: "), "%s", err.msg);
     cr_assert_not_null(strstr(err.msg, "not positive definite"), "%s",
                        err.msg);
+    /* the solve was redone once, on a rebuilt hierarchy, before failing */
+    cr_assert_not_null(strstr(err.msg, "(also on a hierarchy rebuilt with "
+                              "careful eigenvalue bounds)"), "%s", err.msg);
+    cl_stats sa = {0};
+    t->stats(st, &sa);
+    cr_assert_eq(sa.lin_recoveries, 1);
+    cr_assert_eq(sa.symbolic_facts, 2);
     t->free(st);
     ls_free(&c);
 }

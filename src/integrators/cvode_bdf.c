@@ -29,8 +29,8 @@
  * lin_solves = solve calls (one per Newton iteration), symbolic_facts = KLU
  * symbolic analyses, 1 for the whole run with the fixed pattern;
  * lin_setups = KLU factor or refactor calls, lin_iters = 0.  Half-size
- * solvers: lin_solves, lin_iters, symbolic_facts, lin_fallbacks from the
- * cl_linsol.  linsol names the solver; rhs_evals = CVODE's RHS evaluations
+ * solvers: lin_solves, lin_iters, symbolic_facts, lin_fallbacks,
+ * lin_recoveries from the cl_linsol.  linsol names the solver; rhs_evals = CVODE's RHS evaluations
  * (none for the Jacobian, which is analytic). */
 #include "integrators/integrator.h"
 

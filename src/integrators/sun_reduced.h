@@ -140,7 +140,8 @@
  *   klu, pcg, pcg-jacobi, cholmod, auto
  *             the half-size solver above with that cl_linsol (options
  *             lin_tol, lin_maxit); statistics lin_solves, lin_iters,
- *             symbolic_facts, lin_fallbacks and linsol from the cl_linsol
+ *             symbolic_facts, lin_fallbacks, lin_recoveries and linsol
+ *             from the cl_linsol
  *             (steps, setups, Jacobian evaluations stay the
  *             integrator's); a failure's message ends with the last
  *             linear-solver failure.

@@ -79,8 +79,8 @@ typedef struct {
     void (*cost)(const void *state, double *setup_flops,
                  double *solve_flops);
     /* Add this solver's counters: lin_setups, lin_solves, lin_iters,
-     * symbolic_facts, lin_fallbacks; a solver that can hand work to
-     * another one also writes the names into linsol. */
+     * symbolic_facts, lin_fallbacks, lin_recoveries; a solver that can
+     * hand work to another one also writes the names into linsol. */
     void (*stats)(const void *state, cl_stats *s);
     void (*free)(void *state);
     /* Triangular factors kept: 2 (LU), 1 (Cholesky), 0 (iterative), for

@@ -40,10 +40,12 @@
  * indefinite, breaks down or reaches lin_maxit) is redone once on a
  * hierarchy rebuilt from scratch whose smoothers' eigenvalue bounds are
  * estimated with CLP_AMG_RECOVER_STEPS Lanczos steps instead of 10
- * (linsol_amg_petsc.c), whether the failed hierarchy was reused or
- * fresh; only if that fails too is the solve an error.  Nothing is
- * allocated by setup or solve on this side (PETSc allocates within a
- * rebuild).
+ * (linsol_amg_petsc.c, kept until the next build), whether the failed
+ * hierarchy was reused or fresh (amg-hypre, without such bounds: on a
+ * rebuilt preconditioner, only if the failed one was kept); only if that
+ * fails too is the solve an error.  Nothing is allocated by setup or
+ * solve on this side (PETSc allocates within its setups: the eigenvalue
+ * estimates' work arrays, and everything of a rebuild).
  *
  * Tolerance: solve stops at ||b - A x||_2 <= lin_tol ||b||_2 (default
  * 1e-10, as pcg); solve_tol at ||w .* (b - A x)||_2 <= delta, ensured by
@@ -92,8 +94,9 @@ typedef struct {
     void *h;                 /* the plug-in's solver */
     bool ready;              /* a setup succeeded */
     int hypre;
-    bool coarse_fresh;       /* the coarse operators computed at the last
-                              * setup (a build, or P^T A P on the kept P) */
+    bool fresh;              /* the hierarchy was built at the last setup */
+    bool coarse_fresh;       /* ... or its coarse operators computed (a
+                              * build, or P^T A P on the kept P) */
     long base_iters;         /* first solve after the last rebuild; -1 */
     long cbase_iters;        /* ... after the coarse operators' last; -1 */
     long last_iters;         /* the last solve's */
@@ -220,10 +223,11 @@ static cl_status amg_prepare(cl_amg *s, int mode, cl_error *err)
     if (s->setup(s->h, s->ablk, mode, &msg) != 0)
         return cl_error_set(err, CL_ESOLVER, "%s: %s", s->name, msg.text);
     s->ready = true;
+    s->fresh = mode == CLP_AMG_BUILD || mode == CLP_AMG_RECOVER;
     s->coarse_fresh = mode != CLP_AMG_SMOOTHER;
     if (s->coarse_fresh)
         s->cbase_iters = -1;
-    if (mode == CLP_AMG_BUILD || mode == CLP_AMG_RECOVER) {
+    if (s->fresh) {
         s->rebuilds++;
         s->base_iters = -1;
         s->last_iters = 0;
@@ -287,7 +291,8 @@ static void amg_jacobian(void *state, const double *dfdx, const double *dfdv)
 }
 
 /* CG to ||r||_2 <= max(rtol ||b||_2, atol); if that fails, once more on
- * a hierarchy rebuilt with careful eigenvalue bounds (CLP_AMG_RECOVER). */
+ * a hierarchy rebuilt with careful eigenvalue bounds (CLP_AMG_RECOVER;
+ * hypre, which has no such bounds: only if the failed one was kept). */
 static cl_status amg_run(cl_amg *s, const double *rhs, double *x,
                          double rtol, double atol, cl_error *err)
 {
@@ -302,7 +307,8 @@ static cl_status amg_run(cl_amg *s, const double *rhs, double *x,
     int bad = s->solve(s->h, rhs, x, rtol, atol, &its, &msg);
     s->solves++;
     s->iters += its;
-    if (bad) {
+    bool retry = bad && (!s->hypre || !s->fresh);
+    if (retry) {
         cl_status st = amg_prepare(s, CLP_AMG_RECOVER, err);
         if (st != CL_OK)
             return st;
@@ -313,9 +319,11 @@ static cl_status amg_run(cl_amg *s, const double *rhs, double *x,
         s->iters += its;
     }
     if (bad)
-        return cl_error_set(err, CL_ESOLVER, "%s: %s (also on a hierarchy "
-                            "rebuilt with careful eigenvalue bounds)",
-                            s->name, msg.text);
+        return cl_error_set(err, CL_ESOLVER, "%s: %s%s", s->name, msg.text,
+                            !retry ? ""
+                            : s->hypre ? " (also on a rebuilt preconditioner)"
+                                       : " (also on a hierarchy rebuilt with "
+                                         "careful eigenvalue bounds)");
     s->last_iters = its;
     if (s->base_iters < 0 && its > 0)
         s->base_iters = its;

@@ -42,19 +42,21 @@
  * preconditioner.
  *
  * Eigenvalue bounds.  The SeqAIJ copy is marked symmetric positive
- * definite (MAT_SPD, for good: CG needs it so), and GAMG's Galerkin
- * operators inherit the mark; Chebyshev then estimates the largest
- * eigenvalue of D^-1 A on every level by Lanczos (CG, 10 steps) instead
- * of GMRES, whose 10 steps on the nonsymmetric D^-1 A fell 17 % short of
- * the finest level's largest eigenvalue on hang at n = 64 and 256 (against
- * 300 Lanczos steps; paper/findings.md, "Algebraic multigrid").  The bound used is 1.1 times the
- * estimate, and the degree-2 Chebyshev smoother over [0.1, 1.1] times the
- * estimate stops contracting in the energy norm above 1.2 times it
- * (where its residual polynomial reaches -1): an estimate short by more
- * than that made the multigrid cycle indefinite.  CLP_AMG_RECOVER
- * rebuilds the hierarchy and estimates every level's bound with
- * CLP_AMG_RECOVER_STEPS Lanczos steps (kept by those levels until the
- * next build). */
+ * definite (MAT_SPD, for good: CG needs it so; MAT_SPD_ETERNAL needs
+ * PETSc 3.18), and GAMG's Galerkin operators inherit the mark; Chebyshev
+ * then estimates the largest eigenvalue of D^-1 A on every level by
+ * Lanczos (CG, 10 steps) instead of GMRES, whose 10 steps on the
+ * nonsymmetric D^-1 A fell 17 % short of the finest level's largest
+ * eigenvalue on hang at n = 64 and 256 (against 300 Lanczos steps;
+ * paper/findings.md, "Algebraic multigrid").  The bound used is 1.1
+ * times the estimate, and the degree-2 Chebyshev smoother over
+ * [0.1, 1.1] times the estimate stops contracting in the energy norm
+ * above 1.2 times it (where its residual polynomial, symmetric about 0.6
+ * times it, is back at +1, its value at 0, and beyond which it exceeds
+ * 1): an estimate short by more than that made the multigrid cycle
+ * indefinite.  CLP_AMG_RECOVER rebuilds the hierarchy and estimates every
+ * level's bound with CLP_AMG_RECOVER_STEPS Lanczos steps (kept by those
+ * levels until the next build, which restores the steps before). */
 #include <petscksp.h>
 #include <stdio.h>
 
@@ -71,6 +73,8 @@ typedef struct {
     Vec b, x;               /* without arrays: the caller's are placed */
     KSP ksp;
     int hypre;
+    PetscInt est_steps;     /* the estimates' Lanczos steps before a
+                             * recovery raised them; 0: never raised */
 } clp_amg;
 
 int clp_amg_create(size_t nb, const size_t *rowptr, const size_t *col,
@@ -288,23 +292,38 @@ static PetscErrorCode amg_fine_smoother(clp_amg *s, PC pc)
     return KSPSetUp(smooth);
 }
 
+/* Level l's Chebyshev smoother and its eigenvalue estimator; *est NULL
+ * if the level has none. */
+static PetscErrorCode amg_estimator(PC pc, PetscInt l, KSP *smooth, KSP *est)
+{
+    PetscBool cheb = PETSC_FALSE;
+    PetscErrorCode ec;
+    *est = NULL;
+    if ((ec = PCMGGetSmoother(pc, l, smooth)) ||
+        (ec = PetscObjectTypeCompare((PetscObject)*smooth, KSPCHEBYSHEV,
+                                     &cheb)) || !cheb)
+        return ec;
+    return KSPChebyshevEstEigGetKSP(*smooth, est);
+}
+
 /* Every Chebyshev smoother's bound estimated again, by
- * CLP_AMG_RECOVER_STEPS Lanczos steps: KSPChebyshevEstEigSet with the
- * transform unchanged (PETSC_DECIDE) forgets the last estimate, and its
- * operators set again make KSPSetUp make a new one. */
-static PetscErrorCode amg_careful_bounds(PC pc)
+ * CLP_AMG_RECOVER_STEPS Lanczos steps (s->est_steps keeps the number
+ * before): KSPChebyshevEstEigSet with the transform unchanged
+ * (PETSC_DECIDE) forgets the last estimate, and its operators set again
+ * make KSPSetUp make a new one.  The smoothers keep that number until the
+ * next build (amg_plain_bounds). */
+static PetscErrorCode amg_careful_bounds(clp_amg *s, PC pc)
 {
     PetscInt levels = 0;
     PetscErrorCode ec = PCMGGetLevels(pc, &levels);
     for (PetscInt l = 1; !ec && l < levels; l++) {
-        KSP smooth, est = NULL;
+        KSP smooth, est;
         Mat op, pmat;
-        PetscBool cheb = PETSC_FALSE;
-        if ((ec = PCMGGetSmoother(pc, l, &smooth)) ||
-            (ec = PetscObjectTypeCompare((PetscObject)smooth, KSPCHEBYSHEV,
-                                         &cheb)) || !cheb ||
-            (ec = KSPChebyshevEstEigGetKSP(smooth, &est)) || !est)
+        if ((ec = amg_estimator(pc, l, &smooth, &est)) || !est)
             continue;
+        if (!s->est_steps &&
+            (ec = KSPGetTolerances(est, NULL, NULL, NULL, &s->est_steps)))
+            break;
         /* reset first: CG sized its arrays of Lanczos coefficients by the
          * max_it of its first setup */
         if (!(ec = KSPReset(est)) &&
@@ -316,6 +335,23 @@ static PetscErrorCode amg_careful_bounds(PC pc)
             !(ec = KSPSetOperators(smooth, op, pmat)))
             ec = KSPSetUp(smooth);
     }
+    return ec;
+}
+
+/* Before a build: the estimators back to their steps before a recovery
+ * raised them (fewer steps fit the arrays sized for more). */
+static PetscErrorCode amg_plain_bounds(clp_amg *s, PC pc)
+{
+    PetscInt levels = 0;
+    PetscErrorCode ec = s->est_steps ? PCMGGetLevels(pc, &levels) : 0;
+    for (PetscInt l = 1; !ec && l < levels; l++) {
+        KSP smooth, est;
+        if (!(ec = amg_estimator(pc, l, &smooth, &est)) && est)
+            ec = KSPSetTolerances(est, PETSC_DEFAULT, PETSC_DEFAULT,
+                                  PETSC_DEFAULT, s->est_steps);
+    }
+    if (!ec)
+        s->est_steps = 0;
     return ec;
 }
 
@@ -339,13 +375,15 @@ int clp_amg_setup(void *handle, const double *ablk, int mode,
                                                    : PETSC_TRUE);
     if (ec)
         return amg_fail(msg, "setting the reuse", ec);
+    if (mode == CLP_AMG_BUILD && !s->hypre && (ec = amg_plain_bounds(s, pc)))
+        return amg_fail(msg, "the smoothers' eigenvalue estimates", ec);
     if ((ec = KSPSetOperators(s->ksp, s->op, s->A)) ||
         (ec = KSPSetUp(s->ksp)))
         return amg_fail(msg, "the multigrid setup (KSPSetUp)", ec);
     if (keep && !s->hypre && (ec = amg_fine_smoother(s, pc)))
         return amg_fail(msg, "the finest smoother's setup", ec);
     if (mode == CLP_AMG_RECOVER && !s->hypre &&
-        (ec = amg_careful_bounds(pc)))
+        (ec = amg_careful_bounds(s, pc)))
         return amg_fail(msg, "the smoothers' eigenvalue estimates", ec);
     return 0;
 }

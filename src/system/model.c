@@ -259,7 +259,7 @@ static void eval_terms(cl_model *m, uint64_t mask, double t, double *f,
 }
 
 /* The state into the model's full arrays, after the stop check that
- * makes every evaluation return CL_EINTR once a stop is requested
+ * makes every force and Jacobian evaluation return CL_EINTR once a stop is requested
  * (core/stop.h). */
 static cl_status model_scatter(cl_model *m, double t, const double *x,
                                const double *v)
