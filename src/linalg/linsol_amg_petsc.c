@@ -402,8 +402,10 @@ static int amg_outcome(clp_amg *s, long *iters, cl_plugin_msg *msg)
     *iters = its;
     if (why > 0)
         return 0;
-    /* a Lanczos eigenvalue estimate of a smoother breaks down on an
-     * indefinite matrix: the preconditioner then fails */
+    /* on an indefinite matrix a part of the cycle can fail to set up (a
+     * point-block Jacobi or the coarse factorisation meeting a singular
+     * or indefinite block): CG then reports the preconditioner failed,
+     * and the PC says why */
     PC pc;
     PCFailedReason pcwhy = PC_NOERROR;
     if (why == KSP_DIVERGED_PC_FAILED &&
