@@ -1,8 +1,9 @@
-/* Tests for core/stop: the flag SIGINT and SIGTERM set, and end to end
- * the runs they stop (analysis/simulate.c): everything computed is
- * written. */
+/* Tests for core/stop: the flag SIGINT and SIGTERM set (and SIGPROF, a
+ * CPU budget), and end to end the runs they stop (analysis/simulate.c):
+ * everything computed is written. */
 #include "runcli.h"
 
+#include "core/clock.h"
 #include "core/stop.h"
 #include "timelimit.h"
 
@@ -30,6 +31,38 @@ Test(stop, second_signal_ends_the_program, .signal = SIGINT)
     raise(SIGINT);
     cr_assert_eq(cl_stop_requested(), SIGINT);
     raise(SIGINT);
+}
+
+/* ---- a CPU budget ------------------------------------------------------ */
+
+/* Spin until a stop is asked for or `cap` seconds of CPU have gone by. */
+static void spin_cpu(double cap)
+{
+    double c0 = cl_clock_cpu();
+    volatile double sum = 0.0;
+    while (!cl_stop_requested() && cl_clock_cpu() - c0 < cap)
+        for (int i = 0; i < 10000; i++)
+            sum += sqrt((double)i);
+}
+
+Test(stop, cpu_budget_sets_the_flag_and_clear_resets_it)
+{
+    cl_error err;
+    cr_assert_eq(cl_stop_after_cpu(0.0, &err), CL_EINVAL);
+    cr_assert_str_eq(err.msg, "CPU budget 0 s: must be a finite number > 0");
+    cr_assert_eq(cl_stop_after_cpu(NAN, &err), CL_EINVAL);
+    cr_assert_eq(cl_stop_after_cpu(INFINITY, &err), CL_EINVAL);
+    cr_assert_eq(cl_stop_after_cpu(0.02, &err), CL_OK);
+    spin_cpu(10.0);
+    cr_assert_eq(cl_stop_requested(), SIGPROF);
+    cr_assert_str_eq(cl_stop_signal_name(SIGPROF), "its CPU budget");
+    cl_stop_clear();
+    cr_assert_eq(cl_stop_requested(), 0);
+    /* cleared before it fires: the timer is disarmed, no stop comes */
+    cr_assert_eq(cl_stop_after_cpu(0.02, &err), CL_OK);
+    cl_stop_clear();
+    spin_cpu(0.1);
+    cr_assert_eq(cl_stop_requested(), 0);
 }
 
 /* ---- runs stopped by a signal ----------------------------------------- */

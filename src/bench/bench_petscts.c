@@ -7,8 +7,9 @@
  * not above PETSc's.  Goal: clothode >= 3x faster (CPU time).
  *
  * clothode runs first, at rtol 1e-4; PETSc's run then gets a CPU budget
- * of W11_FACTOR (4) times clothode's CPU time, and is stopped at the
- * first twentieth of T past it.  So each case ends one of two ways:
+ * of W11_FACTOR (4) times clothode's CPU time, and is stopped where it
+ * runs out (a CPU-time timer: core/stop.h).  So each case ends one of
+ * two ways:
  *   - PETSc stopped by the budget: it needs more than 4x clothode's CPU
  *     time to reach T, the ratio (clothode's run to T against PETSc's to
  *     where it stopped) is a lower bound of at least 4 and the speed goal

@@ -1,10 +1,12 @@
 /* The stop flag of core/stop.h. */
 #include "core/stop.h"
 
+#include <errno.h>
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/time.h>
 
 static volatile sig_atomic_t stop_signal;
 
@@ -29,6 +31,45 @@ int cl_stop_requested(void)
     return (int)stop_signal;
 }
 
+/* ITIMER_PROF's value for `seconds` of CPU time, one shot. */
+static struct itimerval cpu_timer(double seconds)
+{
+    struct itimerval it;
+    memset(&it, 0, sizeof it);
+    double whole = floor(seconds);
+    it.it_value.tv_sec = (time_t)whole;
+    it.it_value.tv_usec = (suseconds_t)((seconds - whole) * 1e6);
+    if (it.it_value.tv_sec == 0 && it.it_value.tv_usec == 0)
+        it.it_value.tv_usec = 1; /* zero would disarm it */
+    return it;
+}
+
+cl_status cl_stop_after_cpu(double seconds, cl_error *err)
+{
+    if (!(seconds > 0.0) || !isfinite(seconds))
+        return cl_error_set(err, CL_EINVAL, "CPU budget %g s: must be a "
+                            "finite number > 0", seconds);
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESTART; /* system calls carry on; the flag stops */
+    struct itimerval it = cpu_timer(seconds);
+    if (sigaction(SIGPROF, &sa, NULL) != 0 ||
+        setitimer(ITIMER_PROF, &it, NULL) != 0)
+        return cl_error_set(err, CL_EIO, "cannot set a CPU-time timer: %s",
+                            strerror(errno));
+    return CL_OK;
+}
+
+void cl_stop_clear(void)
+{
+    struct itimerval off;
+    memset(&off, 0, sizeof off);
+    setitimer(ITIMER_PROF, &off, NULL);
+    stop_signal = 0;
+}
+
 const char *cl_stop_signal_name(int sig)
 {
     static char other[32];
@@ -36,6 +77,8 @@ const char *cl_stop_signal_name(int sig)
         return "SIGINT";
     if (sig == SIGTERM)
         return "SIGTERM";
+    if (sig == SIGPROF)
+        return "its CPU budget";
     snprintf(other, sizeof other, "signal %d", sig);
     return other;
 }

@@ -14,8 +14,20 @@
 /* Install the handler for SIGINT and SIGTERM (sigaction). */
 void cl_stop_install(void);
 
-/* The signal that asked to stop (SIGINT, SIGTERM), or 0. */
+/* The signal that asked to stop (SIGINT, SIGTERM; SIGPROF for a CPU
+ * budget), or 0. */
 int cl_stop_requested(void);
+
+/* Ask for a stop once this process has used `seconds` (> 0) more CPU
+ * time: a one-shot ITIMER_PROF whose SIGPROF sets the same flag, so that
+ * the model's evaluations end an advance at once (a budget kept to the
+ * evaluation, not to the next output).  CL_EINVAL for seconds <= 0 or
+ * not finite, CL_EIO if the timer cannot be set. */
+cl_status cl_stop_after_cpu(double seconds, cl_error *err);
+
+/* Disarm that timer and forget a stop asked for, so that the next run
+ * starts clean (a benchmark's runs, one after another). */
+void cl_stop_clear(void);
 
 /* "SIGINT", "SIGTERM" or "signal N", for messages. */
 const char *cl_stop_signal_name(int sig);
