@@ -1,6 +1,6 @@
-/* Tests for core/stop: the flag SIGINT and SIGTERM set (and SIGPROF, a
- * CPU budget), and end to end the runs they stop (analysis/simulate.c):
- * everything computed is written. */
+/* Tests for core/stop: the flag SIGINT and SIGTERM set (and SIGPROF and
+ * SIGALRM, a CPU and a wall-time budget), and end to end the runs they
+ * stop (analysis/simulate.c): everything computed is written. */
 #include "runcli.h"
 
 #include "core/clock.h"
@@ -48,18 +48,22 @@ static void spin_cpu(double cap)
 Test(stop, cpu_budget_sets_the_flag_and_clear_resets_it)
 {
     cl_error err;
-    cr_assert_eq(cl_stop_after_cpu(0.0, &err), CL_EINVAL);
+    cr_assert_eq(cl_stop_after(CL_STOP_CPU, 0.0, &err), CL_EINVAL);
     cr_assert_str_eq(err.msg, "CPU budget 0 s: must be a finite number > 0");
-    cr_assert_eq(cl_stop_after_cpu(NAN, &err), CL_EINVAL);
-    cr_assert_eq(cl_stop_after_cpu(INFINITY, &err), CL_EINVAL);
-    cr_assert_eq(cl_stop_after_cpu(0.02, &err), CL_OK);
+    cr_assert_eq(cl_stop_after(CL_STOP_WALL, -1.0, &err), CL_EINVAL);
+    cr_assert_str_eq(err.msg, "wall-time budget -1 s: must be a finite "
+                     "number > 0");
+    cr_assert_eq(cl_stop_after(CL_STOP_CPU, NAN, &err), CL_EINVAL);
+    cr_assert_eq(cl_stop_after(CL_STOP_CPU, INFINITY, &err), CL_EINVAL);
+    cr_assert_eq(cl_stop_after(CL_STOP_CPU, 0.02, &err), CL_OK);
     spin_cpu(10.0);
     cr_assert_eq(cl_stop_requested(), SIGPROF);
     cr_assert_str_eq(cl_stop_signal_name(SIGPROF), "its CPU budget");
+    cr_assert_str_eq(cl_stop_signal_name(SIGALRM), "its wall-time budget");
     cl_stop_clear();
     cr_assert_eq(cl_stop_requested(), 0);
     /* cleared before it fires: the timer is disarmed, no stop comes */
-    cr_assert_eq(cl_stop_after_cpu(0.02, &err), CL_OK);
+    cr_assert_eq(cl_stop_after(CL_STOP_CPU, 0.02, &err), CL_OK);
     cl_stop_clear();
     spin_cpu(0.1);
     cr_assert_eq(cl_stop_requested(), 0);
@@ -208,4 +212,31 @@ Test(stop, signals_stop_integrators_inside_an_advance)
     interrupted_run(SIGINT, "cvode-bdf", "1");
     interrupted_run(SIGINT, "semi-bdf2", "1");
     interrupted_run(SIGTERM, "petsc-alpha2", "1");
+}
+
+/* --max-wall inside one long advance (one sample at t = 100 s): its
+ * wall-time timer stops the evaluations, the run ends with status budget
+ * and everything computed written (before, the budget was looked at only
+ * at output times, so this run would have gone on to t = 100). */
+Test(stop, max_wall_stops_a_run_inside_an_advance)
+{
+    time_limit(120);
+    char dir[64], path[300];
+    tmp_mkdtemp(dir, sizeof dir, "maxwall");
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "cloth.n=32", "--t-end", "100",
+            "--samples", "1", "--frames", "0", "--integrator", "semi-bdf2",
+            "--dt", "1e-3", "--max-wall", "0.5", "--out", dir, "--quiet",
+            NULL);
+    cr_assert(r.exited && r.status == 5, "%s: %s", r.cmd, r.err);
+    cr_assert(strstr(r.err, "budget --max-wall 0.5 s reached at t = 0 "
+                     "(during the advance to t = 100)"), "%s", r.err);
+    cli_result_free(&r);
+    char json[1 << 16];
+    snprintf(path, sizeof path, "%s/run.json", dir);
+    tmp_slurp(path, json, sizeof json);
+    cr_assert(strstr(json, "\"status\": \"budget\""), "%s", json);
+    snprintf(path, sizeof path, "%s/final.csv", dir);
+    cr_assert(cli_exists(path));
+    tmp_rm_rf(dir);
 }

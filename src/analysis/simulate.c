@@ -20,6 +20,7 @@
 #include "analysis/simulate.h"
 
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -50,7 +51,6 @@ typedef struct {
     double *row;
     long frame_index;
     double *e0_terms, *e1_terms; /* term energies of res->e0, res->e1 */
-    double wall0;           /* wall clock at the start (budget) */
 } sim;
 
 /* ---- output schedule -------------------------------------------------- */
@@ -319,6 +319,10 @@ static cl_status reach(sim *s, const cl_integrator_type *type, void *state,
     cl_status rc = type->advance(state, t, s->x, s->v, err);
     res->stats.wall += cl_clock_wall() - w0;
     res->stats.cpu += cl_clock_cpu() - c0;
+    if (rc == CL_EINTR && cl_stop_requested() == SIGALRM)
+        return cl_error_set(err, CL_EBUDGET, "budget --max-wall %g s "
+                            "reached at t = %g (during the advance to t = "
+                            "%g)", s->so->max_wall, res->t_reached, t);
     if (rc == CL_EINTR && cl_stop_requested()) /* the evaluations stopped */
         return cl_stop_error(err, res->t_reached, t);
     return rc ? rc : sample(s, t, res, err);
@@ -331,12 +335,12 @@ static cl_status check_stop(const sim *s, const cl_integrator_type *type,
                             cl_error *err)
 {
     const cl_sim_opts *so = s->so;
-    if (cl_stop_requested())
-        return cl_stop_error(err, res->t_reached, NAN);
-    if (so->max_wall > 0 && cl_clock_wall() - s->wall0 >= so->max_wall)
+    if (cl_stop_requested() == SIGALRM) /* --max-wall's timer */
         return cl_error_set(err, CL_EBUDGET, "budget --max-wall %g s "
                             "reached at t = %g", so->max_wall,
                             res->t_reached);
+    if (cl_stop_requested())
+        return cl_stop_error(err, res->t_reached, NAN);
     if (so->max_steps > 0) {
         cl_stats st = {0};
         type->stats(state, &st);
@@ -385,7 +389,7 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
                       cl_sim_result *res, cl_error *err)
 {
     sim s = {.m = m, .c = cl_model_cloth(m), .sys = cl_model_system(m),
-             .so = so, .wall0 = cl_clock_wall()};
+             .so = so};
     schedule sch;
     void *state = NULL;
     memset(res, 0, sizeof *res);
@@ -394,6 +398,10 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
     res->xfinal = malloc((n3 + 2 * npot) * sizeof *res->xfinal);
     cl_status rc = res->xfinal ? CL_OK
                                : cl_error_set(err, CL_ENOMEM, "out of memory");
+    /* --max-wall by a wall-time timer (core/stop.h): once it rings, the
+     * model's evaluations end the advance where it is */
+    if (!rc && so->max_wall > 0)
+        rc = cl_stop_after(CL_STOP_WALL, so->max_wall, err);
     if (!rc) {
         s.e0_terms = res->xfinal + n3;
         s.e1_terms = s.e0_terms + npot;
@@ -438,6 +446,8 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
         rc2 = write_stats(&s, &res->stats, rc ? &later : err);
     if (!rc)
         rc = rc2;
+    if (so->max_wall > 0)
+        cl_stop_disarm();
     sim_free(&s);
     return rc;
 }

@@ -147,7 +147,7 @@ const cl_brun *cl_bench_hang(cl_bctx *c, int n, double t_end,
 /* The petsc-* integrator `method` with PETSc options `petsc` on hang,
  * cached as cl_bench_hang's runs; stopped with rc = CL_EBUDGET once it
  * has used `budget` CPU seconds (inside an advance: core/stop.h's
- * cl_stop_after_cpu), t_reached the last twentieth of t_end reached. */
+ * cl_stop_after), t_reached the last twentieth of t_end reached. */
 const cl_brun *cl_bench_hang_petsc(cl_bctx *c, int n, double t_end,
                                    const char *method, const char *petsc,
                                    double rtol, double atol, double budget);

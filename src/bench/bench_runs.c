@@ -95,7 +95,7 @@ static cl_status timed_run(cl_model *m, cl_brun *r, cl_error *err)
     /* a budget is kept by a CPU-time timer (core/stop.h): once it is
      * spent, the model's evaluations end the advance where it is */
     if (!rc && r->budget > 0)
-        rc = cl_stop_after_cpu(r->budget, err);
+        rc = cl_stop_after(CL_STOP_CPU, r->budget, err);
     if (!rc)
         rc = type->create(sys, &io, 0.0, r->x, v, &state, err);
     /* with a budget, in twentieths of t_end, so that the time reached is

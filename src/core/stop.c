@@ -4,15 +4,19 @@
 #include <errno.h>
 #include <math.h>
 #include <signal.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/time.h>
 
 static volatile sig_atomic_t stop_signal;
 
+/* The first reason to stop is the one reported (a budget that runs out
+ * after a Ctrl-C does not turn the run's end into "budget"). */
 static void on_signal(int sig)
 {
-    stop_signal = sig;
+    if (!stop_signal)
+        stop_signal = sig;
 }
 
 void cl_stop_install(void)
@@ -31,8 +35,8 @@ int cl_stop_requested(void)
     return (int)stop_signal;
 }
 
-/* ITIMER_PROF's value for `seconds` of CPU time, one shot. */
-static struct itimerval cpu_timer(double seconds)
+/* A one-shot timer's value for `seconds`. */
+static struct itimerval one_shot(double seconds)
 {
     struct itimerval it;
     memset(&it, 0, sizeof it);
@@ -44,29 +48,37 @@ static struct itimerval cpu_timer(double seconds)
     return it;
 }
 
-cl_status cl_stop_after_cpu(double seconds, cl_error *err)
+cl_status cl_stop_after(cl_stop_clock clock, double seconds, cl_error *err)
 {
+    bool cpu = clock == CL_STOP_CPU;
     if (!(seconds > 0.0) || !isfinite(seconds))
-        return cl_error_set(err, CL_EINVAL, "CPU budget %g s: must be a "
-                            "finite number > 0", seconds);
+        return cl_error_set(err, CL_EINVAL, "%s budget %g s: must be a "
+                            "finite number > 0", cpu ? "CPU" : "wall-time",
+                            seconds);
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
     sigemptyset(&sa.sa_mask);
     sa.sa_flags = SA_RESTART; /* system calls carry on; the flag stops */
-    struct itimerval it = cpu_timer(seconds);
-    if (sigaction(SIGPROF, &sa, NULL) != 0 ||
-        setitimer(ITIMER_PROF, &it, NULL) != 0)
-        return cl_error_set(err, CL_EIO, "cannot set a CPU-time timer: %s",
-                            strerror(errno));
+    struct itimerval it = one_shot(seconds);
+    if (sigaction(cpu ? SIGPROF : SIGALRM, &sa, NULL) != 0 ||
+        setitimer(cpu ? ITIMER_PROF : ITIMER_REAL, &it, NULL) != 0)
+        return cl_error_set(err, CL_EIO, "cannot set a %s timer: %s",
+                            cpu ? "CPU-time" : "wall-time", strerror(errno));
     return CL_OK;
 }
 
-void cl_stop_clear(void)
+void cl_stop_disarm(void)
 {
     struct itimerval off;
     memset(&off, 0, sizeof off);
     setitimer(ITIMER_PROF, &off, NULL);
+    setitimer(ITIMER_REAL, &off, NULL);
+}
+
+void cl_stop_clear(void)
+{
+    cl_stop_disarm();
     stop_signal = 0;
 }
 
@@ -79,6 +91,8 @@ const char *cl_stop_signal_name(int sig)
         return "SIGTERM";
     if (sig == SIGPROF)
         return "its CPU budget";
+    if (sig == SIGALRM)
+        return "its wall-time budget";
     snprintf(other, sizeof other, "signal %d", sig);
     return other;
 }

@@ -14,18 +14,25 @@
 /* Install the handler for SIGINT and SIGTERM (sigaction). */
 void cl_stop_install(void);
 
-/* The signal that asked to stop (SIGINT, SIGTERM; SIGPROF for a CPU
- * budget), or 0. */
+/* The signal that first asked to stop (SIGINT, SIGTERM; SIGPROF and
+ * SIGALRM for a CPU and a wall-time budget), or 0. */
 int cl_stop_requested(void);
 
-/* Ask for a stop once this process has used `seconds` (> 0) more CPU
- * time: a one-shot ITIMER_PROF whose SIGPROF sets the same flag, so that
- * the model's evaluations end an advance at once (a budget kept to the
- * evaluation, not to the next output).  CL_EINVAL for seconds <= 0 or
- * not finite, CL_EIO if the timer cannot be set. */
-cl_status cl_stop_after_cpu(double seconds, cl_error *err);
+/* The clocks of a budget: CPU time of the process (ITIMER_PROF, SIGPROF)
+ * and wall time (ITIMER_REAL, SIGALRM). */
+typedef enum { CL_STOP_CPU, CL_STOP_WALL } cl_stop_clock;
 
-/* Disarm that timer and forget a stop asked for, so that the next run
+/* Ask for a stop once `seconds` (> 0) more of `clock` have passed: a
+ * one-shot timer whose signal sets the same flag, so that the model's
+ * evaluations end an advance at once (a budget kept to the evaluation,
+ * not to the next output).  CL_EINVAL for seconds <= 0 or not finite,
+ * CL_EIO if the timer cannot be set. */
+cl_status cl_stop_after(cl_stop_clock clock, double seconds, cl_error *err);
+
+/* Disarm both timers; a stop already asked for stays. */
+void cl_stop_disarm(void);
+
+/* Disarm both timers and forget a stop asked for, so that the next run
  * starts clean (a benchmark's runs, one after another). */
 void cl_stop_clear(void);
 
