@@ -307,6 +307,22 @@ static void sim_free(sim *s)
     free(s->row);
 }
 
+/* The stop asked for after the sample at res->t_reached, during the
+ * advance to t_to (NaN: between advances): CL_EBUDGET for --max-wall's
+ * timer (SIGALRM), else CL_EINTR naming the signal. */
+static cl_status stop_error(const sim *s, const cl_sim_result *res,
+                            double t_to, cl_error *err)
+{
+    if (cl_stop_requested() != SIGALRM)
+        return cl_stop_error(err, res->t_reached, t_to);
+    char during[64] = "";
+    if (!isnan(t_to))
+        snprintf(during, sizeof during, " (during the advance to t = %g)",
+                 t_to);
+    return cl_error_set(err, CL_EBUDGET, "budget --max-wall %g s reached at "
+                        "t = %g%s", s->so->max_wall, res->t_reached, during);
+}
+
 /* Advance to tick `tick` (unless already there) and sample it. */
 static cl_status reach(sim *s, const cl_integrator_type *type, void *state,
                        const schedule *sch, long tick, cl_sim_result *res,
@@ -319,12 +335,8 @@ static cl_status reach(sim *s, const cl_integrator_type *type, void *state,
     cl_status rc = type->advance(state, t, s->x, s->v, err);
     res->stats.wall += cl_clock_wall() - w0;
     res->stats.cpu += cl_clock_cpu() - c0;
-    if (rc == CL_EINTR && cl_stop_requested() == SIGALRM)
-        return cl_error_set(err, CL_EBUDGET, "budget --max-wall %g s "
-                            "reached at t = %g (during the advance to t = "
-                            "%g)", s->so->max_wall, res->t_reached, t);
     if (rc == CL_EINTR && cl_stop_requested()) /* the evaluations stopped */
-        return cl_stop_error(err, res->t_reached, t);
+        return stop_error(s, res, t, err);
     return rc ? rc : sample(s, t, res, err);
 }
 
@@ -335,12 +347,8 @@ static cl_status check_stop(const sim *s, const cl_integrator_type *type,
                             cl_error *err)
 {
     const cl_sim_opts *so = s->so;
-    if (cl_stop_requested() == SIGALRM) /* --max-wall's timer */
-        return cl_error_set(err, CL_EBUDGET, "budget --max-wall %g s "
-                            "reached at t = %g", so->max_wall,
-                            res->t_reached);
     if (cl_stop_requested())
-        return cl_stop_error(err, res->t_reached, NAN);
+        return stop_error(s, res, NAN, err);
     if (so->max_steps > 0) {
         cl_stats st = {0};
         type->stats(state, &st);

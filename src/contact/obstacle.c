@@ -155,13 +155,8 @@ static void point_of(const cl_obstacle *o, const cl_pose *P,
     double cb[3], c[3], qs[3];
     cl_v3_sub(b->c, o->pivot, cb);
     q->d = b->d;
-    if (P->rotates) {
-        rotate(P, b->n, q->n);
-        rotate(P, cb, c);
-    } else {
-        memcpy(q->n, b->n, sizeof q->n);
-        memcpy(c, cb, sizeof c);
-    }
+    rotate(P, b->n, q->n); /* a copy when the obstacle does not turn */
+    rotate(P, cb, c);
     cl_v3_add(o->pivot, P->s, qs);    /* q + s + c */
     cl_v3_add(qs, c, q->c);
     rotate_hessian(P, b->G, q->G);

@@ -307,14 +307,15 @@ static void axial_chunk(void *ctx, cl_pairkern *pk, size_t k0, size_t k1,
 }
 
 /* Whether pd damps exactly the pairs of pt[0], ..., pt[npt - 1], one
- * list after the other, in the same order (decided once per pt[0]: pair
- * sets do not change). */
+ * list after the other, in the same order (decided once per pt[0] and
+ * npt: pair sets do not change). */
 static bool same_pairs(cl_pairdamp *pd, cl_pairterm *const *pt, size_t npt)
 {
     const cl_pairkern *a = &pd->pt.kern;
-    if (pd->fuse_with == pt[0])
+    if (pd->fuse_with == pt[0] && pd->fuse_npt == npt)
         return pd->fuse_same;
     pd->fuse_with = pt[0];
+    pd->fuse_npt = npt;
     size_t k = 0;
     bool same = true;
     for (size_t i = 0; same && i < npt; i++) {

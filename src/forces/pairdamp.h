@@ -38,7 +38,8 @@ typedef struct {
     cl_damp_model model;
     const cl_pairterm *fuse_with; /* cl_pairdamp_fused: the first pair
                                    * term last compared, */
-    bool fuse_same;               /* and whether its pairs are ours */
+    size_t fuse_npt;              /* how many terms from it, */
+    bool fuse_same;               /* and whether their pairs are ours */
     cl_pairgather gather;         /* the fused pass's per-particle sums */
 } cl_pairdamp;
 
