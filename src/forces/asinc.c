@@ -7,6 +7,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
 
 #include <gsl/gsl_errno.h>
@@ -20,12 +21,14 @@
 
 /* ---- sinc and 1 - sinc --------------------------------------------------- */
 
-/* Below this |t| the Taylor series is used for 1 - sinc and its derivative.
- * At |t| = 1 the direct forms lose at most a few ulp to cancellation
- * (sinc(1)/(1 - sinc(1)) ~ 5), and the series needs 9 terms. */
+/* Below this |t| the Taylor series (NSER terms) is used for 1 - sinc and
+ * its derivative.  At |t| = 1 the direct forms lose at most a few ulp to
+ * cancellation (sinc(1)/(1 - sinc(1)) ~ 5), and the series needs 9 terms. */
+#define SERIES_T 1.0
+#define NSER 9
 
 /* g(t)/t^2 = sum_k (-1)^k s^k / (2k+3)!, s = t^2, highest power first. */
-const double cl_asinc_g_ser[CL_ASINC_NSER] = {
+static const double g_ser[NSER] = {
     1.0 / 121645100408832000.0, /* 19! */
     -1.0 / 355687428096000.0,   /* 17! */
     1.0 / 1307674368000.0,      /* 15! */
@@ -38,7 +41,7 @@ const double cl_asinc_g_ser[CL_ASINC_NSER] = {
 };
 
 /* g'(t)/t = sum_k (-1)^k (2k+2) s^k / (2k+3)!, highest power first. */
-const double cl_asinc_dg_ser[CL_ASINC_NSER] = {
+static const double dg_ser[NSER] = {
     18.0 / 121645100408832000.0, -16.0 / 355687428096000.0,
     14.0 / 1307674368000.0,      -12.0 / 6227020800.0,
     10.0 / 39916800.0,           -8.0 / 362880.0,
@@ -46,6 +49,15 @@ const double cl_asinc_dg_ser[CL_ASINC_NSER] = {
     2.0 / 6.0,
 };
 
+/* Horner's rule for c[0] s^(n-1) + ... + c[n-1]. */
+static inline double horner(const double *c, int n, double s)
+{
+    double v = c[0];
+#pragma GCC unroll 16
+    for (int k = 1; k < n; k++)
+        v = v * s + c[k];
+    return v;
+}
 
 double cl_sinc(double t)
 {
@@ -58,17 +70,17 @@ double cl_sinc(double t)
 
 double cl_one_minus_sinc(double t)
 {
-    if (fabs(t) < CL_ASINC_SERIES_T) {
+    if (fabs(t) < SERIES_T) {
         double s = t * t;
-        return s * cl_asinc_horner(cl_asinc_g_ser, CL_ASINC_NSER, s);
+        return s * horner(g_ser, NSER, s);
     }
     return 1.0 - sin(t) / t;
 }
 
 double cl_one_minus_sinc_deriv(double t)
 {
-    if (fabs(t) < CL_ASINC_SERIES_T)
-        return t * cl_asinc_horner(cl_asinc_dg_ser, CL_ASINC_NSER, t * t);
+    if (fabs(t) < SERIES_T)
+        return t * horner(dg_ser, NSER, t * t);
     return (sin(t) - t * cos(t)) / (t * t);
 }
 
@@ -84,10 +96,10 @@ double cl_sinc_normalised_deriv(double x)
 /* g and g' together (one sin/cos pair at most). */
 static void g_and_dg(double t, double *g, double *dg)
 {
-    if (t < CL_ASINC_SERIES_T) {
+    if (t < SERIES_T) {
         double s = t * t;
-        *g = s * cl_asinc_horner(cl_asinc_g_ser, CL_ASINC_NSER, s);
-        *dg = t * cl_asinc_horner(cl_asinc_dg_ser, CL_ASINC_NSER, s);
+        *g = s * horner(g_ser, NSER, s);
+        *dg = t * horner(dg_ser, NSER, s);
         return;
     }
     double sn = sin(t), cs = cos(t);
@@ -99,9 +111,10 @@ static void g_and_dg(double t, double *g, double *dg)
 
 /* Below this e the reverted series is exact to double precision: its first
  * omitted term is ~0.0063 e^7 relative (< 1e-21 here). */
+#define SERIES_E 2e-3
 
 /* t/sqrt(6e) = 1 + sum c_k e^k (series reversion of g), highest first. */
-const double cl_asinc_rev_ser[7] = {
+static const double rev_ser[7] = {
     317184685563.0 / 50226176000000.0,
     1766784699.0 / 179379200000.0,
     445617.0 / 27596800.0,
@@ -116,8 +129,8 @@ const double cl_asinc_rev_ser[7] = {
  * Chebyshev interpolation of the exact phi at 40 digits.  Max relative
  * error per piece: 1.7e-11, 2.2e-10, 1.5e-9, 1.2e-9.  Only the iteration
  * count depends on these numbers, never the result. */
-const double cl_asinc_guess_edge[5] = {0.0, 0.3, 0.6, 0.85, 1.0};
-const double cl_asinc_guess_poly[4][8] = {
+static const double guess_edge[5] = {0.0, 0.3, 0.6, 0.85, 1.0};
+static const double guess_poly[4][8] = {
     {1.0238950727880618, 0.02540540544496327, 0.0016365276070614606,
      0.00013825437366359546, 1.3304710866156467e-05, 1.3830451524162432e-06,
      1.5538793532169572e-07, 1.7644514900179991e-08},
@@ -132,9 +145,29 @@ const double cl_asinc_guess_poly[4][8] = {
      3.6370780646540199e-06, 7.4476324984255854e-07},
 };
 
-/* Stop after a Newton step |dt| <= CL_ASINC_NEWTON_STOP t: the next error
- * is at most max(|g''| t/(2 g')) (CL_ASINC_NEWTON_STOP t)^2 / t
+/* The initial guess sqrt(6e) phi(e) for e in [SERIES_E, 1]. */
+static inline double guess(double e)
+{
+    /* The piece by selects rather than an index (branch-free). */
+    const double *edge = guess_edge;
+    bool p1 = e >= edge[1], p2 = e >= edge[2], p3 = e >= edge[3];
+#define PIECE(v0, v1, v2, v3) (p3 ? (v3) : p2 ? (v2) : p1 ? (v1) : (v0))
+    double a = PIECE(edge[0], edge[1], edge[2], edge[3]);
+    double b = PIECE(edge[1], edge[2], edge[3], edge[4]);
+    double u = (2.0 * e - (a + b)) / (b - a);
+    const double(*c)[8] = guess_poly;
+    double phi = PIECE(c[0][7], c[1][7], c[2][7], c[3][7]);
+#pragma GCC unroll 8
+    for (int j = 6; j >= 0; j--)
+        phi = phi * u + PIECE(c[0][j], c[1][j], c[2][j], c[3][j]);
+#undef PIECE
+    return sqrt(6.0 * e) * phi;
+}
+
+/* Stop after a Newton step |dt| <= NEWTON_STOP t: the next error
+ * is at most max(|g''| t/(2 g')) (NEWTON_STOP t)^2 / t
  * <= 1e-17 t. */
+#define NEWTON_STOP 3e-9
 #define MAX_ITERS 100
 
 double cl_asinc_1m_ex(double e, double *dt_de, int *iters)
@@ -147,12 +180,12 @@ double cl_asinc_1m_ex(double e, double *dt_de, int *iters)
         t = 0.0;
     } else if (e == 1.0) {
         t = M_PI;
-    } else if (e < CL_ASINC_SERIES_E) {
-        t = sqrt(6.0 * e) * cl_asinc_horner(cl_asinc_rev_ser, 7, e);
+    } else if (e < SERIES_E) {
+        t = sqrt(6.0 * e) * horner(rev_ser, 7, e);
     } else {
         /* Root lies in (0, M_PI): g(M_PI) rounds to 1 > e. */
         double lo = 0.0, hi = M_PI;
-        t = fmin(cl_asinc_guess(e), hi);
+        t = fmin(guess(e), hi);
         while (n < MAX_ITERS) {
             double g, dg;
             g_and_dg(t, &g, &dg);
@@ -172,7 +205,7 @@ double cl_asinc_1m_ex(double e, double *dt_de, int *iters)
                 tn = 0.5 * (lo + hi);
             double step = tn - t;
             t = tn;
-            if (newton && fabs(step) <= CL_ASINC_NEWTON_STOP * t)
+            if (newton && fabs(step) <= NEWTON_STOP * t)
                 break;
             if (hi - lo <= 2.0 * DBL_EPSILON * hi)
                 break;

@@ -50,7 +50,6 @@
 #define CL_ASINC_H
 
 #include <math.h>
-#include <stdbool.h>
 #include <stddef.h>
 
 #include "core/error.h"
@@ -104,56 +103,6 @@ double cl_asinc_1m_deriv(double t);
 /* asinc(y) = cl_asinc_1m(1 - y) for y in [0, 1] (NaN outside): sinc(t) = y.
  * Prefer cl_asinc_1m near y = 1 (see the conditioning note above). */
 double cl_asinc(double y);
-
-/* ---- the tables of the exact inverse ------------------------------------ */
-
-/* Below CL_ASINC_SERIES_T, 1 - sinc and its derivative are summed from
- * their Taylor series (CL_ASINC_NSER terms, highest power first: g(t)/t^2
- * in cl_asinc_g_ser, g'(t)/t in cl_asinc_dg_ser).  Below
- * CL_ASINC_SERIES_E the inverse is the reverted series
- * t = sqrt(6e) (1 + sum cl_asinc_rev_ser e^k); above, Newton stops after
- * a step below CL_ASINC_NEWTON_STOP t, from the initial guess
- * t = sqrt(6e) phi(e), phi on the pieces cl_asinc_guess_edge[k..k+1] a
- * degree-7 polynomial cl_asinc_guess_poly[k] (coefficients of u^0..u^7,
- * u = (2e - (a + b))/(b - a)). */
-#define CL_ASINC_SERIES_T 1.0
-#define CL_ASINC_NSER 9
-#define CL_ASINC_SERIES_E 2e-3
-#define CL_ASINC_NEWTON_STOP 3e-9
-extern const double cl_asinc_g_ser[CL_ASINC_NSER];
-extern const double cl_asinc_dg_ser[CL_ASINC_NSER];
-extern const double cl_asinc_rev_ser[7];
-extern const double cl_asinc_guess_edge[5];
-extern const double cl_asinc_guess_poly[4][8];
-
-/* Horner's rule for c[0] s^(n-1) + ... + c[n-1]. */
-static inline double cl_asinc_horner(const double *c, int n, double s)
-{
-    double v = c[0];
-#pragma GCC unroll 16
-    for (int k = 1; k < n; k++)
-        v = v * s + c[k];
-    return v;
-}
-
-/* The initial guess sqrt(6e) phi(e) for e in [CL_ASINC_SERIES_E, 1]. */
-static inline double cl_asinc_guess(double e)
-{
-    /* The piece by selects rather than an index (branch-free). */
-    const double *edge = cl_asinc_guess_edge;
-    bool p1 = e >= edge[1], p2 = e >= edge[2], p3 = e >= edge[3];
-#define CL_ASINC_PIECE(v0, v1, v2, v3) (p3 ? (v3) : p2 ? (v2) : p1 ? (v1) : (v0))
-    double a = CL_ASINC_PIECE(edge[0], edge[1], edge[2], edge[3]);
-    double b = CL_ASINC_PIECE(edge[1], edge[2], edge[3], edge[4]);
-    double u = (2.0 * e - (a + b)) / (b - a);
-    const double(*c)[8] = cl_asinc_guess_poly;
-    double phi = CL_ASINC_PIECE(c[0][7], c[1][7], c[2][7], c[3][7]);
-#pragma GCC unroll 8
-    for (int j = 6; j >= 0; j--)
-        phi = phi * u + CL_ASINC_PIECE(c[0][j], c[1][j], c[2][j], c[3][j]);
-#undef CL_ASINC_PIECE
-    return sqrt(6.0 * e) * phi;
-}
 
 /* ---- Jiao's polynomial (Jiao, section 4.6) ------------------------------- */
 
