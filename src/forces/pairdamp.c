@@ -12,7 +12,8 @@ cl_status cl_pairdamp_init(cl_pairdamp *pd, cl_pairset set, double kd,
                                     err);
     pd->pt.kern.diag = model == CL_DAMP_LINEAR; /* df/dv = kd I */
     return rc ? rc : cl_pairgather_init(&pd->gather, pd->pt.kern.ia,
-                                        pd->pt.kern.ib, pd->pt.kern.n, err);
+                                        pd->pt.kern.ib, pd->pt.kern.n,
+                                        pd->pt.kern.np, err);
 }
 
 void cl_pairdamp_free(cl_pairdamp *pd)

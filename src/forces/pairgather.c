@@ -7,14 +7,11 @@
 #include "forces/pairkern.h"
 
 cl_status cl_pairgather_init(cl_pairgather *g, const int *ia, const int *ib,
-                             size_t n, cl_error *err)
+                             size_t n, size_t np, cl_error *err)
 {
     memset(g, 0, sizeof *g);
     g->n = n;
-    for (size_t k = 0; k < n; k++) {
-        size_t top = (size_t)(ia[k] > ib[k] ? ia[k] : ib[k]);
-        g->np = top + 1 > g->np ? top + 1 : g->np;
-    }
+    g->np = np;
     long *key = calloc(2 * n + 1, sizeof *key);
     g->start = malloc((2 * g->np + 1) * sizeof *g->start);
     g->list = malloc((2 * n + 1) * sizeof *g->list);

@@ -20,7 +20,7 @@
 #include "core/error.h"
 
 typedef struct {
-    size_t n, np;        /* pairs; particles (1 + the largest index) */
+    size_t n, np;        /* pairs; particles (above the largest index) */
     size_t *start;       /* 2 np + 1: pairs with a = p in [start[2p],
                           * start[2p + 1]), with b = p up to start[2p + 2] */
     long *list;          /* 2 n: 4k for pair k (its place in f4),
@@ -28,9 +28,10 @@ typedef struct {
     double *f4;          /* per pair: the force on a, and 0 (4 n) */
 } cl_pairgather;
 
-/* Lists for the n pairs (ia[k], ib[k]), ia[k] != ib[k]. */
+/* Lists for the n pairs (ia[k], ib[k]), ia[k] != ib[k], of np particles
+ * (every index below np; the caller's pairkern has it, cl_pairkern.np). */
 cl_status cl_pairgather_init(cl_pairgather *g, const int *ia, const int *ib,
-                             size_t n, cl_error *err);
+                             size_t n, size_t np, cl_error *err);
 void cl_pairgather_free(cl_pairgather *g);
 
 /* f[3p + i] += the sums above, for every particle p, on `threads`
