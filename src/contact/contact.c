@@ -233,6 +233,14 @@ static size_t screened(cl_contact *c, size_t k, const cl_pose *P,
     return m;
 }
 
+/* Particle p at signed distance d from obstacle k: eval_worst[k] raised
+ * to its penetration depth -d if p is free and deeper than those before. */
+static void deepen(cl_contact *c, size_t k, size_t p, double d)
+{
+    if (c->cloth->dof[p] >= 0 && -d > c->eval_worst[k])
+        c->eval_worst[k] = -d;
+}
+
 /* The particles with a block within obstacle k's reach dmax at pose P:
  * their indices into c->near and contact points into c->hit, and their
  * number.  The deepest penetration of a free particle there is kept in
@@ -252,8 +260,7 @@ static size_t gather(cl_contact *c, size_t k, const cl_pose *P,
         cl_contact_point *q = &c->hit[nhit];
         if (!cl_obstacle_near(o, P, ev->x + 3 * p, dmax, memo_of(c, k, p), q))
             continue;
-        if (c->cloth->dof[p] >= 0 && -q->d > c->eval_worst[k])
-            c->eval_worst[k] = -q->d;  /* q.d < dmax: a number */
+        deepen(c, k, p, q->d); /* q.d < dmax: a number */
         c->near[nhit++] = p;
     }
     return nhit;
@@ -269,9 +276,7 @@ static size_t gather_slim(cl_contact *c, size_t k, const cl_pose *P,
                                         screened(c, k, P, ev, dmax), c->slim);
     c->eval_worst[k] = 0.0;
     for (size_t i = 0; i < nhit; i++)
-        if (c->cloth->dof[c->near[i]] >= 0 &&
-            -c->slim[i].d > c->eval_worst[k])
-            c->eval_worst[k] = -c->slim[i].d;
+        deepen(c, k, c->near[i], c->slim[i].d);
     return nhit;
 }
 
