@@ -62,6 +62,22 @@ static void verlet_start(size_t n, double h, const double *restrict x,
         xo[i] = x[i] - h * v[i] + 0.5 * h * h * (f[i] * im[i]);
 }
 
+/* x_{k+1} = x + keep (x - xo) + h^2 a, one component (a = f im). */
+static inline double predicted(double keep, double h, double x, double xo,
+                               double f, double im)
+{
+    return x + keep * (x - xo) + h * h * (f * im);
+}
+
+/* Component i of v = (xn - x)/h, xo = x, x = xn. */
+static inline void shift(size_t i, double h, double xn, double *restrict x,
+                         double *restrict v, double *restrict xo)
+{
+    v[i] = (xn - x[i]) / h;
+    xo[i] = x[i];
+    x[i] = xn;
+}
+
 /* xn = x + keep (x - xo) + h^2 a. */
 static void verlet_predict(size_t n, double keep, double h,
                            const double *restrict x,
@@ -71,7 +87,7 @@ static void verlet_predict(size_t n, double keep, double h,
 {
 #pragma omp simd
     for (size_t i = 0; i < n; i++)
-        xn[i] = x[i] + keep * (x[i] - xo[i]) + h * h * (f[i] * im[i]);
+        xn[i] = predicted(keep, h, x[i], xo[i], f[i], im[i]);
 }
 
 /* v = (xn - x)/h, xo = x, x = xn. */
@@ -80,11 +96,8 @@ static void verlet_shift(size_t n, double h, double *restrict x,
                          const double *restrict xn)
 {
 #pragma omp simd
-    for (size_t i = 0; i < n; i++) {
-        v[i] = (xn[i] - x[i]) / h;
-        xo[i] = x[i];
-        x[i] = xn[i];
-    }
+    for (size_t i = 0; i < n; i++)
+        shift(i, h, xn[i], x, v, xo);
 }
 
 /* verlet_predict and verlet_shift in one pass (no projection between). */
@@ -93,12 +106,8 @@ static void verlet_both(size_t n, double keep, double h, double *restrict x,
                         const double *restrict f, const double *restrict im)
 {
 #pragma omp simd
-    for (size_t i = 0; i < n; i++) {
-        double xn = x[i] + keep * (x[i] - xo[i]) + h * h * (f[i] * im[i]);
-        v[i] = (xn - x[i]) / h;
-        xo[i] = x[i];
-        x[i] = xn;
-    }
+    for (size_t i = 0; i < n; i++)
+        shift(i, h, predicted(keep, h, x[i], xo[i], f[i], im[i]), x, v, xo);
 }
 
 /* w[0]: the force f, w[1]: x_{k-1}, w[2]: x_{k+1} (n each) */
