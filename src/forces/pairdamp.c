@@ -59,14 +59,50 @@ static double add_pair_force(cl_eval *ev, const cl_pair *pr,
     return p;
 }
 
+/* u . w with w = v_b - v_a (u_0 w_0 + u_1 w_1 + u_2 w_2 from 0). */
+static inline double axial_uw(double u0, double u1, double u2, double w0,
+                              double w1, double w2)
+{
+    double uw = 0.0;
+    uw += u0 * w0;
+    uw += u1 * w1;
+    uw += u2 * w2;
+    return uw;
+}
+
+/* The damping force (g0, g1, g2) on a of a pair whose velocities are
+ * at v + a and v + b (a, b: 3 times the particle indices;
+ * forces/pairdamp.h): linear -kd (v_a - v_b); axial kd (u . w) u,
+ * w = v_b - v_a, none for coincident particles (some false), and then
+ * u . w is returned (linear: 0).  The one expression of the pair-by-pair
+ * loop, the separate pass and the fused pass (axial: a constant where it
+ * is inlined). */
+CL_PAIR_INLINE double damp_force(bool axial, double kd, const double *v,
+                                 int a, int b, bool some, double u0,
+                                 double u1, double u2, double *g0,
+                                 double *g1, double *g2)
+{
+    if (!axial) {
+        *g0 = -kd * (v[a] - v[b]);
+        *g1 = -kd * (v[a + 1] - v[b + 1]);
+        *g2 = -kd * (v[a + 2] - v[b + 2]);
+        return 0.0;
+    }
+    double uw = axial_uw(u0, u1, u2, v[b] - v[a], v[b + 1] - v[a + 1],
+                         v[b + 2] - v[a + 2]);
+    *g0 = some ? kd * uw * u0 : 0.0;
+    *g1 = some ? kd * uw * u1 : 0.0;
+    *g2 = some ? kd * uw * u2 : 0.0;
+    return uw;
+}
+
 static double damp_linear(double kd, const cl_pair *pr, const long *s,
                           cl_eval *ev)
 {
     static const double I3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-    const double *va = ev->v + 3 * pr->a, *vb = ev->v + 3 * pr->b;
     double fa[3];
-    for (int i = 0; i < 3; i++)
-        fa[i] = -kd * (va[i] - vb[i]);
+    damp_force(false, kd, ev->v, 3 * pr->a, 3 * pr->b, true, 0.0, 0.0, 0.0,
+               &fa[0], &fa[1], &fa[2]);
     if (ev->dfdv)
         add_blocks(ev->dfdv, s, kd, I3);
     return add_pair_force(ev, pr, fa);
@@ -93,14 +129,13 @@ static double damp_axial(double kd, const cl_pair *pr, const long *s,
     double d = cl_dist(xa, xb);
     if (!(d > 0))
         return 0.0;
-    double u[3], w[3], uw = 0.0, fa[3], B[9];
+    double u[3], w[3], fa[3], B[9];
     for (int i = 0; i < 3; i++) {
         u[i] = (xb[i] - xa[i]) / d;
         w[i] = vb[i] - va[i];
-        uw += u[i] * w[i];
     }
-    for (int i = 0; i < 3; i++)
-        fa[i] = kd * uw * u[i];
+    double uw = damp_force(true, kd, ev->v, 3 * pr->a, 3 * pr->b, true, u[0],
+                           u[1], u[2], &fa[0], &fa[1], &fa[2]);
     if (ev->dfdv) {
         for (int r = 0; r < 3; r++)
             for (int c = 0; c < 3; c++)
@@ -154,38 +189,6 @@ CL_PAIR_INLINE void put_force(force_out o, bool central, size_t k,
     }
 }
 
-/* Linear damping forces f = -kd (v_a - v_b) of pairs [k0, k1) (plus
- * s u, central: a constant where it is inlined, so each loop has no
- * select). */
-CL_PAIR_INLINE void linear_forces(double kd, const cl_pairkern *pk,
-                                  const double *v, size_t k0, size_t k1,
-                                  size_t base, bool central, force_out o)
-{
-    const double *restrict u0 = pk->u0 - base, *restrict u1 = pk->u1 - base;
-    const double *restrict u2 = pk->u2 - base, *restrict s = o.s;
-    const int *ia = pk->ia, *ib = pk->ib;
-#pragma omp simd
-    for (size_t k = k0; k < k1; k++) {
-        int a = 3 * ia[k], b = 3 * ib[k];
-        double g0 = -kd * (v[a] - v[b]), g1 = -kd * (v[a + 1] - v[b + 1]);
-        double g2 = -kd * (v[a + 2] - v[b + 2]);
-        put_force(o, central, k, central ? s[k] * u0[k] + g0 : g0,
-                  central ? s[k] * u1[k] + g1 : g1,
-                  central ? s[k] * u2[k] + g2 : g2);
-    }
-}
-
-/* u . w with w = v_b - v_a, summed as damp_axial sums it. */
-static inline double axial_uw(double u0, double u1, double u2, double w0,
-                              double w1, double w2)
-{
-    double uw = 0.0;
-    uw += u0 * w0;
-    uw += u1 * w1;
-    uw += u2 * w2;
-    return uw;
-}
-
 /* Entry e = (r, q) of kd u u^T into Bk[e] and of G into Bk[9 + e], as
  * damp_axial and axial_dx_block round them (c = kd/d, pwq = (P w)_q,
  * delta = 1 on the diagonal); zeros where z is false (d = 0). */
@@ -230,12 +233,13 @@ static void axial_blocks(const cl_pairdamp *pd, cl_pairkern *pk, size_t k0,
     }
 }
 
-/* Axial damping forces of pairs [k0, k1) from the geometry in pk, the
- * arithmetic of damp_axial: f = kd (u . w) u, none for coincident
- * particles (plus s u, central: a constant where it is inlined). */
-CL_PAIR_INLINE void axial_forces(double kd, const cl_pairkern *pk,
-                                 const double *v, size_t k0, size_t k1,
-                                 size_t base, bool central, force_out o)
+/* The damping forces of pairs [k0, k1) (damp_force; axial: from the
+ * geometry in pk), plus s u with central (axial, central: constants
+ * where it is inlined, so each loop has no select). */
+CL_PAIR_INLINE void damp_loop(double kd, const cl_pairkern *pk,
+                              const double *v, size_t k0, size_t k1,
+                              size_t base, bool axial, bool central,
+                              force_out o)
 {
     const double *restrict d = pk->d - base, *restrict u0 = pk->u0 - base;
     const double *restrict u1 = pk->u1 - base, *restrict u2 = pk->u2 - base;
@@ -244,12 +248,13 @@ CL_PAIR_INLINE void axial_forces(double kd, const cl_pairkern *pk,
 #pragma omp simd
     for (size_t k = k0; k < k1; k++) {
         int a = 3 * ia[k], b = 3 * ib[k];
-        double uw = axial_uw(u0[k], u1[k], u2[k], v[b] - v[a],
-                             v[b + 1] - v[a + 1], v[b + 2] - v[a + 2]);
-        bool some = d[k] > 0;
-        double g0 = some ? kd * uw * u0[k] : 0.0;
-        double g1 = some ? kd * uw * u1[k] : 0.0;
-        double g2 = some ? kd * uw * u2[k] : 0.0;
+        double g0, g1, g2;
+        if (axial)
+            damp_force(true, kd, v, a, b, d[k] > 0, u0[k], u1[k], u2[k], &g0,
+                       &g1, &g2);
+        else
+            damp_force(false, kd, v, a, b, true, 0.0, 0.0, 0.0, &g0, &g1,
+                       &g2);
         put_force(o, central, k, central ? s[k] * u0[k] + g0 : g0,
                   central ? s[k] * u1[k] + g1 : g1,
                   central ? s[k] * u2[k] + g2 : g2);
@@ -266,13 +271,13 @@ static void damp_forces(const cl_pairdamp *pd, const cl_pairkern *pk,
 {
     double kd = pd->kd;
     if (pd->model == CL_DAMP_AXIAL && o.s)
-        axial_forces(kd, pk, v, k0, k1, base, true, o);
+        damp_loop(kd, pk, v, k0, k1, base, true, true, o);
     else if (pd->model == CL_DAMP_AXIAL)
-        axial_forces(kd, pk, v, k0, k1, base, false, o);
+        damp_loop(kd, pk, v, k0, k1, base, true, false, o);
     else if (o.s)
-        linear_forces(kd, pk, v, k0, k1, base, true, o);
+        damp_loop(kd, pk, v, k0, k1, base, false, true, o);
     else
-        linear_forces(kd, pk, v, k0, k1, base, false, o);
+        damp_loop(kd, pk, v, k0, k1, base, false, false, o);
 }
 
 /* Into pk's own force buffers (the separate evaluation). */
@@ -341,14 +346,16 @@ typedef struct {
  * list, those of pt from `off` on: the arithmetic of the three loops of
  * fused_segment (cl_pairkern_geometry with recip, the term's law,
  * damp_forces), so the same forces bit for bit, without storing d, u
- * and s in between (axial: a constant where it is inlined). */
+ * and s in between (axial, and uniform: k_linear one k for all pairs,
+ * constants where it is inlined). */
 CL_PAIR_INLINE void linear_dashpot(const fused_job *j, const cl_pairterm *pt,
                                    size_t off, size_t k0, size_t k1,
-                                   bool axial)
+                                   bool axial, bool uniform)
 {
     const cl_pairkern *pk = &j->pd->pt.kern;
     const int *ia = pk->ia, *ib = pk->ib;
-    const double *restrict L = pk->L, *restrict K = pt->k_linear - off;
+    const double *restrict L = pk->L;
+    const double *restrict K = pt->k_linear - (uniform ? 0 : off);
     const double *x = j->x, *v = j->v;
     double kd = j->pd->kd, *restrict o4 = j->pd->gather.f4;
     bool tension_only = pt->k_tension_only;
@@ -357,21 +364,10 @@ CL_PAIR_INLINE void linear_dashpot(const fused_job *j, const cl_pairterm *pt,
         int a = 3 * ia[k], b = 3 * ib[k];
         double d, u0, u1, u2;
         cl_pairkern_dir(x, a, b, true, &d, &u0, &u1, &u2);
-        bool some = d > 0;
-        double st = d - L[k], sv = K[k] * st;
+        double st = d - L[k], sv = (uniform ? K[0] : K[k]) * st;
         double s = st >= 0 || !tension_only ? sv : 0.0;
         double g0, g1, g2;
-        if (axial) {
-            double uw = axial_uw(u0, u1, u2, v[b] - v[a],
-                                 v[b + 1] - v[a + 1], v[b + 2] - v[a + 2]);
-            g0 = some ? kd * uw * u0 : 0.0;
-            g1 = some ? kd * uw * u1 : 0.0;
-            g2 = some ? kd * uw * u2 : 0.0;
-        } else {
-            g0 = -kd * (v[a] - v[b]);
-            g1 = -kd * (v[a + 1] - v[b + 1]);
-            g2 = -kd * (v[a + 2] - v[b + 2]);
-        }
+        damp_force(axial, kd, v, a, b, d > 0, u0, u1, u2, &g0, &g1, &g2);
         put_pair(o4, k, s * u0 + g0, s * u1 + g1, s * u2 + g2);
     }
 }
@@ -380,10 +376,15 @@ CL_PAIR_KERNEL
 static void linear_segment(const fused_job *j, const cl_pairterm *pt,
                            size_t off, size_t k0, size_t k1)
 {
-    if (j->pd->model == CL_DAMP_AXIAL)
-        linear_dashpot(j, pt, off, k0, k1, true);
+    bool axial = j->pd->model == CL_DAMP_AXIAL;
+    if (axial && pt->k_uniform)
+        linear_dashpot(j, pt, off, k0, k1, true, true);
+    else if (axial)
+        linear_dashpot(j, pt, off, k0, k1, true, false);
+    else if (pt->k_uniform)
+        linear_dashpot(j, pt, off, k0, k1, false, true);
     else
-        linear_dashpot(j, pt, off, k0, k1, false);
+        linear_dashpot(j, pt, off, k0, k1, false, false);
 }
 
 /* Pairs [k0, k1) of pd's list, those of pt from `off` on, by three

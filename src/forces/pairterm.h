@@ -58,6 +58,7 @@ typedef struct {
     const double *k_linear; /* per pair: k of a law that is k (d - L)
                              * (springs; Type1), for the fused pass's one
                              * loop (forces/pairdamp.h); else NULL */
+    bool k_uniform;         /* k_linear is one k for every pair (Type1) */
     bool k_tension_only;    /* that law is 0 for d < L (Type1) */
     cl_pairkern kern;   /* the vectorised, threaded evaluation */
     bool clamp_transverse;

@@ -19,7 +19,6 @@ typedef struct {
     cl_pairterm pt; /* first member: the pairterm hooks use it */
     double ks;
     bool linear;    /* compression = spring */
-    double *k;      /* ks for every pair (the fused pass's k_linear) */
 } type1_state;
 
 static void type1_law(const void *params, size_t k, double d, double L,
@@ -74,28 +73,20 @@ static size_t type1_fuse(void *state, const cl_term_type *const *next,
 }
 
 /* The law as k (d - L) for the fused pass (forces/pairterm.h,
- * k_linear): ks on every pair, nothing below L unless compression =
- * spring. */
-static cl_status linear_law(type1_state *st, cl_error *err)
+ * k_linear): the one ks of every pair, nothing below L unless
+ * compression = spring. */
+static void linear_law(type1_state *st)
 {
-    size_t n = st->pt.set.n;
-    st->k = malloc((n + 1) * sizeof *st->k);
-    if (!st->k)
-        return cl_error_set(err, CL_ENOMEM, "out of memory (type1)");
-    for (size_t k = 0; k < n; k++)
-        st->k[k] = st->ks;
-    st->pt.k_linear = st->k;
+    st->pt.k_linear = &st->ks;
+    st->pt.k_uniform = true;
     st->pt.k_tension_only = !st->linear;
-    return CL_OK;
 }
 
 static void type1_free(void *state)
 {
     type1_state *st = state;
-    if (st) {
+    if (st)
         cl_pairterm_free(&st->pt);
-        free(st->k);
-    }
     free(st);
 }
 
@@ -130,11 +121,11 @@ static cl_status type1_create(cl_config *cfg, const cl_cloth *cloth,
     if ((rc = cl_pairs_type1(cloth, &set, err)) ||
         (rc = cl_pairterm_init(&st->pt, set, type1_law, type1_batch, st,
                                opts->clamp_transverse, 1, err)) ||
-        (rc = cl_pairterm_tear(&st->pt, opts->tear_cut, err)) ||
-        (rc = linear_law(st, err))) {
+        (rc = cl_pairterm_tear(&st->pt, opts->tear_cut, err))) {
         type1_free(st);
         return rc;
     }
+    linear_law(st);
     *state = st;
     return CL_OK;
 }
