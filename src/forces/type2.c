@@ -65,7 +65,7 @@ typedef struct {
     gsl_integration_workspace *quad;
     /* The exact model's G(e) = t^2 / D(t) by pieces (buckling_cheb) */
     double cheb[CHEB_PIECES][CHEB_TERMS];
-    double *fbc;           /* per pair: 4 kb/L^2 */
+    double *fbc;           /* per pair: 4 kb/L^2 (scale_setup) */
 } type2_state;
 
 /* t = kappa L/2 at distance d < L, and dt/dd. */
@@ -249,27 +249,6 @@ static void type2_law(const void *params, size_t k, double d, double L,
         out->e = compression_energy(st, &st->len[st->len_of[k]], d);
 }
 
-/* The linear branches over pairs [0, m) (tension ks (d - L), and
- * cb (d - L) where it must win); need[i] marks the pairs left to f_b. */
-CL_PAIR_KERNEL
-static void linear_branches(const type2_state *st, size_t m, const double *d,
-                            const double *L, double *s, double *ds,
-                            unsigned char *need)
-{
-    double ks = st->tension == TENSION_SPRING ? st->ks : 0.0;
-    double cb = st->cb, kb = st->kb;
-    bool exact = st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT;
-#pragma omp simd
-    for (size_t i = 0; i < m; i++) {
-        double dd = d[i], l = L[i], lin = cb * (dd - l);
-        bool tension = dd >= l;
-        s[i] = tension ? ks * (dd - l) : lin;
-        ds[i] = tension ? ks : cb;
-        need[i] =
-            !tension && !(exact && lin >= -3.0 * buckling_scale(kb, l));
-    }
-}
-
 /* G(e) = t^2 / D(t) at t = asinc_1m(e) by the scalar functions (exact
  * model): f_b = (4 kb / L^2) G (eq. 9) with e = (L - d) / L. */
 static double buckling_g(const type2_state *st, double e)
@@ -305,12 +284,11 @@ static void build_cheb(type2_state *st)
     }
 }
 
-/* The exact model's tables: G's pieces, and per pair the factor
- * 4 kb/L^2 of f_b, formed once as the scalar law forms it. */
-static cl_status exact_setup(type2_state *st, cl_error *err)
+/* Per pair the factor 4 kb/L^2 of f_b, formed once as the scalar law
+ * forms it (the bound of linear_branches, and exact_max's factor). */
+static cl_status scale_setup(type2_state *st, cl_error *err)
 {
     const cl_pairset *set = &st->pt.set;
-    build_cheb(st);
     st->fbc = malloc((set->n + 1) * sizeof *st->fbc);
     if (!st->fbc)
         return cl_error_set(err, CL_ENOMEM, "out of memory (type2)");
@@ -339,25 +317,29 @@ static inline double buckling_cheb(const double (*cheb)[CHEB_TERMS],
     return cheb[j][0] + x * b1 - b2;
 }
 
-/* The exact model's linear branches over pairs [0, m) (those of the
- * term from k0 on): s = ks (d - L) in tension, cb (d - L) in
- * compression; need[i] where f_b may win (cb (d - L) < -12 kb/L^2), with
- * e[i] = (L - d)/L. */
+/* The linear branches over pairs [0, m) (those of the term from k0 on):
+ * s = ks (d - L) in tension (tension = spring; else 0), cb (d - L) in
+ * compression, and ds = ks or cb; need[i] where the law is left to f_b:
+ * every pair in compression, or with the exact model only those where
+ * f_b may win, cb (d - L) < -3 (4 kb/L^2) = -12 kb/L^2 (f_b's bound,
+ * eq. 9); e[i] = (L - d)/L for buckling_cheb. */
 CL_PAIR_KERNEL
-static void exact_linear(const type2_state *st, size_t k0, size_t m,
-                         const double *d, const double *L, double *s,
-                         double *e, unsigned char *need)
+static void linear_branches(const type2_state *st, size_t k0, size_t m,
+                            const double *d, const double *L, double *s,
+                            double *ds, double *e, unsigned char *need)
 {
     double ks = st->tension == TENSION_SPRING ? st->ks : 0.0;
     double cb = st->cb;
+    bool exact = st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT;
     const double *restrict C = st->fbc + k0;
 #pragma omp simd
     for (size_t i = 0; i < m; i++) {
         double dd = d[i], l = L[i], lin = cb * (dd - l);
-        bool tension = dd >= l;
+        bool tension = dd >= l, lin_wins = lin >= -3.0 * C[i];
         s[i] = tension ? ks * (dd - l) : lin;
+        ds[i] = tension ? ks : cb;
         e[i] = (l - dd) / l;
-        need[i] = !tension && !(lin >= -3.0 * C[i]);
+        need[i] = !tension && !(exact && lin_wins);
     }
 }
 
@@ -373,16 +355,14 @@ static void exact_fb(const type2_state *st, size_t k0, size_t n,
         fb[j] = C[idx[j]] * buckling_cheb(cheb, e[idx[j]]);
 }
 
-/* The exact model's law s over pairs [0, m) (at most CL_PAIRKERN_CHUNK):
- * the linear branches for all, s = max(f_b, cb (d - L)) where f_b may
- * win, f_b by buckling_cheb for those alone. */
-static void exact_forces(const type2_state *st, size_t k0, size_t m,
-                         const double *d, const double *L, double *s)
+/* The exact model's s = max(f_b, cb (d - L)) over pairs [0, m) (at most
+ * CL_PAIRKERN_CHUNK) where need[i] (linear_branches: f_b may win), f_b
+ * by buckling_cheb for those alone. */
+static void exact_max(const type2_state *st, size_t k0, size_t m,
+                      const double *e, const unsigned char *need, double *s)
 {
-    double e[CL_PAIRKERN_CHUNK], fb[CL_PAIRKERN_CHUNK];
-    unsigned char need[CL_PAIRKERN_CHUNK];
+    double fb[CL_PAIRKERN_CHUNK];
     size_t idx[CL_PAIRKERN_CHUNK], n = 0;
-    exact_linear(st, k0, m, d, L, s, e, need);
     for (size_t i = 0; i < m; i++) {
         idx[n] = i;
         n += need[i];
@@ -392,21 +372,23 @@ static void exact_forces(const type2_state *st, size_t k0, size_t m,
         s[idx[j]] = s[idx[j]] >= fb[j] ? s[idx[j]] : fb[j];
 }
 
-/* Pairs [0, m) of at most CL_PAIRKERN_CHUNK.  s is the same with and
- * without ds (the Jacobian's forces are the right-hand side's, bit for
- * bit); s' of the f_b branch comes from the scalar law. */
+/* Pairs [0, m) of at most CL_PAIRKERN_CHUNK: the linear branches, then
+ * the pairs left to f_b, by buckling_cheb (exact model) or the scalar
+ * law.  s is the same with and without ds (the Jacobian's forces are the
+ * right-hand side's, bit for bit); s' of the f_b branch comes from the
+ * scalar law. */
 static void type2_piece(const type2_state *st, size_t k0, size_t m,
                         const double *d, const double *L, double *s,
                         double *ds)
 {
-    double dsw[CL_PAIRKERN_CHUNK], sw[CL_PAIRKERN_CHUNK], one;
+    double dsw[CL_PAIRKERN_CHUNK], e[CL_PAIRKERN_CHUNK], one;
     unsigned char need[CL_PAIRKERN_CHUNK];
     bool exact = st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT;
+    linear_branches(st, k0, m, d, L, s, ds ? ds : dsw, e, need);
     if (exact)
-        exact_forces(st, k0, m, d, L, s);
+        exact_max(st, k0, m, e, need, s);
     if (exact && !ds)
         return;
-    linear_branches(st, m, d, L, exact ? sw : s, ds ? ds : dsw, need);
     for (size_t i = 0; i < m; i++)
         if (need[i])
             compression_law(st, d[i], L[i], ds != NULL, exact ? &one : &s[i],
@@ -542,9 +524,10 @@ static cl_status type2_setup(type2_state *st, const cl_cloth *cloth,
                                opts->clamp_transverse, 1, err)) ||
         (rc = cl_pairterm_tear(&st->pt, opts->tear_cut, err)))
         return rc;
-    if (st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT &&
-        (rc = exact_setup(st, err)))
+    if ((rc = scale_setup(st, err)))
         return rc;
+    if (st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT)
+        build_cheb(st);
     return build_lengths(st, err);
 }
 
