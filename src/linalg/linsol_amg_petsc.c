@@ -55,8 +55,9 @@
  * times it, is back at +1, its value at 0, and beyond which it exceeds
  * 1): an estimate short by more than that made the multigrid cycle
  * indefinite.  CLP_AMG_RECOVER rebuilds the hierarchy and estimates every
- * level's bound with CLP_AMG_RECOVER_STEPS Lanczos steps (kept by those
- * levels until the next build, which restores the steps before). */
+ * level's bound with CLP_AMG_RECOVER_STEPS Lanczos steps, once, in the
+ * build (kept by those levels until the next build, which restores the
+ * steps before). */
 #include <petscksp.h>
 #include <stdio.h>
 
@@ -306,30 +307,39 @@ static PetscErrorCode amg_estimator(PC pc, PetscInt l, KSP *smooth, KSP *est)
     return KSPChebyshevEstEigGetKSP(*smooth, est);
 }
 
-/* Every Chebyshev smoother's bound estimated again, by
+/* A recovery's bounds: every Chebyshev smoother's estimator raised to
  * CLP_AMG_RECOVER_STEPS Lanczos steps (s->est_steps keeps the number
- * before): KSPChebyshevEstEigSet with the transform unchanged
- * (PETSC_DECIDE) forgets the last estimate, and its operators set again
- * make KSPSetUp make a new one.  The smoothers keep that number until the
- * next build (amg_plain_bounds). */
-static PetscErrorCode amg_careful_bounds(clp_amg *s, PC pc)
+ * before), reset first: CG sized its arrays of Lanczos coefficients by
+ * the max_it of its first setup.  Called before the recovery's build, so
+ * that the build's own estimates take those steps: a build with as many
+ * levels as before keeps their smoothers (PCMGSetLevels), whose bounds it
+ * estimates anew on the new operators, once.  Called again after it
+ * (estimate): a build with another number of levels made new smoothers,
+ * estimated with the steps of the options; those alone are raised, and
+ * KSPChebyshevEstEigSet with the transform unchanged (PETSC_DECIDE)
+ * forgets their estimate and their operators set again make KSPSetUp
+ * make a new one.  The smoothers keep these steps until the next build
+ * (amg_plain_bounds). */
+static PetscErrorCode amg_careful_bounds(clp_amg *s, PC pc, int estimate)
 {
     PetscInt levels = 0;
     PetscErrorCode ec = PCMGGetLevels(pc, &levels);
     for (PetscInt l = 1; !ec && l < levels; l++) {
         KSP smooth, est;
         Mat op, pmat;
-        if ((ec = amg_estimator(pc, l, &smooth, &est)) || !est)
+        PetscInt steps = 0;
+        if ((ec = amg_estimator(pc, l, &smooth, &est)) || !est ||
+            (ec = KSPGetTolerances(est, NULL, NULL, NULL, &steps)) ||
+            steps == CLP_AMG_RECOVER_STEPS)
             continue;
-        if (!s->est_steps &&
-            (ec = KSPGetTolerances(est, NULL, NULL, NULL, &s->est_steps)))
-            break;
-        /* reset first: CG sized its arrays of Lanczos coefficients by the
-         * max_it of its first setup */
-        if (!(ec = KSPReset(est)) &&
-            !(ec = KSPSetTolerances(est, PETSC_DEFAULT, PETSC_DEFAULT,
-                                    PETSC_DEFAULT, CLP_AMG_RECOVER_STEPS)) &&
-            !(ec = KSPChebyshevEstEigSet(smooth, PETSC_DECIDE, PETSC_DECIDE,
+        if (!s->est_steps)
+            s->est_steps = steps;
+        if ((ec = KSPReset(est)) ||
+            (ec = KSPSetTolerances(est, PETSC_DEFAULT, PETSC_DEFAULT,
+                                   PETSC_DEFAULT, CLP_AMG_RECOVER_STEPS)) ||
+            !estimate)
+            continue;
+        if (!(ec = KSPChebyshevEstEigSet(smooth, PETSC_DECIDE, PETSC_DECIDE,
                                          PETSC_DECIDE, PETSC_DECIDE)) &&
             !(ec = KSPGetOperators(smooth, &op, &pmat)) &&
             !(ec = KSPSetOperators(smooth, op, pmat)))
@@ -377,13 +387,16 @@ int clp_amg_setup(void *handle, const double *ablk, int mode,
         return amg_fail(msg, "setting the reuse", ec);
     if (mode == CLP_AMG_BUILD && !s->hypre && (ec = amg_plain_bounds(s, pc)))
         return amg_fail(msg, "the smoothers' eigenvalue estimates", ec);
+    if (mode == CLP_AMG_RECOVER && !s->hypre &&
+        (ec = amg_careful_bounds(s, pc, 0)))
+        return amg_fail(msg, "the smoothers' eigenvalue estimates", ec);
     if ((ec = KSPSetOperators(s->ksp, s->op, s->A)) ||
         (ec = KSPSetUp(s->ksp)))
         return amg_fail(msg, "the multigrid setup (KSPSetUp)", ec);
     if (keep && !s->hypre && (ec = amg_fine_smoother(s, pc)))
         return amg_fail(msg, "the finest smoother's setup", ec);
     if (mode == CLP_AMG_RECOVER && !s->hypre &&
-        (ec = amg_careful_bounds(s, pc)))
+        (ec = amg_careful_bounds(s, pc, 1)))
         return amg_fail(msg, "the smoothers' eigenvalue estimates", ec);
     return 0;
 }
