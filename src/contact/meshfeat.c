@@ -336,31 +336,52 @@ bool cl_meshfeat_answer(const cl_meshfeat *f, int id, const double x[3],
             return id_;                                                 \
     } while (0)
 
+/* A face of feature id: itself, an edge's first, a vertex's first
+ * edge's first. */
+static int face_of(const cl_meshfeat *f, int id)
+{
+    size_t i = (size_t)id;
+    if (i < f->nface)
+        return id;
+    if ((i -= f->nface) < f->nedge)
+        return f->edge[i].f[0];
+    const cl_feat_vertex *V = &f->vert[i - f->nedge];
+    return f->edge[f->wedge[V->first]].f[0];
+}
+
+/* The side of face t that x lies farthest beyond (in-plane), -1 when it
+ * lies within all three. */
+static int side_beyond(const cl_feat_face *F, const double x[3])
+{
+    int side = -1;
+    double most = 0;
+    for (int k = 0; k < 3; k++) {
+        double out = cl_v3_dot(F->m[k], x) - F->mo[k];
+        if (out > most) {
+            most = out;
+            side = k;
+        }
+    }
+    return side;
+}
+
 int cl_meshfeat_answer_near(const cl_meshfeat *f, int id, const double x[3],
                             double *d, double n[3], double c[3],
                             cl_feat_kind *kind, double e[3])
 {
     int ne = (int)f->nface, nv = (int)(f->nface + f->nedge);
     TRY(id);
-    if (id < ne) {
+    int t = face_of(f, id);
+    for (int hop = 0; hop < CL_MESHFEAT_HOPS; hop++) {
+        TRY(t);
         for (int k = 0; k < 3; k++)
-            TRY(ne + f->side[id][k]);
+            TRY(ne + f->side[t][k]);
         for (int k = 0; k < 3; k++)
-            TRY(nv + f->tri[id][k]);
-        for (int k = 0; k < 3; k++)
-            TRY(f->across[id][k]);
-    } else if (id < nv) {
-        const cl_feat_edge *E = &f->edge[id - ne];
-        for (int k = 0; k < 2; k++)
-            TRY(E->f[k]);
-        for (int k = 0; k < 2; k++)
-            TRY(nv + E->v[k]);
-    } else {
-        const cl_feat_vertex *V = &f->vert[id - nv];
-        for (int k = 0; k < V->count; k++)
-            TRY(ne + f->wedge[V->first + k]);
-        for (int k = 0; k < V->count; k++)
-            TRY(f->edge[f->wedge[V->first + k]].f[0]);
+            TRY(nv + f->tri[t][k]);
+        int k = side_beyond(&f->face[t], x);
+        if (k < 0)
+            break;
+        t = f->across[t][k];
     }
     return -1;
 }

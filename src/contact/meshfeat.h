@@ -12,13 +12,14 @@
  * For x in R_F, x - c_F is a non-negative combination of N_F when F's
  * neighbourhood is convex.  A triangle all of whose vertices y satisfy
  * m . (y - c_F) <= tau for every m in N_F is then no nearer than
- * |x - c_F| - sqrt(3) tau (eq. C1b); any other triangle T is farther
+ * |x - c_F| less a few tau (eq. C1b); any other triangle T is farther
  * than |x - c_F| as long as |x - c_F| <= dist(T, F) / 2 (eq. C1c).  The
- * clearance h_F is the least dist(T, F) / 2 over the triangles of the
- * second kind, a lower bound of it from bounding spheres (infinite when
- * there are none, as on a convex mesh; 0, the feature unused, when such
- * a triangle touches F, as around a concave edge).  tau is 1e-12 times
- * the mesh's size.
+ * clearance h_F of a face is the least dist(T, F) / 2 over the
+ * triangles of the second kind, a lower bound of it from bounding
+ * spheres (infinite when there are none, as on a convex mesh; 0, the
+ * feature unused, when such a triangle touches F, as around a concave
+ * edge); an edge or vertex takes the least of its faces'.  tau is 1e-12
+ * times the mesh's size.
  *
  * Only faces, edges between faces that are not coplanar and corner
  * vertices have regions of full dimension; edges between coplanar faces
@@ -98,11 +99,14 @@ bool cl_meshfeat_answer(const cl_meshfeat *f, int id, const double x[3],
                         double *d, double n[3], double c[3],
                         cl_feat_kind *kind, double e[3]);
 
-/* The first of feature id and its neighbours (a face's sides, corners and
- * the faces across its sides; an edge's faces and ends; a vertex's edges
- * and their faces) that answers at x, as cl_meshfeat_answer; -1 if none
- * does.  A point that moved off a feature is mostly in a neighbour's
- * region. */
+/* Feature id, or else the first feature that answers at x on a walk
+ * over the faces from one of id's (each face's own features tried, then
+ * the face across the side x lies farthest beyond, CL_MESHFEAT_HOPS faces
+ * at most), as cl_meshfeat_answer; -1 if none does.  A point that moved
+ * off its feature is mostly in a neighbour's region, or a few faces
+ * on. */
+#define CL_MESHFEAT_HOPS 8
+
 int cl_meshfeat_answer_near(const cl_meshfeat *f, int id, const double x[3],
                             double *d, double n[3], double c[3],
                             cl_feat_kind *kind, double e[3]);

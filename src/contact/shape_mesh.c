@@ -14,7 +14,10 @@
  *
  * Query: the nearest triangle by the bounding-volume tree (contact/bvh.h;
  * with a cache, a point's nearby triangles kept from one query to the
- * next) gives the closest point c and the feature it lies on.  The sign comes
+ * next) gives the closest point c and the feature it lies on.  With a
+ * cache, the feature of the last answer outside, or one of its
+ * neighbours, answers alone while the point stays in its region within
+ * its clearance (contact/meshfeat.h; docs/model.md 4.1).  The sign comes
  * from the angle-weighted pseudo-normal of that feature (Baerentzen and
  * Aanaes, "Signed distance computation using the angle weighted
  * pseudonormal", IEEE TVCG 11(3), 2005): the face normal on a face, the
