@@ -16,6 +16,7 @@
 #include "contact/triangle.h"
 #include "core/vec3.h"
 #include "fdcheck.h"
+#include "shapecheck.h"
 
 TestSuite(meshfeat);
 
@@ -94,20 +95,6 @@ Test(meshfeat, convex_icosphere_clears_every_feature)
     release(&m);
 }
 
-/* The nearest distance by trying every triangle. */
-static double brute(const cl_shape_surface *sf, const double x[3])
-{
-    double best = INFINITY;
-    for (size_t t = 0; t < sf->ntri; t++) {
-        cl_tri_point p;
-        cl_tri_closest(x, sf->vert + 3 * sf->tri[t][0],
-                       sf->vert + 3 * sf->tri[t][1],
-                       sf->vert + 3 * sf->tri[t][2], &p);
-        best = fmin(best, p.dist2);
-    }
-    return sqrt(best);
-}
-
 /* A point within `spread` of a random point of triangle t. */
 static void near_triangle(const cl_shape_surface *sf, int t, double spread,
                           fd_rng *r, double x[3])
@@ -137,7 +124,7 @@ static size_t answers_are_nearest(const built *m)
         int t = (int)((size_t)k % m->sf.ntri), ids[37];
         double x[3];
         near_triangle(&m->sf, t, k % 10 ? 0.1 : 2.0, &r, x);
-        double want = brute(&m->sf, x);
+        double want = sc_brute_distance(&m->sf, x);
         ids[0] = t;
         for (int j = 0; j < 3; j++) {
             ids[1 + j] = (int)m->f.nface + m->f.side[t][j];
@@ -249,7 +236,7 @@ Test(meshfeat, a_point_off_a_face_is_answered_by_a_neighbour)
         int edge = (int)m.f.nface + m.f.side[t][0];
         cr_assert(id == edge || id == m.f.across[t][0], "face %d: %d", t,
                   id);
-        cr_assert(fabs(d - brute(&m.sf, x)) <= 1e-12);
+        cr_assert(fabs(d - sc_brute_distance(&m.sf, x)) <= 1e-12);
         walked += id == edge;
     }
     cr_assert_gt(walked, 0);

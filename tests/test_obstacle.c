@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "contact/obstacle.h"
+#include "fdcheck.h"
 #include "obstaclecase.h"
 
 #define NSET 12
@@ -175,30 +176,19 @@ Test(obstacle, names_shapes_and_responses_are_checked)
     }
 }
 
-/* The largest difference of two arrays over 1 + the largest magnitude in
- * b. */
-static double differ(const double *a, const double *b, int n)
-{
-    double diff = 0, size = 1;
-    for (int i = 0; i < n; i++) {
-        diff = fmax(diff, fabs(a[i] - b[i]));
-        size = fmax(size, fabs(b[i]));
-    }
-    return diff / size;
-}
-
 /* Two answers at the same point: equal up to the rounding of computing
  * the distance to the same feature in other ways (a mesh's kept feature,
- * contact/meshfeat.h, against the tree's closest point): d, n and c to
- * 1e-14 (the points are within a few metres of the origin), G to 1e-14
- * relative (it scales with 1 / d), u and W exactly. */
+ * contact/meshfeat.h, against the tree's closest point): d and c to
+ * 1e-14 m, n and G to 1e-14 (1 + 1 / |d|) relative (the rounding of
+ * x - c over |d|), u and W exactly. */
 static void same_answer(const cl_contact_point *a, const cl_contact_point *b,
                         unsigned long k)
 {
-    cr_assert_leq(differ(&a->d, &b->d, 1), 1e-14, "d, step %lu", k);
-    cr_assert_leq(differ(a->n, b->n, 3), 1e-14, "n, step %lu", k);
-    cr_assert_leq(differ(a->c, b->c, 3), 1e-14, "c, step %lu", k);
-    cr_assert_leq(differ(a->G, b->G, 9), 1e-14, "G, step %lu", k);
+    double tol = 1e-14 * (1 + 1 / fabs(b->d));
+    cr_assert_leq(fabs(a->d - b->d), 1e-14, "d, step %lu", k);
+    cr_assert_leq(fd_relerr(a->c, b->c, 3), 1e-14, "c, step %lu", k);
+    cr_assert_leq(fd_relerr(a->n, b->n, 3), tol, "n, step %lu", k);
+    cr_assert_leq(fd_relerr(a->G, b->G, 9), tol, "G, step %lu", k);
     cr_assert_eq(memcmp(a->u, b->u, sizeof a->u), 0, "u, step %lu", k);
     cr_assert_eq(memcmp(a->W, b->W, sizeof a->W), 0, "W, step %lu", k);
 }
