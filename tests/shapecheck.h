@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "contact/shape.h"
+#include "contact/triangle.h"
 #include "core/vec3.h"
 #include "fdcheck.h"
 
@@ -220,6 +221,21 @@ static inline void sc_check_surface(const sc_shape *s, size_t ntri,
         cr_assert(cl_v3_dot(n, q.n) > 0, "triangle %zu faces inwards", t);
     }
     cl_shape_surface_free(&sf);
+}
+
+/* The distance from x to a surface by trying every triangle. */
+static inline double sc_brute_distance(const cl_shape_surface *sf,
+                                       const double x[3])
+{
+    double best = INFINITY;
+    for (size_t t = 0; t < sf->ntri; t++) {
+        cl_tri_point p;
+        cl_tri_closest(x, sf->vert + 3 * sf->tri[t][0],
+                       sf->vert + 3 * sf->tri[t][1],
+                       sf->vert + 3 * sf->tri[t][2], &p);
+        best = fmin(best, p.dist2);
+    }
+    return sqrt(best);
 }
 
 #endif

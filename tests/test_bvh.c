@@ -169,6 +169,65 @@ Test(bvh, cached_nearest_follows_a_moving_point)
     cl_shape_surface_free(&s);
 }
 
+/* The walk's context: a box around a point, the triangles seen. */
+typedef struct {
+    const cl_bvh *b;
+    double lo[3], hi[3];
+    int *seen;
+} around;
+
+static bool meets(const double lo[3], const double hi[3], void *ctx)
+{
+    const around *a = ctx;
+    for (int i = 0; i < 3; i++)
+        if (lo[i] > a->hi[i] || hi[i] < a->lo[i])
+            return false;
+    return true;
+}
+
+static void seen(int t, void *ctx)
+{
+    ((around *)ctx)->seen[t]++;
+}
+
+/* Walking the boxes that meet a box about a point visits every triangle
+ * that meets it, each once, and far fewer than all. */
+Test(bvh, walk_visits_the_boxes_entered)
+{
+    cl_shape_surface s;
+    cl_bvh b;
+    lumpy_sphere(&s, &b);
+    around a = {.b = &b, .seen = calloc(s.ntri, sizeof(int))};
+    cr_assert_not_null(a.seen);
+    for (int i = 0; i < 3; i++) {
+        a.lo[i] = (i ? 0.0 : 0.9) - 0.2;
+        a.hi[i] = (i ? 0.0 : 0.9) + 0.2;
+    }
+    cl_bvh_walk(&b, meets, seen, &a);
+    int visited = 0;
+    for (size_t t = 0; t < s.ntri; t++) {
+        double lo[3], hi[3];
+        for (int i = 0; i < 3; i++) {
+            lo[i] = INFINITY;
+            hi[i] = -INFINITY;
+            for (int k = 0; k < 3; k++) {
+                lo[i] = fmin(lo[i], s.vert[3 * s.tri[t][k] + i]);
+                hi[i] = fmax(hi[i], s.vert[3 * s.tri[t][k] + i]);
+            }
+        }
+        cr_assert_leq(a.seen[t], 1, "triangle %zu seen %d times", t,
+                      a.seen[t]);
+        if (meets(lo, hi, &a))
+            cr_assert_eq(a.seen[t], 1, "triangle %zu meets the box", t);
+        visited += a.seen[t];
+    }
+    cr_assert(visited > 0 && visited < (int)s.ntri / 4, "%d of %zu",
+              visited, s.ntri);
+    free(a.seen);
+    cl_bvh_free(&b);
+    cl_shape_surface_free(&s);
+}
+
 Test(bvh, one_triangle_and_no_triangle)
 {
     static const double v[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};

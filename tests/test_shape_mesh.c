@@ -240,19 +240,6 @@ static double winding(const cl_shape_surface *sf, const double x[3])
     return w / (4 * M_PI);
 }
 
-static double brute_distance(const cl_shape_surface *sf, const double x[3])
-{
-    double best = INFINITY;
-    for (size_t t = 0; t < sf->ntri; t++) {
-        cl_tri_point p;
-        cl_tri_closest(x, sf->vert + 3 * sf->tri[t][0],
-                       sf->vert + 3 * sf->tri[t][1],
-                       sf->vert + 3 * sf->tri[t][2], &p);
-        best = fmin(best, p.dist2);
-    }
-    return sqrt(best);
-}
-
 /* Point k of 10^4: uniform around the mesh, or within 0.03 of a vertex,
  * or of a point of an edge. */
 static void sample(const cl_shape_surface *sf, fd_rng *r, int k, double x[3])
@@ -282,7 +269,7 @@ Test(shape_mesh, lumpy_sphere_against_brute_force)
         double x[3];
         sample(&sf, &r, k, x);
         cl_shape_query q = sc_query(&s, x);
-        double d = brute_distance(&sf, x), w = winding(&sf, x);
+        double d = sc_brute_distance(&sf, x), w = winding(&sf, x);
         cr_assert(fabs(w - round(w)) < 1e-6 && (round(w) == 0 ||
                   round(w) == 1), "winding number %g", w);
         cr_assert(fabs(fabs(q.d) - d) <= 1e-12, "|d| = %.17g, brute force "

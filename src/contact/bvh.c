@@ -425,6 +425,26 @@ double cl_bvh_box_distance(const cl_bvh *b, const double x[3])
     return sqrt(box_dist2(&b->node[0], x));
 }
 
+void cl_bvh_walk(const cl_bvh *b,
+                 bool (*enter)(const double lo[3], const double hi[3],
+                               void *ctx),
+                 void (*visit)(int t, void *ctx), void *ctx)
+{
+    int stack[STACK], top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const cl_bvh_node *nd = &b->node[stack[--top]];
+        if (!enter(nd->lo, nd->hi, ctx))
+            continue;
+        for (int i = 0; i < nd->count; i++)
+            visit(b->order[nd->first + i], ctx);
+        if (nd->count)
+            continue;
+        stack[top++] = nd->first;
+        stack[top++] = (int)(nd - b->node) + 1;
+    }
+}
+
 void cl_bvh_nearest_brute(const cl_bvh *b, const double x[3],
                           cl_bvh_hit *hit)
 {

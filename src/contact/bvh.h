@@ -109,6 +109,15 @@ double cl_bvh_box_distance(const cl_bvh *b, const double x[3]);
 double cl_bvh_segment(const cl_bvh *b, const double x0[3],
                       const double x1[3]);
 
+/* Every triangle of the subtrees whose boxes `enter` accepts: a walk from
+ * the root that skips a node and all below it when enter(lo, hi, ctx) is
+ * false, and hands each triangle of an entered leaf to visit(t, ctx).  For
+ * the build of structures that look at a mesh's neighbourhoods. */
+void cl_bvh_walk(const cl_bvh *b,
+                 bool (*enter)(const double lo[3], const double hi[3],
+                               void *ctx),
+                 void (*visit)(int t, void *ctx), void *ctx);
+
 /* The same answer by trying every triangle: the reference of the tests and
  * of the benchmark. */
 void cl_bvh_nearest_brute(const cl_bvh *b, const double x[3],

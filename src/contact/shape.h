@@ -49,7 +49,8 @@ typedef struct {
     /* cache: NULL, or cache_size bytes kept for one moving point between
      * its queries (zeroed before the first), which the shape may use to
      * answer faster; the answer does not depend on it (up to which of
-     * several nearest features is taken; a mesh: contact/bvh.h). */
+     * several nearest features is taken, and to rounding where the cache
+     * computes it another way; a mesh: contact/bvh.h, meshfeat.h). */
     void (*query)(const void *shape, const double x[3], void *cache,
                   cl_shape_query *q);
     size_t cache_size;  /* 0: the shape keeps nothing */

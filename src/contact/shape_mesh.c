@@ -14,7 +14,10 @@
  *
  * Query: the nearest triangle by the bounding-volume tree (contact/bvh.h;
  * with a cache, a point's nearby triangles kept from one query to the
- * next) gives the closest point c and the feature it lies on.  The sign comes
+ * next) gives the closest point c and the feature it lies on.  With a
+ * cache, the feature of the last answer outside, or one of its
+ * neighbours, answers alone while the point stays in its region within
+ * its clearance (contact/meshfeat.h; docs/model.md 4.1).  The sign comes
  * from the angle-weighted pseudo-normal of that feature (Baerentzen and
  * Aanaes, "Signed distance computation using the angle weighted
  * pseudonormal", IEEE TVCG 11(3), 2005): the face normal on a face, the
@@ -40,6 +43,7 @@
 
 #include "contact/bvh.h"
 #include "contact/closed.h"
+#include "contact/meshfeat.h"
 #include "contact/shape_impl.h"
 #include "core/vec3.h"
 #include "io/obj.h"
@@ -59,8 +63,17 @@ typedef struct {
     double (*vn)[3];        /* vertex pseudo-normals */
     double (*ve)[3];        /* crease direction of a G_EDGE vertex */
     unsigned char *vkind;   /* g_kind of each vertex */
+    cl_meshfeat feat;       /* the features' regions and clearances */
     double tiny;            /* 1e-12 times the bounding box's diagonal */
 } mesh;
+
+/* What a moving point keeps between its queries: the tree's cache and
+ * the feature of its last answer outside the mesh, if that feature has a
+ * region (contact/meshfeat.h). */
+typedef struct {
+    cl_bvh_cache bvh;
+    int feat;               /* 1 + its number; 0: none */
+} mesh_cache;
 
 static void mesh_free(void *shape)
 {
@@ -74,6 +87,7 @@ static void mesh_free(void *shape)
     free(m->vn);
     free(m->ve);
     free(m->vkind);
+    cl_meshfeat_free(&m->feat);
     free(m);
 }
 
@@ -199,6 +213,21 @@ static cl_status vertex_normals(mesh *m, const char *path, cl_error *err)
     return CL_OK;
 }
 
+/* The regions of the faces, of the edges between faces that are not
+ * coplanar and of the corners. */
+static cl_status regions(mesh *m, const cl_closed *s, cl_error *err)
+{
+    unsigned char *corner = malloc(m->m.nvert + 1);
+    if (!corner)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (mesh regions)");
+    for (size_t v = 0; v < m->m.nvert; v++)
+        corner[v] = m->vkind[v] == G_CORNER;
+    cl_status rc = cl_meshfeat_build(&m->feat, &m->bvh, s, m->m.nvert,
+                                     m->sflat, corner, m->tiny, err);
+    free(corner);
+    return rc;
+}
+
 /* Normals, pseudo-normals and kinds of a closed, outward mesh. */
 static cl_status geometry(mesh *m, const char *path, cl_error *err)
 {
@@ -216,6 +245,8 @@ static cl_status geometry(mesh *m, const char *path, cl_error *err)
         edge_normals(m, &s);
         rc = vertex_normals(m, path, err);
     }
+    if (!rc)
+        rc = regions(m, &s, err);
     cl_closed_free(&s);
     return rc;
 }
@@ -299,15 +330,48 @@ static g_kind feature(const mesh *m, const cl_bvh_hit *h, const double **pn,
     return m->vkind[v[k]];
 }
 
+/* The answer of the feature kept in the cache, when x is in its region
+ * within its clearance (contact/meshfeat.h). */
+static bool kept_answer(const mesh *m, const double x[3], mesh_cache *mc,
+                        cl_shape_query *q)
+{
+    cl_feat_kind kind;
+    double e[3];
+    if (!mc->feat)
+        return false;
+    int id = cl_meshfeat_answer_near(&m->feat, mc->feat - 1, x, &q->d, q->n,
+                                     q->c, &kind, e);
+    if (id < 0)
+        return false;
+    mc->feat = 1 + id;
+    if (kind == CL_FEAT_FACE)
+        memset(q->G, 0, sizeof q->G);
+    else
+        cl_shape_hessian(q->n, kind == CL_FEAT_EDGE ? e : NULL, q->d, q->G);
+    return true;
+}
+
+/* The tree's answer, with the cache (if any) keeping the feature found. */
+static void search(const mesh *m, const double x[3], mesh_cache *mc,
+                   cl_bvh_hit *h)
+{
+    if (!mc) {
+        cl_bvh_nearest(&m->bvh, x, h);
+        return;
+    }
+    cl_bvh_nearest_cached(&m->bvh, x, &mc->bvh, h);
+    mc->feat = 1 + cl_meshfeat_id(&m->feat, h->tri, h->p.feature, h->p.k);
+}
+
 static void mesh_query(const void *shape, const double x[3], void *cache,
                        cl_shape_query *q)
 {
     const mesh *m = shape;
+    mesh_cache *mc = cache;
     cl_bvh_hit h;
-    if (cache)
-        cl_bvh_nearest_cached(&m->bvh, x, cache, &h);
-    else
-        cl_bvh_nearest(&m->bvh, x, &h);
+    if (mc && kept_answer(m, x, mc, q))
+        return;
+    search(m, x, mc, &h);
     const double *pn;
     double e[3], r[3];
     g_kind kind = feature(m, &h, &pn, e);
@@ -360,7 +424,7 @@ const cl_shape_type cl_shape_mesh = {
     .create = mesh_create,
     .query = mesh_query,
     .toi = mesh_toi,
-    .cache_size = sizeof(cl_bvh_cache),
+    .cache_size = sizeof(mesh_cache),
     .surface = mesh_surface,
     .free = mesh_free,
 };
