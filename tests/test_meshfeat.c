@@ -1,9 +1,9 @@
 /* Tests for contact/meshfeat: the clearances of a convex icosphere
- * (infinite), of a lumpy, non-convex one (most zero, some finite) and of
- * two spheres in one mesh (finite where they face each other); every
- * answer a feature gives, tried at random points about the last two,
- * equal to the nearest distance by brute force; the walk to a
- * neighbour's region. */
+ * (infinite), of lumpy, non-convex ones (most zero, some finite), of two
+ * spheres and of two finely split cubes in one mesh (finite where they
+ * face each other, under half the gap); every answer a feature or the
+ * walk gives, tried at random points about the last three, equal to the
+ * nearest distance by brute force; the walk to a neighbour's region. */
 #include <criterion/criterion.h>
 
 #include <math.h>
@@ -112,18 +112,19 @@ static void near_triangle(const cl_shape_surface *sf, int t, double spread,
                spread * fd_rand(r);
 }
 
-/* At 10^4 points within 0.1 of the surface (one in ten within 2), the
- * answers of the features of a triangle near the point and of 30 random
- * features: each is the nearest distance, its closest point x - d n; the
- * number of points some feature answered. */
-static size_t answers_are_nearest(const built *m)
+/* At `count` points within `spread` of the surface in each coordinate
+ * (one in ten within 2), the answers of the features of a triangle near
+ * the point, of 30 random features and of the walk from that triangle:
+ * each is the nearest distance, its closest point x - d n; the number of
+ * points answered. */
+static size_t answers_are_nearest(const built *m, int count, double spread)
 {
     size_t answered = 0;
     fd_rng r = {31};
-    for (int k = 0; k < 10000; k++) {
+    for (int k = 0; k < count; k++) {
         int t = (int)((size_t)k % m->sf.ntri), ids[37];
         double x[3];
-        near_triangle(&m->sf, t, k % 10 ? 0.1 : 2.0, &r, x);
+        near_triangle(&m->sf, t, k % 10 ? spread : 2.0, &r, x);
         double want = sc_brute_distance(&m->sf, x);
         ids[0] = t;
         for (int j = 0; j < 3; j++) {
@@ -134,14 +135,19 @@ static size_t answers_are_nearest(const built *m)
             ids[j] = (int)(0.5 * (1 + fd_rand(&r)) * (double)nfeat(&m->f)) %
                      (int)nfeat(&m->f);
         bool any = false;
-        for (int j = 0; j < 37; j++) {
+        for (int j = 0; j <= 37; j++) {
             double d, n[3], c[3], e[3], y[3];
             cl_feat_kind kind;
-            if (!cl_meshfeat_answer(&m->f, ids[j], x, &d, n, c, &kind, e))
+            int id = j < 37 ? ids[j]
+                            : cl_meshfeat_answer_near(&m->f, t, x, &d, n, c,
+                                                      &kind, e);
+            if (j < 37 ? !cl_meshfeat_answer(&m->f, id, x, &d, n, c, &kind,
+                                             e)
+                       : id < 0)
                 continue;
             any = true;
             cr_assert(fabs(d - want) <= 1e-12, "feature %d: d = %.17g, "
-                      "brute force %.17g", ids[j], d, want);
+                      "brute force %.17g", id, d, want);
             cl_v3_axpy(x, -d, n, y);
             cr_assert_leq(fd_relerr(y, c, 3), 1e-14, "c != x - d n");
         }
@@ -150,24 +156,30 @@ static size_t answers_are_nearest(const built *m)
     return answered;
 }
 
-/* The lumpy sphere (radii 0.7..1.3, not convex): most features unused
+/* Lumpy spheres (radii 1 -+ lumps, not convex): some features unused
  * (a neighbour rises above a face's plane), some with a finite
  * clearance; every answer the nearest. */
-Test(meshfeat, lumpy_answers_are_the_nearest)
+static void lumpy(double lumps, size_t least)
 {
     built m;
-    icosphere(&m, 2, 0.3, 23);
+    icosphere(&m, 2, lumps, 23);
     size_t zero = 0, finite = 0;
     for (size_t id = 0; id < nfeat(&m.f); id++) {
         double h = clearance(&m.f, id);
         zero += h == 0;
         finite += h > 0 && isfinite(h);
     }
-    cr_assert(zero > 0 && finite > 0, "%zu unused, %zu finite", zero,
-              finite);
-    size_t answered = answers_are_nearest(&m);
-    cr_assert_gt(answered, 20, "answered at %zu points", answered);
+    cr_assert(zero > 0 && (finite > 0 || lumps < 0.1), "%zu unused, %zu "
+              "finite", zero, finite);
+    size_t answered = answers_are_nearest(&m, 10000, 0.1);
+    cr_assert_geq(answered, least, "answered at %zu points", answered);
     release(&m);
+}
+
+Test(meshfeat, lumpy_answers_are_the_nearest)
+{
+    lumpy(0.3, 40);
+    lumpy(0.05, 600);
 }
 
 /* Two unit icospheres 0.5 apart in one mesh: each convex, so no feature
@@ -210,8 +222,77 @@ Test(meshfeat, two_spheres_clear_up_to_half_their_gap)
     cr_assert(finite > 0 && infinite > 0, "%zu finite, %zu infinite",
               finite, infinite);
     cr_assert_leq(least, 0.25, "the least clearance %g", least);
-    size_t answered = answers_are_nearest(&m);
+    size_t answered = answers_are_nearest(&m, 10000, 0.1);
     cr_assert_gt(answered, 2000, "answered at %zu points", answered);
+    release(&m);
+}
+
+/* The surface of the unit cube [-0.5, 0.5]^3 shifted by `shift` in x,
+ * each face split into n x n squares of two triangles, appended to sf's
+ * vertices and triangles (grown), counter-clockwise seen from outside. */
+static void add_box(cl_shape_surface *sf, int n, double shift)
+{
+    int side = n + 1, *id = malloc((size_t)side * side * side * sizeof *id);
+    size_t nv0 = sf->nvert, nt0 = sf->ntri;
+    size_t nv = nv0 + 6 * (size_t)n * n + 2, nt = nt0 + 12 * (size_t)n * n;
+    sf->vert = realloc(sf->vert, 3 * nv * sizeof *sf->vert);
+    sf->tri = realloc(sf->tri, nt * sizeof *sf->tri);
+    cr_assert(id && sf->vert && sf->tri);
+    for (int i = 0; i <= n; i++)
+        for (int j = 0; j <= n; j++)
+            for (int k = 0; k <= n; k++) {
+                int *at = &id[(i * side + j) * side + k];
+                *at = -1;
+                if (i % n && j % n && k % n)
+                    continue;   /* inside */
+                *at = (int)sf->nvert;
+                double p[3] = {(double)i / n - 0.5 + shift,
+                               (double)j / n - 0.5, (double)k / n - 0.5};
+                memcpy(sf->vert + 3 * sf->nvert++, p, sizeof p);
+            }
+    for (int a = 0; a < 3; a++)         /* face axis; u, v the next ones */
+        for (int s = 0; s <= n; s += n)
+            for (int u = 0; u < n; u++)
+                for (int v = 0; v < n; v++) {
+                    int q[4];
+                    for (int c = 0; c < 4; c++) {
+                        int p[3];
+                        p[a] = s;
+                        p[(a + 1) % 3] = u + (c == 1 || c == 2);
+                        p[(a + 2) % 3] = v + (c >= 2);
+                        q[s ? c : 3 - c] =
+                            id[(p[0] * side + p[1]) * side + p[2]];
+                    }
+                    int t1[3] = {q[0], q[1], q[2]}, t2[3] = {q[0], q[2], q[3]};
+                    memcpy(sf->tri[sf->ntri++], t1, sizeof t1);
+                    memcpy(sf->tri[sf->ntri++], t2, sizeof t2);
+                }
+    cr_assert_eq(sf->nvert, nv);
+    cr_assert_eq(sf->ntri, nt);
+    free(id);
+}
+
+/* Two cubes 0.3 apart, faces split 16 x 16: the faces that face each
+ * other have a finite clearance, under half the gap (0.15), and every
+ * answer is the nearest, also at points in the gap farther than that
+ * from one cube and nearer the other. */
+Test(meshfeat, two_boxes_clear_under_half_their_gap)
+{
+    built m = {.sf = {0}};
+    add_box(&m.sf, 16, 0.0);
+    add_box(&m.sf, 16, 1.3);
+    build(&m);
+    size_t finite = 0;
+    for (size_t t = 0; t < m.f.nface; t++) {
+        double h = m.f.face[t].h;
+        cr_assert(h > 0, "face %zu unused", t);
+        cr_assert(isinf(h) || h < 0.15, "face %zu: h = %g", t, h);
+        finite += isfinite(h);
+    }
+    cr_assert_eq(finite, 2 * 2 * 16 * 16, "%zu faces with a finite h",
+                 finite);
+    size_t answered = answers_are_nearest(&m, 4000, 0.2);
+    cr_assert_gt(answered, 600, "answered at %zu points", answered);
     release(&m);
 }
 

@@ -2,6 +2,7 @@
  * (contact/meshfeat.h; docs/model.md 4.1, eq. C1a-C1c). */
 #include "contact/meshfeat.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -74,6 +75,19 @@ static const double *vertex(const cl_bvh *b, int v)
     return b->vert + 3 * v;
 }
 
+/* Whether the face's own vertices v[] lie within tau of its computed
+ * plane (its normal's rounding can tilt a sliver's plane more). */
+static bool on_plane(const clearance *q, const cl_bvh *b, const int v[3])
+{
+    for (int k = 0; k < 3; k++) {
+        double r[3];
+        cl_v3_sub(vertex(b, v[k]), q->p, r);
+        if (fabs(cl_v3_dot(q->n, r)) > q->tau)
+            return false;
+    }
+    return true;
+}
+
 /* Each triangle's centroid and the largest distance from it to a
  * vertex. */
 static void spheres(const cl_bvh *b, double (*tc)[4])
@@ -121,7 +135,7 @@ static void faces(cl_meshfeat *f, clearance *q)
         memcpy(q->p, vertex(b, v[0]), sizeof q->p);
         memcpy(q->c, q->tc[t], sizeof q->c);
         q->r = q->tc[t][3];
-        q->h = INFINITY;
+        q->h = on_plane(q, b, v) ? INFINITY : 0.0; /* a sliver: unused */
         cl_bvh_walk(b, enter, visit, q);
         F->h = q->h;
     }
@@ -143,7 +157,6 @@ static void edges(cl_meshfeat *f, const cl_closed *s,
         side_normal(a, z, b->normal[E->tri[0]], F->ma); /* tri[0]: a -> z */
         side_normal(z, a, b->normal[E->tri[1]], F->mb);
         memcpy(F->f, E->tri, sizeof F->f);
-        memcpy(F->v, E->v, sizeof F->v);
         int t = E->tri[0], side = 0;
         while (s->side[t][side] != (int)k)
             side++;
@@ -209,6 +222,10 @@ cl_status cl_meshfeat_build(cl_meshfeat *f, const cl_bvh *b,
 {
     *f = (cl_meshfeat){.nface = b->ntri, .nedge = s->mesh.nedge,
                        .nvert = nvert, .tri = b->tri, .tiny = tiny};
+    if (f->nface + f->nedge + f->nvert > INT_MAX - 1)
+        return cl_error_set(err, CL_EINVAL, "%zu triangles, %zu edges and "
+                            "%zu vertices: too many features to number",
+                            f->nface, f->nedge, f->nvert);
     f->face = malloc(f->nface * sizeof *f->face);
     f->edge = malloc(f->nedge * sizeof *f->edge);
     f->vert = calloc(nvert, sizeof *f->vert);
@@ -373,7 +390,8 @@ int cl_meshfeat_answer_near(const cl_meshfeat *f, int id, const double x[3],
     TRY(id);
     int t = face_of(f, id);
     for (int hop = 0; hop < CL_MESHFEAT_HOPS; hop++) {
-        TRY(t);
+        if (t != id)
+            TRY(t);
         for (int k = 0; k < 3; k++)
             TRY(ne + f->side[t][k]);
         for (int k = 0; k < 3; k++)

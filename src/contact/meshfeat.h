@@ -8,7 +8,7 @@
  * vertex), a closest point c_F(x) and an outer region R_F: above the
  * face within its prism; for an edge, beside its segment within the
  * wedge between the two faces' planes through it; for a vertex, within
- * the cone where x - v makes an obtuse angle with every edge leaving v.
+ * the cone where x - v makes no acute angle with any edge leaving v.
  * For x in R_F, x - c_F is a non-negative combination of N_F when F's
  * neighbourhood is convex.  A triangle all of whose vertices y satisfy
  * m . (y - c_F) <= tau for every m in N_F is then no nearer than
@@ -17,9 +17,11 @@
  * clearance h_F of a face is the least dist(T, F) / 2 over the
  * triangles of the second kind, a lower bound of it from bounding
  * spheres (infinite when there are none, as on a convex mesh; 0, the
- * feature unused, when such a triangle touches F, as around a concave
- * edge); an edge or vertex takes the least of its faces'.  tau is 1e-12
- * times the mesh's size.
+ * feature unused, when such a triangle's sphere meets F's, as when it
+ * touches F around a concave edge); an edge or vertex takes the least of
+ * its faces'.  A face whose own vertices lie off its computed plane by
+ * more than tau (a sliver) is unused.  tau is 1e-12 times the mesh's
+ * size, and answers are the nearest distance to within a few tau.
  *
  * Only faces, edges between faces that are not coplanar and corner
  * vertices have regions of full dimension; edges between coplanar faces
@@ -51,7 +53,7 @@ typedef struct {
     double a[3], e[3], len; /* from a along the unit direction e */
     double ma[3], mb[3];    /* the two faces' in-plane outward normals */
     double h;
-    int f[2], v[2];         /* its faces, its ends */
+    int f[2];               /* its faces */
 } cl_feat_edge;
 
 typedef struct {
@@ -77,7 +79,8 @@ typedef struct {
 /* The regions and clearances of the closed, outward mesh of tree b and
  * surface s (its vertices vert, nvert of them; flat[3 t + k] true when
  * side k of triangle t joins coplanar faces; corner[v] true for a corner
- * vertex); tiny as above.  CL_ENOMEM. */
+ * vertex); tiny as above.  CL_EINVAL when the features are too many to
+ * number with an int, CL_ENOMEM. */
 cl_status cl_meshfeat_build(cl_meshfeat *f, const cl_bvh *b,
                             const cl_closed *s, size_t nvert,
                             const unsigned char *flat,

@@ -351,18 +351,6 @@ static bool kept_answer(const mesh *m, const double x[3], mesh_cache *mc,
     return true;
 }
 
-/* The tree's answer, with the cache (if any) keeping the feature found. */
-static void search(const mesh *m, const double x[3], mesh_cache *mc,
-                   cl_bvh_hit *h)
-{
-    if (!mc) {
-        cl_bvh_nearest(&m->bvh, x, h);
-        return;
-    }
-    cl_bvh_nearest_cached(&m->bvh, x, &mc->bvh, h);
-    mc->feat = 1 + cl_meshfeat_id(&m->feat, h->tri, h->p.feature, h->p.k);
-}
-
 static void mesh_query(const void *shape, const double x[3], void *cache,
                        cl_shape_query *q)
 {
@@ -371,12 +359,19 @@ static void mesh_query(const void *shape, const double x[3], void *cache,
     cl_bvh_hit h;
     if (mc && kept_answer(m, x, mc, q))
         return;
-    search(m, x, mc, &h);
+    if (mc)
+        cl_bvh_nearest_cached(&m->bvh, x, &mc->bvh, &h);
+    else
+        cl_bvh_nearest(&m->bvh, x, &h);
     const double *pn;
     double e[3], r[3];
     g_kind kind = feature(m, &h, &pn, e);
     cl_v3_sub(x, h.p.c, r);
     double sign = cl_v3_dot(r, pn) >= 0 ? 1.0 : -1.0;
+    if (mc)     /* the feature kept for the next query, if outside */
+        mc->feat = sign > 0 ? 1 + cl_meshfeat_id(&m->feat, h.tri,
+                                                 h.p.feature, h.p.k)
+                            : 0;
     if (h.p.feature == CL_TRI_FACE) {   /* exact, not (x - c) / |x - c| */
         q->d = sign * h.dist;
         memcpy(q->c, h.p.c, sizeof q->c);

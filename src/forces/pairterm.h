@@ -55,9 +55,10 @@ typedef struct {
     cl_pairlaw_fn law;
     cl_pairlaw_batch_fn batch; /* forces and Jacobians (NULL: pairdamp) */
     const void *params;
-    const double *k_linear; /* per pair: k of a law that is k (d - L)
-                             * (springs; Type1), for the fused pass's one
-                             * loop (forces/pairdamp.h); else NULL */
+    const double *k_linear; /* k of a law that is k (d - L), per pair
+                             * (springs) or one for all (Type1,
+                             * k_uniform), for the fused pass's one loop
+                             * (forces/pairdamp.h); else NULL */
     bool k_uniform;         /* k_linear is one k for every pair (Type1) */
     bool k_tension_only;    /* that law is 0 for d < L (Type1) */
     cl_pairkern kern;   /* the vectorised, threaded evaluation */
