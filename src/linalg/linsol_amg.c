@@ -66,6 +66,7 @@
 #include <string.h>
 
 #include "core/check.h"
+#include "linalg/blockgs.h"
 #include "linalg/bsym.h"
 #include "linalg/linsol_amg_abi.h"
 #include "linalg/petscenv.h"
@@ -84,6 +85,8 @@ typedef struct {
     double *ablk;            /* 9 nnzb: A's block values */
     cl_bsym sym;             /* A's halves, if it is symmetric: */
     double *sdiag, *supper;  /* 9 nb, 9 ne: their values */
+    double *dinv;            /* 9 nb: A's diagonal blocks inverted */
+    double *acc;             /* n: the forward sweep's work */
     cl_bsym_kind jac_kind;   /* df/dx and df/dv as last told (jacobian) */
     cl_bsym_kind kind;       /* the product's form since the last setup */
     int threads;             /* of the products */
@@ -114,6 +117,8 @@ static void amg_free(void *state)
     free(s->ablk);
     free(s->sdiag);
     free(s->supper);
+    free(s->dinv);
+    free(s->acc);
     cl_bsym_free(&s->sym);
     free(s);
 }
@@ -148,7 +153,10 @@ static cl_status amg_alloc(cl_amg *s, const double *mass, cl_error *err)
     s->ablk = calloc(9 * s->pat->nnzb, sizeof *s->ablk);
     s->sdiag = malloc(9 * s->sym.nb * sizeof *s->sdiag);
     s->supper = malloc((9 * s->sym.ne + 1) * sizeof *s->supper);
-    if (!s->mass || !s->ablk || !s->sdiag || !s->supper)
+    s->dinv = malloc(9 * s->sym.nb * sizeof *s->dinv);
+    s->acc = malloc(s->n * sizeof *s->acc);
+    if (!s->mass || !s->ablk || !s->sdiag || !s->supper || !s->dinv ||
+        !s->acc)
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
     if (st == CL_OK)
         st = cl_check_masses(mass, s->n, s->name, err);
@@ -166,6 +174,32 @@ static void amg_mult(void *ctx, const double *x, double *y)
                                s->threads);
     else
         cl_bmatvec_threads(s->pat, s->ablk, x, y, s->threads);
+}
+
+/* The finest level's smoother (linsol_amg_abi.h: clp_amg_sweep): block
+ * Gauss-Seidel on A's packed halves, or on all its blocks (then the
+ * residual by a product). */
+static void amg_sweep(void *ctx, int forward, const double *b, double *x,
+                      double *r)
+{
+    cl_amg *s = ctx;
+    if (s->kind != CL_BSYM_NONE) {
+        if (forward)
+            cl_bsym_gs_forward(&s->sym, s->kind, s->dinv, s->supper, b, x,
+                               s->acc);
+        else
+            cl_bsym_gs_backward(&s->sym, s->kind, s->dinv, s->supper, b, x,
+                                r);
+        return;
+    }
+    if (forward) {
+        cl_bgs_forward(s->pat, s->ablk, s->dinv, b, x);
+        return;
+    }
+    cl_bgs_backward(s->pat, s->ablk, s->dinv, b, x);
+    amg_mult(s, x, r);
+    for (size_t i = 0; i < s->n; i++)
+        r[i] = b[i] - r[i];
 }
 
 static cl_status amg_create_named(const char *name, int hypre,
@@ -191,7 +225,7 @@ static cl_status amg_create_named(const char *name, int hypre,
     if (st == CL_OK)
         st = amg_symbols(s, &create, err);
     if (st == CL_OK && create(pat->nb, pat->rowptr, pat->col, hypre, maxit,
-                              amg_mult, s, &s->h, &msg) != 0)
+                              amg_mult, amg_sweep, s, &s->h, &msg) != 0)
         st = cl_error_set(err, CL_ESOLVER, "%s: %s", name, msg.text);
     if (st != CL_OK) {
         amg_free(s);
@@ -277,6 +311,15 @@ static cl_status amg_setup(void *state, double a, double b,
     if (s->kind != CL_BSYM_NONE)
         cl_bsym_pack(&s->sym, s->kind, 1.0, s->ablk, 0.0, NULL, NULL,
                      s->sdiag, s->supper);
+    /* amg's finest smoother's diagonal blocks, inverted once per setup */
+    size_t row = 0;
+    bool sym = s->kind != CL_BSYM_NONE;
+    if (!s->hypre && !cl_bgs_invert(s->sym.nb, sym ? s->sdiag : s->ablk,
+                       sym ? NULL : s->pat->diag, s->dinv, &row))
+        return cl_error_set(err, CL_ESOLVER, "%s: the diagonal block of "
+                            "particle row %zu of M - a df/dv - b df/dx is "
+                            "not positive definite (determinant not "
+                            "positive)", s->name, row);
     cl_status st = amg_prepare(s, amg_mode(s), err);
     if (st == CL_OK)
         s->setups++;

@@ -69,7 +69,12 @@ typedef struct {
     Mat A;                  /* SeqAIJ, block size 3: the preconditioner's */
     Mat op;                 /* MATSHELL: the caller's product */
     clp_amg_mult mult;
+    clp_amg_sweep sweep;
     void *ctx;
+    Vec res;                /* the finest level's residual, array resv */
+    PetscScalar *resv;
+    Vec swb, swx;           /* the pre-smoother's b and x while res = b -
+                             * A x holds for them; swx NULL: it does not */
     Vec b, x;               /* without arrays: the caller's are placed */
     KSP ksp;
     int hypre;
@@ -78,8 +83,9 @@ typedef struct {
 } clp_amg;
 
 int clp_amg_create(size_t nb, const size_t *rowptr, const size_t *col,
-                   int hypre, long maxit, clp_amg_mult mult, void *ctx,
-                   void **handle, cl_plugin_msg *msg);
+                   int hypre, long maxit, clp_amg_mult mult,
+                   clp_amg_sweep sweep, void *ctx, void **handle,
+                   cl_plugin_msg *msg);
 int clp_amg_setup(void *handle, const double *ablk, int mode,
                   cl_plugin_msg *msg);
 int clp_amg_solve(void *handle, const double *rhs, double *x, double rtol,
@@ -221,12 +227,15 @@ void clp_amg_free(void *handle)
     VecDestroy(&s->x);
     MatDestroy(&s->A);
     MatDestroy(&s->op);
+    VecDestroy(&s->res);
+    PetscFree(s->resv);
     PetscFree(s);
 }
 
 int clp_amg_create(size_t nb, const size_t *rowptr, const size_t *col,
-                   int hypre, long maxit, clp_amg_mult mult, void *ctx,
-                   void **handle, cl_plugin_msg *msg)
+                   int hypre, long maxit, clp_amg_mult mult,
+                   clp_amg_sweep sweep, void *ctx, void **handle,
+                   cl_plugin_msg *msg)
 {
     clp_amg *s = NULL;
     *handle = NULL;
@@ -244,9 +253,13 @@ int clp_amg_create(size_t nb, const size_t *rowptr, const size_t *col,
     s->n = 3 * s->nb;
     s->rowptr = rowptr;
     s->mult = mult;
+    s->sweep = sweep;
     s->ctx = ctx;
     s->hypre = hypre;
-    if ((ec = amg_matrix(s, col)) || (ec = amg_shell(s)))
+    if ((ec = amg_matrix(s, col)) || (ec = amg_shell(s)) ||
+        (ec = PetscMalloc1(s->n, &s->resv)) ||
+        (ec = VecCreateSeqWithArray(PETSC_COMM_SELF, 3, s->n, s->resv,
+                                    &s->res)))
         amg_fail(msg, "building the matrices", ec);
     else if ((ec = amg_ksp(s, maxit)))
         amg_fail(msg, "setting up the KSP", ec);
@@ -276,20 +289,128 @@ static PetscErrorCode amg_values(clp_amg *s, const double *ablk)
     return MatSeqAIJRestoreArray(s->A, &a);
 }
 
-/* The finest level's smoother (GAMG's last level) set up again on the new
- * values: its point-block Jacobi inverts the new diagonal blocks, and
- * Chebyshev estimates the new largest eigenvalue of D^-1 A (its operators
- * are set anew, so KSPSetUp redoes both). */
-static PetscErrorCode amg_fine_smoother(clp_amg *s, PC pc)
+/* The finest level's pre-smoother (PCShellSetApplyRichardson): one
+ * backward sweep of the caller's from x = 0, which also leaves the
+ * residual b - A x in s->res (linalg/blockgs.h), marked valid for these b
+ * and x until the residual is asked for (amg_residual) or x is swept
+ * again (amg_gs_up). */
+static PetscErrorCode amg_gs_down(PC pc, Vec b, Vec x, Vec w, PetscReal rtol,
+                                  PetscReal atol, PetscReal dtol, PetscInt its,
+                                  PetscBool zero, PetscInt *outits,
+                                  PCRichardsonConvergedReason *why)
+{
+    clp_amg *s = NULL;
+    const PetscScalar *bp;
+    PetscScalar *xp;
+    (void)w, (void)rtol, (void)atol, (void)dtol;
+    PetscCall(PCShellGetContext(pc, &s));
+    PetscCheck(zero && its == 1, PETSC_COMM_SELF, PETSC_ERR_SUP, "the block "
+               "Gauss-Seidel pre-smoother makes one sweep from x = 0 (%d "
+               "sweeps, zero guess %d asked)", (int)its, (int)zero);
+    s->swx = NULL;
+    PetscCall(VecGetArrayRead(b, &bp));
+    PetscCall(VecGetArrayWrite(x, &xp));
+    s->sweep(s->ctx, 0, bp, xp, s->resv);
+    PetscCall(VecRestoreArrayWrite(x, &xp));
+    PetscCall(VecRestoreArrayRead(b, &bp));
+    s->swb = b;
+    s->swx = x;
+    *outits = 1;
+    *why = PCRICHARDSON_CONVERGED_ITS;
+    return 0;
+}
+
+/* The finest level's post-smoother: one forward sweep from x (x = 0 for
+ * a zero guess). */
+static PetscErrorCode amg_gs_up(PC pc, Vec b, Vec x, Vec w, PetscReal rtol,
+                                PetscReal atol, PetscReal dtol, PetscInt its,
+                                PetscBool zero, PetscInt *outits,
+                                PCRichardsonConvergedReason *why)
+{
+    clp_amg *s = NULL;
+    const PetscScalar *bp;
+    PetscScalar *xp;
+    (void)w, (void)rtol, (void)atol, (void)dtol;
+    PetscCall(PCShellGetContext(pc, &s));
+    s->swx = NULL;
+    PetscCheck(its == 1, PETSC_COMM_SELF, PETSC_ERR_SUP, "the block "
+               "Gauss-Seidel post-smoother makes one sweep (%d asked)",
+               (int)its);
+    if (zero)
+        PetscCall(VecZeroEntries(x));
+    PetscCall(VecGetArrayRead(b, &bp));
+    PetscCall(VecGetArray(x, &xp));
+    s->sweep(s->ctx, 1, bp, xp, NULL);
+    PetscCall(VecRestoreArray(x, &xp));
+    PetscCall(VecRestoreArrayRead(b, &bp));
+    *outits = 1;
+    *why = PCRICHARDSON_CONVERGED_ITS;
+    return 0;
+}
+
+/* The finest level's residual r = b - A x: the pre-smoother's, if b and x
+ * are the vectors it swept last (PCMG's V-cycle asks for the residual
+ * right after the pre-smoother, and changes neither vector in between:
+ * PCMGMCycle_Private), once; else by a product. */
+static PetscErrorCode amg_residual(Mat op, Vec b, Vec x, Vec r)
+{
+    clp_amg *s = NULL;
+    PetscCall(MatShellGetContext(op, &s));
+    int fused = s->swx && b == s->swb && x == s->swx;
+    s->swx = NULL;
+    if (!fused)
+        return PCMGResidualDefault(op, b, x, r);
+    return r == s->res ? 0 : VecCopy(s->res, r);
+}
+
+/* Smoother k of the finest level: one Richardson step whose preconditioner
+ * is the caller's sweep `fn` (a shell's PCApplyRichardson, which
+ * KSPRICHARDSON calls in place of its own step), on the shell operator. */
+static PetscErrorCode amg_gs_ksp(clp_amg *s, KSP k, int up,
+                                 PetscErrorCode (*fn)(PC, Vec, Vec, Vec,
+                                                      PetscReal, PetscReal,
+                                                      PetscReal, PetscInt,
+                                                      PetscBool, PetscInt *,
+                                                      PCRichardsonConvergedReason *))
+{
+    PC pc;
+    PetscCall(KSPSetType(k, KSPRICHARDSON));
+    PetscCall(KSPSetTolerances(k, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT,
+                               1));
+    PetscCall(KSPSetNormType(k, KSP_NORM_NONE));
+    PetscCall(KSPSetConvergenceTest(k, KSPConvergedSkip, NULL, NULL));
+    PetscCall(KSPSetInitialGuessNonzero(k, up ? PETSC_TRUE : PETSC_FALSE));
+    PetscCall(KSPGetPC(k, &pc));
+    PetscCall(PCSetType(pc, PCSHELL));
+    PetscCall(PCShellSetContext(pc, s));
+    PetscCall(PCShellSetName(pc, up ? "forward block Gauss-Seidel (clothode)"
+                                    : "backward block Gauss-Seidel "
+                                      "(clothode)"));
+    PetscCall(PCShellSetApplyRichardson(pc, fn));
+    PetscCall(KSPSetOperators(k, s->op, s->A));
+    return KSPSetUp(k);
+}
+
+/* After a setup that made or recomputed the hierarchy: the finest level's
+ * smoothers are the caller's block Gauss-Seidel sweeps, backward before
+ * the coarse correction and forward after it (its adjoint: the cycle
+ * stays symmetric), and its residual the pre-smoother's.  They need no
+ * setup of their own later (the caller inverts its diagonal blocks), and
+ * no eigenvalue bound.  A hierarchy of one level keeps GAMG's smoother. */
+static PetscErrorCode amg_fine_gs(clp_amg *s, PC pc)
 {
     PetscInt levels = 0;
-    KSP smooth;
-    PetscErrorCode ec;
-    if ((ec = PCMGGetLevels(pc, &levels)) ||
-        (ec = PCMGGetSmoother(pc, levels - 1, &smooth)) ||
-        (ec = KSPSetOperators(smooth, s->op, s->A)))
-        return ec;
-    return KSPSetUp(smooth);
+    KSP down, up;
+    PetscCall(PCMGGetLevels(pc, &levels));
+    if (levels < 2)
+        return 0;
+    PetscCall(PCMGGetSmootherDown(pc, levels - 1, &down));
+    PetscCall(PCMGGetSmootherUp(pc, levels - 1, &up));
+    PetscCall(amg_gs_ksp(s, down, 0, amg_gs_down));
+    PetscCall(amg_gs_ksp(s, up, 1, amg_gs_up));
+    PetscCall(PCMGSetR(pc, levels - 1, s->res));
+    s->swx = NULL;
+    return PCMGSetResidual(pc, levels - 1, amg_residual, s->op);
 }
 
 /* Level l's Chebyshev smoother and its eigenvalue estimator; *est NULL
@@ -365,7 +486,9 @@ int clp_amg_setup(void *handle, const double *ablk, int mode,
      * finest smoother; hypre keeps all of it on any reuse */
     int build = mode == CLP_AMG_BUILD || mode == CLP_AMG_RECOVER;
     int keep = mode == CLP_AMG_SMOOTHER || (s->hypre && !build);
-    if ((ec = amg_values(s, ablk)))
+    /* a kept preconditioner does not read the SeqAIJ copy (GAMG's finest
+     * smoother sweeps the caller's storage) */
+    if (!keep && (ec = amg_values(s, ablk)))
         return amg_fail(msg, "writing the matrix values", ec);
     if ((ec = KSPGetPC(s->ksp, &pc)))
         return amg_fail(msg, "KSPGetPC", ec);
@@ -380,7 +503,7 @@ int clp_amg_setup(void *handle, const double *ablk, int mode,
     if ((ec = KSPSetOperators(s->ksp, s->op, s->A)) ||
         (ec = KSPSetUp(s->ksp)))
         return amg_fail(msg, "the multigrid setup (KSPSetUp)", ec);
-    if (keep && !s->hypre && (ec = amg_fine_smoother(s, pc)))
+    if (!keep && !s->hypre && (ec = amg_fine_gs(s, pc)))
         return amg_fail(msg, "the finest smoother's setup", ec);
     if (mode == CLP_AMG_RECOVER && !s->hypre &&
         (ec = amg_careful_bounds(s, pc)))
