@@ -7,29 +7,37 @@
  *              "Algebraic multigrid by smoothed aggregation for second and
  *              fourth order elliptic problems") with block size 3 (the
  *              three translations per particle as near-null space),
- *              Chebyshev smoothing with 3x3 point-block Jacobi;
+ *              the finest level smoothed by this side's symmetric block
+ *              Gauss-Seidel (linalg/blockgs.h: a backward sweep before
+ *              the coarse correction, a forward one after it), the
+ *              coarser levels by Chebyshev with 3x3 point-block Jacobi;
  *   amg-hypre  hypre's BoomerAMG (classical Ruge-Stueben coarsening) with
  *              nodal coarsening and vector interpolation for the 3 unknowns
  *              per particle.
  *
- * The pattern is built once (create).  CG and the finest level of the
- * multigrid cycle (its smoother and residual) multiply by A through this
- * side's product, a callback the plug-in calls: for a symmetric A (the
- * usual case) the diagonal and upper blocks only, each upper block by its
- * 6 distinct entries when it is symmetric itself, as pcg (linalg/bsym.h),
- * else every block (linalg/reduced.h).  That product reads under a third
- * of the bytes of PETSc's SeqAIJ product, and about five of them are
- * formed per CG iteration, so it sets the cost of an iteration.  A setup
- * packs A's values for the product, writes them into the slots of PETSc's
- * SeqAIJ copy (the preconditioner's), and sets the preconditioner up,
- * either afresh (a rebuild: coarsening, interpolation, coarse operators,
- * smoothers) or reusing the hierarchy (linalg/linsol_amg_abi.h).  For amg a
- * reuse keeps the coarse operators and their smoothers and sets up only
- * the finest level's smoother on the new A (its 3x3 diagonal blocks and
- * Chebyshev's eigenvalue bound: a V-cycle whose smoothers converge is
- * symmetric positive definite whatever SPD coarse operators it uses, so
- * stale ones cost iterations, not definiteness; a stale eigenvalue bound
- * of the finest smoother made it indefinite); when the last solve took
+ * The pattern is built once (create).  CG multiplies by A, and the finest
+ * level of the multigrid cycle sweeps, through this side's callbacks the
+ * plug-in calls (amg_mult, amg_sweep): for a symmetric A (the usual case)
+ * on the diagonal and upper blocks only, each upper block by its 6
+ * distinct entries when it is symmetric itself, as pcg (linalg/bsym.h),
+ * else on every block (linalg/reduced.h).  That storage is under a third
+ * of the bytes of PETSc's SeqAIJ copy, and the fine matrix is read three
+ * times per CG iteration (CG's product, the backward sweep that also
+ * forms the cycle's residual, the forward sweep), so it sets the cost of
+ * an iteration.  A setup packs A's values, inverts its 3x3 diagonal
+ * blocks for the sweeps and, when the preconditioner is built or its
+ * coarse operators recomputed, writes the values into the slots of
+ * PETSc's SeqAIJ copy (the preconditioner's) and sets the preconditioner
+ * up, either afresh (a rebuild: coarsening, interpolation, coarse
+ * operators, smoothers) or reusing the hierarchy
+ * (linalg/linsol_amg_abi.h).  For amg a reuse keeps the coarse operators
+ * and their smoothers, and the finest level's sweeps read the new A (a
+ * V-cycle whose smoothers converge is symmetric positive definite
+ * whatever SPD coarse operators it uses, so stale ones cost iterations,
+ * not definiteness; block Gauss-Seidel converges for every SPD A and has
+ * no eigenvalue bound to go stale, unlike the Chebyshev smoother the
+ * finest level had before, whose stale bound made the cycle
+ * indefinite); when the last solve took
  * more than CL_AMG_COARSE_REGROW times the iterations of the first after
  * the coarse operators were last computed, they are recomputed, P^T A P on
  * the kept interpolation P.  For amg-hypre a reuse keeps the whole
@@ -38,14 +46,15 @@
  * first solve after the last rebuild although the coarse operators are
  * fresh.  Recovery: a solve that fails (CG finds the preconditioner
  * indefinite, breaks down or reaches lin_maxit) is redone once on a
- * hierarchy rebuilt from scratch whose smoothers' eigenvalue bounds are
- * estimated with CLP_AMG_RECOVER_STEPS Lanczos steps instead of 10
- * (linsol_amg_petsc.c, kept until the next build), whether the failed
- * hierarchy was reused or fresh (amg-hypre, without such bounds: on a
- * rebuilt preconditioner, only if the failed one was kept); only if that
- * fails too is the solve an error.  Nothing is allocated by setup or
- * solve on this side (PETSc allocates within its setups: the eigenvalue
- * estimates' work arrays, and everything of a rebuild).
+ * hierarchy rebuilt from scratch whose smoothers' eigenvalue bounds (the
+ * coarser levels') are estimated with CLP_AMG_RECOVER_STEPS Lanczos steps
+ * instead of 10 (linsol_amg_petsc.c, kept until the next build), whether
+ * the failed hierarchy was reused or fresh (amg-hypre, without such
+ * bounds: on a rebuilt preconditioner, only if the failed one was kept);
+ * only if that fails too is the solve an error.  A diagonal block whose determinant is
+ * not positive (A not SPD) fails amg's setup.  Nothing is allocated by
+ * setup or solve on this side (PETSc allocates within its setups: the
+ * eigenvalue estimates' work arrays, and everything of a rebuild).
  *
  * Tolerance: solve stops at ||b - A x||_2 <= lin_tol ||b||_2 (default
  * 1e-10, as pcg); solve_tol at ||w .* (b - A x)||_2 <= delta, ensured by
@@ -408,8 +417,9 @@ static void amg_stats(const void *state, cl_stats *out)
 
 const cl_linsol_type cl_linsol_amg = {
     .name = "amg",
-    .doc = "PETSc CG + GAMG smoothed aggregation (block size 3, Chebyshev/"
-           "point-block Jacobi), hierarchy reused across setups (A SPD)",
+    .doc = "PETSc CG + GAMG smoothed aggregation (block size 3, block "
+           "Gauss-Seidel on the finest level, Chebyshev/point-block Jacobi "
+           "below), hierarchy reused across setups (A SPD)",
     .create = amg_create,
     .jacobian = amg_jacobian,
     .setup = amg_setup,

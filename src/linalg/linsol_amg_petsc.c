@@ -6,21 +6,33 @@
  * callback (clp_amg_mult).
  *
  * Two matrices.  The operator (KSP's Amat) is a MATSHELL whose product is
- * the caller's: CG, the residuals of the finest level and its smoother
- * multiply through it (the library's block product reads, for a symmetric
+ * the caller's: CG (and the finest level's residual, where the smoother
+ * did not form it) multiply through it (the library's block product reads, for a symmetric
  * A, only the diagonal and upper 3x3 blocks, each by its 6 distinct
  * entries: under a third of the bytes of a SeqAIJ product, and these
  * products are bound by memory traffic).  The preconditioner is
  * built on a SeqAIJ copy of A of block size 3 (Pmat: GAMG's graph and
- * Galerkin products, the point-block Jacobi of the finest smoother, hypre)
- * whose pattern is built once from the block pattern; each setup writes
+ * Galerkin products, hypre) whose pattern is built once from the block
+ * pattern; each setup that builds or recomputes the preconditioner writes
  * its values in place.
+ *
+ * GAMG's finest level is smoothed by the caller's block Gauss-Seidel
+ * sweeps (clp_amg_sweep, linalg/blockgs.h) on its own storage: a
+ * backward sweep from x = 0 before the coarse correction, which also
+ * forms the residual b - A x the cycle restricts (PCMGSetResidual), and
+ * a forward sweep after it, the adjoint of the first, so the cycle stays
+ * symmetric; each a PCSHELL's PCApplyRichardson under one step of
+ * KSPRICHARDSON (amg_fine_gs).  Per CG iteration that reads the fine
+ * matrix three times (CG's product and the two sweeps) where the
+ * degree-2 Chebyshev smoother read it five times, and a setup needs no
+ * eigenvalue estimate on that level (the caller inverts the diagonal
+ * blocks).  The coarser levels keep GAMG's own smoothers.
  *
  * Options are PETSc's own, under the prefix clamg_ (GAMG) or clamgh_
  * (hypre), set here unless the user set them first (PETSC_OPTIONS):
  *   GAMG   -pc_type gamg, block size 3, Chebyshev smoothing with point-block
- *          (3x3) Jacobi: -mg_levels_ksp_type chebyshev
- *          -mg_levels_pc_type pbjacobi;
+ *          (3x3) Jacobi on the coarser levels (the finest: above):
+ *          -mg_levels_ksp_type chebyshev -mg_levels_pc_type pbjacobi;
  *   hypre  -pc_type hypre -pc_hypre_type boomeramg with nodal coarsening
  *          and the vector interpolation for systems of PDEs
  *          (-pc_hypre_boomeramg_nodal_coarsen 6
@@ -33,18 +45,17 @@
  * keeps GAMG's prolongators (PCGAMGSetReuseInterpolation) and recomputes
  * the Galerkin coarse operators P^T A P and the smoothers on the new
  * values; CLP_AMG_SMOOTHER keeps the whole preconditioner
- * (KSPSetReusePreconditioner) but the finest level's smoother, whose
- * operators are set anew so that KSPSetUp inverts the new diagonal blocks
- * and Chebyshev estimates the new eigenvalue bound (the whole
- * preconditioner kept with the old bound was found indefinite by CG
- * within two iterations, one step of semi-bdf2 on hang later).  hypre
+ * (KSPSetReusePreconditioner): the finest level's sweeps read the
+ * caller's new values, and nothing here is set up again (nor is the
+ * SeqAIJ copy written).  hypre
  * cannot keep its interpolation, so either reuse keeps its whole
  * preconditioner.
  *
  * Eigenvalue bounds.  The SeqAIJ copy is marked symmetric positive
  * definite (MAT_SPD, for good: CG needs it so; MAT_SPD_ETERNAL needs
  * PETSc 3.18), and GAMG's Galerkin operators inherit the mark; Chebyshev
- * then estimates the largest eigenvalue of D^-1 A on every level by
+ * then estimates the largest eigenvalue of D^-1 A on every coarser level
+ * (and on the finest, once per build, before its smoothers are replaced) by
  * Lanczos (CG, 10 steps) instead of GMRES, whose 10 steps on the
  * nonsymmetric D^-1 A fell 17 % short of the finest level's largest
  * eigenvalue on hang at n = 64 and 256 (against 300 Lanczos steps;
