@@ -128,7 +128,7 @@ static void gs_backward_case(cl_bsym_kind kind)
 {
     gs_case g;
     gs_init(&g, kind);
-    cl_bsym_gs_backward(&g.sym, kind, g.dinv, g.u, g.b, g.x, g.r);
+    cl_bsym_gs(&g.sym, kind, false, g.dinv, g.u, g.b, g.x, g.r);
     double up[LS_N], ax[LS_N], bn = gs_norm(g.b);
     gs_split(&g, NULL, g.x, up);
     cl_bmatvec(&g.c.pat, g.ablk, g.x, ax);
@@ -154,7 +154,7 @@ static void gs_forward_case(cl_bsym_kind kind)
     double x0[LS_N], lhs[LS_N], bn = gs_norm(g.b);
     for (size_t i = 0; i < LS_N; i++)
         g.x[i] = x0[i] = ls_rand(&seed);
-    cl_bsym_gs_forward(&g.sym, kind, g.dinv, g.u, g.b, g.x, g.acc);
+    cl_bsym_gs(&g.sym, kind, true, g.dinv, g.u, g.b, g.x, g.acc);
     /* rows: the columns j <= i at x1, j > i at x0 */
     const cl_bpattern *p = &g.c.pat;
     memset(lhs, 0, sizeof lhs);
@@ -186,13 +186,13 @@ Test(blockgs, all_blocks_equal_halves)
     size_t row = 0;
     cr_assert(cl_bgs_invert(LS_NB, g.ablk, g.c.pat.diag, dinv, &row));
     double x2[LS_N];
-    cl_bsym_gs_backward(&g.sym, CL_BSYM_BLOCKS, g.dinv, g.u, g.b, g.x,
+    cl_bsym_gs(&g.sym, CL_BSYM_BLOCKS, false, g.dinv, g.u, g.b, g.x,
                         NULL);
     cl_bgs_backward(&g.c.pat, g.ablk, dinv, g.b, x2);
     double xn = gs_norm(g.x);
     for (size_t i = 0; i < LS_N; i++)
         cr_assert_float_eq(x2[i], g.x[i], 1e-13 * xn, "backward %zu", i);
-    cl_bsym_gs_forward(&g.sym, CL_BSYM_BLOCKS, g.dinv, g.u, g.b, g.x,
+    cl_bsym_gs(&g.sym, CL_BSYM_BLOCKS, true, g.dinv, g.u, g.b, g.x,
                        g.acc);
     cl_bgs_forward(&g.c.pat, g.ablk, dinv, g.b, x2);
     xn = gs_norm(g.x);
@@ -212,12 +212,12 @@ Test(blockgs, sweeps_lower_the_energy_error)
         xs[i] = ls_rand(&seed);
     cl_bmatvec(&g.c.pat, g.ablk, xs, g.b);
     double first = gs_energy(&g, e0, xs);
-    cl_bsym_gs_backward(&g.sym, CL_BSYM_BLOCKS, g.dinv, g.u, g.b, g.x,
+    cl_bsym_gs(&g.sym, CL_BSYM_BLOCKS, false, g.dinv, g.u, g.b, g.x,
                         NULL);
     double last = gs_energy(&g, g.x, xs);
     cr_assert_lt(last, first);
     for (int k = 0; k < 40; k++) {
-        cl_bsym_gs_forward(&g.sym, CL_BSYM_BLOCKS, g.dinv, g.u, g.b, g.x,
+        cl_bsym_gs(&g.sym, CL_BSYM_BLOCKS, true, g.dinv, g.u, g.b, g.x,
                            g.acc);
         double now = gs_energy(&g, g.x, xs);
         cr_assert_lt(now, last, "sweep %d", k);

@@ -70,76 +70,54 @@ static inline void bgs_scatter(const double *restrict B, const int *at,
     y[2] += sign * (B[at[2]] * p[0] + B[at[5]] * p[1] + B[at[8]] * p[2]);
 }
 
-/* The backward sweep, `six` a constant at each call (one straight-line
- * loop per layout, as linalg/bsym.c's product). */
-static inline void bgs_backward(const cl_bsym *s, bool six,
-                                const double *restrict dinv,
-                                const double *restrict u,
-                                const double *restrict b, double *restrict x,
-                                double *restrict r)
+/* One sweep, `six` and `forward` constants at each call (one
+ * straight-line loop per case, as linalg/bsym.c's product).  Forward
+ * (rows ascending): w accumulates sum_{j<i} U_ji^T x_j(new), scattered by
+ * the rows above, which row i subtracts.  Backward (descending): w = b -
+ * A x = -L x, each row scattering -U_ij^T x_i into the rows j > i, which
+ * are done; w_i is still 0 when row i subtracts it. */
+static inline void bgs_sweep(const cl_bsym *s, bool six, bool forward,
+                             const double *restrict dinv,
+                             const double *restrict u,
+                             const double *restrict b, double *restrict x,
+                             double *restrict w)
 {
     const int *at = six ? bgs_at6 : bgs_at9;
-    size_t w = six ? 6 : 9;
-    if (r)
-        memset(r, 0, 3 * s->nb * sizeof *r);
-    for (size_t i = s->nb; i-- > 0;) {
+    size_t width = six ? 6 : 9;
+    double sign = forward ? 1.0 : -1.0;
+    if (w)
+        memset(w, 0, 3 * s->nb * sizeof *w);
+    for (size_t k = 0; k < s->nb; k++) {
+        size_t i = forward ? k : s->nb - 1 - k;
         double t[3] = {b[3 * i], b[3 * i + 1], b[3 * i + 2]};
+        if (w)
+            for (int c = 0; c < 3; c++)
+                t[c] -= w[3 * i + c];
         for (size_t e = s->rowptr[i]; e < s->rowptr[i + 1]; e++)
-            bgs_gather(u + w * e, at, x + 3 * s->col[e], t);
+            bgs_gather(u + width * e, at, x + 3 * s->col[e], t);
         double *xi = x + 3 * i;
         bgs_apply(dinv + 9 * i, t, xi);
-        if (!r)
+        if (!w)
             continue;
-        /* r_j = -sum_{i<j} U_ij^T x_i, complete once the sweep is */
         for (size_t e = s->rowptr[i]; e < s->rowptr[i + 1]; e++)
-            bgs_scatter(u + w * e, at, -1.0, xi, r + 3 * s->col[e]);
+            bgs_scatter(u + width * e, at, sign, xi, w + 3 * s->col[e]);
     }
 }
 
-void cl_bsym_gs_backward(const cl_bsym *s, cl_bsym_kind kind,
-                         const double *restrict dinv,
-                         const double *restrict u,
-                         const double *restrict b, double *restrict x,
-                         double *restrict r)
+void cl_bsym_gs(const cl_bsym *s, cl_bsym_kind kind, bool forward,
+                const double *restrict dinv, const double *restrict u,
+                const double *restrict b, double *restrict x,
+                double *restrict w)
 {
-    if (kind == CL_BSYM_BLOCKS)
-        bgs_backward(s, true, dinv, u, b, x, r);
+    bool six = kind == CL_BSYM_BLOCKS;
+    if (forward && six)
+        bgs_sweep(s, true, true, dinv, u, b, x, w);
+    else if (forward)
+        bgs_sweep(s, false, true, dinv, u, b, x, w);
+    else if (six)
+        bgs_sweep(s, true, false, dinv, u, b, x, w);
     else
-        bgs_backward(s, false, dinv, u, b, x, r);
-}
-
-static inline void bgs_forward(const cl_bsym *s, bool six,
-                               const double *restrict dinv,
-                               const double *restrict u,
-                               const double *restrict b, double *restrict x,
-                               double *restrict acc)
-{
-    const int *at = six ? bgs_at6 : bgs_at9;
-    size_t w = six ? 6 : 9;
-    memset(acc, 0, 3 * s->nb * sizeof *acc);
-    for (size_t i = 0; i < s->nb; i++) {
-        /* acc_i = sum_{j<i} U_ji^T x_j(new), scattered by the rows above */
-        double t[3] = {b[3 * i] - acc[3 * i], b[3 * i + 1] - acc[3 * i + 1],
-                       b[3 * i + 2] - acc[3 * i + 2]};
-        for (size_t e = s->rowptr[i]; e < s->rowptr[i + 1]; e++)
-            bgs_gather(u + w * e, at, x + 3 * s->col[e], t);
-        double *xi = x + 3 * i;
-        bgs_apply(dinv + 9 * i, t, xi);
-        for (size_t e = s->rowptr[i]; e < s->rowptr[i + 1]; e++)
-            bgs_scatter(u + w * e, at, 1.0, xi, acc + 3 * s->col[e]);
-    }
-}
-
-void cl_bsym_gs_forward(const cl_bsym *s, cl_bsym_kind kind,
-                        const double *restrict dinv,
-                        const double *restrict u,
-                        const double *restrict b, double *restrict x,
-                        double *restrict acc)
-{
-    if (kind == CL_BSYM_BLOCKS)
-        bgs_forward(s, true, dinv, u, b, x, acc);
-    else
-        bgs_forward(s, false, dinv, u, b, x, acc);
+        bgs_sweep(s, false, false, dinv, u, b, x, w);
 }
 
 /* Row i of a sweep on all blocks: x_i = Dinv_i (b_i - sum A_ij x_j) over

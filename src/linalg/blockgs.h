@@ -39,20 +39,14 @@
 bool cl_bgs_invert(size_t nb, const double *blk, const size_t *at,
                    double *dinv, size_t *row);
 
-/* On the halves d, u packed as `kind` (> CL_BSYM_NONE; linalg/bsym.h):
- * x = (D + U)^-1 b and r = b - A x (r may be NULL). */
-void cl_bsym_gs_backward(const cl_bsym *s, cl_bsym_kind kind,
-                         const double *restrict dinv,
-                         const double *restrict u,
-                         const double *restrict b, double *restrict x,
-                         double *restrict r);
-
-/* x <- x + (D + L)^-1 (b - A x) on the halves; acc: 3 nb of work. */
-void cl_bsym_gs_forward(const cl_bsym *s, cl_bsym_kind kind,
-                        const double *restrict dinv,
-                        const double *restrict u,
-                        const double *restrict b, double *restrict x,
-                        double *restrict acc);
+/* One sweep on the halves d, u packed as `kind` (> CL_BSYM_NONE;
+ * linalg/bsym.h): backward (forward false) x = (D + U)^-1 b, and w =
+ * b - A x unless w is NULL; forward x <- x + (D + L)^-1 (b - A x), w 3 nb
+ * of work. */
+void cl_bsym_gs(const cl_bsym *s, cl_bsym_kind kind, bool forward,
+                const double *restrict dinv, const double *restrict u,
+                const double *restrict b, double *restrict x,
+                double *restrict w);
 
 /* The same two sweeps on all blocks blk (9 nnzb) of pat, for A that is not
  * symmetric: backward x = (D + U)^-1 b (x is overwritten), forward in

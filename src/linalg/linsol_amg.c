@@ -193,12 +193,8 @@ static void amg_sweep(void *ctx, int forward, const double *b, double *x,
 {
     cl_amg *s = ctx;
     if (s->kind != CL_BSYM_NONE) {
-        if (forward)
-            cl_bsym_gs_forward(&s->sym, s->kind, s->dinv, s->supper, b, x,
-                               s->acc);
-        else
-            cl_bsym_gs_backward(&s->sym, s->kind, s->dinv, s->supper, b, x,
-                                r);
+        cl_bsym_gs(&s->sym, s->kind, forward, s->dinv, s->supper, b, x,
+                   forward ? s->acc : r);
         return;
     }
     if (forward) {

@@ -73,7 +73,15 @@
 
 #include "linalg/linsol_amg_abi.h"
 
+typedef struct clp_amg clp_amg;
+
+/* The context of a finest-level smoother: the solver, and which sweep. */
 typedef struct {
+    clp_amg *s;
+    int forward;
+} clp_amg_gs;
+
+struct clp_amg {
     PetscInt n;             /* 3 nb */
     PetscInt nb;
     const size_t *rowptr;   /* borrowed: the block pattern */
@@ -91,7 +99,8 @@ typedef struct {
     int hypre;
     PetscInt est_steps;     /* the estimates' Lanczos steps before a
                              * recovery raised them; 0: never raised */
-} clp_amg;
+    clp_amg_gs gs[2];       /* the backward and forward sweeps' contexts */
+};
 
 int clp_amg_create(size_t nb, const size_t *rowptr, const size_t *col,
                    int hypre, long maxit, clp_amg_mult mult,
@@ -266,6 +275,8 @@ int clp_amg_create(size_t nb, const size_t *rowptr, const size_t *col,
     s->mult = mult;
     s->sweep = sweep;
     s->ctx = ctx;
+    s->gs[0] = (clp_amg_gs){.s = s, .forward = 0};
+    s->gs[1] = (clp_amg_gs){.s = s, .forward = 1};
     s->hypre = hypre;
     if ((ec = amg_matrix(s, col)) || (ec = amg_shell(s)) ||
         (ec = PetscMalloc1(s->n, &s->resv)) ||
@@ -300,60 +311,40 @@ static PetscErrorCode amg_values(clp_amg *s, const double *ablk)
     return MatSeqAIJRestoreArray(s->A, &a);
 }
 
-/* The finest level's pre-smoother (PCShellSetApplyRichardson): one
- * backward sweep of the caller's from x = 0, which also leaves the
- * residual b - A x in s->res (linalg/blockgs.h), marked valid for these b
- * and x until the residual is asked for (amg_residual) or x is swept
- * again (amg_gs_up). */
-static PetscErrorCode amg_gs_down(PC pc, Vec b, Vec x, Vec w, PetscReal rtol,
-                                  PetscReal atol, PetscReal dtol, PetscInt its,
-                                  PetscBool zero, PetscInt *outits,
-                                  PCRichardsonConvergedReason *why)
+/* A finest-level smoother (PCShellSetApplyRichardson): one sweep of the
+ * caller's, backward from x = 0 before the coarse correction, forward from
+ * x after it.  The backward sweep also leaves the residual b - A x in
+ * s->res (linalg/blockgs.h), marked valid for these b and x until the
+ * residual is asked for (amg_residual) or x is swept again. */
+static PetscErrorCode amg_gs_apply(PC pc, Vec b, Vec x, Vec w, PetscReal rtol,
+                                   PetscReal atol, PetscReal dtol,
+                                   PetscInt its, PetscBool zero,
+                                   PetscInt *outits,
+                                   PCRichardsonConvergedReason *why)
 {
-    clp_amg *s = NULL;
+    clp_amg_gs *g = NULL;
     const PetscScalar *bp;
     PetscScalar *xp;
     (void)w, (void)rtol, (void)atol, (void)dtol;
-    PetscCall(PCShellGetContext(pc, &s));
-    PetscCheck(zero && its == 1, PETSC_COMM_SELF, PETSC_ERR_SUP, "the block "
-               "Gauss-Seidel pre-smoother makes one sweep from x = 0 (%d "
-               "sweeps, zero guess %d asked)", (int)its, (int)zero);
+    PetscCall(PCShellGetContext(pc, &g));
+    clp_amg *s = g->s;
+    PetscCheck(its == 1 && (zero || g->forward), PETSC_COMM_SELF,
+               PETSC_ERR_SUP, "the block Gauss-Seidel smoother makes one "
+               "sweep, the backward one from x = 0 (%d sweeps, %s sweep, "
+               "zero guess %d asked)", (int)its,
+               g->forward ? "forward" : "backward", (int)zero);
     s->swx = NULL;
-    PetscCall(VecGetArrayRead(b, &bp));
-    PetscCall(VecGetArrayWrite(x, &xp));
-    s->sweep(s->ctx, 0, bp, xp, s->resv);
-    PetscCall(VecRestoreArrayWrite(x, &xp));
-    PetscCall(VecRestoreArrayRead(b, &bp));
-    s->swb = b;
-    s->swx = x;
-    *outits = 1;
-    *why = PCRICHARDSON_CONVERGED_ITS;
-    return 0;
-}
-
-/* The finest level's post-smoother: one forward sweep from x (x = 0 for
- * a zero guess). */
-static PetscErrorCode amg_gs_up(PC pc, Vec b, Vec x, Vec w, PetscReal rtol,
-                                PetscReal atol, PetscReal dtol, PetscInt its,
-                                PetscBool zero, PetscInt *outits,
-                                PCRichardsonConvergedReason *why)
-{
-    clp_amg *s = NULL;
-    const PetscScalar *bp;
-    PetscScalar *xp;
-    (void)w, (void)rtol, (void)atol, (void)dtol;
-    PetscCall(PCShellGetContext(pc, &s));
-    s->swx = NULL;
-    PetscCheck(its == 1, PETSC_COMM_SELF, PETSC_ERR_SUP, "the block "
-               "Gauss-Seidel post-smoother makes one sweep (%d asked)",
-               (int)its);
-    if (zero)
+    if (zero && g->forward)
         PetscCall(VecZeroEntries(x));
     PetscCall(VecGetArrayRead(b, &bp));
     PetscCall(VecGetArray(x, &xp));
-    s->sweep(s->ctx, 1, bp, xp, NULL);
+    s->sweep(s->ctx, g->forward, bp, xp, g->forward ? NULL : s->resv);
     PetscCall(VecRestoreArray(x, &xp));
     PetscCall(VecRestoreArrayRead(b, &bp));
+    if (!g->forward) {
+        s->swb = b;
+        s->swx = x;
+    }
     *outits = 1;
     *why = PCRICHARDSON_CONVERGED_ITS;
     return 0;
@@ -375,14 +366,10 @@ static PetscErrorCode amg_residual(Mat op, Vec b, Vec x, Vec r)
 }
 
 /* Smoother k of the finest level: one Richardson step whose preconditioner
- * is the caller's sweep `fn` (a shell's PCApplyRichardson, which
- * KSPRICHARDSON calls in place of its own step), on the shell operator. */
-static PetscErrorCode amg_gs_ksp(clp_amg *s, KSP k, int up,
-                                 PetscErrorCode (*fn)(PC, Vec, Vec, Vec,
-                                                      PetscReal, PetscReal,
-                                                      PetscReal, PetscInt,
-                                                      PetscBool, PetscInt *,
-                                                      PCRichardsonConvergedReason *))
+ * is the caller's sweep (a shell's PCApplyRichardson, which KSPRICHARDSON
+ * calls in place of its own step), on the shell operator; forward: the
+ * post-smoother, from the guess the coarse correction left. */
+static PetscErrorCode amg_gs_ksp(clp_amg *s, KSP k, int forward)
 {
     PC pc;
     PetscCall(KSPSetType(k, KSPRICHARDSON));
@@ -390,14 +377,16 @@ static PetscErrorCode amg_gs_ksp(clp_amg *s, KSP k, int up,
                                1));
     PetscCall(KSPSetNormType(k, KSP_NORM_NONE));
     PetscCall(KSPSetConvergenceTest(k, KSPConvergedSkip, NULL, NULL));
-    PetscCall(KSPSetInitialGuessNonzero(k, up ? PETSC_TRUE : PETSC_FALSE));
+    PetscCall(KSPSetInitialGuessNonzero(k, forward ? PETSC_TRUE
+                                                   : PETSC_FALSE));
     PetscCall(KSPGetPC(k, &pc));
     PetscCall(PCSetType(pc, PCSHELL));
-    PetscCall(PCShellSetContext(pc, s));
-    PetscCall(PCShellSetName(pc, up ? "forward block Gauss-Seidel (clothode)"
-                                    : "backward block Gauss-Seidel "
-                                      "(clothode)"));
-    PetscCall(PCShellSetApplyRichardson(pc, fn));
+    PetscCall(PCShellSetContext(pc, &s->gs[forward]));
+    PetscCall(PCShellSetName(pc, forward ? "forward block Gauss-Seidel "
+                                           "(clothode)"
+                                         : "backward block Gauss-Seidel "
+                                           "(clothode)"));
+    PetscCall(PCShellSetApplyRichardson(pc, amg_gs_apply));
     PetscCall(KSPSetOperators(k, s->op, s->A));
     return KSPSetUp(k);
 }
@@ -417,8 +406,8 @@ static PetscErrorCode amg_fine_gs(clp_amg *s, PC pc)
         return 0;
     PetscCall(PCMGGetSmootherDown(pc, levels - 1, &down));
     PetscCall(PCMGGetSmootherUp(pc, levels - 1, &up));
-    PetscCall(amg_gs_ksp(s, down, 0, amg_gs_down));
-    PetscCall(amg_gs_ksp(s, up, 1, amg_gs_up));
+    PetscCall(amg_gs_ksp(s, down, 0));
+    PetscCall(amg_gs_ksp(s, up, 1));
     PetscCall(PCMGSetR(pc, levels - 1, s->res));
     s->swx = NULL;
     return PCMGSetResidual(pc, levels - 1, amg_residual, s->op);
