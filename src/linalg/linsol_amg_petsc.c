@@ -55,7 +55,9 @@
  * definite (MAT_SPD, for good: CG needs it so; MAT_SPD_ETERNAL needs
  * PETSc 3.18), and GAMG's Galerkin operators inherit the mark; Chebyshev
  * then estimates the largest eigenvalue of D^-1 A on every coarser level
- * (and on the finest, once per build, before its smoothers are replaced) by
+ * (and on the finest in a setup that builds or recomputes the hierarchy,
+ * which sets that level's smoothers up from the options before
+ * amg_fine_gs replaces them: 10 products a build) by
  * Lanczos (CG, 10 steps) instead of GMRES, whose 10 steps on the
  * nonsymmetric D^-1 A fell 17 % short of the finest level's largest
  * eigenvalue on hang at n = 64 and 256 (against 300 Lanczos steps;
