@@ -17,44 +17,42 @@
  *
  * The pattern is built once (create).  CG multiplies by A, and the finest
  * level of the multigrid cycle sweeps, through this side's callbacks the
- * plug-in calls (amg_mult, amg_sweep): for a symmetric A (the usual case)
- * on the diagonal and upper blocks only, each upper block by its 6
- * distinct entries when it is symmetric itself, as pcg (linalg/bsym.h),
- * else on every block (linalg/reduced.h).  That storage is under a third
- * of the bytes of PETSc's SeqAIJ copy, and the fine matrix is read three
- * times per CG iteration (CG's product, the backward sweep that also
- * forms the cycle's residual, the forward sweep), so it sets the cost of
- * an iteration.  A setup packs A's values, inverts its 3x3 diagonal
- * blocks for the sweeps and, when the preconditioner is built or its
- * coarse operators recomputed, writes the values into the slots of
- * PETSc's SeqAIJ copy (the preconditioner's) and sets the preconditioner
- * up, either afresh (a rebuild: coarsening, interpolation, coarse
- * operators, smoothers) or reusing the hierarchy
- * (linalg/linsol_amg_abi.h).  For amg a reuse keeps the coarse operators
- * and their smoothers, and the finest level's sweeps read the new A (a
- * V-cycle whose smoothers converge is symmetric positive definite
- * whatever SPD coarse operators it uses, so stale ones cost iterations,
- * not definiteness; block Gauss-Seidel converges for every SPD A and has
- * no eigenvalue bound to go stale, unlike the Chebyshev smoother the
- * finest level had before, whose stale bound made the cycle
- * indefinite); when the last solve took
- * more than CL_AMG_COARSE_REGROW times the iterations of the first after
- * the coarse operators were last computed, they are recomputed, P^T A P on
- * the kept interpolation P.  For amg-hypre a reuse keeps the whole
- * preconditioner.  The hierarchy is rebuilt at the first setup, and when
- * the last solve took more than CL_AMG_REGROW times the iterations of the
- * first solve after the last rebuild although the coarse operators are
+ * plug-in calls (amg_mult, amg_sweep): for a symmetric A (the usual case) on
+ * the diagonal and upper blocks only, each upper block by its 6 distinct
+ * entries when it is symmetric itself, as pcg (linalg/bsym.h), else on every
+ * block (linalg/reduced.h).  That storage is under a third of the bytes of
+ * PETSc's SeqAIJ copy, and the fine matrix is read three times per CG
+ * iteration (CG's product, the backward sweep that also forms the cycle's
+ * residual, the forward sweep), so it sets the cost of an iteration.  A setup
+ * packs A's values, inverts its 3x3 diagonal blocks for the sweeps and, when
+ * the preconditioner is built or its coarse operators recomputed, writes the
+ * values into the slots of PETSc's SeqAIJ copy (the preconditioner's) and
+ * sets the preconditioner up, either afresh (a rebuild: coarsening,
+ * interpolation, coarse operators, smoothers) or reusing the hierarchy
+ * (linalg/linsol_amg_abi.h).  For amg a reuse keeps the coarse operators and
+ * their smoothers, and the finest level's sweeps read the new A (a V-cycle
+ * whose smoothers converge is symmetric positive definite whatever SPD
+ * coarse operators it uses, so stale ones cost iterations, not definiteness;
+ * block Gauss-Seidel converges for every SPD A and has no eigenvalue bound
+ * to go stale, unlike the Chebyshev smoother the finest level had before,
+ * whose stale bound made the cycle indefinite); when the last solve took
+ * more than CL_AMG_COARSE_REGROW times the iterations of the first after the
+ * coarse operators were last computed, they are recomputed, P^T A P on the
+ * kept interpolation P.  For amg-hypre a reuse keeps the whole
+ * preconditioner.  The hierarchy is rebuilt at the first setup, and when the
+ * last solve took more than CL_AMG_REGROW times the iterations of the first
+ * solve after the last rebuild although the coarse operators are
  * fresh.  Recovery: a solve that fails (CG finds the preconditioner
  * indefinite, breaks down or reaches lin_maxit) is redone once on a
  * hierarchy rebuilt from scratch whose smoothers' eigenvalue bounds (the
  * coarser levels') are estimated with CLP_AMG_RECOVER_STEPS Lanczos steps
- * instead of 10 (linsol_amg_petsc.c, kept until the next build), whether
- * the failed hierarchy was reused or fresh (amg-hypre, without such
- * bounds: on a rebuilt preconditioner, only if the failed one was kept);
- * only if that fails too is the solve an error.  A diagonal block whose determinant is
- * not positive (A not SPD) fails amg's setup.  Nothing is allocated by
- * setup or solve on this side (PETSc allocates within its setups: the
- * eigenvalue estimates' work arrays, and everything of a rebuild).
+ * instead of 10 (linsol_amg_petsc.c, kept until the next build), whether the
+ * failed hierarchy was reused or fresh (amg-hypre, without such bounds: on a
+ * rebuilt preconditioner, only if the failed one was kept); only if that
+ * fails too is the solve an error.  A diagonal block whose determinant is not
+ * positive (A not SPD) fails amg's setup.  Nothing is allocated by setup or
+ * solve on this side (PETSc allocates within its setups: the eigenvalue
+ * estimates' work arrays, and everything of a rebuild).
  *
  * Tolerance: solve stops at ||b - A x||_2 <= lin_tol ||b||_2 (default
  * 1e-10, as pcg); solve_tol at ||w .* (b - A x)||_2 <= delta, ensured by

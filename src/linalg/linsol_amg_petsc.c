@@ -2,19 +2,19 @@
  * (linalg/linsol_amg.c): PETSc's KSP CG preconditioned by PCGAMG
  * (smoothed aggregation) or by hypre's BoomerAMG (PCHYPRE).  Built into
  * clothode-petsc.so only; it calls nothing of the library: the block
- * pattern and values come in as plain arrays, and the product y = A x as a
- * callback (clp_amg_mult).
+ * pattern and values come in as plain arrays, and the product y = A x and
+ * the finest level's sweep as callbacks (clp_amg_mult, clp_amg_sweep).
  *
- * Two matrices.  The operator (KSP's Amat) is a MATSHELL whose product is
- * the caller's: CG (and the finest level's residual, where the smoother
- * did not form it) multiply through it (the library's block product reads, for a symmetric
- * A, only the diagonal and upper 3x3 blocks, each by its 6 distinct
- * entries: under a third of the bytes of a SeqAIJ product, and these
- * products are bound by memory traffic).  The preconditioner is
- * built on a SeqAIJ copy of A of block size 3 (Pmat: GAMG's graph and
- * Galerkin products, hypre) whose pattern is built once from the block
- * pattern; each setup that builds or recomputes the preconditioner writes
- * its values in place.
+ * Two matrices.  The operator (KSP's Amat) is a MATSHELL whose product is the
+ * caller's: CG (and the finest level's residual, where the smoother did not
+ * form it) multiply through it (the library's block product reads, for a
+ * symmetric A, only the diagonal and upper 3x3 blocks, each by its 6
+ * distinct entries: under a third of the bytes of a SeqAIJ product, and
+ * these products are bound by memory traffic).  The preconditioner is built
+ * on a SeqAIJ copy of A of block size 3 (Pmat: GAMG's graph and Galerkin
+ * products, hypre) whose pattern is built once from the block pattern; each
+ * setup that builds or recomputes the preconditioner writes its values in
+ * place.
  *
  * GAMG's finest level is smoothed by the caller's block Gauss-Seidel
  * sweeps (clp_amg_sweep, linalg/blockgs.h) on its own storage: a
@@ -47,9 +47,8 @@
  * values; CLP_AMG_SMOOTHER keeps the whole preconditioner
  * (KSPSetReusePreconditioner): the finest level's sweeps read the
  * caller's new values, and nothing here is set up again (nor is the
- * SeqAIJ copy written).  hypre
- * cannot keep its interpolation, so either reuse keeps its whole
- * preconditioner.
+ * SeqAIJ copy written).  hypre cannot keep its interpolation, so either
+ * reuse keeps its whole preconditioner.
  *
  * Eigenvalue bounds.  The SeqAIJ copy is marked symmetric positive
  * definite (MAT_SPD, for good: CG needs it so; MAT_SPD_ETERNAL needs
