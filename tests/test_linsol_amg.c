@@ -14,11 +14,13 @@
  *  - a setup refreshing only the finest smoother solves hang's matrix to
  *    the tolerance, equal to KLU's solution;
  *  - the products by two threads give the solution of one, bit for bit;
- *  - a solve whose preconditioner is made indefinite by a bad eigenvalue
- *    bound (one estimate step, through PETSC_OPTIONS) is recovered: redone
+ *  - a solve whose preconditioner is made indefinite by bad eigenvalue
+ *    bounds on the coarser levels (one estimate step, through
+ *    PETSC_OPTIONS) is recovered: redone
  *    on a hierarchy rebuilt with careful bounds, equal to KLU's solution,
  *    counted once (lin_recoveries);
- *  - an indefinite A is CL_ESOLVER saying so. */
+ *  - an indefinite A is CL_ESOLVER saying so, and so is one whose
+ *    diagonal blocks are not positive definite, at the setup. */
 #include <criterion/criterion.h>
 
 #include <math.h>
@@ -310,16 +312,19 @@ Test(linsol_amg, smoother_refresh_equals_klu)
 }
 
 /* Chebyshev's bounds from one Lanczos step each (the Rayleigh quotient of
- * a noisy vector, far below the largest eigenvalue of D^-1 A): the
- * smoothers amplify the upper modes and CG finds the cycle indefinite at
- * the first solve; the recovery rebuilds the hierarchy with
- * CLP_AMG_RECOVER_STEPS steps per estimate (the option notwithstanding)
- * and solves to the tolerance, equal to KLU's solution.  The option is
- * read when PETSc starts, in this test's own process. */
+ * a noisy vector, far below the largest eigenvalue of D^-1 A) on the
+ * coarser levels, which a coarsest level of at most 10 equations makes
+ * several at n = 16 (the finest level is smoothed by block Gauss-Seidel,
+ * which has no bound): those smoothers amplify the upper modes and CG
+ * finds the cycle indefinite at the first solve; the recovery rebuilds
+ * the hierarchy with CLP_AMG_RECOVER_STEPS steps per estimate (the option
+ * notwithstanding) and solves to the tolerance, equal to KLU's solution.
+ * The options are read when PETSc starts, in this test's own process. */
 Test(linsol_amg, bad_bound_recovered)
 {
     cr_assert_eq(setenv("PETSC_OPTIONS",
-                        "-clamg_mg_levels_ksp_chebyshev_esteig_steps 1", 1),
+                        "-clamg_mg_levels_ksp_chebyshev_esteig_steps 1 "
+                        "-clamg_pc_gamg_coarse_eq_limit 10", 1),
                  0);
     cl_stats sa;
     am_klu_run("hang", "amg", &sa);
@@ -358,6 +363,27 @@ Test(linsol_amg, indefinite_reported)
     t->stats(st, &sa);
     cr_assert_eq(sa.lin_recoveries, 1);
     cr_assert_eq(sa.symbolic_facts, 2);
+    t->free(st);
+    ls_free(&c);
+}
+
+/* df/dx of the wrong sign, b = 1: every diagonal block M - b df/dx is
+ * negative definite, and amg's setup, which inverts them for the finest
+ * smoother, says so. */
+Test(linsol_amg, negative_diagonal_block_refused)
+{
+    ls_case c;
+    ls_init(&c, 4);
+    ls_fill(&c, 4, -1.0);
+    const cl_linsol_type *t = ls_find("amg");
+    cl_linsol_opts o = {0};
+    cl_error err = {0};
+    void *st = ls_create(t, &c, &o);
+    cl_linsol_jacobian(t, st, c.dfdx, c.dfdv);
+    cr_assert_eq(t->setup(st, 0.0, 1.0, c.dfdx, c.dfdv, &err), CL_ESOLVER);
+    cr_assert_str_eq(err.msg, "amg: the diagonal block of particle row 0 of "
+                     "M - a df/dv - b df/dx is not positive definite "
+                     "(determinant not positive)");
     t->free(st);
     ls_free(&c);
 }

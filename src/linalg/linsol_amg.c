@@ -7,43 +7,50 @@
  *              "Algebraic multigrid by smoothed aggregation for second and
  *              fourth order elliptic problems") with block size 3 (the
  *              three translations per particle as near-null space),
- *              Chebyshev smoothing with 3x3 point-block Jacobi;
+ *              the finest level smoothed by this side's symmetric block
+ *              Gauss-Seidel (linalg/blockgs.h: a backward sweep before
+ *              the coarse correction, a forward one after it), the
+ *              coarser levels by Chebyshev with 3x3 point-block Jacobi;
  *   amg-hypre  hypre's BoomerAMG (classical Ruge-Stueben coarsening) with
  *              nodal coarsening and vector interpolation for the 3 unknowns
  *              per particle.
  *
- * The pattern is built once (create).  CG and the finest level of the
- * multigrid cycle (its smoother and residual) multiply by A through this
- * side's product, a callback the plug-in calls: for a symmetric A (the
- * usual case) the diagonal and upper blocks only, each upper block by its
- * 6 distinct entries when it is symmetric itself, as pcg (linalg/bsym.h),
- * else every block (linalg/reduced.h).  That product reads under a third
- * of the bytes of PETSc's SeqAIJ product, and about five of them are
- * formed per CG iteration, so it sets the cost of an iteration.  A setup
- * packs A's values for the product, writes them into the slots of PETSc's
- * SeqAIJ copy (the preconditioner's), and sets the preconditioner up,
- * either afresh (a rebuild: coarsening, interpolation, coarse operators,
- * smoothers) or reusing the hierarchy (linalg/linsol_amg_abi.h).  For amg a
- * reuse keeps the coarse operators and their smoothers and sets up only
- * the finest level's smoother on the new A (its 3x3 diagonal blocks and
- * Chebyshev's eigenvalue bound: a V-cycle whose smoothers converge is
- * symmetric positive definite whatever SPD coarse operators it uses, so
- * stale ones cost iterations, not definiteness; a stale eigenvalue bound
- * of the finest smoother made it indefinite); when the last solve took
- * more than CL_AMG_COARSE_REGROW times the iterations of the first after
- * the coarse operators were last computed, they are recomputed, P^T A P on
- * the kept interpolation P.  For amg-hypre a reuse keeps the whole
- * preconditioner.  The hierarchy is rebuilt at the first setup, and when
- * the last solve took more than CL_AMG_REGROW times the iterations of the
- * first solve after the last rebuild although the coarse operators are
+ * The pattern is built once (create).  CG multiplies by A, and the finest
+ * level of the multigrid cycle sweeps, through this side's callbacks the
+ * plug-in calls (amg_mult, amg_sweep): for a symmetric A (the usual case) on
+ * the diagonal and upper blocks only, each upper block by its 6 distinct
+ * entries when it is symmetric itself, as pcg (linalg/bsym.h), else on every
+ * block (linalg/reduced.h).  That storage is under a third of the bytes of
+ * PETSc's SeqAIJ copy, and the fine matrix is read three times per CG
+ * iteration (CG's product, the backward sweep that also forms the cycle's
+ * residual, the forward sweep), so it sets the cost of an iteration.  A setup
+ * packs A's values, inverts its 3x3 diagonal blocks for the sweeps and, when
+ * the preconditioner is built or its coarse operators recomputed, writes the
+ * values into the slots of PETSc's SeqAIJ copy (the preconditioner's) and
+ * sets the preconditioner up, either afresh (a rebuild: coarsening,
+ * interpolation, coarse operators, smoothers) or reusing the hierarchy
+ * (linalg/linsol_amg_abi.h).  For amg a reuse keeps the coarse operators and
+ * their smoothers, and the finest level's sweeps read the new A (a V-cycle
+ * whose smoothers converge is symmetric positive definite whatever SPD
+ * coarse operators it uses, so stale ones cost iterations, not definiteness;
+ * block Gauss-Seidel converges for every SPD A and has no eigenvalue bound
+ * to go stale, unlike the Chebyshev smoother the finest level had before,
+ * whose stale bound made the cycle indefinite); when the last solve took
+ * more than CL_AMG_COARSE_REGROW times the iterations of the first after the
+ * coarse operators were last computed, they are recomputed, P^T A P on the
+ * kept interpolation P.  For amg-hypre a reuse keeps the whole
+ * preconditioner.  The hierarchy is rebuilt at the first setup, and when the
+ * last solve took more than CL_AMG_REGROW times the iterations of the first
+ * solve after the last rebuild although the coarse operators are
  * fresh.  Recovery: a solve that fails (CG finds the preconditioner
  * indefinite, breaks down or reaches lin_maxit) is redone once on a
- * hierarchy rebuilt from scratch whose smoothers' eigenvalue bounds are
- * estimated with CLP_AMG_RECOVER_STEPS Lanczos steps instead of 10
- * (linsol_amg_petsc.c, kept until the next build), whether the failed
- * hierarchy was reused or fresh (amg-hypre, without such bounds: on a
+ * hierarchy rebuilt from scratch whose smoothers' eigenvalue bounds (the
+ * coarser levels') are estimated with CLP_AMG_RECOVER_STEPS Lanczos steps
+ * instead of 10 (linsol_amg_petsc.c, kept until the next build), whether the
+ * failed hierarchy was reused or fresh (amg-hypre, without such bounds: on a
  * rebuilt preconditioner, only if the failed one was kept); only if that
- * fails too is the solve an error.  Nothing is allocated by setup or
+ * fails too is the solve an error.  A diagonal block whose determinant is not
+ * positive (A not SPD) fails amg's setup.  Nothing is allocated by setup or
  * solve on this side (PETSc allocates within its setups: the eigenvalue
  * estimates' work arrays, and everything of a rebuild).
  *
@@ -66,6 +73,7 @@
 #include <string.h>
 
 #include "core/check.h"
+#include "linalg/blockgs.h"
 #include "linalg/bsym.h"
 #include "linalg/linsol_amg_abi.h"
 #include "linalg/petscenv.h"
@@ -84,6 +92,8 @@ typedef struct {
     double *ablk;            /* 9 nnzb: A's block values */
     cl_bsym sym;             /* A's halves, if it is symmetric: */
     double *sdiag, *supper;  /* 9 nb, 9 ne: their values */
+    double *dinv;            /* 9 nb: A's diagonal blocks inverted */
+    double *acc;             /* n: the forward sweep's work */
     cl_bsym_kind jac_kind;   /* df/dx and df/dv as last told (jacobian) */
     cl_bsym_kind kind;       /* the product's form since the last setup */
     int threads;             /* of the products */
@@ -114,6 +124,8 @@ static void amg_free(void *state)
     free(s->ablk);
     free(s->sdiag);
     free(s->supper);
+    free(s->dinv);
+    free(s->acc);
     cl_bsym_free(&s->sym);
     free(s);
 }
@@ -148,7 +160,10 @@ static cl_status amg_alloc(cl_amg *s, const double *mass, cl_error *err)
     s->ablk = calloc(9 * s->pat->nnzb, sizeof *s->ablk);
     s->sdiag = malloc(9 * s->sym.nb * sizeof *s->sdiag);
     s->supper = malloc((9 * s->sym.ne + 1) * sizeof *s->supper);
-    if (!s->mass || !s->ablk || !s->sdiag || !s->supper)
+    s->dinv = malloc(9 * s->sym.nb * sizeof *s->dinv);
+    s->acc = malloc(s->n * sizeof *s->acc);
+    if (!s->mass || !s->ablk || !s->sdiag || !s->supper || !s->dinv ||
+        !s->acc)
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
     if (st == CL_OK)
         st = cl_check_masses(mass, s->n, s->name, err);
@@ -166,6 +181,28 @@ static void amg_mult(void *ctx, const double *x, double *y)
                                s->threads);
     else
         cl_bmatvec_threads(s->pat, s->ablk, x, y, s->threads);
+}
+
+/* The finest level's smoother (linsol_amg_abi.h: clp_amg_sweep): block
+ * Gauss-Seidel on A's packed halves, or on all its blocks (then the
+ * residual by a product). */
+static void amg_sweep(void *ctx, int forward, const double *b, double *x,
+                      double *r)
+{
+    cl_amg *s = ctx;
+    if (s->kind != CL_BSYM_NONE) {
+        cl_bsym_gs(&s->sym, s->kind, forward, s->dinv, s->supper, b, x,
+                   forward ? s->acc : r);
+        return;
+    }
+    if (forward) {
+        cl_bgs_forward(s->pat, s->ablk, s->dinv, b, x);
+        return;
+    }
+    cl_bgs_backward(s->pat, s->ablk, s->dinv, b, x);
+    amg_mult(s, x, r);
+    for (size_t i = 0; i < s->n; i++)
+        r[i] = b[i] - r[i];
 }
 
 static cl_status amg_create_named(const char *name, int hypre,
@@ -191,7 +228,7 @@ static cl_status amg_create_named(const char *name, int hypre,
     if (st == CL_OK)
         st = amg_symbols(s, &create, err);
     if (st == CL_OK && create(pat->nb, pat->rowptr, pat->col, hypre, maxit,
-                              amg_mult, s, &s->h, &msg) != 0)
+                              amg_mult, amg_sweep, s, &s->h, &msg) != 0)
         st = cl_error_set(err, CL_ESOLVER, "%s: %s", name, msg.text);
     if (st != CL_OK) {
         amg_free(s);
@@ -277,6 +314,15 @@ static cl_status amg_setup(void *state, double a, double b,
     if (s->kind != CL_BSYM_NONE)
         cl_bsym_pack(&s->sym, s->kind, 1.0, s->ablk, 0.0, NULL, NULL,
                      s->sdiag, s->supper);
+    /* amg's finest smoother's diagonal blocks, inverted once per setup */
+    size_t row = 0;
+    bool sym = s->kind != CL_BSYM_NONE;
+    if (!s->hypre && !cl_bgs_invert(s->sym.nb, sym ? s->sdiag : s->ablk,
+                       sym ? NULL : s->pat->diag, s->dinv, &row))
+        return cl_error_set(err, CL_ESOLVER, "%s: the diagonal block of "
+                            "particle row %zu of M - a df/dv - b df/dx is "
+                            "not positive definite (determinant not "
+                            "positive)", s->name, row);
     cl_status st = amg_prepare(s, amg_mode(s), err);
     if (st == CL_OK)
         s->setups++;
@@ -365,8 +411,9 @@ static void amg_stats(const void *state, cl_stats *out)
 
 const cl_linsol_type cl_linsol_amg = {
     .name = "amg",
-    .doc = "PETSc CG + GAMG smoothed aggregation (block size 3, Chebyshev/"
-           "point-block Jacobi), hierarchy reused across setups (A SPD)",
+    .doc = "PETSc CG + GAMG smoothed aggregation (block size 3, block "
+           "Gauss-Seidel on the finest level, Chebyshev/point-block Jacobi "
+           "below), hierarchy reused across setups (A SPD)",
     .create = amg_create,
     .jacobian = amg_jacobian,
     .setup = amg_setup,

@@ -21,11 +21,11 @@ enum {
      * smoother recomputed (amg-hypre: the whole preconditioner kept) */
     CLP_AMG_GALERKIN,
     /* the coarse operators and their smoothers kept; only the finest
-     * level's smoother (its diagonal blocks and eigenvalue bound) on the
-     * new A (amg-hypre: the whole preconditioner kept) */
+     * level's smoother (the caller's sweep, clp_amg_sweep) on the new A
+     * (amg-hypre: the whole preconditioner kept) */
     CLP_AMG_SMOOTHER,
-    /* a new hierarchy as CLP_AMG_BUILD, each level's Chebyshev bound
-     * estimated with CLP_AMG_RECOVER_STEPS Lanczos steps (the recovery
+    /* a new hierarchy as CLP_AMG_BUILD, each coarser level's Chebyshev
+     * bound estimated with CLP_AMG_RECOVER_STEPS Lanczos steps (the recovery
      * from a failed solve; amg-hypre: as CLP_AMG_BUILD) */
     CLP_AMG_RECOVER,
 };
@@ -37,9 +37,17 @@ enum {
 /* y = A x, the caller's product (ctx: its own). */
 typedef void (*clp_amg_mult)(void *ctx, const double *x, double *y);
 
+/* The finest level's smoother of amg, the caller's block Gauss-Seidel
+ * sweep (linalg/blockgs.h) on the values of its last setup: forward = 0,
+ * the pre-smoother: x = (D + U)^-1 b and r = b - A x; forward = 1, the
+ * post-smoother: x <- x + (D + L)^-1 (b - A x) (r unused). */
+typedef void (*clp_amg_sweep)(void *ctx, int forward, const double *b,
+                              double *x, double *r);
+
 typedef int (*clp_amg_create_fn)(size_t nb, const size_t *rowptr,
                                  const size_t *col, int hypre, long maxit,
-                                 clp_amg_mult mult, void *ctx, void **handle,
+                                 clp_amg_mult mult, clp_amg_sweep sweep,
+                                 void *ctx, void **handle,
                                  cl_plugin_msg *msg);
 typedef int (*clp_amg_setup_fn)(void *handle, const double *ablk,
                                 int mode, cl_plugin_msg *msg);

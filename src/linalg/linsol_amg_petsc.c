@@ -2,25 +2,37 @@
  * (linalg/linsol_amg.c): PETSc's KSP CG preconditioned by PCGAMG
  * (smoothed aggregation) or by hypre's BoomerAMG (PCHYPRE).  Built into
  * clothode-petsc.so only; it calls nothing of the library: the block
- * pattern and values come in as plain arrays, and the product y = A x as a
- * callback (clp_amg_mult).
+ * pattern and values come in as plain arrays, and the product y = A x and
+ * the finest level's sweep as callbacks (clp_amg_mult, clp_amg_sweep).
  *
- * Two matrices.  The operator (KSP's Amat) is a MATSHELL whose product is
- * the caller's: CG, the residuals of the finest level and its smoother
- * multiply through it (the library's block product reads, for a symmetric
- * A, only the diagonal and upper 3x3 blocks, each by its 6 distinct
- * entries: under a third of the bytes of a SeqAIJ product, and these
- * products are bound by memory traffic).  The preconditioner is
- * built on a SeqAIJ copy of A of block size 3 (Pmat: GAMG's graph and
- * Galerkin products, the point-block Jacobi of the finest smoother, hypre)
- * whose pattern is built once from the block pattern; each setup writes
- * its values in place.
+ * Two matrices.  The operator (KSP's Amat) is a MATSHELL whose product is the
+ * caller's: CG (and the finest level's residual, where the smoother did not
+ * form it) multiply through it (the library's block product reads, for a
+ * symmetric A, only the diagonal and upper 3x3 blocks, each by its 6
+ * distinct entries: under a third of the bytes of a SeqAIJ product, and
+ * these products are bound by memory traffic).  The preconditioner is built
+ * on a SeqAIJ copy of A of block size 3 (Pmat: GAMG's graph and Galerkin
+ * products, hypre) whose pattern is built once from the block pattern; each
+ * setup that builds or recomputes the preconditioner writes its values in
+ * place.
+ *
+ * GAMG's finest level is smoothed by the caller's block Gauss-Seidel
+ * sweeps (clp_amg_sweep, linalg/blockgs.h) on its own storage: a
+ * backward sweep from x = 0 before the coarse correction, which also
+ * forms the residual b - A x the cycle restricts (PCMGSetResidual), and
+ * a forward sweep after it, the adjoint of the first, so the cycle stays
+ * symmetric; each a PCSHELL's PCApplyRichardson under one step of
+ * KSPRICHARDSON (amg_fine_gs).  Per CG iteration that reads the fine
+ * matrix three times (CG's product and the two sweeps) where the
+ * degree-2 Chebyshev smoother read it five times, and a setup needs no
+ * eigenvalue estimate on that level (the caller inverts the diagonal
+ * blocks).  The coarser levels keep GAMG's own smoothers.
  *
  * Options are PETSc's own, under the prefix clamg_ (GAMG) or clamgh_
  * (hypre), set here unless the user set them first (PETSC_OPTIONS):
  *   GAMG   -pc_type gamg, block size 3, Chebyshev smoothing with point-block
- *          (3x3) Jacobi: -mg_levels_ksp_type chebyshev
- *          -mg_levels_pc_type pbjacobi;
+ *          (3x3) Jacobi on the coarser levels (the finest: above):
+ *          -mg_levels_ksp_type chebyshev -mg_levels_pc_type pbjacobi;
  *   hypre  -pc_type hypre -pc_hypre_type boomeramg with nodal coarsening
  *          and the vector interpolation for systems of PDEs
  *          (-pc_hypre_boomeramg_nodal_coarsen 6
@@ -33,18 +45,18 @@
  * keeps GAMG's prolongators (PCGAMGSetReuseInterpolation) and recomputes
  * the Galerkin coarse operators P^T A P and the smoothers on the new
  * values; CLP_AMG_SMOOTHER keeps the whole preconditioner
- * (KSPSetReusePreconditioner) but the finest level's smoother, whose
- * operators are set anew so that KSPSetUp inverts the new diagonal blocks
- * and Chebyshev estimates the new eigenvalue bound (the whole
- * preconditioner kept with the old bound was found indefinite by CG
- * within two iterations, one step of semi-bdf2 on hang later).  hypre
- * cannot keep its interpolation, so either reuse keeps its whole
- * preconditioner.
+ * (KSPSetReusePreconditioner): the finest level's sweeps read the
+ * caller's new values, and nothing here is set up again (nor is the
+ * SeqAIJ copy written).  hypre cannot keep its interpolation, so either
+ * reuse keeps its whole preconditioner.
  *
  * Eigenvalue bounds.  The SeqAIJ copy is marked symmetric positive
  * definite (MAT_SPD, for good: CG needs it so; MAT_SPD_ETERNAL needs
  * PETSc 3.18), and GAMG's Galerkin operators inherit the mark; Chebyshev
- * then estimates the largest eigenvalue of D^-1 A on every level by
+ * then estimates the largest eigenvalue of D^-1 A on every coarser level
+ * (and on the finest in a setup that builds or recomputes the hierarchy,
+ * which sets that level's smoothers up from the options before
+ * amg_fine_gs replaces them: 10 products a build) by
  * Lanczos (CG, 10 steps) instead of GMRES, whose 10 steps on the
  * nonsymmetric D^-1 A fell 17 % short of the finest level's largest
  * eigenvalue on hang at n = 64 and 256 (against 300 Lanczos steps;
@@ -63,24 +75,39 @@
 
 #include "linalg/linsol_amg_abi.h"
 
+typedef struct clp_amg clp_amg;
+
+/* The context of a finest-level smoother: the solver, and which sweep. */
 typedef struct {
+    clp_amg *s;
+    int forward;
+} clp_amg_gs;
+
+struct clp_amg {
     PetscInt n;             /* 3 nb */
     PetscInt nb;
     const size_t *rowptr;   /* borrowed: the block pattern */
     Mat A;                  /* SeqAIJ, block size 3: the preconditioner's */
     Mat op;                 /* MATSHELL: the caller's product */
     clp_amg_mult mult;
+    clp_amg_sweep sweep;
     void *ctx;
+    Vec res;                /* the finest level's residual, array resv */
+    PetscScalar *resv;
+    Vec swb, swx;           /* the pre-smoother's b and x while res = b -
+                             * A x holds for them; swx NULL: it does not */
     Vec b, x;               /* without arrays: the caller's are placed */
     KSP ksp;
     int hypre;
     PetscInt est_steps;     /* the estimates' Lanczos steps before a
                              * recovery raised them; 0: never raised */
-} clp_amg;
+    clp_amg_gs gs[2];       /* the backward and forward sweeps' contexts */
+};
 
 int clp_amg_create(size_t nb, const size_t *rowptr, const size_t *col,
-                   int hypre, long maxit, clp_amg_mult mult, void *ctx,
-                   void **handle, cl_plugin_msg *msg);
+                   int hypre, long maxit, clp_amg_mult mult,
+                   clp_amg_sweep sweep, void *ctx, void **handle,
+                   cl_plugin_msg *msg);
 int clp_amg_setup(void *handle, const double *ablk, int mode,
                   cl_plugin_msg *msg);
 int clp_amg_solve(void *handle, const double *rhs, double *x, double rtol,
@@ -222,12 +249,15 @@ void clp_amg_free(void *handle)
     VecDestroy(&s->x);
     MatDestroy(&s->A);
     MatDestroy(&s->op);
+    VecDestroy(&s->res);
+    PetscFree(s->resv);
     PetscFree(s);
 }
 
 int clp_amg_create(size_t nb, const size_t *rowptr, const size_t *col,
-                   int hypre, long maxit, clp_amg_mult mult, void *ctx,
-                   void **handle, cl_plugin_msg *msg)
+                   int hypre, long maxit, clp_amg_mult mult,
+                   clp_amg_sweep sweep, void *ctx, void **handle,
+                   cl_plugin_msg *msg)
 {
     clp_amg *s = NULL;
     *handle = NULL;
@@ -245,9 +275,15 @@ int clp_amg_create(size_t nb, const size_t *rowptr, const size_t *col,
     s->n = 3 * s->nb;
     s->rowptr = rowptr;
     s->mult = mult;
+    s->sweep = sweep;
     s->ctx = ctx;
+    s->gs[0] = (clp_amg_gs){.s = s, .forward = 0};
+    s->gs[1] = (clp_amg_gs){.s = s, .forward = 1};
     s->hypre = hypre;
-    if ((ec = amg_matrix(s, col)) || (ec = amg_shell(s)))
+    if ((ec = amg_matrix(s, col)) || (ec = amg_shell(s)) ||
+        (ec = PetscMalloc1(s->n, &s->resv)) ||
+        (ec = VecCreateSeqWithArray(PETSC_COMM_SELF, 3, s->n, s->resv,
+                                    &s->res)))
         amg_fail(msg, "building the matrices", ec);
     else if ((ec = amg_ksp(s, maxit)))
         amg_fail(msg, "setting up the KSP", ec);
@@ -277,20 +313,106 @@ static PetscErrorCode amg_values(clp_amg *s, const double *ablk)
     return MatSeqAIJRestoreArray(s->A, &a);
 }
 
-/* The finest level's smoother (GAMG's last level) set up again on the new
- * values: its point-block Jacobi inverts the new diagonal blocks, and
- * Chebyshev estimates the new largest eigenvalue of D^-1 A (its operators
- * are set anew, so KSPSetUp redoes both). */
-static PetscErrorCode amg_fine_smoother(clp_amg *s, PC pc)
+/* A finest-level smoother (PCShellSetApplyRichardson): one sweep of the
+ * caller's, backward from x = 0 before the coarse correction, forward from
+ * x after it.  The backward sweep also leaves the residual b - A x in
+ * s->res (linalg/blockgs.h), marked valid for these b and x until the
+ * residual is asked for (amg_residual) or x is swept again. */
+static PetscErrorCode amg_gs_apply(PC pc, Vec b, Vec x, Vec w, PetscReal rtol,
+                                   PetscReal atol, PetscReal dtol,
+                                   PetscInt its, PetscBool zero,
+                                   PetscInt *outits,
+                                   PCRichardsonConvergedReason *why)
+{
+    clp_amg_gs *g = NULL;
+    const PetscScalar *bp;
+    PetscScalar *xp;
+    (void)w, (void)rtol, (void)atol, (void)dtol;
+    PetscCall(PCShellGetContext(pc, &g));
+    clp_amg *s = g->s;
+    PetscCheck(its == 1 && (zero || g->forward), PETSC_COMM_SELF,
+               PETSC_ERR_SUP, "the block Gauss-Seidel smoother makes one "
+               "sweep, the backward one from x = 0 (%d sweeps, %s sweep, "
+               "zero guess %d asked)", (int)its,
+               g->forward ? "forward" : "backward", (int)zero);
+    s->swx = NULL;
+    if (zero && g->forward)
+        PetscCall(VecZeroEntries(x));
+    PetscCall(VecGetArrayRead(b, &bp));
+    PetscCall(VecGetArray(x, &xp));
+    s->sweep(s->ctx, g->forward, bp, xp, g->forward ? NULL : s->resv);
+    PetscCall(VecRestoreArray(x, &xp));
+    PetscCall(VecRestoreArrayRead(b, &bp));
+    if (!g->forward) {
+        s->swb = b;
+        s->swx = x;
+    }
+    *outits = 1;
+    *why = PCRICHARDSON_CONVERGED_ITS;
+    return 0;
+}
+
+/* The finest level's residual r = b - A x: the pre-smoother's, if b and x
+ * are the vectors it swept last (PCMG's V-cycle asks for the residual
+ * right after the pre-smoother, and changes neither vector in between:
+ * PCMGMCycle_Private), once; else by a product. */
+static PetscErrorCode amg_residual(Mat op, Vec b, Vec x, Vec r)
+{
+    clp_amg *s = NULL;
+    PetscCall(MatShellGetContext(op, &s));
+    int fused = s->swx && b == s->swb && x == s->swx;
+    s->swx = NULL;
+    if (!fused)
+        return PCMGResidualDefault(op, b, x, r);
+    return r == s->res ? 0 : VecCopy(s->res, r);
+}
+
+/* Smoother k of the finest level: one Richardson step whose preconditioner
+ * is the caller's sweep (a shell's PCApplyRichardson, which KSPRICHARDSON
+ * calls in place of its own step), on the shell operator; forward: the
+ * post-smoother, from the guess the coarse correction left. */
+static PetscErrorCode amg_gs_ksp(clp_amg *s, KSP k, int forward)
+{
+    PC pc;
+    PetscCall(KSPSetType(k, KSPRICHARDSON));
+    PetscCall(KSPSetTolerances(k, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT,
+                               1));
+    PetscCall(KSPSetNormType(k, KSP_NORM_NONE));
+    PetscCall(KSPSetConvergenceTest(k, KSPConvergedSkip, NULL, NULL));
+    PetscCall(KSPSetInitialGuessNonzero(k, forward ? PETSC_TRUE
+                                                   : PETSC_FALSE));
+    PetscCall(KSPGetPC(k, &pc));
+    PetscCall(PCSetType(pc, PCSHELL));
+    PetscCall(PCShellSetContext(pc, &s->gs[forward]));
+    PetscCall(PCShellSetName(pc, forward ? "forward block Gauss-Seidel "
+                                           "(clothode)"
+                                         : "backward block Gauss-Seidel "
+                                           "(clothode)"));
+    PetscCall(PCShellSetApplyRichardson(pc, amg_gs_apply));
+    PetscCall(KSPSetOperators(k, s->op, s->A));
+    return KSPSetUp(k);
+}
+
+/* After a setup that made or recomputed the hierarchy: the finest level's
+ * smoothers are the caller's block Gauss-Seidel sweeps, backward before
+ * the coarse correction and forward after it (its adjoint: the cycle
+ * stays symmetric), and its residual the pre-smoother's.  They need no
+ * setup of their own later (the caller inverts its diagonal blocks), and
+ * no eigenvalue bound.  A hierarchy of one level keeps GAMG's smoother. */
+static PetscErrorCode amg_fine_gs(clp_amg *s, PC pc)
 {
     PetscInt levels = 0;
-    KSP smooth;
-    PetscErrorCode ec;
-    if ((ec = PCMGGetLevels(pc, &levels)) ||
-        (ec = PCMGGetSmoother(pc, levels - 1, &smooth)) ||
-        (ec = KSPSetOperators(smooth, s->op, s->A)))
-        return ec;
-    return KSPSetUp(smooth);
+    KSP down, up;
+    PetscCall(PCMGGetLevels(pc, &levels));
+    if (levels < 2)
+        return 0;
+    PetscCall(PCMGGetSmootherDown(pc, levels - 1, &down));
+    PetscCall(PCMGGetSmootherUp(pc, levels - 1, &up));
+    PetscCall(amg_gs_ksp(s, down, 0));
+    PetscCall(amg_gs_ksp(s, up, 1));
+    PetscCall(PCMGSetR(pc, levels - 1, s->res));
+    s->swx = NULL;
+    return PCMGSetResidual(pc, levels - 1, amg_residual, s->op);
 }
 
 /* Level l's Chebyshev smoother and its eigenvalue estimator; *est NULL
@@ -375,7 +497,9 @@ int clp_amg_setup(void *handle, const double *ablk, int mode,
      * finest smoother; hypre keeps all of it on any reuse */
     int build = mode == CLP_AMG_BUILD || mode == CLP_AMG_RECOVER;
     int keep = mode == CLP_AMG_SMOOTHER || (s->hypre && !build);
-    if ((ec = amg_values(s, ablk)))
+    /* a kept preconditioner does not read the SeqAIJ copy (GAMG's finest
+     * smoother sweeps the caller's storage) */
+    if (!keep && (ec = amg_values(s, ablk)))
         return amg_fail(msg, "writing the matrix values", ec);
     if ((ec = KSPGetPC(s->ksp, &pc)))
         return amg_fail(msg, "KSPGetPC", ec);
@@ -393,7 +517,7 @@ int clp_amg_setup(void *handle, const double *ablk, int mode,
     if ((ec = KSPSetOperators(s->ksp, s->op, s->A)) ||
         (ec = KSPSetUp(s->ksp)))
         return amg_fail(msg, "the multigrid setup (KSPSetUp)", ec);
-    if (keep && !s->hypre && (ec = amg_fine_smoother(s, pc)))
+    if (!keep && !s->hypre && (ec = amg_fine_gs(s, pc)))
         return amg_fail(msg, "the finest smoother's setup", ec);
     if (mode == CLP_AMG_RECOVER && !s->hypre &&
         (ec = amg_careful_bounds(s, pc, 1)))
