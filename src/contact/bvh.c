@@ -143,19 +143,10 @@ cl_status cl_bvh_build(cl_bvh *b, const double *vert, size_t ntri,
     return CL_OK;
 }
 
-/* The distance from x to [lo, hi] along one axis (0 inside). */
-static inline double axis_gap(double x, double lo, double hi)
-{
-    return x < lo ? lo - x : x > hi ? x - hi : 0.0;
-}
-
 /* Squared distance from x to the node's box (0 inside). */
 static inline double box_dist2(const cl_bvh_node *nd, const double x[3])
 {
-    double d0 = axis_gap(x[0], nd->lo[0], nd->hi[0]);
-    double d1 = axis_gap(x[1], nd->lo[1], nd->hi[1]);
-    double d2 = axis_gap(x[2], nd->lo[2], nd->hi[2]);
-    return d0 * d0 + d1 * d1 + d2 * d2;
+    return cl_box_dist2(nd->lo, nd->hi, x);
 }
 
 /* The triangles nearest to a point found so far: at most cap of them

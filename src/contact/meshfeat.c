@@ -46,12 +46,7 @@ static bool enter(const double lo[3], const double hi[3], void *ctx)
     clearance *q = ctx;
     if (q->h <= 0 || box_below(q, lo, hi))
         return false;
-    double g2 = 0;
-    for (int i = 0; i < 3; i++) {
-        double gap = fmax(fmax(lo[i] - q->c[i], q->c[i] - hi[i]), 0.0);
-        g2 += gap * gap;
-    }
-    return sqrt(g2) - q->r < 2 * q->h;
+    return sqrt(cl_box_dist2(lo, hi, q->c)) - q->r < 2 * q->h;
 }
 
 /* Triangle t, unless below the plane, bounds h by half a lower bound of
@@ -156,7 +151,7 @@ static void edges(cl_meshfeat *f, const cl_closed *s,
         F->len = cl_v3_normalize(F->e);
         side_normal(a, z, b->normal[E->tri[0]], F->ma); /* tri[0]: a -> z */
         side_normal(z, a, b->normal[E->tri[1]], F->mb);
-        memcpy(F->f, E->tri, sizeof F->f);
+        F->face = E->tri[0];
         int t = E->tri[0], side = 0;
         while (s->side[t][side] != (int)k)
             side++;
@@ -166,7 +161,8 @@ static void edges(cl_meshfeat *f, const cl_closed *s,
     }
 }
 
-/* The directions of the edges leaving each vertex, into w[]. */
+/* The directions of the edges leaving each vertex, into w[], and a face
+ * of each. */
 static void directions(cl_meshfeat *f, const cl_closed *s)
 {
     for (size_t k = 0; k < f->nedge; k++)
@@ -181,7 +177,8 @@ static void directions(cl_meshfeat *f, const cl_closed *s)
     for (size_t k = 0; k < f->nedge; k++)
         for (int i = 0; i < 2; i++) {
             cl_feat_vertex *V = &f->vert[s->mesh.edge[k].v[i]];
-            f->wedge[V->first + V->count] = (int)k;
+            if (V->count == 0)  /* its first edge's first face */
+                V->face = s->mesh.edge[k].tri[0];
             cl_v3_scale(i ? -1.0 : 1.0, f->edge[k].e,
                         f->w[V->first + V->count++]);
         }
@@ -208,7 +205,6 @@ void cl_meshfeat_free(cl_meshfeat *f)
     free(f->edge);
     free(f->vert);
     free(f->w);
-    free(f->wedge);
     free(f->side);
     free(f->across);
     *f = (cl_meshfeat){0};
@@ -230,12 +226,11 @@ cl_status cl_meshfeat_build(cl_meshfeat *f, const cl_bvh *b,
     f->edge = malloc(f->nedge * sizeof *f->edge);
     f->vert = calloc(nvert, sizeof *f->vert);
     f->w = malloc(2 * f->nedge * sizeof *f->w);
-    f->wedge = malloc(2 * f->nedge * sizeof *f->wedge);
     f->side = malloc(b->ntri * sizeof *f->side);
     f->across = malloc(b->ntri * sizeof *f->across);
     double (*tc)[4] = malloc(b->ntri * sizeof *tc);
     cl_status rc = CL_OK;
-    if (f->face && f->edge && f->vert && f->w && f->wedge && f->side &&
+    if (f->face && f->edge && f->vert && f->w && f->side &&
         f->across && tc) {
         memcpy(f->side, s->side, b->ntri * sizeof *f->side);
         for (size_t t = 0; t < b->ntri; t++)
@@ -353,17 +348,15 @@ bool cl_meshfeat_answer(const cl_meshfeat *f, int id, const double x[3],
             return id_;                                                 \
     } while (0)
 
-/* A face of feature id: itself, an edge's first, a vertex's first
- * edge's first. */
+/* A face of feature id: itself, or the one an edge or vertex keeps. */
 static int face_of(const cl_meshfeat *f, int id)
 {
     size_t i = (size_t)id;
     if (i < f->nface)
         return id;
     if ((i -= f->nface) < f->nedge)
-        return f->edge[i].f[0];
-    const cl_feat_vertex *V = &f->vert[i - f->nedge];
-    return f->edge[f->wedge[V->first]].f[0];
+        return f->edge[i].face;
+    return f->vert[i - f->nedge].face;
 }
 
 /* The side of face t that x lies farthest beyond (in-plane), -1 when it

@@ -53,14 +53,14 @@ typedef struct {
     double a[3], e[3], len; /* from a along the unit direction e */
     double ma[3], mb[3];    /* the two faces' in-plane outward normals */
     double h;
-    int f[2];               /* its faces */
+    int face;               /* a face of it, where a walk starts */
 } cl_feat_edge;
 
 typedef struct {
     double p[3];
     double h;
-    int first, count;       /* its edges (their numbers in wedge[], their
-                               unit directions from it in w[]) */
+    int first, count;       /* its edges' unit directions from it in w[] */
+    int face;               /* a face of it, where a walk starts */
 } cl_feat_vertex;
 
 typedef struct {
@@ -69,7 +69,6 @@ typedef struct {
     cl_feat_edge *edge;
     cl_feat_vertex *vert;
     double (*w)[3];         /* directions of the edges leaving vertices */
-    int *wedge;             /* ... and those edges */
     const int (*tri)[3];    /* the triangles (borrowed from the tree) */
     int (*side)[3];         /* side k of triangle t is edge side[t][k] */
     int (*across)[3];       /* the triangle across it */

@@ -47,9 +47,9 @@ static inline void bgs_apply(const double *restrict m, const double t[3],
     xi[2] = m[6] * t[0] + m[7] * t[1] + m[8] * t[2];
 }
 
-/* Position of entry (r, c) of an upper block (as linalg/bsym.c). */
-static const int bgs_at9[9] = {0, 1, 2, 3, 4, 5, 6, 7, 8};
-static const int bgs_at6[9] = {0, 1, 2, 1, 3, 4, 2, 4, 5};
+/* Position of entry (r, c) of an upper block (linalg/bsym.h). */
+static const int bgs_at9[9] = CL_BSYM_AT9;
+static const int bgs_at6[9] = CL_BSYM_AT6;
 
 /* t -= B q for the upper block B (layout at). */
 static inline void bgs_gather(const double *restrict B, const int *at,

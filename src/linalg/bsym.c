@@ -214,10 +214,9 @@ static inline double bsym_row(const double *D, int r, double p0, double p1,
     return D[3 * r] * p0 + D[3 * r + 1] * p1 + D[3 * r + 2] * p2;
 }
 
-/* Position of entry (r, c) of an upper block: 9 values row-major, or the
- * 6 of a symmetric block (b0 b1 b2; b1 b3 b4; b2 b4 b5). */
-static const int bsym_at9[9] = {0, 1, 2, 3, 4, 5, 6, 7, 8};
-static const int bsym_at6[9] = {0, 1, 2, 1, 3, 4, 2, 4, 5};
+/* Position of entry (r, c) of an upper block (bsym.h). */
+static const int bsym_at9[9] = CL_BSYM_AT9;
+static const int bsym_at6[9] = CL_BSYM_AT6;
 
 /* One pass over the upper blocks, `six` a constant at each call so that
  * each layout gets its own straight-line loop. */

@@ -63,6 +63,13 @@ typedef enum {
                          * entries, a third less to read */
 } cl_bsym_kind;
 
+/* Position of entry (r, c) (at 3 r + c) of an upper block in its stored
+ * values: 9 row-major (CL_BSYM_HALVES), or the 6 of a symmetric block
+ * (b0 b1 b2; b1 b3 b4; b2 b4 b5; CL_BSYM_BLOCKS).  Initialisers, so that
+ * each file's loops see the indices as constants. */
+#define CL_BSYM_AT9 {0, 1, 2, 3, 4, 5, 6, 7, 8}
+#define CL_BSYM_AT6 {0, 1, 2, 1, 3, 4, 2, 4, 5}
+
 /* The kind of the block matrix with values blk (9 nnzb on the pattern),
  * to within tol (see above; for CL_BSYM_BLOCKS the same test within each
  * block). */
