@@ -243,6 +243,54 @@ Test(linsol_amg, coarse_operators_recomputed_when_iterations_grow)
                  (double)its[7] > 1.5 * (double)its[0] ? 2 : 1);
 }
 
+/* One matrix, one right-hand side, solved to tolerances 10^-e[k] after
+ * setup k: the iterations grow because the tolerance tightens, and no
+ * recompute can help, since the coarse operators recomputed on the same
+ * matrix are the same.  Each growth past the coarse operators' factor
+ * (1.1, then 1.2 and 1.4 as recomputes fail to help) recomputes them, the
+ * next solve takes as many iterations, and the rebuild's reference moves
+ * there, so no new hierarchy is built although the iterations reach 5
+ * times the build's (the rule before built one at setup 5); once the
+ * factor is 1.5, the next growth past it builds. */
+Test(linsol_amg, recompute_that_did_not_help_moves_the_reference)
+{
+    static const int e[9] = {1, 2, 2, 3, 3, 5, 5, 10, 10};
+    static const long built[9] = {1, 1, 1, 1, 1, 1, 1, 1, 2};
+    ls_case c;
+    ls_init(&c, 21);
+    const cl_linsol_type *t = ls_find("amg");
+    cl_linsol_opts o = {0};
+    void *st = ls_create(t, &c, &o);
+    cl_linsol_jacobian(t, st, c.dfdx, c.dfdv);
+    double rhs[LS_N], x[LS_N], w[LS_N];
+    ls_rhs(30, rhs);
+    for (size_t i = 0; i < LS_N; i++)
+        w[i] = 1.0;
+    long its[9], done = 0;
+    for (int k = 0; k < 9; k++) {
+        cl_error err = {0};
+        cr_assert_eq(t->setup(st, 1e-2, 1e-4, c.dfdx, c.dfdv, &err), CL_OK);
+        cr_assert_eq(t->solve_tol(st, rhs, x, w, pow(10.0, -e[k]), &err),
+                     CL_OK, "%s", err.msg);
+        cl_stats s = {0};
+        t->stats(st, &s);
+        its[k] = s.lin_iters - done;
+        done = s.lin_iters;
+        cr_assert_eq(s.symbolic_facts, built[k], "setup %d", k);
+    }
+    /* the premises: the same tolerance, the same iterations; each growth
+     * past the factor it was planned for */
+    for (int k = 2; k < 9; k += 2)
+        cr_assert_eq(its[k], its[k - 1]);
+    const double factor[4] = {1.1, 1.2, 1.4, 1.5};
+    for (int k = 1, f = 0; k < 9; k += 2, f++)
+        cr_assert_gt((double)its[k], factor[f] * (double)its[k - 1],
+                     "its %ld after %ld", its[k], its[k - 1]);
+    cr_assert_gt((double)its[7], 4.0 * (double)its[0]);
+    t->free(st);
+    ls_free(&c);
+}
+
 /* amg-hypre keeps all or nothing: past 1.5 times the build's iterations
  * the next setup builds a new hierarchy. */
 Test(linsol_amg, hypre_rebuilt_when_iterations_grow)

@@ -42,7 +42,15 @@
  * preconditioner.  The hierarchy is rebuilt at the first setup, and when the
  * last solve took more than CL_AMG_REGROW times the iterations of the first
  * solve after the last rebuild although the coarse operators are
- * fresh.  Recovery: a solve that fails (CG finds the preconditioner
+ * fresh.  Iterations also grow when the problem itself gets harder (a
+ * cloth leaving its rest state), and then no recompute helps: each
+ * recompute a growth triggered is judged by the next solve, and one that
+ * took no fewer iterations than the solve that triggered it shows the
+ * growth was the problem's, so the rebuild's reference moves to that
+ * solve's count and the coarse operators' factor doubles its excess over
+ * 1 (1.1, 1.2, 1.4), up to CL_AMG_REGROW, where a growth builds a new
+ * hierarchy instead; one that helped puts the factor back to
+ * CL_AMG_COARSE_REGROW.  Recovery: a solve that fails (CG finds the preconditioner
  * indefinite, breaks down or reaches lin_maxit) is redone once on a
  * hierarchy rebuilt from scratch whose smoothers' eigenvalue bounds (the
  * coarser levels') are estimated with CLP_AMG_RECOVER_STEPS Lanczos steps
@@ -110,6 +118,9 @@ typedef struct {
     long base_iters;         /* first solve after the last rebuild; -1 */
     long cbase_iters;        /* ... after the coarse operators' last; -1 */
     long last_iters;         /* the last solve's */
+    long trigger_iters;      /* the solve whose growth made the last setup
+                              * recompute; 0: none to judge */
+    double coarse_regrow;    /* the coarse operators' growth factor */
     long setups, rebuilds, solves, iters, recoveries;
 } cl_amg;
 
@@ -220,7 +231,7 @@ static cl_status amg_create_named(const char *name, int hypre,
     *s = (cl_amg){.name = name, .pat = pat, .n = 3 * pat->nb,
                   .tol = o->tol > 0.0 ? o->tol : CL_AMG_TOL,
                   .threads = o->threads, .hypre = hypre, .base_iters = -1,
-                  .cbase_iters = -1};
+                  .cbase_iters = -1, .coarse_regrow = CL_AMG_COARSE_REGROW};
     long maxit = cl_linsol_maxit(o->maxit, s->n);
     clp_amg_create_fn create = NULL;
     cl_plugin_msg msg = {.text = ""};
@@ -281,21 +292,41 @@ static bool amg_grew(const cl_amg *s, long base, double factor)
 /* What this setup recomputes: everything at the first; a new hierarchy
  * when the last solve took more than CL_AMG_REGROW times the iterations of
  * the first after the last build although the coarse operators were
- * recomputed at the last setup (or for hypre, which keeps all or
- * nothing); the coarse operators on the kept interpolation when it took
- * more than CL_AMG_COARSE_REGROW times those of the first after they were
- * last recomputed (or CL_AMG_REGROW times the build's); else the finest
- * smoother only. */
+ * recomputed at the last setup (for hypre, which keeps all or nothing,
+ * whenever it took more than that); the coarse operators on the kept interpolation when it took
+ * more than s->coarse_regrow times those of the first after they were last
+ * recomputed (a new hierarchy once that factor is CL_AMG_REGROW), or
+ * CL_AMG_REGROW times the build's; else the finest smoother only. */
 static int amg_mode(const cl_amg *s)
 {
     if (s->rebuilds == 0)
         return CLP_AMG_BUILD;
     bool grew = amg_grew(s, s->base_iters, CL_AMG_REGROW);
-    if (grew && (s->coarse_fresh || s->hypre))
+    if (s->hypre)
+        return grew ? CLP_AMG_BUILD : CLP_AMG_SMOOTHER;
+    if (grew && s->coarse_fresh)
         return CLP_AMG_BUILD;
-    if (grew || amg_grew(s, s->cbase_iters, CL_AMG_COARSE_REGROW))
-        return CLP_AMG_GALERKIN;
-    return CLP_AMG_SMOOTHER;
+    if (amg_grew(s, s->cbase_iters, s->coarse_regrow))
+        return s->coarse_regrow < CL_AMG_REGROW ? CLP_AMG_GALERKIN
+                                                : CLP_AMG_BUILD;
+    return grew ? CLP_AMG_GALERKIN : CLP_AMG_SMOOTHER;
+}
+
+/* Judge the recompute the last setup made for a growth by this first solve
+ * after it (`its`): it paid if the solve took fewer iterations than the
+ * one that triggered it, and then the coarse operators' factor is back to
+ * CL_AMG_COARSE_REGROW; if not, the growth was the problem's: the
+ * rebuild's reference moves to `its`, and the factor's excess over 1
+ * doubles, up to CL_AMG_REGROW. */
+static void amg_judge(cl_amg *s, long its)
+{
+    if (its < s->trigger_iters) {
+        s->coarse_regrow = CL_AMG_COARSE_REGROW;
+    } else {
+        s->base_iters = its;
+        double f = 2.0 * s->coarse_regrow - 1.0;
+        s->coarse_regrow = f < CL_AMG_REGROW ? f : CL_AMG_REGROW;
+    }
 }
 
 static cl_status amg_setup(void *state, double a, double b,
@@ -323,10 +354,15 @@ static cl_status amg_setup(void *state, double a, double b,
                             "particle row %zu of M - a df/dv - b df/dx is "
                             "not positive definite (determinant not "
                             "positive)", s->name, row);
-    cl_status st = amg_prepare(s, amg_mode(s), err);
-    if (st == CL_OK)
-        s->setups++;
-    return st;
+    int mode = amg_mode(s);
+    long trigger = mode != CLP_AMG_SMOOTHER && s->rebuilds > 0
+                       ? s->last_iters : 0;
+    cl_status st = amg_prepare(s, mode, err);
+    if (st != CL_OK)
+        return st;
+    s->trigger_iters = trigger;
+    s->setups++;
+    return CL_OK;
 }
 
 static void amg_jacobian(void *state, const double *dfdx, const double *dfdv)
@@ -371,6 +407,9 @@ static cl_status amg_run(cl_amg *s, const double *rhs, double *x,
                                        : " (also on a hierarchy rebuilt with "
                                          "careful eigenvalue bounds)");
     s->last_iters = its;
+    if (s->trigger_iters > 0 && !retry)
+        amg_judge(s, its);
+    s->trigger_iters = 0;
     if (s->base_iters < 0 && its > 0)
         s->base_iters = its;
     if (s->cbase_iters < 0 && its > 0)
