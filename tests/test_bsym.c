@@ -4,8 +4,9 @@
  * check tells symmetric blocks from symmetric halves, passes round-off
  * and refuses a non-symmetric matrix, an asymmetric diagonal block and a
  * NaN, and a pair of matrices has the lesser kind of the two; the packed
- * A = M - a Kv - b Kx has the values of the full blocks bit for bit; the
- * halves of a pattern cover every off-diagonal block once. */
+ * A = M - a Kv - b Kx has the values of the full blocks bit for bit, and
+ * unpacked gives back the exactly symmetric matrix the halves multiply by;
+ * the halves of a pattern cover every off-diagonal block once. */
 #include <criterion/criterion.h>
 
 #include <math.h>
@@ -205,6 +206,45 @@ Test(bsym, reduced_matrix_of_symmetric_jacobians_packs)
     free(kv);
     free(a);
     bs_free(&c);
+}
+
+/* Unpacking the halves: for 9-value halves of a matrix whose lower
+ * blocks carry a round-off asymmetry, the diagonal and upper blocks come
+ * back as they were and each lower block as the transpose of its upper
+ * one; 6-value halves of a matrix of symmetric blocks come back exactly. */
+Test(bsym, unpack_gives_the_matrix_the_halves_multiply_by)
+{
+    for (int own = 0; own < 2; own++) {
+        bs_case c;
+        bs_init(&c, own);
+        cl_bsym_kind kind = own ? CL_BSYM_BLOCKS : CL_BSYM_HALVES;
+        size_t nval = 9 * c.pat.nnzb;
+        double *full = malloc(nval * sizeof *full);
+        cr_assert(full);
+        if (!own)
+            for (size_t e = 0; e < c.sym.ne; e++)
+                c.blk[9 * c.sym.low[e] + 1] *= 1.0 + 1e-14;
+        cr_assert_eq(cl_bsym_check(&c.sym, c.blk, CL_BSYM_TOL), kind);
+        cl_bsym_pack(&c.sym, kind, 1.0, c.blk, 0.0, NULL, NULL, c.d, c.u);
+        for (size_t k = 0; k < nval; k++)
+            full[k] = NAN;
+        cl_bsym_unpack(&c.sym, kind, c.d, c.u, full);
+        for (size_t i = 0; i < NB; i++)
+            cr_assert_arr_eq(full + 9 * c.pat.diag[i],
+                             c.blk + 9 * c.pat.diag[i], 9 * sizeof(double));
+        for (size_t e = 0; e < c.sym.ne; e++) {
+            const double *up = c.blk + 9 * c.sym.up[e];
+            cr_assert_arr_eq(full + 9 * c.sym.up[e], up, 9 * sizeof(double));
+            for (int r = 0; r < 3; r++)
+                for (int q = 0; q < 3; q++)
+                    cr_assert_eq(full[9 * c.sym.low[e] + (size_t)(3 * r + q)],
+                                 up[3 * q + r]);
+        }
+        if (own)
+            cr_assert_arr_eq(full, c.blk, nval * sizeof(double));
+        free(full);
+        bs_free(&c);
+    }
 }
 
 /* The threaded products (cl_bsym_matvec_threads after cl_bsym_transpose,

@@ -203,6 +203,24 @@ void cl_bsym_pack_threads(const cl_bsym *s, cl_bsym_kind kind, double ca,
     }
 }
 
+void cl_bsym_unpack(const cl_bsym *s, cl_bsym_kind kind, const double *d,
+                    const double *u, double *blk)
+{
+    static const int at9[9] = CL_BSYM_AT9, at6[9] = CL_BSYM_AT6;
+    bool six = kind == CL_BSYM_BLOCKS;
+    const int *at = six ? at6 : at9;
+    size_t w = six ? 6 : 9;
+    for (size_t i = 0; i < s->nb; i++)
+        memcpy(blk + 9 * s->diag[i], d + 9 * i, 9 * sizeof *blk);
+    for (size_t e = 0; e < s->ne; e++) {
+        double *up = blk + 9 * s->up[e], *low = blk + 9 * s->low[e];
+        const double *v = u + w * e;
+        for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 3; c++)
+                up[3 * r + c] = low[3 * c + r] = v[at[3 * r + c]];
+    }
+}
+
 /* The products below keep row i's sum in registers; the transposed
  * contributions to the rows below go straight into y, which is read when
  * their turn comes. */

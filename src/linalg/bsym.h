@@ -104,6 +104,13 @@ void cl_bsym_pack_threads(const cl_bsym *s, cl_bsym_kind kind, double ca,
                           const double *mass, double *d, double *u,
                           int threads);
 
+/* The full block values (9 nnzb on the pattern) of the packed matrix d, u
+ * of `kind` (> CL_BSYM_NONE): the diagonal blocks as packed, each upper
+ * block and, for block (j, i), its transpose, so the result is the
+ * exactly symmetric matrix cl_bsym_matvec multiplies by. */
+void cl_bsym_unpack(const cl_bsym *s, cl_bsym_kind kind, const double *d,
+                    const double *u, double *blk);
+
 /* The column lists of the upper blocks, for cl_bsym_matvec_threads. */
 cl_status cl_bsym_transpose(cl_bsym *s, cl_error *err);
 

@@ -24,9 +24,12 @@
  * PETSc's SeqAIJ copy, and the fine matrix is read three times per CG
  * iteration (CG's product, the backward sweep that also forms the cycle's
  * residual, the forward sweep), so it sets the cost of an iteration.  A setup
- * packs A's values, inverts its 3x3 diagonal blocks for the sweeps and, when
- * the preconditioner is built or its coarse operators recomputed, writes the
- * values into the slots of PETSc's SeqAIJ copy (the preconditioner's) and
+ * packs A's values straight from df/dx and df/dv (a symmetric A's halves,
+ * as pcg does), inverts its 3x3 diagonal blocks for the sweeps and, when
+ * the preconditioner is built or its coarse operators recomputed, writes
+ * A's full blocks (a symmetric A's unpacked from its halves: the exactly
+ * symmetric matrix CG multiplies by) into the slots of PETSc's SeqAIJ copy
+ * (the preconditioner's) and
  * sets the preconditioner up, either afresh (a rebuild: coarsening,
  * interpolation, coarse operators, smoothers) or reusing the hierarchy
  * (linalg/linsol_amg_abi.h).  For amg a reuse keeps the coarse operators and
@@ -97,7 +100,8 @@ typedef struct {
     const cl_bpattern *pat;  /* borrowed: the system's pattern */
     size_t n;
     double *mass;            /* n */
-    double *ablk;            /* 9 nnzb: A's block values */
+    double *ablk;            /* 9 nnzb: A's block values, */
+    bool ablk_current;       /* ... if they are the last setup's */
     cl_bsym sym;             /* A's halves, if it is symmetric: */
     double *sdiag, *supper;  /* 9 nb, 9 ne: their values */
     double *dinv;            /* 9 nb: A's diagonal blocks inverted */
@@ -268,6 +272,11 @@ static cl_status amg_prepare(cl_amg *s, int mode, cl_error *err)
 {
     cl_plugin_msg msg = {.text = ""};
     s->ready = false;
+    /* all but a smoother refresh read A's full blocks */
+    if (mode != CLP_AMG_SMOOTHER && !s->ablk_current) {
+        cl_bsym_unpack(&s->sym, s->kind, s->sdiag, s->supper, s->ablk);
+        s->ablk_current = true;
+    }
     if (s->setup(s->h, s->ablk, mode, &msg) != 0)
         return cl_error_set(err, CL_ESOLVER, "%s: %s", s->name, msg.text);
     s->ready = true;
@@ -329,22 +338,37 @@ static void amg_judge(cl_amg *s, long its)
     }
 }
 
+/* A's values into the solver's storage: its packed halves when it is
+ * symmetric (the values pcg packs; the full blocks the plug-in reads are
+ * unpacked from them only when a setup recomputes), else all its blocks.
+ * False if a value is not finite. */
+static bool amg_values(cl_amg *s, double a, double b, const double *dfdx,
+                       const double *dfdv)
+{
+    s->kind = s->jac_kind;
+    if (s->kind == CL_BSYM_NONE) {
+        cl_reduced_blocks(s->pat, s->mass, a, b, dfdx, dfdv, s->ablk);
+        s->ablk_current = true;
+        return cl_all_finite_threads(s->ablk, 9 * s->pat->nnzb, s->threads);
+    }
+    cl_bsym_pack_threads(&s->sym, s->kind, -a, dfdv, -b, dfdx, s->mass,
+                         s->sdiag, s->supper, s->threads);
+    s->ablk_current = false;
+    size_t w = s->kind == CL_BSYM_BLOCKS ? 6 : 9;
+    return cl_all_finite_threads(s->sdiag, 9 * s->sym.nb, s->threads) &&
+           cl_all_finite_threads(s->supper, w * s->sym.ne, s->threads);
+}
+
 static cl_status amg_setup(void *state, double a, double b,
                            const double *dfdx, const double *dfdv,
                            cl_error *err)
 {
     cl_amg *s = state;
     s->ready = false;
-    cl_reduced_blocks(s->pat, s->mass, a, b, dfdx, dfdv, s->ablk);
-    if (!cl_all_finite(s->ablk, 9 * s->pat->nnzb))
+    if (!amg_values(s, a, b, dfdx, dfdv))
         return cl_error_set(err, CL_ESOLVER, "%s: the matrix M - a df/dv - "
                             "b df/dx has entries that are not finite",
                             s->name);
-    /* the product's halves, from A's blocks: the values pcg packs */
-    s->kind = s->jac_kind;
-    if (s->kind != CL_BSYM_NONE)
-        cl_bsym_pack(&s->sym, s->kind, 1.0, s->ablk, 0.0, NULL, NULL,
-                     s->sdiag, s->supper);
     /* amg's finest smoother's diagonal blocks, inverted once per setup */
     size_t row = 0;
     bool sym = s->kind != CL_BSYM_NONE;
