@@ -15,10 +15,10 @@
  *             multigrid cycle costs about CL_AUTO_AMG_ITER_COST products
  *             per iteration but keeps the iterations nearly flat in the
  *             size, so it pays where block Jacobi's iterations have grown
- *             (workload 10, paper/findings.md "Algebraic multigrid":
- *             semi-bdf2 on hang, dt = 1e-2: a tie at n = 128, pcg 400-500
- *             iterations per solve; 1.6x at n = 256, pcg ~1000); without
- *             the plug-in pcg stays;
+ *             (paper/findings.md "Algebraic multigrid", semi-bdf2 per
+ *             step: 1.23-1.82x pcg wherever pcg took 190-800 iterations a
+ *             solve, on hang at n = 64-256 and bw-hang at n = 128; a tie,
+ *             0.94-1.10x, at 69-116); without the plug-in pcg stays;
  *   cholmod   (linsol_cholmod.c, which itself hands a setup whose A is not
  *             symmetric positive definite to klu) for the next
  *             CL_AUTO_DIRECT setups when the last pcg setup cost more than
@@ -64,7 +64,7 @@
 #define CL_AUTO_ITER_COST 1.3   /* products with A per pcg iteration */
 #define CL_AUTO_FLOP_RATIO 4.0  /* CHOLMOD's flops cost this many of ours */
 #define CL_AUTO_DIRECT 16       /* direct setups before pcg is tried again */
-#define CL_AUTO_AMG_ITERS 300   /* pcg iterations per solve: go to amg */
+#define CL_AUTO_AMG_ITERS 150   /* pcg iterations per solve: go to amg */
 #define CL_AUTO_AMG_ITER_COST 8.0 /* products with A per amg iteration */
 
 extern const cl_linsol_type cl_linsol_pcg;
