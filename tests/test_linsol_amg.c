@@ -10,7 +10,10 @@
  *  - the hierarchy is built once over setups whose values change slowly
  *    (only the finest smoother refreshed), its coarse operators recomputed
  *    when the iterations grow (statistics: symbolic_facts = builds);
- *    amg-hypre's rebuilt;
+ *    amg-hypre's rebuilt; a recompute that did not lower the iterations
+ *    (a growth the problem's own) moves the rebuild's reference and raises
+ *    the recompute's factor, so it builds no new hierarchy until that
+ *    factor reaches the rebuild's;
  *  - a setup refreshing only the finest smoother solves hang's matrix to
  *    the tolerance, equal to KLU's solution;
  *  - the products by two threads give the solution of one, bit for bit;

@@ -53,17 +53,18 @@
  * solve's count and the coarse operators' factor doubles its excess over
  * 1 (1.1, 1.2, 1.4), up to CL_AMG_REGROW, where a growth builds a new
  * hierarchy instead; one that helped puts the factor back to
- * CL_AMG_COARSE_REGROW.  Recovery: a solve that fails (CG finds the preconditioner
- * indefinite, breaks down or reaches lin_maxit) is redone once on a
- * hierarchy rebuilt from scratch whose smoothers' eigenvalue bounds (the
- * coarser levels') are estimated with CLP_AMG_RECOVER_STEPS Lanczos steps
- * instead of 10 (linsol_amg_petsc.c, kept until the next build), whether the
- * failed hierarchy was reused or fresh (amg-hypre, without such bounds: on a
- * rebuilt preconditioner, only if the failed one was kept); only if that
- * fails too is the solve an error.  A diagonal block whose determinant is not
- * positive (A not SPD) fails amg's setup.  Nothing is allocated by setup or
- * solve on this side (PETSc allocates within its setups: the eigenvalue
- * estimates' work arrays, and everything of a rebuild).
+ * CL_AMG_COARSE_REGROW.  Recovery: a solve that fails (CG finds the
+ * preconditioner indefinite, breaks down or reaches lin_maxit) is redone
+ * once on a hierarchy rebuilt from scratch whose smoothers' eigenvalue
+ * bounds (the coarser levels') are estimated with CLP_AMG_RECOVER_STEPS
+ * Lanczos steps instead of 10 (linsol_amg_petsc.c, kept until the next
+ * build), whether the failed hierarchy was reused or fresh (amg-hypre,
+ * without such bounds: on a rebuilt preconditioner, only if the failed one
+ * was kept); only if that fails too is the solve an error.  A diagonal
+ * block whose determinant is not positive (A not SPD) fails amg's setup.
+ * Nothing is allocated by setup or solve on this side (PETSc allocates
+ * within its setups: the eigenvalue estimates' work arrays, and everything
+ * of a rebuild).
  *
  * Tolerance: solve stops at ||b - A x||_2 <= lin_tol ||b||_2 (default
  * 1e-10, as pcg); solve_tol at ||w .* (b - A x)||_2 <= delta, ensured by
@@ -302,10 +303,11 @@ static bool amg_grew(const cl_amg *s, long base, double factor)
  * when the last solve took more than CL_AMG_REGROW times the iterations of
  * the first after the last build although the coarse operators were
  * recomputed at the last setup (for hypre, which keeps all or nothing,
- * whenever it took more than that); the coarse operators on the kept interpolation when it took
- * more than s->coarse_regrow times those of the first after they were last
- * recomputed (a new hierarchy once that factor is CL_AMG_REGROW), or
- * CL_AMG_REGROW times the build's; else the finest smoother only. */
+ * whenever it took more than that); the coarse operators on the kept
+ * interpolation when it took more than s->coarse_regrow times those of the
+ * first after they were last recomputed (a new hierarchy once that factor
+ * is CL_AMG_REGROW), or CL_AMG_REGROW times the build's; else the finest
+ * smoother only. */
 static int amg_mode(const cl_amg *s)
 {
     if (s->rebuilds == 0)
