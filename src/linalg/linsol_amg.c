@@ -47,12 +47,13 @@
  * solve after the last rebuild although the coarse operators are
  * fresh.  Iterations also grow when the problem itself gets harder (a
  * cloth leaving its rest state), and then no recompute helps: each
- * recompute a growth triggered is judged by the next solve, and one that
- * took no fewer iterations than the solve that triggered it shows the
- * growth was the problem's, so the rebuild's reference moves to that
- * solve's count and the coarse operators' factor doubles its excess over
- * 1 (1.1, 1.2, 1.4), up to CL_AMG_REGROW, where a growth builds a new
- * hierarchy instead; one that helped puts the factor back to
+ * recompute a growth triggered is judged by the next solve.  One that
+ * took no fewer iterations than the solve that triggered it doubles the
+ * coarse operators' factor's excess over 1 (1.1, 1.2, 1.4), up to
+ * CL_AMG_REGROW, where a growth builds a new hierarchy instead; if it was
+ * the first P^T A P on a new interpolation, which cannot be stale yet, the
+ * growth was the problem's, and the rebuild's reference moves to that
+ * solve's count.  One that helped puts the factor back to
  * CL_AMG_COARSE_REGROW.  Recovery: a solve that fails (CG finds the
  * preconditioner indefinite, breaks down or reaches lin_maxit) is redone
  * once on a hierarchy rebuilt from scratch whose smoothers' eigenvalue
@@ -125,6 +126,9 @@ typedef struct {
     long last_iters;         /* the last solve's */
     long trigger_iters;      /* the solve whose growth made the last setup
                               * recompute; 0: none to judge */
+    bool first_galerkin;     /* ... which was the first P^T A P on the
+                              * interpolation of the last build */
+    bool galerkin_done;      /* P^T A P computed since the last build */
     double coarse_regrow;    /* the coarse operators' growth factor */
     long setups, rebuilds, solves, iters, recoveries;
 } cl_amg;
@@ -285,6 +289,8 @@ static cl_status amg_prepare(cl_amg *s, int mode, cl_error *err)
     s->coarse_fresh = mode != CLP_AMG_SMOOTHER;
     if (s->coarse_fresh)
         s->cbase_iters = -1;
+    s->first_galerkin = mode == CLP_AMG_GALERKIN && !s->galerkin_done;
+    s->galerkin_done = !s->fresh && (s->galerkin_done || s->coarse_fresh);
     if (s->fresh) {
         s->rebuilds++;
         s->base_iters = -1;
@@ -326,18 +332,22 @@ static int amg_mode(const cl_amg *s)
 /* Judge the recompute the last setup made for a growth by this first solve
  * after it (`its`): it paid if the solve took fewer iterations than the
  * one that triggered it, and then the coarse operators' factor is back to
- * CL_AMG_COARSE_REGROW; if not, the growth was the problem's: the
- * rebuild's reference moves to `its`, and the factor's excess over 1
- * doubles, up to CL_AMG_REGROW. */
+ * CL_AMG_COARSE_REGROW.  If not, the factor's excess over 1 doubles, up
+ * to CL_AMG_REGROW; and if it was the first P^T A P on a new
+ * interpolation, whose staleness cannot be the cause, the growth was the
+ * problem's, and the rebuild's reference moves to `its` (a later one
+ * that did not help may have a stale interpolation to blame, which only a
+ * rebuild tests). */
 static void amg_judge(cl_amg *s, long its)
 {
     if (its < s->trigger_iters) {
         s->coarse_regrow = CL_AMG_COARSE_REGROW;
-    } else {
-        s->base_iters = its;
-        double f = 2.0 * s->coarse_regrow - 1.0;
-        s->coarse_regrow = f < CL_AMG_REGROW ? f : CL_AMG_REGROW;
+        return;
     }
+    if (s->first_galerkin)
+        s->base_iters = its;
+    double f = 2.0 * s->coarse_regrow - 1.0;
+    s->coarse_regrow = f < CL_AMG_REGROW ? f : CL_AMG_REGROW;
 }
 
 /* A's values into the solver's storage: its packed halves when it is
