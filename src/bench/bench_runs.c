@@ -304,9 +304,12 @@ void cl_bench_log(const cl_bctx *c, const char *fmt, ...)
 void cl_bench_log_row(const cl_bctx *c, const cl_bench_row *r)
 {
     double figure = isfinite(r->ratio) ? r->ratio : r->cpu_a;
-    cl_bench_log(c, "[%d] %s: %s%s%s -> %.4g %s%s%s%s", r->workload,
-                 r->kase, r->side_a, *r->side_b ? " vs " : "", r->side_b,
-                 figure, isfinite(r->ratio) ? r->unit : "s CPU",
+    char shown[48] = "n/a";
+    if (isfinite(figure))
+        snprintf(shown, sizeof shown, "%.4g %s", figure,
+                 isfinite(r->ratio) ? r->unit : "s CPU");
+    cl_bench_log(c, "[%d] %s: %s%s%s -> %s%s%s%s", r->workload, r->kase,
+                 r->side_a, *r->side_b ? " vs " : "", r->side_b, shown,
                  r->met == 1 ? " (met)" : r->met == 0 ? " (not met)" : "",
                  *r->note ? "; " : "", r->note);
 }
