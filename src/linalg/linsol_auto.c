@@ -16,9 +16,9 @@
  *             per iteration but keeps the iterations nearly flat in the
  *             size, so it pays where block Jacobi's iterations have grown
  *             (paper/findings.md "Algebraic multigrid", semi-bdf2 per
- *             step: 1.23-1.82x pcg wherever pcg took 190-800 iterations a
+ *             step: 1.2-2.0x pcg wherever pcg took 190-930 iterations a
  *             solve, on hang at n = 64-256 and bw-hang at n = 128; a tie,
- *             0.94-1.10x, at 69-116); without the plug-in pcg stays;
+ *             0.94-1.10x, at 69-117); without the plug-in pcg stays;
  *   cholmod   (linsol_cholmod.c, which itself hands a setup whose A is not
  *             symmetric positive definite to klu) for the next
  *             CL_AUTO_DIRECT setups when the last pcg setup cost more than
