@@ -1,7 +1,8 @@
 /* Helpers of the obstacle-shape tests (tests/test_shape_*.c): shapes made
  * from "key=value" settings of one section or from a loaded problem file,
  * the checks every answer must pass, expected answers, central differences
- * of the normal against G, and the orientation of the drawn surfaces.
+ * of the normal against G, the orientation of the drawn surfaces, and the
+ * squares of a split cube's faces.
  * Header only (static inline), included after <criterion/criterion.h>. */
 #ifndef CL_TESTS_SHAPECHECK_H
 #define CL_TESTS_SHAPECHECK_H
@@ -236,6 +237,21 @@ static inline double sc_brute_distance(const cl_shape_surface *sf,
         best = fmin(best, p.dist2);
     }
     return sqrt(best);
+}
+
+/* The corners of square (u, v) of a face of the cube of grid points
+ * 0..n on each axis: the face on axis a (u, v along the next two axes) at
+ * s = 0 or n, each corner its grid point, in the order that goes
+ * counter-clockwise seen from outside. */
+static inline void sc_cube_square(int n, int a, int s, int u, int v,
+                                  int corner[4][3])
+{
+    for (int c = 0; c < 4; c++) {
+        int *p = corner[s == n ? c : 3 - c];
+        p[a] = s;
+        p[(a + 1) % 3] = u + (c == 1 || c == 2);
+        p[(a + 2) % 3] = v + (c >= 2);
+    }
 }
 
 #endif

@@ -254,15 +254,11 @@ static void add_box(cl_shape_surface *sf, int n, double shift)
         for (int s = 0; s <= n; s += n)
             for (int u = 0; u < n; u++)
                 for (int v = 0; v < n; v++) {
-                    int q[4];
-                    for (int c = 0; c < 4; c++) {
-                        int p[3];
-                        p[a] = s;
-                        p[(a + 1) % 3] = u + (c == 1 || c == 2);
-                        p[(a + 2) % 3] = v + (c >= 2);
-                        q[s ? c : 3 - c] =
-                            id[(p[0] * side + p[1]) * side + p[2]];
-                    }
+                    int p[4][3], q[4];
+                    sc_cube_square(n, a, s, u, v, p);
+                    for (int c = 0; c < 4; c++)
+                        q[c] = id[(p[c][0] * side + p[c][1]) * side +
+                                  p[c][2]];
                     int t1[3] = {q[0], q[1], q[2]}, t2[3] = {q[0], q[2], q[3]};
                     memcpy(sf->tri[sf->ntri++], t1, sizeof t1);
                     memcpy(sf->tri[sf->ntri++], t2, sizeof t2);

@@ -90,18 +90,13 @@ static char *split_cube_obj(void)
                     fprintf(f, "v %g %g %g\n", 0.5 * i, 0.5 * j, 0.5 * k);
                 }
     for (int a = 0; a < 3; a++)     /* face axis; u, v the next ones */
-        for (int side = -1; side <= 1; side += 2)
-            for (int u = -1; u <= 0; u++)
-                for (int v = -1; v <= 0; v++) {
-                    int q[4];
-                    for (int c = 0; c < 4; c++) {
-                        int p[3];
-                        p[a] = side;
-                        p[(a + 1) % 3] = u + (c == 1 || c == 2);
-                        p[(a + 2) % 3] = v + (c >= 2);
-                        q[side > 0 ? c : 3 - c] = id[p[0] + 1][p[1] + 1]
-                                                    [p[2] + 1];
-                    }
+        for (int s = 0; s <= 2; s += 2)
+            for (int u = 0; u < 2; u++)
+                for (int v = 0; v < 2; v++) {
+                    int p[4][3], q[4];
+                    sc_cube_square(2, a, s, u, v, p);
+                    for (int c = 0; c < 4; c++)
+                        q[c] = id[p[c][0]][p[c][1]][p[c][2]];
                     fprintf(f, "f %d %d %d %d\n", q[0], q[1], q[2], q[3]);
                 }
     cr_assert_eq(fclose(f), 0);

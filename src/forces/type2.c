@@ -68,6 +68,13 @@ typedef struct {
     double *fbc;           /* per pair: 4 kb/L^2 (scale_setup) */
 } type2_state;
 
+/* The exact model: the exact inverse sinc and exact sinc in f_b, the
+ * only one whose f_b is bounded by -12 kb/L^2 and tabled by pieces. */
+static inline bool exact_model(const type2_state *st)
+{
+    return st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT;
+}
+
 /* t = kappa L/2 at distance d < L, and dt/dd. */
 static double curvature_t(const type2_state *st, double d, double L,
                           double *dt_dd)
@@ -156,8 +163,7 @@ static void compression_law(const type2_state *st, double d, double L,
 {
     double lin = st->cb * (d - L);
     /* Exact f_b never exceeds -12 kb/L^2: skip asinc where cb wins. */
-    if (st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT &&
-        lin >= -3.0 * buckling_scale(st->kb, L)) {
+    if (exact_model(st) && lin >= -3.0 * buckling_scale(st->kb, L)) {
         *s = lin;
         *ds = st->cb;
         return;
@@ -189,7 +195,7 @@ static double cross_fn(double d, void *params)
 /* Integral of f_b over [a, b]: closed form for the exact model, else QAGS. */
 static double fb_integral(type2_state *st, double a, double b, double L)
 {
-    if (st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT) {
+    if (exact_model(st)) {
         double dt, ta = curvature_t(st, a, L, &dt);
         double tb = curvature_t(st, b, L, &dt);
         return 2.0 * st->kb * (tb * tb - ta * ta) / L;
@@ -330,7 +336,7 @@ static void linear_branches(const type2_state *st, size_t k0, size_t m,
 {
     double ks = st->tension == TENSION_SPRING ? st->ks : 0.0;
     double cb = st->cb;
-    bool exact = st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT;
+    bool exact = exact_model(st);
     const double *restrict C = st->fbc + k0;
 #pragma omp simd
     for (size_t i = 0; i < m; i++) {
@@ -383,7 +389,7 @@ static void type2_piece(const type2_state *st, size_t k0, size_t m,
 {
     double dsw[CL_PAIRKERN_CHUNK], e[CL_PAIRKERN_CHUNK], one;
     unsigned char need[CL_PAIRKERN_CHUNK];
-    bool exact = st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT;
+    bool exact = exact_model(st);
     linear_branches(st, k0, m, d, L, s, ds ? ds : dsw, e, need);
     if (exact)
         exact_max(st, k0, m, e, need, s);
@@ -526,7 +532,7 @@ static cl_status type2_setup(type2_state *st, const cl_cloth *cloth,
         return rc;
     if ((rc = scale_setup(st, err)))
         return rc;
-    if (st->asinc == ASINC_EXACT && st->fbsinc == FBSINC_EXACT)
+    if (exact_model(st))
         build_cheb(st);
     return build_lengths(st, err);
 }

@@ -289,7 +289,6 @@ static cl_status amg_prepare(cl_amg *s, int mode, cl_error *err)
     s->coarse_fresh = mode != CLP_AMG_SMOOTHER;
     if (s->coarse_fresh)
         s->cbase_iters = -1;
-    s->first_galerkin = mode == CLP_AMG_GALERKIN && !s->galerkin_done;
     s->galerkin_done = !s->fresh && (s->galerkin_done || s->coarse_fresh);
     if (s->fresh) {
         s->rebuilds++;
@@ -390,13 +389,16 @@ static cl_status amg_setup(void *state, double a, double b,
                             "particle row %zu of M - a df/dv - b df/dx is "
                             "not positive definite (determinant not "
                             "positive)", s->name, row);
+    /* what the next solve judges (amg_judge): a recompute for a growth */
     int mode = amg_mode(s);
     long trigger = mode != CLP_AMG_SMOOTHER && s->rebuilds > 0
                        ? s->last_iters : 0;
+    bool first = mode == CLP_AMG_GALERKIN && !s->galerkin_done;
     cl_status st = amg_prepare(s, mode, err);
     if (st != CL_OK)
         return st;
     s->trigger_iters = trigger;
+    s->first_galerkin = first;
     s->setups++;
     return CL_OK;
 }
