@@ -12,6 +12,13 @@
  *     each solver (goal <= 1.15 for the fastest at the largest n at dt =
  *     1e-2), and amg against the fastest one-level solver at the largest
  *     n (goals >= 3x at dt = 1e-2, >= 1.5x at dt = 1e-3).
+ *     Last, pcg and amg at the same Courant number on every size: dt =
+ *     1e-2 n0/n (n0 the smallest n), the untimed and timed steps scaled by
+ *     n/n0 and no time budget, so that every size is timed over the same
+ *     stretch of simulated time.  At a fixed dt, h^2 ks/m grows as n^2 (ks per spring and the
+ *     cloth's size fixed, m ~ 1/n^2), and the matrix gets harder as well as
+ *     larger: this series separates the cost of size from that of
+ *     stiffness (paper/findings.md, "Algebraic multigrid").
  * 12  hang at n = 256, T = 2 s (--quick: n = 32, T = 0.1 s) by semi-bdf2
  *     --linsol amg at dt = 1e-2 and lin_tol W12_LIN_TOL: CPU seconds, goal
  *     <= 600.  Long (CPU minutes): run only when named, `clothode-bench
@@ -39,6 +46,9 @@
  * iterations grow most (paper/findings.md, "Algebraic multigrid"). */
 #define W10_MIN_STEPS 10
 #define W10_CASE_CAP 60.0   /* skip a case predicted to take longer (s) */
+/* ... at the same Courant number, where the largest n takes four times
+ * the steps: pcg and amg at n = 256 (about 140 s and 60 s) */
+#define W10_COURANT_CAP 150.0
 #define W12_DT 1e-2
 #define W12_CAP 1200.0      /* CPU seconds before workload 12 stops */
 #define W12_LIN_TOL 1e-6    /* workload 12's linear tolerance (above) */
@@ -50,12 +60,30 @@ typedef struct {
     double per_step[W10_NS][3];  /* NaN: not measured */
     double unknowns[3];
     bool stop[W10_NS];
+    bool courant;                /* dt = dt n0/n, steps scaled by n/n0 */
 } w10_sweep;
 
-static void w10_case(cl_bctx *c, w10_sweep *s, double dt, int i, int j,
+/* Solvers of the series at the same Courant number: one of each level. */
+static bool w10_used(const w10_sweep *s, int j)
+{
+    return !s->courant || !strcmp(w10_solver[j], "pcg") ||
+           !strcmp(w10_solver[j], "amg");
+}
+
+/* n/n0 at size i of a series at the same Courant number, else 1. */
+static long w10_scale(const cl_bctx *c, const w10_sweep *s, int i)
+{
+    return s->courant ? c->plan.w10_n[i] / c->plan.w10_n[0] : 1;
+}
+
+static void w10_case(cl_bctx *c, w10_sweep *s, double dt0, int i, int j,
                      cl_model *m)
 {
     char kase[48];
+    long k = w10_scale(c, s, i);
+    double dt = dt0 / (double)k;
+    if (!w10_used(s, j))
+        return;
     snprintf(kase, sizeof kase, "dt=%g n=%d", dt, c->plan.w10_n[i]);
     cl_bench_row *row = cl_bench_row_add(c, 10, kase);
     snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 %s",
@@ -65,7 +93,10 @@ static void w10_case(cl_bctx *c, w10_sweep *s, double dt, int i, int j,
         return;
     }
     cl_integrator_opts io = {.dt = dt, .linsol = w10_solver[j]};
-    fixed_plan fp = {W10_WARM, 1, W10_MIN_STEPS, c->plan.w10_budget};
+    /* at the same Courant number, exactly the scaled steps: every size
+     * over the same stretch of simulated time */
+    fixed_plan fp = {W10_WARM * k, 1, W10_MIN_STEPS * k,
+                     s->courant ? 0.0 : c->plan.w10_budget};
     fixed_time ft;
     cl_bench_log(c, "  semi-bdf2 %s, dt = %g, n = %d ...", w10_solver[j],
                  dt, c->plan.w10_n[i]);
@@ -82,9 +113,12 @@ static void w10_case(cl_bctx *c, w10_sweep *s, double dt, int i, int j,
                   st->lin_solves ? (double)st->lin_iters / st->lin_solves
                                  : 0.0,
                   st->symbolic_facts, st->lin_setups);
-    /* the next size has 4x the unknowns: 5x the time is a fair guess */
-    s->stop[j] = 5.0 * row->cpu_a * (W10_WARM + W10_MIN_STEPS) >
-                 W10_CASE_CAP;
+    /* the next size has 4x the unknowns: 5x the time a step is a fair
+     * guess (and twice the steps at the same Courant number) */
+    long next = s->courant ? 2 * k : 1;
+    s->stop[j] = 5.0 * row->cpu_a * (double)(next * (W10_WARM +
+                                                     W10_MIN_STEPS)) >
+                 (s->courant ? W10_COURANT_CAP : W10_CASE_CAP);
     cl_bench_log_row(c, row);
 }
 
@@ -103,9 +137,14 @@ static void w10_fits(cl_bctx *c, const w10_sweep *s, double dt)
 {
     int nn = c->plan.w10_nn, best = w10_fastest(s, nn - 1, 0, W10_NS);
     char kase[48];
-    snprintf(kase, sizeof kase, "dt=%g fit", dt);
+    if (s->courant)
+        snprintf(kase, sizeof kase, "dt=%g*%d/n fit", dt, c->plan.w10_n[0]);
+    else
+        snprintf(kase, sizeof kase, "dt=%g fit", dt);
     for (int j = 0; j < W10_NS; j++) {
         int used;
+        if (!w10_used(s, j))
+            continue;
         double e = cl_bench_exponent(s->unknowns, s->per_step[j], nn, &used);
         bool goal = j == best && dt == 1e-2;
         cl_bench_row *row = cl_bench_row_add(c, 10, kase);
@@ -116,9 +155,12 @@ static void w10_fits(cl_bctx *c, const w10_sweep *s, double dt)
             cl_bench_note(row, "not fitted: measured at %d size%s", used,
                           used == 1 ? "" : "s");
         else
-            cl_bench_note(row, "time per step ~ unknowns^p over %d sizes%s",
+            cl_bench_note(row, "time per step ~ unknowns^p over %d sizes%s%s",
                           used, j == best ? "; fastest at the largest n"
-                                          : "");
+                                          : "",
+                          s->courant ? "; the same Courant number at every "
+                                       "n (the goal asks at a fixed dt)"
+                                     : "");
         cl_bench_log_row(c, row);
     }
 }
@@ -148,9 +190,9 @@ static void w10_speedup(cl_bctx *c, const w10_sweep *s, double dt)
     cl_bench_log_row(c, row);
 }
 
-static void w10_dt(cl_bctx *c, double dt)
+static void w10_dt(cl_bctx *c, double dt, bool courant)
 {
-    w10_sweep s = {0};
+    w10_sweep s = {.courant = courant};
     for (int i = 0; i < c->plan.w10_nn; i++) {
         char nset[32];
         snprintf(nset, sizeof nset, "cloth.n=%d", c->plan.w10_n[i]);
@@ -169,14 +211,16 @@ static void w10_dt(cl_bctx *c, double dt)
         cl_bench_model_free(&bm);
     }
     w10_fits(c, &s, dt);
-    w10_speedup(c, &s, dt);
+    if (!courant)
+        w10_speedup(c, &s, dt);
 }
 
 void cl_bench_w10(cl_bctx *c)
 {
     static const double dts[2] = {1e-3, 1e-2};
     for (int k = 0; k < 2; k++)
-        w10_dt(c, dts[k]);
+        w10_dt(c, dts[k], false);
+    w10_dt(c, 1e-2, true);
 }
 
 /* ---- workload 12 ------------------------------------------------------ */

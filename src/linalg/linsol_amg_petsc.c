@@ -30,9 +30,12 @@
  *
  * Options are PETSc's own, under the prefix clamg_ (GAMG) or clamgh_
  * (hypre), set here unless the user set them first (PETSC_OPTIONS):
- *   GAMG   -pc_type gamg, block size 3, Chebyshev smoothing with point-block
- *          (3x3) Jacobi on the coarser levels (the finest: above):
- *          -mg_levels_ksp_type chebyshev -mg_levels_pc_type pbjacobi;
+ *   GAMG   -pc_type gamg, block size 3, one Chebyshev step with
+ *          point-block (3x3) Jacobi on the coarser levels (the finest:
+ *          above): -mg_levels_ksp_type chebyshev -mg_levels_ksp_max_it 1
+ *          -mg_levels_pc_type pbjacobi (degree 2, PETSc's default, makes
+ *          the same number of CG iterations on hang and costs 4-6 % more
+ *          time a step at n = 128 and 256: paper/findings.md);
  *   hypre  -pc_type hypre -pc_hypre_type boomeramg with nodal coarsening
  *          and the vector interpolation for systems of PDEs
  *          (-pc_hypre_boomeramg_nodal_coarsen 6
@@ -61,11 +64,11 @@
  * nonsymmetric D^-1 A fell 17 % short of the finest level's largest
  * eigenvalue on hang at n = 64 and 256 (against 300 Lanczos steps;
  * paper/findings.md, "Algebraic multigrid").  The bound used is 1.1
- * times the estimate, and the degree-2 Chebyshev smoother over
- * [0.1, 1.1] times the estimate stops contracting in the energy norm
- * above 1.2 times it (where its residual polynomial, symmetric about 0.6
- * times it, is back at +1, its value at 0, and beyond which it exceeds
- * 1): an estimate short by more than that made the multigrid cycle
+ * times the estimate, and a Chebyshev smoother over [0.1, 1.1] times the
+ * estimate stops contracting in the energy norm above 1.2 times it: its
+ * residual polynomial, symmetric about 0.6 times it, is at -1 there for
+ * one step (1 - t/0.6) and back at +1 for two, and exceeds 1 in modulus
+ * beyond; an estimate short by more than that made the multigrid cycle
  * indefinite.  CLP_AMG_RECOVER rebuilds the hierarchy and estimates every
  * level's bound with CLP_AMG_RECOVER_STEPS Lanczos steps, once, in the
  * build (kept by those levels until the next build, which restores the
@@ -141,6 +144,7 @@ static PetscErrorCode amg_options(const char *prefix, int hypre)
     static const char *const gamg[][2] = {
         {"pc_type", "gamg"},
         {"mg_levels_ksp_type", "chebyshev"},
+        {"mg_levels_ksp_max_it", "1"},
         {"mg_levels_pc_type", "pbjacobi"},
     };
     static const char *const boomer[][2] = {
