@@ -13,12 +13,13 @@
  *     1e-2), and amg against the fastest one-level solver at the largest
  *     n (goals >= 3x at dt = 1e-2, >= 1.5x at dt = 1e-3).
  *     Last, pcg and amg at the same Courant number on every size: dt =
- *     1e-2 n0/n (n0 the smallest n), the untimed and timed steps scaled by
- *     n/n0 and no time budget, so that every size is timed over the same
- *     stretch of simulated time.  At a fixed dt, h^2 ks/m grows as n^2 (ks per spring and the
- *     cloth's size fixed, m ~ 1/n^2), and the matrix gets harder as well as
- *     larger: this series separates the cost of size from that of
- *     stiffness (paper/findings.md, "Algebraic multigrid").
+ *     1e-2 n0/n (n0 the smallest n), the untimed and timed steps scaled
+ *     by n/n0 and no time budget, so that every size is timed over the
+ *     same stretch of simulated time.  At a fixed dt, h^2 ks/m grows as
+ *     n^2 (ks per spring and the cloth's size and mass fixed, m ~ 1/n^2),
+ *     and the matrix gets stiffer as well as larger: this series separates
+ *     the cost of size from that of stiffness (paper/findings.md,
+ *     "Algebraic multigrid").
  * 12  hang at n = 256, T = 2 s (--quick: n = 32, T = 0.1 s) by semi-bdf2
  *     --linsol amg at dt = 1e-2 and lin_tol W12_LIN_TOL: CPU seconds, goal
  *     <= 600.  Long (CPU minutes): run only when named, `clothode-bench

@@ -65,14 +65,14 @@
  * eigenvalue on hang at n = 64 and 256 (against 300 Lanczos steps;
  * paper/findings.md, "Algebraic multigrid").  The bound used is 1.1
  * times the estimate, and a Chebyshev smoother over [0.1, 1.1] times the
- * estimate stops contracting in the energy norm above 1.2 times it: its
- * residual polynomial, symmetric about 0.6 times it, is at -1 there for
- * one step (1 - t/0.6) and back at +1 for two, and exceeds 1 in modulus
- * beyond; an estimate short by more than that made the multigrid cycle
- * indefinite.  CLP_AMG_RECOVER rebuilds the hierarchy and estimates every
- * level's bound with CLP_AMG_RECOVER_STEPS Lanczos steps, once, in the
- * build (kept by those levels until the next build, which restores the
- * steps before). */
+ * estimate stops contracting in the energy norm above 1.2 times it: there
+ * the residual polynomial of one step, 1 - t/0.6 (t in units of the
+ * estimate), is at -1, that of two steps back at +1 (its value at 0), and
+ * beyond either exceeds 1 in modulus; an estimate short by more than that
+ * made the multigrid cycle indefinite.  CLP_AMG_RECOVER rebuilds the
+ * hierarchy and estimates every level's bound with CLP_AMG_RECOVER_STEPS
+ * Lanczos steps, once, in the build (kept by those levels until the next
+ * build, which restores the steps before). */
 #include <petscksp.h>
 #include <stdio.h>
 
