@@ -65,7 +65,10 @@
 #define CL_AUTO_FLOP_RATIO 4.0  /* CHOLMOD's flops cost this many of ours */
 #define CL_AUTO_DIRECT 16       /* direct setups before pcg is tried again */
 #define CL_AUTO_AMG_ITERS 150   /* pcg iterations per solve: go to amg */
-#define CL_AUTO_AMG_ITER_COST 8.0 /* products with A per amg iteration */
+/* products with A per amg iteration: 3.4-4.8 pcg iterations, its setup
+ * share included (semi-bdf2 on hang, n = 64-256, paper/findings.md,
+ * "Algebraic multigrid", workload 10), times CL_AUTO_ITER_COST */
+#define CL_AUTO_AMG_ITER_COST 6.0
 
 extern const cl_linsol_type cl_linsol_pcg;
 extern const cl_linsol_type cl_linsol_amg;
