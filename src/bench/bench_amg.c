@@ -19,7 +19,8 @@
  *     n^2 (ks per spring and the cloth's size and mass fixed, m ~ 1/n^2),
  *     and the matrix gets stiffer as well as larger: this series separates
  *     the cost of size from that of stiffness (paper/findings.md,
- *     "Algebraic multigrid").
+ *     "Algebraic multigrid").  Its exponents are printed, not judged: the
+ *     goal is the one at a fixed dt.
  * 12  hang at n = 256, T = 2 s (--quick: n = 32, T = 0.1 s) by semi-bdf2
  *     --linsol amg at dt = 1e-2 and lin_tol W12_LIN_TOL: CPU seconds, goal
  *     <= 600.  Long (CPU minutes): run only when named, `clothode-bench
@@ -80,11 +81,11 @@ static long w10_scale(const cl_bctx *c, const w10_sweep *s, int i)
 static void w10_case(cl_bctx *c, w10_sweep *s, double dt0, int i, int j,
                      cl_model *m)
 {
+    if (!w10_used(s, j))
+        return;
     char kase[48];
     long k = w10_scale(c, s, i);
     double dt = dt0 / (double)k;
-    if (!w10_used(s, j))
-        return;
     snprintf(kase, sizeof kase, "dt=%g n=%d", dt, c->plan.w10_n[i]);
     cl_bench_row *row = cl_bench_row_add(c, 10, kase);
     snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 %s",
@@ -147,7 +148,9 @@ static void w10_fits(cl_bctx *c, const w10_sweep *s, double dt)
         if (!w10_used(s, j))
             continue;
         double e = cl_bench_exponent(s->unknowns, s->per_step[j], nn, &used);
-        bool goal = j == best && dt == 1e-2;
+        /* the goal is at a fixed dt: the series at the same Courant
+         * number is reported beside it, not counted as a second one */
+        bool goal = j == best && dt == 1e-2 && !s->courant;
         cl_bench_row *row = cl_bench_row_add(c, 10, kase);
         snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 %s",
                  w10_solver[j]);
@@ -160,7 +163,8 @@ static void w10_fits(cl_bctx *c, const w10_sweep *s, double dt)
                           used, j == best ? "; fastest at the largest n"
                                           : "",
                           s->courant ? "; the same Courant number at every "
-                                       "n (the goal asks at a fixed dt)"
+                                       "n (the goal, <= 1.15, asks at a "
+                                       "fixed dt)"
                                      : "");
         cl_bench_log_row(c, row);
     }
