@@ -26,30 +26,6 @@ typedef struct {
     double *d, *u;
 } bs_case;
 
-/* Random values with block (j, i) = block (i, j)^T exactly; with `own`
- * every block symmetric as well. */
-static void bs_symmetric(bs_case *c, unsigned long seed, bool own)
-{
-    for (size_t i = 0; i < NB; i++)
-        for (size_t k = c->pat.rowptr[i]; k < c->pat.rowptr[i + 1]; k++) {
-            size_t j = c->pat.col[k];
-            if (j < i)
-                continue;
-            long t = cl_bpattern_find(&c->pat, (long)j, (long)i);
-            cr_assert_geq(t, 0);
-            for (int r = 0; r < 3; r++)
-                for (int q = 0; q < 3; q++) {
-                    if ((j == i || own) && q < r)
-                        continue;
-                    double v = bc_rand(&seed);
-                    double *b = c->blk + 9 * k, *bt = c->blk + 9 * (size_t)t;
-                    b[3 * r + q] = bt[3 * q + r] = v;
-                    if (own)
-                        b[3 * q + r] = bt[3 * r + q] = v;
-                }
-        }
-}
-
 static void bs_init(bs_case *c, bool own)
 {
     memset(c, 0, sizeof *c);
@@ -58,7 +34,7 @@ static void bs_init(bs_case *c, bool own)
     c->d = malloc(9 * NB * sizeof *c->d);
     c->u = malloc((9 * c->sym.ne + 1) * sizeof *c->u);
     cr_assert(c->d && c->u);
-    bs_symmetric(c, 7, own);
+    bc_symmetric(&c->pat, c->blk, 7, own);
 }
 
 static void bs_free(bs_case *c)
@@ -184,7 +160,7 @@ Test(bsym, reduced_matrix_of_symmetric_jacobians_packs)
     double *a = malloc(9 * c.pat.nnzb * sizeof *a);
     cr_assert(kv && a);
     memcpy(kv, c.blk, 9 * c.pat.nnzb * sizeof *kv);
-    bs_symmetric(&c, 99, true);
+    bc_symmetric(&c.pat, c.blk, 99, true);
     cr_assert_eq(cl_bsym_check(&c.sym, kv, CL_BSYM_TOL), CL_BSYM_BLOCKS);
     cl_bsym_pack(&c.sym, CL_BSYM_BLOCKS, -0.3, kv, -0.09, c.blk, c.mass,
                  c.d, c.u);

@@ -19,8 +19,8 @@
  * level of the multigrid cycle sweeps, through this side's callbacks the
  * plug-in calls (amg_mult, amg_sweep): for a symmetric A (the usual case) on
  * the diagonal and upper blocks only, each upper block by its 6 distinct
- * entries when it is symmetric itself, as pcg (linalg/bsym.h), else on every
- * block (linalg/reduced.h).  That storage is under a third of the bytes of
+ * entries when it is symmetric itself, else on every block: pcg's storage
+ * (linalg/amat.h).  That storage is under a third of the bytes of
  * PETSc's SeqAIJ copy, and the fine matrix is read three times per CG
  * iteration (CG's product, the backward sweep that also forms the cycle's
  * residual, the forward sweep), so it sets the cost of an iteration.  A setup
@@ -83,15 +83,13 @@
 #include <math.h>
 #include <stdbool.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "core/check.h"
+#include "linalg/amat.h"
 #include "linalg/blockgs.h"
-#include "linalg/bsym.h"
 #include "linalg/linsol_amg_abi.h"
 #include "linalg/petscenv.h"
 #include "linalg/plugin.h"
-#include "linalg/reduced.h"
 
 #define CL_AMG_TOL 1e-10
 #define CL_AMG_REGROW 1.5
@@ -99,18 +97,11 @@
 
 typedef struct {
     const char *name;
-    const cl_bpattern *pat;  /* borrowed: the system's pattern */
-    size_t n;
-    double *mass;            /* n */
-    double *ablk;            /* 9 nnzb: A's block values, */
-    bool ablk_current;       /* ... if they are the last setup's */
-    cl_bsym sym;             /* A's halves, if it is symmetric: */
-    double *sdiag, *supper;  /* 9 nb, 9 ne: their values */
+    size_t n;                /* 3 nb */
+    cl_amat A;               /* A's values, its product */
+    bool ablk_current;       /* A.ablk holds the last setup's A */
     double *dinv;            /* 9 nb: A's diagonal blocks inverted */
     double *acc;             /* n: the forward sweep's work */
-    cl_bsym_kind jac_kind;   /* df/dx and df/dv as last told (jacobian) */
-    cl_bsym_kind kind;       /* the product's form since the last setup */
-    int threads;             /* of the products */
     double tol;
     clp_amg_setup_fn setup;
     clp_amg_solve_fn solve;
@@ -140,13 +131,9 @@ static void amg_free(void *state)
         return;
     if (s->h)
         s->free(s->h);
-    free(s->mass);
-    free(s->ablk);
-    free(s->sdiag);
-    free(s->supper);
     free(s->dinv);
     free(s->acc);
-    cl_bsym_free(&s->sym);
+    cl_amat_free(&s->A);
     free(s);
 }
 
@@ -169,38 +156,24 @@ static cl_status amg_symbols(cl_amg *s, clp_amg_create_fn *create,
     return CL_OK;
 }
 
-static cl_status amg_alloc(cl_amg *s, const double *mass, cl_error *err)
+static cl_status amg_alloc(cl_amg *s, const cl_bpattern *pat,
+                           const double *mass, int threads, cl_error *err)
 {
-    cl_status st = cl_bsym_create(s->pat, &s->sym, err);
-    if (st == CL_OK && s->threads > 1)
-        st = cl_bsym_transpose(&s->sym, err);
+    cl_status st = cl_amat_init(&s->A, s->name, pat, mass, threads, err);
     if (st != CL_OK)
         return st;
-    s->mass = malloc(s->n * sizeof *s->mass);
-    s->ablk = calloc(9 * s->pat->nnzb, sizeof *s->ablk);
-    s->sdiag = malloc(9 * s->sym.nb * sizeof *s->sdiag);
-    s->supper = malloc((9 * s->sym.ne + 1) * sizeof *s->supper);
-    s->dinv = malloc(9 * s->sym.nb * sizeof *s->dinv);
+    s->dinv = malloc(9 * pat->nb * sizeof *s->dinv);
     s->acc = malloc(s->n * sizeof *s->acc);
-    if (!s->mass || !s->ablk || !s->sdiag || !s->supper || !s->dinv ||
-        !s->acc)
+    if (!s->dinv || !s->acc)
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
-    if (st == CL_OK)
-        st = cl_check_masses(mass, s->n, s->name, err);
-    if (st == CL_OK)
-        memcpy(s->mass, mass, s->n * sizeof *s->mass);
-    return st;
+    return CL_OK;
 }
 
 /* y = A x, the plug-in's operator: A's packed halves, or all its blocks. */
 static void amg_mult(void *ctx, const double *x, double *y)
 {
     const cl_amg *s = ctx;
-    if (s->kind != CL_BSYM_NONE)
-        cl_bsym_matvec_threads(&s->sym, s->kind, s->sdiag, s->supper, x, y,
-                               s->threads);
-    else
-        cl_bmatvec_threads(s->pat, s->ablk, x, y, s->threads);
+    cl_amat_mult(&s->A, x, y);
 }
 
 /* The finest level's smoother (linsol_amg_abi.h: clp_amg_sweep): block
@@ -210,16 +183,17 @@ static void amg_sweep(void *ctx, int forward, const double *b, double *x,
                       double *r)
 {
     cl_amg *s = ctx;
-    if (s->kind != CL_BSYM_NONE) {
-        cl_bsym_gs(&s->sym, s->kind, forward, s->dinv, s->supper, b, x,
+    const cl_amat *A = &s->A;
+    if (A->kind != CL_BSYM_NONE) {
+        cl_bsym_gs(&A->sym, A->kind, forward, s->dinv, A->supper, b, x,
                    forward ? s->acc : r);
         return;
     }
     if (forward) {
-        cl_bgs_forward(s->pat, s->ablk, s->dinv, b, x);
+        cl_bgs_forward(A->pat, A->ablk, s->dinv, b, x);
         return;
     }
-    cl_bgs_backward(s->pat, s->ablk, s->dinv, b, x);
+    cl_bgs_backward(A->pat, A->ablk, s->dinv, b, x);
     amg_mult(s, x, r);
     for (size_t i = 0; i < s->n; i++)
         r[i] = b[i] - r[i];
@@ -237,14 +211,14 @@ static cl_status amg_create_named(const char *name, int hypre,
     cl_amg *s = calloc(1, sizeof *s);
     if (!s)
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", name);
-    *s = (cl_amg){.name = name, .pat = pat, .n = 3 * pat->nb,
+    *s = (cl_amg){.name = name, .n = 3 * pat->nb,
                   .tol = o->tol > 0.0 ? o->tol : CL_AMG_TOL,
-                  .threads = o->threads, .hypre = hypre, .base_iters = -1,
-                  .cbase_iters = -1, .coarse_regrow = CL_AMG_COARSE_REGROW};
+                  .hypre = hypre, .base_iters = -1, .cbase_iters = -1,
+                  .coarse_regrow = CL_AMG_COARSE_REGROW};
     long maxit = cl_linsol_maxit(o->maxit, s->n);
     clp_amg_create_fn create = NULL;
     cl_plugin_msg msg = {.text = ""};
-    st = amg_alloc(s, mass, err);
+    st = amg_alloc(s, pat, mass, o->threads, err);
     if (st == CL_OK)
         st = amg_symbols(s, &create, err);
     if (st == CL_OK && create(pat->nb, pat->rowptr, pat->col, hypre, maxit,
@@ -272,17 +246,19 @@ static cl_status amg_create_hypre(const cl_bpattern *pat, const double *mass,
     return amg_create_named("amg-hypre", 1, pat, mass, o, state, err);
 }
 
-/* Set the preconditioner up on s->ablk as `mode` says (linsol_amg_abi.h). */
+/* Set the preconditioner up on A's full blocks as `mode` says
+ * (linsol_amg_abi.h). */
 static cl_status amg_prepare(cl_amg *s, int mode, cl_error *err)
 {
     cl_plugin_msg msg = {.text = ""};
     s->ready = false;
     /* all but a smoother refresh read A's full blocks */
+    cl_amat *A = &s->A;
     if (mode != CLP_AMG_SMOOTHER && !s->ablk_current) {
-        cl_bsym_unpack(&s->sym, s->kind, s->sdiag, s->supper, s->ablk);
+        cl_bsym_unpack(&A->sym, A->kind, A->sdiag, A->supper, A->ablk);
         s->ablk_current = true;
     }
-    if (s->setup(s->h, s->ablk, mode, &msg) != 0)
+    if (s->setup(s->h, A->ablk, mode, &msg) != 0)
         return cl_error_set(err, CL_ESOLVER, "%s: %s", s->name, msg.text);
     s->ready = true;
     s->fresh = mode == CLP_AMG_BUILD || mode == CLP_AMG_RECOVER;
@@ -349,42 +325,27 @@ static void amg_judge(cl_amg *s, long its)
     s->coarse_regrow = f < CL_AMG_REGROW ? f : CL_AMG_REGROW;
 }
 
-/* A's values into the solver's storage: its packed halves when it is
- * symmetric (the values pcg packs; the full blocks the plug-in reads are
- * unpacked from them only when a setup recomputes), else all its blocks.
- * False if a value is not finite. */
-static bool amg_values(cl_amg *s, double a, double b, const double *dfdx,
-                       const double *dfdv)
-{
-    s->kind = s->jac_kind;
-    if (s->kind == CL_BSYM_NONE) {
-        cl_reduced_blocks(s->pat, s->mass, a, b, dfdx, dfdv, s->ablk);
-        s->ablk_current = true;
-        return cl_all_finite_threads(s->ablk, 9 * s->pat->nnzb, s->threads);
-    }
-    cl_bsym_pack_threads(&s->sym, s->kind, -a, dfdv, -b, dfdx, s->mass,
-                         s->sdiag, s->supper, s->threads);
-    s->ablk_current = false;
-    size_t w = s->kind == CL_BSYM_BLOCKS ? 6 : 9;
-    return cl_all_finite_threads(s->sdiag, 9 * s->sym.nb, s->threads) &&
-           cl_all_finite_threads(s->supper, w * s->sym.ne, s->threads);
-}
-
 static cl_status amg_setup(void *state, double a, double b,
                            const double *dfdx, const double *dfdv,
                            cl_error *err)
 {
     cl_amg *s = state;
+    cl_amat *A = &s->A;
     s->ready = false;
-    if (!amg_values(s, a, b, dfdx, dfdv))
+    /* A's packed halves when it is symmetric (the full blocks the plug-in
+     * reads are unpacked from them only when a setup recomputes), else
+     * all its blocks */
+    cl_amat_fill(A, a, b, dfdx, dfdv);
+    s->ablk_current = A->kind == CL_BSYM_NONE;
+    if (!cl_amat_finite(A))
         return cl_error_set(err, CL_ESOLVER, "%s: the matrix M - a df/dv - "
                             "b df/dx has entries that are not finite",
                             s->name);
     /* amg's finest smoother's diagonal blocks, inverted once per setup */
     size_t row = 0;
-    bool sym = s->kind != CL_BSYM_NONE;
-    if (!s->hypre && !cl_bgs_invert(s->sym.nb, sym ? s->sdiag : s->ablk,
-                       sym ? NULL : s->pat->diag, s->dinv, &row))
+    bool sym = A->kind != CL_BSYM_NONE;
+    if (!s->hypre && !cl_bgs_invert(A->pat->nb, sym ? A->sdiag : A->ablk,
+                       sym ? NULL : A->pat->diag, s->dinv, &row))
         return cl_error_set(err, CL_ESOLVER, "%s: the diagonal block of "
                             "particle row %zu of M - a df/dv - b df/dx is "
                             "not positive definite (determinant not "
@@ -406,8 +367,7 @@ static cl_status amg_setup(void *state, double a, double b,
 static void amg_jacobian(void *state, const double *dfdx, const double *dfdv)
 {
     cl_amg *s = state;
-    s->jac_kind = cl_bsym_check_pair(&s->sym, dfdx, dfdv, CL_BSYM_TOL,
-                                     s->threads);
+    cl_amat_jacobian(&s->A, dfdx, dfdv);
 }
 
 /* CG to ||r||_2 <= max(rtol ||b||_2, atol); if that fails, once more on

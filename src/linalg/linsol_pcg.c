@@ -7,7 +7,8 @@
  *    values, formed at every setup: when A is symmetric (it is for
  *    conservative forces with linear damping) its diagonal and upper
  *    blocks only (linalg/bsym.h: half the memory of the full product),
- *    else every block (linalg/reduced.h: cl_reduced_blocks, cl_bmatvec);
+ *    else every block (linalg/reduced.h: cl_reduced_blocks, cl_bmatvec),
+ *    held as linalg/amat.h holds them (amg's storage too);
  *  - preconditioner (SUNLinSolSetPreconditioner, applied as z = P^-1 r):
  *      pcg         3x3 block-Jacobi, P = blockdiag(S_ii), S_ii the
  *                  symmetric part of A's diagonal block i, inverted
@@ -60,24 +61,16 @@
 #include <sunlinsol/sunlinsol_pcg.h>
 
 #include "core/check.h"
-#include "linalg/bsym.h"
+#include "linalg/amat.h"
 #include "linalg/nvec.h"
-#include "linalg/reduced.h"
 
 #define CL_PCG_TOL 1e-10
 
 typedef struct {
     const char *name;
-    const cl_bpattern *pat;  /* borrowed: the system's pattern */
-    size_t n;
+    size_t nb, n;            /* block rows, 3 nb */
     bool block;              /* block-Jacobi (else point Jacobi) */
-    double *mass;            /* n */
-    double *ablk;            /* 9 nnzb: A's block values (if !symmetric) */
-    cl_bsym sym;             /* A's halves, if it is symmetric: */
-    double *sdiag, *supper;  /* 9 nb, 9 ne: their values */
-    cl_bsym_kind jac_kind;   /* df/dx and df/dv as last told (jacobian) */
-    cl_bsym_kind kind;       /* the last setup packed A (sdiag, supper)
-                              * unless CL_BSYM_NONE (then ablk) */
+    cl_amat A;               /* A's values, its product */
     double *pinv;            /* 9 nb (block) or n (point): P^-1 */
     double tol;
     int maxit;
@@ -100,11 +93,7 @@ static int pcg_atimes(void *data, N_Vector v, N_Vector z)
     cl_pcg *s = data;
     const double *vp = N_VGetArrayPointer(v);
     double *zp = N_VGetArrayPointer(z);
-    if (s->kind != CL_BSYM_NONE)
-        cl_bsym_matvec_threads(&s->sym, s->kind, s->sdiag, s->supper, vp,
-                               zp, s->threads);
-    else
-        cl_bmatvec_threads(s->pat, s->ablk, vp, zp, s->threads);
+    cl_amat_mult(&s->A, vp, zp);
     s->nprod++;
     double curv = cl_nvec_dot(vp, zp, s->n, s->threads);
     if (curv > 0.0 && isfinite(curv))
@@ -139,13 +128,6 @@ static bool pcg_inv3(const double *B, double *inv, double minor[3])
     return true;
 }
 
-/* A's diagonal block i, from whichever form the last setup made. */
-static const double *pcg_diag_block(const cl_pcg *s, size_t i)
-{
-    return s->kind != CL_BSYM_NONE ? s->sdiag + 9 * i
-                                   : s->ablk + 9 * s->pat->diag[i];
-}
-
 /* The first block of [lo, hi) whose symmetric part is not positive
  * definite, or hi; every other block of the range inverted. */
 static size_t pcg_invert_blocks(cl_pcg *s, size_t lo, size_t hi)
@@ -153,7 +135,7 @@ static size_t pcg_invert_blocks(cl_pcg *s, size_t lo, size_t hi)
     size_t bad = hi;
     for (size_t i = lo; i < hi; i++) {
         double minor[3];
-        if (!pcg_inv3(pcg_diag_block(s, i), s->pinv + 9 * i, minor) &&
+        if (!pcg_inv3(cl_amat_diag_block(&s->A, i), s->pinv + 9 * i, minor) &&
             bad == hi)
             bad = i;
     }
@@ -165,7 +147,7 @@ static size_t pcg_invert_blocks(cl_pcg *s, size_t lo, size_t hi)
  * definite. */
 static int pcg_psetup_block(cl_pcg *s)
 {
-    size_t nb = s->pat->nb, bad = nb;
+    size_t nb = s->nb, bad = nb;
     int nt = s->threads;
     if (nt <= 1) {
         bad = pcg_invert_blocks(s, 0, nb);
@@ -181,7 +163,7 @@ static int pcg_psetup_block(cl_pcg *s)
     if (bad == nb)
         return 0;
     double minor[3];
-    pcg_inv3(pcg_diag_block(s, bad), s->pinv + 9 * bad, minor);
+    pcg_inv3(cl_amat_diag_block(&s->A, bad), s->pinv + 9 * bad, minor);
     snprintf(s->why, sizeof s->why, "the matrix M - a df/dv - b df/dx is "
              "not positive definite: its diagonal block %zu is not (leading "
              "minors %.6g, %.6g, %.6g; no block-Jacobi preconditioner)", bad,
@@ -192,7 +174,7 @@ static int pcg_psetup_block(cl_pcg *s)
 static int pcg_psetup_point(cl_pcg *s)
 {
     for (size_t i = 0; i < s->n; i++) {
-        double d = pcg_diag_block(s, i / 3)[4 * (i % 3)];
+        double d = cl_amat_diag_block(&s->A, i / 3)[4 * (i % 3)];
         if (!(d > 0.0) || !isfinite(d)) {
             snprintf(s->why, sizeof s->why, "the matrix M - a df/dv - b "
                      "df/dx is not positive definite: its diagonal entry "
@@ -235,7 +217,7 @@ static int pcg_psolve(void *data, N_Vector r, N_Vector z, sunrealtype tol,
     cl_pcg *s = data;
     const double *rp = N_VGetArrayPointer(r);
     double *zp = N_VGetArrayPointer(z);
-    size_t nb = s->pat->nb;
+    size_t nb = s->nb;
     int nt = s->threads;
     (void)tol, (void)lr;
     if (nt <= 1) {
@@ -268,12 +250,8 @@ static void pcg_free(void *state)
         N_VDestroy(s->w);
     if (s->ctx)
         SUNContext_Free(&s->ctx);
-    free(s->mass);
-    free(s->ablk);
     free(s->pinv);
-    free(s->sdiag);
-    free(s->supper);
-    cl_bsym_free(&s->sym);
+    cl_amat_free(&s->A);
     free(s);
 }
 
@@ -284,27 +262,16 @@ static cl_status pcg_sunfail(const cl_pcg *s, const char *fn, int flag,
                         fn, flag);
 }
 
-static cl_status pcg_alloc(cl_pcg *s, const double *mass, cl_error *err)
+static cl_status pcg_alloc(cl_pcg *s, const cl_bpattern *pat,
+                           const double *mass, cl_error *err)
 {
-    size_t nval = 9 * s->pat->nnzb;
-    s->mass = malloc(s->n * sizeof *s->mass);
-    s->ablk = calloc(nval, sizeof *s->ablk);
-    s->pinv = calloc(s->block ? 9 * s->pat->nb : s->n, sizeof *s->pinv);
-    if (!s->mass || !s->ablk || !s->pinv)
-        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
-    cl_status st = cl_bsym_create(s->pat, &s->sym, err);
-    if (st == CL_OK && s->threads > 1)
-        st = cl_bsym_transpose(&s->sym, err);
+    cl_status st = cl_amat_init(&s->A, s->name, pat, mass, s->threads, err);
     if (st != CL_OK)
         return st;
-    s->sdiag = malloc(9 * s->sym.nb * sizeof *s->sdiag);
-    s->supper = malloc((9 * s->sym.ne + 1) * sizeof *s->supper);
-    if (!s->sdiag || !s->supper)
+    s->pinv = calloc(s->block ? 9 * s->nb : s->n, sizeof *s->pinv);
+    if (!s->pinv)
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
-    st = cl_check_masses(mass, s->n, s->name, err);
-    if (st == CL_OK)
-        memcpy(s->mass, mass, s->n * sizeof *s->mass);
-    return st;
+    return CL_OK;
 }
 
 static cl_status pcg_sundials(cl_pcg *s, cl_error *err)
@@ -346,13 +313,13 @@ static cl_status pcg_create_named(const char *name, bool block,
     if (!s)
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", name);
     s->name = name;
-    s->pat = pat;
+    s->nb = pat->nb;
     s->n = 3 * pat->nb;
     s->block = block;
     s->tol = o->tol > 0.0 ? o->tol : CL_PCG_TOL;
     s->maxit = cl_linsol_maxit(o->maxit, s->n);
     s->threads = o->threads;
-    st = pcg_alloc(s, mass, err);
+    st = pcg_alloc(s, pat, mass, err);
     if (st == CL_OK)
         st = pcg_sundials(s, err);
     if (st != CL_OK) {
@@ -384,12 +351,7 @@ static cl_status pcg_setup(void *state, double a, double b,
                            cl_error *err)
 {
     cl_pcg *s = state;
-    s->kind = s->jac_kind;
-    if (s->kind != CL_BSYM_NONE)
-        cl_bsym_pack_threads(&s->sym, s->kind, -a, dfdv, -b, dfdx,
-                             s->mass, s->sdiag, s->supper, s->threads);
-    else
-        cl_reduced_blocks(s->pat, s->mass, a, b, dfdx, dfdv, s->ablk);
+    cl_amat_fill(&s->A, a, b, dfdx, dfdv);
     s->why[0] = '\0';
     s->ready = false;
     int flag = SUNLinSolSetup(s->ls, NULL);
@@ -405,8 +367,7 @@ static cl_status pcg_setup(void *state, double a, double b,
 static void pcg_jacobian(void *state, const double *dfdx, const double *dfdv)
 {
     cl_pcg *s = state;
-    s->jac_kind = cl_bsym_check_pair(&s->sym, dfdx, dfdv, CL_BSYM_TOL,
-                                     s->threads);
+    cl_amat_jacobian(&s->A, dfdx, dfdv);
 }
 
 /* `test` says what delta is, for the message. */
