@@ -71,6 +71,7 @@
 #ifndef CL_ARKODE_COMMON_H
 #define CL_ARKODE_COMMON_H
 
+#include "integrators/define.h"
 #include "integrators/integrator.h"
 #include "integrators/sun_adapter.h"
 
@@ -95,14 +96,9 @@ cl_status cl_ark_advance(void *state, double t_out, double *x, double *v,
 /* One registry row (integrators/registry.c): the table
  * cl_integrator_<ident> of the method {name_, fixed_, imex_}. */
 #define CL_ARK_INTEGRATOR(ident, name_, fixed_, imex_, region_, doc_)      \
-    static cl_status ident##_create(const cl_system *sys,                  \
-                                    const cl_integrator_opts *o, double t0, \
-                                    const double *x0, const double *v0,    \
-                                    void **state, cl_error *err)           \
-    {                                                                      \
-        static const cl_ark_method m_ = {(name_), (fixed_), (imex_)};      \
-        return cl_ark_create(&m_, sys, o, t0, x0, v0, state, err);         \
-    }                                                                      \
+    static const cl_ark_method ident##_method = {(name_), (fixed_),        \
+                                                 (imex_)};                 \
+    CL_INTEGRATOR_CREATE(ident, cl_ark_create, &ident##_method)            \
     const cl_integrator_type cl_integrator_##ident = {                     \
         .name = (name_),                                                   \
         .region = (region_),                                               \

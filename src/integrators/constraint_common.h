@@ -26,6 +26,7 @@
 #ifndef CL_CONSTRAINT_COMMON_H
 #define CL_CONSTRAINT_COMMON_H
 
+#include "integrators/define.h"
 #include "integrators/integrator.h"
 
 typedef struct cl_cdyn cl_cdyn;
@@ -80,13 +81,7 @@ void cl_cdyn_free(void *state);
 
 /* The integrator table `ident` of a constraint-based method. */
 #define CL_CDYN_INTEGRATOR(ident, method, name_, doc_)                      \
-    static cl_status ident##_create(const cl_system *sys,                   \
-                                    const cl_integrator_opts *o, double t0, \
-                                    const double *x0, const double *v0,     \
-                                    void **state, cl_error *err)            \
-    {                                                                       \
-        return cl_cdyn_create(&(method), sys, o, t0, x0, v0, state, err);   \
-    }                                                                       \
+    CL_INTEGRATOR_CREATE(ident, cl_cdyn_create, &(method))                  \
     const cl_integrator_type ident = {                                      \
         .name = (name_),                                                    \
         .doc = (doc_),                                                      \

@@ -9,22 +9,31 @@
  *                           linsol_, dense_, rayleigh_, ident_create,
  *                           advance_, stats_, free_}
  *
- * for one row of the registry (integrators/registry.c). */
+ * for one row of the registry (integrators/registry.c).  The create
+ * function alone (CL_INTEGRATOR_CREATE) also serves the families whose
+ * tables carry other flags (arkode_common.h, constraint_common.h,
+ * petsc_ts.h). */
 #ifndef CL_DEFINE_H
 #define CL_DEFINE_H
 
 #include "integrators/integrator.h"
 
-#define CL_INTEGRATOR_DEFINE(ident, method, create_, name_, region_, doc_, \
-                             fixed_, linsol_, dense_, rayleigh_, advance_, \
-                             stats_, free_)                                 \
+/* static create function ident_create(sys, opts, t0, x0, v0, state, err)
+ * = create_(method_, sys, ...), method_ a pointer to the method's
+ * description. */
+#define CL_INTEGRATOR_CREATE(ident, create_, method_)                       \
     static cl_status ident##_create(const cl_system *sys,                   \
                                     const cl_integrator_opts *o, double t0, \
                                     const double *x0, const double *v0,     \
                                     void **state, cl_error *err)            \
     {                                                                       \
-        return create_(&(method), sys, o, t0, x0, v0, state, err);          \
-    }                                                                       \
+        return create_((method_), sys, o, t0, x0, v0, state, err);          \
+    }
+
+#define CL_INTEGRATOR_DEFINE(ident, method, create_, name_, region_, doc_, \
+                             fixed_, linsol_, dense_, rayleigh_, advance_, \
+                             stats_, free_)                                 \
+    CL_INTEGRATOR_CREATE(ident, create_, &(method))                         \
     const cl_integrator_type ident = {                                      \
         .name = (name_),                                                    \
         .region = (region_),                                                \

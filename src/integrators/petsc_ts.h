@@ -16,6 +16,7 @@
 #ifndef CL_PETSC_TS_H
 #define CL_PETSC_TS_H
 
+#include "integrators/define.h"
 #include "integrators/integrator.h"
 
 typedef struct {
@@ -47,14 +48,7 @@ void cl_petsc_ts_free(void *state);
         .second_order = (second_),                                          \
         .takes_order = (order_),                                            \
     };                                                                      \
-    static cl_status ident##_create(const cl_system *sys,                   \
-                                    const cl_integrator_opts *o, double t0, \
-                                    const double *x0, const double *v0,     \
-                                    void **state, cl_error *err)            \
-    {                                                                       \
-        return cl_petsc_ts_create(&ident##_method, sys, o, t0, x0, v0,      \
-                                  state, err);                              \
-    }                                                                       \
+    CL_INTEGRATOR_CREATE(ident, cl_petsc_ts_create, &ident##_method)        \
     const cl_integrator_type cl_integrator_##ident = {                      \
         .name = (name_),                                                    \
         .region = (region_),                                                \
