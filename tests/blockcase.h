@@ -3,9 +3,9 @@
  * five particles, particle 2 pinned (no unknowns), so NB = 4 block rows;
  * coupled pairs that touch the pinned particle, close a cycle and repeat
  * one pair reversed; masses 0.5 + 0.25 i; and the deterministic random
- * numbers the tests fill block values with.  Header only, included after <criterion/criterion.h> and
- * after every library header (the short macros NP, NB, N would clash with
- * SUNDIALS' parameter names). */
+ * numbers the tests fill block values with.  Header only, included
+ * after <criterion/criterion.h> and after every library header (the short
+ * macros NP, NB, N would clash with SUNDIALS' parameter names). */
 #ifndef CL_TESTS_BLOCKCASE_H
 #define CL_TESTS_BLOCKCASE_H
 
