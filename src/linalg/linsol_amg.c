@@ -251,9 +251,9 @@ static cl_status amg_create_hypre(const cl_bpattern *pat, const double *mass,
 static cl_status amg_prepare(cl_amg *s, int mode, cl_error *err)
 {
     cl_plugin_msg msg = {.text = ""};
+    cl_amat *A = &s->A;
     s->ready = false;
     /* all but a smoother refresh read A's full blocks */
-    cl_amat *A = &s->A;
     if (mode != CLP_AMG_SMOOTHER && !s->ablk_current) {
         cl_bsym_unpack(&A->sym, A->kind, A->sdiag, A->supper, A->ablk);
         s->ablk_current = true;
