@@ -17,7 +17,10 @@
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+
+#include "core/check.h"
 
 extern const cl_linsol_type cl_linsol_klu;
 extern const cl_linsol_type cl_linsol_pcg;
@@ -89,9 +92,11 @@ int cl_linsol_maxit(long lin_maxit, size_t n)
     return m < INT_MAX ? (int)m : INT_MAX;
 }
 
-cl_status cl_linsol_check_opts(const char *name, const cl_bpattern *pat,
-                               const cl_linsol_opts *o, cl_error *err)
+cl_status cl_linsol_new_state(const char *name, const cl_bpattern *pat,
+                              const cl_linsol_opts *o, size_t size,
+                              void **state, cl_error *err)
 {
+    *state = NULL;
     if (!pat || pat->nb == 0)
         return cl_error_set(err, CL_EINVAL, "%s: empty system (no free "
                             "particles)", name);
@@ -99,5 +104,20 @@ cl_status cl_linsol_check_opts(const char *name, const cl_bpattern *pat,
         return cl_error_set(err, CL_EINVAL, "%s: lin_tol = %g, lin_maxit = "
                             "%ld: need finite >= 0 (0: defaults)", name,
                             o->tol, o->maxit);
+    *state = calloc(1, size);
+    if (!*state)
+        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", name);
+    return CL_OK;
+}
+
+cl_status cl_linsol_check_solve(const char *name, bool ready,
+                                const double *rhs, size_t n, cl_error *err)
+{
+    if (!ready)
+        return cl_error_set(err, CL_EINVAL, "%s: solve without a successful "
+                            "setup", name);
+    if (!cl_all_finite(rhs, n))
+        return cl_error_set(err, CL_ESOLVER, "%s: right-hand side not "
+                            "finite", name);
     return CL_OK;
 }

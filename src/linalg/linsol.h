@@ -35,6 +35,9 @@
 #ifndef CL_LINSOL_H
 #define CL_LINSOL_H
 
+#include <stdbool.h>
+#include <stddef.h>
+
 #include "core/error.h"
 #include "core/stats.h"
 #include "linalg/bpattern.h"
@@ -107,10 +110,18 @@ static inline void cl_linsol_jacobian(const cl_linsol_type *lt, void *ls,
         lt->jacobian(ls, dfdx, dfdv);
 }
 
-/* The iterative solvers' checks at create: CL_EINVAL naming `name` for an
- * empty pattern, or a lin_tol or lin_maxit that is not finite >= 0. */
-cl_status cl_linsol_check_opts(const char *name, const cl_bpattern *pat,
-                               const cl_linsol_opts *o, cl_error *err);
+/* The iterative solvers' start of create: CL_EINVAL naming `name` for an
+ * empty pattern, or a lin_tol or lin_maxit that is not finite >= 0; else
+ * a zeroed state of `size` bytes into *state (CL_ENOMEM if none). */
+cl_status cl_linsol_new_state(const char *name, const cl_bpattern *pat,
+                              const cl_linsol_opts *o, size_t size,
+                              void **state, cl_error *err);
+
+/* The iterative solvers' checks before a solve: CL_EINVAL naming `name`
+ * when no setup succeeded (`ready` false), CL_ESOLVER when an entry of
+ * rhs (n) is not finite. */
+cl_status cl_linsol_check_solve(const char *name, bool ready,
+                                const double *rhs, size_t n, cl_error *err);
 
 /* The iterative solvers' iteration cap: lin_maxit, or max(1000, 2 n) when
  * it is 0; at most INT_MAX. */

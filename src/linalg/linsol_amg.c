@@ -204,13 +204,13 @@ static cl_status amg_create_named(const char *name, int hypre,
                                   const cl_linsol_opts *o, void **state,
                                   cl_error *err)
 {
+    void *p;
     *state = NULL;
-    cl_status st = cl_linsol_check_opts(name, pat, o, err);
+    cl_status st = cl_linsol_new_state(name, pat, o, sizeof(cl_amg), &p,
+                                       err);
     if (st != CL_OK)
         return st;
-    cl_amg *s = calloc(1, sizeof *s);
-    if (!s)
-        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", name);
+    cl_amg *s = p;
     *s = (cl_amg){.name = name, .n = 3 * pat->nb,
                   .tol = o->tol > 0.0 ? o->tol : CL_AMG_TOL,
                   .hypre = hypre, .base_iters = -1, .cbase_iters = -1,
@@ -376,12 +376,9 @@ static void amg_jacobian(void *state, const double *dfdx, const double *dfdv)
 static cl_status amg_run(cl_amg *s, const double *rhs, double *x,
                          double rtol, double atol, cl_error *err)
 {
-    if (!s->ready)
-        return cl_error_set(err, CL_EINVAL, "%s: solve without a successful "
-                            "setup", s->name);
-    if (!cl_all_finite(rhs, s->n))
-        return cl_error_set(err, CL_ESOLVER, "%s: right-hand side not "
-                            "finite", s->name);
+    cl_status st = cl_linsol_check_solve(s->name, s->ready, rhs, s->n, err);
+    if (st != CL_OK)
+        return st;
     cl_plugin_msg msg = {.text = ""};
     long its = 0;
     int bad = s->solve(s->h, rhs, x, rtol, atol, &its, &msg);
@@ -389,7 +386,7 @@ static cl_status amg_run(cl_amg *s, const double *rhs, double *x,
     s->iters += its;
     bool retry = bad && (!s->hypre || !s->fresh);
     if (retry) {
-        cl_status st = amg_prepare(s, CLP_AMG_RECOVER, err);
+        st = amg_prepare(s, CLP_AMG_RECOVER, err);
         if (st != CL_OK)
             return st;
         s->recoveries++;

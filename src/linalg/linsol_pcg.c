@@ -305,13 +305,13 @@ static cl_status pcg_create_named(const char *name, bool block,
                                   const cl_linsol_opts *o, void **state,
                                   cl_error *err)
 {
+    void *p;
     *state = NULL;
-    cl_status st = cl_linsol_check_opts(name, pat, o, err);
+    cl_status st = cl_linsol_new_state(name, pat, o, sizeof(cl_pcg), &p,
+                                       err);
     if (st != CL_OK)
         return st;
-    cl_pcg *s = calloc(1, sizeof *s);
-    if (!s)
-        return cl_error_set(err, CL_ENOMEM, "%s: out of memory", name);
+    cl_pcg *s = p;
     s->name = name;
     s->nb = pat->nb;
     s->n = 3 * pat->nb;
@@ -413,14 +413,10 @@ static cl_status pcg_run(cl_pcg *s, N_Vector scale, double delta,
 /* Copy rhs into s->b; CL_OK if a setup succeeded and rhs is finite. */
 static cl_status pcg_load(cl_pcg *s, const double *rhs, cl_error *err)
 {
-    if (!s->ready)
-        return cl_error_set(err, CL_EINVAL, "%s: solve without a successful "
-                            "setup", s->name);
-    memcpy(N_VGetArrayPointer(s->b), rhs, s->n * sizeof *rhs);
-    if (!cl_all_finite(rhs, s->n))
-        return cl_error_set(err, CL_ESOLVER, "%s: right-hand side not "
-                            "finite", s->name);
-    return CL_OK;
+    cl_status st = cl_linsol_check_solve(s->name, s->ready, rhs, s->n, err);
+    if (st == CL_OK)
+        memcpy(N_VGetArrayPointer(s->b), rhs, s->n * sizeof *rhs);
+    return st;
 }
 
 static cl_status pcg_solve(void *state, const double *rhs, double *x,
