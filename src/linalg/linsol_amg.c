@@ -84,7 +84,6 @@
 #include <stdbool.h>
 #include <stdlib.h>
 
-#include "core/check.h"
 #include "linalg/amat.h"
 #include "linalg/blockgs.h"
 #include "linalg/linsol_amg_abi.h"

@@ -60,7 +60,6 @@
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_pcg.h>
 
-#include "core/check.h"
 #include "linalg/amat.h"
 #include "linalg/nvec.h"
 
