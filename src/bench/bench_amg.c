@@ -14,10 +14,10 @@
  *     n (goals >= 3x at dt = 1e-2, >= 1.5x at dt = 1e-3).  The solvers
  *     run at the default lin_tol, 1e-10, where amg's and pcg's states
  *     both stay within 1e-12 m of the exact linear steps (n = 256, dt =
- *     1e-2, 12 steps); at one looser
- *     tolerance their errors differ (at 1e-6 amg's is 700 times pcg's),
- *     so a comparison there would not be one at equal error
- *     (paper/findings.md, "The same lin_tol is not the same error").
+ *     1e-2, 12 steps); at one looser tolerance their errors differ (at
+ *     1e-6 amg's is 700 times pcg's), so a comparison there would not be
+ *     one at equal error (paper/findings.md, "The same lin_tol is not the
+ *     same error").
  *     Last, pcg and amg at the same Courant number on every size: dt =
  *     1e-2 n0/n (n0 the smallest n), the untimed and timed steps scaled
  *     by n/n0 and no time budget, so that every size is timed over the
