@@ -104,7 +104,7 @@ static void w10_case(cl_bctx *c, w10_sweep *s, double dt0, int i, int j,
     /* at the same Courant number, exactly the scaled steps: every size
      * over the same stretch of simulated time */
     fixed_plan fp = {W10_WARM * k, 1, W10_MIN_STEPS * k,
-                     s->courant ? 0.0 : c->plan.w10_budget};
+                     s->courant ? 0.0 : c->plan.w10_budget, NULL};
     fixed_time ft;
     cl_bench_log(c, "  semi-bdf2 %s, dt = %g, n = %d ...", w10_solver[j],
                  dt, c->plan.w10_n[i]);
@@ -232,6 +232,7 @@ void cl_bench_w10(cl_bctx *c)
     for (int k = 0; k < 2; k++)
         w10_dt(c, dts[k], false);
     w10_dt(c, 1e-2, true);
+    cl_bench_w10_accuracy(c);
 }
 
 /* ---- workload 12 ------------------------------------------------------ */

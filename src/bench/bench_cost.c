@@ -56,6 +56,8 @@ void cl_bench_time_fixed(cl_model *m, const cl_integrator_type *type,
                           : cl_error_set(&err, CL_ENOMEM, "out of memory");
     if (!rc && !(rc = type->create(sys, io, 0.0, x, v, &state, &err)))
         rc = timed_steps(state, type, io->dt, fp, x, v, ft, &err);
+    if (!rc && fp->x_final)
+        memcpy(fp->x_final, x, sys->n * sizeof *x);
     if (state) {
         type->stats(state, &ft->stats);
         type->free(state);
@@ -104,7 +106,7 @@ static void w3_case(cl_bctx *c, w3_sweep *s, double dt, int i, int j,
         return;
     }
     cl_integrator_opts io = {.dt = dt, .linsol = s->name[j]};
-    fixed_plan fp = {W3_WARM, 1, W3_MIN_STEPS, c->plan.w3_budget};
+    fixed_plan fp = {W3_WARM, 1, W3_MIN_STEPS, c->plan.w3_budget, NULL};
     fixed_time ft;
     cl_bench_log(c, "  semi-bdf2 %s, dt = %g, n = %d ...", s->name[j], dt, n);
     if (!cl_bench_semi_step(m, &io, &fp, row, &ft)) {
@@ -418,7 +420,7 @@ static void w5_round(cl_bctx *c, const w5_case *wc, w5_result *res)
         cl_bench_copy(res->msg, sizeof res->msg, err.msg);
         return;
     }
-    fixed_plan fp = {10, W5_CHUNK, W5_CHUNK, c->plan.eval_budget};
+    fixed_plan fp = {10, W5_CHUNK, W5_CHUNK, c->plan.eval_budget, NULL};
     fixed_time ft = {.rc = cl_bench_fixed_opts(bm.cfg, wc->dt, &io, &err)};
     if (!ft.rc)
         cl_bench_time_fixed(bm.m, type, &io, &fp, &ft);
@@ -512,7 +514,7 @@ static double w13_per_step(cl_model *m, int threads, double *cpu,
 {
     cl_error err = {0};
     cl_integrator_opts io = {.dt = W13_DT, .linsol = "pcg"};
-    fixed_plan fp = {W3_WARM, 1, W13_STEPS, 0.0};
+    fixed_plan fp = {W3_WARM, 1, W13_STEPS, 0.0, NULL};
     fixed_time ft;
     if (cl_model_set_threads(m, threads, &err)) {
         cl_bench_note(row, "%s", err.msg);

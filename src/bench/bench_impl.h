@@ -114,11 +114,13 @@ typedef struct {
 typedef struct {
     long warm, chunk, min_steps;
     double budget;         /* stop once the timed steps took this (s) */
+    double *x_final;       /* sys->n: the final positions, or NULL */
 } fixed_plan;
 
 /* Create the integrator on the model's initial state, take fp->warm
  * untimed steps, then time steps (fp->chunk per advance) until at least
- * fp->min_steps and fp->budget CPU seconds (bench_cost.c). */
+ * fp->min_steps and fp->budget CPU seconds; the positions then into
+ * fp->x_final if not NULL (bench_cost.c). */
 void cl_bench_time_fixed(cl_model *m, const cl_integrator_type *type,
                          const cl_integrator_opts *io, const fixed_plan *fp,
                          fixed_time *ft);
@@ -227,6 +229,10 @@ void cl_bench_w9(cl_bctx *c);
 
 void cl_bench_w10(cl_bctx *c);
 void cl_bench_w12(cl_bctx *c);
+
+/* ---- bench_amg_acc.c: workload 10 at the accuracy a step needs ------ */
+
+void cl_bench_w10_accuracy(cl_bctx *c);
 /* ---- bench_petscts.c: workload 11 ------------------------------------ */
 
 void cl_bench_w11(cl_bctx *c);
