@@ -17,7 +17,8 @@
  *     1e-2, 12 steps); at one looser tolerance their errors differ (at
  *     1e-6 amg's is 700 times pcg's), so a comparison there would not be
  *     one at equal error (paper/findings.md, "The same lin_tol is not the
- *     same error").
+ *     same error").  The comparison at the accuracy a step needs, each
+ *     solver at its own lin_tol, is bench_amg_acc.c's.
  *     Last, pcg and amg at the same Courant number on every size: dt =
  *     1e-2 n0/n (n0 the smallest n), the untimed and timed steps scaled
  *     by n/n0 and no time budget, so that every size is timed over the
