@@ -157,9 +157,8 @@ static bool w10a_reference(cl_bctx *c, w10a_ctx *a, const char *kase,
 /* Time res's solver at its lin_tol over runs of the same steps until
  * their timed steps took the workload's budget of CPU (small n: one run
  * of 10 steps takes tenths of a second), the first run's figures already
- * in row; CPU and wall time a step over all of them into row.  The
- * number of runs. */
-static int w10a_repeat(const cl_bctx *c, w10a_ctx *a, const w10a_result *res,
+ * in row; CPU and wall time a step over all of them into row. */
+static void w10a_repeat(const cl_bctx *c, w10a_ctx *a, const w10a_result *res,
                        cl_bench_row *row)
 {
     const long steps = W10A_STEPS - W10A_WARM;
@@ -174,7 +173,6 @@ static int w10a_repeat(const cl_bctx *c, w10a_ctx *a, const w10a_result *res,
     }
     row->cpu_a = cpu / (double)(runs * steps);
     row->wall_a = wall / (double)(runs * steps);
-    return runs;
 }
 
 /* `linsol` down the ladder to the loosest rung within the accuracy, the
