@@ -196,6 +196,90 @@ Test(bench, quick_contact_workload_writes_its_rows)
     cli_lines_free(&L);
 }
 
+/* Field k (from 0) of a CSV row as a number: the fields before the note
+ * hold no comma (NaN if empty or absent). */
+static double csv_number(const char *line, int k)
+{
+    for (; k > 0 && line; k--) {
+        line = strchr(line, ',');
+        line = line ? line + 1 : NULL;
+    }
+    return line && *line && *line != ',' ? strtod(line, NULL) : NAN;
+}
+
+/* The first row of a CSV that begins with `prefix` and holds `part`
+ * (NULL: any), or NULL. */
+static const char *row_with(const cli_lines *L, const char *prefix,
+                            const char *part)
+{
+    for (size_t k = 1; k < L->n; k++)
+        if (!strncmp(L->line[k], prefix, strlen(prefix)) &&
+            (!part || strstr(L->line[k], part)))
+            return L->line[k];
+    return NULL;
+}
+
+/* Every "TOL ERR m" after "looser: " in a note: each rung tried before the
+ * one taken left an error above the accuracy. */
+static void assert_looser_above(const char *line, double accuracy)
+{
+    const char *p = strstr(line, "looser: ");
+    for (p = p ? p + 8 : NULL; p && *p && *p != '"';) {
+        char *end;
+        strtod(p, &end);
+        double e = strtod(end, &end);
+        cr_assert(e > accuracy, "a looser rung within %g m: %s", accuracy,
+                  line);
+        p = strstr(end, ", ");
+        p = p ? p + 2 : NULL;
+    }
+}
+
+/* Workload 10's rows at one accuracy, quick form (n = 16, 32): the step
+ * error of semi-bdf2 at dt = 1e-2 (its distance from dt/2 at t = 0.12 s,
+ * about 1.4e-3 m at n = 32); pcg and amg each at a lin_tol of the ladder
+ * whose error is within 1 % of it, every looser rung above; the speed-up
+ * row their time ratio, with its goal; the exponents, amg's judged. */
+Test(bench, quick_amg_accuracy_rows_follow_their_rule)
+{
+    cli_lines L;
+    quick_workload("10", "amg.csv", "accuracy", &L);
+    const char *step = row_with(&L, "10,dt=0.01 n=32 accuracy,semi-bdf2 amg "
+                                "dt=0.005 lin_tol=1e-10,", NULL);
+    cr_assert(step, "no step-error row");
+    double step_err = csv_number(step, 8), accuracy = 1e-2 * step_err;
+    cr_assert(step_err > 1.2e-3 && step_err < 1.6e-3, "step error %g m",
+              step_err);
+    static const char *const solver[] = {"pcg", "amg"};
+    for (int j = 0; j < 2; j++) {
+        char prefix[96];
+        snprintf(prefix, sizeof prefix, "10,dt=0.01 n=32 accuracy,"
+                 "semi-bdf2 %s lin_tol=", solver[j]);
+        const char *line = row_with(&L, prefix, NULL);
+        cr_assert(line, "no %s row", solver[j]);
+        double tol = strtod(line + strlen(prefix), NULL);
+        double rung = tol / pow(10.0, floor(log10(tol) + 1e-9));
+        cr_assert(fabs(rung - 1.0) < 1e-9 || fabs(rung - 3.0) < 1e-9,
+                  "lin_tol %g not on the ladder", tol);
+        double err = csv_number(line, 8);
+        cr_assert(err >= 0.0 && err <= accuracy, "%s: error %g m, accuracy "
+                  "%g m", solver[j], err, accuracy);
+        assert_looser_above(line, accuracy);
+        cr_assert(csv_number(line, 4) > 0.0, "%s", line);
+    }
+    const char *ratio = row_with(&L, "10,dt=0.01 n=32 accuracy,semi-bdf2 "
+                                 "amg lin_tol=", ",x,>=,3,");
+    cr_assert(ratio, "no speed-up row");
+    double cpu_a = csv_number(ratio, 4), cpu_b = csv_number(ratio, 5);
+    cr_assert_float_eq(csv_number(ratio, 10), cpu_b / cpu_a,
+                       1e-4 * cpu_b / cpu_a, "%s", ratio);
+    const char *fit = row_with(&L, "10,dt=0.01 accuracy fit,semi-bdf2 amg,",
+                               NULL);
+    cr_assert(fit && strstr(fit, ",exponent,"), "no exponent of amg");
+    cr_assert(isfinite(csv_number(fit, 10)), "%s", fit);
+    cli_lines_free(&L);
+}
+
 Test(bench, csv_quotes_text_and_leaves_missing_figures_empty)
 {
     cl_bench_row row = {.workload = 2, .met = 0, .ratio = 3.5,
