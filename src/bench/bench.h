@@ -54,10 +54,11 @@
  *      and klu, exponents against unknowns (goal <= 1.15 for the fastest
  *      at dt = 1e-2), amg against the fastest one-level solver at n = 256
  *      (goals >= 3x at dt = 1e-2, >= 1.5x at dt = 1e-3) (bench_amg.c);
- *      then at dt = 1e-2, n = 256, at one accuracy: pcg and amg each at
- *      the loosest lin_tol whose state stays within 1 % of the step's
- *      error of the exact linear steps (cholmod's), amg against the
- *      faster of pcg and cholmod there (goal >= 3x) (bench_amg_acc.c).
+ *      then at dt = 1e-2 and n = 64, 128, 256, at one accuracy: pcg and
+ *      amg each at the loosest lin_tol whose state stays within 1 % of
+ *      the step's error of the exact linear steps (cholmod's), amg
+ *      against the faster of pcg and cholmod at n = 256 (goal >= 3x) and
+ *      the exponents (goal <= 1.15 for the fastest) (bench_amg_acc.c).
  *  11  hang, T = 2 s, n = 32, 64, 128: cvode-bdf with the best solver
  *      against the best petsc-ts configuration (bench_petscts.c) at equal
  *      or better error (clothode's rtol tightened from 1e-4 as in

@@ -27,8 +27,9 @@
  *               the errors need not fall with the tolerance); its CPU time
  *               a step over the steps after the first W10A_WARM, as in
  *               the rest of workload 10, the runs repeated up to the
- *               workload's CPU budget, in W10A_ROUNDS rounds that
- *               alternate between pcg and amg, the fastest kept.
+ *               workload's CPU budget (cholmod's too), in W10A_ROUNDS
+ *               such rounds that alternate between pcg and amg, the
+ *               fastest kept.
  *
  * At every size of the plan (n = 64, 128, 256), rows: the reference and
  * the step error; pcg and amg at their lin_tol (the looser rungs tried,
@@ -39,6 +40,7 @@
  * instead of at one lin_tol. */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "bench/bench_impl.h"
 
@@ -68,8 +70,9 @@ typedef struct {
     double cpu_max;         /* ... the slowest */
     int rounds;
     double error, rms;      /* m, distance from the reference */
-    char note[160];         /* the looser rungs and their errors, or why
-                             * none was within the accuracy */
+    int tried;              /* looser rungs tried before, their errors: */
+    double tried_tol[W10A_RUNGS], tried_err[W10A_RUNGS];
+    char failed[160];       /* a run that failed, or "" */
 } w10a_result;
 
 typedef struct {
@@ -91,10 +94,9 @@ static void w10a_distance(const double *x, const double *ref, size_t n,
         double dx = x[p] - ref[p], dy = x[p + 1] - ref[p + 1],
                dz = x[p + 2] - ref[p + 2], d2 = dx * dx + dy * dy + dz * dz;
         sum += d2;
-        if (!(d2 <= big))
-            big = d2;
+        big = fmax(big, d2);
     }
-    *largest = sqrt(big);
+    *largest = isnan(sum) ? NAN : sqrt(big);
     *rms = sqrt(sum / (double)(n / 3));
 }
 
@@ -108,50 +110,6 @@ static bool w10a_run(w10a_ctx *a, const char *linsol, double lin_tol,
     fixed_plan fp = {warm, 1, timed, 0.0, a->x};
     fixed_time ft;
     return cl_bench_semi_step(a->m, &io, &fp, row, &ft);
-}
-
-/* The reference (cholmod) and the step error: the rows of both; cholmod's
- * time a step into *ref. */
-static bool w10a_reference(cl_bctx *c, w10a_ctx *a, const char *kase,
-                           w10a_result *ref)
-{
-    cl_bench_row *row = cl_bench_row_add(c, 10, kase);
-    snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 cholmod");
-    cl_bench_log(c, "  semi-bdf2 cholmod, dt = %g (reference) ...", W10A_DT);
-    bool ok = w10a_run(a, "cholmod", 0.0, W10A_DT, W10A_WARM,
-                       W10A_STEPS - W10A_WARM, row);
-    if (ok)
-        cl_bench_note(row, "the reference: exact linear steps to t = %g s",
-                      W10A_STEPS * W10A_DT);
-    cl_bench_log_row(c, row);
-    if (!ok)
-        return false;
-    *ref = (w10a_result){.ok = true, .cpu = row->cpu_a,
-                          .wall = row->wall_a, .error = 0.0};
-    cl_bench_copy(ref->side, sizeof ref->side, row->side_a);
-    double *swap = a->ref, rms;
-    a->ref = a->x;
-    a->x = swap;
-    row = cl_bench_row_add(c, 10, kase);
-    snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 amg dt=%g "
-             "lin_tol=%g", W10A_DT / 2, W10A_FINE_TOL);
-    cl_bench_log(c, "  semi-bdf2 amg, dt = %g (step error) ...",
-                 W10A_DT / 2);
-    ok = w10a_run(a, "amg", W10A_FINE_TOL, W10A_DT / 2, 0, 2 * W10A_STEPS,
-                  row);
-    if (ok) {
-        w10a_distance(a->x, a->ref, a->n, &a->step_err, &rms);
-        a->accuracy = W10A_SHARE * a->step_err;
-        row->error_a = a->step_err;
-        ok = isfinite(a->step_err) && a->step_err > 0.0;
-        cl_bench_note(row, "step error at t = %g s: the largest distance "
-                      "from the dt = %g reference (rms %.2g m); accuracy "
-                      "asked of the solvers below: %g of it, %.2g m",
-                      W10A_STEPS * W10A_DT, W10A_DT, rms, W10A_SHARE,
-                      a->accuracy);
-    }
-    cl_bench_log_row(c, row);
-    return ok;
 }
 
 /* Time res's solver at its lin_tol over runs of the same steps until
@@ -175,6 +133,53 @@ static void w10a_repeat(const cl_bctx *c, w10a_ctx *a, const w10a_result *res,
     row->wall_a = wall / (double)(runs * steps);
 }
 
+/* The reference (cholmod) and the step error: the rows of both; cholmod's
+ * time a step into *ref. */
+static bool w10a_reference(cl_bctx *c, w10a_ctx *a, const char *kase,
+                           w10a_result *ref)
+{
+    cl_bench_row *row = cl_bench_row_add(c, 10, kase);
+    snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 cholmod");
+    cl_bench_log(c, "  semi-bdf2 cholmod, dt = %g (reference) ...", W10A_DT);
+    bool ok = w10a_run(a, "cholmod", 0.0, W10A_DT, W10A_WARM,
+                       W10A_STEPS - W10A_WARM, row);
+    if (!ok) {
+        cl_bench_log_row(c, row);
+        return false;
+    }
+    double *swap = a->ref, rms;
+    a->ref = a->x;
+    a->x = swap;
+    *ref = (w10a_result){.ok = true, .linsol = "cholmod", .rounds = 1};
+    w10a_repeat(c, a, ref, row);
+    ref->cpu = ref->cpu_max = row->cpu_a;
+    ref->wall = row->wall_a;
+    cl_bench_copy(ref->side, sizeof ref->side, row->side_a);
+    cl_bench_note(row, "the reference: exact linear steps to t = %g s",
+                  W10A_STEPS * W10A_DT);
+    cl_bench_log_row(c, row);
+    row = cl_bench_row_add(c, 10, kase);
+    snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 amg dt=%g "
+             "lin_tol=%g", W10A_DT / 2, W10A_FINE_TOL);
+    cl_bench_log(c, "  semi-bdf2 amg, dt = %g (step error) ...",
+                 W10A_DT / 2);
+    ok = w10a_run(a, "amg", W10A_FINE_TOL, W10A_DT / 2, W10A_WARM,
+                  2 * W10A_STEPS - W10A_WARM, row);
+    if (ok) {
+        w10a_distance(a->x, a->ref, a->n, &a->step_err, &rms);
+        a->accuracy = W10A_SHARE * a->step_err;
+        row->error_a = a->step_err;
+        ok = isfinite(a->step_err) && a->step_err > 0.0;
+        cl_bench_note(row, "step error at t = %g s: the largest distance "
+                      "from the dt = %g reference (rms %.2g m); accuracy "
+                      "asked of the solvers below: %g of it, %.2g m",
+                      W10A_STEPS * W10A_DT, W10A_DT, rms, W10A_SHARE,
+                      a->accuracy);
+    }
+    cl_bench_log_row(c, row);
+    return ok;
+}
+
 /* `linsol` down the ladder to the loosest rung within the accuracy, the
  * first round of its time; res->ok false, res->note saying why, if no
  * rung got there. */
@@ -182,7 +187,6 @@ static void w10a_ladder_walk(const cl_bctx *c, w10a_ctx *a,
                              const char *linsol, w10a_result *res)
 {
     *res = (w10a_result){.linsol = linsol};
-    size_t len = 0;
     for (size_t k = 0; k < W10A_RUNGS; k++) {
         cl_bench_row run = {0};
         double largest, rms;
@@ -191,8 +195,7 @@ static void w10a_ladder_walk(const cl_bctx *c, w10a_ctx *a,
                      res->lin_tol);
         if (!w10a_run(a, linsol, res->lin_tol, W10A_DT, W10A_WARM,
                       W10A_STEPS - W10A_WARM, &run)) {
-            snprintf(res->note, sizeof res->note, "at lin_tol %g: %.120s",
-                     res->lin_tol, run.note);
+            cl_bench_copy(res->failed, sizeof res->failed, run.note);
             return;
         }
         w10a_distance(a->x, a->ref, a->n, &largest, &rms);
@@ -208,10 +211,8 @@ static void w10a_ladder_walk(const cl_bctx *c, w10a_ctx *a,
                      linsol, res->lin_tol);
             return;
         }
-        if (len < sizeof res->note)
-            len += (size_t)snprintf(res->note + len, sizeof res->note - len,
-                                    "%s%g %.1e m", len ? ", " : "",
-                                    res->lin_tol, largest);
+        res->tried_tol[res->tried] = res->lin_tol;
+        res->tried_err[res->tried++] = largest;
     }
 }
 
@@ -231,25 +232,48 @@ static void w10a_round(const cl_bctx *c, w10a_ctx *a, w10a_result *res)
     res->cpu_max = fmax(res->cpu_max, run.cpu_a);
 }
 
+/* "; looser (lin_tol:m): TOL:ERR, ..." for the rungs tried before the one
+ * taken, the tightest first, as many whole entries as fit in len. */
+static void w10a_looser(const w10a_result *res, char *buf, size_t len)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (int k = res->tried - 1; k >= 0; k--) {
+        char item[40];
+        int w = snprintf(item, sizeof item, "%s%g:%.3g",
+                         used ? ", " : "; looser (lin_tol:m): ",
+                         res->tried_tol[k], res->tried_err[k]);
+        if (w < 0 || used + (size_t)w >= len)
+            break;
+        memcpy(buf + used, item, (size_t)w + 1);
+        used += (size_t)w;
+    }
+}
+
 /* The row of a solver at its lin_tol. */
 static void w10a_solver_row(cl_bctx *c, const w10a_ctx *a, const char *kase,
                             const w10a_result *res)
 {
     cl_bench_row *row = cl_bench_row_add(c, 10, kase);
-    if (!res->ok) {
+    char looser[120];
+    w10a_looser(res, looser, sizeof looser);
+    if (res->failed[0]) {
+        snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 %s lin_tol=%g",
+                 res->linsol, res->lin_tol);
+        cl_bench_note(row, "stopped at this lin_tol: %s", res->failed);
+    } else if (!res->ok) {
         snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 %s",
                  res->linsol);
-        cl_bench_note(row, "no lin_tol down to %g within %.2g m: %s",
-                      res->lin_tol, a->accuracy, res->note);
+        cl_bench_note(row, "no lin_tol down to %g within %.2g m%s",
+                      res->lin_tol, a->accuracy, looser);
     } else {
         cl_bench_copy(row->side_a, sizeof row->side_a, res->side);
         row->cpu_a = res->cpu;
         row->wall_a = res->wall;
         row->error_a = res->error;
-        cl_bench_note(row, "the loosest lin_tol within %.2g m; rms error "
-                      "%.2g m; fastest of %d rounds (slowest %.3g s)%s%s",
-                      a->accuracy, res->rms, res->rounds, res->cpu_max,
-                      res->note[0] ? "; looser: " : "", res->note);
+        cl_bench_note(row, "loosest within %.2g m; rms %.2g m; best of %d "
+                      "rounds (worst %.3g s)%s", a->accuracy, res->rms,
+                      res->rounds, res->cpu_max, looser);
     }
     cl_bench_log_row(c, row);
 }
@@ -307,10 +331,14 @@ static void w10a_fits(cl_bctx *c, const w10a_size *z, int nn)
         cl_bench_row *row = cl_bench_row_add(c, 10, kase);
         snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 %s", name[j]);
         cl_bench_judge(row, e, "exponent", j == best ? "<=" : "", 1.15);
-        cl_bench_note(row, "time per step ~ unknowns^p over %d sizes, each "
-                      "at the loosest lin_tol within %g of the step "
-                      "error%s", used, W10A_SHARE,
-                      j == best ? "; fastest at the largest n" : "");
+        if (used < 2)
+            cl_bench_note(row, "not fitted: measured at %d size%s", used,
+                          used == 1 ? "" : "s");
+        else
+            cl_bench_note(row, "time per step ~ unknowns^p over %d sizes, "
+                          "each at the loosest lin_tol within %g of the "
+                          "step error%s", used, W10A_SHARE,
+                          j == best ? "; fastest at the largest n" : "");
         cl_bench_log_row(c, row);
     }
 }
@@ -358,7 +386,14 @@ void cl_bench_w10_accuracy(cl_bctx *c)
     char kase[48];
     snprintf(kase, sizeof kase, "dt=%g n=%d accuracy", W10A_DT,
              c->plan.w10_n[nn - 1]);
-    if (z[nn - 1].amg.ok)
+    if (z[nn - 1].amg.ok) {
         w10a_speedup(c, kase, &z[nn - 1]);
+    } else {
+        cl_bench_row *row = cl_bench_row_add(c, 10, kase);
+        snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 amg");
+        cl_bench_note(row, "not measured: amg not within the accuracy at "
+                      "this n");
+        cl_bench_log_row(c, row);
+    }
     w10a_fits(c, z, nn);
 }
