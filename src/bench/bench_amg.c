@@ -151,28 +151,18 @@ static void w10_fits(cl_bctx *c, const w10_sweep *s, double dt)
     else
         snprintf(kase, sizeof kase, "dt=%g fit", dt);
     for (int j = 0; j < W10_NS; j++) {
-        int used;
         if (!w10_used(s, j))
             continue;
-        double e = cl_bench_exponent(s->unknowns, s->per_step[j], nn, &used);
         /* the goal is at a fixed dt: the series at the same Courant
          * number is reported beside it, not counted as a second one */
         bool goal = j == best && dt == 1e-2 && !s->courant;
-        cl_bench_row *row = cl_bench_row_add(c, 10, kase);
-        snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 %s",
-                 w10_solver[j]);
-        cl_bench_judge(row, e, "exponent", goal ? "<=" : "", 1.15);
-        if (used < 2)
-            cl_bench_note(row, "not fitted: measured at %d size%s", used,
-                          used == 1 ? "" : "s");
-        else
-            cl_bench_note(row, "time per step ~ unknowns^p over %d sizes%s%s",
-                          used, j == best ? "; fastest at the largest n"
-                                          : "",
-                          s->courant ? "; the same Courant number at every "
-                                       "n (the goal, <= 1.15, asks at a "
-                                       "fixed dt)"
-                                     : "");
+        cl_bench_row *row = cl_bench_fit_row(c, 10, kase, w10_solver[j],
+                                             s->unknowns, s->per_step[j], nn,
+                                             goal ? "<=" : "", 1.15,
+                                             j == best);
+        if (s->courant && isfinite(row->ratio))
+            cl_bench_note(row, "the same Courant number at every n (the "
+                          "goal, <= 1.15, asks at a fixed dt)");
         cl_bench_log_row(c, row);
     }
 }

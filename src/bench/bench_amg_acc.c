@@ -64,8 +64,7 @@ static const double w10a_ladder[] = {1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5,
 typedef struct {
     bool ok;
     const char *linsol;
-    double lin_tol;
-    char side[64];
+    double lin_tol;         /* 0 for a direct solver */
     double cpu, wall;       /* s a timed step: the fastest round */
     double cpu_max;         /* ... the slowest */
     int rounds;
@@ -80,7 +79,6 @@ typedef struct {
     size_t n;               /* position unknowns, 3 a free particle */
     double *ref;            /* the reference positions at W10A_STEPS dt */
     double *x;              /* a run's positions there */
-    double step_err;        /* m */
     double accuracy;        /* m */
 } w10a_ctx;
 
@@ -154,7 +152,6 @@ static bool w10a_reference(cl_bctx *c, w10a_ctx *a, const char *kase,
     w10a_repeat(c, a, ref, row);
     ref->cpu = ref->cpu_max = row->cpu_a;
     ref->wall = row->wall_a;
-    cl_bench_copy(ref->side, sizeof ref->side, row->side_a);
     cl_bench_note(row, "the reference: exact linear steps to t = %g s",
                   W10A_STEPS * W10A_DT);
     cl_bench_log_row(c, row);
@@ -166,10 +163,11 @@ static bool w10a_reference(cl_bctx *c, w10a_ctx *a, const char *kase,
     ok = w10a_run(a, "amg", W10A_FINE_TOL, W10A_DT / 2, W10A_WARM,
                   2 * W10A_STEPS - W10A_WARM, row);
     if (ok) {
-        w10a_distance(a->x, a->ref, a->n, &a->step_err, &rms);
-        a->accuracy = W10A_SHARE * a->step_err;
-        row->error_a = a->step_err;
-        ok = isfinite(a->step_err) && a->step_err > 0.0;
+        double step_err;
+        w10a_distance(a->x, a->ref, a->n, &step_err, &rms);
+        a->accuracy = W10A_SHARE * step_err;
+        row->error_a = step_err;
+        ok = isfinite(step_err) && step_err > 0.0;
         cl_bench_note(row, "step error at t = %g s: the largest distance "
                       "from the dt = %g reference (rms %.2g m); accuracy "
                       "asked of the solvers below: %g of it, %.2g m",
@@ -207,8 +205,6 @@ static void w10a_ladder_walk(const cl_bctx *c, w10a_ctx *a,
             res->rounds = 1;
             res->error = largest;
             res->rms = rms;
-            snprintf(res->side, sizeof res->side, "semi-bdf2 %s lin_tol=%g",
-                     linsol, res->lin_tol);
             return;
         }
         res->tried_tol[res->tried] = res->lin_tol;
@@ -250,6 +246,17 @@ static void w10a_looser(const w10a_result *res, char *buf, size_t len)
     }
 }
 
+/* "semi-bdf2 LINSOL lin_tol=TOL" (without the tolerance for a direct
+ * solver) into a row's side. */
+static void w10a_side(const w10a_result *res, char *side, size_t len)
+{
+    if (res->lin_tol > 0.0)
+        snprintf(side, len, "semi-bdf2 %s lin_tol=%g", res->linsol,
+                 res->lin_tol);
+    else
+        snprintf(side, len, "semi-bdf2 %s", res->linsol);
+}
+
 /* The row of a solver at its lin_tol. */
 static void w10a_solver_row(cl_bctx *c, const w10a_ctx *a, const char *kase,
                             const w10a_result *res)
@@ -257,9 +264,8 @@ static void w10a_solver_row(cl_bctx *c, const w10a_ctx *a, const char *kase,
     cl_bench_row *row = cl_bench_row_add(c, 10, kase);
     char looser[120];
     w10a_looser(res, looser, sizeof looser);
+    w10a_side(res, row->side_a, sizeof row->side_a);
     if (res->failed[0]) {
-        snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 %s lin_tol=%g",
-                 res->linsol, res->lin_tol);
         cl_bench_note(row, "stopped at this lin_tol: %s", res->failed);
     } else if (!res->ok) {
         snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 %s",
@@ -267,7 +273,6 @@ static void w10a_solver_row(cl_bctx *c, const w10a_ctx *a, const char *kase,
         cl_bench_note(row, "no lin_tol down to %g within %.2g m%s",
                       res->lin_tol, a->accuracy, looser);
     } else {
-        cl_bench_copy(row->side_a, sizeof row->side_a, res->side);
         row->cpu_a = res->cpu;
         row->wall_a = res->wall;
         row->error_a = res->error;
@@ -291,8 +296,8 @@ static void w10a_speedup(cl_bctx *c, const char *kase, const w10a_size *z)
     const w10a_result *one = z->pcg.ok && z->pcg.cpu < z->ref.cpu ? &z->pcg
                                                                   : &z->ref;
     cl_bench_row *row = cl_bench_row_add(c, 10, kase);
-    cl_bench_copy(row->side_a, sizeof row->side_a, z->amg.side);
-    cl_bench_copy(row->side_b, sizeof row->side_b, one->side);
+    w10a_side(&z->amg, row->side_a, sizeof row->side_a);
+    w10a_side(one, row->side_b, sizeof row->side_b);
     row->cpu_a = z->amg.cpu;
     row->cpu_b = one->cpu;
     row->wall_a = z->amg.wall;
@@ -326,19 +331,12 @@ static void w10a_fits(cl_bctx *c, const w10a_size *z, int nn)
             (best < 0 || t[j][nn - 1] < t[best][nn - 1]))
             best = j;
     for (int j = 0; j < 3; j++) {
-        int used;
-        double e = cl_bench_exponent(unknowns, t[j], nn, &used);
-        cl_bench_row *row = cl_bench_row_add(c, 10, kase);
-        snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 %s", name[j]);
-        cl_bench_judge(row, e, "exponent", j == best ? "<=" : "", 1.15);
-        if (used < 2)
-            cl_bench_note(row, "not fitted: measured at %d size%s", used,
-                          used == 1 ? "" : "s");
-        else
-            cl_bench_note(row, "time per step ~ unknowns^p over %d sizes, "
-                          "each at the loosest lin_tol within %g of the "
-                          "step error%s", used, W10A_SHARE,
-                          j == best ? "; fastest at the largest n" : "");
+        cl_bench_row *row = cl_bench_fit_row(c, 10, kase, name[j], unknowns,
+                                             t[j], nn, j == best ? "<=" : "",
+                                             1.15, j == best);
+        if (isfinite(row->ratio))
+            cl_bench_note(row, "each size at the loosest lin_tol within %g "
+                          "of the step error", W10A_SHARE);
         cl_bench_log_row(c, row);
     }
 }

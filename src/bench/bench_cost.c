@@ -122,8 +122,10 @@ static void w3_case(cl_bctx *c, w3_sweep *s, double dt, int i, int j,
     cl_bench_log_row(c, row);
 }
 
-double cl_bench_exponent(const double *unknowns, const double *per_step,
-                         int nn, int *used)
+/* Least-squares slope of log(per_step) against log(unknowns) over the
+ * nn sizes with a finite time (their count into used; NaN under two). */
+static double exponent(const double *unknowns, const double *per_step,
+                       int nn, int *used)
 {
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
     int k = 0;
@@ -138,6 +140,25 @@ double cl_bench_exponent(const double *unknowns, const double *per_step,
         }
     *used = k;
     return k < 2 ? NAN : (k * sxy - sx * sy) / (k * sxx - sx * sx);
+}
+
+cl_bench_row *cl_bench_fit_row(cl_bctx *c, int workload, const char *kase,
+                               const char *solver, const double *unknowns,
+                               const double *per_step, int nn,
+                               const char *goal, double target, bool fastest)
+{
+    int used;
+    double e = exponent(unknowns, per_step, nn, &used);
+    cl_bench_row *row = cl_bench_row_add(c, workload, kase);
+    snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 %s", solver);
+    cl_bench_judge(row, e, "exponent", goal, target);
+    if (used < 2)
+        cl_bench_note(row, "not fitted: measured at %d size%s", used,
+                      used == 1 ? "" : "s");
+    else
+        cl_bench_note(row, "time per step ~ unknowns^p over %d sizes%s",
+                      used, fastest ? "; fastest at the largest n" : "");
+    return row;
 }
 
 /* The fastest solver at the largest size any solver reached, or -1. */
@@ -161,18 +182,12 @@ static void w3_fits(cl_bctx *c, const w3_sweep *s, double dt, int best)
 {
     char kase[48];
     snprintf(kase, sizeof kase, "dt=%g fit", dt);
-    for (int j = 0; j < s->nsolver; j++) {
-        int used;
-        double e = cl_bench_exponent(s->unknowns, s->per_step[j],
-                                     c->plan.w3_nn, &used);
-        cl_bench_row *row = cl_bench_row_add(c, 3, kase);
-        snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 %s",
-                 s->name[j]);
-        cl_bench_judge(row, e, "exponent", j == best ? "<=" : "", 1.2);
-        cl_bench_note(row, "time per step ~ unknowns^p over %d sizes%s",
-                      used, j == best ? "; fastest at the largest n" : "");
-        cl_bench_log_row(c, row);
-    }
+    for (int j = 0; j < s->nsolver; j++)
+        cl_bench_log_row(c, cl_bench_fit_row(c, 3, kase, s->name[j],
+                                             s->unknowns, s->per_step[j],
+                                             c->plan.w3_nn,
+                                             j == best ? "<=" : "", 1.2,
+                                             j == best));
 }
 
 static int find_solver(const w3_sweep *s, const char *name)

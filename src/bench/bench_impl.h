@@ -131,10 +131,17 @@ bool cl_bench_semi_step(cl_model *m, const cl_integrator_opts *io,
                         const fixed_plan *fp, cl_bench_row *row,
                         fixed_time *ft);
 
-/* Least-squares slope of log(per_step) against log(unknowns) over the
- * nn sizes with a finite time (their count into used; NaN under two). */
-double cl_bench_exponent(const double *unknowns, const double *per_step,
-                         int nn, int *used);
+/* A new row of `workload`, case kase: the exponent p of semi-bdf2
+ * `solver`'s time per step ~ unknowns^p, the least-squares slope of
+ * log(per_step) against log(unknowns) over the nn sizes with a finite time
+ * (NaN under two), judged by `goal` against target ("" for no goal); the
+ * note says over how many sizes, and "fastest at the largest n" if
+ * `fastest`.  Not logged yet: the caller may add to the note. */
+cl_bench_row *cl_bench_fit_row(cl_bctx *c, int workload, const char *kase,
+                               const char *solver, const double *unknowns,
+                               const double *per_step, int nn,
+                               const char *goal, double target,
+                               bool fastest);
 
 /* Process CPU and monotonic wall clocks (s). */
 void cl_bench_clock(double *cpu, double *wall);
