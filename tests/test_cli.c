@@ -946,6 +946,10 @@ Test(cli, blow_up_is_reported_and_the_series_kept)
     cr_assert_not_null(at, "no \"blow-up at t = \" in\n%s", r.err);
     double tb = strtod(at + strlen("blow-up at t = "), NULL);
     cr_assert(tb > 0 && tb < t_end, "blow-up time %g", tb);
+    /* the summary names only the files written: no final.csv */
+    const char *o = strstr(r.out, "\noutput ");
+    cr_assert_not_null(o, "no output line in\n%s", r.out);
+    cr_assert(strstr(o, "stats.csv") && !strstr(o, "final.csv"), "%s", o);
     cli_result_free(&r);
 
     series s;
@@ -966,6 +970,8 @@ Test(cli, blow_up_is_reported_and_the_series_kept)
     free(s.v);
     snprintf(path, sizeof path, "%s/stats.csv", out);
     cr_assert(cli_exists(path), "missing %s", path);
+    snprintf(path, sizeof path, "%s/final.csv", out);
+    cr_assert(!cli_exists(path), "a failed run wrote %s", path);
     assert_no_temporaries(out);
 }
 

@@ -448,6 +448,7 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
         char path[4096];
         snprintf(path, sizeof path, "%s/final.csv", so->outdir);
         rc2 = cl_state_write(path, s.c->np, s.xf, s.vf, rc ? &later : err);
+        res->final_written = rc2 == CL_OK;
         rc = rc ? rc : rc2;
     }
     if (s.x && (rc == CL_OK || state))

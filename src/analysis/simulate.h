@@ -46,6 +46,7 @@ typedef struct {
     double max_offplane; /* at t_reached (NaN: does not apply) */
     long rows;           /* time-series rows written (incl. t = 0) */
     long frames;         /* frames written */
+    bool final_written;  /* final.csv written (not after a failure) */
     double worst_penetration; /* deepest into an obstacle (m; contact) */
     double worst_t;      /* ... and when */
     double min_distance; /* least distance to a barrier obstacle (m;

@@ -107,8 +107,9 @@ static void print_summary(const char *problem, const run_setup *r,
                res->min_distance, res->min_distance_t);
     print_selfcontact(m, res);
     cl_stats_print(&res->stats, stdout, true);
-    printf("output       %s (series.csv, %ld frames, final.csv, stats.csv)\n",
-           r->so.outdir, res->frames);
+    printf("output       %s (series.csv, %ld frames, %sstats.csv)\n",
+           r->so.outdir, res->frames,
+           res->final_written ? "final.csv, " : "");
 }
 
 static cl_status run_work(cl_model *m, const cl_cli_job *job, void *ctx,
