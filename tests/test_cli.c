@@ -696,6 +696,16 @@ Test(cli, eval_without_state)
 }
 
 /* A valid rest state of hang at n = 6 as CSV text, for corrupting. */
+/* The whole content of the file at `path`. */
+static char *file_text(const char *path)
+{
+    FILE *fp = fopen(path, "r");
+    cr_assert_not_null(fp, "cannot open %s", path);
+    char *text = cli_slurp_fp(fp);
+    fclose(fp);
+    return text;
+}
+
 static char *rest_state_text(void)
 {
     const char *sets[] = {"cloth.n=6", NULL};
@@ -706,11 +716,7 @@ static char *rest_state_text(void)
     write_state(in_tmp(path, "rest.csv"), c->np, c->X0, v);
     free(v);
     free_model(m);
-    FILE *fp = fopen(path, "r");
-    cr_assert_not_null(fp);
-    char *text = cli_slurp_fp(fp);
-    fclose(fp);
-    return text;
+    return file_text(path);
 }
 
 /* Run eval of hang (n = 6) on a state file written from `text`. */
@@ -946,10 +952,11 @@ Test(cli, blow_up_is_reported_and_the_series_kept)
     cr_assert_not_null(at, "no \"blow-up at t = \" in\n%s", r.err);
     double tb = strtod(at + strlen("blow-up at t = "), NULL);
     cr_assert(tb > 0 && tb < t_end, "blow-up time %g", tb);
-    /* the summary names only the files written: no final.csv */
+    /* the summary names the files written: last-good.csv, no final.csv */
     const char *o = strstr(r.out, "\noutput ");
     cr_assert_not_null(o, "no output line in\n%s", r.out);
-    cr_assert(strstr(o, "stats.csv") && !strstr(o, "final.csv"), "%s", o);
+    cr_assert(strstr(o, "last-good.csv, stats.csv") && !strstr(o, "final"),
+              "%s", o);
     cli_result_free(&r);
 
     series s;
@@ -973,6 +980,27 @@ Test(cli, blow_up_is_reported_and_the_series_kept)
     snprintf(path, sizeof path, "%s/final.csv", out);
     cr_assert(!cli_exists(path), "a failed run wrote %s", path);
     assert_no_temporaries(out);
+
+    /* last-good.csv is the state of the last row: the final.csv of the
+     * same run stopped there, byte for byte */
+    char again[1024], tl[32], rows[32], *good, *fin;
+    snprintf(tl, sizeof tl, "%.17g", last);
+    snprintf(rows, sizeof rows, "%ld", lround(last / dt));
+    cli_run(&r, "run", "hang", "--set", "cloth.n=6", "--integrator",
+            "symplectic-euler", "--dt", "0.01", "--t-end", tl, "--samples",
+            rows, "--frames", "0", "--quiet", "--out",
+            in_tmp(again, "blow-again"), NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    snprintf(path, sizeof path, "%s/last-good.csv", out);
+    good = file_text(path);
+    snprintf(path, sizeof path, "%s/final.csv", again);
+    fin = file_text(path);
+    cr_assert(!strcmp(good, fin),
+              "last-good.csv differs from the final.csv of a run to t = %s",
+              tl);
+    free(good);
+    free(fin);
 }
 
 /* More samples requested than there are fixed steps: every step is one row

@@ -46,6 +46,8 @@ typedef struct {
     bool offplane;          /* max_offplane applies (cl_offplane_applies) */
     double *x, *v;          /* free state */
     double *xf, *vf;        /* full-particle state */
+    double *vgood;          /* full-particle velocities of the last good
+                             * sample (its positions: res->xfinal) */
     unsigned char *pinned;
     cl_series *series;
     double *row;
@@ -203,6 +205,7 @@ static cl_status sample(sim *s, double t, cl_sim_result *res, cl_error *err)
     res->max_offplane = offplane;
     res->rows++;
     memcpy(res->xfinal, s->xf, 3 * s->c->np * sizeof *s->xf);
+    memcpy(s->vgood, s->vf, 3 * s->c->np * sizeof *s->vf);
     return CL_OK;
 }
 
@@ -275,8 +278,9 @@ static cl_status sim_alloc(sim *s, cl_error *err)
     s->v = calloc(n, sizeof *s->v);
     s->xf = malloc(3 * np * sizeof *s->xf);
     s->vf = calloc(3 * np, sizeof *s->vf);
+    s->vgood = malloc(3 * np * sizeof *s->vgood);
     s->pinned = calloc(np, 1);
-    if (!s->x || !s->v || !s->xf || !s->vf || !s->pinned)
+    if (!s->x || !s->v || !s->xf || !s->vf || !s->vgood || !s->pinned)
         return cl_error_set(err, CL_ENOMEM, "out of memory (run)");
     for (size_t p = 0; p < np; p++)
         s->pinned[p] = s->c->dof[p] < 0;
@@ -303,6 +307,7 @@ static void sim_free(sim *s)
     free(s->v);
     free(s->xf);
     free(s->vf);
+    free(s->vgood);
     free(s->pinned);
     free(s->row);
 }
@@ -444,11 +449,13 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
     cl_status rc2 = cl_series_close(s.series, rc ? &later : err);
     if (!rc)
         rc = rc2;
-    if (!rc || (stopped && !rc2)) {
+    if (res->rows > 0 && !rc2) {
+        const char *name = !rc || stopped ? "final.csv" : "last-good.csv";
         char path[4096];
-        snprintf(path, sizeof path, "%s/final.csv", so->outdir);
-        rc2 = cl_state_write(path, s.c->np, s.xf, s.vf, rc ? &later : err);
-        res->final_written = rc2 == CL_OK;
+        snprintf(path, sizeof path, "%s/%s", so->outdir, name);
+        rc2 = cl_state_write(path, s.c->np, res->xfinal, s.vgood,
+                             rc ? &later : err);
+        res->state_file = rc2 == CL_OK ? name : NULL;
         rc = rc ? rc : rc2;
     }
     if (s.x && (rc == CL_OK || state))

@@ -46,7 +46,9 @@ typedef struct {
     double max_offplane; /* at t_reached (NaN: does not apply) */
     long rows;           /* time-series rows written (incl. t = 0) */
     long frames;         /* frames written */
-    bool final_written;  /* final.csv written (not after a failure) */
+    const char *state_file; /* the state file written, at t_reached:
+                             * "final.csv", "last-good.csv" (a failed
+                             * run), or NULL (none) */
     double worst_penetration; /* deepest into an obstacle (m; contact) */
     double worst_t;      /* ... and when */
     double min_distance; /* least distance to a barrier obstacle (m;
@@ -59,11 +61,13 @@ typedef struct {
 } cl_sim_result;
 
 /* On failure (e.g. CL_EBLOWUP) the series and frames written so far are in
- * place and `res` describes the last good sample.  A run stopped early
- * writes all its outputs up to the last sample, final.csv at that time
- * included, and returns CL_EBUDGET (so->max_wall or so->max_steps reached)
- * or CL_EINTR (SIGINT or SIGTERM, core/stop.h); both are checked after
- * every output time (sample or frame). */
+ * place, `res` describes the last good sample, and that sample's state is
+ * written as last-good.csv (not final.csv, which only a run that finished
+ * or was stopped writes), to be linearised or restarted from.  A run
+ * stopped early writes all its outputs up to the last sample, final.csv at
+ * that time included, and returns CL_EBUDGET (so->max_wall or
+ * so->max_steps reached) or CL_EINTR (SIGINT or SIGTERM, core/stop.h);
+ * both are checked after every output time (sample or frame). */
 cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
                       const cl_integrator_opts *iopts, const cl_sim_opts *so,
                       cl_sim_result *res, cl_error *err);

@@ -41,7 +41,9 @@ static const cl_cli_table run_table = {
     "series.csv, frames, final.csv, stats.csv, config.ini and run.json (its\n"
     "provenance) into the output directory, after removing the files of an\n"
     "earlier run there.  SIGINT, SIGTERM and the budgets stop the run at\n"
-    "the next output time with everything computed written.\n",
+    "the next output time with everything computed written.  A run that\n"
+    "fails (a blow-up, a solver failure) writes last-good.csv instead of\n"
+    "final.csv: the state of its last good sample.\n",
     .notes =
     "exit status: 0 success, 2 bad input, 3 solver failure, 4 blow-up,\n"
     "5 budget, 6 interrupted, 7 I/O error (1 out of memory)\n"};
@@ -107,9 +109,10 @@ static void print_summary(const char *problem, const run_setup *r,
                res->min_distance, res->min_distance_t);
     print_selfcontact(m, res);
     cl_stats_print(&res->stats, stdout, true);
-    printf("output       %s (series.csv, %ld frames, %sstats.csv)\n",
+    printf("output       %s (series.csv, %ld frames, %s%sstats.csv)\n",
            r->so.outdir, res->frames,
-           res->final_written ? "final.csv, " : "");
+           res->state_file ? res->state_file : "",
+           res->state_file ? ", " : "");
 }
 
 static cl_status run_work(cl_model *m, const cl_cli_job *job, void *ctx,

@@ -19,7 +19,8 @@ static const char *const study_outputs[] = {
     "spectrum.csv", "forces.csv", NULL};
 
 static const char *const run_files[] = {
-    "series.csv", "final.csv", "stats.csv", "config.ini", "run.json", NULL};
+    "series.csv", "final.csv", "last-good.csv", "stats.csv", "config.ini",
+    "run.json", NULL};
 
 static bool in_list(const char *name, size_t len, const char *const *list)
 {
