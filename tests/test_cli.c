@@ -695,7 +695,6 @@ Test(cli, eval_without_state)
                    LIST("--state"));
 }
 
-/* A valid rest state of hang at n = 6 as CSV text, for corrupting. */
 /* The whole content of the file at `path`. */
 static char *file_text(const char *path)
 {
@@ -706,6 +705,7 @@ static char *file_text(const char *path)
     return text;
 }
 
+/* A valid rest state of hang at n = 6 as CSV text, for corrupting. */
 static char *rest_state_text(void)
 {
     const char *sets[] = {"cloth.n=6", NULL};
@@ -982,7 +982,7 @@ Test(cli, blow_up_is_reported_and_the_series_kept)
     assert_no_temporaries(out);
 
     /* last-good.csv is the state of the last row: the final.csv of the
-     * same run stopped there, byte for byte */
+     * same run ending there, byte for byte */
     char again[1024], tl[32], rows[32], *good, *fin;
     snprintf(tl, sizeof tl, "%.17g", last);
     snprintf(rows, sizeof rows, "%ld", lround(last / dt));
@@ -1001,6 +1001,28 @@ Test(cli, blow_up_is_reported_and_the_series_kept)
               tl);
     free(good);
     free(fin);
+}
+
+/* A solver failure inside the first advance: last-good.csv is the state of
+ * the only row, hang's rest state at t = 0. */
+Test(cli, solver_failure_keeps_the_state_of_the_last_row)
+{
+    char out[1024], path[1200];
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "cloth.n=6", "--set",
+            "run.max_steps=1", "--out", in_tmp(out, "mxstep"), NULL);
+    cli_assert_no_crash(&r);
+    cr_assert_eq(r.status, 3, "%s: status %d\n%s", r.cmd, r.status, r.err);
+    cr_assert(strstr(r.out, "last-good.csv, stats.csv"), "%s", r.out);
+    cli_result_free(&r);
+    snprintf(path, sizeof path, "%s/last-good.csv", out);
+    char *good = file_text(path), *rest = rest_state_text();
+    cr_assert(!strcmp(good, rest), "last-good.csv is not the rest state:\n%s",
+              good);
+    free(good);
+    free(rest);
+    snprintf(path, sizeof path, "%s/final.csv", out);
+    cr_assert(!cli_exists(path), "a failed run wrote %s", path);
 }
 
 /* More samples requested than there are fixed steps: every step is one row

@@ -37,8 +37,9 @@ static int exists(const char *name)
 
 Test(outdir, run_output_names)
 {
-    const char *yes[] = {"series.csv", "final.csv", "stats.csv",
-                         "config.ini", "run.json", "frame_00000.vtk",
+    const char *yes[] = {"series.csv", "final.csv", "last-good.csv",
+                         "stats.csv", "config.ini", "run.json",
+                         "frame_00000.vtk",
                          "frame_12.obj", "obstacles_00003.obj",
                          "series.csv.tmp.Ab12Cd", NULL};
     const char *no[] = {"stability.csv", "notes.txt", "frame_.vtk",
@@ -122,7 +123,8 @@ Test(outdir, file_in_place_of_the_directory_is_refused)
 
 /* End to end: a run with frames, then a run into the same directory that
  * blows up at once: nothing of the first is left (its frames, final.csv
- * and config.ini would otherwise sit beside the new series). */
+ * and config.ini would otherwise sit beside the new series); then a
+ * finished run, which leaves nothing of the failed one. */
 Test(outdir, failed_run_into_reused_directory_leaves_nothing_old)
 {
     cli_result r;
@@ -144,10 +146,18 @@ Test(outdir, failed_run_into_reused_directory_leaves_nothing_old)
     tmp_slurp(path, json, sizeof json);
     cr_assert(strstr(json, "\"status\": \"failed: blow-up"), "%s", json);
     cr_assert(!exists("frame_00004.vtk") && !exists("final.csv"));
+    cr_assert(exists("last-good.csv"));
     cr_assert(n < 32);
     for (size_t k = 0; k < n; k++) {
         snprintf(want, sizeof want, "\"name\": \"%s\"", names[k]);
         cr_assert(!strcmp(names[k], "run.json") || strstr(json, want),
                   "%s is not the failed run's", names[k]);
     }
+    /* and a finished run after it leaves no last-good.csv */
+    cli_run(&r, "run", "hang", "--set", "cloth.n=6", "--integrator",
+            "symplectic-euler", "--dt", "1e-3", "--t-end", "0.01",
+            "--out", dir, "--quiet", NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    cr_assert(exists("final.csv") && !exists("last-good.csv"));
 }

@@ -12,6 +12,8 @@
  *                tearing, without the triangles that have a torn edge
  *   obstacles_NNNNN.vtk / .obj   the obstacles at the frame times
  *   final.csv    the final state (p,x,y,z,vx,vy,vz, all particles)
+ *   last-good.csv  instead of final.csv after a failure: the state of
+ *                the last good sample (below)
  *   stats.csv    the integrator's counters (name,value); its wall and CPU
  *                time are in the result only, so that two identical runs
  *                write identical bytes
@@ -61,9 +63,10 @@ typedef struct {
 } cl_sim_result;
 
 /* On failure (e.g. CL_EBLOWUP) the series and frames written so far are in
- * place, `res` describes the last good sample, and that sample's state is
- * written as last-good.csv (not final.csv, which only a run that finished
- * or was stopped writes), to be linearised or restarted from.  A run
+ * place, `res` describes the last good sample, and, once there is one
+ * (res->rows > 0) and the series closed, that sample's state is written
+ * as last-good.csv (not final.csv, which only a run that finished or was
+ * stopped writes), to be linearised where the failure began.  A run
  * stopped early writes all its outputs up to the last sample, final.csv at
  * that time included, and returns CL_EBUDGET (so->max_wall or
  * so->max_steps reached) or CL_EINTR (SIGINT or SIGTERM, core/stop.h);

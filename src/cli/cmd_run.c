@@ -42,8 +42,8 @@ static const cl_cli_table run_table = {
     "provenance) into the output directory, after removing the files of an\n"
     "earlier run there.  SIGINT, SIGTERM and the budgets stop the run at\n"
     "the next output time with everything computed written.  A run that\n"
-    "fails (a blow-up, a solver failure) writes last-good.csv instead of\n"
-    "final.csv: the state of its last good sample.\n",
+    "fails (a blow-up, a solver failure, ...) after its first sample writes\n"
+    "last-good.csv instead of final.csv: the state of its last good sample.\n",
     .notes =
     "exit status: 0 success, 2 bad input, 3 solver failure, 4 blow-up,\n"
     "5 budget, 6 interrupted, 7 I/O error (1 out of memory)\n"};

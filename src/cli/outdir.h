@@ -2,10 +2,11 @@
  * a new one (README "Provenance").  Before `run` writes anything, the
  * files an earlier run wrote there (listed in its run.json, or named as a
  * run names its outputs: series.csv, final.csv, last-good.csv,
- * stats.csv, config.ini, run.json, frame_NNNNN.vtk/.obj, obstacles_NNNNN.vtk/.obj, and their
- * temporaries NAME.tmp.XXXXXX) are removed; the tables of the studies
- * (stability.csv, ...) stay.  A directory holding any other file and no
- * run.json of clothode's is not a clothode output and is refused. */
+ * stats.csv, config.ini, run.json, frame_NNNNN.vtk/.obj,
+ * obstacles_NNNNN.vtk/.obj, and their temporaries NAME.tmp.XXXXXX) are
+ * removed; the tables of the studies (stability.csv, ...) stay.  A
+ * directory holding any other file and no run.json of clothode's is not a
+ * clothode output and is refused. */
 #ifndef CL_CLI_OUTDIR_H
 #define CL_CLI_OUTDIR_H
 
