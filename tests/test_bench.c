@@ -237,10 +237,10 @@ static void assert_looser_above(const char *line, double accuracy)
     }
 }
 
-/* Workload 10 at `dt`, n = 32: amg and the one-level solver the speed-up
- * row names each ran in 3 alternated rounds, each row keeps a time no
- * larger than the slowest round its note gives (printed to three digits),
- * and the speed-up row is built from those two rows. */
+/* Workload 10 at `dt`, n = 32: the rows of amg and of the one-level
+ * solver the speed-up row names say they ran in 3 alternated rounds, their
+ * times lie within the rounds' range (the slowest printed to three
+ * digits), and the speed-up row is built from those two rows' times. */
 static void assert_rounds(const cli_lines *L, const char *dt)
 {
     char prefix[96], one[32] = "";

@@ -54,7 +54,8 @@
  *      and klu, exponents against unknowns (goal <= 1.15 for the fastest
  *      at dt = 1e-2), amg against the fastest one-level solver at n = 256
  *      (goals >= 3x at dt = 1e-2, >= 1.5x at dt = 1e-3; the two timed
- *      there in three alternated rounds, the fastest kept) (bench_amg.c);
+ *      at every n in three alternated rounds, the fastest kept)
+ *      (bench_amg.c);
  *      then at dt = 1e-2 and n = 64, 128, 256, at one accuracy: pcg and
  *      amg each at the loosest lin_tol whose state stays within 1 % of
  *      the step's error of the exact linear steps (cholmod's), amg

@@ -12,7 +12,7 @@
  *     each solver (goal <= 1.15 for the fastest at the largest n at dt =
  *     1e-2), and amg against the fastest one-level solver at the largest
  *     n (goals >= 3x at dt = 1e-2, >= 1.5x at dt = 1e-3), the two timed
- *     there in W10_ROUNDS alternated rounds, the fastest kept.  The solvers
+ *     at every n in W10_ROUNDS alternated rounds, the fastest kept.  The solvers
  *     run at the default lin_tol, 1e-10, where amg's and pcg's states
  *     both stay within 1e-12 m of the exact linear steps (n = 256, dt =
  *     1e-2, 12 steps); at one looser tolerance their errors differ (at
@@ -56,11 +56,14 @@
  * iterations grow most (paper/findings.md, "Algebraic multigrid"). */
 #define W10_MIN_STEPS 10
 #define W10_CASE_CAP 60.0   /* skip a case predicted to take longer (s) */
-/* Timed runs at the largest n of amg and the fastest one-level solver in
- * this many rounds, alternated (the first: the sweep's own runs), the
- * fastest kept: the speed-up compares the two at one n, and a host whose
- * speed drifts over minutes would otherwise decide (bench_amg_acc.c does
- * the same at its accuracy). */
+/* Timed runs of amg and the fastest one-level solver at every n of the
+ * fixed-dt sweeps in this many rounds, alternated (the first: the sweep's
+ * own runs; the others over the first's number of steps), the fastest
+ * kept: the speed-up compares the two at one n, and a host whose speed
+ * drifted by a third over minutes (paper/findings.md, "Then: one accuracy
+ * instead of one tolerance") would otherwise decide it; every n, so that
+ * their exponents fit times taken alike.  bench_amg_acc.c does the same at
+ * its accuracy. */
 #define W10_ROUNDS 3
 /* ... at the same Courant number, where the largest n takes four times
  * the steps: pcg and amg at n = 256 (about 140 s and 60 s) */
@@ -79,6 +82,7 @@ typedef struct {
     bool courant;                /* dt = dt n0/n, steps scaled by n/n0 */
     long row_at[W10_NS];         /* the current size's rows in the table
                                   * (-1: none) */
+    long steps[W10_NS];          /* ... and their timed steps */
 } w10_sweep;
 
 /* Solvers of the series at the same Courant number: one of each level. */
@@ -95,17 +99,19 @@ static long w10_scale(const cl_bctx *c, const w10_sweep *s, int i)
 }
 
 /* One timed run of solver j at size i into row (cpu_a, wall_a; the
- * failure in its note) and ft; false if it failed. */
+ * failure in its note) and ft: over `steps` timed steps if > 0, else by
+ * the sweep's plan; false if it failed. */
 static bool w10_time(const cl_bctx *c, const w10_sweep *s, double dt0,
-                     int i, int j, cl_model *m, cl_bench_row *row,
-                     fixed_time *ft)
+                     int i, int j, long steps, cl_model *m,
+                     cl_bench_row *row, fixed_time *ft)
 {
     long k = w10_scale(c, s, i);
     cl_integrator_opts io = {.dt = dt0 / (double)k, .linsol = w10_solver[j]};
     /* at the same Courant number, exactly the scaled steps: every size
      * over the same stretch of simulated time */
-    fixed_plan fp = {W10_WARM * k, 1, W10_MIN_STEPS * k,
-                     s->courant ? 0.0 : c->plan.w10_budget, NULL};
+    fixed_plan fp = {W10_WARM * k, 1, steps > 0 ? steps : W10_MIN_STEPS * k,
+                     s->courant || steps > 0 ? 0.0 : c->plan.w10_budget,
+                     NULL};
     cl_bench_log(c, "  semi-bdf2 %s, dt = %g, n = %d ...", w10_solver[j],
                  io.dt, c->plan.w10_n[i]);
     return cl_bench_semi_step(m, &io, &fp, row, ft);
@@ -131,12 +137,13 @@ static void w10_case(cl_bctx *c, w10_sweep *s, double dt0, int i, int j,
         return;
     }
     fixed_time ft;
-    if (!w10_time(c, s, dt0, i, j, m, row, &ft)) {
+    if (!w10_time(c, s, dt0, i, j, 0, m, row, &ft)) {
         s->stop[j] = true;
         cl_bench_log_row(c, row);
         return;
     }
     s->per_step[j][i] = row->cpu_a;
+    s->steps[j] = ft.steps;
     const cl_stats *st = &ft.stats;
     cl_bench_note(row, "%ld timed steps; %.0f unknowns; %.1f iterations "
                   "per solve; %ld of %ld setups built anew", ft.steps,
@@ -190,13 +197,15 @@ static void w10_fits(cl_bctx *c, const w10_sweep *s, double dt)
 }
 
 /* W10_ROUNDS - 1 more timed runs of amg and of the fastest one-level
- * solver at size i, alternated; each keeps its fastest, in per_step and
- * in its row. */
+ * solver at size i, alternated, each over the steps of its first run; each
+ * keeps its fastest run in per_step and in its row (cpu_a, and wall_a of
+ * that run), whose note gives the rounds and the slowest. */
 static void w10_rounds(cl_bctx *c, w10_sweep *s, double dt, int i,
                        cl_model *m)
 {
-    const int pair[2] = {w10_fastest(s, i, 0, W10_ONE_LEVEL), W10_ONE_LEVEL};
-    if (pair[0] < 0 || !isfinite(s->per_step[pair[1]][i]))
+    const int amg = W10_ONE_LEVEL;
+    const int pair[2] = {w10_fastest(s, i, 0, W10_ONE_LEVEL), amg};
+    if (pair[0] < 0 || !isfinite(s->per_step[amg][i]))
         return;
     double slowest[2], wall[2] = {NAN, NAN};
     int rounds[2] = {1, 1};
@@ -204,14 +213,19 @@ static void w10_rounds(cl_bctx *c, w10_sweep *s, double dt, int i,
         slowest[q] = s->per_step[pair[q]][i];
     for (int r = 1; r < W10_ROUNDS; r++)
         for (int q = 0; q < 2; q++) {
+            int j = pair[q];
             cl_bench_row run = {0};
             fixed_time ft;
-            if (!w10_time(c, s, dt, i, pair[q], m, &run, &ft))
+            if (!w10_time(c, s, dt, i, j, s->steps[j], m, &run, &ft)) {
+                cl_bench_log(c, "  round %d: %s", r + 1, run.note);
                 continue;
+            }
+            cl_bench_log(c, "  round %d: %.4g s CPU a step", r + 1,
+                         run.cpu_a);
             rounds[q]++;
             slowest[q] = fmax(slowest[q], run.cpu_a);
-            if (run.cpu_a < s->per_step[pair[q]][i]) {
-                s->per_step[pair[q]][i] = run.cpu_a;
+            if (run.cpu_a < s->per_step[j][i]) {
+                s->per_step[j][i] = run.cpu_a;
                 wall[q] = run.wall_a;
             }
         }
@@ -247,9 +261,9 @@ static void w10_speedup(cl_bctx *c, const w10_sweep *s, double dt)
     row->cpu_b = s->per_step[one][i];
     cl_bench_judge(row, row->cpu_b / row->cpu_a, "x", ">=",
                    dt == 1e-2 ? 3.0 : 1.5);
-    cl_bench_note(row, "per step, each the fastest of up to %d alternated "
-                  "rounds; against the fastest of pcg, cholmod, klu",
-                  W10_ROUNDS);
+    cl_bench_note(row, "per step; against the fastest of pcg, cholmod, "
+                  "klu; the two the fastest of up to %d alternated rounds, "
+                  "the others one run", W10_ROUNDS);
     cl_bench_log_row(c, row);
 }
 
@@ -271,7 +285,7 @@ static void w10_dt(cl_bctx *c, double dt, bool courant)
         s.unknowns[i] = (double)cl_model_system(bm.m)->n;
         for (int j = 0; j < W10_NS; j++)
             w10_case(c, &s, dt, i, j, bm.m);
-        if (!courant && i == c->plan.w10_nn - 1)
+        if (!courant)
             w10_rounds(c, &s, dt, i, bm.m);
         cl_bench_model_free(&bm);
     }
