@@ -223,11 +223,9 @@ static void w10_rounds(cl_bctx *c, w10_sweep *s, double dt, int i,
             cl_bench_log(c, "  round %d: %.4g s CPU a step", r + 1,
                          run.cpu_a);
             rounds[q]++;
-            slowest[q] = fmax(slowest[q], run.cpu_a);
-            if (run.cpu_a < s->per_step[j][i]) {
-                s->per_step[j][i] = run.cpu_a;
+            if (cl_bench_round_fastest(&s->per_step[j][i], &slowest[q],
+                                       run.cpu_a))
                 wall[q] = run.wall_a;
-            }
         }
     for (int q = 0; q < 2; q++) {
         if (s->row_at[pair[q]] < 0)

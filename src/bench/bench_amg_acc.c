@@ -221,11 +221,8 @@ static void w10a_round(const cl_bctx *c, w10a_ctx *a, w10a_result *res)
         return;
     w10a_repeat(c, a, res, &run);
     res->rounds++;
-    if (run.cpu_a < res->cpu) {
-        res->cpu = run.cpu_a;
+    if (cl_bench_round_fastest(&res->cpu, &res->cpu_max, run.cpu_a))
         res->wall = run.wall_a;
-    }
-    res->cpu_max = fmax(res->cpu_max, run.cpu_a);
 }
 
 /* "; looser (lin_tol:m): TOL:ERR, ..." for the rungs tried before the one

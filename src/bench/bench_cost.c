@@ -308,17 +308,6 @@ static cl_status time_eval(const cl_system *sys, bool jac, const double *x,
     return rc;
 }
 
-/* A round's CPU seconds per unit s into the range [*lo, *hi] of the
- * rounds so far; true if it is the fastest yet (workloads 4 and 5 keep
- * the fastest of their rounds). */
-static bool round_fastest(double *lo, double *hi, double s)
-{
-    bool fastest = !(s >= *lo);
-    *lo = fmin(*lo, s);
-    *hi = fmax(*hi, s);
-    return fastest;
-}
-
 /* An evaluation's fastest round: seconds (CPU, wall) per call, its calls,
  * and the fastest and slowest rounds' CPU seconds per call. */
 typedef struct {
@@ -335,7 +324,7 @@ static void w4_round(const cl_system *sys, bool jac, const double *x,
     if (t->rc || (t->rc = time_eval(sys, jac, x, v, budget, &cpu, &wall,
                                     &calls)))
         return;
-    if (round_fastest(&t->lo, &t->hi, cpu)) {
+    if (cl_bench_round_fastest(&t->lo, &t->hi, cpu)) {
         t->cpu = cpu;
         t->wall = wall;
         t->calls = calls;
@@ -445,7 +434,7 @@ static void w5_round(cl_bctx *c, const w5_case *wc, w5_result *res)
                  *ft.msg ? ft.msg : err.msg);
         return;
     }
-    if (round_fastest(&res->lo, &res->hi, ft.cpu / (double)ft.steps))
+    if (cl_bench_round_fastest(&res->lo, &res->hi, ft.cpu / (double)ft.steps))
         res->best = ft;
     res->dt = io.dt;
 }

@@ -146,6 +146,11 @@ cl_bench_row *cl_bench_fit_row(cl_bctx *c, int workload, const char *kase,
 /* Process CPU and monotonic wall clocks (s). */
 void cl_bench_clock(double *cpu, double *wall);
 
+/* A round's CPU seconds per unit s into the range [*lo, *hi] of the
+ * rounds so far; true if it is the fastest yet (the workloads that keep
+ * the fastest of alternated rounds: 4, 5, 10). */
+bool cl_bench_round_fastest(double *lo, double *hi, double s);
+
 /* cvode-bdf on hang at n, t_end (linsol "" for the default, max_order 0
  * for CVODE's), cached; NULL only when out of memory (c->nomem set).  A
  * failed run has rc set. */

@@ -289,6 +289,14 @@ void cl_bench_note(cl_bench_row *r, const char *fmt, ...)
     va_end(ap);
 }
 
+bool cl_bench_round_fastest(double *lo, double *hi, double s)
+{
+    bool fastest = !(s >= *lo);
+    *lo = fmin(*lo, s);
+    *hi = fmax(*hi, s);
+    return fastest;
+}
+
 void cl_bench_log(const cl_bctx *c, const char *fmt, ...)
 {
     if (!c->o->log)
