@@ -41,8 +41,11 @@
  * whose stale bound made the cycle indefinite); when the last solve took
  * more than CL_AMG_COARSE_REGROW times the iterations of the first after the
  * coarse operators were last computed, they are recomputed, P^T A P on the
- * kept interpolation P.  For amg-hypre a reuse keeps the whole
- * preconditioner.  The hierarchy is rebuilt at the first setup, and when the
+ * kept interpolation P.  amg-hypre builds BoomerAMG afresh at every
+ * setup: PETSc can keep hypre's preconditioner only whole, its finest
+ * relaxation then sweeping the old A, and on hang that cost more CG
+ * iterations than the builds it saved (paper/findings.md).  amg's
+ * hierarchy is rebuilt at the first setup, and when the
  * last solve took more than CL_AMG_REGROW times the iterations of the first
  * solve after the last rebuild although the coarse operators are
  * fresh.  Iterations also grow when the problem itself gets harder (a
@@ -59,9 +62,9 @@
  * once on a hierarchy rebuilt from scratch whose smoothers' eigenvalue
  * bounds (the coarser levels') are estimated with CLP_AMG_RECOVER_STEPS
  * Lanczos steps instead of 10 (linsol_amg_petsc.c, kept until the next
- * build), whether the failed hierarchy was reused or fresh (amg-hypre,
- * without such bounds: on a rebuilt preconditioner, only if the failed one
- * was kept); only if that fails too is the solve an error.  A diagonal
+ * build), whether the failed hierarchy was reused or fresh; only if that
+ * fails too is the solve an error (amg-hypre, freshly built and without
+ * such bounds, fails at once).  A diagonal
  * block whose determinant is not positive (A not SPD) fails amg's setup.
  * Nothing is allocated by setup or solve on this side (PETSc allocates
  * within its setups: the eigenvalue estimates' work arrays, and everything
@@ -108,9 +111,9 @@ typedef struct {
     void *h;                 /* the plug-in's solver */
     bool ready;              /* a setup succeeded */
     int hypre;
-    bool fresh;              /* the hierarchy was built at the last setup */
-    bool coarse_fresh;       /* ... or its coarse operators computed (a
-                              * build, or P^T A P on the kept P) */
+    bool coarse_fresh;       /* the coarse operators were computed at the
+                              * last setup (a build, or P^T A P on the
+                              * kept P) */
     long base_iters;         /* first solve after the last rebuild; -1 */
     long cbase_iters;        /* ... after the coarse operators' last; -1 */
     long last_iters;         /* the last solve's */
@@ -260,12 +263,12 @@ static cl_status amg_prepare(cl_amg *s, int mode, cl_error *err)
     if (s->setup(s->h, A->ablk, mode, &msg) != 0)
         return cl_error_set(err, CL_ESOLVER, "%s: %s", s->name, msg.text);
     s->ready = true;
-    s->fresh = mode == CLP_AMG_BUILD || mode == CLP_AMG_RECOVER;
+    bool fresh = mode == CLP_AMG_BUILD || mode == CLP_AMG_RECOVER;
     s->coarse_fresh = mode != CLP_AMG_SMOOTHER;
     if (s->coarse_fresh)
         s->cbase_iters = -1;
-    s->galerkin_done = !s->fresh && (s->galerkin_done || s->coarse_fresh);
-    if (s->fresh) {
+    s->galerkin_done = !fresh && (s->galerkin_done || s->coarse_fresh);
+    if (fresh) {
         s->rebuilds++;
         s->base_iters = -1;
         s->last_iters = 0;
@@ -279,22 +282,20 @@ static bool amg_grew(const cl_amg *s, long base, double factor)
     return base > 0 && (double)s->last_iters > factor * (double)base;
 }
 
-/* What this setup recomputes: everything at the first; a new hierarchy
+/* What this setup recomputes: everything at the first, and at every one
+ * of amg-hypre's; a new hierarchy
  * when the last solve took more than CL_AMG_REGROW times the iterations of
  * the first after the last build although the coarse operators were
- * recomputed at the last setup (for hypre, which keeps all or nothing,
- * whenever it took more than that); the coarse operators on the kept
+ * recomputed at the last setup; the coarse operators on the kept
  * interpolation when it took more than s->coarse_regrow times those of the
  * first after they were last recomputed (a new hierarchy once that factor
  * is CL_AMG_REGROW), or CL_AMG_REGROW times the build's; else the finest
  * smoother only. */
 static int amg_mode(const cl_amg *s)
 {
-    if (s->rebuilds == 0)
+    if (s->rebuilds == 0 || s->hypre)
         return CLP_AMG_BUILD;
     bool grew = amg_grew(s, s->base_iters, CL_AMG_REGROW);
-    if (s->hypre)
-        return grew ? CLP_AMG_BUILD : CLP_AMG_SMOOTHER;
     if (grew && s->coarse_fresh)
         return CLP_AMG_BUILD;
     if (amg_grew(s, s->cbase_iters, s->coarse_regrow))
@@ -349,9 +350,10 @@ static cl_status amg_setup(void *state, double a, double b,
                             "particle row %zu of M - a df/dv - b df/dx is "
                             "not positive definite (determinant not "
                             "positive)", s->name, row);
-    /* what the next solve judges (amg_judge): a recompute for a growth */
+    /* what the next solve judges (amg_judge): a recompute for a growth
+     * (amg-hypre's builds are not for one) */
     int mode = amg_mode(s);
-    long trigger = mode != CLP_AMG_SMOOTHER && s->rebuilds > 0
+    long trigger = mode != CLP_AMG_SMOOTHER && s->rebuilds > 0 && !s->hypre
                        ? s->last_iters : 0;
     bool first = mode == CLP_AMG_GALERKIN && !s->galerkin_done;
     cl_status st = amg_prepare(s, mode, err);
@@ -371,7 +373,8 @@ static void amg_jacobian(void *state, const double *dfdx, const double *dfdv)
 
 /* CG to ||r||_2 <= max(rtol ||b||_2, atol); if that fails, once more on
  * a hierarchy rebuilt with careful eigenvalue bounds (CLP_AMG_RECOVER;
- * hypre, which has no such bounds: only if the failed one was kept). */
+ * not for hypre, whose preconditioner was just built and has no such
+ * bounds). */
 static cl_status amg_run(cl_amg *s, const double *rhs, double *x,
                          double rtol, double atol, cl_error *err)
 {
@@ -383,7 +386,7 @@ static cl_status amg_run(cl_amg *s, const double *rhs, double *x,
     int bad = s->solve(s->h, rhs, x, rtol, atol, &its, &msg);
     s->solves++;
     s->iters += its;
-    bool retry = bad && (!s->hypre || !s->fresh);
+    bool retry = bad && !s->hypre;
     if (retry) {
         st = amg_prepare(s, CLP_AMG_RECOVER, err);
         if (st != CL_OK)
@@ -396,10 +399,9 @@ static cl_status amg_run(cl_amg *s, const double *rhs, double *x,
     }
     if (bad)
         return cl_error_set(err, CL_ESOLVER, "%s: %s%s", s->name, msg.text,
-                            !retry ? ""
-                            : s->hypre ? " (also on a rebuilt preconditioner)"
-                                       : " (also on a hierarchy rebuilt with "
-                                         "careful eigenvalue bounds)");
+                            retry ? " (also on a hierarchy rebuilt with "
+                                    "careful eigenvalue bounds)"
+                                  : "");
     s->last_iters = its;
     if (s->trigger_iters > 0 && !retry)
         amg_judge(s, its);

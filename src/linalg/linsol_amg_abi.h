@@ -12,21 +12,20 @@
 #include "linalg/plugin.h"
 
 /* What a setup of the multigrid preconditioner recomputes: the argument
- * `mode` of clp_amg_setup. */
+ * `mode` of clp_amg_setup (amg-hypre: CLP_AMG_BUILD at every setup). */
 enum {
     /* a new hierarchy: coarsening, interpolation, coarse operators,
      * smoothers */
     CLP_AMG_BUILD,
     /* the kept interpolation P: the coarse operators P^T A P and every
-     * smoother recomputed (amg-hypre: the whole preconditioner kept) */
+     * smoother recomputed */
     CLP_AMG_GALERKIN,
     /* the coarse operators and their smoothers kept; only the finest
-     * level's smoother (the caller's sweep, clp_amg_sweep) on the new A
-     * (amg-hypre: the whole preconditioner kept) */
+     * level's smoother (the caller's sweep, clp_amg_sweep) on the new A */
     CLP_AMG_SMOOTHER,
     /* a new hierarchy as CLP_AMG_BUILD, each coarser level's Chebyshev
      * bound estimated with CLP_AMG_RECOVER_STEPS Lanczos steps (the recovery
-     * from a failed solve; amg-hypre: as CLP_AMG_BUILD) */
+     * from a failed solve) */
     CLP_AMG_RECOVER,
 };
 

@@ -50,8 +50,9 @@
  * values; CLP_AMG_SMOOTHER keeps the whole preconditioner
  * (KSPSetReusePreconditioner): the finest level's sweeps read the
  * caller's new values, and nothing here is set up again (nor is the
- * SeqAIJ copy written).  hypre cannot keep its interpolation, so either
- * reuse keeps its whole preconditioner.
+ * SeqAIJ copy written).  hypre cannot keep its interpolation, and kept
+ * whole its finest relaxation sweeps the old matrix: amg-hypre is set up
+ * with CLP_AMG_BUILD only.
  *
  * Eigenvalue bounds.  The SeqAIJ copy is marked symmetric positive
  * definite (MAT_SPD, for good: CG needs it so; MAT_SPD_ETERNAL needs
@@ -498,9 +499,9 @@ int clp_amg_setup(void *handle, const double *ablk, int mode,
     PC pc;
     PetscErrorCode ec;
     /* GAMG's smoother-only refresh keeps the whole preconditioner but the
-     * finest smoother; hypre keeps all of it on any reuse */
+     * finest smoother (hypre is only ever built) */
     int build = mode == CLP_AMG_BUILD || mode == CLP_AMG_RECOVER;
-    int keep = mode == CLP_AMG_SMOOTHER || (s->hypre && !build);
+    int keep = mode == CLP_AMG_SMOOTHER;
     /* a kept preconditioner does not read the SeqAIJ copy (GAMG's finest
      * smoother sweeps the caller's storage) */
     if (!keep && (ec = amg_values(s, ablk)))
