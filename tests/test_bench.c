@@ -5,10 +5,15 @@
 
 #include <fcntl.h>
 #include <math.h>
+#include <signal.h>
+#include <spawn.h>
 #include <stdarg.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "bench/bench.h"
@@ -138,6 +143,51 @@ Test(bench, quick_force_workload_writes_its_rows)
     cr_assert(strstr(L.line[1], ",ns/pair,<=,10,"), "%s", L.line[1]);
     double ns = row_figure(L.line[1], ",ns/pair,");
     cr_assert(ns > 0 && isfinite(ns), "figure %g ns per pair", ns);
+    cli_lines_free(&L);
+}
+
+/* SIGINT once workload 10 has logged a row (workload 4 finished before):
+ * exit status 6 with the message naming workload 10, and the CSV holds
+ * workload 4's two rows and none of workload 10, whose cases after the
+ * signal failed or were cut short. */
+Test(bench, interrupted_keeps_the_finished_workloads)
+{
+    const char *b = getenv("CLOTHODE_BENCH");
+    char csv[1024], errlog[1024];
+    char *argv[] = {(char *)(b && *b ? b : "build/clothode-bench"),
+                    "--quick", "--only", "4,10", "--out",
+                    (char *)in_tmp(csv, "bench.csv"), NULL};
+    in_tmp(errlog, "bench.err");
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, "/dev/null",
+                                     O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, STDERR_FILENO, errlog,
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    pid_t pid;
+    cr_assert_eq(posix_spawnp(&pid, argv[0], &fa, NULL, argv, environ), 0);
+    posix_spawn_file_actions_destroy(&fa);
+    static char text[1 << 16];
+    bool seen = false;
+    for (int k = 0; k < 24000 && !seen; k++) {
+        nanosleep(&(struct timespec){0, 10000000}, NULL);
+        tmp_slurp(errlog, text, sizeof text);
+        seen = strstr(text, "\n[10] ") != NULL;
+    }
+    cr_assert(seen, "workload 10 logged no row:\n%s", text);
+    cr_assert_eq(kill(pid, SIGINT), 0);
+    int ws;
+    cr_assert_eq(waitpid(pid, &ws, 0), pid);
+    tmp_slurp(errlog, text, sizeof text);
+    cr_assert(WIFEXITED(ws) && WEXITSTATUS(ws) == 6, "status %d\n%s", ws,
+              text);
+    cr_assert(strstr(text, "interrupted by SIGINT in workload 10"), "%s",
+              text);
+    cli_lines L;
+    cli_read_lines(csv, &L);
+    cr_assert_eq(L.n, 3, "%zu rows", L.n - 1);
+    cr_assert(!strncmp(L.line[1], "4,", 2) && !strncmp(L.line[2], "4,", 2),
+              "%s\n%s", L.line[1], L.line[2]);
     cli_lines_free(&L);
 }
 

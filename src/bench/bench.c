@@ -3,10 +3,12 @@
 #include "bench/bench.h"
 
 #include <math.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "bench/bench_impl.h"
+#include "core/stop.h"
 #include "io/atomic.h"
 #include "io/csv.h"
 
@@ -56,6 +58,27 @@ static void (*const work[CL_BENCH_WORKLOADS + 1])(cl_bctx *) = {
     cl_bench_w5,  cl_bench_w6,  cl_bench_w7,  cl_bench_w8,  cl_bench_w9,
     cl_bench_w10, cl_bench_w11, cl_bench_w12, cl_bench_w13};
 
+bool cl_bench_interrupted(void)
+{
+    int sig = cl_stop_requested();
+    return sig == SIGINT || sig == SIGTERM;
+}
+
+/* Workload w (unless out of memory); false if a signal interrupted it,
+ * and then its rows are dropped: the cases after the signal failed or
+ * were cut short. */
+static bool run_workload(cl_bctx *c, int w)
+{
+    size_t before = c->t->n;
+    if (!c->nomem)
+        (w == 1 ? cl_bench_w1 : work[w])(c);
+    if (!cl_bench_interrupted())
+        return true;
+    c->t->n = before;
+    c->stopped_in = w;
+    return false;
+}
+
 cl_status cl_bench_run(const cl_bench_opts *o, cl_bench_table *t,
                        cl_error *err)
 {
@@ -67,16 +90,23 @@ cl_status cl_bench_run(const cl_bench_opts *o, cl_bench_table *t,
         cl_bench_peers_start(&c);
     if (selected(&c, 1) || selected(&c, 2) || selected(&c, 6))
         cl_bench_choose(&c);
-    for (int w = 2; w <= CL_BENCH_WORKLOADS; w++)
-        if (selected(&c, w) && !c.nomem)
-            work[w](&c);
-    if (selected(&c, 1) && !c.nomem)
-        cl_bench_w1(&c);
+    bool go = true;
+    for (int w = 2; w <= CL_BENCH_WORKLOADS && go; w++)
+        go = !selected(&c, w) || run_workload(&c, w);
+    if (go && selected(&c, 1))
+        run_workload(&c, 1);
     cl_bench_peers_stop(&c);
     cl_bench_runs_free(&c);
     sort_rows(t);
-    return c.nomem ? cl_error_set(err, CL_ENOMEM, "out of memory (bench)")
-                   : CL_OK;
+    if (c.nomem)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (bench)");
+    if (cl_bench_interrupted())
+        return cl_error_set(err, CL_EINTR, "interrupted by %s in workload "
+                            "%d; the table holds the workloads finished "
+                            "before it",
+                            cl_stop_signal_name(cl_stop_requested()),
+                            c.stopped_in);
+    return CL_OK;
 }
 
 void cl_bench_table_free(cl_bench_table *t)

@@ -132,7 +132,10 @@ typedef struct {
 
 /* Run the selected workloads, appending rows to t (rows of a workload
  * that cannot run carry a note instead of figures).  Fails only for
- * CL_ENOMEM and bad options. */
+ * CL_ENOMEM, bad options, and CL_EINTR once SIGINT or SIGTERM has asked
+ * to stop (core/stop.h, its handler installed by the caller): then t holds
+ * the rows of the workloads finished before the signal, and the scipy
+ * peers are ended. */
 cl_status cl_bench_run(const cl_bench_opts *o, cl_bench_table *t,
                        cl_error *err);
 

@@ -3,8 +3,10 @@
  * (against klu-full; large n) and 6 (peak memory of a child run). */
 #include <errno.h>
 #include <math.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "bench/bench_impl.h"
@@ -38,6 +40,11 @@ static void peer_argv(cl_bctx *c, cl_bpeer *p)
  * the bench is doing), a failure to start written to its error log. */
 _Noreturn static void run_peers(cl_bctx *c)
 {
+    /* a process group of their own, which the bench ends if a signal
+     * stops it (cl_bench_peers_stop), and the default actions */
+    setpgid(0, 0);
+    signal(SIGINT, SIG_DFL);
+    signal(SIGTERM, SIG_DFL);
     for (int k = 0; k < c->plan.w1_cases; k++) {
         cl_bpeer *p = &c->peer[k];
         cl_child_usage u;
@@ -83,16 +90,24 @@ void cl_bench_peers_start(cl_bctx *c)
                  strerror(errno));
         return;
     }
+    setpgid(pid, pid); /* also the child's own first step (run_peers) */
     c->peers = (cl_child){.pid = pid};
     cl_bench_log(c, "  scipy peers started in the background (%s)",
                  c->python);
 }
 
-/* Wait for the peers to end (at once if they have). */
+/* Wait for the peers to end (at once if they have), ending them (their
+ * process group) once a signal has stopped the bench, before or during
+ * the wait. */
 void cl_bench_peers_stop(cl_bctx *c)
 {
     cl_child_usage u;
-    cl_child_wait(&c->peers, &u);
+    bool ended = false;
+    while (c->peers.pid > 0 && !cl_child_done(&c->peers, &u)) {
+        if (!ended && cl_bench_interrupted())
+            ended = kill(-c->peers.pid, SIGTERM) == 0;
+        nanosleep(&(struct timespec){0, 20000000}, NULL);
+    }
 }
 
 /* The peer's "name,value" statistics. */

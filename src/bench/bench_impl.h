@@ -71,6 +71,7 @@ typedef struct {
     cl_bench_table *t;
     cl_bench_row spare;      /* written when the table cannot grow */
     bool nomem;
+    int stopped_in;          /* the workload a signal interrupted, or 0 */
     cl_brun **runs;
     size_t nrun;
     bool linsol_ok;          /* cvode-bdf takes --linsol */
@@ -208,6 +209,12 @@ double cl_bench_uniform(unsigned long long *s);
 /* "cvode-bdf LINSOL" or "cvode-bdf (default)", and ", order <= K" for a
  * max_order K > 0. */
 void cl_bench_side(char *buf, size_t len, const char *linsol, int max_order);
+
+/* ---- bench.c ------------------------------------------------------- */
+
+/* Whether SIGINT or SIGTERM asked to stop (core/stop.h; not a run's
+ * budget). */
+bool cl_bench_interrupted(void);
 
 /* ---- bench_hang.c: workloads 1, 2, 6 and the choice of solver -------- */
 

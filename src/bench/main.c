@@ -13,6 +13,7 @@
 
 #include "bench/bench.h"
 #include "cli/cli.h"
+#include "core/stop.h"
 #include "io/atomic.h"
 
 static const char bench_help[] =
@@ -54,7 +55,10 @@ static const char bench_help[] =
     "                 peak_kb,VALUE (its VmHWM) and nothing else\n"
     "  --help         this text\n"
     "The peer runs with $CLOTHODE_PYTHON, else the first of python3 on PATH\n"
-    "and /usr/bin/python3 that has numpy and scipy.\n";
+    "and /usr/bin/python3 that has numpy and scipy.\n"
+    "SIGINT (Ctrl-C) or SIGTERM stops the bench within the run under way;\n"
+    "the rows of the workloads it finished are printed and written (exit\n"
+    "status 6).\n";
 
 /* A usage error: one message and the pointer to --help; exit status 2. */
 static int usage_error(const char *fmt, ...)
@@ -181,19 +185,31 @@ static int bench(bench_args *a)
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c0);
     clock_gettime(CLOCK_MONOTONIC, &w0);
     cl_bench_table t = {0};
+    cl_stop_install();
     cl_status rc = cl_bench_run(&a->o, &t, &err);
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c1);
     clock_gettime(CLOCK_MONOTONIC, &w1);
     nftw(scratch, rm_entry, 16, FTW_DEPTH | FTW_PHYS);
-    if (!rc && !(rc = make_parent(a->out, &err)))
-        rc = cl_bench_write_csv(a->out, &t, &err);
+    /* a bench a signal interrupted writes the rows of the workloads it
+     * finished, if any */
+    bool write = !rc || (rc == CL_EINTR && t.n > 0);
+    cl_error werr = {0};
+    cl_status wrc = write ? make_parent(a->out, &werr) : CL_OK;
+    if (write && !wrc)
+        wrc = cl_bench_write_csv(a->out, &t, &werr);
+    if (wrc && rc)
+        cl_cli_fail(&werr);
+    else if (wrc) {
+        rc = wrc;
+        err = werr;
+    }
     if (t.n) {
         cl_bench_print(&t, stdout);
         summary(&t, (double)(c1.tv_sec - c0.tv_sec) +
                         1e-9 * (double)(c1.tv_nsec - c0.tv_nsec),
                 (double)(w1.tv_sec - w0.tv_sec) +
                     1e-9 * (double)(w1.tv_nsec - w0.tv_nsec));
-        if (!rc)
+        if (write && !wrc)
             printf("results in %s\n", a->out);
     }
     cl_bench_table_free(&t);
