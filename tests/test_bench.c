@@ -174,11 +174,20 @@ Test(bench, interrupted_keeps_the_finished_workloads)
         tmp_slurp(errlog, text, sizeof text);
         seen = strstr(text, "\n[10] ") != NULL;
     }
-    cr_assert(seen, "workload 10 logged no row:\n%s", text);
-    cr_assert_eq(kill(pid, SIGINT), 0);
-    int ws;
-    cr_assert_eq(waitpid(pid, &ws, 0), pid);
+    cr_assert_eq(kill(pid, seen ? SIGINT : SIGKILL), 0);
+    int ws = 0;
+    pid_t got = 0;
+    for (int k = 0; k < 6000 && !got; k++) {
+        nanosleep(&(struct timespec){0, 10000000}, NULL);
+        got = waitpid(pid, &ws, WNOHANG);
+    }
+    if (!got) {
+        kill(pid, SIGKILL);
+        waitpid(pid, &ws, 0);
+    }
     tmp_slurp(errlog, text, sizeof text);
+    cr_assert(seen, "workload 10 logged no row:\n%s", text);
+    cr_assert(got == pid, "not ended 60 s after SIGINT:\n%s", text);
     cr_assert(WIFEXITED(ws) && WEXITSTATUS(ws) == 6, "status %d\n%s", ws,
               text);
     cr_assert(strstr(text, "interrupted by SIGINT in workload 10"), "%s",

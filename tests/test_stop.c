@@ -33,6 +33,24 @@ Test(stop, second_signal_ends_the_program, .signal = SIGINT)
     raise(SIGINT);
 }
 
+/* A signal after a budget's timer replaces it (a stop the budget's caller
+ * forgets, cl_stop_clear, must not take a Ctrl-C with it); a budget's
+ * timer after a signal does not. */
+Test(stop, signal_after_a_budget_replaces_it)
+{
+    cl_error err;
+    cl_stop_install();
+    cr_assert_eq(cl_stop_after(CL_STOP_WALL, 100.0, &err), CL_OK);
+    raise(SIGALRM);
+    cr_assert_eq(cl_stop_requested(), SIGALRM);
+    raise(SIGTERM);
+    cr_assert_eq(cl_stop_requested(), SIGTERM);
+    cr_assert_eq(cl_stop_after(CL_STOP_WALL, 100.0, &err), CL_OK);
+    raise(SIGALRM);
+    cr_assert_eq(cl_stop_requested(), SIGTERM);
+    cl_stop_clear();
+}
+
 /* ---- a CPU budget ------------------------------------------------------ */
 
 /* Spin until a stop is asked for or `cap` seconds of CPU have gone by. */

@@ -64,14 +64,14 @@ bool cl_bench_interrupted(void)
     return sig == SIGINT || sig == SIGTERM;
 }
 
-/* Workload w (unless out of memory); false if a signal interrupted it,
- * and then its rows are dropped: the cases after the signal failed or
- * were cut short. */
+/* Workload w (0: the choice of solver) unless out of memory; false if a
+ * signal interrupted it, and then its rows are dropped: the cases after
+ * the signal failed or were cut short. */
 static bool run_workload(cl_bctx *c, int w)
 {
     size_t before = c->t->n;
     if (!c->nomem)
-        (w == 1 ? cl_bench_w1 : work[w])(c);
+        (w == 0 ? cl_bench_choose : w == 1 ? cl_bench_w1 : work[w])(c);
     if (!cl_bench_interrupted())
         return true;
     c->t->n = before;
@@ -85,12 +85,12 @@ cl_status cl_bench_run(const cl_bench_opts *o, cl_bench_table *t,
     if (o->only >> (CL_BENCH_WORKLOADS + 1) || (o->only & 1u))
         return cl_error_set(err, CL_EINVAL, "workloads are 1..%d",
                             CL_BENCH_WORKLOADS);
-    cl_bctx c = {.o = o, .t = t, .plan = o->quick ? quick_plan : full_plan};
+    cl_bctx c = {.o = o, .t = t, .plan = o->quick ? quick_plan : full_plan,
+                 .stopped_in = -1};
     if (selected(&c, 1))
         cl_bench_peers_start(&c);
-    if (selected(&c, 1) || selected(&c, 2) || selected(&c, 6))
-        cl_bench_choose(&c);
-    bool go = true;
+    bool go = !(selected(&c, 1) || selected(&c, 2) || selected(&c, 6)) ||
+              run_workload(&c, 0);
     for (int w = 2; w <= CL_BENCH_WORKLOADS && go; w++)
         go = !selected(&c, w) || run_workload(&c, w);
     if (go && selected(&c, 1))
@@ -100,12 +100,14 @@ cl_status cl_bench_run(const cl_bench_opts *o, cl_bench_table *t,
     sort_rows(t);
     if (c.nomem)
         return cl_error_set(err, CL_ENOMEM, "out of memory (bench)");
+    const char *sig = cl_stop_signal_name(cl_stop_requested());
+    if (cl_bench_interrupted() && c.stopped_in < 0)
+        return cl_error_set(err, CL_EINTR, "interrupted by %s after the last "
+                            "workload", sig);
     if (cl_bench_interrupted())
         return cl_error_set(err, CL_EINTR, "interrupted by %s in workload "
                             "%d; the table holds the workloads finished "
-                            "before it",
-                            cl_stop_signal_name(cl_stop_requested()),
-                            c.stopped_in);
+                            "before it", sig, c.stopped_in);
     return CL_OK;
 }
 

@@ -6,6 +6,7 @@
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/prctl.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -36,15 +37,27 @@ static void peer_argv(cl_bctx *c, cl_bpeer *p)
     memcpy(p->argv, argv, sizeof argv);
 }
 
-/* In a forked process: each peer in turn (no gap between them, whatever
- * the bench is doing), a failure to start written to its error log. */
-_Noreturn static void run_peers(cl_bctx *c)
+/* SIGTERM in the peers' process: end the whole group, the Python peer
+ * under way with it. */
+static void end_peers(int sig)
 {
-    /* a process group of their own, which the bench ends if a signal
-     * stops it (cl_bench_peers_stop), and the default actions */
+    signal(sig, SIG_DFL);
+    kill(0, sig);
+}
+
+/* In a forked process: each peer in turn (no gap between them, whatever
+ * the bench is doing), a failure to start written to its error log.  The
+ * peers are a process group of their own, which the bench ends if a
+ * signal stops it (cl_bench_peers_stop), and which ends itself if the
+ * bench dies (SIGTERM on the parent's death). */
+_Noreturn static void run_peers(cl_bctx *c, pid_t bench)
+{
     setpgid(0, 0);
     signal(SIGINT, SIG_DFL);
-    signal(SIGTERM, SIG_DFL);
+    signal(SIGTERM, end_peers);
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (getppid() != bench)
+        _exit(0);
     for (int k = 0; k < c->plan.w1_cases; k++) {
         cl_bpeer *p = &c->peer[k];
         cl_child_usage u;
@@ -82,9 +95,9 @@ void cl_bench_peers_start(cl_bctx *c)
     if (c->o->log)
         fflush(c->o->log);
     fflush(stdout);
-    pid_t pid = fork();
+    pid_t bench = getpid(), pid = fork();
     if (pid == 0)
-        run_peers(c);
+        run_peers(c, bench);
     if (pid < 0) {
         snprintf(c->no_python, sizeof c->no_python, "cannot fork: %s",
                  strerror(errno));

@@ -71,7 +71,8 @@ typedef struct {
     cl_bench_table *t;
     cl_bench_row spare;      /* written when the table cannot grow */
     bool nomem;
-    int stopped_in;          /* the workload a signal interrupted, or 0 */
+    int stopped_in;          /* the workload a signal interrupted (0: the
+                              * choice of solver), or -1 */
     cl_brun **runs;
     size_t nrun;
     bool linsol_ok;          /* cvode-bdf takes --linsol */

@@ -12,10 +12,14 @@
 static volatile sig_atomic_t stop_signal;
 
 /* The first reason to stop is the one reported (a budget that runs out
- * after a Ctrl-C does not turn the run's end into "budget"). */
+ * after a Ctrl-C does not turn the run's end into "budget"), except that
+ * a signal (SIGINT, SIGTERM) replaces a budget's timer (SIGPROF,
+ * SIGALRM): a caller that forgets a budget's stop (cl_stop_clear) must
+ * not forget a Ctrl-C that came after it. */
 static void on_signal(int sig)
 {
-    if (!stop_signal)
+    bool timer = stop_signal == SIGPROF || stop_signal == SIGALRM;
+    if (!stop_signal || (timer && (sig == SIGINT || sig == SIGTERM)))
         stop_signal = sig;
 }
 

@@ -15,7 +15,8 @@
 void cl_stop_install(void);
 
 /* The signal that first asked to stop (SIGINT, SIGTERM; SIGPROF and
- * SIGALRM for a CPU and a wall-time budget), or 0. */
+ * SIGALRM for a CPU and a wall-time budget), or 0; SIGINT or SIGTERM
+ * after a budget's timer replaces it. */
 int cl_stop_requested(void);
 
 /* The clocks of a budget: CPU time of the process (ITIMER_PROF, SIGPROF)
