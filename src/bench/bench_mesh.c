@@ -49,8 +49,8 @@ static void w7_points(bool band, double *x)
 }
 /* Seconds per point of `query` (CPU and wall) over the points, cycling,
  * until `budget` CPU seconds have passed and at least `min` points are
- * done; their squared distances into d2 (the first W7_POINTS).  Returns
- * the number of points done. */
+ * done, or a signal stops the bench; their squared distances into d2 (the
+ * first W7_POINTS).  Returns the number of points done. */
 static long w7_time(const w7_case *w, w7_query query, double budget,
                     long min, double *d2, double *cpu, double *wall)
 {
@@ -59,7 +59,7 @@ static long w7_time(const w7_case *w, w7_query query, double budget,
     cl_bench_clock(&c0, &w0);
     c1 = c0;
     w1 = w0;
-    while (k < min || c1 - c0 < budget) {
+    while ((k < min || c1 - c0 < budget) && !cl_bench_interrupted()) {
         for (int r = 0; r < 16; r++, k++) {
             cl_bvh_hit h;
             query(&w->b, w->x + 3 * (k % W7_POINTS), &h);
@@ -68,8 +68,8 @@ static long w7_time(const w7_case *w, w7_query query, double budget,
         }
         cl_bench_clock(&c1, &w1);
     }
-    *cpu = (c1 - c0) / (double)k;
-    *wall = (w1 - w0) / (double)k;
+    *cpu = k ? (c1 - c0) / (double)k : NAN;
+    *wall = k ? (w1 - w0) / (double)k : NAN;
     return k;
 }
 

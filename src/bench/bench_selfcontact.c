@@ -116,12 +116,15 @@ static void w9_measure(cl_bctx *c, w9_run *r, cl_bench_row *row)
     double closest = cl_selfcontact_closest(r->term, r->xf);
     long rounds = 0;
     cl_bench_clock(&c0, &w0);
-    for (c1 = c0; c1 - c0 < c->plan.eval_budget || rounds < 3; rounds++) {
+    /* a signal stops the bench here too (its rows are dropped) */
+    for (c1 = c0; (c1 - c0 < c->plan.eval_budget || rounds < 3) &&
+                  !cl_bench_interrupted();
+         rounds++) {
         w9_round(r, nf, nj);
         cl_bench_clock(&c1, &w1);
     }
-    row->cpu_a = (c1 - c0) / (double)rounds;
-    row->wall_a = (w1 - w0) / (double)rounds;
+    row->cpu_a = rounds ? (c1 - c0) / (double)rounds : NAN;
+    row->wall_a = rounds ? (w1 - w0) / (double)rounds : NAN;
     cl_bench_judge(row, 100.0 * row->cpu_a / row->cpu_b, "%", "<=", 10.0);
     cl_bench_note(row, "%zu particles; closest non-neighbours %.3g m; per "
                   "step %.3g force and %.3g Jacobian evaluations: the term "
