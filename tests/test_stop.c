@@ -33,9 +33,9 @@ Test(stop, second_signal_ends_the_program, .signal = SIGINT)
     raise(SIGINT);
 }
 
-/* A signal after a budget's timer replaces it (a stop the budget's caller
- * forgets, cl_stop_clear, must not take a Ctrl-C with it); a budget's
- * timer after a signal does not. */
+/* A signal after a budget's timer replaces it, and forgetting the
+ * budget's stop (cl_stop_clear) keeps it; a budget's timer after a signal
+ * does not replace the signal. */
 Test(stop, signal_after_a_budget_replaces_it)
 {
     cl_error err;
@@ -49,6 +49,7 @@ Test(stop, signal_after_a_budget_replaces_it)
     raise(SIGALRM);
     cr_assert_eq(cl_stop_requested(), SIGTERM);
     cl_stop_clear();
+    cr_assert_eq(cl_stop_requested(), SIGTERM);
 }
 
 /* ---- a CPU budget ------------------------------------------------------ */

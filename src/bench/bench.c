@@ -52,11 +52,12 @@ static void sort_rows(cl_bench_table *t)
     }
 }
 
-/* Workloads by number (1 runs last, after the peers). */
+/* Workloads by number (0: the choice of solver; 1 runs last, after the
+ * peers). */
 static void (*const work[CL_BENCH_WORKLOADS + 1])(cl_bctx *) = {
-    NULL,         NULL,         cl_bench_w2,  cl_bench_w3,  cl_bench_w4,
-    cl_bench_w5,  cl_bench_w6,  cl_bench_w7,  cl_bench_w8,  cl_bench_w9,
-    cl_bench_w10, cl_bench_w11, cl_bench_w12, cl_bench_w13};
+    cl_bench_choose, cl_bench_w1,  cl_bench_w2,  cl_bench_w3,  cl_bench_w4,
+    cl_bench_w5,     cl_bench_w6,  cl_bench_w7,  cl_bench_w8,  cl_bench_w9,
+    cl_bench_w10,    cl_bench_w11, cl_bench_w12, cl_bench_w13};
 
 bool cl_bench_interrupted(void)
 {
@@ -71,7 +72,7 @@ static bool run_workload(cl_bctx *c, int w)
 {
     size_t before = c->t->n;
     if (!c->nomem)
-        (w == 0 ? cl_bench_choose : w == 1 ? cl_bench_w1 : work[w])(c);
+        work[w](c);
     if (!cl_bench_interrupted())
         return true;
     c->t->n = before;

@@ -111,11 +111,8 @@ static cl_status timed_run(cl_model *m, cl_brun *r, cl_error *err)
     if (rc == CL_EINTR && cl_stop_requested() == SIGPROF)
         rc = cl_error_set(err, CL_EBUDGET, "stopped by its budget of %g s "
                           "CPU after t = %g", r->budget, r->t_reached);
-    /* the budget's stop is forgotten, a signal's kept (bench.c) */
-    if (r->budget > 0 && !cl_bench_interrupted())
+    if (r->budget > 0)
         cl_stop_clear();
-    else if (r->budget > 0)
-        cl_stop_disarm();
     if (state) {
         type->stats(state, &st);
         type->free(state);

@@ -14,7 +14,7 @@ static volatile sig_atomic_t stop_signal;
 /* The first reason to stop is the one reported (a budget that runs out
  * after a Ctrl-C does not turn the run's end into "budget"), except that
  * a signal (SIGINT, SIGTERM) replaces a budget's timer (SIGPROF,
- * SIGALRM): a caller that forgets a budget's stop (cl_stop_clear) must
+ * SIGALRM), so that forgetting the budget's stop (cl_stop_clear) does
  * not forget a Ctrl-C that came after it. */
 static void on_signal(int sig)
 {
@@ -83,7 +83,8 @@ void cl_stop_disarm(void)
 void cl_stop_clear(void)
 {
     cl_stop_disarm();
-    stop_signal = 0;
+    if (stop_signal == SIGPROF || stop_signal == SIGALRM)
+        stop_signal = 0;
 }
 
 const char *cl_stop_signal_name(int sig)

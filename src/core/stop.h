@@ -33,8 +33,9 @@ cl_status cl_stop_after(cl_stop_clock clock, double seconds, cl_error *err);
 /* Disarm both timers; a stop already asked for stays. */
 void cl_stop_disarm(void);
 
-/* Disarm both timers and forget a stop asked for, so that the next run
- * starts clean (a benchmark's runs, one after another). */
+/* Disarm both timers and forget a budget's stop (SIGPROF, SIGALRM), so
+ * that the next run starts clean (a benchmark's runs, one after another);
+ * a stop SIGINT or SIGTERM asked for stays. */
 void cl_stop_clear(void);
 
 /* "SIGINT", "SIGTERM" or "signal N", for messages. */
