@@ -102,8 +102,8 @@ typedef struct {
     size_t n;                /* 3 nb */
     cl_amat A;               /* A's values, its product */
     bool ablk_current;       /* A.ablk holds the last setup's A */
-    double *dinv;            /* 9 nb: A's diagonal blocks inverted */
-    double *acc;             /* n: the forward sweep's work */
+    double *dinv;            /* 9 nb: A's diagonal blocks inverted (amg) */
+    double *acc;             /* n: the forward sweep's work (amg) */
     double tol;
     clp_amg_setup_fn setup;
     clp_amg_solve_fn solve;
@@ -162,7 +162,7 @@ static cl_status amg_alloc(cl_amg *s, const cl_bpattern *pat,
                            const double *mass, int threads, cl_error *err)
 {
     cl_status st = cl_amat_init(&s->A, s->name, pat, mass, threads, err);
-    if (st != CL_OK)
+    if (st != CL_OK || s->hypre)    /* BoomerAMG relaxes on its own */
         return st;
     s->dinv = malloc(9 * pat->nb * sizeof *s->dinv);
     s->acc = malloc(s->n * sizeof *s->acc);
