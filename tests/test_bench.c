@@ -3,6 +3,7 @@
  * timing is asserted; short workloads (--quick) run for real. */
 #include <criterion/criterion.h>
 
+#include <ctype.h>
 #include <fcntl.h>
 #include <math.h>
 #include <signal.h>
@@ -328,8 +329,55 @@ static void assert_rounds(const cli_lines *L, const char *dt)
                        1e-4 * cpu_b / cpu_a, "%s", ratio);
 }
 
+/* A number of a row's note: the one before `unit` ("unknowns",
+ * "iterations per solve"). */
+static double note_number(const char *line, const char *unit)
+{
+    const char *at = line ? strstr(line, unit) : NULL;
+    cr_assert(at && at > line, "no %s in %s", unit, line);
+    while (at > line && at[-1] == ' ')
+        at--;
+    while (at > line && (isdigit((unsigned char)at[-1]) || at[-1] == '.'))
+        at--;
+    return strtod(at, NULL);
+}
+
+/* The fixed-dt fit row of pcg and amg at dt = 1e-2 gives the exponent of
+ * their CG iterations a solve, the slope between the two sizes' rows
+ * (iterations printed to a tenth). */
+static void assert_iteration_exponents(const cli_lines *L)
+{
+    static const char *const solver[] = {"pcg", "amg"};
+    for (int j = 0; j < 2; j++) {
+        char prefix[96];
+        double u[2], it[2];
+        for (int i = 0; i < 2; i++) {
+            snprintf(prefix, sizeof prefix, "10,dt=0.01 n=%d,semi-bdf2 %s,,",
+                     16 << i, solver[j]);
+            const char *line = row_with(L, prefix, NULL);
+            u[i] = note_number(line, " unknowns");
+            it[i] = note_number(line, " iterations per solve");
+        }
+        snprintf(prefix, sizeof prefix, "10,dt=0.01 fit,semi-bdf2 %s,",
+                 solver[j]);
+        const char *fit = row_with(L, prefix, NULL);
+        static const char key[] = "CG iterations a solve ~ unknowns^";
+        const char *at = fit ? strstr(fit, key) : NULL;
+        cr_assert(at, "no iteration exponent in %s", fit);
+        double q = log(it[1] / it[0]) / log(u[1] / u[0]);
+        double dq = (0.05 / it[0] + 0.05 / it[1]) / log(u[1] / u[0]);
+        cr_assert(fabs(strtod(at + sizeof key - 1, NULL) - q) <= dq + 1e-3,
+                  "%s: %g iterations at %g unknowns, %g at %g", fit, it[0],
+                  u[0], it[1], u[1]);
+    }
+    const char *direct = row_with(L, "10,dt=0.01 fit,semi-bdf2 cholmod,",
+                                  NULL);
+    cr_assert(direct && !strstr(direct, "iterations"), "%s", direct);
+}
+
 /* Workload 10's rows, quick form (n = 16, 32).  At lin_tol 1e-10: the
- * speed-ups at dt = 1e-3 and 1e-2 from alternated rounds (assert_rounds).
+ * speed-ups at dt = 1e-3 and 1e-2 from alternated rounds (assert_rounds),
+ * and pcg's and amg's exponents of their iterations.
  * At one accuracy: the step error of semi-bdf2 at dt = 1e-2 (its distance
  * from dt/2 at t = 0.12 s, about 1.4e-3 m at n = 32); pcg and amg each at
  * a lin_tol of the ladder whose error is within 1 % of it, every looser
@@ -341,6 +389,7 @@ Test(bench, quick_amg_rows_follow_their_rules)
     quick_workload("10", "amg.csv", "accuracy", &L);
     assert_rounds(&L, "0.001");
     assert_rounds(&L, "0.01");
+    assert_iteration_exponents(&L);
     const char *step = row_with(&L, "10,dt=0.01 n=32 accuracy,semi-bdf2 amg "
                                 "dt=0.005 lin_tol=1e-10,", NULL);
     cr_assert(step, "no step-error row");

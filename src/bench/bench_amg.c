@@ -10,7 +10,8 @@
  *     take more than W10_CASE_CAP seconds at the next size is skipped
  *     there.  Then per dt: the exponent p of time per step ~ unknowns^p of
  *     each solver (goal <= 1.15 for the fastest at the largest n at dt =
- *     1e-2), and amg against the fastest one-level solver at the largest
+ *     1e-2; an iterative solver's note adds the exponent of its CG
+ *     iterations a solve), and amg against the fastest one-level solver at the largest
  *     n (goals >= 3x at dt = 1e-2, >= 1.5x at dt = 1e-3), the two timed
  *     at every n in W10_ROUNDS alternated rounds, the fastest kept.  The solvers
  *     run at the default lin_tol, 1e-10, where amg's and pcg's states
@@ -77,6 +78,8 @@ static const char *const w10_solver[W10_NS] = {"pcg", "cholmod", "klu",
 
 typedef struct {
     double per_step[W10_NS][3];  /* NaN: not measured */
+    double iters[W10_NS][3];     /* CG iterations a solve; NaN: not
+                                  * measured, or a direct solver */
     double unknowns[3];
     bool stop[W10_NS];
     bool courant;                /* dt = dt n0/n, steps scaled by n/n0 */
@@ -145,12 +148,12 @@ static void w10_case(cl_bctx *c, w10_sweep *s, double dt0, int i, int j,
     s->per_step[j][i] = row->cpu_a;
     s->steps[j] = ft.steps;
     const cl_stats *st = &ft.stats;
+    double its = st->lin_solves ? (double)st->lin_iters / st->lin_solves
+                                : 0.0;
+    s->iters[j][i] = its > 0.0 ? its : NAN;
     cl_bench_note(row, "%ld timed steps; %.0f unknowns; %.1f iterations "
                   "per solve; %ld of %ld setups built anew", ft.steps,
-                  s->unknowns[i],
-                  st->lin_solves ? (double)st->lin_iters / st->lin_solves
-                                 : 0.0,
-                  st->symbolic_facts, st->lin_setups);
+                  s->unknowns[i], its, st->symbolic_facts, st->lin_setups);
     /* the next size has 4x the unknowns: 5x the time a step is a fair
      * guess (and twice the steps at the same Courant number) */
     long next = s->courant ? 2 * k : 1;
@@ -189,6 +192,13 @@ static void w10_fits(cl_bctx *c, const w10_sweep *s, double dt)
                                              s->unknowns, s->per_step[j], nn,
                                              goal ? "<=" : "", 1.15,
                                              j == best);
+        /* the time's exponent less the iterations' is an iteration's
+         * cost's: which of the two grows (paper/findings.md, "Why the
+         * iterations grow with n") */
+        int used;
+        double q = cl_bench_exponent(s->unknowns, s->iters[j], nn, &used);
+        if (isfinite(row->ratio) && isfinite(q))
+            cl_bench_note(row, "CG iterations a solve ~ unknowns^%.3f", q);
         if (s->courant && isfinite(row->ratio))
             cl_bench_note(row, "the same Courant number at every n (the "
                           "goal, <= 1.15, asks at a fixed dt)");
@@ -275,7 +285,7 @@ static void w10_dt(cl_bctx *c, double dt, bool courant)
         cl_bmodel bm;
         cl_error err = {0};
         for (int j = 0; j < W10_NS; j++)
-            s.per_step[j][i] = NAN;
+            s.per_step[j][i] = s.iters[j][i] = NAN;
         if (cl_bench_model(c, "hang", sets, &bm, &err)) {
             cl_bench_note(cl_bench_row_add(c, 10, nset), "%s", err.msg);
             continue;

@@ -122,10 +122,8 @@ static void w3_case(cl_bctx *c, w3_sweep *s, double dt, int i, int j,
     cl_bench_log_row(c, row);
 }
 
-/* Least-squares slope of log(per_step) against log(unknowns) over the
- * nn sizes with a finite time (their count into used; NaN under two). */
-static double exponent(const double *unknowns, const double *per_step,
-                       int nn, int *used)
+double cl_bench_exponent(const double *unknowns, const double *per_step,
+                         int nn, int *used)
 {
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
     int k = 0;
@@ -148,7 +146,7 @@ cl_bench_row *cl_bench_fit_row(cl_bctx *c, int workload, const char *kase,
                                const char *goal, double target, bool fastest)
 {
     int used;
-    double e = exponent(unknowns, per_step, nn, &used);
+    double e = cl_bench_exponent(unknowns, per_step, nn, &used);
     cl_bench_row *row = cl_bench_row_add(c, workload, kase);
     snprintf(row->side_a, sizeof row->side_a, "semi-bdf2 %s", solver);
     cl_bench_judge(row, e, "exponent", goal, target);

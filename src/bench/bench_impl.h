@@ -133,6 +133,11 @@ bool cl_bench_semi_step(cl_model *m, const cl_integrator_opts *io,
                         const fixed_plan *fp, cl_bench_row *row,
                         fixed_time *ft);
 
+/* Least-squares slope of log(value) against log(unknowns) over the nn
+ * sizes with a finite value (their count into used; NaN under two). */
+double cl_bench_exponent(const double *unknowns, const double *value,
+                         int nn, int *used);
+
 /* A new row of `workload`, case kase: the exponent p of semi-bdf2
  * `solver`'s time per step ~ unknowns^p, the least-squares slope of
  * log(per_step) against log(unknowns) over the nn sizes with a finite time
