@@ -122,14 +122,14 @@ static void w3_case(cl_bctx *c, w3_sweep *s, double dt, int i, int j,
     cl_bench_log_row(c, row);
 }
 
-double cl_bench_exponent(const double *unknowns, const double *per_step,
+double cl_bench_exponent(const double *unknowns, const double *value,
                          int nn, int *used)
 {
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
     int k = 0;
     for (int i = 0; i < nn; i++)
-        if (isfinite(per_step[i])) {
-            double lx = log(unknowns[i]), ly = log(per_step[i]);
+        if (isfinite(value[i])) {
+            double lx = log(unknowns[i]), ly = log(value[i]);
             sx += lx;
             sy += ly;
             sxx += lx * lx;
