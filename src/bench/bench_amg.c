@@ -16,9 +16,9 @@
  *     the two timed at every n in W10_ROUNDS alternated rounds, the
  *     fastest kept.  The solvers run at the default lin_tol, 1e-10,
  *     where amg's and pcg's states both stay within 1e-12 m of the exact
- *     linear steps (n = 256, dt = 1e-2, 12 steps); at one looser tolerance their errors differ (at
- *     1e-6 amg's is 700 times pcg's), so a comparison there would not be
- *     one at equal error (paper/findings.md, "The same lin_tol is not the
+ *     linear steps (n = 256, dt = 1e-2, 12 steps); at one looser
+ *     tolerance their errors differ (at 1e-6 amg's is 700 times pcg's),
+ *     so a comparison there would not be one at equal error (paper/findings.md, "The same lin_tol is not the
  *     same error").  The comparison at the accuracy a step needs, each
  *     solver at its own lin_tol, is bench_amg_acc.c's.
  *     Last, pcg and amg at the same Courant number on every size: dt =
