@@ -10,17 +10,17 @@
  *     take more than W10_CASE_CAP seconds at the next size is skipped
  *     there.  Then per dt: the exponent p of time per step ~ unknowns^p of
  *     each solver (goal <= 1.15 for the fastest at the largest n at dt =
- *     1e-2; an iterative solver's note adds the exponent of its CG
- *     iterations a solve), and amg against the fastest one-level solver
- *     at the largest n (goals >= 3x at dt = 1e-2, >= 1.5x at dt = 1e-3),
- *     the two timed at every n in W10_ROUNDS alternated rounds, the
- *     fastest kept.  The solvers run at the default lin_tol, 1e-10,
- *     where amg's and pcg's states both stay within 1e-12 m of the exact
- *     linear steps (n = 256, dt = 1e-2, 12 steps); at one looser
- *     tolerance their errors differ (at 1e-6 amg's is 700 times pcg's),
- *     so a comparison there would not be one at equal error (paper/findings.md, "The same lin_tol is not the
- *     same error").  The comparison at the accuracy a step needs, each
- *     solver at its own lin_tol, is bench_amg_acc.c's.
+ *     1e-2; an iterative solver's note adds the exponent of its CG iterations
+ *     a solve), and amg against the fastest one-level solver at the largest n
+ *     (goals >= 3x at dt = 1e-2, >= 1.5x at dt = 1e-3), the two timed at
+ *     every n in W10_ROUNDS alternated rounds, the fastest kept.  The solvers
+ *     run at the default lin_tol, 1e-10, where amg's and pcg's states both
+ *     stay within 1e-12 m of the exact linear steps (n = 256, dt = 1e-2, 12
+ *     steps); at one looser tolerance their errors differ (at 1e-6 amg's is
+ *     700 times pcg's), so a comparison there would not be one at equal error
+ *     (paper/findings.md, "The same lin_tol is not the same error").  The
+ *     comparison at the accuracy a step needs, each solver at its own
+ *     lin_tol, is bench_amg_acc.c's.
  *     Last, pcg and amg at the same Courant number on every size: dt =
  *     1e-2 n0/n (n0 the smallest n), the untimed and timed steps scaled
  *     by n/n0 and no time budget, so that every size is timed over the
