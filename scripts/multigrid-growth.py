@@ -23,8 +23,8 @@ zero to ||b - A x||_2 <= 1e-10 ||b||_2 with
            (a 4 x 4 tiling, each tile widened by two particles a side),
            each patch solved exactly.
 
-Two right-hand sides: 1e-4 times the forces at the state, and a
-reproducible random vector.  With --courant, dt is scaled as 64/n (the
+Two right-hand sides: the forces at the state, and a reproducible random
+vector.  With --courant, dt is scaled as n0/n (n0 the first size: the
 same Courant number at every size) and each size runs to the same time.
 
 Needs Debian's python3-petsc4py, python3-scipy
@@ -60,7 +60,8 @@ def run(cmd):
 
 
 def export(clothode, problem, n, dt, t_end, work):
-    """Run to t_end, export the Jacobians there; return (K, D, config)."""
+    """Run to t_end, export the Jacobians there; return df/dx, df/dv, the
+    run's configuration and the forces at the state."""
     out = os.path.join(work, f"run{n}")
     run([clothode, "run", problem, "--integrator", "semi-bdf2", "--linsol",
          "amg", "--dt", repr(dt), "--set", f"cloth.n={n}", "--frames", "0",
@@ -77,28 +78,39 @@ def export(clothode, problem, n, dt, t_end, work):
 
 
 def pinned(cfg, n):
-    """The free particles (row-major index i n + j) of the grid."""
+    """The free particles (row-major index i n + j) of the grid: pins
+    given as `[pins] at` only (hang's form); any other is refused."""
+    other = [s for s in cfg.sections() if s.startswith("pins") and
+             (s != "pins" or set(cfg[s]) - {"at"})]
+    if other or not cfg.has_option("pins", "at"):
+        sys.exit("multigrid-growth: the problem's pins must be given as "
+                 "[pins] at = i,j ... alone")
     free = np.ones(n * n, bool)
-    for pin in cfg.get("pins", "at", fallback="").split():
+    for pin in cfg.get("pins", "at").split():
         i, j = (int(v) % n for v in pin.split(","))
         free[i * n + j] = False
     return free
 
 
-def coarse_line(nf):
-    """1-D interpolation from every other point (the last kept) to nf."""
+def coarse_line(x):
+    """1-D linear interpolation to the points at x from every other one
+    (the last kept); returns it and the kept points' coordinates."""
+    nf = len(x)
     keep = list(range(0, nf - 1, 2)) + [nf - 1]
     at = {c: k for k, c in enumerate(keep)}
     rows, cols, vals = [], [], []
     for k in range(nf):
-        # a kept point is its own; a dropped one halfway between two kept
-        near = [(at[k], 1.0)] if k in at else [(at[k - 1], 0.5),
-                                               (at[k + 1], 0.5)]
+        if k in at:
+            near = [(at[k], 1.0)]
+        else:   # between two kept points, weighted by distance
+            w = (x[k + 1] - x[k]) / (x[k + 1] - x[k - 1])
+            near = [(at[k - 1], w), (at[k + 1], 1.0 - w)]
         for c, w in near:
             rows.append(k)
             cols.append(c)
             vals.append(w)
-    return sp.csr_matrix((vals, (rows, cols)), shape=(nf, len(keep)))
+    P = sp.csr_matrix((vals, (rows, cols)), shape=(nf, len(keep)))
+    return P, [x[k] for k in keep]
 
 
 def grids(n, free):
@@ -106,9 +118,10 @@ def grids(n, free):
     them, finest first.  Only the finest level has pins: a coarse point's
     interpolation reaches the free fine particles around it."""
     levels, interps = [(n, free)], []
+    x = list(range(n))      # a level's points along a side, in fine rows
     while levels[-1][0] > COARSEST:
         nf, ff = levels[-1]
-        line = coarse_line(nf)
+        line, x = coarse_line(x)
         nc = line.shape[1]
         P = sp.kron(sp.kron(line, line), sp.identity(3)).tocsr()
         interps.append(P[np.repeat(ff, 3)].tocsr())
@@ -133,9 +146,9 @@ def patches(side, free, tile=4, widen=2):
     out = []
     for i0 in range(0, side, tile):
         for j0 in range(0, side, tile):
-            ps = [row[i * side + j]
-                  for i in range(max(0, i0 - widen), min(side, i0 + tile + widen))
-                  for j in range(max(0, j0 - widen), min(side, j0 + tile + widen))
+            span = [range(max(0, a - widen), min(side, a + tile + widen))
+                    for a in (i0, j0)]
+            ps = [row[i * side + j] for i in span[0] for j in span[1]
                   if row[i * side + j] >= 0]
             dofs = np.sort(np.concatenate([[3 * p, 3 * p + 1, 3 * p + 2]
                                            for p in ps]))
@@ -177,6 +190,8 @@ def solve(A, b, kind, levels, interps):
         opts["mg_coarse_ksp_type"] = "preonly"
         opts["mg_coarse_pc_type"] = "lu"
         if kind == "gmg-asm":
+            # the patches through the API; the level's own options keep
+            # setFromOptions from making it pbjacobi like the others
             fine = pc.getMGSmoother(nl - 1).getPC()
             fine.setType("asm")
             fine.setASMType(PETSc.PC.ASMType.BASIC)
@@ -203,9 +218,10 @@ def main():
     ap.add_argument("--sizes", default="64,128,256")
     ap.add_argument("--dt", type=float, default=1e-2)
     ap.add_argument("--steps", type=int, default=7,
-                    help="steps before the state, at n = 64")
+                    help="steps before the state, at the first size")
     ap.add_argument("--courant", action="store_true",
-                    help="dt scaled as 64/n, the same simulated time")
+                    help="dt scaled as n0/n (n0 the first size), the same "
+                    "simulated time")
     ap.add_argument("--solvers", default="bj,gamg,gmg,gmg-asm")
     ap.add_argument("--work", default="out/multigrid-growth")
     a = ap.parse_args()
@@ -217,7 +233,7 @@ def main():
     print(f"{'n':>4} {'dt':>9} {'rhs':>6} " +
           " ".join(f"{k:>8}" for k in kinds))
     for n in sizes:
-        dt = a.dt * 64 / n if a.courant else a.dt
+        dt = a.dt * sizes[0] / n if a.courant else a.dt
         K, D, cfg, forces = export(a.clothode, a.problem, n, dt, t_end,
                                    a.work)
         free = pinned(cfg, n)
@@ -228,7 +244,7 @@ def main():
         A = A.tocsr()[fd][:, fd].tocsr()
         levels, interps = grids(n, free)
         rng = np.random.default_rng(1)
-        for name, b in (("forces", 1e-4 * forces[free].ravel()),
+        for name, b in (("forces", forces[free].ravel()),
                         ("random", rng.standard_normal(A.shape[0]))):
             row = [solve(A, b, k, levels, interps) for k in kinds]
             iters[(n, name)] = row

@@ -193,10 +193,9 @@ static void w10_fits(cl_bctx *c, const w10_sweep *s, double dt)
                                              goal ? "<=" : "", 1.15,
                                              j == best);
         /* the time's exponent less the iterations' is an iteration's
-         * cost's: which of the two grows (paper/findings.md, "Why the
-         * iterations grow with n") */
-        int used;
-        double q = cl_bench_exponent(s->unknowns, s->iters[j], nn, &used);
+         * cost's: which of the two grows (paper/findings.md, "Where the
+         * exponent comes from") */
+        double q = cl_bench_exponent(s->unknowns, s->iters[j], nn, NULL);
         if (isfinite(row->ratio) && isfinite(q))
             cl_bench_note(row, "CG iterations a solve ~ unknowns^%.3f", q);
         if (s->courant && isfinite(row->ratio))

@@ -136,7 +136,8 @@ double cl_bench_exponent(const double *unknowns, const double *value,
             sxy += lx * ly;
             k++;
         }
-    *used = k;
+    if (used)
+        *used = k;
     return k < 2 ? NAN : (k * sxy - sx * sy) / (k * sxx - sx * sx);
 }
 

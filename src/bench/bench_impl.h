@@ -134,7 +134,8 @@ bool cl_bench_semi_step(cl_model *m, const cl_integrator_opts *io,
                         fixed_time *ft);
 
 /* Least-squares slope of log(value) against log(unknowns) over the nn
- * sizes with a finite value (their count into used; NaN under two). */
+ * sizes with a finite value (their count into *used unless used is NULL;
+ * NaN under two). */
 double cl_bench_exponent(const double *unknowns, const double *value,
                          int nn, int *used);
 

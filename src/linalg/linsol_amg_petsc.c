@@ -39,7 +39,7 @@
  *          and, without a prefix (GAMG's Galerkin products have none),
  *          -matptap_via rap: P^T A P as the triple product R A P of a
  *          stored transpose R = P^T, the same operators as the default's
- *          in 0.6 times its time (hang, n = 256, paper/findings.md);
+ *          in about half its time (hang, n = 256, paper/findings.md);
  *   hypre  -pc_type hypre -pc_hypre_type boomeramg with nodal coarsening
  *          and the vector interpolation for systems of PDEs
  *          (-pc_hypre_boomeramg_nodal_coarsen 6
@@ -167,7 +167,7 @@ static PetscErrorCode amg_options(const char *prefix, int hypre)
             return ec;
     }
     /* GAMG's Galerkin products P^T A P as R A P with R = P^T stored: the
-     * same coarse operators in 0.6 times the time at n = 256.  The
+     * same coarse operators in about half the time at n = 256.  The
      * product matrices GAMG makes carry no prefix, so the option is the
      * process's */
     return hypre ? 0 : amg_default("", "matptap_via", "rap");
