@@ -47,13 +47,18 @@ import petsc4py
 petsc4py.init(sys.argv[:1])
 from petsc4py import PETSc  # noqa: E402  (after petsc4py.init)
 
+HANG = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..",
+                    "problems", "hang.ini")
 COARSEST = 9    # particles a side of the grid solved directly
 RTOL = 1e-10
 
 
 def run(cmd):
-    r = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                       text=True)
+    try:
+        r = subprocess.run(cmd, stdout=subprocess.DEVNULL,
+                           stderr=subprocess.PIPE, text=True)
+    except OSError as e:
+        sys.exit(f"multigrid-growth: cannot run {cmd[0]}: {e.strerror}")
     if r.returncode != 0:
         sys.exit(f"multigrid-growth: {' '.join(cmd)} failed "
                  f"(exit {r.returncode}): {r.stderr.strip()}")
@@ -214,7 +219,6 @@ def solve(A, b, kind, levels, interps):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--clothode", default="build/clothode")
-    ap.add_argument("--problem", default="problems/hang.ini")
     ap.add_argument("--sizes", default="64,128,256")
     ap.add_argument("--dt", type=float, default=1e-2)
     ap.add_argument("--steps", type=int, default=7,
@@ -226,7 +230,14 @@ def main():
     ap.add_argument("--work", default="out/multigrid-growth")
     a = ap.parse_args()
     os.makedirs(a.work, exist_ok=True)
-    sizes = [int(v) for v in a.sizes.split(",")]
+    try:
+        sizes = [int(v) for v in a.sizes.split(",")]
+    except ValueError:
+        sys.exit(f"multigrid-growth: --sizes {a.sizes}: not whole numbers "
+                 "separated by commas")
+    if min(sizes) <= COARSEST or sizes != sorted(sizes):
+        sys.exit(f"multigrid-growth: --sizes {a.sizes}: increasing, each "
+                 f"above {COARSEST}")
     kinds = a.solvers.split(",")
     t_end = a.steps * a.dt
     iters = {}
@@ -234,8 +245,7 @@ def main():
           " ".join(f"{k:>8}" for k in kinds))
     for n in sizes:
         dt = a.dt * sizes[0] / n if a.courant else a.dt
-        K, D, cfg, forces = export(a.clothode, a.problem, n, dt, t_end,
-                                   a.work)
+        K, D, cfg, forces = export(a.clothode, HANG, n, dt, t_end, a.work)
         free = pinned(cfg, n)
         m = cfg.getfloat("cloth", "mass") / (n * n)
         A = (m * sp.identity(3 * n * n) - (2 * dt / 3) * D
