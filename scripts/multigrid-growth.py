@@ -64,15 +64,15 @@ def run(cmd):
                  f"(exit {r.returncode}): {r.stderr.strip()}")
 
 
-def export(clothode, problem, n, dt, t_end, work):
+def export(clothode, n, dt, t_end, work):
     """Run to t_end, export the Jacobians there; return df/dx, df/dv, the
     run's configuration and the forces at the state."""
     out = os.path.join(work, f"run{n}")
-    run([clothode, "run", problem, "--integrator", "semi-bdf2", "--linsol",
+    run([clothode, "run", HANG, "--integrator", "semi-bdf2", "--linsol",
          "amg", "--dt", repr(dt), "--set", f"cloth.n={n}", "--frames", "0",
          "--samples", "1", "--t-end", repr(t_end), "--out", out])
     K, D = os.path.join(work, f"K{n}.mtx"), os.path.join(work, f"D{n}.mtx")
-    run([clothode, "eval", problem, "--state", os.path.join(out, "final.csv"),
+    run([clothode, "eval", HANG, "--state", os.path.join(out, "final.csv"),
          "--t", repr(t_end), "--set", f"cloth.n={n}", "--jacobian", K,
          "--jacobian-v", D, "--out", os.path.join(work, f"eval{n}")])
     cfg = configparser.ConfigParser(inline_comment_prefixes=(";",))
@@ -88,7 +88,7 @@ def pinned(cfg, n):
     other = [s for s in cfg.sections() if s.startswith("pins") and
              (s != "pins" or set(cfg[s]) - {"at"})]
     if other or not cfg.has_option("pins", "at"):
-        sys.exit("multigrid-growth: the problem's pins must be given as "
+        sys.exit("multigrid-growth: hang's pins must be given as "
                  "[pins] at = i,j ... alone")
     free = np.ones(n * n, bool)
     for pin in cfg.get("pins", "at").split():
@@ -245,7 +245,7 @@ def main():
           " ".join(f"{k:>8}" for k in kinds))
     for n in sizes:
         dt = a.dt * sizes[0] / n if a.courant else a.dt
-        K, D, cfg, forces = export(a.clothode, HANG, n, dt, t_end, a.work)
+        K, D, cfg, forces = export(a.clothode, n, dt, t_end, a.work)
         free = pinned(cfg, n)
         m = cfg.getfloat("cloth", "mass") / (n * n)
         A = (m * sp.identity(3 * n * n) - (2 * dt / 3) * D

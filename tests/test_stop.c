@@ -33,9 +33,10 @@ Test(stop, second_signal_ends_the_program, .signal = SIGINT)
     raise(SIGINT);
 }
 
-/* A signal after a budget's timer replaces it, and forgetting the
- * budget's stop (cl_stop_clear) keeps it; a budget's timer after a signal
- * does not replace the signal. */
+/* A signal after a budget's timer replaces it (an interruption, which a
+ * budget's stop is not), and forgetting the budget's stop (cl_stop_clear)
+ * keeps it; a budget's timer after a signal does not replace the
+ * signal. */
 Test(stop, signal_after_a_budget_replaces_it)
 {
     cl_error err;
@@ -43,8 +44,10 @@ Test(stop, signal_after_a_budget_replaces_it)
     cr_assert_eq(cl_stop_after(CL_STOP_WALL, 100.0, &err), CL_OK);
     raise(SIGALRM);
     cr_assert_eq(cl_stop_requested(), SIGALRM);
+    cr_assert(!cl_stop_interrupted());
     raise(SIGTERM);
     cr_assert_eq(cl_stop_requested(), SIGTERM);
+    cr_assert(cl_stop_interrupted());
     cr_assert_eq(cl_stop_after(CL_STOP_WALL, 100.0, &err), CL_OK);
     raise(SIGALRM);
     cr_assert_eq(cl_stop_requested(), SIGTERM);

@@ -3,7 +3,6 @@
 #include "bench/bench.h"
 
 #include <math.h>
-#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -59,12 +58,6 @@ static void (*const work[CL_BENCH_WORKLOADS + 1])(cl_bctx *) = {
     cl_bench_w5,     cl_bench_w6,  cl_bench_w7,  cl_bench_w8,  cl_bench_w9,
     cl_bench_w10,    cl_bench_w11, cl_bench_w12, cl_bench_w13};
 
-bool cl_bench_interrupted(void)
-{
-    int sig = cl_stop_requested();
-    return sig == SIGINT || sig == SIGTERM;
-}
-
 /* Workload w (0: the choice of solver) unless out of memory; false if a
  * signal interrupted it, and then its rows are dropped: the cases after
  * the signal failed or were cut short. */
@@ -73,7 +66,7 @@ static bool run_workload(cl_bctx *c, int w)
     size_t before = c->t->n;
     if (!c->nomem)
         work[w](c);
-    if (!cl_bench_interrupted())
+    if (!cl_stop_interrupted())
         return true;
     c->t->n = before;
     c->stopped_in = w;
@@ -102,10 +95,10 @@ cl_status cl_bench_run(const cl_bench_opts *o, cl_bench_table *t,
     if (c.nomem)
         return cl_error_set(err, CL_ENOMEM, "out of memory (bench)");
     const char *sig = cl_stop_signal_name(cl_stop_requested());
-    if (cl_bench_interrupted() && c.stopped_in < 0)
+    if (cl_stop_interrupted() && c.stopped_in < 0)
         return cl_error_set(err, CL_EINTR, "interrupted by %s after the last "
                             "workload", sig);
-    if (cl_bench_interrupted())
+    if (cl_stop_interrupted())
         return cl_error_set(err, CL_EINTR, "interrupted by %s in workload "
                             "%d; the table holds the workloads finished "
                             "before it", sig, c.stopped_in);

@@ -12,6 +12,7 @@
 
 #include "bench/bench_impl.h"
 #include "analysis/diagnostics.h"
+#include "core/stop.h"
 #include "io/state.h"
 #include "linalg/linsol.h"
 
@@ -117,7 +118,7 @@ void cl_bench_peers_stop(cl_bctx *c)
     cl_child_usage u;
     bool ended = false;
     while (c->peers.pid > 0 && !cl_child_done(&c->peers, &u)) {
-        if (!ended && cl_bench_interrupted())
+        if (!ended && cl_stop_interrupted())
             ended = kill(-c->peers.pid, SIGTERM) == 0;
         nanosleep(&(struct timespec){0, 20000000}, NULL);
     }

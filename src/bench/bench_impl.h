@@ -217,12 +217,6 @@ double cl_bench_uniform(unsigned long long *s);
  * max_order K > 0. */
 void cl_bench_side(char *buf, size_t len, const char *linsol, int max_order);
 
-/* ---- bench.c ------------------------------------------------------- */
-
-/* Whether SIGINT or SIGTERM asked to stop (core/stop.h; not a run's
- * budget). */
-bool cl_bench_interrupted(void);
-
 /* ---- bench_hang.c: workloads 1, 2, 6 and the choice of solver -------- */
 
 void cl_bench_peers_start(cl_bctx *c);

@@ -16,6 +16,7 @@
 #include "bench/bench_impl.h"
 #include "contact/bvh.h"
 #include "contact/icosphere.h"
+#include "core/stop.h"
 
 #define W7_LEVEL 5
 #define W7_POINTS 10000
@@ -59,7 +60,7 @@ static long w7_time(const w7_case *w, w7_query query, double budget,
     cl_bench_clock(&c0, &w0);
     c1 = c0;
     w1 = w0;
-    while ((k < min || c1 - c0 < budget) && !cl_bench_interrupted()) {
+    while ((k < min || c1 - c0 < budget) && !cl_stop_interrupted()) {
         for (int r = 0; r < 16; r++, k++) {
             cl_bvh_hit h;
             query(&w->b, w->x + 3 * (k % W7_POINTS), &h);

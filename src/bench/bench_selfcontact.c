@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "bench/bench_impl.h"
+#include "core/stop.h"
 #include "forces/selfcontact.h"
 
 #define W9_T 2.5      /* the state measured (s) */
@@ -118,7 +119,7 @@ static void w9_measure(cl_bctx *c, w9_run *r, cl_bench_row *row)
     cl_bench_clock(&c0, &w0);
     /* a signal stops the bench here too (its rows are dropped) */
     for (c1 = c0; (c1 - c0 < c->plan.eval_budget || rounds < 3) &&
-                  !cl_bench_interrupted();
+                  !cl_stop_interrupted();
          rounds++) {
         w9_round(r, nf, nj);
         cl_bench_clock(&c1, &w1);

@@ -16,10 +16,14 @@ static volatile sig_atomic_t stop_signal;
  * a signal (SIGINT, SIGTERM) replaces a budget's timer (SIGPROF,
  * SIGALRM), so that forgetting the budget's stop (cl_stop_clear) does
  * not forget a Ctrl-C that came after it. */
+static bool budget_timer(int sig)
+{
+    return sig == SIGPROF || sig == SIGALRM;
+}
+
 static void on_signal(int sig)
 {
-    bool timer = stop_signal == SIGPROF || stop_signal == SIGALRM;
-    if (!stop_signal || (timer && (sig == SIGINT || sig == SIGTERM)))
+    if (!stop_signal || (budget_timer(stop_signal) && !budget_timer(sig)))
         stop_signal = sig;
 }
 
@@ -37,6 +41,11 @@ void cl_stop_install(void)
 int cl_stop_requested(void)
 {
     return (int)stop_signal;
+}
+
+bool cl_stop_interrupted(void)
+{
+    return stop_signal && !budget_timer(stop_signal);
 }
 
 /* A one-shot timer's value for `seconds`. */
@@ -83,7 +92,7 @@ void cl_stop_disarm(void)
 void cl_stop_clear(void)
 {
     cl_stop_disarm();
-    if (stop_signal == SIGPROF || stop_signal == SIGALRM)
+    if (budget_timer(stop_signal))
         stop_signal = 0;
 }
 

@@ -9,6 +9,8 @@
 #ifndef CL_STOP_H
 #define CL_STOP_H
 
+#include <stdbool.h>
+
 #include "core/error.h"
 
 /* Install the handler for SIGINT and SIGTERM (sigaction). */
@@ -18,6 +20,9 @@ void cl_stop_install(void);
  * SIGALRM for a CPU and a wall-time budget), or 0; SIGINT or SIGTERM
  * after a budget's timer replaces it. */
 int cl_stop_requested(void);
+
+/* Whether SIGINT or SIGTERM asked to stop (not a budget's timer). */
+bool cl_stop_interrupted(void);
 
 /* The clocks of a budget: CPU time of the process (ITIMER_PROF, SIGPROF)
  * and wall time (ITIMER_REAL, SIGALRM). */
