@@ -19,6 +19,7 @@
 
 #include "bench/bench.h"
 #include "bench/child.h"
+#include "core/stop.h"
 #include "runcli.h"
 #include "timelimit.h"
 
@@ -37,14 +38,19 @@ static void teardown(void)
 
 TestSuite(bench, .init = setup, .fini = teardown);
 
-/* Run clothode-bench ($CLOTHODE_BENCH, else build/clothode-bench) with
- * the NULL-terminated arguments. */
-static void bench_run(cli_result *r, ...)
+/* The program: $CLOTHODE_BENCH, else build/clothode-bench. */
+static char *bench_program(void)
 {
     const char *b = getenv("CLOTHODE_BENCH");
+    return (char *)(b && *b ? b : "build/clothode-bench");
+}
+
+/* Run clothode-bench with the NULL-terminated arguments. */
+static void bench_run(cli_result *r, ...)
+{
     char *argv[CLI_MAX_ARGS + 2];
     size_t n = 0;
-    argv[n++] = (char *)(b && *b ? b : "build/clothode-bench");
+    argv[n++] = bench_program();
     va_list ap;
     va_start(ap, r);
     for (char *a; (a = va_arg(ap, char *));) {
@@ -100,6 +106,62 @@ Test(bench, peak_memory_child_prints_its_peak)
     cr_assert_gt(kb, 0);
     cr_assert_eq(cli_count_lines(r.out), 1, "%s", r.out);
     cli_result_free(&r);
+}
+
+/* Has process `pid` ended?  Gone, or a zombie its new parent has not
+ * reaped (/proc/PID/stat: the state after the command's closing
+ * parenthesis). */
+static bool process_ended(pid_t pid)
+{
+    char path[64], line[512];
+    snprintf(path, sizeof path, "/proc/%d/stat", (int)pid);
+    FILE *fp = fopen(path, "r");
+    if (!fp)
+        return true;
+    char *got = fgets(line, sizeof line, fp);
+    fclose(fp);
+    char *paren = got ? strrchr(line, ')') : NULL;
+    return !paren || paren[1] == '\0' || paren[2] == 'Z' || paren[2] == 'X';
+}
+
+/* Workload 6's child ends when its parent dies.  A process of the test
+ * starts `--peak-memory 64:klu` (about 12 s of CPU), hands the child's
+ * pid over a pipe and waits; killed outright (SIGKILL) a second later,
+ * it leaves its child to end by SIGTERM (PR_SET_PDEATHSIG) within 3 s,
+ * where before the child ran to its end. */
+Test(bench, peak_memory_child_ends_with_its_parent)
+{
+    int fd[2];
+    cr_assert_eq(pipe(fd), 0);
+    pid_t parent = fork();
+    cr_assert_geq(parent, 0);
+    if (parent == 0) {
+        close(fd[0]);
+        char *argv[] = {bench_program(), "--peak-memory", "64:klu", NULL};
+        cl_child c;
+        cl_error err;
+        if (cl_child_start(&c, argv, NULL, NULL, &err) ||
+            write(fd[1], &c.pid, sizeof c.pid) != sizeof c.pid)
+            _exit(1);
+        for (;;)
+            pause();
+    }
+    close(fd[1]);
+    pid_t child = 0;
+    ssize_t got = read(fd[0], &child, sizeof child);
+    close(fd[0]);
+    nanosleep(&(struct timespec){1, 0}, NULL);
+    kill(parent, SIGKILL);
+    waitpid(parent, NULL, 0);
+    cr_assert_eq(got, (ssize_t)sizeof child, "the parent did not start "
+                 "its child");
+    bool ended = false;
+    for (int k = 0; k < 30 && !(ended = process_ended(child)); k++)
+        nanosleep(&(struct timespec){0, 100000000}, NULL);
+    if (!ended)
+        kill(child, SIGKILL);
+    cr_assert(ended, "the child %d ran on after its parent's death",
+              (int)child);
 }
 
 /* The figure of a CSV row: the number before ",UNIT," (NaN if absent). */
@@ -470,6 +532,33 @@ Test(bench, child_status_usage_and_output)
     char *missing[] = {"clothode-no-such-program", NULL};
     cr_assert_eq(cl_child_run(missing, NULL, NULL, &u, &err), CL_EIO);
     cr_assert(strstr(err.msg, "clothode-no-such-program"), "%s", err.msg);
+}
+
+/* A stop asked of the waiting process reaches its child.  The test installs
+ * the stop handler (core/stop.h), starts `sleep 5` and a second process
+ * that sends the test SIGTERM after 0.1 s: the wait passes SIGTERM on, so
+ * the sleep ends by that signal, not by its own exit after 5 s. */
+Test(bench, child_wait_passes_a_stop_on)
+{
+    cl_stop_install();
+    cl_child c;
+    cl_child_usage u;
+    cl_error err = {0};
+    char *sleeper[] = {"sleep", "5", NULL};
+    cr_assert_eq(cl_child_start(&c, sleeper, NULL, NULL, &err), CL_OK, "%s",
+                 err.msg);
+    pid_t test = getpid(), stopper = fork();
+    cr_assert_geq(stopper, 0);
+    if (stopper == 0) {
+        nanosleep(&(struct timespec){0, 100000000}, NULL);
+        kill(test, SIGTERM);
+        _exit(0);
+    }
+    cl_child_wait(&c, &u);
+    waitpid(stopper, NULL, 0);
+    cr_assert(cl_stop_interrupted(), "the test's SIGTERM did not arrive");
+    cr_assert(!u.exited && u.signal == SIGTERM, "exited %d (status %d), "
+              "signal %d", u.exited, u.status, u.signal);
 }
 
 /* A child that blocks reading a FIFO until the test writes to it: polled

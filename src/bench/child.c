@@ -4,8 +4,11 @@
 #define _DEFAULT_SOURCE /* wait4 */
 #include "bench/child.h"
 
+#include "core/stop.h"
+
 #include <errno.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -69,15 +72,26 @@ static void fill_usage(int ws, const struct rusage *ru, double t0,
     u->maxrss_kb = ru->ru_maxrss;
 }
 
-/* wait4 with options; true when the child was reaped. */
+/* wait4 with options; true when the child was reaped.  A blocking wait
+ * passes a stop by SIGINT or SIGTERM (core/stop.h) on to the child as
+ * SIGTERM, once: a bench stopped by a signal sent to its process alone
+ * (kill PID, a batch system's time limit) does not wait for a child's
+ * long run.  The stop is looked at before each wait4 and after each one
+ * the signal interrupts; a signal that lands between the look and the
+ * wait waits for the child, as before. */
 static bool reap(cl_child *c, int options, cl_child_usage *u)
 {
     int ws = 0;
     struct rusage ru;
     pid_t w;
-    do
+    bool passed = options & WNOHANG;
+    for (;;) {
+        if (!passed && cl_stop_interrupted())
+            passed = kill(c->pid, SIGTERM) == 0;
         w = wait4(c->pid, &ws, options, &ru);
-    while (w < 0 && errno == EINTR);
+        if (!(w < 0 && errno == EINTR))
+            break;
+    }
     if (w == 0)
         return false;
     if (w < 0) { /* not our child any more: report a failure */

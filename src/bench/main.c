@@ -4,10 +4,12 @@
 #define _DEFAULT_SOURCE /* mkdtemp */
 #include <ftw.h>
 #include <getopt.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/prctl.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -216,9 +218,12 @@ static int bench(bench_args *a)
     return rc ? cl_cli_fail(&err) : 0;
 }
 
-/* --peak-memory N:LINSOL */
+/* --peak-memory N:LINSOL, the child of workload 6: it ends (SIGTERM)
+ * when its parent does, so that a bench killed outright (SIGKILL) leaves
+ * no run behind. */
 static int peak_memory(bench_args *a)
 {
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
     char *end;
     long n = strtol(a->peak, &end, 10);
     if (end == a->peak || *end != ':' || n < 3 || n > 4096)
