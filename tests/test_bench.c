@@ -108,27 +108,55 @@ Test(bench, peak_memory_child_prints_its_peak)
     cli_result_free(&r);
 }
 
-/* Has process `pid` ended?  Gone, or a zombie its new parent has not
- * reaped (/proc/PID/stat: the state after the command's closing
- * parenthesis). */
-static bool process_ended(pid_t pid)
+/* Process `pid`'s state letter and CPU clock ticks (user + system) from
+ * /proc/PID/stat, the fields after the command's closing parenthesis;
+ * false if it is gone. */
+static bool process_stat(pid_t pid, char *state, unsigned long *ticks)
 {
-    char path[64], line[512];
+    char path[64], line[1024];
     snprintf(path, sizeof path, "/proc/%d/stat", (int)pid);
     FILE *fp = fopen(path, "r");
     if (!fp)
-        return true;
+        return false;
     char *got = fgets(line, sizeof line, fp);
     fclose(fp);
     char *paren = got ? strrchr(line, ')') : NULL;
-    return !paren || paren[1] == '\0' || paren[2] == 'Z' || paren[2] == 'X';
+    unsigned long ut = 0, st = 0;
+    if (!paren || sscanf(paren + 1, " %c %*d %*d %*d %*d %*d %*u %*u %*u "
+                         "%*u %*u %lu %lu", state, &ut, &st) != 3)
+        return false;
+    *ticks = ut + st;
+    return true;
+}
+
+/* Has process `pid` ended: gone, or a zombie its new parent has not
+ * reaped? */
+static bool process_ended(pid_t pid)
+{
+    char state;
+    unsigned long ticks;
+    return !process_stat(pid, &state, &ticks) || state == 'Z' ||
+           state == 'X';
+}
+
+/* Wait (up to 20 s) until process `pid` has used 0.5 s of CPU. */
+static void await_cpu(pid_t pid)
+{
+    long hz = sysconf(_SC_CLK_TCK);
+    char state;
+    unsigned long ticks = 0;
+    for (int k = 0; k < 200 && process_stat(pid, &state, &ticks) &&
+                    (long)ticks < hz / 2;
+         k++)
+        nanosleep(&(struct timespec){0, 100000000}, NULL);
 }
 
 /* Workload 6's child ends when its parent dies.  A process of the test
  * starts `--peak-memory 64:klu` (about 12 s of CPU), hands the child's
- * pid over a pipe and waits; killed outright (SIGKILL) a second later,
- * it leaves its child to end by SIGTERM (PR_SET_PDEATHSIG) within 3 s,
- * where before the child ran to its end. */
+ * pid over a pipe and waits; killed outright (SIGKILL) once the child has
+ * used 0.5 s of CPU (past its set-up), it leaves its child to end by
+ * SIGTERM (PR_SET_PDEATHSIG) within 3 s, where before the child ran to its
+ * end. */
 Test(bench, peak_memory_child_ends_with_its_parent)
 {
     int fd[2];
@@ -150,7 +178,8 @@ Test(bench, peak_memory_child_ends_with_its_parent)
     pid_t child = 0;
     ssize_t got = read(fd[0], &child, sizeof child);
     close(fd[0]);
-    nanosleep(&(struct timespec){1, 0}, NULL);
+    if (got == (ssize_t)sizeof child)
+        await_cpu(child);
     kill(parent, SIGKILL);
     waitpid(parent, NULL, 0);
     cr_assert_eq(got, (ssize_t)sizeof child, "the parent did not start "

@@ -72,26 +72,15 @@ static void fill_usage(int ws, const struct rusage *ru, double t0,
     u->maxrss_kb = ru->ru_maxrss;
 }
 
-/* wait4 with options; true when the child was reaped.  A blocking wait
- * passes a stop by SIGINT or SIGTERM (core/stop.h) on to the child as
- * SIGTERM, once: a bench stopped by a signal sent to its process alone
- * (kill PID, a batch system's time limit) does not wait for a child's
- * long run.  The stop is looked at before each wait4 and after each one
- * the signal interrupts; a signal that lands between the look and the
- * wait waits for the child, as before. */
-static bool reap(cl_child *c, int options, cl_child_usage *u)
+/* Without blocking: true when the child was reaped, *u filled. */
+static bool reap(cl_child *c, cl_child_usage *u)
 {
     int ws = 0;
     struct rusage ru;
     pid_t w;
-    bool passed = options & WNOHANG;
-    for (;;) {
-        if (!passed && cl_stop_interrupted())
-            passed = kill(c->pid, SIGTERM) == 0;
-        w = wait4(c->pid, &ws, options, &ru);
-        if (!(w < 0 && errno == EINTR))
-            break;
-    }
+    do
+        w = wait4(c->pid, &ws, WNOHANG, &ru);
+    while (w < 0 && errno == EINTR);
     if (w == 0)
         return false;
     if (w < 0) { /* not our child any more: report a failure */
@@ -105,13 +94,23 @@ static bool reap(cl_child *c, int options, cl_child_usage *u)
 
 bool cl_child_done(cl_child *c, cl_child_usage *u)
 {
-    return c->pid > 0 && reap(c, WNOHANG, u);
+    return c->pid > 0 && reap(c, u);
 }
 
+/* Polled every 10 ms rather than blocked in wait4, so that a stop by
+ * SIGINT or SIGTERM (core/stop.h) that comes at any moment of the wait is
+ * seen and passed on to the child as SIGTERM, once: a bench stopped by a
+ * signal sent to its process alone (kill PID, a batch system's time limit)
+ * does not wait for a child's long run.  The end is seen up to 10 ms
+ * late, in u->wall too. */
 void cl_child_wait(cl_child *c, cl_child_usage *u)
 {
-    if (c->pid > 0)
-        reap(c, 0, u);
+    bool passed = false;
+    while (c->pid > 0 && !reap(c, u)) {
+        if (!passed && cl_stop_interrupted())
+            passed = kill(c->pid, SIGTERM) == 0;
+        nanosleep(&(struct timespec){0, 10000000}, NULL);
+    }
 }
 
 cl_status cl_child_run(char *const argv[], const char *out_path,

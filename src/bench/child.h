@@ -45,9 +45,9 @@ cl_status cl_child_start(cl_child *c, char *const argv[],
  * reset; false while it runs. */
 bool cl_child_done(cl_child *c, cl_child_usage *u);
 
-/* Block until the child ends; *u as for cl_child_done.  Once SIGINT or
- * SIGTERM has asked this process to stop (cl_stop_interrupted), the child
- * gets SIGTERM. */
+/* Wait until the child ends (polled every 10 ms); *u as for
+ * cl_child_done.  Once SIGINT or SIGTERM has asked this process to stop
+ * (cl_stop_interrupted), the child gets SIGTERM. */
 void cl_child_wait(cl_child *c, cl_child_usage *u);
 
 /* Start, wait, and report success: exit status 0 (else CL_EIO with the

@@ -220,7 +220,8 @@ static int bench(bench_args *a)
 
 /* --peak-memory N:LINSOL, the child of workload 6: it ends (SIGTERM)
  * when its parent does, so that a bench killed outright (SIGKILL) leaves
- * no run behind. */
+ * no run behind (a parent that dies in the milliseconds before the prctl
+ * is not seen). */
 static int peak_memory(bench_args *a)
 {
     prctl(PR_SET_PDEATHSIG, SIGTERM);
