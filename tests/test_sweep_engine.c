@@ -135,8 +135,37 @@ static size_t joblog_entries(const char *dir)
     return n ? n - 1 : 0;
 }
 
+/* The table's ten rows: distinct ids, every one complete at t = 0.1. */
+static void assert_ten_distinct_complete(const char *table)
+{
+    /* every row a distinct id, every one complete */
+    static char text[1 << 16];
+    tmp_slurp(table, text, sizeof text);
+    char ids[10][16];
+    const char *p = strchr(text, '\n') + 1;
+    for (int k = 0; k < 10; k++, p = strchr(p, '\n') + 1) {
+        snprintf(ids[k], sizeof ids[k], "%.12s", p);
+        cr_assert(strstr(p, ",complete,ok,0.1,") < strchr(p, '\n') &&
+                      strstr(p, ",complete,ok,0.1,"), "%.200s", p);
+        for (int j = 0; j < k; j++)
+            cr_assert_str_neq(ids[j], ids[k]);
+    }
+}
+
+/* `sweep run DIR --resume`: its first line must hold `want`. */
+static void run_resume(const char *dir, const char *want)
+{
+    cli_result r;
+    cli_run(&r, "sweep", "run", dir, "--jobs", "2", "--resume", NULL);
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, want), "%s", r.out);
+    cli_result_free(&r);
+}
+
 /* Interrupted by SIGINT once two jobs are done, resumed, collected:
- * every job once, none missing. */
+ * every job once, none missing.  Then the results survive a plan with the
+ * axes reordered, and a status left by another engine gives way to the
+ * job's next run. */
 Test(sweep_engine, local_interrupted_and_resumed)
 {
     char dir[1024], table[1100], summary[256];
@@ -157,30 +186,40 @@ Test(sweep_engine, local_interrupted_and_resumed)
     cr_assert(done >= 2 && done < 10 && done + failed + missing == 10,
               "after SIGINT: %s", summary);
 
-    cli_result r;
-    cli_run(&r, "sweep", "run", dir, "--jobs", "2", "--resume", NULL);
-    cli_assert_ok(&r);
     char want[64];
     snprintf(want, sizeof want, "resume     %d of 10 jobs", 10 - done);
-    cr_assert(strstr(r.out, want), "%s", r.out);
-    cli_result_free(&r);
+    run_resume(dir, want);
     collect(dir, summary, sizeof summary);
     cr_assert_str_eq(summary, "10 complete, 0 failed, 0 missing");
     snprintf(table, sizeof table, "%s.csv", dir);
     cr_assert_eq(lines_of(table), 11);
-    /* every row a distinct id, every one complete */
-    static char text[1 << 16];
-    tmp_slurp(table, text, sizeof text);
-    char ids[10][16];
-    const char *p = strchr(text, '\n') + 1;
-    for (int k = 0; k < 10; k++, p = strchr(p, '\n') + 1) {
-        snprintf(ids[k], sizeof ids[k], "%.12s", p);
-        cr_assert(strstr(p, ",complete,ok,0.1,") < strchr(p, '\n') &&
-                      strstr(p, ",complete,ok,0.1,"), "%.200s", p);
-        for (int j = 0; j < k; j++)
-            cr_assert_str_neq(ids[j], ids[k]);
-    }
+    assert_ten_distinct_complete(table);
+
+    /* planned again with the axes in the other order: other command
+     * lines, the same ids, the results kept */
+    plan(dir, "[sweep]\nproblem = problems/hang.ini\nt_end = 0.1\n"
+              "dt = logspace(-5, -4, 5)\n"
+              "integrator = symplectic-euler, rk4\n");
+    collect(dir, summary, sizeof summary);
+    cr_assert_str_eq(summary, "10 complete, 0 failed, 0 missing");
+
+    /* a status another engine recorded (a Slurm task killed: 137) is the
+     * job's until the job runs again, here by --resume */
+    static char sweep_json[1 << 16];
+    char path[1100];
+    snprintf(path, sizeof path, "%s/sweep.json", dir);
+    tmp_slurp(path, sweep_json, sizeof sweep_json);
+    const char *id = strstr(sweep_json, "\"id\": \"");
+    cr_assert_not_null(id);
+    snprintf(path, sizeof path, "%s/jobs/%.12s/exit", dir, id + 7);
+    tmp_put(path, "137\n");
+    collect(dir, summary, sizeof summary);
+    cr_assert_str_eq(summary, "9 complete, 1 failed, 0 missing");
+    run_resume(dir, "resume     1 of 10 jobs");
+    collect(dir, summary, sizeof summary);
+    cr_assert_str_eq(summary, "10 complete, 0 failed, 0 missing");
 }
+
 
 /* ---- ssh ------------------------------------------------------------- */
 
@@ -376,6 +415,17 @@ Test(sweep_engine, slurm_array_failed_job_and_resume)
     snprintf(ids, sizeof ids, "%s/slurm/ids-2.txt", sl);
     tmp_slurp(ids, text, sizeof text);
     cr_assert_eq(cli_count_lines(text), 2, "%s", text);
+    collect(sl, summary, sizeof summary);
+    cr_assert_str_eq(summary, "4 complete, 2 failed, 0 missing");
+
+    /* the limits given: every job again, no pilot */
+    cli_run(&r, "sweep", "run", sl, "--engine", "slurm", "--time", "5",
+            "--mem", "300", "--wait", NULL);
+    cli_assert_ok(&r);
+    cr_assert(!strstr(r.out, "pilot") &&
+                  strstr(r.out, "slurm      6 jobs in 6 array tasks of 1, 5 "
+                                "min and 300 MB each"), "%s", r.out);
+    cli_result_free(&r);
     collect(sl, summary, sizeof summary);
     cr_assert_str_eq(summary, "4 complete, 2 failed, 0 missing");
 }

@@ -163,26 +163,11 @@ typedef struct {
     char message[256];    /* the first line of its stderr, or "" */
 } cl_sweep_outcome;
 
-/* The exit statuses recorded by the engines: GNU parallel's joblog
- * (DIR/joblog, the last entry of each command) and the status files the
- * Slurm array's wrapper writes (DIR/jobs/ID/exit).  Read once per
- * collect. */
-typedef struct {
-    int n;
-    char **command;
-    int *exitval, *signal;
-} cl_sweep_joblog;
-
-cl_status cl_sweep_joblog_read(const char *dir, cl_sweep_joblog *log,
-                               cl_error *err);
-void cl_sweep_joblog_free(cl_sweep_joblog *log);
-
-/* Everything known of job k: its exit status (status file first, then the
- * joblog), its statistics (stats.csv), how far it got (series.csv) and
- * the first line of its messages (stderr).
- * The one place that knows a job directory's files. */
-void cl_sweep_outcome_read(const cl_sweep *sw, int k,
-                           const cl_sweep_joblog *log, cl_sweep_outcome *o);
+/* Everything known of job k: its exit status (DIR/jobs/ID/exit, which
+ * the job's command writes as its last step), its statistics
+ * (stats.csv), how far it got (series.csv) and the first line of its
+ * messages (stderr).  The one place that knows a job directory's files. */
+void cl_sweep_outcome_read(const cl_sweep *sw, int k, cl_sweep_outcome *o);
 
 /* err_x, err_v of job k against its reference (both complete): the
  * largest distance of a particle's position (velocity) in final.csv. */
@@ -195,8 +180,8 @@ typedef struct {
 } cl_sweep_counts;
 
 /* The outcome of every job into out[njob] (errors included). */
-cl_status cl_sweep_outcomes(const cl_sweep *sw, cl_sweep_outcome *out,
-                            cl_sweep_counts *c, cl_error *err);
+void cl_sweep_outcomes(const cl_sweep *sw, cl_sweep_outcome *out,
+                       cl_sweep_counts *c);
 
 /* The table: a header, then a row per job in job order:
  * id,role,integrator,<axis keys>,status,exit,t_reached,<stats>,err_x,err_v,

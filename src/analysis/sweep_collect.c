@@ -5,25 +5,21 @@
 #include <math.h>
 #include <string.h>
 
-cl_status cl_sweep_outcomes(const cl_sweep *sw, cl_sweep_outcome *out,
-                            cl_sweep_counts *c, cl_error *err)
+void cl_sweep_outcomes(const cl_sweep *sw, cl_sweep_outcome *out,
+                       cl_sweep_counts *c)
 {
-    cl_sweep_joblog log = {0};
-    cl_status rc = cl_sweep_joblog_read(sw->dir, &log, err);
     *c = (cl_sweep_counts){0};
-    for (int k = 0; !rc && k < sw->njob; k++) {
-        cl_sweep_outcome_read(sw, k, &log, &out[k]);
+    for (int k = 0; k < sw->njob; k++) {
+        cl_sweep_outcome_read(sw, k, &out[k]);
         c->complete += out[k].state == CL_SWEEP_COMPLETE;
         c->failed += out[k].state == CL_SWEEP_FAILED;
         c->missing += out[k].state == CL_SWEEP_MISSING;
     }
-    for (int k = 0; !rc && k < sw->njob; k++) {
+    for (int k = 0; k < sw->njob; k++) {
         int r = sw->job[k].ref;
         if (r >= 0 && out[r].state == CL_SWEEP_COMPLETE)
             cl_sweep_outcome_error(sw, k, &out[k]);
     }
-    cl_sweep_joblog_free(&log);
-    return rc;
 }
 
 static void number(FILE *fp, double v)

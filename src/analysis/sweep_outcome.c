@@ -1,5 +1,5 @@
 /* What a sweep's job left behind (analysis/sweep.h): its exit status as
- * the engine recorded it, its statistics and how far it got.  Every file
+ * its command recorded it, its statistics and how far it got.  Every file
  * of a job directory that collect reads is read here. */
 #include "analysis/sweep.h"
 
@@ -16,61 +16,6 @@ const char *const cl_sweep_stat_names[CL_SWEEP_NSTAT] = {
     "symbolic_facts", "lin_fallbacks", "wall", "cpu"}; /* these two last:
                                                           read_times() */
 
-/* ---- GNU parallel's joblog ---------------------------------------------- */
-
-/* One joblog line: Seq Host Starttime JobRuntime Send Receive Exitval
- * Signal Command, tab-separated, the command last. */
-static cl_status joblog_line(char *line, cl_sweep_joblog *log)
-{
-    char *f = line;
-    for (int k = 0; k < 6 && f; k++)
-        f = strchr(f, '\t') ? strchr(f, '\t') + 1 : NULL;
-    int exitval, sig, at = 0;
-    if (!f || sscanf(f, "%d\t%d\t%n", &exitval, &sig, &at) != 2 || !at)
-        return CL_OK; /* the header, or a line cut short */
-    f[at + strcspn(f + at, "\n")] = '\0';
-    char **c = realloc(log->command, (size_t)(log->n + 1) * sizeof *c);
-    int *e = c ? realloc(log->exitval, (size_t)(log->n + 1) * sizeof *e) : NULL;
-    if (c)
-        log->command = c;
-    if (e)
-        log->exitval = e;
-    int *s = e ? realloc(log->signal, (size_t)(log->n + 1) * sizeof *s) : NULL;
-    if (s)
-        log->signal = s;
-    if (!s || !(log->command[log->n] = strdup(f + at)))
-        return CL_ENOMEM;
-    log->exitval[log->n] = exitval;
-    log->signal[log->n++] = sig;
-    return CL_OK;
-}
-
-cl_status cl_sweep_joblog_read(const char *dir, cl_sweep_joblog *log,
-                               cl_error *err)
-{
-    char path[4200];
-    snprintf(path, sizeof path, "%s/joblog", dir);
-    FILE *fp = fopen(path, "r");
-    if (!fp)
-        return CL_OK; /* not run by GNU parallel (yet) */
-    char *line = NULL;
-    size_t cap = 0;
-    cl_status rc = CL_OK;
-    while (!rc && getline(&line, &cap, fp) > 0)
-        rc = joblog_line(line, log);
-    free(line);
-    fclose(fp);
-    return rc ? cl_error_set(err, rc, "%s: out of memory", path) : CL_OK;
-}
-
-void cl_sweep_joblog_free(cl_sweep_joblog *log)
-{
-    cl_sweep_strings_free(log->command, log->n);
-    free(log->exitval);
-    free(log->signal);
-    memset(log, 0, sizeof *log);
-}
-
 /* ---- one job ------------------------------------------------------------ */
 
 static FILE *job_file(const cl_sweep *sw, int k, const char *name)
@@ -81,10 +26,10 @@ static FILE *job_file(const cl_sweep *sw, int k, const char *name)
     return fopen(path, "r");
 }
 
-/* The exit status: the status file the Slurm wrapper writes (bash's $?,
- * 128 + N after signal N), else the joblog's last entry of the command. */
-static bool exit_status(const cl_sweep *sw, int k, const cl_sweep_joblog *log,
-                        cl_sweep_outcome *o)
+/* The exit status the job's command recorded as its last step
+ * (DIR/jobs/ID/exit: the shell's $?, 128 + N after signal N); false if
+ * there is none (never run, under way, or stopped before it finished). */
+static bool exit_status(const cl_sweep *sw, int k, cl_sweep_outcome *o)
 {
     FILE *fp = job_file(sw, k, "exit");
     int v;
@@ -94,15 +39,8 @@ static bool exit_status(const cl_sweep *sw, int k, const cl_sweep_joblog *log,
     if (found) {
         o->exitval = v > 128 ? -1 : v;
         o->signal = v > 128 ? v - 128 : 0;
-        return true;
     }
-    for (int i = log->n - 1; i >= 0; i--)
-        if (!strcmp(log->command[i], sw->job[k].command)) {
-            o->exitval = log->signal[i] ? -1 : log->exitval[i];
-            o->signal = log->signal[i];
-            return true;
-        }
-    return false;
+    return found;
 }
 
 /* The integrator's wall and CPU seconds from the run's run.json
@@ -198,13 +136,12 @@ static void classify(cl_sweep_outcome *o, bool found, bool stats)
     }
 }
 
-void cl_sweep_outcome_read(const cl_sweep *sw, int k,
-                           const cl_sweep_joblog *log, cl_sweep_outcome *o)
+void cl_sweep_outcome_read(const cl_sweep *sw, int k, cl_sweep_outcome *o)
 {
     *o = (cl_sweep_outcome){.exitval = -1, .err_x = NAN, .err_v = NAN};
     for (int s = 0; s < CL_SWEEP_NSTAT; s++)
         o->stat[s] = NAN;
-    bool found = exit_status(sw, k, log, o);
+    bool found = exit_status(sw, k, o);
     bool stats = found && read_stats(sw, k, o);
     if (stats)
         read_times(sw, k, o);

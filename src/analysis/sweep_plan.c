@@ -57,10 +57,20 @@ size_t cl_sweep_quote(const char *s, char *buf, size_t len)
     return u + (size_t)snprintf(buf + u, u < len ? len - u : 0, "'");
 }
 
+/* The job's command line: the status of an earlier run removed, the run
+ * (its messages into DIR/jobs/ID/stderr), then its exit status into
+ * DIR/jobs/ID/exit through a rename, and that status as the line's own:
+ *   rm -f E; clothode run ... 2> S; s=$?; echo $s > E.tmp && mv E.tmp E;
+ *   exit $s
+ * so that every engine leaves the same record, and a job stopped before
+ * it finished leaves none (analysis/sweep_outcome.c). */
 static cl_status make_command(const cl_sweep *sw, cl_sweep_job *j)
 {
-    char buf[8192], set[512];
-    size_t u = cl_sweep_quote(sw->clothode, buf, sizeof buf);
+    char buf[8192], set[512], exitf[512], qexit[1100];
+    snprintf(exitf, sizeof exitf, "%s/jobs/%s/exit", sw->dir, j->id);
+    cl_sweep_quote(exitf, qexit, sizeof qexit);
+    size_t u = (size_t)snprintf(buf, sizeof buf, "rm -f %s; ", qexit);
+    u += cl_sweep_quote(sw->clothode, buf + u, sizeof buf - u);
     u += (size_t)snprintf(buf + u, sizeof buf - u, " run ");
     u += cl_sweep_quote(sw->problem, buf + u, sizeof buf - u);
     u += (size_t)snprintf(buf + u, sizeof buf - u, " --integrator ");
@@ -89,6 +99,11 @@ static cl_status make_command(const cl_sweep *sw, cl_sweep_job *j)
     snprintf(set, sizeof set, "%s/jobs/%s/stderr", sw->dir, j->id);
     if (u < sizeof buf)
         u += cl_sweep_quote(set, buf + u, sizeof buf - u);
+    snprintf(exitf + strlen(exitf), sizeof exitf - strlen(exitf), ".tmp");
+    cl_sweep_quote(exitf, set, sizeof set);
+    if (u < sizeof buf)
+        u += (size_t)snprintf(buf + u, sizeof buf - u, "; s=$?; echo $s > "
+                              "%s && mv %s %s; exit $s", set, set, qexit);
     if (u >= sizeof buf)
         return CL_EINVAL;
     return (j->command = strdup(buf)) ? CL_OK : CL_ENOMEM;

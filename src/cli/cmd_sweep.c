@@ -163,7 +163,8 @@ static const cl_cli_table run_table = {
     "no result, as 'sweep collect' finds them.\n"};
 
 /* Without --resume: every job, and the status files of an earlier run
- * removed so that they cannot stand for this one's. */
+ * removed so that they cannot stand for this one's while its jobs wait
+ * (each job's command removes its own when it starts). */
 static int all_jobs(const cl_sweep *sw, int *todo)
 {
     char path[4200];
@@ -181,12 +182,10 @@ static cl_sweep_outcome *outcomes_of(const cl_sweep *sw, cl_sweep_counts *c,
                                      cl_error *err)
 {
     cl_sweep_outcome *out = calloc((size_t)sw->njob + 1, sizeof *out);
-    if (!out)
+    if (out)
+        cl_sweep_outcomes(sw, out, c);
+    else
         cl_error_set(err, CL_ENOMEM, "out of memory");
-    if (out && cl_sweep_outcomes(sw, out, c, err)) {
-        free(out);
-        out = NULL;
-    }
     return out;
 }
 

@@ -103,22 +103,6 @@ static FILE *open_in(const cl_sweep *sw, const char *name, char *path,
     return fopen(path, "w");
 }
 
-/* Record job k's exit status as the array's wrapper does. */
-static void record_exit(const cl_sweep *sw, int k, int status)
-{
-    char path[4200], tmp[4300];
-    snprintf(path, sizeof path, "%s/jobs/%s", sw->dir, sw->job[k].id);
-    cl_error ignored;
-    cl_mkdir_p(path, &ignored);
-    snprintf(tmp, sizeof tmp, "%s/exit.tmp", path);
-    strcat(path, "/exit");
-    FILE *fp = fopen(tmp, "w");
-    if (fp && fprintf(fp, "%d\n", status) > 0 && fclose(fp) == 0)
-        rename(tmp, path);
-    else if (fp)
-        fclose(fp);
-}
-
 /* Run job k here, as the pilot: its wall time and peak memory. */
 static int pilot(const cl_sweep *sw, int k, double *wall, long *rss_kb)
 {
@@ -136,17 +120,16 @@ static int pilot(const cl_sweep *sw, int k, double *wall, long *rss_kb)
         return -1;
     *wall = cl_clock_wall() - t0;
     *rss_kb = ru.ru_maxrss;
-    int code = WIFEXITED(status) ? WEXITSTATUS(status)
-                                 : 128 + WTERMSIG(status);
-    record_exit(sw, k, code);
-    return code;
+    /* the command has recorded its exit status in DIR/jobs/ID/exit */
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
 /* Time (minutes) and memory (MB) of an array task: given, kept from an
  * earlier submission of the sweep (DIR/slurm/estimate), or three times
  * the pilot's wall time per job of a chunk plus a minute and twice its
  * peak memory plus 100 MB.  The pilot is the first job of todo that
- * completes (of at most three tried); its result stands. */
+ * completes (of at most three tried); its result stands.  With both
+ * given, no pilot runs. */
 static int estimate(const cl_sweep *sw, const cl_sweep_run_args *r,
                     const int *todo, int n, long *minutes, long *mb,
                     int *piloted)
@@ -154,6 +137,11 @@ static int estimate(const cl_sweep *sw, const cl_sweep_run_args *r,
     char path[4200];
     FILE *fp;
     *piloted = 0;
+    if (r->time_min && r->mem_mb) {
+        *minutes = r->time_min;
+        *mb = r->mem_mb;
+        return 0;
+    }
     snprintf(path, sizeof path, "%s/slurm/estimate", sw->dir);
     if ((fp = fopen(path, "r"))) {
         if (fscanf(fp, "%ld %ld", minutes, mb) != 2)
@@ -202,8 +190,8 @@ static int write_ids(const cl_sweep *sw, const int *todo, int n, char *path,
     return fp && fclose(fp) == 0 ? 0 : 1;
 }
 
-/* The array script: each task runs its chunk of the ids, every job's exit
- * status into DIR/jobs/ID/exit (written last, through a rename). */
+/* The array script: each task runs its chunk of the ids (each job's
+ * command records its own exit status in DIR/jobs/ID/exit). */
 static int write_script(const cl_sweep *sw, const cl_sweep_run_args *r,
                         const char *ids, int n, long minutes, long mb,
                         char *path, size_t len)
@@ -231,8 +219,6 @@ static int write_script(const cl_sweep *sw, const cl_sweep_run_args *r,
             "while read -r id line; do\n"
             "    cmd=$(sed -n \"${line}p\" \"$dir/jobs.txt\")\n"
             "    bash -c \"$cmd\" < /dev/null\n"
-            "    echo $? > \"$dir/jobs/$id/exit.tmp\"\n"
-            "    mv \"$dir/jobs/$id/exit.tmp\" \"$dir/jobs/$id/exit\"\n"
             "done\n"
             "exit 0\n",
             tasks - 1, throttle, minutes, mb, sw->dir, r->chunk, ids, dir,
