@@ -11,7 +11,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/sysmacros.h>
+#include <unistd.h>
 
 #include "cli/cli.h"
 #include "io/config.h"
@@ -1709,6 +1711,32 @@ Test(cli, list_names_problems_integrators_terms)
         cr_assert(strstr(r.out, want), "list does not name %s:\n%s",
                   names[k], r.out);
     }
+    cli_result_free(&r);
+}
+
+/* Entries of the problems folder that are not regular files (a FIFO,
+ * which would block, a link to an endless device) are named, not read. */
+Test(cli, list_names_odd_entries_without_reading_them)
+{
+    char dir[1100], path[1200];
+    in_tmp(dir, "problems");
+    cr_assert_eq(mkdir(dir, 0700), 0);
+    snprintf(path, sizeof path, "%s/fifo.ini", dir);
+    cr_assert_eq(mkfifo(path, 0600), 0);
+    snprintf(path, sizeof path, "%s/zero.ini", dir);
+    cr_assert_eq(symlink("/dev/zero", path), 0);
+    snprintf(path, sizeof path, "%s/plain.ini", dir);
+    tmp_put(path, "; a plain problem\n[cloth]\nn = 4\n");
+    setenv("CLOTHODE_PROBLEMS", dir, 1);
+    cli_result r;
+    cli_run(&r, "list", NULL);
+    unsetenv("CLOTHODE_PROBLEMS");
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "\n  fifo                 (not a regular file)\n")
+                  && strstr(r.out, "\n  zero                 (not a regular "
+                                   "file)\n")
+                  && strstr(r.out, "\n  plain                a plain "
+                                   "problem\n"), "%s", r.out);
     cli_result_free(&r);
 }
 

@@ -278,6 +278,38 @@ Test(config, directory_is_eio)
     cl_config_free(cfg);
 }
 
+/* A device that never ends is read to its first NUL byte, not to the end
+ * of memory. */
+Test(config, endless_device_is_refused_at_its_first_nul)
+{
+    cl_config *cfg = cl_config_alloc();
+    cl_error err = {0};
+    cr_assert_eq(cl_config_load(cfg, "/dev/zero", &err), CL_EPARSE);
+    assert_msg_has(err, "/dev/zero:1: NUL byte");
+    cl_config_free(cfg);
+}
+
+/* Text beyond 16 MiB (here comments, endless in spirit) is refused. */
+Test(config, text_beyond_16_mib_is_refused)
+{
+    char path[64];
+    write_tmp(path, "");
+    FILE *fp = fopen(path, "w");
+    cr_assert_not_null(fp);
+    static char line[4096];
+    memset(line, '#', sizeof line - 1);
+    line[sizeof line - 2] = '\n';
+    for (int k = 0; k < (16 << 20) / (int)(sizeof line - 1) + 2; k++)
+        fputs(line, fp);
+    cr_assert_eq(fclose(fp), 0);
+    cl_config *cfg = cl_config_alloc();
+    cl_error err = {0};
+    cr_assert_eq(cl_config_load(cfg, path, &err), CL_EPARSE);
+    assert_msg_has(err, "longer than 16 MiB");
+    cl_config_free(cfg);
+    unlink(path);
+}
+
 Test(config, malformed_line_reports_its_line)
 {
     expect_parse_error("; comment\n[run]\ndt = 1\n"

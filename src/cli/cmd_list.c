@@ -3,6 +3,7 @@
 #include <dirent.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli/cli.h"
 #include "cli/commands.h"
@@ -11,15 +12,24 @@
 #include "forces/term.h"
 #include "integrators/integrator.h"
 
-/* First comment line of a problem file: its one-line description. */
+/* First comment line of a problem file, among its first 64 lines: its
+ * one-line description.  Only a regular file is read (a FIFO would block,
+ * a device not end). */
 static void describe(const char *dir, const char *file)
 {
     char path[4096], line[512] = "";
+    struct stat st;
     snprintf(path, sizeof path, "%s/%s", dir, file);
+    if (stat(path, &st) != 0 || !S_ISREG(st.st_mode)) {
+        printf("  %-20.*s (not a regular file)\n", (int)(strlen(file) - 4),
+               file);
+        return;
+    }
     FILE *fp = fopen(path, "r");
     if (fp) {
-        while (fgets(line, sizeof line, fp) && line[0] != ';' &&
-               line[0] != '#')
+        for (int k = 0; k < 64 && fgets(line, sizeof line, fp) &&
+                        line[0] != ';' && line[0] != '#';
+             k++)
             line[0] = '\0';
         fclose(fp);
     }

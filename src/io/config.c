@@ -427,20 +427,33 @@ static cl_status cl_parse_result(const cl_reader *r, int rc, cl_error *err)
     return CL_OK;
 }
 
-/* The whole of the open file fp in a malloc'd buffer (*size bytes). */
+/* The largest problem file read: problem files are a few kilobytes (the
+ * meshes are files of their own). */
+#define CL_CONFIG_MAX_BYTES (16L << 20)
+
+/* The whole of the open file fp in a malloc'd buffer (*size bytes), or up
+ * to its first NUL byte (cl_check_nul reports it: /dev/zero ends at once).
+ * More than CL_CONFIG_MAX_BYTES: CL_EPARSE. */
 static cl_status cl_slurp(FILE *fp, const char *path, char **text,
                          size_t *size, cl_error *err)
 {
     char *buf = NULL;
     size_t len = 0, cap = 0;
     for (;;) {
+        if (len > CL_CONFIG_MAX_BYTES) {
+            free(buf);
+            return cl_error_set(err, CL_EPARSE, "%s: longer than %ld MiB; "
+                                "a problem file is text of at most %ld MiB",
+                                path, CL_CONFIG_MAX_BYTES >> 20,
+                                CL_CONFIG_MAX_BYTES >> 20);
+        }
         if (!cl_grow((void **)&buf, &cap, len + 4096, 1)) {
             free(buf);
             return cl_error_set(err, CL_ENOMEM, "%s: out of memory", path);
         }
         size_t got = fread(buf + len, 1, cap - len, fp);
         len += got;
-        if (got == 0)
+        if (got == 0 || memchr(buf + len - got, '\0', got))
             break;
     }
     if (ferror(fp)) {
