@@ -322,6 +322,18 @@ Test(config, malformed_section_header)
     expect_parse_error("[run]\ndt = 1\n[broken\n", 3, NULL);
 }
 
+/* Text after a section's ']' would be dropped unread: refused, but for a
+ * comment. */
+Test(config, text_after_a_section_header_is_refused)
+{
+    expect_parse_error("[run]\ndt = 1\n[damping] kd = 5\n", 3,
+                       "text after the section header: \"kd = 5\"", NULL);
+    expect_parse_error("[damping]]\nkd = 5\n", 1, "\"]\"", NULL);
+    cl_config *cfg = cfg_from("[damping] ; the dashpots\nkd = 5\n");
+    cr_assert_not_null(cfg);
+    cl_config_free(cfg);
+}
+
 Test(config, indented_continuation_is_rejected)
 {
     expect_parse_error("[cloth]\nnx = 10\n  ny = 10\n", 3, "[cloth] nx",

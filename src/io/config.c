@@ -291,12 +291,20 @@ static int cl_reader_fail(cl_reader *r, cl_status code, const char *fmt, ...)
 }
 
 /* A "[name]" line opens a section once per file: a second header of the
- * same name would merge silently into the first. */
+ * same name would merge silently into the first.  After the ']' only a
+ * comment may follow (inih would drop anything else unread). */
 static bool cl_check_header(cl_reader *r, const char *s)
 {
     const char *close = strchr(s, ']');
     if (*s != '[' || !close)
         return true;
+    const char *rest = close + 1 + strspn(close + 1, " \t\r\v\f");
+    if (*rest && *rest != '\n' && *rest != ';' && *rest != '#')
+        return cl_reader_fail(r, CL_EPARSE,
+                              "text after the section header: \"%.*s\" (a"
+                              " key = value goes on a line of its own; a"
+                              " comment starts with ';' or '#')",
+                              (int)strcspn(rest, "\r\n"), rest);
     if (close - s - 1 > CL_INI_SECTION)
         return cl_reader_fail(r, CL_EPARSE,
                               "section name of %td characters; the INI"
