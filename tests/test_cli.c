@@ -658,6 +658,34 @@ Test(cli, default_out_is_problem_specific)
     cr_assert(!strncmp(buf, "out/hang.coarse", 15), "%s", buf);
 }
 
+/* A run its integrator refuses (an unknown linear solver, a step that
+ * does not divide t_end) leaves the earlier run in its directory as it
+ * was. */
+Test(cli, refused_run_keeps_the_earlier_one)
+{
+    char out[1024], path[1100], before[8192], after[8192];
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "cloth.n=6", "--t-end", "0.02",
+            "--out", in_tmp(out, "kept"), "--quiet", NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    snprintf(path, sizeof path, "%s/run.json", out);
+    tmp_slurp(path, before, sizeof before);
+    cli_run(&r, "run", "hang", "--set", "cloth.n=6", "--t-end", "0.02",
+            "--linsol", "bogus", "--out", out, "--quiet", NULL);
+    cli_assert_error(&r, 0, "unknown linear solver \"bogus\"", NULL);
+    cli_result_free(&r);
+    cli_run(&r, "run", "hang", "--set", "cloth.n=6", "--t-end", "0.1",
+            "--integrator", "rk4", "--dt", "0.03", "--out", out, "--quiet",
+            NULL);
+    cli_assert_error(&r, 0, "not a whole number of steps", NULL);
+    cli_result_free(&r);
+    tmp_slurp(path, after, sizeof after);
+    cr_assert_str_eq(after, before, "run.json changed");
+    snprintf(path, sizeof path, "%s/final.csv", out);
+    cr_assert(cli_exists(path), "the earlier run's final.csv was removed");
+}
+
 /* ---- the memory guard --------------------------------------------------- */
 
 /* 200 x 200 particles: the dense Newton matrix alone is 2 (2n)^2 8 bytes

@@ -425,6 +425,9 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
         !(rc = sim_alloc(&s, err)) &&
         !(rc = cl_integrator_create(type, s.sys, iopts, 0.0, s.x, s.v,
                                     &state, err)) &&
+        !(rc = so->before_output
+                   ? so->before_output(so->before_output_ctx, err)
+                   : CL_OK) &&
         !(rc = cl_mkdir_p(so->outdir, err)) &&
         !(rc = open_series(&s, err)) && !(rc = sample(&s, 0.0, res, err))) {
         cl_energy_keep(&res->e0, &res->e1, s.e0_terms);

@@ -38,6 +38,13 @@ typedef struct {
     long max_steps;      /* budget: integrator steps of the run, 0: none */
     void (*progress)(void *ctx, double fraction);
     void *progress_ctx;
+    /* Called once the integrator has accepted the problem, before
+     * anything is written into outdir (NULL: nothing): where the caller
+     * clears the directory of an earlier run, so that a refusal (a bad
+     * linear solver, a step that does not divide t_end, ...) leaves that
+     * run's outputs as they were. */
+    cl_status (*before_output)(void *ctx, cl_error *err);
+    void *before_output_ctx;
 } cl_sim_opts;
 
 typedef struct {

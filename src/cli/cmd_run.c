@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "analysis/simulate.h"
+#include "core/clock.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
 #include "cli/manifest.h"
@@ -115,21 +116,48 @@ static void print_summary(const char *problem, const run_setup *r,
            res->state_file ? ", " : "");
 }
 
+/* What run_work's first output needs: the directory cleared of an
+ * earlier run and run.json begun, once the integrator has accepted the
+ * problem (cl_sim_opts.before_output). */
+typedef struct {
+    run_setup *r;
+    const cl_cli_job *job;
+    cl_manifest mf;
+    double wall0, cpu0; /* when run_work began: run.json's times from there */
+    bool begun;
+} run_output;
+
+static cl_status begin_output(void *ctx, cl_error *err)
+{
+    run_output *o = ctx;
+    cl_status rc = cl_cli_outdir_prepare(o->job->outdir, err);
+    if (!rc)
+        rc = cl_manifest_begin(&o->mf, o->job, o->r->argc, o->r->argv,
+                               o->r->run.threads, err);
+    o->begun = rc == CL_OK;
+    o->mf.wall0 = o->wall0;
+    o->mf.cpu0 = o->cpu0;
+    return rc;
+}
+
 static cl_status run_work(cl_model *m, const cl_cli_job *job, void *ctx,
                           cl_error *err)
 {
     run_setup *r = ctx;
     cl_sim_result res = {0};
-    cl_manifest mf = {0};
+    run_output out = {.r = r, .job = job, .wall0 = cl_clock_wall(),
+                      .cpu0 = cl_clock_cpu()};
     cl_error later;
     cl_cli_progress_line line;
     cl_status rc = cl_model_set_threads(m, (int)r->run.threads, err);
+    if (!rc) /* a directory refused before any work */
+        rc = cl_cli_outdir_check(job->outdir, err);
+    if (rc)
+        return rc;
     r->so.outdir = job->outdir;
     r->so.progress = cl_cli_progress;
-    if (rc || (rc = cl_cli_outdir_prepare(job->outdir, err)) ||
-        (rc = cl_manifest_begin(&mf, job, r->argc, r->argv, r->run.threads,
-                                err)))
-        return rc;
+    r->so.before_output = begin_output;
+    r->so.before_output_ctx = &out;
     cl_cli_progress_start(&line, job->quiet, "t =", "s", r->so.t_end);
     r->so.progress_ctx = &line;
     rc = cl_simulate(m, r->integrator.m[0].type, &r->integrator.m[0].io,
@@ -145,8 +173,10 @@ static cl_status run_work(cl_model *m, const cl_cli_job *job, void *ctx,
         rc = rc ? rc : rc2;
     }
     free(res.xfinal);
-    cl_status rc2 = cl_manifest_end(&mf, rc, err, &res.stats,
-                                    rc ? &later : err);
+    /* a run refused before its first output leaves the directory alone */
+    cl_status rc2 = out.begun ? cl_manifest_end(&out.mf, rc, err, &res.stats,
+                                                rc ? &later : err)
+                              : CL_OK;
     return rc ? rc : rc2;
 }
 

@@ -131,21 +131,33 @@ static cl_status sweep(const char *dir, json_t *files, bool remove,
     return rc;
 }
 
-cl_status cl_cli_outdir_prepare(const char *dir, cl_error *err)
+/* Check dir (remove false) or clear it (true); a missing dir passes the
+ * check and is created by the clearing. */
+static cl_status outdir_pass(const char *dir, bool remove, cl_error *err)
 {
     struct stat st;
     if (!dir || !*dir)
         return cl_error_set(err, CL_EINVAL, "output directory name is empty");
     if (stat(dir, &st) != 0)
-        return cl_mkdir_p(dir, err);
+        return remove ? cl_mkdir_p(dir, err) : CL_OK;
     if (!S_ISDIR(st.st_mode))
         return cl_error_set(err, CL_EIO, "cannot use '%s' as the output "
                             "directory: it exists and is not a directory",
                             dir);
     json_t *files = earlier_files(dir);
     cl_status rc = sweep(dir, files, false, err);
-    if (!rc)
+    if (!rc && remove)
         rc = sweep(dir, files, true, err);
     json_decref(files);
     return rc;
+}
+
+cl_status cl_cli_outdir_check(const char *dir, cl_error *err)
+{
+    return outdir_pass(dir, false, err);
+}
+
+cl_status cl_cli_outdir_prepare(const char *dir, cl_error *err)
+{
+    return outdir_pass(dir, true, err);
 }

@@ -17,6 +17,10 @@
 /* Whether `name` (a file name without directory) is one a run writes. */
 bool cl_cli_run_output(const char *name);
 
+/* The refusals of cl_cli_outdir_prepare without its clearing: CL_OK when
+ * prepare would clear dir (or create it). */
+cl_status cl_cli_outdir_check(const char *dir, cl_error *err);
+
 /* Clear dir of an earlier run's files, or refuse it (CL_EIO naming the
  * directory and a file that is not clothode's, or an output name taken by
  * something other than a regular file), then create it if missing.
