@@ -290,25 +290,29 @@ double cl_spectrum_step_limit(const cl_spectrum *s, const cl_region *r)
     }
 }
 
-/* The registry's methods of region kind `kind` appended to out[*n...]. */
+/* The registry's methods of region kind `kind` appended to out[*n...]
+ * (those past cap counted only). */
 static void limits_of_kind(const cl_spectrum *s, cl_region_kind kind,
                            const char *basis, cl_spectrum_limit *out,
-                           size_t *n)
+                           size_t cap, size_t *n)
 {
     for (size_t i = 0; cl_integrator_registry[i]; i++) {
         const cl_integrator_type *t = cl_integrator_registry[i];
-        if (t->region->kind == kind && *n < CL_SPECTRUM_NLIMITS)
-            out[(*n)++] = (cl_spectrum_limit){
+        if (t->region->kind != kind)
+            continue;
+        if (*n < cap)
+            out[*n] = (cl_spectrum_limit){
                 t->name, basis, cl_spectrum_step_limit(s, t->region)};
+        ++*n;
     }
 }
 
-size_t cl_spectrum_limits(const cl_spectrum *s,
-                          cl_spectrum_limit out[CL_SPECTRUM_NLIMITS])
+size_t cl_spectrum_limits(const cl_spectrum *s, cl_spectrum_limit *out,
+                          size_t cap)
 {
     size_t n = 0;
-    limits_of_kind(s, CL_REGION_TAYLOR, "|R(h lambda)| <= 1", out, &n);
-    limits_of_kind(s, CL_REGION_SYMPLECTIC, "h w_max < 2", out, &n);
+    limits_of_kind(s, CL_REGION_TAYLOR, "|R(h lambda)| <= 1", out, cap, &n);
+    limits_of_kind(s, CL_REGION_SYMPLECTIC, "h w_max < 2", out, cap, &n);
     return n;
 }
 

@@ -69,14 +69,13 @@ typedef struct {
     double h;             /* predicted largest stable step (inf: none) */
 } cl_spectrum_limit;
 
-#define CL_SPECTRUM_NLIMITS 6
-
 /* The predicted limits of the registry's integrators with a Taylor region,
  * then of those with a symplectic one, each in registry order (fe, rk4,
- * symplectic-euler, symplectic-euler-x, verlet, velocity-verlet); returns
- * their number, at most CL_SPECTRUM_NLIMITS. */
-size_t cl_spectrum_limits(const cl_spectrum *s,
-                          cl_spectrum_limit out[CL_SPECTRUM_NLIMITS]);
+ * symplectic-euler, symplectic-euler-x, verlet, velocity-verlet, and any
+ * added to the registry): the first `cap` into out; returns how many
+ * there are (out may be NULL with cap 0, to count them). */
+size_t cl_spectrum_limits(const cl_spectrum *s, cl_spectrum_limit *out,
+                          size_t cap);
 
 /* kind,index,re,im rows (kind "mu" with im 0, or "lambda"), header first. */
 void cl_spectrum_write(FILE *fp, const cl_spectrum *s);

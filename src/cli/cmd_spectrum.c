@@ -38,7 +38,6 @@ static const cl_cli_table spec_table = {
 
 static void print_summary(const cl_cli_job *job, const cl_spectrum *sp)
 {
-    cl_spectrum_limit lim[CL_SPECTRUM_NLIMITS];
     size_t neg = 0;
     for (size_t i = 0; i < sp->n; i++)
         neg += sp->mu[i] < 0;
@@ -51,10 +50,17 @@ static void print_summary(const cl_cli_job *job, const cl_spectrum *sp)
     if (sp->n_growing)
         printf(", fastest growth rate %.6g 1/s\n", sp->growth_max);
     printf("%-20s %12s   %s\n", "integrator", "predicted dt", "from");
-    size_t nlim = cl_spectrum_limits(sp, lim);
+    size_t nlim = cl_spectrum_limits(sp, NULL, 0);
+    cl_spectrum_limit *lim = malloc(nlim * sizeof *lim);
+    if (!lim) {
+        printf("(out of memory for the predicted steps)\n");
+        return;
+    }
+    cl_spectrum_limits(sp, lim, nlim);
     for (size_t k = 0; k < nlim; k++)
         printf("%-20s %12.4g   %s\n", lim[k].integrator, lim[k].h,
                lim[k].basis);
+    free(lim);
 }
 
 static void write_rows(FILE *fp, const void *ctx, int n)
