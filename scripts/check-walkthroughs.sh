@@ -8,9 +8,9 @@
 # For each one: copy the tree with its built objects into a scratch
 # directory (so that only the changed files compile), apply the blocks,
 # build clothode, check that it names something new (`clothode list`, or
-# the names --linsol takes), and if blocks add or change tests/test_*.c
-# build the test program and run those files' suites; then run the
-# `sh run` commands.
+# the names --linsol takes), build the test program and run the suites of
+# the tests/test_*.c the blocks add or change and those that go over a
+# whole registry ($registry_suites); then run the `sh run` commands.
 # Any failure names the doc, the heading and the compiler's or program's
 # messages.  Run by `make test` (SAN=1: the objects of build-san).
 # usage: scripts/check-walkthroughs.sh
@@ -20,6 +20,8 @@ san=${SAN:-0}
 build=build
 [[ $san == 1 ]] && build=build-san
 jobs=${JOBS:-2}
+# the suites whose tests go over a whole registry (docs/extending.md)
+registry_suites="linsol shape_registry model spectrum integrator every_integrator"
 cd "$root" || exit 1
 
 scratch=$(mktemp -d "${TMPDIR:-/tmp}/walkthroughs.XXXXXX") || exit 1
@@ -133,11 +135,9 @@ check_walkthrough() {
     [[ -n $added ]] || fail "$doc" "$heading" \
         "clothode list (and --linsol) name nothing new" < /dev/null
     local what="new: $added"
-    suites=$(printf '%s\n' $suites | sort -u | paste -sd' ')
-    if [[ -n $suites ]]; then
-        check_tests "$doc" "$heading" "$tree" $suites
-        what+="; tests$(printf ' %s/*' $suites): $passed passed"
-    fi
+    suites=$(printf '%s\n' $suites $registry_suites | sort -u | paste -sd' ')
+    check_tests "$doc" "$heading" "$tree" $suites
+    what+="; tests$(printf ' %s/*' $suites): $passed passed"
     for b in $(ls "$w" | sed -n 's/\.kind$//p' | sort -n); do
         [[ $(<"$w/$b.kind") == run ]] || continue
         (cd "$tree" && bash -e "$w/$b.body") > "$log" 2>&1 ||

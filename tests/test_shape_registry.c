@@ -8,19 +8,21 @@
 
 TestSuite(shape_registry);
 
+/* Every row complete and found by its name; the four known shapes among
+ * them in this order (a shape added to the registry passes too). */
 Test(shape_registry, names_and_entries)
 {
     static const char *const names[] = {"sphere", "plane", "box", "mesh"};
-    size_t n = 0;
-    for (; cl_shape_registry[n]; n++) {
+    size_t next = 0;
+    for (size_t n = 0; cl_shape_registry[n]; n++) {
         const cl_shape_type *t = cl_shape_registry[n];
         cr_assert(t->name && t->doc && *t->doc && t->create && t->query &&
                   t->surface && t->free, "shape %zu incomplete", n);
         cr_assert_eq(cl_shape_find(t->name), t, "%s", t->name);
+        if (next < 4 && !strcmp(t->name, names[next]))
+            next++;
     }
-    cr_assert_eq(n, 4);
-    for (size_t k = 0; k < 4; k++)
-        cr_assert_str_eq(cl_shape_registry[k]->name, names[k]);
+    cr_assert_eq(next, 4, "the known four not all there, in order");
     cr_assert_null(cl_shape_find("cylinder"));
     cr_assert_null(cl_shape_find(""));
     cr_assert_null(cl_shape_find("Sphere"));

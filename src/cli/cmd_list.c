@@ -1,5 +1,5 @@
-/* clothode list: problems, integrators, force terms and obstacle
- * shapes. */
+/* clothode list: problems, integrators, force terms, obstacle shapes
+ * and linear solvers. */
 #include <dirent.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,6 +11,7 @@
 #include "contact/shape.h"
 #include "forces/term.h"
 #include "integrators/integrator.h"
+#include "linalg/linsol.h"
 
 /* First comment line of a problem file, among its first 64 lines: its
  * one-line description.  Only a regular file is read (a FIFO would block,
@@ -85,9 +86,10 @@ static const cl_cli_opt list_rows[] = {
 static const cl_cli_table list_table = {
     .cmd = "list", .synopsis = "", .npos = 0, .rows = list_rows,
     .about = "Names the problems (problems/*.ini or $CLOTHODE_PROBLEMS), the\n"
-             "integrators, the force terms and the obstacle shapes; with\n"
-             "--integrators KIND only the integrators of that kind, on one\n"
-             "line (for scripts: the registry's methods of a study).\n"};
+             "integrators, the force terms, the obstacle shapes and the\n"
+             "linear solvers; with --integrators KIND only the integrators\n"
+             "of that kind, on one line (for scripts: the registry's\n"
+             "methods of a study).\n"};
 
 /* Whether integrator t is of the kind named. */
 static bool of_kind(const cl_integrator_type *t, const char *kind)
@@ -142,6 +144,11 @@ static int list(void *settings)
     for (size_t k = 0; cl_shape_registry[k]; k++)
         printf("  %-20s %s\n", cl_shape_registry[k]->name,
                cl_shape_registry[k]->doc);
+    printf("linear solvers (--linsol NAME, for the integrators that take "
+           "one):\n");
+    for (size_t k = 0; cl_linsol_registry[k]; k++)
+        printf("  %-20s %s\n", cl_linsol_registry[k]->name,
+               cl_linsol_registry[k]->doc);
     return 0;
 }
 
