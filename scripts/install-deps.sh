@@ -32,8 +32,8 @@ if [[ ${1:-} == fuzz ]]; then
     pkgs+=(clang-14 libclang-rt-14-dev valgrind)
 fi
 # `install-deps.sh multigrid`: petsc4py, for scripts/multigrid-growth.py
-# only (multigrid preconditioners clothode does not build, measured on its
-# matrices).
+# and scripts/deflation-gain.py only (multigrid preconditioners and a
+# deflated CG that clothode does not build, measured on its matrices).
 if [[ ${1:-} == multigrid ]]; then
     pkgs+=(python3-petsc4py)
 fi
