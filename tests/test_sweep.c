@@ -134,13 +134,16 @@ Test(sweep, dt_snapped_to_whole_steps)
     cl_error err = {0};
     cr_assert_eq(plan_text("[sweep]\nproblem = p.ini\n"
                            "integrator = symplectic-euler\n"
-                           "dt = 1e-5, 3.1622776601683795e-05, -1\nt_end = 0.05\n",
+                           "dt = 1e-5, 3.1622776601683795e-05, -1, inf\n"
+                           "t_end = 0.05\n",
                            &sw, &err), CL_OK, "%s", err.msg);
     /* 0.05 / 3.16e-5 = 1581.1 steps -> 1581 */
     cr_assert_str_eq(id_of(&sw, "symplectic-euler", "3.16255534471853e-05"),
                      sw.job[1].id);
     cr_assert_str_eq(sw.job[0].value[0], "1e-05");
-    cr_assert_str_eq(sw.job[2].value[0], "-1"); /* left for run to refuse */
+    /* left as written, for the plan's check to refuse */
+    cr_assert_str_eq(sw.job[2].value[0], "-1");
+    cr_assert_str_eq(sw.job[3].value[0], "inf");
     cl_sweep_free(&sw);
 }
 
@@ -169,6 +172,13 @@ Test(sweep, refused_keys_and_values)
                                "[sweep]"},
         {"[sweep]\nproblem = p.ini\nintegrator = rk4\natol = rtol / 100\n",
          "or KEY * C or KEY / C of a numeric axis above"},
+        /* one axis written two ways in a section */
+        {"[sweep]\nproblem = p.ini\nintegrator = rk4\ncloth.n = 8, 9\n"
+         "n = 8\n", "s.ini:5: [sweep] n = \"8\": an axis given twice in one "
+                    "section"},
+        {"[sweep]\nproblem = p.ini\nintegrator = rk4\nn = 8\n[sweep.a]\n"
+         "dt = 1e-3\nrun.dt = 2e-3\n", "[sweep.a] run.dt = \"2e-3\": an axis "
+                                      "given twice"},
     };
     for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
         cl_sweep sw;

@@ -356,6 +356,23 @@ Test(sweep_engine, ssh_gives_the_local_table)
     assert_same_table(local, remote);
 }
 
+/* A value `run` would refuse stops the plan, naming the job and the
+ * refusal, and no job list is written. */
+Test(sweep_engine, plan_refuses_what_run_would)
+{
+    char dir[1024], path[1100];
+    tmp_put(in_tmp(path, "bad.ini"), "[sweep]\nproblem = problems/hang.ini\n"
+            "integrator = rk4\ndt = 1e-4, -1\nt_end = 0.05\n");
+    cli_result r;
+    cli_run(&r, "sweep", "plan", path, "--out", in_tmp(dir, "bad"), NULL);
+    cli_assert_error(&r, 0, "sweep plan: the job integrator=rk4 run.dt=-1 "
+                     "run.t_end=0.05 would be refused: --set: [run] dt = "
+                     "\"-1\": expected a number in [0, 1e+12]", NULL);
+    cli_result_free(&r);
+    snprintf(path, sizeof path, "%s/jobs.txt", dir);
+    cr_assert(!cli_exists(path), "a refused plan wrote its jobs");
+}
+
 /* ---- Slurm ----------------------------------------------------------- */
 
 Test(sweep_engine, slurm_array_failed_job_and_resume)
@@ -375,10 +392,11 @@ Test(sweep_engine, slurm_array_failed_job_and_resume)
     }
     snprintf(conf, sizeof conf, "%s/slurm.conf", state);
     setenv("SLURM_CONF", conf, 1);
-    /* dt = -1 is a bad parameter: its jobs fail, the others complete */
+    /* dt = 1e-2 is past both methods' stable steps: its jobs blow up,
+     * the others complete */
     const char *failing = "[sweep]\nproblem = problems/hang.ini\n"
                           "integrator = symplectic-euler, rk4\n"
-                          "dt = 1e-4, 2e-4, -1\nt_end = 0.05\n";
+                          "dt = 1e-4, 2e-4, 1e-2\nt_end = 0.05\n";
     plan(in_tmp(local, "local"), failing);
     plan(in_tmp(sl, "slurm"), failing);
     run_local(local);
@@ -393,9 +411,8 @@ Test(sweep_engine, slurm_array_failed_job_and_resume)
     char listing[1024];
     cli_run(&r, "sweep", "collect", sl, "--out", in_tmp(listing, "l.csv"),
             NULL);
-    cr_assert(strstr(r.out, "run.dt=-1 run.t_end=0.05 (input): clothode: "
-                            "--set: [run] dt = \"-1\": expected a number in "
-                            "[0, 1e+12]\n"), "%s", r.out);
+    cr_assert(strstr(r.out, "run.dt=0.01 run.t_end=0.05 (blow-up): "
+                            "clothode: blow-up at t = "), "%s", r.out);
     cli_result_free(&r);
     collect(local, summary, sizeof summary);
     snprintf(local + strlen(local), 8, ".csv");

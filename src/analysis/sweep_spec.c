@@ -162,9 +162,11 @@ static void free_axis(cl_sweep_axis *a)
 }
 
 /* The axis KEY = VALUE of section sec into part p (replacing one of the
- * same key that p took over from [sweep]). */
+ * same key that p took over from [sweep]); mine[a]: axis a was set by
+ * this section already (the same key written two ways, as n and
+ * cloth.n, is refused). */
 static cl_status read_axis(cl_config *cfg, const char *sec, const char *key,
-                           cl_sweep_part *p, cl_error *err)
+                           cl_sweep_part *p, bool *mine, cl_error *err)
 {
     char *name = axis_key(key);
     const char *v = cl_config_string(cfg, sec, key, "");
@@ -173,12 +175,20 @@ static cl_status read_axis(cl_config *cfg, const char *sec, const char *key,
                                 "problem, integrator, reference, an axis dt, "
                                 "rtol, atol, t_end, n or SECTION.KEY", err);
     int self = find_axis(p, name);
+    if (self >= 0 && mine[self]) {
+        cl_status rc = cl_config_refuse(cfg, sec, key, CL_EINVAL, "an axis "
+                                        "given twice in one section (dt is "
+                                        "run.dt, n is cloth.n)", err);
+        free(name);
+        return rc;
+    }
     if (self < 0 && p->naxis == CL_SWEEP_MAX_AXES) {
         free(name);
         return cl_config_refuse(cfg, sec, key, CL_EINVAL,
                                 "too many axes (at most 16)", err);
     }
     self = self >= 0 ? self : p->naxis++;
+    mine[self] = true;
     free_axis(&p->axis[self]);
     p->axis[self] = (cl_sweep_axis){.key = name, .from = -1};
     bool ok = false, is = false;
@@ -221,7 +231,8 @@ static cl_status read_integrators(cl_config *cfg, const char *sec,
 
 /* With one t_end T, every dt becomes T / N, N = round(T / dt) >= 1, so
  * that a fixed-step run ends exactly at T (as in the stability study);
- * values that are not positive numbers are left for the run to refuse. */
+ * values that are not positive finite numbers are left as written, for
+ * the plan's check to refuse. */
 static cl_status snap_dt(cl_sweep_part *p)
 {
     int dt = find_axis(p, "run.dt"), te = find_axis(p, "run.t_end");
@@ -235,7 +246,7 @@ static cl_status snap_dt(cl_sweep_part *p)
     cl_status rc = CL_OK;
     for (int k = 0; !rc && k < a->n; k++) {
         double h = strtod(a->v[k], &end), n = round(T / h);
-        rc = h > 0 && !*end && isfinite(n) && n <= 1e15
+        rc = h > 0 && isfinite(h) && !*end && isfinite(n) && n <= 1e15
                  ? add_number(&snapped, T / fmax(n, 1))
                  : add_value(&snapped, a->v[k], strlen(a->v[k]));
     }
@@ -289,12 +300,13 @@ static cl_status read_part(cl_config *cfg, const char *sec,
         p->nint = ints.n;
     }
     const char *key;
+    bool mine[CL_SWEEP_MAX_AXES] = {false};
     for (size_t k = 0; !rc && (key = cl_config_key_at(cfg, sec, k)); k++)
         if (base && (!strcmp(key, "problem") || !strcmp(key, "reference")))
             rc = cl_config_refuse(cfg, sec, key, CL_EINVAL, "belongs in "
                                   "[sweep]", err);
         else if (!reserved(key))
-            rc = read_axis(cfg, sec, key, p, err);
+            rc = read_axis(cfg, sec, key, p, mine, err);
     return rc ? rc : snap_dt(p);
 }
 

@@ -180,6 +180,29 @@ static cl_status run_work(cl_model *m, const cl_cli_job *job, void *ctx,
     return rc ? rc : rc2;
 }
 
+cl_status cl_cmd_run_check(const char *problem, const char *integrator,
+                           const char *const *sets, int nset, cl_error *err)
+{
+    run_setup r = {0};
+    char assign[4200];
+    cl_model *m = NULL;
+    cl_config *cfg = cl_config_alloc();
+    cl_status rc = cfg ? cl_config_load(cfg, problem, err)
+                       : cl_error_set(err, CL_ENOMEM, "out of memory");
+    snprintf(assign, sizeof assign, "run.integrator=%s", integrator);
+    if (!rc)
+        rc = cl_config_set_once(cfg, assign, "integrator", err);
+    for (int k = 0; !rc && k < nset; k++)
+        rc = cl_config_set_once(cfg, sets[k], NULL, err);
+    if (!rc && !(rc = cl_cli_read(cfg, &run_table, &r, err)) &&
+        !(rc = check_run(cfg, &r, err)) &&
+        !(rc = cl_model_create(cfg, &m, err)))
+        rc = cl_config_check_unused(cfg, err);
+    cl_model_free(m);
+    cl_config_free(cfg);
+    return rc;
+}
+
 int cl_cmd_run(int argc, char **argv)
 {
     run_setup r = {.argc = argc, .argv = argv};

@@ -1,6 +1,8 @@
 /* clothode sweep plan|run|collect|refine: parameter sweeps (analysis/sweep.h),
  * run by GNU parallel or Slurm (cli/sweep_engine.h). */
 #include <limits.h>
+#include <stdbool.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -76,6 +78,85 @@ static cl_status plan_dirs(const cl_cli_args *a, cl_sweep *sw, cl_error *err)
     return rc;
 }
 
+/* Pointers met so far, in an open-addressed table of cap (a power of
+ * two) slots: a sweep holds each value and integrator once, so a value is
+ * its pointer. */
+typedef struct {
+    const void **slot;
+    size_t cap;
+} seen_set;
+
+/* Add p; true if it was not there. */
+static bool seen_add(seen_set *s, const void *p)
+{
+    size_t h = (size_t)(((uintptr_t)p >> 4) * 11400714819323198485ull) &
+               (s->cap - 1);
+    while (s->slot[h] && s->slot[h] != p)
+        h = (h + 1) & (s->cap - 1);
+    bool fresh = !s->slot[h];
+    s->slot[h] = p;
+    return fresh;
+}
+
+/* Job k as `run` would check it (cl_cmd_run_check), the refusal prefixed
+ * with the job's assignments. */
+static cl_status check_job(const cl_sweep *sw, int k, cl_error *err)
+{
+    const cl_sweep_job *j = &sw->job[k];
+    char buf[CL_SWEEP_MAX_AXES][512], what[2048];
+    const char *sets[CL_SWEEP_MAX_AXES];
+    int n = 0;
+    size_t u = (size_t)snprintf(what, sizeof what, "integrator=%s",
+                                j->integrator);
+    for (int a = 0; a < sw->naxis; a++)
+        if (j->value[a]) {
+            snprintf(buf[n], sizeof buf[n], "%s=%s", sw->axis[a].key,
+                     j->value[a]);
+            if (u < sizeof what)
+                u += (size_t)snprintf(what + u, sizeof what - u, " %s",
+                                      buf[n]);
+            sets[n] = buf[n];
+            n++;
+        }
+    cl_error why = {0};
+    cl_status rc = cl_cmd_run_check(sw->problem, j->integrator, sets, n, &why);
+    return rc ? cl_error_set(err, rc, "sweep plan: the job %s would be "
+                             "refused: %s", what, why.msg)
+              : CL_OK;
+}
+
+/* Check, as `run` would before any work, every job that brings an
+ * integrator or an axis value no job before it had: each integrator and
+ * value is checked at least once, in a job of its own, so that a value
+ * run refuses (an unknown key, a number out of its range) stops the plan
+ * instead of failing job by job.  The references take cvode-bdf and the
+ * problem's values, which the jobs check. */
+static cl_status check_jobs(const cl_sweep *sw, cl_error *err)
+{
+    size_t values = (size_t)sw->nint;
+    for (int a = 0; a < sw->naxis; a++)
+        values += (size_t)sw->axis[a].n;
+    seen_set s = {NULL, 16};
+    while (s.cap < 2 * values + 2)
+        s.cap *= 2;
+    if (!(s.slot = calloc(s.cap, sizeof *s.slot)))
+        return cl_error_set(err, CL_ENOMEM, "out of memory");
+    cl_status rc = CL_OK;
+    for (int k = 0; !rc && k < sw->njob; k++) {
+        const cl_sweep_job *j = &sw->job[k];
+        if (j->reference)
+            continue;
+        bool fresh = seen_add(&s, j->integrator);
+        for (int a = 0; a < sw->naxis; a++)
+            if (j->value[a] && seen_add(&s, j->value[a]))
+                fresh = true;
+        if (fresh)
+            rc = check_job(sw, k, err);
+    }
+    free(s.slot);
+    return rc;
+}
+
 static int plan(void *settings)
 {
     cl_cli_args *a = settings;
@@ -86,7 +167,8 @@ static int plan(void *settings)
     if (!rc && !(rc = cl_sweep_read(cfg, &sw, &err)) &&
         !(rc = cl_config_check_unused(cfg, &err)) &&
         !(rc = resolve_problem(cfg, a->arg, &sw, &err)) &&
-        !(rc = plan_dirs(a, &sw, &err)) && !(rc = cl_sweep_expand(&sw, &err)))
+        !(rc = plan_dirs(a, &sw, &err)) && !(rc = cl_sweep_expand(&sw, &err)) &&
+        !(rc = check_jobs(&sw, &err)))
         rc = cl_sweep_write(&sw, &err);
     if (!rc && !a->quiet) {
         int refs = 0;

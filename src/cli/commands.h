@@ -2,7 +2,16 @@
 #ifndef CL_COMMANDS_H
 #define CL_COMMANDS_H
 
+#include "core/error.h"
+
 int cl_cmd_run(int argc, char **argv);
+
+/* The checks `clothode run PROBLEM --integrator INTEGRATOR --set S ...`
+ * makes before any work (its options, the integrator's, the model built,
+ * no key unused), without running: CL_OK, or the first refusal in err
+ * (the plan of a sweep checks its jobs with it).  sets: "SECTION.KEY=V". */
+cl_status cl_cmd_run_check(const char *problem, const char *integrator,
+                           const char *const *sets, int nset, cl_error *err);
 int cl_cmd_eval(int argc, char **argv);
 int cl_cmd_counts(int argc, char **argv);
 int cl_cmd_list(int argc, char **argv);
