@@ -2017,6 +2017,28 @@ Test(cli, stdout_write_error_is_an_io_error)
     free(msg);
 }
 
+/* A write past the file-size limit (ulimit -f) is an I/O error with its
+ * message, not death by SIGXFSZ with a temporary file behind. */
+Test(cli, file_size_limit_is_an_io_error)
+{
+    char out[1024];
+    char *argv[] = {"sh", "-c", "ulimit -f 20 && exec \"$0\" \"$@\"",
+                    (char *)cli_binary(), "run", "hang", "--set",
+                    "cloth.n=8", "--t-end", "0.1", "--quiet", "--out",
+                    (char *)in_tmp(out, "fsize"), NULL};
+    cli_result r;
+    cli_spawn(&r, argv);
+    cr_assert_eq(r.status, 7, "status %d: %s", r.status, r.err);
+    cr_assert(strstr(r.err, "File too large"), "%s", r.err);
+    cli_result_free(&r);
+    DIR *d = opendir(out);
+    cr_assert_not_null(d);
+    for (struct dirent *e; (e = readdir(d));)
+        cr_assert_null(strstr(e->d_name, ".tmp"), "%s left behind",
+                       e->d_name);
+    closedir(d);
+}
+
 /* Output paths that are not regular files are refused before any work,
  * and the special file is left as it was (as root, the rename of an
  * atomic write would replace a device node). */
