@@ -618,7 +618,15 @@ Test(cli, key_set_twice_refused)
                    LIST("[type1] ks is already set by an earlier --set"));
     expect_refused(LIST("run", "hang", "--rtol", "1e-5", "--set",
                         "run.rtol=1e-6"), 0,
-                   LIST("[run] rtol is already set by an option"));
+                   LIST("--set \"run.rtol=1e-6\": [run] rtol is already set "
+                        "by --rtol"));
+    /* an option given twice names the option, not a --set */
+    expect_refused(LIST("run", "hang", "--t-end", "0.1", "--t-end", "0.2"),
+                   0, LIST("--t-end 0.2: [run] t_end is already set by "
+                           "--t-end; give each key once"));
+    /* an option of no key too, where the last would win silently */
+    expect_refused(LIST("run", "hang", "--out", "a"), 1,
+                   LIST("option --out given twice; give it once"));
 }
 
 /* A problem whose files are named relative to it reads back from the

@@ -494,7 +494,7 @@ Test(config, set_of_a_key_twice_is_refused)
                  CL_OK);
     cr_assert_eq(cl_config_set_once(cfg, "run.rtol=1e-7", NULL, &err),
                  CL_EINVAL);
-    assert_msg_has(err, "[run] rtol is already set by an option");
+    assert_msg_has(err, "[run] rtol is already set by --rtol");
     cr_assert_eq(cl_config_set(cfg, "run.rtol=1e-8", &err), CL_OK,
                  "a library caller may override");
     cl_config_free(cfg);

@@ -191,7 +191,7 @@ cl_status cl_cmd_run_check(const char *problem, const char *integrator,
                        : cl_error_set(err, CL_ENOMEM, "out of memory");
     snprintf(assign, sizeof assign, "run.integrator=%s", integrator);
     if (!rc)
-        rc = cl_config_set_once(cfg, assign, "integrator", err);
+        rc = cl_config_set_once(cfg, assign, "--integrator", err);
     for (int k = 0; !rc && k < nset; k++)
         rc = cl_config_set_once(cfg, sets[k], NULL, err);
     if (!rc && !(rc = cl_cli_read(cfg, &run_table, &r, err)) &&

@@ -162,6 +162,14 @@ int cl_cli_parse(int argc, char **argv, const cl_cli_table *t,
             return refused(t, "option '%s' takes no value", opt);
         if (c == '?')
             return refused(t, "unknown or ambiguous option '%s'", opt);
+        /* an option of no key (--out, ...) given twice would keep the last
+         * silently; a keyed one is refused as a key set twice, --set and
+         * a flag may repeat */
+        const cl_cli_opt *row = f[c - OPT_VAL0].row;
+        if (given[c - OPT_VAL0] && !row->key && row->arg &&
+            row->type != CL_CLI_SET)
+            return refused(t, "option --%s given twice; give it once",
+                           row->name);
         given[c - OPT_VAL0] = true;
         int rc = take(t, &f[c - OPT_VAL0], optarg, settings);
         if (rc == -1)

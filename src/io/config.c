@@ -559,16 +559,15 @@ static const char *cl_set_problem(const char *sec, const char *key,
 }
 
 /* A command line gives each key once: a second --set (or option) of the
- * same key would silently replace the first. */
-static const char *cl_set_twice(const cl_config *cfg, const char *sec,
-                                const char *key)
+ * same key would silently replace the first.  Who set it: the option's
+ * label, or NULL for an earlier --set; NULL too if it is not set by the
+ * command line. */
+static bool cl_set_twice(const cl_config *cfg, const char *sec,
+                         const char *key, const char **who)
 {
     const cl_entry *e = cl_find(cfg, sec, key);
-    if (!e || e->line > 0)
-        return NULL;
-    return e->file ? "is already set by an option; give each key once"
-                   : "is already set by an earlier --set; give each key"
-                     " once";
+    *who = e ? e->file : NULL;
+    return e && e->line <= 0;
 }
 
 static cl_status cl_set_split(cl_config *cfg, const char *a, const char *dot,
@@ -579,16 +578,21 @@ static cl_status cl_set_split(cl_config *cfg, const char *a, const char *dot,
     char *key = cl_dup_trim(dot + 1, (size_t)(eq - dot - 1));
     char *value = cl_dup_trim(eq + 1, strlen(eq + 1));
     cl_status rc = CL_OK;
-    const char *why;
+    const char *why, *who;
     if (!sec || !key || !value)
         rc = cl_error_set(err, CL_ENOMEM, "--set \"%s\": out of memory", a);
     else if ((why = cl_set_problem(sec, key, value)))
         rc = cl_error_set(err, CL_EINVAL,
                           "--set \"%s\": %s (expected section.key=value)",
                           a, why);
-    else if (once && (why = cl_set_twice(cfg, sec, key)))
-        rc = cl_error_set(err, CL_EINVAL, "--set \"%s\": [%s] %s %s", a, sec,
-                          key, why);
+    else if (once && cl_set_twice(cfg, sec, key, &who))
+        rc = label ? cl_error_set(err, CL_EINVAL, "%s %s: [%s] %s is already "
+                                  "set by %s; give each key once", label,
+                                  value, sec, key,
+                                  who ? who : "an earlier --set")
+                   : cl_error_set(err, CL_EINVAL, "--set \"%s\": [%s] %s is "
+                                  "already set by %s; give each key once", a,
+                                  sec, key, who ? who : "an earlier --set");
     else if (cl_put(cfg, sec, key, value,
                     label ? cl_intern_file(cfg, label) : NULL,
                     label ? -1 : 0) != CL_OK)
