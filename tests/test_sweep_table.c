@@ -215,4 +215,11 @@ Test(sweep_table, stability_axis_from_sweep)
     cr_assert(strstr(r.out, "rk4                                  -0.500 "
                             "     -0.500"), "%s", r.out);
     cli_result_free(&r);
+    /* a key the problem does not have is refused, not searched under its
+     * name with the problem unchanged */
+    cli_run(&r, "stability", "hang", "--set", "cloth.n=6", "--t-end", "0.2",
+            "--integrator", "rk4", "--axis", "type1.kz=1000,4000",
+            "--from-sweep", path, "--out", out, NULL);
+    cli_assert_error(&r, 0, "--axis: unknown key [type1] kz", NULL);
+    cli_result_free(&r);
 }

@@ -62,17 +62,22 @@ static cl_status load_manifest(const char *dir, json_t **out, cl_error *err)
     return CL_OK;
 }
 
-/* Run `clothode run` with the recorded arguments into outdir, from the
- * recorded working directory; its exit status. */
+/* Run `clothode run` with the recorded arguments, its --out replaced by
+ * outdir, from the recorded working directory; its exit status. */
 static int rerun(json_t *m, const char *outdir)
 {
     json_t *argv = json_object_get(m, "argv");
     char *args[256], here[PATH_MAX];
     int n = 0;
-    for (size_t k = 1; k < json_array_size(argv); k++)
-        if (!(args[n++] = (char *)json_string_value(
-                  json_array_get(argv, k))))
+    for (size_t k = 1; k < json_array_size(argv); k++) {
+        char *a = (char *)json_string_value(json_array_get(argv, k));
+        if (!a)
             return CL_EXIT_INPUT;
+        if (!strcmp(a, "--out"))
+            k++; /* and its value */
+        else if (strncmp(a, "--out=", 6))
+            args[n++] = a;
+    }
     args[n++] = "--out";
     args[n++] = (char *)outdir;
     args[n++] = "--quiet";

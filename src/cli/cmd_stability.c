@@ -153,13 +153,15 @@ static cl_status read_axis(cl_config *cfg, stab_setup *s, cl_error *err)
     char sec[128];
     snprintf(sec, sizeof sec, "%.*s", (int)(strrchr(s->key, '.') - s->key),
              s->key);
-    const char *was = cl_config_string(cfg, sec, strrchr(s->key, '.') + 1,
-                                       NULL);
+    const char *was = cl_config_peek(cfg, sec, strrchr(s->key, '.') + 1);
     if (was && !(s->original = strdup(was)))
         return cl_error_set(err, CL_ENOMEM, "out of memory");
     for (int v = 0; !rc && v < s->values.n; v++) {
-        if (!(rc = use_value(s, v, err)) &&
-            !(rc = cl_cli_methods_try(s->variant, &s->integrators, err)))
+        if (!(rc = use_value(s, v, err)) && v == 0)
+            /* the model has read every key of the problem: a key it does
+             * not know (a misspelt axis) is left unread */
+            rc = cl_config_check_unused(cfg, err);
+        if (!rc && !(rc = cl_cli_methods_try(s->variant, &s->integrators, err)))
             for (int k = 0; !rc && k < s->integrators.n; k++)
                 rc = cl_stab_check(s->variant, s->integrators.m[k].type,
                                    &s->so, err);

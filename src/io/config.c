@@ -901,6 +901,13 @@ const char *cl_config_string(cl_config *cfg, const char *sec, const char *key,
     return e ? e->value : def;
 }
 
+const char *cl_config_peek(const cl_config *cfg, const char *sec,
+                           const char *key)
+{
+    const cl_entry *e = cl_find(cfg, sec, key);
+    return e ? e->value : NULL;
+}
+
 void cl_config_resolved(const cl_config *cfg, cl_config_visit_fn visit,
                         void *ctx)
 {

@@ -103,6 +103,11 @@ cl_status cl_config_check_unused(const cl_config *cfg, cl_error *err);
 const char *cl_config_section_at(const cl_config *cfg, const char *prefix,
                                  size_t k);
 
+/* The value of [sec] key as given, or NULL, without counting it as read
+ * (cl_config_check_unused still reports a key nothing else reads). */
+const char *cl_config_peek(const cl_config *cfg, const char *sec,
+                           const char *key);
+
 /* The k-th (0-based) key of section `sec` in order of first appearance,
  * or NULL when it has k or fewer; for sections whose keys are names of
  * the caller's choosing (a sweep's axes).  Does not mark it used. */
