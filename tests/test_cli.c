@@ -825,6 +825,28 @@ Test(cli, eval_state_missing_file)
     cli_result_free(&r);
 }
 
+/* Two outputs of one eval in one file are refused before any work,
+ * however the path is spelt: a Jacobian over forces.csv, or both Jacobians
+ * in one file. */
+Test(cli, eval_outputs_in_one_file_are_refused)
+{
+    char out[1024], state[1024], jac[1100], other[1100];
+    tmp_put(in_tmp(state, "s.csv"), "p,x,y,z,vx,vy,vz\n");
+    in_tmp(out, "same");
+    snprintf(jac, sizeof jac, "%s/forces.csv", out);
+    cli_result r;
+    cli_run(&r, "eval", "hang", "--state", state, "--jacobian", jac, "--out",
+            out, NULL);
+    cli_assert_error(&r, 0, "the same file as forces.csv in --out", NULL);
+    cli_result_free(&r);
+    snprintf(jac, sizeof jac, "%s/J.mtx", tmp);
+    snprintf(other, sizeof other, "%s/../%s/J.mtx", tmp, strrchr(tmp, '/') + 1);
+    cli_run(&r, "eval", "hang", "--state", state, "--jacobian", jac,
+            "--jacobian-v", other, "--out", out, NULL);
+    cli_assert_error(&r, 0, "the same file as --jacobian", NULL);
+    cli_result_free(&r);
+}
+
 /* ======================================================================
  * 2. A small run and its outputs.
  * ====================================================================== */

@@ -1,8 +1,10 @@
 /* clothode eval PROBLEM --state STATE.csv: forces, energies and optionally
  * the Jacobians of the model at a given state, for checks against other
  * implementations. */
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "cli/cli.h"
 #include "cli/commands.h"
@@ -96,17 +98,50 @@ static cl_status write_jacobians(cl_model *m, const eval_args *a,
     return rc;
 }
 
-/* Every output path is a regular file or absent, before any work. */
+/* path with its directory resolved (symbolic links, "..", relative), so
+ * that two spellings of one file compare equal; as given when the
+ * directory does not exist yet. */
+static void resolved_path(const char *path, char *buf, size_t len)
+{
+    char dir[PATH_MAX], *real;
+    const char *slash = strrchr(path, '/');
+    snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - path) : 1,
+             slash ? (slash == path ? "/" : path) : ".");
+    if ((real = realpath(dir, NULL))) {
+        snprintf(buf, len, "%s/%s", real, slash ? slash + 1 : path);
+        free(real);
+    } else
+        snprintf(buf, len, "%s", path);
+}
+
+/* Every output path is a regular file or absent, and the outputs are
+ * different files (a Jacobian written over forces.csv would lose the
+ * forces), before any work. */
 static cl_status check_outputs(const eval_args *a, const char *dir,
                                cl_error *err)
 {
+    const char *name[4] = {"forces.csv", "energy.csv", "--jacobian",
+                           "--jacobian-v"};
+    char path[4][PATH_MAX + 64], given[2][PATH_MAX + 16];
+    snprintf(given[0], sizeof given[0], "%s/forces.csv", dir);
+    snprintf(given[1], sizeof given[1], "%s/energy.csv", dir);
+    const char *file[4] = {given[0], given[1], a->jac_x, a->jac_v};
     cl_status rc = cl_cli_check_output(dir, "forces.csv", err);
     if (!rc)
         rc = cl_cli_check_output(dir, "energy.csv", err);
-    if (!rc && *a->jac_x)
-        rc = cl_output_check(a->jac_x, err);
-    if (!rc && *a->jac_v)
-        rc = cl_output_check(a->jac_v, err);
+    for (int i = 2; !rc && i < 4; i++)
+        if (*file[i])
+            rc = cl_output_check(file[i], err);
+    for (int i = 0; i < 4; i++)
+        if (*file[i])
+            resolved_path(file[i], path[i], sizeof path[i]);
+    for (int i = 2; !rc && i < 4; i++)
+        for (int j = 0; !rc && j < i; j++)
+            if (*file[i] && *file[j] && !strcmp(path[i], path[j]))
+                rc = cl_error_set(err, CL_EINVAL, "%s %s: the same file as "
+                                  "%s%s%s; each output needs a file of its "
+                                  "own", name[i], file[i], name[j],
+                                  j < 2 ? " in --out " : "", j < 2 ? dir : "");
     return rc;
 }
 
