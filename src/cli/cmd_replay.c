@@ -27,7 +27,7 @@ static const cl_cli_opt replay_rows[] = {
 
 static const cl_cli_table replay_table = {
     .cmd = "replay", .synopsis = "DIR [--out DIR]", .npos = 1,
-    .rows = replay_rows,
+    .pos = "DIR", .rows = replay_rows,
     .about =
     "Rerun the run recorded in DIR/run.json (its command line, in its\n"
     "working directory) and report for every file it wrote whether the\n"
@@ -44,9 +44,12 @@ static cl_status load_manifest(const char *dir, json_t **out, cl_error *err)
     json_error_t je;
     snprintf(path, sizeof path, "%s/run.json", dir);
     json_t *root = json_load_file(path, 0, &je);
+    if (!root && je.line < 1) /* not opened: jansson says why */
+        return cl_error_set(err, CL_EIO, "%s: cannot read run.json: %s",
+                            dir, je.text);
     if (!root)
-        return cl_error_set(err, CL_EIO, "%s:%d: cannot read run.json: %s",
-                            path, je.line, je.text);
+        return cl_error_set(err, CL_EPARSE, "%s:%d: not JSON: %s", path,
+                            je.line, je.text);
     const char *program = json_string_value(json_object_get(root, "program"));
     const char *cmd = json_string_value(json_object_get(root, "command"));
     json_t *argv = json_object_get(root, "argv");

@@ -174,7 +174,7 @@ static bool ref_tail_ok(const char *s)
 }
 
 /* A face vertex: its 0-based index.  Huge indices saturate in strtol and
- * are out of range like any other. */
+ * are out of range like any other (named as written). */
 static cl_status parse_ref(obj_reader *r, const char *tok, int *out)
 {
     char *end;
@@ -187,8 +187,8 @@ static cl_status parse_ref(obj_reader *r, const char *tok, int *out)
                        "from -1)");
     long nv = (long)r->m->nvert, k = i > 0 ? i - 1 : nv + i;
     if (k < 0 || k >= nv)
-        return fail(r, "vertex index %ld out of range (%ld vertices defined "
-                       "so far)", i, nv);
+        return fail(r, "vertex index %.*s out of range (%ld vertices defined "
+                       "so far)", (int)(end - tok), tok, nv);
     *out = (int)k;
     return CL_OK;
 }
