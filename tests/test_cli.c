@@ -847,6 +847,20 @@ Test(cli, eval_outputs_in_one_file_are_refused)
     cli_result_free(&r);
 }
 
+/* Options of one mode of a study given in the other, where they would
+ * be ignored, are refused: damping's --equilibrium without --modes,
+ * contact's --dt-max without --k. */
+Test(cli, options_of_another_mode_are_refused)
+{
+    expect_refused(LIST("damping", "spring2", "--integrator", "semi-be",
+                        "--equilibrium"), 0,
+                   LIST("--equilibrium goes with --modes T"));
+    expect_refused(LIST("contact", "particle-floor", "--integrator",
+                        "symplectic-euler", "--dt", "1e-3", "--dt-max",
+                        "1e-3"), 0,
+                   LIST("--dt-max ([contact] dt_max) goes with --k LIST"));
+}
+
 /* ======================================================================
  * 2. A small run and its outputs.
  * ====================================================================== */
