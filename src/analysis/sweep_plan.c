@@ -126,11 +126,13 @@ static cl_status finish_job(cl_sweep *sw, int k, int *dup, cl_error *err)
     cl_sweep_canonical(sw, j, text, sizeof text);
     make_id(text, j->id);
     *dup = cl_sweep_find(sw, j->id);
-    if (*dup >= 0 && *dup < k)
+    if (*dup >= 0 && *dup < k) {
+        for (char *c = text; (c = strchr(c, '\n'));)
+            *c = ' ';
         return cl_error_set(err, CL_EINVAL, "sweep: two jobs are the same "
-                            "run (a value listed twice?): %s",
-                            strchr(text, '\n') ? strchr(text, '\n') + 1
-                                               : text);
+                            "run, %s (a value listed twice, or two steps "
+                            "that dt = t_end / N makes one)", text);
+    }
     cl_status rc = make_command(sw, j);
     return rc ? cl_error_set(err, rc, "sweep: job %s: command too long or "
                              "no memory", j->id) : CL_OK;
