@@ -257,36 +257,40 @@ static void expect_parse_error(const char *text, int line, ...)
     cl_config_free(cfg);
 }
 
-Test(config, missing_file_is_eio)
+/* Loading the file at path fails with code, the message containing each
+ * string of the NULL-terminated argument list. */
+static void expect_load_refused(const char *path, cl_status code, ...)
 {
     cl_config *cfg = cl_config_alloc();
     cl_error err = {0};
-    cr_assert_eq(cl_config_load(cfg, "/nonexistent/dir/hang.ini", &err),
-                 CL_EIO);
-    cr_assert_eq(err.code, CL_EIO);
-    assert_msg_has(err, "/nonexistent/dir/hang.ini");
-    assert_msg_has(err, "No such file");
+    cr_assert_eq(cl_config_load(cfg, path, &err), code, "%s: %s", path,
+                 err.msg);
+    cr_assert_eq(err.code, code);
+    va_list ap;
+    va_start(ap, code);
+    for (const char *sub; (sub = va_arg(ap, const char *));)
+        assert_msg_has(err, sub);
+    va_end(ap);
     cl_config_free(cfg);
+}
+
+Test(config, missing_file_is_eio)
+{
+    expect_load_refused("/nonexistent/dir/hang.ini", CL_EIO,
+                        "/nonexistent/dir/hang.ini", "No such file", NULL);
 }
 
 Test(config, directory_is_eio)
 {
-    cl_config *cfg = cl_config_alloc();
-    cl_error err = {0};
-    cr_assert_eq(cl_config_load(cfg, "/tmp", &err), CL_EIO);
-    assert_msg_has(err, "/tmp");
-    cl_config_free(cfg);
+    expect_load_refused("/tmp", CL_EIO, "/tmp", NULL);
 }
 
 /* A device that never ends is read to its first NUL byte, not to the end
  * of memory. */
 Test(config, endless_device_is_refused_at_its_first_nul)
 {
-    cl_config *cfg = cl_config_alloc();
-    cl_error err = {0};
-    cr_assert_eq(cl_config_load(cfg, "/dev/zero", &err), CL_EPARSE);
-    assert_msg_has(err, "/dev/zero:1: NUL byte");
-    cl_config_free(cfg);
+    expect_load_refused("/dev/zero", CL_EPARSE, "/dev/zero:1: NUL byte",
+                        NULL);
 }
 
 /* Text beyond 16 MiB (here comments, endless in spirit) is refused. */
@@ -302,11 +306,7 @@ Test(config, text_beyond_16_mib_is_refused)
     for (int k = 0; k < (16 << 20) / (int)(sizeof line - 1) + 2; k++)
         fputs(line, fp);
     cr_assert_eq(fclose(fp), 0);
-    cl_config *cfg = cl_config_alloc();
-    cl_error err = {0};
-    cr_assert_eq(cl_config_load(cfg, path, &err), CL_EPARSE);
-    assert_msg_has(err, "longer than 16 MiB");
-    cl_config_free(cfg);
+    expect_load_refused(path, CL_EPARSE, "longer than 16 MiB", NULL);
     unlink(path);
 }
 
