@@ -2,12 +2,14 @@
  * identical outputs; a recorded digest that does not match is reported. */
 #include "runcli.h"
 
-static void run_into(const char *dir)
+/* A run into dir, the directory given by `out_option` (--out, or an
+ * abbreviation of it, which replay replaces as it does --out). */
+static void run_into(const char *dir, const char *out_option)
 {
     cli_result r;
     cli_run(&r, "run", "hang", "--set", "cloth.n=6", "--integrator",
             "semi-bdf2", "--dt", "1e-2", "--t-end", "0.2", "--frames", "1",
-            "--out", dir, "--quiet", NULL);
+            out_option, dir, "--quiet", NULL);
     cli_assert_ok(&r);
     cli_result_free(&r);
 }
@@ -17,7 +19,7 @@ Test(replay, finished_run_replays_identically)
     char dir[64];
     cli_result r;
     tmp_mkdtemp(dir, sizeof dir, "replay");
-    run_into(dir);
+    run_into(dir, "--ou");
     cli_run(&r, "replay", dir, NULL);
     cli_assert_ok(&r);
     const char *files[] = {"series.csv", "final.csv", "stats.csv",
@@ -42,7 +44,7 @@ Test(replay, changed_digest_is_reported)
     cli_result r;
     tmp_mkdtemp(dir, sizeof dir, "replay");
     tmp_mkdtemp(keep, sizeof keep, "rerun");
-    run_into(dir);
+    run_into(dir, "--out");
     snprintf(path, sizeof path, "%s/run.json", dir);
     tmp_slurp(path, json, sizeof json);
     char *at = strstr(json, "\"name\": \"final.csv\"");

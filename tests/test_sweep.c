@@ -30,7 +30,9 @@ static void teardown(void)
 TestSuite(sweep, .init = setup, .fini = teardown);
 
 /* The sweep file `text` read and expanded into sw (into tmp/d). */
-static cl_status plan_text(const char *text, cl_sweep *sw, cl_error *err)
+/* The plan of a sweep file holding `text`, its directory `dir`. */
+static cl_status plan_text_in(const char *text, const char *dir,
+                              cl_sweep *sw, cl_error *err)
 {
     char path[1024];
     snprintf(path, sizeof path, "%s/s.ini", tmp);
@@ -41,14 +43,20 @@ static cl_status plan_text(const char *text, cl_sweep *sw, cl_error *err)
     if (!rc)
         rc = cl_sweep_read(cfg, sw, err);
     if (!rc) {
-        char dir[1024];
-        snprintf(dir, sizeof dir, "%s/d", tmp);
         sw->dir = strdup(dir);
         sw->clothode = strdup("/bin/clothode");
         rc = cl_sweep_expand(sw, err);
     }
     cl_config_free(cfg);
     return rc;
+}
+
+/* ... in tmp/d. */
+static cl_status plan_text(const char *text, cl_sweep *sw, cl_error *err)
+{
+    char dir[1024];
+    snprintf(dir, sizeof dir, "%s/d", tmp);
+    return plan_text_in(text, dir, sw, err);
 }
 
 static const char *id_of(const cl_sweep *sw, const char *integrator,
@@ -98,9 +106,45 @@ Test(sweep, axes_expand_lists_linspace_logspace)
                      "--out "),
               "%s", sw.job[1].command);
     cr_assert(strstr(sw.job[1].command, tail), "%s", sw.job[1].command);
+    /* the job records its own exit status, and returns it */
+    char head[1200], end[3600];
+    snprintf(head, sizeof head, "rm -f %s/d/jobs/%s/exit; /bin/clothode run ",
+             tmp, sw.job[1].id);
+    snprintf(end, sizeof end, "/stderr; s=$?; echo $s > %s/d/jobs/%s/exit.tmp"
+             " && mv %s/d/jobs/%s/exit.tmp %s/d/jobs/%s/exit; exit $s", tmp,
+             sw.job[1].id, tmp, sw.job[1].id, tmp, sw.job[1].id);
+    const char *cmd = sw.job[1].command;
+    cr_assert(!strncmp(cmd, head, strlen(head)), "%s", cmd);
+    cr_assert(strlen(cmd) > strlen(end) &&
+                  !strcmp(cmd + strlen(cmd) - strlen(end), end), "%s", cmd);
     for (int a = 0; a < sw.njob; a++)
         for (int b = a + 1; b < sw.njob; b++)
             cr_assert_str_neq(sw.job[a].id, sw.job[b].id);
+    cl_sweep_free(&sw);
+}
+
+/* A run.frames axis takes the place of the command's --frames 0 (run
+ * would refuse the key twice); a command that would not fit is refused,
+ * not cut short. */
+Test(sweep, frames_axis_and_command_length)
+{
+    cl_sweep sw;
+    cl_error err = {0};
+    cr_assert_eq(plan_text("[sweep]\nproblem = p.ini\nintegrator = rk4\n"
+                           "dt = 1e-3\nrun.frames = 2\n", &sw, &err), CL_OK,
+                 "%s", err.msg);
+    cr_assert_null(strstr(sw.job[0].command, "--frames"), "%s",
+                   sw.job[0].command);
+    cr_assert(strstr(sw.job[0].command, " --set run.frames=2 "), "%s",
+              sw.job[0].command);
+    cl_sweep_free(&sw);
+    static char dir[4001];
+    memset(dir, 'd', sizeof dir - 1);
+    dir[0] = '/';
+    cr_assert_eq(plan_text_in("[sweep]\nproblem = p.ini\nintegrator = rk4\n"
+                              "dt = 1e-3\n", dir, &sw, &err), CL_EINVAL);
+    cr_assert(strstr(err.msg, "its command line is longer than 16383 "
+                              "characters"), "%s", err.msg);
     cl_sweep_free(&sw);
 }
 

@@ -435,7 +435,11 @@ Test(sweep_engine, slurm_array_failed_job_and_resume)
     collect(sl, summary, sizeof summary);
     cr_assert_str_eq(summary, "4 complete, 2 failed, 0 missing");
 
-    /* the limits given: every job again, no pilot */
+    /* the limits given: every job again, no pilot (and none for want of
+     * the earlier estimate, removed) */
+    char estimate[1100];
+    snprintf(estimate, sizeof estimate, "%s/slurm/estimate", sl);
+    cr_assert_eq(unlink(estimate), 0, "%s", estimate);
     cli_run(&r, "sweep", "run", sl, "--engine", "slurm", "--time", "5",
             "--mem", "300", "--wait", NULL);
     cli_assert_ok(&r);

@@ -405,6 +405,7 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
              .so = so};
     schedule sch;
     void *state = NULL;
+    bool writing = false; /* outdir prepared: outputs may go there */
     memset(res, 0, sizeof *res);
     cl_model_contact_start(m, false);
     size_t n3 = 3 * s.c->np, npot = cl_model_potentials(m);
@@ -428,7 +429,7 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
         !(rc = so->before_output
                    ? so->before_output(so->before_output_ctx, err)
                    : CL_OK) &&
-        !(rc = cl_mkdir_p(so->outdir, err)) &&
+        !(rc = cl_mkdir_p(so->outdir, err)) && (writing = true) &&
         !(rc = open_series(&s, err)) && !(rc = sample(&s, 0.0, res, err))) {
         cl_energy_keep(&res->e0, &res->e1, s.e0_terms);
         if (so->frames > 0)
@@ -461,7 +462,7 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
         res->state_file = rc2 == CL_OK ? name : NULL;
         rc = rc ? rc : rc2;
     }
-    if (s.x && (rc == CL_OK || state))
+    if (s.x && writing)
         rc2 = write_stats(&s, &res->stats, rc ? &later : err);
     if (!rc)
         rc = rc2;

@@ -3,6 +3,8 @@
 #include "analysis/sweep.h"
 
 #include <math.h>
+#include <stdarg.h>
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -57,56 +59,109 @@ size_t cl_sweep_quote(const char *s, char *buf, size_t len)
     return u + (size_t)snprintf(buf + u, u < len ? len - u : 0, "'");
 }
 
+/* A command line being written: too long once `over`. */
+typedef struct {
+    char buf[16384];
+    size_t u;
+    bool over;
+} cmdline;
+
+static void put(cmdline *c, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+static void put(cmdline *c, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    int k = c->over ? 0 : vsnprintf(c->buf + c->u, sizeof c->buf - c->u,
+                                     fmt, ap);
+    va_end(ap);
+    if (k < 0 || (size_t)k >= sizeof c->buf - c->u)
+        c->over = true;
+    else
+        c->u += (size_t)k;
+}
+
+/* s quoted for the shell (cl_sweep_quote). */
+static void put_quoted(cmdline *c, const char *s)
+{
+    size_t k = c->over ? 0 : cl_sweep_quote(s, c->buf + c->u,
+                                            sizeof c->buf - c->u);
+    if (k >= sizeof c->buf - c->u)
+        c->over = true;
+    else
+        c->u += k;
+}
+
+/* DIR/jobs/ID/name, quoted. */
+static void put_job_path(cmdline *c, const cl_sweep *sw, const char *id,
+                         const char *name)
+{
+    char path[8192];
+    int k = snprintf(path, sizeof path, "%s/jobs/%s/%s", sw->dir, id, name);
+    if (k < 0 || (size_t)k >= sizeof path)
+        c->over = true;
+    else
+        put_quoted(c, path);
+}
+
+/* Whether the sweep has an axis `key`. */
+static bool has_axis(const cl_sweep *sw, const char *key)
+{
+    for (int a = 0; a < sw->naxis; a++)
+        if (!strcmp(sw->axis[a].key, key))
+            return true;
+    return false;
+}
+
 /* The job's command line: the status of an earlier run removed, the run
  * (its messages into DIR/jobs/ID/stderr), then its exit status into
  * DIR/jobs/ID/exit through a rename, and that status as the line's own:
  *   rm -f E; clothode run ... 2> S; s=$?; echo $s > E.tmp && mv E.tmp E;
  *   exit $s
- * so that every engine leaves the same record, and a job stopped before
- * it finished leaves none (analysis/sweep_outcome.c). */
+ * (POSIX sh) so that every engine leaves the same record, and a job
+ * killed before it finished leaves none (analysis/sweep_outcome.c).
+ * CL_EINVAL when it does not fit (a sweep directory of thousands of
+ * characters). */
 static cl_status make_command(const cl_sweep *sw, cl_sweep_job *j)
 {
-    char buf[8192], set[512], exitf[512], qexit[1100];
-    snprintf(exitf, sizeof exitf, "%s/jobs/%s/exit", sw->dir, j->id);
-    cl_sweep_quote(exitf, qexit, sizeof qexit);
-    size_t u = (size_t)snprintf(buf, sizeof buf, "rm -f %s; ", qexit);
-    u += cl_sweep_quote(sw->clothode, buf + u, sizeof buf - u);
-    u += (size_t)snprintf(buf + u, sizeof buf - u, " run ");
-    u += cl_sweep_quote(sw->problem, buf + u, sizeof buf - u);
-    u += (size_t)snprintf(buf + u, sizeof buf - u, " --integrator ");
-    u += cl_sweep_quote(j->integrator, buf + u, sizeof buf - u);
-    /* no frames unless the sweep asks for them ([run] frames after this) */
-    u += (size_t)snprintf(buf + u, sizeof buf - u, " --frames 0");
-    for (int a = 0; a < sw->naxis && u < sizeof buf; a++)
+    cmdline c = {.u = 0};
+    char set[8192];
+    put(&c, "rm -f ");
+    put_job_path(&c, sw, j->id, "exit");
+    put(&c, "; ");
+    put_quoted(&c, sw->clothode);
+    put(&c, " run ");
+    put_quoted(&c, sw->problem);
+    put(&c, " --integrator ");
+    put_quoted(&c, j->integrator);
+    /* no frames unless the sweep asks for them (an axis run.frames) */
+    if (!has_axis(sw, "run.frames"))
+        put(&c, " --frames 0");
+    for (int a = 0; a < sw->naxis; a++)
         if (j->value[a]) {
             snprintf(set, sizeof set, "%s=%s", sw->axis[a].key, j->value[a]);
-            u += (size_t)snprintf(buf + u, sizeof buf - u, " --set ");
-            u += cl_sweep_quote(set, buf + u, sizeof buf - u);
+            put(&c, " --set ");
+            put_quoted(&c, set);
         }
-    if (j->reference && u < sizeof buf)
-        u += (size_t)snprintf(buf + u, sizeof buf - u,
-                              " --rtol %s --atol %.6g", sw->ref_rtol,
-                              strtod(sw->ref_rtol, NULL) / 100);
+    if (j->reference)
+        put(&c, " --rtol %s --atol %.6g", sw->ref_rtol,
+            strtod(sw->ref_rtol, NULL) / 100);
     /* the run's outputs in jobs/ID/run, its messages and exit status
      * beside them: a run's directory holds nothing but its own outputs */
-    snprintf(set, sizeof set, "%s/jobs/%s/run", sw->dir, j->id);
-    if (u < sizeof buf)
-        u += (size_t)snprintf(buf + u, sizeof buf - u, " --out ");
-    if (u < sizeof buf)
-        u += cl_sweep_quote(set, buf + u, sizeof buf - u);
-    if (u < sizeof buf)
-        u += (size_t)snprintf(buf + u, sizeof buf - u, " --quiet 2> ");
-    snprintf(set, sizeof set, "%s/jobs/%s/stderr", sw->dir, j->id);
-    if (u < sizeof buf)
-        u += cl_sweep_quote(set, buf + u, sizeof buf - u);
-    snprintf(exitf + strlen(exitf), sizeof exitf - strlen(exitf), ".tmp");
-    cl_sweep_quote(exitf, set, sizeof set);
-    if (u < sizeof buf)
-        u += (size_t)snprintf(buf + u, sizeof buf - u, "; s=$?; echo $s > "
-                              "%s && mv %s %s; exit $s", set, set, qexit);
-    if (u >= sizeof buf)
+    put(&c, " --out ");
+    put_job_path(&c, sw, j->id, "run");
+    put(&c, " --quiet 2> ");
+    put_job_path(&c, sw, j->id, "stderr");
+    put(&c, "; s=$?; echo $s > ");
+    put_job_path(&c, sw, j->id, "exit.tmp");
+    put(&c, " && mv ");
+    put_job_path(&c, sw, j->id, "exit.tmp");
+    put(&c, " ");
+    put_job_path(&c, sw, j->id, "exit");
+    put(&c, "; exit $s");
+    if (c.over)
         return CL_EINVAL;
-    return (j->command = strdup(buf)) ? CL_OK : CL_ENOMEM;
+    return (j->command = strdup(c.buf)) ? CL_OK : CL_ENOMEM;
 }
 
 int cl_sweep_find(const cl_sweep *sw, const char *id)
@@ -134,8 +189,13 @@ static cl_status finish_job(cl_sweep *sw, int k, int *dup, cl_error *err)
                             "that dt = t_end / N makes one)", text);
     }
     cl_status rc = make_command(sw, j);
-    return rc ? cl_error_set(err, rc, "sweep: job %s: command too long or "
-                             "no memory", j->id) : CL_OK;
+    if (rc == CL_EINVAL)
+        return cl_error_set(err, rc, "sweep: job %s: its command line is "
+                            "longer than %zu characters (a shorter sweep "
+                            "directory or problem path)", j->id,
+                            sizeof ((cmdline *)0)->buf - 1);
+    return rc ? cl_error_set(err, rc, "sweep: job %s: out of memory", j->id)
+              : CL_OK;
 }
 
 /* An axis of a method's options ([run] keys other than t_end), which a

@@ -81,6 +81,18 @@ const char *cl_cli_problem_path(const char *arg, char *buf, size_t len)
     return buf;
 }
 
+cl_status cl_cli_problem_ready(cl_config *cfg, const cl_cli_table *t,
+                               void *settings, cl_cli_check_fn check,
+                               cl_model **m, cl_error *err)
+{
+    cl_status rc = cl_cli_read(cfg, t, settings, err);
+    if (!rc && check)
+        rc = check(cfg, settings, err);
+    if (!rc)
+        rc = cl_model_create(cfg, m, err);
+    return rc ? rc : cl_config_check_unused(cfg, err);
+}
+
 static int problem_job(const char *problem, const cl_cli_table *t,
                        void *settings, cl_cli_check_fn check,
                        cl_cli_work_fn work)
@@ -92,10 +104,7 @@ static int problem_job(const char *problem, const cl_cli_table *t,
     char outbuf[4096];
     cl_status rc = cfg ? CL_OK : cl_error_set(&err, CL_ENOMEM, "no memory");
     if (!rc && !(rc = cl_cli_load(cfg, problem, &a->sets, &err)) &&
-        !(rc = cl_cli_read(cfg, t, settings, &err)) &&
-        !(rc = check ? check(cfg, settings, &err) : CL_OK) &&
-        !(rc = cl_model_create(cfg, &m, &err)) &&
-        !(rc = cl_config_check_unused(cfg, &err))) {
+        !(rc = cl_cli_problem_ready(cfg, t, settings, check, &m, &err))) {
         if (!a->out)
             cl_cli_default_out(problem, outbuf, sizeof outbuf);
         cl_cli_job job = {problem, cfg, a->out ? a->out : outbuf, a->quiet};

@@ -51,6 +51,13 @@ typedef cl_status (*cl_cli_check_fn)(cl_config *cfg, void *settings,
 typedef cl_status (*cl_cli_work_fn)(cl_model *m, const cl_cli_job *job,
                                     void *settings, cl_error *err);
 
+/* The checks of cl_cli_problem_main on a loaded problem (its assignments
+ * applied): read the table's keys into settings, check() them, make the
+ * model into *m, refuse keys nobody read. */
+cl_status cl_cli_problem_ready(cl_config *cfg, const cl_cli_table *t,
+                               void *settings, cl_cli_check_fn check,
+                               cl_model **m, cl_error *err);
+
 /* main() of such a subcommand: parse argv by the table t into settings
  * (a cl_cli_args first), load the problem with its assignments, read the
  * table's keys, check() the values against each other (NULL: nothing to

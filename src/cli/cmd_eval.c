@@ -105,8 +105,11 @@ static void resolved_path(const char *path, char *buf, size_t len)
 {
     char dir[PATH_MAX], *real;
     const char *slash = strrchr(path, '/');
-    snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - path) : 1,
-             slash ? (slash == path ? "/" : path) : ".");
+    if (!slash)
+        snprintf(dir, sizeof dir, ".");
+    else
+        snprintf(dir, sizeof dir, "%.*s",
+                 slash == path ? 1 : (int)(slash - path), path);
     if ((real = realpath(dir, NULL))) {
         snprintf(buf, len, "%s/%s", real, slash ? slash + 1 : path);
         free(real);

@@ -3,6 +3,7 @@
  * SHA-256, with the recorded ones (README "Provenance"). */
 #include <errno.h>
 #include <limits.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -76,9 +77,13 @@ static int rerun(json_t *m, const char *outdir)
         char *a = (char *)json_string_value(json_array_get(argv, k));
         if (!a)
             return CL_EXIT_INPUT;
-        if (!strcmp(a, "--out"))
-            k++; /* and its value */
-        else if (strncmp(a, "--out=", 6))
+        /* --out, or the abbreviation of it getopt took (--ou), with its
+         * value next or after '=' */
+        size_t len = strcspn(a, "=");
+        bool out = len >= 3 && len <= 5 && !strncmp(a, "--out", len);
+        if (out && !a[len])
+            k++;
+        else if (!out)
             args[n++] = a;
     }
     args[n++] = "--out";

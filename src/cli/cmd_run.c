@@ -194,10 +194,8 @@ cl_status cl_cmd_run_check(const char *problem, const char *integrator,
         rc = cl_config_set_once(cfg, assign, "--integrator", err);
     for (int k = 0; !rc && k < nset; k++)
         rc = cl_config_set_once(cfg, sets[k], NULL, err);
-    if (!rc && !(rc = cl_cli_read(cfg, &run_table, &r, err)) &&
-        !(rc = check_run(cfg, &r, err)) &&
-        !(rc = cl_model_create(cfg, &m, err)))
-        rc = cl_config_check_unused(cfg, err);
+    if (!rc)
+        rc = cl_cli_problem_ready(cfg, &run_table, &r, check_run, &m, err);
     cl_model_free(m);
     cl_config_free(cfg);
     return rc;

@@ -51,8 +51,8 @@ static void print_summary(const cl_cli_job *job, const cl_spectrum *sp)
         printf(", fastest growth rate %.6g 1/s\n", sp->growth_max);
     printf("%-20s %12s   %s\n", "integrator", "predicted dt", "from");
     size_t nlim = cl_spectrum_limits(sp, NULL, 0);
-    cl_spectrum_limit *lim = malloc(nlim * sizeof *lim);
-    if (!lim) {
+    cl_spectrum_limit *lim = nlim ? malloc(nlim * sizeof *lim) : NULL;
+    if (nlim && !lim) {
         printf("(out of memory for the predicted steps)\n");
         return;
     }

@@ -78,6 +78,10 @@ int cl_sweep_parallel(const cl_sweep *sw, const cl_sweep_run_args *r,
     argv[n++] = "-a";
     argv[n++] = list;
     argv[n] = NULL;
+    /* the job lines are POSIX sh (analysis/sweep_plan.c); parallel would
+     * run them in the caller's shell, which may be another (fish), here
+     * and on ssh hosts alike */
+    setenv("PARALLEL_SHELL", "/bin/sh", 1);
     int st = spawn_forwarding(argv);
     /* parallel's exit status counts the failed jobs (at most 100); above
      * that it was stopped or could not run */
