@@ -79,11 +79,14 @@ cl_status cl_ebal_run(cl_model *m, const cl_integrator_type *type,
     cl_status rc = cl_ebal_check(m, type, io, T, samples, err);
     if (rc)
         return rc;
-    ebal_ctx c = {m, r, (size_t)samples + 1, 0.0};
+    /* a fixed-step method is sampled at most at every one of its steps */
+    double steps = type->fixed_step ? round(T / io->dt) : INFINITY;
+    long taken = (double)samples < steps ? samples : (long)steps;
+    ebal_ctx c = {m, r, (size_t)taken + 1, 0.0};
     r->s = malloc(c.cap * sizeof *r->s);
     if (!r->s)
         return cl_error_set(err, CL_ENOMEM, "out of memory (%ld samples)",
-                            samples);
+                            taken);
     if (!(rc = cl_trial_init(&t, m, err))) {
         t.hook = sample;
         t.hook_ctx = &c;
