@@ -183,8 +183,8 @@ Test(petsc_ts, fixed_steps_are_whole_steps_of_dt)
     s2_free(&p);
 }
 
-/* A bad PETSc option and an order TSBDF does not have are refused with a
- * message naming the integrator. */
+/* A bad PETSc option, a step that is no step and an order TSBDF does not
+ * have are refused with a message naming the integrator. */
 Test(petsc_ts, refuses_bad_options_and_orders)
 {
     s2_problem p;
@@ -197,6 +197,12 @@ Test(petsc_ts, refuses_bad_options_and_orders)
                  CL_EINVAL);
     cr_assert_null(st);
     cr_assert(strstr(err.msg, "petsc-bdf"), "%s", err.msg);
+    /* a step PETSc would take and fail with as a blow-up */
+    o = (cl_integrator_opts){.petsc = "-ts_dt nan"};
+    cr_assert_eq(t->create(p.sys, &o, 0.0, p.x0, p.v0, &st, &err),
+                 CL_EINVAL);
+    cr_assert(strstr(err.msg, "-ts_dt nan: expected a finite number > 0"),
+              "%s", err.msg);
     o = (cl_integrator_opts){.max_order = 7};
     cr_assert_eq(t->create(p.sys, &o, 0.0, p.x0, p.v0, &st, &err),
                  CL_EINVAL);

@@ -429,6 +429,14 @@ static PetscErrorCode set_method(clp_ts *p)
     PetscErrorCode ec = TSSetFromOptions(p->ts);
     OPTIONS_READ_END();
     PetscCall(ec);
+    /* -ts_dt is the user's to set, and PETSc takes any number */
+    PetscReal dt;
+    char shown[32];
+    PetscCall(TSGetTimeStep(p->ts, &dt));
+    snprintf(shown, sizeof shown, "%g", (double)dt); /* PETSc's %g: "1." */
+    PetscCheck(dt > 0 && !PetscIsInfOrNanReal(dt), PETSC_COMM_SELF,
+               PETSC_ERR_ARG_OUTOFRANGE, "-ts_dt %s: expected a finite "
+               "number > 0", shown);
     PetscCall(TSSetUp(p->ts));
     PetscFunctionReturn(0);
 }
