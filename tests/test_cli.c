@@ -827,7 +827,7 @@ Test(cli, eval_state_missing_file)
 
 /* Two outputs of one eval in one file are refused before any work,
  * however the path is spelt: a Jacobian over forces.csv, or both Jacobians
- * in one file. */
+ * in one file; so is an empty name for a Jacobian. */
 Test(cli, eval_outputs_in_one_file_are_refused)
 {
     char out[1024], state[1024], jac[1100], other[1100];
@@ -844,6 +844,12 @@ Test(cli, eval_outputs_in_one_file_are_refused)
     cli_run(&r, "eval", "hang", "--state", state, "--jacobian", jac,
             "--jacobian-v", other, "--out", out, NULL);
     cli_assert_error(&r, 0, "the same file as --jacobian", NULL);
+    cli_result_free(&r);
+    /* an empty name, which would read as no Jacobian */
+    cli_run(&r, "eval", "hang", "--state", state, "--jacobian-v", "",
+            "--out", out, NULL);
+    cli_assert_error(&r, 0, "[eval] jacobian_v = \"\": an empty file name",
+                     NULL);
     cli_result_free(&r);
 }
 

@@ -172,9 +172,25 @@ static cl_status evaluate(cl_model *m, const cl_cli_job *job, void *ctx,
     return rc;
 }
 
+/* [run] is not eval's; an empty file name for a Jacobian is refused (it
+ * would read as "no Jacobian", as --out "" is refused). */
+static cl_status check_eval(cl_config *cfg, void *ctx, cl_error *err)
+{
+    static const char *const key[2] = {"jacobian", "jacobian_v"};
+    cl_status rc = cl_cli_ignore_run(cfg, ctx, err);
+    for (int k = 0; !rc && k < 2; k++) {
+        const char *v = cl_config_peek(cfg, "eval", key[k]);
+        if (v && !*v)
+            rc = cl_config_refuse(cfg, "eval", key[k], CL_EINVAL,
+                                  "an empty file name (leave the option "
+                                  "out for no Jacobian)", err);
+    }
+    return rc;
+}
+
 int cl_cmd_eval(int argc, char **argv)
 {
     eval_args a = {0};
-    return cl_cli_problem_main(argc, argv, &eval_table, &a, cl_cli_ignore_run,
+    return cl_cli_problem_main(argc, argv, &eval_table, &a, check_eval,
                                evaluate);
 }
