@@ -280,6 +280,21 @@ Test(sweep, manifest_round_trip)
         cr_assert_eq(b.job[k].reference, a.job[k].reference);
     }
     cr_assert_str_eq(b.job[1].value[1], "0 -1 0");
+    cl_sweep_free(&b);
+    /* a manifest whose job lines do not record their exit status (an
+     * earlier clothode's) is refused with the way out */
+    char path[1100];
+    static char json[1 << 16];
+    snprintf(path, sizeof path, "%s/sweep.json", a.dir);
+    tmp_slurp(path, json, sizeof json);
+    char *tail = strstr(json, "; exit $s\"");
+    cr_assert_not_null(tail);
+    memmove(tail, tail + 9, strlen(tail + 9) + 1);
+    tmp_put(path, json);
+    memset(&b, 0, sizeof b);
+    cr_assert_eq(cl_sweep_load(a.dir, &b, &err), CL_EINVAL);
+    cr_assert(strstr(err.msg, "planned by an earlier clothode") &&
+                  strstr(err.msg, "plan it again"), "%s", err.msg);
     cl_sweep_free(&a);
     cl_sweep_free(&b);
 }

@@ -183,6 +183,20 @@ static cl_status load_jobs(json_t *root, cl_sweep *sw)
     return CL_OK;
 }
 
+/* Whether every job's command records its exit status (ends as
+ * analysis/sweep_plan.c makes it end). */
+static bool records_status(const cl_sweep *sw)
+{
+    static const char tail[] = "; exit $s";
+    for (int k = 0; k < sw->njob; k++) {
+        size_t n = strlen(sw->job[k].command);
+        if (n < sizeof tail - 1 ||
+            strcmp(sw->job[k].command + n - (sizeof tail - 1), tail))
+            return false;
+    }
+    return true;
+}
+
 cl_status cl_sweep_load(const char *dir, cl_sweep *sw, cl_error *err)
 {
     char path[4200];
@@ -210,5 +224,11 @@ cl_status cl_sweep_load(const char *dir, cl_sweep *sw, cl_error *err)
     if (!rc)
         rc = load_jobs(root, sw);
     json_decref(root);
-    return rc ? bad(path, "a field is missing or malformed", err) : CL_OK;
+    if (rc)
+        return bad(path, "a field is missing or malformed", err);
+    return records_status(sw) ? CL_OK
+           : cl_error_set(err, CL_EINVAL, "%s: planned by an earlier "
+                          "clothode, whose jobs do not record their exit "
+                          "status; plan it again with 'clothode sweep plan' "
+                          "(the ids stay), then 'sweep run --resume'", path);
 }
