@@ -78,14 +78,19 @@ static cl_status resolve_problem(cl_config *cfg, const char *spec,
     return CL_OK;
 }
 
-static cl_status plan_dirs(const cl_cli_args *a, cl_sweep *sw, cl_error *err)
+/* The sweep directory, made (*made: it did not exist before), and the
+ * binary, both absolute. */
+static cl_status plan_dirs(const cl_cli_args *a, cl_sweep *sw, bool *made,
+                           cl_error *err)
 {
     char def[4200];
+    struct stat st;
     const char *base = strrchr(a->arg, '/') ? strrchr(a->arg, '/') + 1
                                             : a->arg;
     snprintf(def, sizeof def, "out/sweep-%.*s", (int)strcspn(base, "."),
              base);
     const char *dir = a->out ? a->out : def;
+    *made = stat(dir, &st) != 0;
     cl_status rc = cl_mkdir_p(dir, err);
     if (!rc && !(sw->dir = realpath(dir, NULL)))
         rc = cl_error_set(err, CL_EIO, "%s: cannot resolve", dir);
@@ -181,6 +186,7 @@ static int plan(void *settings)
 {
     const plan_args *p = settings;
     const cl_cli_args *a = &p->a;
+    bool made = false;
     cl_sweep sw = {0};
     cl_error err = {0};
     cl_config *cfg = cl_config_alloc();
@@ -188,9 +194,12 @@ static int plan(void *settings)
     if (!rc && !(rc = cl_sweep_read(cfg, &sw, &err)) &&
         !(rc = cl_config_check_unused(cfg, &err)) &&
         !(rc = resolve_problem(cfg, a->arg, &sw, &err)) &&
-        !(rc = plan_dirs(a, &sw, &err)) && !(rc = cl_sweep_expand(&sw, &err)) &&
+        !(rc = plan_dirs(a, &sw, &made, &err)) &&
+        !(rc = cl_sweep_expand(&sw, &err)) &&
         !(rc = p->no_check ? CL_OK : check_jobs(&sw, &err)))
         rc = cl_sweep_write(&sw, &err);
+    if (rc && made && sw.dir) /* a refused plan leaves no directory */
+        rmdir(sw.dir);
     if (!rc && !a->quiet) {
         int refs = 0;
         for (int k = 0; k < sw.njob; k++)
