@@ -101,7 +101,7 @@ Test(sweep, axes_expand_lists_linspace_logspace)
              " --out %s/d/jobs/%s/run --quiet 2> %s/d/jobs/%s/stderr", tmp,
              sw.job[1].id, tmp, sw.job[1].id);
     cr_assert(strstr(sw.job[1].command,
-                     " run p.ini --integrator rk4 --frames 0 --set "
+                     " run p.ini --integrator rk4 --set run.frames=0 --set "
                      "run.dt=0.0001 --set type1.ks=100 --set cloth.n=8 "
                      "--out "),
               "%s", sw.job[1].command);
@@ -123,7 +123,7 @@ Test(sweep, axes_expand_lists_linspace_logspace)
     cl_sweep_free(&sw);
 }
 
-/* A run.frames axis takes the place of the command's --frames 0 (run
+/* A run.frames axis takes the place of the command's run.frames=0 (run
  * would refuse the key twice); a command that would not fit is refused,
  * not cut short. */
 Test(sweep, frames_axis_and_command_length)
@@ -133,7 +133,7 @@ Test(sweep, frames_axis_and_command_length)
     cr_assert_eq(plan_text("[sweep]\nproblem = p.ini\nintegrator = rk4\n"
                            "dt = 1e-3\nrun.frames = 2\n", &sw, &err), CL_OK,
                  "%s", err.msg);
-    cr_assert_null(strstr(sw.job[0].command, "--frames"), "%s",
+    cr_assert_null(strstr(sw.job[0].command, "run.frames=0"), "%s",
                    sw.job[0].command);
     cr_assert(strstr(sw.job[0].command, " --set run.frames=2 "), "%s",
               sw.job[0].command);
@@ -251,8 +251,8 @@ Test(sweep, references_per_problem_axis)
     cr_assert_str_eq(sw.job[8].value[1], "6");
     for (int k = 0; k < 8; k++)
         cr_assert_eq(sw.job[k].ref, 8 + (k % 2), "job %d", k);
-    cr_assert(strstr(sw.job[9].command, "--integrator cvode-bdf --frames 0 "
-                                        "--set cloth.n=8 --rtol 1e-10 "
+    cr_assert(strstr(sw.job[9].command, "--integrator cvode-bdf --set "
+                                        "run.frames=0 --set cloth.n=8 --rtol 1e-10 "
                                         "--atol 1e-12 --out"),
               "%s", sw.job[9].command);
     cl_sweep_free(&sw);

@@ -119,6 +119,20 @@ cl_status cl_sweep_add_job(cl_sweep *sw, const char *integrator,
 void cl_sweep_canonical(const cl_sweep *sw, const cl_sweep_job *j, char *buf,
                         size_t len);
 
+/* cl_sweep_canonical on one line (the assignments separated by spaces),
+ * for messages. */
+void cl_sweep_describe(const cl_sweep *sw, const cl_sweep_job *j, char *buf,
+                       size_t len);
+
+#define CL_SWEEP_SET_LEN 512
+
+/* The --set assignments job j passes to `clothode run`, in its command's
+ * order: "run.frames=0" unless an axis sets run.frames (no frames unless
+ * the sweep asks for them), then "KEY=VALUE" of every axis the job has;
+ * their number, at most CL_SWEEP_MAX_AXES + 1. */
+int cl_sweep_job_sets(const cl_sweep *sw, const cl_sweep_job *j,
+                      char set[][CL_SWEEP_SET_LEN]);
+
 /* s quoted for a POSIX shell where it needs it, into buf; returns the
  * length it needed (>= len: truncated). */
 size_t cl_sweep_quote(const char *s, char *buf, size_t len);

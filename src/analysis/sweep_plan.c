@@ -38,6 +38,30 @@ void cl_sweep_canonical(const cl_sweep *sw, const cl_sweep_job *j, char *buf,
         u += (size_t)snprintf(buf + u, len - u, "\n%s", sorted[k]);
 }
 
+void cl_sweep_describe(const cl_sweep *sw, const cl_sweep_job *j, char *buf,
+                       size_t len)
+{
+    cl_sweep_canonical(sw, j, buf, len);
+    for (char *c = buf; (c = strchr(c, '\n'));)
+        *c = ' ';
+}
+
+int cl_sweep_job_sets(const cl_sweep *sw, const cl_sweep_job *j,
+                      char set[][CL_SWEEP_SET_LEN])
+{
+    int n = 0;
+    bool frames = false;
+    for (int a = 0; a < sw->naxis; a++)
+        frames |= !strcmp(sw->axis[a].key, "run.frames");
+    if (!frames)
+        snprintf(set[n++], CL_SWEEP_SET_LEN, "run.frames=0");
+    for (int a = 0; a < sw->naxis; a++)
+        if (j->value[a])
+            snprintf(set[n++], CL_SWEEP_SET_LEN, "%s=%s", sw->axis[a].key,
+                     j->value[a]);
+    return n;
+}
+
 /* FNV-1a, 64 bits (Fowler, Noll and Vo), its top 48 bits in hex. */
 static void make_id(const char *text, char id[CL_SWEEP_ID_LEN])
 {
@@ -104,15 +128,6 @@ static void put_job_path(cmdline *c, const cl_sweep *sw, const char *id,
         put_quoted(c, path);
 }
 
-/* Whether the sweep has an axis `key`. */
-static bool has_axis(const cl_sweep *sw, const char *key)
-{
-    for (int a = 0; a < sw->naxis; a++)
-        if (!strcmp(sw->axis[a].key, key))
-            return true;
-    return false;
-}
-
 /* The job's command line: the status of an earlier run removed, the run
  * (its messages into DIR/jobs/ID/stderr), then its exit status into
  * DIR/jobs/ID/exit through a rename, and that status as the line's own:
@@ -125,7 +140,7 @@ static bool has_axis(const cl_sweep *sw, const char *key)
 static cl_status make_command(const cl_sweep *sw, cl_sweep_job *j)
 {
     cmdline c = {.u = 0};
-    char set[8192];
+    char set[CL_SWEEP_MAX_AXES + 1][CL_SWEEP_SET_LEN];
     put(&c, "rm -f ");
     put_job_path(&c, sw, j->id, "exit");
     put(&c, "; ");
@@ -134,15 +149,10 @@ static cl_status make_command(const cl_sweep *sw, cl_sweep_job *j)
     put_quoted(&c, sw->problem);
     put(&c, " --integrator ");
     put_quoted(&c, j->integrator);
-    /* no frames unless the sweep asks for them (an axis run.frames) */
-    if (!has_axis(sw, "run.frames"))
-        put(&c, " --frames 0");
-    for (int a = 0; a < sw->naxis; a++)
-        if (j->value[a]) {
-            snprintf(set, sizeof set, "%s=%s", sw->axis[a].key, j->value[a]);
-            put(&c, " --set ");
-            put_quoted(&c, set);
-        }
+    for (int k = 0, n = cl_sweep_job_sets(sw, j, set); k < n; k++) {
+        put(&c, " --set ");
+        put_quoted(&c, set[k]);
+    }
     if (j->reference)
         put(&c, " --rtol %s --atol %.6g", sw->ref_rtol,
             strtod(sw->ref_rtol, NULL) / 100);
@@ -182,8 +192,7 @@ static cl_status finish_job(cl_sweep *sw, int k, int *dup, cl_error *err)
     make_id(text, j->id);
     *dup = cl_sweep_find(sw, j->id);
     if (*dup >= 0 && *dup < k) {
-        for (char *c = text; (c = strchr(c, '\n'));)
-            *c = ' ';
+        cl_sweep_describe(sw, j, text, sizeof text);
         return cl_error_set(err, CL_EINVAL, "sweep: two jobs are the same "
                             "run, %s (a value listed twice, or two steps "
                             "that dt = t_end / N makes one)", text);

@@ -379,31 +379,18 @@ static cl_status try_variants(ct_setup *s, cl_error *err)
     return rc ? rc : restore(s, err);
 }
 
-/* --state, --t, --dt-max, --dt-min and --rel shape the stiffness table
- * only: given without --k they would be ignored. */
-static cl_status check_k_options(const cl_config *cfg, const ct_setup *s,
-                                 cl_error *err)
-{
-    static const char *const key[] = {"state", "t", "dt_max", "dt_min",
-                                       "rel"};
-    static const char *const opt[] = {"--state", "--t", "--dt-max",
-                                       "--dt-min", "--rel"};
-    if (s->ks && *s->ks)
-        return CL_OK;
-    for (size_t k = 0; k < sizeof key / sizeof *key; k++)
-        if (cl_config_peek(cfg, "contact", key[k]))
-            return cl_error_set(err, CL_EINVAL, "%s ([contact] %s) goes with "
-                                "--k LIST (the stiffness table); without it, "
-                                "it would be ignored", opt[k], key[k]);
-    return CL_OK;
-}
-
 static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
 {
     ct_setup *s = ctx;
     s->cfg = cfg;
     s->variant_of = -1;
-    cl_status rc = check_k_options(cfg, s, err);
+    /* options of the stiffness table only */
+    static const char *const k_only[] = {"state", "t", "dt-max", "dt-min",
+                                         "rel", NULL};
+    cl_status rc = cl_cli_refuse_unless(cfg, &ct_table, k_only,
+                                        s->ks && *s->ks,
+                                        "--k LIST (the stiffness table)",
+                                        err);
     if (!rc)
         rc = cl_cli_methods_check(cfg, &s->integrators, &s->run.io,
                                   CL_CLI_DT_NONE, err);

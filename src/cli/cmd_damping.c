@@ -108,27 +108,17 @@ static cl_status read_range(cl_config *cfg, nd_setup *s, cl_error *err)
     return CL_OK;
 }
 
-/* --modes-dt, --speed and --equilibrium shape the cloth study only: given
- * without --modes they would be ignored. */
-static cl_status check_modes_options(const cl_config *cfg,
-                                     const nd_setup *s, cl_error *err)
-{
-    const char *which = s->equilibrium ? "--equilibrium"
-                        : cl_config_peek(cfg, "damping", "modes_dt")
-                            ? "--modes-dt ([damping] modes_dt)"
-                        : cl_config_peek(cfg, "damping", "speed")
-                            ? "--speed ([damping] speed)"
-                            : NULL;
-    if (s->modes_t > 0 || !which)
-        return CL_OK;
-    return cl_error_set(err, CL_EINVAL, "%s goes with --modes T (the cloth "
-                        "study); without it, it would be ignored", which);
-}
-
 static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
 {
     nd_setup *s = ctx;
-    cl_status rc0 = check_modes_options(cfg, s, err);
+    /* options of the cloth study only (--equilibrium, a flag, has no key) */
+    static const char *const modes_only[] = {"modes-dt", "speed", NULL};
+    const char *with = "--modes T (the cloth study)";
+    if (s->equilibrium && !(s->modes_t > 0))
+        return cl_error_set(err, CL_EINVAL, "--equilibrium goes with %s; "
+                            "without it, it would be ignored", with);
+    cl_status rc0 = cl_cli_refuse_unless(cfg, &nd_table, modes_only,
+                                         s->modes_t > 0, with, err);
     if (rc0)
         return rc0;
     /* the problem's own [run] integrator is not this study's: read, unused */

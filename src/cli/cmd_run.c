@@ -4,7 +4,6 @@
 #include <string.h>
 
 #include "analysis/simulate.h"
-#include "core/clock.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
 #include "cli/manifest.h"
@@ -122,8 +121,7 @@ static void print_summary(const char *problem, const run_setup *r,
 typedef struct {
     run_setup *r;
     const cl_cli_job *job;
-    cl_manifest mf;
-    double wall0, cpu0; /* when run_work began: run.json's times from there */
+    cl_manifest mf;     /* its clocks from run_work's start */
     bool begun;
 } run_output;
 
@@ -135,8 +133,6 @@ static cl_status begin_output(void *ctx, cl_error *err)
         rc = cl_manifest_begin(&o->mf, o->job, o->r->argc, o->r->argv,
                                o->r->run.threads, err);
     o->begun = rc == CL_OK;
-    o->mf.wall0 = o->wall0;
-    o->mf.cpu0 = o->cpu0;
     return rc;
 }
 
@@ -145,8 +141,8 @@ static cl_status run_work(cl_model *m, const cl_cli_job *job, void *ctx,
 {
     run_setup *r = ctx;
     cl_sim_result res = {0};
-    run_output out = {.r = r, .job = job, .wall0 = cl_clock_wall(),
-                      .cpu0 = cl_clock_cpu()};
+    run_output out = {.r = r, .job = job};
+    cl_manifest_clocks(&out.mf);
     cl_error later;
     cl_cli_progress_line line;
     cl_status rc = cl_model_set_threads(m, (int)r->run.threads, err);

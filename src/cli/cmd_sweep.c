@@ -119,32 +119,20 @@ static bool seen_add(seen_set *s, const void *p)
     return fresh;
 }
 
-/* Job k as `run` would check it (cl_cmd_run_check), the refusal prefixed
- * with the job's assignments. */
+/* Job k as `run` would check it (cl_cmd_run_check) with the settings of
+ * its command, the refusal prefixed with the job's assignments. */
 static cl_status check_job(const cl_sweep *sw, int k, cl_error *err)
 {
     const cl_sweep_job *j = &sw->job[k];
-    char buf[CL_SWEEP_MAX_AXES][512], what[2048];
+    char set[CL_SWEEP_MAX_AXES + 1][CL_SWEEP_SET_LEN], what[8192];
     const char *sets[CL_SWEEP_MAX_AXES + 1];
-    int n = 0;
-    bool frames = false; /* the command's --frames 0 unless an axis */
-    size_t u = (size_t)snprintf(what, sizeof what, "integrator=%s",
-                                j->integrator);
-    for (int a = 0; a < sw->naxis; a++)
-        if (j->value[a]) {
-            snprintf(buf[n], sizeof buf[n], "%s=%s", sw->axis[a].key,
-                     j->value[a]);
-            if (u < sizeof what)
-                u += (size_t)snprintf(what + u, sizeof what - u, " %s",
-                                      buf[n]);
-            sets[n] = buf[n];
-            frames |= !strcmp(sw->axis[a].key, "run.frames");
-            n++;
-        }
-    if (!frames)
-        sets[n++] = "run.frames=0";
+    int n = cl_sweep_job_sets(sw, j, set);
+    for (int i = 0; i < n; i++)
+        sets[i] = set[i];
     cl_error why = {0};
     cl_status rc = cl_cmd_run_check(sw->problem, j->integrator, sets, n, &why);
+    if (rc)
+        cl_sweep_describe(sw, j, what, sizeof what);
     return rc ? cl_error_set(err, rc, "sweep plan: the job %s would be "
                              "refused: %s", what, why.msg)
               : CL_OK;

@@ -80,6 +80,12 @@ static json_t *argv_json(int argc, char **argv)
     return a;
 }
 
+void cl_manifest_clocks(cl_manifest *mf)
+{
+    mf->wall0 = cl_clock_wall();
+    mf->cpu0 = cl_clock_cpu();
+}
+
 cl_status cl_manifest_begin(cl_manifest *mf, const cl_cli_job *job, int argc,
                             char **argv, long threads, cl_error *err)
 {
@@ -87,8 +93,6 @@ cl_status cl_manifest_begin(cl_manifest *mf, const cl_cli_job *job, int argc,
     json_t *problem = NULL;
     resolved r = {json_object(), json_array()};
     mf->dir = job->outdir;
-    mf->wall0 = cl_clock_wall();
-    mf->cpu0 = cl_clock_cpu();
     mf->root = NULL;
     cl_status rc = problem_json(job->problem, &problem, err);
     if (rc) {

@@ -12,10 +12,13 @@
 typedef struct {
     json_t *root;
     const char *dir;
-    double wall0, cpu0; /* clocks at the start */
+    double wall0, cpu0; /* clocks at the start (cl_manifest_clocks) */
 } cl_manifest;
 
-/* Start job's run.json: the program, its build, the command line argv
+/* Start mf's clocks: run.json's times are from here. */
+void cl_manifest_clocks(cl_manifest *mf);
+
+/* Start job's run.json (mf's clocks started): the program, its build, the command line argv
  * (argc entries, the subcommand first), the working directory, the
  * problem file with its SHA-256, the fully resolved configuration, the
  * thread count, the host and the start time, status "running". */

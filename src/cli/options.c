@@ -180,6 +180,21 @@ int cl_cli_parse(int argc, char **argv, const cl_cli_table *t,
     return check_given(t, argc, argv, f, n, given);
 }
 
+cl_status cl_cli_refuse_unless(const cl_config *cfg, const cl_cli_table *t,
+                               const char *const *names, bool mode,
+                               const char *with, cl_error *err)
+{
+    for (int k = 0; !mode && names[k]; k++)
+        for (const cl_cli_opt *r = t->rows; r->type != CL_CLI_END; r++)
+            if (r->name && r->key && !strcmp(r->name, names[k]) &&
+                cl_config_peek(cfg, r->sec, r->key))
+                return cl_error_set(err, CL_EINVAL, "--%s ([%s] %s) goes "
+                                    "with %s; without it, it would be "
+                                    "ignored", r->name, r->sec, r->key,
+                                    with);
+    return CL_OK;
+}
+
 /* ---- reading the keys -------------------------------------------------- */
 
 const char *cl_cli_join(const char *const *names, char *buf, size_t len)

@@ -118,6 +118,14 @@ typedef struct {
 int cl_cli_parse(int argc, char **argv, const cl_cli_table *t,
                  void *settings);
 
+/* Unless `mode` is on, refuse the first of the keyed rows `names` (a
+ * NULL-terminated list of option names, rows of t's own) whose key is
+ * set: "--NAME ([SEC] KEY) goes with WITH; without it, it would be
+ * ignored" (CL_EINVAL): options of a command's other mode. */
+cl_status cl_cli_refuse_unless(const cl_config *cfg, const cl_cli_table *t,
+                               const char *const *names, bool mode,
+                               const char *with, cl_error *err);
+
 /* Read every keyed row from cfg into settings, in table order, each with
  * its default and range (a refused value: CL_EINVAL naming the option or
  * the file line, the key, the value and what is allowed). */
