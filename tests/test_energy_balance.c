@@ -83,6 +83,37 @@ Test(energy_balance, damped_spring_balance_closes)
     eb_close(&c);
 }
 
+/* The scale S is the energy that moved (kinetic, potential change, W):
+ * one motion with the potential's zero 1000 J lower gives the same S and
+ * B, where |E(0)| in S would have divided max |B| by 1000. */
+static double scale_of(double offset, double *bmax)
+{
+    const double kin[] = {0.0, 0.3, 0.1}, pot[] = {0.0, -0.4, -0.2},
+                 pw[] = {0.0, -0.2, -0.6};
+    cl_ebal_sample s[3];
+    cl_ebal_result r = {.s = s};
+    double trapz = 0.0;
+    for (int k = 0; k < 3; k++) {
+        cl_energy e = {.kinetic = kin[k], .potential = pot[k] + offset,
+                       .total = kin[k] + pot[k] + offset,
+                       .power_diss = pw[k]};
+        cr_assert_eq(cl_ebal_add(&r, 3, &trapz, 0.5 * k, &e), CL_OK);
+    }
+    *bmax = r.balance_max;
+    return r.scale;
+}
+
+Test(energy_balance, scale_is_the_energy_that_moved)
+{
+    double b0, b1;
+    double s0 = scale_of(0.0, &b0), s1 = scale_of(1000.0, &b1);
+    /* W(1) = -0.05, W(2) = -0.25: S = max(0.3, 0.4, 0.25) */
+    cr_assert_float_eq(s0, 0.4, 1e-15);
+    cr_assert_float_eq(s1, s0, 1e-12);
+    cr_assert_float_eq(b1, b0, 1e-12);
+    cr_assert_float_eq(b0, 0.15, 1e-15); /* B(2) = -0.1 + 0.25 */
+}
+
 /* A fixed-step method is sampled at most once per step: 10^8 samples
  * asked of 10 steps are 11 (and the storage is sized for 11). */
 Test(energy_balance, samples_at_most_every_step)

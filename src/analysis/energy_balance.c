@@ -29,7 +29,7 @@ cl_status cl_ebal_add(cl_ebal_result *r, size_t cap, double *trapz,
         *trapz += 0.5 * (t - p->t) * (p->power + s->power);
     s->dissipated = *trapz + e->contact_work;
     s->balance = p ? s->total - r->s[0].total - s->dissipated : 0.0;
-    r->scale = fmax(r->scale, fmax(fabs(r->s[0].total), s->kinetic));
+    r->scale = fmax(r->scale, fmax(s->kinetic, fabs(s->dissipated)));
     r->scale = fmax(r->scale, fabs(s->potential - r->s[0].potential));
     r->balance_max = fmax(r->balance_max, fabs(s->balance));
     r->n++;

@@ -15,8 +15,10 @@
  * pins stay put (moving pins do work on the cloth, which shows in B).  The
  * trapezoidal W is exact to O(sample spacing^2): sample densely when the
  * damping is strong (a fixed-step method can be sampled at every step).
- * Relative figures divide by the scale S = max over the samples of |E(0)|,
- * the kinetic energy and |potential - potential(0)|. */
+ * Relative figures divide by the scale S = max over the samples of the
+ * kinetic energy, |potential - potential(0)| and |W|: energy that moved,
+ * whatever the potential's origin (|E(0)| would count the height of the
+ * pins above it). */
 #ifndef CL_ENERGY_BALANCE_H
 #define CL_ENERGY_BALANCE_H
 

@@ -45,13 +45,16 @@ static const cl_cli_table eb_table = {
     "samples: E = kinetic + potential, W = the work of the damping\n"
     "(trapezoidal rule between samples) and the balance B = E - E(0) - W,\n"
     "the energy the integrator made (> 0) or destroyed (< 0).  Prints E(0),\n"
-    "E(T), W(T), B(T) and max |B| (also relative to the run's energy\n"
-    "scale); writes every sample to energy.csv in the output directory.\n",
+    "E(T), W(T), B(T) and max |B|, also over S, the energy that moved (the\n"
+    "largest kinetic energy, |potential - potential(0)| and |W| of the\n"
+    "samples); writes every sample to energy.csv in the output directory.\n",
     .notes =
     "W's quadrature error falls with the square of the sample spacing:\n"
-    "sample densely when the damping is strong.  Moving pins do work that\n"
-    "shows in B.  A run that blows up (as in run) is reported with the\n"
-    "samples before it.  Problems that tear are refused.  With --from-sweep\n"
+    "sample densely when the damping is strong.  An adaptive method's B is\n"
+    "at the level of its tolerances and moves with its steps, which the\n"
+    "sample times change.  Moving pins do work that shows in B.  A run\n"
+    "that blows up (as in run) is reported with the samples before it.\n"
+    "Problems that tear are refused.  With --from-sweep\n"
     "each integrator's run is the sweep's at its dt (fixed step) or rtol\n"
     "(the rows whose other axes match this problem's values), its samples\n"
     "the rows of the run's series.csv (the sweep's [run] samples; --samples\n"
