@@ -398,7 +398,7 @@ echo "claims: the Verlet-and-PBD report"
 id=verlet-order
 args="convergence spring2 --integrator verlet --dt 1e-2 --levels 5 --t-end 1"
 measure $id $args
-o=$(awk -F, '$1 == "verlet" { printf "%.3g", $11; exit }' "$out/$id/convergence.csv")
+o=$(awk -F, '$1 == "verlet" { printf "%.3g", $12; exit }' "$out/$id/convergence.csv")
 v=$(awk -v o="$o" 'BEGIN { if (o > 1.8 && o < 2.2) printf "holds: position order %s", o
                             else printf "does not hold: position order %s", o }')
 claim $id "$V" "Verlet's integration method" "Verlet is second order, the accumulated error is O(dt^2)" \

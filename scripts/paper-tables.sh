@@ -10,7 +10,7 @@ mkdir -p "$tex"
 
 # Fitted orders per integrator (first row of each in convergence.csv).
 awk -F, 'NR > 1 && !($1 in seen) { seen[$1] = 1
-         printf "%s & %.2f & %.2f \\\\\n", $1, $11, $12 }' \
+         printf "%s & %.2f & %.2f \\\\\n", $1, $12, $13 }' \
     "$res/convergence/convergence.csv" > "$tex/orders.tex"
 
 # Explicit limits: predicted, largest stable, smallest unstable (s).

@@ -73,6 +73,32 @@ Test(convergence, reference_and_floor)
     cr_assert_lt(fabs(c.ref.x[0] - xe), 1e-9);
     cr_assert_gt(c.ref.err_x, 0.0);
     cr_assert_lt(c.ref.err_x, 1e-8);
+    /* v = v0 cos(w t): the velocities are less accurate (measured 5.4e-9
+     * m/s against a floor of 3.5e-8) */
+    double ve = cos(10.0);
+    cr_log_info("velocity error %.3e, floor %.3e", fabs(c.ref.v[0] - ve),
+                c.ref.err_v);
+    cr_assert_lt(fabs(c.ref.v[0] - ve), c.ref.err_v);
+    cr_assert_gt(fabs(c.ref.v[0] - ve), 1e-9);
+    cv_close(&c);
+}
+
+/* rk4 from dt = 1e-2: at dt = 2.5e-3 its position error (2.4e-9 m) is
+ * above the position floor and its velocity error (2.3e-8 m/s, of which
+ * 5.4e-9 the reference's) below the velocity floor: that level enters the
+ * position fit only, and the velocity order is rk4's 4 within 0.15
+ * (3.73 with that level in). */
+Test(convergence, velocity_floor_of_its_own)
+{
+    cv_case c;
+    cv_open(&c, NULL, 1.0);
+    cl_conv_result r = cv_levels(&c, "rk4", 1e-2, 4);
+    cr_assert(r.lev[2].fitted && !r.lev[2].fitted_v);
+    cr_assert(!r.lev[3].fitted && !r.lev[3].fitted_v);
+    cr_assert_eq(r.nfit, 3);
+    cr_assert_eq(r.nfit_v, 2);
+    cr_assert(fabs(r.slope_v - 4.0) < 0.15, "%.3f", r.slope_v);
+    cr_assert(fabs(r.slope_x - 4.0) < 0.15, "%.3f", r.slope_x);
     cv_close(&c);
 }
 

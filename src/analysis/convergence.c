@@ -48,8 +48,10 @@ cl_status cl_conv_reference(cl_model *m, const cl_conv_opts *o,
     if (!rc && !(rc = reference_run(&t, o, o->ref_rtol, &ref->stats, err))) {
         memcpy(ref->x, t.x, n * sizeof *ref->x);
         memcpy(ref->v, t.v, n * sizeof *ref->v);
-        if (!(rc = reference_run(&t, o, 10 * o->ref_rtol, &loose, err)))
+        if (!(rc = reference_run(&t, o, 10 * o->ref_rtol, &loose, err))) {
             ref->err_x = cl_max_distance(t.x, ref->x, n / 3);
+            ref->err_v = cl_max_distance(t.v, ref->v, n / 3);
+        }
     }
     cl_trial_free(&t);
     if (rc)
@@ -97,12 +99,23 @@ cl_status cl_conv_check(const cl_integrator_type *type,
     return cl_trial_whole_steps(type, io->dt, o->t_end, err);
 }
 
+/* The least-squares slope of ly against lp over n points; NaN for fewer
+ * than 2, or a fit GSL refuses (e.g. all levels at one parameter). */
+static double fit_slope(const double *lp, const double *ly, int n)
+{
+    double c0, c1, cov00, cov01, cov11, sumsq;
+    if (n < 2 || gsl_fit_linear(lp, 1, ly, 1, (size_t)n, &c0, &c1, &cov00,
+                                &cov01, &cov11, &sumsq))
+        return NAN;
+    return c1;
+}
+
 void cl_conv_fit(cl_conv_result *r)
 {
     double step = r->fixed ? 2.0 : 10.0, q = log(step);
     double lp[CL_CONV_MAX_LEVELS], lx[CL_CONV_MAX_LEVELS],
-        lv[CL_CONV_MAX_LEVELS];
-    r->nfit = 0;
+        lpv[CL_CONV_MAX_LEVELS], lv[CL_CONV_MAX_LEVELS];
+    r->nfit = r->nfit_v = 0;
     for (int k = 0; k < r->nlev; k++) {
         cl_conv_level *l = &r->lev[k], *prev = k ? &r->lev[k - 1] : NULL;
         /* levels of a sweep need not be a factor 2 (10) apart */
@@ -112,23 +125,17 @@ void cl_conv_fit(cl_conv_result *r)
                            l->err_x > 0
                        ? log(prev->err_x / l->err_x) / qk
                        : NAN;
-        if (!l->fitted)
-            continue;
-        lp[r->nfit] = log(l->param);
-        lx[r->nfit] = log(l->err_x);
-        lv[r->nfit++] = log(fmax(l->err_v, 1e-300));
+        if (l->fitted) {
+            lp[r->nfit] = log(l->param);
+            lx[r->nfit++] = log(l->err_x);
+        }
+        if (l->fitted_v) {
+            lpv[r->nfit_v] = log(l->param);
+            lv[r->nfit_v++] = log(l->err_v);
+        }
     }
-    double c0, cov00, cov01, cov11, sumsq;
-    r->slope_x = r->slope_v = NAN;
-    if (r->nfit < 2)
-        return;
-    /* a fit GSL refuses (e.g. all levels at one parameter) stays NaN */
-    if (gsl_fit_linear(lp, 1, lx, 1, (size_t)r->nfit, &c0, &r->slope_x,
-                       &cov00, &cov01, &cov11, &sumsq))
-        r->slope_x = NAN;
-    if (gsl_fit_linear(lp, 1, lv, 1, (size_t)r->nfit, &c0, &r->slope_v,
-                       &cov00, &cov01, &cov11, &sumsq))
-        r->slope_v = NAN;
+    r->slope_x = fit_slope(lp, lx, r->nfit);
+    r->slope_v = fit_slope(lpv, lv, r->nfit_v);
 }
 
 cl_status cl_convergence(cl_model *m, const cl_integrator_type *type,
@@ -153,6 +160,7 @@ cl_status cl_convergence(cl_model *m, const cl_integrator_type *type,
         l->err_x = l->rc ? NAN : cl_max_distance(t.x, ref->x, n / 3);
         l->err_v = l->rc ? NAN : cl_max_distance(t.v, ref->v, n / 3);
         l->fitted = !l->rc && l->err_x > ref->err_x;
+        l->fitted_v = l->fitted && l->err_v > ref->err_v;
         if (l->rc == CL_EINTR) /* a stopped study keeps no part-row */
             rc = cl_error_set(err, CL_EINTR, "%s", l->why.msg);
     }
@@ -174,13 +182,14 @@ double cl_conv_cheapest(const cl_conv_result *r, double target)
 void cl_conv_write_rows(FILE *fp, const cl_conv_result *r, bool header)
 {
     if (header)
-        fprintf(fp, "integrator,param,value,err_x,err_v,order,fitted,steps,"
-                    "rhs_evals,cpu,fit_x,fit_v,status\n");
+        fprintf(fp, "integrator,param,value,err_x,err_v,order,fitted,"
+                    "fitted_v,steps,rhs_evals,cpu,fit_x,fit_v,status\n");
     for (int k = 0; k < r->nlev; k++) {
         const cl_conv_level *l = &r->lev[k];
-        fprintf(fp, "%s,%s,%.9g,%.9g,%.9g,%.6g,%d,%ld,%ld,%.6g,%.6g,%.6g,"
-                "%s\n", r->label, r->fixed ? "dt" : "rtol", l->param,
-                l->err_x, l->err_v, l->order, l->fitted, l->stats.steps,
+        fprintf(fp, "%s,%s,%.9g,%.9g,%.9g,%.6g,%d,%d,%ld,%ld,%.6g,%.6g,"
+                "%.6g,%s\n", r->label, r->fixed ? "dt" : "rtol", l->param,
+                l->err_x, l->err_v, l->order, l->fitted, l->fitted_v,
+                l->stats.steps,
                 l->stats.rhs_evals, l->stats.cpu, r->slope_x, r->slope_v,
                 l->rc ? cl_status_name(l->rc) : "ok");
     }

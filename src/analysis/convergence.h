@@ -6,12 +6,15 @@
  * cvode-bdf at rtol_ref, atol_ref = rtol_ref / 100 (default rtol_ref 1e-11).
  *
  * Errors: e_x = max over free particles of |x - x_ref| (m), e_v likewise for
- * the velocities (m/s).  The reference's floor is the distance to a second
- * reference run at 10 rtol_ref (about 10x the reference's own error when
- * the error follows the tolerance): a level whose e_x is below it cannot be
- * told from the reference's error, and a level that failed (blow-up,
- * solver failure, or a final state stretched beyond max_stretch, the
- * blow-up test of `run`) has no error; neither enters the fit.  A model
+ * the velocities (m/s).  The reference's floors are the distances, in
+ * positions and in velocities, to a second reference run at 10 rtol_ref
+ * (about 10x the reference's own error when the error follows the
+ * tolerance): a level whose e_x is below the position floor cannot be told
+ * from the reference's error and enters neither fit; one whose e_v alone
+ * is below the velocity floor enters the position fit only (a reference's
+ * velocities can be less accurate than its positions).  A level that
+ * failed (blow-up, solver failure, or a final state stretched beyond
+ * max_stretch, the blow-up test of `run`) has no error and enters no fit.  A model
  * that tears changes for good during a run and is refused.
  *
  * Orders: between levels k-1 and k, p_k = log(e_{k-1} / e_k) / log(q),
@@ -44,7 +47,7 @@ typedef struct {
 typedef struct {
     size_t n;             /* sys->n */
     double *x, *v;        /* free state at t_end */
-    double err_x;         /* floor: distance to the run at 10 rtol_ref */
+    double err_x, err_v;  /* floors: distances to the run at 10 rtol_ref */
     cl_stats stats;       /* of the rtol_ref run */
 } cl_conv_ref;
 
@@ -54,7 +57,8 @@ typedef struct {
     cl_error why;         /* ... and why */
     double err_x, err_v;  /* NAN after a failure */
     double order;         /* p_k against the previous level (NAN if none) */
-    bool fitted;
+    bool fitted;          /* in the position fit */
+    bool fitted_v;        /* in the velocity fit */
     cl_stats stats;
 } cl_conv_level;
 
@@ -63,8 +67,8 @@ typedef struct {
     bool fixed;           /* param is dt (else rtol) */
     int nlev;
     cl_conv_level lev[CL_CONV_MAX_LEVELS];
-    int nfit;
-    double slope_x, slope_v; /* fitted orders (NAN if nfit < 2) */
+    int nfit, nfit_v;     /* levels in the position and velocity fits */
+    double slope_x, slope_v; /* fitted orders (NAN if nfit, nfit_v < 2) */
     const char *label;    /* how rows name the method (type->name) */
 } cl_conv_result;
 

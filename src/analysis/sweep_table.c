@@ -343,6 +343,7 @@ cl_status cl_conv_from_sweep(const cl_sweep_table *t, const char *label,
         l->err_x = number_at(t, row, column(t, "err_x"));
         l->err_v = number_at(t, row, column(t, "err_v"));
         l->fitted = !l->rc && l->err_x > 0;
+        l->fitted_v = l->fitted && l->err_v > 0;
         row_stats(t, row, &l->stats);
     }
     cl_conv_fit(r);

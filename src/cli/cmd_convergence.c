@@ -51,9 +51,11 @@ static const cl_cli_opt conv_rows[] = {
 static const char conv_notes[] =
     "The first level of a fixed-step integrator is --dt, of an adaptive one\n"
     "--rtol and --atol; an adaptive one chooses its own initial step.  The\n"
-    "reference's floor is its distance to a run at 10x its rtol; levels\n"
-    "below the floor, and failed levels (as in run, a final stretch d/L\n"
-    "beyond [run] max_stretch counts as a blow-up), are left out of the fit.\n"
+    "reference's floors are its distances, in positions and velocities, to\n"
+    "a run at 10x its rtol; levels below the position floor, and failed\n"
+    "levels (as in run, a final stretch d/L beyond [run] max_stretch counts\n"
+    "as a blow-up), are left out of the fits, levels below the velocity\n"
+    "floor out of the velocity fit.\n"
     "Problems that tear are refused.  With --from-sweep the levels are the\n"
     "sweep's runs of each integrator (its dt or rtol axis; the rows whose\n"
     "other axes match this problem's values) and their errors against the\n"
@@ -114,15 +116,21 @@ static void print_result(const void *result)
         else
             printf(" %7.2f", l->order);
         printf(" %9ld %9.3f%s\n", l->stats.steps, l->stats.cpu,
-               l->fitted ? "" : "  (below the reference's floor)");
+               !l->fitted     ? "  (below the reference's floor)"
+               : !l->fitted_v ? "  (velocity below the reference's floor)"
+                              : "");
     }
-    if (r->nfit >= 2)
+    if (r->nfit < 2)
+        printf("%-18s %s: no fit, fewer than 2 levels above the floor\n", "",
+               r->label);
+    else if (r->nfit_v == r->nfit)
         printf("%-18s %s: fitted order %.2f (positions), %.2f (velocities) "
                "over %d levels\n", "", r->label, r->slope_x,
                r->slope_v, r->nfit);
     else
-        printf("%-18s %s: no fit, fewer than 2 levels above the floor\n", "",
-               r->label);
+        printf("%-18s %s: fitted order %.2f (positions, %d levels), %.2f "
+               "(velocities, %d)\n", "", r->label, r->slope_x, r->nfit,
+               r->slope_v, r->nfit_v);
 }
 
 /* The reference (which also checks that the model can be rerun), then
@@ -144,9 +152,10 @@ static cl_status begin(cl_model *m, const cl_cli_job *job, void *ctx,
         printf("runs       from the sweep table %s (errors against its "
                "reference)\n", s->from);
     else
-        printf("reference  cvode-bdf rtol %g: %ld steps, floor %.2e m "
-               "(distance to rtol %g)\n", s->co.ref_rtol,
-               s->ref.stats.steps, s->ref.err_x, 10 * s->co.ref_rtol);
+        printf("reference  cvode-bdf rtol %g: %ld steps, floor %.2e m, "
+               "%.2e m/s (distance to rtol %g)\n", s->co.ref_rtol,
+               s->ref.stats.steps, s->ref.err_x, s->ref.err_v,
+               10 * s->co.ref_rtol);
     return CL_OK;
 }
 
