@@ -125,7 +125,8 @@ static double stable_dt(const char *dir, const char *method)
     snprintf(path, sizeof path, "%s/stability.csv", dir);
     cli_lines L;
     cli_read_lines(path, &L);
-    cr_assert_str_eq(L.line[0], "integrator,dt,steps,stable,status,cpu,reason");
+    cr_assert_str_eq(L.line[0], "integrator,dt,steps,stable,status,cpu,"
+                                "stretch,reason");
     double best = -1.0;
     size_t len = strlen(method);
     for (size_t k = 1; k < L.n; k++)

@@ -1491,13 +1491,16 @@ Test(cli, stability_table_and_csv)
     snprintf(path, sizeof path, "%s/stability.csv", out);
     cli_read_lines(path, &L);
     cr_assert_str_eq(L.line[0], "integrator,dt,steps,stable,status,cpu,"
-                                "reason");
+                                "stretch,reason");
     double stable = 0, unstable = INFINITY;
     for (size_t k = 1; k + 1 < L.n; k++) {
         const char *row = L.line[k];
         cr_assert_str_eq(csv_field(row, 0, f, sizeof f), "symplectic-euler");
         double dt = csv_number(row, 1);
         cr_assert_eq(csv_number(row, 2), (double)llround(4 / dt), "%s", row);
+        /* a stable run's checks stayed within max_stretch = 1.5 */
+        cr_assert(csv_number(row, 3) == 0 || csv_number(row, 6) <= 1.5, "%s",
+                  row);
         if (csv_number(row, 3) == 1)
             stable = fmax(stable, dt);
         else
@@ -1511,6 +1514,9 @@ Test(cli, stability_table_and_csv)
     cr_assert_eq(csv_number(last, 1), 0.1);
     cr_assert_eq(csv_number(last, 3), 1.0, "%s", last);
     cr_assert_str_eq(csv_field(last, 4, f, sizeof f), "ok");
+    /* amplitude v0 / w = 0.01 m on L = 1 m, damped by backward Euler */
+    cr_assert(csv_number(last, 6) >= 1.0 && csv_number(last, 6) <= 1.0101,
+              "%s", last);
     cli_lines_free(&L);
 }
 

@@ -12,6 +12,7 @@
 #include <criterion/criterion.h>
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "analysis/spectrum.h"
@@ -66,6 +67,8 @@ Test(spectrum, undamped_spring_at_rest)
     cr_assert_float_eq(hypot(c.s.re[0], c.s.im[0]), 100.0, 1e-9);
     cr_assert_float_eq(fabs(c.s.im[0]), 100.0, 1e-9);
     cr_assert_eq(c.s.n_growing, 0);
+    cr_assert_eq(c.s.n_negative, 0);
+    cr_assert_eq(c.s.n_zero, 2);
     cr_assert_float_eq(sp_limit(&c.s, "symplectic-euler"), 0.02, 1e-15);
     cr_assert_float_eq(sp_limit(&c.s, "velocity-verlet"), 0.02, 1e-15);
     cr_assert_float_eq(sp_limit(&c.s, "rk4"), 2 * sqrt(2.0) / 100, 1e-9);
@@ -164,7 +167,34 @@ Test(spectrum, compressed_spring_has_growing_modes)
     cr_assert_float_eq(c.s.mu[1], -1e4, 1e-8);
     cr_assert_eq(c.s.n_growing, 2);
     cr_assert_float_eq(c.s.growth_max, 100.0, 1e-9);
+    cr_assert_eq(c.s.n_negative, 2);
+    cr_assert_eq(c.s.n_zero, 0);
     sp_close(&c);
+}
+
+/* A flat 8 x 8 cloth at rest: each free particle's out-of-plane direction
+ * is a zero mode, which round-off puts on either side of 0 (about half of
+ * the 62 came out below it, |mu| <= 7e-10 against mu_max 9.7e5): counted
+ * as zero, none as negative. */
+Test(spectrum, flat_cloth_zero_modes_are_not_negative)
+{
+    pr_problem p;
+    pr_load(&p, "problems/hang-smooth.ini", "cloth.n=8", NULL);
+    const cl_system *sys = cl_model_system(p.m);
+    double *x = malloc(sys->n * sizeof *x), *v = calloc(sys->n, sizeof *v);
+    cr_assert(x && v);
+    cr_assert_eq(cl_model_initial_state(p.m, x, v), CL_OK);
+    cl_spectrum s;
+    cl_error err = {0};
+    cr_assert_eq(cl_spectrum_compute(p.m, 0.0, x, v, &s, &err), CL_OK, "%s",
+                 err.msg);
+    cr_assert_eq(s.n, 186);
+    cr_assert_eq(s.n_negative, 0, "%zu", s.n_negative);
+    cr_assert_eq(s.n_zero, 62, "%zu", s.n_zero);
+    cl_spectrum_free(&s);
+    free(x);
+    free(v);
+    pr_free(&p);
 }
 
 Test(spectrum, large_cloth_refused)

@@ -86,6 +86,12 @@ static cl_status stiffness_spectrum(const cl_bpattern *p, spec_work *w,
                             "(GSL %d)", rc);
     gsl_sort(s->mu, 1, w->n);
     s->w_max = sqrt(fmax(s->mu[w->n - 1], 0.0));
+    /* the first-order tolerance squared: |lambda| = sqrt(|mu|) */
+    double tol = EIG_TOL * EIG_TOL * fabs(s->mu[w->n - 1]);
+    for (size_t i = 0; i < w->n; i++) {
+        s->n_negative += s->mu[i] < -tol;
+        s->n_zero += fabs(s->mu[i]) <= tol;
+    }
     return CL_OK;
 }
 

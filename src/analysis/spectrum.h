@@ -46,6 +46,8 @@ typedef struct {
     double *re, *im;      /* 2n first-order eigenvalues, by decreasing |.| */
     double w_max;         /* sqrt(mu_max) (rad/s) */
     double lambda_max;    /* |lambda| of the first, largest eigenvalue */
+    size_t n_negative;    /* mu < -tol^2 mu_max (tol as below): buckling */
+    size_t n_zero;        /* |mu| <= tol^2 mu_max: zero to round-off */
     size_t n_growing;     /* first-order eigenvalues with Re > tol */
     double growth_max;    /* their largest real part (1/s), 0 if none */
 } cl_spectrum;

@@ -41,6 +41,7 @@ int cl_stab_try(cl_trial *t, const cl_integrator_type *type,
     tr->nsteps = nsteps;
     tr->rc = cl_trial_run(t, type, &to, o->t_end, o->checks, o->max_stretch,
                           &tr->stats, &tr->why);
+    tr->stretch = t->stretch_seen;
     if (tr->rc == CL_OK || tr->rc == CL_EBLOWUP || tr->rc == CL_ESOLVER ||
         tr->rc == CL_EINFEASIBLE) /* a run stopped by its state: unstable */
         return tr->rc == CL_OK;
@@ -116,7 +117,7 @@ cl_status cl_stability(cl_model *m, const cl_integrator_type *type,
     r->type = type;
     r->label = type->name;
     r->dt_stable = r->dt_unstable = NAN;
-    r->failed = -1;
+    r->failed = r->held = -1;
     cl_status rc = cl_stab_check(m, type, o, err);
     if (rc || (rc = cl_trial_init(&t, m, err))) {
         cl_trial_free(&t);
@@ -131,8 +132,10 @@ cl_status cl_stability(cl_model *m, const cl_integrator_type *type,
     cl_trial_free(&t);
     if (s < 0)
         return err->code;
-    if (ns)
+    if (ns) {
+        r->held = trial_of(r, ns);
         r->dt_stable = o->t_end / (double)ns;
+    }
     if (!stable_at_max) {
         r->failed = trial_of(r, nu);
         r->dt_unstable = o->t_end / (double)nu;
@@ -143,13 +146,14 @@ cl_status cl_stability(cl_model *m, const cl_integrator_type *type,
 void cl_stab_write_rows(FILE *fp, const cl_stab_result *r, bool header)
 {
     if (header)
-        fprintf(fp, "integrator,dt,steps,stable,status,cpu,reason\n");
+        fprintf(fp, "integrator,dt,steps,stable,status,cpu,stretch,"
+                    "reason\n");
     for (int k = 0; k < r->ntrial; k++) {
         const cl_stab_trial *t = &r->trial[k];
         fputs(r->label, fp);
-        fprintf(fp, ",%.9g,%ld,%d,%s,%.6g,", t->dt, t->nsteps,
+        fprintf(fp, ",%.9g,%ld,%d,%s,%.6g,%.6g,", t->dt, t->nsteps,
                 t->rc == CL_OK, t->rc ? cl_status_name(t->rc) : "ok",
-                t->stats.cpu);
+                t->stats.cpu, t->stretch);
         cl_csv_quoted(fp, t->rc ? t->why.msg : "");
         fputc('\n', fp);
     }

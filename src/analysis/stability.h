@@ -18,7 +18,12 @@
  * be monotone in dt (a method may survive a larger step and fail a smaller
  * one), so the result is the bracket the search found: dt_stable = T / N_s
  * and dt_unstable = T / N_u, with the reason the run at dt_unstable
- * failed.  Every run is kept. */
+ * failed.  Every run is kept, with the largest stretch its checks saw.
+ *
+ * Bounded to T is the test, so the limit depends on T: just above a
+ * linear limit an instability grows slowly and may not reach max_stretch
+ * by T (the stable end's stretch shows how far it got).  The limit found is
+ * an upper bound of the step a longer run would keep. */
 #ifndef CL_STABILITY_H
 #define CL_STABILITY_H
 
@@ -46,6 +51,8 @@ typedef struct {
     cl_status rc;          /* CL_OK (stable), CL_EBLOWUP or CL_ESOLVER */
     cl_error why;
     cl_stats stats;
+    double stretch;        /* the largest d/L at the run's checks (NaN:
+                            * not known, a run of a sweep) */
 } cl_stab_trial;
 
 typedef struct {
@@ -55,6 +62,7 @@ typedef struct {
     double dt_stable;      /* NAN: no stable step down to dt_min */
     double dt_unstable;    /* NAN: stable at dt_max */
     int failed;            /* index of the trial at dt_unstable, or -1 */
+    int held;              /* index of the trial at dt_stable, or -1 */
     const char *label;     /* how rows name the method (type->name) */
 } cl_stab_result;
 

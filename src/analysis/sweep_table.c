@@ -274,6 +274,7 @@ bool cl_sweep_table_trial(const cl_sweep_table *t, cl_sweep_row row,
     if (!complete(t, r) && !went_unstable(t, r))
         return false;
     tr->dt = row.param;
+    tr->stretch = NAN;
     tr->rc = complete(t, r) ? CL_OK : CL_EBLOWUP;
     row_stats(t, r, &tr->stats);
     tr->nsteps = tr->stats.steps;
@@ -294,7 +295,7 @@ cl_status cl_stab_from_sweep(const cl_sweep_table *t, const char *label,
     r->type = type;
     r->label = label;
     r->dt_stable = r->dt_unstable = NAN;
-    r->failed = -1;
+    r->failed = r->held = -1;
     for (int k = 0; k < n; k++) {
         cl_stab_trial *tr = &r->trial[r->ntrial];
         if (!cl_sweep_table_trial(t, rows[k], tr))
@@ -306,8 +307,10 @@ cl_status cl_stab_from_sweep(const cl_sweep_table *t, const char *label,
     if (r->failed >= 0)
         r->dt_unstable = r->trial[r->failed].dt;
     for (int k = r->ntrial - 1; k >= 0; k--)
-        if (!r->trial[k].rc && !(r->trial[k].dt >= r->dt_unstable))
+        if (!r->trial[k].rc && !(r->trial[k].dt >= r->dt_unstable)) {
             r->dt_stable = r->trial[k].dt;
+            r->held = k;
+        }
     return n < 0 ? err->code : CL_OK;
 }
 

@@ -38,12 +38,10 @@ static const cl_cli_table spec_table = {
 
 static void print_summary(const cl_cli_job *job, const cl_spectrum *sp)
 {
-    size_t neg = 0;
-    for (size_t i = 0; i < sp->n; i++)
-        neg += sp->mu[i] < 0;
     printf("problem    %s, %zu unknowns\n", job->problem, sp->n);
-    printf("stiffness  w_max = %.6g rad/s (mu %.6g .. %.6g; %zu negative)\n",
-           sp->w_max, sp->mu[0], sp->mu[sp->n - 1], neg);
+    printf("stiffness  w_max = %.6g rad/s (mu %.6g .. %.6g; %zu negative, "
+           "%zu zero to 1e-12 mu_max)\n", sp->w_max, sp->mu[0],
+           sp->mu[sp->n - 1], sp->n_negative, sp->n_zero);
     printf("first order  |lambda|_max = %.6g 1/s; %zu growing modes%s",
            sp->lambda_max, sp->n_growing,
            sp->n_growing ? "" : "\n");

@@ -90,11 +90,16 @@ static const cl_cli_table stab_table = {
     "run to T stays bounded: N doubles from T/dt_max until a run is stable,\n"
     "then bisection brackets the limit.  A run is unstable when its state\n"
     "becomes non-finite, its stretch d/L exceeds [run] max_stretch at one of\n"
-    "the checks, or its solver gives up.  Writes every run to stability.csv\n"
-    "in the output directory.\n",
+    "the checks, or its solver gives up.  d/L: the largest stretch the\n"
+    "stable end's checks saw.  Writes every run to stability.csv in the\n"
+    "output directory.\n",
     .notes =
     "The other [run] keys apply as in run; [run] dt is not used.  Stability\n"
     "need not be monotone in dt: the bracket is the one the search found.\n"
+    "Bounded to T is the test, so the limit depends on T: just above a\n"
+    "linear limit an instability grows slowly and may not reach\n"
+    "max_stretch by T (a stable end's d/L well above the cloth's own says\n"
+    "so); the limit is an upper bound of what a longer run keeps.\n"
     "Problems that tear are refused.  With --from-sweep the runs are the\n"
     "sweep's (its dt axis; the rows whose other axes match this problem's\n"
     "values): complete runs are stable, failed runs that got going are not;\n"
@@ -311,16 +316,17 @@ static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
 static void print_result(const void *result)
 {
     const cl_stab_result *r = result;
+    double held = r->held >= 0 ? r->trial[r->held].stretch : NAN;
     printf("%-18s ", r->label);
     if (isnan(r->dt_unstable))
-        printf("stable at dt_max = %.4g (%d run)\n", r->dt_stable,
-               r->ntrial);
+        printf("stable at dt_max = %.4g (%d run, d/L up to %.3g)\n",
+               r->dt_stable, r->ntrial, held);
     else if (isnan(r->dt_stable))
-        printf("%11s %11.4g %5d  %s\n", "none", r->dt_unstable, r->ntrial,
-               r->trial[r->failed].why.msg);
-    else
-        printf("%11.4g %11.4g %5d  %s\n", r->dt_stable, r->dt_unstable,
+        printf("%11s %6s %11.4g %5d  %s\n", "none", "-", r->dt_unstable,
                r->ntrial, r->trial[r->failed].why.msg);
+    else
+        printf("%11.4g %6.3g %11.4g %5d  %s\n", r->dt_stable, held,
+               r->dt_unstable, r->ntrial, r->trial[r->failed].why.msg);
 }
 
 /* Every request checked, then the header. */
@@ -368,8 +374,8 @@ static void end(void *ctx)
 
 static const cl_cli_study stab_study = {
     .csv = "stability.csv",
-    .columns = "integrator           stable dt unstable dt  runs  why the "
-               "unstable run failed",
+    .columns = "integrator           stable dt    d/L unstable dt  runs  why "
+               "the unstable run failed",
     .size = sizeof(cl_stab_result), .begin = begin,
     .run = run_one, .print = print_result, .rows = rows, .end = end};
 
