@@ -60,30 +60,45 @@ static cl_status nd_hook(void *ctx, double t, const double *x,
     return CL_OK;
 }
 
-/* r from the energies e[0..steps] (numdamp.h); *fitted the points. */
-static double nd_fit(const double *e, long steps, long *fitted)
+/* exp(s/2), s the least-squares slope of ln e_k against k over the
+ * energies e[first .. first + count - 1] (count >= 2; k, le: scratch). */
+static double nd_ratio(const double *e, long first, long count, double *k,
+                       double *le)
+{
+    double c0, s = NAN, c00, c01, c11, ss;
+    for (long i = 0; i < count; i++) {
+        k[i] = (double)(first + i);
+        le[i] = log(e[first + i]);
+    }
+    gsl_fit_linear(k, 1, le, 1, (size_t)count, &c0, &s, &c00, &c01, &c11,
+                   &ss);
+    return exp(0.5 * s);
+}
+
+/* r from the energies e[0..steps] (numdamp.h) into p: the ratio, the
+ * points fitted and the spread of the ratios of the fit's two halves. */
+static void nd_fit(const double *e, long steps, cl_numdamp_point *p)
 {
     long last = 0;
     while (last < steps && e[last + 1] > CL_NUMDAMP_FLOOR * e[0])
         last++;
-    long first = last >= 4 ? last / 4 : 0;
-    *fitted = last - first + 1;
-    if (*fitted < 2)
-        return 0.0; /* gone below the floor in one step */
-    double *k = malloc((size_t)*fitted * sizeof *k);
-    double *le = malloc((size_t)*fitted * sizeof *le);
-    double c0, s = NAN, c00, c01, c11, ss;
+    long first = last >= 4 ? last / 4 : 0, n = last - first + 1;
+    p->fitted = n;
+    if (n < 2) {
+        p->measured = 0.0; /* gone below the floor in one step */
+        return;
+    }
+    double *k = malloc((size_t)n * sizeof *k);
+    double *le = malloc((size_t)n * sizeof *le);
     if (k && le) {
-        for (long i = 0; i < *fitted; i++) {
-            k[i] = (double)(first + i);
-            le[i] = log(e[first + i]);
-        }
-        gsl_fit_linear(k, 1, le, 1, (size_t)*fitted, &c0, &s, &c00, &c01,
-                       &c11, &ss);
+        p->measured = nd_ratio(e, first, n, k, le);
+        if (n >= 4)
+            p->spread = fabs(nd_ratio(e, first + n - n / 2, n / 2, k, le) -
+                             nd_ratio(e, first, n / 2, k, le)) /
+                        p->measured;
     }
     free(k);
     free(le);
-    return exp(0.5 * s);
 }
 
 static void nd_point(cl_trial *t, nd_log *l, const cl_integrator_type *type,
@@ -93,7 +108,7 @@ static void nd_point(cl_trial *t, nd_log *l, const cl_integrator_type *type,
     cl_integrator_opts o = *io;
     cl_stats st;
     *p = (cl_numdamp_point){.wh = wh, .h = wh / w, .measured = NAN,
-                            .loss_period = NAN};
+                            .loss_period = NAN, .spread = NAN};
     p->theory = type->region->amplification
                     ? type->region->amplification(wh, io->rho_inf) : NAN;
     o.dt = p->h;
@@ -102,7 +117,7 @@ static void nd_point(cl_trial *t, nd_log *l, const cl_integrator_type *type,
                          &st, &p->why);
     if (p->rc || l->k != steps + 1 || !(l->e[0] > 0))
         return;
-    p->measured = nd_fit(l->e, steps, &p->fitted);
+    nd_fit(l->e, steps, p);
     p->loss_period = 1.0 - pow(p->measured, 2.0 * M_PI / wh);
 }
 
@@ -140,11 +155,11 @@ void cl_numdamp_write_rows(FILE *fp, const cl_numdamp_result *r,
 {
     if (header)
         fprintf(fp, "integrator,wh,h,measured,theory,loss_period,fitted,"
-                    "status\n");
+                    "spread,status\n");
     for (int i = 0; i < r->n; i++) {
         const cl_numdamp_point *p = &r->p[i];
-        fprintf(fp, "%s,%.9g,%.9g,%.9g,%.9g,%.9g,%ld,%s\n", r->label, p->wh,
-                p->h, p->measured, p->theory, p->loss_period, p->fitted,
-                p->rc ? cl_status_name(p->rc) : "ok");
+        fprintf(fp, "%s,%.9g,%.9g,%.9g,%.9g,%.9g,%ld,%.3g,%s\n", r->label,
+                p->wh, p->h, p->measured, p->theory, p->loss_period,
+                p->fitted, p->spread, p->rc ? cl_status_name(p->rc) : "ok");
     }
 }

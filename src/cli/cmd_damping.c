@@ -87,7 +87,10 @@ static const cl_cli_table nd_table = {
     "The default integrators are every implicit fixed-step one of the\n"
     "registry (clothode list), found by its table; the problem's [run]\n"
     "integrator, t_end and dt are not used.  Problems that tear are\n"
-    "refused.\n"};
+    "refused.  A row is marked \"not settled\" when the ratios fitted over\n"
+    "the two halves of its steps are more than 5 % apart (a second root\n"
+    "nearly as large as the first, and few steps above the floor): the\n"
+    "fit is not yet the step's spectral radius.\n"};
 
 /* "LO:HI:N" into s->wh. */
 static cl_status read_range(cl_config *cfg, nd_setup *s, cl_error *err)
@@ -130,15 +133,23 @@ static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
     return rc ? rc : read_range(cfg, s, err);
 }
 
+/* A spread of the two halves' ratios above it is marked: the fit is not
+ * yet the spectral radius (analysis/numdamp.h). */
+#define UNSETTLED 0.05
+
 static void print_result(const void *result)
 {
     const cl_numdamp_result *r = result;
     for (int i = 0; i < r->n; i++) {
         const cl_numdamp_point *p = &r->p[i];
-        printf("%-18s %9.4g %11.4e %12.6g %12.6g %11.4e%s%s\n",
-               i ? "" : r->label, p->wh, p->h, p->measured, p->theory,
-               p->loss_period, p->rc ? "  failed: " : "",
-               p->rc ? p->why.msg : "");
+        printf("%-18s %9.4g %11.4e %12.6g %12.6g %11.4e", i ? "" : r->label,
+               p->wh, p->h, p->measured, p->theory, p->loss_period);
+        if (p->rc)
+            printf("  failed: %s", p->why.msg);
+        else if (p->spread > UNSETTLED)
+            printf("  (not settled: %ld steps, halves %.0f %% apart)",
+                   p->fitted, 100 * p->spread);
+        putchar('\n');
     }
 }
 
