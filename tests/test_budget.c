@@ -3,7 +3,8 @@
  * budget is a split, each spends the same B iterations per step, and the
  * constraint violation and the energy lost fall as S grows (Macklin et
  * al., "Small steps in physics simulation"); a Newton method's split S
- * takes steps dt / S with K Newton iterations; adaptive methods are
+ * takes steps dt / S with K Newton iterations, semi-be steps dt / S with
+ * its one solve (K = 1); adaptive methods are
  * refused; the command writes budget.csv. */
 #include <criterion/criterion.h>
 
@@ -72,6 +73,19 @@ Test(budget, newton_splits_take_smaller_steps)
                       s->err_x, r.s[k - 1].err_x);
     }
     cr_assert_float_eq(r.s[3].err_x, 6.23e-4, 1e-5);
+    /* semi-be solves once a step whatever K: K = 1 in every split, and
+     * only S = 8 spends the budget (8 solves a step dt, as kinsol-be's
+     * one linearisation at S = 8) */
+    cl_budget_result q;
+    cr_assert_eq(cl_budget(p.m, cl_integrator_find("semi-be"), &io, &o, &ref,
+                           &q, &err),
+                 CL_OK, "%s", err.msg);
+    cr_assert_eq(q.n, 4);
+    for (int k = 0; k < q.n; k++) {
+        cr_assert_eq(q.s[k].K, 1);
+        cr_assert_eq(q.s[k].stats.lin_solves, 10 * q.s[k].S);
+    }
+    cr_assert_float_eq(q.s[3].err_x, r.s[3].err_x, 1e-9);
     io = (cl_integrator_opts){.rtol = 1e-6, .atol = 1e-8};
     cr_assert_eq(cl_budget_check(cl_integrator_find("cvode-bdf"), &io, &o,
                                  &err),
@@ -103,7 +117,8 @@ Test(budget, command_writes_budget_csv)
     tmp_slurp(csv, text, sizeof text);
     cr_assert(strncmp(text, "integrator,dt,substeps,iterations,h,err_x,", 42)
               == 0, "%s", text);
-    cr_assert(strstr(text, "\nxpbd,0.01,2,1,0.01,nan,"), "%s", text);
+    /* S = 2 substeps of K = 1 iteration: h = dt / 2 */
+    cr_assert(strstr(text, "\nxpbd,0.01,2,1,0.005"), "%s", text);
     cli_result_free(&r);
     tmp_rm_rf(dir);
 }

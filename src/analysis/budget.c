@@ -8,7 +8,7 @@
 #include "analysis/diagnostics.h"
 #include "analysis/trial.h"
 
-/* The options of split S, K and its step. */
+/* The options of split S, K and its (sub)step h = dt / S. */
 static cl_integrator_opts split_opts(const cl_integrator_type *type,
                                      const cl_integrator_opts *io, long S,
                                      long K, double *h)
@@ -19,10 +19,19 @@ static cl_integrator_opts split_opts(const cl_integrator_type *type,
         o.iterations = K;
     } else {
         o.dt = io->dt / (double)S;
-        o.newton_maxit = K;
+        if (type->takes_newton_maxit)
+            o.newton_maxit = K;
     }
-    *h = o.dt;
+    *h = io->dt / (double)S;
     return o;
+}
+
+/* The iterations a step of `type` makes at split S of budget B: B / S, or
+ * 1 for a method with neither constraint nor Newton iterations (one
+ * linear solve or force evaluation per step, whatever K). */
+static long split_iterations(const cl_integrator_type *type, long S, long B)
+{
+    return type->takes_iterations || type->takes_newton_maxit ? B / S : 1;
 }
 
 cl_status cl_budget_check(const cl_integrator_type *type,
@@ -40,8 +49,9 @@ cl_status cl_budget_check(const cl_integrator_type *type,
     for (long S = 1; !rc && S <= o->budget; S++) {
         double h;
         if (o->budget % S == 0) {
-            split_opts(type, io, S, o->budget / S, &h);
-            rc = cl_trial_whole_steps(type, h, o->t_end, err);
+            cl_integrator_opts so = split_opts(type, io, S, o->budget / S,
+                                               &h);
+            rc = cl_trial_whole_steps(type, so.dt, o->t_end, err);
         }
     }
     return rc;
@@ -102,7 +112,7 @@ cl_status cl_budget(cl_model *m, const cl_integrator_type *type,
             continue;
         cl_budget_split *sp = &r->s[r->n++];
         sp->S = S;
-        sp->K = o->budget / S;
+        sp->K = split_iterations(type, S, o->budget);
         run_split(m, &t, r, io, o, ref, x0, x0 + n, sp);
     }
     free(x0);

@@ -6,10 +6,15 @@
  *
  *   constraint methods (xpbd, pd; takes_iterations): step dt, substeps S,
  *     iterations K;
- *   the other fixed-step methods: step dt / S with at most K Newton
- *     iterations per step (newton_maxit; kinsol-be, kinsol-bdf2: K = 1 is
- *     one linearisation per step, semi-be's method; methods without a
- *     Newton iteration take only the smaller step).
+ *   methods with a Newton iteration (takes_newton_maxit: kinsol-*,
+ *     arkode-*): step dt / S with at most K Newton iterations per step
+ *     (newton_maxit; kinsol-be, kinsol-bdf2: K = 1 is one linearisation
+ *     per step, semi-be's method);
+ *   the other fixed-step methods (semi-*, explicit ones) make one linear
+ *     solve or force evaluation per step whatever K: steps dt / S with
+ *     K = 1, so that only S = B spends the budget (the smaller S are
+ *     cheaper points of their error against cost).
+ * h is dt / S for all: the step, or the constraint methods' substep.
  *
  * Every run goes from the model's initial state to T and is measured by
  *   err_x    max over free particles of |x - x_ref| at T (m), against the

@@ -42,11 +42,14 @@ static const cl_cli_table budget_table = {
     .rows = budget_rows,
     .notes =
     "A constraint method (xpbd, pd) runs at --dt with --substeps S and\n"
-    "--iterations K; any other fixed-step method at dt / S with at most K\n"
-    "Newton iterations per step (run.newton_maxit: kinsol-be and\n"
-    "kinsol-bdf2 at K = 1 take one linearisation per step).  err_x is the\n"
-    "final distance to the reference, stretch the largest d/L - 1 of the\n"
-    "nearest neighbours at 100 checks, energy E(T) - E(0).\n",
+    "--iterations K; a Newton method (kinsol-*, arkode-*) at dt / S with\n"
+    "at most K Newton iterations per step (run.newton_maxit: kinsol-be\n"
+    "and kinsol-bdf2 at K = 1 take one linearisation per step); any other\n"
+    "fixed-step method (semi-*, explicit) at dt / S with K = 1, its one\n"
+    "solve or force evaluation a step, so only S = B spends the budget\n"
+    "(h: dt / S, the step or substep).  err_x is the final distance to the\n"
+    "reference, stretch the largest d/L - 1 of the nearest neighbours at\n"
+    "100 checks, energy E(T) - E(0).\n",
     .about =
     "Spend a budget of B iterations per step dt as S substeps of K = B / S\n"
     "iterations, for every divisor S of B (Macklin et al., \"Small steps in\n"
@@ -81,6 +84,9 @@ static void print_result(const void *result)
             printf(" %10.3e %10.3e %11.3e %9.3f\n", l->err_x, l->stretch,
                    l->energy, l->stats.cpu);
     }
+    if (r->n && !r->type->takes_iterations && !r->type->takes_newton_maxit)
+        printf("%-14s %s iterates nothing (K = 1 a step): only S = %ld "
+               "spends the budget\n", "", r->label, r->s[r->n - 1].S);
 }
 
 static cl_status begin(cl_model *m, const cl_cli_job *job, void *ctx,

@@ -105,6 +105,7 @@ cl_status cl_ark_advance(void *state, double t_out, double *x, double *v,
         .doc = (doc_),                                                     \
         .fixed_step = (fixed_),                                            \
         .takes_linsol = true,                                              \
+        .takes_newton_maxit = true,                                        \
         .takes_table = true,                                               \
         .create = ident##_create,                                          \
         .advance = cl_ark_advance,                                         \

@@ -1,5 +1,5 @@
 /* Integrator tables for methods built on a shared module (fixed_step.h,
- * gslode.h, kinsol_common.h): the module provides create(method, ...),
+ * gslode.h): the module provides create(method, ...),
  * advance, stats and free; a method file provides a method description
  * `method` and gets
  *
@@ -12,7 +12,7 @@
  * for one row of the registry (integrators/registry.c).  The create
  * function alone (CL_INTEGRATOR_CREATE) also serves the families whose
  * tables carry other flags (arkode_common.h, constraint_common.h,
- * petsc_ts.h). */
+ * kinsol_common.h, petsc_ts.h). */
 #ifndef CL_DEFINE_H
 #define CL_DEFINE_H
 

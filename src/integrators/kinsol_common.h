@@ -178,8 +178,19 @@ extern const cl_kin_scheme cl_kin_scheme_be;
 /* Define the integrator table `ident` for the scheme `scheme`, with the
  * stability region region_. */
 #define CL_KIN_INTEGRATOR(ident, scheme, name_, region_, doc_)              \
-    CL_INTEGRATOR_DEFINE(ident, scheme, cl_kin_create, name_, region_,      \
-                         doc_, true, true, false, true, cl_kin_advance,     \
-                         cl_kin_stats, cl_kin_free)
+    CL_INTEGRATOR_CREATE(ident, cl_kin_create, &(scheme))                   \
+    const cl_integrator_type ident = {                                      \
+        .name = (name_),                                                    \
+        .region = (region_),                                                \
+        .doc = (doc_),                                                      \
+        .fixed_step = true,                                                 \
+        .takes_linsol = true,                                               \
+        .takes_newton_maxit = true,                                         \
+        .takes_rayleigh = true,                                             \
+        .create = ident##_create,                                           \
+        .advance = cl_kin_advance,                                          \
+        .stats = cl_kin_stats,                                              \
+        .free = cl_kin_free,                                                \
+    }
 
 #endif
