@@ -75,8 +75,8 @@ Test(sweep_refine, steps_inside_the_bracket)
             "--integrator", "symplectic-euler", "--from-sweep", both,
             "--out", out, NULL);
     cli_assert_ok(&r);
-    cr_assert(strstr(r.out, "symplectic-euler      0.009524     0.01111     "
-                            "7  failed at t = 0.1 s (blow-up)\n"), "%s",
+    cr_assert(strstr(r.out, "symplectic-euler      0.009524      -     0.01111"
+                            "     7  failed at t = 0.1 s (blow-up)\n"), "%s",
               r.out);
     cli_result_free(&r);
     /* narrow enough: nothing left to plan */

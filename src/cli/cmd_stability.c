@@ -316,16 +316,20 @@ static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
 static void print_result(const void *result)
 {
     const cl_stab_result *r = result;
+    /* the stable end's stretch: "-" when not known (a sweep's runs) */
     double held = r->held >= 0 ? r->trial[r->held].stretch : NAN;
+    char dl[16] = "-";
+    if (!isnan(held))
+        snprintf(dl, sizeof dl, "%.3g", held);
     printf("%-18s ", r->label);
     if (isnan(r->dt_unstable))
-        printf("stable at dt_max = %.4g (%d run, d/L up to %.3g)\n",
-               r->dt_stable, r->ntrial, held);
+        printf("stable at dt_max = %.4g (%d run, d/L %s)\n", r->dt_stable,
+               r->ntrial, dl);
     else if (isnan(r->dt_stable))
         printf("%11s %6s %11.4g %5d  %s\n", "none", "-", r->dt_unstable,
                r->ntrial, r->trial[r->failed].why.msg);
     else
-        printf("%11.4g %6.3g %11.4g %5d  %s\n", r->dt_stable, held,
+        printf("%11.4g %6s %11.4g %5d  %s\n", r->dt_stable, dl,
                r->dt_unstable, r->ntrial, r->trial[r->failed].why.msg);
 }
 
