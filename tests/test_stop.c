@@ -24,13 +24,27 @@ Test(stop, signal_sets_the_flag_and_names_it)
                      "advance to t = 100)");
 }
 
-/* The handler resets itself: a second signal ends the program. */
+/* A second signal ends the program, once CL_STOP_REPEAT_S have passed
+ * since the first. */
 Test(stop, second_signal_ends_the_program, .signal = SIGINT)
 {
     cl_stop_install();
     raise(SIGINT);
     cr_assert_eq(cl_stop_requested(), SIGINT);
+    nanosleep(&(struct timespec){.tv_nsec = 150000000}, NULL);
     raise(SIGINT);
+}
+
+/* A repeat within CL_STOP_REPEAT_S (timeout(1) signals the process and
+ * then its group) is the same request: the program carries on to write
+ * what it computed. */
+Test(stop, repeat_at_once_is_the_same_request)
+{
+    cl_stop_install();
+    raise(SIGTERM);
+    raise(SIGTERM);
+    raise(SIGINT);
+    cr_assert_eq(cl_stop_requested(), SIGTERM);
 }
 
 /* A signal after a budget's timer replaces it (an interruption, which a

@@ -8,8 +8,10 @@
 #include <stdio.h>
 #include <string.h>
 #include <sys/time.h>
+#include <time.h>
 
 static volatile sig_atomic_t stop_signal;
+static struct timespec first_signal_at; /* of the first SIGINT or SIGTERM */
 
 /* The first reason to stop is the one reported (a budget that runs out
  * after a Ctrl-C does not turn the run's end into "budget"), except that
@@ -21,8 +23,31 @@ static bool budget_timer(int sig)
     return sig == SIGPROF || sig == SIGALRM;
 }
 
+/* A second SIGINT or SIGTERM ends the program at once (its default
+ * action), unless it comes within CL_STOP_REPEAT_S of the first: then it
+ * is the same request sent twice (timeout(1) signals the process, then
+ * its process group).  clock_gettime, sigaction and raise are
+ * async-signal-safe. */
 static void on_signal(int sig)
 {
+    if (!budget_timer(sig)) {
+        struct timespec now;
+        clock_gettime(CLOCK_MONOTONIC, &now);
+        if (stop_signal && !budget_timer(stop_signal)) {
+            double since = (double)(now.tv_sec - first_signal_at.tv_sec) +
+                           1e-9 * (double)(now.tv_nsec -
+                                           first_signal_at.tv_nsec);
+            if (since >= CL_STOP_REPEAT_S) {
+                struct sigaction dfl;
+                memset(&dfl, 0, sizeof dfl);
+                dfl.sa_handler = SIG_DFL;
+                sigaction(sig, &dfl, NULL);
+                raise(sig); /* delivered when this handler returns */
+            }
+            return;
+        }
+        first_signal_at = now;
+    }
     if (!stop_signal || (budget_timer(stop_signal) && !budget_timer(sig)))
         stop_signal = sig;
 }
@@ -33,7 +58,8 @@ void cl_stop_install(void)
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
     sigemptyset(&sa.sa_mask);
-    sa.sa_flags = SA_RESETHAND; /* a second signal ends the program */
+    sa.sa_flags = 0; /* blocking calls return EINTR, so the flag is seen;
+                      * a second signal ends the program (on_signal) */
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
 }

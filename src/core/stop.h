@@ -4,14 +4,18 @@
  * Jacobian evaluations look at too (system/system.h): they then fail with
  * CL_EINTR, which ends an integrator's advance however long it was to be.
  * What was computed up to the last output is written before the program
- * exits (README "Exit status").  A second signal of the same kind ends the
- * program at once (the handler resets itself). */
+ * exits (README "Exit status").  A second SIGINT or SIGTERM ends the
+ * program at once (the default action), unless it comes within
+ * CL_STOP_REPEAT_S of the first: the same request sent twice, as
+ * timeout(1) sends it to the process and then to its process group. */
 #ifndef CL_STOP_H
 #define CL_STOP_H
 
 #include <stdbool.h>
 
 #include "core/error.h"
+
+#define CL_STOP_REPEAT_S 0.1
 
 /* Install the handler for SIGINT and SIGTERM (sigaction). */
 void cl_stop_install(void);
