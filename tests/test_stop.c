@@ -276,3 +276,25 @@ Test(stop, max_wall_stops_a_run_inside_an_advance)
     cr_assert(cli_exists(path));
     tmp_rm_rf(dir);
 }
+
+/* spectrum: a signal during its eigensolvers (GSL's QR iterations, not to
+ * be cut short) is seen between and after them: exit status 6, where it
+ * had run on and exited 0 (hang at n = 16: 768 unknowns, about 10 s). */
+Test(stop, spectrum_stops_between_its_eigensolvers)
+{
+    time_limit(120);
+    char dir[64], path[300];
+    tmp_mkdtemp(dir, sizeof dir, "spectrum");
+    snprintf(path, sizeof path, "%s/o", dir);
+    const char *const args[] = {"spectrum", "hang", "--set", "cloth.n=16",
+                                "--out", path, NULL};
+    double ended;
+    int status = run_and_signal(dir, args, SIGTERM, 0.5, &ended);
+    cr_assert_eq(status, 6, "exit status %d", status);
+    char err[1024];
+    snprintf(path, sizeof path, "%s.stderr", dir);
+    tmp_slurp(path, err, sizeof err);
+    cr_assert(strstr(err, "interrupted by SIGTERM"), "%s", err);
+    unlink(path);
+    tmp_rm_rf(dir);
+}

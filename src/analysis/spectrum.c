@@ -11,6 +11,7 @@
 #include <gsl/gsl_eigen.h>
 #include <gsl/gsl_sort.h>
 
+#include "core/stop.h"
 #include "integrators/integrator.h"
 #include "linalg/firstorder.h"
 
@@ -134,6 +135,15 @@ static cl_status first_order_spectrum(const cl_bpattern *p, spec_work *w,
               : CL_OK;
 }
 
+/* CL_EINTR once SIGINT or SIGTERM asked to stop (core/stop.h). */
+static cl_status stopped(cl_error *err)
+{
+    int sig = cl_stop_requested();
+    return sig ? cl_error_set(err, CL_EINTR, "spectrum: interrupted by %s",
+                              cl_stop_signal_name(sig))
+               : CL_OK;
+}
+
 cl_status cl_spectrum_compute(cl_model *m, double t, const double *x,
                               const double *v, cl_spectrum *s, cl_error *err)
 {
@@ -151,8 +161,12 @@ cl_status cl_spectrum_compute(cl_model *m, double t, const double *x,
     cl_status rc = s->mu && s->re && s->im
                        ? work_fill(m, t, x, v, &w, err)
                        : cl_error_set(err, CL_ENOMEM, "out of memory");
-    if (!rc && !(rc = stiffness_spectrum(sys->pattern, &w, s, err)))
-        rc = first_order_spectrum(sys->pattern, &w, s, err);
+    /* GSL's QR iterations cannot be cut short: a stop is seen between
+     * them (the first-order one takes minutes at the largest sizes) */
+    if (!rc && !(rc = stiffness_spectrum(sys->pattern, &w, s, err)) &&
+        !(rc = stopped(err)) &&
+        !(rc = first_order_spectrum(sys->pattern, &w, s, err)))
+        rc = stopped(err);
     work_free(&w);
     if (rc)
         cl_spectrum_free(s);
