@@ -83,9 +83,10 @@ cl_status cl_integrator_refuse_projection(const char *name,
                                           cl_error *err)
 {
     return sys->projects
-               ? refuse_response(name, "project (only the fixed-step "
-                                 "methods and CVODE BDF can)", "use response "
-                                 "= penalty, or another integrator", err)
+               ? refuse_response(name, "project (only the explicit, "
+                                 "semi-*, kinsol-*, xpbd and pd methods and "
+                                 "CVODE BDF can)", "use response = penalty, "
+                                 "or another integrator", err)
                : CL_OK;
 }
 
