@@ -8,7 +8,7 @@
 
 static void expect_hint(const char *flag, const char *want)
 {
-    const char *h = cl_solver_hint(flag);
+    const char *h = cl_solver_hint(flag, false);
     cr_assert_not_null(strstr(h, want), "%s: \"%s\" lacks \"%s\"", flag, h,
                        want);
 }
@@ -38,8 +38,21 @@ Test(hint, kinsol_and_gsl_flags_name_their_options)
 
 Test(hint, unknown_flags_get_the_general_advice)
 {
-    const char *general = cl_solver_hint(NULL);
-    cr_assert_str_eq(cl_solver_hint("CV_SOMETHING_NEW"), general);
-    cr_assert_str_eq(cl_solver_hint("noprefix"), general);
+    const char *general = cl_solver_hint(NULL, false);
+    cr_assert_str_eq(cl_solver_hint("CV_SOMETHING_NEW", false), general);
+    cr_assert_str_eq(cl_solver_hint("noprefix", true), general);
     cr_assert_not_null(strstr(general, "--rtol/--atol, --dt, --linsol"));
+}
+
+/* A fixed step is not retried smaller: ARKODE's Newton failure at a fixed
+ * step names --dt and --max-newton, not the tolerances; the flags without
+ * a fixed-step reading keep theirs. */
+Test(hint, fixed_steps_name_the_step)
+{
+    const char *h = cl_solver_hint("ARK_CONV_FAILURE", true);
+    cr_assert_not_null(strstr(h, "reduce --dt"), "%s", h);
+    cr_assert_not_null(strstr(h, "--max-newton"), "%s", h);
+    cr_assert_null(strstr(h, "--rtol"), "%s", h);
+    cr_assert_str_eq(cl_solver_hint("ARK_LSETUP_FAIL", true),
+                     cl_solver_hint("CV_LSETUP_FAIL", false));
 }

@@ -336,6 +336,7 @@ cl_status cl_ark_create(const cl_ark_method *m, const cl_system *sys,
     cl_ark *a = (cl_ark *)s;
     a->m = m;
     a->dt = o->dt;
+    s->fixed_steps = m->fixed;
     a->fi = cl_sun_cvode_rhs; /* DIRK: y' = (v, M^-1 f), all implicit */
     if (m->imex)
         st = ark_split(a, err);

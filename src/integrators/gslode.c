@@ -188,7 +188,7 @@ static cl_status gslode_error(const cl_gslode *s, int rc, double t_out,
         return cl_error_set(err, CL_ESOLVER, "%s: more than %lu steps in "
                             "one advance, stopped at t = %.9g on the way to "
                             "%.9g; to change: %s", name, s->drv->nmax, s->t,
-                            t_out, cl_solver_hint("GSL_EMAXITER"));
+                            t_out, cl_solver_hint("GSL_EMAXITER", false));
     if (s->fail != CL_OK)
         return cl_error_set(err, s->fail, "%s: %s at t = %.9g; the "
                             "integration stopped at t = %.9g on the way to "
@@ -199,7 +199,7 @@ static cl_status gslode_error(const cl_gslode *s, int rc, double t_out,
     return cl_error_set(err, CL_ESOLVER, "%s: gsl_odeiv2_driver_apply "
                         "failed at t = %.9g on the way to %.9g: %s (%d); to"
                         " change: %s", name, s->t, t_out, gsl_strerror(rc),
-                        rc, cl_solver_hint(NULL));
+                        rc, cl_solver_hint(NULL, false));
 }
 
 /* Tearing at an output time: the system's step_done, and a driver reset

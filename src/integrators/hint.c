@@ -37,9 +37,23 @@ static const struct {
     {"MEM_FAIL", "choose a smaller cloth: out of memory"},
 };
 
-const char *cl_solver_hint(const char *flag_name)
+/* Where a fixed step's advice differs: no smaller step is tried. */
+static const struct {
+    const char *flag, *hint;
+} fixed_hints[] = {
+    {"CONV_FAILURE", "reduce --dt or raise --max-newton: Newton fails at "
+                     "the fixed step, which is not retried smaller"},
+    {"NLS_FAIL", "reduce --dt or raise --max-newton, or choose a direct "
+                 "--linsol (klu)"},
+};
+
+const char *cl_solver_hint(const char *flag_name, bool fixed_step)
 {
     const char *us = flag_name ? strchr(flag_name, '_') : NULL;
+    for (size_t k = 0; fixed_step && us &&
+                       k < sizeof fixed_hints / sizeof *fixed_hints; k++)
+        if (!strcmp(us + 1, fixed_hints[k].flag))
+            return fixed_hints[k].hint;
     for (size_t k = 0; us && k < sizeof hints / sizeof *hints; k++)
         if (!strcmp(us + 1, hints[k].flag))
             return hints[k].hint;

@@ -5,7 +5,12 @@
 #ifndef CL_HINT_H
 #define CL_HINT_H
 
-/* Never NULL: unknown flags get the general advice. */
-const char *cl_solver_hint(const char *flag_name);
+#include <stdbool.h>
+
+/* Never NULL: unknown flags get the general advice.  fixed_step: the
+ * method takes fixed steps, which a failed Newton iteration does not make
+ * smaller (arkode-*-fixed), so its advice names --dt and the Newton
+ * iterations instead of the tolerances. */
+const char *cl_solver_hint(const char *flag_name, bool fixed_step);
 
 #endif

@@ -533,7 +533,7 @@ static cl_status kin_stepfail(cl_kin *s, int flag, long nni, cl_error *err)
         "residual %.3g, tolerance %.3g%s%s; to change: %s", name,
         s->done + 1, t, t1, s->h, fname ? fname : "?", flag, nni, s->maxit,
         s->rmax, s->tol, s->kmsg[0] ? "; " : "", s->kmsg,
-        cl_solver_hint(fname));
+        cl_solver_hint(fname, true));
     free(fname);
     return st;
 }

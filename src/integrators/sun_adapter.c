@@ -311,7 +311,7 @@ cl_status cl_sun_fail(cl_sun *s, const char *fn, int flag, cl_error *err)
                                 " to change: %s", s->name, fn,
                                 name ? name : "?", flag, (double)t,
                                 s->msg[0] ? ": " : "", s->msg,
-                                cl_solver_hint(name));
+                                cl_solver_hint(name, s->fixed_steps));
     free(name);
     return st;
 }

@@ -220,6 +220,7 @@ struct cl_sun {
     cl_status fail_rhs;      /* status of the last failed force call, or OK */
     cl_status fail_jac;      /* same for the Jacobian */
     bool collapsed;          /* CVODE warned t + h = t in this advance */
+    bool fixed_steps;        /* ARKODE at a fixed step (cl_solver_hint) */
     bool fatal;              /* a user function returned -1 (latched) */
     double fail_t;           /* time of that failure */
     bool fail_nonfinite;     /* it was our finiteness check that failed */
