@@ -1432,6 +1432,32 @@ Test(cli, convergence_table_and_csv)
     cli_lines_free(&L);
 }
 
+/* An option of [run] serves the integrators of the list that take it:
+ * arkode-dirk-fixed gets --table beside rk4 (SDIRK_2_1_2, second order),
+ * semi-be gets --linsol beside rk4; alone, rk4 refuses either. */
+Test(cli, list_options_serve_the_methods_that_take_them)
+{
+    char out[1024], path[1100], f[64];
+    cli_result r;
+    cli_run(&r, "convergence", "spring2", "--integrator",
+            "rk4,arkode-dirk-fixed,semi-be", "--table", "SDIRK_2_1_2",
+            "--linsol", "klu", "--dt", "1e-2", "--t-end", "1", "--levels",
+            "3", "--out", in_tmp(out, "listopts"), NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    cli_lines L;
+    snprintf(path, sizeof path, "%s/convergence.csv", out);
+    cli_read_lines(path, &L);
+    cr_assert_eq(L.n, 10, "header and 3 x 3 levels, got %zu", L.n);
+    const char *dirk = L.line[4];
+    cr_assert_str_eq(csv_field(dirk, 0, f, sizeof f), "arkode-dirk-fixed");
+    cr_assert(fabs(csv_number(dirk, 11) - 2) < 0.2, "%s", dirk);
+    cli_lines_free(&L);
+    expect_refused(LIST("convergence", "spring2", "--integrator", "rk4,fe",
+                        "--table", "SDIRK_2_1_2", "--dt", "1e-2"), 0,
+                   LIST("--table", "rk4", "no choice of table"));
+}
+
 Test(cli, convergence_refusals)
 {
     expect_refused(LIST("convergence", "spring2", "--integrator",

@@ -2,6 +2,7 @@
  * convergence, energy): the rows they share, the list of integrators and
  * the check of their options against what each integrator takes. */
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -187,36 +188,54 @@ static cl_status refuse_number(cl_config *cfg, const char *key, double value,
                         key, value, type->name, why);
 }
 
-/* The options of one method against what its integrator takes. */
-static cl_status check_method(cl_config *cfg, const cl_cli_method *m,
-                              cl_cli_dt_use dt, cl_error *err)
+/* Whether the integrator of some method of ms has the flag at `flag`
+ * (offsetof a bool of cl_integrator_type). */
+static bool some_takes(const cl_cli_methods *ms, size_t flag)
+{
+    for (int k = 0; k < ms->n; k++)
+        if (*(const bool *)((const char *)ms->m[k].type + flag))
+            return true;
+    return false;
+}
+
+#define TAKES(m, field) ((m)->type->field)
+#define SOME_TAKE(ms, field) some_takes(ms, offsetof(cl_integrator_type, field))
+
+/* The options of method m against what its integrator takes.  An option
+ * of [run] (one for the whole list) is refused only when no integrator of
+ * the list takes it (then naming m's); the others leave it (cl_cli_methods
+ * _check clears it for them).  A linear solver of the entry NAME:LINSOL is
+ * m's own. */
+static cl_status check_method(cl_config *cfg, const cl_cli_methods *ms,
+                              const cl_cli_method *m, cl_cli_dt_use dt,
+                              cl_error *err)
 {
     const cl_integrator_type *type = m->type;
     char why[128];
-    if (*m->io.linsol && !type->takes_linsol) {
-        /* the solver came from the entry NAME:LINSOL or from [run] linsol */
+    if (*m->io.linsol && !TAKES(m, takes_linsol) &&
+        (*m->linsol || !SOME_TAKE(ms, takes_linsol))) {
         snprintf(why, sizeof why, "integrator %s has no choice of linear "
                  "solver", type->name);
         return cl_config_refuse(cfg, "run", *m->linsol ? "integrator"
                                                        : "linsol",
                                 CL_EINVAL, why, err);
     }
-    if (m->io.petsc && *m->io.petsc && !type->takes_petsc)
+    if (m->io.petsc && *m->io.petsc && !SOME_TAKE(ms, takes_petsc))
         return cl_config_refuse(cfg, "run", "petsc", CL_EINVAL,
                                 "only the petsc-* integrators take PETSc "
                                 "options", err);
-    if (m->io.max_order && !type->takes_max_order)
+    if (m->io.max_order && !SOME_TAKE(ms, takes_max_order))
         return refuse_number(cfg, "max_order", m->io.max_order, type,
                              "has no choice of order (CVODE and IDA have)",
                              err);
-    if (m->io.substeps && !type->takes_iterations)
+    if (m->io.substeps && !SOME_TAKE(ms, takes_iterations))
         return refuse_number(cfg, "substeps", m->io.substeps, type,
                              "takes no substeps (xpbd and pd do)", err);
-    if (m->io.iterations && !type->takes_iterations)
+    if (m->io.iterations && !SOME_TAKE(ms, takes_iterations))
         return refuse_number(cfg, "iterations", m->io.iterations, type,
                              "has no constraint iterations (xpbd and pd "
                              "have)", err);
-    if (m->io.table && *m->io.table && !type->takes_table) {
+    if (m->io.table && *m->io.table && !SOME_TAKE(ms, takes_table)) {
         snprintf(why, sizeof why, "integrator %s has no choice of table "
                  "(the arkode-* integrators have)", type->name);
         return cl_config_refuse(cfg, "run", "table", CL_EINVAL, why, err);
@@ -227,20 +246,39 @@ static cl_status check_method(cl_config *cfg, const cl_cli_method *m,
     return CL_OK;
 }
 
+/* The options of [run] that m's integrator does not take, cleared: they
+ * serve the others of the list. */
+static void keep_what_it_takes(cl_cli_method *m)
+{
+    if (!TAKES(m, takes_linsol))
+        m->io.linsol = "";
+    if (!TAKES(m, takes_petsc))
+        m->io.petsc = NULL;
+    if (!TAKES(m, takes_max_order))
+        m->io.max_order = 0;
+    if (!TAKES(m, takes_iterations))
+        m->io.substeps = m->io.iterations = 0;
+    if (!TAKES(m, takes_table))
+        m->io.table = NULL;
+}
+
 cl_status cl_cli_methods_check(cl_config *cfg, cl_cli_methods *ms,
                                const cl_integrator_opts *io, cl_cli_dt_use dt,
                                cl_error *err)
 {
     cl_status rc = CL_OK;
-    for (int k = 0; !rc && k < ms->n; k++) {
+    for (int k = 0; k < ms->n; k++) {
         cl_cli_method *m = &ms->m[k];
         m->io = *io;
         if (*m->linsol)
             m->io.linsol = m->linsol;
         if (dt == CL_CLI_DT_FIXED && !m->type->fixed_step)
             m->io.dt = 0.0; /* not a first step: an adaptive one's own */
-        rc = check_method(cfg, m, dt, err);
     }
+    for (int k = 0; !rc && k < ms->n; k++)
+        rc = check_method(cfg, ms, &ms->m[k], dt, err);
+    for (int k = 0; !rc && k < ms->n; k++)
+        keep_what_it_takes(&ms->m[k]);
     return rc;
 }
 
