@@ -7,6 +7,7 @@
 #include <criterion/criterion.h>
 
 #include <math.h>
+#include <string.h>
 
 #include "analysis/numdamp.h"
 #include "integrators/integrator.h"
@@ -254,4 +255,25 @@ Test(numdamp, command_line)
     cli_assert_error(&r, 0, "LO:HI:N", NULL);
     cli_result_free(&r);
     tmp_rm_rf(dir);
+}
+
+/* The theory is that of an undamped linear oscillator: a problem with
+ * obstacles (particle-floor's penalty floor) or with a damping term
+ * (spring2 with kd = 2) is refused, saying why, before any run. */
+Test(numdamp, damped_or_contact_problems_refused)
+{
+    static const struct {
+        const char *problem, *set, *why;
+    } c[] = {{"problems/particle-floor.ini", NULL, "obstacles"},
+             {"problems/spring2.ini", "damping.kd=2", "damping forces"}};
+    for (size_t k = 0; k < sizeof c / sizeof *c; k++) {
+        pr_problem p;
+        pr_load(&p, c[k].problem, c[k].set, NULL);
+        double w;
+        cl_error err = {0};
+        cr_assert_eq(cl_numdamp_frequency(p.m, &w, &err), CL_EUNSUPPORTED,
+                     "%s", c[k].problem);
+        cr_assert_not_null(strstr(err.msg, c[k].why), "%s", err.msg);
+        pr_free(&p);
+    }
 }

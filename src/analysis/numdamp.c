@@ -20,12 +20,32 @@ bool cl_numdamp_selects(const cl_integrator_type *type)
            type->region->kind == CL_REGION_SECTOR;
 }
 
+cl_status cl_numdamp_undamped(const cl_model *m, cl_error *err)
+{
+    const char *const *names;
+    size_t nterm = cl_model_terms(m, &names);
+    if (cl_model_contact(m))
+        return cl_error_set(err, CL_EUNSUPPORTED, "damping: the problem has "
+                            "obstacles, whose contact is not a linear "
+                            "oscillator's force, so the theory would not "
+                            "apply; the study is meant for spring2 or a "
+                            "cloth without obstacles");
+    if (cl_model_potentials(m) < nterm)
+        return cl_error_set(err, CL_EUNSUPPORTED, "damping: the problem has "
+                            "damping forces, which the theory of an "
+                            "undamped oscillator leaves out; set their "
+                            "coefficients to 0 (e.g. --set damping.kd=0)");
+    return CL_OK;
+}
+
 cl_status cl_numdamp_frequency(cl_model *m, double *w, cl_error *err)
 {
     const cl_system *sys = cl_model_system(m);
     double *x = malloc(sys->n * sizeof *x), *v = malloc(sys->n * sizeof *v);
     cl_spectrum sp = {0};
     cl_status rc = cl_trial_repeatable(m, err);
+    if (!rc)
+        rc = cl_numdamp_undamped(m, err);
     if (!rc && !(x && v))
         rc = cl_error_set(err, CL_ENOMEM, "damping: out of memory");
     if (!rc && !(rc = cl_model_initial_state(m, x, v)))

@@ -68,6 +68,12 @@ bool cl_numdamp_selects(const cl_integrator_type *type);
  * CL_EINVAL when it has no oscillating mode. */
 cl_status cl_numdamp_frequency(cl_model *m, double *w, cl_error *err);
 
+/* CL_EUNSUPPORTED, saying what to change, for a model the study's theory
+ * does not describe: one with obstacles (one-sided, nonlinear contact) or
+ * with non-conservative (damping) terms.  cl_numdamp_frequency and
+ * cl_numdamp_modes_init refuse such a model. */
+cl_status cl_numdamp_undamped(const cl_model *m, cl_error *err);
+
 /* The runs of `type` at the n values wh[] (n <= CL_NUMDAMP_MAX_WH),
  * `steps` >= 4 steps each: a failing run is recorded in its point (rc),
  * not returned. */

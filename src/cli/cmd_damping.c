@@ -86,11 +86,13 @@ static const cl_cli_table nd_table = {
     .notes =
     "The default integrators are every implicit fixed-step one of the\n"
     "registry (clothode list), found by its table; the problem's [run]\n"
-    "integrator, t_end and dt are not used.  Problems that tear are\n"
-    "refused.  A row is marked \"not settled\" when the ratios fitted over\n"
-    "the two halves of its steps are more than 5 % apart (a second root\n"
-    "nearly as large as the first, and few steps above the floor): the\n"
-    "fit is not yet the step's spectral radius.\n"};
+    "integrator, t_end and dt are not used.  Problems that tear, and\n"
+    "problems with obstacles or damping forces (whose motion the theory of\n"
+    "an undamped oscillator does not describe), are refused.  A row is\n"
+    "marked \"not settled\" when the ratios fitted over the two halves of\n"
+    "its steps are more than 5 % apart (a second root nearly as large as\n"
+    "the first, and few steps above the floor): the fit is not yet the\n"
+    "step's spectral radius.\n"};
 
 /* "LO:HI:N" into s->wh. */
 static cl_status read_range(cl_config *cfg, nd_setup *s, cl_error *err)
