@@ -11,6 +11,7 @@
 
 #include "analysis/convergence.h"
 #include "problem.h"
+#include "runcli.h"
 #include "spring2.h"
 
 /* The fitted order of `name` on spring2 to T = 1 at dt = 1e-2 .. 1.25e-3,
@@ -212,4 +213,23 @@ Test(petsc_ts, refuses_bad_options_and_orders)
     cr_assert_eq(t->create(p.sys, &o, 0.0, p.x0, p.v0, &st, &err),
                  CL_EINVAL);
     s2_free(&p);
+}
+
+/* A failed step says where and what to change, as the other integrators'
+ * failures do: petsc-alpha2 at dt = 0.05 on hang (n = 8) loses its Newton
+ * iteration in the first step. */
+Test(petsc_ts, failed_step_says_where_and_what_to_change)
+{
+    char dir[512];
+    tmp_mkdtemp(dir, sizeof dir, "petscfail");
+    cli_result r;
+    cli_run(&r, "run", "hang", "--integrator", "petsc-alpha2", "--dt", "0.05",
+            "--t-end", "0.1", "--set", "cloth.n=8", "--out", dir, "--quiet",
+            NULL);
+    cr_assert(r.exited && r.status == 3, "%s: %s", r.cmd, r.err);
+    cr_assert(strstr(r.err, "DIVERGED_NONLINEAR_SOLVE"), "%s", r.err);
+    cr_assert(strstr(r.err, "(at t = 0); to change: reduce --dt"), "%s",
+              r.err);
+    cli_result_free(&r);
+    tmp_rm_rf(dir);
 }

@@ -581,8 +581,17 @@ int clp_ts_advance(void *ts, double t_out, double *x, double *v,
     TSConvergedReason why = TS_CONVERGED_ITERATING;
     p->cb = 0;
     PetscErrorCode ec = TSGetTime(p->ts, &t);
-    if (ec == 0 && t < stop_time(p, t_out))
-        ec = solve_to(p, t_out);
+    if (ec == 0 && t < stop_time(p, t_out) && (ec = solve_to(p, t_out))) {
+        /* a step failed: where, and what to change, as the other
+         * integrators' failures say */
+        petsc_message(ec, "TSSolve", p->s.name, msg);
+        size_t len = strlen(msg->text);
+        if (TSGetTime(p->ts, &t) == 0)
+            snprintf(msg->text + len, sizeof msg->text - len, " (at t = "
+                     "%.9g); to change: reduce --dt (fixed steps) or --rtol",
+                     (double)t);
+        return 1;
+    }
     if (ec == 0)
         ec = TSGetConvergedReason(p->ts, &why);
     if (ec == 0)
