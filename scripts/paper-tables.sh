@@ -69,7 +69,7 @@ awk -F, 'NR > 1 && $NF == "ok" { if (!($1 in seen)) { seen[$1] = 1; order[++n] =
 # Work-precision: every level that ran, error and CPU time.
 awk -F, 'NR > 1 && $NF == "ok" {
          printf "%s & %s & %.3g & %.3e & %.3f & %d \\\\\n",
-                ($1 == last ? "" : $1), $2, $3, $4, $10, $8; last = $1 }' \
+                ($1 == last ? "" : $1), $2, $3, $4, $11, $9; last = $1 }' \
     "$res/workprecision/workprecision.csv" > "$tex/workprecision.tex"
 
 # Wrinkles of compress: method, step, time reached, amplitude, count.

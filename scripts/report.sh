@@ -60,7 +60,7 @@ sweep workprecision "$res/workprecision"
 "$bin" workprecision hang --quiet --out "$res/workprecision" --t-end 0.2 \
     --from-sweep "$res/workprecision/sweep.csv" --integrator \
     cvode-bdf:klu,cvode-bdf:pcg,semi-bdf2:klu,semi-bdf2:pcg,rk4
-names=$(split_csv "$res/workprecision/workprecision.csv" "$res/workprecision/dat" 4 10)
+names=$(split_csv "$res/workprecision/workprecision.csv" "$res/workprecision/dat" 4 11)
 draw workprecision "dir='$res/workprecision/dat'; names='$names'; title_text='hang 16 x 16, T = 0.2 s: CPU time against error'"
 
 echo "report: work-precision of every method on hang n = 16 and 32 (T = 0.01 s)"
@@ -150,7 +150,7 @@ for n in 16 32; do
     for f in "${parts[@]}"; do
         tail -n +2 "$f" >> "$wpa/n$n/workprecision.csv"
     done
-    names=$(split_csv "$wpa/n$n/workprecision.csv" "$wpa/n$n/dat" 4 10)
+    names=$(split_csv "$wpa/n$n/workprecision.csv" "$wpa/n$n/dat" 4 11)
     gone=$(missing "$n")
     echo "  n = $n, no point: ${gone:-none}" | sed 's/\\n/ /g'
     draw "workprecision-$n" "dir='$wpa/n$n/dat'; names='$names'; title_text='hang $n x $n, T = 0.01 s: CPU time against error, every method'; note_text=\"no point (5 s of wall time per run): ${gone:-none}\"" workprecision

@@ -1456,6 +1456,16 @@ Test(cli, list_options_serve_the_methods_that_take_them)
     expect_refused(LIST("convergence", "spring2", "--integrator", "rk4,fe",
                         "--table", "SDIRK_2_1_2", "--dt", "1e-2"), 0,
                    LIST("--table", "rk4", "no choice of table"));
+    /* Rayleigh damping: kinsol-be takes it, semi-be leaves it */
+    cli_run(&r, "convergence", "spring2", "--integrator", "kinsol-be,semi-be",
+            "--set", "run.rayleigh_alpha=0.5", "--dt", "1e-2", "--t-end", "1",
+            "--levels", "2", "--out", in_tmp(out, "listray"), "--quiet",
+            NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    expect_refused(LIST("convergence", "spring2", "--integrator", "rk4,fe",
+                        "--set", "run.rayleigh_alpha=0.5", "--dt", "1e-2"), 0,
+                   LIST("rayleigh_alpha", "no Rayleigh damping"));
 }
 
 Test(cli, convergence_refusals)

@@ -75,8 +75,8 @@ Test(numdamp, galpha_matches_its_spectral_radius)
 
 /* BDF2 settles at w h = 1 (151 steps fitted); at w h = 100 its second
  * root (0.064 beside 0.078) has not died out when the energy reaches the
- * floor (6 steps fitted), and the halves of the fit say so
- * (measured 0.54; the ratio is 20 % above the spectral radius). */
+ * floor (6 steps fitted), and the halves of the fit say so (spread
+ * 0.54; the measured ratio is 20 % above the spectral radius). */
 Test(numdamp, unsettled_fit_shows_in_the_spread)
 {
     const double wh[] = {1.0, 100.0};

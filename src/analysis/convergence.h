@@ -95,7 +95,8 @@ cl_status cl_convergence(cl_model *m, const cl_integrator_type *type,
 
 /* The orders between consecutive levels (over the ratio of their
  * parameters) and the least-squares fit over the fitted levels, from
- * r->lev[0 .. nlev) with param, rc, err_x, err_v and fitted set. */
+ * r->lev[0 .. nlev) with param, rc, err_x, err_v, fitted and fitted_v
+ * set. */
 void cl_conv_fit(cl_conv_result *r);
 
 /* Work-precision: the least CPU time of the levels that ran and reached
@@ -103,9 +104,9 @@ void cl_conv_fit(cl_conv_result *r);
 double cl_conv_cheapest(const cl_conv_result *r, double target);
 
 /* One CSV row per level, header first when `header`:
- * integrator,param,value,err_x,err_v,order,fitted,steps,rhs_evals,cpu,
- * fit_x,fit_v,status (fit_x, fit_v: the method's fitted orders, repeated
- * on each of its rows). */
+ * integrator,param,value,err_x,err_v,order,fitted,fitted_v,steps,
+ * rhs_evals,cpu,fit_x,fit_v,status (fit_x, fit_v: the method's fitted
+ * orders, repeated on each of its rows). */
 void cl_conv_write_rows(FILE *fp, const cl_conv_result *r, bool header);
 
 #endif

@@ -20,22 +20,34 @@ bool cl_numdamp_selects(const cl_integrator_type *type)
            type->region->kind == CL_REGION_SECTOR;
 }
 
-cl_status cl_numdamp_undamped(const cl_model *m, cl_error *err)
+cl_status cl_numdamp_undamped(cl_model *m, cl_error *err)
 {
-    const char *const *names;
-    size_t nterm = cl_model_terms(m, &names);
     if (cl_model_contact(m))
         return cl_error_set(err, CL_EUNSUPPORTED, "damping: the problem has "
                             "obstacles, whose contact is not a linear "
                             "oscillator's force, so the theory would not "
                             "apply; the study is meant for spring2 or a "
                             "cloth without obstacles");
-    if (cl_model_potentials(m) < nterm)
-        return cl_error_set(err, CL_EUNSUPPORTED, "damping: the problem has "
-                            "damping forces, which the theory of an "
-                            "undamped oscillator leaves out; set their "
-                            "coefficients to 0 (e.g. --set damping.kd=0)");
-    return CL_OK;
+    /* the power of the forces at the initial positions moving with v = x,
+     * a velocity under which every pair's length changes (a term without
+     * force, such as pbd, dissipates nothing) */
+    const cl_system *sys = cl_model_system(m);
+    double *x = malloc(2 * sys->n * sizeof *x);
+    cl_energy e = {0};
+    cl_status rc = x ? cl_model_initial_state(m, x, x + sys->n)
+                     : cl_error_set(err, CL_ENOMEM, "damping: out of memory");
+    if (!rc && (rc = sys->energy(sys->data, 0.0, x, x, &e)))
+        cl_error_set(err, rc, "damping: the energy at the initial state "
+                     "failed");
+    free(x);
+    if (!rc && e.power_diss != 0.0)
+        rc = cl_error_set(err, CL_EUNSUPPORTED, "damping: the problem has "
+                          "damping forces (power %.3g W at a test "
+                          "velocity), which the theory of an undamped "
+                          "oscillator leaves out; set their coefficients to "
+                          "0 (--set damping.kd=0, spring-damping.kd=0, ...)",
+                          e.power_diss);
+    return rc;
 }
 
 cl_status cl_numdamp_frequency(cl_model *m, double *w, cl_error *err)

@@ -70,9 +70,10 @@ cl_status cl_numdamp_frequency(cl_model *m, double *w, cl_error *err);
 
 /* CL_EUNSUPPORTED, saying what to change, for a model the study's theory
  * does not describe: one with obstacles (one-sided, nonlinear contact) or
- * with non-conservative (damping) terms.  cl_numdamp_frequency and
+ * with forces that dissipate (power at the initial positions moving with
+ * v = x).  cl_numdamp_frequency and
  * cl_numdamp_modes_init refuse such a model. */
-cl_status cl_numdamp_undamped(const cl_model *m, cl_error *err);
+cl_status cl_numdamp_undamped(cl_model *m, cl_error *err);
 
 /* The runs of `type` at the n values wh[] (n <= CL_NUMDAMP_MAX_WH),
  * `steps` >= 4 steps each: a failing run is recorded in its point (rc),
@@ -82,8 +83,8 @@ cl_status cl_numdamp_run(cl_model *m, const cl_integrator_type *type,
                          const double *wh, int n, long steps,
                          cl_numdamp_result *r, cl_error *err);
 
-/* integrator,wh,h,measured,theory,loss_period,fitted,status rows (status
- * ok or the failure's class), the header first when `header`. */
+/* integrator,wh,h,measured,theory,loss_period,fitted,spread,status rows
+ * (status ok or the failure's class), the header first when `header`. */
 void cl_numdamp_write_rows(FILE *fp, const cl_numdamp_result *r,
                            bool header);
 

@@ -89,7 +89,7 @@ int cl_stab_try(cl_trial *t, const cl_integrator_type *type,
                 long nsteps, cl_stab_trial *tr, cl_error *err);
 
 /* One CSV row per run, header first when `header`:
- * integrator,dt,steps,stable,status,cpu,reason */
+ * integrator,dt,steps,stable,status,cpu,stretch,reason */
 void cl_stab_write_rows(FILE *fp, const cl_stab_result *r, bool header);
 
 #endif

@@ -60,7 +60,8 @@ static cl_status check_stretch(cl_trial *t, double time, double max_stretch,
 {
     cl_cloth_scatter(cl_model_cloth(t->m), time, t->x, t->v, t->xf, t->vf);
     double q = cl_max_stretch(&t->near, t->xf);
-    t->stretch_seen = fmax(t->stretch_seen, q);
+    /* a non-finite state counts as run away (fmax would skip its NaN) */
+    t->stretch_seen = fmax(t->stretch_seen, isnan(q) ? INFINITY : q);
     if (!(q <= max_stretch))
         return cl_error_set(err, CL_EBLOWUP, "max stretch d/L = %.3g at "
                             "t = %g exceeds max_stretch = %g", q, time,
@@ -87,7 +88,7 @@ cl_status cl_trial_run(cl_trial *t, const cl_integrator_type *type,
     double c0 = cl_clock_cpu(), w0 = cl_clock_wall(), last = 0.0;
     cl_status rc = cl_model_initial_state(t->m, t->x, t->v);
     memset(s, 0, sizeof *s);
-    t->stretch_seen = 0.0;
+    t->stretch_seen = NAN; /* until a check */
     cl_model_contact_start(t->m, t->contact_work);
     if (!rc && t->hook)
         rc = t->hook(t->hook_ctx, 0.0, t->x, t->v, err);

@@ -27,7 +27,8 @@ typedef struct {
     bool contact_work;    /* account the contact projections' energy
                            * (cl_model_contact_start) */
     double stretch_seen;  /* the largest stretch d/L at the checks of the
-                           * last run (NaN ones left out) */
+                           * last run: INFINITY after a non-finite state,
+                           * NaN before the first check */
 } cl_trial;
 
 /* Whether runs of m can be repeated from its initial state:

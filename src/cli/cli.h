@@ -154,11 +154,13 @@ typedef enum { CL_CLI_DT_ALL, CL_CLI_DT_FIXED, CL_CLI_DT_NONE } cl_cli_dt_use;
 
 /* Give every method the options io and check them against what its
  * integrator takes.  An option of [run] (a linear solver, PETSc options,
- * an order cap, substeps, iterations, a table) serves the methods of the
- * list that take it and is cleared for the others; it is an error naming
- * the key only when none takes it.  So is a linear solver of an entry
- * NAME:LINSOL whose integrator has no choice of one, and a fixed-step
- * method without dt > 0 (unless CL_CLI_DT_NONE). */
+ * an order cap, substeps, iterations, a table, Rayleigh damping) serves
+ * the methods of the list that take it and is cleared for the others; it
+ * is an error naming the key only when none takes it.  So is a linear
+ * solver of an entry NAME:LINSOL whose integrator has no choice of one,
+ * and a fixed-step method without dt > 0 (unless CL_CLI_DT_NONE).
+ * newton_maxit and rho_inf, which problem files set for their own
+ * integrator, are left to the integrators that read them. */
 cl_status cl_cli_methods_check(cl_config *cfg, cl_cli_methods *ms,
                                const cl_integrator_opts *io, cl_cli_dt_use dt,
                                cl_error *err);

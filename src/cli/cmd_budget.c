@@ -85,8 +85,9 @@ static void print_result(const void *result)
                    l->energy, l->stats.cpu);
     }
     if (r->n && !r->type->takes_iterations && !r->type->takes_newton_maxit)
-        printf("%-14s %s iterates nothing (K = 1 a step): only S = %ld "
-               "spends the budget\n", "", r->label, r->s[r->n - 1].S);
+        printf("%-14s %s takes no K (a step of dt / S costs the same "
+               "whatever K): only S = %ld spends the budget\n", "", r->label,
+               r->s[r->n - 1].S);
 }
 
 static cl_status begin(cl_model *m, const cl_cli_job *job, void *ctx,

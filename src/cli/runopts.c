@@ -235,6 +235,16 @@ static cl_status check_method(cl_config *cfg, const cl_cli_methods *ms,
         return refuse_number(cfg, "iterations", m->io.iterations, type,
                              "has no constraint iterations (xpbd and pd "
                              "have)", err);
+    if ((m->io.rayleigh_alpha != 0.0 || m->io.rayleigh_beta != 0.0) &&
+        !SOME_TAKE(ms, takes_rayleigh))
+        return refuse_number(cfg, m->io.rayleigh_alpha != 0.0
+                                      ? "rayleigh_alpha"
+                                      : "rayleigh_beta",
+                             m->io.rayleigh_alpha != 0.0
+                                 ? m->io.rayleigh_alpha
+                                 : m->io.rayleigh_beta,
+                             type, "has no Rayleigh damping (the kinsol-* "
+                             "integrators have)", err);
     if (m->io.table && *m->io.table && !SOME_TAKE(ms, takes_table)) {
         snprintf(why, sizeof why, "integrator %s has no choice of table "
                  "(the arkode-* integrators have)", type->name);
@@ -260,6 +270,8 @@ static void keep_what_it_takes(cl_cli_method *m)
         m->io.substeps = m->io.iterations = 0;
     if (!TAKES(m, takes_table))
         m->io.table = NULL;
+    if (!TAKES(m, takes_rayleigh))
+        m->io.rayleigh_alpha = m->io.rayleigh_beta = 0.0;
 }
 
 cl_status cl_cli_methods_check(cl_config *cfg, cl_cli_methods *ms,

@@ -57,9 +57,12 @@ void cl_stop_install(void)
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    sa.sa_flags = 0; /* blocking calls return EINTR, so the flag is seen;
-                      * a second signal ends the program (on_signal) */
+    sigemptyset(&sa.sa_mask); /* one handler at a time: first_signal_at */
+    sigaddset(&sa.sa_mask, SIGINT);
+    sigaddset(&sa.sa_mask, SIGTERM);
+    /* system calls carry on (a repeat does not cut a write short); the
+     * flag stops the run, a second signal the program (on_signal) */
+    sa.sa_flags = SA_RESTART;
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
 }
