@@ -1392,20 +1392,31 @@ Test(cli, counts_match_their_formulas)
     cli_result_free(&r);
 }
 
+/* Run args (a LIST whose --out is dir), which must succeed, and read
+ * dir/convergence.csv into L. */
+static void convergence_csv(const char *const *args, const char *dir,
+                            cli_lines *L)
+{
+    char path[1100];
+    cli_result r;
+    cli_runv(&r, args);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    snprintf(path, sizeof path, "%s/convergence.csv", dir);
+    cli_read_lines(path, L);
+}
+
 /* convergence: one CSV row per level, the fitted order of rk4 near 4 on
  * every row of rk4. */
 Test(cli, convergence_table_and_csv)
 {
-    char out[1024], path[1100];
-    cli_result r;
-    cli_run(&r, "convergence", "spring2", "--integrator", "rk4,cvode-bdf",
-            "--dt", "1e-2", "--rtol", "1e-4", "--atol", "1e-6", "--t-end",
-            "1", "--levels", "3", "--out", in_tmp(out, "conv"), NULL);
-    cli_assert_ok(&r);
-    cli_result_free(&r);
+    char out[1024];
     cli_lines L;
-    snprintf(path, sizeof path, "%s/convergence.csv", out);
-    cli_read_lines(path, &L);
+    convergence_csv(LIST("convergence", "spring2", "--integrator",
+                         "rk4,cvode-bdf", "--dt", "1e-2", "--rtol", "1e-4",
+                         "--atol", "1e-6", "--t-end", "1", "--levels", "3",
+                         "--out", in_tmp(out, "conv")),
+                    out, &L);
     cr_assert_eq(L.n, 7, "header and 2 x 3 levels, got %zu lines", L.n);
     cr_assert_str_eq(L.line[0], "integrator,param,value,err_x,err_v,order,"
                                 "fitted,fitted_v,steps,rhs_evals,cpu,fit_x,"
@@ -1437,17 +1448,15 @@ Test(cli, convergence_table_and_csv)
  * semi-be gets --linsol beside rk4; alone, rk4 refuses either. */
 Test(cli, list_options_serve_the_methods_that_take_them)
 {
-    char out[1024], path[1100], f[64];
+    char out[1024], f[64];
     cli_result r;
-    cli_run(&r, "convergence", "spring2", "--integrator",
-            "rk4,arkode-dirk-fixed,semi-be", "--table", "SDIRK_2_1_2",
-            "--linsol", "klu", "--dt", "1e-2", "--t-end", "1", "--levels",
-            "3", "--out", in_tmp(out, "listopts"), NULL);
-    cli_assert_ok(&r);
-    cli_result_free(&r);
     cli_lines L;
-    snprintf(path, sizeof path, "%s/convergence.csv", out);
-    cli_read_lines(path, &L);
+    convergence_csv(LIST("convergence", "spring2", "--integrator",
+                         "rk4,arkode-dirk-fixed,semi-be", "--table",
+                         "SDIRK_2_1_2", "--linsol", "klu", "--dt", "1e-2",
+                         "--t-end", "1", "--levels", "3", "--out",
+                         in_tmp(out, "listopts")),
+                    out, &L);
     cr_assert_eq(L.n, 10, "header and 3 x 3 levels, got %zu", L.n);
     const char *dirk = L.line[4];
     cr_assert_str_eq(csv_field(dirk, 0, f, sizeof f), "arkode-dirk-fixed");

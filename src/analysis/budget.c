@@ -26,12 +26,9 @@ static cl_integrator_opts split_opts(const cl_integrator_type *type,
     return o;
 }
 
-/* The iterations a step of `type` makes at split S of budget B: B / S, or
- * 1 for a method with neither constraint nor Newton iterations (one
- * linear solve or force evaluation per step, whatever K). */
-static long split_iterations(const cl_integrator_type *type, long S, long B)
+bool cl_budget_takes_k(const cl_integrator_type *type)
 {
-    return type->takes_iterations || type->takes_newton_maxit ? B / S : 1;
+    return type->takes_iterations || type->takes_newton_maxit;
 }
 
 cl_status cl_budget_check(const cl_integrator_type *type,
@@ -112,7 +109,7 @@ cl_status cl_budget(cl_model *m, const cl_integrator_type *type,
             continue;
         cl_budget_split *sp = &r->s[r->n++];
         sp->S = S;
-        sp->K = split_iterations(type, S, o->budget);
+        sp->K = cl_budget_takes_k(type) ? o->budget / S : 1;
         run_split(m, &t, r, io, o, ref, x0, x0 + n, sp);
     }
     free(x0);

@@ -63,6 +63,11 @@ typedef struct {
     cl_budget_split s[CL_BUDGET_MAX_SPLITS];
 } cl_budget_result;
 
+/* Whether a step of `type` spends K iterations: constraint or Newton
+ * iterations (takes_iterations, takes_newton_maxit).  The others make one
+ * linear solve or force evaluation a step, K = 1 at every split. */
+bool cl_budget_takes_k(const cl_integrator_type *type);
+
 /* Whether the splits of `type` can be run: CL_EINVAL for an adaptive
  * method, B outside 1 .. 1000, or T not a whole number of steps dt / S. */
 cl_status cl_budget_check(const cl_integrator_type *type,

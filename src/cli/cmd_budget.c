@@ -84,7 +84,7 @@ static void print_result(const void *result)
             printf(" %10.3e %10.3e %11.3e %9.3f\n", l->err_x, l->stretch,
                    l->energy, l->stats.cpu);
     }
-    if (r->n && !r->type->takes_iterations && !r->type->takes_newton_maxit)
+    if (r->n && !cl_budget_takes_k(r->type))
         printf("%-14s %s takes no K (a step of dt / S costs the same "
                "whatever K): only S = %ld spends the budget\n", "", r->label,
                r->s[r->n - 1].S);

@@ -198,57 +198,64 @@ static bool some_takes(const cl_cli_methods *ms, size_t flag)
     return false;
 }
 
-#define TAKES(m, field) ((m)->type->field)
 #define SOME_TAKE(ms, field) some_takes(ms, offsetof(cl_integrator_type, field))
 
-/* The options of method m against what its integrator takes.  An option
- * of [run] (one for the whole list) is refused only when no integrator of
- * the list takes it (then naming m's); the others leave it (cl_cli_methods
- * _check clears it for them).  A linear solver of the entry NAME:LINSOL is
- * m's own. */
-static cl_status check_method(cl_config *cfg, const cl_cli_methods *ms,
-                              const cl_cli_method *m, cl_cli_dt_use dt,
-                              cl_error *err)
+/* The options of [run], one for the whole list, against what the list's
+ * integrators take: each is refused (naming the first method's) only when
+ * none of them takes it. */
+static cl_status check_shared(cl_config *cfg, const cl_cli_methods *ms,
+                              const cl_integrator_opts *io, cl_error *err)
 {
-    const cl_integrator_type *type = m->type;
+    const cl_integrator_type *type = ms->m[0].type;
     char why[128];
-    if (*m->io.linsol && !TAKES(m, takes_linsol) &&
-        (*m->linsol || !SOME_TAKE(ms, takes_linsol))) {
+    if (*io->linsol && !SOME_TAKE(ms, takes_linsol)) {
         snprintf(why, sizeof why, "integrator %s has no choice of linear "
                  "solver", type->name);
-        return cl_config_refuse(cfg, "run", *m->linsol ? "integrator"
-                                                       : "linsol",
-                                CL_EINVAL, why, err);
+        return cl_config_refuse(cfg, "run", "linsol", CL_EINVAL, why, err);
     }
-    if (m->io.petsc && *m->io.petsc && !SOME_TAKE(ms, takes_petsc))
+    if (io->petsc && *io->petsc && !SOME_TAKE(ms, takes_petsc))
         return cl_config_refuse(cfg, "run", "petsc", CL_EINVAL,
                                 "only the petsc-* integrators take PETSc "
                                 "options", err);
-    if (m->io.max_order && !SOME_TAKE(ms, takes_max_order))
-        return refuse_number(cfg, "max_order", m->io.max_order, type,
+    if (io->max_order && !SOME_TAKE(ms, takes_max_order))
+        return refuse_number(cfg, "max_order", io->max_order, type,
                              "has no choice of order (CVODE and IDA have)",
                              err);
-    if (m->io.substeps && !SOME_TAKE(ms, takes_iterations))
-        return refuse_number(cfg, "substeps", m->io.substeps, type,
+    if (io->substeps && !SOME_TAKE(ms, takes_iterations))
+        return refuse_number(cfg, "substeps", io->substeps, type,
                              "takes no substeps (xpbd and pd do)", err);
-    if (m->io.iterations && !SOME_TAKE(ms, takes_iterations))
-        return refuse_number(cfg, "iterations", m->io.iterations, type,
+    if (io->iterations && !SOME_TAKE(ms, takes_iterations))
+        return refuse_number(cfg, "iterations", io->iterations, type,
                              "has no constraint iterations (xpbd and pd "
                              "have)", err);
-    if ((m->io.rayleigh_alpha != 0.0 || m->io.rayleigh_beta != 0.0) &&
-        !SOME_TAKE(ms, takes_rayleigh))
-        return refuse_number(cfg, m->io.rayleigh_alpha != 0.0
-                                      ? "rayleigh_alpha"
-                                      : "rayleigh_beta",
-                             m->io.rayleigh_alpha != 0.0
-                                 ? m->io.rayleigh_alpha
-                                 : m->io.rayleigh_beta,
+    if ((io->rayleigh_alpha != 0.0 || io->rayleigh_beta != 0.0) &&
+        !SOME_TAKE(ms, takes_rayleigh)) {
+        bool alpha = io->rayleigh_alpha != 0.0;
+        return refuse_number(cfg, alpha ? "rayleigh_alpha" : "rayleigh_beta",
+                             alpha ? io->rayleigh_alpha : io->rayleigh_beta,
                              type, "has no Rayleigh damping (the kinsol-* "
                              "integrators have)", err);
-    if (m->io.table && *m->io.table && !SOME_TAKE(ms, takes_table)) {
+    }
+    if (io->table && *io->table && !SOME_TAKE(ms, takes_table)) {
         snprintf(why, sizeof why, "integrator %s has no choice of table "
                  "(the arkode-* integrators have)", type->name);
         return cl_config_refuse(cfg, "run", "table", CL_EINVAL, why, err);
+    }
+    return CL_OK;
+}
+
+/* Method m's own: the linear solver of its entry NAME:LINSOL, and a
+ * fixed step where the command uses one. */
+static cl_status check_method(cl_config *cfg, const cl_cli_method *m,
+                              cl_cli_dt_use dt, cl_error *err)
+{
+    const cl_integrator_type *type = m->type;
+    char why[128];
+    if (*m->linsol && !type->takes_linsol) {
+        snprintf(why, sizeof why, "integrator %s has no choice of linear "
+                 "solver", type->name);
+        return cl_config_refuse(cfg, "run", "integrator", CL_EINVAL, why,
+                                err);
     }
     if (dt != CL_CLI_DT_NONE && type->fixed_step && !(m->io.dt > 0))
         return refuse_number(cfg, "dt", m->io.dt, type, "takes fixed steps "
@@ -260,17 +267,18 @@ static cl_status check_method(cl_config *cfg, const cl_cli_methods *ms,
  * serve the others of the list. */
 static void keep_what_it_takes(cl_cli_method *m)
 {
-    if (!TAKES(m, takes_linsol))
+    const cl_integrator_type *type = m->type;
+    if (!type->takes_linsol)
         m->io.linsol = "";
-    if (!TAKES(m, takes_petsc))
+    if (!type->takes_petsc)
         m->io.petsc = NULL;
-    if (!TAKES(m, takes_max_order))
+    if (!type->takes_max_order)
         m->io.max_order = 0;
-    if (!TAKES(m, takes_iterations))
+    if (!type->takes_iterations)
         m->io.substeps = m->io.iterations = 0;
-    if (!TAKES(m, takes_table))
+    if (!type->takes_table)
         m->io.table = NULL;
-    if (!TAKES(m, takes_rayleigh))
+    if (!type->takes_rayleigh)
         m->io.rayleigh_alpha = m->io.rayleigh_beta = 0.0;
 }
 
@@ -278,19 +286,17 @@ cl_status cl_cli_methods_check(cl_config *cfg, cl_cli_methods *ms,
                                const cl_integrator_opts *io, cl_cli_dt_use dt,
                                cl_error *err)
 {
-    cl_status rc = CL_OK;
-    for (int k = 0; k < ms->n; k++) {
+    cl_status rc = ms->n ? check_shared(cfg, ms, io, err) : CL_OK;
+    for (int k = 0; !rc && k < ms->n; k++) {
         cl_cli_method *m = &ms->m[k];
         m->io = *io;
+        keep_what_it_takes(m);
         if (*m->linsol)
             m->io.linsol = m->linsol;
         if (dt == CL_CLI_DT_FIXED && !m->type->fixed_step)
             m->io.dt = 0.0; /* not a first step: an adaptive one's own */
+        rc = check_method(cfg, m, dt, err);
     }
-    for (int k = 0; !rc && k < ms->n; k++)
-        rc = check_method(cfg, ms, &ms->m[k], dt, err);
-    for (int k = 0; !rc && k < ms->n; k++)
-        keep_what_it_takes(&ms->m[k]);
     return rc;
 }
 
