@@ -796,8 +796,6 @@ bool cl_model_selfcontact_closest(cl_model *m, const double *x, double *d)
 
 const cl_contact *cl_model_contact(const cl_model *m) { return m->contact; }
 
-cl_contact *cl_model_contact_state(cl_model *m) { return m->contact; }
-
 void cl_model_contact_start(cl_model *m, bool track_work)
 {
     m->worst_pen = 0.0;

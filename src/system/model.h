@@ -98,12 +98,6 @@ bool cl_model_selfcontact_closest(cl_model *m, const double *x, double *d);
 /* The obstacles, or NULL when the problem has none. */
 const cl_contact *cl_model_contact(const cl_model *m);
 
-/* The same pointer, writable: the contact term's own state, for calling
- * cl_contact_term's functions (its eval) directly on full-particle arrays,
- * e.g. to time the term alone (bench workload 8).  The model owns it;
- * use the const accessor above for anything else. */
-cl_contact *cl_model_contact_state(cl_model *m);
-
 /* Start of a run: the worst penetration is forgotten, and with track_work
  * the contact hook accounts the energy every projection changes
  * (cl_energy.contact_work; two energy evaluations per projecting step,
