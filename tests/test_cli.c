@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "cli/cli.h"
+#include "core/exit.h"
 #include "io/config.h"
 #include "io/mtx.h"
 #include "io/state.h"
@@ -1628,6 +1629,52 @@ Test(cli, contact_table_and_csv)
     cr_assert_float_eq(csv_number(L.line[2], 4), 2 * sqrt(0.1 / 1e4), 1e-12,
                        "%s", L.line[2]);
     cli_lines_free(&L);
+}
+
+/* A particle dropped 0.1 m onto a barrier plane: symplectic Euler at
+ * 1e-2 s steps into it, a blow-up that says so (it read "energy is not
+ * finite"); started inside, the run is refused before its first step. */
+Test(cli, barrier_crossed_or_started_inside_says_so)
+{
+    char ini[1024], out[1024];
+    const char *text =
+        "[cloth]\nnu = 1\nnv = 2\nsize = 0.1\nparticle_mass = 0.1\n"
+        "[pins]\nat =\n[type1]\nenabled = false\n[type2]\n"
+        "enabled = false\n[damping]\nkd = 0\n[gravity]\ng = 0, -9.81, 0\n"
+        "[obstacle.floor]\nshape = plane\nnormal = 0, 1, 0\n"
+        "point = 0, %s, 0\nresponse = barrier\nkappa = 10\ndhat = 0.01\n";
+    char body[1024];
+    snprintf(body, sizeof body, text, "-0.1");
+    tmp_put(in_tmp(ini, "drop.ini"), body);
+    cli_result r;
+    cli_run(&r, "run", ini, "--integrator", "symplectic-euler", "--dt",
+            "1e-2", "--t-end", "0.5", "--out", in_tmp(out, "drop"), NULL);
+    cli_assert_no_crash(&r);
+    cr_assert_eq(r.status, CL_EXIT_BLOWUP, "%s", r.err);
+    cr_assert_not_null(strstr(r.err, "d <= 0 of a barrier obstacle"), "%s",
+                       r.err);
+    cli_result_free(&r);
+    snprintf(body, sizeof body, text, "1e-4");
+    tmp_put(ini, body);
+    cli_run(&r, "run", ini, "--integrator", "symplectic-euler", "--dt",
+            "1e-2", "--t-end", "0.5", "--out", in_tmp(out, "inside"), NULL);
+    cli_assert_error(&r, 0, "initial state", "barrier obstacle", NULL);
+    cr_assert_eq(r.status, CL_EXIT_INPUT, "%s", r.err);
+    cli_result_free(&r);
+}
+
+/* With no stable step the summary names the unstable one alone. */
+Test(cli, contact_summary_without_a_stable_step)
+{
+    char out[1024];
+    cli_result r;
+    cli_run(&r, "contact", "particle-floor", "--integrator",
+            "symplectic-euler", "--response", "penalty", "--dt", "1e-2",
+            "--out", in_tmp(out, "contact-unstable"), NULL);
+    cli_assert_ok(&r);
+    cr_assert_not_null(strstr(r.out, "unstable from dt = 0.01\n"), "%s",
+                       r.out);
+    cli_result_free(&r);
 }
 
 Test(cli, contact_refusals)

@@ -2,7 +2,8 @@
  * exact Jacobians and its energy against central finite differences, on
  * every shape and region (sphere, plane, box face/edge/corner, a cube
  * mesh's face/edge/vertex), on moving and rotating obstacles, with damping
- * and friction; the force without Jacobians against the full one. */
+ * and friction; no pull on a particle leaving faster than the damping
+ * allows; the force without Jacobians against the full one. */
 #include <criterion/criterion.h>
 
 #include <math.h>
@@ -162,6 +163,40 @@ Test(penalty, energy_and_law)
     cr_expect_float_eq(-(p.energy - m.energy) / (2 * h), a.f[1], 1e-6);
     double out[3] = {0.0, 1.2, 0.0};
     cr_expect_not(force_at(&o, 0.0, out, v, true, &a), "outside the band");
+    cl_obstacle_free(&o);
+}
+
+/* Hunt and Crossley's factor 1 - a w_n is held at 0: a particle leaving
+ * the plane faster than 1/a (a = 2 s/m, 0.8 m/s against 0.5) feels no
+ * normal force (it was pulled back by fe (1 - 1.6) = -0.6 fe), only the
+ * friction mu fe, and the power of the normal force beyond the spring's
+ * is -fe w_n; the Jacobians stay exact on both sides of the switch. */
+Test(penalty, leaving_fast_is_not_pulled_back)
+{
+    cl_obstacle o;
+    const char *sets[NSET] = {"obstacle.o.shape = plane",
+                              "obstacle.o.normal = 0, 1, 0",
+                              "obstacle.o.response = penalty",
+                              "obstacle.o.k = 1000", "obstacle.o.eps = 0.01",
+                              "obstacle.o.damping = 2", "obstacle.o.mu = 0.4",
+                              "obstacle.o.v_smooth = 0.05", NULL};
+    oc_make(&o, sets);
+    double x[3] = {0.0, 0.004, 0.0}, fast[3] = {0.3, 0.8, 0.0},
+           slow[3] = {0.3, 0.2, 0.0};
+    double fe = 1000 * (0.01 - 0.004);
+    cl_penalty_out a;
+    cr_assert(force_at(&o, 0.0, x, fast, true, &a));
+    cr_expect_eq(a.f[1], 0.0, "f_n = %g", a.f[1]);
+    cr_expect_float_eq(a.f[0], -0.4 * fe * 0.3 / sqrt(0.09 + 0.0025), 1e-12,
+                       "friction %g", a.f[0]);
+    cr_expect_float_eq(a.power - a.friction_power, -fe * 0.8, 1e-12,
+                       "power %g", a.power - a.friction_power);
+    cr_assert(force_at(&o, 0.0, x, slow, true, &a));
+    cr_expect_float_eq(a.f[1], fe * (1 - 2 * 0.2), 1e-12, "f_n %g", a.f[1]);
+    cr_expect_float_eq(a.power - a.friction_power, -2 * fe * 0.2 * 0.2,
+                       1e-12, "power %g", a.power - a.friction_power);
+    check_jacobians(&o, 0.0, x, fast, "leaving fast");
+    check_jacobians(&o, 0.0, x, slow, "leaving slowly");
     cl_obstacle_free(&o);
 }
 

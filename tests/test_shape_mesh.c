@@ -1,9 +1,11 @@
 /* Tests for the mesh shape (contact/shape_mesh.c): cubes read from OBJ
  * against the analytic box (flat diagonals, straight creases through
  * vertices), scale and translate, the nearest distance and its sign
- * against brute force and the winding number on a lumpy sphere, G against
- * central differences, the committed sphere against the analytic one, and
- * every refusal. */
+ * against brute force and the winding number on a lumpy sphere (and the
+ * shape's cheap lower bound of d never above it, inside or outside), G
+ * against central differences, the committed sphere against the analytic
+ * one, every refusal, and surfaces of several parts (a cavity taken, a
+ * part facing inwards beside another refused). */
 #include <criterion/criterion.h>
 
 #include <stdio.h>
@@ -215,23 +217,15 @@ static void lumpy_sphere(cl_shape_surface *sf, sc_shape *s)
 }
 
 /* The generalised winding number: the solid angles of the triangles seen
- * from x (van Oosterom and Strackee, "The solid angle of a plane
- * triangle", IEEE Trans. Biomed. Eng. 30(2), 1983) over 4 pi; 1 inside a
- * closed outward surface, 0 outside. */
+ * from x over 4 pi (contact/triangle.h); 1 inside a closed outward
+ * surface, 0 outside. */
 static double winding(const cl_shape_surface *sf, const double x[3])
 {
     double w = 0;
-    for (size_t t = 0; t < sf->ntri; t++) {
-        double a[3], b[3], c[3], bc[3];
-        cl_v3_sub(sf->vert + 3 * sf->tri[t][0], x, a);
-        cl_v3_sub(sf->vert + 3 * sf->tri[t][1], x, b);
-        cl_v3_sub(sf->vert + 3 * sf->tri[t][2], x, c);
-        cl_v3_cross(b, c, bc);
-        double la = cl_v3_norm(a), lb = cl_v3_norm(b), lc = cl_v3_norm(c);
-        w += 2 * atan2(cl_v3_dot(a, bc), la * lb * lc +
-                       cl_v3_dot(a, b) * lc + cl_v3_dot(b, c) * la +
-                       cl_v3_dot(c, a) * lb);
-    }
+    for (size_t t = 0; t < sf->ntri; t++)
+        w += cl_tri_solid_angle(x, sf->vert + 3 * sf->tri[t][0],
+                                sf->vert + 3 * sf->tri[t][1],
+                                sf->vert + 3 * sf->tri[t][2]);
     return w / (4 * M_PI);
 }
 
@@ -271,6 +265,9 @@ Test(shape_mesh, lumpy_sphere_against_brute_force)
                   "%.17g at (%g, %g, %g)", fabs(q.d), d, x[0], x[1], x[2]);
         cr_assert_eq(q.d < 0, w > 0.5, "d = %g, winding number %g at (%g, "
                      "%g, %g)", q.d, w, x[0], x[1], x[2]);
+        double low = s.type->lower_bound(s.shape, x);
+        cr_assert(low <= q.d, "lower bound %g above d = %g at (%g, %g, %g)",
+                  low, q.d, x[0], x[1], x[2]);
         inside += w > 0.5;
     }
     cr_assert(inside > 2000 && inside < 8000, "%d points inside", inside);
@@ -384,8 +381,57 @@ Test(shape_mesh, bad_meshes_refused)
         cr_assert_eq(n, e - f);
         *e = '\n';
     }
-    mesh_refused(obj, "", CL_EINVAL, "the enclosed volume is -1",
+    mesh_refused(obj, "", CL_EINVAL, "encloses a volume of -1 m^3",
                  "counter-clockwise seen from outside");
+}
+
+/* A cube of side `side` centred at (x0, 0, 0) as OBJ lines, its vertices
+ * numbered from base + 1, facing outwards or (inward) inwards; appended
+ * to buf. */
+static void cube_part(char *buf, size_t len, double side, double x0,
+                      int base, bool inward)
+{
+    static const int quad[6][4] = {{1, 4, 3, 2}, {5, 6, 7, 8}, {1, 2, 6, 5},
+                                   {4, 8, 7, 3}, {1, 5, 8, 4}, {2, 3, 7, 6}};
+    size_t n = strlen(buf);
+    for (int v = 0; v < 8; v++)
+        n += (size_t)snprintf(buf + n, len - n, "v %g %g %g\n",
+                              x0 + side * ((v == 1 || v == 2 || v == 5 ||
+                                            v == 6) - 0.5),
+                              side * ((v == 2 || v == 3 || v == 6 ||
+                                       v == 7) - 0.5),
+                              side * ((v >= 4) - 0.5));
+    for (int f = 0; f < 6; f++) {
+        const int *q = quad[f];
+        n += (size_t)snprintf(buf + n, len - n, "f %d %d %d %d\n",
+                              base + q[inward ? 3 : 0],
+                              base + q[inward ? 2 : 1],
+                              base + q[inward ? 1 : 2],
+                              base + q[inward ? 0 : 3]);
+    }
+}
+
+/* Every part of the surface is judged: a second cube beside the first,
+ * facing inwards, is refused (the total volume, 1 - 0.125 m^3, was
+ * positive and let it through); the same cube inside the first, a cavity,
+ * is taken, and a point in the cavity is outside the solid. */
+Test(shape_mesh, each_part_faces_outwards_or_bounds_a_cavity)
+{
+    char obj[2048] = "";
+    cube_part(obj, sizeof obj, 1.0, 0.0, 0, false);
+    cube_part(obj, sizeof obj, 0.5, 3.0, 8, true);
+    mesh_refused(obj, "", CL_EINVAL, "the part of the surface holding "
+                 "triangle 12", "is no cavity of another part");
+    obj[0] = '\0';
+    cube_part(obj, sizeof obj, 1.0, 0.0, 0, false);
+    cube_part(obj, sizeof obj, 0.5, 0.0, 8, true);
+    sc_shape s;
+    mesh_shape(&s, obj, "");
+    sc_expect(&s, (double[]){0.05, 0.0, 0.0}, 0.2, (double[]){-1, 0, 0},
+              1e-12);
+    sc_expect(&s, (double[]){0.4, 0.0, 0.0}, -0.1, (double[]){1, 0, 0},
+              1e-12);
+    sc_free(&s);
 }
 
 Test(shape_mesh, bad_keys_refused)

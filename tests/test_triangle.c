@@ -1,8 +1,11 @@
 /* Tests for contact/triangle: the closest point of a triangle and its
  * feature, in each of the seven Voronoi regions and at random points
  * against the optimality conditions and a dense sampling (and from a
- * triangle's kept record, the same bits). */
+ * triangle's kept record, the same bits); the solid angle against an
+ * octant and a closed tetrahedron. */
 #include <criterion/criterion.h>
+
+#include <math.h>
 
 #include "contact/triangle.h"
 #include "core/vec3.h"
@@ -101,4 +104,27 @@ Test(triangle, segment_crossings)
                                 (double[]){0, 0, -10}, A, B, C), INFINITY);
     cr_assert_eq(cl_tri_segment((double[]){-1, 0.2, 0},
                                 (double[]){10, 0, 0}, A, B, C), INFINITY);
+}
+
+/* The triangle of the unit points on the axes spans an octant seen from
+ * the origin, 4 pi / 8, with the sign of its orientation; a tetrahedron's
+ * outward faces add up to 4 pi from inside and to 0 from outside. */
+Test(triangle, solid_angle)
+{
+    const double o[3] = {0, 0, 0}, e[3][3] = {{1, 0, 0}, {0, 1, 0},
+                                              {0, 0, 1}};
+    cr_expect_float_eq(cl_tri_solid_angle(o, e[0], e[1], e[2]), M_PI / 2,
+                       1e-15);
+    cr_expect_float_eq(cl_tri_solid_angle(o, e[0], e[2], e[1]), -M_PI / 2,
+                       1e-15);
+    const double v[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    const int f[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    const double in[3] = {0.2, 0.2, 0.2}, out[3] = {1, 1, 1};
+    double wi = 0, wo = 0;
+    for (int k = 0; k < 4; k++) {
+        wi += cl_tri_solid_angle(in, v[f[k][0]], v[f[k][1]], v[f[k][2]]);
+        wo += cl_tri_solid_angle(out, v[f[k][0]], v[f[k][1]], v[f[k][2]]);
+    }
+    cr_expect_float_eq(wi, 4 * M_PI, 1e-13, "inside %.17g", wi);
+    cr_expect_float_eq(wo, 0.0, 1e-13, "outside %.17g", wo);
 }

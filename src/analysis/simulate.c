@@ -169,8 +169,13 @@ static cl_status sample(sim *s, double t, cl_sim_result *res, cl_error *err)
     if (rc || !(stretch <= s->so->max_stretch))
         return cl_error_set(err, CL_EBLOWUP,
                             "blow-up at t = %g: %s (max stretch d/L = %g, "
-                            "limit %g)",
-                            t, rc ? "energy is not finite" : "runaway stretch",
+                            "limit %g)", t,
+                            rc == CL_EINFEASIBLE
+                                ? "a particle at d <= 0 of a barrier "
+                                  "obstacle (the method's steps do not keep "
+                                  "it outside)"
+                            : rc ? "energy is not finite"
+                                 : "runaway stretch",
                             stretch, s->so->max_stretch);
     size_t n = 0;
     s->row[n++] = t;

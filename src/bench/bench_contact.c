@@ -54,7 +54,7 @@ typedef struct {
     unsigned char *is_hook;  /* nforce + nhook calls */
     double *force_t, *force_x, *force_v;
     double *hook_t, *hook_x, *hook_v;
-    unsigned char *hook_record;
+    unsigned char *hook_what;   /* the hook calls' CL_CONTACT_* */
 } w8_tape;
 
 /* The model, its integrator, the state measured and the work arrays. */
@@ -87,7 +87,7 @@ static cl_status tape_force(void *data, double t, const double *x,
 }
 
 static cl_status tape_contact(void *data, double t, double *x, double *v,
-                              bool record)
+                              unsigned what)
 {
     w8_tape *tp = data;
     if (tp->nforce < tp->max_force && tp->nhook < tp->max_hook) {
@@ -96,9 +96,9 @@ static cl_status tape_contact(void *data, double t, double *x, double *v,
         tp->hook_t[k] = t;
         memcpy(tp->hook_x + k * tp->n, x, tp->n * sizeof *x);
         memcpy(tp->hook_v + k * tp->n, v, tp->n * sizeof *v);
-        tp->hook_record[k] = record;
+        tp->hook_what[k] = (unsigned char)what;
     }
-    return tp->inner->contact(tp->inner->data, t, x, v, record);
+    return tp->inner->contact(tp->inner->data, t, x, v, what);
 }
 
 static bool tape_alloc(w8_tape *tp, const cl_system *sys)
@@ -113,9 +113,9 @@ static bool tape_alloc(w8_tape *tp, const cl_system *sys)
     tp->hook_t = malloc(tp->max_hook * sizeof *tp->hook_t);
     tp->hook_x = malloc(tp->max_hook * tp->n * sizeof *tp->hook_x);
     tp->hook_v = malloc(tp->max_hook * tp->n * sizeof *tp->hook_v);
-    tp->hook_record = malloc(tp->max_hook * sizeof *tp->hook_record);
+    tp->hook_what = malloc(tp->max_hook * sizeof *tp->hook_what);
     return tp->is_hook && tp->force_t && tp->force_x && tp->force_v &&
-           tp->hook_t && tp->hook_x && tp->hook_v && tp->hook_record;
+           tp->hook_t && tp->hook_x && tp->hook_v && tp->hook_what;
 }
 
 static void tape_free(w8_tape *tp)
@@ -127,7 +127,7 @@ static void tape_free(w8_tape *tp)
     free(tp->hook_t);
     free(tp->hook_x);
     free(tp->hook_v);
-    free(tp->hook_record);
+    free(tp->hook_what);
 }
 
 /* The steps from (t0, x0, v0) to t1 by a new integrator on sys, in the
@@ -212,7 +212,7 @@ static cl_status w8_replay(w8_run *r, int part)
                tp->n * sizeof *r->vw);
         if (hook && part == W8_CONTACT)
             rc = sys->contact(sys->data, tp->hook_t[kh], r->xw, r->vw,
-                              tp->hook_record[kh]);
+                              tp->hook_what[kh]);
         if (!hook && part != W8_COPY)
             rc = sys->force_terms(sys->data,
                                   part == W8_OTHER ? r->other : UINT64_MAX,

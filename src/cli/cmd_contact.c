@@ -422,10 +422,12 @@ static void print_step_result(const void *result)
                w->rest_contacts, w->stretch_max, w->run.stats.nonlin_iters,
                w->run.stats.cpu);
     }
-    if (!isnan(r->dt_unstable))
-        printf("%-18s %-9s unstable from dt = %.4g%s%.4g\n", "", "",
-               r->dt_unstable, isnan(r->dt_stable) ? "" : ", stable at ",
-               isnan(r->dt_stable) ? 0.0 : r->dt_stable);
+    if (isnan(r->dt_unstable))
+        return;
+    printf("%-18s %-9s unstable from dt = %.4g", "", "", r->dt_unstable);
+    if (!isnan(r->dt_stable))
+        printf(", stable at %.4g", r->dt_stable);
+    putchar('\n');
 }
 
 static cl_status begin_steps(cl_model *m, const cl_cli_job *job, void *ctx,

@@ -45,9 +45,11 @@ static const cl_cli_table eval_table = {
     .about =
     "Evaluate the model of PROBLEM at a state (CSV with header\n"
     "p,x,y,z,vx,vy,vz, one row per particle, pinned ones included) and write\n"
-    "forces.csv (p,fx,fy,fz: total force on every particle, gravity and\n"
-    "damping included) and energy.csv (term,value: kinetic, each potential\n"
-    "term, total) into the output directory.\n"};
+    "forces.csv (p,fx,fy,fz: total force on every particle, gravity,\n"
+    "damping and contact included; a barrier's friction, whose normal force\n"
+    "is lagged from a run's last step, is zero at a lone state) and\n"
+    "energy.csv (term,value: kinetic, each potential term, total) into the\n"
+    "output directory.\n"};
 
 static cl_status write_forces(const char *dir, size_t np, const double *f,
                               cl_error *err)

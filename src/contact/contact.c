@@ -34,16 +34,22 @@ struct cl_contact {
     double (*lag_n)[3];      /* ... and the lagged normal */
     bool penalizes, projects, constrains, sweeps;
     double *swept_x;         /* positions after the last projection (sweeps:
-                              * some obstacle has ccd), at swept_t */
-    double swept_t;
+                              * some obstacle has ccd), at last_t */
     bool swept;              /* swept_x holds them */
     cl_constraint *cons;     /* np: each particle's constraint (constrains) */
     size_t *cons_obs;        /* np: the obstacle it is on */
     long passes;             /* projection passes */
     long *slot;              /* diagonal block of each particle, or -1 */
     double last_t;           /* time of the last projection */
-    double proj_force;       /* its impulses / (t - previous time) */
-    double proj_friction;    /* its friction energy / (t - previous time) */
+    double last_dt;          /* ... and the time from the one before */
+    double proj_force;       /* its impulses / last_dt */
+    double proj_friction;    /* its friction energy / last_dt */
+    /* The last accepted projection (cl_contact_project's trials): its
+     * last_t, swept and swept_x, which a trial starts from; acc_live:
+     * they are the live ones above (no trial since). */
+    double acc_t;
+    double *acc_swept_x;
+    bool acc_swept, acc_live;
     double *eval_x;          /* positions of the last term evaluation */
     cl_pose *eval_pose;      /* ... every penalty obstacle's pose there */
     double *eval_worst;      /* ... each penalty obstacle's deepest
@@ -70,8 +76,9 @@ void cl_contact_restart(cl_contact *c)
     c->swept = false;
     for (size_t p = 0; c->constrains && p < c->cloth->np; p++)
         c->cons[p].mode = CL_CONSTRAINT_FREE;
-    c->last_t = 0.0;
+    c->last_t = c->last_dt = 0.0;
     c->proj_force = c->proj_friction = 0.0;
+    c->acc_live = true;
     memset(c->lambda, 0, c->nobs * c->cloth->np * sizeof *c->lambda);
 }
 
@@ -113,6 +120,7 @@ static void contact_free(void *state)
     free(c->cons);
     free(c->cons_obs);
     free(c->swept_x);
+    free(c->acc_swept_x);
     free(c);
 }
 
@@ -186,7 +194,8 @@ static cl_status contact_create(cl_config *cfg, const cl_cloth *cloth,
          !(c->cons_obs = calloc(cloth->np, sizeof *c->cons_obs))))
         rc = cl_error_set(err, CL_ENOMEM, "out of memory (obstacles)");
     if (!rc && c->sweeps &&
-        !(c->swept_x = malloc(3 * cloth->np * sizeof *c->swept_x)))
+        (!(c->swept_x = malloc(3 * cloth->np * sizeof *c->swept_x)) ||
+         !(c->acc_swept_x = malloc(3 * cloth->np * sizeof *c->swept_x))))
         rc = cl_error_set(err, CL_ENOMEM, "out of memory (obstacles)");
     if (rc) {
         contact_free(c);
@@ -522,7 +531,7 @@ double cl_contact_penetration(cl_contact *c, double t, const double *x)
 }
 
 /* Continuous detection (docs/model.md, eq. C14): every free particle's
- * path from its position after the last projection (at swept_t) to x,
+ * path from its position after the last projection (at last_t) to x,
  * against every obstacle with ccd; the first hit over them stops it
  * there, with projection's velocity response.  The first projection of
  * a run has no earlier one: its paths run back from x along v over the
@@ -532,11 +541,9 @@ static void sweep(cl_contact *c, double t, double *x, double *v,
                   cl_project_tally *tally)
 {
     const cl_cloth *cl = c->cloth;
-    if (!c->swept) {
+    if (!c->swept)
         for (size_t i = 0; i < 3 * cl->np; i++)
             c->swept_x[i] = x[i] - (t - c->last_t) * v[i];
-        c->swept_t = c->last_t;
-    }
     for (size_t p = 0; p < cl->np; p++) {
         double first = INFINITY, s, at[3], hit[3];
         size_t k_hit = 0;
@@ -545,7 +552,7 @@ static void sweep(cl_contact *c, double t, double *x, double *v,
             cl_pose P0;
             if (o->resp.kind != CL_RESPONSE_PROJECT || !o->resp.ccd)
                 continue;
-            cl_obstacle_pose(o, c->swept_t, &P0);
+            cl_obstacle_pose(o, c->last_t, &P0);
             if (cl_obstacle_sweep(o, &P0, c->swept_x + 3 * p, &c->pose[k],
                                   x + 3 * p, o->resp.offset, &s, at) &&
                 s < first) {
@@ -566,12 +573,54 @@ static void sweep(cl_contact *c, double t, double *x, double *v,
     }
 }
 
-size_t cl_contact_project(cl_contact *c, double t, double *x, double *v)
+/* A trial starts from the last accepted projection: the first trial since
+ * keeps it (the live bookkeeping), a later one restores it. */
+static void trial_start(cl_contact *c)
+{
+    size_t len = 3 * c->cloth->np * sizeof *c->swept_x;
+    if (c->acc_live) {
+        c->acc_t = c->last_t;
+        c->acc_swept = c->swept;
+        if (c->sweeps && c->swept)
+            memcpy(c->acc_swept_x, c->swept_x, len);
+    } else {
+        c->last_t = c->acc_t;
+        c->swept = c->acc_swept;
+        if (c->sweeps && c->swept)
+            memcpy(c->swept_x, c->acc_swept_x, len);
+    }
+    c->acc_live = false;
+}
+
+/* The figures of a projection at t: its impulses and friction energy over
+ * the time since the last one; a second projection at the same time (an
+ * output at the end of a step projected already) adds its own to the
+ * first's over that step. */
+static void project_figures(cl_contact *c, double t,
+                            const cl_project_tally *tally)
+{
+    double dt = t - c->last_t;
+    if (dt > 0.0) {
+        c->last_dt = dt;
+        c->proj_force = tally->impulse / dt;
+        c->proj_friction = tally->friction_energy / dt;
+    } else if (dt == 0.0 && c->last_dt > 0.0) {
+        c->proj_force += tally->impulse / c->last_dt;
+        c->proj_friction += tally->friction_energy / c->last_dt;
+    } else if (dt < 0.0) {
+        c->proj_force = c->proj_friction = 0.0;
+    }
+}
+
+size_t cl_contact_project(cl_contact *c, double t, double *x, double *v,
+                          bool trial)
 {
     const cl_cloth *cl = c->cloth;
     cl_project_tally tally = {0, 0.0, 0.0};
+    if (trial)
+        trial_start(c);
     place(c, t);
-    if (c->sweeps && (c->swept ? c->swept_t : c->last_t) < t)
+    if (c->sweeps && c->last_t < t)
         sweep(c, t, x, v, &tally);
     for (long pass = 0; pass < c->passes; pass++)
         for (size_t k = 0; k < c->nobs; k++) {
@@ -592,16 +641,21 @@ size_t cl_contact_project(cl_contact *c, double t, double *x, double *v)
                                         v + 3 * p, &tally);
             }
         }
-    double dt = t - c->last_t;
-    c->proj_force = dt > 0.0 ? tally.impulse / dt : 0.0;
-    c->proj_friction = dt > 0.0 ? tally.friction_energy / dt : 0.0;
+    project_figures(c, t, &tally);
     c->last_t = t;
     if (c->sweeps) {
         memcpy(c->swept_x, x, 3 * cl->np * sizeof *x);
-        c->swept_t = t;
         c->swept = true;
     }
+    c->acc_live = !trial;
     return tally.moved;
+}
+
+void cl_contact_accept(cl_contact *c, double t)
+{
+    if (!c->acc_live)
+        c->last_t = t;
+    c->acc_live = true;
 }
 
 /* ---- barriers ---------------------------------------------------------- */

@@ -59,8 +59,19 @@ double cl_contact_penetration(cl_contact *c, double t, const double *x);
 
 /* The `project` responses after a step to t: every free particle, every
  * projecting obstacle, `iterations` passes (the largest of theirs), in
- * place on full-particle arrays; returns the particles moved. */
-size_t cl_contact_project(cl_contact *c, double t, double *x, double *v);
+ * place on full-particle arrays; returns the particles moved.  A `trial`
+ * projects a step that may still be rejected (CVODE's, inside its steps):
+ * it starts from the last accepted projection, as a retry of a rejected
+ * step must, and counts once cl_contact_accept says its step was
+ * accepted.  The figures' projection force and friction power are the
+ * impulses and friction energy over the time since the projection before
+ * (a second one at the same time adds its own over that interval). */
+size_t cl_contact_project(cl_contact *c, double t, double *x, double *v,
+                          bool trial);
+
+/* The step to t, whose last trial projected it, was accepted: the next
+ * projection counts from t. */
+void cl_contact_accept(cl_contact *c, double t);
 
 /* ---- barriers (contact/barrier.h) ---- */
 

@@ -44,14 +44,23 @@ static void relative_velocity_jacobians(const cl_contact_point *q,
     add_outer(dvt_dx, -1.0, q->n, dwn_dx);
 }
 
-/* f_n = fe (1 - a w_n) n (docs/model.md, eq. C7, C8). */
+/* The Hunt-Crossley factor of the normal force, max(0, 1 - a w_n): a
+ * particle leaving faster than 1/a is not pulled back (docs/model.md,
+ * eq. C4). */
+static inline double hunt_crossley(const cl_response_params *r, double wn)
+{
+    return fmax(0.0, 1.0 - r->damping * wn);
+}
+
+/* f_n = fe max(0, 1 - a w_n) n (docs/model.md, eq. C7, C8); where the
+ * factor is 0 the normal force and its derivatives are. */
 static void penalty_jacobians(const cl_response_params *r,
                               const cl_contact_point *q, const double w[3],
                               double wn, double fe, const double g[3],
                               double s, cl_penalty_out *o)
 {
     double dwn_dx[3], dvt_dx[9], dvt_dv[9], A[9], Ax[9], Av[9];
-    double a = r->damping, hc = 1.0 - a * wn;
+    double hc = hunt_crossley(r, wn), a = hc > 0.0 ? r->damping : 0.0;
     relative_velocity_jacobians(q, w, wn, dwn_dx, dvt_dx, dvt_dv);
     for (int k = 0; k < 9; k++) {
         o->dfdx[k] = fe * hc * q->G[k];
@@ -86,7 +95,8 @@ static inline void law(const cl_response_params *r, double d,
     cl_v3_sub(v, u, w);
     *fe = r->k * (r->eps - d);
     *wn = cl_v3_dot(w, n);
-    cl_v3_scale(*fe * (1.0 - r->damping * *wn), n, o->f);
+    double hc = hunt_crossley(r, *wn);
+    cl_v3_scale(*fe * hc, n, o->f);
     o->energy = 0.5 * r->k * (r->eps - d) * (r->eps - d);
     o->friction_power = 0.0;
     g[0] = g[1] = g[2] = *s = 0.0;
@@ -99,7 +109,9 @@ static inline void law(const cl_response_params *r, double d,
         cl_v3_axpy(o->f, -(r->mu * *fe), g, o->f);
         o->friction_power = -r->mu * *fe * cl_v3_dot(g, vt);
     }
-    o->power = -r->damping * *fe * *wn * *wn + o->friction_power;
+    /* the normal force beyond the spring's, fe (hc - 1), against w_n */
+    double damp = hc > 0.0 ? -r->damping * *fe * *wn * *wn : -*fe * *wn;
+    o->power = damp + o->friction_power;
 }
 
 bool cl_penalty_eval(const cl_response_params *r, const cl_contact_point *q,

@@ -54,9 +54,10 @@ typedef struct {
     void (*query)(const void *shape, const double x[3], void *cache,
                   cl_shape_query *q);
     size_t cache_size;  /* 0: the shape keeps nothing */
-    /* Optional (NULL: none): a lower bound of d at x, much cheaper than
-     * the query (a mesh: the distance to its bounding box), so that
-     * particles far from the shape skip the query. */
+    /* Optional (NULL: none): a lower bound of the signed d at x, much
+     * cheaper than the query (a mesh: the distance to its bounding box
+     * outside it, -inf inside), so that particles far from the shape skip
+     * the query. */
     double (*lower_bound)(const void *shape, const double x[3]);
     /* Optional (NULL: none): a half-space's outward unit normal n and a
      * point p of its boundary, d(x) = n . (x - p) computed as

@@ -7,8 +7,10 @@
  *
  * The mesh must be closed (every edge shared by exactly two triangles),
  * consistently oriented (the two run their edge in opposite directions)
- * and face outwards (counter-clockwise seen from outside, so that the
- * enclosed volume is positive); meshes that are not are refused.  It
+ * and face outwards (counter-clockwise seen from outside, so that each
+ * part of the surface encloses a positive volume, or, facing inwards,
+ * bounds a cavity inside another part); meshes that are not are refused.
+ * It
  * should also be free of self-intersections, pinched vertices and
  * zero-thickness folds, which are not checked.
  *
@@ -45,6 +47,7 @@
 #include "contact/closed.h"
 #include "contact/meshfeat.h"
 #include "contact/shape_impl.h"
+#include "contact/triangle.h"
 #include "core/vec3.h"
 #include "io/obj.h"
 
@@ -119,26 +122,108 @@ static cl_status allocate(mesh *m, const char *path, cl_error *err)
     return cl_error_set(err, CL_ENOMEM, "%s: out of memory", path);
 }
 
-/* The enclosed volume must be positive (sum of the signed volumes of the
- * tetrahedra from vertex 0 to each triangle). */
-static cl_status check_outward(const mesh *m, const char *path,
-                               cl_error *err)
+/* The signed volume of the tetrahedron from vertex 0 to triangle t; over
+ * a closed part of the surface they add up to the volume it encloses,
+ * positive when its triangles face outwards. */
+static double tet_volume(const mesh *m, size_t t)
 {
-    double vol = 0;
-    for (size_t t = 0; t < m->m.ntri; t++) {
-        double a[3], b[3], c[3], n[3];
-        cl_v3_sub(vertex(m, m->m.tri[t][0]), m->m.vert, a);
-        cl_v3_sub(vertex(m, m->m.tri[t][1]), m->m.vert, b);
-        cl_v3_sub(vertex(m, m->m.tri[t][2]), m->m.vert, c);
-        cl_v3_tri_cross(a, b, c, n);
-        vol += cl_v3_dot(a, n) / 6.0;
+    double a[3], b[3], c[3], n[3];
+    cl_v3_sub(vertex(m, m->m.tri[t][0]), m->m.vert, a);
+    cl_v3_sub(vertex(m, m->m.tri[t][1]), m->m.vert, b);
+    cl_v3_sub(vertex(m, m->m.tri[t][2]), m->m.vert, c);
+    cl_v3_tri_cross(a, b, c, n);
+    return cl_v3_dot(a, n) / 6.0;
+}
+
+/* The parts of the surface (triangles joined across their edges): part[t]
+ * numbered from 0 in the order of their first triangles; their count. */
+static size_t label_parts(const mesh *m, const cl_closed *s, int *part,
+                          int *stack)
+{
+    size_t nt = m->m.ntri, np = 0;
+    for (size_t t = 0; t < nt; t++)
+        part[t] = -1;
+    for (size_t t0 = 0; t0 < nt; t0++) {
+        if (part[t0] >= 0)
+            continue;
+        size_t top = 0;
+        part[t0] = (int)np;
+        stack[top++] = (int)t0;
+        while (top > 0) {
+            int t = stack[--top];
+            for (int k = 0; k < 3; k++) {
+                int u = cl_closed_across(s, t, k);
+                if (part[u] < 0) {
+                    part[u] = (int)np;
+                    stack[top++] = u;
+                }
+            }
+        }
+        np++;
     }
-    if (vol > 0)
+    return np;
+}
+
+/* The generalised winding number at x of the triangles outside part p
+ * (contact/triangle.h): 1 inside the solid the other parts bound, 0
+ * outside it. */
+static double winding_of_others(const mesh *m, const int *part, int p,
+                                const double x[3])
+{
+    double w = 0;
+    for (size_t t = 0; t < m->m.ntri; t++)
+        if (part[t] != p)
+            w += cl_tri_solid_angle(x, vertex(m, m->m.tri[t][0]),
+                                    vertex(m, m->m.tri[t][1]),
+                                    vertex(m, m->m.tri[t][2]));
+    return w / (4 * M_PI);
+}
+
+/* Every part of the surface must face outwards: enclose a positive
+ * volume, or, facing inwards, bound a cavity inside another part (its
+ * first vertex within the solid of the others). */
+static cl_status check_part(const mesh *m, const int *part, int p,
+                            size_t first, double vol, const char *path,
+                            cl_error *err)
+{
+    if (vol > 0 || (vol < 0 && winding_of_others(m, part, p,
+                                                 vertex(m, m->m.tri[first]
+                                                              [0])) > 0.5))
         return CL_OK;
-    return cl_error_set(err, CL_EINVAL, "%s: the enclosed volume is %g: the "
-                        "triangles must be counter-clockwise seen from "
-                        "outside (reverse the vertex order of every face)",
-                        path, vol);
+    return cl_error_set(err, CL_EINVAL, "%s: the part of the surface holding "
+                        "triangle %zu (counted from 0) encloses a volume of "
+                        "%g m^3%s", path, first, vol,
+                        vol < 0 ? " and is no cavity of another part: its "
+                                  "triangles must be counter-clockwise seen "
+                                  "from outside (reverse the vertex order of "
+                                  "its faces)"
+                                : ": it is flat (a closed surface must "
+                                  "enclose a solid)");
+}
+
+static cl_status check_outward(const mesh *m, const cl_closed *s,
+                               const char *path, cl_error *err)
+{
+    size_t nt = m->m.ntri;
+    int *part = malloc(nt * sizeof *part), *stack = malloc(nt * sizeof *stack);
+    double *vol = calloc(nt, sizeof *vol);
+    size_t *first = malloc(nt * sizeof *first);
+    cl_status rc = part && stack && vol && first
+                       ? CL_OK
+                       : cl_error_set(err, CL_ENOMEM, "%s: out of memory",
+                                      path);
+    size_t np = rc ? 0 : label_parts(m, s, part, stack);
+    for (size_t t = nt; !rc && t-- > 0;) {
+        vol[part[t]] += tet_volume(m, t);
+        first[part[t]] = t;
+    }
+    for (size_t p = 0; !rc && p < np; p++)
+        rc = check_part(m, part, (int)p, first[p], vol[p], path, err);
+    free(part);
+    free(stack);
+    free(vol);
+    free(first);
+    return rc;
 }
 
 /* Whether unit vectors a and b are parallel (and not opposite). */
@@ -240,7 +325,7 @@ static cl_status geometry(mesh *m, const char *path, cl_error *err)
                  "from 0)", path);
         return prefixed(err, rc, where);
     }
-    if (!(rc = check_outward(m, path, err)) &&
+    if (!(rc = check_outward(m, &s, path, err)) &&
         !(rc = allocate(m, path, err))) {
         edge_normals(m, &s);
         rc = vertex_normals(m, path, err);
@@ -406,9 +491,13 @@ static double mesh_toi(const void *shape, const double a[3],
 }
 
 /* The distance from x to the box of all triangles: d is at least that. */
+/* Outside the bounding box the mesh is at least the box's distance away
+ * (d > 0); inside it d may be negative, down to minus the depth of the
+ * deepest interior point, so the bound there is -inf (the query decides). */
 static double mesh_lower_bound(const void *shape, const double x[3])
 {
-    return cl_bvh_box_distance(&((const mesh *)shape)->bvh, x);
+    double box = cl_bvh_box_distance(&((const mesh *)shape)->bvh, x);
+    return box > 0.0 ? box : -INFINITY;
 }
 
 const cl_shape_type cl_shape_mesh = {

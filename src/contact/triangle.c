@@ -109,3 +109,17 @@ double cl_tri_segment(const double x0[3], const double D[3],
         return INFINITY;
     return t;
 }
+
+double cl_tri_solid_angle(const double x[3], const double a[3],
+                          const double b[3], const double c[3])
+{
+    double xa[3], xb[3], xc[3], bc[3];
+    cl_v3_sub(a, x, xa);
+    cl_v3_sub(b, x, xb);
+    cl_v3_sub(c, x, xc);
+    cl_v3_cross(xb, xc, bc);
+    double la = cl_v3_norm(xa), lb = cl_v3_norm(xb), lc = cl_v3_norm(xc);
+    return 2 * atan2(cl_v3_dot(xa, bc), la * lb * lc +
+                     cl_v3_dot(xa, xb) * lc + cl_v3_dot(xb, xc) * la +
+                     cl_v3_dot(xc, xa) * lb);
+}

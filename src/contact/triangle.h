@@ -50,4 +50,13 @@ double cl_tri_segment(const double x0[3], const double D[3],
                       const double a[3], const double b[3],
                       const double c[3]);
 
+/* The signed solid angle of the triangle seen from x (van Oosterom and
+ * Strackee, "The solid angle of a plane triangle", IEEE Trans. Biomed.
+ * Eng. 30(2), 1983), positive where x lies behind it (its normal
+ * (b - a) x (c - a) pointing away from x): over a closed surface facing
+ * outwards the sum is 4 pi at a point inside, 0 outside (the generalised
+ * winding number times 4 pi). */
+double cl_tri_solid_angle(const double x[3], const double a[3],
+                          const double b[3], const double c[3]);
+
 #endif

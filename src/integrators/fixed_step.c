@@ -134,7 +134,8 @@ static cl_status fixed_step_done(const cl_fixed_clock *c, long done,
     double t = c->t0 + (double)done * c->h;
     cl_status st = CL_OK;
     if (c->sys && c->sys->contact &&
-        (st = c->sys->contact(c->sys->data, t, *c->x, *c->v, true)) !=
+        (st = c->sys->contact(c->sys->data, t, *c->x, *c->v,
+                              CL_CONTACT_RECORD | CL_CONTACT_PROJECT)) !=
             CL_OK)
         return cl_error_set(err, st, "%s: contact after the step failed "
                             "(%s) at t = %.9g (step %ld)", c->name,

@@ -247,7 +247,7 @@ cl_status cl_gslode_advance(void *state, double t_out, double *x, double *v,
         return cl_error_set(err, CL_EBLOWUP, "%s: state not finite at "
                             "t = %.9g", s->method->name, s->t);
     cl_status st = cl_integrator_contact_at(s->method->name, s->sys, s->t,
-                                            s->y, s->y + s->n, true, err);
+                                            s->y, s->y + s->n, err);
     if (st != CL_OK)
         return st;
     return s->sys->step_done ? gslode_step_done(s, err) : CL_OK;

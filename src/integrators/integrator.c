@@ -11,7 +11,31 @@
 
 #include <limits.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
+
+/* A system with barriers needs a start outside every barrier obstacle
+ * (system.h, step_fraction): its force is CL_EINFEASIBLE there, which the
+ * integrators would report as a failed step or a blow-up at t0. */
+static cl_status check_feasible_start(const cl_system *sys, double t0,
+                                      const double *x0, const double *v0,
+                                      cl_error *err)
+{
+    if (!sys->step_fraction)
+        return CL_OK;
+    double *f = malloc(sys->n * sizeof *f);
+    if (!f)
+        return cl_error_set(err, CL_ENOMEM, "out of memory");
+    cl_status st = sys->force(sys->data, t0, x0, v0, f);
+    free(f);
+    if (st != CL_EINFEASIBLE)
+        return CL_OK; /* other failures are the integrator's to report */
+    return cl_error_set(err, CL_EINVAL, "the initial state (t = %g) has a "
+                        "particle at d <= 0 of a barrier obstacle, inside it "
+                        "or on its surface; a barrier needs every particle "
+                        "outside at the start (move the cloth or the "
+                        "obstacle, or use response = penalty)", t0);
+}
 
 cl_status cl_integrator_create(const cl_integrator_type *type,
                                const cl_system *sys,
@@ -22,6 +46,8 @@ cl_status cl_integrator_create(const cl_integrator_type *type,
     cl_status rc = o->force ? CL_OK
                             : cl_memguard_check(type, sys, o->linsol, err);
     *state = NULL;
+    if (!rc)
+        rc = check_feasible_start(sys, t0, x0, v0, err);
     if (!rc && !type->takes_rayleigh &&
         (o->rayleigh_alpha != 0.0 || o->rayleigh_beta != 0.0))
         rc = cl_error_set(err, CL_EUNSUPPORTED, "%s: no Rayleigh damping "
@@ -104,10 +130,12 @@ cl_status cl_integrator_refuse_constraints(const char *name,
 
 cl_status cl_integrator_contact_at(const char *name, const cl_system *sys,
                                    double t, double *x, double *v,
-                                   bool record, cl_error *err)
+                                   cl_error *err)
 {
-    cl_status st = sys->contact ? sys->contact(sys->data, t, x, v, record)
-                                : CL_OK;
+    cl_status st = sys->contact
+                       ? sys->contact(sys->data, t, x, v,
+                                      CL_CONTACT_RECORD | CL_CONTACT_PROJECT)
+                       : CL_OK;
     if (st != CL_OK)
         return cl_error_set(err, st, "%s: contact at t = %.9g failed (%s)",
                             name, t, cl_status_name(st));

@@ -101,7 +101,9 @@ static inline bool cl_integrator_fixed(const cl_integrator_type *type,
 }
 
 /* type->create behind the memory guard (memguard.h): refused with the
- * estimate when it exceeds the available memory, unless o->force. */
+ * estimate when it exceeds the available memory, unless o->force; and
+ * refused (CL_EINVAL) when the system has barriers and the initial state
+ * has a particle at d <= 0 of one. */
 cl_status cl_integrator_create(const cl_integrator_type *type,
                                const cl_system *sys,
                                const cl_integrator_opts *o, double t0,
@@ -131,12 +133,13 @@ cl_status cl_integrator_refuse_constraints(const char *name,
                                            cl_error *err);
 
 /* The system's contact hook at an output time t of an adaptive method, if
- * it has one: the contact figures (record), and for CVODE BDF the
- * projection of the interpolated output, not recorded (its steps are
- * projected inside, see sun_adapter.h). */
+ * it has one (CL_CONTACT_RECORD | CL_CONTACT_PROJECT): the contact
+ * figures, and for CVODE BDF, whose outputs are the ends of steps it
+ * projected inside (sun_adapter.h), the projections again (moving
+ * nothing but round-off). */
 cl_status cl_integrator_contact_at(const char *name, const cl_system *sys,
                                    double t, double *x, double *v,
-                                   bool record, cl_error *err);
+                                   cl_error *err);
 
 /* Write the statistics as an aligned human-readable block (human = true) or
  * as "name,value" CSV rows without header and without the wall and CPU

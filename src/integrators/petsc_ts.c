@@ -241,7 +241,7 @@ cl_status cl_petsc_ts_advance(void *state, double t_out, double *x,
         return cl_error_set(err, CL_EBLOWUP, "%s: state not finite at t = "
                             "%.9g", s->m->name, s->t);
     cl_status st = cl_integrator_contact_at(s->m->name, s->sys, s->t, x, v,
-                                            true, err);
+                                            err);
     if (st != CL_OK)
         return st;
     return s->sys->step_done ? pts_step_done(s, x, v, err) : CL_OK;

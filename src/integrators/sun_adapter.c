@@ -255,10 +255,40 @@ static const cl_sun_lsdef count_def = {
 
 /* ---- CVODE's entry in the package table -------------------------------- */
 
+/* The step CVODE just accepted, to t: the state before its projection
+ * (sun_project's trial) recorded (system.h, CL_CONTACT_RECORD). */
+static int cv_accept(cl_sun *s, double t)
+{
+    size_t n = s->sys->n;
+    double *before = s->proj + 2 * n;
+    if (!s->trial)
+        return CV_SUCCESS;
+    s->trial = false;
+    cl_status st = s->sys->contact(s->sys->data, t, before, before + n,
+                                   CL_CONTACT_RECORD);
+    return st == CL_OK ? CV_SUCCESS : CV_PROJFUNC_FAIL;
+}
+
+/* CVODE to t_out.  A system that projects steps one at a time to t_out
+ * as a stop time: the output is the end of a step, never interpolated
+ * across a projection (whose correction, entered in the Nordsieck
+ * history, the interpolant would spread over the step), and each accepted
+ * step's state before its projection is recorded. */
 static int cv_solve(cl_sun *s, double t_out)
 {
-    sunrealtype tret;
-    return CVode(s->mem, t_out, s->y, &tret, CV_NORMAL);
+    sunrealtype tret = s->t_last;
+    if (!s->proj)
+        return CVode(s->mem, t_out, s->y, &tret, CV_NORMAL);
+    int flag = CVodeSetStopTime(s->mem, t_out);
+    while (flag >= 0 && flag != CV_TSTOP_RETURN && tret < t_out) {
+        s->trial = false;
+        flag = CVode(s->mem, t_out, s->y, &tret, CV_ONE_STEP);
+        if (flag >= 0) {
+            int acc = cv_accept(s, tret);
+            flag = acc < 0 ? acc : flag;
+        }
+    }
+    return flag;
 }
 
 static cl_status cv_reinit(cl_sun *s, double t, cl_error *err)
@@ -603,10 +633,12 @@ static int sun_project(sunrealtype t, N_Vector ycur, N_Vector corr,
     double *c = N_VGetArrayPointer(corr);
     (void)eps;
     memcpy(s->proj, y, n2 * sizeof *y);
+    memcpy(s->proj + n2, y, n2 * sizeof *y); /* the state before it */
     cl_status st = s->sys->contact(s->sys->data, t, s->proj,
-                                   s->proj + s->sys->n, false);
+                                   s->proj + s->sys->n, CL_CONTACT_PROJECT);
     if (st != CL_OK)
         return 1; /* recoverable: CVODE retries with a smaller step */
+    s->trial = true;
     for (size_t i = 0; i < n2; i++)
         c[i] = s->proj[i] - y[i];
     if (errv)
@@ -616,7 +648,7 @@ static int sun_project(sunrealtype t, N_Vector ycur, N_Vector corr,
 
 static cl_status sun_set_projection(cl_sun *s, cl_error *err)
 {
-    s->proj = malloc(2 * s->sys->n * sizeof *s->proj);
+    s->proj = malloc(4 * s->sys->n * sizeof *s->proj);
     if (!s->proj)
         return cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
     int flag = CVodeSetProjFn(s->mem, sun_project);
@@ -813,8 +845,7 @@ static cl_status sun_advance(cl_sun *s, double t_out, double *x, double *v,
     if (s->sys->contact) { /* the figures, and the output projected */
         double *y = N_VGetArrayPointer(s->y);
         cl_status st = cl_integrator_contact_at(s->name, s->sys, t_out, y,
-                                                y + s->sys->n, !s->proj,
-                                                err);
+                                                y + s->sys->n, err);
         if (st != CL_OK)
             return st;
         sun_copy_out(s, x, v);

@@ -73,9 +73,16 @@
  *   surface.  Projection with friction (mu > 0, zero_velocity) is refused:
  *   it cuts the tangential velocity after the step while the step itself
  *   slid the particle frictionlessly, an error that grows with CVODE's
- *   step and that its error test never sees.  CVODE Adams and IDA refuse a
- *   problem that projects; without projections every method calls the
- *   contact hook at its output times, for the contact figures only.
+ *   step and that its error test never sees.  A problem that projects is
+ *   stepped one step at a time to each output time as CVODE's stop time
+ *   (CVodeSetStopTime, CV_ONE_STEP): its outputs are steps' ends, never
+ *   interpolated across a projection (the interpolant would spread the
+ *   correction over the whole step: a particle falling onto a floor was
+ *   seen slowing down in mid-air), and after each accepted step the
+ *   state before its projection is recorded (the deepest penetration,
+ *   system.h's CL_CONTACT_RECORD).  CVODE Adams and IDA refuse a problem
+ *   that projects; without projections every method calls the contact
+ *   hook at its output times, for the contact figures only.
  *
  * Usage: an integrator's state struct has a cl_sun as its FIRST member, so
  * the one pointer the solver passes to every callback (user data and error
@@ -211,7 +218,9 @@ struct cl_sun {
     const cl_sun_plug *plug; /* the linear solver's own state, or NULL */
     void *plug_data;
     double *inv_mass;        /* n */
-    double *proj;            /* 2n: the projected state (contact), or NULL */
+    double *proj;            /* 4n: the last trial's projected state and
+                              * the state before it (contact), or NULL */
+    bool trial;              /* a trial projected the step under way */
     double *dfdx, *dfdv;     /* block values, 9 nnzb each (need_jac) */
     size_t nval;             /* 9 nnzb */
     long njac;               /* system Jacobian evaluations */

@@ -360,6 +360,8 @@ static cl_status sys_energy(void *data, double t, const double *x,
     eval_terms(m, UINT64_MAX, t, NULL, NULL, NULL, e);
     e->kinetic = kinetic_free(&m->cloth, m->vf);
     e->total = e->kinetic + e->potential;
+    if (m->contact && cl_contact_infeasible(m->contact))
+        return CL_EINFEASIBLE;
     return isfinite(e->total) ? CL_OK : CL_EBLOWUP;
 }
 
@@ -454,24 +456,25 @@ static void barrier_step_done(cl_model *m, double t, bool record)
     }
 }
 
-/* Contact after an accepted step (system/system.h): the deepest
- * penetration, then the projections; with track_work their energy change
- * (kinetic and potential, friction included) is added to contact_work,
- * for recorded calls only (not CVODE's projections inside its steps,
- * whose states may lie far inside an obstacle and may be rejected). */
+/* Contact (system/system.h): the deepest penetration, then the
+ * projections; with track_work their energy change (kinetic and
+ * potential, friction included) is added to contact_work, for recorded
+ * calls only (not CVODE's trial projections inside its steps). */
 static cl_status sys_contact(void *data, double t, double *x, double *v,
-                             bool record)
+                             unsigned what)
 {
     cl_model *m = data;
     size_t n = 3 * m->cloth.nfree;
     bool projects = m->sys.projects; /* else the velocities are not read */
     bool barriers = m->sys.step_fraction != NULL;
-    if (!projects && !record && !barriers)
+    bool record = what & CL_CONTACT_RECORD;
+    bool project = projects && (what & CL_CONTACT_PROJECT);
+    if (!project && !record)
         return CL_OK;                    /* nothing to record or move */
     const double *xf = x; /* without pins the free state is the cloth's */
-    if (projects || barriers || m->cloth.nfree < m->cloth.np) {
-        cl_cloth_scatter(&m->cloth, t, x, projects ? v : NULL, m->xf,
-                         projects ? m->vf : NULL);
+    if (project || barriers || m->cloth.nfree < m->cloth.np) {
+        cl_cloth_scatter(&m->cloth, t, x, project ? v : NULL, m->xf,
+                         project ? m->vf : NULL);
         xf = m->xf;
     }
     double pen = record ? cl_contact_penetration(m->contact, t, xf) : 0.0;
@@ -481,14 +484,16 @@ static cl_status sys_contact(void *data, double t, double *x, double *v,
     }
     if (barriers)
         barrier_step_done(m, t, record);
-    if (!projects)
+    if (projects && !project) /* the state before an accepted trial */
+        cl_contact_accept(m->contact, t);
+    if (!project)
         return CL_OK;
     bool track = m->track_work && record;
     if (track) {
         memcpy(m->xw, x, n * sizeof *x);
         memcpy(m->vw, v, n * sizeof *v);
     }
-    size_t moved = cl_contact_project(m->contact, t, m->xf, m->vf);
+    size_t moved = cl_contact_project(m->contact, t, m->xf, m->vf, !record);
     cl_cloth_gather(&m->cloth, m->xf, x);
     cl_cloth_gather(&m->cloth, m->vf, v);
     if (track && moved) {

@@ -78,6 +78,12 @@ typedef struct {
     size_t nanchor;           /* pinned particles that constraints reach */
 } cl_distances;
 
+/* What the contact hook (cl_system.contact) does: see there. */
+enum {
+    CL_CONTACT_RECORD = 1u,  /* record the contact figures of the state */
+    CL_CONTACT_PROJECT = 2u  /* apply the `project` responses to it */
+};
+
 typedef struct cl_system {
     size_t n;                    /* 3 * free particles */
     const double *mass;          /* n diagonal masses */
@@ -94,6 +100,9 @@ typedef struct cl_system {
     cl_status (*jacobian)(void *data, double t, const double *x,
                           const double *v, double *f, double *dfdx,
                           double *dfdv);
+    /* The energies at (t, x, v); CL_EINFEASIBLE, like force and jacobian,
+     * for a state with a particle at d <= 0 of a barrier obstacle (below,
+     * step_fraction). */
     cl_status (*energy)(void *data, double t, const double *x,
                         const double *v, cl_energy *e);
     /* Position-based constraints (the Verlet-and-PBD report; docs/model.md
@@ -118,21 +127,29 @@ typedef struct cl_system {
      * at every output time. */
     cl_status (*step_done)(void *data, double t, const double *x,
                            const double *v, bool *changed);
-    /* Contact with obstacles after an accepted step to t (docs/model.md,
-     * contact), NULL if the problem has no obstacle: applies every
-     * `project` response, moving x and v (n each) in place, and with
-     * `record` first records the contact figures (the deepest
-     * penetration the step reached).  The rule, one for every integrator:
-     * penalty contact is a force term like any other; projection runs
-     * after every step of the fixed-step methods (before step_done,
-     * recorded) and inside CVODE's BDF steps through its projection
-     * interface (not recorded: a step the error test then rejects is
-     * projected too), and its interpolated outputs are projected
-     * (recorded); the other adaptive methods call this hook at their
-     * output times for the figures only and refuse a problem with
-     * `projects`. */
+    /* Contact with obstacles (docs/model.md, contact), NULL if the
+     * problem has no obstacle; `what` (CL_CONTACT_*, below) says what to
+     * do with the state (t, x, v) (n each):
+     *   RECORD | PROJECT  after an accepted step: record the contact
+     *                     figures (the deepest penetration the step
+     *                     reached, the barriers' least distance), then
+     *                     apply every `project` response, moving x and v
+     *                     in place;
+     *   PROJECT           a trial: project a step that may still be
+     *                     rejected (recording nothing);
+     *   RECORD            the step of the last trial was accepted, and
+     *                     (x, v) is its state before that projection:
+     *                     record it (x and v are not changed).
+     * The rule, one for every integrator: penalty contact is a force term
+     * like any other; projection runs after every step of the fixed-step
+     * methods (RECORD | PROJECT, before step_done) and inside CVODE's BDF
+     * steps through its projection interface (PROJECT, then RECORD with
+     * the state before it once the step is accepted: its outputs are
+     * steps' ends, RECORD | PROJECT); the other adaptive methods call
+     * this hook at their output times (RECORD | PROJECT) for the figures
+     * only and refuse a problem with `projects`. */
     cl_status (*contact)(void *data, double t, double *x, double *v,
-                         bool record);
+                         unsigned what);
     /* The filter of the barrier responses (contact/barrier.h), NULL if
      * the problem has no barrier obstacle: the largest fraction in [0, 1]
      * of the straight move of the free positions from x0 (feasible, at
