@@ -92,6 +92,12 @@ series_max() { # csv column
     awk -F, -v c="$2" 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == c) k = i; next }
         $k != "NA" && (m == "" || $k + 0 > m) { m = $k + 0 } END { printf "%.4g", m }' "$1"
 }
+# The largest of column c over the samples whose column a is at least lo
+# (the wrinkles of a buckle, not the sign changes of the seed).
+series_max_where() { # csv c a lo
+    awk -F, -v c="$2" -v a="$3" -v lo="$4" 'NR == 1 { for (i = 1; i <= NF; i++) { if ($i == c) k = i; if ($i == a) j = i }; next }
+        $k != "NA" && $j + 0 >= lo + 0 && (m == "" || $k + 0 > m) { m = $k + 0 } END { printf "%.4g", m == "" ? 0 : m }' "$1"
+}
 series_last() { # csv column
     awk -F, -v c="$2" 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == c) k = i; next }
         { v = $k } END { printf "%.4g", v }' "$1"
@@ -170,18 +176,22 @@ claim $id "$J" "5.2" "Choi-Ko's implicit BDF2 tolerates up to 0.02 s (read: stay
 echo "claims: Jiao, wrinkles (4.3, 5.2)"
 # compress (a strip pushed together, the project's wrinkle problem; Jiao
 # gives no wrinkle configuration): wrinkles are the sign changes of the
-# out-of-plane displacement along the centre line (series column wrinkles).
+# out-of-plane displacement along the centre line (series column wrinkles),
+# counted on the samples whose largest displacement is at least BUCKLE, a
+# hundred times the seeded 1e-5 m imperfection (at t = 0 the seed alone
+# changes sign 12 times).
+BUCKLE=1e-3
 id=jiao-explicit-wrinkles
 args="run compress --integrator symplectic-euler --dt 1e-4 --frames 0 --samples 100"
 measure $id $args
-w=$(series_max "$out/$id/series.csv" wrinkles)
+w=$(series_max_where "$out/$id/series.csv" wrinkles max_offplane $BUCKLE)
 a=$(series_last "$out/$id/series.csv" max_offplane)
 v=$(awk -v w="$w" -v a="$a" 'BEGIN {
     if (w >= 2 && a >= 1e-3) printf "does not hold: symplectic Euler forms up to %d wrinkles, final amplitude %s m from a 1e-5 m seed", w, a
     else printf "holds: %d wrinkles, amplitude %s m", w, a }')
 claim $id "$J" "4.3" "explicit methods cannot model out-of-plane wrinkle formation" \
     "compress (no configuration in the source), symplectic Euler at 1e-4 s, T = 1 s" \
-    "most wrinkles along the centre line over the run" "$w" "wrinkles" "$v" "$args"
+    "most wrinkles along the centre line over the samples at least 1 mm out of plane" "$w" "wrinkles" "$v" "$args"
 
 id=jiao-stiffness
 args="stability compress --set type1.ks=2000 --set type2.cb=2000 --integrator symplectic-euler,semi-be --t-end 0.5"
@@ -200,15 +210,15 @@ id=jiao-more-wrinkles
 args="run compress --integrator semi-be --dt 1e-3 --set type1.ks=2000 --set type2.cb=2000 --frames 0 --samples 100"
 base="run compress --integrator semi-be --dt 1e-3 --frames 0 --samples 100"
 measure $id $args
-w=$(series_max "$out/$id/series.csv" wrinkles)
+w=$(series_max_where "$out/$id/series.csv" wrinkles max_offplane $BUCKLE)
 measure $id-base $base
-w0=$(series_max "$out/$id-base/series.csv" wrinkles)
+w0=$(series_max_where "$out/$id-base/series.csv" wrinkles max_offplane $BUCKLE)
 v=$(awk -v w="$w" -v w0="$w0" 'BEGIN {
     if (w > w0) printf "holds: %d wrinkles against %d at ks = cb = 200", w, w0
     else printf "does not hold: %d wrinkles against %d at ks = cb = 200", w, w0 }')
 claim $id "$J" "5.2" "the higher stiffness backward Euler allows produces more wrinkles" \
     "compress, semi-be at 1e-3 s, ks = cb = 2000 against 200" \
-    "most wrinkles along the centre line over the run" "$w" "wrinkles" "$v" "$args; $base"
+    "most wrinkles along the centre line over the samples at least 1 mm out of plane" "$w" "wrinkles" "$v" "$args; $base"
 
 echo "claims: Jiao, connection counts (4.1, Fig. 5) and the inverse sinc (4.6)"
 id=jiao-counts-ck
