@@ -4,13 +4,13 @@
  * (slides with a = g (sin theta - mu cos theta), sticks when
  * mu > tan theta) with either response, the energy balance with contact
  * and friction, the refusal of projection by the methods that cannot
- * apply it, the contact hook's worst penetration, cvode-bdf's outputs and
- * worst penetration with projection, and continuous detection (ccd)
- * stopping a fast particle at a thin box and a small fast sphere catching
- * a particle, which pass through with it off; the barrier: the filter of
- * a straight move, a start inside it refused, a particle dropped on a
- * barrier plane kept outside by kinsol-be and by cvode-bdf, and the energy
- * balance with the barrier and its friction. */
+ * apply it, the contact hook's worst penetration, cvode-bdf's outputs,
+ * worst penetration and step limit with projection, and continuous
+ * detection (ccd) stopping a fast particle at a thin box and a small fast
+ * sphere catching a particle, which pass through with it off; the
+ * barrier: the filter of a straight move, a start inside it refused, a
+ * particle dropped on a barrier plane kept outside by kinsol-be and by
+ * cvode-bdf, and the energy balance with the barrier and its friction. */
 #include <criterion/criterion.h>
 
 #include <math.h>
@@ -134,6 +134,43 @@ Test(contact, cvode_bdf_projection_outputs_are_steps_ends)
                        "worst penetration %.9g", pen);
     cr_expect_float_eq(t_pen, 0.32, 1e-12, "at t = %.17g", t_pen);
     cr_expect_lt(fabs(x[1]), 1e-9, "rests at %.17g", x[1]);
+    pr_free(&p);
+    tmp_rm_rf(dir);
+}
+
+/* Stepping one step at a time, cvode-bdf with projection still stops at
+ * max_steps steps an advance (CVODE counts its limit per call): the drop
+ * to 1 s in one output takes 21 steps. */
+Test(contact, cvode_bdf_projection_keeps_the_step_limit)
+{
+    pr_problem p;
+    char dir[512];
+    particle(&p, dir, "shape = plane\nnormal = 0, 1, 0\nresponse = project");
+    const cl_system *sys = cl_model_system(p.m);
+    const cl_integrator_type *type = cl_integrator_find("cvode-bdf");
+    double xs[6], v[6] = {0.0};
+    cl_model_initial_state(p.m, xs, v);
+    xs[1] = xs[4] = 0.5;
+    for (long limit = 5; limit <= 500; limit *= 100) {
+        cl_integrator_opts io = {.rtol = 1e-8, .atol = 1e-10,
+                                 .max_steps = limit};
+        void *st = NULL;
+        cl_error err = {0};
+        double x[6], w[6];
+        memcpy(x, xs, sizeof x);
+        memcpy(w, v, sizeof w);
+        cr_assert_eq(type->create(sys, &io, 0.0, x, w, &st, &err), CL_OK,
+                     "%s", err.msg);
+        cl_status rc = type->advance(st, 1.0, x, w, &err);
+        if (limit == 5) {
+            cr_expect_eq(rc, CL_ESOLVER, "%ld steps: %s", limit, err.msg);
+            cr_expect_not_null(strstr(err.msg, "CV_TOO_MUCH_WORK"), "%s",
+                               err.msg);
+        } else {
+            cr_expect_eq(rc, CL_OK, "%ld steps: %s", limit, err.msg);
+        }
+        type->free(st);
+    }
     pr_free(&p);
     tmp_rm_rf(dir);
 }

@@ -273,14 +273,18 @@ static int cv_accept(cl_sun *s, double t)
  * as a stop time: the output is the end of a step, never interpolated
  * across a projection (whose correction, entered in the Nordsieck
  * history, the interpolant would spread over the step), and each accepted
- * step's state before its projection is recorded. */
+ * step's state before its projection is recorded.  CVODE counts its step
+ * limit per call, one step here: the advance counts them itself. */
 static int cv_solve(cl_sun *s, double t_out)
 {
     sunrealtype tret = s->t_last;
     if (!s->proj)
         return CVode(s->mem, t_out, s->y, &tret, CV_NORMAL);
     int flag = CVodeSetStopTime(s->mem, t_out);
-    while (flag >= 0 && flag != CV_TSTOP_RETURN && tret < t_out) {
+    for (long steps = 0;
+         flag >= 0 && flag != CV_TSTOP_RETURN && tret < t_out; steps++) {
+        if (steps == s->max_steps)
+            return CV_TOO_MUCH_WORK;
         s->trial = false;
         flag = CVode(s->mem, t_out, s->y, &tret, CV_ONE_STEP);
         if (flag >= 0) {
@@ -586,6 +590,7 @@ cl_status cl_sun_configure(cl_sun *s, const cl_integrator_opts *o,
     double rtol = o->rtol > 0 ? o->rtol : CL_SUN_RTOL;
     double atol = o->atol > 0 ? o->atol : CL_SUN_ATOL;
     long mxs = o->max_steps > 0 ? o->max_steps : CL_SUN_MAX_STEPS;
+    s->max_steps = mxs;
     CL_SUN_SET(s, err, set_user_data, "SetUserData", s);
     CL_SUN_SET(s, err, sstolerances, "SStolerances", rtol, atol);
     CL_SUN_SET(s, err, set_max_num_steps, "SetMaxNumSteps", mxs);

@@ -221,6 +221,7 @@ struct cl_sun {
     double *proj;            /* 4n: the last trial's projected state and
                               * the state before it (contact), or NULL */
     bool trial;              /* a trial projected the step under way */
+    long max_steps;          /* internal steps per advance at most */
     double *dfdx, *dfdv;     /* block values, 9 nnzb each (need_jac) */
     size_t nval;             /* 9 nnzb */
     long njac;               /* system Jacobian evaluations */
