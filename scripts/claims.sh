@@ -95,7 +95,8 @@ series_max() { # csv column
 # The largest of column c over the samples whose column a is at least lo
 # (the wrinkles of a buckle, not the sign changes of the seed).
 series_max_where() { # csv c a lo
-    awk -F, -v c="$2" -v a="$3" -v lo="$4" 'NR == 1 { for (i = 1; i <= NF; i++) { if ($i == c) k = i; if ($i == a) j = i }; next }
+    awk -F, -v c="$2" -v a="$3" -v lo="$4" 'NR == 1 { for (i = 1; i <= NF; i++) { if ($i == c) k = i; if ($i == a) j = i }
+                                                      if (!k || !j) exit 1; next }
         $k != "NA" && $j + 0 >= lo + 0 && (m == "" || $k + 0 > m) { m = $k + 0 } END { printf "%.4g", m == "" ? 0 : m }' "$1"
 }
 series_last() { # csv column

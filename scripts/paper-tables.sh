@@ -48,7 +48,7 @@ awk -F, 'NR > 1 && $NF == "ok" { k = 0
          if (!($1 in seen)) { seen[$1] = 1; order[++n] = $1 }
          m[$1, k] = $4; t[$1, k] = $5 }
          # a method without a closed-form theory (the ARKODE DIRK): --
-         function th(v, f) { return v == "nan" ? "--" : sprintf(f, v) }
+         function th(v, f) { return v ~ /nan/ ? "--" : sprintf(f, v) }
          END { for (i = 1; i <= n; i++) { q = order[i]
                printf "%s & %.6f & %s & %.4g & %s \\\\\n", q, m[q, 1],
                       th(t[q, 1], "%.6f"), m[q, 10], th(t[q, 10], "%.4g") } }' \

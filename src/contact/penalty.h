@@ -4,7 +4,7 @@
  * added).  Inside the band d < eps, with w = v - u the velocity relative to
  * the obstacle, w_n = w . n, v_t = w - w_n n:
  *
- *   f = k (eps - d) (1 - a w_n) n          repulsion, E = k (eps - d)^2 / 2,
+ *   f = k (eps - d) max(0, 1 - a w_n) n    repulsion, E = k (eps - d)^2 / 2,
  *                                          with Hunt and Crossley's damping
  *     - mu k (eps - d) v_t / sqrt(|v_t|^2 + v_s^2)   friction
  *
@@ -13,8 +13,11 @@
  * vibroimpact" (1975), so the force is continuous where a particle enters
  * the band (a dashpot -c w_n n would jump there, and Newton's method of
  * the implicit fixed-step integrators cycles on a jump); its power
- * -a k (eps - d) w_n^2 is never positive.
- * The friction is Coulomb's law mu |f_n| opposite the sliding velocity,
+ * -a k (eps - d) w_n^2 is never positive.  The max keeps a particle that
+ * leaves faster than 1/a from being pulled back (the power there
+ * -k (eps - d) w_n).
+ * The friction is Coulomb's law on the spring's force, mu k (eps - d),
+ * opposite the sliding velocity,
  * smoothed below the speed v_s (so a block on a slope with mu > tan theta
  * creeps at about v_s tan theta / sqrt(mu^2 - tan^2 theta)).  Both
  * Jacobians are exact, curvature terms included: with G = dn/dx and

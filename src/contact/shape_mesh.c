@@ -10,9 +10,9 @@
  * and face outwards (counter-clockwise seen from outside, so that each
  * part of the surface encloses a positive volume, or, facing inwards,
  * bounds a cavity inside another part); meshes that are not are refused.
- * It
- * should also be free of self-intersections, pinched vertices and
- * zero-thickness folds, which are not checked.
+ * It should also be free of self-intersections, pinched vertices, parts
+ * that touch or overlap, and zero-thickness folds, which are not
+ * checked.
  *
  * Query: the nearest triangle by the bounding-volume tree (contact/bvh.h;
  * with a cache, a point's nearby triangles kept from one query to the
@@ -179,16 +179,25 @@ static double winding_of_others(const mesh *m, const int *part, int p,
     return w / (4 * M_PI);
 }
 
+/* The centroid of triangle t. */
+static void triangle_centroid(const mesh *m, size_t t, double c[3])
+{
+    for (int i = 0; i < 3; i++)
+        c[i] = (vertex(m, m->m.tri[t][0])[i] + vertex(m, m->m.tri[t][1])[i] +
+                vertex(m, m->m.tri[t][2])[i]) / 3.0;
+}
+
 /* Every part of the surface must face outwards: enclose a positive
- * volume, or, facing inwards, bound a cavity inside another part (its
- * first vertex within the solid of the others). */
+ * volume, or, facing inwards, bound a cavity inside another part (the
+ * centroid of its first triangle within the solid of the others; parts
+ * that touch are not checked, see the head). */
 static cl_status check_part(const mesh *m, const int *part, int p,
                             size_t first, double vol, const char *path,
                             cl_error *err)
 {
-    if (vol > 0 || (vol < 0 && winding_of_others(m, part, p,
-                                                 vertex(m, m->m.tri[first]
-                                                              [0])) > 0.5))
+    double c[3];
+    triangle_centroid(m, first, c);
+    if (vol > 0 || (vol < 0 && winding_of_others(m, part, p, c) > 0.5))
         return CL_OK;
     return cl_error_set(err, CL_EINVAL, "%s: the part of the surface holding "
                         "triangle %zu (counted from 0) encloses a volume of "
@@ -490,7 +499,6 @@ static double mesh_toi(const void *shape, const double a[3],
     return cl_bvh_segment(&((const mesh *)shape)->bvh, a, b);
 }
 
-/* The distance from x to the box of all triangles: d is at least that. */
 /* Outside the bounding box the mesh is at least the box's distance away
  * (d > 0); inside it d may be negative, down to minus the depth of the
  * deepest interior point, so the bound there is -inf (the query decides). */

@@ -5,7 +5,8 @@
  * Fixed-step methods take steps of exactly opts->dt; the time after step k is
  * k*dt (no accumulated round-off), and `advance` must be given output times
  * that are multiples of dt (cl_fixed_steps_to checks this).  Adaptive
- * methods (CVODE, ...) return the state interpolated at t_out. */
+ * methods (CVODE, ...) return the state interpolated at t_out (CVODE BDF
+ * on a system that projects: the end of a step, sun_adapter.h). */
 #ifndef CL_INTEGRATOR_H
 #define CL_INTEGRATOR_H
 

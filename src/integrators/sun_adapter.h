@@ -24,7 +24,9 @@
  * - options: scalar tolerances opts->rtol, opts->atol (defaults when 0:
  *   rtol 1e-6, atol 1e-8), at most opts->max_steps internal steps per
  *   advance (default 10^7), initial step opts->dt when > 0; output by
- *   interpolation at t_out (CV_NORMAL / IDA_NORMAL);
+ *   interpolation at t_out (CV_NORMAL / IDA_NORMAL), but for CVODE BDF on
+ *   a system that projects, whose outputs are steps' ends (contact,
+ *   below);
  * - failures: every SUNDIALS call is checked; a failure returns CL_ESOLVER
  *   naming the function, its flag and the time reached.  The solver's own
  *   messages are captured (its error handler), never printed;

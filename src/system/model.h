@@ -111,8 +111,9 @@ void cl_model_contact_worst(const cl_model *m, double *pen, double *t);
 
 /* The least signed distance of a free particle to a barrier obstacle
  * since cl_model_contact_start (INFINITY without barriers), seen by the
- * contact hook after every accepted step (fixed-step methods) or at output
- * times (contact/barrier.h); and its time. */
+ * contact hook after every accepted step (fixed-step methods, CVODE BDF
+ * on a problem that projects) or at output times (contact/barrier.h); and
+ * its time. */
 void cl_model_contact_closest(const cl_model *m, double *d, double *t);
 
 /* The surfaces of all obstacles at time t, in one triangle list (free
