@@ -158,6 +158,15 @@ static const cl_pairset *stretch_pairs(sim *s)
     return &s->intact;
 }
 
+/* Why a sample ends the run: its energy's status rc, else the stretch. */
+static const char *blowup_reason(cl_status rc)
+{
+    if (rc == CL_EINFEASIBLE)
+        return "a particle at d <= 0 of a barrier obstacle (the method's "
+               "steps do not keep it outside)";
+    return rc ? "energy is not finite" : "runaway stretch";
+}
+
 /* Energies and diagnostics at time t; one series row. */
 static cl_status sample(sim *s, double t, cl_sim_result *res, cl_error *err)
 {
@@ -169,14 +178,8 @@ static cl_status sample(sim *s, double t, cl_sim_result *res, cl_error *err)
     if (rc || !(stretch <= s->so->max_stretch))
         return cl_error_set(err, CL_EBLOWUP,
                             "blow-up at t = %g: %s (max stretch d/L = %g, "
-                            "limit %g)", t,
-                            rc == CL_EINFEASIBLE
-                                ? "a particle at d <= 0 of a barrier "
-                                  "obstacle (the method's steps do not keep "
-                                  "it outside)"
-                            : rc ? "energy is not finite"
-                                 : "runaway stretch",
-                            stretch, s->so->max_stretch);
+                            "limit %g)", t, blowup_reason(rc), stretch,
+                            s->so->max_stretch);
     size_t n = 0;
     s->row[n++] = t;
     s->row[n++] = e.kinetic;

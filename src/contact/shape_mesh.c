@@ -136,9 +136,10 @@ static double tet_volume(const mesh *m, size_t t)
 }
 
 /* The parts of the surface (triangles joined across their edges): part[t]
- * numbered from 0 in the order of their first triangles; their count. */
+ * numbered from 0 in the order of their first triangles, first[p] that
+ * triangle; their count. */
 static size_t label_parts(const mesh *m, const cl_closed *s, int *part,
-                          int *stack)
+                          size_t *first, int *stack)
 {
     size_t nt = m->m.ntri, np = 0;
     for (size_t t = 0; t < nt; t++)
@@ -147,6 +148,7 @@ static size_t label_parts(const mesh *m, const cl_closed *s, int *part,
         if (part[t0] >= 0)
             continue;
         size_t top = 0;
+        first[np] = t0;
         part[t0] = (int)np;
         stack[top++] = (int)t0;
         while (top > 0) {
@@ -221,11 +223,9 @@ static cl_status check_outward(const mesh *m, const cl_closed *s,
                        ? CL_OK
                        : cl_error_set(err, CL_ENOMEM, "%s: out of memory",
                                       path);
-    size_t np = rc ? 0 : label_parts(m, s, part, stack);
-    for (size_t t = nt; !rc && t-- > 0;) {
+    size_t np = rc ? 0 : label_parts(m, s, part, first, stack);
+    for (size_t t = 0; t < nt && !rc; t++)
         vol[part[t]] += tet_volume(m, t);
-        first[part[t]] = t;
-    }
     for (size_t p = 0; !rc && p < np; p++)
         rc = check_part(m, part, (int)p, first[p], vol[p], path, err);
     free(part);

@@ -258,6 +258,16 @@ static void eval_terms(cl_model *m, uint64_t mask, double t, double *f,
         e->contact_work = m->contact_work;
 }
 
+/* The status of an evaluation whose results are `finite`: CL_EINFEASIBLE
+ * when it found a particle at d <= 0 of a barrier obstacle (system.h),
+ * else CL_OK or CL_EBLOWUP. */
+static cl_status eval_status(const cl_model *m, bool finite)
+{
+    if (m->contact && cl_contact_infeasible(m->contact))
+        return CL_EINFEASIBLE;
+    return finite ? CL_OK : CL_EBLOWUP;
+}
+
 /* The state into the model's full arrays, after the stop check that
  * makes every force and Jacobian evaluation return CL_EINTR once a stop is requested
  * (core/stop.h). */
@@ -279,9 +289,7 @@ static cl_status sys_force_terms(void *data, uint64_t mask, double t,
         return st;
     eval_terms(m, mask, t, m->ff, NULL, NULL, NULL);
     cl_cloth_gather(&m->cloth, m->ff, f);
-    if (m->contact && cl_contact_infeasible(m->contact))
-        return CL_EINFEASIBLE;
-    return cl_all_finite(f, 3 * m->cloth.nfree) ? CL_OK : CL_EBLOWUP;
+    return eval_status(m, cl_all_finite(f, 3 * m->cloth.nfree));
 }
 
 static cl_status sys_force(void *data, double t, const double *x,
@@ -319,12 +327,8 @@ static cl_status sys_jacobian_terms(void *data, uint64_t mask, double t,
     eval_terms(m, mask, t, f ? m->ff : NULL, dfdx, dfdv, NULL);
     if (f)
         cl_cloth_gather(&m->cloth, m->ff, f);
-    if (m->contact && cl_contact_infeasible(m->contact))
-        return CL_EINFEASIBLE;
-    return cl_all_finite_threads(dfdx, nval, nt) &&
-                   cl_all_finite_threads(dfdv, nval, nt)
-               ? CL_OK
-               : CL_EBLOWUP;
+    return eval_status(m, cl_all_finite_threads(dfdx, nval, nt) &&
+                              cl_all_finite_threads(dfdv, nval, nt));
 }
 
 static cl_status sys_jacobian(void *data, double t, const double *x,
@@ -360,9 +364,7 @@ static cl_status sys_energy(void *data, double t, const double *x,
     eval_terms(m, UINT64_MAX, t, NULL, NULL, NULL, e);
     e->kinetic = kinetic_free(&m->cloth, m->vf);
     e->total = e->kinetic + e->potential;
-    if (m->contact && cl_contact_infeasible(m->contact))
-        return CL_EINFEASIBLE;
-    return isfinite(e->total) ? CL_OK : CL_EBLOWUP;
+    return eval_status(m, isfinite(e->total));
 }
 
 /* f without the terms that the distance constraints stand for. */
@@ -380,9 +382,7 @@ static cl_status sys_force_other(void *data, double t, const double *x,
             m->type[k]->eval(m->state[k], &ev);
     }
     cl_cloth_gather(&m->cloth, m->ff, f);
-    if (m->contact && cl_contact_infeasible(m->contact))
-        return CL_EINFEASIBLE;
-    return cl_all_finite(f, 3 * m->cloth.nfree) ? CL_OK : CL_EBLOWUP;
+    return eval_status(m, cl_all_finite(f, 3 * m->cloth.nfree));
 }
 
 static void sys_anchors(void *data, double t, double *xa)
