@@ -427,6 +427,57 @@ Test(cli, substeps_and_iterations_only_for_xpbd_and_pd)
                    LIST("xpbd needs distance constraints"));
 }
 
+/* A [run] key the command line gives that the integrator does not read
+ * is refused, naming who reads it; the problem file's own keys (hang.ini
+ * gives rtol and atol) serve whichever integrator runs. */
+Test(cli, options_the_integrator_does_not_read)
+{
+    expect_refused(LIST("run", "hang", "--integrator", "semi-be", "--dt",
+                        "1e-3", "--rtol", "1e-3", "--t-end", "0.01"), 0,
+                   LIST("--rtol", "rtol", "semi-be", "adaptive"));
+    expect_refused(LIST("run", "hang", "--integrator", "semi-be", "--dt",
+                        "1e-3", "--max-newton", "3", "--t-end", "0.01"), 0,
+                   LIST("newton_maxit", "semi-be", "kinsol-*"));
+    expect_refused(LIST("run", "hang", "--integrator", "rk4", "--dt", "1e-3",
+                        "--set", "run.verlet_damping=0.1", "--t-end",
+                        "0.01"), 0,
+                   LIST("verlet_damping", "rk4", "verlet-pbd"));
+    expect_refused(LIST("run", "hang", "--integrator", "kinsol-be", "--dt",
+                        "1e-3", "--rho-inf", "0.2", "--t-end", "0.01"), 0,
+                   LIST("rho_inf", "kinsol-be", "kinsol-galpha"));
+    expect_refused(LIST("run", "hang", "--integrator", "semi-be", "--dt",
+                        "1e-3", "--set", "run.lin_tol=1e-6", "--t-end",
+                        "0.01"), 0,
+                   LIST("lin_tol", "semi-be", "klu (its default)"));
+    expect_refused(LIST("run", "hang", "--integrator", "cvode-bdf:pcg",
+                        "--set", "run.lin_tol=1e-6", "--t-end", "0.01"), 0,
+                   LIST("lin_tol", "cvode-bdf", "pcg",
+                        "tolerance themselves"));
+    char out[1024];
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "cloth.n=4", "--integrator",
+            "semi-be:pcg", "--dt", "1e-3", "--set", "run.lin_tol=1e-6",
+            "--t-end", "0.002", "--frames", "0", "--out",
+            in_tmp(out, "lintol"), "--quiet", NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    cli_run(&r, "run", "hang", "--set", "cloth.n=4", "--integrator",
+            "cvode-bdf:pcg", "--set", "run.lin_maxit=50", "--t-end",
+            "0.002", "--frames", "0", "--out", in_tmp(out, "linmaxit"),
+            "--quiet", NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    cli_run(&r, "convergence", "spring2", "--integrator", "kinsol-be,semi-be",
+            "--set", "run.newton_tol=1e-12", "--dt", "1e-2", "--t-end", "1",
+            "--levels", "2", "--out", in_tmp(out, "listnewton"), "--quiet",
+            NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    expect_refused(LIST("convergence", "spring2", "--integrator", "rk4,fe",
+                        "--set", "run.newton_tol=1e-12", "--dt", "1e-2"), 0,
+                   LIST("newton_tol", "no integrator of the list"));
+}
+
 Test(cli, fixed_step_without_dt)
 {
     expect_refused(LIST("run", "hang", "--integrator", "symplectic-euler",

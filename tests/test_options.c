@@ -348,11 +348,15 @@ Test(options, integrator_options_are_checked_against_the_integrator)
 {
     cl_cli_methods ms;
     cl_error err = {0};
-    cr_assert_eq(check("rk4", SETS("run.dt=0.01", "run.rtol=1e-3"), &ms,
-                       &err), CL_OK, "%s", err.msg);
-    cr_assert_eq(ms.m[0].io.dt, 0.01);
+    cr_assert_eq(check("cvode-bdf", SETS("run.dt=0.01", "run.rtol=1e-3"),
+                       &ms, &err), CL_OK, "%s", err.msg);
+    cr_assert_eq(ms.m[0].io.dt, 0.01, "the first step");
     cr_assert_eq(ms.m[0].io.rtol, 1e-3);
     cr_assert_eq(ms.m[0].io.atol, 1e-8, "the default");
+    cr_assert_eq(check("rk4", SETS("run.dt=0.01", "run.rtol=1e-3"), &ms,
+                       &err), CL_EINVAL, "a fixed step reads no rtol");
+    cr_assert(strstr(err.msg, "[run] rtol = \"1e-3\": integrator rk4 reads "
+                              "no rtol"), "%s", err.msg);
     cr_assert_eq(check("cvode-bdf:pcg", SETS("run.linsol=klu"), &ms, &err),
                  CL_OK, "%s", err.msg);
     cr_assert_str_eq(ms.m[0].io.linsol, "pcg", "the entry's solver wins");

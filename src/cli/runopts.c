@@ -16,7 +16,8 @@ static const char *const run_formats[] = {"csv", "vtk", "obj", NULL};
 const cl_cli_opt cl_cli_run_rows[] = {
     {.name = "dt", .arg = "H", .type = CL_CLI_DOUBLE, .key = "dt",
      RUN_ROW(io.dt), .lo = 0, .hi = INFINITY,
-     .help = "step of the fixed-step integrators (s)"},
+     .help = "step of the fixed-step integrators, first step of the "
+             "adaptive ones (s)"},
     {.name = "rtol", .arg = "R", .type = CL_CLI_DOUBLE, .key = "rtol",
      RUN_ROW(io.rtol), .def = 1e-6, .lo = 1e-15, .hi = 1,
      .help = "relative tolerance of the adaptive integrators"},
@@ -48,15 +49,16 @@ const cl_cli_opt cl_cli_run_rows[] = {
              "own limit"},
     {.type = CL_CLI_DOUBLE, .key = "newton_tol", RUN_ROW(io.newton_tol),
      .lo = 0, .hi = 1,
-     .help = "Newton tolerance of the fixed-step implicit integrators, 0 for "
-             "theirs"},
+     .help = "Newton tolerance of kinsol-* (convergence coefficient of "
+             "arkode-*), 0 for theirs"},
     {.name = "max-newton", .arg = "N", .type = CL_CLI_LONG,
      .key = "newton_maxit", RUN_ROW(io.newton_maxit), .lo = 0, .hi = 1000000,
      .help = "Newton iterations per step of kinsol-* (per stage of "
              "arkode-*), 0 for theirs; 1: one linearisation"},
     {.type = CL_CLI_DOUBLE, .key = "lin_tol", RUN_ROW(io.lin_tol), .lo = 0,
-     .hi = 1, .help = "tolerance of the iterative linear solvers, 0 for "
-                      "theirs"},
+     .hi = 1, .help = "tolerance of the iterative linear solvers of "
+                      "semi-* and kinsol-*, and of cvode-bdf-gmres, 0 for "
+                      "theirs (CVODE, IDA and ARKODE set it themselves)"},
     {.type = CL_CLI_LONG, .key = "lin_maxit", RUN_ROW(io.lin_maxit), .lo = 0,
      .hi = 100000000,
      .help = "iterations of the iterative linear solvers, 0 for theirs"},
@@ -282,6 +284,113 @@ static void keep_what_it_takes(cl_cli_method *m)
         m->io.rayleigh_alpha = m->io.rayleigh_beta = 0.0;
 }
 
+/* Whether m's linear solver (after keep_what_it_takes) is iterative: a
+ * cl_linsol with a tolerance ("" is the default, klu; CVODE's klu-full is
+ * no cl_linsol). */
+static bool linsol_iterative(const cl_cli_method *m)
+{
+    const cl_linsol_type *lt = m->type->takes_linsol
+                                   ? cl_linsol_find(m->io.linsol)
+                                   : NULL;
+    return lt && lt->solve_tol;
+}
+
+static bool reads_tolerances(const cl_cli_method *m)
+{
+    return !m->type->fixed_step || m->type->takes_table;
+}
+
+static bool reads_max_steps(const cl_cli_method *m)
+{
+    return !m->type->fixed_step;
+}
+
+static bool reads_newton(const cl_cli_method *m)
+{
+    return m->type->takes_newton_maxit;
+}
+
+static bool reads_rho_inf(const cl_cli_method *m)
+{
+    return m->type->takes_rho_inf;
+}
+
+static bool reads_vdamp(const cl_cli_method *m)
+{
+    return m->type->takes_vdamp;
+}
+
+/* A Krylov solver of its own (cvode-bdf-gmres). */
+static bool own_krylov(const cl_cli_method *m)
+{
+    return m->type->takes_lin_tol && !m->type->takes_linsol;
+}
+
+static bool reads_lin_tol(const cl_cli_method *m)
+{
+    return own_krylov(m) || (m->type->takes_lin_tol && linsol_iterative(m));
+}
+
+static bool reads_lin_maxit(const cl_cli_method *m)
+{
+    return own_krylov(m) || linsol_iterative(m);
+}
+
+/* The [run] keys some integrators read and others do not, with who
+ * reads them.  A problem file's keys serve whichever integrator runs it;
+ * one the command line gave that no method of the list reads would
+ * change nothing, and is refused. */
+static const struct {
+    const char *key;
+    bool (*reads)(const cl_cli_method *m);
+    const char *who;
+} method_keys[] = {
+    {"rtol", reads_tolerances, "the adaptive integrators and arkode-* do"},
+    {"atol", reads_tolerances, "the adaptive integrators and arkode-* do"},
+    {"max_steps", reads_max_steps, "the adaptive integrators do"},
+    {"newton_tol", reads_newton, "kinsol-* and arkode-* do"},
+    {"newton_maxit", reads_newton, "kinsol-* and arkode-* do"},
+    {"rho_inf", reads_rho_inf, "kinsol-galpha does; petsc-alpha2 takes "
+                               "--petsc \"-ts_alpha_radius R\""},
+    {"verlet_damping", reads_vdamp, "verlet and verlet-pbd do"},
+    {"lin_tol", reads_lin_tol, "semi-* and kinsol-* with an iterative "
+                               "--linsol (pcg, pcg-jacobi, amg, amg-hypre, "
+                               "auto) do, and cvode-bdf-gmres; CVODE, IDA "
+                               "and ARKODE set an iterative solver's "
+                               "tolerance themselves"},
+    {"lin_maxit", reads_lin_maxit, "the iterative linear solvers (pcg, "
+                                   "pcg-jacobi, amg, amg-hypre, auto) and "
+                                   "cvode-bdf-gmres do"},
+};
+
+static cl_status check_command_keys(cl_config *cfg, const cl_cli_methods *ms,
+                                    cl_error *err)
+{
+    char why[512];
+    for (size_t i = 0; i < sizeof method_keys / sizeof *method_keys; i++) {
+        const char *key = method_keys[i].key;
+        bool read = false;
+        for (int k = 0; !read && k < ms->n; k++)
+            read = method_keys[i].reads(&ms->m[k]);
+        if (read || !cl_config_set_by_command(cfg, "run", key))
+            continue;
+        const cl_cli_method *m = &ms->m[0];
+        if (ms->n == 1)
+            snprintf(why, sizeof why, "integrator %s%s%s reads no %s (%s)",
+                     m->type->name,
+                     m->type->takes_linsol ? " with linear solver " : "",
+                     !m->type->takes_linsol ? ""
+                     : *m->io.linsol        ? m->io.linsol
+                                            : "klu (its default)",
+                     key, method_keys[i].who);
+        else
+            snprintf(why, sizeof why, "no integrator of the list reads %s "
+                     "(%s)", key, method_keys[i].who);
+        return cl_config_refuse(cfg, "run", key, CL_EINVAL, why, err);
+    }
+    return CL_OK;
+}
+
 cl_status cl_cli_methods_check(cl_config *cfg, cl_cli_methods *ms,
                                const cl_integrator_opts *io, cl_cli_dt_use dt,
                                cl_error *err)
@@ -297,7 +406,7 @@ cl_status cl_cli_methods_check(cl_config *cfg, cl_cli_methods *ms,
             m->io.dt = 0.0; /* not a first step: an adaptive one's own */
         rc = check_method(cfg, m, dt, err);
     }
-    return rc;
+    return rc ? rc : check_command_keys(cfg, ms, err);
 }
 
 cl_status cl_cli_methods_fixed(cl_config *cfg, const cl_cli_methods *ms,

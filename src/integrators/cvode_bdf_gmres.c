@@ -287,6 +287,7 @@ const cl_integrator_type cl_integrator_cvode_bdf_gmres = {
     .fixed_step = false,
     .takes_max_order = true,
     .takes_linsol = false,
+    .takes_lin_tol = true,
     .create = gm_create,
     .advance = cl_sun_advance,
     .stats = gm_stats,

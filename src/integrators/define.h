@@ -6,8 +6,8 @@
  *   static create function  ident_create(sys, opts, t0, x0, v0, state, err)
  *                           = module_create(&method, sys, ...)
  *   const cl_integrator_type ident = {name_, region_, doc_, fixed_,
- *                           linsol_, dense_, rayleigh_, ident_create,
- *                           advance_, stats_, free_}
+ *                           linsol_, dense_, rayleigh_, vdamp_,
+ *                           ident_create, advance_, stats_, free_}
  *
  * for one row of the registry (integrators/registry.c).  The create
  * function alone (CL_INTEGRATOR_CREATE) also serves the families whose
@@ -31,8 +31,8 @@
     }
 
 #define CL_INTEGRATOR_DEFINE(ident, method, create_, name_, region_, doc_, \
-                             fixed_, linsol_, dense_, rayleigh_, advance_, \
-                             stats_, free_)                                 \
+                             fixed_, linsol_, dense_, rayleigh_, vdamp_,  \
+                             advance_, stats_, free_)                       \
     CL_INTEGRATOR_CREATE(ident, create_, &(method))                         \
     const cl_integrator_type ident = {                                      \
         .name = (name_),                                                    \
@@ -42,6 +42,7 @@
         .takes_linsol = (linsol_),                                          \
         .dense_jacobian = (dense_),                                         \
         .takes_rayleigh = (rayleigh_),                                      \
+        .takes_vdamp = (vdamp_),                                            \
         .create = ident##_create,                                           \
         .advance = (advance_),                                              \
         .stats = (stats_),                                                  \

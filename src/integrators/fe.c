@@ -27,4 +27,4 @@ static cl_status fe_step(cl_fixed *s, double t, double h, cl_error *err)
 CL_FIXED_INTEGRATOR(cl_integrator_fe, "fe",
                     &cl_region_taylor1,
                     "forward Euler, fixed step dt",
-                    1, NULL, fe_step);
+                    1, NULL, fe_step, false);

@@ -128,9 +128,10 @@ cl_status cl_fixed_force(cl_fixed *s, double t, const double *x,
 
 /* Define the fixed-step method (registry name name_, stability region
  * region_, nwork_ work arrays, setup hook setup_ or NULL, step function
- * step_) and its integrator table `ident`, with its create function. */
+ * step_, vdamp_ true when it reads opts->vdamp) and its integrator table
+ * `ident`, with its create function. */
 #define CL_FIXED_INTEGRATOR(ident, name_, region_, doc_, nwork_, setup_,    \
-                            step_)                                          \
+                            step_, vdamp_)                                  \
     static const cl_fixed_method ident##_method = {                         \
         .name = (name_),                                                    \
         .nwork = (nwork_),                                                  \
@@ -139,6 +140,7 @@ cl_status cl_fixed_force(cl_fixed *s, double t, const double *x,
     };                                                                      \
     CL_INTEGRATOR_DEFINE(ident, ident##_method, cl_fixed_create, name_,     \
                          region_, doc_, true, false, false, false,          \
-                         cl_fixed_advance, cl_fixed_stats, cl_fixed_free)
+                         (vdamp_), cl_fixed_advance, cl_fixed_stats,        \
+                         cl_fixed_free)
 
 #endif

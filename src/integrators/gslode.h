@@ -107,7 +107,7 @@ int cl_gslode_failed(cl_gslode *s, cl_status st, double t);
     };                                                                      \
     CL_INTEGRATOR_DEFINE(ident, ident##_method, cl_gslode_create, name_,    \
                          region_, doc_, false, false, (jac_) != NULL, false,\
-                         cl_gslode_advance,                                 \
+                         false, cl_gslode_advance,                          \
                          cl_gslode_stats, cl_gslode_free)
 
 #endif

@@ -79,6 +79,15 @@ typedef struct {
     bool dense_jacobian; /* factorises a dense 2n x 2n Newton matrix */
     bool takes_rayleigh; /* accepts opts->rayleigh_alpha, rayleigh_beta */
     bool takes_petsc;    /* accepts opts->petsc (integrators/petsc_ts.h) */
+    bool takes_rho_inf;  /* reads opts->rho_inf (kinsol-galpha) */
+    bool takes_vdamp;    /* reads opts->vdamp (the Verlet methods) */
+    bool takes_lin_tol;  /* reads opts->lin_tol: in a Krylov solver of its
+                          * own (and lin_maxit; without takes_linsol:
+                          * cvode-bdf-gmres), or through its cl_linsol when
+                          * that is iterative (semi-*, kinsol-*); SUNDIALS'
+                          * integrators set an iterative cl_linsol's
+                          * tolerance themselves (solve_tol) and read
+                          * lin_maxit only */
     const cl_region *region; /* linear stability region (region.h) */
     cl_status (*create)(const cl_system *sys, const cl_integrator_opts *o,
                         double t0, const double *x0, const double *v0,

@@ -61,4 +61,4 @@ static const cl_kin_scheme kin_bdf2 = {
 CL_KIN_INTEGRATOR(cl_integrator_kinsol_bdf2, kin_bdf2, "kinsol-bdf2",
                   &cl_region_bdf2,
                   "BDF2 (first step backward Euler), fully implicit, KINSOL "
-                  "Newton + linsol (default klu), fixed step dt");
+                  "Newton + linsol (default klu), fixed step dt", false);

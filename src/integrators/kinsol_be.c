@@ -34,4 +34,4 @@ const cl_kin_scheme cl_kin_scheme_be = {
 CL_KIN_INTEGRATOR(cl_integrator_kinsol_be, cl_kin_scheme_be, "kinsol-be",
                   &cl_region_be,
                   "backward Euler, fully implicit, KINSOL Newton + linsol "
-                  "(default klu), fixed step dt");
+                  "(default klu), fixed step dt", false);

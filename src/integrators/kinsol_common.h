@@ -176,8 +176,9 @@ void cl_kin_free(void *state);
 extern const cl_kin_scheme cl_kin_scheme_be;
 
 /* Define the integrator table `ident` for the scheme `scheme`, with the
- * stability region region_. */
-#define CL_KIN_INTEGRATOR(ident, scheme, name_, region_, doc_)              \
+ * stability region region_; rho_inf_ true when the scheme reads
+ * opts->rho_inf. */
+#define CL_KIN_INTEGRATOR(ident, scheme, name_, region_, doc_, rho_inf_)    \
     CL_INTEGRATOR_CREATE(ident, cl_kin_create, &(scheme))                   \
     const cl_integrator_type ident = {                                      \
         .name = (name_),                                                    \
@@ -186,7 +187,9 @@ extern const cl_kin_scheme cl_kin_scheme_be;
         .fixed_step = true,                                                 \
         .takes_linsol = true,                                               \
         .takes_newton_maxit = true,                                         \
+        .takes_lin_tol = true,                                              \
         .takes_rayleigh = true,                                             \
+        .takes_rho_inf = (rho_inf_),                                        \
         .create = ident##_create,                                           \
         .advance = cl_kin_advance,                                          \
         .stats = cl_kin_stats,                                              \

@@ -98,4 +98,4 @@ CL_KIN_INTEGRATOR(cl_integrator_kinsol_galpha, kin_galpha, "kinsol-galpha",
                   &cl_region_galpha,
                   "generalized-alpha (Chung-Hulbert), numerical damping "
                   "rho_inf, KINSOL Newton + linsol (default klu), fixed "
-                  "step dt");
+                  "step dt", true);

@@ -39,4 +39,4 @@ CL_KIN_INTEGRATOR(cl_integrator_kinsol_midpoint, kin_midpoint,
                   "kinsol-midpoint",
                   &cl_region_midpoint,
                   "implicit midpoint rule, KINSOL Newton + linsol (default "
-                  "klu), fixed step dt");
+                  "klu), fixed step dt", false);

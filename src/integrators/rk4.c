@@ -51,4 +51,4 @@ static cl_status rk4_step(cl_fixed *s, double t, double h, cl_error *err)
 CL_FIXED_INTEGRATOR(cl_integrator_rk4, "rk4",
                     &cl_region_taylor4,
                     "classical Runge-Kutta 4, fixed step dt",
-                    5, NULL, rk4_step);
+                    5, NULL, rk4_step, false);

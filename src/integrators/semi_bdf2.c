@@ -197,6 +197,7 @@ const cl_integrator_type cl_integrator_semi_bdf2 = {
            "step, first step semi-be, fixed step dt",
     .fixed_step = true,
     .takes_linsol = true,
+    .takes_lin_tol = true,
     .create = sbdf2_create,
     .advance = sbdf2_advance,
     .stats = sbdf2_stats,

@@ -75,6 +75,7 @@ const cl_integrator_type cl_integrator_semi_be = {
            "step, fixed step dt",
     .fixed_step = true,
     .takes_linsol = true,
+    .takes_lin_tol = true,
     .create = sbe_create,
     .advance = sbe_advance,
     .stats = sbe_stats,

@@ -40,4 +40,4 @@ CL_FIXED_INTEGRATOR(cl_integrator_symplectic_euler, "symplectic-euler",
                     &cl_region_symplectic,
                     "symplectic Euler, v first then x (Jiao's own code), "
                     "fixed step dt",
-                    1, NULL, se_step);
+                    1, NULL, se_step, false);

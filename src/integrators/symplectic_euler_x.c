@@ -38,4 +38,4 @@ CL_FIXED_INTEGRATOR(cl_integrator_symplectic_euler_x, "symplectic-euler-x",
                     &cl_region_symplectic,
                     "symplectic Euler, x first then v (Zischg, Chea and "
                     "Aigner), fixed step dt",
-                    2, NULL, sex_step);
+                    2, NULL, sex_step, false);

@@ -55,4 +55,4 @@ static cl_status vv_step(cl_fixed *s, double t, double h, cl_error *err)
 CL_FIXED_INTEGRATOR(cl_integrator_velocity_verlet, "velocity-verlet",
                     &cl_region_symplectic,
                     "velocity Verlet (kick-drift-kick), fixed step dt",
-                    5, NULL, vv_step);
+                    5, NULL, vv_step, false);

@@ -151,4 +151,4 @@ CL_FIXED_INTEGRATOR(cl_integrator_verlet, "verlet",
                     &cl_region_symplectic,
                     "position Verlet with velocity damping vdamp "
                     "(the Verlet-and-PBD report), fixed step dt",
-                    3, cl_verlet_setup, verlet_step);
+                    3, cl_verlet_setup, verlet_step, true);

@@ -46,4 +46,4 @@ CL_FIXED_INTEGRATOR(cl_integrator_verlet_pbd, "verlet-pbd",
                     "position Verlet with velocity damping vdamp and "
                     "position-based constraints (the Verlet-and-PBD "
                     "report), fixed step dt",
-                    3, verlet_pbd_setup, verlet_pbd_step);
+                    3, verlet_pbd_setup, verlet_pbd_step, true);

@@ -567,7 +567,7 @@ static bool cl_set_twice(const cl_config *cfg, const char *sec,
 {
     const cl_entry *e = cl_find(cfg, sec, key);
     *who = e ? e->file : NULL;
-    return e && e->line <= 0;
+    return cl_config_set_by_command(cfg, sec, key);
 }
 
 static cl_status cl_set_split(cl_config *cfg, const char *a, const char *dot,
@@ -899,6 +899,13 @@ const char *cl_config_string(cl_config *cfg, const char *sec, const char *key,
     if (!e && def)
         cl_note_default(cfg, sec, key, def);
     return e ? e->value : def;
+}
+
+bool cl_config_set_by_command(const cl_config *cfg, const char *sec,
+                              const char *key)
+{
+    const cl_entry *e = cl_find(cfg, sec, key);
+    return e && e->line <= 0;
 }
 
 const char *cl_config_peek(const cl_config *cfg, const char *sec,

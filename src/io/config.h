@@ -103,6 +103,11 @@ cl_status cl_config_check_unused(const cl_config *cfg, cl_error *err);
 const char *cl_config_section_at(const cl_config *cfg, const char *prefix,
                                  size_t k);
 
+/* Whether [sec] key was set by cl_config_set* (a command line) rather
+ * than by a file or not at all. */
+bool cl_config_set_by_command(const cl_config *cfg, const char *sec,
+                              const char *key);
+
 /* The value of [sec] key as given, or NULL, without counting it as read
  * (cl_config_check_unused still reports a key nothing else reads). */
 const char *cl_config_peek(const cl_config *cfg, const char *sec,
