@@ -1811,6 +1811,9 @@ Test(cli, energy_table_and_csv)
             "semi-be,velocity-verlet", "--dt", "1e-2", "--t-end", "1",
             "--samples", "10", "--out", in_tmp(out, "energy"), NULL);
     cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "\nfixed      dt = 0.01 s\n") &&
+                  !strstr(r.out, "adaptive"),
+              "the step the runs used, no tolerance: %s", r.out);
     cli_result_free(&r);
     cli_lines L;
     snprintf(path, sizeof path, "%s/energy.csv", out);

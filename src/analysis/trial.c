@@ -63,7 +63,7 @@ static cl_status check_stretch(cl_trial *t, double time, double max_stretch,
     /* a non-finite state counts as run away (fmax would skip its NaN) */
     t->stretch_seen = fmax(t->stretch_seen, isnan(q) ? INFINITY : q);
     if (!(q <= max_stretch))
-        return cl_error_set(err, CL_EBLOWUP, "max stretch d/L = %.3g at "
+        return cl_error_set(err, CL_EBLOWUP, "max stretch d/L = %.6g at "
                             "t = %g exceeds max_stretch = %g", q, time,
                             max_stretch);
     return CL_OK;

@@ -47,7 +47,8 @@ static const cl_cli_table eb_table = {
     "the energy the integrator made (> 0) or destroyed (< 0).  Prints E(0),\n"
     "E(T), W(T), B(T) and max |B|, also over S, the energy that moved (the\n"
     "largest kinetic energy, |potential - potential(0)| and |W| of the\n"
-    "samples); writes every sample to energy.csv in the output directory.\n",
+    "samples); writes every sample to energy.csv in the output directory\n"
+    "(its column dissipated is W, negative where energy is removed).\n",
     .notes =
     "W's quadrature error falls with the square of the sample spacing:\n"
     "sample densely when the damping is strong.  An adaptive method's B is\n"
@@ -60,6 +61,19 @@ static const cl_cli_table eb_table = {
     "the rows of the run's series.csv (the sweep's [run] samples; --samples\n"
     "is not used), read from TABLE's directory (collect's default output);\n"
     "contact projections are refused (their work is not in the series).\n"};
+
+/* The step of the fixed-step methods of the list and the tolerances of
+ * the adaptive ones, as the runs use them. */
+static void print_steps(const cl_cli_methods *ms, const cl_integrator_opts *io)
+{
+    bool fixed = false, adaptive = false;
+    for (int k = 0; k < ms->n; k++)
+        *(ms->m[k].type->fixed_step ? &fixed : &adaptive) = true;
+    if (fixed)
+        printf("fixed      dt = %g s\n", io->dt);
+    if (adaptive)
+        printf("adaptive   rtol %g, atol %g\n", io->rtol, io->atol);
+}
 
 static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
 {
@@ -109,6 +123,7 @@ static cl_status begin(cl_model *m, const cl_cli_job *job, void *ctx,
     else
         printf("problem    %s, T = %g s, %ld samples\n", job->problem,
                s->run.t_end, s->samples);
+    print_steps(&s->integrators, &s->run.io);
     return CL_OK;
 }
 
