@@ -247,6 +247,19 @@ Test(numdamp, command_line)
     snprintf(want, sizeof want, ",%.9g,", cl_region_galpha.amplification(
                                              10.0, 0.0));
     cr_assert(strstr(csv, want), "theory at rho_inf 0 (%s): %s", want, csv);
+    /* the table: "--" where there is no theory; kinsol-bdf2 at w h = 100
+     * is not settled (halves 54 % apart) and gets two digits */
+    cli_run(&r, "damping", "spring2", "--integrator",
+            "arkode-dirk-fixed,kinsol-bdf2", "--wh", "1:100:2", "--out", dir,
+            NULL);
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "arkode-dirk-fixed          1  1.0000e-01 ") &&
+                  strstr(r.out, "           --  "),
+              "%s", r.out);
+    cr_assert(strstr(r.out, "  1.0000e+01        0.094    0.0781101  ") &&
+                  strstr(r.out, "(not settled: 6 steps, halves 54 % apart)"),
+              "%s", r.out);
+    cli_result_free(&r);
     cli_run(&r, "damping", "spring2", "--integrator", "cvode-bdf", "--out",
             dir, NULL);
     cli_assert_error(&r, 0, "cvode-bdf", "fixed-step", NULL);

@@ -73,8 +73,10 @@ static const cl_cli_table nd_table = {
     "every step; prints it beside the theory (the integrator's\n"
     "amplification on the undamped oscillator: backward Euler\n"
     "1/sqrt(1 + (w h)^2), the midpoint rule 1, BDF2, generalized-alpha at\n"
-    "[run] rho_inf) and the loss per period, 1 - r^(2 pi/(w h)).  Writes\n"
-    "damping.csv.  Meant for an undamped linear oscillator: spring2.\n"
+    "[run] rho_inf; -- where there is no formula, as for the arkode-*\n"
+    "methods, whose amplification depends on --table; nan in the file) and\n"
+    "the loss per period, 1 - r^(2 pi/(w h)).  Writes damping.csv.  Meant\n"
+    "for an undamped linear oscillator: spring2.\n"
     "With --modes T, on a cloth at rest instead: every oscillating mode of\n"
     "the linearised cloth gets the same energy, each integrator runs to T\n"
     "in steps of --modes-dt, and the energy left in each mode, beside the\n"
@@ -92,7 +94,7 @@ static const cl_cli_table nd_table = {
     "marked \"not settled\" when the ratios fitted over the two halves of\n"
     "its steps are more than 5 % apart (a second root nearly as large as\n"
     "the first, and few steps above the floor): the fit is not yet the\n"
-    "step's spectral radius.\n"};
+    "step's spectral radius, and the table gives it to two digits.\n"};
 
 /* "LO:HI:N" into s->wh. */
 static cl_status read_range(cl_config *cfg, nd_setup *s, cl_error *err)
@@ -139,13 +141,21 @@ static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
  * yet the spectral radius (analysis/numdamp.h). */
 #define UNSETTLED 0.05
 
+/* A not settled ratio to two digits (the halves differ in the second or
+ * first); a theory the method has no formula for (region.h), "--". */
 static void print_result(const void *result)
 {
     const cl_numdamp_result *r = result;
     for (int i = 0; i < r->n; i++) {
         const cl_numdamp_point *p = &r->p[i];
-        printf("%-18s %9.4g %11.4e %12.6g %12.6g %11.4e", i ? "" : r->label,
-               p->wh, p->h, p->measured, p->theory, p->loss_period);
+        bool settled = !(p->spread > UNSETTLED);
+        printf("%-18s %9.4g %11.4e %12.*g", i ? "" : r->label, p->wh, p->h,
+               settled ? 6 : 2, p->measured);
+        if (isnan(p->theory))
+            printf(" %12s", "--");
+        else
+            printf(" %12.6g", p->theory);
+        printf(" %11.4e", p->loss_period);
         if (p->rc)
             printf("  failed: %s", p->why.msg);
         else if (p->spread > UNSETTLED)
