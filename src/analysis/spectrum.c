@@ -8,7 +8,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <gsl/gsl_complex_math.h>
 #include <gsl/gsl_eigen.h>
+#include <gsl/gsl_poly.h>
 #include <gsl/gsl_sort.h>
 
 #include "core/stop.h"
@@ -233,17 +235,19 @@ static double complex r_taylor(int p, double complex z)
     return r;
 }
 
-/* The largest h with |R(h l)| <= 1 along the ray of l: for p = 1 the disc
- * |1 + z| <= 1 in closed form, else scan s = h |l| up to 4 (beyond the
- * regions of degree <= 4, region.h), then bisect. */
-static double taylor_limit(int p, double complex l)
+/* What a step of size s = h |lambda| multiplies a mode by: the
+ * amplification's modulus (or spectral radius) g(ctx, s). */
+typedef double (*growth_fn)(const void *ctx, double s);
+
+/* The largest s with g <= 1 from 0 up: scanned up to 4 in steps of 0.005
+ * (the regions here end before: Taylor ones of degree <= 4 within |z| <
+ * 4, region.h; a symplectic step at s = 2), then bisected; INFINITY if g
+ * stays <= 1. */
+static double scan_limit(growth_fn g, const void *ctx)
 {
-    if (p == 1)
-        return disc_limit(l);
-    double a = cabs(l), lo, hi = 0.0;
-    double complex d = l / a;
+    double lo, hi = 0.0;
     for (double s = 0.005; s <= 4.0; s += 0.005)
-        if (cabs(r_taylor(p, s * d)) > 1 + 1e-12) {
+        if (g(ctx, s) > 1 + 1e-12) {
             hi = s;
             break;
         }
@@ -252,9 +256,31 @@ static double taylor_limit(int p, double complex l)
     lo = hi - 0.005;
     for (int k = 0; k < 60; k++) {
         double mid = 0.5 * (lo + hi);
-        *(cabs(r_taylor(p, mid * d)) > 1 + 1e-12 ? &hi : &lo) = mid;
+        *(g(ctx, mid) > 1 + 1e-12 ? &hi : &lo) = mid;
     }
-    return lo / a;
+    return lo;
+}
+
+typedef struct {
+    int p;             /* the Taylor degree */
+    double complex d;  /* lambda / |lambda| */
+} taylor_ray;
+
+static double taylor_growth(const void *ctx, double s)
+{
+    const taylor_ray *r = ctx;
+    return cabs(r_taylor(r->p, s * r->d));
+}
+
+/* The largest h with |R(h l)| <= 1 along the ray of l: for p = 1 the disc
+ * |1 + z| <= 1 in closed form, else scanned. */
+static double taylor_limit(int p, double complex l)
+{
+    if (p == 1)
+        return disc_limit(l);
+    double a = cabs(l);
+    taylor_ray ray = {p, l / a};
+    return scan_limit(taylor_growth, &ray) / a;
 }
 
 /* Eigenvalue j as it constrains a step, false if it does not: growing or
@@ -296,13 +322,64 @@ static double sector_step(const cl_spectrum *s, double alpha)
     return INFINITY;
 }
 
+/* The mode of a first-order eigenvalue l as a damped oscillator x'' =
+ * -w2 x - c x': a complex pair l = -c/2 +- i sqrt(w2 - c^2/4) gives w2 =
+ * |l|^2 and c = -2 Re l; a real l, a mode that does not oscillate, w2 = 0
+ * and c = -l (exact for proportional damping, where the modes of the
+ * undamped cloth are the damped one's). */
+typedef struct {
+    const cl_region *r;
+    double scale;      /* |l| */
+    double w2, c;
+} oscillator_mode;
+
+/* The spectral radius of the region's step h = s / |l| on the mode: of
+ * its 3 x 3 matrix A (column k the step of the k-th unit state), the
+ * largest root of det(z - A) = z^3 - tr z^2 + m2 z - det. */
+static double oscillator_growth(const void *ctx, double s)
+{
+    const oscillator_mode *m = ctx;
+    double h = s / m->scale, a[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    for (int k = 0; k < 3; k++)
+        m->r->oscillator(h, m->w2, m->c, a[k]); /* a[k]: column k */
+    double tr = a[0][0] + a[1][1] + a[2][2];
+    double m2 = a[0][0] * a[1][1] - a[1][0] * a[0][1] +
+                a[0][0] * a[2][2] - a[2][0] * a[0][2] +
+                a[1][1] * a[2][2] - a[2][1] * a[1][2];
+    double det = a[0][0] * (a[1][1] * a[2][2] - a[2][1] * a[1][2]) -
+                 a[1][0] * (a[0][1] * a[2][2] - a[2][1] * a[0][2]) +
+                 a[2][0] * (a[0][1] * a[1][2] - a[1][1] * a[0][2]);
+    gsl_complex z[3];
+    gsl_poly_complex_solve_cubic(-tr, m2, -det, &z[0], &z[1], &z[2]);
+    return fmax(gsl_complex_abs(z[0]),
+                fmax(gsl_complex_abs(z[1]), gsl_complex_abs(z[2])));
+}
+
+/* The smallest limit over the constraining eigenvalues, each pair once. */
+static double symplectic_step(const cl_spectrum *s, const cl_region *r)
+{
+    double h = INFINITY;
+    double complex l;
+    for (size_t j = 0; j < 2 * s->n; j++) {
+        if (!constraining(s, j, &l) || cimag(l) < 0)
+            continue;
+        oscillator_mode m = {r, cabs(l), 0.0, -creal(l)};
+        if (cimag(l) > 0) {
+            m.w2 = m.scale * m.scale;
+            m.c = -2 * creal(l);
+        }
+        h = fmin(h, scan_limit(oscillator_growth, &m) / m.scale);
+    }
+    return h;
+}
+
 double cl_spectrum_step_limit(const cl_spectrum *s, const cl_region *r)
 {
     switch (r->kind) {
     case CL_REGION_TAYLOR:
         return taylor_step(s, r->degree);
     case CL_REGION_SYMPLECTIC:
-        return s->w_max > 0 ? 2.0 / s->w_max : INFINITY;
+        return symplectic_step(s, r);
     case CL_REGION_SECTOR:
         return sector_step(s, r->alpha);
     default:
@@ -332,7 +409,8 @@ size_t cl_spectrum_limits(const cl_spectrum *s, cl_spectrum_limit *out,
 {
     size_t n = 0;
     limits_of_kind(s, CL_REGION_TAYLOR, "|R(h lambda)| <= 1", out, cap, &n);
-    limits_of_kind(s, CL_REGION_SYMPLECTIC, "h w_max < 2", out, cap, &n);
+    limits_of_kind(s, CL_REGION_SYMPLECTIC, "step's radius <= 1 per mode",
+                   out, cap, &n);
     return n;
 }
 

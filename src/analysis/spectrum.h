@@ -67,7 +67,7 @@ double cl_spectrum_step_limit(const cl_spectrum *s, const cl_region *r);
 /* An explicit integrator whose step limit is predicted, with how. */
 typedef struct {
     const char *integrator;
-    const char *basis;    /* "|R(h lambda)| <= 1" or "h w_max < 2" */
+    const char *basis;    /* how, e.g. "|R(h lambda)| <= 1" */
     double h;             /* predicted largest stable step (inf: none) */
 } cl_spectrum_limit;
 

@@ -63,24 +63,27 @@ static int try_steps(cl_trial *t, const cl_integrator_type *type,
     return cl_stab_try(t, type, io, o, nsteps, &r->trial[r->ntrial++], err);
 }
 
-/* Doubling from N0 to the first stable N; *nu, *ns: the bracket (ns = 0 if
- * none down to dt_min).  Returns -1 on a failure, else 0. */
+/* Doubling from N0 to the first N that is stable and whose double (the
+ * step halved) is stable too: a stable step above an unstable one (a
+ * step that happens to damp the initial state's modes exactly) is not
+ * taken for the limit.  *nu, *ns: the bracket (ns = 0 if none down to
+ * dt_min).  Returns -1 on a failure, else 0. */
 static int bracket(cl_trial *t, const cl_integrator_type *type,
                    const cl_integrator_opts *io, const cl_stab_opts *o,
                    long *nu, long *ns, cl_stab_result *r, cl_error *err)
 {
     long nmax = (long)floor(o->t_end / o->dt_min);
+    *ns = 0;
     for (long n = *nu * 2; n <= nmax; n *= 2) {
         int s = try_steps(t, type, io, o, n, r, err);
         if (s < 0)
             return -1;
-        if (s) {
-            *ns = n;
+        if (s && *ns)
             return 0;
-        }
-        *nu = n;
+        if (!s)
+            *nu = n;
+        *ns = s ? n : 0;
     }
-    *ns = 0;
     return 0;
 }
 

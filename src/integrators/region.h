@@ -12,7 +12,9 @@
  *  - CL_REGION_SYMPLECTIC: a symplectic (partitioned) method, symplectic
  *    Euler or Verlet: stable on an undamped oscillator of frequency w for
  *    h w < 2 (Hairer, Lubich and Wanner, "Geometric Numerical
- *    Integration", I.5);
+ *    Integration", I.5); with damping, where its step on x'' = -w^2 x -
+ *    c x' (`oscillator`) has spectral radius <= 1, which depends on how
+ *    the method hands velocities to the damping forces;
  *  - CL_REGION_SECTOR: an implicit method whose region is unbounded and
  *    contains the sector |arg(-z)| <= alpha (A(alpha)-stable; alpha = 90
  *    degrees: A-stable, the whole left half-plane);
@@ -48,11 +50,23 @@ typedef struct {
      * method's parameter (generalized-alpha: rho_inf), ignored by the
      * others.  NULL where no formula is given. */
     double (*amplification)(double wh, double param);
+    /* CL_REGION_SYMPLECTIC: one step h of the method on the damped
+     * oscillator x'' = -w2 x - c x', its state y = (x, v, a) in place: a
+     * is the acceleration a method keeps from its last step (velocity
+     * Verlet), 0 for the others. */
+    void (*oscillator)(double h, double w2, double c, double y[3]);
 } cl_region;
 
 extern const cl_region cl_region_taylor1;   /* fe */
 extern const cl_region cl_region_taylor4;   /* rk4 */
+/* Symplectic Euler either way and position Verlet: the same step matrix
+ * on the damped oscillator, trace 2 - h^2 w^2 - h c, determinant 1 - h c
+ * (stable for h < (sqrt(c^2 + 4 w^2) - c) / w^2); velocity Verlet, whose
+ * damping sees the predictor v_k + h a_k and whose a_k is the last step's
+ * acceleration, evaluated at the last predictor (velocity_verlet.c), has
+ * its own, of three states. */
 extern const cl_region cl_region_symplectic;
+extern const cl_region cl_region_velocity_verlet;
 /* Backward Euler, BDF2, the implicit midpoint rule, and the linearised
  * semi-implicit BE and BDF2, which coincide with them on a linear system. */
 extern const cl_region cl_region_a_stable;

@@ -53,6 +53,6 @@ static cl_status vv_step(cl_fixed *s, double t, double h, cl_error *err)
 }
 
 CL_FIXED_INTEGRATOR(cl_integrator_velocity_verlet, "velocity-verlet",
-                    &cl_region_symplectic,
+                    &cl_region_velocity_verlet,
                     "velocity Verlet (kick-drift-kick), fixed step dt",
                     5, NULL, vv_step, false);
