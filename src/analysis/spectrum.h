@@ -22,9 +22,12 @@
  *    (round-off zeros, e.g. the out-of-plane modes of a flat cloth at
  *    rest) constrains nothing;
  *  - the symplectic methods (CL_REGION_SYMPLECTIC: symplectic Euler either
- *    way, position and velocity Verlet) are stable for h w_max < 2 on
- *    undamped oscillators, h < 2 / sqrt(mu_max); damping is not accounted
- *    for there;
+ *    way, position and velocity Verlet): each constraining lambda read as
+ *    a damped oscillator x'' = -w^2 x - c x' (a complex pair: w^2 =
+ *    |lambda|^2, c = -2 Re lambda; a real lambda: w = 0, c = -lambda;
+ *    exact for proportional damping), the largest h at which the method's
+ *    step on it (region.h, oscillator) has spectral radius <= 1; 2/w on
+ *    an undamped one;
  *  - an implicit method whose region contains the sector
  *    |arg(-z)| <= alpha (CL_REGION_SECTOR) is stable for every h when
  *    every lambda, taken as above, lies in that sector; an undamped one
