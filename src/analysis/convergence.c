@@ -159,8 +159,9 @@ cl_status cl_convergence(cl_model *m, const cl_integrator_type *type,
                              &l->stats, &l->why);
         l->err_x = l->rc ? NAN : cl_max_distance(t.x, ref->x, n / 3);
         l->err_v = l->rc ? NAN : cl_max_distance(t.v, ref->v, n / 3);
-        l->fitted = !l->rc && l->err_x > ref->err_x;
-        l->fitted_v = l->fitted && l->err_v > ref->err_v;
+        l->fitted = !l->rc && l->err_x > CL_CONV_FLOOR_MARGIN * ref->err_x;
+        l->fitted_v = l->fitted &&
+                      l->err_v > CL_CONV_FLOOR_MARGIN * ref->err_v;
         if (l->rc == CL_EINTR) /* a stopped study keeps no part-row */
             rc = cl_error_set(err, CL_EINTR, "%s", l->why.msg);
     }

@@ -52,10 +52,11 @@ static const char conv_notes[] =
     "The first level of a fixed-step integrator is --dt, of an adaptive one\n"
     "--rtol and --atol; an adaptive one chooses its own initial step.  The\n"
     "reference's floors are its distances, in positions and velocities, to\n"
-    "a run at 10x its rtol; levels below the position floor, and failed\n"
-    "levels (as in run, a final stretch d/L beyond [run] max_stretch counts\n"
-    "as a blow-up), are left out of the fits, levels below the velocity\n"
-    "floor out of the velocity fit.\n"
+    "a run at 10x its rtol; levels within 3 floors in positions (too close\n"
+    "to the reference's own error), and failed levels (as in run, a final\n"
+    "stretch d/L beyond [run] max_stretch counts as a blow-up), are left out\n"
+    "of the fits, levels within 3 floors in velocities out of the velocity\n"
+    "fit.\n"
     "Problems that tear are refused.  With --from-sweep the levels are the\n"
     "sweep's runs of each integrator (its dt or rtol axis; the rows whose\n"
     "other axes match this problem's values) and their errors against the\n"
@@ -116,13 +117,13 @@ static void print_result(const void *result)
         else
             printf(" %7.2f", l->order);
         printf(" %9ld %9.3f%s\n", l->stats.steps, l->stats.cpu,
-               !l->fitted     ? "  (below the reference's floor)"
-               : !l->fitted_v ? "  (velocity below the reference's floor)"
+               !l->fitted     ? "  (within 3 floors of the reference)"
+               : !l->fitted_v ? "  (velocity within 3 floors)"
                               : "");
     }
     if (r->nfit < 2)
-        printf("%-18s %s: no fit, fewer than 2 levels above the floor\n", "",
-               r->label);
+        printf("%-18s %s: no fit, fewer than 2 levels above 3 floors\n",
+               "", r->label);
     else if (r->nfit_v == r->nfit)
         printf("%-18s %s: fitted order %.2f (positions), %.2f (velocities) "
                "over %d levels\n", "", r->label, r->slope_x,
