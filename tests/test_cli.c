@@ -331,6 +331,32 @@ Test(cli, missing_problem_by_name)
                    LIST("no-such-problem"));
 }
 
+/* A FIFO read as a problem, a state or an earlier run's run.json would
+ * block in open until a writer comes: each is refused at once, saying
+ * what it is (the test ends if one blocks). */
+Test(cli, fifo_inputs_are_refused)
+{
+    char fifo[1024], dir[1024], manifest[1100];
+    time_limit(60);
+    cr_assert_eq(mkfifo(in_tmp(fifo, "fifo.ini"), 0600), 0);
+    expect_refused(LIST("run", fifo), 0, LIST(fifo, "a FIFO"));
+    expect_refused(LIST("eval", "hang", "--set", "cloth.n=4", "--state",
+                        fifo), 0,
+                   LIST(fifo, "a FIFO"));
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "cloth.n=4", "--t-end", "0.01",
+            "--frames", "0", "--out", in_tmp(dir, "fifo-run"), "--quiet",
+            NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    snprintf(manifest, sizeof manifest, "%s/run.json", dir);
+    cr_assert_eq(unlink(manifest), 0);
+    cr_assert_eq(mkfifo(manifest, 0600), 0);
+    cli_run(&r, "replay", dir, NULL);
+    cli_assert_error(&r, 0, "run.json", "a FIFO", NULL);
+    cli_result_free(&r);
+}
+
 Test(cli, malformed_ini_names_file_and_line)
 {
     char ini[1024], out[1024], where[1100];

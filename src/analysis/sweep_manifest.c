@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "io/atomic.h"
+#include "io/input.h"
 
 static json_t *axes_json(const cl_sweep *sw)
 {
@@ -202,11 +203,14 @@ cl_status cl_sweep_load(const char *dir, cl_sweep *sw, cl_error *err)
     char path[4200];
     json_error_t jerr;
     snprintf(path, sizeof path, "%s/sweep.json", dir);
-    json_t *root = json_load_file(path, 0, &jerr);
-    if (!root && jerr.line < 1)
-        return cl_error_set(err, CL_EIO, "%s: cannot read it; a sweep "
+    const char *why;
+    FILE *fp = cl_input_open(path, "r", &why);
+    if (!fp)
+        return cl_error_set(err, CL_EIO, "%s: cannot read it (%s); a sweep "
                             "directory is made by 'clothode sweep plan'",
-                            path);
+                            path, why);
+    json_t *root = json_loadf(fp, 0, &jerr);
+    (void)fclose(fp);
     if (!root)
         return cl_error_set(err, CL_EPARSE, "%s:%d: %s; a sweep directory is "
                             "made by 'clothode sweep plan'", path, jerr.line,

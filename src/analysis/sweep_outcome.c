@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "core/exit.h"
+#include "io/input.h"
 
 const char *const cl_sweep_stat_names[CL_SWEEP_NSTAT] = {
     "steps", "rhs_evals", "jac_evals", "lin_setups", "lin_solves",
@@ -23,7 +24,8 @@ static FILE *job_file(const cl_sweep *sw, int k, const char *name)
     char path[4200];
     snprintf(path, sizeof path, "%s/jobs/%s/%s", sw->dir, sw->job[k].id,
              name);
-    return fopen(path, "r");
+    const char *why;
+    return cl_input_open(path, "r", &why);
 }
 
 /* The exit status the job's command recorded as its last step
@@ -53,7 +55,11 @@ static void read_times(const cl_sweep *sw, int k, cl_sweep_outcome *o)
     char path[4200];
     snprintf(path, sizeof path, "%s/jobs/%s/run/run.json", sw->dir,
              sw->job[k].id);
-    json_t *root = json_load_file(path, 0, NULL);
+    const char *why;
+    FILE *fp = cl_input_open(path, "r", &why);
+    json_t *root = fp ? json_loadf(fp, 0, NULL) : NULL;
+    if (fp)
+        (void)fclose(fp);
     json_t *times = json_object_get(root, "times");
     for (int i = 0; i < 2; i++) {
         json_t *v = json_object_get(times, key[i]);

@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "io/input.h"
+
 /* ---- reading ------------------------------------------------------------ */
 
 /* The fields of one CSV line (RFC 4180 quoting), appended to *cells. */
@@ -44,10 +46,11 @@ static int split(const char *line, char ***cells, int *n)
 static cl_status read_one(const char *path, int src, cl_sweep_table *t,
                           cl_error *err)
 {
-    FILE *fp = fopen(path, "r");
+    const char *why;
+    FILE *fp = cl_input_open(path, "r", &why);
     if (!fp)
-        return cl_error_set(err, CL_EIO, "--from-sweep %s: cannot read it",
-                            path);
+        return cl_error_set(err, CL_EIO, "cannot read the sweep table %s: %s",
+                            path, why);
     char *line = NULL, **head = NULL;
     size_t cap = 0;
     int nf, nhead = 0;

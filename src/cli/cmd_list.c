@@ -3,7 +3,6 @@
 #include <dirent.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "cli/cli.h"
 #include "cli/commands.h"
@@ -11,29 +10,26 @@
 #include "contact/shape.h"
 #include "forces/term.h"
 #include "integrators/integrator.h"
+#include "io/input.h"
 #include "linalg/linsol.h"
 
 /* First comment line of a problem file, among its first 64 lines: its
- * one-line description.  Only a regular file is read (a FIFO would block,
- * a device not end). */
+ * one-line description.  Only a regular file is read (io/input.h). */
 static void describe(const char *dir, const char *file)
 {
     char path[4096], line[512] = "";
-    struct stat st;
+    const char *why;
     snprintf(path, sizeof path, "%s/%s", dir, file);
-    if (stat(path, &st) != 0 || !S_ISREG(st.st_mode)) {
-        printf("  %-20.*s (not a regular file)\n", (int)(strlen(file) - 4),
-               file);
+    FILE *fp = cl_input_open(path, "r", &why);
+    if (!fp) {
+        printf("  %-20.*s (%s)\n", (int)(strlen(file) - 4), file, why);
         return;
     }
-    FILE *fp = fopen(path, "r");
-    if (fp) {
-        for (int k = 0; k < 64 && fgets(line, sizeof line, fp) &&
-                        line[0] != ';' && line[0] != '#';
-             k++)
-            line[0] = '\0';
-        fclose(fp);
-    }
+    for (int k = 0; k < 64 && fgets(line, sizeof line, fp) &&
+                    line[0] != ';' && line[0] != '#';
+         k++)
+        line[0] = '\0';
+    fclose(fp);
     char *text = line + strspn(line, ";# ");
     text[strcspn(text, "\n")] = '\0';
     printf("  %-20.*s %s\n", (int)(strlen(file) - 4), file, text);

@@ -13,6 +13,7 @@
 #include "cli/cli.h"
 #include "cli/commands.h"
 #include "cli/outdir.h"
+#include "io/input.h"
 
 typedef struct {
     cl_cli_args a;
@@ -44,10 +45,13 @@ static cl_status load_manifest(const char *dir, json_t **out, cl_error *err)
     char path[4200];
     json_error_t je;
     snprintf(path, sizeof path, "%s/run.json", dir);
-    json_t *root = json_load_file(path, 0, &je);
-    if (!root && je.line < 1) /* not opened: jansson says why */
+    const char *why;
+    FILE *fp = cl_input_open(path, "r", &why);
+    if (!fp)
         return cl_error_set(err, CL_EIO, "%s: cannot read run.json: %s",
-                            dir, je.text);
+                            dir, why);
+    json_t *root = json_loadf(fp, 0, &je);
+    (void)fclose(fp);
     if (!root)
         return cl_error_set(err, CL_EPARSE, "%s:%d: not JSON: %s", path,
                             je.line, je.text);

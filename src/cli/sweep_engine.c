@@ -15,6 +15,7 @@
 
 #include "core/clock.h"
 #include "io/atomic.h"
+#include "io/input.h"
 
 extern char **environ;
 
@@ -147,7 +148,8 @@ static int estimate(const cl_sweep *sw, const cl_sweep_run_args *r,
         return 0;
     }
     snprintf(path, sizeof path, "%s/slurm/estimate", sw->dir);
-    if ((fp = fopen(path, "r"))) {
+    const char *why;
+    if ((fp = cl_input_open(path, "r", &why))) {
         if (fscanf(fp, "%ld %ld", minutes, mb) != 2)
             *minutes = *mb = 0;
         fclose(fp);

@@ -1,6 +1,8 @@
 /* Atomic output files (temporary file + fsync + rename) and mkdir -p. */
 #include "io/atomic.h"
 
+#include "io/input.h"
+
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
@@ -46,15 +48,9 @@ cl_status cl_output_check(const char *path, cl_error *err)
         return cl_error_set(err, CL_EINVAL, "output file name is empty");
     if (lstat(path, &st) != 0 || S_ISREG(st.st_mode))
         return CL_OK;
-    const char *what = S_ISDIR(st.st_mode)    ? "a directory"
-                       : S_ISLNK(st.st_mode)  ? "a symbolic link"
-                       : S_ISFIFO(st.st_mode) ? "a FIFO"
-                       : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)
-                           ? "a device"
-                           : "not a regular file";
     return cl_error_set(err, CL_EIO, "cannot write '%s': it is %s; an output "
                         "replaces only a regular file (choose another path)",
-                        path, what);
+                        path, cl_file_kind(st.st_mode));
 }
 
 cl_status cl_afile_open(cl_afile *af, const char *path, cl_error *err)

@@ -27,6 +27,7 @@
 #include "io/config.h"
 
 #include "io/atomic.h"
+#include "io/input.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -509,10 +510,10 @@ static cl_status cl_parse_text(cl_config *cfg, const char *file,
 
 cl_status cl_config_load(cl_config *cfg, const char *path, cl_error *err)
 {
-    FILE *fp = fopen(path, "r");
+    const char *why;
+    FILE *fp = cl_input_open(path, "r", &why);
     if (!fp)
-        return cl_error_set(err, CL_EIO, "cannot open %s: %s", path,
-                            strerror(errno));
+        return cl_error_set(err, CL_EIO, "cannot open %s: %s", path, why);
     char *text = NULL;
     size_t size = 0;
     const char *file = cl_intern_file(cfg, path);

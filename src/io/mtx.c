@@ -10,6 +10,7 @@
 #include <strings.h>
 
 #include "io/atomic.h"
+#include "io/input.h"
 
 cl_status cl_mtx_write_blocks(const char *path, const cl_bpattern *pat,
                               const double *val, cl_error *err)
@@ -140,10 +141,10 @@ static cl_status push_entry(cl_triplets *t, size_t *cap, size_t i, size_t j,
 cl_status cl_mtx_read(const char *path, cl_triplets *t, cl_error *err)
 {
     memset(t, 0, sizeof *t);
-    FILE *fp = fopen(path, "r");
+    const char *why;
+    FILE *fp = cl_input_open(path, "r", &why);
     if (!fp)
-        return cl_error_set(err, CL_EIO, "cannot open '%s': %s", path,
-                            strerror(errno));
+        return cl_error_set(err, CL_EIO, "cannot open '%s': %s", path, why);
 
     cl_status st = CL_OK;
     char *line = NULL;

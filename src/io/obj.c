@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "core/vec3.h"
+#include "io/input.h"
 
 /* Zero area: |(b - a) x (c - a)| at most this times the sum of the squared
  * edge lengths (an equilateral triangle has 1/(2 sqrt 3) ~ 0.29). */
@@ -291,9 +292,9 @@ cl_status cl_obj_read(const char *path, cl_obj *m, cl_error *err)
 {
     memset(m, 0, sizeof *m);
     obj_reader r = {.path = path, .m = m, .err = err};
-    if (!(r.fp = fopen(path, "r")))
-        return cl_error_set(err, CL_EIO, "cannot open '%s': %s", path,
-                            strerror(errno));
+    const char *why;
+    if (!(r.fp = cl_input_open(path, "r", &why)))
+        return cl_error_set(err, CL_EIO, "cannot open '%s': %s", path, why);
     r.buf = malloc(CL_OBJ_MAX_LINE + 1);
     errno = 0;
     cl_status st = r.buf ? read_lines(&r) : no_memory(&r);

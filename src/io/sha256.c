@@ -7,13 +7,15 @@
 
 #include <nettle/sha2.h>
 
+#include "io/input.h"
+
 cl_status cl_sha256_file(const char *path, char hex[CL_SHA256_HEX],
                          cl_error *err)
 {
-    FILE *fp = fopen(path, "rb");
+    const char *why;
+    FILE *fp = cl_input_open(path, "rb", &why);
     if (!fp)
-        return cl_error_set(err, CL_EIO, "cannot read '%s': %s", path,
-                            strerror(errno));
+        return cl_error_set(err, CL_EIO, "cannot read '%s': %s", path, why);
     struct sha256_ctx ctx;
     unsigned char buf[65536], digest[SHA256_DIGEST_SIZE];
     size_t n;

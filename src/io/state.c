@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "io/atomic.h"
+#include "io/input.h"
 
 #define STATE_HEADER "p,x,y,z,vx,vy,vz"
 #define STATE_NFIELD 7
@@ -141,10 +142,10 @@ cl_status cl_state_read(const char *path, size_t np, double *x, double *v,
     if (np > 0 && (!x || !v))
         return cl_error_set(err, CL_EINVAL, "%s: no arrays to read into",
                             path);
-    FILE *fp = fopen(path, "r");
+    const char *why;
+    FILE *fp = cl_input_open(path, "r", &why);
     if (!fp)
-        return cl_error_set(err, CL_EIO, "cannot open '%s': %s", path,
-                            strerror(errno));
+        return cl_error_set(err, CL_EIO, "cannot open '%s': %s", path, why);
     size_t *seen = calloc(np ? np : 1, sizeof *seen);
     if (!seen) {
         (void)fclose(fp);

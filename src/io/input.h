@@ -1,0 +1,21 @@
+/* Input files: only regular files are read.  A FIFO would block the open
+ * until some process writes to it (and a signal does not end a blocked
+ * open), a device may never end; both are refused, with what they are. */
+#ifndef CL_INPUT_H
+#define CL_INPUT_H
+
+#include <stdio.h>
+#include <sys/types.h>
+
+/* fopen(path, mode) for reading, of a regular file only (a symbolic link
+ * to one is followed): opened without blocking, then checked.  NULL when
+ * it cannot be opened or is not a regular file, *why saying which
+ * (strerror's text, or "it is a FIFO, not a regular file", ...). */
+FILE *cl_input_open(const char *path, const char *mode, const char **why);
+
+/* What a file of mode `mode` (from stat) is, for messages: "a regular
+ * file", "a directory", "a symbolic link", "a FIFO", "a device", "a
+ * socket". */
+const char *cl_file_kind(mode_t mode);
+
+#endif
