@@ -77,3 +77,38 @@ Test(replay, directory_without_run_json_is_refused)
     cli_result_free(&r);
     tmp_rm_rf(dir);
 }
+
+/* The rerun into the recorded run's own directory would replace the
+ * record it is compared with: refused (by another name too), the record
+ * untouched; a run.json whose argv holds a non-string is refused with a
+ * message. */
+Test(replay, own_directory_and_bad_argv_are_refused)
+{
+    char dir[64], path[300], other[400], json[1 << 16], after[1 << 16];
+    cli_result r;
+    tmp_mkdtemp(dir, sizeof dir, "replay");
+    run_into(dir, "--out");
+    snprintf(path, sizeof path, "%s/run.json", dir);
+    tmp_slurp(path, json, sizeof json);
+    snprintf(other, sizeof other, "%s/../%s", dir, strrchr(dir, '/') + 1);
+    const char *outs[] = {dir, other};
+    for (int k = 0; k < 2; k++) {
+        cli_run(&r, "replay", dir, "--out", outs[k], NULL);
+        cli_assert_error(&r, 0, "own directory", NULL);
+        cr_assert_eq(r.status, 2);
+        cli_result_free(&r);
+    }
+    tmp_slurp(path, after, sizeof after);
+    cr_assert_str_eq(after, json, "the record changed");
+    char *at = strstr(json, "\"argv\": [");
+    cr_assert_not_null(at);
+    at += strlen("\"argv\": [");
+    size_t first = strcspn(at, ","); /* the first entry replaced by 7 */
+    memmove(at + 1, at + first, strlen(at + first) + 1);
+    at[0] = '7';
+    tmp_put(path, json);
+    cli_run(&r, "replay", dir, NULL);
+    cli_assert_error(&r, 0, "argv of 3 to 240 strings", NULL);
+    cli_result_free(&r);
+    tmp_rm_rf(dir);
+}

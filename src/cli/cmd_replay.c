@@ -6,6 +6,7 @@
 #include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <jansson.h>
@@ -57,17 +58,30 @@ static cl_status load_manifest(const char *dir, json_t **out, cl_error *err)
                             je.line, je.text);
     const char *program = json_string_value(json_object_get(root, "program"));
     const char *cmd = json_string_value(json_object_get(root, "command"));
-    json_t *argv = json_object_get(root, "argv");
+    json_t *argv = json_object_get(root, "argv"), *a;
+    size_t k, strings = 0;
+    json_array_foreach(argv, k, a)
+        strings += json_is_string(a);
     *out = root;
     if (!program || strcmp(program, "clothode") || !cmd ||
         strcmp(cmd, "run") || !json_is_array(argv) ||
         json_array_size(argv) < 3 || json_array_size(argv) > 240 ||
+        strings != json_array_size(argv) ||
         !json_is_string(json_object_get(root, "cwd")) ||
         !json_is_array(json_object_get(root, "files")))
         return cl_error_set(err, CL_EPARSE, "%s: not the run.json of a "
                             "`clothode run` (expected program \"clothode\", "
-                            "command \"run\", argv, cwd and files)", path);
+                            "command \"run\", argv of 3 to 240 strings, cwd "
+                            "and files)", path);
     return CL_OK;
+}
+
+/* Whether a and b name the same existing directory. */
+static bool same_dir(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    return stat(a, &sa) == 0 && stat(b, &sb) == 0 &&
+           sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 }
 
 /* Run `clothode run` with the recorded arguments, its --out replaced by
@@ -78,9 +92,8 @@ static int rerun(json_t *m, const char *outdir)
     char *args[256], here[PATH_MAX];
     int n = 0;
     for (size_t k = 1; k < json_array_size(argv); k++) {
+        /* strings all (load_manifest) */
         char *a = (char *)json_string_value(json_array_get(argv, k));
-        if (!a)
-            return CL_EXIT_INPUT;
         /* --out, or the abbreviation of it getopt took (--ou), with its
          * value next or after '=' */
         size_t len = strcspn(a, "=");
@@ -197,7 +210,11 @@ static int replay_dir(const char *dir, const char *keep)
     char out[PATH_MAX], here[PATH_MAX];
     const char *tmp = getenv("TMPDIR");
     int status;
-    if (load_manifest(dir, &was, &err)) {
+    if (!load_manifest(dir, &was, &err) && keep && same_dir(dir, keep))
+        cl_error_set(&err, CL_EINVAL, "--out %s: it is the recorded run's "
+                     "own directory, which the rerun would replace; choose "
+                     "another", keep);
+    if (err.code) {
         json_decref(was);
         return cl_cli_fail(&err);
     }
