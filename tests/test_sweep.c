@@ -281,6 +281,20 @@ Test(sweep, manifest_round_trip)
     }
     cr_assert_str_eq(b.job[1].value[1], "0 -1 0");
     cl_sweep_free(&b);
+    /* moved elsewhere, it is still read (collected where it is), but not
+     * run there: its jobs would write where it was */
+    char moved[1100];
+    snprintf(moved, sizeof moved, "%s/moved", tmp);
+    cr_assert_eq(rename(a.dir, moved), 0);
+    memset(&b, 0, sizeof b);
+    cr_assert_eq(cl_sweep_load(moved, &b, &err), CL_OK, "%s", err.msg);
+    cl_sweep_free(&b);
+    cli_result r;
+    cli_run(&r, "sweep", "run", moved, NULL);
+    cli_assert_error(&r, 0, "planned for", "sweep plan SWEEP.ini --out",
+                     NULL);
+    cli_result_free(&r);
+    cr_assert_eq(rename(moved, a.dir), 0);
     /* a manifest whose job lines do not record their exit status (an
      * earlier clothode's) is refused with the way out */
     char path[1100];
@@ -439,8 +453,9 @@ Test(sweep, run_help_and_refusals)
     cr_assert_null(strstr(r.out, "[sweep]"), "%s", r.out);
     cli_result_free(&r);
     cli_run(&r, "sweep", "run", tmp, NULL);
-    cli_assert_error(&r, 0, "sweep.json: cannot read it; a sweep directory "
-                     "is made by 'clothode sweep plan'", NULL);
+    cli_assert_error(&r, 0, "sweep.json: cannot read it (No such file or "
+                     "directory); a sweep directory is made by 'clothode "
+                     "sweep plan'", NULL);
     cli_result_free(&r);
     cli_run(&r, "sweep", "run", tmp, "--engine", "ssh", NULL);
     cli_assert_error(&r, 1, "--sshloginfile FILE goes with --engine ssh",

@@ -53,13 +53,21 @@ Test(sweep_refine, steps_inside_the_bracket)
     snprintf(t1, sizeof t1, "%s/coarse.csv", tmp);
     ok("sweep", "collect", dir, "--out", t1, "--quiet");
     cli_result r;
+    /* into the refined sweep's own directory: refused, its manifest kept */
+    char manifest[800], before[65536];
+    snprintf(manifest, sizeof manifest, "%s/sweep.json", dir);
+    tmp_slurp(manifest, before, sizeof before);
+    cli_run(&r, "sweep", "refine", dir, "--table", t1, "--out", dir, NULL);
+    cli_assert_error(&r, 0, "it is the sweep being refined", NULL);
+    cli_result_free(&r);
+    tmp_slurp(manifest, text, sizeof text);
+    cr_assert_str_eq(text, before);
     cli_run(&r, "sweep", "refine", dir, "--table", t1, "--points", "3",
             NULL);
     cli_assert_ok(&r);
     cr_assert(strstr(r.out, "refine     3 jobs inside 1 brackets wider than "
                             "1 + 0.02\n"), "%s", r.out);
     cli_result_free(&r);
-    char manifest[800];
     snprintf(manifest, sizeof manifest, "%s/sweep.json", fine);
     tmp_slurp(manifest, text, sizeof text);
     cr_assert(strstr(text, "\"run.dt\": \"0.00952380952380952\"") &&

@@ -6,7 +6,6 @@
 #include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <jansson.h>
@@ -76,13 +75,6 @@ static cl_status load_manifest(const char *dir, json_t **out, cl_error *err)
     return CL_OK;
 }
 
-/* Whether a and b name the same existing directory. */
-static bool same_dir(const char *a, const char *b)
-{
-    struct stat sa, sb;
-    return stat(a, &sa) == 0 && stat(b, &sb) == 0 &&
-           sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
-}
 
 /* Run `clothode run` with the recorded arguments, its --out replaced by
  * outdir, from the recorded working directory; its exit status. */
@@ -210,7 +202,7 @@ static int replay_dir(const char *dir, const char *keep)
     char out[PATH_MAX], here[PATH_MAX];
     const char *tmp = getenv("TMPDIR");
     int status;
-    if (!load_manifest(dir, &was, &err) && keep && same_dir(dir, keep))
+    if (!load_manifest(dir, &was, &err) && keep && cl_same_file(dir, keep))
         cl_error_set(&err, CL_EINVAL, "--out %s: it is the recorded run's "
                      "own directory, which the rerun would replace; choose "
                      "another", keep);

@@ -14,6 +14,7 @@
 #include "cli/commands.h"
 #include "cli/sweep_engine.h"
 #include "io/atomic.h"
+#include "io/input.h"
 
 /* ---- plan --------------------------------------------------------------- */
 
@@ -361,8 +362,17 @@ static int run(void *settings)
     if ((r->engine == CL_SWEEP_SSH) != (r->sshloginfile != NULL))
         return cl_cli_usage_error(run_table.cmd, "--sshloginfile FILE goes "
                                   "with --engine ssh, and only with it");
-    if (cl_sweep_load(r->a.arg, &sw, &err))
+    /* the jobs' command lines name the planned directory: run there only
+     * (a copy is collected where it is) */
+    if (!cl_sweep_load(r->a.arg, &sw, &err) && !cl_same_file(r->a.arg, sw.dir))
+        cl_error_set(&err, CL_EINVAL, "%s/sweep.json: planned for %s, where "
+                     "its jobs write; plan it again here to run it here "
+                     "('clothode sweep plan SWEEP.ini --out %s', the ids "
+                     "stay)", r->a.arg, sw.dir, r->a.arg);
+    if (err.code) {
+        cl_sweep_free(&sw);
         return cl_cli_fail(&err);
+    }
     int *todo = malloc(((size_t)sw.njob + 1) * sizeof *todo);
     int status = todo ? engine_run(&sw, r, todo, &err)
                       : cl_cli_fail(&(cl_error){CL_ENOMEM, "out of memory"});
@@ -503,6 +513,11 @@ static int refine(void *settings)
     snprintf(out, sizeof out, "%s-refine", r->a.arg);
     r->a.out = r->a.out ? r->a.out : out;
     cl_status rc = cl_sweep_load(r->a.arg, &sw, &err);
+    if (!rc && cl_same_file(r->a.arg, r->a.out))
+        rc = cl_error_set(&err, CL_EINVAL, "--out %s: it is the sweep being "
+                          "refined, whose manifest the next stage would "
+                          "replace; the next stage is a sweep directory of "
+                          "its own", r->a.out);
     if (!rc)
         rc = cl_sweep_table_read(r->tables ? r->tables : table, &t, &err);
     if (!rc && !(rc = cl_mkdir_p(r->a.out, &err)) &&

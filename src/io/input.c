@@ -18,6 +18,13 @@ const char *cl_file_kind(mode_t mode)
                                             : "of another kind";
 }
 
+bool cl_same_file(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    return stat(a, &sa) == 0 && stat(b, &sb) == 0 &&
+           sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
 /* "it is KIND, not a regular file" for a file that is not one. */
 static const char *not_regular(mode_t mode)
 {

@@ -4,6 +4,7 @@
 #ifndef CL_INPUT_H
 #define CL_INPUT_H
 
+#include <stdbool.h>
 #include <stdio.h>
 #include <sys/types.h>
 
@@ -12,6 +13,10 @@
  * it cannot be opened or is not a regular file, *why saying which
  * (strerror's text, or "it is a FIFO, not a regular file", ...). */
 FILE *cl_input_open(const char *path, const char *mode, const char **why);
+
+/* Whether paths a and b name the same existing file (or directory), by
+ * device and inode: through links and other spellings. */
+bool cl_same_file(const char *a, const char *b);
 
 /* What a file of mode `mode` (from stat) is, for messages: "a regular
  * file", "a directory", "a symbolic link", "a FIFO", "a device", "a
