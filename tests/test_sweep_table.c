@@ -222,4 +222,16 @@ Test(sweep_table, stability_axis_from_sweep)
             "--from-sweep", path, "--out", out, NULL);
     cli_assert_error(&r, 0, "--axis: unknown key [type1] kz", NULL);
     cli_result_free(&r);
+    /* a [run] key (read by the search, not the model: every value gave
+     * the same row) and a value that is not a number are refused */
+    cli_run(&r, "stability", "hang", "--set", "cloth.n=6", "--t-end", "0.2",
+            "--integrator", "rk4", "--axis", "run.dt=1e-4,2e-4", "--out",
+            out, NULL);
+    cli_assert_error(&r, 0, "--axis", "the search's own", NULL);
+    cli_result_free(&r);
+    cli_run(&r, "stability", "hang", "--set", "cloth.n=6", "--t-end", "0.2",
+            "--integrator", "rk4", "--axis", "type1.enabled=true,false",
+            "--out", out, NULL);
+    cli_assert_error(&r, 0, "--axis", "must be a number", NULL);
+    cli_result_free(&r);
 }

@@ -155,9 +155,22 @@ static cl_status read_axis(cl_config *cfg, stab_setup *s, cl_error *err)
                                 "expected SECTION.KEY=VALUES, the values a "
                                 "list, linspace(a, b, k) or logspace(a, b, "
                                 "k)", err);
-    char sec[128];
+    char sec[128], *end;
     snprintf(sec, sizeof sec, "%.*s", (int)(strrchr(s->key, '.') - s->key),
              s->key);
+    if (!strcmp(sec, "run"))
+        return cl_config_refuse(cfg, "stability", "axis", CL_EINVAL,
+                                "a [run] key is the search's own setting "
+                                "(its step is what it searches, its "
+                                "integrators --integrator's); the axis is a "
+                                "key of the model", err);
+    for (int v = 0; v < s->values.n; v++) {
+        (void)strtod(s->values.v[v], &end);
+        if (end == s->values.v[v] || *end)
+            return cl_config_refuse(cfg, "stability", "axis", CL_EINVAL,
+                                    "every value must be a number (the "
+                                    "limits are fitted against it)", err);
+    }
     const char *was = cl_config_peek(cfg, sec, strrchr(s->key, '.') + 1);
     if (was && !(s->original = strdup(was)))
         return cl_error_set(err, CL_ENOMEM, "out of memory");
