@@ -1988,9 +1988,10 @@ Test(cli, list_names_odd_entries_without_reading_them)
     cli_run(&r, "list", NULL);
     unsetenv("CLOTHODE_PROBLEMS");
     cli_assert_ok(&r);
-    cr_assert(strstr(r.out, "\n  fifo                 (not a regular file)\n")
-                  && strstr(r.out, "\n  zero                 (not a regular "
-                                   "file)\n")
+    cr_assert(strstr(r.out, "\n  fifo                 (it is a FIFO, not a "
+                            "regular file)\n")
+                  && strstr(r.out, "\n  zero                 (it is a device, "
+                                   "not a regular file)\n")
                   && strstr(r.out, "\n  plain                a plain "
                                    "problem\n"), "%s", r.out);
     cli_result_free(&r);

@@ -285,11 +285,11 @@ Test(config, directory_is_eio)
     expect_load_refused("/tmp", CL_EIO, "/tmp", NULL);
 }
 
-/* A device that never ends is read to its first NUL byte, not to the end
- * of memory. */
-Test(config, endless_device_is_refused_at_its_first_nul)
+/* A device (one that never ends, too) is refused before it is read. */
+Test(config, endless_device_is_refused_unread)
 {
-    expect_load_refused("/dev/zero", CL_EPARSE, "/dev/zero:1: NUL byte",
+    expect_load_refused("/dev/zero", CL_EIO,
+                        "/dev/zero: it is a device, not a regular file",
                         NULL);
 }
 

@@ -40,8 +40,10 @@ static const cl_cli_table run_table = {
     "Integrate PROBLEM (a .ini file, or a name under problems/) and write\n"
     "series.csv, frames, final.csv, stats.csv, config.ini and run.json (its\n"
     "provenance) into the output directory, after removing the files of an\n"
-    "earlier run there.  SIGINT, SIGTERM and the budgets stop the run at\n"
-    "the next output time with everything computed written.  A run that\n"
+    "earlier run there.  SIGINT, SIGTERM and --max-wall stop the run at\n"
+    "once, --max-steps at the first output time after its N steps; the\n"
+    "outputs up to the last output time are written as after a finished\n"
+    "run (the steps since it are not: more --samples keep more).  A run that\n"
     "fails (a blow-up, a solver failure, ...) after its first sample writes\n"
     "last-good.csv instead of final.csv: the state of its last good sample.\n",
     .notes =

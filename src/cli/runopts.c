@@ -113,8 +113,8 @@ const cl_cli_opt cl_cli_run_rows[] = {
     {.name = "max-steps", .arg = "N", .type = CL_CLI_LONG,
      .key = "budget_steps", RUN_ROW(budget_steps), .def = 0, .lo = 0,
      .hi = 1099511627776.0,
-     .help = "end the run with status budget (exit 5) once the integrator "
-             "has taken N steps, 0 for no limit"},
+     .help = "end the run with status budget (exit 5) at the first output "
+             "time after the integrator has taken N steps, 0 for no limit"},
     {.type = CL_CLI_END}};
 
 /* Entry "name" or "name:linsol" of the list into m. */
