@@ -319,6 +319,23 @@ static void expect_refused(const char *const *args, int usage_lines,
     cli_result_free(&r);
 }
 
+/* A [run] key given for a list (`set`): taken where kinsol-be of
+ * kinsol-be,semi-be reads it, refused with `want` for rk4,fe, which
+ * do not. */
+static void list_key_served_or_refused(const char *set,
+                                       const char *const *want)
+{
+    char out[1024];
+    cli_result r;
+    cli_run(&r, "convergence", "spring2", "--integrator", "kinsol-be,semi-be",
+            "--set", set, "--dt", "1e-2", "--t-end", "1", "--levels", "2",
+            "--out", in_tmp(out, "listkey"), "--quiet", NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    expect_refused(LIST("convergence", "spring2", "--integrator", "rk4,fe",
+                        "--set", set, "--dt", "1e-2"), 0, want);
+}
+
 Test(cli, missing_problem_file)
 {
     expect_refused(LIST("run", "problems/no-such-problem.ini"), 0,
@@ -493,15 +510,9 @@ Test(cli, options_the_integrator_does_not_read)
             "--quiet", NULL);
     cli_assert_ok(&r);
     cli_result_free(&r);
-    cli_run(&r, "convergence", "spring2", "--integrator", "kinsol-be,semi-be",
-            "--set", "run.newton_tol=1e-12", "--dt", "1e-2", "--t-end", "1",
-            "--levels", "2", "--out", in_tmp(out, "listnewton"), "--quiet",
-            NULL);
-    cli_assert_ok(&r);
-    cli_result_free(&r);
-    expect_refused(LIST("convergence", "spring2", "--integrator", "rk4,fe",
-                        "--set", "run.newton_tol=1e-12", "--dt", "1e-2"), 0,
-                   LIST("newton_tol", "no integrator of the list"));
+    list_key_served_or_refused("run.newton_tol=1e-12",
+                               LIST("newton_tol",
+                                    "no integrator of the list"));
 }
 
 Test(cli, fixed_step_without_dt)
@@ -1527,7 +1538,6 @@ Test(cli, convergence_table_and_csv)
 Test(cli, list_options_serve_the_methods_that_take_them)
 {
     char out[1024], f[64];
-    cli_result r;
     cli_lines L;
     convergence_csv(LIST("convergence", "spring2", "--integrator",
                          "rk4,arkode-dirk-fixed,semi-be", "--table",
@@ -1544,15 +1554,8 @@ Test(cli, list_options_serve_the_methods_that_take_them)
                         "--table", "SDIRK_2_1_2", "--dt", "1e-2"), 0,
                    LIST("--table", "rk4", "no choice of table"));
     /* Rayleigh damping: kinsol-be takes it, semi-be leaves it */
-    cli_run(&r, "convergence", "spring2", "--integrator", "kinsol-be,semi-be",
-            "--set", "run.rayleigh_alpha=0.5", "--dt", "1e-2", "--t-end", "1",
-            "--levels", "2", "--out", in_tmp(out, "listray"), "--quiet",
-            NULL);
-    cli_assert_ok(&r);
-    cli_result_free(&r);
-    expect_refused(LIST("convergence", "spring2", "--integrator", "rk4,fe",
-                        "--set", "run.rayleigh_alpha=0.5", "--dt", "1e-2"), 0,
-                   LIST("rayleigh_alpha", "no Rayleigh damping"));
+    list_key_served_or_refused("run.rayleigh_alpha=0.5",
+                               LIST("rayleigh_alpha", "no Rayleigh damping"));
 }
 
 Test(cli, convergence_refusals)
