@@ -461,6 +461,13 @@ Test(sweep, run_help_and_refusals)
     cli_assert_error(&r, 1, "--sshloginfile FILE goes with --engine ssh",
                      NULL);
     cli_result_free(&r);
+    /* a host file that cannot be read is refused before GNU parallel */
+    cli_run(&r, "sweep", "run", tmp, "--engine", "ssh", "--sshloginfile",
+            "/nonexistent/hosts", NULL);
+    cli_assert_error(&r, 0, "--sshloginfile /nonexistent/hosts: cannot read "
+                     "it", NULL);
+    cr_assert_eq(r.status, 7);
+    cli_result_free(&r);
     cli_run(&r, "sweep", "frobnicate", NULL);
     cr_assert_eq(r.status, 2);
     cli_result_free(&r);

@@ -350,6 +350,20 @@ static int engine_run(cl_sweep *sw, cl_sweep_run_args *r, int *todo,
     return status || r->a.quiet ? status : summary(sw, err);
 }
 
+/* The ssh engine's host file (NULL: none), readable before GNU parallel
+ * is started on it. */
+static cl_status hosts_readable(const char *file, cl_error *err)
+{
+    const char *why;
+    FILE *fp = file ? cl_input_open(file, "r", &why) : NULL;
+    if (file && !fp)
+        return cl_error_set(err, CL_EIO, "--sshloginfile %s: cannot read "
+                            "it: %s", file, why);
+    if (fp)
+        (void)fclose(fp);
+    return CL_OK;
+}
+
 static int run(void *settings)
 {
     cl_sweep_run_args *r = settings;
@@ -362,9 +376,10 @@ static int run(void *settings)
     if ((r->engine == CL_SWEEP_SSH) != (r->sshloginfile != NULL))
         return cl_cli_usage_error(run_table.cmd, "--sshloginfile FILE goes "
                                   "with --engine ssh, and only with it");
-    /* the jobs' command lines name the planned directory: run there only
-     * (a copy is collected where it is) */
-    if (!cl_sweep_load(r->a.arg, &sw, &err) && !cl_same_file(r->a.arg, sw.dir))
+    if (!hosts_readable(r->sshloginfile, &err) &&
+        !cl_sweep_load(r->a.arg, &sw, &err) && !cl_same_file(r->a.arg, sw.dir))
+        /* the jobs' command lines name the planned directory: run there
+         * only (a copy is collected where it is) */
         cl_error_set(&err, CL_EINVAL, "%s/sweep.json: planned for %s, where "
                      "its jobs write; plan it again here to run it here "
                      "('clothode sweep plan SWEEP.ini --out %s', the ids "
