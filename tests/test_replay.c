@@ -98,6 +98,10 @@ Test(replay, own_directory_and_bad_argv_are_refused)
         cr_assert_eq(r.status, 2);
         cli_result_free(&r);
     }
+    cli_run(&r, "replay", dir, "--out", "", NULL);
+    cli_assert_error(&r, 0, "--out: the output directory name is empty",
+                     NULL);
+    cli_result_free(&r);
     tmp_slurp(path, after, sizeof after);
     cr_assert_str_eq(after, json, "the record changed");
     char *at = strstr(json, "\"argv\": [");

@@ -202,7 +202,11 @@ static int replay_dir(const char *dir, const char *keep)
     char out[PATH_MAX], here[PATH_MAX];
     const char *tmp = getenv("TMPDIR");
     int status;
-    if (!load_manifest(dir, &was, &err) && keep && cl_same_file(dir, keep))
+    if (keep && !*keep)
+        cl_error_set(&err, CL_EINVAL, "--out: the output directory name is "
+                     "empty");
+    else if (!load_manifest(dir, &was, &err) && keep &&
+             cl_same_file(dir, keep))
         cl_error_set(&err, CL_EINVAL, "--out %s: it is the recorded run's "
                      "own directory, which the rerun would replace; choose "
                      "another", keep);
