@@ -368,6 +368,9 @@ Test(options, integrator_options_are_checked_against_the_integrator)
                  CL_EINVAL);
     cr_assert(strstr(err.msg, "--integrator: [run] integrator = "
                               "\"rk4:klu\""), "%s", err.msg);
+    cr_assert_eq(check("cvode-bdf:", SETS("run.dt=0.01"), &ms, &err),
+                 CL_EINVAL, "an empty linear solver");
+    cr_assert(strstr(err.msg, "bad entry \"cvode-bdf:\""), "%s", err.msg);
     cr_assert_eq(check("semi-be", SETS("run.dt=0.01", "run.max_order=2"),
                        &ms, &err), CL_EINVAL);
     cr_assert(strstr(err.msg, "max_order = 2: integrator semi-be"), "%s",

@@ -125,7 +125,7 @@ static cl_status parse_method(cl_config *cfg, const cl_cli_opt *row,
     char name[64], why[1024];
     size_t nlen = strcspn(p, ":");
     nlen = nlen < len ? nlen : len;
-    if (len >= sizeof m->label || nlen == 0 ||
+    if (len >= sizeof m->label || nlen == 0 || nlen + 1 == len ||
         (nlen < len && len - nlen - 1 >= sizeof m->linsol)) {
         snprintf(why, sizeof why, "bad entry \"%.*s\" (expected NAME or "
                  "NAME:LINSOL)", (int)len, p);
