@@ -504,12 +504,17 @@ Test(cli, options_the_integrator_does_not_read)
             in_tmp(out, "lintol"), "--quiet", NULL);
     cli_assert_ok(&r);
     cli_result_free(&r);
+    /* cvode-bdf's default solver, auto, is iterative and reads lin_maxit;
+     * klu does not */
     cli_run(&r, "run", "hang", "--set", "cloth.n=4", "--integrator",
-            "cvode-bdf:pcg", "--set", "run.lin_maxit=50", "--t-end",
-            "0.002", "--frames", "0", "--out", in_tmp(out, "linmaxit"),
-            "--quiet", NULL);
+            "cvode-bdf", "--set", "run.lin_maxit=50", "--t-end", "0.002",
+            "--frames", "0", "--out", in_tmp(out, "linmaxit"), "--quiet",
+            NULL);
     cli_assert_ok(&r);
     cli_result_free(&r);
+    expect_refused(LIST("run", "hang", "--integrator", "cvode-bdf:klu",
+                        "--set", "run.lin_maxit=50", "--t-end", "0.01"), 0,
+                   LIST("lin_maxit", "linear solver klu"));
     list_key_served_or_refused("run.newton_tol=1e-12",
                                LIST("newton_tol",
                                     "no integrator of the list"));

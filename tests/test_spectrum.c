@@ -101,11 +101,35 @@ Test(spectrum, damped_spring_fe_limit_matches_the_search)
     sp_close(&c);
 }
 
+/* The symplectic methods' predictions on c.m found by the stability
+ * search to 3 %. */
+static void symplectic_limits_searched(const sp_case *c)
+{
+    static const char *const name[] = {"symplectic-euler", "verlet",
+                                       "velocity-verlet"};
+    cl_stab_opts o = {.t_end = 40.0, .dt_max = 0.1, .dt_min = 1e-5,
+                      .rel = 0.005, .checks = 1000000, .max_stretch = 1.5};
+    for (int k = 0; k < 3; k++) {
+        double h = sp_limit(&c->s, name[k]);
+        cl_stab_result r;
+        cl_integrator_opts io = {0};
+        cl_error err = {0};
+        cr_assert_eq(cl_stability(c->m, cl_integrator_find(name[k]), &io, &o,
+                                  &r, &err),
+                     CL_OK, "%s", err.msg);
+        cr_log_info("%s predicted %.6g, measured (%.6g, %.6g)", name[k], h,
+                    r.dt_stable, r.dt_unstable);
+        cr_assert(r.dt_stable > 0.97 * h && r.dt_stable < 1.03 * h,
+                  "%s: %g against %g", name[k], r.dt_stable, h);
+    }
+}
+
 /* With damping the symplectic limits fall below 2/w: symplectic Euler and
  * Verlet at (sqrt(c^2 + 4 w^2) - c) / w^2 (trace 2 - h^2 w^2 - h c,
  * determinant 1 - h c), velocity Verlet lower still (its damping sees
- * the predictor, its kept acceleration the last one's: three states), and
- * the stability search finds each prediction. */
+ * the predictor, its kept acceleration the last one's: three states); the
+ * stability search finds each prediction, lightly damped (c = 20/s) and
+ * overdamped (c = 210/s > 2 w: the first-order eigenvalues are real). */
 Test(spectrum, damped_spring_symplectic_limits_match_the_search)
 {
     sp_case c;
@@ -114,23 +138,13 @@ Test(spectrum, damped_spring_symplectic_limits_match_the_search)
     cr_assert_float_eq(sp_limit(&c.s, "symplectic-euler"), closed, 1e-12);
     cr_assert_float_eq(sp_limit(&c.s, "verlet"), closed, 1e-12);
     cr_assert_lt(sp_limit(&c.s, "velocity-verlet"), 0.95 * closed);
-    static const char *const name[] = {"symplectic-euler", "verlet",
-                                       "velocity-verlet"};
-    cl_stab_opts o = {.t_end = 40.0, .dt_max = 0.1, .dt_min = 1e-5,
-                      .rel = 0.005, .checks = 1000000, .max_stretch = 1.5};
-    for (int k = 0; k < 3; k++) {
-        double h = sp_limit(&c.s, name[k]);
-        cl_stab_result r;
-        cl_integrator_opts io = {0};
-        cl_error err = {0};
-        cr_assert_eq(cl_stability(c.m, cl_integrator_find(name[k]), &io, &o,
-                                  &r, &err),
-                     CL_OK, "%s", err.msg);
-        cr_log_info("%s predicted %.6g, measured (%.6g, %.6g)", name[k], h,
-                    r.dt_stable, r.dt_unstable);
-        cr_assert(r.dt_stable > 0.97 * h && r.dt_stable < 1.03 * h,
-                  "%s: %g against %g", name[k], r.dt_stable, h);
-    }
+    symplectic_limits_searched(&c);
+    sp_close(&c);
+    sp_open(&c, "damping.kd=210", 1.0);
+    closed = (sqrt(210.0 * 210.0 + 4e4) - 210.0) / 1e4;
+    cr_assert_eq(c.s.im[0], 0.0, "overdamped: real eigenvalues");
+    cr_assert_float_eq(sp_limit(&c.s, "symplectic-euler"), closed, 1e-12);
+    symplectic_limits_searched(&c);
     sp_close(&c);
 }
 

@@ -12,7 +12,8 @@
  * tolerance, 5.5x measured on spring2): a level whose e_x is below
  * CL_CONV_FLOOR_MARGIN times the position floor is too close to the
  * reference's error (at 1.4 floors, rk4's e_x on spring2 is 12 % off the
- * closed form's and its order 4.19 instead of 4.02) and enters neither
+ * closed form's, its order from the level before 4.19 instead of 4.02,
+ * and the fit over three levels 4.11 instead of 4.03) and enters neither
  * fit; one whose e_v alone is below that margin over the velocity floor
  * enters the position fit only (a reference's velocities can be less
  * accurate than its positions).  A level that
@@ -38,7 +39,7 @@
 #include "system/model.h"
 
 #define CL_CONV_MAX_LEVELS 20
-/* A level enters a fit with an error at least this many floors: the
+/* A level enters a fit with an error more than this many floors: the
  * reference's error then a few % of it at most. */
 #define CL_CONV_FLOOR_MARGIN 3.0
 

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <gsl/gsl_blas.h>
 #include <gsl/gsl_complex_math.h>
 #include <gsl/gsl_eigen.h>
 #include <gsl/gsl_poly.h>
@@ -56,38 +57,72 @@ static cl_status work_fill(cl_model *m, double t, const double *x,
     return rc ? cl_error_set(err, rc, "Jacobian at t = %g failed", t) : rc;
 }
 
-/* A = -M^-1/2 (K + K^T)/2 M^-1/2, K = df/dx, dense n x n. */
-static void stiffness_matrix(const cl_bpattern *p, const spec_work *w)
+/* out = -M^-1/2 (B + B^T)/2 M^-1/2, B = df/dx or df/dv (blocks), dense
+ * n x n. */
+static void scaled_sym(const cl_bpattern *p, const spec_work *w,
+                       const double *blocks, double *out)
 {
     size_t n = w->n;
-    memset(w->A, 0, n * n * sizeof *w->A);
+    memset(out, 0, n * n * sizeof *out);
     for (size_t bi = 0; bi < p->nb; bi++)
         for (size_t k = p->rowptr[bi]; k < p->rowptr[bi + 1]; k++)
             for (size_t r = 0; r < 3; r++)
                 for (size_t c = 0; c < 3; c++) {
                     size_t i = 3 * bi + r, j = 3 * p->col[k] + c;
-                    double a = -0.5 * w->dfdx[9 * k + 3 * r + c] *
+                    double a = -0.5 * blocks[9 * k + 3 * r + c] *
                                sqrt(w->inv_mass[i] * w->inv_mass[j]);
-                    w->A[i * n + j] += a;
-                    w->A[j * n + i] += a;
+                    out[i * n + j] += a;
+                    out[j * n + i] += a;
                 }
 }
 
+/* A = -M^-1/2 sym(df/dx) M^-1/2 into w->A. */
+static void stiffness_matrix(const cl_bpattern *p, const spec_work *w)
+{
+    scaled_sym(p, w, w->dfdx, w->A);
+}
+
+/* The modes' damping rates c_k = z_k^T D z_k, D = -M^-1/2 sym(df/dv)
+ * M^-1/2, z_k the columns of Z (n x n, orthonormal): diag(Z^T D Z), with
+ * D and D Z in the scratch after Z. */
+static void modal_damping(const cl_bpattern *p, const spec_work *w,
+                          const gsl_matrix *Z, double *c)
+{
+    size_t n = w->n;
+    double *d = w->A + 2 * n * n, *dz = w->A + 3 * n * n;
+    scaled_sym(p, w, w->dfdv, d);
+    gsl_matrix_const_view D = gsl_matrix_const_view_array(d, n, n);
+    gsl_matrix_view DZ = gsl_matrix_view_array(dz, n, n);
+    gsl_blas_dgemm(CblasNoTrans, CblasNoTrans, 1.0, &D.matrix, Z, 0.0,
+                   &DZ.matrix);
+    for (size_t k = 0; k < n; k++) {
+        double ck = 0.0;
+        for (size_t i = 0; i < n; i++)
+            ck += gsl_matrix_get(Z, i, k) * dz[i * n + k];
+        c[k] = ck;
+    }
+}
+
+/* The stiffness eigenvalues mu (ascending) and, from their eigenvectors,
+ * the modes' damping rates c. */
 static cl_status stiffness_spectrum(const cl_bpattern *p, spec_work *w,
                                     cl_spectrum *s, cl_error *err)
 {
+    size_t n = w->n;
     stiffness_matrix(p, w);
-    gsl_matrix_view A = gsl_matrix_view_array(w->A, w->n, w->n);
-    gsl_vector_view mu = gsl_vector_view_array(s->mu, w->n);
-    gsl_eigen_symm_workspace *ws = gsl_eigen_symm_alloc(w->n);
+    gsl_matrix_view A = gsl_matrix_view_array(w->A, n, n);
+    gsl_matrix_view Z = gsl_matrix_view_array(w->A + n * n, n, n);
+    gsl_vector_view mu = gsl_vector_view_array(s->mu, n);
+    gsl_eigen_symmv_workspace *ws = gsl_eigen_symmv_alloc(n);
     if (!ws)
         return cl_error_set(err, CL_ENOMEM, "out of memory (eigensolver)");
-    int rc = gsl_eigen_symm(&A.matrix, &mu.vector, ws);
-    gsl_eigen_symm_free(ws);
+    int rc = gsl_eigen_symmv(&A.matrix, &mu.vector, &Z.matrix, ws);
+    gsl_eigen_symmv_free(ws);
     if (rc)
         return cl_error_set(err, CL_ESOLVER, "symmetric eigensolver failed "
                             "(GSL %d)", rc);
-    gsl_sort(s->mu, 1, w->n);
+    gsl_eigen_symmv_sort(&mu.vector, &Z.matrix, GSL_EIGEN_SORT_VAL_ASC);
+    modal_damping(p, w, &Z.matrix, s->c);
     s->w_max = sqrt(fmax(s->mu[w->n - 1], 0.0));
     /* the first-order tolerance squared: |lambda| = sqrt(|mu|) */
     double tol = EIG_TOL * EIG_TOL * fabs(s->mu[w->n - 1]);
@@ -158,9 +193,10 @@ cl_status cl_spectrum_compute(cl_model *m, double t, const double *x,
                             "cloth)", sys->n, CL_SPECTRUM_MAX_N);
     s->n = sys->n;
     s->mu = malloc(s->n * sizeof *s->mu);
+    s->c = malloc(s->n * sizeof *s->c);
     s->re = malloc(2 * s->n * sizeof *s->re);
     s->im = malloc(2 * s->n * sizeof *s->im);
-    cl_status rc = s->mu && s->re && s->im
+    cl_status rc = s->mu && s->c && s->re && s->im
                        ? work_fill(m, t, x, v, &w, err)
                        : cl_error_set(err, CL_ENOMEM, "out of memory");
     /* GSL's QR iterations cannot be cut short: a stop is seen between
@@ -211,6 +247,7 @@ cl_status cl_spectrum_modes(cl_model *m, double t, const double *x,
 void cl_spectrum_free(cl_spectrum *s)
 {
     free(s->mu);
+    free(s->c);
     free(s->re);
     free(s->im);
     memset(s, 0, sizeof *s);
@@ -322,18 +359,16 @@ static double sector_step(const cl_spectrum *s, double alpha)
     return INFINITY;
 }
 
-/* The mode of a first-order eigenvalue l as a damped oscillator x'' =
- * -w2 x - c x': a complex pair l = -c/2 +- i sqrt(w2 - c^2/4) gives w2 =
- * |l|^2 and c = -2 Re l; a real l, a mode that does not oscillate, w2 = 0
- * and c = -l (exact for proportional damping, where the modes of the
- * undamped cloth are the damped one's). */
+/* A stiffness mode k as a damped oscillator x'' = -w2 x - c x': w2 =
+ * mu_k, c = c_k (exact for proportional damping, whose modes are the
+ * undamped cloth's; overdamped ones included). */
 typedef struct {
     const cl_region *r;
-    double scale;      /* |l| */
+    double scale;      /* max(w, c): h = s / scale */
     double w2, c;
 } oscillator_mode;
 
-/* The spectral radius of the region's step h = s / |l| on the mode: of
+/* The spectral radius of the region's step h = s / scale on the mode: of
  * its 3 x 3 matrix A (column k the step of the k-th unit state), the
  * largest root of det(z - A) = z^3 - tr z^2 + m2 z - det. */
 static double oscillator_growth(const void *ctx, double s)
@@ -355,20 +390,22 @@ static double oscillator_growth(const void *ctx, double s)
                 fmax(gsl_complex_abs(z[1]), gsl_complex_abs(z[2])));
 }
 
-/* The smallest limit over the constraining eigenvalues, each pair once. */
+/* The smallest limit over the stiffness modes: mu within the tolerance
+ * of the first-order eigenvalues squared counts as 0, and a mode with
+ * neither stiffness nor damping beyond it constrains nothing; a mode the
+ * forces push away (mu < 0) grows for every step and is left out, as the
+ * growing eigenvalues are. */
 static double symplectic_step(const cl_spectrum *s, const cl_region *r)
 {
-    double h = INFINITY;
-    double complex l;
-    for (size_t j = 0; j < 2 * s->n; j++) {
-        if (!constraining(s, j, &l) || cimag(l) < 0)
+    double h = INFINITY, tol = EIG_TOL * s->lambda_max;
+    for (size_t k = 0; k < s->n; k++) {
+        double w2 = fabs(s->mu[k]) <= tol * tol ? 0.0 : s->mu[k];
+        double c = fabs(s->c[k]) <= tol ? 0.0 : s->c[k];
+        double scale = fmax(sqrt(fmax(w2, 0.0)), fabs(c));
+        if (w2 < 0 || c < 0 || scale == 0.0)
             continue;
-        oscillator_mode m = {r, cabs(l), 0.0, -creal(l)};
-        if (cimag(l) > 0) {
-            m.w2 = m.scale * m.scale;
-            m.c = -2 * creal(l);
-        }
-        h = fmin(h, scan_limit(oscillator_growth, &m) / m.scale);
+        oscillator_mode m = {r, scale, w2, c};
+        h = fmin(h, scan_limit(oscillator_growth, &m) / scale);
     }
     return h;
 }

@@ -22,12 +22,13 @@
  *    (round-off zeros, e.g. the out-of-plane modes of a flat cloth at
  *    rest) constrains nothing;
  *  - the symplectic methods (CL_REGION_SYMPLECTIC: symplectic Euler either
- *    way, position and velocity Verlet): each constraining lambda read as
- *    a damped oscillator x'' = -w^2 x - c x' (a complex pair: w^2 =
- *    |lambda|^2, c = -2 Re lambda; a real lambda: w = 0, c = -lambda;
- *    exact for proportional damping), the largest h at which the method's
- *    step on it (region.h, oscillator) has spectral radius <= 1; 2/w on
- *    an undamped one;
+ *    way, position and velocity Verlet): each stiffness mode z read as a
+ *    damped oscillator x'' = -w^2 x - c x', w^2 = mu, c = z^T D z with D
+ *    = -M^-1/2 sym(df/dv) M^-1/2 (exact for proportional damping,
+ *    overdamped modes included), the largest h at which the method's step
+ *    on it (region.h, oscillator) has spectral radius <= 1; 2/w on an
+ *    undamped one; position Verlet's own velocity damping (run.
+ *    verlet_damping) is not counted;
  *  - an implicit method whose region contains the sector
  *    |arg(-z)| <= alpha (CL_REGION_SECTOR) is stable for every h when
  *    every lambda, taken as above, lies in that sector; an undamped one
@@ -46,6 +47,8 @@
 typedef struct {
     size_t n;             /* unknowns, 3 nfree */
     double *mu;           /* n, ascending */
+    double *c;            /* n: each stiffness mode's damping rate z^T D z,
+                           * D = -M^-1/2 sym(df/dv) M^-1/2 (1/s) */
     double *re, *im;      /* 2n first-order eigenvalues, by decreasing |.| */
     double w_max;         /* sqrt(mu_max) (rad/s) */
     double lambda_max;    /* |lambda| of the first, largest eigenvalue */

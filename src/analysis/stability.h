@@ -22,7 +22,8 @@
  * a smaller one), so the result is the bracket the search found: dt_stable
  * = T / N_s and dt_unstable = T / N_u, with the reason the run at
  * dt_unstable failed; a stable island narrower than a factor 2 can
- * still be taken.  Every run is kept, with the largest stretch its checks
+ * still be taken, and so are, unconfirmed, a stable run at N_0 and one
+ * whose double passes T / dt_min.  Every run is kept, with the largest stretch its checks
  * saw.
  *
  * Bounded to T is the test, so the limit depends on T: just above a

@@ -87,8 +87,9 @@ static const cl_cli_table stab_table = {
     .rows = stab_rows,
     .about =
     "For each fixed-step integrator, the largest step dt = T/N with which a\n"
-    "run to T stays bounded: N doubles from T/dt_max until a run is stable,\n"
-    "then bisection brackets the limit.  A run is unstable when its state\n"
+    "run to T stays bounded: N doubles from T/dt_max until a run and the\n"
+    "run at twice its N are stable, then bisection brackets the limit.  A\n"
+    "run is unstable when its state\n"
     "becomes non-finite, its stretch d/L exceeds [run] max_stretch at one of\n"
     "the checks, or its solver gives up.  d/L: the largest stretch the\n"
     "stable end's checks saw.  Writes every run to stability.csv in the\n"

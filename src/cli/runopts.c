@@ -284,13 +284,21 @@ static void keep_what_it_takes(cl_cli_method *m)
         m->io.rayleigh_alpha = m->io.rayleigh_beta = 0.0;
 }
 
-/* Whether m's linear solver (after keep_what_it_takes) is iterative: a
- * cl_linsol with a tolerance ("" is the default, klu; CVODE's klu-full is
- * no cl_linsol). */
+/* m's linear solver (after keep_what_it_takes): the one named, or the
+ * integrator's default ("" for the registry's first, klu). */
+static const char *linsol_of(const cl_cli_method *m)
+{
+    return *m->io.linsol || !m->type->linsol_default
+               ? m->io.linsol
+               : m->type->linsol_default;
+}
+
+/* Whether m's linear solver is iterative: a cl_linsol with a tolerance
+ * (CVODE's klu-full is no cl_linsol). */
 static bool linsol_iterative(const cl_cli_method *m)
 {
     const cl_linsol_type *lt = m->type->takes_linsol
-                                   ? cl_linsol_find(m->io.linsol)
+                                   ? cl_linsol_find(linsol_of(m))
                                    : NULL;
     return lt && lt->solve_tol;
 }
@@ -376,12 +384,16 @@ static cl_status check_command_keys(cl_config *cfg, const cl_cli_methods *ms,
             continue;
         const cl_cli_method *m = &ms->m[0];
         if (ms->n == 1)
-            snprintf(why, sizeof why, "integrator %s%s%s reads no %s (%s)",
+            snprintf(why, sizeof why, "integrator %s%s%s%s reads no %s (%s)",
                      m->type->name,
                      m->type->takes_linsol ? " with linear solver " : "",
                      !m->type->takes_linsol ? ""
                      : *m->io.linsol        ? m->io.linsol
-                                            : "klu (its default)",
+                     : *linsol_of(m)        ? linsol_of(m)
+                                            : "klu",
+                     m->type->takes_linsol && !*m->io.linsol
+                         ? " (its default)"
+                         : "",
                      key, method_keys[i].who);
         else
             snprintf(why, sizeof why, "no integrator of the list reads %s "

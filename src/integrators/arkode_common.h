@@ -74,6 +74,7 @@
 #include "integrators/define.h"
 #include "integrators/integrator.h"
 #include "integrators/sun_adapter.h"
+#include "integrators/sun_reduced.h"
 
 /* The default tables. */
 #define CL_ARK_DIRK_DEFAULT "ARK436L2SA_DIRK_6_3_4"
@@ -105,6 +106,7 @@ cl_status cl_ark_advance(void *state, double t_out, double *x, double *v,
         .doc = (doc_),                                                     \
         .fixed_step = (fixed_),                                            \
         .takes_linsol = true,                                              \
+        .linsol_default = CL_SUNRED_DEFAULT,                               \
         .takes_newton_maxit = true,                                        \
         .takes_table = true,                                               \
         .create = ident##_create,                                          \

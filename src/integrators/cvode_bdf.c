@@ -60,6 +60,7 @@ const cl_integrator_type cl_integrator_cvode_bdf = {
     .fixed_step = false,
     .takes_max_order = true,
     .takes_linsol = true,
+    .linsol_default = CL_SUNRED_DEFAULT,
     .create = cvb_create,
     .advance = cl_sun_advance,
     .stats = cl_sun_stats,

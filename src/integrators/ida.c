@@ -188,6 +188,7 @@ const cl_integrator_type cl_integrator_ida = {
     .fixed_step = false,
     .takes_max_order = true,
     .takes_linsol = true,
+    .linsol_default = CL_SUNRED_DEFAULT,
     .create = ida_create,
     .advance = cl_sun_advance,
     .stats = cl_sun_stats,

@@ -72,6 +72,8 @@ typedef struct {
                           * fixed steps of dt (the petsc-ts family);
                           * cl_integrator_fixed */
     bool takes_linsol;   /* accepts opts->linsol (cl_linsol registry) */
+    const char *linsol_default; /* the linear solver an empty opts->linsol
+                                 * gives, NULL for the registry's first */
     bool takes_max_order; /* accepts opts->max_order */
     bool takes_iterations; /* accepts opts->substeps, opts->iterations */
     bool takes_newton_maxit; /* a Newton iteration opts->newton_maxit caps */

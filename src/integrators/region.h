@@ -61,7 +61,9 @@ extern const cl_region cl_region_taylor1;   /* fe */
 extern const cl_region cl_region_taylor4;   /* rk4 */
 /* Symplectic Euler either way and position Verlet: the same step matrix
  * on the damped oscillator, trace 2 - h^2 w^2 - h c, determinant 1 - h c
- * (stable for h < (sqrt(c^2 + 4 w^2) - c) / w^2); velocity Verlet, whose
+ * (stable for h < (sqrt(c^2 + 4 w^2) - c) / w^2; position Verlet at its
+ * velocity damping d = 0, which its region does not see: with d > 0,
+ * h^2 w^2 < 4 - 2 h c - 2 d); velocity Verlet, whose
  * damping sees the predictor v_k + h a_k and whose a_k is the last step's
  * acceleration, evaluated at the last predictor (velocity_verlet.c), has
  * its own, of three states. */
