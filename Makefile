@@ -220,7 +220,7 @@ FUZZ_NAMES   := config state obj mtx
 build-fuzz/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz.h $(FUZZ_LIB) \
                    $(wildcard src/*/*.h)
 	@mkdir -p build-fuzz
-	$(FUZZ_CC) $(CPPFLAGS) $(FUZZ_FLAGS) $< $(FUZZ_LIB) -linih -lnettle -lm -o $@
+	$(FUZZ_CC) $(CPPFLAGS) $(FUZZ_FLAGS) $< $(FUZZ_LIB) -linih -lnettle -ljansson -lm -o $@
 
 fuzz:
 	@scripts/install-deps.sh fuzz

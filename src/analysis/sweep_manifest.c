@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "io/atomic.h"
-#include "io/input.h"
+#include "io/jsonfile.h"
 
 static json_t *axes_json(const cl_sweep *sw)
 {
@@ -204,13 +204,11 @@ cl_status cl_sweep_load(const char *dir, cl_sweep *sw, cl_error *err)
     json_error_t jerr;
     snprintf(path, sizeof path, "%s/sweep.json", dir);
     const char *why;
-    FILE *fp = cl_input_open(path, "r", &why);
-    if (!fp)
+    json_t *root = cl_json_read(path, &jerr, &why);
+    if (!root && why)
         return cl_error_set(err, CL_EIO, "%s: cannot read it (%s); a sweep "
                             "directory is made by 'clothode sweep plan'",
                             path, why);
-    json_t *root = json_loadf(fp, 0, &jerr);
-    (void)fclose(fp);
     if (!root)
         return cl_error_set(err, CL_EPARSE, "%s:%d: %s; a sweep directory is "
                             "made by 'clothode sweep plan'", path, jerr.line,

@@ -10,6 +10,7 @@
 
 #include "core/exit.h"
 #include "io/input.h"
+#include "io/jsonfile.h"
 
 const char *const cl_sweep_stat_names[CL_SWEEP_NSTAT] = {
     "steps", "rhs_evals", "jac_evals", "lin_setups", "lin_solves",
@@ -56,10 +57,8 @@ static void read_times(const cl_sweep *sw, int k, cl_sweep_outcome *o)
     snprintf(path, sizeof path, "%s/jobs/%s/run/run.json", sw->dir,
              sw->job[k].id);
     const char *why;
-    FILE *fp = cl_input_open(path, "r", &why);
-    json_t *root = fp ? json_loadf(fp, 0, NULL) : NULL;
-    if (fp)
-        (void)fclose(fp);
+    json_error_t je;
+    json_t *root = cl_json_read(path, &je, &why);
     json_t *times = json_object_get(root, "times");
     for (int i = 0; i < 2; i++) {
         json_t *v = json_object_get(times, key[i]);

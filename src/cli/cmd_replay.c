@@ -14,6 +14,7 @@
 #include "cli/commands.h"
 #include "cli/outdir.h"
 #include "io/input.h"
+#include "io/jsonfile.h"
 
 typedef struct {
     cl_cli_args a;
@@ -46,12 +47,10 @@ static cl_status load_manifest(const char *dir, json_t **out, cl_error *err)
     json_error_t je;
     snprintf(path, sizeof path, "%s/run.json", dir);
     const char *why;
-    FILE *fp = cl_input_open(path, "r", &why);
-    if (!fp)
+    json_t *root = cl_json_read(path, &je, &why);
+    if (!root && why)
         return cl_error_set(err, CL_EIO, "%s: cannot read run.json: %s",
                             dir, why);
-    json_t *root = json_loadf(fp, 0, &je);
-    (void)fclose(fp);
     if (!root)
         return cl_error_set(err, CL_EPARSE, "%s:%d: not JSON: %s", path,
                             je.line, je.text);

@@ -12,7 +12,7 @@
 #include <jansson.h>
 
 #include "io/atomic.h"
-#include "io/input.h"
+#include "io/jsonfile.h"
 
 /* The tables of the other commands, which share out/PROBLEM with run. */
 static const char *const study_outputs[] = {
@@ -76,10 +76,8 @@ static json_t *earlier_files(const char *dir)
     char path[4200];
     snprintf(path, sizeof path, "%s/run.json", dir);
     const char *why;
-    FILE *fp = cl_input_open(path, "r", &why);
-    json_t *root = fp ? json_loadf(fp, 0, NULL) : NULL;
-    if (fp)
-        (void)fclose(fp);
+    json_error_t je;
+    json_t *root = cl_json_read(path, &je, &why);
     json_t *files = json_object_get(root, "files");
     const char *program = json_string_value(json_object_get(root, "program"));
     if (!program || strcmp(program, "clothode") || !json_is_array(files)) {
