@@ -245,7 +245,7 @@ static void summary_wp(const void *results, int n)
 
 static const cl_cli_study conv_study = {
     .csv = "convergence.csv",
-    .columns = "integrator          dt / rtol  err_x [m]      err_v   order"
+    .columns = "integrator          dt / rtol  err_x [m] err_v[m/s]   order"
                "     steps   cpu [s]",
     .size = sizeof(cl_conv_result),
     .begin = begin, .run = run_one, .print = print_result, .rows = rows,
