@@ -606,3 +606,31 @@ Test(contact, continuous_detection_catches_a_small_fast_sphere)
     cr_assert_float_eq(x[0], 0.25, 1e-15, "x = %.17g", x[0]);
     cr_assert_eq(v[0], 0.0);
 }
+
+/* A run's start forgets every particle's memo of its distances: a memo
+ * left at |x| ~ 1e78 (where a run that blew up ends) screened the sphere
+ * out of the next run's forces.  The force at a state inside the sphere
+ * after such an evaluation and a restart is a fresh model's. */
+Test(contact, restart_forgets_the_memos)
+{
+    char dir[512];
+    pr_problem p;
+    tmp_mkdtemp(dir, sizeof dir, "contact");
+    particle(&p, dir, "shape = sphere\ncenter = 0, 0, 0\nradius = 0.5\n"
+                      "response = penalty\nk = 1000\n");
+    const cl_system *sys = cl_model_system(p.m);
+    double inside[6] = {0.0, 0.45, 0.0, 0.1, 0.43, 0.0};
+    double far[6] = {1e78, 1e78, 0.0, -1e78, 1e78, 0.0};
+    double v[6] = {0.0}, fresh[6], f[6];
+    cl_model_contact_start(p.m, false);
+    cr_assert_eq(sys->force(sys->data, 0.0, inside, v, fresh), CL_OK);
+    cr_assert_gt(fresh[1], 0.0, "pushed out: %g", fresh[1]);
+    (void)sys->force(sys->data, 0.0, far, v, f);
+    cl_model_contact_start(p.m, false);
+    cr_assert_eq(sys->force(sys->data, 0.0, inside, v, f), CL_OK);
+    for (int i = 0; i < 6; i++)
+        cr_assert_eq(f[i], fresh[i], "entry %d: %g against %g", i, f[i],
+                     fresh[i]);
+    pr_free(&p);
+    tmp_rm_rf(dir);
+}

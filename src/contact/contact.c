@@ -71,16 +71,6 @@ bool cl_contact_projects_friction(const cl_contact *c)
 
 bool cl_contact_constrains(const cl_contact *c) { return c->constrains; }
 
-void cl_contact_restart(cl_contact *c)
-{
-    c->swept = false;
-    for (size_t p = 0; c->constrains && p < c->cloth->np; p++)
-        c->cons[p].mode = CL_CONSTRAINT_FREE;
-    c->last_t = c->last_dt = 0.0;
-    c->proj_force = c->proj_friction = 0.0;
-    c->acc_live = true;
-    memset(c->lambda, 0, c->nobs * c->cloth->np * sizeof *c->lambda);
-}
 
 size_t cl_contact_obstacles(const cl_contact *c) { return c->nobs; }
 
@@ -124,22 +114,49 @@ static void contact_free(void *state)
     free(c);
 }
 
-/* Every memo empty, pointing at its zeroed shape cache (if any). */
-static cl_status start_memos(cl_contact *c, cl_error *err)
+/* The size of every shape cache together. */
+static size_t caches_size(const cl_contact *c)
 {
-    size_t np = c->cloth->np, total = 0;
+    size_t total = 0;
     for (size_t k = 0; k < c->nobs; k++)
-        total += np * c->obs[k].type->cache_size;
-    if (total && !(c->cache = calloc(total, 1)))
-        return cl_error_set(err, CL_ENOMEM, "out of memory (obstacles)");
+        total += c->cloth->np * c->obs[k].type->cache_size;
+    return total;
+}
+
+/* Every memo empty, pointing at its zeroed shape cache (if any). */
+static void reset_memos(cl_contact *c)
+{
+    size_t np = c->cloth->np;
     unsigned char *at = c->cache;
+    if (at)
+        memset(at, 0, caches_size(c));
     for (size_t k = 0; k < c->nobs; k++) {
         size_t size = c->obs[k].type->cache_size;
         for (size_t p = 0; p < np; p++, at += size)
             *memo_of(c, k, p) = (cl_contact_memo){
                 .d = -INFINITY, .cache = size ? at : NULL};
     }
+}
+
+static cl_status start_memos(cl_contact *c, cl_error *err)
+{
+    size_t total = caches_size(c);
+    if (total && !(c->cache = malloc(total)))
+        return cl_error_set(err, CL_ENOMEM, "out of memory (obstacles)");
+    reset_memos(c);
     return CL_OK;
+}
+
+void cl_contact_restart(cl_contact *c)
+{
+    c->swept = false;
+    for (size_t p = 0; c->constrains && p < c->cloth->np; p++)
+        c->cons[p].mode = CL_CONSTRAINT_FREE;
+    c->last_t = c->last_dt = 0.0;
+    c->proj_force = c->proj_friction = 0.0;
+    c->acc_live = true;
+    memset(c->lambda, 0, c->nobs * c->cloth->np * sizeof *c->lambda);
+    reset_memos(c); /* an earlier run's distances are not this one's */
 }
 
 static cl_status contact_create(cl_config *cfg, const cl_cloth *cloth,

@@ -46,8 +46,10 @@ bool cl_contact_constrains(const cl_contact *c);
 size_t cl_contact_obstacles(const cl_contact *c);
 const cl_obstacle *cl_contact_obstacle(const cl_contact *c, size_t k);
 
-/* Forget the last projection and the barriers' lagged friction (the
- * start of a run). */
+/* Forget the last projection, the barriers' lagged friction and every
+ * particle's memo of its distances (the start of a run: a study's runs
+ * follow each other on one model, and a memo left by a run that blew up,
+ * at |x| ~ 1e78, screened the obstacles out of the next one). */
 void cl_contact_restart(cl_contact *c);
 
 /* The figures at time t for full-particle positions and velocities. */
