@@ -1781,7 +1781,8 @@ Test(cli, contact_refusals)
                    LIST("whole number", "0.03"));
     expect_refused(LIST("contact", "jiao-sphere", "--dt", "1e-2",
                         "--response", "penalty"), 0,
-                   LIST("[obstacle.sphere]", "needs its stiffness k"));
+                   LIST("problems/jiao-sphere.ini:", "[obstacle.sphere] k: "
+                        "required (response = penalty's stiffness"));
     expect_refused(LIST("contact", "particle-floor", "--k", "1e4,-1"), 0,
                    LIST("--k", "stiffnesses > 0"));
 }

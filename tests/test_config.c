@@ -1010,3 +1010,25 @@ Test(config, long_section_name_and_empty_key_are_refused)
     expect_parse_error("[run]\ndt = 1\n= 2\n", 3, "'=' without a key name",
                        NULL);
 }
+
+/* A key a section lacks is named with the file and line of the section's
+ * first entry, or the file alone when the section has none. */
+Test(config, missing_key_names_its_section_s_place)
+{
+    char path[64], want[128];
+    cl_config *cfg = cl_config_alloc();
+    cl_error err = {0};
+    cr_assert_eq(load_text(cfg, "[cloth]\nn = 4\n\n[obstacle.s]\n"
+                                "shape = sphere\n", path, &err),
+                 CL_OK, "%s", err.msg);
+    cr_assert_eq(cl_config_missing(cfg, "obstacle.s", "radius", "a number "
+                                   "> 0", &err), CL_EINVAL);
+    snprintf(want, sizeof want, "%s:5: [obstacle.s] radius: required (a "
+             "number > 0)", path);
+    cr_assert_str_eq(err.msg, want);
+    cl_config_missing(cfg, "gravity", "g", "three numbers", &err);
+    snprintf(want, sizeof want, "%s: [gravity] g: required (three numbers)",
+             path);
+    cr_assert_str_eq(err.msg, want);
+    cl_config_free(cfg);
+}

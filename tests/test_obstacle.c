@@ -150,11 +150,13 @@ Test(obstacle, names_shapes_and_responses_are_checked)
         const char *sec, *sets[NSET], *what;
     } bad[] = {
         {"obstacle.b@d", {"obstacle.b@d.shape = sphere"}, "name"},
-        {"obstacle.o", {"obstacle.o.response = project"}, "needs a shape"},
+        {"obstacle.o", {"obstacle.o.response = project"},
+         "--set: [obstacle.o] shape: required (sphere, plane, box or mesh)"},
         {"obstacle.o", {"obstacle.o.shape = sphere", "obstacle.o.radius = 1"},
-         "needs a response"},
+         "[obstacle.o] response: required"},
         {"obstacle.o", {"obstacle.o.shape = sphere", "obstacle.o.radius = 1",
-                        "obstacle.o.response = penalty"}, "stiffness k"},
+                        "obstacle.o.response = penalty"},
+         "[obstacle.o] k: required (response = penalty's stiffness"},
         {"obstacle.o", {"obstacle.o.shape = sphere", "obstacle.o.radius = 1",
                         "obstacle.o.omega = 1, 2",
                         "obstacle.o.response = project"}, "omega"},

@@ -436,8 +436,8 @@ static cl_status read_penalty(cl_config *cfg, const char *sec,
                                &r->v_smooth, err)))
         return rc;
     if (isnan(r->k))
-        return cl_error_set(err, CL_EINVAL, "[%s] response = penalty needs "
-                            "its stiffness k (N/m, > 0)", sec);
+        return cl_config_missing(cfg, sec, "k", "response = penalty's "
+                                 "stiffness, N/m, > 0", err);
     return CL_OK;
 }
 
@@ -469,9 +469,12 @@ static cl_status read_barrier(cl_config *cfg, const char *sec,
         (rc = cl_config_bool(cfg, sec, "psd", true, &r->psd, err)))
         return rc;
     if (isnan(r->kappa) || isnan(r->dhat))
-        return cl_error_set(err, CL_EINVAL, "[%s] response = barrier needs "
-                            "its stiffness kappa (J/m^2, > 0) and its reach "
-                            "dhat (m, > 0)", sec);
+        return cl_config_missing(cfg, sec, isnan(r->kappa) ? "kappa" : "dhat",
+                                 isnan(r->kappa)
+                                     ? "response = barrier's stiffness, "
+                                       "J/m^2, > 0"
+                                     : "response = barrier's reach, m, > 0",
+                                 err);
     return CL_OK;
 }
 
@@ -493,9 +496,8 @@ static cl_status read_response(cl_config *cfg, const char *sec,
     int k;
     cl_status rc;
     if (!cl_config_string(cfg, sec, "response", NULL))
-        return cl_error_set(err, CL_EINVAL, "[%s] needs a response "
-                            "(penalty, project, barrier or constraint)",
-                            sec);
+        return cl_config_missing(cfg, sec, "response", "penalty, project, "
+                                 "barrier or constraint", err);
     if ((rc = cl_config_choice(cfg, sec, "response", kinds, 0, &k, err)) ||
         (rc = cl_config_double(cfg, sec, "mu", 0.0, 0.0, INFINITY, &r->mu,
                                err)))
@@ -509,8 +511,8 @@ static cl_status read_shape(cl_config *cfg, const char *sec, cl_obstacle *o,
 {
     const char *name = cl_config_string(cfg, sec, "shape", NULL);
     if (!name)
-        return cl_error_set(err, CL_EINVAL, "[%s] needs a shape (sphere, "
-                            "plane, box or mesh)", sec);
+        return cl_config_missing(cfg, sec, "shape", "sphere, plane, box or "
+                                 "mesh", err);
     o->type = cl_shape_find(name);
     if (!o->type) {
         char allowed[256] = "expected one of:";

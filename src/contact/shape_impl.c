@@ -17,18 +17,11 @@ cl_status cl_shape_bad_value(cl_config *cfg, const char *sec,
     return cl_config_refuse(cfg, sec, key, CL_EINVAL, why, err);
 }
 
-static cl_status missing(const char *sec, const char *key, const char *what,
-                         cl_error *err)
-{
-    return cl_error_set(err, CL_EINVAL, "[%s] %s: required (%s)", sec, key,
-                        what);
-}
-
 cl_status cl_shape_positive(cl_config *cfg, const char *sec, const char *key,
                             double def, double *out, cl_error *err)
 {
     if (isnan(def) && !cl_config_string(cfg, sec, key, NULL))
-        return missing(sec, key, "a number > 0", err);
+        return cl_config_missing(cfg, sec, key, "a number > 0", err);
     if (cl_config_double(cfg, sec, key, def, -INFINITY, INFINITY, out, NULL)
         || !(*out > 0))
         return cl_shape_bad_value(cfg, sec, key, "a number > 0", err);
@@ -39,7 +32,8 @@ cl_status cl_shape_vector(cl_config *cfg, const char *sec, const char *key,
                           bool required, double out[3], cl_error *err)
 {
     if (required && !cl_config_string(cfg, sec, key, NULL))
-        return missing(sec, key, "three numbers x, y, z", err);
+        return cl_config_missing(cfg, sec, key, "three numbers x, y, z",
+                                 err);
     return cl_config_vector(cfg, sec, key, 3, out, err);
 }
 

@@ -902,6 +902,22 @@ const char *cl_config_string(cl_config *cfg, const char *sec, const char *key,
     return e ? e->value : def;
 }
 
+cl_status cl_config_missing(const cl_config *cfg, const char *sec,
+                            const char *key, const char *what,
+                            cl_error *err)
+{
+    cl_origin_buf origin;
+    snprintf(origin, sizeof origin, "%s",
+             cfg->nfiles ? cfg->files[0] : "(no file)");
+    for (size_t i = 0; i < cfg->nent; i++)
+        if (!strcmp(cfg->ent[i].sec, sec)) {
+            cl_origin_of(&cfg->ent[i], origin, sizeof origin);
+            break;
+        }
+    return cl_error_set(err, CL_EINVAL, "%s: [%s] %s: required (%s)", origin,
+                        sec, key, what);
+}
+
 bool cl_config_set_by_command(const cl_config *cfg, const char *sec,
                               const char *key)
 {

@@ -92,6 +92,13 @@ cl_status cl_config_refuse(const cl_config *cfg, const char *sec,
                            const char *key, cl_status code, const char *why,
                            cl_error *err);
 
+/* CL_EINVAL for a key section `sec` lacks: "ORIGIN: [sec] key: required
+ * (what)", ORIGIN the file and line of the section's first entry (the
+ * first file loaded if the section has none). */
+cl_status cl_config_missing(const cl_config *cfg, const char *sec,
+                            const char *key, const char *what,
+                            cl_error *err);
+
 /* CL_EINVAL naming the first entry no getter asked for, with the list of
  * keys known in its section if that section is known at all (names count as
  * known once a getter asked for them, present in the file or not). */
