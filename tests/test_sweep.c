@@ -461,6 +461,11 @@ Test(sweep, run_help_and_refusals)
     cli_assert_error(&r, 1, "--sshloginfile FILE goes with --engine ssh",
                      NULL);
     cli_result_free(&r);
+    /* the slurm engine's options with another engine */
+    cli_run(&r, "sweep", "run", tmp, "--chunk", "5", NULL);
+    cli_assert_error(&r, 1, "--chunk, --throttle, --time, --mem and --wait "
+                     "go with --engine slurm", NULL);
+    cli_result_free(&r);
     /* a host file that cannot be read is refused before GNU parallel */
     cli_run(&r, "sweep", "run", tmp, "--engine", "ssh", "--sshloginfile",
             "/nonexistent/hosts", NULL);

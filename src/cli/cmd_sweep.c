@@ -376,6 +376,11 @@ static int run(void *settings)
     if ((r->engine == CL_SWEEP_SSH) != (r->sshloginfile != NULL))
         return cl_cli_usage_error(run_table.cmd, "--sshloginfile FILE goes "
                                   "with --engine ssh, and only with it");
+    if (r->engine != CL_SWEEP_SLURM &&
+        (r->chunk != 1 || r->throttle || r->time_min || r->mem_mb || r->wait))
+        return cl_cli_usage_error(run_table.cmd, "--chunk, --throttle, "
+                                  "--time, --mem and --wait go with --engine "
+                                  "slurm, and only with it");
     if (!hosts_readable(r->sshloginfile, &err) &&
         !cl_sweep_load(r->a.arg, &sw, &err) && !cl_same_file(r->a.arg, sw.dir))
         /* the jobs' command lines name the planned directory: run there
