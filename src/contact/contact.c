@@ -71,7 +71,6 @@ bool cl_contact_projects_friction(const cl_contact *c)
 
 bool cl_contact_constrains(const cl_contact *c) { return c->constrains; }
 
-
 size_t cl_contact_obstacles(const cl_contact *c) { return c->nobs; }
 
 const cl_obstacle *cl_contact_obstacle(const cl_contact *c, size_t k)

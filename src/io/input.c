@@ -7,15 +7,34 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+/* The kinds of file, for messages: what it is, and the refusal of an
+ * input that is not a regular one (literals: no buffer to share). */
+static const struct {
+    const char *kind, *refusal;
+} kinds[] = {
+    {"a regular file", NULL},
+    {"a directory", "it is a directory, not a regular file"},
+    {"a symbolic link", "it is a symbolic link, not a regular file"},
+    {"a FIFO", "it is a FIFO, not a regular file"},
+    {"a device", "it is a device, not a regular file"},
+    {"a socket", "it is a socket, not a regular file"},
+    {"of another kind", "it is not a regular file"},
+};
+
+static size_t kind_of(mode_t mode)
+{
+    return S_ISREG(mode)                    ? 0
+           : S_ISDIR(mode)                  ? 1
+           : S_ISLNK(mode)                  ? 2
+           : S_ISFIFO(mode)                 ? 3
+           : S_ISCHR(mode) || S_ISBLK(mode) ? 4
+           : S_ISSOCK(mode)                 ? 5
+                                            : 6;
+}
+
 const char *cl_file_kind(mode_t mode)
 {
-    return S_ISREG(mode)                    ? "a regular file"
-           : S_ISDIR(mode)                  ? "a directory"
-           : S_ISLNK(mode)                  ? "a symbolic link"
-           : S_ISFIFO(mode)                 ? "a FIFO"
-           : S_ISCHR(mode) || S_ISBLK(mode) ? "a device"
-           : S_ISSOCK(mode)                 ? "a socket"
-                                            : "of another kind";
+    return kinds[kind_of(mode)].kind;
 }
 
 bool cl_same_file(const char *a, const char *b)
@@ -23,17 +42,6 @@ bool cl_same_file(const char *a, const char *b)
     struct stat sa, sb;
     return stat(a, &sa) == 0 && stat(b, &sb) == 0 &&
            sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
-}
-
-/* "it is KIND, not a regular file" for a file that is not one. */
-static const char *not_regular(mode_t mode)
-{
-    return S_ISDIR(mode)    ? "it is a directory, not a regular file"
-           : S_ISFIFO(mode) ? "it is a FIFO, not a regular file"
-           : S_ISCHR(mode) || S_ISBLK(mode)
-               ? "it is a device, not a regular file"
-           : S_ISSOCK(mode) ? "it is a socket, not a regular file"
-                            : "it is not a regular file";
 }
 
 FILE *cl_input_open(const char *path, const char *mode, const char **why)
@@ -49,7 +57,7 @@ FILE *cl_input_open(const char *path, const char *mode, const char **why)
     if (flags < 0)
         *why = strerror(errno);
     else if (!S_ISREG(st.st_mode))
-        *why = not_regular(st.st_mode);
+        *why = kinds[kind_of(st.st_mode)].refusal;
     else if (fcntl(fd, F_SETFL, flags & ~O_NONBLOCK) < 0 ||
              !(fp = fdopen(fd, mode)))
         *why = strerror(errno);
