@@ -59,7 +59,7 @@ runs() {
     done
     cat <<EOF
 test/frames-vtk-obj hang --set cloth.n=6 --t-end 0.05 --integrator symplectic-euler --dt 1e-4 --frames 2
-test/frames-csv hang --set cloth.n=6 --t-end 0.01 --integrator symplectic-euler --dt 1e-4 --frames 2 --format csv
+test/frames-csv hang --set cloth.n=6 --t-end 0.01 --integrator symplectic-euler --dt 1e-4 --format csv
 test/series hang --set cloth.n=6 --integrator symplectic-euler --dt 1e-3 --t-end 0.05 --samples 200 --frames 0
 test/frames-vtk hang --set cloth.n=3 --integrator symplectic-euler --dt 1e-3 --t-end 0.005 --samples 5 --frames 10 --format vtk
 test/blow-up hang --set cloth.n=6 --integrator symplectic-euler --dt 0.01 --t-end 1 --samples 100 --frames 0

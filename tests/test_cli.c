@@ -1077,14 +1077,17 @@ Test(cli, run_config_ini_reproduces_the_run)
     assert_same_files(out, again, LIST("series.csv", "final.csv"));
 }
 
+/* csv alone: the series without frames, and says so; --frames K asked
+ * for with it would change nothing and is refused, as is an empty list */
 Test(cli, run_format_csv_writes_no_frames)
 {
     char out[1024], path[1200], first[256] = "";
     cli_result r;
     cli_run(&r, "run", "hang", "--set", "cloth.n=6", "--t-end", "0.01",
-            "--integrator", "symplectic-euler", "--dt", "1e-4", "--frames",
-            "2", "--format", "csv", "--out", in_tmp(out, "csv"), NULL);
+            "--integrator", "symplectic-euler", "--dt", "1e-4", "--format",
+            "csv", "--out", in_tmp(out, "csv"), NULL);
     cli_assert_ok(&r);
+    cr_assert_not_null(strstr(r.out, "(series.csv, 0 frames,"), "%s", r.out);
     cli_result_free(&r);
     cr_assert_eq(count_prefixed(out, "frame_", first, sizeof first), 0,
                  "--format csv wrote %s", first);
@@ -1093,6 +1096,15 @@ Test(cli, run_format_csv_writes_no_frames)
         snprintf(path, sizeof path, "%s/%s", out, want[k]);
         cr_assert(cli_exists(path), "missing or empty %s", path);
     }
+    cli_run(&r, "run", "hang", "--set", "cloth.n=6", "--frames", "2",
+            "--format", "csv", "--out", in_tmp(out, "csv2"), NULL);
+    cli_assert_error(&r, 0, "[run] frames = \"2\"", "no frame format",
+                     NULL);
+    cli_result_free(&r);
+    cli_run(&r, "run", "hang", "--set", "cloth.n=6", "--format", "",
+            "--out", in_tmp(out, "csv3"), NULL);
+    cli_assert_error(&r, 0, "[run] format = \"\"", "an empty list", NULL);
+    cli_result_free(&r);
 }
 
 Test(cli, run_bad_format)

@@ -764,6 +764,33 @@ Test(config, unknown_section_reported)
     cl_config_free(cfg);
 }
 
+/* A family of sections read through cl_config_section_at counts as known,
+ * [obstacle.NAME]; its keys are those asked for in each member. */
+Test(config, section_family_reported_as_known)
+{
+    char path[64], want[200];
+    cl_config *cfg = cfg_one("[run]\ndt = 1\n[obstacle.ball]\nr = 1\n"
+                             "rr = 2\n[obstacl.ball]\nr = 1\n", path);
+    cl_error err = {0};
+    double x;
+    cl_config_double(cfg, "run", "dt", 0, 0, 9, &x, &err);
+    cr_assert_str_eq(cl_config_section_at(cfg, "obstacle.", 0),
+                     "obstacle.ball");
+    cr_assert_null(cl_config_section_at(cfg, "obstacle.", 1));
+    cl_config_double(cfg, "obstacle.ball", "r", 0, 0, 9, &x, &err);
+    cr_assert_eq(cl_config_check_unused(cfg, &err), CL_EINVAL);
+    snprintf(want, sizeof want, "%s:5: unknown key [obstacle.ball] rr "
+             "(known keys in [obstacle.ball]: r)", path);
+    assert_msg_has(err, want);
+    cl_config_double(cfg, "obstacle.ball", "rr", 0, 0, 9, &x, &err);
+    cr_assert_eq(cl_config_check_unused(cfg, &err), CL_EINVAL);
+    snprintf(want, sizeof want, "%s:7: unknown section [obstacl.ball] "
+             "(known sections: [run], [obstacle.NAME], [obstacle.ball])",
+             path);
+    assert_msg_has(err, want);
+    cl_config_free(cfg);
+}
+
 Test(config, unknown_key_outside_sections)
 {
     char path[64], want[160];

@@ -84,4 +84,8 @@ Test(counts, csv_columns)
                   strstr(r.out, "(n-1)(3n-5)"),
               "%s", r.out);
     cli_result_free(&r);
+    /* --bw without --csv would change nothing */
+    cli_run(&r, "counts", "--bw", "--n-max", "4", NULL);
+    cli_assert_error(&r, 1, "--bw goes with --csv", NULL);
+    cli_result_free(&r);
 }

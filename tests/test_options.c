@@ -216,6 +216,8 @@ Test(options, out_of_range_and_malformed_values_are_refused)
     refused("--gd", "2", "in [0, 1]");
     refused("--lim", "2.6", "in [0, 2.5]"); /* at most x = 2.5 */
     refused("--format", "vtk,png", "expected a list of csv, vtk, obj");
+    refused("--format", ",", "an empty list; expected at least one of csv, "
+                             "vtk, obj");
     refused("--integrator", "rk5", "unknown integrator \"rk5\"");
     refused("--integrator", "rk5", "rk4");
     refused("--integrator", "rk4,fe,rk4", "more than 2 entries");

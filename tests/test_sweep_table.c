@@ -134,6 +134,29 @@ Test(sweep_table, rows_must_name_one_value_of_an_axis)
     cl_sweep_table_free(&t);
 }
 
+/* An empty name in the list of tables (--table '', --from-sweep A.csv,,B)
+ * is refused: read as no table, it gave no rows and nothing to refine. */
+Test(sweep_table, empty_table_names_are_refused)
+{
+    char list[1200];
+    cl_sweep_table t;
+    cl_error err = {0};
+    snprintf(list, sizeof list, "%s/t.csv", tmp);
+    tmp_put(list, table);
+    cr_assert_eq(cl_sweep_table_read("", &t, &err), CL_EINVAL);
+    cr_assert(strstr(err.msg, "an empty name in the list of tables"), "%s",
+              err.msg);
+    cl_sweep_table_free(&t);
+    snprintf(list, sizeof list, "%s/t.csv,,%s/t.csv", tmp, tmp);
+    cr_assert_eq(cl_sweep_table_read(list, &t, &err), CL_EINVAL);
+    cr_assert(strstr(err.msg, "an empty name"), "%s", err.msg);
+    cl_sweep_table_free(&t);
+    snprintf(list, sizeof list, "%s/t.csv,%s/t.csv", tmp, tmp);
+    cr_assert_eq(cl_sweep_table_read(list, &t, &err), CL_OK, "%s", err.msg);
+    cr_assert_eq(t.nrow, 22);
+    cl_sweep_table_free(&t);
+}
+
 /* The command line: the study's table from the sweep's rows of n = 6. */
 Test(sweep_table, stability_cli_from_sweep)
 {

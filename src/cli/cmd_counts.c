@@ -87,6 +87,10 @@ static int counts(void *settings)
     if (a->lo > a->hi)
         return cl_cli_usage_error("counts", "--n-min %ld is above --n-max "
                                   "%ld", a->lo, a->hi);
+    if (a->bw && !a->csv)
+        return cl_cli_usage_error("counts", "--bw goes with --csv (the "
+                                  "tables print the Baraff-Witkin counts "
+                                  "without it)");
     size_t rows = (size_t)(a->hi - a->lo + 1);
     cl_counts *k = malloc(rows * sizeof *k);
     if (!k)

@@ -56,9 +56,16 @@ static cl_status check_run(cl_config *cfg, void *ctx, cl_error *err)
     r->so.t_end = r->run.t_end;
     r->so.max_stretch = r->run.max_stretch;
     r->so.samples = r->run.samples;
-    r->so.frames = r->run.frames;
     r->so.vtk = r->run.format & CL_CLI_FMT_VTK;
     r->so.obj = r->run.format & CL_CLI_FMT_OBJ;
+    /* csv alone writes the series only: its frames are not output times */
+    r->so.frames = r->so.vtk || r->so.obj ? r->run.frames : 0;
+    if (r->run.frames > 0 && !r->so.frames &&
+        cl_config_set_by_command(cfg, "run", "frames"))
+        return cl_config_refuse(cfg, "run", "frames", CL_EINVAL,
+                                "no frame format to write them in: --format "
+                                "csv writes the series only; add vtk or obj, "
+                                "or leave --frames out", err);
     r->so.max_wall = r->run.budget_wall;
     r->so.max_steps = r->run.budget_steps;
     r->run.io.force = r->force;

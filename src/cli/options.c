@@ -230,7 +230,11 @@ static cl_status read_names(cl_config *cfg, const cl_cli_opt *r,
         *mask |= 1u << k;
         p += n;
     }
-    return CL_OK;
+    if (*mask)
+        return CL_OK;
+    snprintf(why, sizeof why, "an empty list; expected at least one of ");
+    cl_cli_join(r->names, why + strlen(why), sizeof why - strlen(why));
+    return cl_config_refuse(cfg, r->sec, r->key, CL_EINVAL, why, err);
 }
 
 static cl_status read_row(cl_config *cfg, const cl_cli_opt *r, char *s,

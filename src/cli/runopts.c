@@ -104,7 +104,8 @@ const cl_cli_opt cl_cli_run_rows[] = {
      .help = "frames after t = 0, 0 for none"},
     {.name = "format", .arg = "LIST", .type = CL_CLI_NAMES, .key = "format",
      RUN_ROW(format), .sdef = "vtk,obj", .names = run_formats,
-     .help = "frame formats among csv,vtk,obj (csv: the time series only)"},
+     .help = "frame formats among csv,vtk,obj (csv alone: the time "
+             "series, no frames; --frames is refused with it)"},
     {.name = "max-wall", .arg = "SECONDS", .type = CL_CLI_DOUBLE,
      .key = "budget_wall", RUN_ROW(budget_wall), .def = 0, .lo = 0,
      .hi = INFINITY,

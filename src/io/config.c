@@ -968,7 +968,8 @@ static char *cl_known_text(const cl_config *cfg, const char *sec)
     const char *sep = "";
     for (size_t i = 0; i < cfg->nasked; i++) {
         const cl_name *n = &cfg->asked[i];
-        if (sec ? strcmp(n->sec, sec) != 0 : cl_seen_section(cfg, i))
+        if (sec ? strcmp(n->sec, sec) != 0 || !*n->key
+                : cl_seen_section(cfg, i))
             continue;
         fprintf(f, sec ? "%s%s" : "%s[%s]", sep, sec ? n->key : n->sec);
         sep = ", ";
@@ -1040,10 +1041,15 @@ cl_status cl_config_refuse(const cl_config *cfg, const char *sec,
                         key, e ? e->value : "", why);
 }
 
-const char *cl_config_section_at(const cl_config *cfg, const char *prefix,
+const char *cl_config_section_at(cl_config *cfg, const char *prefix,
                                  size_t k)
 {
     size_t len = strlen(prefix), seen = 0;
+    char family[128];
+    /* the family counts as a known section, [PREFIXNAME], with no key */
+    if (k == 0 && snprintf(family, sizeof family, "%sNAME", prefix) <
+                      (int)sizeof family)
+        cl_note_asked(cfg, family, "");
     for (const cl_entry *e = cfg->ent; e < cfg->ent + cfg->nent; e++)
         if (!strncmp(e->sec, prefix, len) && cl_find_section(cfg, e->sec) == e
             && seen++ == k)

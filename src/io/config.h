@@ -106,8 +106,10 @@ cl_status cl_config_check_unused(const cl_config *cfg, cl_error *err);
 
 /* The distinct sections whose names start with `prefix` (e.g. "obstacle."
  * for [obstacle.ball], [obstacle.floor]), in order of first appearance:
- * the k-th (0-based) such name, or NULL when there are k or fewer. */
-const char *cl_config_section_at(const cl_config *cfg, const char *prefix,
+ * the k-th (0-based) such name, or NULL when there are k or fewer.  Asked
+ * for k = 0, the family counts as known ([obstacle.NAME] in the list of
+ * known sections of cl_config_check_unused). */
+const char *cl_config_section_at(cl_config *cfg, const char *prefix,
                                  size_t k);
 
 /* Whether [sec] key was set by cl_config_set* (a command line) rather
