@@ -148,6 +148,30 @@ Test(spectrum, damped_spring_symplectic_limits_match_the_search)
     sp_close(&c);
 }
 
+/* The search's first step dt_max counts as stable only when dt_max/2 is
+ * too: symplectic Euler at h c = 1 on the damped spring (c = 20/s, h =
+ * 0.05) lands on the equilibrium and stays there, yet 0.025 blows up; the
+ * limit is the prediction below it, not "stable at dt_max". */
+Test(spectrum, stable_dt_max_is_confirmed_by_its_half)
+{
+    sp_case c;
+    sp_open(&c, "damping.kd=20", 1.0);
+    cl_stab_opts o = {.t_end = 40.0, .dt_max = 0.05, .dt_min = 1e-5,
+                      .rel = 0.005, .checks = 1000000, .max_stretch = 1.5};
+    cl_stab_result r;
+    cl_integrator_opts io = {0};
+    cl_error err = {0};
+    cr_assert_eq(cl_stability(c.m, cl_integrator_find("symplectic-euler"),
+                              &io, &o, &r, &err),
+                 CL_OK, "%s", err.msg);
+    cr_assert_eq(r.trial[0].rc, CL_OK, "h c = 1 stable");
+    cr_assert_neq(r.trial[1].rc, CL_OK, "h c = 1/2 unstable");
+    double h = sp_limit(&c.s, "symplectic-euler");
+    cr_assert(r.dt_stable > 0.97 * h && r.dt_stable < 1.03 * h,
+              "%g against %g", r.dt_stable, h);
+    sp_close(&c);
+}
+
 /* The explicit limits come from the registry's regions, Taylor ones first:
  * exactly the rows `clothode spectrum` prints, one for every explicit
  * integrator of the registry (one added there included), the six known

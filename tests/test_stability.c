@@ -99,7 +99,8 @@ Test(stability, backward_euler_stable_at_dt_max)
     st_case c;
     st_open(&c, "problems/spring2.ini", "type1.ks=1e4");
     cl_stab_result r = st_search(&c, "semi-be", &st_opts);
-    cr_assert_eq(r.ntrial, 1);
+    cr_assert_eq(r.ntrial, 2); /* dt_max, confirmed by dt_max/2 */
+    cr_assert_float_eq(r.trial[1].dt, 0.05, 1e-15);
     cr_assert_float_eq(r.dt_stable, 0.1, 1e-15);
     cr_assert(isnan(r.dt_unstable));
     cr_assert_eq(r.failed, -1);

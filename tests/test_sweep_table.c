@@ -173,7 +173,7 @@ Test(sweep_table, stability_cli_from_sweep)
                             "     5  failed at t = 0.72 s (error)\n"), "%s",
               r.out);
     cr_assert(strstr(r.out, "symplectic-euler   stable at dt_max = 0.002 (2 "
-                            "run, d/L -)\n"), "%s", r.out);
+                            "runs, d/L -)\n"), "%s", r.out);
     cli_result_free(&r);
     snprintf(csv, sizeof csv, "%s/stability.csv", out);
     tmp_slurp(csv, text, sizeof text);

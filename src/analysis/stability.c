@@ -128,6 +128,11 @@ cl_status cl_stability(cl_model *m, const cl_integrator_type *type,
     }
     long nu = (long)ceil(o->t_end / o->dt_max - 1e-9), ns = nu;
     int s = try_steps(&t, type, io, o, nu, r, err);
+    /* stable at dt_max only if at dt_max/2 too (within the range), as in
+     * bracket() */
+    if (s == 1 && 2 * nu <= (long)floor(o->t_end / o->dt_min) &&
+        (s = try_steps(&t, type, io, o, 2 * nu, r, err)) == 0)
+        nu *= 2;
     bool stable_at_max = s == 1;
     if (s == 0 && (s = bracket(&t, type, io, o, &nu, &ns, r, err)) == 0 &&
         ns)

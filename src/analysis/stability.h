@@ -11,8 +11,8 @@
  * method's end there; docs/model.md 4.6).  Any other failure
  * (bad options, no memory) ends the search with that error.
  *
- * Search: N_0 = ceil(T / dt_max).  If the run at N_0 is stable, the limit is
- * at least dt_max.  Otherwise N doubles until a run is stable and so is
+ * Search: N_0 = ceil(T / dt_max).  If the runs at N_0 and 2 N_0 are
+ * stable, the limit is at least dt_max.  Otherwise N doubles until a run is stable and so is
  * the run at twice its N (giving up below dt_min; a stable step above an
  * unstable one, such as symplectic Euler's h c = 1 on a damped spring
  * started from rest length, whose first step lands on the equilibrium,
@@ -22,9 +22,9 @@
  * a smaller one), so the result is the bracket the search found: dt_stable
  * = T / N_s and dt_unstable = T / N_u, with the reason the run at
  * dt_unstable failed; a stable island narrower than a factor 2 can
- * still be taken, and so are, unconfirmed, a stable run at N_0 and one
- * whose double passes T / dt_min.  Every run is kept, with the largest stretch its checks
- * saw.
+ * still be taken, and so, unconfirmed, are a stable run whose double
+ * passes T / dt_min.  Every run is kept, with the largest stretch its
+ * checks saw.
  *
  * Bounded to T is the test, so the limit depends on T: just above a
  * linear limit an instability grows slowly and may not reach max_stretch

@@ -337,7 +337,7 @@ static void print_result(const void *result)
         snprintf(dl, sizeof dl, "%.3g", held);
     printf("%-18s ", r->label);
     if (isnan(r->dt_unstable))
-        printf("stable at dt_max = %.4g (%d run, d/L %s)\n", r->dt_stable,
+        printf("stable at dt_max = %.4g (%d runs, d/L %s)\n", r->dt_stable,
                r->ntrial, dl);
     else if (isnan(r->dt_stable))
         printf("%11s %6s %11.4g %5d  %s\n", "none", "-", r->dt_unstable,
