@@ -1107,6 +1107,37 @@ Test(cli, run_format_csv_writes_no_frames)
     cli_result_free(&r);
 }
 
+/* Under a data limit (ulimit -d 250 MB): a model larger than it (hang at
+ * n = 512 takes about 620 MB) is refused as out of memory, exit 1, naming
+ * what was available and which limit, not ended by the kernel's OOM kill;
+ * a model that fits, whose Newton factors do not, is refused by the memory
+ * guard against the room left.  Not under AddressSanitizer, which reserves
+ * its shadow memory as data. */
+#if !defined(__SANITIZE_ADDRESS__)
+Test(cli, run_beyond_the_data_limit_is_refused)
+{
+    char out[1024];
+    cli_result r;
+    char *big[] = {"prlimit", "--data=250000000", (char *)cli_binary(),
+                   "run", "hang", "--set", "cloth.n=512", "--frames", "0",
+                   "--out", (char *)in_tmp(out, "big"), NULL};
+    cli_spawn(&r, big);
+    cr_assert_eq(r.status, 1, "%s", r.err);
+    cli_assert_error(&r, 0, "out of memory", "the model does not fit in the",
+                     "GB available (ulimit -d)", NULL);
+    cli_result_free(&r);
+    char *factors[] = {"prlimit", "--data=250000000", (char *)cli_binary(),
+                       "run", "hang", "--set", "cloth.n=200", "--integrator",
+                       "cvode-bdf:klu", "--frames", "0", "--out",
+                       (char *)in_tmp(out, "klu"), NULL};
+    cli_spawn(&r, factors);
+    cr_assert_eq(r.status, 1, "%s", r.err);
+    cli_assert_error(&r, 0, "cvode-bdf: the Jacobian and the factors",
+                     "GB available (ulimit -d)", NULL);
+    cli_result_free(&r);
+}
+#endif
+
 Test(cli, run_bad_format)
 {
     char out[1024];

@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "core/meminfo.h"
 #include "io/atomic.h"
 #include "io/state.h"
 
@@ -81,6 +82,22 @@ const char *cl_cli_problem_path(const char *arg, char *buf, size_t len)
     return buf;
 }
 
+cl_status cl_cli_model_create(cl_config *cfg, cl_model **m, cl_error *err)
+{
+    cl_mem_cap cap;
+    cl_status rc = cl_mem_cap_data(&cap, err);
+    if (!rc)
+        rc = cl_model_create(cfg, m, err);
+    cl_mem_cap_release(&cap);
+    if (rc == CL_ENOMEM && cap.limit) {
+        cl_error inner = *err;
+        cl_error_set(err, CL_ENOMEM, "%s: the model does not fit in the "
+                     "%.3g GB available (%s); choose a smaller cloth",
+                     inner.msg, cap.available / 1e9, cap.limit);
+    }
+    return rc;
+}
+
 cl_status cl_cli_problem_ready(cl_config *cfg, const cl_cli_table *t,
                                void *settings, cl_cli_check_fn check,
                                cl_model **m, cl_error *err)
@@ -89,7 +106,7 @@ cl_status cl_cli_problem_ready(cl_config *cfg, const cl_cli_table *t,
     if (!rc && check)
         rc = check(cfg, settings, err);
     if (!rc)
-        rc = cl_model_create(cfg, m, err);
+        rc = cl_cli_model_create(cfg, m, err);
     return rc ? rc : cl_config_check_unused(cfg, err);
 }
 

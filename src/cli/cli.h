@@ -51,6 +51,14 @@ typedef cl_status (*cl_cli_check_fn)(cl_config *cfg, void *settings,
 typedef cl_status (*cl_cli_work_fn)(cl_model *m, const cl_cli_job *job,
                                     void *settings, cl_error *err);
 
+/* cl_model_create with the data size capped at what the machine, or the
+ * job's memory cgroup, can give (core/meminfo.h): a model too large for it
+ * is refused as out of memory (its allocations fail, each one checked)
+ * instead of ending in the kernel's OOM kill.  The cap is lifted once the
+ * model exists; the integrators' memory guard (integrators/memguard.h)
+ * takes over from there. */
+cl_status cl_cli_model_create(cl_config *cfg, cl_model **m, cl_error *err);
+
 /* The checks of cl_cli_problem_main on a loaded problem (its assignments
  * applied): read the table's keys into settings, check() them, make the
  * model into *m, refuse keys nobody read. */

@@ -339,7 +339,7 @@ static cl_status build(ct_setup *s, int v, cl_error *err)
     }
     if (!rc && s->from) /* the sweep's rows of this variant */
         rc = cl_sweep_table_select(&s->table, s->cfg, err);
-    if (!rc && !(rc = cl_model_create(s->cfg, &s->variant, err)))
+    if (!rc && !(rc = cl_cli_model_create(s->cfg, &s->variant, err)))
         s->variant_of = v;
     return rc;
 }

@@ -128,7 +128,7 @@ static cl_status use_value(stab_setup *s, int v, cl_error *err)
     cl_status rc = cl_config_set_as(s->cfg, a, "--axis", err);
     if (!rc && s->from)
         rc = cl_sweep_table_select(&s->table, s->cfg, err);
-    if (!rc && !(rc = cl_model_create(s->cfg, &s->variant, err)))
+    if (!rc && !(rc = cl_cli_model_create(s->cfg, &s->variant, err)))
         s->variant_of = v;
     snprintf(a, sizeof a, "%s=%s", s->key, s->original ? s->original : "");
     if (s->original && !rc)

@@ -56,15 +56,16 @@ cl_status cl_memguard_check(const cl_integrator_type *type,
                             cl_error *err)
 {
     double need = cl_memguard_estimate(type, sys, linsol), avail;
-    cl_status rc = cl_mem_available(&avail, err);
+    const char *limit;
+    cl_status rc = cl_mem_available(&avail, &limit, err);
     if (rc || need <= avail)
         return rc;
     return cl_error_set(err, CL_ENOMEM,
                         "%s: the Jacobian and the factors of the Newton"
                         " matrix need about %.3g GB (%zu unknowns), more"
-                        " than the %.3g GB available; choose a smaller"
+                        " than the %.3g GB available (%s); choose a smaller"
                         " cloth, %s, or --force to try anyway", type->name,
-                        need / 1e9, sys->n, avail / 1e9,
+                        need / 1e9, sys->n, avail / 1e9, limit,
                         type->dense_jacobian ? "the sparse cvode-bdf"
                         : type->takes_linsol ? "--linsol pcg (no factors)"
                                              : "an explicit integrator");
