@@ -3,8 +3,12 @@
  * stop (analysis/simulate.c): everything computed is written. */
 #include "runcli.h"
 
+#include <sys/time.h>
+
+#include "analysis/simulate.h"
 #include "core/clock.h"
 #include "core/stop.h"
+#include "problem.h"
 #include "timelimit.h"
 
 Test(stop, signal_sets_the_flag_and_names_it)
@@ -103,6 +107,77 @@ Test(stop, cpu_budget_sets_the_flag_and_clear_resets_it)
     cl_stop_clear();
     spin_cpu(0.1);
     cr_assert_eq(cl_stop_requested(), 0);
+}
+
+static volatile sig_atomic_t host_alarms;
+
+static void host_alarm(int sig)
+{
+    (void)sig;
+    host_alarms++;
+}
+
+/* A host program's own SIGALRM handler comes back once a budget is
+ * disarmed, and its CPU-time timer is left alone. */
+Test(stop, disarm_gives_back_the_host_s_alarm)
+{
+    struct sigaction sa, now;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = host_alarm;
+    sigemptyset(&sa.sa_mask);
+    cr_assert_eq(sigaction(SIGALRM, &sa, NULL), 0);
+    struct itimerval prof = {.it_value = {.tv_sec = 100}}, left;
+    cr_assert_eq(setitimer(ITIMER_PROF, &prof, NULL), 0);
+    cl_error err;
+    cr_assert_eq(cl_stop_after(CL_STOP_WALL, 10.0, &err), CL_OK);
+    cr_assert_eq(cl_stop_after(CL_STOP_WALL, 20.0, &err), CL_OK);
+    cl_stop_disarm();
+    cr_assert_eq(sigaction(SIGALRM, NULL, &now), 0);
+    cr_assert(now.sa_handler == host_alarm);
+    cr_assert_eq(getitimer(ITIMER_PROF, &left), 0);
+    cr_assert_gt(left.it_value.tv_sec, 90);
+    cr_assert_eq(raise(SIGALRM), 0);
+    cr_assert_eq(host_alarms, 1);
+    cr_assert_eq(cl_stop_requested(), 0);
+}
+
+/* A run's wall-time budget is its own: the next run of the same process
+ * (a program using the library) starts without it.  Before, the budget's
+ * stop stayed, and every later run and force evaluation failed. */
+Test(stop, max_wall_is_the_run_s_own)
+{
+    char dir[64], out[128];
+    tmp_mkdtemp(dir, sizeof dir, "wallown");
+    pr_problem p;
+    pr_load(&p, "problems/hang.ini", "cloth.n=6", NULL);
+    const cl_integrator_type *rk4 = cl_integrator_find("rk4");
+    cl_integrator_opts io = {.dt = 1e-5};
+    snprintf(out, sizeof out, "%s/a", dir);
+    cl_sim_opts so = {.t_end = 100, .samples = 1, .outdir = out,
+                      .max_stretch = 10, .max_wall = 1e-3};
+    cl_sim_result res;
+    cl_error err = {0};
+    cr_assert_eq(cl_simulate(p.m, rk4, &io, &so, &res, &err), CL_EBUDGET,
+                 "%s", err.msg);
+    free(res.xfinal);
+    cr_assert_eq(cl_stop_requested(), 0);
+    so.t_end = 0.01;
+    so.max_wall = 0;
+    cr_assert_eq(cl_simulate(p.m, rk4, &io, &so, &res, &err), CL_OK, "%s",
+                 err.msg);
+    cr_assert_float_eq(res.t_reached, 0.01, 1e-12);
+    free(res.xfinal);
+    /* options out of range: refused before anything is done */
+    so.max_stretch = 0;
+    cr_assert_eq(cl_simulate(p.m, rk4, &io, &so, &res, &err), CL_EINVAL);
+    cr_assert(strstr(err.msg, "max_stretch = 0: expected >= 1"), "%s",
+              err.msg);
+    so.max_stretch = 10;
+    so.t_end = -1;
+    cr_assert_eq(cl_simulate(p.m, rk4, &io, &so, &res, &err), CL_EINVAL);
+    cr_assert(strstr(err.msg, "t_end = -1"), "%s", err.msg);
+    pr_free(&p);
+    tmp_rm_rf(dir);
 }
 
 /* ---- runs stopped by a signal ----------------------------------------- */

@@ -405,6 +405,30 @@ static cl_status integrate(sim *s, const cl_integrator_type *type,
     return rc;
 }
 
+/* The options' own ranges (the command line's, for callers of the
+ * library). */
+static cl_status check_opts(const cl_sim_opts *so, cl_error *err)
+{
+    if (!(so->t_end > 0) || !isfinite(so->t_end))
+        return cl_error_set(err, CL_EINVAL, "t_end = %g: expected a finite "
+                            "number > 0", so->t_end);
+    if (so->samples < 1 || so->frames < 0 || so->max_steps < 0)
+        return cl_error_set(err, CL_EINVAL, "samples = %ld, frames = %ld, "
+                            "max_steps = %ld: expected samples >= 1, "
+                            "frames >= 0, max_steps >= 0", so->samples,
+                            so->frames, so->max_steps);
+    if (!(so->max_stretch >= 1))
+        return cl_error_set(err, CL_EINVAL, "max_stretch = %g: expected >= 1 "
+                            "(the stretch d/L beyond which a run counts as "
+                            "blown up; INFINITY for none)", so->max_stretch);
+    if (!(so->max_wall >= 0) || !so->outdir || !*so->outdir)
+        return cl_error_set(err, CL_EINVAL, "max_wall = %g, outdir %s: "
+                            "expected max_wall >= 0 (0: none) and an output "
+                            "directory", so->max_wall,
+                            so->outdir ? so->outdir : "NULL");
+    return CL_OK;
+}
+
 cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
                       const cl_integrator_opts *iopts, const cl_sim_opts *so,
                       cl_sim_result *res, cl_error *err)
@@ -415,6 +439,9 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
     void *state = NULL;
     bool writing = false; /* outdir prepared: outputs may go there */
     memset(res, 0, sizeof *res);
+    cl_status bad = check_opts(so, err);
+    if (bad)
+        return bad;
     cl_model_contact_start(m, false);
     size_t n3 = 3 * s.c->np, npot = cl_model_potentials(m);
     res->xfinal = malloc((n3 + 2 * npot) * sizeof *res->xfinal);
@@ -474,8 +501,9 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
         rc2 = write_stats(&s, &res->stats, rc ? &later : err);
     if (!rc)
         rc = rc2;
-    if (so->max_wall > 0)
-        cl_stop_disarm();
+    if (so->max_wall > 0) /* the budget was this run's: the next starts
+                           * clean (a SIGINT or SIGTERM stays) */
+        cl_stop_clear();
     sim_free(&s);
     return rc;
 }

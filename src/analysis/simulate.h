@@ -28,12 +28,14 @@
 #include "system/model.h"
 
 typedef struct {
-    double t_end;
-    long samples;        /* time-series rows after t = 0 */
+    double t_end;        /* > 0 */
+    long samples;        /* time-series rows after t = 0, >= 1 */
     long frames;         /* frames after t = 0 (0: none) */
     bool vtk, obj;       /* frame formats */
     const char *outdir;
-    double max_stretch;  /* a larger max d/L counts as a blow-up */
+    double max_stretch;  /* a larger max d/L counts as a blow-up; >= 1,
+                          * INFINITY for none (the command line's
+                          * default is 10) */
     double max_wall;     /* budget: wall-clock seconds of the run, 0: none */
     long max_steps;      /* budget: integrator steps of the run, 0: none */
     void (*progress)(void *ctx, double fraction);
@@ -69,7 +71,10 @@ typedef struct {
                           * call: free() */
 } cl_sim_result;
 
-/* On failure (e.g. CL_EBLOWUP) the series and frames written so far are in
+/* Options out of their ranges are CL_EINVAL before anything is done.  A
+ * wall-time budget (max_wall) is this run's alone: the next call starts
+ * without it, and SIGALRM's action is given back (core/stop.h).
+ * On failure (e.g. CL_EBLOWUP) the series and frames written so far are in
  * place, `res` describes the last good sample, and, once there is one
  * (res->rows > 0) and the series closed, that sample's state is written
  * as last-good.csv (not final.csv, which only a run that finished or was

@@ -13,6 +13,14 @@
 static volatile sig_atomic_t stop_signal;
 static struct timespec first_signal_at; /* of the first SIGINT or SIGTERM */
 
+/* The budget timers cl_stop_after armed (by cl_stop_clock), and the signal
+ * actions their handler replaced: a host program's own SIGALRM and
+ * SIGPROF handling comes back when they are disarmed. */
+static bool armed[2];
+static struct sigaction replaced[2];
+static const int timer_signal[2] = {SIGPROF, SIGALRM};
+static const int timer_which[2] = {ITIMER_PROF, ITIMER_REAL};
+
 /* The first reason to stop is the one reported (a budget that runs out
  * after a Ctrl-C does not turn the run's end into "budget"), except that
  * a signal (SIGINT, SIGTERM) replaces a budget's timer (SIGPROF,
@@ -103,8 +111,12 @@ cl_status cl_stop_after(cl_stop_clock clock, double seconds, cl_error *err)
     sigemptyset(&sa.sa_mask);
     sa.sa_flags = SA_RESTART; /* system calls carry on; the flag stops */
     struct itimerval it = one_shot(seconds);
-    if (sigaction(cpu ? SIGPROF : SIGALRM, &sa, NULL) != 0 ||
-        setitimer(cpu ? ITIMER_PROF : ITIMER_REAL, &it, NULL) != 0)
+    if (sigaction(timer_signal[clock], &sa,
+                  armed[clock] ? NULL : &replaced[clock]) != 0)
+        return cl_error_set(err, CL_EIO, "cannot set a %s timer: %s",
+                            cpu ? "CPU-time" : "wall-time", strerror(errno));
+    armed[clock] = true;
+    if (setitimer(timer_which[clock], &it, NULL) != 0)
         return cl_error_set(err, CL_EIO, "cannot set a %s timer: %s",
                             cpu ? "CPU-time" : "wall-time", strerror(errno));
     return CL_OK;
@@ -114,8 +126,12 @@ void cl_stop_disarm(void)
 {
     struct itimerval off;
     memset(&off, 0, sizeof off);
-    setitimer(ITIMER_PROF, &off, NULL);
-    setitimer(ITIMER_REAL, &off, NULL);
+    for (int c = 0; c < 2; c++)
+        if (armed[c]) {
+            setitimer(timer_which[c], &off, NULL);
+            sigaction(timer_signal[c], &replaced[c], NULL);
+            armed[c] = false;
+        }
 }
 
 void cl_stop_clear(void)

@@ -39,12 +39,14 @@ typedef enum { CL_STOP_CPU, CL_STOP_WALL } cl_stop_clock;
  * CL_EIO if the timer cannot be set. */
 cl_status cl_stop_after(cl_stop_clock clock, double seconds, cl_error *err);
 
-/* Disarm both timers; a stop already asked for stays. */
+/* Disarm the timers cl_stop_after armed and give SIGPROF and SIGALRM
+ * back the actions their handler replaced (a host program's own); other
+ * timers are left alone.  A stop already asked for stays. */
 void cl_stop_disarm(void);
 
-/* Disarm both timers and forget a budget's stop (SIGPROF, SIGALRM), so
- * that the next run starts clean (a benchmark's runs, one after another);
- * a stop SIGINT or SIGTERM asked for stays. */
+/* cl_stop_disarm, and forget a budget's stop (SIGPROF, SIGALRM), so that
+ * the next run starts clean (cl_simulate after a --max-wall run, a
+ * benchmark's runs); a stop SIGINT or SIGTERM asked for stays. */
 void cl_stop_clear(void);
 
 /* "SIGINT", "SIGTERM" or "signal N", for messages. */
