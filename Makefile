@@ -50,7 +50,8 @@ JOBS     ?= 2
 PREFIX  ?= /usr/local
 VERSION := 0.1
 
-.PHONY: all deps demo test bench report paper install clean fuzz memcheck FORCE
+.PHONY: all deps demo test bench report paper install uninstall clean fuzz \
+        memcheck FORCE
 
 all: $(BIN)
 
@@ -189,21 +190,41 @@ paper: deps
 
 # make install PREFIX=DIR (README "Installing"): the command, the library
 # with its headers and pkg-config file, the problems, the man page.
+# The installed library's plug-in lookup knows PREFIX/lib/clothode
+# (linalg/plugin.h): its copy of plugin.o is built with that folder.
+INSTALL_TMP := $(BUILD)/install
+INSTALLED   := bin/clothode lib/libclothode.a lib/clothode/clothode-petsc.so \
+               include/clothode share/clothode share/man/man1/clothode.1 \
+               lib/pkgconfig/clothode.pc
+
 install: $(BIN)
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig \
 	    $(DESTDIR)$(PREFIX)/share/clothode $(DESTDIR)$(PREFIX)/share/man/man1
 	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/clothode
-	install -m 644 $(BUILD)/libclothode.a $(DESTDIR)$(PREFIX)/lib/
+	mkdir -p $(INSTALL_TMP)
+	$(CC) $(CPPFLAGS) -I$(BUILD) $(CFLAGS) \
+	    -DCL_PLUGIN_INSTALL_DIR='"$(PREFIX)/lib/clothode"' \
+	    -c src/linalg/plugin.c -o $(INSTALL_TMP)/plugin.o
+	cp $(BUILD)/libclothode.a $(INSTALL_TMP)/libclothode.a
+	ar rs $(INSTALL_TMP)/libclothode.a $(INSTALL_TMP)/plugin.o
+	install -m 644 $(INSTALL_TMP)/libclothode.a $(DESTDIR)$(PREFIX)/lib/
 	install -D -m 755 $(PETSC_SO) \
 	    $(DESTDIR)$(PREFIX)/lib/clothode/clothode-petsc.so
-	for h in src/*/*.h; do \
-	    install -D -m 644 $$h $(DESTDIR)$(PREFIX)/include/clothode/$${h#src/}; \
+	rm -rf $(DESTDIR)$(PREFIX)/include/clothode
+	for h in $(filter-out src/bench/%,$(wildcard src/*/*.h)); do \
+	    install -D -m 644 $$h \
+	        $(DESTDIR)$(PREFIX)/include/clothode/$${h#src/}; \
 	done
+	rm -rf $(DESTDIR)$(PREFIX)/share/clothode/problems
 	cp -R problems $(DESTDIR)$(PREFIX)/share/clothode/
 	install -m 644 docs/clothode.1 $(DESTDIR)$(PREFIX)/share/man/man1/
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' \
 	    -e 's|@LIBS@|$(filter -fsanitize%,$(LDFLAGS)) $(LDLIBS)|' \
 	    scripts/clothode.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/clothode.pc
+
+uninstall:
+	rm -rf $(INSTALLED:%=$(DESTDIR)$(PREFIX)/%)
+	-rmdir $(DESTDIR)$(PREFIX)/lib/clothode 2>/dev/null
 
 # Fuzzing (README "Fuzzing"): libFuzzer harnesses tests/fuzz/fuzz_*.c on
 # the readers, built by clang-14 with ASan + UBSan into build-fuzz/; each

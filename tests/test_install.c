@@ -2,11 +2,14 @@
  * the example examples/embed_cvode.c, built against the installed
  * libclothode with pkg-config, integrates a 6 x 6 hang with its own CVODE
  * (dense Jacobian from the system's blocks) and ends at the same energy as
- * the installed clothode run by problem name (KLU, reduced system), both
- * at rtol 1e-8; the installed library holds no benchmark object. */
+ * the installed clothode run by problem name (cvode-bdf with its default
+ * linear solver), both at rtol 1e-8; the installed library holds no
+ * benchmark object; a program of one's own linked with it, outside the
+ * prefix, finds the installed PETSc plug-in. */
 #include <criterion/criterion.h>
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,7 +30,9 @@ Test(install, example_builds_with_pkg_config_and_agrees)
     char line[1024], out[8192] = "";
     double example = NAN, clothode = NAN;
     long bench_objects = -1;
+    bool plugin = false;
     while (fgets(line, sizeof line, p)) {
+        plugin = plugin || !strcmp(line, "plugin found\n");
         strncat(out, line, sizeof out - strlen(out) - 1);
         sscanf(line, "example %lf", &example);
         sscanf(line, "clothode %lf", &clothode);
@@ -37,6 +42,7 @@ Test(install, example_builds_with_pkg_config_and_agrees)
     cr_assert_eq(status, 0, "install-check failed:\n%s", out);
     cr_assert(isfinite(example) && isfinite(clothode), "%s", out);
     cr_expect_eq(bench_objects, 0, "%s", out);
+    cr_expect(plugin, "%s", out);
     cr_expect_lt(fabs(example - clothode), 1e-6 * fabs(clothode),
                  "example %.12g, clothode %.12g", example, clothode);
 }

@@ -90,11 +90,19 @@ static cl_status open_plugin(const char *name, void **handle, cl_error *err)
         snprintf(path, sizeof path, "%s/../lib/clothode/%s", dir, file);
         *handle = try_open(path, tried, sizeof tried);
     }
+#ifdef CL_PLUGIN_INSTALL_DIR
+    if (!*handle) {
+        snprintf(path, sizeof path, "%s/%s", CL_PLUGIN_INSTALL_DIR, file);
+        *handle = try_open(path, tried, sizeof tried);
+    }
+#endif
     if (!*handle)
         return cl_error_set(err, CL_EUNSUPPORTED,
                             "plug-in %s not found: tried %s; `make` builds "
-                            "it beside the program, CLOTHODE_PLUGIN_DIR "
-                            "names another folder", file,
+                            "it beside the program, `make install` into "
+                            "PREFIX/lib/clothode, where the installed "
+                            "library looks; CLOTHODE_PLUGIN_DIR names "
+                            "another folder", file,
                             tried[0] ? tried : "nothing");
     cl_status rc = check_abi(*handle, path, err);
     if (rc != CL_OK)

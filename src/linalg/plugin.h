@@ -11,7 +11,10 @@
  * The plug-in NAME is looked up as clothode-NAME.so in, in order:
  *   $CLOTHODE_PLUGIN_DIR, if set;
  *   the folder of the running program (the build tree);
- *   that folder's ../lib/clothode (an installed tree, `make install`).
+ *   that folder's ../lib/clothode (an installed tree, `make install`);
+ *   PREFIX/lib/clothode, in the installed library (`make install` builds
+ *   its copy of this file with CL_PLUGIN_INSTALL_DIR set), so that a
+ *   program of one's own linked with it finds the installed plug-in.
  *
  * Interface version.  The types of every entry point live in the headers
  * src/LAYER/NAME_abi.h; the build hashes their preprocessed text (and
