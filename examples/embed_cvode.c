@@ -14,6 +14,7 @@
  * clothode with
  *   cc embed_cvode.c $(pkg-config --cflags --libs clothode) -o embed_cvode
  */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -84,7 +85,9 @@ static int check(int flag, const char *fn)
 }
 
 /* The problem file with the assignments applied, as a model (the
- * configuration is kept alive beside it). */
+ * configuration is kept alive beside it).  A key the model did not read
+ * (a misspelt name) is refused, as clothode refuses it; [run], the
+ * clothode command's own settings, is this program's to ignore. */
 static cl_model *load(const char *path, int nset, char **sets,
                       cl_config **cfg)
 {
@@ -96,9 +99,15 @@ static cl_model *load(const char *path, int nset, char **sets,
         bad = cl_config_set(*cfg, sets[k], &err) != CL_OK;
     if (!bad)
         bad = cl_model_create(*cfg, &m, &err) != CL_OK;
-    if (bad)
-        fprintf(stderr, "embed_cvode: %s\n", err.msg);
-    return bad ? NULL : m;
+    if (!bad) {
+        cl_config_ignore_section(*cfg, "run");
+        bad = cl_config_check_unused(*cfg, &err) != CL_OK;
+    }
+    if (!bad)
+        return m;
+    fprintf(stderr, "embed_cvode: %s\n", err.msg);
+    cl_model_free(m);
+    return NULL;
 }
 
 static int integrate(const cl_system *sys, user_data *u, double T,
@@ -142,7 +151,13 @@ int main(int argc, char **argv)
                         "[section.key=value ...]\n");
         return 2;
     }
-    double T = atof(argv[2]);
+    char *end;
+    double T = strtod(argv[2], &end);
+    if (end == argv[2] || *end || !(T > 0) || !isfinite(T)) {
+        fprintf(stderr, "embed_cvode: T = \"%s\": expected a finite "
+                        "number of seconds > 0\n", argv[2]);
+        return 2;
+    }
     cl_config *cfg;
     cl_model *m = load(argv[1], argc - 3, argv + 3, &cfg);
     if (!m) {
