@@ -108,8 +108,9 @@ Test(sweep, axes_expand_lists_linspace_logspace)
     cr_assert(strstr(sw.job[1].command, tail), "%s", sw.job[1].command);
     /* the job records its own exit status, and returns it */
     char head[1200], end[3600];
-    snprintf(head, sizeof head, "rm -f %s/d/jobs/%s/exit; /bin/clothode run ",
-             tmp, sw.job[1].id);
+    snprintf(head, sizeof head, "rm -rf %s/d/jobs/%s/exit %s/d/jobs/%s/run "
+             "|| exit 125; /bin/clothode run ", tmp, sw.job[1].id, tmp,
+             sw.job[1].id);
     snprintf(end, sizeof end, "/stderr; s=$?; echo $s > %s/d/jobs/%s/exit.tmp"
              " && mv %s/d/jobs/%s/exit.tmp %s/d/jobs/%s/exit; exit $s", tmp,
              sw.job[1].id, tmp, sw.job[1].id, tmp, sw.job[1].id);

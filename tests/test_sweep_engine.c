@@ -221,6 +221,70 @@ Test(sweep_engine, local_interrupted_and_resumed)
 }
 
 
+/* The field of column `name` in the table's row of job `id`. */
+static void table_field(const char *table, const char *id, const char *name,
+                        char *out, size_t len)
+{
+    static char text[1 << 16];
+    tmp_slurp(table, text, sizeof text);
+    int col = 0;
+    for (const char *p = text; strncmp(p, name, strlen(name)) ||
+                               (p[strlen(name)] != ',' &&
+                                p[strlen(name)] != '\n');
+         p++) {
+        cr_assert(*p && *p != '\n', "no column %s in %s", name, table);
+        col += *p == ',';
+    }
+    const char *row = strstr(text, id);
+    cr_assert_not_null(row, "no row %s in %s", id, table);
+    for (int c = 0; c < col; c++)
+        row = strchr(row, ',') + 1;
+    snprintf(out, len, "%.*s", (int)strcspn(row, ",\n"), row);
+}
+
+/* A run again after the problem changed: a job refused before its first
+ * output (a bad value) leaves no earlier run's results behind it.  Before,
+ * its row was "failed, input" with the previous run's time reached and
+ * statistics, which stability --from-sweep took for a blow-up. */
+Test(sweep_engine, a_refused_run_keeps_no_earlier_results)
+{
+    char dir[1024], prob[1024], table[1100], summary[256], f[64];
+    static char text[1 << 16];
+    tmp_slurp("problems/hang.ini", text, sizeof text);
+    in_tmp(prob, "p.ini");
+    tmp_put(prob, text);
+    char spec2[1400];
+    snprintf(spec2, sizeof spec2, "[sweep]\nproblem = %s\n"
+             "integrator = rk4\ncloth.n = 4\ndt = 1e-3, 2e-3\n"
+             "t_end = 0.02\n", prob);
+    plan(in_tmp(dir, "refused"), spec2);
+    run_local(dir);
+    collect(dir, summary, sizeof summary);
+    cr_assert_str_eq(summary, "2 complete, 0 failed, 0 missing");
+    char *ks = strstr(text, "ks = 200");
+    cr_assert_not_null(ks);
+    memcpy(ks, "ks = abc", 8);
+    tmp_put(prob, text);
+    run_local(dir);
+    collect(dir, summary, sizeof summary);
+    cr_assert_str_eq(summary, "0 complete, 2 failed, 0 missing");
+    snprintf(table, sizeof table, "%s.csv", dir);
+    static char sweep_json[1 << 16];
+    char path[1100];
+    snprintf(path, sizeof path, "%s/sweep.json", dir);
+    tmp_slurp(path, sweep_json, sizeof sweep_json);
+    const char *at = strstr(sweep_json, "\"id\": \"");
+    cr_assert_not_null(at);
+    char id[13];
+    snprintf(id, sizeof id, "%.12s", at + 7);
+    table_field(table, id, "exit", f, sizeof f);
+    cr_assert_str_eq(f, "input");
+    table_field(table, id, "t_reached", f, sizeof f);
+    cr_assert_str_eq(f, "NA");
+    table_field(table, id, "steps", f, sizeof f);
+    cr_assert_str_eq(f, "NA");
+}
+
 /* ---- ssh ------------------------------------------------------------- */
 
 static int sh(const char *fmt, ...) __attribute__((format(printf, 1, 2)));

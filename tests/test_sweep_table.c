@@ -39,11 +39,11 @@ static const char *const table =
     "a1,job,rk4,6,0.001,2,complete,ok,2,2000,8000,0.5,4e-9,1e-8\n"
     "a2,job,rk4,6,0.002,2,complete,ok,2,1000,4000,0.25,6.4e-8,1.6e-7\n"
     "a3,job,rk4,6,0.004,2,complete,ok,2,500,2000,0.125,1.024e-6,2.56e-6\n"
-    "a4,job,rk4,6,0.008,2,failed,error,0.72,NA,NA,NA,NA,NA\n"
-    "a5,job,rk4,6,0.016,2,failed,error,0.1,NA,NA,NA,NA,NA\n"
+    "a4,job,rk4,6,0.008,2,failed,blow-up,0.72,NA,NA,NA,NA,NA\n"
+    "a5,job,rk4,6,0.016,2,failed,interrupted,0.1,NA,NA,NA,NA,NA\n"
     "a6,job,rk4,6,0.0005,2,missing,missing,NA,NA,NA,NA,NA,NA\n"
     "a7,job,rk4,6,0.03,2,failed,usage,NA,NA,NA,NA,NA,NA\n"
-    "b1,job,rk4,8,0.001,2,failed,error,1.5,NA,NA,NA,NA,NA\n"
+    "b1,job,rk4,8,0.001,2,failed,blow-up,1.5,NA,NA,NA,NA,NA\n"
     "c1,job,symplectic-euler,6,0.001,2,complete,ok,2,2000,2000,0.1,1e-3,"
     "1e-2\n"
     "c2,job,symplectic-euler,6,0.002,2,complete,ok,2,1000,1000,0.05,2e-3,"
@@ -74,17 +74,18 @@ Test(sweep_table, stability_bracket_from_rows)
     const cl_integrator_type *rk4 = cl_integrator_find("rk4");
     cr_assert_eq(cl_stab_from_sweep(&t, "rk4", rk4, &r, &err), CL_OK, "%s",
                  err.msg);
-    /* the missing and the refused runs are no trials */
-    cr_assert_eq(r.ntrial, 5);
-    cr_assert_eq(r.trial[0].dt, 0.016);
-    cr_assert_eq(r.trial[4].dt, 0.001);
+    /* the missing, the refused and the interrupted runs are no trials
+     * (a run stopped by a signal or a budget says nothing of the step) */
+    cr_assert_eq(r.ntrial, 4);
+    cr_assert_eq(r.trial[0].dt, 0.008);
+    cr_assert_eq(r.trial[3].dt, 0.001);
     cr_assert_eq(r.dt_unstable, 0.008);
     cr_assert_eq(r.dt_stable, 0.004);
     cr_assert_eq(r.trial[r.failed].rc, CL_EBLOWUP);
     cr_assert_str_eq(r.trial[r.failed].why.msg,
-                     "failed at t = 0.72 s (error)");
-    cr_assert_eq(r.trial[2].stats.steps, 500);
-    cr_assert_eq(r.trial[2].stats.cpu, 0.125);
+                     "failed at t = 0.72 s (blow-up)");
+    cr_assert_eq(r.trial[1].stats.steps, 500);
+    cr_assert_eq(r.trial[1].stats.cpu, 0.125);
     cl_stab_result se;
     cr_assert_eq(cl_stab_from_sweep(&t, "symplectic-euler",
                                     cl_integrator_find("symplectic-euler"),
@@ -170,14 +171,14 @@ Test(sweep_table, stability_cli_from_sweep)
             "--out", out, NULL);
     cli_assert_ok(&r);
     cr_assert(strstr(r.out, "rk4                      0.004      -       0.008"
-                            "     5  failed at t = 0.72 s (error)\n"), "%s",
+                            "     4  failed at t = 0.72 s (blow-up)\n"), "%s",
               r.out);
     cr_assert(strstr(r.out, "symplectic-euler   stable at dt_max = 0.002 (2 "
                             "runs, d/L -)\n"), "%s", r.out);
     cli_result_free(&r);
     snprintf(csv, sizeof csv, "%s/stability.csv", out);
     tmp_slurp(csv, text, sizeof text);
-    cr_assert_eq(cli_count_lines(text), 1 + 5 + 2);
+    cr_assert_eq(cli_count_lines(text), 1 + 4 + 2);
 }
 
 /* stability --axis on a small hang: symplectic Euler's limit falls as

@@ -128,11 +128,14 @@ static void put_job_path(cmdline *c, const cl_sweep *sw, const char *id,
         put_quoted(c, path);
 }
 
-/* The job's command line: the status of an earlier run removed, the run
- * (its messages into DIR/jobs/ID/stderr), then its exit status into
- * DIR/jobs/ID/exit through a rename, and that status as the line's own:
- *   rm -f E; clothode run ... 2> S; s=$?; echo $s > E.tmp && mv E.tmp E;
- *   exit $s
+/* The job's command line: the status and the outputs of an earlier run
+ * removed (a run refused before its first output leaves its directory as
+ * it was: an earlier run's statistics must not stand for it), and the job
+ * given up, with no status, if they cannot be; the run (its messages into
+ * DIR/jobs/ID/stderr), then its exit status into DIR/jobs/ID/exit through
+ * a rename, and that status as the line's own:
+ *   rm -rf E R || exit 125; clothode run ... --out R 2> S; s=$?;
+ *   echo $s > E.tmp && mv E.tmp E; exit $s
  * (POSIX sh) so that every engine leaves the same record, and a job
  * killed before it finished leaves none (analysis/sweep_outcome.c).
  * CL_EINVAL when it does not fit (a sweep directory of thousands of
@@ -141,9 +144,11 @@ static cl_status make_command(const cl_sweep *sw, cl_sweep_job *j)
 {
     cmdline c = {.u = 0};
     char set[CL_SWEEP_MAX_AXES + 1][CL_SWEEP_SET_LEN];
-    put(&c, "rm -f ");
+    put(&c, "rm -rf ");
     put_job_path(&c, sw, j->id, "exit");
-    put(&c, "; ");
+    put(&c, " ");
+    put_job_path(&c, sw, j->id, "run");
+    put(&c, " || exit 125; ");
     put_quoted(&c, sw->clothode);
     put(&c, " run ");
     put_quoted(&c, sw->problem);

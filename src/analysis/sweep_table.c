@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/exit.h"
 #include "io/input.h"
 
 /* ---- reading ------------------------------------------------------------ */
@@ -268,11 +269,18 @@ static bool complete(const cl_sweep_table *t, int r)
     return !strcmp(at(t, r, column(t, "status")), "complete");
 }
 
-/* A failed run that got going (a time reached): it became unstable. */
+/* A failed run that got going (a time reached) and was stopped by its
+ * state, as the stability search counts a run unstable (stability.h): a
+ * blow-up, or a solver that gave up (a state where it cannot go on
+ * included).  A run stopped by a signal, a budget, or an I/O error says
+ * nothing about the step. */
 static bool went_unstable(const cl_sweep_table *t, int r)
 {
+    const char *why = at(t, r, column(t, "exit"));
     return !strcmp(at(t, r, column(t, "status")), "failed") &&
-           !isnan(number_at(t, r, column(t, "t_reached")));
+           !isnan(number_at(t, r, column(t, "t_reached"))) &&
+           (!strcmp(why, cl_exit_name(CL_EXIT_BLOWUP)) ||
+            !strcmp(why, cl_exit_name(CL_EXIT_SOLVER)));
 }
 
 bool cl_sweep_table_trial(const cl_sweep_table *t, cl_sweep_row row,

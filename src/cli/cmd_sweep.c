@@ -1,5 +1,6 @@
 /* clothode sweep plan|run|collect|refine: parameter sweeps (analysis/sweep.h),
  * run by GNU parallel or Slurm (cli/sweep_engine.h). */
+#include <errno.h>
 #include <limits.h>
 #include <stdbool.h>
 #include <stdint.h>
@@ -266,13 +267,20 @@ static const cl_cli_table run_table = {
 /* Without --resume: every job, and the status files of an earlier run
  * removed so that they cannot stand for this one's while its jobs wait
  * (each job's command removes its own when it starts). */
-static int all_jobs(const cl_sweep *sw, int *todo)
+/* Every job, each one's status of an earlier run removed first, so that a
+ * status never stands for an earlier run; -1 with err set when one cannot
+ * be removed (the job could not replace it either). */
+static int all_jobs(const cl_sweep *sw, int *todo, cl_error *err)
 {
     char path[4200];
     for (int k = 0; k < sw->njob; k++) {
         snprintf(path, sizeof path, "%s/jobs/%s/exit", sw->dir,
                  sw->job[k].id);
-        unlink(path);
+        if (unlink(path) != 0 && errno != ENOENT) {
+            cl_error_set(err, CL_EIO, "%s: cannot remove the status of an "
+                         "earlier run: %s", path, strerror(errno));
+            return -1;
+        }
         todo[k] = k;
     }
     return sw->njob;
@@ -331,7 +339,8 @@ static int engine_run(cl_sweep *sw, cl_sweep_run_args *r, int *todo,
                       cl_error *err)
 {
     char list[4300];
-    int n = r->resume ? pending_jobs(sw, todo, err) : all_jobs(sw, todo);
+    int n = r->resume ? pending_jobs(sw, todo, err)
+                      : all_jobs(sw, todo, err);
     if (n < 0)
         return cl_cli_fail(err);
     if (r->resume && !r->a.quiet)
