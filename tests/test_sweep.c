@@ -182,9 +182,11 @@ Test(sweep, dt_snapped_to_whole_steps)
                            "dt = 1e-5, 3.1622776601683795e-05, -1, inf\n"
                            "t_end = 0.05\n",
                            &sw, &err), CL_OK, "%s", err.msg);
-    /* 0.05 / 3.16e-5 = 1581.1 steps -> 1581 */
-    cr_assert_str_eq(id_of(&sw, "symplectic-euler", "3.16255534471853e-05"),
+    /* 0.05 / 3.16e-5 = 1581.1 steps -> 1581, to the last digit: the
+     * double 0.05 / 1581 the stability search steps with */
+    cr_assert_str_eq(id_of(&sw, "symplectic-euler", "3.162555344718533e-05"),
                      sw.job[1].id);
+    cr_assert_eq(strtod(sw.job[1].value[0], NULL), 0.05 / 1581);
     cr_assert_str_eq(sw.job[0].value[0], "1e-05");
     /* left as written, for the plan's check to refuse */
     cr_assert_str_eq(sw.job[2].value[0], "-1");

@@ -94,6 +94,11 @@ typedef struct {
  * writes them); *ok false when v is none of these.  CL_ENOMEM. */
 cl_status cl_sweep_axis_values(cl_sweep_axis *a, const char *v, bool *ok);
 
+/* x as the shortest "%.*g" that reads back as exactly x (at most 17
+ * digits; no exponent between 1e-4 and 1e15): a step T / N given to a
+ * run as the double the stability study steps with. */
+void cl_sweep_exact(double x, char *buf, size_t len);
+
 /* Read the [sweep] sections of cfg into sw's parts (problem into
  * sw->problem as written, for the caller to resolve; integrators; axes
  * with their values expanded).  Refused keys and values: CL_EINVAL naming

@@ -90,7 +90,7 @@ static cl_status refine_line(cl_sweep *next, const cl_sweep *sw,
         if (!(h > last * (1 + 1e-12) && h < hi * (1 - 1e-12)))
             continue; /* a step already there, at T/N */
         last = h;
-        snprintf(dt, sizeof dt, "%.15g", h);
+        cl_sweep_exact(h, dt, sizeof dt);
         value[adt] = dt;
         cl_status rc = cl_sweep_add_job(next, j->integrator, value, err);
         if (rc)

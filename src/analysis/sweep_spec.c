@@ -18,18 +18,30 @@ static char *dup_n(const char *s, size_t n)
     return d;
 }
 
-/* The shortest "%.*g" of x that reads back as x, at most 15 digits (so
- * that 1e-5 / 100 is 1e-07, not its rounding 1.0000000000000001e-07), and
- * without an exponent between 1e-4 and 1e15 (200, not 2e+02). */
-static void shortest(double x, char *buf, size_t len)
+/* The shortest "%.*g" of x that reads back as x, at most `digits` digits,
+ * and without an exponent between 1e-4 and 1e15 (200, not 2e+02). */
+static void shortest_of(double x, int digits, char *buf, size_t len)
 {
     bool plain = fabs(x) >= 1e-4 && fabs(x) < 1e15;
-    for (int p = 1; p <= 15; p++) {
+    for (int p = 1; p <= digits; p++) {
         snprintf(buf, len, "%.*g", p, x);
         if (strtod(buf, NULL) == x && !(plain && strchr(buf, 'e')))
             return;
     }
-    snprintf(buf, len, "%.15g", x);
+    snprintf(buf, len, "%.*g", digits, x);
+}
+
+/* An axis value computed from the spec (linspace, logspace): at most 15
+ * digits, so that 1e-5 / 100 is 1e-07, not its rounding
+ * 1.0000000000000001e-07. */
+static void shortest(double x, char *buf, size_t len)
+{
+    shortest_of(x, 15, buf, len);
+}
+
+void cl_sweep_exact(double x, char *buf, size_t len)
+{
+    shortest_of(x, 17, buf, len);
 }
 
 static const char *trimmed(const char *s, size_t *n)
@@ -57,6 +69,13 @@ static cl_status add_number(cl_sweep_axis *a, double x)
 {
     char buf[32];
     shortest(x, buf, sizeof buf);
+    return add_value(a, buf, strlen(buf));
+}
+
+static cl_status add_exact(cl_sweep_axis *a, double x)
+{
+    char buf[32];
+    cl_sweep_exact(x, buf, sizeof buf);
     return add_value(a, buf, strlen(buf));
 }
 
@@ -230,7 +249,10 @@ static cl_status read_integrators(cl_config *cfg, const char *sec,
 }
 
 /* With one t_end T, every dt becomes T / N, N = round(T / dt) >= 1, so
- * that a fixed-step run ends exactly at T (as in the stability study);
+ * that a fixed-step run ends exactly at T, written to the last digit
+ * (cl_sweep_exact), so that its steps are the stability study's T / N
+ * (fifteen digits made some of them another step, stable where T / N
+ * blows up);
  * values that are not positive finite numbers are left as written, for
  * the plan's check to refuse. */
 static cl_status snap_dt(cl_sweep_part *p)
@@ -247,7 +269,7 @@ static cl_status snap_dt(cl_sweep_part *p)
     for (int k = 0; !rc && k < a->n; k++) {
         double h = strtod(a->v[k], &end), n = round(T / h);
         rc = h > 0 && isfinite(h) && !*end && isfinite(n) && n <= 1e15
-                 ? add_number(&snapped, T / fmax(n, 1))
+                 ? add_exact(&snapped, T / fmax(n, 1))
                  : add_value(&snapped, a->v[k], strlen(a->v[k]));
     }
     snapped.key = a->key;
