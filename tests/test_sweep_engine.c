@@ -285,6 +285,31 @@ Test(sweep_engine, a_refused_run_keeps_no_earlier_results)
     cr_assert_str_eq(f, "NA");
 }
 
+/* More than 100 failed jobs (GNU parallel's exit status 101) are failed
+ * jobs like any, not a stopped engine: before, sweep run reported
+ * "GNU parallel stopped before the end" and exit 1. */
+Test(sweep_engine, over_a_hundred_failed_jobs)
+{
+    char dir[1024], path[1024], summary[256];
+    tmp_put(in_tmp(path, "many.ini"),
+            "[sweep]\nproblem = problems/hang.ini\nintegrator = rk4\n"
+            "cloth.n = 4\nt_end = 0.01\ndt = 1e-3\n"
+            "type1.ks = linspace(-102, -1, 102)\n");
+    cli_result r;
+    cli_run(&r, "sweep", "plan", path, "--out", in_tmp(dir, "many"),
+            "--no-check", "--quiet", NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    cli_run(&r, "sweep", "run", dir, "--jobs", "2", NULL);
+    cli_assert_no_crash(&r);
+    cr_assert_eq(r.status, 0, "%s", r.err);
+    cr_assert(strstr(r.out, "0 complete, 102 failed, 0 missing"), "%s",
+              r.out);
+    cli_result_free(&r);
+    collect(dir, summary, sizeof summary);
+    cr_assert_str_eq(summary, "0 complete, 102 failed, 0 missing");
+}
+
 /* ---- ssh ------------------------------------------------------------- */
 
 static int sh(const char *fmt, ...) __attribute__((format(printf, 1, 2)));

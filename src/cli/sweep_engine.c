@@ -84,9 +84,9 @@ int cl_sweep_parallel(const cl_sweep *sw, const cl_sweep_run_args *r,
      * and on ssh hosts alike */
     setenv("PARALLEL_SHELL", "/bin/sh", 1);
     int st = spawn_forwarding(argv);
-    /* parallel's exit status counts the failed jobs (at most 100); above
-     * that it was stopped or could not run */
-    if (st >= 0 && WIFEXITED(st) && WEXITSTATUS(st) <= 100)
+    /* parallel's exit status counts the failed jobs, 101 for more than
+     * 100; above that it was stopped or could not run */
+    if (st >= 0 && WIFEXITED(st) && WEXITSTATUS(st) <= 101)
         return 0;
     if (st < 0 || (WIFEXITED(st) && WEXITSTATUS(st) == 127))
         fprintf(stderr, "clothode: sweep run: cannot run GNU parallel "
