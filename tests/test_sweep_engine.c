@@ -6,11 +6,14 @@
  * servers cannot be started. */
 #include <criterion/criterion.h>
 
+#include <errno.h>
+#include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -308,6 +311,33 @@ Test(sweep_engine, over_a_hundred_failed_jobs)
     cli_result_free(&r);
     collect(dir, summary, sizeof summary);
     cr_assert_str_eq(summary, "0 complete, 102 failed, 0 missing");
+}
+
+/* Two runs of one sweep at once would run the same jobs into the same
+ * files: while DIR/lock is held (by another 'sweep run', or by the GNU
+ * parallel of a killed one), sweep run is refused and changes nothing. */
+Test(sweep_engine, a_running_sweep_is_not_run_twice)
+{
+    char dir[1024], path[1100], summary[256];
+    plan(in_tmp(dir, "locked"), "[sweep]\nproblem = problems/hang.ini\n"
+                                "integrator = rk4\ncloth.n = 4\n"
+                                "t_end = 0.01\ndt = 1e-3, 2e-3\n");
+    run_local(dir);
+    snprintf(path, sizeof path, "%s/lock", dir);
+    int fd = open(path, O_RDWR);
+    cr_assert_geq(fd, 0, "%s: %s", path, strerror(errno));
+    cr_assert_eq(flock(fd, LOCK_EX | LOCK_NB), 0);
+    cli_result r;
+    cli_run(&r, "sweep", "run", dir, "--resume", NULL);
+    cli_assert_error(&r, 0, "another 'sweep run' of this sweep", NULL);
+    cli_result_free(&r);
+    cli_run(&r, "sweep", "run", dir, NULL);
+    cli_assert_error(&r, 0, "is running its jobs", NULL);
+    cli_result_free(&r);
+    collect(dir, summary, sizeof summary);
+    cr_assert_str_eq(summary, "2 complete, 0 failed, 0 missing");
+    close(fd);
+    run_local(dir);
 }
 
 /* ---- ssh ------------------------------------------------------------- */

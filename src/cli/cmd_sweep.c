@@ -1,11 +1,13 @@
 /* clothode sweep plan|run|collect|refine: parameter sweeps (analysis/sweep.h),
  * run by GNU parallel or Slurm (cli/sweep_engine.h). */
 #include <errno.h>
+#include <fcntl.h>
 #include <limits.h>
 #include <stdbool.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -335,10 +337,41 @@ static int summary(const cl_sweep *sw, cl_error *err)
     return 0;
 }
 
+/* DIR/lock, held (flock) by this run and the engine it starts, which
+ * inherits it: a second 'sweep run' of the sweep, or a --resume while
+ * the GNU parallel of a killed 'sweep run' still runs its jobs, would run
+ * the same jobs into the same files.  The descriptor (left open until the
+ * program ends), or -1 with err set. */
+static int lock_sweep(const cl_sweep *sw, cl_error *err)
+{
+    char path[4200];
+    snprintf(path, sizeof path, "%s/lock", sw->dir);
+    int fd = open(path, O_RDWR | O_CREAT | O_NOFOLLOW, 0644);
+    if (fd < 0) {
+        cl_error_set(err, CL_EIO, "%s: cannot open it: %s", path,
+                     strerror(errno));
+        return -1;
+    }
+    if (flock(fd, LOCK_EX | LOCK_NB) == 0)
+        return fd;
+    int e = errno;
+    close(fd);
+    if (e == EWOULDBLOCK)
+        cl_error_set(err, CL_EINVAL, "%s: another 'sweep run' of this sweep "
+                     "(or the GNU parallel it started) is running its jobs; "
+                     "wait for it or stop it first", sw->dir);
+    else
+        cl_error_set(err, CL_EIO, "%s: cannot lock it: %s", path,
+                     strerror(e));
+    return -1;
+}
+
 static int engine_run(cl_sweep *sw, cl_sweep_run_args *r, int *todo,
                       cl_error *err)
 {
     char list[4300];
+    if (lock_sweep(sw, err) < 0)
+        return cl_cli_fail(err);
     int n = r->resume ? pending_jobs(sw, todo, err)
                       : all_jobs(sw, todo, err);
     if (n < 0)
