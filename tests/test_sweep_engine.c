@@ -516,7 +516,9 @@ Test(sweep_engine, slurm_array_failed_job_and_resume)
                           "integrator = symplectic-euler, rk4\n"
                           "dt = 1e-4, 2e-4, 1e-2\nt_end = 0.05\n";
     plan(in_tmp(local, "local"), failing);
-    plan(in_tmp(sl, "slurm"), failing);
+    /* a directory with a space, a quote and a '%' (a file name pattern
+     * to Slurm): its tasks' output is still written there */
+    plan(in_tmp(sl, "slurm %x 'dir"), failing);
     run_local(local);
     cli_result r;
     cli_run(&r, "sweep", "run", sl, "--engine", "slurm", "--chunk", "2",

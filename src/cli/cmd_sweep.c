@@ -100,6 +100,44 @@ static cl_status plan_dirs(const cl_cli_args *a, cl_sweep *sw, bool *made,
         rc = cl_error_set(err, CL_EIO, "%s: cannot resolve", dir);
     if (!rc && !(sw->clothode = realpath("/proc/self/exe", NULL)))
         rc = cl_error_set(err, CL_EIO, "cannot find the clothode binary");
+    /* jobs.txt has a job a line, and Slurm's script a path a line */
+    const char *const paths[] = {sw->dir, sw->problem, sw->clothode};
+    for (int k = 0; !rc && k < 3; k++) {
+        char shown[4200];
+        snprintf(shown, sizeof shown, "%s", paths[k]);
+        bool control = false;
+        for (char *c = shown; *c; c++)
+            if ((unsigned char)*c < 0x20 || *c == 0x7f)
+                *c = '?', control = true;
+        if (control)
+            rc = cl_error_set(err, CL_EINVAL, "%s: a control character (a "
+                              "newline, ...; shown as ?) in the path; the "
+                              "job lines cannot carry it", shown);
+    }
+    return rc;
+}
+
+/* A directory that already holds a sweep is planned again only for the
+ * same problem and binary: the ids hash the jobs' values alone, so the
+ * results there would stand for the new problem's jobs. */
+static cl_status same_sweep(const cl_sweep *sw, cl_error *err)
+{
+    char path[4200];
+    struct stat st;
+    cl_sweep old = {0};
+    snprintf(path, sizeof path, "%s/sweep.json", sw->dir);
+    if (stat(path, &st) != 0)
+        return CL_OK;
+    cl_status rc = cl_sweep_load(sw->dir, &old, err);
+    if (!rc && (strcmp(old.problem, sw->problem) ||
+                strcmp(old.clothode, sw->clothode)))
+        rc = cl_error_set(err, CL_EINVAL, "%s: holds the sweep of %s run by "
+                          "%s, whose results would stand for the jobs of %s "
+                          "run by %s with the same values; plan into another "
+                          "directory (or remove this one)", sw->dir,
+                          old.problem, old.clothode, sw->problem,
+                          sw->clothode);
+    cl_sweep_free(&old);
     return rc;
 }
 
@@ -187,6 +225,7 @@ static int plan(void *settings)
         !(rc = cl_config_check_unused(cfg, &err)) &&
         !(rc = resolve_problem(cfg, a->arg, &sw, &err)) &&
         !(rc = plan_dirs(a, &sw, &made, &err)) &&
+        !(rc = same_sweep(&sw, &err)) &&
         !(rc = cl_sweep_expand(&sw, &err)) &&
         !(rc = p->no_check ? CL_OK : check_jobs(&sw, &err)))
         rc = cl_sweep_write(&sw, &err);

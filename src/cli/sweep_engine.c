@@ -217,7 +217,6 @@ static int write_script(const cl_sweep *sw, const cl_sweep_run_args *r,
             "#SBATCH --array=0-%ld%s\n"
             "#SBATCH --time=%ld\n"
             "#SBATCH --mem=%ldM\n"
-            "#SBATCH --output=%s/slurm/task-%%A_%%a.out\n"
             "# clothode sweep: %ld jobs a task, the jobs in %s\n"
             "dir=%s\n"
             "first=$((SLURM_ARRAY_TASK_ID * %ld + 1))\n"
@@ -227,17 +226,29 @@ static int write_script(const cl_sweep *sw, const cl_sweep_run_args *r,
             "    bash -c \"$cmd\" < /dev/null\n"
             "done\n"
             "exit 0\n",
-            tasks - 1, throttle, minutes, mb, sw->dir, r->chunk, ids, dir,
-            r->chunk, r->chunk, qids);
+            tasks - 1, throttle, minutes, mb, r->chunk, ids, dir, r->chunk,
+            r->chunk, qids);
     return fclose(fp) == 0 ? 0 : 1;
 }
 
-static int sbatch(const char *script, bool wait)
+/* sbatch the script, each task's output into DIR/slurm/task-A_a.out:
+ * given as an argument, not an #SBATCH line, so that a directory with
+ * spaces or quotes reaches sbatch as it is, with its '%' doubled (a
+ * literal '%' in Slurm's file name patterns). */
+static int sbatch(const cl_sweep *sw, const char *script, bool wait)
 {
-    const char *argv[] = {"sbatch", "--parsable", script, NULL, NULL};
+    char output[8500];
+    size_t u = (size_t)snprintf(output, sizeof output, "--output=");
+    for (const char *c = sw->dir; *c && u + 2 < sizeof output; c++) {
+        if (*c == '%')
+            output[u++] = '%';
+        output[u++] = *c;
+    }
+    snprintf(output + u, sizeof output - u, "/slurm/task-%%A_%%a.out");
+    const char *argv[] = {"sbatch", "--parsable", output, script, NULL, NULL};
     if (wait) {
-        argv[2] = "--wait";
-        argv[3] = script;
+        argv[3] = "--wait";
+        argv[4] = script;
     }
     fflush(stdout);
     pid_t pid = fork();
@@ -280,5 +291,5 @@ int cl_sweep_slurm(const cl_sweep *sw, const cl_sweep_run_args *r,
         printf("slurm      %d jobs in %ld array tasks of %ld, %ld min and "
                "%ld MB each: %s\n", n, (n + r->chunk - 1) / r->chunk,
                r->chunk, minutes, mb, script);
-    return sbatch(script, r->wait);
+    return sbatch(sw, script, r->wait);
 }
