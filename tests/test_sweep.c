@@ -209,6 +209,11 @@ Test(sweep, refused_keys_and_values)
         {"[sweep]\nintegrator = rk4\n", "a problem file is required"},
         {"[sweep]\nproblem = p.ini\nintegrator = rk4\ndt = 1e-3, 1e-3\n",
          "two jobs are the same run"},
+        /* one number written two ways is one value */
+        {"[sweep]\nproblem = p.ini\nintegrator = cvode-bdf\n"
+         "rtol = 1e-4, 0.0001\n", "two jobs are the same run"},
+        {"[sweep]\nproblem = p.ini\nintegrator = rk4\ndt = 1e-3\n"
+         "type1.ks = 200, 2e2\n", "two jobs are the same run"},
         {"[sweep]\nproblem = p.ini\nintegrator = rk4\ndt = 1e-3, ,2\n",
          "expected a list"},
         /* parts */

@@ -66,6 +66,8 @@ typedef struct {
 
 typedef struct {
     char id[CL_SWEEP_ID_LEN];
+    char key[CL_SWEEP_ID_LEN]; /* the id of the values read as numbers:
+                                * one key, one run (a plan's check) */
     const char *integrator; /* NAME or NAME:LINSOL, as in the sweep file */
     const char **value;     /* per axis; NULL where a reference job leaves
                              * a method's axis (run.*) unset */

@@ -18,16 +18,32 @@ static int by_text(const void *a, const void *b)
     return strcmp(*(const char *const *)a, *(const char *const *)b);
 }
 
-void cl_sweep_canonical(const cl_sweep *sw, const cl_sweep_job *j, char *buf,
-                        size_t len)
+/* A value as the job's identity sees it: a finite number by the double
+ * it reads as (1e-4, 0.0001 and 1.0e-4 are one run; cl_sweep_exact), any
+ * other text as written. */
+static const char *canonical_value(const char *v, char *buf, size_t len)
 {
-    char line[CL_SWEEP_MAX_AXES + 2][320];
+    char *end;
+    double x = strtod(v, &end);
+    if (end == v || *end || !isfinite(x))
+        return v;
+    cl_sweep_exact(x, buf, len);
+    return buf;
+}
+
+/* cl_sweep_canonical, the values as written or (numbers) as the doubles
+ * they read as. */
+static void canonical(const cl_sweep *sw, const cl_sweep_job *j,
+                      bool numbers, char *buf, size_t len)
+{
+    char line[CL_SWEEP_MAX_AXES + 2][320], num[32];
     const char *sorted[CL_SWEEP_MAX_AXES + 2];
     int n = 0;
     for (int a = 0; a < sw->naxis; a++)
         if (j->value[a])
             snprintf(line[n++], sizeof line[0], "%s=%s", sw->axis[a].key,
-                     j->value[a]);
+                     numbers ? canonical_value(j->value[a], num, sizeof num)
+                             : j->value[a]);
     if (j->reference) /* the reference's tolerance is part of the run */
         snprintf(line[n++], sizeof line[0], "reference=%s", sw->ref_rtol);
     for (int k = 0; k < n; k++)
@@ -36,6 +52,12 @@ void cl_sweep_canonical(const cl_sweep *sw, const cl_sweep_job *j, char *buf,
     size_t u = (size_t)snprintf(buf, len, "integrator=%s", j->integrator);
     for (int k = 0; k < n && u < len; k++)
         u += (size_t)snprintf(buf + u, len - u, "\n%s", sorted[k]);
+}
+
+void cl_sweep_canonical(const cl_sweep *sw, const cl_sweep_job *j, char *buf,
+                        size_t len)
+{
+    canonical(sw, j, false, buf, len);
 }
 
 void cl_sweep_describe(const cl_sweep *sw, const cl_sweep_job *j, char *buf,
@@ -187,16 +209,30 @@ int cl_sweep_find(const cl_sweep *sw, const char *id)
     return -1;
 }
 
-/* Set job k's id and command; CL_EINVAL (and *dup its twin) when an earlier
- * job has the same id. */
+/* An earlier job than k with job k's id or value key, or -1. */
+static int twin_of(const cl_sweep *sw, int k)
+{
+    for (int i = 0; i < k; i++)
+        if (!strcmp(sw->job[i].id, sw->job[k].id) ||
+            !strcmp(sw->job[i].key, sw->job[k].key))
+            return i;
+    return -1;
+}
+
+/* Set job k's id, value key and command; CL_EINVAL (and *dup its twin)
+ * when an earlier job has the same id, or the same values as numbers
+ * (rtol = 1e-4 and 0.0001: one run; the id hashes the values as written,
+ * so that the ids of sweeps planned before stay). */
 static cl_status finish_job(cl_sweep *sw, int k, int *dup, cl_error *err)
 {
     char text[8192];
     cl_sweep_job *j = &sw->job[k];
     cl_sweep_canonical(sw, j, text, sizeof text);
     make_id(text, j->id);
-    *dup = cl_sweep_find(sw, j->id);
-    if (*dup >= 0 && *dup < k) {
+    canonical(sw, j, true, text, sizeof text);
+    make_id(text, j->key);
+    *dup = twin_of(sw, k);
+    if (*dup >= 0) {
         cl_sweep_describe(sw, j, text, sizeof text);
         return cl_error_set(err, CL_EINVAL, "sweep: two jobs are the same "
                             "run, %s (a value listed twice, or two steps "
