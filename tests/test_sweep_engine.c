@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -338,6 +339,47 @@ Test(sweep_engine, a_running_sweep_is_not_run_twice)
     cr_assert_str_eq(summary, "2 complete, 0 failed, 0 missing");
     close(fd);
     run_local(dir);
+}
+
+/* A job that cannot record its status (here its exit.tmp is a directory)
+ * is missing once the engine has ended, and sweep run says so with exit
+ * status 1 (before: exit 0).  Without GNU parallel in PATH, sweep run
+ * stops before it touches any job's status (before: every status was
+ * removed first, so the complete jobs became missing). */
+Test(sweep_engine, missing_statuses_and_no_engine)
+{
+    char dir[1024], path[1100], summary[256];
+    plan(in_tmp(dir, "nostatus"), "[sweep]\nproblem = problems/hang.ini\n"
+                                  "integrator = rk4\ncloth.n = 4\n"
+                                  "t_end = 0.01\ndt = 1e-3, 2e-3\n");
+    run_local(dir);
+    collect(dir, summary, sizeof summary);
+    cr_assert_str_eq(summary, "2 complete, 0 failed, 0 missing");
+    char *save = strdup(getenv("PATH"));
+    setenv("PATH", "/nonexistent", 1);
+    cli_result r;
+    cli_run(&r, "sweep", "run", dir, NULL);
+    setenv("PATH", save, 1);
+    free(save);
+    cli_assert_no_crash(&r);
+    cr_assert_eq(r.status, 1);
+    cr_assert(strstr(r.err, "parallel is not in PATH"), "%s", r.err);
+    cli_result_free(&r);
+    collect(dir, summary, sizeof summary);
+    cr_assert_str_eq(summary, "2 complete, 0 failed, 0 missing");
+    static char sweep_json[1 << 16];
+    snprintf(path, sizeof path, "%s/sweep.json", dir);
+    tmp_slurp(path, sweep_json, sizeof sweep_json);
+    const char *at = strstr(sweep_json, "\"id\": \"");
+    cr_assert_not_null(at);
+    snprintf(path, sizeof path, "%s/jobs/%.12s/exit.tmp", dir, at + 7);
+    cr_assert_eq(mkdir(path, 0755), 0);
+    cli_run(&r, "sweep", "run", dir, "--jobs", "2", NULL);
+    cli_assert_no_crash(&r);
+    cr_assert_eq(r.status, 1, "%s", r.err);
+    cr_assert(strstr(r.out, "1 complete, 0 failed, 1 missing"), "%s", r.out);
+    cr_assert(strstr(r.err, "yet 1 job has no status"), "%s", r.err);
+    cli_result_free(&r);
 }
 
 /* ---- ssh ------------------------------------------------------------- */

@@ -363,17 +363,42 @@ static cl_status write_pending(const cl_sweep *sw, const int *todo, int n,
     return rc ? rc : cl_afile_commit(&af, err);
 }
 
-/* "N complete, M failed, K missing" once the engine is done. */
-static int summary(const cl_sweep *sw, cl_error *err)
+/* "N complete, M failed, K missing" once the engine is done (unless
+ * quiet); exit status 1 when a job has no status though the engine ran
+ * it (it could not record one: a full or read-only job directory). */
+static int summary(const cl_sweep *sw, bool quiet, cl_error *err)
 {
     cl_sweep_counts c;
     cl_sweep_outcome *out = outcomes_of(sw, &c, err);
     if (!out)
         return cl_cli_fail(err);
-    printf("%d complete, %d failed, %d missing (sweep collect %s)\n",
-           c.complete, c.failed, c.missing, sw->dir);
+    if (!quiet)
+        printf("%d complete, %d failed, %d missing (sweep collect %s)\n",
+               c.complete, c.failed, c.missing, sw->dir);
     free(out);
-    return 0;
+    if (!c.missing)
+        return 0;
+    fprintf(stderr, "clothode: sweep run: the engine ended, yet %d %s no "
+                    "status (see 'sweep collect' and the stderr of each); "
+                    "'sweep run --resume' runs %s\n", c.missing,
+            c.missing == 1 ? "job has" : "jobs have",
+            c.missing == 1 ? "it" : "them");
+    return 1;
+}
+
+/* Whether `program` is an executable file in $PATH. */
+static bool in_path(const char *program)
+{
+    const char *path = getenv("PATH");
+    char file[4200];
+    for (const char *p = path ? path : ""; *p; p += *p == ':') {
+        size_t n = strcspn(p, ":");
+        snprintf(file, sizeof file, "%.*s/%s", (int)n, n ? p : ".", program);
+        if (access(file, X_OK) == 0)
+            return true;
+        p += n;
+    }
+    return false;
 }
 
 /* DIR/lock, held (flock) by this run and the engine it starts, which
@@ -409,6 +434,13 @@ static int engine_run(cl_sweep *sw, cl_sweep_run_args *r, int *todo,
                       cl_error *err)
 {
     char list[4300];
+    const char *engine = r->engine == CL_SWEEP_SLURM ? "sbatch" : "parallel";
+    if (!in_path(engine)) { /* before any status is removed */
+        fprintf(stderr, "clothode: sweep run: %s is not in PATH (apt-get "
+                        "install %s); no job's status was touched\n", engine,
+                r->engine == CL_SWEEP_SLURM ? "slurm-client" : "parallel");
+        return 1;
+    }
     if (lock_sweep(sw, err) < 0)
         return cl_cli_fail(err);
     int n = r->resume ? pending_jobs(sw, todo, err)
@@ -422,13 +454,13 @@ static int engine_run(cl_sweep *sw, cl_sweep_run_args *r, int *todo,
         return 0;
     if (r->engine == CL_SWEEP_SLURM) {
         int status = cl_sweep_slurm(sw, r, todo, n);
-        return status || r->a.quiet || !r->wait ? status : summary(sw, err);
+        return status || !r->wait ? status : summary(sw, r->a.quiet, err);
     }
     snprintf(list, sizeof list, "%s/jobs.txt", sw->dir);
     if (r->resume && write_pending(sw, todo, n, list, sizeof list, err))
         return cl_cli_fail(err);
     int status = cl_sweep_parallel(sw, r, list, r->resume);
-    return status || r->a.quiet ? status : summary(sw, err);
+    return status ? status : summary(sw, r->a.quiet, err);
 }
 
 /* The ssh engine's host file (NULL: none), readable before GNU parallel
