@@ -791,6 +791,15 @@ Test(config, section_family_reported_as_known)
     cl_config_free(cfg);
 }
 
+Test(config, load_without_a_path_is_refused)
+{
+    cl_config *cfg = cl_config_alloc();
+    cl_error err = {0};
+    cr_assert_eq(cl_config_load(cfg, NULL, &err), CL_EINVAL);
+    cr_assert_str_eq(err.msg, "no problem file named (path NULL)");
+    cl_config_free(cfg);
+}
+
 Test(config, unknown_key_outside_sections)
 {
     char path[64], want[160];

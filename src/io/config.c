@@ -511,6 +511,9 @@ static cl_status cl_parse_text(cl_config *cfg, const char *file,
 cl_status cl_config_load(cl_config *cfg, const char *path, cl_error *err)
 {
     const char *why;
+    if (!path)
+        return cl_error_set(err, CL_EINVAL, "no problem file named (path "
+                            "NULL)");
     FILE *fp = cl_input_open(path, "r", &why);
     if (!fp)
         return cl_error_set(err, CL_EIO, "cannot open %s: %s", path, why);

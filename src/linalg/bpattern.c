@@ -99,6 +99,8 @@ cl_status cl_bpattern_build(size_t np, const int *dof, size_t nb,
 
 void cl_bpattern_free(cl_bpattern *pat)
 {
+    if (!pat)
+        return;
     free(pat->rowptr);
     free(pat->col);
     free(pat->diag);
