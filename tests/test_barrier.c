@@ -7,8 +7,10 @@
  * projection (positive semi-definite; equal to H where H already is). */
 #include <criterion/criterion.h>
 
+#include <lapacke.h>
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "contact/barrier.h"
 #include "obstaclecase.h"
@@ -215,26 +217,17 @@ Test(barrier, law)
     cr_expect_eq(cl_barrier_lambda(&r, -1e-3), 0.0);
 }
 
-/* The smallest eigenvalue of a symmetric 3x3 block, by its
- * characteristic polynomial's trigonometric roots (Smith, "Eigenvalues of
- * a symmetric 3 x 3 matrix", CACM 1961). */
+/* The smallest eigenvalue of a symmetric 3x3 block, by LAPACK's dsyev
+ * (backward stable: to round-off of the largest).  The trigonometric
+ * roots of the characteristic polynomial (Smith, CACM 1961) lose half the
+ * digits at a double eigenvalue, as here: -5.0e-7 against 124 for a rank-1
+ * block on one machine's libm, beyond a 1e-9 relative tolerance. */
 static double min_eigenvalue(const double A[9])
 {
-    double p1 = A[1] * A[1] + A[2] * A[2] + A[5] * A[5];
-    double q = (A[0] + A[4] + A[8]) / 3;
-    double p2 = (A[0] - q) * (A[0] - q) + (A[4] - q) * (A[4] - q) +
-                (A[8] - q) * (A[8] - q) + 2 * p1;
-    double p = sqrt(p2 / 6);
-    if (p == 0.0)
-        return q;
-    double B[9];
-    for (int k = 0; k < 9; k++)
-        B[k] = (A[k] - (k % 4 == 0) * q) / p;
-    double det = B[0] * (B[4] * B[8] - B[5] * B[7]) -
-                 B[1] * (B[3] * B[8] - B[5] * B[6]) +
-                 B[2] * (B[3] * B[7] - B[4] * B[6]);
-    double r = fmax(-1.0, fmin(1.0, det / 2));
-    return q + 2 * p * cos(acos(r) / 3 + 2 * M_PI / 3);
+    double a[9], w[3];
+    memcpy(a, A, sizeof a);
+    cr_assert_eq(LAPACKE_dsyev(LAPACK_ROW_MAJOR, 'N', 'U', 3, a, 3, w), 0);
+    return w[0];
 }
 
 /* Near a sphere H = kappa (b'' n n^T + b' G) has the negative eigenvalue
@@ -262,7 +255,8 @@ Test(barrier, psd_projection)
         cr_expect_float_eq(H[k], 100 * d2b * n[k / 3] * n[k % 3], 1e-9,
                            "H[%d]", k);
     }
-    cr_expect_geq(min_eigenvalue(H), -1e-9 * 100 * d2b);
+    cr_expect_geq(min_eigenvalue(H), -1e-12 * 100 * d2b, "%g against %g",
+                  min_eigenvalue(H), 100 * d2b);
     cl_obstacle_free(&o);
     const char *plane[] = {"obstacle.o.shape = plane",
                            "obstacle.o.normal = 0.2, 1, 0.1",

@@ -29,34 +29,59 @@ static void teardown(void)
 TestSuite(sweep_table, .init = setup, .fini = teardown);
 
 #define HEAD "id,role,integrator,cloth.n,run.dt,run.t_end,status,exit," \
-             "t_reached,steps,rhs_evals,cpu,err_x,err_v\n"
+             "t_reached,steps,rhs_evals,cpu,err_x,err_v,problem\n"
 
 /* rk4 on two sizes: at n = 6 stable up to 4e-3, blown up at 8e-3 and
  * 1.6e-2, one run missing and one refused; symplectic-euler never
  * unstable. */
 static const char *const table =
     HEAD
-    "a1,job,rk4,6,0.001,2,complete,ok,2,2000,8000,0.5,4e-9,1e-8\n"
-    "a2,job,rk4,6,0.002,2,complete,ok,2,1000,4000,0.25,6.4e-8,1.6e-7\n"
-    "a3,job,rk4,6,0.004,2,complete,ok,2,500,2000,0.125,1.024e-6,2.56e-6\n"
-    "a4,job,rk4,6,0.008,2,failed,blow-up,0.72,NA,NA,NA,NA,NA\n"
-    "a5,job,rk4,6,0.016,2,failed,interrupted,0.1,NA,NA,NA,NA,NA\n"
-    "a6,job,rk4,6,0.0005,2,missing,missing,NA,NA,NA,NA,NA,NA\n"
-    "a7,job,rk4,6,0.03,2,failed,usage,NA,NA,NA,NA,NA,NA\n"
-    "b1,job,rk4,8,0.001,2,failed,blow-up,1.5,NA,NA,NA,NA,NA\n"
+    "a1,job,rk4,6,0.001,2,complete,ok,2,2000,8000,0.5,4e-9,1e-8,@P@\n"
+    "a2,job,rk4,6,0.002,2,complete,ok,2,1000,4000,0.25,6.4e-8,1.6e-7,@P@\n"
+    "a3,job,rk4,6,0.004,2,complete,ok,2,500,2000,0.125,1.024e-6,2.56e-6,@P@\n"
+    "a4,job,rk4,6,0.008,2,failed,blow-up,0.72,NA,NA,NA,NA,NA,@P@\n"
+    "a5,job,rk4,6,0.016,2,failed,interrupted,0.1,NA,NA,NA,NA,NA,@P@\n"
+    "a6,job,rk4,6,0.0005,2,missing,missing,NA,NA,NA,NA,NA,NA,@P@\n"
+    "a7,job,rk4,6,0.03,2,failed,usage,NA,NA,NA,NA,NA,NA,@P@\n"
+    "b1,job,rk4,8,0.001,2,failed,blow-up,1.5,NA,NA,NA,NA,NA,@P@\n"
     "c1,job,symplectic-euler,6,0.001,2,complete,ok,2,2000,2000,0.1,1e-3,"
-    "1e-2\n"
+    "1e-2,@P@\n"
     "c2,job,symplectic-euler,6,0.002,2,complete,ok,2,1000,1000,0.05,2e-3,"
-    "2e-2\n"
-    "r1,reference,cvode-bdf,6,NA,2,complete,ok,2,900,1800,2,NA,NA\n";
+    "2e-2,@P@\n"
+    "r1,reference,cvode-bdf,6,NA,2,complete,ok,2,900,1800,2,NA,NA,@P@\n";
+
+/* A table whose @P@ are the absolute path of `problem`, the problem its
+ * runs are of (the studies check it). */
+static void put_table(const char *path, const char *text,
+                      const char *problem)
+{
+    static char out[1 << 14];
+    char *hang = realpath(problem, NULL);
+    cr_assert_not_null(hang, "%s", problem);
+    size_t u = 0;
+    for (const char *p = text; *p && u + strlen(hang) + 1 < sizeof out;)
+        if (!strncmp(p, "@P@", 3)) {
+            u += (size_t)sprintf(out + u, "%s", hang);
+            p += 3;
+        } else {
+            out[u++] = *p++;
+        }
+    out[u] = '\0';
+    free(hang);
+    tmp_put(path, out);
+}
 
 static void load(cl_sweep_table *t, const char *const *sets, cl_status want,
                  cl_error *err)
 {
-    char path[1024];
+    char path[1024], problem[1024];
+    /* a problem file of no keys: the rows are selected by the sets alone */
+    snprintf(problem, sizeof problem, "%s/p.ini", tmp);
+    tmp_put(problem, "[x]\ny = 1\n");
     snprintf(path, sizeof path, "%s/t.csv", tmp);
-    tmp_put(path, table);
+    put_table(path, table, problem);
     cl_config *cfg = cl_config_alloc();
+    cr_assert_eq(cl_config_load(cfg, problem, err), CL_OK);
     for (int k = 0; sets[k]; k++)
         cr_assert_eq(cl_config_set(cfg, sets[k], err), CL_OK);
     cr_assert_eq(cl_sweep_table_read(path, t, err), CL_OK, "%s", err->msg);
@@ -143,7 +168,7 @@ Test(sweep_table, empty_table_names_are_refused)
     cl_sweep_table t;
     cl_error err = {0};
     snprintf(list, sizeof list, "%s/t.csv", tmp);
-    tmp_put(list, table);
+    put_table(list, table, "problems/hang.ini");
     cr_assert_eq(cl_sweep_table_read("", &t, &err), CL_EINVAL);
     cr_assert(strstr(err.msg, "an empty name in the list of tables"), "%s",
               err.msg);
@@ -163,7 +188,7 @@ Test(sweep_table, stability_cli_from_sweep)
 {
     char path[1024], out[1024], csv[1100], text[4096];
     snprintf(path, sizeof path, "%s/t.csv", tmp);
-    tmp_put(path, table);
+    put_table(path, table, "problems/hang.ini");
     snprintf(out, sizeof out, "%s/stab", tmp);
     cli_result r;
     cli_run(&r, "stability", "hang", "--set", "cloth.n=6", "--t-end", "2",
@@ -175,6 +200,19 @@ Test(sweep_table, stability_cli_from_sweep)
               r.out);
     cr_assert(strstr(r.out, "symplectic-euler   stable at dt_max = 0.002 (2 "
                             "runs, d/L -)\n"), "%s", r.out);
+    cli_result_free(&r);
+    /* another problem's table, and a model key the sweep's runs did not
+     * have, are refused: before, hang's numbers were printed under
+     * spring2's name, and under ks = 300 */
+    cli_run(&r, "stability", "spring2", "--t-end", "2", "--integrator",
+            "rk4", "--from-sweep", path, "--out", out, NULL);
+    cli_assert_error(&r, 0, "its runs are of", "hang.ini, not of",
+                     "spring2.ini", NULL);
+    cli_result_free(&r);
+    cli_run(&r, "stability", "hang", "--set", "cloth.n=6", "--set",
+            "type1.ks=300", "--t-end", "2", "--integrator", "rk4",
+            "--from-sweep", path, "--out", out, NULL);
+    cli_assert_error(&r, 0, "--set type1.ks, yet it is no axis", NULL);
     cli_result_free(&r);
     snprintf(csv, sizeof csv, "%s/stability.csv", out);
     tmp_slurp(csv, text, sizeof text);
@@ -220,12 +258,13 @@ Test(sweep_table, stability_axis_from_sweep)
 {
     char path[1024], out[1024];
     snprintf(path, sizeof path, "%s/ks.csv", tmp);
-    tmp_put(path, "id,role,integrator,type1.ks,run.dt,status,exit,"
-                  "t_reached,steps,cpu\n"
-                  "a,job,rk4,1000,0.002,complete,ok,0.2,100,0.1\n"
-                  "b,job,rk4,1000,0.004,failed,blow-up,0.1,NA,NA\n"
-                  "c,job,rk4,4000,0.001,complete,ok,0.2,200,0.1\n"
-                  "d,job,rk4,4000,0.002,failed,blow-up,0.1,NA,NA\n");
+    put_table(path, "id,role,integrator,cloth.n,type1.ks,run.dt,status,"
+                    "exit,t_reached,steps,cpu,problem\n"
+                    "a,job,rk4,6,1000,0.002,complete,ok,0.2,100,0.1,@P@\n"
+                    "b,job,rk4,6,1000,0.004,failed,blow-up,0.1,NA,NA,@P@\n"
+                    "c,job,rk4,6,4000,0.001,complete,ok,0.2,200,0.1,@P@\n"
+                    "d,job,rk4,6,4000,0.002,failed,blow-up,0.1,NA,NA,@P@\n",
+              "problems/hang.ini");
     snprintf(out, sizeof out, "%s/axis", tmp);
     cli_result r;
     cli_run(&r, "stability", "hang", "--set", "cloth.n=6", "--t-end", "0.2",

@@ -201,6 +201,42 @@ static cl_status select_axis(cl_sweep_table *t, cl_config *cfg, int c,
     return CL_OK;
 }
 
+/* The table's runs are of this problem: its file (the sweep's, every
+ * row), and no model key changed on the command line that is not an axis
+ * of the table (the runs had the file's value). */
+static cl_status same_problem(const cl_sweep_table *t, cl_config *cfg,
+                              cl_error *err)
+{
+    int cp = column(t, "problem");
+    if (cp < 0)
+        return cl_error_set(err, CL_EPARSE, "--from-sweep %s: no problem "
+                            "column (collected by an earlier clothode: "
+                            "collect the sweep again)", t->path);
+    const char *file = cl_config_path(cfg);
+    char *mine = file ? realpath(file, NULL) : NULL;
+    cl_status rc = mine ? CL_OK
+                        : cl_error_set(err, CL_EIO, "%s: cannot resolve the "
+                                       "problem file", file ? file : "(none)");
+    for (int r = 0; !rc && r < t->nrow; r++)
+        if (strcmp(at(t, r, cp), mine))
+            rc = cl_error_set(err, CL_EINVAL, "--from-sweep %s: its runs are "
+                              "of %s, not of %s; give the sweep's problem",
+                              t->path, at(t, r, cp), mine);
+    free(mine);
+    const char *sec, *key;
+    char name[256];
+    for (size_t k = 0; !rc && (key = cl_config_set_key_at(cfg, k, &sec));
+         k++) {
+        snprintf(name, sizeof name, "%s.%s", sec, key);
+        if (strcmp(sec, "run") && column(t, name) < 0)
+            rc = cl_error_set(err, CL_EINVAL, "--from-sweep %s: --set %s, "
+                              "yet it is no axis of the sweep, whose runs "
+                              "had the problem file's value; --set only the "
+                              "sweep's axes", t->path, name);
+    }
+    return rc;
+}
+
 cl_status cl_sweep_table_select(cl_sweep_table *t, cl_config *cfg,
                                 cl_error *err)
 {
@@ -209,7 +245,9 @@ cl_status cl_sweep_table_select(cl_sweep_table *t, cl_config *cfg,
         return cl_error_set(err, CL_EPARSE, "--from-sweep %s: not a table "
                             "of 'clothode sweep collect' (no role, "
                             "integrator or status column)", t->path);
-    cl_status rc = CL_OK;
+    cl_status rc = same_problem(t, cfg, err);
+    if (rc)
+        return rc;
     for (int r = 0; r < t->nrow; r++)
         t->keep[r] = true;
     for (int c = lo + 1; !rc && c < hi; c++)

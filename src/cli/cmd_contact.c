@@ -293,11 +293,11 @@ static cl_status restore(ct_setup *s, cl_error *err)
         const ct_obstacle *o = &s->obs[k];
         if (o->response) {
             snprintf(a, sizeof a, "%s.response=%s", o->sec, o->response);
-            rc = cl_config_set(s->cfg, a, err);
+            rc = cl_config_set_as(s->cfg, a, "the problem file", err);
         }
         if (!rc && o->k) {
             snprintf(a, sizeof a, "%s.k=%s", o->sec, o->k);
-            rc = cl_config_set(s->cfg, a, err);
+            rc = cl_config_set_as(s->cfg, a, "the problem file", err);
         }
     }
     return rc;

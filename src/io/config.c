@@ -928,6 +928,17 @@ bool cl_config_set_by_command(const cl_config *cfg, const char *sec,
     return e && e->line <= 0;
 }
 
+const char *cl_config_set_key_at(const cl_config *cfg, size_t k,
+                                 const char **sec)
+{
+    for (const cl_entry *e = cfg->ent; e < cfg->ent + cfg->nent; e++)
+        if (e->line <= 0 && !e->file && k-- == 0) {
+            *sec = e->sec;
+            return e->key;
+        }
+    return NULL;
+}
+
 const char *cl_config_peek(const cl_config *cfg, const char *sec,
                            const char *key)
 {

@@ -117,6 +117,12 @@ const char *cl_config_section_at(cl_config *cfg, const char *prefix,
 bool cl_config_set_by_command(const cl_config *cfg, const char *sec,
                               const char *key);
 
+/* The k-th (0-based) entry set by cl_config_set (a --set of the command
+ * line; not cl_config_set_as, a command's own option), its section in
+ * *sec; NULL when there are k or fewer. */
+const char *cl_config_set_key_at(const cl_config *cfg, size_t k,
+                                 const char **sec);
+
 /* The value of [sec] key as given, or NULL, without counting it as read
  * (cl_config_check_unused still reports a key nothing else reads). */
 const char *cl_config_peek(const cl_config *cfg, const char *sec,
