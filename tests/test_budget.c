@@ -120,5 +120,21 @@ Test(budget, command_writes_budget_csv)
     /* S = 2 substeps of K = 1 iteration: h = dt / 2 */
     cr_assert(strstr(text, "\nxpbd,0.01,2,1,0.005"), "%s", text);
     cli_result_free(&r);
+    /* what the splits set, and a method a split cannot hold to K, are
+     * refused (before: --substeps was ignored, arkode-dirk-fixed took 236
+     * iterations for a budget of 40) */
+    cli_run(&r, "budget", "xpbd-chain", "--integrator", "xpbd", "--budget",
+            "2", "--dt", "0.01", "--t-end", "0.1", "--ref-rtol", "0",
+            "--substeps", "3", "--out", out, NULL);
+    cli_assert_error(&r, 0, "[run] substeps = \"3\"", "budget sets it",
+                     NULL);
+    cli_result_free(&r);
+    cli_run(&r, "budget", "ms-hang", "--set", "cloth.n=4", "--set",
+            "pbd.enabled=false", "--integrator", "arkode-dirk-fixed",
+            "--budget", "2", "--dt", "0.01", "--t-end", "0.1", "--out", out,
+            NULL);
+    cli_assert_error(&r, 0, "arkode-dirk-fixed caps the Newton iterations "
+                     "of each stage", NULL);
+    cli_result_free(&r);
     tmp_rm_rf(dir);
 }

@@ -183,6 +183,37 @@ Test(sweep_table, empty_table_names_are_refused)
     cl_sweep_table_free(&t);
 }
 
+/* A level is one run: an atol axis crossed with rtol (not following it)
+ * gives two runs at one rtol, refused (before: both taken as levels, an
+ * order of inf between them). */
+Test(sweep_table, two_runs_at_one_level_are_refused)
+{
+    char path[1024], problem[1024];
+    snprintf(problem, sizeof problem, "%s/p.ini", tmp);
+    tmp_put(problem, "[x]\ny = 1\n");
+    snprintf(path, sizeof path, "%s/atol.csv", tmp);
+    put_table(path, "id,role,integrator,run.rtol,run.atol,status,exit,"
+                    "t_reached,steps,err_x,err_v,problem\n"
+                    "a,job,cvode-bdf,1e-4,1e-6,complete,ok,1,10,1e-5,1e-4,@P@\n"
+                    "b,job,cvode-bdf,1e-4,1e-8,complete,ok,1,12,2e-6,3e-5,@P@\n"
+                    "c,job,cvode-bdf,1e-5,1e-6,complete,ok,1,20,9e-7,8e-6,@P@\n",
+              problem);
+    cl_config *cfg = cl_config_alloc();
+    cl_error err = {0};
+    cl_sweep_table t;
+    cr_assert_eq(cl_config_load(cfg, problem, &err), CL_OK);
+    cr_assert_eq(cl_sweep_table_read(path, &t, &err), CL_OK, "%s", err.msg);
+    cr_assert_eq(cl_sweep_table_select(&t, cfg, &err), CL_OK, "%s", err.msg);
+    cl_conv_result r;
+    cr_assert_eq(cl_conv_from_sweep(&t, "cvode-bdf",
+                                    cl_integrator_find("cvode-bdf"), &r,
+                                    &err), CL_EINVAL);
+    cr_assert(strstr(err.msg, "two runs of cvode-bdf at run.rtol = 0.0001"),
+              "%s", err.msg);
+    cl_sweep_table_free(&t);
+    cl_config_free(cfg);
+}
+
 /* The command line: the study's table from the sweep's rows of n = 6. */
 Test(sweep_table, stability_cli_from_sweep)
 {

@@ -82,6 +82,11 @@ cl_status cl_budget(cl_model *m, const cl_integrator_type *type,
                     const cl_conv_ref *ref, cl_budget_result *r,
                     cl_error *err);
 
+/* E(T) - E(0) of the reference (its state at T), to compare the splits'
+ * energy change with on a damped model; NAN if it cannot be evaluated. */
+double cl_budget_reference_energy(cl_model *m, const cl_conv_ref *ref,
+                                  double T);
+
 /* One CSV row per split, header first when `header`:
  * integrator,dt,substeps,iterations,h,err_x,stretch,energy,steps,
  * rhs_evals,nonlin_iters,lin_solves,cpu,status. */

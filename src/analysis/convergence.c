@@ -3,6 +3,7 @@
 #include "analysis/convergence.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -11,12 +12,24 @@
 #include "analysis/diagnostics.h"
 #include "analysis/trial.h"
 
+/* x to 15 significant digits: the double of the decimal a table prints
+ * for it, so that a level's tolerance is the one printed (1e-4 x 10^-2
+ * is 1.0000000000000002e-06 in floating point, and CVODE's steps and
+ * error at that tolerance differ from those at 1e-06 by up to 2x on hang)
+ * and `run` with the printed value reproduces the level. */
+static double decimal(double x)
+{
+    char text[32];
+    snprintf(text, sizeof text, "%.15g", x);
+    return strtod(text, NULL);
+}
+
 /* The reference run at rtol; its final state is in t->x, t->v. */
 static cl_status reference_run(cl_trial *t, const cl_conv_opts *o,
                                double rtol, cl_stats *s, cl_error *err)
 {
     const cl_integrator_type *type = cl_integrator_find("cvode-bdf");
-    cl_integrator_opts io = {.rtol = rtol, .atol = rtol / 100,
+    cl_integrator_opts io = {.rtol = rtol, .atol = decimal(rtol / 100),
                              .linsol = o->ref_linsol};
     cl_error why = {0};
     cl_status rc = cl_trial_run(t, type, &io, o->t_end, 1, o->max_stretch,
@@ -48,7 +61,8 @@ cl_status cl_conv_reference(cl_model *m, const cl_conv_opts *o,
     if (!rc && !(rc = reference_run(&t, o, o->ref_rtol, &ref->stats, err))) {
         memcpy(ref->x, t.x, n * sizeof *ref->x);
         memcpy(ref->v, t.v, n * sizeof *ref->v);
-        if (!(rc = reference_run(&t, o, 10 * o->ref_rtol, &loose, err))) {
+        if (!(rc = reference_run(&t, o, decimal(10 * o->ref_rtol), &loose,
+                                 err))) {
             ref->err_x = cl_max_distance(t.x, ref->x, n / 3);
             ref->err_v = cl_max_distance(t.v, ref->v, n / 3);
         }
@@ -77,8 +91,8 @@ static cl_integrator_opts level_opts(const cl_integrator_type *type,
         *param = o.dt;
     } else {
         double s = pow(10.0, -k);
-        o.rtol = io->rtol * s;
-        o.atol = io->atol * s;
+        o.rtol = decimal(io->rtol * s);
+        o.atol = decimal(io->atol * s);
         *param = o.rtol;
     }
     return o;

@@ -287,6 +287,15 @@ int cl_sweep_table_rows(const cl_sweep_table *t, const char *label,
                             "(with this problem's axis values)", t->path,
                             label), -1;
     qsort(out, (size_t)n, sizeof *out, by_param_down);
+    for (int k = 1; k < n; k++)
+        if (out[k].param == out[k - 1].param)
+            return cl_error_set(err, CL_EINVAL, "--from-sweep %s: two runs of "
+                                "%s at %s = %g (another of the method's axes, "
+                                "such as run.atol, varies on its own): a "
+                                "level is one run; sweep it as a function of "
+                                "%s (atol = rtol / 100) or in parts",
+                                t->path, label, param, out[k].param, param),
+                   -1;
     return n;
 }
 

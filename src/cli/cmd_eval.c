@@ -26,10 +26,14 @@ static const cl_cli_opt eval_rows[] = {
     {.name = "t", .arg = "T", .type = CL_CLI_DOUBLE, .sec = "eval",
      .key = "t", .lo = -INFINITY, .hi = INFINITY,
      .field = offsetof(eval_args, t),
-     .help = "time, for moving pins (default 0)"},
+     .help = "time of the state, where moving obstacles are (the pinned "
+             "particles keep the state's positions; default 0)"},
     {.name = "jacobian", .arg = "FILE", .type = CL_CLI_STRING, .sec = "eval",
      .key = "jacobian", .field = offsetof(eval_args, jac_x),
-     .help = "also write df/dx over all particles (Matrix Market)"},
+     .help = "also write df/dx over all particles (Matrix Market): the "
+             "Jacobian the implicit methods use, exact but for what "
+             "docs/model.md leaves out (Baraff-Witkin damping's dd/dx, a "
+             "barrier's projection to PSD, self-contact)"},
     {.name = "jacobian-v", .arg = "FILE", .type = CL_CLI_STRING,
      .sec = "eval", .key = "jacobian_v", .field = offsetof(eval_args, jac_v),
      .help = "also write df/dv over all particles (Matrix Market)"},
@@ -48,8 +52,8 @@ static const cl_cli_table eval_table = {
     "forces.csv (p,fx,fy,fz: total force on every particle, gravity,\n"
     "damping and contact included; a barrier's friction, whose normal force\n"
     "is lagged from a run's last step, is zero at a lone state) and\n"
-    "energy.csv (term,value: kinetic, each potential term, total) into the\n"
-    "output directory.\n"};
+    "energy.csv (term,value: kinetic, of the free particles, each potential\n"
+    "term, total) into the output directory.\n"};
 
 static cl_status write_forces(const char *dir, size_t np, const double *f,
                               cl_error *err)

@@ -21,7 +21,8 @@ static const cl_cli_opt spec_rows[] = {
     {.name = "t", .arg = "T", .type = CL_CLI_DOUBLE, .sec = "spectrum",
      .key = "t", .lo = -INFINITY, .hi = INFINITY,
      .field = offsetof(spec_setup, t),
-     .help = "time of that state (moving pins; default 0)"},
+     .help = "time of that state, where moving obstacles are (the pinned "
+             "particles keep the state's positions; default 0)"},
     CL_CLI_TAIL(spec_setup, "no summary on stdout"),
     {.type = CL_CLI_END}};
 

@@ -108,6 +108,7 @@ cl_status cl_ark_advance(void *state, double t_out, double *x, double *v,
         .takes_linsol = true,                                              \
         .linsol_default = CL_SUNRED_DEFAULT,                               \
         .takes_newton_maxit = true,                                        \
+        .newton_per_stage = true,                                          \
         .takes_table = true,                                               \
         .create = ident##_create,                                          \
         .advance = cl_ark_advance,                                         \

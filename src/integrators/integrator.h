@@ -77,6 +77,9 @@ typedef struct {
     bool takes_max_order; /* accepts opts->max_order */
     bool takes_iterations; /* accepts opts->substeps, opts->iterations */
     bool takes_newton_maxit; /* a Newton iteration opts->newton_maxit caps */
+    bool newton_per_stage; /* ... that of each stage (ARKODE's DIRK and
+                            * IMEX methods), with failed stage solves
+                            * retried: no cap on the step's iterations */
     bool takes_table;    /* accepts opts->table */
     bool dense_jacobian; /* factorises a dense 2n x 2n Newton matrix */
     bool takes_rayleigh; /* accepts opts->rayleigh_alpha, rayleigh_beta */
