@@ -166,6 +166,18 @@ static void run_resume(const char *dir, const char *want)
     cli_result_free(&r);
 }
 
+/* The id of the first job of the sweep in dir (its sweep.json). */
+static void first_id(const char *dir, char id[13])
+{
+    static char sweep_json[1 << 16];
+    char path[1100];
+    snprintf(path, sizeof path, "%s/sweep.json", dir);
+    tmp_slurp(path, sweep_json, sizeof sweep_json);
+    const char *at = strstr(sweep_json, "\"id\": \"");
+    cr_assert_not_null(at);
+    snprintf(id, 13, "%.12s", at + 7);
+}
+
 /* Interrupted by SIGINT once two jobs are done, resumed, collected:
  * every job once, none missing.  Then the results survive a plan with the
  * axes reordered, and a status left by another engine gives way to the
@@ -209,13 +221,9 @@ Test(sweep_engine, local_interrupted_and_resumed)
 
     /* a status another engine recorded (a Slurm task killed: 137) is the
      * job's until the job runs again, here by --resume */
-    static char sweep_json[1 << 16];
-    char path[1100];
-    snprintf(path, sizeof path, "%s/sweep.json", dir);
-    tmp_slurp(path, sweep_json, sizeof sweep_json);
-    const char *id = strstr(sweep_json, "\"id\": \"");
-    cr_assert_not_null(id);
-    snprintf(path, sizeof path, "%s/jobs/%.12s/exit", dir, id + 7);
+    char path[1100], id[13];
+    first_id(dir, id);
+    snprintf(path, sizeof path, "%s/jobs/%s/exit", dir, id);
     tmp_put(path, "137\n");
     collect(dir, summary, sizeof summary);
     cr_assert_str_eq(summary, "9 complete, 1 failed, 0 missing");
@@ -273,14 +281,8 @@ Test(sweep_engine, a_refused_run_keeps_no_earlier_results)
     collect(dir, summary, sizeof summary);
     cr_assert_str_eq(summary, "0 complete, 2 failed, 0 missing");
     snprintf(table, sizeof table, "%s.csv", dir);
-    static char sweep_json[1 << 16];
-    char path[1100];
-    snprintf(path, sizeof path, "%s/sweep.json", dir);
-    tmp_slurp(path, sweep_json, sizeof sweep_json);
-    const char *at = strstr(sweep_json, "\"id\": \"");
-    cr_assert_not_null(at);
     char id[13];
-    snprintf(id, sizeof id, "%.12s", at + 7);
+    first_id(dir, id);
     table_field(table, id, "exit", f, sizeof f);
     cr_assert_str_eq(f, "input");
     table_field(table, id, "t_reached", f, sizeof f);
@@ -314,16 +316,26 @@ Test(sweep_engine, over_a_hundred_failed_jobs)
     cr_assert_str_eq(summary, "0 complete, 102 failed, 0 missing");
 }
 
+/* A sweep of two short jobs planned into DIR (tmp/name) and run: both
+ * complete. */
+static void two_complete(char *dir, const char *name)
+{
+    char summary[256];
+    plan(in_tmp(dir, name), "[sweep]\nproblem = problems/hang.ini\n"
+                            "integrator = rk4\ncloth.n = 4\n"
+                            "t_end = 0.01\ndt = 1e-3, 2e-3\n");
+    run_local(dir);
+    collect(dir, summary, sizeof summary);
+    cr_assert_str_eq(summary, "2 complete, 0 failed, 0 missing");
+}
+
 /* Two runs of one sweep at once would run the same jobs into the same
  * files: while DIR/lock is held (by another 'sweep run', or by the GNU
  * parallel of a killed one), sweep run is refused and changes nothing. */
 Test(sweep_engine, a_running_sweep_is_not_run_twice)
 {
     char dir[1024], path[1100], summary[256];
-    plan(in_tmp(dir, "locked"), "[sweep]\nproblem = problems/hang.ini\n"
-                                "integrator = rk4\ncloth.n = 4\n"
-                                "t_end = 0.01\ndt = 1e-3, 2e-3\n");
-    run_local(dir);
+    two_complete(dir, "locked");
     snprintf(path, sizeof path, "%s/lock", dir);
     int fd = open(path, O_RDWR);
     cr_assert_geq(fd, 0, "%s: %s", path, strerror(errno));
@@ -349,12 +361,7 @@ Test(sweep_engine, a_running_sweep_is_not_run_twice)
 Test(sweep_engine, missing_statuses_and_no_engine)
 {
     char dir[1024], path[1100], summary[256];
-    plan(in_tmp(dir, "nostatus"), "[sweep]\nproblem = problems/hang.ini\n"
-                                  "integrator = rk4\ncloth.n = 4\n"
-                                  "t_end = 0.01\ndt = 1e-3, 2e-3\n");
-    run_local(dir);
-    collect(dir, summary, sizeof summary);
-    cr_assert_str_eq(summary, "2 complete, 0 failed, 0 missing");
+    two_complete(dir, "nostatus");
     char *save = strdup(getenv("PATH"));
     setenv("PATH", "/nonexistent", 1);
     cli_result r;
@@ -367,12 +374,9 @@ Test(sweep_engine, missing_statuses_and_no_engine)
     cli_result_free(&r);
     collect(dir, summary, sizeof summary);
     cr_assert_str_eq(summary, "2 complete, 0 failed, 0 missing");
-    static char sweep_json[1 << 16];
-    snprintf(path, sizeof path, "%s/sweep.json", dir);
-    tmp_slurp(path, sweep_json, sizeof sweep_json);
-    const char *at = strstr(sweep_json, "\"id\": \"");
-    cr_assert_not_null(at);
-    snprintf(path, sizeof path, "%s/jobs/%.12s/exit.tmp", dir, at + 7);
+    char id[13];
+    first_id(dir, id);
+    snprintf(path, sizeof path, "%s/jobs/%s/exit.tmp", dir, id);
     cr_assert_eq(mkdir(path, 0755), 0);
     cli_run(&r, "sweep", "run", dir, "--jobs", "2", NULL);
     cli_assert_no_crash(&r);
