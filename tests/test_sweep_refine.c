@@ -95,6 +95,19 @@ Test(sweep_refine, steps_inside_the_bracket)
     cr_assert(strstr(r.out, "refine     0 jobs inside 0 brackets"), "%s",
               r.out);
     cli_result_free(&r);
+    /* a row without a result is named, not silently left out */
+    tmp_slurp(t1, text, sizeof text);
+    char *row = strstr(text, "complete,ok");
+    cr_assert_not_null(row, "%s", text);
+    memcpy(row, "missing,mis", 11);
+    memmove(row + 15, row + 11, strlen(row + 11) + 1);
+    memcpy(row + 11, "sing", 4);
+    tmp_put(t1, text);
+    cli_run(&r, "sweep", "refine", dir, "--table", t1, "--out", fine, NULL);
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "missing    1 row of the tables has no "
+                            "result"), "%s", r.out);
+    cli_result_free(&r);
 }
 
 Test(sweep_refine, stages_must_have_the_same_columns)

@@ -663,10 +663,20 @@ static int refine(void *settings)
                              &brackets, &err);
     if (!rc)
         rc = cl_sweep_write(&next, &err);
+    int missing = 0;
+    for (int row = 0; !rc && row < t.nrow; row++)
+        missing += !strcmp(cl_sweep_table_text(&t, row, "status"), "missing");
     if (!rc && !r->a.quiet)
-        printf("refine     %d jobs inside %d brackets wider than 1 + %g\n"
-               "output     %s/jobs.txt, %s/sweep.json\n", next.njob,
-               brackets, r->rel, next.dir, next.dir);
+        printf("refine     %d jobs inside %d brackets wider than 1 + %g\n",
+               next.njob, brackets, r->rel);
+    if (!rc && !r->a.quiet && missing)
+        printf("missing    %d %s of the tables %s no result and bound no "
+               "bracket: run %s first ('sweep run --resume')\n", missing,
+               missing == 1 ? "row" : "rows", missing == 1 ? "has" : "have",
+               missing == 1 ? "it" : "them");
+    if (!rc && !r->a.quiet)
+        printf("output     %s/jobs.txt, %s/sweep.json\n", next.dir,
+               next.dir);
     cl_sweep_table_free(&t);
     cl_sweep_free(&next);
     cl_sweep_free(&sw);
