@@ -48,3 +48,26 @@ Test(input, only_regular_files_are_read)
     cr_assert_str_eq(why, strerror(ENOENT));
     tmp_rm_rf(dir);
 }
+
+/* A path written down elsewhere names an input file when it is that file,
+ * or it is readable here with the same bytes, or, not here (planned on
+ * another machine), it has the same file name. */
+Test(input, same_input_by_file_bytes_or_name)
+{
+    char dir[512], a[600], b[600], c[600], gone[600], other[600];
+    tmp_mkdtemp(dir, sizeof dir, "sameinput");
+    snprintf(a, sizeof a, "%s/hang.ini", dir);
+    snprintf(b, sizeof b, "%s/copy.ini", dir);
+    snprintf(c, sizeof c, "%s/edited.ini", dir);
+    snprintf(gone, sizeof gone, "/nonexistent/cluster/hang.ini");
+    snprintf(other, sizeof other, "/nonexistent/cluster/spring2.ini");
+    tmp_put(a, "[type1]\nks = 200\n");
+    tmp_put(b, "[type1]\nks = 200\n");
+    tmp_put(c, "[type1]\nks = 300\n");
+    cr_assert(cl_same_input(a, a));
+    cr_assert(cl_same_input(b, a));
+    cr_assert(!cl_same_input(c, a));
+    cr_assert(cl_same_input(gone, a));
+    cr_assert(!cl_same_input(other, a));
+    tmp_rm_rf(dir);
+}

@@ -202,10 +202,12 @@ static cl_status select_axis(cl_sweep_table *t, cl_config *cfg, int c,
 }
 
 /* The table's runs are of this problem: its file (the sweep's, every
- * row), and no model key changed on the command line that is not an axis
- * of the table (the runs had the file's value). */
+ * row; cl_same_input, so that a sweep copied from another machine
+ * passes), and no model key changed by --set that is not an axis of the
+ * table (the runs had the file's value); the keys of [run] and of the
+ * command's own section `own` are no model's. */
 static cl_status same_problem(const cl_sweep_table *t, cl_config *cfg,
-                              cl_error *err)
+                              const char *own, cl_error *err)
 {
     int cp = column(t, "problem");
     if (cp < 0)
@@ -218,7 +220,7 @@ static cl_status same_problem(const cl_sweep_table *t, cl_config *cfg,
                         : cl_error_set(err, CL_EIO, "%s: cannot resolve the "
                                        "problem file", file ? file : "(none)");
     for (int r = 0; !rc && r < t->nrow; r++)
-        if (strcmp(at(t, r, cp), mine))
+        if (!cl_same_input(at(t, r, cp), mine))
             rc = cl_error_set(err, CL_EINVAL, "--from-sweep %s: its runs are "
                               "of %s, not of %s; give the sweep's problem",
                               t->path, at(t, r, cp), mine);
@@ -228,7 +230,8 @@ static cl_status same_problem(const cl_sweep_table *t, cl_config *cfg,
     for (size_t k = 0; !rc && (key = cl_config_set_key_at(cfg, k, &sec));
          k++) {
         snprintf(name, sizeof name, "%s.%s", sec, key);
-        if (strcmp(sec, "run") && column(t, name) < 0)
+        if (strcmp(sec, "run") && (!own || strcmp(sec, own)) &&
+            column(t, name) < 0)
             rc = cl_error_set(err, CL_EINVAL, "--from-sweep %s: --set %s, "
                               "yet it is no axis of the sweep, whose runs "
                               "had the problem file's value; --set only the "
@@ -238,14 +241,14 @@ static cl_status same_problem(const cl_sweep_table *t, cl_config *cfg,
 }
 
 cl_status cl_sweep_table_select(cl_sweep_table *t, cl_config *cfg,
-                                cl_error *err)
+                                const char *own, cl_error *err)
 {
     int lo = column(t, "integrator"), hi = column(t, "status");
     if (lo < 0 || hi < lo || column(t, "role") < 0)
         return cl_error_set(err, CL_EPARSE, "--from-sweep %s: not a table "
                             "of 'clothode sweep collect' (no role, "
                             "integrator or status column)", t->path);
-    cl_status rc = same_problem(t, cfg, err);
+    cl_status rc = same_problem(t, cfg, own, err);
     if (rc)
         return rc;
     for (int r = 0; r < t->nrow; r++)

@@ -51,10 +51,14 @@ bool cl_sweep_same_value(const char *a, const char *b);
  * status other than the [run] keys of a method) hold the value cfg gives
  * that key, numbers compared as numbers; an axis cfg does not set must
  * have one value among the rows kept (every row is reconsidered, so a
- * table can be selected again for another configuration).  CL_EINVAL naming the axis and the
- * way to pick otherwise, or when no row is left. */
+ * table can be selected again for another configuration).  CL_EINVAL
+ * naming the axis and the way to pick otherwise, or when no row is left;
+ * also when the table's runs are of another problem than cfg's file
+ * (cl_same_input), or a --set of cfg changes a model key that is no axis
+ * of the table (the keys of [run] and of the command's own section `own`,
+ * NULL for none, are no model's). */
 cl_status cl_sweep_table_select(cl_sweep_table *t, cl_config *cfg,
-                                cl_error *err);
+                                const char *own, cl_error *err);
 
 /* A job row and its value of the method's parameter (dt, rtol). */
 typedef struct {

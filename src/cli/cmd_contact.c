@@ -338,7 +338,7 @@ static cl_status build(ct_setup *s, int v, cl_error *err)
         rc = set_all(s, "k", k, "--k", err);
     }
     if (!rc && s->from) /* the sweep's rows of this variant */
-        rc = cl_sweep_table_select(&s->table, s->cfg, err);
+        rc = cl_sweep_table_select(&s->table, s->cfg, "contact", err);
     if (!rc && !(rc = cl_cli_model_create(s->cfg, &s->variant, err)))
         s->variant_of = v;
     return rc;

@@ -97,7 +97,7 @@ static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
                            (int)s->levels, &s->co, err);
     if (!rc && s->from && !(rc = cl_sweep_table_read(s->from, &s->table,
                                                      err)))
-        rc = cl_sweep_table_select(&s->table, cfg, err);
+        rc = cl_sweep_table_select(&s->table, cfg, "convergence", err);
     return rc;
 }
 

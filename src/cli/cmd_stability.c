@@ -127,7 +127,7 @@ static cl_status use_value(stab_setup *s, int v, cl_error *err)
     snprintf(a, sizeof a, "%s=%s", s->key, s->values.v[v]);
     cl_status rc = cl_config_set_as(s->cfg, a, "--axis", err);
     if (!rc && s->from)
-        rc = cl_sweep_table_select(&s->table, s->cfg, err);
+        rc = cl_sweep_table_select(&s->table, s->cfg, "stability", err);
     if (!rc && !(rc = cl_cli_model_create(s->cfg, &s->variant, err)))
         s->variant_of = v;
     snprintf(a, sizeof a, "%s=%s", s->key, s->original ? s->original : "");
@@ -321,7 +321,7 @@ static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
     s->variant_of = -1;
     if (s->from && !(rc = cl_sweep_table_read(s->from, &s->table, err)) &&
         !*s->axis)
-        rc = cl_sweep_table_select(&s->table, cfg, err);
+        rc = cl_sweep_table_select(&s->table, cfg, "stability", err);
     if (!rc && *s->axis)
         rc = read_axis(cfg, s, err);
     return rc;

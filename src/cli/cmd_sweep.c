@@ -18,6 +18,7 @@
 #include "cli/sweep_engine.h"
 #include "io/atomic.h"
 #include "io/input.h"
+#include "io/jsonfile.h"
 
 /* ---- plan --------------------------------------------------------------- */
 
@@ -118,26 +119,29 @@ static cl_status plan_dirs(const cl_cli_args *a, cl_sweep *sw, bool *made,
 }
 
 /* A directory that already holds a sweep is planned again only for the
- * same problem and binary: the ids hash the jobs' values alone, so the
- * results there would stand for the new problem's jobs. */
+ * same problem (cl_same_input: the file, its bytes, or, planned on
+ * another machine, its name): the ids hash the jobs' values alone, so the
+ * results there would stand for another problem's jobs.  Its manifest is
+ * read for the problem alone, so that a sweep of an earlier clothode can
+ * still be planned again. */
 static cl_status same_sweep(const cl_sweep *sw, cl_error *err)
 {
     char path[4200];
     struct stat st;
-    cl_sweep old = {0};
+    json_error_t je;
+    const char *why;
     snprintf(path, sizeof path, "%s/sweep.json", sw->dir);
     if (stat(path, &st) != 0)
         return CL_OK;
-    cl_status rc = cl_sweep_load(sw->dir, &old, err);
-    if (!rc && (strcmp(old.problem, sw->problem) ||
-                strcmp(old.clothode, sw->clothode)))
-        rc = cl_error_set(err, CL_EINVAL, "%s: holds the sweep of %s run by "
-                          "%s, whose results would stand for the jobs of %s "
-                          "run by %s with the same values; plan into another "
-                          "directory (or remove this one)", sw->dir,
-                          old.problem, old.clothode, sw->problem,
-                          sw->clothode);
-    cl_sweep_free(&old);
+    json_t *doc = cl_json_read(path, &je, &why);
+    const char *old = json_string_value(json_object_get(doc, "problem"));
+    cl_status rc = CL_OK;
+    if (old && !cl_same_input(old, sw->problem))
+        rc = cl_error_set(err, CL_EINVAL, "%s: holds the sweep of %s, whose "
+                          "results would stand for the jobs of %s with the "
+                          "same values; plan into another directory (or "
+                          "remove this one)", sw->dir, old, sw->problem);
+    json_decref(doc);
     return rc;
 }
 

@@ -18,6 +18,12 @@ FILE *cl_input_open(const char *path, const char *mode, const char **why);
  * device and inode: through links and other spellings. */
 bool cl_same_file(const char *a, const char *b);
 
+/* Whether `recorded`, a path written down elsewhere (a sweep's problem
+ * file, perhaps on the machine that planned it), names the input file
+ * `mine`: the same file; else, when `recorded` can be read here, the same
+ * bytes; else (a sweep copied from another machine) the same file name. */
+bool cl_same_input(const char *recorded, const char *mine);
+
 /* What a file of mode `mode` (from stat) is, for messages: "a regular
  * file", "a directory", "a symbolic link", "a FIFO", "a device", "a
  * socket". */
