@@ -85,9 +85,8 @@ const char *cl_cli_problem_path(const char *arg, char *buf, size_t len)
 cl_status cl_cli_model_create(cl_config *cfg, cl_model **m, cl_error *err)
 {
     cl_mem_cap cap;
-    cl_status rc = cl_mem_cap_data(&cap, err);
-    if (!rc)
-        rc = cl_model_create(cfg, m, err);
+    cl_mem_cap_data(&cap);
+    cl_status rc = cl_model_create(cfg, m, err);
     cl_mem_cap_release(&cap);
     if (rc == CL_ENOMEM && cap.limit) {
         cl_error inner = *err;

@@ -55,9 +55,14 @@ static double cgroup_room(const char *dir, bool v2)
                                      : "memory.usage_in_bytes");
     double file = keyed_value(dir, "memory.stat", v2 ? "file" : "total_cache",
                               1.0);
+    /* tmpfs and shared memory count as file pages but are not reclaimed
+     * without swap */
+    double shmem = keyed_value(dir, "memory.stat",
+                               v2 ? "shmem" : "total_shmem", 1.0);
     if (isnan(max) || max >= 0x1p62 || isnan(used))
         return NAN;
-    return max - used + (isnan(file) ? 0.0 : file);
+    return max - used + (isnan(file) ? 0.0 : file) -
+           (isnan(shmem) ? 0.0 : shmem);
 }
 
 /* The least room left by the cgroup at `mount`/`path` and its ancestors. */
@@ -144,11 +149,16 @@ static void keep_least(double room, const char *name, double *least,
     }
 }
 
-cl_status cl_mem_available_at(const char *proc, const char *cgroup,
-                              double *bytes, const char **limit,
+/* cl_mem_available_at, with the free swap beside MemAvailable when
+ * `swap` (what can be given at all before the OOM killer acts). */
+static cl_status available_at(const char *proc, const char *cgroup,
+                              bool swap, double *bytes, const char **limit,
                               cl_error *err)
 {
     double avail = keyed_value(proc, "meminfo", "MemAvailable", 1024.0);
+    double swap_free = keyed_value(proc, "meminfo", "SwapFree", 1024.0);
+    if (swap && avail > 0 && swap_free > 0)
+        avail += swap_free;
     struct sysinfo si;
     if (!(avail > 0) && sysinfo(&si) == 0)
         avail = ((double)si.freeram + (double)si.bufferram) * si.mem_unit;
@@ -173,6 +183,13 @@ cl_status cl_mem_available_at(const char *proc, const char *cgroup,
     return CL_OK;
 }
 
+cl_status cl_mem_available_at(const char *proc, const char *cgroup,
+                              double *bytes, const char **limit,
+                              cl_error *err)
+{
+    return available_at(proc, cgroup, false, bytes, limit, err);
+}
+
 cl_status cl_mem_available(double *bytes, const char **limit,
                            cl_error *err)
 {
@@ -180,29 +197,27 @@ cl_status cl_mem_available(double *bytes, const char **limit,
                                err);
 }
 
-cl_status cl_mem_cap_data(cl_mem_cap *cap, cl_error *err)
+void cl_mem_cap_data(cl_mem_cap *cap)
 {
     struct rlimit rl;
     double avail, data = keyed_value("/proc/self", "status", "VmData",
                                      1024.0);
     cl_error ignored;
     *cap = (cl_mem_cap){.lowered = false};
-    if (isnan(data) || cl_mem_available(&avail, &cap->limit, &ignored) ||
+    if (isnan(data) ||
+        available_at("/proc", "/sys/fs/cgroup", true, &avail, &cap->limit,
+                     &ignored) ||
         getrlimit(RLIMIT_DATA, &rl) != 0) {
         cap->limit = NULL;
-        return CL_OK; /* nothing known to cap at */
+        return; /* nothing known to cap at */
     }
     double want = data + avail;
     cap->available = avail;
     if (rl.rlim_cur != RLIM_INFINITY && (double)rl.rlim_cur <= want)
-        return CL_OK;
+        return;
     cap->soft = (unsigned long long)rl.rlim_cur;
     rl.rlim_cur = (rlim_t)want;
-    if (setrlimit(RLIMIT_DATA, &rl) != 0)
-        return cl_error_set(err, CL_EIO, "cannot cap the data size at %.3g "
-                            "GB (setrlimit)", want / 1e9);
-    cap->lowered = true;
-    return CL_OK;
+    cap->lowered = setrlimit(RLIMIT_DATA, &rl) == 0; /* else no cap */
 }
 
 void cl_mem_cap_release(const cl_mem_cap *cap)

@@ -2,9 +2,10 @@
  *   - the kernel's MemAvailable (/proc/meminfo; without it, free plus
  *     buffer memory from sysinfo),
  *   - the room its memory cgroups leave (cgroup v2: memory.max less
- *     memory.current, plus the cgroup's file pages, which the kernel
- *     reclaims before its OOM killer acts; v1: memory.limit_in_bytes less
- *     memory.usage_in_bytes, plus total_cache), for the process's cgroup
+ *     memory.current, plus the cgroup's file pages but its shared memory,
+ *     which the kernel reclaims before its OOM killer acts; v1:
+ *     memory.limit_in_bytes less memory.usage_in_bytes, plus total_cache
+ *     less total_shmem), for the process's cgroup
  *     and each of its ancestors -- a batch job's memory limit (Slurm's
  *     --mem) is one of these,
  *   - the room under the address-space and data limits (RLIMIT_AS less the
@@ -39,12 +40,13 @@ typedef struct {
                         * not known, and then no cap */
 } cl_mem_cap;
 
-/* Lower RLIMIT_DATA's soft limit to the process's data size plus the
- * available memory (never raising it), so that allocations beyond what
- * the machine or the job can give fail; CL_OK without a cap when the
- * available memory is not known.  cap tells what was available, and
- * cl_mem_cap_release restores the limit. */
-cl_status cl_mem_cap_data(cl_mem_cap *cap, cl_error *err);
+/* Lower RLIMIT_DATA's soft limit to the process's data size plus what
+ * the machine or the job can still give (cl_mem_available with the free
+ * swap beside MemAvailable: the point of the kernel's OOM kill, not of
+ * swapping), never raising it, so that allocations beyond it fail; no
+ * cap when that is not known or cannot be set.  cap tells what was
+ * available, and cl_mem_cap_release restores the limit. */
+void cl_mem_cap_data(cl_mem_cap *cap);
 void cl_mem_cap_release(const cl_mem_cap *cap);
 
 #endif

@@ -129,7 +129,12 @@ void cl_stop_disarm(void)
     for (int c = 0; c < 2; c++)
         if (armed[c]) {
             setitimer(timer_which[c], &off, NULL);
-            sigaction(timer_signal[c], &replaced[c], NULL);
+            /* a host's own handler comes back; the default action (the
+             * command line's) does not: a signal of the timer generated
+             * just before it was disarmed, delivered after, would end
+             * the process */
+            if (replaced[c].sa_handler != SIG_DFL)
+                sigaction(timer_signal[c], &replaced[c], NULL);
             armed[c] = false;
         }
 }

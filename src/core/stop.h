@@ -40,8 +40,10 @@ typedef enum { CL_STOP_CPU, CL_STOP_WALL } cl_stop_clock;
 cl_status cl_stop_after(cl_stop_clock clock, double seconds, cl_error *err);
 
 /* Disarm the timers cl_stop_after armed and give SIGPROF and SIGALRM
- * back the actions their handler replaced (a host program's own); other
- * timers are left alone.  A stop already asked for stays. */
+ * back the handlers theirs replaced (a host program's own; the default
+ * action stays replaced, so that a late signal of the timer does not end
+ * the process); other timers are left alone.  A stop already asked for
+ * stays. */
 void cl_stop_disarm(void);
 
 /* cl_stop_disarm, and forget a budget's stop (SIGPROF, SIGALRM), so that
