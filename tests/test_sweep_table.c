@@ -178,6 +178,9 @@ Test(sweep_table, empty_table_names_are_refused)
     cr_assert_eq(cl_sweep_table_read(list, &t, &err), CL_EINVAL);
     cr_assert(strstr(err.msg, "an empty name"), "%s", err.msg);
     cl_sweep_table_free(&t);
+    snprintf(list, sizeof list, "%s/t.csv,", tmp);
+    cr_assert_eq(cl_sweep_table_read(list, &t, &err), CL_EINVAL);
+    cl_sweep_table_free(&t);
     snprintf(list, sizeof list, "%s/t.csv,%s/t.csv", tmp, tmp);
     cr_assert_eq(cl_sweep_table_read(list, &t, &err), CL_OK, "%s", err.msg);
     cr_assert_eq(t.nrow, 22);

@@ -12,17 +12,18 @@
  * (bad options, no memory) ends the search with that error.
  *
  * Search: N_0 = ceil(T / dt_max).  If the runs at N_0 and 2 N_0 are
- * stable, the limit is at least dt_max.  Otherwise N doubles until a run is stable and so is
- * the run at twice its N (giving up below dt_min; a stable step above an
- * unstable one, such as symplectic Euler's h c = 1 on a damped spring
- * started from rest length, whose first step lands on the equilibrium,
- * is not taken), then bisection on N between the largest unstable and
- * the smallest stable N until N_s - N_u <= max(1, rel N_u).  Stability
+ * stable, the limit is at least dt_max.  Otherwise N doubles until a run
+ * is stable and so is the run at twice its N (giving up below dt_min; a
+ * stable step above an unstable one, such as symplectic Euler's h c = 1
+ * on a damped spring started from rest length, whose first step lands on
+ * the equilibrium, is not taken), then bisection on N between the largest
+ * unstable and the smallest stable N until N_s - N_u <= max(1, rel N_u).
+ * Stability
  * need not be monotone in dt (a method may survive a larger step and fail
  * a smaller one), so the result is the bracket the search found: dt_stable
  * = T / N_s and dt_unstable = T / N_u, with the reason the run at
  * dt_unstable failed; a stable island narrower than a factor 2 can
- * still be taken, and so, unconfirmed, are a stable run whose double
+ * still be taken, and so, unconfirmed, is a stable run whose double
  * passes T / dt_min.  Every run is kept, with the largest stretch its
  * checks saw.
  *

@@ -90,7 +90,8 @@ cl_status cl_sweep_table_read(const char *list, cl_sweep_table *t,
     t->path = strdup(list);
     cl_status rc = t->path ? CL_OK
                            : cl_error_set(err, CL_ENOMEM, "out of memory");
-    for (const char *p = list; !rc && (p == list || *p); p += *p == ',') {
+    for (const char *p = list; !rc && (p == list || *p || p[-1] == ',');
+         p += *p == ',') {
         size_t len = strcspn(p, ",");
         if (!len) {
             rc = cl_error_set(err, CL_EINVAL, "\"%s\": an empty name in the "

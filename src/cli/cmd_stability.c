@@ -337,8 +337,10 @@ static void print_result(const void *result)
         snprintf(dl, sizeof dl, "%.3g", held);
     printf("%-18s ", r->label);
     if (isnan(r->dt_unstable))
-        printf("stable at dt_max = %.4g (%d runs, d/L %s)\n", r->dt_stable,
-               r->ntrial, dl);
+        printf("stable at dt_max = %.4g (%d %s, d/L %s%s)\n", r->dt_stable,
+               r->ntrial, r->ntrial == 1 ? "run" : "runs", dl,
+               r->ntrial == 1 ? "; dt_max / 2 is below --dt-min: "
+                                "unconfirmed" : "");
     else if (isnan(r->dt_stable))
         printf("%11s %6s %11.4g %5d  %s\n", "none", "-", r->dt_unstable,
                r->ntrial, r->trial[r->failed].why.msg);

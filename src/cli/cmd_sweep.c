@@ -309,12 +309,10 @@ static const cl_cli_table run_table = {
     "(DIR/slurm/array.sh).  --resume runs only the jobs that failed or have\n"
     "no result, as 'sweep collect' finds them.\n"};
 
-/* Without --resume: every job, and the status files of an earlier run
- * removed so that they cannot stand for this one's while its jobs wait
- * (each job's command removes its own when it starts). */
-/* Every job, each one's status of an earlier run removed first, so that a
- * status never stands for an earlier run; -1 with err set when one cannot
- * be removed (the job could not replace it either). */
+/* Without --resume: every job, each one's status of an earlier run
+ * removed first so that it cannot stand for this one's while its job waits
+ * (each job's command removes its own too when it starts); -1 with err set
+ * when one cannot be removed (the job could not replace it either). */
 static int all_jobs(const cl_sweep *sw, int *todo, cl_error *err)
 {
     char path[4200];
@@ -444,6 +442,13 @@ static int engine_run(cl_sweep *sw, cl_sweep_run_args *r, int *todo,
                         "install %s); no job's status was touched\n", engine,
                 r->engine == CL_SWEEP_SLURM ? "slurm-client" : "parallel");
         return 1;
+    }
+    if (r->engine == CL_SWEEP_SLURM && strchr(sw->dir, '\\')) {
+        fprintf(stderr, "clothode: sweep run: %s: a backslash in the "
+                        "directory makes Slurm expand no file name pattern "
+                        "(the tasks' output); plan the sweep elsewhere\n",
+                sw->dir);
+        return 2;
     }
     if (lock_sweep(sw, err) < 0)
         return cl_cli_fail(err);
