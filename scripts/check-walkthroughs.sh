@@ -21,7 +21,8 @@ build=build
 [[ $san == 1 ]] && build=build-san
 jobs=${JOBS:-2}
 # the suites whose tests go over a whole registry (docs/extending.md)
-registry_suites="linsol shape_registry model spectrum integrator every_integrator"
+registry_suites="linsol shape_registry model spectrum integrator every_integrator
+                 constraint memguard kinsol_common numdamp"
 cd "$root" || exit 1
 
 scratch=$(mktemp -d "${TMPDIR:-/tmp}/walkthroughs.XXXXXX") || exit 1
