@@ -27,12 +27,12 @@ split_csv() { # csv dir col...
         END { for (i = 1; i <= m; i++) printf "%s%s", (i > 1 ? " " : ""), order[i] }' "$csv"
 }
 
-# Plan sweeps/NAME.ini into DIR/sweep, run it on GNU parallel (REPORT_JOBS
+# Plan problems/sweeps/NAME.ini into DIR/sweep, run it on GNU parallel (REPORT_JOBS
 # jobs at a time, default one per core) and collect it into DIR/sweep.csv.
 sweep() { # name dir
     local name=$1 dir=$2
     rm -rf "$dir/sweep"
-    "$bin" sweep plan "sweeps/$name.ini" --out "$dir/sweep" --quiet
+    "$bin" sweep plan "problems/sweeps/$name.ini" --out "$dir/sweep" --quiet
     "$bin" sweep run "$dir/sweep" --engine local --jobs "${REPORT_JOBS:-0}" \
         --quiet
     "$bin" sweep collect "$dir/sweep" --out "$dir/sweep.csv" | grep " complete, "
@@ -55,7 +55,7 @@ echo "report: convergence (spring2)"
 names=$(split_csv "$res/convergence/convergence.csv" "$res/convergence/dat" 3 4)
 draw convergence "dir='$res/convergence/dat'; names='$names'; title_text='spring2, T = 1 s: position error against dt'; xlabel_text='dt (s)'"
 
-echo "report: work-precision (hang, T = 0.2 s), the runs of sweeps/workprecision.ini"
+echo "report: work-precision (hang, T = 0.2 s), the runs of problems/sweeps/workprecision.ini"
 sweep workprecision "$res/workprecision"
 "$bin" workprecision hang --quiet --out "$res/workprecision" --t-end 0.2 \
     --from-sweep "$res/workprecision/sweep.csv" --integrator \
@@ -189,7 +189,7 @@ for p in hang-smooth hang; do
     draw "spectrum-$p" "data='$res/limits/$p/spectrum.csv'; title_text='$p at rest: first-order eigenvalues'" spectrum
 done
 
-echo "report: stability map, explicit limits of hang against the grid size (sweeps/map.ini)"
+echo "report: stability map, explicit limits of hang against the grid size (problems/sweeps/map.ini)"
 # "n method predicted largest-stable smallest-unstable" per size and method,
 # the brackets from the sweep's grid of steps.
 map=$res/limits/map
