@@ -149,15 +149,16 @@ static void keep_least(double room, const char *name, double *least,
     }
 }
 
-/* cl_mem_available_at, with the free swap beside MemAvailable when
- * `swap` (what can be given at all before the OOM killer acts). */
+/* cl_mem_available_at; for the data cap (`cap`), with the free swap
+ * beside MemAvailable (what can be given at all before the OOM killer
+ * acts) and without RLIMIT_DATA, the limit the cap itself sets. */
 static cl_status available_at(const char *proc, const char *cgroup,
-                              bool swap, double *bytes, const char **limit,
+                              bool cap, double *bytes, const char **limit,
                               cl_error *err)
 {
     double avail = keyed_value(proc, "meminfo", "MemAvailable", 1024.0);
     double swap_free = keyed_value(proc, "meminfo", "SwapFree", 1024.0);
-    if (swap && avail > 0 && swap_free > 0)
+    if (cap && avail > 0 && swap_free > 0)
         avail += swap_free;
     struct sysinfo si;
     if (!(avail > 0) && sysinfo(&si) == 0)
@@ -174,9 +175,10 @@ static cl_status available_at(const char *proc, const char *cgroup,
     keep_least(rlimit_room(RLIMIT_AS,
                            keyed_value(self, "status", "VmSize", 1024.0)),
                "ulimit -v", &avail, &which);
-    keep_least(rlimit_room(RLIMIT_DATA,
-                           keyed_value(self, "status", "VmData", 1024.0)),
-               "ulimit -d", &avail, &which);
+    if (!cap)
+        keep_least(rlimit_room(RLIMIT_DATA,
+                               keyed_value(self, "status", "VmData", 1024.0)),
+                   "ulimit -d", &avail, &which);
     *bytes = fmax(avail, 0.0);
     if (limit)
         *limit = which;
@@ -205,14 +207,14 @@ void cl_mem_cap_data(cl_mem_cap *cap)
     cl_error ignored;
     *cap = (cl_mem_cap){.lowered = false};
     if (isnan(data) ||
-        available_at("/proc", "/sys/fs/cgroup", true, &avail, &cap->limit,
+        cl_mem_available(&cap->available, &cap->limit, &ignored) ||
+        available_at("/proc", "/sys/fs/cgroup", true, &avail, NULL,
                      &ignored) ||
         getrlimit(RLIMIT_DATA, &rl) != 0) {
         cap->limit = NULL;
         return; /* nothing known to cap at */
     }
     double want = data + avail;
-    cap->available = avail;
     if (rl.rlim_cur != RLIM_INFINITY && (double)rl.rlim_cur <= want)
         return;
     cap->soft = (unsigned long long)rl.rlim_cur;

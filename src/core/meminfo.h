@@ -35,16 +35,17 @@ cl_status cl_mem_available_at(const char *proc, const char *cgroup,
 typedef struct {
     bool lowered;
     unsigned long long soft;
-    double available;  /* bytes available beyond the data size */
-    const char *limit; /* what set them (cl_mem_available); NULL when
-                        * not known, and then no cap */
+    double available;  /* cl_mem_available's bytes, for messages */
+    const char *limit; /* and the limit that set them; NULL when not
+                        * known, and then no cap */
 } cl_mem_cap;
 
 /* Lower RLIMIT_DATA's soft limit to the process's data size plus what
  * the machine or the job can still give (cl_mem_available with the free
  * swap beside MemAvailable: the point of the kernel's OOM kill, not of
- * swapping), never raising it, so that allocations beyond it fail; no
- * cap when that is not known or cannot be set.  cap tells what was
+ * swapping; RLIMIT_DATA itself left out), never raising it, so that
+ * allocations beyond it fail; no cap when that is not known or cannot be
+ * set.  cap tells what was
  * available, and cl_mem_cap_release restores the limit. */
 void cl_mem_cap_data(cl_mem_cap *cap);
 void cl_mem_cap_release(const cl_mem_cap *cap);
