@@ -273,8 +273,21 @@ Test(sweep_engine, a_refused_run_keeps_no_earlier_results)
     run_local(dir);
     collect(dir, summary, sizeof summary);
     cr_assert_str_eq(summary, "2 complete, 0 failed, 0 missing");
+    /* the problem edited after the runs: a study refuses their table */
     char *ks = strstr(text, "ks = 200");
     cr_assert_not_null(ks);
+    memcpy(ks, "ks = 300", 8);
+    tmp_put(prob, text);
+    char out[1100];
+    snprintf(table, sizeof table, "%s.csv", dir);
+    snprintf(out, sizeof out, "%s-stab", dir);
+    cli_result r;
+    cli_run(&r, "stability", prob, "--set", "cloth.n=4", "--t-end", "0.02",
+            "--integrator", "rk4", "--from-sweep", table, "--out", out,
+            NULL);
+    cli_assert_error(&r, 0, "read a problem file of other bytes",
+                     "the file changed after it ran", NULL);
+    cli_result_free(&r);
     memcpy(ks, "ks = abc", 8);
     tmp_put(prob, text);
     run_local(dir);

@@ -182,6 +182,8 @@ typedef struct {
     double stat[CL_SWEEP_NSTAT]; /* NAN where absent ("NA") */
     double err_x, err_v;  /* against the reference's final state (NAN) */
     char message[256];    /* the first line of its stderr, or "" */
+    char problem_sha256[65]; /* of the problem file the run read (its
+                              * run.json), or "" */
 } cl_sweep_outcome;
 
 /* Everything known of job k: its exit status (DIR/jobs/ID/exit, which

@@ -50,7 +50,9 @@ static bool exit_status(const cl_sweep *sw, int k, cl_sweep_outcome *o)
  * ("times", README "Provenance"; stats.csv holds no timings, so that
  * identical runs write identical bytes): the statistics "wall" and "cpu",
  * the last two, where run.json has them. */
-static void read_times(const cl_sweep *sw, int k, cl_sweep_outcome *o)
+/* From the run's run.json: the integrator's times, and the SHA-256 of the
+ * problem file it read. */
+static void read_run_json(const cl_sweep *sw, int k, cl_sweep_outcome *o)
 {
     static const char *const key[2] = {"integrator_wall", "integrator_cpu"};
     char path[4200];
@@ -65,6 +67,10 @@ static void read_times(const cl_sweep *sw, int k, cl_sweep_outcome *o)
         if (json_is_number(v))
             o->stat[CL_SWEEP_NSTAT - 2 + i] = json_number_value(v);
     }
+    const char *sha = json_string_value(
+        json_object_get(json_object_get(root, "problem"), "sha256"));
+    snprintf(o->problem_sha256, sizeof o->problem_sha256, "%s",
+             sha ? sha : "");
     json_decref(root);
 }
 
@@ -149,7 +155,7 @@ void cl_sweep_outcome_read(const cl_sweep *sw, int k, cl_sweep_outcome *o)
     bool found = exit_status(sw, k, o);
     bool stats = found && read_stats(sw, k, o);
     if (stats)
-        read_times(sw, k, o);
+        read_run_json(sw, k, o);
     o->t_reached = found ? reached(sw, k) : NAN;
     if (found)
         first_message(sw, k, o);

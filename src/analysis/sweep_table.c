@@ -10,6 +10,7 @@
 
 #include "core/exit.h"
 #include "io/input.h"
+#include "io/sha256.h"
 
 /* ---- reading ------------------------------------------------------------ */
 
@@ -202,6 +203,28 @@ static cl_status select_axis(cl_sweep_table *t, cl_config *cfg, int c,
     return CL_OK;
 }
 
+/* Every run that recorded the SHA-256 of the problem file it read (its
+ * run.json, column problem_sha256) read the bytes of `mine`: a file
+ * edited since, at the same path, held other values. */
+static cl_status same_bytes_run(const cl_sweep_table *t, const char *mine,
+                                cl_error *err)
+{
+    int cs = column(t, "problem_sha256");
+    char hex[CL_SHA256_HEX];
+    cl_status rc = cs < 0 ? CL_OK : cl_sha256_file(mine, hex, err);
+    for (int r = 0; !rc && cs >= 0 && r < t->nrow; r++) {
+        const char *sha = at(t, r, cs);
+        if (*sha && strcmp(sha, "NA") && strcmp(sha, hex))
+            rc = cl_error_set(err, CL_EINVAL, "--from-sweep %s: the run %s "
+                              "read a problem file of other bytes (SHA-256 "
+                              "%.12s...) than %s now (%.12s...): the file "
+                              "changed after it ran; run the sweep again",
+                              t->path, at(t, r, column(t, "id")), sha, mine,
+                              hex);
+    }
+    return rc;
+}
+
 /* The table's runs are of this problem: its file (the sweep's, every
  * row; cl_same_input, so that a sweep copied from another machine
  * passes), and no model key changed by --set that is not an axis of the
@@ -225,6 +248,8 @@ static cl_status same_problem(const cl_sweep_table *t, cl_config *cfg,
             rc = cl_error_set(err, CL_EINVAL, "--from-sweep %s: its runs are "
                               "of %s, not of %s; give the sweep's problem",
                               t->path, at(t, r, cp), mine);
+    if (!rc)
+        rc = same_bytes_run(t, mine, err);
     free(mine);
     const char *sec, *key;
     char name[256];
