@@ -1124,7 +1124,7 @@ Test(cli, run_beyond_the_data_limit_is_refused)
     cli_spawn(&r, big);
     cr_assert_eq(r.status, 1, "%s", r.err);
     cli_assert_error(&r, 0, "out of memory", "the model does not fit in the",
-                     "GB available (", NULL);
+                     "GB available (ulimit -d)", NULL);
     cli_result_free(&r);
     char *factors[] = {"prlimit", "--data=250000000", (char *)cli_binary(),
                        "run", "hang", "--set", "cloth.n=200", "--integrator",
@@ -1133,7 +1133,7 @@ Test(cli, run_beyond_the_data_limit_is_refused)
     cli_spawn(&r, factors);
     cr_assert_eq(r.status, 1, "%s", r.err);
     cli_assert_error(&r, 0, "cvode-bdf: the Jacobian and the factors",
-                     "GB available (", NULL);
+                     "GB available (ulimit -d)", NULL);
     cli_result_free(&r);
 }
 #endif

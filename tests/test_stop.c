@@ -141,6 +141,21 @@ Test(stop, disarm_gives_back_the_host_s_alarm)
     cr_assert_eq(cl_stop_requested(), 0);
 }
 
+/* A timer's signal that arrives after the budget was disarmed (generated
+ * just before) neither ends the process, whose SIGALRM had its default
+ * action, nor stops the next run. */
+Test(stop, late_timer_signal_is_ignored)
+{
+    struct sigaction dfl = {.sa_handler = SIG_DFL};
+    sigemptyset(&dfl.sa_mask);
+    cr_assert_eq(sigaction(SIGALRM, &dfl, NULL), 0);
+    cl_error err;
+    cr_assert_eq(cl_stop_after(CL_STOP_WALL, 10.0, &err), CL_OK);
+    cl_stop_clear();
+    cr_assert_eq(raise(SIGALRM), 0);
+    cr_assert_eq(cl_stop_requested(), 0);
+}
+
 /* A run's wall-time budget is its own: the next run of the same process
  * (a program using the library) starts without it.  Before, the budget's
  * stop stayed, and every later run and force evaluation failed. */

@@ -399,6 +399,45 @@ Test(sweep_engine, missing_statuses_and_no_engine)
     cli_result_free(&r);
 }
 
+/* The sweep files under problems/sweeps plan from any directory (their
+ * problem relative to them); a directory holding another problem's sweep,
+ * or a manifest that is not one, is not planned over (its results would
+ * stand for the new jobs), while the same sweep plans there again. */
+Test(sweep_engine, sweep_files_and_planning_over_a_sweep)
+{
+    static const char *const files[] = {"hang-dt", "map", "workprecision"};
+    char bin[4096], here[4096], spec[4200], dir[1024], path[1100];
+    cr_assert_not_null(realpath(cli_binary(), bin));
+    cr_assert_not_null(getcwd(here, sizeof here));
+    cr_assert_eq(chdir(tmp), 0);
+    cli_result r;
+    for (int k = 0; k < 3; k++) {
+        snprintf(spec, sizeof spec, "%s/problems/sweeps/%s.ini", here,
+                 files[k]);
+        snprintf(dir, sizeof dir, "%s/files-%s", tmp, files[k]);
+        char *argv[] = {bin, "sweep", "plan", spec, "--out", dir,
+                        "--no-check", "--quiet", NULL};
+        cli_spawn(&r, argv);
+        cli_assert_ok(&r);
+        cli_result_free(&r);
+    }
+    cr_assert_eq(chdir(here), 0);
+    snprintf(dir, sizeof dir, "%s/files-hang-dt", tmp);
+    plan(dir, "[sweep]\nproblem = problems/hang.ini\nintegrator = rk4\n"
+              "dt = 1e-3\nt_end = 0.01\n");
+    tmp_put(in_tmp(path, "s2.ini"), "[sweep]\nproblem = problems/spring2.ini"
+                                    "\nintegrator = rk4\ndt = 1e-3\n"
+                                    "t_end = 0.01\n");
+    cli_run(&r, "sweep", "plan", path, "--out", dir, NULL);
+    cli_assert_error(&r, 0, "holds the sweep of", "hang.ini", NULL);
+    cli_result_free(&r);
+    snprintf(path, sizeof path, "%s/sweep.json", dir);
+    tmp_put(path, "{ not json");
+    cli_run(&r, "sweep", "plan", in_tmp(spec, "s2.ini"), "--out", dir, NULL);
+    cli_assert_error(&r, 0, "not a sweep's manifest", NULL);
+    cli_result_free(&r);
+}
+
 /* ---- ssh ------------------------------------------------------------- */
 
 static int sh(const char *fmt, ...) __attribute__((format(printf, 1, 2)));

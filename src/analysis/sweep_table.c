@@ -64,7 +64,9 @@ static cl_status read_one(const char *path, int src, cl_sweep_table *t,
         if (nhead != t->ncol || strcmp(head[k], t->head[k]))
             rc = cl_error_set(err, CL_EPARSE, "--from-sweep %s: its columns "
                               "are not those of %s (tables of the stages "
-                              "of one sweep are)", path, t->paths[0]);
+                              "of one sweep are; one collected by an "
+                              "earlier clothode lacks the newer columns: "
+                              "collect it again)", path, t->paths[0]);
     cl_sweep_strings_free(head, nhead);
     while (!rc && getline(&line, &cap, fp) > 0) {
         int *grown = realloc(t->src, (size_t)(t->nrow + 1) * sizeof *grown);
@@ -203,53 +205,53 @@ static cl_status select_axis(cl_sweep_table *t, cl_config *cfg, int c,
     return CL_OK;
 }
 
-/* Every run that recorded the SHA-256 of the problem file it read (its
- * run.json, column problem_sha256) read the bytes of `mine`: a file
- * edited since, at the same path, held other values. */
-static cl_status same_bytes_run(const cl_sweep_table *t, const char *mine,
-                                cl_error *err)
+/* Row r's run was of the problem file `mine` (SHA-256 `hex`): by the
+ * SHA-256 of the file it read (its run.json, column problem_sha256) when
+ * it recorded one, which decides (a file edited since, at the same path,
+ * held other values); else by the sweep's problem path (cl_same_input). */
+static cl_status same_problem_row(const cl_sweep_table *t, int r,
+                                  const char *mine, const char *hex,
+                                  cl_error *err)
 {
     int cs = column(t, "problem_sha256");
-    char hex[CL_SHA256_HEX];
-    cl_status rc = cs < 0 ? CL_OK : cl_sha256_file(mine, hex, err);
-    for (int r = 0; !rc && cs >= 0 && r < t->nrow; r++) {
-        const char *sha = at(t, r, cs);
-        if (*sha && strcmp(sha, "NA") && strcmp(sha, hex))
-            rc = cl_error_set(err, CL_EINVAL, "--from-sweep %s: the run %s "
-                              "read a problem file of other bytes (SHA-256 "
-                              "%.12s...) than %s now (%.12s...): the file "
-                              "changed after it ran; run the sweep again",
-                              t->path, at(t, r, column(t, "id")), sha, mine,
-                              hex);
-    }
-    return rc;
+    const char *sha = cs >= 0 ? at(t, r, cs) : "";
+    if (*sha && strcmp(sha, "NA"))
+        return strcmp(sha, hex)
+                   ? cl_error_set(err, CL_EINVAL, "--from-sweep %s: the run "
+                                  "%s read a problem file of other bytes "
+                                  "(SHA-256 %.12s...) than %s now "
+                                  "(%.12s...): the file changed after it "
+                                  "ran, or it is another problem; give the "
+                                  "sweep's problem, or run the sweep again",
+                                  t->path, at(t, r, column(t, "id")), sha,
+                                  mine, hex)
+                   : CL_OK;
+    const char *path = at(t, r, column(t, "problem"));
+    return cl_same_input(path, mine)
+               ? CL_OK
+               : cl_error_set(err, CL_EINVAL, "--from-sweep %s: its runs are "
+                              "of %s, not of %s; give the sweep's problem",
+                              t->path, path, mine);
 }
 
-/* The table's runs are of this problem: its file (the sweep's, every
- * row; cl_same_input, so that a sweep copied from another machine
- * passes), and no model key changed by --set that is not an axis of the
- * table (the runs had the file's value); the keys of [run] and of the
+/* The table's runs are of this problem (same_problem_row, every row),
+ * and no model key changed by --set that is not an axis of the table
+ * (the runs had the file's value); the keys of [run] and of the
  * command's own section `own` are no model's. */
 static cl_status same_problem(const cl_sweep_table *t, cl_config *cfg,
                               const char *own, cl_error *err)
 {
-    int cp = column(t, "problem");
-    if (cp < 0)
+    if (column(t, "problem") < 0)
         return cl_error_set(err, CL_EPARSE, "--from-sweep %s: no problem "
                             "column (collected by an earlier clothode: "
                             "collect the sweep again)", t->path);
     const char *file = cl_config_path(cfg);
-    char *mine = file ? realpath(file, NULL) : NULL;
-    cl_status rc = mine ? CL_OK
+    char *mine = file ? realpath(file, NULL) : NULL, hex[CL_SHA256_HEX];
+    cl_status rc = mine ? cl_sha256_file(mine, hex, err)
                         : cl_error_set(err, CL_EIO, "%s: cannot resolve the "
                                        "problem file", file ? file : "(none)");
     for (int r = 0; !rc && r < t->nrow; r++)
-        if (!cl_same_input(at(t, r, cp), mine))
-            rc = cl_error_set(err, CL_EINVAL, "--from-sweep %s: its runs are "
-                              "of %s, not of %s; give the sweep's problem",
-                              t->path, at(t, r, cp), mine);
-    if (!rc)
-        rc = same_bytes_run(t, mine, err);
+        rc = same_problem_row(t, r, mine, hex, err);
     free(mine);
     const char *sec, *key;
     char name[256];

@@ -339,8 +339,9 @@ static void print_result(const void *result)
     if (isnan(r->dt_unstable))
         printf("stable at dt_max = %.4g (%d %s, d/L %s%s)\n", r->dt_stable,
                r->ntrial, r->ntrial == 1 ? "run" : "runs", dl,
-               r->ntrial == 1 ? "; dt_max / 2 is below --dt-min: "
-                                "unconfirmed" : "");
+               r->ntrial == 1 && !isnan(held) /* the search's, not a sweep's */
+                   ? "; dt_max / 2 is below --dt-min: unconfirmed"
+                   : "");
     else if (isnan(r->dt_stable))
         printf("%11s %6s %11.4g %5d  %s\n", "none", "-", r->dt_unstable,
                r->ntrial, r->trial[r->failed].why.msg);

@@ -136,7 +136,12 @@ static cl_status same_sweep(const cl_sweep *sw, cl_error *err)
     json_t *doc = cl_json_read(path, &je, &why);
     const char *old = json_string_value(json_object_get(doc, "problem"));
     cl_status rc = CL_OK;
-    if (old && !cl_same_input(old, sw->problem))
+    if (!doc)
+        rc = cl_error_set(err, CL_EINVAL, "%s: not a sweep's manifest (%s); "
+                          "the results in %s/jobs would stand for the new "
+                          "jobs: remove the directory, or plan elsewhere",
+                          path, why ? why : je.text, sw->dir);
+    else if (old && !cl_same_input(old, sw->problem))
         rc = cl_error_set(err, CL_EINVAL, "%s: holds the sweep of %s, whose "
                           "results would stand for the jobs of %s with the "
                           "same values; plan into another directory (or "
@@ -643,6 +648,24 @@ static const cl_cli_table refine_table = {
     "the studies both tables, --from-sweep A.csv,B.csv; refine again with\n"
     "--table A.csv,B.csv.\n"};
 
+/* The rows of the tables without a result, which bound no bracket, on
+ * stderr (also with --quiet: a stage planned without them is not the
+ * whole refinement). */
+static void name_missing(const cl_sweep_table *t)
+{
+    int missing = 0;
+    for (int row = 0; row < t->nrow; row++)
+        if (!strcmp(cl_sweep_table_text(t, row, "status"), "missing") &&
+            missing++ < 8)
+            fprintf(stderr, "%s %s", missing > 1 ? "," : "clothode: sweep "
+                    "refine: rows without a result, left out of the "
+                    "brackets:", cl_sweep_table_text(t, row, "id"));
+    if (missing)
+        fprintf(stderr, "%s (%d in all); run them ('sweep run --resume'), "
+                        "collect, and refine again\n",
+                missing > 8 ? ", ..." : "", missing);
+}
+
 static int refine(void *settings)
 {
     refine_args *r = settings;
@@ -672,20 +695,12 @@ static int refine(void *settings)
                              &brackets, &err);
     if (!rc)
         rc = cl_sweep_write(&next, &err);
-    int missing = 0;
-    for (int row = 0; !rc && row < t.nrow; row++)
-        missing += !strcmp(cl_sweep_table_text(&t, row, "status"), "missing");
     if (!rc && !r->a.quiet)
-        printf("refine     %d jobs inside %d brackets wider than 1 + %g\n",
-               next.njob, brackets, r->rel);
-    if (!rc && !r->a.quiet && missing)
-        printf("missing    %d %s of the tables %s no result and bound no "
-               "bracket: run %s first ('sweep run --resume')\n", missing,
-               missing == 1 ? "row" : "rows", missing == 1 ? "has" : "have",
-               missing == 1 ? "it" : "them");
-    if (!rc && !r->a.quiet)
-        printf("output     %s/jobs.txt, %s/sweep.json\n", next.dir,
-               next.dir);
+        printf("refine     %d jobs inside %d brackets wider than 1 + %g\n"
+               "output     %s/jobs.txt, %s/sweep.json\n", next.njob,
+               brackets, r->rel, next.dir, next.dir);
+    if (!rc)
+        name_missing(&t);
     cl_sweep_table_free(&t);
     cl_sweep_free(&next);
     cl_sweep_free(&sw);

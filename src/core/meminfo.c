@@ -158,8 +158,11 @@ static cl_status available_at(const char *proc, const char *cgroup,
 {
     double avail = keyed_value(proc, "meminfo", "MemAvailable", 1024.0);
     double swap_free = keyed_value(proc, "meminfo", "SwapFree", 1024.0);
-    if (cap && avail > 0 && swap_free > 0)
+    const char *which = "MemAvailable";
+    if (cap && avail > 0 && swap_free > 0) {
         avail += swap_free;
+        which = "MemAvailable and free swap";
+    }
     struct sysinfo si;
     if (!(avail > 0) && sysinfo(&si) == 0)
         avail = ((double)si.freeram + (double)si.bufferram) * si.mem_unit;
@@ -167,7 +170,6 @@ static cl_status available_at(const char *proc, const char *cgroup,
         return cl_error_set(err, CL_EIO, "cannot tell the available memory"
                             " (no MemAvailable in %s/meminfo, no sysinfo)",
                             proc);
-    const char *which = "MemAvailable";
     char self[PATH_LEN];
     snprintf(self, sizeof self, "%s/self", proc);
     keep_least(cgroups_room(proc, cgroup), "the memory cgroup's limit",
@@ -207,16 +209,19 @@ void cl_mem_cap_data(cl_mem_cap *cap)
     cl_error ignored;
     *cap = (cl_mem_cap){.lowered = false};
     if (isnan(data) ||
-        cl_mem_available(&cap->available, &cap->limit, &ignored) ||
-        available_at("/proc", "/sys/fs/cgroup", true, &avail, NULL,
+        available_at("/proc", "/sys/fs/cgroup", true, &avail, &cap->limit,
                      &ignored) ||
         getrlimit(RLIMIT_DATA, &rl) != 0) {
         cap->limit = NULL;
         return; /* nothing known to cap at */
     }
     double want = data + avail;
-    if (rl.rlim_cur != RLIM_INFINITY && (double)rl.rlim_cur <= want)
+    cap->available = avail;
+    if (rl.rlim_cur != RLIM_INFINITY && (double)rl.rlim_cur <= want) {
+        cap->available = fmax((double)rl.rlim_cur - data, 0.0);
+        cap->limit = "ulimit -d"; /* the limit already set binds */
         return;
+    }
     cap->soft = (unsigned long long)rl.rlim_cur;
     rl.rlim_cur = (rlim_t)want;
     cap->lowered = setrlimit(RLIMIT_DATA, &rl) == 0; /* else no cap */

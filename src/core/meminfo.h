@@ -35,9 +35,10 @@ cl_status cl_mem_available_at(const char *proc, const char *cgroup,
 typedef struct {
     bool lowered;
     unsigned long long soft;
-    double available;  /* cl_mem_available's bytes, for messages */
-    const char *limit; /* and the limit that set them; NULL when not
-                        * known, and then no cap */
+    double available;  /* bytes the data may still grow by under the cap */
+    const char *limit; /* and the limit that sets them ("MemAvailable
+                        * and free swap", the cgroup's, "ulimit -v" or
+                        * "ulimit -d"); NULL when not known: no cap */
 } cl_mem_cap;
 
 /* Lower RLIMIT_DATA's soft limit to the process's data size plus what

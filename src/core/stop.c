@@ -16,7 +16,7 @@ static struct timespec first_signal_at; /* of the first SIGINT or SIGTERM */
 /* The budget timers cl_stop_after armed (by cl_stop_clock), and the signal
  * actions their handler replaced: a host program's own SIGALRM and
  * SIGPROF handling comes back when they are disarmed. */
-static bool armed[2];
+static volatile sig_atomic_t armed[2];
 static struct sigaction replaced[2];
 static const int timer_signal[2] = {SIGPROF, SIGALRM};
 static const int timer_which[2] = {ITIMER_PROF, ITIMER_REAL};
@@ -38,6 +38,10 @@ static bool budget_timer(int sig)
  * async-signal-safe. */
 static void on_signal(int sig)
 {
+    /* a timer's signal delivered after it was disarmed (generated just
+     * before) stops nothing: the budget was an earlier run's */
+    if (budget_timer(sig) && !armed[sig == SIGALRM])
+        return;
     if (!budget_timer(sig)) {
         struct timespec now;
         clock_gettime(CLOCK_MONOTONIC, &now);
