@@ -58,7 +58,16 @@ all: $(BIN)
 deps:
 	@scripts/install-deps.sh
 
-$(BUILD)/%.o: %.c
+# Every object depends on the flags it is compiled with: a make with other
+# CC, CPPFLAGS or CFLAGS rebuilds them all, so that the flags `clothode
+# --version` and run.json name are those of every object (the stamp
+# changes only when they do).
+$(BUILD)/flags.stamp: FORCE
+	@mkdir -p $(BUILD)
+	@echo '$(CC) $(CPPFLAGS) $(CFLAGS)' > $@.new
+	@cmp -s $@.new $@ && rm -f $@.new || mv -f $@.new $@
+
+$(BUILD)/%.o: %.c $(BUILD)/flags.stamp
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -MMD -MP -c $< -o $@
 
@@ -81,7 +90,8 @@ $(BUILD)/buildinfo.h: FORCE
 	  printf '#define CL_BUILD_FLAGS "%s"\n' '$(BUILD_FLAGS)'; \
 	} > $@.new
 	@cmp -s $@.new $@ && rm -f $@.new || mv -f $@.new $@
-BUILD_FLAGS := $(CPPFLAGS) $(CFLAGS)
+BUILD_FLAGS := $(CPPFLAGS) $(CFLAGS) (pair kernels also -fno-math-errno \
+               -fno-trapping-math)
 $(BUILD)/src/cli/version.o: $(BUILD)/buildinfo.h
 $(BUILD)/src/cli/version.o: CPPFLAGS += -I$(BUILD)
 FORCE:
@@ -94,7 +104,7 @@ PETSC_CFLAGS := $(patsubst -I%,-isystem %,\
                   $(shell pkg-config --cflags petsc mpi 2>/dev/null))
 PETSC_LIBS   := $(shell pkg-config --libs petsc mpi 2>/dev/null)
 
-$(BUILD)/pic/%.o: %.c
+$(BUILD)/pic/%.o: %.c $(BUILD)/flags.stamp
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(PETSC_CFLAGS) $(CFLAGS) -fPIC -MMD -MP -c $< -o $@
 

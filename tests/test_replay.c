@@ -66,6 +66,70 @@ Test(replay, changed_digest_is_reported)
     tmp_rm_rf(keep);
 }
 
+/* The record is checked against the directory too: an output edited or
+ * removed since the run is reported, though the rerun still matches the
+ * record (before: "every output identical"). */
+Test(replay, outputs_changed_since_the_run)
+{
+    char dir[64], path[300];
+    cli_result r;
+    tmp_mkdtemp(dir, sizeof dir, "replay");
+    run_into(dir, "--out");
+    snprintf(path, sizeof path, "%s/final.csv", dir);
+    FILE *fp = fopen(path, "a");
+    cr_assert_not_null(fp);
+    fputs("0,0,0,0,0,0,0\n", fp);
+    fclose(fp);
+    snprintf(path, sizeof path, "%s/frame_00001.vtk", dir);
+    cr_assert_eq(unlink(path), 0);
+    cli_run(&r, "replay", dir, NULL);
+    cli_assert_no_crash(&r);
+    cr_assert_eq(r.status, 1, "%s%s", r.out, r.err);
+    cr_assert(strstr(r.out, "final.csv                changed in the run's "
+                            "directory since the run") &&
+                  strstr(r.out, "frame_00001.vtk          gone from the "
+                                "run's directory") &&
+                  strstr(r.out, "outputs differ"),
+              "%s", r.out);
+    cli_result_free(&r);
+    tmp_rm_rf(dir);
+}
+
+/* Another build is named (its outputs may still agree); a configuration
+ * resolved otherwise is a difference; a run that never finished (killed:
+ * no exit status) has nothing to compare and is refused. */
+Test(replay, build_configuration_and_unfinished_runs)
+{
+    char dir[64], path[300], json[1 << 16];
+    cli_result r;
+    tmp_mkdtemp(dir, sizeof dir, "replay");
+    run_into(dir, "--out");
+    snprintf(path, sizeof path, "%s/run.json", dir);
+    tmp_slurp(path, json, sizeof json);
+    char *commit = strstr(json, "\"commit\": \"");
+    cr_assert_not_null(commit);
+    memcpy(commit + 11, "0000000", 7);
+    char *n = strstr(json, "\"n\": \"6\"");
+    cr_assert_not_null(n);
+    n[6] = '7';
+    tmp_put(path, json);
+    cli_run(&r, "replay", dir, NULL);
+    cli_assert_no_crash(&r);
+    cr_assert_eq(r.status, 1, "%s%s", r.out, r.err);
+    cr_assert(strstr(r.out, "build                    another (commit ") &&
+                  strstr(r.out, "configuration            differs"),
+              "%s", r.out);
+    cli_result_free(&r);
+    char *x = strstr(json, "\"exit_status\"");
+    cr_assert_not_null(x);
+    memcpy(x, "\"exit_statuz\"", 13);
+    tmp_put(path, json);
+    cli_run(&r, "replay", dir, NULL);
+    cli_assert_error(&r, 0, "the run did not finish", NULL);
+    cli_result_free(&r);
+    tmp_rm_rf(dir);
+}
+
 Test(replay, directory_without_run_json_is_refused)
 {
     char dir[64];

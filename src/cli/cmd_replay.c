@@ -1,6 +1,7 @@
 /* clothode replay DIR: rerun the run recorded in DIR/run.json into a
  * temporary directory (or --out) and compare every output it wrote, by
- * SHA-256, with the recorded ones (README "Provenance"). */
+ * SHA-256, with the recorded ones, and those with DIR's files (README
+ * "Provenance"). */
 #include <errno.h>
 #include <limits.h>
 #include <stdbool.h>
@@ -15,6 +16,7 @@
 #include "cli/outdir.h"
 #include "io/input.h"
 #include "io/jsonfile.h"
+#include "io/sha256.h"
 
 typedef struct {
     cl_cli_args a;
@@ -34,8 +36,10 @@ static const cl_cli_table replay_table = {
     .about =
     "Rerun the run recorded in DIR/run.json (its command line, in its\n"
     "working directory) and report for every file it wrote whether the\n"
-    "rerun wrote the same bytes.  run.json itself is not compared (its\n"
-    "times differ).\n",
+    "rerun wrote the same bytes, and whether DIR still holds them; the\n"
+    "problem file's SHA-256 and the resolved configuration are compared\n"
+    "too, and another build is named.  run.json itself is not compared\n"
+    "(its times differ); a run that never finished is refused.\n",
     .notes =
     "exit status: 0 when every output is identical, 1 when one differs or\n"
     "is missing, else that of the failure (2 bad input, 7 I/O error, ...)\n"};
@@ -71,7 +75,56 @@ static cl_status load_manifest(const char *dir, json_t **out, cl_error *err)
                             "`clothode run` (expected program \"clothode\", "
                             "command \"run\", argv of 3 to 240 strings, cwd "
                             "and files)", path);
+    if (!json_is_integer(json_object_get(root, "exit_status")))
+        return cl_error_set(err, CL_EINVAL, "%s: the run did not finish "
+                            "(status %s, no exit status: killed?): it "
+                            "recorded nothing to compare", path,
+                            json_string_value(json_object_get(root,
+                                                              "status")));
     return CL_OK;
+}
+
+/* The files the run recorded, as they are in dir now: one line for each
+ * that is gone or was changed since the run (the rerun is compared with
+ * the record, so a file edited since would go unnoticed); how many. */
+static int check_recorded(const char *dir, json_t *was)
+{
+    json_t *files = json_object_get(was, "files"), *f;
+    int bad = 0;
+    size_t k;
+    json_array_foreach(files, k, f) {
+        const char *name = json_string_value(json_object_get(f, "name"));
+        const char *sha = json_string_value(json_object_get(f, "sha256"));
+        char path[4300], hex[CL_SHA256_HEX];
+        cl_error err;
+        snprintf(path, sizeof path, "%s/%s", dir, name ? name : "");
+        bool gone = !name || cl_sha256_file(path, hex, &err) != CL_OK;
+        if (gone || !sha || strcmp(sha, hex)) {
+            printf("%-24s %s\n", name ? name : "?",
+                   gone ? "gone from the run's directory"
+                        : "changed in the run's directory since the run");
+            bad++;
+        }
+    }
+    return bad;
+}
+
+/* The build that reran it (another commit, compiler or flags: outputs
+ * may still agree), and the configuration it resolved, which must. */
+static int compare_setup(json_t *was, json_t *now)
+{
+    json_t *ba = json_object_get(was, "build"), *bb = json_object_get(now,
+                                                                      "build");
+    if (!json_equal(ba, bb))
+        printf("%-24s another (commit %s, was %s; see run.json's build)\n",
+               "build", json_string_value(json_object_get(bb, "commit")),
+               json_string_value(json_object_get(ba, "commit")));
+    if (json_equal(json_object_get(was, "config"),
+                   json_object_get(now, "config")))
+        return 0;
+    printf("%-24s differs (a value or a default resolved otherwise)\n",
+           "configuration");
+    return 1;
 }
 
 
@@ -178,7 +231,8 @@ static int replay(const char *dir, json_t *was, const char *out)
     if (!json_equal(pa, pb))
         printf("%-24s differs (the problem file changed since the run)\n",
                "problem");
-    int bad = compare(was, now) + !json_equal(pa, pb);
+    int bad = compare(was, now) + !json_equal(pa, pb) +
+              compare_setup(was, now) + check_recorded(dir, was);
     json_t *xa = json_object_get(was, "exit_status");
     json_t *xb = json_object_get(now, "exit_status");
     if (!json_equal(xa, xb)) {
