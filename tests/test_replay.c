@@ -14,6 +14,16 @@ static void run_into(const char *dir, const char *out_option)
     cli_result_free(&r);
 }
 
+/* A run into a fresh directory dir (64 bytes), its run.json's path into
+ * path (300 bytes) and its text into json (64 KiB), to be edited. */
+static void run_and_read(char *dir, char *path, char *json)
+{
+    tmp_mkdtemp(dir, 64, "replay");
+    run_into(dir, "--out");
+    snprintf(path, 300, "%s/run.json", dir);
+    tmp_slurp(path, json, 1 << 16);
+}
+
 Test(replay, finished_run_replays_identically)
 {
     char dir[64];
@@ -42,11 +52,8 @@ Test(replay, changed_digest_is_reported)
 {
     char dir[64], keep[64], path[300], json[1 << 16];
     cli_result r;
-    tmp_mkdtemp(dir, sizeof dir, "replay");
     tmp_mkdtemp(keep, sizeof keep, "rerun");
-    run_into(dir, "--out");
-    snprintf(path, sizeof path, "%s/run.json", dir);
-    tmp_slurp(path, json, sizeof json);
+    run_and_read(dir, path, json);
     char *at = strstr(json, "\"name\": \"final.csv\"");
     cr_assert_not_null(at);
     at = strstr(at, "\"sha256\": \"") + 11;
@@ -102,10 +109,7 @@ Test(replay, build_configuration_and_unfinished_runs)
 {
     char dir[64], path[300], json[1 << 16];
     cli_result r;
-    tmp_mkdtemp(dir, sizeof dir, "replay");
-    run_into(dir, "--out");
-    snprintf(path, sizeof path, "%s/run.json", dir);
-    tmp_slurp(path, json, sizeof json);
+    run_and_read(dir, path, json);
     char *commit = strstr(json, "\"commit\": \"");
     cr_assert_not_null(commit);
     memcpy(commit + 11, "0000000", 7);
