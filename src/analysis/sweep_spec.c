@@ -31,17 +31,16 @@ static void shortest_of(double x, int digits, char *buf, size_t len)
     snprintf(buf, len, "%.*g", digits, x);
 }
 
-/* An axis value computed from the spec (linspace, logspace): at most 15
- * digits, so that 1e-5 / 100 is 1e-07, not its rounding
- * 1.0000000000000001e-07. */
-static void shortest(double x, char *buf, size_t len)
-{
-    shortest_of(x, 15, buf, len);
-}
+/* Digits of a value computed from the spec (linspace, logspace, C * OTHER,
+ * the reference's tolerance): 15, so that 1e-5 / 100 is 1e-07, not its
+ * rounding 1.0000000000000001e-07; a step made T / N takes 17
+ * (cl_sweep_exact). */
+#define SPEC_DIGITS 15
+#define EXACT_DIGITS 17
 
 void cl_sweep_exact(double x, char *buf, size_t len)
 {
-    shortest_of(x, 17, buf, len);
+    shortest_of(x, EXACT_DIGITS, buf, len);
 }
 
 static const char *trimmed(const char *s, size_t *n)
@@ -65,17 +64,11 @@ static cl_status add_value(cl_sweep_axis *a, const char *s, size_t n)
     return CL_OK;
 }
 
-static cl_status add_number(cl_sweep_axis *a, double x)
+/* x as an axis value of at most `digits` digits (shortest_of). */
+static cl_status add_number(cl_sweep_axis *a, double x, int digits)
 {
     char buf[32];
-    shortest(x, buf, sizeof buf);
-    return add_value(a, buf, strlen(buf));
-}
-
-static cl_status add_exact(cl_sweep_axis *a, double x)
-{
-    char buf[32];
-    cl_sweep_exact(x, buf, sizeof buf);
+    shortest_of(x, digits, buf, sizeof buf);
     return add_value(a, buf, strlen(buf));
 }
 
@@ -93,7 +86,7 @@ static cl_status spaced(cl_sweep_axis *a, const char *v, bool log, bool *ok)
     cl_status rc = CL_OK;
     for (int i = 0; *ok && !rc && i < (int)k; i++) {
         double e = k == 1 ? lo : lo + (hi - lo) * i / (k - 1);
-        rc = add_number(a, log ? pow(10, e) : e);
+        rc = add_number(a, log ? pow(10, e) : e, SPEC_DIGITS);
     }
     return rc;
 }
@@ -166,7 +159,8 @@ static cl_status derived(cl_sweep_part *p, int self, const char *v, bool *ok,
         char *end;
         double x = strtod(p->axis[from].v[k], &end);
         *ok = !*end && isfinite(x);
-        rc = *ok ? add_number(&p->axis[self], op == '*' ? x * c : x / c)
+        rc = *ok ? add_number(&p->axis[self], op == '*' ? x * c : x / c,
+                              SPEC_DIGITS)
                  : CL_OK;
     }
     p->axis[self].from = *ok ? from : -1;
@@ -269,7 +263,7 @@ static cl_status snap_dt(cl_sweep_part *p)
     for (int k = 0; !rc && k < a->n; k++) {
         double h = strtod(a->v[k], &end), n = round(T / h);
         rc = h > 0 && isfinite(h) && !*end && isfinite(n) && n <= 1e15
-                 ? add_exact(&snapped, T / fmax(n, 1))
+                 ? add_number(&snapped, T / fmax(n, 1), EXACT_DIGITS)
                  : add_value(&snapped, a->v[k], strlen(a->v[k]));
     }
     snapped.key = a->key;
@@ -390,6 +384,6 @@ cl_status cl_sweep_read(cl_config *cfg, cl_sweep *sw, cl_error *err)
     cl_status rc = cl_config_double(cfg, "sweep", "reference", 0, 1e-15,
                                     1e-4, &ref, err);
     if (!rc && ref > 0)
-        shortest(ref, sw->ref_rtol, sizeof sw->ref_rtol);
+        shortest_of(ref, SPEC_DIGITS, sw->ref_rtol, sizeof sw->ref_rtol);
     return rc ? rc : read_parts(cfg, sw, err);
 }

@@ -93,15 +93,13 @@ cl_status cl_sweep_table_read(const char *list, cl_sweep_table *t,
     t->path = strdup(list);
     cl_status rc = t->path ? CL_OK
                            : cl_error_set(err, CL_ENOMEM, "out of memory");
-    for (const char *p = list; !rc && (p == list || *p || p[-1] == ',');
-         p += *p == ',') {
+    size_t n = strlen(list);
+    if (!rc && (!n || list[0] == ',' || list[n - 1] == ',' ||
+                strstr(list, ",,")))
+        rc = cl_error_set(err, CL_EINVAL, "\"%s\": an empty name in the "
+                          "list of tables (comma-separated CSV files)", list);
+    for (const char *p = list; !rc && *p; p += *p == ',') {
         size_t len = strcspn(p, ",");
-        if (!len) {
-            rc = cl_error_set(err, CL_EINVAL, "\"%s\": an empty name in the "
-                              "list of tables (comma-separated CSV files)",
-                              list);
-            break;
-        }
         char **grown = realloc(t->paths, (size_t)(t->npath + 1) *
                                              sizeof *grown);
         if (grown)
