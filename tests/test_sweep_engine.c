@@ -399,6 +399,99 @@ Test(sweep_engine, missing_statuses_and_no_engine)
     cli_result_free(&r);
 }
 
+/* A program `name` in tmp/fakebin that prints `out` on stdout (or, with
+ * to_err, stderr) and exits with `status`: Slurm's commands as a test
+ * needs them to answer. */
+static void fake_program(const char *name, const char *out, bool to_err,
+                         int status)
+{
+    char bin[1024], path[1100], text[1024];
+    in_tmp(bin, "fakebin");
+    mkdir(bin, 0755);
+    snprintf(path, sizeof path, "%s/%s", bin, name);
+    snprintf(text, sizeof text, "#!/bin/sh\necho '%s'%s\nexit %d\n", out,
+             to_err ? " >&2" : "", status);
+    tmp_put(path, text);
+    cr_assert_eq(chmod(path, 0755), 0);
+}
+
+/* `sweep run ARGS...` with tmp/fakebin first in PATH. */
+static void run_faked(cli_result *r, const char *dir, const char *engine)
+{
+    char bin[1024], path[8192], *save = strdup(getenv("PATH"));
+    snprintf(path, sizeof path, "%s:%s", in_tmp(bin, "fakebin"), save);
+    setenv("PATH", path, 1);
+    if (engine)
+        cli_run(r, "sweep", "run", dir, "--engine", engine, "--time", "5",
+                "--mem", "300", NULL);
+    else
+        cli_run(r, "sweep", "run", dir, "--quiet", NULL);
+    setenv("PATH", save, 1);
+    free(save);
+    cli_assert_no_crash(r);
+}
+
+/* A Slurm submission that sbatch refuses leaves the earlier results
+ * standing (before: every status was removed first, and the complete jobs
+ * became missing); one it queues is recorded (DIR/slurm/job), and while
+ * squeue lists that array's tasks no 'sweep run' of the sweep starts
+ * (before: a --resume ran the queued jobs a second time into the same
+ * files).  An array Slurm has forgotten ("Invalid job id") is over; a
+ * squeue that cannot answer stops the run. */
+Test(sweep_engine, slurm_refused_or_still_queued)
+{
+    char dir[1024], path[1100], summary[256], text[256];
+    two_complete(dir, "fakeslurm");
+    fake_program("sbatch", "sbatch: error: Batch job submission failed: "
+                 "Requested time limit is invalid", true, 1);
+    cli_result r;
+    run_faked(&r, dir, "slurm");
+    cr_assert_eq(r.status, 1, "%s", r.err);
+    cr_assert(strstr(r.err, "Requested time limit is invalid"), "%s", r.err);
+    cli_result_free(&r);
+    collect(dir, summary, sizeof summary);
+    cr_assert_str_eq(summary, "2 complete, 0 failed, 0 missing");
+    char id[13];
+    first_id(dir, id);
+    snprintf(path, sizeof path, "%s/jobs/%s/exit.earlier", dir, id);
+    cr_assert(!cli_exists(path), "%s left behind", path);
+
+    fake_program("sbatch", "4242;cluster", false, 0);
+    fake_program("squeue", "4242_[0-1] PENDING", false, 0);
+    run_faked(&r, dir, "slurm");
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "slurm      submitted array job 4242\n"), "%s",
+              r.out);
+    cli_result_free(&r);
+    snprintf(path, sizeof path, "%s/slurm/job", dir);
+    tmp_slurp(path, text, sizeof text);
+    cr_assert_str_eq(text, "4242\n");
+    collect(dir, summary, sizeof summary); /* queued, not run (fake) */
+    cr_assert_str_eq(summary, "0 complete, 0 failed, 2 missing");
+    run_faked(&r, dir, NULL);
+    cli_assert_error(&r, 0, "the Slurm array job 4242 that an earlier "
+                     "'sweep run' submitted still has tasks queued or "
+                     "running (squeue: 4242_[0-1] PENDING)", NULL);
+    cli_result_free(&r);
+    collect(dir, summary, sizeof summary);
+    cr_assert_str_eq(summary, "0 complete, 0 failed, 2 missing");
+
+    fake_program("squeue", "slurm_load_jobs error: Unable to contact slurm "
+                 "controller", true, 1);
+    run_faked(&r, dir, NULL);
+    cr_assert_eq(r.status, 7, "%s", r.err);
+    cr_assert(strstr(r.err, "cannot ask Slurm whether the array job 4242"),
+              "%s", r.err);
+    cli_result_free(&r);
+    fake_program("squeue", "slurm_load_jobs error: Invalid job id "
+                 "specified", true, 1);
+    run_faked(&r, dir, NULL);
+    cr_assert_eq(r.status, 0, "%s", r.err);
+    cli_result_free(&r);
+    collect(dir, summary, sizeof summary);
+    cr_assert_str_eq(summary, "2 complete, 0 failed, 0 missing");
+}
+
 /* The sweep files under problems/sweeps plan from any directory (their
  * problem relative to them); a directory holding another problem's sweep,
  * or a manifest that is not one, is not planned over (its results would

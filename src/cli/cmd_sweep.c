@@ -317,14 +317,18 @@ static const cl_cli_table run_table = {
 /* Without --resume: every job, each one's status of an earlier run
  * removed first so that it cannot stand for this one's while its job waits
  * (each job's command removes its own too when it starts); -1 with err set
- * when one cannot be removed (the job could not replace it either). */
-static int all_jobs(const cl_sweep *sw, int *todo, cl_error *err)
+ * when one cannot be removed (the job could not replace it either).  With
+ * aside (Slurm, whose submission can fail), each status is moved to
+ * exit.earlier instead, for put_back. */
+static int all_jobs(const cl_sweep *sw, int *todo, bool aside, cl_error *err)
 {
-    char path[4200];
+    char path[4200], earlier[4300];
     for (int k = 0; k < sw->njob; k++) {
         snprintf(path, sizeof path, "%s/jobs/%s/exit", sw->dir,
                  sw->job[k].id);
-        if (unlink(path) != 0 && errno != ENOENT) {
+        snprintf(earlier, sizeof earlier, "%s.earlier", path);
+        if ((aside ? rename(path, earlier) : unlink(path)) != 0 &&
+            errno != ENOENT) {
             cl_error_set(err, CL_EIO, "%s: cannot remove the status of an "
                          "earlier run: %s", path, strerror(errno));
             return -1;
@@ -332,6 +336,25 @@ static int all_jobs(const cl_sweep *sw, int *todo, cl_error *err)
         todo[k] = k;
     }
     return sw->njob;
+}
+
+/* After a Slurm submission: the earlier statuses all_jobs set aside are
+ * dropped for the first `ran` jobs of todo (run as pilots, or queued) and
+ * put back for the others, which never ran (sbatch refused the array): a
+ * failed submission leaves the results of the run before it standing. */
+static void put_back(const cl_sweep *sw, const int *todo, int n, int ran)
+{
+    char path[4200], earlier[4300];
+    for (int k = 0; k < n; k++) {
+        snprintf(path, sizeof path, "%s/jobs/%s/exit", sw->dir,
+                 sw->job[todo[k]].id);
+        snprintf(earlier, sizeof earlier, "%s.earlier", path);
+        if (k >= ran && link(earlier, path) != 0 && errno != ENOENT &&
+            errno != EEXIST)
+            fprintf(stderr, "clothode: sweep run: cannot put back %s: %s\n",
+                    path, strerror(errno));
+        (void)unlink(earlier);
+    }
 }
 
 /* Every job's outcome (allocated), or NULL with err set. */
@@ -457,8 +480,12 @@ static int engine_run(cl_sweep *sw, cl_sweep_run_args *r, int *todo,
     }
     if (lock_sweep(sw, err) < 0)
         return cl_cli_fail(err);
+    /* a submitted array's tasks may still run, outside the lock */
+    bool slurm = r->engine == CL_SWEEP_SLURM;
+    if ((slurm || in_path("squeue")) && cl_sweep_slurm_idle(sw, err))
+        return cl_cli_fail(err);
     int n = r->resume ? pending_jobs(sw, todo, err)
-                      : all_jobs(sw, todo, err);
+                      : all_jobs(sw, todo, slurm, err);
     if (n < 0)
         return cl_cli_fail(err);
     if (r->resume && !r->a.quiet)
@@ -466,8 +493,10 @@ static int engine_run(cl_sweep *sw, cl_sweep_run_args *r, int *todo,
                sw->njob);
     if (n == 0)
         return 0;
-    if (r->engine == CL_SWEEP_SLURM) {
-        int status = cl_sweep_slurm(sw, r, todo, n);
+    if (slurm) {
+        int ran, status = cl_sweep_slurm(sw, r, todo, n, &ran);
+        if (!r->resume)
+            put_back(sw, todo, n, ran);
         return status || !r->wait ? status : summary(sw, r->a.quiet, err);
     }
     snprintf(list, sizeof list, "%s/jobs.txt", sw->dir);

@@ -231,11 +231,86 @@ static int write_script(const cl_sweep *sw, const cl_sweep_run_args *r,
     return fclose(fp) == 0 ? 0 : 1;
 }
 
+/* Run argv, each line of its standard output (and with err_too of its
+ * standard error) handed to line(ctx, text) as it comes; its wait status,
+ * or -1 when it cannot be started. */
+static int run_reading(const char *const *argv, bool err_too,
+                       void (*line)(void *ctx, const char *text), void *ctx)
+{
+    int fd[2];
+    if (pipe(fd) != 0)
+        return -1;
+    fflush(stdout);
+    pid_t pid = fork();
+    if (pid == 0) {
+        close(fd[0]);
+        dup2(fd[1], STDOUT_FILENO);
+        if (err_too)
+            dup2(fd[1], STDERR_FILENO);
+        close(fd[1]);
+        execvp(argv[0], (char *const *)argv);
+        fprintf(stderr, "clothode: cannot run %s: %s (apt-get install "
+                        "slurm-client; SLURM_CONF)\n", argv[0],
+                strerror(errno));
+        _exit(127);
+    }
+    close(fd[1]);
+    FILE *fp = pid > 0 ? fdopen(fd[0], "r") : NULL;
+    char text[1024];
+    while (fp && fgets(text, sizeof text, fp)) {
+        text[strcspn(text, "\n")] = '\0';
+        line(ctx, text);
+    }
+    if (fp)
+        fclose(fp);
+    else
+        close(fd[0]);
+    int status = -1;
+    while (pid > 0 && waitpid(pid, &status, 0) < 0 && errno == EINTR)
+        ;
+    return pid > 0 ? status : -1;
+}
+
+/* The array job submitted: its id (sbatch --parsable prints "ID" or
+ * "ID;CLUSTER" as soon as the job is queued, before --wait waits) kept in
+ * DIR/slurm/job, so that a later 'sweep run' can see the array still
+ * queued or running (cl_sweep_slurm_idle). */
+typedef struct {
+    const cl_sweep *sw;
+    char id[64];
+} submission;
+
+static void on_sbatch_line(void *ctx, const char *text)
+{
+    submission *s = ctx;
+    if (*s->id || !*text) {
+        printf("%s\n", text);
+        return;
+    }
+    snprintf(s->id, sizeof s->id, "%.*s", (int)strcspn(text, ";"), text);
+    char path[4200];
+    cl_error err;
+    cl_afile af;
+    snprintf(path, sizeof path, "%s/slurm/job", s->sw->dir);
+    cl_status rc = cl_afile_open(&af, path, &err);
+    if (!rc && fprintf(af.fp, "%s\n", s->id) < 0)
+        rc = cl_afile_fail(&af, &err);
+    if (!rc)
+        rc = cl_afile_commit(&af, &err);
+    if (rc)
+        fprintf(stderr, "clothode: sweep run: cannot record the array job's "
+                        "id %s: %s\n", s->id, err.msg);
+    printf("slurm      submitted array job %s\n", s->id);
+    fflush(stdout);
+}
+
 /* sbatch the script, each task's output into DIR/slurm/task-A_a.out:
  * given as an argument, not an #SBATCH line, so that a directory with
  * spaces or quotes reaches sbatch as it is, with its '%' doubled (a
- * literal '%' in Slurm's file name patterns). */
-static int sbatch(const cl_sweep *sw, const char *script, bool wait)
+ * literal '%' in Slurm's file name patterns).  Its exit status, and
+ * *submitted once it has queued the array. */
+static int sbatch(const cl_sweep *sw, const char *script, bool wait,
+                  bool *submitted)
 {
     char output[8500];
     size_t u = (size_t)snprintf(output, sizeof output, "--output=");
@@ -250,22 +325,67 @@ static int sbatch(const cl_sweep *sw, const char *script, bool wait)
         argv[3] = "--wait";
         argv[4] = script;
     }
-    fflush(stdout);
-    pid_t pid = fork();
-    if (pid == 0) {
-        execvp("sbatch", (char *const *)argv);
-        fprintf(stderr, "clothode: cannot run sbatch: %s (apt-get install "
-                        "slurm-client; SLURM_CONF)\n", strerror(errno));
-        _exit(127);
-    }
-    int status = 1;
-    if (pid < 0 || waitpid(pid, &status, 0) != pid)
-        return 1;
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+    submission s = {.sw = sw};
+    int status = run_reading(argv, false, on_sbatch_line, &s);
+    *submitted = *s.id != '\0';
+    if (status < 0)
+        fprintf(stderr, "clothode: cannot run sbatch: %s\n", strerror(errno));
+    return status >= 0 && WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+}
+
+/* squeue's lines: the array's tasks still queued or running, or its
+ * message. */
+typedef struct {
+    int lines;
+    char said[512];
+} queue_answer;
+
+static void on_squeue_line(void *ctx, const char *text)
+{
+    queue_answer *q = ctx;
+    if (!*q->said)
+        snprintf(q->said, sizeof q->said, "%s", text);
+    q->lines++;
+}
+
+cl_status cl_sweep_slurm_idle(const cl_sweep *sw, cl_error *err)
+{
+    char path[4200], id[64] = "", jobs[80];
+    const char *why;
+    snprintf(path, sizeof path, "%s/slurm/job", sw->dir);
+    FILE *fp = cl_input_open(path, "r", &why);
+    if (!fp)
+        return CL_OK; /* no array was submitted */
+    if (fscanf(fp, "%63s", id) != 1)
+        *id = '\0';
+    fclose(fp);
+    if (!*id)
+        return CL_OK;
+    snprintf(jobs, sizeof jobs, "--jobs=%s", id);
+    const char *argv[] = {"squeue", "--noheader", "--format=%i %T", jobs,
+                          NULL};
+    queue_answer q = {0};
+    int st = run_reading(argv, true, on_squeue_line, &q);
+    bool ok = st >= 0 && WIFEXITED(st) && WEXITSTATUS(st) == 0;
+    /* an array long ended is forgotten by Slurm: "Invalid job id" */
+    if ((ok && q.lines == 0) || strstr(q.said, "Invalid job id"))
+        return CL_OK;
+    if (ok)
+        return cl_error_set(err, CL_EINVAL, "%s: the Slurm array job %s "
+                            "that an earlier 'sweep run' submitted still has "
+                            "tasks queued or running (squeue: %s), and they "
+                            "write this sweep's jobs: wait for them, or "
+                            "'scancel %s', then run again", sw->dir, id,
+                            q.said, id);
+    return cl_error_set(err, CL_EIO, "%s: cannot ask Slurm whether the array "
+                        "job %s that an earlier 'sweep run' submitted still "
+                        "runs (squeue%s%s); its tasks would write this "
+                        "sweep's jobs: ask again once squeue answers",
+                        sw->dir, id, *q.said ? ": " : "", q.said);
 }
 
 int cl_sweep_slurm(const cl_sweep *sw, const cl_sweep_run_args *r,
-                   const int *todo, int n)
+                   const int *todo, int n, int *ran)
 {
     char dir[4200], ids[4300], script[4300];
     long minutes = 0, mb = 0;
@@ -274,7 +394,10 @@ int cl_sweep_slurm(const cl_sweep *sw, const cl_sweep_run_args *r,
     snprintf(dir, sizeof dir, "%s/slurm", sw->dir);
     if (cl_mkdir_p(dir, &err))
         return fprintf(stderr, "clothode: %s\n", err.msg), 1;
-    if (estimate(sw, r, todo, n, &minutes, &mb, &piloted))
+    *ran = 0;
+    int status = estimate(sw, r, todo, n, &minutes, &mb, &piloted);
+    *ran = piloted;
+    if (status)
         return 1;
     todo += piloted;
     n -= piloted;
@@ -291,5 +414,8 @@ int cl_sweep_slurm(const cl_sweep *sw, const cl_sweep_run_args *r,
         printf("slurm      %d jobs in %ld array tasks of %ld, %ld min and "
                "%ld MB each: %s\n", n, (n + r->chunk - 1) / r->chunk,
                r->chunk, minutes, mb, script);
-    return sbatch(sw, script, r->wait);
+    bool submitted;
+    status = sbatch(sw, script, r->wait, &submitted);
+    *ran += submitted ? n : 0;
+    return status;
 }

@@ -32,9 +32,16 @@ int cl_sweep_parallel(const cl_sweep *sw, const cl_sweep_run_args *r,
                       const char *list, bool append);
 
 /* Submit jobs todo[0..n) as a Slurm array (sbatch), time and memory from
- * r or estimated from a pilot run of the first of them here.  Returns the
- * exit status. */
+ * r or estimated from a pilot run of the first of them here; the array's
+ * id is kept in DIR/slurm/job.  Returns the exit status; *ran counts the
+ * first of todo that were run (the pilots) or queued (all, once sbatch
+ * has queued the array). */
 int cl_sweep_slurm(const cl_sweep *sw, const cl_sweep_run_args *r,
-                   const int *todo, int n);
+                   const int *todo, int n, int *ran);
+
+/* CL_OK unless the array job a 'sweep run' of this sweep submitted
+ * (DIR/slurm/job) still has tasks queued or running, as squeue says:
+ * CL_EINVAL then, naming it, and CL_EIO when squeue cannot tell. */
+cl_status cl_sweep_slurm_idle(const cl_sweep *sw, cl_error *err);
 
 #endif
