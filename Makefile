@@ -18,7 +18,9 @@ LDFLAGS += -fsanitize=address,undefined
 else
 CFLAGS  += -O2
 endif
-LDFLAGS += -fopenmp
+# the build ID, a hash of each linked file's contents, names the binary
+# in run.json (cli/version.c)
+LDFLAGS += -fopenmp -Wl,--build-id=sha1
 LDLIBS := -lsundials_cvode -lsundials_ida -lsundials_kinsol \
           -lsundials_arkode \
           -lsundials_nvecserial -lsundials_sunmatrixsparse \

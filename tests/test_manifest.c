@@ -93,6 +93,52 @@ Test(manifest, run_json_records_the_run)
     tmp_rm_rf(dir);
 }
 
+/* The files the problem names (the skirt's cloth and obstacle meshes)
+ * with their digests, and the program's GNU build ID as readelf reads it
+ * from the binary (before: neither was recorded, and a mesh edited after
+ * the run, or a binary rebuilt from an edited tree, left no trace). */
+Test(manifest, input_files_and_build_id)
+{
+    char dir[64], hex[CL_SHA256_HEX], cmd[4200], line[256];
+    cl_error err = {0};
+    tmp_mkdtemp(dir, sizeof dir, "manifest");
+    cli_result r;
+    cli_run(&r, "run", "problems/skirt.ini", "--t-end", "0.001", "--frames",
+            "0", "--out", dir, "--quiet", NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    json_t *m = load_json(dir);
+    json_t *inputs = json_object_get(m, "inputs");
+    static const char *const keys[] = {"cloth.mesh", "obstacle.sphere.file"};
+    static const char *const files[] = {"problems/meshes/skirt.obj",
+                                        "problems/meshes/sphere.obj"};
+    cr_assert_eq(json_array_size(inputs), 2);
+    for (size_t k = 0; k < 2; k++) {
+        json_t *in = json_array_get(inputs, k);
+        char *real = realpath(files[k], NULL);
+        cr_assert_str_eq(str_at(in, "key", NULL), keys[k]);
+        cr_assert_str_eq(str_at(in, "path", NULL), real);
+        cr_assert_eq(cl_sha256_file(files[k], hex, &err), CL_OK);
+        cr_assert_str_eq(str_at(in, "sha256", NULL), hex);
+        free(real);
+    }
+    snprintf(cmd, sizeof cmd, "readelf -n '%s' | sed -n 's/.*Build ID: //p'",
+             cli_binary());
+    FILE *fp = popen(cmd, "r");
+    cr_assert_not_null(fp);
+    cr_assert_not_null(fgets(line, sizeof line, fp), "%s: no build ID", cmd);
+    pclose(fp);
+    line[strcspn(line, "\n")] = '\0';
+    cr_assert_eq(strlen(line), 40, "%s", line);
+    cr_assert_str_eq(str_at(m, "build", "build_id"), line);
+    json_decref(m);
+    small_run(dir, "1"); /* a grid cloth names no file */
+    m = load_json(dir);
+    cr_assert_eq(json_array_size(json_object_get(m, "inputs")), 0);
+    json_decref(m);
+    tmp_rm_rf(dir);
+}
+
 /* Every file of two runs byte for byte, and their run.json without what
  * differs by design: the times and the output directory in argv. */
 static void assert_runs_identical(const char *a, const char *b)

@@ -120,7 +120,8 @@ Test(replay, build_configuration_and_unfinished_runs)
     cli_run(&r, "replay", dir, NULL);
     cli_assert_no_crash(&r);
     cr_assert_eq(r.status, 1, "%s%s", r.out, r.err);
-    cr_assert(strstr(r.out, "build                    another (commit ") &&
+    cr_assert(strstr(r.out, "build                    another (differs "
+                            "in: commit; commit ") &&
                   strstr(r.out, "configuration            differs"),
               "%s", r.out);
     cli_result_free(&r);
@@ -132,6 +133,43 @@ Test(replay, build_configuration_and_unfinished_runs)
     cli_assert_error(&r, 0, "the run did not finish", NULL);
     cli_result_free(&r);
     tmp_rm_rf(dir);
+}
+
+/* A mesh the problem names, edited since the run, is named and is a
+ * difference, though every output is the same (before: not seen, the
+ * mesh's bytes were not recorded). */
+Test(replay, an_input_file_changed_since_the_run)
+{
+    char dir[64], prob[64], path[300];
+    cli_result r;
+    tmp_mkdtemp(dir, sizeof dir, "replay");
+    tmp_mkdtemp(prob, sizeof prob, "problem");
+    char cmd[200];
+    snprintf(cmd, sizeof cmd, "cp -r problems/skirt.ini problems/meshes %s",
+             prob);
+    cr_assert_eq(system(cmd), 0, "%s", cmd);
+    snprintf(path, sizeof path, "%s/skirt.ini", prob);
+    cli_run(&r, "run", path, "--t-end", "0.001", "--frames", "0", "--out",
+            dir, "--quiet", NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    snprintf(path, sizeof path, "%s/meshes/sphere.obj", prob);
+    FILE *fp = fopen(path, "a");
+    cr_assert_not_null(fp);
+    fputs("# edited\n", fp);
+    fclose(fp);
+    cli_run(&r, "replay", dir, NULL);
+    cli_assert_no_crash(&r);
+    cr_assert_eq(r.status, 1, "%s%s", r.out, r.err);
+    cr_assert(strstr(r.out, "final.csv                identical") &&
+                  strstr(r.out, "obstacle.sphere.file     ") &&
+                  strstr(r.out, "meshes/sphere.obj: differs (the file "
+                                "changed since the run)") &&
+                  !strstr(r.out, "cloth.mesh"),
+              "%s", r.out);
+    cli_result_free(&r);
+    tmp_rm_rf(dir);
+    tmp_rm_rf(prob);
 }
 
 Test(replay, directory_without_run_json_is_refused)

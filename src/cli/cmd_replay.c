@@ -37,8 +37,9 @@ static const cl_cli_table replay_table = {
     "Rerun the run recorded in DIR/run.json (its command line, in its\n"
     "working directory) and report for every file it wrote whether the\n"
     "rerun wrote the same bytes, and whether DIR still holds them; the\n"
-    "problem file's SHA-256 and the resolved configuration are compared\n"
-    "too, and another build is named.  run.json itself is not compared\n"
+    "SHA-256 of the problem file and of the files it names (meshes) and\n"
+    "the resolved configuration are compared too, and another build (its\n"
+    "commit, compiler, flags, build ID, libraries) is named.  run.json itself is not compared\n"
     "(its times differ); a run that never finished is refused.\n",
     .notes =
     "exit status: 0 when every output is identical, 1 when one differs or\n"
@@ -115,10 +116,21 @@ static int compare_setup(json_t *was, json_t *now)
 {
     json_t *ba = json_object_get(was, "build"), *bb = json_object_get(now,
                                                                       "build");
-    if (!json_equal(ba, bb))
-        printf("%-24s another (commit %s, was %s; see run.json's build)\n",
-               "build", json_string_value(json_object_get(bb, "commit")),
+    if (!json_equal(ba, bb)) {
+        char what[256] = "";
+        size_t u = 0;
+        const char *key;
+        json_t *v;
+        json_object_foreach(bb, key, v)
+            if (!json_equal(v, json_object_get(ba, key)) &&
+                u + strlen(key) + 3 < sizeof what)
+                u += (size_t)snprintf(what + u, sizeof what - u, "%s%s",
+                                      u ? ", " : "", key);
+        printf("%-24s another (differs in: %s; commit %s, was %s; see "
+               "run.json's build)\n", "build", what,
+               json_string_value(json_object_get(bb, "commit")),
                json_string_value(json_object_get(ba, "commit")));
+    }
     if (json_equal(json_object_get(was, "config"),
                    json_object_get(now, "config")))
         return 0;
@@ -127,6 +139,35 @@ static int compare_setup(json_t *was, json_t *now)
     return 1;
 }
 
+
+/* The input files the problem named (meshes): one line for each whose
+ * bytes differ from those the run read, or that the rerun did not read;
+ * their number. */
+static int compare_inputs(json_t *was, json_t *now)
+{
+    json_t *ia = json_object_get(was, "inputs");
+    json_t *ib = json_object_get(now, "inputs");
+    int bad = 0;
+    size_t k, j;
+    json_t *a, *b;
+    json_array_foreach(ia, k, a) {
+        const char *key = json_string_value(json_object_get(a, "key"));
+        const char *verdict = "not read by the rerun";
+        json_array_foreach(ib, j, b)
+            if (key && json_equal(json_object_get(a, "key"),
+                                  json_object_get(b, "key")))
+                verdict = json_equal(json_object_get(a, "sha256"),
+                                     json_object_get(b, "sha256"))
+                              ? NULL : "differs (the file changed since the "
+                                       "run)";
+        if (verdict) {
+            printf("%-24s %s: %s\n", key ? key : "input",
+                   json_string_value(json_object_get(a, "path")), verdict);
+            bad++;
+        }
+    }
+    return bad;
+}
 
 /* Run `clothode run` with the recorded arguments, its --out replaced by
  * outdir, from the recorded working directory; its exit status. */
@@ -232,7 +273,8 @@ static int replay(const char *dir, json_t *was, const char *out)
         printf("%-24s differs (the problem file changed since the run)\n",
                "problem");
     int bad = compare(was, now) + !json_equal(pa, pb) +
-              compare_setup(was, now) + check_recorded(dir, was);
+              compare_inputs(was, now) + compare_setup(was, now) +
+              check_recorded(dir, was);
     json_t *xa = json_object_get(was, "exit_status");
     json_t *xb = json_object_get(now, "exit_status");
     if (!json_equal(xa, xb)) {

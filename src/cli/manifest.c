@@ -71,6 +71,29 @@ static cl_status problem_json(const char *path, json_t **out, cl_error *err)
     return CL_OK;
 }
 
+/* The input files the problem named (meshes), [{"key", "path",
+ * "sha256"}]: a run's outputs depend on their bytes as on the problem
+ * file's. */
+typedef struct {
+    json_t *list;
+    cl_error *err;
+    cl_status rc;
+} input_list;
+
+static void add_input(void *ctx, const char *sec, const char *key,
+                      const char *path, bool given)
+{
+    (void)given;
+    input_list *in = ctx;
+    char hex[CL_SHA256_HEX];
+    if (in->rc || (in->rc = cl_sha256_file(path, hex, in->err)))
+        return;
+    if (json_array_append_new(in->list, json_pack("{s:s++, s:s, s:s}", "key",
+                                                  sec, ".", key, "path", path,
+                                                  "sha256", hex)))
+        in->rc = cl_error_set(in->err, CL_ENOMEM, "out of memory (run.json)");
+}
+
 static json_t *argv_json(int argc, char **argv)
 {
     json_t *a = json_array();
@@ -94,20 +117,25 @@ cl_status cl_manifest_begin(cl_manifest *mf, const cl_cli_job *job, int argc,
     resolved r = {json_object(), json_array()};
     mf->dir = job->outdir;
     mf->root = NULL;
+    input_list in = {json_array(), err, CL_OK};
     cl_status rc = problem_json(job->problem, &problem, err);
-    if (rc) {
+    if (!rc)
+        cl_config_input_files(job->cfg, add_input, &in);
+    if (rc || (rc = in.rc)) {
+        json_decref(problem);
+        json_decref(in.list);
         json_decref(r.config);
         json_decref(r.defaults);
         return rc;
     }
     cl_config_resolved(job->cfg, add_entry, &r);
     mf->root = json_pack(
-        "{s:s, s:i, s:o, s:s, s:o, s:s, s:o, s:o, s:o, s:I, s:o, s:o, s:s, "
-        "s:[]}",
+        "{s:s, s:i, s:o, s:s, s:o, s:s, s:o, s:o, s:o, s:o, s:I, s:o, s:o, "
+        "s:s, s:[]}",
         "program", "clothode", "schema", 1, "build", cl_cli_build_json(),
         "command", argv[0], "argv", argv_json(argc, argv), "cwd",
         getcwd(cwd, sizeof cwd) ? cwd : "unknown", "problem", problem,
-        "config", r.config, "defaults", r.defaults, "threads",
+        "inputs", in.list, "config", r.config, "defaults", r.defaults, "threads",
         (json_int_t)threads, "host", cl_cli_host_json(), "start", utc_now(),
         "status", "running", "files");
     if (!mf->root)

@@ -6,7 +6,9 @@
 #include "cli/version.h"
 
 #include <dlfcn.h>
+#include <elf.h>
 #include <limits.h>
+#include <link.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/utsname.h>
@@ -41,6 +43,43 @@ static json_t *openblas_config(void)
     return config ? json_string(config()) : json_null();
 }
 
+/* The program's GNU build ID (the linker's hash of its contents, a note
+ * of the executable) in hexadecimal, found among its loaded program
+ * headers: the first object dl_iterate_phdr visits is the program. */
+static int build_id_of_program(struct dl_phdr_info *info, size_t size,
+                               void *hex)
+{
+    (void)size;
+    for (int k = 0; k < info->dlpi_phnum; k++) {
+        const ElfW(Phdr) *ph = &info->dlpi_phdr[k];
+        if (ph->p_type != PT_NOTE)
+            continue;
+        const char *at = (const char *)(info->dlpi_addr + ph->p_vaddr);
+        const char *end = at + ph->p_memsz;
+        while (at + sizeof(ElfW(Nhdr)) <= end) {
+            const ElfW(Nhdr) *nh = (const ElfW(Nhdr) *)(const void *)at;
+            const char *name = at + sizeof *nh;
+            const unsigned char *desc =
+                (const unsigned char *)name + ((nh->n_namesz + 3) & ~3u);
+            if (nh->n_type == NT_GNU_BUILD_ID && nh->n_namesz == 4 &&
+                !memcmp(name, "GNU", 4) && nh->n_descsz <= 64) {
+                for (unsigned i = 0; i < nh->n_descsz; i++)
+                    sprintf((char *)hex + 2 * i, "%02x", desc[i]);
+                return 1;
+            }
+            at = (const char *)desc + ((nh->n_descsz + 3) & ~3u);
+        }
+    }
+    return 1; /* the program only */
+}
+
+static json_t *build_id_json(void)
+{
+    char hex[129] = "";
+    dl_iterate_phdr(build_id_of_program, hex);
+    return *hex ? json_string(hex) : json_null();
+}
+
 static json_t *libraries_json(void)
 {
     char sundials[64] = "unknown", text[64];
@@ -70,6 +109,7 @@ json_t *cl_cli_build_json(void)
     json_object_set_new(o, "compiler",
                         json_sprintf("%s (%s)", CL_BUILD_CC, __VERSION__));
     json_object_set_new(o, "flags", json_string(CL_BUILD_FLAGS));
+    json_object_set_new(o, "build_id", build_id_json());
     json_object_set_new(o, "libraries", libraries_json());
     return o;
 }

@@ -7,10 +7,11 @@
 
 #include <jansson.h>
 
-/* The version, its git commit, the compiler and flags, and the versions of
+/* The version, its git commit, the compiler and flags, the program's GNU
+ * build ID (null when it was linked without one), and the versions of
  * the libraries linked (SUNDIALS, SuiteSparse, GSL, the BLAS and LAPACK
  * actually loaded, jansson, nettle): {"version", "commit", "compiler",
- * "flags", "libraries": {...}}; NULL if out of memory. */
+ * "flags", "build_id", "libraries": {...}}; NULL if out of memory. */
 json_t *cl_cli_build_json(void);
 
 /* The machine: {"cpu" (model name), "cores", "system", "hostname"};

@@ -959,6 +959,15 @@ void cl_config_resolved(const cl_config *cfg, cl_config_visit_fn visit,
                   cfg->asked[i].def, false);
 }
 
+void cl_config_input_files(const cl_config *cfg, cl_config_visit_fn visit,
+                           void *ctx)
+{
+    for (size_t i = 0; i < cfg->nent; i++)
+        if (cfg->ent[i].path)
+            visit(ctx, cfg->ent[i].sec, cfg->ent[i].key, cfg->ent[i].path,
+                  true);
+}
+
 /* ----------------------------------------------------------- unused keys */
 
 /* Whether asked[i]'s section already occurs in asked[0..i-1]. */

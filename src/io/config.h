@@ -156,6 +156,13 @@ typedef void (*cl_config_visit_fn)(void *ctx, const char *sec,
 void cl_config_resolved(const cl_config *cfg, cl_config_visit_fn visit,
                         void *ctx);
 
+/* The input files the configuration named, as cl_config_path_of resolved
+ * them: visit(ctx, sec, key, path, true) for each entry whose value was
+ * read as a file name (a mesh), path the file's absolute, resolved name
+ * (none when it did not exist). */
+void cl_config_input_files(const cl_config *cfg, cl_config_visit_fn visit,
+                           void *ctx);
+
 /* Write every entry as INI (final values, grouped by section in order of
  * first appearance) so that a run records the exact configuration it used.
  * Atomic: written to "path.tmp.XXXXXX" and renamed onto path. */
