@@ -366,6 +366,20 @@ Test(sweep_engine, a_running_sweep_is_not_run_twice)
     run_local(dir);
 }
 
+/* r, a sweep run of dir, refused with exit status `status` and `text` on
+ * stderr; dir's two jobs still complete. */
+static void assert_refused_keeping_two(cli_result *r, const char *dir,
+                                       int status, const char *text)
+{
+    char summary[256];
+    cli_assert_no_crash(r);
+    cr_assert_eq(r->status, status, "%s", r->err);
+    cr_assert(strstr(r->err, text), "%s", r->err);
+    cli_result_free(r);
+    collect(dir, summary, sizeof summary);
+    cr_assert_str_eq(summary, "2 complete, 0 failed, 0 missing");
+}
+
 /* A job that cannot record its status (here its exit.tmp is a directory)
  * is missing once the engine has ended, and sweep run says so with exit
  * status 1 (before: exit 0).  Without GNU parallel in PATH, sweep run
@@ -373,7 +387,7 @@ Test(sweep_engine, a_running_sweep_is_not_run_twice)
  * removed first, so the complete jobs became missing). */
 Test(sweep_engine, missing_statuses_and_no_engine)
 {
-    char dir[1024], path[1100], summary[256];
+    char dir[1024], path[1100];
     two_complete(dir, "nostatus");
     char *save = strdup(getenv("PATH"));
     setenv("PATH", "/nonexistent", 1);
@@ -381,12 +395,7 @@ Test(sweep_engine, missing_statuses_and_no_engine)
     cli_run(&r, "sweep", "run", dir, NULL);
     setenv("PATH", save, 1);
     free(save);
-    cli_assert_no_crash(&r);
-    cr_assert_eq(r.status, 1);
-    cr_assert(strstr(r.err, "parallel is not in PATH"), "%s", r.err);
-    cli_result_free(&r);
-    collect(dir, summary, sizeof summary);
-    cr_assert_str_eq(summary, "2 complete, 0 failed, 0 missing");
+    assert_refused_keeping_two(&r, dir, 1, "parallel is not in PATH");
     char id[13];
     first_id(dir, id);
     snprintf(path, sizeof path, "%s/jobs/%s/exit.tmp", dir, id);
@@ -446,11 +455,7 @@ Test(sweep_engine, slurm_refused_or_still_queued)
                  "Requested time limit is invalid", true, 1);
     cli_result r;
     run_faked(&r, dir, "slurm");
-    cr_assert_eq(r.status, 1, "%s", r.err);
-    cr_assert(strstr(r.err, "Requested time limit is invalid"), "%s", r.err);
-    cli_result_free(&r);
-    collect(dir, summary, sizeof summary);
-    cr_assert_str_eq(summary, "2 complete, 0 failed, 0 missing");
+    assert_refused_keeping_two(&r, dir, 1, "Requested time limit is invalid");
     char id[13];
     first_id(dir, id);
     snprintf(path, sizeof path, "%s/jobs/%s/exit.earlier", dir, id);
