@@ -39,8 +39,9 @@ static const cl_cli_table replay_table = {
     "rerun wrote the same bytes, and whether DIR still holds them; the\n"
     "SHA-256 of the problem file and of the files it names (meshes) and\n"
     "the resolved configuration are compared too, and another build (its\n"
-    "commit, compiler, flags, build ID, libraries) is named.  run.json itself is not compared\n"
-    "(its times differ); a run that never finished is refused.\n",
+    "commit, compiler, flags, build ID, libraries) is named.  run.json\n"
+    "itself is not compared (its times differ); a run that never finished\n"
+    "is refused.\n",
     .notes =
     "exit status: 0 when every output is identical, 1 when one differs or\n"
     "is missing, else that of the failure (2 bad input, 7 I/O error, ...)\n"};

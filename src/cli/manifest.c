@@ -135,9 +135,9 @@ cl_status cl_manifest_begin(cl_manifest *mf, const cl_cli_job *job, int argc,
         "program", "clothode", "schema", 1, "build", cl_cli_build_json(),
         "command", argv[0], "argv", argv_json(argc, argv), "cwd",
         getcwd(cwd, sizeof cwd) ? cwd : "unknown", "problem", problem,
-        "inputs", in.list, "config", r.config, "defaults", r.defaults, "threads",
-        (json_int_t)threads, "host", cl_cli_host_json(), "start", utc_now(),
-        "status", "running", "files");
+        "inputs", in.list, "config", r.config, "defaults", r.defaults,
+        "threads", (json_int_t)threads, "host", cl_cli_host_json(), "start",
+        utc_now(), "status", "running", "files");
     if (!mf->root)
         return cl_error_set(err, CL_ENOMEM, "out of memory (run.json)");
     rc = write_json(mf, err);
