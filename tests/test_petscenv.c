@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "linalg/petscenv.h"
+#include "runcli.h"
 
 /* Started twice it is started once; PETSc leaves SIGINT to the program
  * (core/stop.h), so the handler installed before is still there. */
@@ -90,4 +91,32 @@ Test(petscenv, unusable_tmpdir_is_reported)
     cr_assert_not_null(strstr(err.msg, "TMPDIR = /dev/null/tmp"), "%s",
                        err.msg);
     cr_assert_not_null(strstr(err.msg, strerror(ENOTDIR)), "%s", err.msg);
+}
+
+/* What PETSc prints as it ends reaches stdout: the command finalises it
+ * before closing stdout (before: at exit, after stdout was closed, so
+ * -options_left and -log_view printed nothing); and once finalised it is
+ * not started again. */
+Test(petscenv, reports_at_the_end_reach_stdout)
+{
+    cli_result r;
+    char dir[64];
+    tmp_mkdtemp(dir, sizeof dir, "petscend");
+    cr_assert_eq(setenv("PETSC_OPTIONS", "-clamg_no_such_option 7 "
+                        "-options_left", 1), 0);
+    cli_run(&r, "run", "hang", "--set", "cloth.n=6", "--integrator",
+            "semi-bdf2", "--linsol", "amg", "--dt", "1e-2", "--t-end",
+            "0.02", "--frames", "0", "--out", dir, "--quiet", NULL);
+    cr_assert_eq(unsetenv("PETSC_OPTIONS"), 0);
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "Option left: name:-clamg_no_such_option "
+                            "value: 7"), "%s", r.out);
+    cli_result_free(&r);
+    tmp_rm_rf(dir);
+    cl_error err;
+    cl_petsc_stop(); /* not started here: nothing */
+    cr_assert_eq(cl_petsc_start(&err), CL_OK, "%s", err.msg);
+    cl_petsc_stop();
+    cr_assert_eq(cl_petsc_start(&err), CL_EUNSUPPORTED);
+    cr_assert(strstr(err.msg, "cannot be started again"), "%s", err.msg);
 }

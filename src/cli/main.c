@@ -9,6 +9,7 @@
 #include "cli/commands.h"
 #include "cli/version.h"
 #include "core/stop.h"
+#include "linalg/petscenv.h"
 
 static const cl_command commands[] = {
     {"run", cl_cmd_run, "integrate a problem, write series, frames, stats"},
@@ -95,5 +96,7 @@ int main(int argc, char **argv)
      * an I/O error with its message (exit status 7), instead of SIGXFSZ
      * ending the program with a temporary file behind */
     signal(SIGXFSZ, SIG_IGN);
-    return close_stdout(dispatch(argc, argv));
+    int status = dispatch(argc, argv);
+    cl_petsc_stop(); /* its reports at the end, into stdout */
+    return close_stdout(status);
 }

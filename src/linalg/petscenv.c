@@ -1,11 +1,17 @@
-/* PETSc's start (linalg/petscenv.h): through the plug-in's entry point. */
+/* PETSc's start and end (linalg/petscenv.h): through the plug-in's entry
+ * points. */
 #include "linalg/petscenv.h"
 
 #include "linalg/petscenv_abi.h"
 
+static int started; /* 1 started, 2 stopped */
+
 cl_status cl_petsc_start(cl_error *err)
 {
-    static int started;
+    if (started == 2)
+        return cl_error_set(err, CL_EUNSUPPORTED, "PETSc was finalised in "
+                            "this process (cl_petsc_stop) and cannot be "
+                            "started again");
     if (started)
         return CL_OK;
     void *sym;
@@ -17,4 +23,14 @@ cl_status cl_petsc_start(cl_error *err)
         return cl_error_set(err, CL_ESOLVER, "%s", msg.text);
     started = 1;
     return CL_OK;
+}
+
+void cl_petsc_stop(void)
+{
+    void *sym;
+    cl_error ignored;
+    if (started == 1 &&
+        cl_plugin_symbol("petsc", "clp_petsc_stop", &sym, &ignored) == CL_OK)
+        ((clp_petsc_stop_fn)sym)();
+    started += started == 1;
 }

@@ -14,4 +14,11 @@
  * CL_OK at once. */
 cl_status cl_petsc_start(cl_error *err);
 
+/* Finalise PETSc and MPI now, if cl_petsc_start started them (else
+ * nothing; they are finalised at exit otherwise): a program calls it
+ * before it closes stdout, so that the reports PETSc prints as it ends
+ * (-log_view, -options_left, given in PETSC_OPTIONS or --petsc) are
+ * written.  PETSc cannot be started again in the process. */
+void cl_petsc_stop(void);
+
 #endif

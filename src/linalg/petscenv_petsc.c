@@ -23,6 +23,7 @@
 #endif
 
 int clp_petsc_start(cl_plugin_msg *msg);
+void clp_petsc_stop(void);
 
 /* This process's own base of Open MPI's session directories, "" when the
  * caller chose one (OMPI_MCA_orte_tmpdir_base). */
@@ -38,6 +39,14 @@ static void stop_petsc(void)
     }
     if (session_base[0] != '\0')
         rmdir(session_base);
+    session_base[0] = '\0';
+}
+
+/* Before exit, while stdout is open: what PETSc prints as it ends
+ * (-log_view, -options_left, -memory_view) reaches it. */
+void clp_petsc_stop(void)
+{
+    stop_petsc();
 }
 
 /* An isolated singleton has the same name in every process, [[0,1],0],
