@@ -178,6 +178,23 @@ static void first_id(const char *dir, char id[13])
     snprintf(id, 13, "%.12s", at + 7);
 }
 
+/* Wait (at most a minute) until no process holds DIR/lock: after a
+ * SIGINT the jobs GNU parallel was running may still be ending, and they
+ * hold the lock they inherited, so that a --resume at once is refused
+ * ("is running its jobs"), as it should be. */
+static void wait_unlocked(const char *dir)
+{
+    char path[1100];
+    snprintf(path, sizeof path, "%s/lock", dir);
+    int fd = open(path, O_RDWR);
+    cr_assert_geq(fd, 0, "%s: %s", path, strerror(errno));
+    int k = 0;
+    while (flock(fd, LOCK_EX | LOCK_NB) != 0 && k++ < 600)
+        nanosleep(&(struct timespec){0, 100000000}, NULL);
+    cr_assert_lt(k, 600, "%s still locked after a minute", path);
+    close(fd);
+}
+
 /* Interrupted by SIGINT once two jobs are done, resumed, collected:
  * every job once, none missing.  Then the results survive a plan with the
  * axes reordered, and a status left by another engine gives way to the
@@ -195,6 +212,7 @@ Test(sweep_engine, local_interrupted_and_resumed)
     kill(pid, SIGINT);
     int ws;
     waitpid(pid, &ws, 0);
+    wait_unlocked(dir);
     collect(dir, summary, sizeof summary);
     int done, failed, missing;
     cr_assert_eq(sscanf(summary, "%d complete, %d failed, %d missing", &done,
