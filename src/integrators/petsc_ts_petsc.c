@@ -362,9 +362,9 @@ static PetscErrorCode make_vectors(clp_ts *p)
 
 /* The equations, the Jacobian and the linear solver's default, by
  * measurement on hang (README "Benchmarks", workload 11): for the
- * half-size matrix (9.4) of TSALPHA2, symmetric and positive definite at
+ * half-size matrix (11.4) of TSALPHA2, symmetric and positive definite at
  * the steps it takes, CG preconditioned by PETSc's algebraic multigrid
- * GAMG (3.8x faster than LU at n = 16); for the nonsymmetric matrix (9.2)
+ * GAMG (3.8x faster than LU at n = 16); for the nonsymmetric matrix (11.2)
  * of the first-order form, a direct sparse LU (PETSc's own,
  * nested-dissection ordering). */
 static PetscErrorCode set_problem(clp_ts *p)

@@ -10,7 +10,7 @@
  *  - generalized-alpha (Chung and Hulbert 1993, eq. 18): the spectral
  *    radius of the map (x, h v, h^2 a)_n -> (x, h v, h^2 a)_{n+1} of
  *    the method on a = -w^2 x, from the step of docs/integrators.md
- *    (4.4): with A = h^2 a,
+ *    (4.2): with A = h^2 a,
  *      D A1 = -W^2 x0 - W^2 (1 - af) h v0 - (W^2 (1 - af)(1/2 - beta)
  *             + am) A0,   D = 1 - am + W^2 (1 - af) beta,
  *      x1 = x0 + h v0 + (1/2 - beta) A0 + beta A1,

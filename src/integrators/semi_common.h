@@ -15,7 +15,7 @@
  * f0 = f(t0, x0, v0) and the Jacobians at (t0, x0, v0) (Baraff & Witkin
  * 1998, section 2.3; docs/integrators.md, 3.1); and the filtered solve of
  * a system with Baraff-Witkin constraints (section 5; docs/integrators.md,
- * 3.3).  Every array is allocated
+ * 3.4).  Every array is allocated
  * at creation; a step allocates nothing (the KLU fall-back
  * refactorisation excepted, see linalg/linsol_klu.c). */
 #ifndef CL_SEMI_COMMON_H
