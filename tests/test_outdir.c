@@ -73,6 +73,47 @@ Test(outdir, earlier_run_is_cleared_study_tables_stay)
     cr_assert(exists("stability.csv"));
 }
 
+/* Every table a command writes into its output directory (a study's
+ * `.csv = "NAME"`, or a "NAME.csv" given to cl_cli_check_output or
+ * cl_cli_write_csv in src/cli) is known as clothode's, so that a study
+ * into out/PROBLEM does not make the run's own directory "not a clothode
+ * output" (before: damping.csv, budget.csv, limits.csv, contact.csv and
+ * others were not known, and `run` after such a study was refused). */
+Test(outdir, every_table_of_the_commands_is_clothode_s)
+{
+    FILE *fp = popen("grep -h -o -E '(\\.csv = |cl_cli_(check_output|"
+                     "write_csv)\\([^\"]*)\"[a-z0-9_.-]+\\.csv\"' "
+                     "src/cli/*.c | sed -E 's/.*\"([^\"]+)\"/\\1/' | "
+                     "sort -u", "r");
+    cr_assert_not_null(fp);
+    char name[128];
+    int n = 0;
+    while (fgets(name, sizeof name, fp)) {
+        name[strcspn(name, "\n")] = '\0';
+        cr_assert(cl_cli_clothode_output(name), "%s is not known", name);
+        n++;
+    }
+    pclose(fp);
+    cr_assert_geq(n, 12, "found %d tables in src/cli (run from the "
+                  "repository root)", n);
+    cr_assert(!cl_cli_clothode_output("thesis.csv"));
+}
+
+/* End to end: a study's table in the directory, then a run there: the
+ * run is accepted and the table stays. */
+Test(outdir, run_after_a_study_in_its_directory)
+{
+    cli_result r;
+    cli_run(&r, "damping", "spring2", "--out", dir, "--quiet", NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    cli_run(&r, "run", "spring2", "--out", dir, "--frames", "0", "--quiet",
+            NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    cr_assert(exists("damping.csv") && exists("series.csv"));
+}
+
 Test(outdir, foreign_directory_is_refused_untouched)
 {
     cl_error err = {0};

@@ -14,10 +14,13 @@
 #include "io/atomic.h"
 #include "io/jsonfile.h"
 
-/* The tables of the other commands, which share out/PROBLEM with run. */
+/* The tables of the other commands, which share out/PROBLEM with run
+ * (each study's cl_cli_study.csv, and those of spectrum and eval;
+ * tests/test_outdir.c finds them in the sources). */
 static const char *const study_outputs[] = {
-    "stability.csv", "convergence.csv", "workprecision.csv", "energy.csv",
-    "spectrum.csv", "forces.csv", NULL};
+    "stability.csv", "limits.csv", "convergence.csv", "workprecision.csv",
+    "energy.csv", "damping.csv", "damping-modes.csv", "budget.csv",
+    "contact.csv", "contact-k.csv", "spectrum.csv", "forces.csv", NULL};
 
 static const char *const run_files[] = {
     "series.csv", "final.csv", "last-good.csv", "stats.csv", "config.ini",
@@ -62,7 +65,7 @@ bool cl_cli_run_output(const char *name)
     return run_name(name, len ? len : strlen(name));
 }
 
-static bool clothode_name(const char *name)
+bool cl_cli_clothode_output(const char *name)
 {
     size_t len = temporary_of(name);
     len = len ? len : strlen(name);
@@ -121,7 +124,7 @@ static cl_status sweep(const char *dir, json_t *files, bool remove,
         bool ours = cl_cli_run_output(n) || (files && listed(files, n));
         if (!remove && ours)
             rc = cl_output_check(path, err);
-        else if (!remove && !files && !clothode_name(n))
+        else if (!remove && !files && !cl_cli_clothode_output(n))
             rc = cl_error_set(err, CL_EIO, "output directory '%s' is not "
                               "empty and not a clothode output (it holds "
                               "'%s'); choose another --out or empty it",

@@ -17,6 +17,11 @@
 /* Whether `name` (a file name without directory) is one a run writes. */
 bool cl_cli_run_output(const char *name);
 
+/* ... or one a run or another command writes into its output directory
+ * (a study's table: stability.csv, damping.csv, ...), which may share
+ * out/PROBLEM with a run. */
+bool cl_cli_clothode_output(const char *name);
+
 /* The refusals of cl_cli_outdir_prepare without its clearing: CL_OK when
  * prepare would clear dir (or create it). */
 cl_status cl_cli_outdir_check(const char *dir, cl_error *err);
