@@ -443,14 +443,17 @@ static void fake_program(const char *name, const char *out, bool to_err,
 }
 
 /* `sweep run ARGS...` with tmp/fakebin first in PATH. */
-static void run_faked(cli_result *r, const char *dir, const char *engine)
+static void run_faked(cli_result *r, const char *dir, const char *engine,
+                      bool limits)
 {
     char bin[1024], path[8192], *save = strdup(getenv("PATH"));
     snprintf(path, sizeof path, "%s:%s", in_tmp(bin, "fakebin"), save);
     setenv("PATH", path, 1);
-    if (engine)
+    if (engine && limits)
         cli_run(r, "sweep", "run", dir, "--engine", engine, "--time", "5",
                 "--mem", "300", NULL);
+    else if (engine) /* a pilot run first */
+        cli_run(r, "sweep", "run", dir, "--engine", engine, NULL);
     else
         cli_run(r, "sweep", "run", dir, "--quiet", NULL);
     setenv("PATH", save, 1);
@@ -459,12 +462,14 @@ static void run_faked(cli_result *r, const char *dir, const char *engine)
 }
 
 /* A Slurm submission that sbatch refuses leaves the earlier results
- * standing (before: every status was removed first, and the complete jobs
- * became missing); one it queues is recorded (DIR/slurm/job), and while
- * squeue lists that array's tasks no 'sweep run' of the sweep starts
- * (before: a --resume ran the queued jobs a second time into the same
- * files).  An array Slurm has forgotten ("Invalid job id") is over; a
- * squeue that cannot answer stops the run. */
+ * standing, the pilot's new one included (before: every status was
+ * removed first, and the complete jobs became missing), also when sbatch
+ * printed a line that is not a job id; one it queues is recorded
+ * (DIR/slurm/job), and while squeue lists that array's tasks no 'sweep
+ * run' of the sweep starts (before: a --resume ran the queued jobs a
+ * second time into the same files).  An array Slurm has forgotten
+ * ("Invalid job id") is over, and so is one squeue lists no task of, even
+ * with a warning on stderr; a squeue that cannot answer stops the run. */
 Test(sweep_engine, slurm_refused_or_still_queued)
 {
     char dir[1024], path[1100], summary[256], text[256];
@@ -472,47 +477,62 @@ Test(sweep_engine, slurm_refused_or_still_queued)
     fake_program("sbatch", "sbatch: error: Batch job submission failed: "
                  "Requested time limit is invalid", true, 1);
     cli_result r;
-    run_faked(&r, dir, "slurm");
+    run_faked(&r, dir, "slurm", false);
+    cr_assert(strstr(r.out, "pilot      job "), "%s", r.out);
     assert_refused_keeping_two(&r, dir, 1, "Requested time limit is invalid");
     char id[13];
     first_id(dir, id);
     snprintf(path, sizeof path, "%s/jobs/%s/exit.earlier", dir, id);
     cr_assert(!cli_exists(path), "%s left behind", path);
+    fake_program("sbatch", "Your project has 1234 core-hours left", false, 1);
+    run_faked(&r, dir, "slurm", true);
+    cr_assert(strstr(r.out, "Your project has 1234 core-hours left\n") &&
+                  !strstr(r.out, "submitted"), "%s", r.out);
+    cr_assert_eq(r.status, 1, "%s", r.err);
+    cli_result_free(&r);
+    collect(dir, summary, sizeof summary);
+    cr_assert_str_eq(summary, "2 complete, 0 failed, 0 missing");
+    snprintf(path, sizeof path, "%s/slurm/job", dir);
+    cr_assert(!cli_exists(path), "%s written", path);
 
     fake_program("sbatch", "4242;cluster", false, 0);
     fake_program("squeue", "4242_[0-1] PENDING", false, 0);
-    run_faked(&r, dir, "slurm");
+    run_faked(&r, dir, "slurm", true);
     cli_assert_ok(&r);
     cr_assert(strstr(r.out, "slurm      submitted array job 4242\n"), "%s",
               r.out);
     cli_result_free(&r);
-    snprintf(path, sizeof path, "%s/slurm/job", dir);
     tmp_slurp(path, text, sizeof text);
-    cr_assert_str_eq(text, "4242\n");
+    cr_assert_str_eq(text, "4242;cluster\n");
     collect(dir, summary, sizeof summary); /* queued, not run (fake) */
     cr_assert_str_eq(summary, "0 complete, 0 failed, 2 missing");
-    run_faked(&r, dir, NULL);
-    cli_assert_error(&r, 0, "the Slurm array job 4242 that an earlier "
-                     "'sweep run' submitted still has tasks queued or "
-                     "running (squeue: 4242_[0-1] PENDING)", NULL);
+    run_faked(&r, dir, NULL, false);
+    cli_assert_error(&r, 0, "the Slurm array job 4242;cluster that an "
+                     "earlier 'sweep run' submitted still has tasks queued "
+                     "or running (squeue: 4242_[0-1] PENDING)", NULL);
+    cr_assert_eq(r.status, 2);
     cli_result_free(&r);
     collect(dir, summary, sizeof summary);
     cr_assert_str_eq(summary, "0 complete, 0 failed, 2 missing");
 
     fake_program("squeue", "slurm_load_jobs error: Unable to contact slurm "
                  "controller", true, 1);
-    run_faked(&r, dir, NULL);
+    run_faked(&r, dir, NULL, false);
     cr_assert_eq(r.status, 7, "%s", r.err);
     cr_assert(strstr(r.err, "cannot ask Slurm whether the array job 4242"),
               "%s", r.err);
     cli_result_free(&r);
     fake_program("squeue", "slurm_load_jobs error: Invalid job id "
                  "specified", true, 1);
-    run_faked(&r, dir, NULL);
+    run_faked(&r, dir, NULL, false);
     cr_assert_eq(r.status, 0, "%s", r.err);
     cli_result_free(&r);
     collect(dir, summary, sizeof summary);
     cr_assert_str_eq(summary, "2 complete, 0 failed, 0 missing");
+    fake_program("squeue", "squeue: error: a warning from the site", true, 0);
+    run_faked(&r, dir, NULL, false);
+    cr_assert_eq(r.status, 0, "%s", r.err);
+    cli_result_free(&r);
 }
 
 /* The sweep files under problems/sweeps plan from any directory (their

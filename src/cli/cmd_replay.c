@@ -44,7 +44,8 @@ static const cl_cli_table replay_table = {
     "is refused.\n",
     .notes =
     "exit status: 0 when every output is identical, 1 when one differs or\n"
-    "is missing, else that of the failure (2 bad input, 7 I/O error, ...)\n"};
+    "is missing or when what the run read (problem, meshes, configuration)\n"
+    "differs, else that of the failure (2 bad input, 7 I/O error, ...)\n"};
 
 /* run.json of dir, checked to be a finished clothode run. */
 static cl_status load_manifest(const char *dir, json_t **out, cl_error *err)
@@ -127,6 +128,10 @@ static int compare_setup(json_t *was, json_t *now)
                 u + strlen(key) + 3 < sizeof what)
                 u += (size_t)snprintf(what + u, sizeof what - u, "%s%s",
                                       u ? ", " : "", key);
+        json_object_foreach(ba, key, v)
+            if (!json_object_get(bb, key) && u + strlen(key) + 3 < sizeof what)
+                u += (size_t)snprintf(what + u, sizeof what - u, "%s%s",
+                                      u ? ", " : "", key);
         printf("%-24s another (differs in: %s; commit %s, was %s; see "
                "run.json's build)\n", "build", what,
                json_string_value(json_object_get(bb, "commit")),
@@ -141,32 +146,53 @@ static int compare_setup(json_t *was, json_t *now)
 }
 
 
+/* The entry of list whose "key" equals that of e, or NULL. */
+static json_t *same_key(json_t *list, json_t *e)
+{
+    size_t j;
+    json_t *b;
+    json_t *key = json_object_get(e, "key");
+    json_array_foreach(list, j, b)
+        if (json_is_string(key) && json_equal(key, json_object_get(b, "key")))
+            return b;
+    return NULL;
+}
+
+static void input_line(json_t *e, const char *verdict)
+{
+    const char *key = json_string_value(json_object_get(e, "key"));
+    const char *path = json_string_value(json_object_get(e, "path"));
+    printf("%-24s %s: %s\n", key ? key : "input", path ? path : "?",
+           verdict);
+}
+
 /* The input files the problem named (meshes): one line for each whose
- * bytes differ from those the run read, or that the rerun did not read;
- * their number. */
+ * bytes differ from those the run read, that the rerun did not read, or
+ * that only the rerun read; their number. */
 static int compare_inputs(json_t *was, json_t *now)
 {
     json_t *ia = json_object_get(was, "inputs");
     json_t *ib = json_object_get(now, "inputs");
     int bad = 0;
-    size_t k, j;
-    json_t *a, *b;
+    size_t k;
+    json_t *a;
     json_array_foreach(ia, k, a) {
-        const char *key = json_string_value(json_object_get(a, "key"));
-        const char *verdict = "not read by the rerun";
-        json_array_foreach(ib, j, b)
-            if (key && json_equal(json_object_get(a, "key"),
-                                  json_object_get(b, "key")))
-                verdict = json_equal(json_object_get(a, "sha256"),
-                                     json_object_get(b, "sha256"))
-                              ? NULL : "differs (the file changed since the "
-                                       "run)";
+        json_t *b = same_key(ib, a);
+        const char *verdict = !b ? "not read by the rerun"
+                              : json_equal(json_object_get(a, "sha256"),
+                                           json_object_get(b, "sha256"))
+                                  ? NULL
+                                  : "differs (the file changed since the run)";
         if (verdict) {
-            printf("%-24s %s: %s\n", key ? key : "input",
-                   json_string_value(json_object_get(a, "path")), verdict);
+            input_line(a, verdict);
             bad++;
         }
     }
+    json_array_foreach(ib, k, a)
+        if (!same_key(ia, a)) {
+            input_line(a, "read by the rerun only");
+            bad++;
+        }
     return bad;
 }
 
@@ -273,9 +299,9 @@ static int replay(const char *dir, json_t *was, const char *out)
     if (!json_equal(pa, pb))
         printf("%-24s differs (the problem file changed since the run)\n",
                "problem");
-    int bad = compare(was, now) + !json_equal(pa, pb) +
-              compare_inputs(was, now) + compare_setup(was, now) +
-              check_recorded(dir, was);
+    int bad = compare(was, now) + check_recorded(dir, was);
+    int setup = !json_equal(pa, pb) + compare_inputs(was, now) +
+                compare_setup(was, now);
     json_t *xa = json_object_get(was, "exit_status");
     json_t *xb = json_object_get(now, "exit_status");
     if (!json_equal(xa, xb)) {
@@ -286,9 +312,11 @@ static int replay(const char *dir, json_t *was, const char *out)
     }
     printf("replay: %zu files, %s\n",
            json_array_size(json_object_get(was, "files")),
-           bad ? "outputs differ" : "every output identical");
+           bad ? "outputs differ"
+           : setup ? "every output identical, but what the run read differs"
+                   : "every output identical");
     json_decref(now);
-    return bad ? CL_EXIT_OTHER : CL_EXIT_OK;
+    return bad || setup ? CL_EXIT_OTHER : CL_EXIT_OK;
 }
 
 static int replay_dir(const char *dir, const char *keep)

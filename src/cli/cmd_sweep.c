@@ -314,47 +314,61 @@ static const cl_cli_table run_table = {
     "(DIR/slurm/array.sh).  --resume runs only the jobs that failed or have\n"
     "no result, as 'sweep collect' finds them.\n"};
 
+/* Job k's status and the place all_jobs sets it aside. */
+static void status_paths(const cl_sweep *sw, int k, char *path,
+                         char *earlier)
+{
+    snprintf(path, 4200, "%s/jobs/%s/exit", sw->dir, sw->job[k].id);
+    snprintf(earlier, 4300, "%s.earlier", path);
+}
+
+/* After a Slurm submission: the earlier statuses all_jobs set aside are
+ * dropped for the first `ran` jobs of todo (run as pilots, or queued) and
+ * put back for the others, which never ran (sbatch refused the array, or
+ * the submission was interrupted): a failed submission leaves the results
+ * of the run before it standing.  A status that cannot be put back stays
+ * set aside, and is named. */
+static void put_back(const cl_sweep *sw, const int *todo, int n, int ran)
+{
+    char path[4200], earlier[4300];
+    for (int k = 0; k < n; k++) {
+        status_paths(sw, todo[k], path, earlier);
+        bool gone = k < ran || link(earlier, path) == 0 || errno == EEXIST ||
+                    errno == ENOENT;
+        if (gone)
+            (void)unlink(earlier);
+        else if (rename(earlier, path) != 0)
+            fprintf(stderr, "clothode: sweep run: cannot put back %s (it "
+                            "stays as %s): %s\n", path, earlier,
+                    strerror(errno));
+    }
+}
+
 /* Without --resume: every job, each one's status of an earlier run
  * removed first so that it cannot stand for this one's while its job waits
  * (each job's command removes its own too when it starts); -1 with err set
- * when one cannot be removed (the job could not replace it either).  With
- * aside (Slurm, whose submission can fail), each status is moved to
- * exit.earlier instead, for put_back. */
+ * when one cannot be removed (the job could not replace it either; those
+ * set aside before it are put back).  With aside (Slurm, whose submission
+ * can fail), each status is moved to exit.earlier instead, for put_back,
+ * and an exit.earlier left by an interrupted submission is dropped. */
 static int all_jobs(const cl_sweep *sw, int *todo, bool aside, cl_error *err)
 {
     char path[4200], earlier[4300];
     for (int k = 0; k < sw->njob; k++) {
-        snprintf(path, sizeof path, "%s/jobs/%s/exit", sw->dir,
-                 sw->job[k].id);
-        snprintf(earlier, sizeof earlier, "%s.earlier", path);
-        if ((aside ? rename(path, earlier) : unlink(path)) != 0 &&
-            errno != ENOENT) {
+        status_paths(sw, k, path, earlier);
+        bool fail = aside ? (unlink(earlier) != 0 && errno != ENOENT) ||
+                                (rename(path, earlier) != 0 && errno != ENOENT)
+                          : unlink(path) != 0 && errno != ENOENT;
+        if (fail) {
             cl_error_set(err, CL_EIO, "%s: cannot remove the status of an "
                          "earlier run: %s", path, strerror(errno));
+            if (aside)
+                put_back(sw, todo, k, 0);
             return -1;
         }
         todo[k] = k;
     }
     return sw->njob;
-}
-
-/* After a Slurm submission: the earlier statuses all_jobs set aside are
- * dropped for the first `ran` jobs of todo (run as pilots, or queued) and
- * put back for the others, which never ran (sbatch refused the array): a
- * failed submission leaves the results of the run before it standing. */
-static void put_back(const cl_sweep *sw, const int *todo, int n, int ran)
-{
-    char path[4200], earlier[4300];
-    for (int k = 0; k < n; k++) {
-        snprintf(path, sizeof path, "%s/jobs/%s/exit", sw->dir,
-                 sw->job[todo[k]].id);
-        snprintf(earlier, sizeof earlier, "%s.earlier", path);
-        if (k >= ran && link(earlier, path) != 0 && errno != ENOENT &&
-            errno != EEXIST)
-            fprintf(stderr, "clothode: sweep run: cannot put back %s: %s\n",
-                    path, strerror(errno));
-        (void)unlink(earlier);
-    }
 }
 
 /* Every job's outcome (allocated), or NULL with err set. */
@@ -494,7 +508,7 @@ static int engine_run(cl_sweep *sw, cl_sweep_run_args *r, int *todo,
     if (n == 0)
         return 0;
     if (slurm) {
-        int ran, status = cl_sweep_slurm(sw, r, todo, n, &ran);
+        int ran = 0, status = cl_sweep_slurm(sw, r, todo, n, &ran);
         if (!r->resume)
             put_back(sw, todo, n, ran);
         return status || !r->wait ? status : summary(sw, r->a.quiet, err);

@@ -14,6 +14,8 @@
 #include <unistd.h>
 
 #include "core/clock.h"
+#include "core/exit.h"
+#include "core/stop.h"
 #include "io/atomic.h"
 #include "io/input.h"
 
@@ -157,7 +159,8 @@ static int estimate(const cl_sweep *sw, const cl_sweep_run_args *r,
     double wall = 0;
     long rss = 0;
     int code = -1;
-    while ((!*minutes || !*mb) && code != 0 && *piloted < n && *piloted < 3)
+    while ((!*minutes || !*mb) && code != 0 && *piloted < n &&
+           *piloted < 3 && !cl_stop_requested())
         code = pilot(sw, todo[(*piloted)++], &wall, &rss);
     if (code == 0) {
         *minutes = (long)ceil((3 * wall * r->chunk + 60) / 60);
@@ -231,31 +234,44 @@ static int write_script(const cl_sweep *sw, const cl_sweep_run_args *r,
     return fclose(fp) == 0 ? 0 : 1;
 }
 
-/* Run argv, each line of its standard output (and with err_too of its
- * standard error) handed to line(ctx, text) as it comes; its wait status,
- * or -1 when it cannot be started. */
-static int run_reading(const char *const *argv, bool err_too,
-                       void (*line)(void *ctx, const char *text), void *ctx)
+/* Run argv, each line of its standard output handed to line(ctx, text)
+ * as it comes; with err, its standard error kept there (errlen bytes at
+ * most, NUL-terminated), else passed through.  Its wait status, or -1
+ * when it cannot be started. */
+static int run_reading(const char *const *argv,
+                       void (*line)(void *ctx, const char *text), void *ctx,
+                       char *err, size_t errlen)
 {
-    int fd[2];
-    if (pipe(fd) != 0)
+    int out[2], ep[2] = {-1, -1};
+    if (pipe(out) != 0)
         return -1;
+    if (err && pipe(ep) != 0) {
+        close(out[0]);
+        close(out[1]);
+        return -1;
+    }
     fflush(stdout);
     pid_t pid = fork();
     if (pid == 0) {
-        close(fd[0]);
-        dup2(fd[1], STDOUT_FILENO);
-        if (err_too)
-            dup2(fd[1], STDERR_FILENO);
-        close(fd[1]);
+        dup2(out[1], STDOUT_FILENO);
+        if (err)
+            dup2(ep[1], STDERR_FILENO);
+        close(out[0]);
+        close(out[1]);
+        if (err) {
+            close(ep[0]);
+            close(ep[1]);
+        }
         execvp(argv[0], (char *const *)argv);
         fprintf(stderr, "clothode: cannot run %s: %s (apt-get install "
                         "slurm-client; SLURM_CONF)\n", argv[0],
                 strerror(errno));
         _exit(127);
     }
-    close(fd[1]);
-    FILE *fp = pid > 0 ? fdopen(fd[0], "r") : NULL;
+    close(out[1]);
+    if (err)
+        close(ep[1]);
+    FILE *fp = pid > 0 ? fdopen(out[0], "r") : NULL;
     char text[1024];
     while (fp && fgets(text, sizeof text, fp)) {
         text[strcspn(text, "\n")] = '\0';
@@ -264,42 +280,69 @@ static int run_reading(const char *const *argv, bool err_too,
     if (fp)
         fclose(fp);
     else
-        close(fd[0]);
+        close(out[0]);
+    /* all of it read, so that the program never blocks on a full pipe */
+    for (size_t u = 0; err;) {
+        ssize_t k = read(ep[0], u + 1 < errlen ? err + u : text,
+                         u + 1 < errlen ? errlen - 1 - u : sizeof text);
+        if (k <= 0) {
+            err[u < errlen ? u : errlen - 1] = '\0';
+            close(ep[0]);
+            break;
+        }
+        u += u + 1 < errlen ? (size_t)k : 0;
+    }
     int status = -1;
     while (pid > 0 && waitpid(pid, &status, 0) < 0 && errno == EINTR)
         ;
     return pid > 0 ? status : -1;
 }
 
+/* Whether text is a Slurm job id as sbatch --parsable prints it, "ID" or
+ * "ID;CLUSTER" (digits; a cluster name without blanks); its digits into
+ * id and the cluster (or "") into cluster, 64 bytes each. */
+static bool job_id(const char *text, char *id, char *cluster)
+{
+    size_t d = strspn(text, "0123456789");
+    const char *c = text + d + (text[d] == ';');
+    if (d == 0 || d >= 64 || (text[d] && text[d] != ';') ||
+        (text[d] == ';' && !*c) || strcspn(c, " \t") != strlen(c) ||
+        strlen(c) >= 64)
+        return false;
+    snprintf(id, 64, "%.*s", (int)d, text);
+    snprintf(cluster, 64, "%s", c);
+    return true;
+}
+
 /* The array job submitted: its id (sbatch --parsable prints "ID" or
  * "ID;CLUSTER" as soon as the job is queued, before --wait waits) kept in
  * DIR/slurm/job, so that a later 'sweep run' can see the array still
- * queued or running (cl_sweep_slurm_idle). */
+ * queued or running (cl_sweep_slurm_idle).  Any other line sbatch prints
+ * (a site's notice) is passed on, not taken for the id. */
 typedef struct {
     const cl_sweep *sw;
-    char id[64];
+    char id[64], cluster[64];
 } submission;
 
 static void on_sbatch_line(void *ctx, const char *text)
 {
     submission *s = ctx;
-    if (*s->id || !*text) {
+    if (*s->id || !job_id(text, s->id, s->cluster)) {
         printf("%s\n", text);
         return;
     }
-    snprintf(s->id, sizeof s->id, "%.*s", (int)strcspn(text, ";"), text);
     char path[4200];
     cl_error err;
     cl_afile af;
     snprintf(path, sizeof path, "%s/slurm/job", s->sw->dir);
     cl_status rc = cl_afile_open(&af, path, &err);
-    if (!rc && fprintf(af.fp, "%s\n", s->id) < 0)
+    if (!rc && fprintf(af.fp, "%s\n", text) < 0)
         rc = cl_afile_fail(&af, &err);
     if (!rc)
         rc = cl_afile_commit(&af, &err);
     if (rc)
         fprintf(stderr, "clothode: sweep run: cannot record the array job's "
-                        "id %s: %s\n", s->id, err.msg);
+                        "id %s: %s\n", text, err.msg);
     printf("slurm      submitted array job %s\n", s->id);
     fflush(stdout);
 }
@@ -307,10 +350,10 @@ static void on_sbatch_line(void *ctx, const char *text)
 /* sbatch the script, each task's output into DIR/slurm/task-A_a.out:
  * given as an argument, not an #SBATCH line, so that a directory with
  * spaces or quotes reaches sbatch as it is, with its '%' doubled (a
- * literal '%' in Slurm's file name patterns).  Its exit status, and
- * *submitted once it has queued the array. */
+ * literal '%' in Slurm's file name patterns).  Its wait status, and the
+ * array's id once sbatch has queued it ("" if not). */
 static int sbatch(const cl_sweep *sw, const char *script, bool wait,
-                  bool *submitted)
+                  submission *s)
 {
     char output[8500];
     size_t u = (size_t)snprintf(output, sizeof output, "--output=");
@@ -325,63 +368,92 @@ static int sbatch(const cl_sweep *sw, const char *script, bool wait,
         argv[3] = "--wait";
         argv[4] = script;
     }
-    submission s = {.sw = sw};
-    int status = run_reading(argv, false, on_sbatch_line, &s);
-    *submitted = *s.id != '\0';
+    *s = (submission){.sw = sw};
+    int status = run_reading(argv, on_sbatch_line, s, NULL, 0);
     if (status < 0)
         fprintf(stderr, "clothode: cannot run sbatch: %s\n", strerror(errno));
-    return status >= 0 && WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+    return status;
 }
 
-/* squeue's lines: the array's tasks still queued or running, or its
- * message. */
+/* squeue's lines of the array's tasks still queued or running ("ID" or
+ * "ID_..."), and the first of them. */
 typedef struct {
-    int lines;
-    char said[512];
+    const char *id;
+    int tasks;
+    char first[256];
 } queue_answer;
 
 static void on_squeue_line(void *ctx, const char *text)
 {
     queue_answer *q = ctx;
-    if (!*q->said)
-        snprintf(q->said, sizeof q->said, "%s", text);
-    q->lines++;
+    size_t n = strlen(q->id);
+    if (strncmp(text, q->id, n) || (text[n] && text[n] != '_' &&
+                                    text[n] != ' '))
+        return; /* a header, "CLUSTER: name" */
+    if (!q->tasks++)
+        snprintf(q->first, sizeof q->first, "%s", text);
 }
 
 cl_status cl_sweep_slurm_idle(const cl_sweep *sw, cl_error *err)
 {
-    char path[4200], id[64] = "", jobs[80];
+    char path[4200], text[256] = "", id[64], cluster[64], jobs[80],
+        clusters[80], said[1024] = "";
     const char *why;
     snprintf(path, sizeof path, "%s/slurm/job", sw->dir);
     FILE *fp = cl_input_open(path, "r", &why);
     if (!fp)
         return CL_OK; /* no array was submitted */
-    if (fscanf(fp, "%63s", id) != 1)
-        *id = '\0';
+    if (!fgets(text, sizeof text, fp))
+        *text = '\0';
     fclose(fp);
-    if (!*id)
-        return CL_OK;
+    text[strcspn(text, "\n")] = '\0';
+    if (!job_id(text, id, cluster))
+        return cl_error_set(err, CL_EINVAL, "%s: \"%s\" is not a Slurm job "
+                            "id (ID or ID;CLUSTER); remove the file if no "
+                            "array of this sweep is queued", path, text);
     snprintf(jobs, sizeof jobs, "--jobs=%s", id);
-    const char *argv[] = {"squeue", "--noheader", "--format=%i %T", jobs,
-                          NULL};
-    queue_answer q = {0};
-    int st = run_reading(argv, true, on_squeue_line, &q);
+    snprintf(clusters, sizeof clusters, "--clusters=%s", cluster);
+    /* the states of a task still to run or running, whatever the user's
+     * SQUEUE_STATES says */
+    const char *argv[] = {"squeue", "--noheader", "--format=%i",
+                          "--states=PENDING,RUNNING,SUSPENDED,COMPLETING,"
+                          "CONFIGURING,REQUEUED,RESIZING,SIGNALING,"
+                          "STAGE_OUT,STOPPED", jobs,
+                          *cluster ? clusters : NULL, NULL};
+    queue_answer q = {.id = id};
+    int st = run_reading(argv, on_squeue_line, &q, said, sizeof said);
     bool ok = st >= 0 && WIFEXITED(st) && WEXITSTATUS(st) == 0;
     /* an array long ended is forgotten by Slurm: "Invalid job id" */
-    if ((ok && q.lines == 0) || strstr(q.said, "Invalid job id"))
+    if ((ok && !q.tasks) || (!ok && strstr(said, "Invalid job id")))
         return CL_OK;
     if (ok)
         return cl_error_set(err, CL_EINVAL, "%s: the Slurm array job %s "
                             "that an earlier 'sweep run' submitted still has "
-                            "tasks queued or running (squeue: %s), and they "
-                            "write this sweep's jobs: wait for them, or "
-                            "'scancel %s', then run again", sw->dir, id,
-                            q.said, id);
+                            "tasks queued or running (squeue: %s%s), and "
+                            "they write this sweep's jobs: wait for them, or "
+                            "'scancel %s', then run again", sw->dir, text,
+                            q.first, q.tasks > 1 ? ", ..." : "", id);
+    said[strcspn(said, "\n")] = '\0';
     return cl_error_set(err, CL_EIO, "%s: cannot ask Slurm whether the array "
                         "job %s that an earlier 'sweep run' submitted still "
                         "runs (squeue%s%s); its tasks would write this "
-                        "sweep's jobs: ask again once squeue answers",
-                        sw->dir, id, *q.said ? ": " : "", q.said);
+                        "sweep's jobs: ask again once squeue answers, or "
+                        "remove %s if that array is known to be over",
+                        sw->dir, text, *said ? ": " : "", said, path);
+}
+
+/* A stop (SIGINT, SIGTERM) during the submission: exit status 6 with what
+ * became of the array. */
+static int interrupted(const submission *s)
+{
+    if (*s->id)
+        fprintf(stderr, "clothode: sweep run: interrupted; the array job %s "
+                        "was submitted and runs on (squeue; 'scancel %s' "
+                        "stops it)\n", s->id, s->id);
+    else
+        fprintf(stderr, "clothode: sweep run: interrupted before the array "
+                        "was submitted\n");
+    return CL_EXIT_INTERRUPTED;
 }
 
 int cl_sweep_slurm(const cl_sweep *sw, const cl_sweep_run_args *r,
@@ -391,12 +463,15 @@ int cl_sweep_slurm(const cl_sweep *sw, const cl_sweep_run_args *r,
     long minutes = 0, mb = 0;
     int piloted;
     cl_error err;
+    submission s = {.sw = sw};
+    *ran = 0;
     snprintf(dir, sizeof dir, "%s/slurm", sw->dir);
     if (cl_mkdir_p(dir, &err))
         return fprintf(stderr, "clothode: %s\n", err.msg), 1;
-    *ran = 0;
     int status = estimate(sw, r, todo, n, &minutes, &mb, &piloted);
     *ran = piloted;
+    if (cl_stop_requested())
+        return interrupted(&s);
     if (status)
         return 1;
     todo += piloted;
@@ -414,8 +489,9 @@ int cl_sweep_slurm(const cl_sweep *sw, const cl_sweep_run_args *r,
         printf("slurm      %d jobs in %ld array tasks of %ld, %ld min and "
                "%ld MB each: %s\n", n, (n + r->chunk - 1) / r->chunk,
                r->chunk, minutes, mb, script);
-    bool submitted;
-    status = sbatch(sw, script, r->wait, &submitted);
-    *ran += submitted ? n : 0;
-    return status;
+    status = sbatch(sw, script, r->wait, &s);
+    *ran += *s.id ? n : 0;
+    if (cl_stop_requested() || (status >= 0 && WIFSIGNALED(status)))
+        return interrupted(&s);
+    return status >= 0 && WIFEXITED(status) ? WEXITSTATUS(status) : 1;
 }

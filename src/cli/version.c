@@ -54,20 +54,28 @@ static int build_id_of_program(struct dl_phdr_info *info, size_t size,
         const ElfW(Phdr) *ph = &info->dlpi_phdr[k];
         if (ph->p_type != PT_NOTE)
             continue;
+        /* notes are padded to the segment's alignment, 4 or 8 */
+        size_t pad = ph->p_align == 8 ? 7 : 3;
         const char *at = (const char *)(info->dlpi_addr + ph->p_vaddr);
         const char *end = at + ph->p_memsz;
-        while (at + sizeof(ElfW(Nhdr)) <= end) {
+        while ((size_t)(end - at) >= sizeof(ElfW(Nhdr))) {
             const ElfW(Nhdr) *nh = (const ElfW(Nhdr) *)(const void *)at;
             const char *name = at + sizeof *nh;
-            const unsigned char *desc =
-                (const unsigned char *)name + ((nh->n_namesz + 3) & ~3u);
+            size_t namesz = (nh->n_namesz + pad) & ~pad;
+            size_t descsz = (nh->n_descsz + pad) & ~pad;
+            if ((size_t)(end - name) < namesz ||
+                (size_t)(end - name) - namesz < nh->n_descsz)
+                break;
+            const unsigned char *desc = (const unsigned char *)name + namesz;
             if (nh->n_type == NT_GNU_BUILD_ID && nh->n_namesz == 4 &&
                 !memcmp(name, "GNU", 4) && nh->n_descsz <= 64) {
                 for (unsigned i = 0; i < nh->n_descsz; i++)
                     sprintf((char *)hex + 2 * i, "%02x", desc[i]);
                 return 1;
             }
-            at = (const char *)desc + ((nh->n_descsz + 3) & ~3u);
+            if ((size_t)(end - (const char *)desc) < descsz)
+                break;
+            at = (const char *)desc + descsz;
         }
     }
     return 1; /* the program only */
