@@ -490,7 +490,14 @@ int cl_sweep_slurm(const cl_sweep *sw, const cl_sweep_run_args *r,
                "%ld MB each: %s\n", n, (n + r->chunk - 1) / r->chunk,
                r->chunk, minutes, mb, script);
     status = sbatch(sw, script, r->wait, &s);
-    *ran += *s.id ? n : 0;
+    bool done = status >= 0 && WIFEXITED(status) && !WEXITSTATUS(status);
+    /* queued: an id printed, or a success without one (no check of
+     * the queue can be made then) */
+    *ran += *s.id || done ? n : 0;
+    if (done && !*s.id)
+        fprintf(stderr, "clothode: sweep run: sbatch printed no job id; a "
+                        "later 'sweep run' cannot see whether this array "
+                        "still runs\n");
     if (cl_stop_requested() || (status >= 0 && WIFSIGNALED(status)))
         return interrupted(&s);
     return status >= 0 && WIFEXITED(status) ? WEXITSTATUS(status) : 1;
