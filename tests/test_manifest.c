@@ -93,13 +93,29 @@ Test(manifest, run_json_records_the_run)
     tmp_rm_rf(dir);
 }
 
+/* The GNU build ID of the ELF file `file`, as readelf prints it, into
+ * line (256 bytes). */
+static void readelf_build_id(const char *file, char *line)
+{
+    char cmd[4200];
+    snprintf(cmd, sizeof cmd, "readelf -n '%s' | sed -n 's/.*Build ID: //p'",
+             file);
+    FILE *fp = popen(cmd, "r");
+    cr_assert_not_null(fp);
+    cr_assert_not_null(fgets(line, 256, fp), "%s: no build ID", cmd);
+    pclose(fp);
+    line[strcspn(line, "\n")] = '\0';
+    cr_assert_eq(strlen(line), 40, "%s", line);
+}
+
 /* The files the problem names (the skirt's cloth and obstacle meshes)
- * with their digests, and the program's GNU build ID as readelf reads it
- * from the binary (before: neither was recorded, and a mesh edited after
- * the run, or a binary rebuilt from an edited tree, left no trace). */
+ * with their digests, and the GNU build IDs of the program and of the
+ * plug-ins a run loaded, as readelf reads them from the files (before:
+ * none was recorded, and a mesh edited after the run, or a binary rebuilt
+ * from an edited tree, left no trace). */
 Test(manifest, input_files_and_build_id)
 {
-    char dir[64], hex[CL_SHA256_HEX], cmd[4200], line[256];
+    char dir[64], hex[CL_SHA256_HEX], line[256];
     cl_error err = {0};
     tmp_mkdtemp(dir, sizeof dir, "manifest");
     cli_result r;
@@ -122,19 +138,29 @@ Test(manifest, input_files_and_build_id)
         cr_assert_str_eq(str_at(in, "sha256", NULL), hex);
         free(real);
     }
-    snprintf(cmd, sizeof cmd, "readelf -n '%s' | sed -n 's/.*Build ID: //p'",
-             cli_binary());
-    FILE *fp = popen(cmd, "r");
-    cr_assert_not_null(fp);
-    cr_assert_not_null(fgets(line, sizeof line, fp), "%s: no build ID", cmd);
-    pclose(fp);
-    line[strcspn(line, "\n")] = '\0';
-    cr_assert_eq(strlen(line), 40, "%s", line);
+    readelf_build_id(cli_binary(), line);
     cr_assert_str_eq(str_at(m, "build", "build_id"), line);
     json_decref(m);
-    small_run(dir, "1"); /* a grid cloth names no file */
+    small_run(dir, "1"); /* a grid cloth names no file, loads no plug-in */
     m = load_json(dir);
     cr_assert_eq(json_array_size(json_object_get(m, "inputs")), 0);
+    json_t *plugins = json_object_get(json_object_get(m, "build"), "plugins");
+    cr_assert(json_is_array(plugins) && json_array_size(plugins) == 0);
+    json_decref(m);
+    /* an amg run records the PETSc plug-in it loaded */
+    cli_run(&r, "run", "hang", "--set", "cloth.n=6", "--integrator",
+            "semi-bdf2", "--linsol", "amg", "--dt", "1e-2", "--t-end",
+            "0.02", "--frames", "0", "--out", dir, "--quiet", NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    m = load_json(dir);
+    plugins = json_object_get(json_object_get(m, "build"), "plugins");
+    cr_assert_eq(json_array_size(plugins), 1);
+    const char *path = str_at(json_array_get(plugins, 0), "path", NULL);
+    cr_assert(strstr(path, "/clothode-petsc.so"), "%s", path);
+    readelf_build_id(path, line);
+    cr_assert_str_eq(str_at(json_array_get(plugins, 0), "build_id", NULL),
+                     line);
     json_decref(m);
     tmp_rm_rf(dir);
 }

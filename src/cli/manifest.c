@@ -214,6 +214,9 @@ cl_status cl_manifest_end(cl_manifest *mf, cl_status rc, const cl_error *why,
     json_object_set_new(o, "exit_status",
                         json_integer(cl_cli_exit_status(rc)));
     json_object_set_new(o, "end", utc_now());
+    /* the plug-ins the run loaded, known only now */
+    json_object_set_new(json_object_get(o, "build"), "plugins",
+                        cl_cli_plugins_json());
     json_object_set_new(o, "times", json_pack(
         "{s:f, s:f, s:f, s:f}", "wall", cl_clock_wall() - mf->wall0, "cpu",
         cl_clock_cpu() - mf->cpu0, "integrator_wall", st->wall,

@@ -43,13 +43,11 @@ static json_t *openblas_config(void)
     return config ? json_string(config()) : json_null();
 }
 
-/* The program's GNU build ID (the linker's hash of its contents, a note
- * of the executable) in hexadecimal, found among its loaded program
- * headers: the first object dl_iterate_phdr visits is the program. */
-static int build_id_of_program(struct dl_phdr_info *info, size_t size,
-                               void *hex)
+/* The GNU build ID of a loaded object (the linker's hash of its contents,
+ * a note among its program headers) in hexadecimal into hex (129 bytes),
+ * left as it was if it has none. */
+static void build_id_of(const struct dl_phdr_info *info, char *hex)
 {
-    (void)size;
     for (int k = 0; k < info->dlpi_phnum; k++) {
         const ElfW(Phdr) *ph = &info->dlpi_phdr[k];
         if (ph->p_type != PT_NOTE)
@@ -70,22 +68,58 @@ static int build_id_of_program(struct dl_phdr_info *info, size_t size,
             if (nh->n_type == NT_GNU_BUILD_ID && nh->n_namesz == 4 &&
                 !memcmp(name, "GNU", 4) && nh->n_descsz <= 64) {
                 for (unsigned i = 0; i < nh->n_descsz; i++)
-                    sprintf((char *)hex + 2 * i, "%02x", desc[i]);
-                return 1;
+                    sprintf(hex + 2 * i, "%02x", desc[i]);
+                return;
             }
             if ((size_t)(end - (const char *)desc) < descsz)
                 break;
             at = (const char *)desc + descsz;
         }
     }
-    return 1; /* the program only */
+}
+
+/* The first object dl_iterate_phdr visits is the program. */
+static int program_build_id(struct dl_phdr_info *info, size_t size,
+                            void *hex)
+{
+    (void)size;
+    build_id_of(info, hex);
+    return 1;
 }
 
 static json_t *build_id_json(void)
 {
     char hex[129] = "";
-    dl_iterate_phdr(build_id_of_program, hex);
+    dl_iterate_phdr(program_build_id, hex);
     return *hex ? json_string(hex) : json_null();
+}
+
+/* A loaded plug-in (clothode-NAME.so, linalg/plugin.h) appended to the
+ * list as {"path", "build_id"}. */
+static int plugin_build_id(struct dl_phdr_info *info, size_t size,
+                           void *list)
+{
+    (void)size;
+    const char *base = strrchr(info->dlpi_name, '/');
+    base = base ? base + 1 : info->dlpi_name;
+    size_t n = strlen(base);
+    if (n < 13 || strncmp(base, "clothode-", 9) || strcmp(base + n - 3, ".so"))
+        return 0;
+    char hex[129] = "", real[PATH_MAX];
+    build_id_of(info, hex);
+    json_array_append_new(list, json_pack(
+        "{s:s, s:o}", "path",
+        realpath(info->dlpi_name, real) ? real : info->dlpi_name, "build_id",
+        *hex ? json_string(hex) : json_null()));
+    return 0;
+}
+
+json_t *cl_cli_plugins_json(void)
+{
+    json_t *list = json_array();
+    if (list)
+        dl_iterate_phdr(plugin_build_id, list);
+    return list;
 }
 
 static json_t *libraries_json(void)

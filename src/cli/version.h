@@ -14,6 +14,11 @@
  * "flags", "build_id", "libraries": {...}}; NULL if out of memory. */
 json_t *cl_cli_build_json(void);
 
+/* The plug-ins this process has loaded (linalg/plugin.h), each
+ * {"path" (resolved), "build_id"}: [] for a run that used none; NULL if
+ * out of memory. */
+json_t *cl_cli_plugins_json(void);
+
 /* The machine: {"cpu" (model name), "cores", "system", "hostname"};
  * NULL if out of memory. */
 json_t *cl_cli_host_json(void);
