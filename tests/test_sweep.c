@@ -411,9 +411,10 @@ Test(sweep, collect_cli_summary)
              sw.job[2].id);
     cr_assert(strstr(text, line), "%s", text);
     /* the message, then the problem the runs are of and the SHA-256 of
-     * the file each read (none here: no run.json) */
-    cr_assert(strstr(text, ",NA,NA,\"clothode: it broke, here\",p.ini,NA\n"),
-              "%s", text);
+     * the file each read and of the meshes it named (none here: no
+     * run.json) */
+    cr_assert(strstr(text, ",NA,NA,\"clothode: it broke, here\",p.ini,NA,"
+                           "NA\n"), "%s", text);
     cl_sweep_free(&sw);
 }
 

@@ -322,6 +322,56 @@ Test(sweep_engine, a_refused_run_keeps_no_earlier_results)
     cr_assert_str_eq(f, "NA");
 }
 
+/* A mesh the problem names, edited between two runs of a sweep: the
+ * table's rows record different inputs_sha256, and a study refuses it
+ * (before: the problem file's digest alone was compared, and the two
+ * cloths' runs were read as one sweep). */
+Test(sweep_engine, a_mesh_changed_between_runs)
+{
+    char dir[1024], prob[1024], table[1100], out[1100], path[1200], id[13],
+        summary[256], a[80], b[80];
+    in_tmp(prob, "mesh");
+    char cmd[2200];
+    snprintf(cmd, sizeof cmd, "mkdir -p %s && cp -r problems/skirt.ini "
+             "problems/meshes %s", prob, prob);
+    cr_assert_eq(system(cmd), 0, "%s", cmd);
+    char spec2[1400];
+    snprintf(spec2, sizeof spec2, "[sweep]\nproblem = %s/skirt.ini\n"
+             "integrator = symplectic-euler-x\ndt = 1e-4, 2e-4\n"
+             "t_end = 0.002\n", prob);
+    plan(in_tmp(dir, "meshsweep"), spec2);
+    run_local(dir);
+    first_id(dir, id);
+    snprintf(path, sizeof path, "%s/meshes/sphere.obj", prob);
+    FILE *fp = fopen(path, "a");
+    cr_assert_not_null(fp);
+    fputs("# edited\n", fp);
+    fclose(fp);
+    snprintf(path, sizeof path, "%s/jobs/%s/exit", dir, id);
+    cr_assert_eq(unlink(path), 0, "%s", path);
+    run_resume(dir, "resume     1 of 2 jobs");
+    collect(dir, summary, sizeof summary);
+    cr_assert_str_eq(summary, "2 complete, 0 failed, 0 missing");
+    snprintf(table, sizeof table, "%s.csv", dir);
+    static char text[1 << 16];
+    tmp_slurp(table, text, sizeof text);
+    const char *second = strchr(strchr(text, '\n') + 1, '\n') + 1;
+    snprintf(a, sizeof a, "%.12s", strchr(text, '\n') + 1);
+    snprintf(b, sizeof b, "%.12s", second);
+    table_field(table, a, "inputs_sha256", a, sizeof a);
+    table_field(table, b, "inputs_sha256", b, sizeof b);
+    cr_assert(strlen(a) == 64 && strlen(b) == 64 && strcmp(a, b),
+              "%s %s", a, b);
+    snprintf(out, sizeof out, "%s-stab", dir);
+    snprintf(path, sizeof path, "%s/skirt.ini", prob);
+    cli_result r;
+    cli_run(&r, "stability", path, "--t-end", "0.002", "--integrator",
+            "symplectic-euler-x", "--from-sweep", table, "--out", out, NULL);
+    cli_assert_error(&r, 0, "read different files the problem names",
+                     "a mesh changed between the sweep's runs", NULL);
+    cli_result_free(&r);
+}
+
 /* More than 100 failed jobs (GNU parallel's exit status 101) are failed
  * jobs like any, not a stopped engine: before, sweep run reported
  * "GNU parallel stopped before the end" and exit 1. */

@@ -184,6 +184,10 @@ typedef struct {
     char message[256];    /* the first line of its stderr, or "" */
     char problem_sha256[65]; /* of the problem file the run read (its
                               * run.json), or "" */
+    char inputs_sha256[65];  /* of the files the problem named (meshes):
+                              * the SHA-256 of run.json's "inputs" lines
+                              * "key sha256", "none" for a problem naming
+                              * none, "" when not recorded */
 } cl_sweep_outcome;
 
 /* Everything known of job k: its exit status (DIR/jobs/ID/exit, which

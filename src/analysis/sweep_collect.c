@@ -63,7 +63,8 @@ void cl_sweep_write_table(FILE *fp, const cl_sweep *sw,
     fprintf(fp, ",status,exit,t_reached");
     for (int s = 0; s < CL_SWEEP_NSTAT; s++)
         fprintf(fp, ",%s", cl_sweep_stat_names[s]);
-    fprintf(fp, ",err_x,err_v,message,problem,problem_sha256\n");
+    fprintf(fp, ",err_x,err_v,message,problem,problem_sha256,"
+                "inputs_sha256\n");
     for (int k = 0; k < sw->njob; k++) {
         const cl_sweep_job *j = &sw->job[k];
         const cl_sweep_outcome *o = &out[k];
@@ -78,9 +79,10 @@ void cl_sweep_write_table(FILE *fp, const cl_sweep *sw,
         number(fp, o->err_x);
         number(fp, o->err_v);
         field(fp, o->message);
-        /* the studies' --from-sweep check both */
+        /* the studies' --from-sweep check these */
         field(fp, sw->problem);
         field(fp, o->problem_sha256[0] ? o->problem_sha256 : "NA");
+        field(fp, o->inputs_sha256[0] ? o->inputs_sha256 : "NA");
         fputc('\n', fp);
     }
 }

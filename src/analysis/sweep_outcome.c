@@ -11,6 +11,7 @@
 #include "core/exit.h"
 #include "io/input.h"
 #include "io/jsonfile.h"
+#include "io/sha256.h"
 
 const char *const cl_sweep_stat_names[CL_SWEEP_NSTAT] = {
     "steps", "rhs_evals", "jac_evals", "lin_setups", "lin_solves",
@@ -50,8 +51,29 @@ static bool exit_status(const cl_sweep *sw, int k, cl_sweep_outcome *o)
  * ("times", README "Provenance"; stats.csv holds no timings, so that
  * identical runs write identical bytes): the statistics "wall" and "cpu",
  * the last two, where run.json has them. */
+/* One digest of the files a run's problem named (run.json's "inputs"):
+ * of their "key sha256" lines in order; "none" for an empty list, "" for
+ * none recorded. */
+static void inputs_digest(json_t *inputs, char hex[CL_SHA256_HEX])
+{
+    char text[4096] = "";
+    size_t u = 0, k;
+    json_t *in;
+    snprintf(hex, CL_SHA256_HEX, "%s", json_is_array(inputs) ? "none" : "");
+    if (!json_array_size(inputs))
+        return;
+    json_array_foreach(inputs, k, in) {
+        const char *key = json_string_value(json_object_get(in, "key"));
+        const char *sha = json_string_value(json_object_get(in, "sha256"));
+        if (u < sizeof text)
+            u += (size_t)snprintf(text + u, sizeof text - u, "%s %s\n",
+                                  key ? key : "", sha ? sha : "");
+    }
+    cl_sha256_text(text, hex);
+}
+
 /* From the run's run.json: the integrator's times, and the SHA-256 of the
- * problem file it read. */
+ * problem file it read and of the files it named. */
 static void read_run_json(const cl_sweep *sw, int k, cl_sweep_outcome *o)
 {
     static const char *const key[2] = {"integrator_wall", "integrator_cpu"};
@@ -71,6 +93,7 @@ static void read_run_json(const cl_sweep *sw, int k, cl_sweep_outcome *o)
         json_object_get(json_object_get(root, "problem"), "sha256"));
     snprintf(o->problem_sha256, sizeof o->problem_sha256, "%s",
              sha ? sha : "");
+    inputs_digest(json_object_get(root, "inputs"), o->inputs_sha256);
     json_decref(root);
 }
 

@@ -232,8 +232,36 @@ static cl_status same_problem_row(const cl_sweep_table *t, int r,
                               t->path, path, mine);
 }
 
-/* The table's runs are of this problem (same_problem_row, every row),
- * and no model key changed by --set that is not an axis of the table
+/* The table's runs read the same files the problem names (meshes):
+ * their inputs_sha256, where recorded, agree (a mesh edited between two
+ * runs of the sweep would mix two cloths or obstacles in one table). */
+static cl_status same_inputs(const cl_sweep_table *t, cl_error *err)
+{
+    int c = column(t, "inputs_sha256");
+    const char *first = NULL;
+    int r0 = 0;
+    for (int r = 0; c >= 0 && r < t->nrow; r++) {
+        const char *sha = at(t, r, c);
+        if (!*sha || !strcmp(sha, "NA"))
+            continue;
+        if (!first) {
+            first = sha;
+            r0 = r;
+        } else if (strcmp(sha, first))
+            return cl_error_set(err, CL_EINVAL, "--from-sweep %s: the runs "
+                                "%s and %s read different files the "
+                                "problem names (inputs_sha256 %.12s... and "
+                                "%.12s...: a mesh changed between the "
+                                "sweep's runs); run the sweep again",
+                                t->path, at(t, r0, column(t, "id")),
+                                at(t, r, column(t, "id")), first, sha);
+    }
+    return CL_OK;
+}
+
+/* The table's runs are of this problem (same_problem_row, every row)
+ * and read the same meshes (same_inputs), and no model key changed by
+ * --set that is not an axis of the table
  * (the runs had the file's value); the keys of [run] and of the
  * command's own section `own` are no model's. */
 static cl_status same_problem(const cl_sweep_table *t, cl_config *cfg,
@@ -251,6 +279,8 @@ static cl_status same_problem(const cl_sweep_table *t, cl_config *cfg,
     for (int r = 0; !rc && r < t->nrow; r++)
         rc = same_problem_row(t, r, mine, hex, err);
     free(mine);
+    if (!rc)
+        rc = same_inputs(t, err);
     const char *sec, *key;
     char name[256];
     for (size_t k = 0; !rc && (key = cl_config_set_key_at(cfg, k, &sec));

@@ -1,5 +1,5 @@
 /* SHA-256 of a file (FIPS 180-4), by nettle: the problem file and every
- * output a run lists in its run.json. */
+ * output a run lists in its run.json; and of a text. */
 #ifndef CL_SHA256_H
 #define CL_SHA256_H
 
@@ -11,5 +11,8 @@
  * the path and the reason if it cannot be read. */
 cl_status cl_sha256_file(const char *path, char hex[CL_SHA256_HEX],
                          cl_error *err);
+
+/* The digest of the NUL-terminated text as lowercase hex into hex. */
+void cl_sha256_text(const char *text, char hex[CL_SHA256_HEX]);
 
 #endif
