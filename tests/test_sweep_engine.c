@@ -272,6 +272,17 @@ static void table_field(const char *table, const char *id, const char *name,
     snprintf(out, len, "%.*s", (int)strcspn(row, ",\n"), row);
 }
 
+/* A sweep of `problem` (the rest of its [sweep] section in `rest`)
+ * planned into tmp/name, its path into dir, and run. */
+static void plan_and_run(char *dir, const char *name, const char *problem,
+                         const char *rest)
+{
+    char text[1400];
+    snprintf(text, sizeof text, "[sweep]\nproblem = %s\n%s", problem, rest);
+    plan(in_tmp(dir, name), text);
+    run_local(dir);
+}
+
 /* A run again after the problem changed: a job refused before its first
  * output (a bad value) leaves no earlier run's results behind it.  Before,
  * its row was "failed, input" with the previous run's time reached and
@@ -283,12 +294,8 @@ Test(sweep_engine, a_refused_run_keeps_no_earlier_results)
     tmp_slurp("problems/hang.ini", text, sizeof text);
     in_tmp(prob, "p.ini");
     tmp_put(prob, text);
-    char spec2[1400];
-    snprintf(spec2, sizeof spec2, "[sweep]\nproblem = %s\n"
-             "integrator = rk4\ncloth.n = 4\ndt = 1e-3, 2e-3\n"
-             "t_end = 0.02\n", prob);
-    plan(in_tmp(dir, "refused"), spec2);
-    run_local(dir);
+    plan_and_run(dir, "refused", prob, "integrator = rk4\ncloth.n = 4\n"
+                 "dt = 1e-3, 2e-3\nt_end = 0.02\n");
     collect(dir, summary, sizeof summary);
     cr_assert_str_eq(summary, "2 complete, 0 failed, 0 missing");
     /* the problem edited after the runs: a study refuses their table */
@@ -335,12 +342,9 @@ Test(sweep_engine, a_mesh_changed_between_runs)
     snprintf(cmd, sizeof cmd, "mkdir -p %s && cp -r problems/skirt.ini "
              "problems/meshes %s", prob, prob);
     cr_assert_eq(system(cmd), 0, "%s", cmd);
-    char spec2[1400];
-    snprintf(spec2, sizeof spec2, "[sweep]\nproblem = %s/skirt.ini\n"
-             "integrator = symplectic-euler-x\ndt = 1e-4, 2e-4\n"
-             "t_end = 0.002\n", prob);
-    plan(in_tmp(dir, "meshsweep"), spec2);
-    run_local(dir);
+    snprintf(path, sizeof path, "%s/skirt.ini", prob);
+    plan_and_run(dir, "meshsweep", path, "integrator = symplectic-euler-x\n"
+                 "dt = 1e-4, 2e-4\nt_end = 0.002\n");
     first_id(dir, id);
     snprintf(path, sizeof path, "%s/meshes/sphere.obj", prob);
     FILE *fp = fopen(path, "a");
