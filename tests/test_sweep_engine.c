@@ -483,17 +483,26 @@ Test(sweep_engine, missing_statuses_and_no_engine)
 /* A program `name` in tmp/fakebin that prints `out` on stdout (or, with
  * to_err, stderr) and exits with `status`: Slurm's commands as a test
  * needs them to answer. */
-static void fake_program(const char *name, const char *out, bool to_err,
-                         int status)
+static void fake_script(const char *name, const char *body)
 {
-    char bin[1024], path[1100], text[1024];
+    char bin[1024], path[1100], text[2048];
     in_tmp(bin, "fakebin");
     mkdir(bin, 0755);
     snprintf(path, sizeof path, "%s/%s", bin, name);
-    snprintf(text, sizeof text, "#!/bin/sh\necho '%s'%s\nexit %d\n", out,
-             to_err ? " >&2" : "", status);
+    /* its arguments into tmp/fakebin/NAME.args */
+    snprintf(text, sizeof text, "#!/bin/sh\necho \"$@\" > '%s.args'\n%s",
+             path, body);
     tmp_put(path, text);
     cr_assert_eq(chmod(path, 0755), 0);
+}
+
+static void fake_program(const char *name, const char *out, bool to_err,
+                         int status)
+{
+    char body[1024];
+    snprintf(body, sizeof body, "echo '%s'%s\nexit %d\n", out,
+             to_err ? " >&2" : "", status);
+    fake_script(name, body);
 }
 
 /* `sweep run ARGS...` with tmp/fakebin first in PATH. */
@@ -587,6 +596,80 @@ Test(sweep_engine, slurm_refused_or_still_queued)
     run_faked(&r, dir, NULL, false);
     cr_assert_eq(r.status, 0, "%s", r.err);
     cli_result_free(&r);
+    /* squeue is asked about the recorded cluster, in the states of tasks
+     * still to run, and a header line is no task */
+    fake_program("squeue", "CLUSTER: cluster", false, 0);
+    run_faked(&r, dir, NULL, false);
+    cr_assert_eq(r.status, 0, "%s", r.err);
+    cli_result_free(&r);
+    char args[1100];
+    in_tmp(args, "fakebin/squeue.args");
+    tmp_slurp(args, text, sizeof text);
+    cr_assert(strstr(text, "--jobs=4242 --clusters=cluster") &&
+                  strstr(text, "--states=PENDING,RUNNING,"), "%s", text);
+}
+
+/* sbatch that queues without printing an id: the earlier statuses go
+ * (the jobs will run), with a warning; sbatch --wait that ends with a
+ * failed task: the counts all the same, exit 1, the message; SIGTERM to
+ * sweep run alone while sbatch --wait waits reaches sbatch, and the run
+ * ends at once with exit 6, naming the array. */
+Test(sweep_engine, slurm_without_id_failed_task_and_stopped)
+{
+    char dir[1024], summary[256];
+    two_complete(dir, "fakeslurm2");
+    fake_program("squeue", "", false, 0);
+    fake_script("sbatch", "exit 0\n");
+    cli_result r;
+    run_faked(&r, dir, "slurm", true);
+    cli_assert_no_crash(&r);
+    cr_assert_eq(r.status, 0, "%s", r.err);
+    cr_assert(strstr(r.err, "sbatch printed no job id"), "%s", r.err);
+    cli_result_free(&r);
+    collect(dir, summary, sizeof summary);
+    cr_assert_str_eq(summary, "0 complete, 0 failed, 2 missing");
+
+    fake_script("sbatch", "echo 901\nexit 1\n");
+    char bin[1024], path[8192], *save = strdup(getenv("PATH"));
+    snprintf(path, sizeof path, "%s:%s", in_tmp(bin, "fakebin"), save);
+    setenv("PATH", path, 1);
+    cli_run(&r, "sweep", "run", dir, "--engine", "slurm", "--time", "5",
+            "--mem", "300", "--wait", NULL);
+    cli_assert_no_crash(&r);
+    cr_assert_eq(r.status, 1, "%s", r.err);
+    cr_assert(strstr(r.out, "0 complete, 0 failed, 2 missing") &&
+                  strstr(r.err, "the array job 901 ended with a task that "
+                                "failed or was killed"),
+              "%s%s", r.out, r.err);
+    cli_result_free(&r);
+
+    fake_script("sbatch", "echo 902\nexec sleep 120\n");
+    char *argv[] = {(char *)cli_binary(), "sweep", "run", dir, "--engine",
+                    "slurm", "--time", "5", "--mem", "300", "--wait",
+                    "--quiet", NULL};
+    pid_t pid;
+    cr_assert_eq(posix_spawnp(&pid, argv[0], NULL, NULL, argv, environ), 0);
+    char job[1100];
+    snprintf(job, sizeof job, "%s/slurm/job", dir);
+    static char text[256];
+    for (int k = 0; k < 2000; k++) {
+        if (cli_exists(job)) {
+            tmp_slurp(job, text, sizeof text);
+            if (!strcmp(text, "902\n"))
+                break;
+        }
+        nanosleep(&(struct timespec){0, 10000000}, NULL);
+    }
+    kill(pid, SIGTERM);
+    int ws = 0, k = 0;
+    while (waitpid(pid, &ws, WNOHANG) == 0 && k++ < 3000)
+        nanosleep(&(struct timespec){0, 10000000}, NULL);
+    if (k > 3000) /* sbatch still waiting: the signal did not reach it */
+        kill(pid, SIGKILL);
+    setenv("PATH", save, 1);
+    free(save);
+    cr_assert(k <= 3000, "sweep run still waiting 30 s after SIGTERM");
+    cr_assert(WIFEXITED(ws) && WEXITSTATUS(ws) == 6, "status %d", ws);
 }
 
 /* The sweep files under problems/sweeps plan from any directory (their

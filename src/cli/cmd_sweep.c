@@ -338,9 +338,10 @@ static void put_back(const cl_sweep *sw, const int *todo, int n, int ran)
         if (gone)
             (void)unlink(earlier);
         else if (rename(earlier, path) != 0)
-            fprintf(stderr, "clothode: sweep run: cannot put back %s (it "
-                            "stays as %s): %s\n", path, earlier,
-                    strerror(errno));
+            fprintf(stderr, "clothode: sweep run: cannot put back %s: %s; "
+                            "the status stays in %s, which collect does not "
+                            "read (rename it back by hand)\n", path,
+                    strerror(errno), earlier);
     }
 }
 
@@ -356,12 +357,16 @@ static int all_jobs(const cl_sweep *sw, int *todo, bool aside, cl_error *err)
     char path[4200], earlier[4300];
     for (int k = 0; k < sw->njob; k++) {
         status_paths(sw, k, path, earlier);
-        bool fail = aside ? (unlink(earlier) != 0 && errno != ENOENT) ||
-                                (rename(path, earlier) != 0 && errno != ENOENT)
-                          : unlink(path) != 0 && errno != ENOENT;
-        if (fail) {
+        const char *bad = NULL;
+        if (aside && unlink(earlier) != 0 && errno != ENOENT)
+            bad = earlier;
+        else if (aside && rename(path, earlier) != 0 && errno != ENOENT)
+            bad = path;
+        else if (!aside && unlink(path) != 0 && errno != ENOENT)
+            bad = path;
+        if (bad) {
             cl_error_set(err, CL_EIO, "%s: cannot remove the status of an "
-                         "earlier run: %s", path, strerror(errno));
+                         "earlier run: %s", bad, strerror(errno));
             if (aside)
                 put_back(sw, todo, k, 0);
             return -1;
@@ -511,7 +516,12 @@ static int engine_run(cl_sweep *sw, cl_sweep_run_args *r, int *todo,
         int ran = 0, status = cl_sweep_slurm(sw, r, todo, n, &ran);
         if (!r->resume)
             put_back(sw, todo, n, ran);
-        return status || !r->wait ? status : summary(sw, r->a.quiet, err);
+        /* with --wait, the counts once every job ran or was queued, also
+         * when a task of the array failed */
+        if (!r->wait || ran < n || status == CL_EXIT_INTERRUPTED)
+            return status;
+        int counted = summary(sw, r->a.quiet, err);
+        return status ? status : counted;
     }
     snprintf(list, sizeof list, "%s/jobs.txt", sw->dir);
     if (r->resume && write_pending(sw, todo, n, list, sizeof list, err))

@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <poll.h>
 #include <signal.h>
 #include <spawn.h>
 #include <stdio.h>
@@ -23,34 +24,60 @@ extern char **environ;
 
 /* ---- GNU parallel ------------------------------------------------------- */
 
-static volatile sig_atomic_t engine_pid;
+static volatile sig_atomic_t engine_pid, stopped_by;
 
-/* SIGINT and SIGTERM go on to the engine, which stops its jobs. */
+/* SIGINT and SIGTERM go on to the program run (GNU parallel, which stops
+ * its jobs; a pilot job; sbatch), and are noted. */
 static void forward(int sig)
 {
+    stopped_by = sig;
     if (engine_pid > 0)
         kill((pid_t)engine_pid, sig);
+}
+
+/* While a child runs: SIGINT and SIGTERM forwarded to it (old: the
+ * handlers before, for forwarding_end). */
+typedef struct {
+    struct sigaction old_int, old_term;
+} forwarding;
+
+static void forwarding_begin(forwarding *f, pid_t pid)
+{
+    struct sigaction sa = {.sa_handler = forward};
+    sigemptyset(&sa.sa_mask);
+    engine_pid = pid;
+    sigaction(SIGINT, &sa, &f->old_int);
+    sigaction(SIGTERM, &sa, &f->old_term);
+}
+
+static void forwarding_end(forwarding *f)
+{
+    engine_pid = 0;
+    sigaction(SIGINT, &f->old_int, NULL);
+    sigaction(SIGTERM, &f->old_term, NULL);
+}
+
+/* Whether a stop was asked for: a signal forwarded, or one the program's
+ * own handler took (core/stop.h). */
+static bool stop_asked(void)
+{
+    return stopped_by || cl_stop_requested();
 }
 
 /* Run argv, forwarding SIGINT and SIGTERM; its wait status, or -1. */
 static int spawn_forwarding(const char *const *argv)
 {
-    struct sigaction sa = {.sa_handler = forward}, old_int, old_term;
+    forwarding f;
     pid_t pid;
     int status = -1;
     fflush(stdout);
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, &old_int);
-    sigaction(SIGTERM, &sa, &old_term);
     if (posix_spawnp(&pid, argv[0], NULL, NULL, (char *const *)argv,
                      environ) == 0) {
-        engine_pid = pid;
+        forwarding_begin(&f, pid);
         while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
             ;
+        forwarding_end(&f);
     }
-    engine_pid = 0;
-    sigaction(SIGINT, &old_int, NULL);
-    sigaction(SIGTERM, &old_term, NULL);
     return status;
 }
 
@@ -110,20 +137,30 @@ static FILE *open_in(const cl_sweep *sw, const char *name, char *path,
     return fopen(path, "w");
 }
 
-/* Run job k here, as the pilot: its wall time and peak memory. */
+/* Run job k here, as the pilot (SIGINT and SIGTERM forwarded to it): its
+ * wall time and peak memory. */
 static int pilot(const cl_sweep *sw, int k, double *wall, long *rss_kb)
 {
     struct rusage ru;
+    forwarding f;
     int status = 0;
     double t0 = cl_clock_wall();
+    fflush(stdout);
     pid_t pid = fork();
     if (pid == 0) {
         execl("/bin/sh", "sh", "-c", sw->job[k].command, (char *)NULL);
         _exit(127);
     }
-    /* the children's peak: the pilots are this process's only children */
-    if (pid < 0 || waitpid(pid, &status, 0) != pid ||
-        getrusage(RUSAGE_CHILDREN, &ru))
+    if (pid > 0)
+        forwarding_begin(&f, pid);
+    pid_t got = pid;
+    while (pid > 0 && (got = waitpid(pid, &status, 0)) < 0 && errno == EINTR)
+        ;
+    if (pid > 0)
+        forwarding_end(&f);
+    /* the children's largest peak: this pilot's, or an earlier child's
+     * (a pilot that failed, squeue), which can only raise --mem */
+    if (pid < 0 || got != pid || getrusage(RUSAGE_CHILDREN, &ru))
         return -1;
     *wall = cl_clock_wall() - t0;
     *rss_kb = ru.ru_maxrss;
@@ -131,12 +168,13 @@ static int pilot(const cl_sweep *sw, int k, double *wall, long *rss_kb)
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
-/* Time (minutes) and memory (MB) of an array task: given, kept from an
- * earlier submission of the sweep (DIR/slurm/estimate), or three times
- * the pilot's wall time per job of a chunk plus a minute and twice its
- * peak memory plus 100 MB.  The pilot is the first job of todo that
- * completes (of at most three tried); its result stands.  With both
- * given, no pilot runs. */
+/* Time (minutes) and memory (MB) of an array task: given, or three times
+ * a pilot's wall time per job of a chunk plus a minute and twice its peak
+ * memory plus 100 MB, the pilot's figures kept in DIR/slurm/estimate
+ * ("job SECONDS KB", per job, so that a resubmission with another
+ * --chunk scales them) for resubmissions.  The pilot is the first job of
+ * todo that completes (of at most three tried); its result stands.  With
+ * both given, no pilot runs. */
 static int estimate(const cl_sweep *sw, const cl_sweep_run_args *r,
                     const int *todo, int n, long *minutes, long *mb,
                     int *piloted)
@@ -151,27 +189,29 @@ static int estimate(const cl_sweep *sw, const cl_sweep_run_args *r,
     }
     snprintf(path, sizeof path, "%s/slurm/estimate", sw->dir);
     const char *why;
-    if ((fp = cl_input_open(path, "r", &why))) {
-        if (fscanf(fp, "%ld %ld", minutes, mb) != 2)
-            *minutes = *mb = 0;
-        fclose(fp);
-    }
     double wall = 0;
     long rss = 0;
     int code = -1;
-    while ((!*minutes || !*mb) && code != 0 && *piloted < n &&
-           *piloted < 3 && !cl_stop_requested())
+    if ((fp = cl_input_open(path, "r", &why))) {
+        if (fscanf(fp, "job %lf %ld", &wall, &rss) == 2 && wall >= 0 &&
+            rss > 0)
+            code = 0; /* an earlier format, "MINUTES MB", is not read */
+        fclose(fp);
+    }
+    while (code != 0 && *piloted < n && *piloted < 3 && !stop_asked())
         code = pilot(sw, todo[(*piloted)++], &wall, &rss);
-    if (code == 0) {
-        *minutes = (long)ceil((3 * wall * r->chunk + 60) / 60);
-        *mb = (long)ceil(2 * rss / 1024.0) + 100;
+    if (code == 0 && *piloted) {
         if (!r->a.quiet)
             printf("pilot      job %s: %.3g s, %ld MB peak\n",
                    sw->job[todo[*piloted - 1]].id, wall, rss / 1024);
+        if ((fp = open_in(sw, "estimate", path, sizeof path))) {
+            fprintf(fp, "job %.17g %ld\n", wall, rss);
+            fclose(fp);
+        }
     }
-    if ((fp = open_in(sw, "estimate", path, sizeof path))) {
-        fprintf(fp, "%ld %ld\n", *minutes, *mb);
-        fclose(fp);
+    if (code == 0) {
+        *minutes = (long)ceil((3 * wall * r->chunk + 60) / 60);
+        *mb = (long)ceil(2 * rss / 1024.0) + 100;
     }
     *minutes = r->time_min ? r->time_min : *minutes;
     *mb = r->mem_mb ? r->mem_mb : *mb;
@@ -234,10 +274,70 @@ static int write_script(const cl_sweep *sw, const cl_sweep_run_args *r,
     return fclose(fp) == 0 ? 0 : 1;
 }
 
+/* Lines of a child's standard output as they come: the part read of the
+ * current one, handed to line(ctx, text) at each newline. */
+typedef struct {
+    char text[1024];
+    size_t u;
+    void (*line)(void *ctx, const char *text);
+    void *ctx;
+} line_reader;
+
+static void take(line_reader *lr, const char *buf, size_t n)
+{
+    for (size_t k = 0; k < n; k++) {
+        bool end = buf[k] == '\n';
+        if (!end && lr->u + 1 < sizeof lr->text)
+            lr->text[lr->u++] = buf[k];
+        if (end) {
+            lr->text[lr->u] = '\0';
+            lr->line(lr->ctx, lr->text);
+            lr->u = 0;
+        }
+    }
+}
+
+/* Read the child's stdout (fd[0]) into lr and its stderr (fd[1], -1 for
+ * none) into err until both end, through poll so that neither pipe fills
+ * while the other is read. */
+static void read_both(int fd[2], line_reader *lr, char *err, size_t errlen)
+{
+    size_t eu = 0;
+    char buf[4096];
+    struct pollfd p[2] = {{.fd = fd[0], .events = POLLIN},
+                          {.fd = fd[1], .events = POLLIN}};
+    while (p[0].fd >= 0 || p[1].fd >= 0) {
+        if (poll(p, 2, -1) < 0) {
+            if (errno == EINTR)
+                continue;
+            break;
+        }
+        for (int i = 0; i < 2; i++) {
+            if (p[i].fd < 0 || !p[i].revents)
+                continue;
+            ssize_t k = read(p[i].fd, buf, sizeof buf);
+            if (k <= 0 && !(k < 0 && errno == EINTR)) {
+                close(p[i].fd);
+                p[i].fd = -1;
+            } else if (k > 0 && i == 0) {
+                take(lr, buf, (size_t)k);
+            } else if (k > 0) { /* stderr: kept up to errlen - 1 */
+                size_t room = errlen - 1 - eu, m = (size_t)k;
+                memcpy(err + eu, buf, m < room ? m : room);
+                eu += m < room ? m : room;
+            }
+        }
+    }
+    if (lr->u)
+        take(lr, "\n", 1);
+    if (err)
+        err[eu] = '\0';
+}
+
 /* Run argv, each line of its standard output handed to line(ctx, text)
  * as it comes; with err, its standard error kept there (errlen bytes at
- * most, NUL-terminated), else passed through.  Its wait status, or -1
- * when it cannot be started. */
+ * most, NUL-terminated), else passed through.  SIGINT and SIGTERM are
+ * forwarded to it.  Its wait status, or -1 when it cannot be started. */
 static int run_reading(const char *const *argv,
                        void (*line)(void *ctx, const char *text), void *ctx,
                        char *err, size_t errlen)
@@ -271,31 +371,21 @@ static int run_reading(const char *const *argv,
     close(out[1]);
     if (err)
         close(ep[1]);
-    FILE *fp = pid > 0 ? fdopen(out[0], "r") : NULL;
-    char text[1024];
-    while (fp && fgets(text, sizeof text, fp)) {
-        text[strcspn(text, "\n")] = '\0';
-        line(ctx, text);
+    int fd[2] = {out[0], err ? ep[0] : -1}, status = -1;
+    line_reader lr = {.u = 0, .line = line, .ctx = ctx};
+    if (pid < 0) {
+        close(fd[0]);
+        if (fd[1] >= 0)
+            close(fd[1]);
+        return -1;
     }
-    if (fp)
-        fclose(fp);
-    else
-        close(out[0]);
-    /* all of it read, so that the program never blocks on a full pipe */
-    for (size_t u = 0; err;) {
-        ssize_t k = read(ep[0], u + 1 < errlen ? err + u : text,
-                         u + 1 < errlen ? errlen - 1 - u : sizeof text);
-        if (k <= 0) {
-            err[u < errlen ? u : errlen - 1] = '\0';
-            close(ep[0]);
-            break;
-        }
-        u += u + 1 < errlen ? (size_t)k : 0;
-    }
-    int status = -1;
-    while (pid > 0 && waitpid(pid, &status, 0) < 0 && errno == EINTR)
+    forwarding f;
+    forwarding_begin(&f, pid);
+    read_both(fd, &lr, err, errlen);
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
         ;
-    return pid > 0 ? status : -1;
+    forwarding_end(&f);
+    return status;
 }
 
 /* Whether text is a Slurm job id as sbatch --parsable prints it, "ID" or
@@ -422,6 +512,9 @@ cl_status cl_sweep_slurm_idle(const cl_sweep *sw, cl_error *err)
                           *cluster ? clusters : NULL, NULL};
     queue_answer q = {.id = id};
     int st = run_reading(argv, on_squeue_line, &q, said, sizeof said);
+    if (stop_asked())
+        return cl_error_set(err, CL_EINTR, "interrupted while squeue was "
+                            "asked about the array job %s", text);
     bool ok = st >= 0 && WIFEXITED(st) && WEXITSTATUS(st) == 0;
     /* an array long ended is forgotten by Slurm: "Invalid job id" */
     if ((ok && !q.tasks) || (!ok && strstr(said, "Invalid job id")))
@@ -470,7 +563,7 @@ int cl_sweep_slurm(const cl_sweep *sw, const cl_sweep_run_args *r,
         return fprintf(stderr, "clothode: %s\n", err.msg), 1;
     int status = estimate(sw, r, todo, n, &minutes, &mb, &piloted);
     *ran = piloted;
-    if (cl_stop_requested())
+    if (stop_asked())
         return interrupted(&s);
     if (status)
         return 1;
@@ -498,7 +591,20 @@ int cl_sweep_slurm(const cl_sweep *sw, const cl_sweep_run_args *r,
         fprintf(stderr, "clothode: sweep run: sbatch printed no job id; a "
                         "later 'sweep run' cannot see whether this array "
                         "still runs\n");
-    if (cl_stop_requested() || (status >= 0 && WIFSIGNALED(status)))
+    if (stop_asked())
         return interrupted(&s);
-    return status >= 0 && WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+    if (status >= 0 && WIFSIGNALED(status))
+        fprintf(stderr, "clothode: sweep run: sbatch was killed (signal "
+                        "%d)%s%s%s\n", WTERMSIG(status),
+                *s.id ? "; the array job " : "", s.id,
+                *s.id ? " was submitted (squeue)" : "");
+    else if (!done && *s.id && r->wait)
+        fprintf(stderr, "clothode: sweep run: the array job %s ended with a "
+                        "task that failed or was killed (sbatch --wait: exit "
+                        "status %d; a time or memory limit? see %s/slurm/"
+                        "task-*.out); 'sweep run --resume' runs the jobs "
+                        "without a result\n", s.id,
+                status >= 0 && WIFEXITED(status) ? WEXITSTATUS(status) : -1,
+                sw->dir);
+    return done ? 0 : 1;
 }
