@@ -203,6 +203,12 @@ static cl_status select_axis(cl_sweep_table *t, cl_config *cfg, int c,
     return CL_OK;
 }
 
+/* Whether a table's digest field holds one (not "", not "NA"). */
+static bool recorded(const char *sha)
+{
+    return *sha && strcmp(sha, "NA");
+}
+
 /* Row r's run was of the problem file `mine` (SHA-256 `hex`): by the
  * SHA-256 of the file it read (its run.json, column problem_sha256) when
  * it recorded one, which decides (a file edited since, at the same path,
@@ -213,7 +219,7 @@ static cl_status same_problem_row(const cl_sweep_table *t, int r,
 {
     int cs = column(t, "problem_sha256");
     const char *sha = cs >= 0 ? at(t, r, cs) : "";
-    if (*sha && strcmp(sha, "NA"))
+    if (recorded(sha))
         return strcmp(sha, hex)
                    ? cl_error_set(err, CL_EINVAL, "--from-sweep %s: the run "
                                   "%s read a problem file of other bytes "
@@ -242,7 +248,7 @@ static cl_status same_inputs(const cl_sweep_table *t, cl_error *err)
     int r0 = 0;
     for (int r = 0; c >= 0 && r < t->nrow; r++) {
         const char *sha = at(t, r, c);
-        if (!*sha || !strcmp(sha, "NA"))
+        if (!recorded(sha))
             continue;
         if (!first) {
             first = sha;

@@ -112,6 +112,35 @@ static int check_recorded(const char *dir, json_t *was)
     return bad;
 }
 
+/* The entry of the array list whose string `field` is value, or NULL. */
+static json_t *entry_with(json_t *list, const char *field, const char *value)
+{
+    size_t k;
+    json_t *e;
+    json_array_foreach(list, k, e) {
+        const char *v = json_string_value(json_object_get(e, field));
+        if (v && !strcmp(v, value))
+            return e;
+    }
+    return NULL;
+}
+
+/* The keys of object a whose values differ in b (absent_only: that b
+ * lacks) appended to what, ", "-separated, as far as they fit. */
+static void keys_differing(json_t *a, json_t *b, bool absent_only,
+                           char *what, size_t len)
+{
+    const char *key;
+    json_t *v;
+    json_object_foreach(a, key, v) {
+        json_t *w = json_object_get(b, key);
+        size_t u = strlen(what);
+        if ((absent_only ? !w : !json_equal(v, w)) &&
+            u + strlen(key) + 3 < len)
+            snprintf(what + u, len - u, "%s%s", u ? ", " : "", key);
+    }
+}
+
 /* The build that reran it (another commit, compiler or flags: outputs
  * may still agree), and the configuration it resolved, which must. */
 static int compare_setup(json_t *was, json_t *now)
@@ -120,18 +149,8 @@ static int compare_setup(json_t *was, json_t *now)
                                                                       "build");
     if (!json_equal(ba, bb)) {
         char what[256] = "";
-        size_t u = 0;
-        const char *key;
-        json_t *v;
-        json_object_foreach(bb, key, v)
-            if (!json_equal(v, json_object_get(ba, key)) &&
-                u + strlen(key) + 3 < sizeof what)
-                u += (size_t)snprintf(what + u, sizeof what - u, "%s%s",
-                                      u ? ", " : "", key);
-        json_object_foreach(ba, key, v)
-            if (!json_object_get(bb, key) && u + strlen(key) + 3 < sizeof what)
-                u += (size_t)snprintf(what + u, sizeof what - u, "%s%s",
-                                      u ? ", " : "", key);
+        keys_differing(bb, ba, false, what, sizeof what);
+        keys_differing(ba, bb, true, what, sizeof what);
         printf("%-24s another (differs in: %s; commit %s, was %s; see "
                "run.json's build)\n", "build", what,
                json_string_value(json_object_get(bb, "commit")),
@@ -145,17 +164,11 @@ static int compare_setup(json_t *was, json_t *now)
     return 1;
 }
 
-
 /* The entry of list whose "key" equals that of e, or NULL. */
 static json_t *same_key(json_t *list, json_t *e)
 {
-    size_t j;
-    json_t *b;
-    json_t *key = json_object_get(e, "key");
-    json_array_foreach(list, j, b)
-        if (json_is_string(key) && json_equal(key, json_object_get(b, "key")))
-            return b;
-    return NULL;
+    const char *key = json_string_value(json_object_get(e, "key"));
+    return key ? entry_with(list, "key", key) : NULL;
 }
 
 static void input_line(json_t *e, const char *verdict)
@@ -236,14 +249,8 @@ static int rerun(json_t *m, const char *outdir)
 
 static const char *sha_of(json_t *files, const char *name)
 {
-    size_t k;
-    json_t *f;
-    json_array_foreach(files, k, f) {
-        const char *n = json_string_value(json_object_get(f, "name"));
-        if (n && !strcmp(n, name))
-            return json_string_value(json_object_get(f, "sha256"));
-    }
-    return NULL;
+    return json_string_value(
+        json_object_get(entry_with(files, "name", name), "sha256"));
 }
 
 /* One line per file of either run; the number that differ. */

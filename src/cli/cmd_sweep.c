@@ -483,14 +483,15 @@ static int engine_run(cl_sweep *sw, cl_sweep_run_args *r, int *todo,
                       cl_error *err)
 {
     char list[4300];
-    const char *engine = r->engine == CL_SWEEP_SLURM ? "sbatch" : "parallel";
+    bool slurm = r->engine == CL_SWEEP_SLURM;
+    const char *engine = slurm ? "sbatch" : "parallel";
     if (!in_path(engine)) { /* before any status is removed */
         fprintf(stderr, "clothode: sweep run: %s is not in PATH (apt-get "
                         "install %s); no job's status was touched\n", engine,
-                r->engine == CL_SWEEP_SLURM ? "slurm-client" : "parallel");
+                slurm ? "slurm-client" : "parallel");
         return 1;
     }
-    if (r->engine == CL_SWEEP_SLURM && strchr(sw->dir, '\\')) {
+    if (slurm && strchr(sw->dir, '\\')) {
         fprintf(stderr, "clothode: sweep run: %s: a backslash in the "
                         "directory makes Slurm expand no file name pattern "
                         "(the tasks' output); plan the sweep elsewhere\n",
@@ -500,7 +501,6 @@ static int engine_run(cl_sweep *sw, cl_sweep_run_args *r, int *todo,
     if (lock_sweep(sw, err) < 0)
         return cl_cli_fail(err);
     /* a submitted array's tasks may still run, outside the lock */
-    bool slurm = r->engine == CL_SWEEP_SLURM;
     if ((slurm || in_path("squeue")) && cl_sweep_slurm_idle(sw, err))
         return cl_cli_fail(err);
     int n = r->resume ? pending_jobs(sw, todo, err)

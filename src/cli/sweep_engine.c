@@ -142,25 +142,12 @@ static FILE *open_in(const cl_sweep *sw, const char *name, char *path,
 static int pilot(const cl_sweep *sw, int k, double *wall, long *rss_kb)
 {
     struct rusage ru;
-    forwarding f;
-    int status = 0;
+    const char *const argv[] = {"/bin/sh", "-c", sw->job[k].command, NULL};
     double t0 = cl_clock_wall();
-    fflush(stdout);
-    pid_t pid = fork();
-    if (pid == 0) {
-        execl("/bin/sh", "sh", "-c", sw->job[k].command, (char *)NULL);
-        _exit(127);
-    }
-    if (pid > 0)
-        forwarding_begin(&f, pid);
-    pid_t got = pid;
-    while (pid > 0 && (got = waitpid(pid, &status, 0)) < 0 && errno == EINTR)
-        ;
-    if (pid > 0)
-        forwarding_end(&f);
+    int status = spawn_forwarding(argv);
     /* the children's largest peak: this pilot's, or an earlier child's
      * (a pilot that failed, squeue), which can only raise --mem */
-    if (pid < 0 || got != pid || getrusage(RUSAGE_CHILDREN, &ru))
+    if (status < 0 || getrusage(RUSAGE_CHILDREN, &ru))
         return -1;
     *wall = cl_clock_wall() - t0;
     *rss_kb = ru.ru_maxrss;

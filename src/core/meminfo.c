@@ -76,9 +76,7 @@ static double cgroup_path_room(const char *mount, const char *path, bool v2)
     for (size_t len = strlen(dir), root = strlen(mount);;) {
         while (len > root && dir[len - 1] == '/')
             dir[--len] = '\0';
-        double room = cgroup_room(dir, v2);
-        if (!isnan(room) && !(room >= least))
-            least = room;
+        least = fmin(least, cgroup_room(dir, v2)); /* fmin skips a NAN */
         char *slash = strrchr(dir, '/');
         if (len <= root || !slash || (size_t)(slash - dir) < root)
             return least;
@@ -120,8 +118,7 @@ static double cgroups_room(const char *proc, const char *mount)
                  snprintf(sub, sizeof sub, "%s/memory", mount) <
                      (int)sizeof sub)
             room = cgroup_path_room(sub, at + 1, false);
-        if (!isnan(room) && !(room >= least))
-            least = room;
+        least = fmin(least, room);
     }
     if (f)
         fclose(f);
