@@ -12,8 +12,11 @@
 
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
 #include "forces/asinc.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     double y, t, t_over_pi, seed, resid;
@@ -30,5 +33,7 @@ typedef struct {
 /* rows[0..n] (n + 1 of them), n >= 1; CL_EINVAL for n < 1. */
 cl_status cl_asinc_error(size_t n, cl_asinc_row *rows, cl_asinc_summary *s,
                          cl_error *err);
+
+CL_END_DECLS
 
 #endif

@@ -34,6 +34,9 @@
 #include <stdio.h>
 
 #include "analysis/convergence.h"
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
 
 #define CL_BUDGET_MAX_SPLITS 32
 #define CL_BUDGET_CHECKS 100
@@ -91,5 +94,7 @@ double cl_budget_reference_energy(cl_model *m, const cl_conv_ref *ref,
  * integrator,dt,substeps,iterations,h,err_x,stretch,energy,steps,
  * rhs_evals,nonlin_iters,lin_solves,cpu,status. */
 void cl_budget_write_rows(FILE *fp, const cl_budget_result *r, bool header);
+
+CL_END_DECLS
 
 #endif

@@ -18,6 +18,9 @@
 #include <stdio.h>
 
 #include "analysis/stability.h"
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     const char *label;    /* the integrator as named in rows */
@@ -41,5 +44,7 @@ void cl_climit_print(FILE *fp, const cl_climit_result *r);
 /* One CSV row, header first when `header`:
  * integrator,k,dt_stable,dt_unstable,predicted,w_max,runs */
 void cl_climit_write_row(FILE *fp, const cl_climit_result *r, bool header);
+
+CL_END_DECLS
 
 #endif

@@ -21,6 +21,9 @@
 #include <stdio.h>
 
 #include "analysis/stability.h"
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
 
 #define CL_CSTUDY_MAX_DT 64
 
@@ -66,5 +69,7 @@ void cl_cstudy_bracket(cl_cstudy_result *r);
  * integrator,response,dt,steps,stable,status,worst_penetration,worst_t,
  * rest_penetration,rest_contacts,max_stretch,newton_iters,cpu,reason */
 void cl_cstudy_write_rows(FILE *fp, const cl_cstudy_result *r, bool header);
+
+CL_END_DECLS
 
 #endif

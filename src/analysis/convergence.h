@@ -35,8 +35,11 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#include "core/decls.h"
 #include "integrators/integrator.h"
 #include "system/model.h"
+
+CL_BEGIN_DECLS
 
 #define CL_CONV_MAX_LEVELS 20
 /* A level enters a fit with an error more than this many floors: the
@@ -115,5 +118,7 @@ double cl_conv_cheapest(const cl_conv_result *r, double target);
  * rhs_evals,cpu,fit_x,fit_v,status (fit_x, fit_v: the method's fitted
  * orders, repeated on each of its rows). */
 void cl_conv_write_rows(FILE *fp, const cl_conv_result *r, bool header);
+
+CL_END_DECLS
 
 #endif

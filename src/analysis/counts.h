@@ -10,7 +10,10 @@
 #ifndef CL_COUNTS_H
 #define CL_COUNTS_H
 
+#include "core/decls.h"
 #include "core/error.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     int n;
@@ -25,5 +28,7 @@ typedef struct {
 } cl_counts;
 
 cl_status cl_counts_measure(int n, cl_counts *c, cl_error *err);
+
+CL_END_DECLS
 
 #endif

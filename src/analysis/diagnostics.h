@@ -5,7 +5,10 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "model/pairs.h"
+
+CL_BEGIN_DECLS
 
 /* Largest distance |a_p - b_p| over np points (3 np coordinates each): how
  * far apart two states of the same cloth are. */
@@ -29,5 +32,7 @@ bool cl_offplane_applies(const cl_cloth *c);
  * whose |y - Y0| is below 5% of the line's largest (so noise near zero does
  * not count).  0 for a flat or single-signed line. */
 long cl_wrinkles(const cl_cloth *c, const double *xfull);
+
+CL_END_DECLS
 
 #endif

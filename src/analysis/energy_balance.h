@@ -25,8 +25,11 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#include "core/decls.h"
 #include "integrators/integrator.h"
 #include "system/model.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     double t, kinetic, potential, total, dissipated, balance;
@@ -71,5 +74,7 @@ cl_status cl_ebal_add(cl_ebal_result *r, size_t cap, double *trapz,
 /* integrator,t,kinetic,potential,total,dissipated,balance rows, header
  * first when `header`. */
 void cl_ebal_write_rows(FILE *fp, const cl_ebal_result *r, bool header);
+
+CL_END_DECLS
 
 #endif

@@ -18,7 +18,10 @@
 #ifndef CL_EQUILIBRIUM_H
 #define CL_EQUILIBRIUM_H
 
+#include "core/decls.h"
 #include "system/model.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     int steps;            /* steps taken (accepted or not) */
@@ -32,5 +35,7 @@ typedef struct {
 cl_status cl_equilibrium_find(cl_model *m, double t, double *x, double tol,
                               int max_steps, cl_equilibrium_info *info,
                               cl_error *err);
+
+CL_END_DECLS
 
 #endif

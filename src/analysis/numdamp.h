@@ -34,8 +34,11 @@
 #include <stdio.h>
 
 #include "analysis/equilibrium.h"
+#include "core/decls.h"
 #include "integrators/integrator.h"
 #include "system/model.h"
+
+CL_BEGIN_DECLS
 
 #define CL_NUMDAMP_MAX_WH 64
 
@@ -147,5 +150,7 @@ void cl_numdamp_modal_free(cl_numdamp_modal *r);
 
 /* integrator,mode,w,wh,ratio,theory,normal,status rows, header first. */
 void cl_numdamp_modal_rows(FILE *fp, const cl_numdamp_modal *r, bool header);
+
+CL_END_DECLS
 
 #endif

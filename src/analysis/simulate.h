@@ -24,8 +24,11 @@
 
 #include <stdbool.h>
 
+#include "core/decls.h"
 #include "integrators/integrator.h"
 #include "system/model.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     double t_end;        /* > 0 */
@@ -86,5 +89,7 @@ typedef struct {
 cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
                       const cl_integrator_opts *iopts, const cl_sim_opts *so,
                       cl_sim_result *res, cl_error *err);
+
+CL_END_DECLS
 
 #endif

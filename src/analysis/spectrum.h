@@ -39,8 +39,11 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "core/decls.h"
 #include "integrators/region.h"
 #include "system/model.h"
+
+CL_BEGIN_DECLS
 
 #define CL_SPECTRUM_MAX_N (3 * 24 * 24)
 
@@ -97,5 +100,7 @@ void cl_spectrum_write(FILE *fp, const cl_spectrum *s);
 cl_status cl_spectrum_modes(cl_model *m, double t, const double *x,
                             const double *v, double *mu, double *phi,
                             cl_error *err);
+
+CL_END_DECLS
 
 #endif

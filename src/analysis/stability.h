@@ -38,8 +38,11 @@
 #include <stdio.h>
 
 #include "analysis/trial.h"
+#include "core/decls.h"
 #include "integrators/integrator.h"
 #include "system/model.h"
+
+CL_BEGIN_DECLS
 
 #define CL_STAB_MAX_TRIALS 128
 
@@ -98,5 +101,7 @@ int cl_stab_try(cl_trial *t, const cl_integrator_type *type,
 /* One CSV row per run, header first when `header`:
  * integrator,dt,steps,stable,status,cpu,stretch,reason */
 void cl_stab_write_rows(FILE *fp, const cl_stab_result *r, bool header);
+
+CL_END_DECLS
 
 #endif

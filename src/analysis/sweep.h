@@ -38,8 +38,11 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#include "core/decls.h"
 #include "core/error.h"
 #include "io/config.h"
+
+CL_BEGIN_DECLS
 
 #define CL_SWEEP_MAX_AXES 16
 #define CL_SWEEP_MAX_VALUES 100000
@@ -215,5 +218,7 @@ void cl_sweep_outcomes(const cl_sweep *sw, cl_sweep_outcome *out,
  * message */
 void cl_sweep_write_table(FILE *fp, const cl_sweep *sw,
                           const cl_sweep_outcome *out);
+
+CL_END_DECLS
 
 #endif

@@ -13,8 +13,11 @@
 #include "analysis/energy_balance.h"
 #include "analysis/sweep.h"
 #include "analysis/stability.h"
+#include "core/decls.h"
 #include "core/error.h"
 #include "io/config.h"
+
+CL_BEGIN_DECLS
 
 #define CL_SWEEP_TABLE_MAX_ROWS 1024 /* rows of one method a study takes */
 
@@ -141,5 +144,7 @@ cl_status cl_ebal_from_sweep(const cl_sweep_table *t, const char *label,
 cl_status cl_cstudy_from_sweep(const cl_sweep_table *t, const char *label,
                                const cl_stab_opts *o, cl_cstudy_result *r,
                                cl_error *err);
+
+CL_END_DECLS
 
 #endif

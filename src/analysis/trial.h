@@ -9,9 +9,12 @@
 #ifndef CL_TRIAL_H
 #define CL_TRIAL_H
 
+#include "core/decls.h"
 #include "integrators/integrator.h"
 #include "system/model.h"
 #include "model/pairs.h"
+
+CL_BEGIN_DECLS
 
 /* Called at t = 0 and after every passed check with the free state. */
 typedef cl_status (*cl_trial_hook)(void *ctx, double t, const double *x,
@@ -49,5 +52,7 @@ void cl_trial_free(cl_trial *t);
 cl_status cl_trial_run(cl_trial *t, const cl_integrator_type *type,
                        const cl_integrator_opts *io, double T, long checks,
                        double max_stretch, cl_stats *s, cl_error *err);
+
+CL_END_DECLS
 
 #endif

@@ -6,10 +6,13 @@
 #include <stdio.h>
 
 #include "cli/options.h"
+#include "core/decls.h"
 #include "core/exit.h"
 #include "integrators/integrator.h"
 #include "io/config.h"
 #include "system/model.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     const char *name;
@@ -188,5 +191,7 @@ cl_status cl_cli_methods_try(cl_model *model, const cl_cli_methods *ms,
  * or its initial state when path is "". */
 cl_status cl_cli_free_state(cl_model *m, const char *path, double *x,
                             double *v, cl_error *err);
+
+CL_END_DECLS
 
 #endif

@@ -2,7 +2,10 @@
 #ifndef CL_COMMANDS_H
 #define CL_COMMANDS_H
 
+#include "core/decls.h"
 #include "core/error.h"
+
+CL_BEGIN_DECLS
 
 int cl_cmd_run(int argc, char **argv);
 
@@ -26,5 +29,7 @@ int cl_cmd_replay(int argc, char **argv);
 int cl_cmd_sweep(int argc, char **argv);
 int cl_cmd_damping(int argc, char **argv);
 int cl_cmd_budget(int argc, char **argv);
+
+CL_END_DECLS
 
 #endif

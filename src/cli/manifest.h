@@ -7,7 +7,10 @@
 #include <jansson.h>
 
 #include "cli/cli.h"
+#include "core/decls.h"
 #include "core/stats.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     json_t *root;
@@ -31,5 +34,7 @@ cl_status cl_manifest_begin(cl_manifest *mf, const cl_cli_job *job, int argc,
  * size and SHA-256; then release mf. */
 cl_status cl_manifest_end(cl_manifest *mf, cl_status rc, const cl_error *why,
                           const cl_stats *st, cl_error *err);
+
+CL_END_DECLS
 
 #endif

@@ -18,7 +18,10 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "core/decls.h"
 #include "io/config.h"
+
+CL_BEGIN_DECLS
 
 typedef enum {
     CL_CLI_END = 0, /* closes a table */
@@ -137,5 +140,7 @@ const char *cl_cli_join(const char *const *names, char *buf, size_t len);
 
 /* The --help text of the table. */
 void cl_cli_help(const cl_cli_table *t, FILE *fp);
+
+CL_END_DECLS
 
 #endif

@@ -12,7 +12,10 @@
 
 #include <stdbool.h>
 
+#include "core/decls.h"
 #include "core/error.h"
+
+CL_BEGIN_DECLS
 
 /* Whether `name` (a file name without directory) is one a run writes. */
 bool cl_cli_run_output(const char *name);
@@ -31,5 +34,7 @@ cl_status cl_cli_outdir_check(const char *dir, cl_error *err);
  * something other than a regular file), then create it if missing.
  * Nothing is removed when it is refused. */
 cl_status cl_cli_outdir_prepare(const char *dir, cl_error *err);
+
+CL_END_DECLS
 
 #endif

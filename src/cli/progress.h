@@ -7,6 +7,10 @@
 
 #include <stdbool.h>
 
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
+
 typedef struct {
     bool on;           /* stderr is a terminal and not --quiet */
     const char *what;  /* "t =" or "runs" */
@@ -27,5 +31,7 @@ void cl_cli_progress_clear(cl_cli_progress_line *p);
 
 /* cl_sim_opts' progress callback: ctx a started line, fraction of T. */
 void cl_cli_progress(void *ctx, double fraction);
+
+CL_END_DECLS
 
 #endif

@@ -11,6 +11,9 @@
 #include <stdio.h>
 
 #include "cli/cli.h"
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     const char *csv;      /* file name in the output directory */
@@ -32,5 +35,7 @@ typedef struct {
 cl_status cl_cli_study_run(cl_model *m, const cl_cli_job *job,
                            const cl_cli_study *st, int n, void *ctx,
                            cl_error *err);
+
+CL_END_DECLS
 
 #endif

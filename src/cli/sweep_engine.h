@@ -9,6 +9,9 @@
 
 #include "analysis/sweep.h"
 #include "cli/options.h"
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
 
 enum { CL_SWEEP_LOCAL = 1u, CL_SWEEP_SSH = 2u, CL_SWEEP_SLURM = 4u };
 
@@ -43,5 +46,7 @@ int cl_sweep_slurm(const cl_sweep *sw, const cl_sweep_run_args *r,
  * (DIR/slurm/job) still has tasks queued or running, as squeue says:
  * CL_EINVAL then, naming it, and CL_EIO when squeue cannot tell. */
 cl_status cl_sweep_slurm_idle(const cl_sweep *sw, cl_error *err);
+
+CL_END_DECLS
 
 #endif

@@ -7,6 +7,10 @@
 
 #include <jansson.h>
 
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
+
 /* The version, its git commit, the compiler and flags, the program's GNU
  * build ID (null when it was linked without one), and the versions of
  * the libraries linked (SUNDIALS, SuiteSparse, GSL, the BLAS and LAPACK
@@ -26,5 +30,7 @@ json_t *cl_cli_host_json(void);
 /* `clothode --version`: the build object as "name value" lines on fp;
  * returns the exit status. */
 int cl_cli_version(FILE *fp);
+
+CL_END_DECLS
 
 #endif

@@ -38,6 +38,9 @@
 #include <stdbool.h>
 
 #include "contact/obstacle.h"
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
 
 /* The fraction of the time of impact a filtered step may take (IPC's
  * line-search filter, section 4.2). */
@@ -74,5 +77,7 @@ void cl_barrier_friction(const cl_response_params *r, const double n[3],
 /* H with its negative eigenvalues set to 0 (symmetric 3x3, in place;
  * LAPACK's dsyev). */
 void cl_barrier_project_psd(double H[9]);
+
+CL_END_DECLS
 
 #endif

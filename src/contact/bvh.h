@@ -25,7 +25,10 @@
 #include <stddef.h>
 
 #include "contact/triangle.h"
+#include "core/decls.h"
 #include "core/error.h"
+
+CL_BEGIN_DECLS
 
 #define CL_BVH_LEAF 4
 
@@ -139,5 +142,7 @@ void cl_bvh_walk(const cl_bvh *b,
  * of the benchmark. */
 void cl_bvh_nearest_brute(const cl_bvh *b, const double x[3],
                           cl_bvh_hit *hit);
+
+CL_END_DECLS
 
 #endif

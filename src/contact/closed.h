@@ -8,8 +8,11 @@
 
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
 #include "model/mesh.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     cl_mesh mesh;       /* its edges: all interior, mesh.nboundary == 0 */
@@ -28,5 +31,7 @@ void cl_closed_free(cl_closed *s);
 
 /* The triangle across side k of triangle t. */
 int cl_closed_across(const cl_closed *s, int t, int k);
+
+CL_END_DECLS
 
 #endif

@@ -25,6 +25,9 @@
 #include <stdbool.h>
 
 #include "contact/obstacle.h"
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
 
 typedef enum {
     CL_CONSTRAINT_FREE,
@@ -54,5 +57,7 @@ void cl_constraint_start(const cl_response_params *r,
 bool cl_constraint_release(double mu, const double imp[3], cl_constraint *c,
                            double S[9], double z[3], double y[3],
                            double g[3]);
+
+CL_END_DECLS
 
 #endif

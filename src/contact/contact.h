@@ -18,7 +18,10 @@
 #include <stddef.h>
 
 #include "contact/obstacle.h"
+#include "core/decls.h"
 #include "forces/term.h"
+
+CL_BEGIN_DECLS
 
 typedef struct cl_contact cl_contact;
 
@@ -119,5 +122,7 @@ void cl_contact_constrain(cl_contact *c, double t, double h, const double *x,
  * the last solve needed; whether any changed. */
 bool cl_contact_release(cl_contact *c, const double *impulse, double *S,
                         double *z, double *y, double *g);
+
+CL_END_DECLS
 
 #endif

@@ -10,10 +10,15 @@
 #define CL_ICOSPHERE_H
 
 #include "contact/shape.h"
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
 
 /* Level 0..8 (CL_EINVAL otherwise), centre and radius > 0; free with
  * cl_shape_surface_free. */
 cl_status cl_icosphere(int level, const double centre[3], double radius,
                        cl_shape_surface *s, cl_error *err);
+
+CL_END_DECLS
 
 #endif

@@ -38,7 +38,10 @@
 
 #include "contact/bvh.h"
 #include "contact/closed.h"
+#include "core/decls.h"
 #include "core/error.h"
+
+CL_BEGIN_DECLS
 
 typedef enum { CL_FEAT_FACE, CL_FEAT_EDGE, CL_FEAT_CORNER } cl_feat_kind;
 
@@ -112,5 +115,7 @@ bool cl_meshfeat_answer(const cl_meshfeat *f, int id, const double x[3],
 int cl_meshfeat_answer_near(const cl_meshfeat *f, int id, const double x[3],
                             double *d, double n[3], double c[3],
                             cl_feat_kind *kind, double e[3]);
+
+CL_END_DECLS
 
 #endif

@@ -34,6 +34,9 @@
 #include <stdbool.h>
 
 #include "contact/shape.h"
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
 
 typedef enum {
     CL_RESPONSE_PENALTY,
@@ -186,5 +189,7 @@ bool cl_obstacle_sweep(const cl_obstacle *o, const cl_pose *P0,
 /* The obstacle's drawing surface at time t, in the world frame. */
 cl_status cl_obstacle_surface(const cl_obstacle *o, double t,
                               cl_shape_surface *s, cl_error *err);
+
+CL_END_DECLS
 
 #endif

@@ -32,6 +32,9 @@
 #include <stddef.h>
 
 #include "contact/obstacle.h"
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     double f[3];          /* force on the particle */
@@ -56,5 +59,7 @@ bool cl_penalty_eval(const cl_response_params *r, const cl_contact_point *q,
 void cl_penalty_forces(const cl_response_params *r, const cl_contact_slim *q,
                        const size_t *near, size_t n, const double *v,
                        double *f, double *energy, double *power);
+
+CL_END_DECLS
 
 #endif

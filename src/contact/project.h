@@ -18,6 +18,9 @@
 #include <stddef.h>
 
 #include "contact/obstacle.h"
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     size_t moved;           /* particles moved */
@@ -36,5 +39,7 @@ bool cl_project_particle(const cl_response_params *r,
  * the surface (contact/obstacle.h, cl_obstacle_sweep). */
 void cl_project_hit(const cl_response_params *r, const cl_contact_point *q,
                     double m, double x[3], double v[3], cl_project_tally *t);
+
+CL_END_DECLS
 
 #endif

@@ -12,6 +12,9 @@
 #include <stddef.h>
 
 #include "contact/obstacle.h"
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
 
 /* The relative slack of a screen computed in another order than the
  * query (a few units of rounding, 1.1e-16 each, with a wide margin). */
@@ -33,5 +36,7 @@ size_t cl_screen_memos(const double *x, size_t np, const double q[3],
 size_t cl_screen_halfspace(const double *x, size_t np, const double n[3],
                            double c, double scale, double dmax,
                            size_t *near);
+
+CL_END_DECLS
 
 #endif

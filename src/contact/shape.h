@@ -17,8 +17,11 @@
 
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
 #include "io/config.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     double d;       /* signed distance (m), > 0 outside */
@@ -90,5 +93,7 @@ extern const cl_shape_type *const cl_shape_registry[];
 const cl_shape_type *cl_shape_find(const char *name);
 
 void cl_shape_surface_free(cl_shape_surface *s);
+
+CL_END_DECLS
 
 #endif

@@ -7,6 +7,9 @@
 #include <stdbool.h>
 
 #include "contact/shape.h"
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
 
 /* CL_EINVAL "ORIGIN: [sec] key = "value": expected WHAT", the form of the
  * typed getters of io/config.h, for a value they read but the shape does
@@ -48,5 +51,7 @@ void cl_shape_hessian(const double n[3], const double *e, double rho,
 cl_status cl_shape_surface_alloc(cl_shape_surface *s, size_t nvert,
                                  size_t ntri, const int (*tri)[3],
                                  cl_error *err);
+
+CL_END_DECLS
 
 #endif

@@ -12,6 +12,10 @@
 #ifndef CL_TRIANGLE_H
 #define CL_TRIANGLE_H
 
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
+
 typedef enum { CL_TRI_FACE, CL_TRI_EDGE, CL_TRI_VERTEX } cl_tri_feature;
 
 typedef struct {
@@ -58,5 +62,7 @@ double cl_tri_segment(const double x0[3], const double D[3],
  * winding number times 4 pi). */
 double cl_tri_solid_angle(const double x[3], const double a[3],
                           const double b[3], const double c[3]);
+
+CL_END_DECLS
 
 #endif

@@ -6,7 +6,10 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
+
+CL_BEGIN_DECLS
 
 /* true if all n values of a are finite (n = 0: true). */
 bool cl_all_finite(const double *a, size_t n);
@@ -19,5 +22,7 @@ bool cl_all_finite_threads(const double *a, size_t n, int threads);
  * one. */
 cl_status cl_check_masses(const double *mass, size_t n, const char *who,
                           cl_error *err);
+
+CL_END_DECLS
 
 #endif

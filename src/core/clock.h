@@ -3,7 +3,13 @@
 #ifndef CL_CLOCK_H
 #define CL_CLOCK_H
 
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
+
 double cl_clock_cpu(void);
 double cl_clock_wall(void);
+
+CL_END_DECLS
 
 #endif

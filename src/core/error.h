@@ -6,6 +6,10 @@
 #ifndef CL_ERROR_H
 #define CL_ERROR_H
 
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
+
 typedef enum {
     CL_OK = 0,
     CL_EINVAL,      /* bad argument or parameter value */
@@ -35,5 +39,7 @@ cl_status cl_error_set(cl_error *err, cl_status code, const char *fmt, ...)
 void cl_error_clear(cl_error *err);
 
 const char *cl_status_name(cl_status code);
+
+CL_END_DECLS
 
 #endif

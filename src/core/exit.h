@@ -4,6 +4,10 @@
 #ifndef CL_EXIT_H
 #define CL_EXIT_H
 
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
+
 enum {
     CL_EXIT_OK = 0,
     CL_EXIT_OTHER = 1,       /* out of memory; replay: outputs differ */
@@ -19,5 +23,7 @@ enum {
 /* A short name of exit status s: "ok", "other", "input", "solver",
  * "blow-up", "budget", "interrupted", "io"; NULL beyond them. */
 const char *cl_exit_name(int s);
+
+CL_END_DECLS
 
 #endif

@@ -17,7 +17,10 @@
 
 #include <stdbool.h>
 
+#include "core/decls.h"
 #include "core/error.h"
+
+CL_BEGIN_DECLS
 
 /* Bytes available, or CL_EIO if the system does not say.  *limit (may be
  * NULL) names the limit that gave the least: "MemAvailable", "the memory
@@ -50,5 +53,7 @@ typedef struct {
  * available, and cl_mem_cap_release restores the limit. */
 void cl_mem_cap_data(cl_mem_cap *cap);
 void cl_mem_cap_release(const cl_mem_cap *cap);
+
+CL_END_DECLS
 
 #endif

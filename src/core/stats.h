@@ -3,6 +3,10 @@
 #ifndef CL_STATS_H
 #define CL_STATS_H
 
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
+
 /* The statistics every integrator reports. Counters a method does
  * not have stay 0; counters it has but its library does not expose (the
  * Newton iterations and LU factorisations inside GSL's msbdf) are
@@ -31,5 +35,7 @@ typedef struct {
     double wall;         /* seconds spent inside advance (wall clock) */
     double cpu;          /* seconds spent inside advance (process CPU) */
 } cl_stats;
+
+CL_END_DECLS
 
 #endif

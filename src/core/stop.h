@@ -13,7 +13,10 @@
 
 #include <stdbool.h>
 
+#include "core/decls.h"
 #include "core/error.h"
+
+CL_BEGIN_DECLS
 
 #define CL_STOP_REPEAT_S 0.1
 
@@ -58,5 +61,7 @@ const char *cl_stop_signal_name(int sig);
  * at t = t_reached" (its last output time), and " (during the advance to
  * t = t_to)" when t_to is not NaN (the evaluations stopped an advance). */
 cl_status cl_stop_error(cl_error *err, double t_reached, double t_to);
+
+CL_END_DECLS
 
 #endif

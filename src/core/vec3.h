@@ -5,6 +5,10 @@
 
 #include <math.h>
 
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
+
 static inline double cl_v3_dot(const double a[3], const double b[3])
 {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -84,5 +88,7 @@ static inline double cl_v3_normalize(double a[3])
             a[i] /= r;
     return r;
 }
+
+CL_END_DECLS
 
 #endif

@@ -52,7 +52,10 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
+
+CL_BEGIN_DECLS
 
 /* ---- sinc and 1 - sinc --------------------------------------------------- */
 
@@ -137,5 +140,7 @@ cl_status cl_seed_poly_coeffs(double p[CL_SEED_POLY_NCOEF], cl_error *err);
  * i.e. p approximates asinc(y)/pi, not asinc(y). */
 double cl_seed_poly_eval(const double p[CL_SEED_POLY_NCOEF], double r,
                          double *dp);
+
+CL_END_DECLS
 
 #endif

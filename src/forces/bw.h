@@ -36,8 +36,11 @@
 
 #include <stdbool.h>
 
+#include "core/decls.h"
 #include "forces/term.h"
 #include "model/mesh.h"
+
+CL_BEGIN_DECLS
 
 #define CL_BW_MAXV 4                /* vertices of an element */
 #define CL_BW_NX (3 * CL_BW_MAXV)   /* coordinates of an element */
@@ -192,5 +195,7 @@ extern const cl_term_type cl_term_bw_shear;
 extern const cl_term_type cl_term_bw_shear_damping;
 extern const cl_term_type cl_term_bw_bend;
 extern const cl_term_type cl_term_bw_bend_damping;
+
+CL_END_DECLS
 
 #endif

@@ -5,8 +5,11 @@
 
 #include <stdbool.h>
 
+#include "core/decls.h"
 #include "forces/pairterm.h"
 #include "forces/term.h"
+
+CL_BEGIN_DECLS
 
 /* [type1] ks (N/m): Type1 stiffness, also the Type2 tension spring. */
 cl_status cl_choiko_ks(cl_config *cfg, double *ks, cl_error *err);
@@ -25,5 +28,7 @@ bool cl_damping_fused(void *state, cl_pairterm *const *pt, size_t npt,
 extern const cl_term_type cl_term_type1;
 extern const cl_term_type cl_term_type2;
 extern const cl_term_type cl_term_damping;
+
+CL_END_DECLS
 
 #endif

@@ -13,18 +13,26 @@
 
 #include <math.h>
 
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
+
 typedef struct {
     double b, db, d2b;
 } cl_logbarrier;
 
 static inline cl_logbarrier cl_logbarrier_eval(double d, double dh)
 {
+    cl_logbarrier r = {0.0, 0.0, 0.0};
     if (!(d < dh))
-        return (cl_logbarrier){0.0, 0.0, 0.0};
+        return r;
     double g = d - dh, l = log(d / dh);
-    return (cl_logbarrier){.b = -g * g * l,
-                           .db = -2.0 * g * l - g * g / d,
-                           .d2b = -2.0 * l - 4.0 * g / d + g * g / (d * d)};
+    r.b = -g * g * l;
+    r.db = -2.0 * g * l - g * g / d;
+    r.d2b = -2.0 * l - 4.0 * g / d + g * g / (d * d);
+    return r;
 }
+
+CL_END_DECLS
 
 #endif

@@ -27,8 +27,11 @@
 #ifndef CL_PAIRDAMP_H
 #define CL_PAIRDAMP_H
 
+#include "core/decls.h"
 #include "forces/pairgather.h"
 #include "forces/pairterm.h"
+
+CL_BEGIN_DECLS
 
 typedef enum { CL_DAMP_LINEAR, CL_DAMP_AXIAL } cl_damp_model;
 
@@ -74,5 +77,7 @@ void cl_pairdamp_eval(cl_pairdamp *pd, cl_eval *ev, cl_pairdamp_keep keep,
  * pairs differ, a term tears, or ev asks for more. */
 bool cl_pairdamp_fused(cl_pairterm *const *pt, size_t npt, cl_pairdamp *pd,
                        cl_eval *ev);
+
+CL_END_DECLS
 
 #endif

@@ -17,7 +17,10 @@
 
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     size_t n, np;        /* pairs; particles (above the largest index) */
@@ -37,5 +40,7 @@ void cl_pairgather_free(cl_pairgather *g);
 /* f[3p + i] += the sums above, for every particle p, on `threads`
  * threads (bitwise the same for every count). */
 void cl_pairgather_add(const cl_pairgather *g, int threads, double *f);
+
+CL_END_DECLS
 
 #endif

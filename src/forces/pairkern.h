@@ -31,8 +31,11 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
 #include "model/pairs.h"
+
+CL_BEGIN_DECLS
 
 /* Run-time dispatch by CPU features for the vectorised loops. */
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
@@ -77,7 +80,7 @@ void cl_pairkern_incidence(const long *key, size_t m, size_t nkey,
 
 /* f_a += (f0, f1, f2), f_b -= (f0, f1, f2) for particles a, b (3 entries
  * each in f): a pair's force into a force array. */
-static inline void cl_pairkern_scatter(double *restrict f, size_t a, size_t b,
+static inline void cl_pairkern_scatter(double *CL_RESTRICT f, size_t a, size_t b,
                                        double f0, double f1, double f2)
 {
     double *fa = f + 3 * a, *fb = f + 3 * b;
@@ -157,5 +160,7 @@ void cl_pairkern_central(cl_pairkern *pk, size_t k0, size_t k1, size_t base,
 void cl_pairkern_eval(cl_pairkern *pk, cl_pairkern_fn fn, void *ctx,
                       const unsigned char *torn, double *f,
                       double *const vals[2]);
+
+CL_END_DECLS
 
 #endif

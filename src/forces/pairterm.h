@@ -24,9 +24,12 @@
 
 #include <stdbool.h>
 
+#include "core/decls.h"
 #include "forces/pairkern.h"
 #include "forces/term.h"
 #include "model/pairs.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     double s;   /* s(d): > 0 pulls the pair together */
@@ -88,7 +91,7 @@ static inline bool cl_pairterm_is_torn(const cl_pairterm *pt, size_t k)
 
 /* f_a += (f0, f1, f2), f_b -= (f0, f1, f2): a pair's force into the
  * force array f (3 per particle); the force-only paths' scatter. */
-static inline void cl_pair_scatter(double *restrict f, const cl_pair *pr,
+static inline void cl_pair_scatter(double *CL_RESTRICT f, const cl_pair *pr,
                                    double f0, double f1, double f2)
 {
     cl_pairkern_scatter(f, (size_t)pr->a, (size_t)pr->b, f0, f1, f2);
@@ -124,5 +127,7 @@ cl_status cl_pairterm_threads(void *state, int threads, cl_error *err);
  * broke now (0 without tearing); broken lists those broken so far. */
 size_t cl_pairterm_step_done(void *state, const double *x, const double *v);
 size_t cl_pairterm_broken(const void *state, const int (**pairs)[2]);
+
+CL_END_DECLS
 
 #endif

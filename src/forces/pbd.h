@@ -41,8 +41,13 @@
 #ifndef CL_PBD_H
 #define CL_PBD_H
 
+#include "core/decls.h"
 #include "forces/term.h"
 
+CL_BEGIN_DECLS
+
 extern const cl_term_type cl_term_pbd;
+
+CL_END_DECLS
 
 #endif

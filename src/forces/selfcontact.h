@@ -33,7 +33,10 @@
 #ifndef CL_SELFCONTACT_H
 #define CL_SELFCONTACT_H
 
+#include "core/decls.h"
 #include "forces/term.h"
+
+CL_BEGIN_DECLS
 
 extern const cl_term_type cl_term_selfcontact;
 
@@ -46,5 +49,7 @@ double cl_selfcontact_closest(void *state, const double *x);
  * 3 np x 3 np): the coupling blocks the lumped Jacobian leaves out
  * included. */
 void cl_selfcontact_dense(void *state, const double *x, double *J);
+
+CL_END_DECLS
 
 #endif

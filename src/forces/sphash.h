@@ -18,7 +18,10 @@
 
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     double cell;        /* cell side (m), > 0 */
@@ -44,5 +47,7 @@ void cl_sphash_build(cl_sphash *h, const double *x);
 typedef void (*cl_sphash_visit)(void *ctx, int a, int b, double d2);
 void cl_sphash_pairs(const cl_sphash *h, const double *x,
                      cl_sphash_visit visit, void *ctx);
+
+CL_END_DECLS
 
 #endif

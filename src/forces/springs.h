@@ -54,8 +54,11 @@
 #ifndef CL_SPRINGS_H
 #define CL_SPRINGS_H
 
+#include "core/decls.h"
 #include "forces/term.h"
 #include "model/pairs.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     cl_pairset set; /* each unordered pair once, a < b */
@@ -70,5 +73,7 @@ void cl_springnet_free(cl_springnet *net);
 
 extern const cl_term_type cl_term_springs;
 extern const cl_term_type cl_term_spring_damping;
+
+CL_END_DECLS
 
 #endif

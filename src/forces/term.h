@@ -13,11 +13,14 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
 #include "io/config.h"
 #include "linalg/bpattern.h"
 #include "model/cloth.h"
 #include "model/pairs.h"
+
+CL_BEGIN_DECLS
 
 /* Options shared by every term (docs/model.md 3.1: jacobian.transverse;
  * 3.4: tearing). */
@@ -90,5 +93,7 @@ typedef struct cl_term_type {
 
 /* Registry (forces/registry.c), NULL-terminated, in evaluation order. */
 extern const cl_term_type *const cl_term_registry[];
+
+CL_END_DECLS
 
 #endif

@@ -71,10 +71,13 @@
 #ifndef CL_ARKODE_COMMON_H
 #define CL_ARKODE_COMMON_H
 
+#include "core/decls.h"
 #include "integrators/define.h"
 #include "integrators/integrator.h"
 #include "integrators/sun_adapter.h"
 #include "integrators/sun_reduced.h"
+
+CL_BEGIN_DECLS
 
 /* The default tables. */
 #define CL_ARK_DIRK_DEFAULT "ARK436L2SA_DIRK_6_3_4"
@@ -115,5 +118,7 @@ cl_status cl_ark_advance(void *state, double t_out, double *x, double *v,
         .stats = cl_sun_stats,                                             \
         .free = cl_sun_free,                                               \
     }
+
+CL_END_DECLS
 
 #endif

@@ -26,8 +26,11 @@
 #ifndef CL_CONSTRAINT_COMMON_H
 #define CL_CONSTRAINT_COMMON_H
 
+#include "core/decls.h"
 #include "integrators/define.h"
 #include "integrators/integrator.h"
+
+CL_BEGIN_DECLS
 
 typedef struct cl_cdyn cl_cdyn;
 
@@ -93,5 +96,7 @@ void cl_cdyn_free(void *state);
         .stats = cl_cdyn_stats,                                             \
         .free = cl_cdyn_free,                                               \
     }
+
+CL_END_DECLS
 
 #endif

@@ -16,7 +16,10 @@
 #ifndef CL_DEFINE_H
 #define CL_DEFINE_H
 
+#include "core/decls.h"
 #include "integrators/integrator.h"
+
+CL_BEGIN_DECLS
 
 /* static create function ident_create(sys, opts, t0, x0, v0, state, err)
  * = create_(method_, sys, ...), method_ a pointer to the method's
@@ -48,5 +51,7 @@
         .stats = (stats_),                                                  \
         .free = (free_),                                                    \
     }
+
+CL_END_DECLS
 
 #endif

@@ -31,8 +31,11 @@
 #ifndef CL_FIXED_STEP_H
 #define CL_FIXED_STEP_H
 
+#include "core/decls.h"
 #include "integrators/define.h"
 #include "integrators/integrator.h"
+
+CL_BEGIN_DECLS
 
 #define CL_FIXED_MAXWORK 6
 
@@ -142,5 +145,7 @@ cl_status cl_fixed_force(cl_fixed *s, double t, const double *x,
                          region_, doc_, true, false, false, false,          \
                          (vdamp_), cl_fixed_advance, cl_fixed_stats,        \
                          cl_fixed_free)
+
+CL_END_DECLS
 
 #endif

@@ -47,8 +47,11 @@
 
 #include <gsl/gsl_odeiv2.h>
 
+#include "core/decls.h"
 #include "integrators/define.h"
 #include "integrators/integrator.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     const char *name;                 /* registry name, for messages */
@@ -109,5 +112,7 @@ int cl_gslode_failed(cl_gslode *s, cl_status st, double t);
                          region_, doc_, false, false, (jac_) != NULL, false,\
                          false, cl_gslode_advance,                          \
                          cl_gslode_stats, cl_gslode_free)
+
+CL_END_DECLS
 
 #endif

@@ -7,10 +7,16 @@
 
 #include <stdbool.h>
 
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
+
 /* Never NULL: unknown flags get the general advice.  fixed_step: the
  * method takes fixed steps, which a failed Newton iteration does not make
  * smaller (arkode-*-fixed), so its advice names --dt and the Newton
  * iterations instead of the tolerances. */
 const char *cl_solver_hint(const char *flag_name, bool fixed_step);
+
+CL_END_DECLS
 
 #endif

@@ -13,11 +13,14 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#include "core/decls.h"
 #include "core/error.h"
 #include "core/stats.h"
 #include "integrators/region.h"
 #include "linalg/linsol.h"
 #include "system/system.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     double dt;        /* fixed step, or initial step hint (0: solver's own) */
@@ -59,8 +62,8 @@ typedef struct {
 static inline cl_linsol_opts cl_integrator_linsol_opts(
     const cl_integrator_opts *o, const cl_system *sys)
 {
-    return (cl_linsol_opts){.tol = o->lin_tol, .maxit = o->lin_maxit,
-                            .threads = sys->threads};
+    cl_linsol_opts lo = {o->lin_tol, o->lin_maxit, sys->threads};
+    return lo;
 }
 
 
@@ -160,5 +163,7 @@ cl_status cl_integrator_contact_at(const char *name, const cl_system *sys,
  * as "name,value" CSV rows without header and without the wall and CPU
  * times (human = false). */
 void cl_stats_print(const cl_stats *s, FILE *fp, bool human);
+
+CL_END_DECLS
 
 #endif

@@ -121,8 +121,11 @@
 #ifndef CL_KINSOL_COMMON_H
 #define CL_KINSOL_COMMON_H
 
+#include "core/decls.h"
 #include "integrators/define.h"
 #include "integrators/integrator.h"
+
+CL_BEGIN_DECLS
 
 struct cl_kin_scheme;
 
@@ -195,5 +198,7 @@ extern const cl_kin_scheme cl_kin_scheme_be;
         .stats = cl_kin_stats,                                              \
         .free = cl_kin_free,                                                \
     }
+
+CL_END_DECLS
 
 #endif

@@ -6,7 +6,10 @@
 #ifndef CL_MEMGUARD_H
 #define CL_MEMGUARD_H
 
+#include "core/decls.h"
 #include "integrators/integrator.h"
+
+CL_BEGIN_DECLS
 
 /* Bytes the Jacobian, the Newton matrix and its factors of `type` (with
  * linear solver `linsol`: NULL or "" for the method's default) take on
@@ -19,5 +22,7 @@ double cl_memguard_estimate(const cl_integrator_type *type,
 cl_status cl_memguard_check(const cl_integrator_type *type,
                             const cl_system *sys, const char *linsol,
                             cl_error *err);
+
+CL_END_DECLS
 
 #endif

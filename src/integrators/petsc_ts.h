@@ -16,8 +16,11 @@
 #ifndef CL_PETSC_TS_H
 #define CL_PETSC_TS_H
 
+#include "core/decls.h"
 #include "integrators/define.h"
 #include "integrators/integrator.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     const char *name;     /* "petsc-bdf" */
@@ -62,5 +65,7 @@ void cl_petsc_ts_free(void *state);
         .stats = cl_petsc_ts_stats,                                         \
         .free = cl_petsc_ts_free,                                           \
     }
+
+CL_END_DECLS
 
 #endif

@@ -12,8 +12,11 @@
 
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/stats.h"
 #include "linalg/plugin.h"
+
+CL_BEGIN_DECLS
 
 /* f(t, x, v), n entries each. */
 typedef int (*clp_ts_force_fn)(void *ctx, double t, const double *x,
@@ -58,5 +61,7 @@ typedef int (*clp_ts_advance_fn)(void *ts, double t_out, double *x,
 typedef int (*clp_ts_restart_fn)(void *ts, cl_plugin_msg *msg);
 typedef void (*clp_ts_stats_fn)(const void *ts, cl_stats *st);
 typedef void (*clp_ts_free_fn)(void *ts);
+
+CL_END_DECLS
 
 #endif

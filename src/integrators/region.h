@@ -29,6 +29,10 @@
 #ifndef CL_REGION_H
 #define CL_REGION_H
 
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
+
 typedef enum {
     CL_REGION_TAYLOR,
     CL_REGION_SYMPLECTIC,
@@ -97,5 +101,7 @@ extern const cl_region cl_region_bdf5;
 extern const cl_region cl_region_adaptive;
 extern const cl_region cl_region_projected;
 extern const cl_region cl_region_split;
+
+CL_END_DECLS
 
 #endif

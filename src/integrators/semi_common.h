@@ -21,9 +21,12 @@
 #ifndef CL_SEMI_COMMON_H
 #define CL_SEMI_COMMON_H
 
+#include "core/decls.h"
 #include "integrators/fixed_step.h"
 #include "integrators/integrator.h"
 #include "linalg/linsol.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     const char *name;           /* method name, for messages */
@@ -113,5 +116,7 @@ cl_status cl_semi_advance(cl_semi *s, void *state, cl_fixed_step_fn step,
 
 /* steps, rhs_evals, jac_evals and the linear solver's counters. */
 void cl_semi_stats(const cl_semi *s, cl_stats *out);
+
+CL_END_DECLS
 
 #endif

@@ -106,7 +106,10 @@
 #include <sundials/sundials_linearsolver.h>
 #include <sundials/sundials_nonlinearsolver.h>
 
+#include "core/decls.h"
 #include "integrators/integrator.h"
+
+CL_BEGIN_DECLS
 
 /* ---- shell objects ------------------------------------------------------ */
 
@@ -324,5 +327,7 @@ cl_status cl_sun_advance(void *state, double t_out, double *x, double *v,
                          cl_error *err);
 void cl_sun_stats(const void *state, cl_stats *out);
 void cl_sun_free(void *state);
+
+CL_END_DECLS
 
 #endif

@@ -20,8 +20,14 @@
 
 #include <sundials/sundials_nonlinearsolver.h>
 
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
+
 /* A new full Newton solver on vectors like y, or NULL (out of memory);
  * SUNNonlinSolFree releases it. */
 SUNNonlinearSolver cl_sun_newton_full(N_Vector y, SUNContext ctx);
+
+CL_END_DECLS
 
 #endif

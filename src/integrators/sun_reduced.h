@@ -123,7 +123,10 @@
 #ifndef CL_SUN_REDUCED_H
 #define CL_SUN_REDUCED_H
 
+#include "core/decls.h"
 #include "integrators/sun_adapter.h"
+
+CL_BEGIN_DECLS
 
 /* The linear solver of cvode-bdf and ida when --linsol is not given. */
 #define CL_SUNRED_DEFAULT "auto"
@@ -149,5 +152,7 @@
  * CL_EINVAL naming the known solvers for an unknown name. */
 cl_status cl_sunred_attach(cl_sun *s, const cl_integrator_opts *o, bool ida,
                            cl_error *err);
+
+CL_END_DECLS
 
 #endif

@@ -17,8 +17,14 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_linearsolver.h>
 
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
+
 /* A solver for square dense matrices of y's length, or NULL if out of
  * memory. */
 SUNLinearSolver cl_sunls_lapack_dense(N_Vector y, SUNContext ctx);
+
+CL_END_DECLS
 
 #endif

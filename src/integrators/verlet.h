@@ -10,7 +10,10 @@
 
 #include <stdbool.h>
 
+#include "core/decls.h"
 #include "integrators/fixed_step.h"
+
+CL_BEGIN_DECLS
 
 /* One step from t = t_k to t_k + h: x_{k+1} from the damped Verlet update,
  * then (project) x_{k+1} <- sys->project(t_{k+1}, x_{k+1}), then
@@ -21,5 +24,7 @@ cl_status cl_verlet_step(cl_fixed *s, double t, double h, bool project,
 /* Check and take opts->vdamp in [0, 1) (CL_EINVAL otherwise). */
 cl_status cl_verlet_setup(cl_fixed *s, const cl_integrator_opts *o,
                           cl_error *err);
+
+CL_END_DECLS
 
 #endif

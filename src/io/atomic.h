@@ -17,7 +17,10 @@
 
 #include <stdio.h>
 
+#include "core/decls.h"
 #include "core/error.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     FILE *fp;       /* write here; NULL when nothing is open */
@@ -57,5 +60,7 @@ cl_status cl_afile_fail(cl_afile *af, cl_error *err);
  * An existing directory is fine; CL_EIO if a component exists as something
  * other than a directory or cannot be created; CL_EINVAL for "". */
 cl_status cl_mkdir_p(const char *dir, cl_error *err);
+
+CL_END_DECLS
 
 #endif

@@ -12,7 +12,10 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
+
+CL_BEGIN_DECLS
 
 typedef struct cl_config cl_config;
 
@@ -168,5 +171,7 @@ void cl_config_input_files(const cl_config *cfg, cl_config_visit_fn visit,
  * Atomic: written to "path.tmp.XXXXXX" and renamed onto path. */
 cl_status cl_config_write(const cl_config *cfg, const char *path,
                           cl_error *err);
+
+CL_END_DECLS
 
 #endif

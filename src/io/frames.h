@@ -15,7 +15,10 @@
 
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     int nu, nv;                   /* grid size, nu*nv particles; nv = 0:
@@ -50,5 +53,7 @@ cl_status cl_frame_path(const char *dir, long index, const char *ext,
 cl_status cl_frame_path_stem(const char *dir, const char *stem, long index,
                              const char *ext, char *buf, size_t len,
                              cl_error *err);
+
+CL_END_DECLS
 
 #endif

@@ -8,6 +8,10 @@
 #include <stdio.h>
 #include <sys/types.h>
 
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
+
 /* fopen(path, mode) for reading, of a regular file only (a symbolic link
  * to one is followed): opened without blocking, then checked.  NULL when
  * it cannot be opened or is not a regular file, *why saying which
@@ -28,5 +32,7 @@ bool cl_same_input(const char *recorded, const char *mine);
  * file", "a directory", "a symbolic link", "a FIFO", "a device", "a
  * socket". */
 const char *cl_file_kind(mode_t mode);
+
+CL_END_DECLS
 
 #endif

@@ -11,8 +11,11 @@
 
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
 #include "linalg/bpattern.h"
+
+CL_BEGIN_DECLS
 
 /* val holds 9 * pat->nnzb values, block k row-major at val[9k..9k+8].
  * Written atomically. */
@@ -35,5 +38,7 @@ typedef struct {
 cl_status cl_mtx_read(const char *path, cl_triplets *t, cl_error *err);
 
 void cl_triplets_free(cl_triplets *t);
+
+CL_END_DECLS
 
 #endif

@@ -20,7 +20,10 @@
 
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
+
+CL_BEGIN_DECLS
 
 #define CL_OBJ_MAX_LINE 65536
 
@@ -39,5 +42,7 @@ void cl_obj_free(cl_obj *m);
 /* Place the vertices: x <- scale x + shift (the `scale` and `translate`
  * keys of mesh cloths and mesh obstacles). */
 void cl_obj_place(cl_obj *m, double scale, const double shift[3]);
+
+CL_END_DECLS
 
 #endif

@@ -13,7 +13,10 @@
 
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
+
+CL_BEGIN_DECLS
 
 typedef struct cl_series cl_series;
 
@@ -38,5 +41,7 @@ cl_status cl_series_close(cl_series *s, cl_error *err);
 
 /* Free s and remove its temporary file without publishing it. */
 void cl_series_discard(cl_series *s);
+
+CL_END_DECLS
 
 #endif

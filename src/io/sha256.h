@@ -3,7 +3,10 @@
 #ifndef CL_SHA256_H
 #define CL_SHA256_H
 
+#include "core/decls.h"
 #include "core/error.h"
+
+CL_BEGIN_DECLS
 
 #define CL_SHA256_HEX 65 /* 64 hex digits and the NUL */
 
@@ -14,5 +17,7 @@ cl_status cl_sha256_file(const char *path, char hex[CL_SHA256_HEX],
 
 /* The digest of the NUL-terminated text as lowercase hex into hex. */
 void cl_sha256_text(const char *text, char hex[CL_SHA256_HEX]);
+
+CL_END_DECLS
 
 #endif

@@ -11,7 +11,10 @@
 
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
+
+CL_BEGIN_DECLS
 
 /* Write np particles (x and v are 3*np each, particle-major) atomically. */
 cl_status cl_state_write(const char *path, size_t np, const double *x,
@@ -26,5 +29,7 @@ cl_status cl_state_write(const char *path, size_t np, const double *x,
  * partly overwritten. */
 cl_status cl_state_read(const char *path, size_t np, double *x, double *v,
                         cl_error *err);
+
+CL_END_DECLS
 
 #endif

@@ -14,9 +14,12 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
 #include "linalg/bpattern.h"
 #include "linalg/bsym.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     const cl_bpattern *pat;  /* borrowed: the system's pattern */
@@ -56,5 +59,7 @@ const double *cl_amat_diag_block(const cl_amat *m, size_t i);
 /* y = A x (n each, not overlapping), bitwise the same for every thread
  * count. */
 void cl_amat_mult(const cl_amat *m, const double *x, double *y);
+
+CL_END_DECLS
 
 #endif

@@ -29,8 +29,11 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "linalg/bpattern.h"
 #include "linalg/bsym.h"
+
+CL_BEGIN_DECLS
 
 /* dinv (9 nb) = the inverses of the diagonal blocks blk + 9 at[i] (at
  * NULL: blk + 9 i), row-major; false, with *row the first such row, if a
@@ -44,18 +47,20 @@ bool cl_bgs_invert(size_t nb, const double *blk, const size_t *at,
  * b - A x unless w is NULL; forward x <- x + (D + L)^-1 (b - A x), w 3 nb
  * of work. */
 void cl_bsym_gs(const cl_bsym *s, cl_bsym_kind kind, bool forward,
-                const double *restrict dinv, const double *restrict u,
-                const double *restrict b, double *restrict x,
-                double *restrict w);
+                const double *CL_RESTRICT dinv, const double *CL_RESTRICT u,
+                const double *CL_RESTRICT b, double *CL_RESTRICT x,
+                double *CL_RESTRICT w);
 
 /* The same two sweeps on all blocks blk (9 nnzb) of pat, for A that is not
  * symmetric: backward x = (D + U)^-1 b (x is overwritten), forward in
  * place from the guess x. */
-void cl_bgs_backward(const cl_bpattern *pat, const double *restrict blk,
-                     const double *restrict dinv, const double *restrict b,
-                     double *restrict x);
-void cl_bgs_forward(const cl_bpattern *pat, const double *restrict blk,
-                    const double *restrict dinv, const double *restrict b,
-                    double *restrict x);
+void cl_bgs_backward(const cl_bpattern *pat, const double *CL_RESTRICT blk,
+                     const double *CL_RESTRICT dinv, const double *CL_RESTRICT b,
+                     double *CL_RESTRICT x);
+void cl_bgs_forward(const cl_bpattern *pat, const double *CL_RESTRICT blk,
+                    const double *CL_RESTRICT dinv, const double *CL_RESTRICT b,
+                    double *CL_RESTRICT x);
+
+CL_END_DECLS
 
 #endif

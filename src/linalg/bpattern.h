@@ -11,7 +11,10 @@
 
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     size_t nb;        /* block rows (= block columns) */
@@ -32,5 +35,7 @@ void cl_bpattern_free(cl_bpattern *pat);
 
 /* Index of block (bi, bj), or -1 if either is negative or not stored. */
 long cl_bpattern_find(const cl_bpattern *pat, long bi, long bj);
+
+CL_END_DECLS
 
 #endif

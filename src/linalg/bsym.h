@@ -27,8 +27,11 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
 #include "linalg/bpattern.h"
+
+CL_BEGIN_DECLS
 
 /* Relative tolerance of the symmetry test: well above assembly round-off
  * (a few units of 1e-16), far below any real asymmetry. */
@@ -119,15 +122,17 @@ cl_status cl_bsym_transpose(cl_bsym *s, cl_error *err);
  * every count: row i sums the transposed upper blocks of the rows above,
  * its diagonal block and its upper blocks, in cl_bsym_matvec's order. */
 void cl_bsym_matvec_threads(const cl_bsym *s, cl_bsym_kind kind,
-                            const double *restrict d,
-                            const double *restrict u,
-                            const double *restrict p, double *restrict y,
+                            const double *CL_RESTRICT d,
+                            const double *CL_RESTRICT u,
+                            const double *CL_RESTRICT p, double *CL_RESTRICT y,
                             int threads);
 
 /* y = B p for B packed as `kind`; p and y have 3 nb entries and must not
  * overlap. */
 void cl_bsym_matvec(const cl_bsym *s, cl_bsym_kind kind,
-                    const double *restrict d, const double *restrict u,
-                    const double *restrict p, double *restrict y);
+                    const double *CL_RESTRICT d, const double *CL_RESTRICT u,
+                    const double *CL_RESTRICT p, double *CL_RESTRICT y);
+
+CL_END_DECLS
 
 #endif

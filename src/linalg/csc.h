@@ -14,8 +14,11 @@
 
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
 #include "linalg/bpattern.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     size_t n;        /* 3 nb: rows and columns */
@@ -30,5 +33,7 @@ typedef struct {
 cl_status cl_csc_from_blocks(const cl_bpattern *pat, const char *what,
                              cl_csc_blocks *csc, cl_error *err);
 void cl_csc_blocks_free(cl_csc_blocks *csc);
+
+CL_END_DECLS
 
 #endif

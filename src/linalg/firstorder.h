@@ -37,8 +37,11 @@
 #include <sundials/sundials_types.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
+#include "core/decls.h"
 #include "core/error.h"
 #include "linalg/bpattern.h"
+
+CL_BEGIN_DECLS
 
 /* Value sources that are not block values. */
 #define CL_FO_ZERO (-1L) /* explicit (structural) zero */
@@ -90,5 +93,7 @@ void cl_firstorder_fill_implicit_arrays(const cl_firstorder *fo,
 cl_status cl_firstorder_fill_implicit(const cl_firstorder *fo,
                                       const double *dfdx, const double *dfdv,
                                       double cj, SUNMatrix G, cl_error *err);
+
+CL_END_DECLS
 
 #endif

@@ -39,9 +39,12 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
 #include "core/stats.h"
 #include "linalg/bpattern.h"
+
+CL_BEGIN_DECLS
 
 /* What an iterative solver is told (0: its defaults). */
 typedef struct {
@@ -130,5 +133,7 @@ int cl_linsol_maxit(long lin_maxit, size_t n);
 
 /* "klu, pcg": the names, for messages. */
 const char *cl_linsol_names(char *buf, size_t len);
+
+CL_END_DECLS
 
 #endif

@@ -9,7 +9,10 @@
 
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "linalg/plugin.h"
+
+CL_BEGIN_DECLS
 
 /* What a setup of the multigrid preconditioner recomputes: the argument
  * `mode` of clp_amg_setup (amg-hypre: CLP_AMG_BUILD at every setup). */
@@ -54,5 +57,7 @@ typedef int (*clp_amg_solve_fn)(void *handle, const double *rhs, double *x,
                                 double rtol, double atol, long *iters,
                                 cl_plugin_msg *msg);
 typedef void (*clp_amg_free_fn)(void *handle);
+
+CL_END_DECLS
 
 #endif

@@ -44,6 +44,10 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 
+#include "core/decls.h"
+
+CL_BEGIN_DECLS
+
 /* Most entries per chunk of the threaded operations and of the sums
  * (beyond 1024 chunks the chunks grow): the chunks depend on the length
  * alone, never on the thread count. */
@@ -67,5 +71,7 @@ N_Vector cl_nvec_new(sunindextype n, SUNContext ctx);
  * vectors whose operations run on several threads; NULL if out of
  * memory. */
 N_Vector cl_nvec_new_threaded(sunindextype n, SUNContext ctx);
+
+CL_END_DECLS
 
 #endif

@@ -8,7 +8,10 @@
 #ifndef CL_PETSCENV_H
 #define CL_PETSCENV_H
 
+#include "core/decls.h"
 #include "core/error.h"
+
+CL_BEGIN_DECLS
 
 /* Load the plug-in and start PETSc, the first time; later calls return
  * CL_OK at once. */
@@ -20,5 +23,7 @@ cl_status cl_petsc_start(cl_error *err);
  * (-log_view, -options_left, given in PETSC_OPTIONS or --petsc) are
  * written.  PETSc cannot be started again in the process. */
 void cl_petsc_stop(void);
+
+CL_END_DECLS
 
 #endif

@@ -6,9 +6,14 @@
 #ifndef CL_PETSCENV_ABI_H
 #define CL_PETSCENV_ABI_H
 
+#include "core/decls.h"
 #include "linalg/plugin.h"
+
+CL_BEGIN_DECLS
 
 typedef int (*clp_petsc_start_fn)(cl_plugin_msg *msg);
 typedef void (*clp_petsc_stop_fn)(void);
+
+CL_END_DECLS
 
 #endif

@@ -31,7 +31,10 @@
 
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
+
+CL_BEGIN_DECLS
 
 /* The one message an entry point of a plug-in fills on failure. */
 typedef struct {
@@ -43,5 +46,7 @@ typedef struct {
  * place tried, when it is not found; CL_EINVAL for a missing symbol. */
 cl_status cl_plugin_symbol(const char *plugin, const char *symbol,
                            void **address, cl_error *err);
+
+CL_END_DECLS
 
 #endif

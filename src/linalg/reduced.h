@@ -26,8 +26,11 @@
 
 #include <SuiteSparse_config.h>
 
+#include "core/decls.h"
 #include "core/error.h"
 #include "linalg/bpattern.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     size_t nb;                  /* block rows */
@@ -90,5 +93,7 @@ void cl_reduced_filter(const cl_bpattern *pat, const double *S,
 
 /* y_i = S_i p_i for the nb blocks (p, y: 3 nb; may be the same array). */
 void cl_bdiag_apply(size_t nb, const double *S, const double *p, double *y);
+
+CL_END_DECLS
 
 #endif

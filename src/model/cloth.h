@@ -20,7 +20,10 @@
 
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
+
+CL_BEGIN_DECLS
 
 typedef enum { CL_CLOTH_GRID = 0, CL_CLOTH_MESH = 1 } cl_cloth_kind;
 
@@ -105,5 +108,7 @@ void cl_cloth_pin_position(const cl_cloth *c, size_t k, double t,
 
 /* Free state (3*nfree) from full arrays (3*np). */
 void cl_cloth_gather(const cl_cloth *c, const double *full, double *freev);
+
+CL_END_DECLS
 
 #endif

@@ -18,8 +18,11 @@
 #ifndef CL_CLOTH_READ_H
 #define CL_CLOTH_READ_H
 
+#include "core/decls.h"
 #include "io/config.h"
 #include "model/cloth.h"
+
+CL_BEGIN_DECLS
 
 cl_status cl_cloth_read(cl_config *cfg, cl_cloth *c, cl_error *err);
 
@@ -30,5 +33,7 @@ cl_status cl_cloth_read(cl_config *cfg, cl_cloth *c, cl_error *err);
 cl_status cl_cloth_grid_only(cl_config *cfg, const cl_cloth *c,
                              const char *sec, const char *key,
                              const char *why, cl_error *err);
+
+CL_END_DECLS
 
 #endif

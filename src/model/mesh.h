@@ -19,8 +19,11 @@
 
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
 #include "io/config.h"
+
+CL_BEGIN_DECLS
 
 typedef enum { CL_DIAGONAL_FIXED = 0, CL_DIAGONAL_ALTERNATE = 1 } cl_diagonal;
 
@@ -51,5 +54,7 @@ cl_status cl_mesh_from_triangles(size_t ntri, const int (*tri)[3], cl_mesh *m,
                                  cl_error *err);
 
 void cl_mesh_free(cl_mesh *m);
+
+CL_END_DECLS
 
 #endif

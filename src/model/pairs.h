@@ -27,8 +27,11 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
 #include "model/cloth.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     int a, b;       /* particle indices, a < b */
@@ -76,5 +79,7 @@ static inline double cl_dist(const double *xa, const double *xb)
     double dx = xb[0] - xa[0], dy = xb[1] - xa[1], dz = xb[2] - xa[2];
     return sqrt(dx * dx + dy * dy + dz * dz);
 }
+
+CL_END_DECLS
 
 #endif

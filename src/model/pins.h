@@ -20,9 +20,14 @@
 #ifndef CL_PINS_H
 #define CL_PINS_H
 
+#include "core/decls.h"
 #include "io/config.h"
 #include "model/cloth.h"
 
+CL_BEGIN_DECLS
+
 cl_status cl_pins_read(cl_config *cfg, cl_cloth *c, cl_error *err);
+
+CL_END_DECLS
 
 #endif

@@ -14,8 +14,11 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "core/decls.h"
 #include "core/error.h"
 #include "model/cloth.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     size_t np;
@@ -32,5 +35,7 @@ void cl_ring_free(cl_ring *r);
 
 /* Whether b is within r->ring steps of a (a != b). */
 bool cl_ring_has(const cl_ring *r, int a, int b);
+
+CL_END_DECLS
 
 #endif

@@ -5,9 +5,12 @@
 #ifndef CL_DISTANCES_H
 #define CL_DISTANCES_H
 
+#include "core/decls.h"
 #include "forces/term.h"
 #include "model/cloth.h"
 #include "system/system.h"
+
+CL_BEGIN_DECLS
 
 /* The arrays behind a cl_distances, owned. */
 typedef struct {
@@ -23,5 +26,7 @@ cl_status cl_distance_set_build(const cl_cloth *c, size_t nterm,
                                 void *const *state, cl_distance_set *ds,
                                 cl_error *err);
 void cl_distance_set_free(cl_distance_set *ds);
+
+CL_END_DECLS
 
 #endif

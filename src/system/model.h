@@ -20,10 +20,13 @@
 #define CL_MODEL_H
 
 #include "contact/contact.h"
+#include "core/decls.h"
 #include "forces/term.h"
 #include "io/config.h"
 #include "model/cloth.h"
 #include "system/system.h"
+
+CL_BEGIN_DECLS
 
 typedef struct cl_model cl_model;
 
@@ -125,5 +128,7 @@ cl_status cl_model_obstacle_surface(const cl_model *m, double t,
  * obstacles). */
 cl_status cl_model_contact_figures(cl_model *m, double t, const double *x,
                                    const double *v, cl_contact_figures *f);
+
+CL_END_DECLS
 
 #endif

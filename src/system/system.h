@@ -20,8 +20,11 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "core/decls.h"
 #include "core/error.h"
 #include "linalg/bpattern.h"
+
+CL_BEGIN_DECLS
 
 typedef struct {
     size_t nterm;
@@ -189,5 +192,7 @@ typedef struct cl_system {
                              * (a velocity-level law that CVODE's error
                              * control cannot follow, see sun_adapter.h) */
 } cl_system;
+
+CL_END_DECLS
 
 #endif
