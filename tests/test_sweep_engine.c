@@ -672,6 +672,33 @@ Test(sweep_engine, slurm_without_id_failed_task_and_stopped)
     cr_assert(WIFEXITED(ws) && WEXITSTATUS(ws) == 6, "status %d", ws);
 }
 
+/* The Slurm submission's files are written atomically, onto regular files
+ * only: a symbolic link at DIR/slurm/array.sh is refused, naming it, and
+ * its target stays as it was (before: fopen wrote the script through the
+ * link); the earlier results stand, since nothing was submitted. */
+Test(sweep_engine, slurm_files_replace_regular_files_only)
+{
+    char dir[1024], path[1100], target[1100], summary[256], text[64];
+    two_complete(dir, "fakeslurm3");
+    fake_program("sbatch", "4343", false, 0);
+    snprintf(path, sizeof path, "%s/slurm", dir);
+    cr_assert_eq(mkdir(path, 0755), 0);
+    in_tmp(target, "not-a-script");
+    tmp_put(target, "keep\n");
+    snprintf(path, sizeof path, "%s/slurm/array.sh", dir);
+    cr_assert_eq(symlink(target, path), 0);
+    cli_result r;
+    run_faked(&r, dir, "slurm", true);
+    cr_assert_eq(r.status, 1, "%s", r.err);
+    cr_assert(strstr(r.err, "array.sh") && strstr(r.err, "symbolic link"),
+              "%s", r.err);
+    cli_result_free(&r);
+    tmp_slurp(target, text, sizeof text);
+    cr_assert_str_eq(text, "keep\n");
+    collect(dir, summary, sizeof summary);
+    cr_assert_str_eq(summary, "2 complete, 0 failed, 0 missing");
+}
+
 /* The sweep files under problems/sweeps plan from any directory (their
  * problem relative to them); a directory holding another problem's sweep,
  * or a manifest that is not one, is not planned over (its results would

@@ -130,11 +130,28 @@ int cl_sweep_parallel(const cl_sweep *sw, const cl_sweep_run_args *r,
 
 /* ---- Slurm -------------------------------------------------------------- */
 
-static FILE *open_in(const cl_sweep *sw, const char *name, char *path,
-                     size_t len)
+/* DIR/slurm/NAME (its path in path) opened for an atomic write
+ * (io/atomic.h): 0, or 1 with the reason printed. */
+static int open_in(const cl_sweep *sw, const char *name, cl_afile *af,
+                   char *path, size_t len)
 {
+    cl_error err;
     snprintf(path, len, "%s/slurm/%s", sw->dir, name);
-    return fopen(path, "w");
+    if (!cl_afile_open(af, path, &err))
+        return 0;
+    fprintf(stderr, "clothode: sweep run: %s\n", err.msg);
+    return 1;
+}
+
+/* The file of open_in, written (af->fp's errors included) and renamed
+ * onto its path: 0, or 1 with the reason printed. */
+static int commit_in(cl_afile *af)
+{
+    cl_error err;
+    if (!cl_afile_commit(af, &err))
+        return 0;
+    fprintf(stderr, "clothode: sweep run: %s\n", err.msg);
+    return 1;
 }
 
 /* Run job k here, as the pilot (SIGINT and SIGTERM forwarded to it): its
@@ -167,7 +184,6 @@ static int estimate(const cl_sweep *sw, const cl_sweep_run_args *r,
                     int *piloted)
 {
     char path[4200];
-    FILE *fp;
     *piloted = 0;
     if (r->time_min && r->mem_mb) {
         *minutes = r->time_min;
@@ -179,7 +195,8 @@ static int estimate(const cl_sweep *sw, const cl_sweep_run_args *r,
     double wall = 0;
     long rss = 0;
     int code = -1;
-    if ((fp = cl_input_open(path, "r", &why))) {
+    FILE *fp = cl_input_open(path, "r", &why);
+    if (fp) {
         if (fscanf(fp, "job %lf %ld", &wall, &rss) == 2 && wall >= 0 &&
             rss > 0)
             code = 0; /* an earlier format, "MINUTES MB", is not read */
@@ -191,9 +208,10 @@ static int estimate(const cl_sweep *sw, const cl_sweep_run_args *r,
         if (!r->a.quiet)
             printf("pilot      job %s: %.3g s, %ld MB peak\n",
                    sw->job[todo[*piloted - 1]].id, wall, rss / 1024);
-        if ((fp = open_in(sw, "estimate", path, sizeof path))) {
-            fprintf(fp, "job %.17g %ld\n", wall, rss);
-            fclose(fp);
+        cl_afile af;
+        if (!open_in(sw, "estimate", &af, path, sizeof path)) {
+            fprintf(af.fp, "job %.17g %ld\n", wall, rss);
+            commit_in(&af); /* without it, a resubmission pilots again */
         }
     }
     if (code == 0) {
@@ -220,10 +238,12 @@ static int write_ids(const cl_sweep *sw, const int *todo, int n, char *path,
         snprintf(name, sizeof name, "ids-%d.txt", s++);
         snprintf(path, len, "%s/slurm/%s", sw->dir, name);
     } while (stat(path, &st) == 0);
-    FILE *fp = open_in(sw, name, path, len);
-    for (int k = 0; fp && k < n; k++)
-        fprintf(fp, "%s %d\n", sw->job[todo[k]].id, todo[k] + 1);
-    return fp && fclose(fp) == 0 ? 0 : 1;
+    cl_afile af;
+    if (open_in(sw, name, &af, path, len))
+        return 1;
+    for (int k = 0; k < n; k++)
+        fprintf(af.fp, "%s %d\n", sw->job[todo[k]].id, todo[k] + 1);
+    return commit_in(&af);
 }
 
 /* The array script: each task runs its chunk of the ids (each job's
@@ -237,11 +257,11 @@ static int write_script(const cl_sweep *sw, const cl_sweep_run_args *r,
     cl_sweep_quote(ids, qids, sizeof qids);
     if (r->throttle > 0)
         snprintf(throttle, sizeof throttle, "%%%ld", r->throttle);
-    FILE *fp = open_in(sw, "array.sh", path, len);
-    if (!fp)
+    cl_afile af;
+    if (open_in(sw, "array.sh", &af, path, len))
         return 1;
     long tasks = (n + r->chunk - 1) / r->chunk;
-    fprintf(fp,
+    fprintf(af.fp,
             "#!/bin/bash\n"
             "#SBATCH --job-name=clothode-sweep\n"
             "#SBATCH --array=0-%ld%s\n"
@@ -258,7 +278,7 @@ static int write_script(const cl_sweep *sw, const cl_sweep_run_args *r,
             "exit 0\n",
             tasks - 1, throttle, minutes, mb, r->chunk, ids, dir, r->chunk,
             r->chunk, qids);
-    return fclose(fp) == 0 ? 0 : 1;
+    return commit_in(&af);
 }
 
 /* Lines of a child's standard output as they come: the part read of the
@@ -563,8 +583,7 @@ int cl_sweep_slurm(const cl_sweep *sw, const cl_sweep_run_args *r,
     }
     if (write_ids(sw, todo, n, ids, sizeof ids) ||
         write_script(sw, r, ids, n, minutes, mb, script, sizeof script))
-        return fprintf(stderr, "clothode: cannot write %s/slurm/: %s\n",
-                       sw->dir, strerror(errno)), 1;
+        return 1; /* the reason printed */
     if (!r->a.quiet)
         printf("slurm      %d jobs in %ld array tasks of %ld, %ld min and "
                "%ld MB each: %s\n", n, (n + r->chunk - 1) / r->chunk,
