@@ -329,10 +329,13 @@ Test(sweep_engine, a_refused_run_keeps_no_earlier_results)
     cr_assert_str_eq(f, "NA");
 }
 
-/* A mesh the problem names, edited between two runs of a sweep: the
- * table's rows record different inputs_sha256, and a study refuses it
- * (before: the problem file's digest alone was compared, and the two
- * cloths' runs were read as one sweep). */
+/* A mesh the problem names, edited after every run of a sweep: a study
+ * that takes the table refuses it, where it took it before the edit
+ * (before: the rows were compared with one another only, and the table
+ * stood for today's cloth); edited between two runs: the table's rows
+ * record different inputs_sha256, and a study refuses it (before: the
+ * problem file's digest alone was compared, and the two cloths' runs
+ * were read as one sweep). */
 Test(sweep_engine, a_mesh_changed_between_runs)
 {
     char dir[1024], prob[1024], table[1100], out[1100], path[1200], id[13],
@@ -346,11 +349,29 @@ Test(sweep_engine, a_mesh_changed_between_runs)
     plan_and_run(dir, "meshsweep", path, "integrator = symplectic-euler-x\n"
                  "dt = 1e-4, 2e-4\nt_end = 0.002\n");
     first_id(dir, id);
+    collect(dir, summary, sizeof summary);
+    snprintf(table, sizeof table, "%s.csv", dir);
+    snprintf(out, sizeof out, "%s-stab", dir);
+    char ini[1200];
+    snprintf(ini, sizeof ini, "%s/skirt.ini", prob);
+    cli_result r;
+    cli_run(&r, "stability", ini, "--t-end", "0.002", "--integrator",
+            "symplectic-euler-x", "--from-sweep", table, "--out", out,
+            "--quiet", NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
     snprintf(path, sizeof path, "%s/meshes/sphere.obj", prob);
     FILE *fp = fopen(path, "a");
     cr_assert_not_null(fp);
     fputs("# edited\n", fp);
     fclose(fp);
+    cli_run(&r, "stability", ini, "--t-end", "0.002", "--integrator",
+            "symplectic-euler-x", "--from-sweep", table, "--out", out,
+            "--quiet", NULL);
+    cli_assert_error(&r, 0, "its runs read other files than the problem "
+                     "names now", "a mesh changed after the sweep ran",
+                     NULL);
+    cli_result_free(&r);
     snprintf(path, sizeof path, "%s/jobs/%s/exit", dir, id);
     cr_assert_eq(unlink(path), 0, "%s", path);
     run_resume(dir, "resume     1 of 2 jobs");
@@ -366,10 +387,7 @@ Test(sweep_engine, a_mesh_changed_between_runs)
     table_field(table, b, "inputs_sha256", b, sizeof b);
     cr_assert(strlen(a) == 64 && strlen(b) == 64 && strcmp(a, b),
               "%s %s", a, b);
-    snprintf(out, sizeof out, "%s-stab", dir);
-    snprintf(path, sizeof path, "%s/skirt.ini", prob);
-    cli_result r;
-    cli_run(&r, "stability", path, "--t-end", "0.002", "--integrator",
+    cli_run(&r, "stability", ini, "--t-end", "0.002", "--integrator",
             "symplectic-euler-x", "--from-sweep", table, "--out", out, NULL);
     cli_assert_error(&r, 0, "read different files the problem names",
                      "a mesh changed between the sweep's runs", NULL);

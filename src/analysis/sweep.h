@@ -193,6 +193,18 @@ typedef struct {
                               * none, "" when not recorded */
 } cl_sweep_outcome;
 
+/* The digest in inputs_sha256, made from the files' lines "key sha256"
+ * (key as run.json's: "cloth.mesh", "obstacle.NAME.file") added in the
+ * order the model read them; "none" when none was added. */
+typedef struct {
+    char text[4096];
+    size_t used;
+} cl_sweep_inputs;
+
+void cl_sweep_inputs_add(cl_sweep_inputs *in, const char *key,
+                         const char *sha256);
+void cl_sweep_inputs_digest(const cl_sweep_inputs *in, char hex[65]);
+
 /* Everything known of job k: its exit status (DIR/jobs/ID/exit, which
  * the job's command writes as its last step), its statistics
  * (stats.csv), how far it got (series.csv) and the first line of its

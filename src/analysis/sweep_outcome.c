@@ -47,32 +47,46 @@ static bool exit_status(const cl_sweep *sw, int k, cl_sweep_outcome *o)
     return found;
 }
 
-/* The integrator's wall and CPU seconds from the run's run.json
- * ("times", README "Provenance"; stats.csv holds no timings, so that
- * identical runs write identical bytes): the statistics "wall" and "cpu",
- * the last two, where run.json has them. */
-/* One digest of the files a run's problem named (run.json's "inputs"):
- * of their "key sha256" lines in order; "none" for an empty list, "" for
- * none recorded. */
-static void inputs_digest(json_t *inputs, char hex[CL_SHA256_HEX])
+void cl_sweep_inputs_add(cl_sweep_inputs *in, const char *key,
+                         const char *sha256)
 {
-    char text[4096] = "";
-    size_t u = 0, k;
-    json_t *in;
-    snprintf(hex, CL_SHA256_HEX, "%s", json_is_array(inputs) ? "none" : "");
-    if (!json_array_size(inputs))
-        return;
-    json_array_foreach(inputs, k, in) {
-        const char *key = json_string_value(json_object_get(in, "key"));
-        const char *sha = json_string_value(json_object_get(in, "sha256"));
-        if (u < sizeof text)
-            u += (size_t)snprintf(text + u, sizeof text - u, "%s %s\n",
-                                  key ? key : "", sha ? sha : "");
-    }
-    cl_sha256_text(text, hex);
+    if (in->used < sizeof in->text)
+        in->used += (size_t)snprintf(in->text + in->used,
+                                     sizeof in->text - in->used, "%s %s\n",
+                                     key, sha256);
 }
 
-/* From the run's run.json: the integrator's times, and the SHA-256 of the
+void cl_sweep_inputs_digest(const cl_sweep_inputs *in, char hex[65])
+{
+    if (in->used)
+        cl_sha256_text(in->text, hex);
+    else
+        snprintf(hex, CL_SHA256_HEX, "none");
+}
+
+/* The digest of the files a run's problem named (run.json's "inputs");
+ * "" for none recorded. */
+static void inputs_digest(json_t *inputs, char hex[CL_SHA256_HEX])
+{
+    cl_sweep_inputs in = {"", 0};
+    size_t k;
+    json_t *f;
+    if (!json_is_array(inputs)) {
+        *hex = '\0';
+        return;
+    }
+    json_array_foreach(inputs, k, f) {
+        const char *key = json_string_value(json_object_get(f, "key"));
+        const char *sha = json_string_value(json_object_get(f, "sha256"));
+        cl_sweep_inputs_add(&in, key ? key : "", sha ? sha : "");
+    }
+    cl_sweep_inputs_digest(&in, hex);
+}
+
+/* From the run's run.json: the integrator's wall and CPU seconds
+ * ("times", README "Provenance"; stats.csv holds no timings, so that
+ * identical runs write identical bytes) as the statistics "wall" and
+ * "cpu", the last two, where run.json has them; and the SHA-256 of the
  * problem file it read and of the files it named. */
 static void read_run_json(const cl_sweep *sw, int k, cl_sweep_outcome *o)
 {

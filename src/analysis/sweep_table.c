@@ -265,6 +265,49 @@ static cl_status same_inputs(const cl_sweep_table *t, cl_error *err)
     return CL_OK;
 }
 
+/* The files the model named (cl_config_input_files), as their digest. */
+typedef struct {
+    cl_sweep_inputs in;
+    cl_error *err;
+    cl_status rc;
+} inputs_now;
+
+static void add_input(void *ctx, const char *sec, const char *key,
+                      const char *path, bool given)
+{
+    inputs_now *d = ctx;
+    char hex[CL_SHA256_HEX], name[256];
+    (void)given;
+    if (d->rc || (d->rc = cl_sha256_file(path, hex, d->err)))
+        return;
+    snprintf(name, sizeof name, "%s.%s", sec, key);
+    cl_sweep_inputs_add(&d->in, name, hex);
+}
+
+cl_status cl_sweep_table_same_inputs(const cl_sweep_table *t,
+                                     const cl_config *cfg, cl_error *err)
+{
+    int c = column(t, "inputs_sha256");
+    const char *rec = NULL;
+    for (int r = 0; c >= 0 && !rec && r < t->nrow; r++)
+        rec = recorded(at(t, r, c)) ? at(t, r, c) : NULL;
+    if (!rec)
+        return CL_OK;
+    inputs_now d = {{"", 0}, err, CL_OK};
+    char hex[CL_SHA256_HEX];
+    cl_config_input_files(cfg, add_input, &d);
+    if (d.rc)
+        return d.rc;
+    cl_sweep_inputs_digest(&d.in, hex);
+    return strcmp(rec, hex)
+               ? cl_error_set(err, CL_EINVAL, "--from-sweep %s: its runs "
+                              "read other files than the problem names now "
+                              "(inputs_sha256 %.12s..., now %.12s...: a "
+                              "mesh changed after the sweep ran); run the "
+                              "sweep again", t->path, rec, hex)
+               : CL_OK;
+}
+
 /* The table's runs are of this problem (same_problem_row, every row)
  * and read the same meshes (same_inputs), and no model key changed by
  * --set that is not an axis of the table

@@ -63,6 +63,14 @@ bool cl_sweep_same_value(const char *a, const char *b);
 cl_status cl_sweep_table_select(cl_sweep_table *t, cl_config *cfg,
                                 const char *own, cl_error *err);
 
+/* The table's runs read the files the model built from cfg named
+ * (meshes) as they are now: CL_EINVAL when their recorded inputs_sha256
+ * differs from the digest of today's files (a mesh edited after the
+ * sweep ran); CL_OK when the table records none.  Called once the model
+ * is built, since only then does cfg know its files. */
+cl_status cl_sweep_table_same_inputs(const cl_sweep_table *t,
+                                     const cl_config *cfg, cl_error *err);
+
 /* A job row and its value of the method's parameter (dt, rtol). */
 typedef struct {
     int row;

@@ -549,6 +549,8 @@ static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
                        cl_error *err)
 {
     ct_setup *s = ctx;
+    if (s->from && cl_sweep_table_same_inputs(&s->table, job->cfg, err))
+        return err->code;
     cl_status rc = !step_table(s) ? CL_OK
                    : cl_cli_study_run(m, job, &step_study,
                                       dt_variants(s) * s->integrators.n, ctx,

@@ -171,6 +171,8 @@ static cl_status study(cl_model *m, const cl_cli_job *job, void *ctx,
                        cl_error *err)
 {
     const eb_setup *s = ctx;
+    if (s->from && cl_sweep_table_same_inputs(&s->table, job->cfg, err))
+        return err->code;
     return cl_cli_study_run(m, job, &eb_study, s->integrators.n, ctx, err);
 }
 
