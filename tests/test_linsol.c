@@ -4,13 +4,17 @@
  * true relative residual of 1e-10; KLU analyses once over many setups;
  * failures are reported as CL_ESOLVER: pcg on an indefinite A (caught in
  * the preconditioner setup, or by the curvature check during the
- * iteration), pcg at its iteration cap, KLU on a singular A. */
+ * iteration), pcg at its iteration cap, KLU on a singular A; a stop
+ * (core/stop.h) ends a pcg solve with CL_EINTR, and auto does not fall
+ * back to a factorisation then. */
 #include <criterion/criterion.h>
 
 #include <math.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/stop.h"
 #include "integrators/integrator.h"
 #include "lscase.h"
 #include "problem.h"
@@ -402,6 +406,36 @@ Test(linsol, pcg_iteration_cap_reported)
     t->free(st);
     ls_free(&c);
 }
+
+/* A stop requested (SIGTERM here) ends the solve at its first product:
+ * CL_EINTR naming the signal, in the first iteration; auto passes it on
+ * instead of repeating the solve by a factorisation (before: a long solve
+ * held up a stop until it converged). */
+static void ls_stopped(const char *name)
+{
+    ls_case c;
+    ls_init(&c, 14);
+    const cl_linsol_type *t = ls_find(name);
+    cl_error err = {0};
+    double rhs[LS_N], x[LS_N];
+    void *st = ls_create(t, &c, &(cl_linsol_opts){0});
+    ls_setup_solve(t, st, &c, 0.1, 0.01, 5, rhs, x);
+    cl_stats before = {0}, after = {0};
+    t->stats(st, &before);
+    cl_stop_install();
+    cr_assert_eq(raise(SIGTERM), 0);
+    cr_assert_eq(t->solve(st, rhs, x, &err), CL_EINTR, "%s", err.msg);
+    cr_assert(strstr(err.msg, "pcg: stopped by SIGTERM in iteration 1"),
+              "%s", err.msg);
+    t->stats(st, &after);
+    cr_assert_eq(after.lin_iters, before.lin_iters + 1);
+    cr_assert_eq(after.lin_fallbacks, 0);
+    t->free(st);
+    ls_free(&c);
+}
+
+Test(linsol, pcg_stopped) { ls_stopped("pcg"); }
+Test(linsol, auto_stopped_without_a_fallback) { ls_stopped("auto"); }
 
 Test(linsol, pcg_tolerance_option)
 {

@@ -17,6 +17,7 @@
  *  - a setup refreshing only the finest smoother solves hang's matrix to
  *    the tolerance, equal to KLU's solution;
  *  - the products by two threads give the solution of one, bit for bit;
+ *  - a stop (core/stop.h) ends a solve at once, with CL_EINTR;
  *  - a solve whose preconditioner is made indefinite by bad eigenvalue
  *    bounds on the coarser levels (one estimate step, through
  *    PETSC_OPTIONS) is recovered: redone
@@ -27,9 +28,11 @@
 #include <criterion/criterion.h>
 
 #include <math.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/stop.h"
 #include "integrators/integrator.h"
 #include "lscase.h"
 #include "problem.h"
@@ -299,6 +302,43 @@ Test(linsol_amg, recompute_that_did_not_help_moves_the_reference)
     t->free(st);
     ls_free(&c);
 }
+
+/* A stop requested (SIGTERM here) ends a solve at its first product with
+ * A (NaN then, which ends PETSc's CG): CL_EINTR naming the signal, and no
+ * recovery on a rebuilt hierarchy (before: the solve ran to its
+ * tolerance first). */
+static void am_stopped(const char *name)
+{
+    am_case c;
+    am_load(&c, "hang");
+    const cl_linsol_type *t = cl_linsol_find(name);
+    cr_assert_not_null(t);
+    cl_linsol_opts o = {0};
+    cl_error err = {0};
+    void *st = NULL;
+    const double a = 2.0 * AM_H / 3.0, b = 4.0 * AM_H * AM_H / 9.0;
+    cr_assert_eq(t->create(c.sys->pattern, c.sys->mass, &o, &st, &err),
+                 CL_OK, "%s", err.msg);
+    cl_linsol_jacobian(t, st, c.dfdx, c.dfdv);
+    cr_assert_eq(t->setup(st, a, b, c.dfdx, c.dfdv, &err), CL_OK, "%s",
+                 err.msg);
+    cl_stop_install();
+    cr_assert_eq(raise(SIGTERM), 0);
+    cr_assert_eq(t->solve(st, c.rhs, c.x, &err), CL_EINTR, "%s", err.msg);
+    char want[64];
+    snprintf(want, sizeof want, "%s: stopped by SIGTERM in iteration ",
+             name);
+    cr_assert(strstr(err.msg, want), "%s", err.msg);
+    cl_stats s = {0};
+    t->stats(st, &s);
+    cr_assert_eq(s.lin_recoveries, 0);
+    cr_assert_leq(s.lin_iters, 1);
+    t->free(st);
+    am_free(&c);
+}
+
+Test(linsol_amg, stopped) { am_stopped("amg"); }
+Test(linsol_amg, hypre_stopped) { am_stopped("amg-hypre"); }
 
 /* amg-hypre builds BoomerAMG at every setup (kept, its finest relaxation
  * would sweep the old matrix) and solves each to the tolerance

@@ -3,13 +3,18 @@
  * operations the table gives; the shell matrix holds nothing and clones
  * into another shell; the counting shell counts one KLU analysis per
  * initialisation of the solver, so a klu-full run that restarts CVODE
- * after every tear counts one analysis more per restart. */
+ * after every tear counts one analysis more per restart; a stop that ends
+ * a linear solve ends the advance with CL_EINTR. */
 #include <criterion/criterion.h>
+
+#include <signal.h>
 
 #include <sundials/sundials_matrix.h>
 
+#include "core/stop.h"
 #include "integrators/sun_adapter.h"
 #include "pbdcheck.h"
+#include "testsys.h"
 
 /* What the shell passed on: calls per operation, the data it was given. */
 typedef struct {
@@ -171,4 +176,42 @@ Test(sun_adapter, klu_analyses_once_per_restart)
     cr_assert_gt(k.restarts, 0);
     cr_assert_eq(c.st.symbolic_facts, 1 + k.restarts);
     pb_close(&c);
+}
+
+/* A stop that ends an iterative linear solve (linalg/linsol.h) on a
+ * system whose own evaluations do not look at it (the model's do) ends
+ * the advance as a stop, CL_EINTR naming the signal, for CVODE and IDA
+ * (before: CL_ESOLVER, a solver failure, which a run reports as its
+ * own). */
+static void stopped_in_a_solve(const char *name)
+{
+    ts_sys ts;
+    cr_assert_eq(ts_oscillators(&ts, 3), 0);
+    double x[9], v[9], x0[9], v0[9];
+    ts_initial(&ts, x0, v0);
+    memcpy(x, x0, sizeof x);
+    memcpy(v, v0, sizeof v);
+    const cl_integrator_type *it = cl_integrator_find(name);
+    cl_integrator_opts o = {.rtol = 1e-6, .atol = 1e-8, .linsol = "pcg"};
+    void *st = NULL;
+    cl_error err = {0};
+    cr_assert_eq(it->create(&ts.sys, &o, 0.0, x, v, &st, &err), CL_OK, "%s",
+                 err.msg);
+    cl_stop_install();
+    cr_assert_eq(raise(SIGTERM), 0);
+    cr_assert_eq(it->advance(st, 1.0, x, v, &err), CL_EINTR, "%s", err.msg);
+    cr_assert(strstr(err.msg, "stopped by SIGTERM in a linear solve"), "%s",
+              err.msg);
+    it->free(st);
+    ts_free(&ts);
+}
+
+Test(sun_adapter, cvode_stopped_in_a_linear_solve)
+{
+    stopped_in_a_solve("cvode-bdf");
+}
+
+Test(sun_adapter, ida_stopped_in_a_linear_solve)
+{
+    stopped_in_a_solve("ida");
 }

@@ -17,6 +17,7 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include "core/check.h"
+#include "core/stop.h"
 #include "integrators/hint.h"
 #include "linalg/nvec.h"
 
@@ -780,12 +781,18 @@ static void sun_copy_out(const cl_sun *s, double *x, double *v)
     memcpy(v, y + n, n * sizeof *v);
 }
 
-/* The solver returned flag < 0: a blow-up of the system, its own error, or
- * a solver failure. */
+/* The solver returned flag < 0: a blow-up of the system, its own error, a
+ * stop (the system's evaluations, or an iterative linear solve, end with
+ * CL_EINTR once one is requested: core/stop.h, linalg/linsol.h), or a
+ * solver failure. */
 static cl_status sun_advance_fail(cl_sun *s, int flag, double t_out,
                                   cl_error *err)
 {
     cl_status sys_st = s->fail_rhs != CL_OK ? s->fail_rhs : s->fail_jac;
+    if (sys_st == CL_OK && cl_stop_requested())
+        return cl_error_set(err, CL_EINTR, "%s: stopped by %s in a linear "
+                            "solve on the way to t = %.9g", s->name,
+                            cl_stop_signal_name(cl_stop_requested()), t_out);
     if (sys_st == CL_OK)
         return cl_sun_fail(s, s->api->solve_name, flag, err);
     sunrealtype t = s->t_last;

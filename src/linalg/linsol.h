@@ -32,7 +32,12 @@
  * copied), then per Newton matrix one setup and any number of solves; a
  * solve after a failed setup gives CL_EINVAL.  Nothing is allocated by
  * setup or solve (except KLU's rare fresh factorisation after a bad
- * refactorisation).  All messages start with the solver's name. */
+ * refactorisation).  All messages start with the solver's name.  The
+ * iterative solvers (pcg, pcg-jacobi, amg, amg-hypre; auto through them)
+ * end a solve at their next product with A once a stop is requested
+ * (core/stop.h: SIGINT, SIGTERM, a budget's timer), with CL_EINTR, so
+ * that a long solve does not hold up the stop; a factorisation runs to
+ * its end. */
 #ifndef CL_LINSOL_H
 #define CL_LINSOL_H
 

@@ -87,6 +87,7 @@
 #include <stdbool.h>
 #include <stdlib.h>
 
+#include "core/stop.h"
 #include "linalg/amat.h"
 #include "linalg/blockgs.h"
 #include "linalg/linsol_amg_abi.h"
@@ -110,6 +111,7 @@ typedef struct {
     clp_amg_free_fn free;
     void *h;                 /* the plug-in's solver */
     bool ready;              /* a setup succeeded */
+    bool stopped;            /* the solve ended by a stop (amg_mult) */
     int hypre;
     bool coarse_fresh;       /* the coarse operators were computed at the
                               * last setup (a build, or P^T A P on the
@@ -171,11 +173,19 @@ static cl_status amg_alloc(cl_amg *s, const cl_bpattern *pat,
     return CL_OK;
 }
 
-/* y = A x, the plug-in's operator: A's packed halves, or all its blocks. */
+/* y = A x, the plug-in's operator: A's packed halves, or all its blocks.
+ * Once a stop is requested (core/stop.h), y = NaN instead: CG ends at
+ * once (KSP_DIVERGED_NANORINF), and amg_run reports the stop. */
 static void amg_mult(void *ctx, const double *x, double *y)
 {
-    const cl_amg *s = ctx;
-    cl_amat_mult(&s->A, x, y);
+    cl_amg *s = ctx;
+    if (!cl_stop_requested()) {
+        cl_amat_mult(&s->A, x, y);
+        return;
+    }
+    s->stopped = true;
+    for (size_t i = 0; i < s->n; i++)
+        y[i] = NAN;
 }
 
 /* The finest level's smoother (linsol_amg_abi.h: clp_amg_sweep): block
@@ -383,9 +393,14 @@ static cl_status amg_run(cl_amg *s, const double *rhs, double *x,
         return st;
     cl_plugin_msg msg = {.text = ""};
     long its = 0;
+    s->stopped = false;
     int bad = s->solve(s->h, rhs, x, rtol, atol, &its, &msg);
     s->solves++;
     s->iters += its;
+    if (bad && s->stopped)
+        return cl_error_set(err, CL_EINTR, "%s: stopped by %s in iteration "
+                            "%ld", s->name,
+                            cl_stop_signal_name(cl_stop_requested()), its);
     bool retry = bad && !s->hypre;
     if (retry) {
         st = amg_prepare(s, CLP_AMG_RECOVER, err);

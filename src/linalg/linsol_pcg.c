@@ -36,6 +36,8 @@
  *  - a preconditioner block that is not positive definite fails the setup;
  *  - no convergence within the iteration cap (SUNLS_RES_REDUCED or
  *    SUNLS_CONV_FAIL): the message gives the residual reached and delta.
+ * A stop requested during a solve (core/stop.h) ends it at the next
+ * product with CL_EINTR.
  * A is assumed symmetric (the Choi-Ko and spring Jacobians are); with a
  * nonsymmetric A, CG may fail to converge, which is then reported.
  *
@@ -60,6 +62,7 @@
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_pcg.h>
 
+#include "core/stop.h"
 #include "linalg/amat.h"
 #include "linalg/nvec.h"
 
@@ -79,6 +82,7 @@ typedef struct {
     SUNLinearSolver ls;
     int nprod;               /* products in the current solve */
     char why[256];           /* what a callback found wrong */
+    bool stopped;            /* the solve ended by a stop (core/stop.h) */
     bool ready;              /* a setup succeeded */
     long setups, solves, iters;
 } cl_pcg;
@@ -86,10 +90,16 @@ typedef struct {
 /* ---- SUNDIALS callbacks ------------------------------------------------ */
 
 /* z = A v, with the curvature check v^T A v > 0 (summed as the dot
- * products, linalg/nvec.h: the same value for every thread count). */
+ * products, linalg/nvec.h: the same value for every thread count); once a
+ * stop is requested (SIGINT, SIGTERM, a budget's timer), the iteration
+ * ends here, so that a long solve does not delay it. */
 static int pcg_atimes(void *data, N_Vector v, N_Vector z)
 {
     cl_pcg *s = data;
+    if (cl_stop_requested()) {
+        s->stopped = true;
+        return -1;
+    }
     const double *vp = N_VGetArrayPointer(v);
     double *zp = N_VGetArrayPointer(z);
     cl_amat_mult(&s->A, vp, zp);
@@ -375,6 +385,10 @@ static cl_status pcg_solve_fail(const cl_pcg *s, int flag, double delta,
 {
     int nli = SUNLinSolNumIters(s->ls);
     double res = SUNLinSolResNorm(s->ls);
+    if (s->stopped)
+        return cl_error_set(err, CL_EINTR, "%s: stopped by %s in iteration "
+                            "%d", s->name,
+                            cl_stop_signal_name(cl_stop_requested()), nli);
     if (s->why[0])
         return cl_error_set(err, CL_ESOLVER, "%s: %s", s->name, s->why);
     if (flag == SUNLS_RES_REDUCED || flag == SUNLS_CONV_FAIL)
@@ -397,6 +411,7 @@ static cl_status pcg_run(cl_pcg *s, N_Vector scale, double delta,
     if ((flag = SUNLinSolSetZeroGuess(s->ls, SUNTRUE)) != 0)
         return pcg_sunfail(s, "SUNLinSolSetZeroGuess", flag, err);
     s->why[0] = '\0';
+    s->stopped = false;
     s->nprod = 0;
     int outer = cl_nvec_threads(s->threads); /* PCG's vector operations */
     flag = SUNLinSolSolve(s->ls, NULL, s->x, s->b, delta);
