@@ -20,6 +20,8 @@ typedef struct {
     ARKRhsFn fe, fi;         /* the right-hand sides (fe NULL: DIRK) */
     uint64_t expl;           /* the explicit terms (IMEX) */
     double dt;               /* the fixed step */
+    double t0;               /* the initial time: fixed steps end at
+                              * t0 + k dt */
     long done;               /* fixed steps taken */
     long todo;               /* fixed steps of the current advance */
 } cl_ark;
@@ -335,6 +337,7 @@ cl_status cl_ark_create(const cl_ark_method *m, const cl_system *sys,
         return st;
     cl_ark *a = (cl_ark *)s;
     a->m = m;
+    a->t0 = t0;
     a->dt = o->dt;
     s->fixed_steps = m->fixed;
     a->fi = cl_sun_cvode_rhs; /* DIRK: y' = (v, M^-1 f), all implicit */
@@ -354,8 +357,8 @@ cl_status cl_ark_advance(void *state, double t_out, double *x, double *v,
 {
     cl_ark *a = state;
     if (a->m->fixed) {
-        cl_status st = cl_fixed_steps_to(t_out, a->dt, a->done, &a->todo,
-                                         err);
+        cl_status st = cl_fixed_steps_to(t_out - a->t0, a->dt, a->done,
+                                         &a->todo, err);
         if (st != CL_OK)
             return st;
     }
