@@ -118,6 +118,23 @@ static char *stats_text(const cl_stats *s, bool human)
     return buf;
 }
 
+/* An adaptive method's output time: refused when not finite or behind
+ * the current time, naming the method (before, CVODE's, IDA's and
+ * ARKODE's said that NaN "lies behind the last one"). */
+Test(integrator, output_time_checked)
+{
+    cl_error err;
+    cr_assert_eq(cl_output_time_check("m", 0.5, 0.5, &err), CL_OK);
+    cr_assert_eq(cl_output_time_check("m", 0.6, 0.5, &err), CL_OK);
+    cr_assert_eq(cl_output_time_check("m", NAN, 0.5, &err), CL_EINVAL);
+    cr_assert_str_eq(err.msg, "m: output time nan is not finite");
+    cr_assert_eq(cl_output_time_check("m", INFINITY, 0.5, &err), CL_EINVAL);
+    cr_assert_str_eq(err.msg, "m: output time inf is not finite");
+    cr_assert_eq(cl_output_time_check("m", 0.25, 0.5, &err), CL_EINVAL);
+    cr_assert_str_eq(err.msg, "m: output time 0.25 lies behind the current "
+                     "time 0.5");
+}
+
 Test(integrator, stats_csv_rows_parse_back)
 {
     cl_stats s = sample_stats();

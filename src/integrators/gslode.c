@@ -229,10 +229,9 @@ cl_status cl_gslode_advance(void *state, double t_out, double *x, double *v,
 {
     cl_gslode *s = state;
     int rc = GSL_SUCCESS;
-    if (!isfinite(t_out) || t_out < s->t)
-        return cl_error_set(err, CL_EINVAL, "%s: output time %.17g lies "
-                            "behind the current time %.17g",
-                            s->method->name, t_out, s->t);
+    cl_status st = cl_output_time_check(s->method->name, t_out, s->t, err);
+    if (st != CL_OK)
+        return st;
     s->fail = CL_OK;
     if (t_out > s->t) {
         rc = gsl_odeiv2_driver_apply(s->drv, &s->t, t_out, s->y);
@@ -246,8 +245,8 @@ cl_status cl_gslode_advance(void *state, double t_out, double *x, double *v,
     if (!cl_all_finite(s->y, 2 * s->n))
         return cl_error_set(err, CL_EBLOWUP, "%s: state not finite at "
                             "t = %.9g", s->method->name, s->t);
-    cl_status st = cl_integrator_contact_at(s->method->name, s->sys, s->t,
-                                            s->y, s->y + s->n, err);
+    st = cl_integrator_contact_at(s->method->name, s->sys, s->t, s->y,
+                                  s->y + s->n, err);
     if (st != CL_OK)
         return st;
     return s->sys->step_done ? gslode_step_done(s, err) : CL_OK;

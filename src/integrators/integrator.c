@@ -68,6 +68,19 @@ const cl_integrator_type *cl_integrator_find(const char *name)
     return NULL;
 }
 
+cl_status cl_output_time_check(const char *name, double t_out, double t_now,
+                               cl_error *err)
+{
+    if (!isfinite(t_out))
+        return cl_error_set(err, CL_EINVAL, "%s: output time %g is not "
+                            "finite", name, t_out);
+    if (t_out < t_now)
+        return cl_error_set(err, CL_EINVAL, "%s: output time %.17g lies "
+                            "behind the current time %.17g", name, t_out,
+                            t_now);
+    return CL_OK;
+}
+
 cl_status cl_fixed_steps_to(double t_out, double dt, long done, long *nsteps,
                             cl_error *err)
 {

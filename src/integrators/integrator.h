@@ -131,6 +131,12 @@ cl_status cl_integrator_create(const cl_integrator_type *type,
 /* Registry lookup by name; NULL if unknown. */
 const cl_integrator_type *cl_integrator_find(const char *name);
 
+/* The check of an adaptive method's output time t_out against its
+ * current time t_now: CL_EINVAL naming the method `name` when t_out is
+ * not finite or lies behind t_now. */
+cl_status cl_output_time_check(const char *name, double t_out, double t_now,
+                               cl_error *err);
+
 /* Number of fixed steps of size dt that lead from step `done` to t_out.
  * CL_EINVAL if t_out is not a multiple of dt (to 1e-9 relative) or lies
  * behind step `done`. */

@@ -216,14 +216,13 @@ cl_status cl_petsc_ts_advance(void *state, double t_out, double *x,
                               double *v, cl_error *err)
 {
     cl_pts *s = state;
-    if (!isfinite(t_out) || t_out < s->t)
-        return cl_error_set(err, CL_EINVAL, "%s: output time %.17g lies "
-                            "behind the current time %.17g", s->m->name,
-                            t_out, s->t);
+    cl_status st = cl_output_time_check(s->m->name, t_out, s->t, err);
+    if (st != CL_OK)
+        return st;
     long nsteps = 0;
     if (s->dt > 0.0) {
-        cl_status st = cl_fixed_steps_to(t_out - s->t0, s->dt, s->done,
-                                         &nsteps, err);
+        st = cl_fixed_steps_to(t_out - s->t0, s->dt, s->done, &nsteps,
+                               err);
         if (st != CL_OK)
             return st;
     }
@@ -240,8 +239,7 @@ cl_status cl_petsc_ts_advance(void *state, double t_out, double *x,
     if (!cl_all_finite(x, s->sys->n) || !cl_all_finite(v, s->sys->n))
         return cl_error_set(err, CL_EBLOWUP, "%s: state not finite at t = "
                             "%.9g", s->m->name, s->t);
-    cl_status st = cl_integrator_contact_at(s->m->name, s->sys, s->t, x, v,
-                                            err);
+    st = cl_integrator_contact_at(s->m->name, s->sys, s->t, x, v, err);
     if (st != CL_OK)
         return st;
     return s->sys->step_done ? pts_step_done(s, x, v, err) : CL_OK;

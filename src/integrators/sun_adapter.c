@@ -835,10 +835,9 @@ static cl_status sun_step_done(cl_sun *s, double t, cl_error *err)
 static cl_status sun_advance(cl_sun *s, double t_out, double *x, double *v,
                              cl_error *err)
 {
-    if (!isfinite(t_out) || t_out < s->t_last)
-        return cl_error_set(err, CL_EINVAL, "%s: output time %.17g lies "
-                            "behind the last one, %.17g", s->name, t_out,
-                            s->t_last);
+    cl_status st = cl_output_time_check(s->name, t_out, s->t_last, err);
+    if (st != CL_OK)
+        return st;
     if (t_out > s->t_last) {
         s->fail_rhs = s->fail_jac = CL_OK;
         s->collapsed = s->fatal = false;
