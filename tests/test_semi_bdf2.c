@@ -62,9 +62,7 @@ Test(semi_bdf2, exact_bdf2_on_linear_system)
     ts_sys ts;
     cr_assert_eq(ts_oscillators(&ts, 3), 0);
     double x[9], v[9], x0[9], v0[9];
-    ts_initial(&ts, x0, v0);
-    memcpy(x, x0, sizeof x);
-    memcpy(v, v0, sizeof v);
+    ri_start(&ts, x0, v0, x, v);
     const double h = 0.05;
     const int nsteps = 4;
     cl_integrator_opts o = {.dt = h};

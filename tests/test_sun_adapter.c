@@ -14,7 +14,7 @@
 #include "core/stop.h"
 #include "integrators/sun_adapter.h"
 #include "pbdcheck.h"
-#include "testsys.h"
+#include "runint.h"
 
 /* What the shell passed on: calls per operation, the data it was given. */
 typedef struct {
@@ -188,9 +188,7 @@ static void stopped_in_a_solve(const char *name)
     ts_sys ts;
     cr_assert_eq(ts_oscillators(&ts, 3), 0);
     double x[9], v[9], x0[9], v0[9];
-    ts_initial(&ts, x0, v0);
-    memcpy(x, x0, sizeof x);
-    memcpy(v, v0, sizeof v);
+    ri_start(&ts, x0, v0, x, v);
     const cl_integrator_type *it = cl_integrator_find(name);
     cl_integrator_opts o = {.rtol = 1e-6, .atol = 1e-8, .linsol = "pcg"};
     void *st = NULL;
