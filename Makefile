@@ -115,14 +115,17 @@ $(PETSC_SO): $(PETSC_OBJ)
 
 # The plug-in interface version (linalg/plugin.h): the SHA-256 of the
 # preprocessed text of the headers src/*/*_abi.h (the types of every entry
-# point, and what they include), remade whenever one of them changes.
+# point, and what they include), its runs of white space made one space so
+# that a blank line or an indentation changes nothing; remade whenever one
+# of them changes.
 ABI_HDR := $(wildcard src/*/*_abi.h)
 ABI_USE := $(BUILD)/src/linalg/plugin.o \
            $(BUILD)/pic/src/linalg/pluginabi_petsc.o $(BUILD)/tests/test_plugin.o
 $(BUILD)/pluginabi.h: $(ABI_HDR)
 	@mkdir -p $(BUILD)
 	@set -o pipefail; h=$$(printf '#include "%s"\n' $(ABI_HDR:src/%=%) | \
-	    $(CC) $(CPPFLAGS) -E -P -MMD -MP -MF $@.d -MT $@ -x c - | sha256sum) && \
+	    $(CC) $(CPPFLAGS) -E -P -MMD -MP -MF $@.d -MT $@ -x c - | \
+	    tr -s '[:space:]' ' ' | sha256sum) && \
 	printf '#define CL_PLUGIN_ABI "%.16s"\n' "$$h" > $@
 $(ABI_USE): $(BUILD)/pluginabi.h
 $(ABI_USE): CPPFLAGS += -I$(BUILD)

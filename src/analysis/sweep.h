@@ -195,7 +195,8 @@ typedef struct {
 
 /* The digest in inputs_sha256, made from the files' lines "key sha256"
  * (key as run.json's: "cloth.mesh", "obstacle.NAME.file") added in the
- * order the model read them; "none" when none was added. */
+ * order cl_config_input_files visits them (the configuration's); "none"
+ * when none was added. */
 typedef struct {
     char text[4096];
     size_t used;

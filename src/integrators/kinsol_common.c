@@ -24,6 +24,7 @@
 #include <sundials/sundials_linearsolver.h>
 
 #include "core/check.h"
+#include "core/stop.h"
 #include "integrators/fixed_step.h"
 #include "integrators/hint.h"
 #include "integrators/sun_adapter.h"
@@ -521,11 +522,12 @@ static cl_status kin_stepfail(cl_kin *s, int flag, long nni, cl_error *err)
                             cl_status_name(s->sys_st),
                             s->sys_nonfinite ? ": values not finite" : "",
                             s->te, s->done + 1, t, t1, s->h, nni);
-    if (s->lin_st != CL_OK)
-        return cl_error_set(err, s->lin_st, "%s: linear solver failed in "
-                            "step %ld (t = %.9g -> %.9g, dt = %g), Newton "
-                            "iteration %ld: %s", name, s->done + 1, t, t1,
-                            s->h, nni, s->lin_err.msg);
+    if (s->lin_st != CL_OK) /* after a stop, the stop's (semi_common.c) */
+        return cl_error_set(err, cl_stop_requested() ? CL_EINTR : s->lin_st,
+                            "%s: linear solver failed in step %ld (t = "
+                            "%.9g -> %.9g, dt = %g), Newton iteration %ld: "
+                            "%s", name, s->done + 1, t, t1, s->h, nni,
+                            s->lin_err.msg);
     char *fname = KINGetReturnFlagName(flag);
     cl_status st = cl_error_set(
         err, CL_ESOLVER, "%s: Newton solve failed in step %ld (t = %.9g -> "

@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "core/check.h"
+#include "core/stop.h"
 #include "linalg/reduced.h"
 
 static cl_status semi_check_args(const char *name, const cl_system *sys,
@@ -141,7 +142,9 @@ cl_status cl_semi_linearise(cl_semi *s, double t, cl_error *err)
     return CL_OK;
 }
 
-/* Set up with dfdx, dfdv and solve for s->sol from rhs. */
+/* Set up with dfdx, dfdv and solve for s->sol from rhs.  A failure once
+ * a stop is requested is the stop's (CL_EINTR: an iterative solve ends
+ * at it, linalg/linsol.h, and what it left is no solver's failure). */
 static cl_status semi_linsolve(cl_semi *s, double a, double b,
                                const double *dfdx, const double *dfdv,
                                const double *rhs, cl_error *err)
@@ -150,6 +153,8 @@ static cl_status semi_linsolve(cl_semi *s, double a, double b,
     cl_status st = s->lst->setup(s->ls, a, b, dfdx, dfdv, &inner);
     if (st == CL_OK)
         st = s->lst->solve(s->ls, rhs, s->sol, &inner);
+    if (st != CL_OK && cl_stop_requested())
+        st = CL_EINTR;
     if (st != CL_OK)
         return cl_error_set(err, st, "%s: linear solve failed at t = %.9g "
                             "(step %ld, dt = %g): %s", s->name,

@@ -36,8 +36,9 @@
  * iterative solvers (pcg, pcg-jacobi, amg, amg-hypre; auto through them)
  * end a solve at their next product with A once a stop is requested
  * (core/stop.h: SIGINT, SIGTERM, a budget's timer), with CL_EINTR, so
- * that a long solve does not hold up the stop; a factorisation runs to
- * its end. */
+ * that a long solve does not hold up the stop (amg: also a solve whose
+ * recovery the stop came into); a factorisation or a multigrid setup
+ * runs to its end. */
 #ifndef CL_LINSOL_H
 #define CL_LINSOL_H
 

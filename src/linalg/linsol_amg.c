@@ -111,7 +111,6 @@ typedef struct {
     clp_amg_free_fn free;
     void *h;                 /* the plug-in's solver */
     bool ready;              /* a setup succeeded */
-    bool stopped;            /* the solve ended by a stop (amg_mult) */
     int hypre;
     bool coarse_fresh;       /* the coarse operators were computed at the
                               * last setup (a build, or P^T A P on the
@@ -178,12 +177,11 @@ static cl_status amg_alloc(cl_amg *s, const cl_bpattern *pat,
  * once (KSP_DIVERGED_NANORINF), and amg_run reports the stop. */
 static void amg_mult(void *ctx, const double *x, double *y)
 {
-    cl_amg *s = ctx;
+    const cl_amg *s = ctx;
     if (!cl_stop_requested()) {
         cl_amat_mult(&s->A, x, y);
         return;
     }
-    s->stopped = true;
     for (size_t i = 0; i < s->n; i++)
         y[i] = NAN;
 }
@@ -393,25 +391,27 @@ static cl_status amg_run(cl_amg *s, const double *rhs, double *x,
         return st;
     cl_plugin_msg msg = {.text = ""};
     long its = 0;
-    s->stopped = false;
     int bad = s->solve(s->h, rhs, x, rtol, atol, &its, &msg);
     s->solves++;
     s->iters += its;
-    if (bad && s->stopped)
+    bool retry = bad && !s->hypre && !cl_stop_requested();
+    if (retry) {
+        st = amg_prepare(s, CLP_AMG_RECOVER, err);
+        if (st != CL_OK && !cl_stop_requested())
+            return st;
+        if (st == CL_OK) {
+            s->recoveries++;
+            msg.text[0] = '\0';
+            bad = s->solve(s->h, rhs, x, rtol, atol, &its, &msg);
+            s->solves++;
+            s->iters += its;
+        }
+    }
+    if (bad && cl_stop_requested()) /* amg_mult's NaN, or a failure the
+                                     * stop came after: the stop's */
         return cl_error_set(err, CL_EINTR, "%s: stopped by %s in iteration "
                             "%ld", s->name,
                             cl_stop_signal_name(cl_stop_requested()), its);
-    bool retry = bad && !s->hypre;
-    if (retry) {
-        st = amg_prepare(s, CLP_AMG_RECOVER, err);
-        if (st != CL_OK)
-            return st;
-        s->recoveries++;
-        msg.text[0] = '\0';
-        bad = s->solve(s->h, rhs, x, rtol, atol, &its, &msg);
-        s->solves++;
-        s->iters += its;
-    }
     if (bad)
         return cl_error_set(err, CL_ESOLVER, "%s: %s%s", s->name, msg.text,
                             retry ? " (also on a hierarchy rebuilt with "
