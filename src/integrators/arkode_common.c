@@ -352,15 +352,27 @@ cl_status cl_ark_create(const cl_ark_method *m, const cl_system *sys,
     return cl_sun_finish(s, st, cl_sun_free, state);
 }
 
+/* The fixed-step methods: when the system has hooks (contact figures,
+ * step_done: tearing), they follow every step, as for every fixed-step
+ * method (system/system.h), not only the output times: the adapter is
+ * then advanced one step at a time, and the state is the same whatever
+ * the output times. */
 cl_status cl_ark_advance(void *state, double t_out, double *x, double *v,
                          cl_error *err)
 {
     cl_ark *a = state;
-    if (a->m->fixed) {
-        cl_status st = cl_fixed_steps_to(t_out - a->t0, a->dt, a->done,
-                                         &a->todo, err);
-        if (st != CL_OK)
-            return st;
+    const cl_system *sys = a->base.sys;
+    if (!a->m->fixed)
+        return cl_sun_advance(state, t_out, x, v, err);
+    cl_status st = cl_fixed_steps_to(t_out - a->t0, a->dt, a->done,
+                                     &a->todo, err);
+    long steps = a->todo;
+    if (st != CL_OK || steps <= 1 || !(sys->step_done || sys->contact))
+        return st != CL_OK ? st : cl_sun_advance(state, t_out, x, v, err);
+    for (long k = 0; st == CL_OK && k < steps; k++) {
+        a->todo = 1;
+        st = cl_sun_advance(state, a->t0 + (double)(a->done + 1) * a->dt, x,
+                            v, err);
     }
-    return cl_sun_advance(state, t_out, x, v, err);
+    return st;
 }

@@ -212,6 +212,35 @@ static cl_status pts_step_done(cl_pts *s, const double *x, const double *v,
     return CL_OK;
 }
 
+/* One advance of the plug-in's TS to t_out (nsteps fixed steps of dt, 0
+ * when adaptive), and the system's hooks there. */
+static cl_status pts_advance(cl_pts *s, double t_out, long nsteps, double *x,
+                             double *v, cl_error *err)
+{
+    cl_plugin_msg msg = {.text = ""};
+    cl_error_clear(&s->fail);
+    int bad = s->advance(s->ts, t_out, x, v, &msg);
+    if (bad && s->fail.code != CL_OK)
+        return cl_error_set(err, s->fail.code, "%s; %s", s->fail.msg,
+                            msg.text);
+    if (bad)
+        return cl_error_set(err, CL_ESOLVER, "%s", msg.text);
+    s->t = t_out;
+    s->done += nsteps;
+    if (!cl_all_finite(x, s->sys->n) || !cl_all_finite(v, s->sys->n))
+        return cl_error_set(err, CL_EBLOWUP, "%s: state not finite at t = "
+                            "%.9g", s->m->name, s->t);
+    cl_status st = cl_integrator_contact_at(s->m->name, s->sys, s->t, x, v,
+                                            err);
+    if (st != CL_OK)
+        return st;
+    return s->sys->step_done ? pts_step_done(s, x, v, err) : CL_OK;
+}
+
+/* With a dt, the system's hooks (contact figures, step_done: tearing)
+ * follow every step, as for every fixed-step method (system/system.h):
+ * the steps are then advanced one at a time, and the state is the same
+ * whatever the output times. */
 cl_status cl_petsc_ts_advance(void *state, double t_out, double *x,
                               double *v, cl_error *err)
 {
@@ -226,23 +255,12 @@ cl_status cl_petsc_ts_advance(void *state, double t_out, double *x,
         if (st != CL_OK)
             return st;
     }
-    cl_plugin_msg msg = {.text = ""};
-    cl_error_clear(&s->fail);
-    int bad = s->advance(s->ts, t_out, x, v, &msg);
-    if (bad && s->fail.code != CL_OK)
-        return cl_error_set(err, s->fail.code, "%s; %s", s->fail.msg,
-                            msg.text);
-    if (bad)
-        return cl_error_set(err, CL_ESOLVER, "%s", msg.text);
-    s->t = t_out;
-    s->done += nsteps;
-    if (!cl_all_finite(x, s->sys->n) || !cl_all_finite(v, s->sys->n))
-        return cl_error_set(err, CL_EBLOWUP, "%s: state not finite at t = "
-                            "%.9g", s->m->name, s->t);
-    st = cl_integrator_contact_at(s->m->name, s->sys, s->t, x, v, err);
-    if (st != CL_OK)
-        return st;
-    return s->sys->step_done ? pts_step_done(s, x, v, err) : CL_OK;
+    if (nsteps <= 1 || !(s->sys->step_done || s->sys->contact))
+        return pts_advance(s, t_out, nsteps, x, v, err);
+    for (long k = 0; st == CL_OK && k < nsteps; k++)
+        st = pts_advance(s, s->t0 + (double)(s->done + 1) * s->dt, 1, x, v,
+                         err);
+    return st;
 }
 
 void cl_petsc_ts_stats(const void *state, cl_stats *out)
