@@ -122,7 +122,7 @@ Test(contact, cvode_bdf_projection_outputs_are_steps_ends)
     const double x0[3] = {0.0, 0.5, 0.0}, g = 9.81;
     double x[3], height[1001], pen, t_pen;
     cl_integrator_opts cv = {.rtol = 1e-8, .atol = 1e-10};
-    cl_model_contact_start(p.m, false);
+    cl_model_contact_start(p.m, 0.0, false);
     run_particle_heights(&p, "cvode-bdf", &cv, x0, 1.0, 1000, up, x, height);
     for (long k = 1; k <= 319; k++) {
         double t = 1e-3 * (double)k, fall = 0.5 - 0.5 * g * t * t;
@@ -408,7 +408,7 @@ static void fly(const char *obstacle, bool ccd, const double x0[3],
     snprintf(body, sizeof body, "%s\nccd = %s", obstacle,
              ccd ? "true" : "false");
     particle(&p, dir, body);
-    cl_model_contact_start(p.m, false);
+    cl_model_contact_start(p.m, 0.0, false);
     const cl_system *sys = cl_model_system(p.m);
     double xs[6], vs[6];
     for (int i = 0; i < 3; i++) {
@@ -449,7 +449,7 @@ Test(contact, barrier_keeps_a_dropped_particle_outside)
         pr_problem p;
         char dir[512];
         particle(&p, dir, BARRIER_FLOOR);
-        cl_model_contact_start(p.m, false);
+        cl_model_contact_start(p.m, 0.0, false);
         double x0[3] = {0.0, 0.2, 0.0}, x[3], dmin, tmin;
         double low = run_particle(&p, names[k], &io[k], x0, 2.0, 100, up, x);
         cl_model_contact_closest(p.m, &dmin, &tmin);
@@ -480,7 +480,7 @@ Test(contact, barrier_midpoint_never_accepts_an_end_inside)
     pr_problem p;
     char dir[512];
     particle(&p, dir, BARRIER_FLOOR);
-    cl_model_contact_start(p.m, false);
+    cl_model_contact_start(p.m, 0.0, false);
     const cl_system *sys = cl_model_system(p.m);
     const cl_integrator_type *type = cl_integrator_find("kinsol-midpoint");
     cl_integrator_opts io = {.dt = 0.02};
@@ -622,15 +622,58 @@ Test(contact, restart_forgets_the_memos)
     double inside[6] = {0.0, 0.45, 0.0, 0.1, 0.43, 0.0};
     double far[6] = {1e78, 1e78, 0.0, -1e78, 1e78, 0.0};
     double v[6] = {0.0}, fresh[6], f[6];
-    cl_model_contact_start(p.m, false);
+    cl_model_contact_start(p.m, 0.0, false);
     cr_assert_eq(sys->force(sys->data, 0.0, inside, v, fresh), CL_OK);
     cr_assert_gt(fresh[1], 0.0, "pushed out: %g", fresh[1]);
     (void)sys->force(sys->data, 0.0, far, v, f);
-    cl_model_contact_start(p.m, false);
+    cl_model_contact_start(p.m, 0.0, false);
     cr_assert_eq(sys->force(sys->data, 0.0, inside, v, f), CL_OK);
     for (int i = 0; i < 6; i++)
         cr_assert_eq(f[i], fresh[i], "entry %d: %g against %g", i, f[i],
                      fresh[i]);
     pr_free(&p);
     tmp_rm_rf(dir);
+}
+
+/* A run that starts at t0 != 0 (a program of one's own may start its
+ * integrator anywhere) tells the contact layer its start
+ * (cl_model_contact_start): the first projection's continuous detection
+ * sweeps that step only.  A particle at x = 1 flying away from a ccd
+ * sphere (centre x = 0.5, radius 0.1) at 1 m/s flies on from t0 = 1 as
+ * from 0 (before, the first sweep reached back to t = 0, through the
+ * sphere, and stopped the particle on it at x = 0.4). */
+Test(contact, a_run_from_t0_sweeps_its_own_first_step)
+{
+    pr_problem p;
+    char dir[512];
+    pr_load_text(&p, dir, "ccd",
+                 "[cloth]\nnu = 2\nnv = 1\nsize = 1.0\n"
+                 "particle_mass = 0.1\n[pins]\nat = 0,0\n[init]\n"
+                 "velocity = 1, 0, 0\n[type1]\nenabled = false\n[type2]\n"
+                 "enabled = false\n[damping]\nkd = 0\n[gravity]\n"
+                 "g = 0, 0, 0\n[obstacle.ball]\nshape = sphere\n"
+                 "center = 0.5, 0, 0\nradius = 0.1\nresponse = project\n"
+                 "ccd = true\n");
+    const cl_system *sys = cl_model_system(p.m);
+    const cl_integrator_type *it = cl_integrator_find("symplectic-euler");
+    cl_integrator_opts o = {.dt = 1e-3};
+    cr_assert_eq(sys->n, 3);
+    for (double t0 = 0.0; t0 <= 1.0; t0 += 1.0) {
+        double x[3], v[3];
+        void *st = NULL;
+        cl_error err = {0};
+        cl_model_initial_state(p.m, x, v);
+        cr_assert_float_eq(x[0], 1.0, 1e-15);
+        cl_model_contact_start(p.m, t0, false);
+        cr_assert_eq(it->create(sys, &o, t0, x, v, &st, &err), CL_OK, "%s",
+                     err.msg);
+        cr_assert_eq(it->advance(st, t0 + 0.01, x, v, &err), CL_OK, "%s",
+                     err.msg);
+        it->free(st);
+        cr_assert_float_eq(x[0], 1.01, 1e-12, "from t0 = %g: x = %.9g", t0,
+                           x[0]);
+        cr_assert_float_eq(v[0], 1.0, 1e-12, "from t0 = %g: v = %.9g", t0,
+                           v[0]);
+    }
+    pr_free(&p);
 }

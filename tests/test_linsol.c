@@ -139,6 +139,16 @@ Test(linsol, pcg_weighted_tolerance)
                 sqrt(wr), delta, s.lin_iters);
     cr_assert_leq(sqrt(wr), delta * 1.0001);
     cr_assert_gt(sqrt(wr), 1e-9 * delta, "stopped at delta, not lin_tol");
+    /* weights must be positive and finite (before: zero weights gave x = 0
+     * and CL_OK), and so must delta */
+    w[5] = 0.0;
+    cr_assert_eq(t->solve_tol(st, rhs, x, w, delta, &err), CL_EINVAL);
+    cr_assert_str_eq(err.msg, "pcg: weight 5 is 0: the weights must be "
+                     "positive and finite");
+    w[5] = 1.0;
+    cr_assert_eq(t->solve_tol(st, rhs, x, w, NAN, &err), CL_EINVAL);
+    cr_assert_str_eq(err.msg, "pcg: delta = nan: must be positive and "
+                     "finite");
     cr_assert_null(ls_find("klu")->solve_tol);
     cr_assert_null(ls_find("cholmod")->solve_tol);
     t->free(st);
@@ -436,6 +446,56 @@ static void ls_stopped(const char *name)
 
 Test(linsol, pcg_stopped) { ls_stopped("pcg"); }
 Test(linsol, auto_stopped_without_a_fallback) { ls_stopped("auto"); }
+
+/* Every solver solves in place (linsol.h: x may be rhs), to the same
+ * solution as into another array, bit for bit (before: amg and amg-hypre
+ * returned x = 0, their zero first guess written over the right-hand
+ * side). */
+Test(linsol, every_solver_solves_in_place)
+{
+    ls_case c;
+    ls_init(&c, 15);
+    for (size_t k = 0; cl_linsol_registry[k]; k++) {
+        const cl_linsol_type *t = cl_linsol_registry[k];
+        double rhs[LS_N], x[LS_N], y[LS_N];
+        void *st = ls_create(t, &c, &(cl_linsol_opts){0});
+        ls_setup_solve(t, st, &c, 0.1, 0.01, 7, rhs, x);
+        memcpy(y, rhs, sizeof y);
+        cl_error err = {0};
+        cr_assert_eq(t->solve(st, y, y, &err), CL_OK, "%s: %s", t->name,
+                     err.msg);
+        cr_expect(!memcmp(x, y, sizeof x), "%s: in place, another solution",
+                  t->name);
+        t->free(st);
+    }
+    ls_free(&c);
+}
+
+/* Every solver refuses a Newton matrix with an entry that is not finite
+ * (CL_ESOLVER), and a solve after it (CL_EINVAL: no successful setup),
+ * though an earlier setup succeeded (before: klu and cholmod factorised
+ * it and solved to NaN with CL_OK, or with the earlier factors). */
+Test(linsol, every_solver_refuses_a_matrix_not_finite)
+{
+    ls_case c;
+    ls_init(&c, 16);
+    for (size_t k = 0; cl_linsol_registry[k]; k++) {
+        const cl_linsol_type *t = cl_linsol_registry[k];
+        double rhs[LS_N], x[LS_N];
+        void *st = ls_create(t, &c, &(cl_linsol_opts){0});
+        ls_setup_solve(t, st, &c, 0.1, 0.01, 8, rhs, x);
+        double keep = c.dfdx[4];
+        c.dfdx[4] = NAN;
+        cl_error err = {0};
+        cr_expect_eq(t->setup(st, 0.1, 0.01, c.dfdx, c.dfdv, &err),
+                     CL_ESOLVER, "%s: %s", t->name, err.msg);
+        cr_expect_eq(t->solve(st, rhs, x, &err), CL_EINVAL, "%s: %s",
+                     t->name, err.msg);
+        c.dfdx[4] = keep;
+        t->free(st);
+    }
+    ls_free(&c);
+}
 
 Test(linsol, pcg_tolerance_option)
 {

@@ -442,7 +442,7 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
     cl_status bad = check_opts(so, err);
     if (bad)
         return bad;
-    cl_model_contact_start(m, false);
+    cl_model_contact_start(m, 0.0, false);
     size_t n3 = 3 * s.c->np, npot = cl_model_potentials(m);
     res->xfinal = malloc((n3 + 2 * npot) * sizeof *res->xfinal);
     cl_status rc = res->xfinal ? CL_OK

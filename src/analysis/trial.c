@@ -89,7 +89,7 @@ cl_status cl_trial_run(cl_trial *t, const cl_integrator_type *type,
     cl_status rc = cl_model_initial_state(t->m, t->x, t->v);
     memset(s, 0, sizeof *s);
     t->stretch_seen = NAN; /* until a check */
-    cl_model_contact_start(t->m, t->contact_work);
+    cl_model_contact_start(t->m, 0.0, t->contact_work);
     if (!rc && t->hook)
         rc = t->hook(t->hook_ctx, 0.0, t->x, t->v, err);
     if (!rc)

@@ -374,7 +374,7 @@ void cl_bench_w8(cl_bctx *c)
         cl_bench_note(cl_bench_row_add(c, 8, "skirt"), "%s", err.msg);
         return;
     }
-    cl_model_contact_start(bm.m, false);
+    cl_model_contact_start(bm.m, 0.0, false); /* penalty: no sweep */
     w8_run r = {0};
     bool ok = w8_start(c, &bm, &r);
     for (size_t k = 0; ok && k < sizeof states / sizeof *states; k++)

@@ -146,12 +146,13 @@ static cl_status start_memos(cl_contact *c, cl_error *err)
     return CL_OK;
 }
 
-void cl_contact_restart(cl_contact *c)
+void cl_contact_restart(cl_contact *c, double t0)
 {
     c->swept = false;
     for (size_t p = 0; c->constrains && p < c->cloth->np; p++)
         c->cons[p].mode = CL_CONSTRAINT_FREE;
-    c->last_t = c->last_dt = 0.0;
+    c->last_t = t0;
+    c->last_dt = 0.0;
     c->proj_force = c->proj_friction = 0.0;
     c->acc_live = true;
     memset(c->lambda, 0, c->nobs * c->cloth->np * sizeof *c->lambda);

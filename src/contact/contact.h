@@ -49,11 +49,13 @@ bool cl_contact_constrains(const cl_contact *c);
 size_t cl_contact_obstacles(const cl_contact *c);
 const cl_obstacle *cl_contact_obstacle(const cl_contact *c, size_t k);
 
-/* Forget the last projection, the barriers' lagged friction and every
- * particle's memo of its distances (the start of a run: a study's runs
- * follow each other on one model, and a memo left by a run that blew up,
- * at |x| ~ 1e78, screened the obstacles out of the next one). */
-void cl_contact_restart(cl_contact *c);
+/* Forget the last projection (the next one's step, swept by ccd and
+ * dividing its impulses into forces, begins at t0), the barriers' lagged
+ * friction and every particle's memo of its distances (the start of a run
+ * at t0: a study's runs follow each other on one model, and a memo left
+ * by a run that blew up, at |x| ~ 1e78, screened the obstacles out of the
+ * next one). */
+void cl_contact_restart(cl_contact *c, double t0);
 
 /* The figures at time t for full-particle positions and velocities. */
 void cl_contact_measure(cl_contact *c, double t, const double *x,

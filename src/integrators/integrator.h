@@ -97,6 +97,9 @@ typedef struct {
                           * tolerance themselves (solve_tol) and read
                           * lin_maxit only */
     const cl_region *region; /* linear stability region (region.h) */
+    /* A run from (t0, x0, v0), t0 any finite time; on a cl_model's
+     * system, after cl_model_contact_start(m, t0, ...) (system/model.h:
+     * a model carries one run at a time). */
     cl_status (*create)(const cl_system *sys, const cl_integrator_opts *o,
                         double t0, const double *x0, const double *v0,
                         void **state, cl_error *err);

@@ -110,6 +110,22 @@ cl_status cl_linsol_new_state(const char *name, const cl_bpattern *pat,
     return CL_OK;
 }
 
+cl_status cl_linsol_check_weights(const char *name, const double *w,
+                                  size_t n, double delta, cl_error *err)
+{
+    size_t i = 0;
+    while (i < n && w[i] > 0.0 && isfinite(w[i]))
+        i++;
+    if (i < n)
+        return cl_error_set(err, CL_EINVAL, "%s: weight %zu is %g: the "
+                            "weights must be positive and finite", name, i,
+                            w[i]);
+    if (!(delta > 0.0) || !isfinite(delta))
+        return cl_error_set(err, CL_EINVAL, "%s: delta = %g: must be "
+                            "positive and finite", name, delta);
+    return CL_OK;
+}
+
 cl_status cl_linsol_check_solve(const char *name, bool ready,
                                 const double *rhs, size_t n, cl_error *err)
 {

@@ -133,6 +133,11 @@ cl_status cl_linsol_new_state(const char *name, const cl_bpattern *pat,
 cl_status cl_linsol_check_solve(const char *name, bool ready,
                                 const double *rhs, size_t n, cl_error *err);
 
+/* The weights and bound of a solve_tol: CL_EINVAL naming `name` unless
+ * every weight of w (n) and delta are positive and finite. */
+cl_status cl_linsol_check_weights(const char *name, const double *w,
+                                  size_t n, double delta, cl_error *err);
+
 /* The iterative solvers' iteration cap: lin_maxit, or max(1000, 2 n) when
  * it is 0; at most INT_MAX. */
 int cl_linsol_maxit(long lin_maxit, size_t n);

@@ -86,6 +86,7 @@
 #include <math.h>
 #include <stdbool.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "core/stop.h"
 #include "linalg/amat.h"
@@ -105,6 +106,9 @@ typedef struct {
     bool ablk_current;       /* A.ablk holds the last setup's A */
     double *dinv;            /* 9 nb: A's diagonal blocks inverted (amg) */
     double *acc;             /* n: the forward sweep's work (amg) */
+    double *rhs;             /* n: a copy of the right-hand side of a
+                              * solve in place (x == rhs), which PETSc's
+                              * zero first guess would overwrite */
     double tol;
     clp_amg_setup_fn setup;
     clp_amg_solve_fn solve;
@@ -136,6 +140,7 @@ static void amg_free(void *state)
         s->free(s->h);
     free(s->dinv);
     free(s->acc);
+    free(s->rhs);
     cl_amat_free(&s->A);
     free(s);
 }
@@ -163,6 +168,8 @@ static cl_status amg_alloc(cl_amg *s, const cl_bpattern *pat,
                            const double *mass, int threads, cl_error *err)
 {
     cl_status st = cl_amat_init(&s->A, s->name, pat, mass, threads, err);
+    if (st == CL_OK && !(s->rhs = malloc(s->n * sizeof *s->rhs)))
+        st = cl_error_set(err, CL_ENOMEM, "%s: out of memory", s->name);
     if (st != CL_OK || s->hypre)    /* BoomerAMG relaxes on its own */
         return st;
     s->dinv = malloc(9 * pat->nb * sizeof *s->dinv);
@@ -389,6 +396,10 @@ static cl_status amg_run(cl_amg *s, const double *rhs, double *x,
     cl_status st = cl_linsol_check_solve(s->name, s->ready, rhs, s->n, err);
     if (st != CL_OK)
         return st;
+    if (x == rhs) { /* in place: CG starts from x = 0 */
+        memcpy(s->rhs, rhs, s->n * sizeof *rhs);
+        rhs = s->rhs;
+    }
     cl_plugin_msg msg = {.text = ""};
     long its = 0;
     int bad = s->solve(s->h, rhs, x, rtol, atol, &its, &msg);
@@ -439,13 +450,12 @@ static cl_status amg_solve_tol(void *state, const double *rhs, double *x,
                                const double *w, double delta, cl_error *err)
 {
     cl_amg *s = state;
+    cl_status st = cl_linsol_check_weights(s->name, w, s->n, delta, err);
+    if (st != CL_OK)
+        return st;
     double wmax = 0.0;
     for (size_t i = 0; i < s->n; i++)
-        wmax = w[i] > wmax ? w[i] : wmax;
-    if (!(wmax > 0.0) || !isfinite(wmax) || !(delta > 0.0))
-        return cl_error_set(err, CL_EINVAL, "%s: weights (largest %g) and "
-                            "delta %g must be positive and finite", s->name,
-                            wmax, delta);
+        wmax = fmax(wmax, w[i]);
     return amg_run(s, rhs, x, 0.0, delta / wmax, err);
 }
 

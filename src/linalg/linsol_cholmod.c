@@ -52,6 +52,7 @@
 
 #include <cholmod.h>
 
+#include "core/check.h"
 #include "linalg/reduced.h"
 
 #define CL_CHOL_SYMTOL 1e-10
@@ -275,7 +276,13 @@ static cl_status chol_setup(void *state, double a, double b,
     cl_status st = CL_OK;
     s->ready = false;
     s->use_klu = false;
-    if (!chol_fill(s, a, b, dfdx, dfdv)) {
+    bool symmetric = chol_fill(s, a, b, dfdx, dfdv);
+    size_t nnz = (size_t)((SuiteSparse_long *)s->A->p)[s->n];
+    if (!cl_all_finite(s->A->x, nnz))
+        return cl_error_set(err, CL_ESOLVER, "cholmod: the matrix M - a "
+                            "df/dv - b df/dx has entries that are not "
+                            "finite");
+    if (!symmetric) {
         st = chol_fallback(s, a, b, dfdx, dfdv, err);
     } else if (!cholmod_l_factorize(s->A, s->L, &s->c)) {
         return chol_fail(s, "cholmod_l_factorize", err);

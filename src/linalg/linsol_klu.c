@@ -32,6 +32,7 @@
 
 #include <klu.h>
 
+#include "core/check.h"
 #include "linalg/reduced.h"
 
 typedef struct {
@@ -40,6 +41,7 @@ typedef struct {
     klu_l_common common;
     klu_l_symbolic *sym;
     klu_l_numeric *num;
+    bool ready;             /* the last setup succeeded */
     long setups, solves, analyses, fallbacks;
 } cl_klu;
 
@@ -140,7 +142,11 @@ static cl_status lklu_setup(void *state, double a, double b,
                             cl_error *err)
 {
     cl_klu *s = state;
+    s->ready = false;
     cl_reduced_fill(&s->red, a, b, dfdx, dfdv, s->val);
+    if (!cl_all_finite(s->val, (size_t)s->red.nnz)) /* no factors of it */
+        return cl_error_set(err, CL_ESOLVER, "klu: the matrix M - a df/dv "
+                            "- b df/dx has entries that are not finite");
     cl_status st = CL_OK;
     if (!s->num) {
         st = lklu_factor(s, err);
@@ -150,6 +156,7 @@ static cl_status lklu_setup(void *state, double a, double b,
     }
     if (st == CL_OK)
         s->setups++;
+    s->ready = st == CL_OK;
     return st;
 }
 
@@ -157,7 +164,7 @@ static cl_status lklu_solve(void *state, const double *rhs, double *x,
                             cl_error *err)
 {
     cl_klu *s = state;
-    if (!s->num)
+    if (!s->ready)
         return cl_error_set(err, CL_EINVAL, "klu: solve without a "
                             "successful setup");
     if (x != rhs)

@@ -450,7 +450,9 @@ static cl_status pcg_solve_tol(void *state, const double *rhs, double *x,
                                const double *w, double delta, cl_error *err)
 {
     cl_pcg *s = state;
-    cl_status st = pcg_load(s, rhs, err);
+    cl_status st = cl_linsol_check_weights(s->name, w, s->n, delta, err);
+    if (st == CL_OK)
+        st = pcg_load(s, rhs, err);
     if (st != CL_OK)
         return st;
     memcpy(N_VGetArrayPointer(s->w), w, s->n * sizeof *w);

@@ -801,7 +801,7 @@ bool cl_model_selfcontact_closest(cl_model *m, const double *x, double *d)
 
 const cl_contact *cl_model_contact(const cl_model *m) { return m->contact; }
 
-void cl_model_contact_start(cl_model *m, bool track_work)
+void cl_model_contact_start(cl_model *m, double t0, bool track_work)
 {
     m->worst_pen = 0.0;
     m->worst_t = 0.0;
@@ -810,7 +810,7 @@ void cl_model_contact_start(cl_model *m, bool track_work)
     m->track_work = track_work;
     m->contact_work = 0.0;
     if (m->contact)
-        cl_contact_restart(m->contact);
+        cl_contact_restart(m->contact, t0);
 }
 
 void cl_model_contact_worst(const cl_model *m, double *pen, double *t)

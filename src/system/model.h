@@ -101,11 +101,17 @@ bool cl_model_selfcontact_closest(cl_model *m, const double *x, double *d);
 /* The obstacles, or NULL when the problem has none. */
 const cl_contact *cl_model_contact(const cl_model *m);
 
-/* Start of a run: the worst penetration is forgotten, and with track_work
- * the contact hook accounts the energy every projection changes
+/* Start of a run at t0, before its integrator's first step (cl_simulate
+ * and the studies' trials call it; a program of one's own calls it before
+ * each run): the worst penetration and the contact layer's memory of the
+ * last run (cl_contact_restart: its last projection, now at t0, the
+ * barriers' lagged friction) are forgotten, and with track_work the
+ * contact hook accounts the energy every projection changes
  * (cl_energy.contact_work; two energy evaluations per projecting step,
- * so only the energy study asks for it). */
-void cl_model_contact_start(cl_model *m, bool track_work);
+ * so only the energy study asks for it).  A model carries one run at a
+ * time, and a model that tears keeps its torn connections: a new run of
+ * it needs a new model (analysis/trial.h, cl_trial_repeatable). */
+void cl_model_contact_start(cl_model *m, double t0, bool track_work);
 
 /* The deepest penetration since cl_model_contact_start, seen by the
  * contact hook after every accepted step (fixed-step methods, CVODE BDF)
