@@ -10,9 +10,12 @@
 #include <criterion/criterion.h>
 
 #include <math.h>
+#include <signal.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/stop.h"
 #include "linalg/linsol.h"
 #include "linalg/reduced.h"
 
@@ -196,6 +199,23 @@ static inline double ls_setup_solve(const cl_linsol_type *t, void *st,
     cr_assert_eq(t->solve(st, rhs, x, &err), CL_OK, "%s: %s", t->name,
                  err.msg);
     return ls_residual(c, a, b, rhs, x);
+}
+
+/* A stop requested (SIGTERM) before a solve of t (set up) ends it with
+ * CL_EINTR: "WHO: stopped by SIGTERM in iteration K", who the iterative
+ * solver (auto's: pcg). */
+static inline void ls_solve_stopped(const cl_linsol_type *t, void *st,
+                                    const char *who, const double *rhs,
+                                    double *x)
+{
+    cl_error err = {0};
+    char want[64];
+    cl_stop_install();
+    cr_assert_eq(raise(SIGTERM), 0);
+    cr_assert_eq(t->solve(st, rhs, x, &err), CL_EINTR, "%s", err.msg);
+    snprintf(want, sizeof want, "%s: stopped by SIGTERM in iteration ",
+             who);
+    cr_assert(strstr(err.msg, want), "%s", err.msg);
 }
 
 #endif
