@@ -151,6 +151,17 @@ Test(sweep_series, contact_from_sweep_equals_the_study)
                                 "      0.005    0.003162"), "%s",
               swept.out);
     cli_result_free(&swept);
+    /* --response of a sweep with no response axis: its runs are all of the
+     * file's penalty floor (before: the project rows were the penalty
+     * runs, reported as the projection's) */
+    cli_run(&swept, "contact", "particle-floor", "--integrator",
+            "symplectic-euler", "--t-end", "0.2", "--response",
+            "penalty,project", "--from-sweep", table, "--out", out, NULL);
+    cli_assert_error(&swept, 0, "--response, yet obstacle.floor.response is "
+                     "no axis of the sweep", "give --response only with a "
+                     "sweep over it", NULL);
+    cr_assert_eq(swept.status, 2);
+    cli_result_free(&swept);
 }
 
 Test(sweep_series, series_must_be_beside_the_table)

@@ -137,6 +137,11 @@ static int column(const cl_sweep_table *t, const char *name)
     return -1;
 }
 
+bool cl_sweep_table_has(const cl_sweep_table *t, const char *name)
+{
+    return column(t, name) >= 0;
+}
+
 static const char *at(const cl_sweep_table *t, int row, int col)
 {
     return col < 0 ? "NA" : t->cell[(size_t)row * t->ncol + col];

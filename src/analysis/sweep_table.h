@@ -71,6 +71,10 @@ cl_status cl_sweep_table_select(cl_sweep_table *t, cl_config *cfg,
 cl_status cl_sweep_table_same_inputs(const cl_sweep_table *t,
                                      const cl_config *cfg, cl_error *err);
 
+/* Whether the table has a column `name` (an axis: "run.dt",
+ * "obstacle.ball.k", ...). */
+bool cl_sweep_table_has(const cl_sweep_table *t, const char *name);
+
 /* A job row and its value of the method's parameter (dt, rtol). */
 typedef struct {
     int row;

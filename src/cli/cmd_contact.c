@@ -356,6 +356,30 @@ static const cl_cli_method *method_of(const ct_setup *s, int k)
     return &s->integrators.m[k % s->integrators.n];
 }
 
+/* With --from-sweep, the obstacles' `key`, which the variants set
+ * (--response, --k), must be an axis of the sweep, unless the runs' value
+ * (the problem file's, `given`: NULL for any) is the one the variants
+ * set, `set`: otherwise they would take the rows of other runs. */
+static cl_status swept(const ct_setup *s, const char *key, const char *set,
+                       const char *option, cl_error *err)
+{
+    char name[256];
+    for (int k = 0; k < s->nobs; k++) {
+        const char *given = !strcmp(key, "k") ? s->obs[k].k
+                                              : s->obs[k].response;
+        snprintf(name, sizeof name, "%s.%s", s->obs[k].sec, key);
+        if (!cl_sweep_table_has(&s->table, name) &&
+            (!set || !given || strcmp(given, set)))
+            return cl_error_set(err, CL_EINVAL, "--from-sweep %s: %s, yet "
+                                "%s is no axis of the sweep, whose runs "
+                                "had the problem file's value%s%s; give %s "
+                                "only with a sweep over it", s->from, option,
+                                name, given ? ", " : "", given ? given : "",
+                                option);
+    }
+    return CL_OK;
+}
+
 /* Every variant built, each integrator created on it and checked for its
  * study, then the problem's own values put back. */
 static cl_status try_variants(ct_setup *s, cl_error *err)
@@ -404,7 +428,13 @@ static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
     if (s->from)
         rc = cl_sweep_table_read(s->from, &s->table, err);
     if (!rc && !(rc = read_lists(cfg, s, err)) &&
-        !(rc = save_obstacles(cfg, s, err)))
+        !(rc = save_obstacles(cfg, s, err)) && s->from && s->nresp > 0)
+        rc = swept(s, "response", NULL, "--response", err);
+    if (!rc && s->from && s->nk > 0 &&
+        !(rc = swept(s, "response", "penalty", "--k (response = penalty)",
+                     err)))
+        rc = swept(s, "k", NULL, "--k", err);
+    if (!rc)
         rc = try_variants(s, err);
     return rc;
 }
