@@ -441,6 +441,22 @@ Test(cli, dt_negative)
                    LIST("dt", "-1"));
 }
 
+/* A study whose output directory cannot be made fails before its work
+ * (exit 7, nothing of a table printed): before, stability computed its
+ * limits, printed them and only then failed, and with --quiet nothing was
+ * kept. */
+Test(cli, study_output_directory_checked_before_the_work)
+{
+    cli_result r;
+    cli_run(&r, "stability", "spring2", "--integrator", "rk4", "--t-end",
+            "0.2", "--out", "/proc/no-such-dir", NULL);
+    cli_assert_error(&r, 0, "cannot create directory '/proc/no-such-dir'",
+                     NULL);
+    cr_assert_eq(r.status, 7);
+    cr_assert_str_eq(r.out, "");
+    cli_result_free(&r);
+}
+
 Test(cli, threads_out_of_range)
 {
     expect_refused(LIST("run", "hang", "--threads", "0", "--t-end", "0.01"),

@@ -186,7 +186,13 @@ cl_status cl_cli_check_output(const char *dir, const char *name,
                             "directory: it exists and is not a directory",
                             dir);
     snprintf(path, sizeof path, "%s/%s", dir, name);
-    return cl_output_check(path, err);
+    /* made, and written to once (a temporary file, removed), so that a
+     * directory that cannot be made or written fails before the work */
+    cl_afile af;
+    cl_status rc = cl_mkdir_p(dir, err);
+    if (!rc && !(rc = cl_afile_open(&af, path, err)))
+        cl_afile_abort(&af);
+    return rc;
 }
 
 cl_status cl_cli_write_csv(const char *dir, const char *name,
