@@ -388,3 +388,25 @@ Test(stop, spectrum_stops_between_its_eigensolvers)
     unlink(path);
     tmp_rm_rf(dir);
 }
+
+/* A command with no stop points of its own (counts, asinc, sweep plan)
+ * that runs to its end after a signal still exits 6, saying so: before,
+ * counts at n = 2048 (several seconds) took SIGTERM and exited 0. */
+Test(stop, a_command_that_ran_on_still_reports_the_signal)
+{
+    time_limit(120);
+    char dir[64], path[300];
+    tmp_mkdtemp(dir, sizeof dir, "counts");
+    const char *const args[] = {"counts", "--n-min", "2048", "--n-max",
+                                "2048", NULL};
+    double ended;
+    int status = run_and_signal(dir, args, SIGTERM, 0.3, &ended);
+    cr_assert_eq(status, 6, "exit status %d", status);
+    char err[1024];
+    snprintf(path, sizeof path, "%s.stderr", dir);
+    tmp_slurp(path, err, sizeof err);
+    cr_assert(strstr(err, "clothode: interrupted by SIGTERM (after the "
+                          "command had done its work)"), "%s", err);
+    unlink(path);
+    tmp_rm_rf(dir);
+}

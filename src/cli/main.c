@@ -97,6 +97,14 @@ int main(int argc, char **argv)
      * ending the program with a temporary file behind */
     signal(SIGXFSZ, SIG_IGN);
     int status = dispatch(argc, argv);
+    if (status == 0 && cl_stop_interrupted()) {
+        /* a command that ran to its end all the same (counts, asinc,
+         * sweep plan) was still asked to stop: the caller sees that */
+        fprintf(stderr, "clothode: interrupted by %s (after the command "
+                        "had done its work)\n",
+                cl_stop_signal_name(cl_stop_requested()));
+        status = CL_EXIT_INTERRUPTED;
+    }
     cl_petsc_stop(); /* its reports at the end, into stdout */
     return close_stdout(status);
 }
