@@ -160,6 +160,13 @@ Test(obstacle, names_shapes_and_responses_are_checked)
         {"obstacle.o", {"obstacle.o.shape = sphere", "obstacle.o.radius = 1",
                         "obstacle.o.omega = 1, 2",
                         "obstacle.o.response = project"}, "omega"},
+        /* before: accepted, and the obstacle's pose NaN (|omega| t
+         * overflowed), so that it touched nothing */
+        {"obstacle.o", {"obstacle.o.shape = sphere", "obstacle.o.radius = 1",
+                        "obstacle.o.omega = 0, -1e200, 0",
+                        "obstacle.o.response = project"},
+         "[obstacle.o] omega = \"0, -1e200, 0\": each component at most "
+         "1e9 rad/s in size"},
         {"obstacle.o", {"obstacle.o.shape = sphere", "obstacle.o.radius = 1",
                         "obstacle.o.response = barrier",
                         "obstacle.o.dhat = 0.01"}, "kappa"},

@@ -553,6 +553,12 @@ cl_status cl_obstacle_create(cl_config *cfg, const char *sec, cl_obstacle *o,
         (rc = cl_config_vector(cfg, sec, "omega", 3, o->omega, err)) ||
         (rc = read_response(cfg, sec, &o->resp, err)))
         return rc;
+    /* far beyond any cloth's, and |omega| t stays finite */
+    for (int i = 0; i < 3; i++)
+        if (!(fabs(o->omega[i]) <= 1e9))
+            return cl_config_refuse(cfg, sec, "omega", CL_EINVAL, "each "
+                                    "component at most 1e9 rad/s in size",
+                                    err);
     if (o->resp.kind == CL_RESPONSE_BARRIER && !o->type->toi)
         return cl_error_set(err, CL_EINVAL, "[%s] response = barrier: shape "
                             "%s has no time of impact (continuous collision "
