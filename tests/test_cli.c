@@ -937,7 +937,8 @@ Test(cli, eval_state_missing_file)
 
 /* Two outputs of one eval in one file are refused before any work,
  * however the path is spelt: a Jacobian over forces.csv, or both Jacobians
- * in one file; so is an empty name for a Jacobian. */
+ * in one file; so are an empty name for a Jacobian and an output over an
+ * input. */
 Test(cli, eval_outputs_in_one_file_are_refused)
 {
     char out[1024], state[1024], jac[1100], other[1100];
@@ -960,6 +961,20 @@ Test(cli, eval_outputs_in_one_file_are_refused)
             "--out", out, NULL);
     cli_assert_error(&r, 0, "[eval] jacobian_v = \"\": an empty file name",
                      NULL);
+    cli_result_free(&r);
+    /* an input as an output: the state (before, overwritten by the
+     * Jacobian), the problem file */
+    cli_run(&r, "eval", "hang", "--state", state, "--jacobian", state,
+            "--out", out, NULL);
+    cli_assert_error(&r, 0, "the same file as --state", NULL);
+    cli_result_free(&r);
+    static char text[64];
+    tmp_slurp(state, text, sizeof text);
+    cr_assert_str_eq(text, "p,x,y,z,vx,vy,vz\n");
+    cli_run(&r, "eval", "problems/hang.ini", "--state", state,
+            "--jacobian-v", "problems/../problems/hang.ini", "--out", out,
+            NULL);
+    cli_assert_error(&r, 0, "the same file as the problem", NULL);
     cli_result_free(&r);
 }
 

@@ -10,6 +10,7 @@
 #include "cli/commands.h"
 #include "io/atomic.h"
 #include "io/mtx.h"
+#include "io/input.h"
 #include "io/state.h"
 #include "system/model.h"
 
@@ -123,11 +124,12 @@ static void resolved_path(const char *path, char *buf, size_t len)
         snprintf(buf, len, "%s", path);
 }
 
-/* Every output path is a regular file or absent, and the outputs are
+/* Every output path is a regular file or absent, the outputs are
  * different files (a Jacobian written over forces.csv would lose the
- * forces), before any work. */
+ * forces) and none is an input (the state, the problem file), before any
+ * work. */
 static cl_status check_outputs(const eval_args *a, const char *dir,
-                               cl_error *err)
+                               const char *problem, cl_error *err)
 {
     const char *name[4] = {"forces.csv", "energy.csv", "--jacobian",
                            "--jacobian-v"};
@@ -151,6 +153,15 @@ static cl_status check_outputs(const eval_args *a, const char *dir,
                                   "%s%s%s; each output needs a file of its "
                                   "own", name[i], file[i], name[j],
                                   j < 2 ? " in --out " : "", j < 2 ? dir : "");
+    const char *input[2] = {a->state, problem}, *what[2] = {"--state",
+                                                           "the problem"};
+    for (int i = 0; !rc && i < 4; i++)
+        for (int j = 0; !rc && j < 2; j++)
+            if (*file[i] && input[j] && cl_same_file(file[i], input[j]))
+                rc = cl_error_set(err, CL_EINVAL, "%s %s: the same file as "
+                                  "%s, %s, which it would overwrite; write "
+                                  "the output elsewhere", name[i], file[i],
+                                  what[j], input[j]);
     return rc;
 }
 
@@ -164,7 +175,9 @@ static cl_status evaluate(cl_model *m, const cl_cli_job *job, void *ctx,
     cl_energy e;
     cl_status rc = x && v && f ? CL_OK
                                : cl_error_set(err, CL_ENOMEM, "no memory");
-    if (!rc && !(rc = check_outputs(a, job->outdir, err)) &&
+    if (!rc &&
+        !(rc = check_outputs(a, job->outdir, cl_config_path(job->cfg),
+                             err)) &&
         !(rc = cl_state_read(a->state, np, x, v, err)) &&
         !(rc = cl_model_eval_full(m, a->t, x, v, f, &e, err)) &&
         !(rc = cl_mkdir_p(job->outdir, err)) &&
