@@ -690,6 +690,30 @@ Test(sweep_engine, slurm_without_id_failed_task_and_stopped)
     cr_assert(WIFEXITED(ws) && WEXITSTATUS(ws) == 6, "status %d", ws);
 }
 
+/* sweep collect --out naming one of the sweep's own files (the manifest,
+ * the job list) is refused, and the file kept (before: the table replaced
+ * sweep.json, and the sweep could not be read again). */
+Test(sweep_engine, collect_out_over_the_sweep_s_own_files)
+{
+    char dir[1024], path[1100], before[4096], after[4096];
+    two_complete(dir, "collectout");
+    snprintf(path, sizeof path, "%s/sweep.json", dir);
+    tmp_slurp(path, before, sizeof before);
+    cli_result r;
+    cli_run(&r, "sweep", "collect", dir, "--out", path, NULL);
+    cli_assert_error(&r, 0, "the sweep's own", "which the table would "
+                     "replace", NULL);
+    cr_assert_eq(r.status, 2);
+    cli_result_free(&r);
+    tmp_slurp(path, after, sizeof after);
+    cr_assert_str_eq(after, before);
+    snprintf(path, sizeof path, "%s/../%s/jobs.txt", dir,
+             strrchr(dir, '/') + 1);
+    cli_run(&r, "sweep", "collect", dir, "--out", path, NULL);
+    cr_assert_eq(r.status, 2, "%s", r.err);
+    cli_result_free(&r);
+}
+
 /* The Slurm submission's files are written atomically, onto regular files
  * only: a symbolic link at DIR/slurm/array.sh is refused, naming it, and
  * its target stays as it was (before: fopen wrote the script through the

@@ -621,6 +621,24 @@ static void table_rows(FILE *fp, const void *ctx, int n)
     cl_sweep_write_table(fp, p[0], p[1]);
 }
 
+/* A table given by --out that is one of the sweep's own files (its
+ * manifest, job list, ...), which it would replace: CL_EINVAL. */
+static cl_status not_a_sweep_file(const char *dir, const char *out,
+                                  cl_error *err)
+{
+    static const char *const own[] = {"sweep.json", "jobs.txt", "joblog",
+                                      "pending.txt", "lock", "slurm/job"};
+    char path[4200];
+    for (size_t k = 0; out && k < sizeof own / sizeof *own; k++) {
+        snprintf(path, sizeof path, "%s/%s", dir, own[k]);
+        if (cl_same_file(out, path))
+            return cl_error_set(err, CL_EINVAL, "--out %s: the sweep's own "
+                                "%s, which the table would replace; write "
+                                "it elsewhere", out, path);
+    }
+    return CL_OK;
+}
+
 static int collect(void *settings)
 {
     cl_cli_args *a = settings;
@@ -629,7 +647,9 @@ static int collect(void *settings)
     cl_sweep_counts c;
     cl_sweep_outcome *out = NULL;
     char table[4200], dir[4200];
-    cl_status rc = cl_sweep_load(a->arg, &sw, &err);
+    cl_status rc = not_a_sweep_file(a->arg, a->out, &err);
+    if (!rc)
+        rc = cl_sweep_load(a->arg, &sw, &err);
     /* the jobs' outputs where the sweep is now (copied from a cluster) */
     free(sw.dir);
     sw.dir = strdup(a->arg);
