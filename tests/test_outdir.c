@@ -1,8 +1,13 @@
 /* Tests for cli/outdir: an earlier run's files are cleared, a directory
  * that is not a clothode output is refused with nothing removed; and, end
  * to end, a failed run into a reused directory leaves no file of the
- * earlier run. */
+ * earlier run, and a directory another clothode is writing into is
+ * refused. */
 #include "runcli.h"
+
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
 
 #include "cli/outdir.h"
 
@@ -201,4 +206,46 @@ Test(outdir, failed_run_into_reused_directory_leaves_nothing_old)
     cli_assert_ok(&r);
     cli_result_free(&r);
     cr_assert(exists("final.csv") && !exists("last-good.csv"));
+}
+
+/* A run or a study into a directory a running clothode writes into is
+ * refused (exit 7), and the running one ends with its outputs (before:
+ * the second run cleared the first's temporaries and frames, the first
+ * failed to rename its series (exit 7), and the directory mixed the two
+ * runs); once it has ended, the directory is free. */
+Test(outdir, a_directory_in_use_is_refused)
+{
+    char *argv[] = {(char *)cli_binary(), "run", "hang", "--set",
+                    "cloth.n=12", "--t-end", "100", "--integrator", "rk4",
+                    "--dt", "1e-5", "--max-wall", "60", "--quiet", "--out",
+                    dir, NULL};
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, STDERR_FILENO, "/dev/null",
+                                     O_WRONLY, 0);
+    pid_t pid;
+    cr_assert_eq(posix_spawnp(&pid, argv[0], &fa, NULL, argv, environ), 0);
+    posix_spawn_file_actions_destroy(&fa);
+    for (int k = 0; k < 3000 && !exists("run.json"); k++)
+        nanosleep(&(struct timespec){0, 10000000}, NULL);
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "cloth.n=4", "--t-end", "0.01",
+            "--quiet", "--out", dir, NULL);
+    cli_assert_error(&r, 0, "is in use by another clothode writing there",
+                     NULL);
+    cr_assert_eq(r.status, 7);
+    cli_result_free(&r);
+    cli_run(&r, "stability", "spring2", "--integrator", "rk4", "--t-end",
+            "0.1", "--quiet", "--out", dir, NULL);
+    cr_assert_eq(r.status, 7, "%s", r.err);
+    cli_result_free(&r);
+    kill(pid, SIGTERM);
+    int ws;
+    cr_assert_eq(waitpid(pid, &ws, 0), pid);
+    cr_assert(WIFEXITED(ws) && WEXITSTATUS(ws) == 6, "status %d", ws);
+    cr_assert(exists("series.csv") && exists("final.csv"));
+    cli_run(&r, "run", "hang", "--set", "cloth.n=4", "--t-end", "0.01",
+            "--frames", "0", "--quiet", "--out", dir, NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
 }

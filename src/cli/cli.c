@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "cli/outdir.h"
 #include "core/meminfo.h"
 #include "io/atomic.h"
 #include "io/state.h"
@@ -190,7 +191,8 @@ cl_status cl_cli_check_output(const char *dir, const char *name,
      * directory that cannot be made or written fails before the work */
     cl_afile af;
     cl_status rc = cl_mkdir_p(dir, err);
-    if (!rc && !(rc = cl_afile_open(&af, path, err)))
+    if (!rc && !(rc = cl_cli_outdir_hold(dir, err)) &&
+        !(rc = cl_afile_open(&af, path, err)))
         cl_afile_abort(&af);
     return rc;
 }

@@ -92,8 +92,9 @@ int cl_cli_args_main(int argc, char **argv, const cl_cli_table *t,
 
 /* Whether DIR/NAME can receive an output, checked before any work: DIR
  * absent or a directory, DIR/NAME absent or a regular file (CL_EIO naming
- * what is there otherwise, io/atomic.h), and DIR made (if absent) and
- * writable (CL_EIO with the system's reason otherwise). */
+ * what is there otherwise, io/atomic.h), and DIR made (if absent),
+ * held by this process (cli/outdir.h, cl_cli_outdir_hold) and writable
+ * (CL_EIO with the system's reason otherwise). */
 cl_status cl_cli_check_output(const char *dir, const char *name,
                               cl_error *err);
 

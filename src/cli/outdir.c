@@ -3,9 +3,11 @@
 
 #include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -137,21 +139,55 @@ static cl_status sweep(const char *dir, json_t *files, bool remove,
     return rc;
 }
 
-/* Check dir (remove false) or clear it (true); a missing dir passes the
- * check and is created by the clearing. */
+/* This process's output directory, open and locked (flock) until the
+ * process ends; -1 for none. */
+static int held = -1;
+
+cl_status cl_cli_outdir_hold(const char *dir, cl_error *err)
+{
+    struct stat st, hs;
+    int fd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) /* the callers report a directory they cannot use */
+        return CL_OK;
+    if (held >= 0 && fstat(held, &hs) == 0 && fstat(fd, &st) == 0 &&
+        hs.st_dev == st.st_dev && hs.st_ino == st.st_ino) {
+        close(fd);
+        return CL_OK;
+    }
+    if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+        int e = errno;
+        close(fd);
+        return e != EWOULDBLOCK ? CL_OK /* a file system without flock */
+               : cl_error_set(err, CL_EIO, "output directory '%s' is in "
+                              "use by another clothode writing there; wait "
+                              "for it to end, or choose another --out", dir);
+    }
+    if (held >= 0)
+        close(held);
+    held = fd;
+    return CL_OK;
+}
+
+/* Check dir (remove false) or clear it (true), held first; a missing dir
+ * passes the check and is created by the clearing. */
 static cl_status outdir_pass(const char *dir, bool remove, cl_error *err)
 {
     struct stat st;
     if (!dir || !*dir)
         return cl_error_set(err, CL_EINVAL, "output directory name is empty");
-    if (stat(dir, &st) != 0)
-        return remove ? cl_mkdir_p(dir, err) : CL_OK;
+    if (stat(dir, &st) != 0) {
+        cl_status rc = remove ? cl_mkdir_p(dir, err) : CL_OK;
+        return rc || !remove ? rc : cl_cli_outdir_hold(dir, err);
+    }
     if (!S_ISDIR(st.st_mode))
         return cl_error_set(err, CL_EIO, "cannot use '%s' as the output "
                             "directory: it exists and is not a directory",
                             dir);
+    cl_status rc = cl_cli_outdir_hold(dir, err);
+    if (rc)
+        return rc;
     json_t *files = earlier_files(dir);
-    cl_status rc = sweep(dir, files, false, err);
+    rc = sweep(dir, files, false, err);
     if (!rc && remove)
         rc = sweep(dir, files, true, err);
     json_decref(files);

@@ -25,14 +25,24 @@ bool cl_cli_run_output(const char *name);
  * out/PROBLEM with a run. */
 bool cl_cli_clothode_output(const char *name);
 
+/* Hold the existing directory dir for this process until it ends (an
+ * exclusive flock on it), so that no other clothode writes into it
+ * meanwhile (two runs into one --out would clear and mix each other's
+ * files): CL_EIO naming it when another process holds it; CL_OK when it
+ * cannot be opened (the callers report that) or its file system has no
+ * flock.  A process holds one directory: holding another releases it. */
+cl_status cl_cli_outdir_hold(const char *dir, cl_error *err);
+
 /* The refusals of cl_cli_outdir_prepare without its clearing: CL_OK when
- * prepare would clear dir (or create it). */
+ * prepare would clear dir (or create it); an existing dir is held
+ * (cl_cli_outdir_hold). */
 cl_status cl_cli_outdir_check(const char *dir, cl_error *err);
 
 /* Clear dir of an earlier run's files, or refuse it (CL_EIO naming the
  * directory and a file that is not clothode's, or an output name taken by
- * something other than a regular file), then create it if missing.
- * Nothing is removed when it is refused. */
+ * something other than a regular file, or a directory another clothode
+ * holds), then create it if missing; held either way.  Nothing is removed
+ * when it is refused. */
 cl_status cl_cli_outdir_prepare(const char *dir, cl_error *err);
 
 CL_END_DECLS
