@@ -267,6 +267,12 @@ Test(numdamp, command_line)
     cli_run(&r, "damping", "spring2", "--wh", "10:1:3", "--out", dir, NULL);
     cli_assert_error(&r, 0, "LO:HI:N", NULL);
     cli_result_free(&r);
+    /* before: accepted, its rows failing with an output time inf */
+    cli_run(&r, "damping", "spring2", "--wh", "1:1e308:3", "--out", dir,
+            NULL);
+    cli_assert_error(&r, 0, "0 < LO < HI <= 1e6", NULL);
+    cr_assert_eq(r.status, 2);
+    cli_result_free(&r);
     tmp_rm_rf(dir);
 }
 

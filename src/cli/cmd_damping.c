@@ -103,10 +103,10 @@ static cl_status read_range(cl_config *cfg, nd_setup *s, cl_error *err)
     int n, used = 0;
     char why[128];
     if (sscanf(s->range, "%lf:%lf:%d%n", &lo, &hi, &n, &used) != 3 ||
-        s->range[used] || !(lo > 0 && hi > lo && isfinite(hi)) || n < 2 ||
+        s->range[used] || !(lo > 0 && hi > lo && hi <= 1e6) || n < 2 ||
         n > CL_NUMDAMP_MAX_WH) {
-        snprintf(why, sizeof why, "expected LO:HI:N with 0 < LO < HI and 2 "
-                 "<= N <= %d", CL_NUMDAMP_MAX_WH);
+        snprintf(why, sizeof why, "expected LO:HI:N with 0 < LO < HI <= 1e6 "
+                 "and 2 <= N <= %d", CL_NUMDAMP_MAX_WH);
         return cl_config_refuse(cfg, "damping", "wh", CL_EINVAL, why, err);
     }
     for (int k = 0; k < n; k++)
