@@ -374,6 +374,20 @@ Test(sweep, collect_complete_failed_missing)
     cr_assert_str_eq(out[2].exit_class, "signal-2");
     cr_assert_eq(out[3].state, CL_SWEEP_MISSING);
     cr_assert_str_eq(out[3].exit_class, "missing");
+    /* a status file that holds anything but 0 to 255 alone on its line
+     * records no status (before: "0 extra" was ok, 300 signal-172, a
+     * number past int exit--1) */
+    static const char *const odd[] = {"0 extra\n", "300\n", "1.5\n",
+                                      "99999999999999999999\n", "-1\n", ""};
+    for (size_t k = 0; k < sizeof odd / sizeof *odd; k++) {
+        put_job_file(&sw, 3, "exit", odd[k]);
+        cl_sweep_outcomes(&sw, out, &c);
+        cr_expect_eq(out[3].state, CL_SWEEP_MISSING, "exit file \"%s\"",
+                     odd[k]);
+    }
+    put_job_file(&sw, 3, "exit", "255");
+    cl_sweep_outcomes(&sw, out, &c);
+    cr_assert_str_eq(out[3].exit_class, "signal-127");
     cl_sweep_free(&sw);
 }
 

@@ -31,18 +31,22 @@ static FILE *job_file(const cl_sweep *sw, int k, const char *name)
 }
 
 /* The exit status the job's command recorded as its last step
- * (DIR/jobs/ID/exit: the shell's $?, 128 + N after signal N); false if
- * there is none (never run, under way, or stopped before it finished). */
+ * (DIR/jobs/ID/exit: the shell's $?, 0 to 255, 128 + N after signal N,
+ * alone on its line); false if there is none (never run, under way, or
+ * stopped before it finished) or the file holds anything else. */
 static bool exit_status(const cl_sweep *sw, int k, cl_sweep_outcome *o)
 {
     FILE *fp = job_file(sw, k, "exit");
-    int v;
-    bool found = fp && fscanf(fp, "%d", &v) == 1;
+    char line[64] = "", *end;
+    bool found = fp && fgets(line, sizeof line, fp);
     if (fp)
         fclose(fp);
+    long v = strtol(line, &end, 10);
+    found = found && end != line && (*end == '\n' || !*end) && v >= 0 &&
+            v <= 255;
     if (found) {
-        o->exitval = v > 128 ? -1 : v;
-        o->signal = v > 128 ? v - 128 : 0;
+        o->exitval = v > 128 ? -1 : (int)v;
+        o->signal = v > 128 ? (int)v - 128 : 0;
     }
     return found;
 }
