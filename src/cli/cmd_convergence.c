@@ -86,9 +86,16 @@ static const cl_cli_table wp_table = {
 static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
 {
     conv_setup *s = ctx;
-    cl_status rc = cl_cli_methods_check(cfg, &s->integrators, &s->run.io,
-                                        s->from ? CL_CLI_DT_NONE
-                                                : CL_CLI_DT_FIXED, err);
+    /* the levels' own options, which a sweep's table does not use (the
+     * rows of conv_table are wp_table's) */
+    static const char *const runs[] = {"levels", "ref-rtol", NULL};
+    cl_status rc = cl_cli_refuse_unless(cfg, &conv_table, runs, !s->from,
+                                        "levels run here (not "
+                                        "--from-sweep)", err);
+    if (!rc)
+        rc = cl_cli_methods_check(cfg, &s->integrators, &s->run.io,
+                                  s->from ? CL_CLI_DT_NONE
+                                          : CL_CLI_DT_FIXED, err);
     s->co.ref_linsol = "";
     s->co.t_end = s->run.t_end;
     s->co.max_stretch = s->run.max_stretch;

@@ -309,8 +309,14 @@ static const cl_cli_study axis_study = {
 static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
 {
     stab_setup *s = ctx;
-    cl_status rc = cl_cli_methods_check(cfg, &s->integrators, &s->run.io,
-                                        CL_CLI_DT_NONE, err);
+    /* the search's own options, which a sweep's table does not use */
+    static const char *const search[] = {"dt-max", "dt-min", "rel", NULL};
+    cl_status rc = cl_cli_refuse_unless(cfg, &stab_table, search, !s->from,
+                                        "a search of its own (not "
+                                        "--from-sweep)", err);
+    if (!rc)
+        rc = cl_cli_methods_check(cfg, &s->integrators, &s->run.io,
+                                  CL_CLI_DT_NONE, err);
     if (!rc)
         rc = cl_cli_methods_fixed(cfg, &s->integrators, "stability", err);
     if (rc)
