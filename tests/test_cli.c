@@ -837,10 +837,25 @@ Test(cli, solver_failure_names_the_option)
                         " run.max_steps=N"));
 }
 
+/* eval's state is required, as --state or as the key [eval] state, which
+ * a --set (or the problem file) may give (before: refused unless given as
+ * --state, though its help names the key). */
 Test(cli, eval_without_state)
 {
-    expect_refused(LIST("eval", "hang"), 1,
-                   LIST("--state"));
+    expect_refused(LIST("eval", "hang"), 0,
+                   LIST("--state FILE ([eval] state) is required"));
+    char out[1024], state[1100], set[1200];
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "cloth.n=4", "--t-end", "0.01",
+            "--frames", "0", "--quiet", "--out", in_tmp(out, "st"), NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+    snprintf(state, sizeof state, "%s/final.csv", out);
+    snprintf(set, sizeof set, "eval.state=%s", state);
+    cli_run(&r, "eval", "hang", "--set", "cloth.n=4", "--set", set, "--out",
+            in_tmp(out, "ev"), NULL);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
 }
 
 /* The whole content of the file at `path`. */

@@ -127,8 +127,8 @@ static int check_given(const cl_cli_table *t, int argc, char **argv,
                        t->pos ? t->pos : "PROBLEM", argc - optind);
     if (t->npos == 0 && optind != argc)
         return refused(t, "unexpected argument '%s'", argv[optind]);
-    for (int k = 0; k < n; k++)
-        if (f[k].row->required && !given[k])
+    for (int k = 0; k < n; k++) /* a keyed one may come from the file */
+        if (f[k].row->required && !f[k].row->key && !given[k])
             return refused(t, "--%s %s is required", f[k].row->name,
                            f[k].row->arg);
     return optind;
@@ -280,6 +280,15 @@ cl_status cl_cli_read(cl_config *cfg, const cl_cli_table *t, void *settings,
     for (int k = 0; !rc && k < n; k++)
         if (f[k].row->key)
             rc = read_row(cfg, f[k].row, settings, f[k].at, err);
+    /* a required keyed string: given as the option, by --set or in the
+     * problem file */
+    for (int k = 0; !rc && k < n; k++)
+        if (f[k].row->required && f[k].row->key &&
+            f[k].row->type == CL_CLI_STRING &&
+            !**(const char **)((char *)settings + f[k].at))
+            rc = cl_error_set(err, CL_EINVAL, "%s: --%s %s ([%s] %s) is "
+                              "required", t->cmd, f[k].row->name,
+                              f[k].row->arg, f[k].row->sec, f[k].row->key);
     return rc;
 }
 
