@@ -1151,6 +1151,25 @@ Test(cli, run_format_csv_writes_no_frames)
             "--out", in_tmp(out, "csv3"), NULL);
     cli_assert_error(&r, 0, "[run] format = \"\"", "an empty list", NULL);
     cli_result_free(&r);
+    /* both in one problem file: refused too (before: its frames dropped
+     * without a word); a file's frames under --format csv are the file's
+     * default, which the command line's format overrides */
+    char ini[1200];
+    static char text[1 << 14];
+    tmp_slurp("problems/hang.ini", text, sizeof text);
+    char *run = strstr(text, "[run]\n");
+    cr_assert_not_null(run);
+    snprintf(ini, sizeof ini, "%s/csvframes.ini", tmp);
+    FILE *fp = fopen(ini, "w");
+    cr_assert_not_null(fp);
+    fprintf(fp, "%.*s[run]\nformat = csv\nframes = 5\n%s",
+            (int)(run - text), text, run + 6);
+    fclose(fp);
+    cli_run(&r, "run", ini, "--set", "cloth.n=6", "--t-end", "0.01",
+            "--out", in_tmp(out, "csv4"), NULL);
+    cli_assert_error(&r, 0, "csvframes.ini:", "[run] frames = \"5\"",
+                     "no frame format", NULL);
+    cli_result_free(&r);
 }
 
 /* Under a data limit (ulimit -d 250 MB): a model larger than it (hang at

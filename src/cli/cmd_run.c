@@ -60,12 +60,16 @@ static cl_status check_run(cl_config *cfg, void *ctx, cl_error *err)
     r->so.obj = r->run.format & CL_CLI_FMT_OBJ;
     /* csv alone writes the series only: its frames are not output times */
     r->so.frames = r->so.vtk || r->so.obj ? r->run.frames : 0;
-    if (r->run.frames > 0 && !r->so.frames &&
-        cl_config_set_by_command(cfg, "run", "frames"))
+    /* frames asked for where the format was chosen (the command line,
+     * or one file for both), not a file's frames under --format csv */
+    bool asked = cl_config_set_by_command(cfg, "run", "frames") ||
+                 (cl_config_peek(cfg, "run", "frames") &&
+                  !cl_config_set_by_command(cfg, "run", "format"));
+    if (r->run.frames > 0 && !r->so.frames && asked)
         return cl_config_refuse(cfg, "run", "frames", CL_EINVAL,
-                                "no frame format to write them in: --format "
+                                "no frame format to write them in: format "
                                 "csv writes the series only; add vtk or obj, "
-                                "or leave --frames out", err);
+                                "or leave frames out", err);
     r->so.max_wall = r->run.budget_wall;
     r->so.max_steps = r->run.budget_steps;
     r->run.io.force = r->force;
