@@ -367,6 +367,22 @@ Test(stop, max_wall_stops_a_run_inside_an_advance)
     tmp_rm_rf(dir);
 }
 
+/* args run in dir (made by the caller) and sent SIGTERM after `after`
+ * seconds: exit status 6, `want` on stderr; dir removed. */
+static void ends_as_stopped(const char *dir, const char *const *args,
+                            double after, const char *want)
+{
+    char path[300], err[1024];
+    double ended;
+    int status = run_and_signal(dir, args, SIGTERM, after, &ended);
+    cr_assert_eq(status, 6, "exit status %d", status);
+    snprintf(path, sizeof path, "%s.stderr", dir);
+    tmp_slurp(path, err, sizeof err);
+    cr_assert(strstr(err, want), "%s", err);
+    unlink(path);
+    tmp_rm_rf(dir);
+}
+
 /* spectrum: a signal during its eigensolvers (GSL's QR iterations, not to
  * be cut short) is seen between and after them: exit status 6, where it
  * had run on and exited 0 (hang at n = 16: 768 unknowns, about 10 s). */
@@ -378,15 +394,7 @@ Test(stop, spectrum_stops_between_its_eigensolvers)
     snprintf(path, sizeof path, "%s/o", dir);
     const char *const args[] = {"spectrum", "hang", "--set", "cloth.n=16",
                                 "--out", path, NULL};
-    double ended;
-    int status = run_and_signal(dir, args, SIGTERM, 0.5, &ended);
-    cr_assert_eq(status, 6, "exit status %d", status);
-    char err[1024];
-    snprintf(path, sizeof path, "%s.stderr", dir);
-    tmp_slurp(path, err, sizeof err);
-    cr_assert(strstr(err, "interrupted by SIGTERM"), "%s", err);
-    unlink(path);
-    tmp_rm_rf(dir);
+    ends_as_stopped(dir, args, 0.5, "interrupted by SIGTERM");
 }
 
 /* A command with no stop points of its own (counts, asinc, sweep plan)
@@ -395,18 +403,10 @@ Test(stop, spectrum_stops_between_its_eigensolvers)
 Test(stop, a_command_that_ran_on_still_reports_the_signal)
 {
     time_limit(120);
-    char dir[64], path[300];
+    char dir[64];
     tmp_mkdtemp(dir, sizeof dir, "counts");
     const char *const args[] = {"counts", "--n-min", "2048", "--n-max",
                                 "2048", NULL};
-    double ended;
-    int status = run_and_signal(dir, args, SIGTERM, 0.3, &ended);
-    cr_assert_eq(status, 6, "exit status %d", status);
-    char err[1024];
-    snprintf(path, sizeof path, "%s.stderr", dir);
-    tmp_slurp(path, err, sizeof err);
-    cr_assert(strstr(err, "clothode: interrupted by SIGTERM (after the "
-                          "command had done its work)"), "%s", err);
-    unlink(path);
-    tmp_rm_rf(dir);
+    ends_as_stopped(dir, args, 0.3, "clothode: interrupted by SIGTERM "
+                    "(after the command had done its work)");
 }
