@@ -2344,10 +2344,10 @@ Test(cli, each_failure_class_has_its_exit_status)
     tmp_rm_rf(out);
 }
 
-/* clothode with stdout on /dev/full: the lost output is an I/O error. */
-Test(cli, stdout_write_error_is_an_io_error)
+/* `clothode ARGS` with stdout on /dev/full: exit status 7 and one message
+ * saying so. */
+static void stdout_full(char *const argv[])
 {
-    char *argv[] = {(char *)cli_binary(), "list", NULL};
     FILE *err = tmpfile();
     posix_spawn_file_actions_t fa;
     posix_spawn_file_actions_init(&fa);
@@ -2364,7 +2364,25 @@ Test(cli, stdout_write_error_is_an_io_error)
     cr_assert(WIFEXITED(ws) && WEXITSTATUS(ws) == 7, "status %d: %s",
               WEXITSTATUS(ws), msg);
     cr_assert(strstr(msg, "cannot write standard output"), "%s", msg);
+    cr_assert_eq(cli_count_lines(msg), 1, "%s", msg);
     free(msg);
+}
+
+/* The lost output is an I/O error; a run's run.json says the run failed
+ * so (before: "complete", with the program's exit status 7). */
+Test(cli, stdout_write_error_is_an_io_error)
+{
+    char *list[] = {(char *)cli_binary(), "list", NULL};
+    stdout_full(list);
+    char out[1024], path[1100], json[1 << 14];
+    char *run[] = {(char *)cli_binary(), "run", "hang", "--set",
+                   "cloth.n=4", "--t-end", "0.01", "--frames", "0", "--out",
+                   (char *)in_tmp(out, "full"), NULL};
+    stdout_full(run);
+    snprintf(path, sizeof path, "%s/run.json", out);
+    tmp_slurp(path, json, sizeof json);
+    cr_assert(strstr(json, "\"status\": \"failed: cannot write standard "
+                           "output"), "%s", json);
 }
 
 /* A write past the file-size limit (ulimit -f) is an I/O error with its

@@ -1,4 +1,5 @@
 /* clothode run PROBLEM: integrate one problem and write its outputs. */
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -175,6 +176,11 @@ static cl_status run_work(cl_model *m, const cl_cli_job *job, void *ctx,
     r->so.progress_ctx = NULL;
     if (!job->quiet && res.rows > 0)
         print_summary(job->problem, r, m, &res);
+    /* a summary that did not reach stdout fails the run, in run.json too
+     * (before: "complete" there, exit status 7) */
+    if (!rc && (fflush(stdout) != 0 || ferror(stdout)))
+        rc = cl_error_set(err, CL_EIO, "cannot write standard output: %s",
+                          strerror(errno ? errno : EIO));
     if (res.rows > 0) {
         char path[4200];
         snprintf(path, sizeof path, "%s/config.ini", job->outdir);

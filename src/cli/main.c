@@ -82,11 +82,11 @@ static int close_stdout(int status)
         bad = 1;
         e = errno;
     }
-    if (!bad)
+    if (!bad || status) /* a failed command has said why */
         return status;
     fprintf(stderr, "clothode: cannot write standard output: %s\n",
             strerror(e ? e : EIO));
-    return status ? status : CL_EXIT_IO;
+    return CL_EXIT_IO;
 }
 
 int main(int argc, char **argv)
