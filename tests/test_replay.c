@@ -154,10 +154,7 @@ Test(replay, an_input_file_changed_since_the_run)
     cli_assert_ok(&r);
     cli_result_free(&r);
     snprintf(path, sizeof path, "%s/meshes/sphere.obj", prob);
-    FILE *fp = fopen(path, "a");
-    cr_assert_not_null(fp);
-    fputs("# edited\n", fp);
-    fclose(fp);
+    tmp_write(path, "a", "# edited\n");
     cli_run(&r, "replay", dir, NULL);
     cli_assert_no_crash(&r);
     cr_assert_eq(r.status, 1, "%s%s", r.out, r.err);

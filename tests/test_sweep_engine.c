@@ -361,10 +361,7 @@ Test(sweep_engine, a_mesh_changed_between_runs)
     cli_assert_ok(&r);
     cli_result_free(&r);
     snprintf(path, sizeof path, "%s/meshes/sphere.obj", prob);
-    FILE *fp = fopen(path, "a");
-    cr_assert_not_null(fp);
-    fputs("# edited\n", fp);
-    fclose(fp);
+    tmp_write(path, "a", "# edited\n");
     cli_run(&r, "stability", ini, "--t-end", "0.002", "--integrator",
             "symplectic-euler-x", "--from-sweep", table, "--out", out,
             "--quiet", NULL);

@@ -80,12 +80,19 @@ static inline void tmp_slurp(const char *path, char *buf, size_t len)
 }
 
 /* Create or replace the file with `text`. */
-static inline void tmp_put(const char *path, const char *text)
+/* text written to path in `mode` ("w": replaced, "a": appended). */
+static inline void tmp_write(const char *path, const char *mode,
+                             const char *text)
 {
-    FILE *fp = fopen(path, "w");
+    FILE *fp = fopen(path, mode);
     cr_assert_not_null(fp, "cannot write %s: %s", path, strerror(errno));
     cr_assert(fputs(text, fp) >= 0);
     cr_assert_eq(fclose(fp), 0);
+}
+
+static inline void tmp_put(const char *path, const char *text)
+{
+    tmp_write(path, "w", text);
 }
 
 /* Make writes beyond `bytes` fail with EFBIG (instead of SIGXFSZ); each

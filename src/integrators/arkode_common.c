@@ -367,8 +367,10 @@ cl_status cl_ark_advance(void *state, double t_out, double *x, double *v,
     cl_status st = cl_fixed_steps_to(t_out - a->t0, a->dt, a->done,
                                      &a->todo, err);
     long steps = a->todo;
-    if (st != CL_OK || steps <= 1 || !(sys->step_done || sys->contact))
-        return st != CL_OK ? st : cl_sun_advance(state, t_out, x, v, err);
+    if (st != CL_OK)
+        return st;
+    if (steps <= 1 || !(sys->step_done || sys->contact))
+        return cl_sun_advance(state, t_out, x, v, err);
     for (long k = 0; st == CL_OK && k < steps; k++) {
         a->todo = 1;
         st = cl_sun_advance(state, a->t0 + (double)(a->done + 1) * a->dt, x,
