@@ -1689,17 +1689,19 @@ Test(cli, convergence_refusals)
 }
 
 /* A problem file written for run serves the studies: run's output keys
- * ([run] frames, samples, format, threads) are read and ignored there
- * (they used to refuse them), and a misspelt key is
- * still refused. */
+ * ([run] frames, samples, format, threads, budget_steps) are ignored
+ * there, while the same keys given by --set, where they would change
+ * nothing, are refused, and a misspelt key is still refused. */
 Test(cli, studies_take_run_output_keys)
 {
-    char out[1024], path[1100];
+    char out[1024], path[1100], text[4096];
     cli_result r;
-    cli_run(&r, "stability", "spring2", "--set", "run.frames=3", "--set",
-            "run.samples=7", "--set", "run.format=csv", "--set",
-            "run.threads=2", "--integrator", "symplectic-euler", "--t-end",
-            "1", "--dt-max", "0.05", "--rel", "0.1", "--out",
+    tmp_slurp("problems/spring2.ini", text, sizeof text - 200);
+    strcat(text, "frames = 3\nsamples = 7\nformat = csv\nthreads = 2\n"
+                 "budget_steps = 5\n");
+    tmp_put(in_tmp(path, "spring2-run.ini"), text);
+    cli_run(&r, "stability", path, "--integrator", "symplectic-euler",
+            "--t-end", "1", "--dt-max", "0.05", "--rel", "0.1", "--out",
             in_tmp(out, "stab-keys"), NULL);
     cli_assert_ok(&r);
     cli_result_free(&r);
@@ -1708,6 +1710,19 @@ Test(cli, studies_take_run_output_keys)
     cli_read_lines(path, &L);
     cr_assert_gt(L.n, 1);
     cli_lines_free(&L);
+    static const char *const given[] = {
+        "run.frames=3", "run.samples=7", "run.format=csv", "run.threads=2",
+        "run.budget_wall=9", "run.budget_steps=5", "run.dt=0.01"};
+    for (size_t k = 0; k < sizeof given / sizeof *given; k++) {
+        cli_run(&r, "stability", "spring2", "--set", given[k], NULL);
+        cli_assert_error(&r, 0, "clothode stability does not read it",
+                         NULL);
+        cli_result_free(&r);
+    }
+    cli_run(&r, "damping", "spring2", "--set", "run.t_end=3", NULL);
+    cli_assert_error(&r, 0, "[run] t_end", "clothode damping does not read",
+                     NULL);
+    cli_result_free(&r);
     cli_run(&r, "convergence", "spring2", "--set", "run.framez=3", NULL);
     cli_assert_error(&r, 0, "framez", "frames", NULL);
     cli_result_free(&r);

@@ -218,6 +218,7 @@ Test(options, out_of_range_and_malformed_values_are_refused)
     refused("--format", "vtk,png", "expected a list of csv, vtk, obj");
     refused("--format", ",", "an empty list; expected at least one of csv, "
                              "vtk, obj");
+    refused("--format", "vtk,obj,vtk", "vtk is listed twice");
     refused("--integrator", "rk5", "unknown integrator \"rk5\"");
     refused("--integrator", "rk5", "rk4");
     refused("--integrator", "rk4,fe,rk4", "more than 2 entries");

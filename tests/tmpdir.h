@@ -79,7 +79,6 @@ static inline void tmp_slurp(const char *path, char *buf, size_t len)
     fclose(fp);
 }
 
-/* Create or replace the file with `text`. */
 /* text written to path in `mode` ("w": replaced, "a": appended). */
 static inline void tmp_write(const char *path, const char *mode,
                              const char *text)
@@ -90,6 +89,7 @@ static inline void tmp_write(const char *path, const char *mode,
     cr_assert_eq(fclose(fp), 0);
 }
 
+/* Create or replace the file with `text`. */
 static inline void tmp_put(const char *path, const char *text)
 {
     tmp_write(path, "w", text);

@@ -125,17 +125,18 @@ typedef struct {
     cl_integrator_opts io; /* dt, rtol, atol, ..., linsol, max_order */
     double t_end;
     double max_stretch;
-    long threads, samples, frames; /* run's outputs (the studies hide */
-    unsigned format;               /* them); format: CL_CLI_FMT_ bits */
-    double budget_wall;            /* run's budgets, 0: none (also */
-    long budget_steps;             /* hidden by the studies) */
+    long threads, samples, frames; /* run's outputs (the studies do */
+    unsigned format;               /* not read them); format: */
+    double budget_wall;            /* CL_CLI_FMT_ bits; run's budgets, */
+    long budget_steps;             /* 0: none (not read either) */
 } cl_cli_run;
 extern const cl_cli_opt cl_cli_run_rows[];
 
 /* The bits of [run] format, in the order of its names csv, vtk, obj. */
 enum { CL_CLI_FMT_CSV = 1u, CL_CLI_FMT_VTK = 2u, CL_CLI_FMT_OBJ = 4u };
 
-/* The options of cl_cli_run_rows that only run offers. */
+/* The options of cl_cli_run_rows that only run reads (a group's unread
+ * list in the studies). */
 #define CL_CLI_RUN_OUTPUTS \
     "threads samples frames format max-wall max-steps"
 

@@ -23,7 +23,7 @@ static const cl_cli_opt budget_rows[] = {
      .hi = CL_CLI_MAX_METHODS, .field = offsetof(budget_setup, integrators),
      .help = "fixed-step integrators, comma-separated (xpbd,pd,kinsol-be)"},
     {.type = CL_CLI_GROUP, .group = cl_cli_run_rows,
-     .hide = CL_CLI_RUN_OUTPUTS, .field = offsetof(budget_setup, run)},
+     .unread = CL_CLI_RUN_OUTPUTS, .field = offsetof(budget_setup, run)},
     {.name = "budget", .arg = "B", .type = CL_CLI_LONG, .sec = "budget",
      .key = "budget", .def = 8, .lo = 1, .hi = 1000,
      .field = offsetof(budget_setup, bo.budget),

@@ -73,7 +73,7 @@ static const cl_cli_opt ct_rows[] = {
      .help = "fixed-step integrators, comma-separated, each NAME or "
              "NAME:LINSOL"},
     {.type = CL_CLI_GROUP, .group = cl_cli_run_rows,
-     .hide = "dt rtol atol max-order " CL_CLI_RUN_OUTPUTS,
+     .hide = "rtol atol max-order", .unread = "dt " CL_CLI_RUN_OUTPUTS,
      .field = offsetof(ct_setup, run)},
     {.name = "response", .arg = "LIST", .type = CL_CLI_STRING,
      .sec = "contact", .key = "response", .field = offsetof(ct_setup, responses),

@@ -32,7 +32,7 @@ static const cl_cli_opt conv_rows[] = {
     /* dt and rtol, atol: the first level of the fixed-step and of the
      * adaptive integrators */
     {.type = CL_CLI_GROUP, .group = cl_cli_run_rows,
-     .hide = CL_CLI_RUN_OUTPUTS, .field = offsetof(conv_setup, run)},
+     .unread = CL_CLI_RUN_OUTPUTS, .field = offsetof(conv_setup, run)},
     {.name = "levels", .arg = "K", .type = CL_CLI_LONG,
      .sec = "convergence", .key = "levels", .def = 5, .lo = 2,
      .hi = CL_CONV_MAX_LEVELS, .field = offsetof(conv_setup, levels),

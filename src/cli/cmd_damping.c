@@ -34,7 +34,7 @@ static cl_cli_opt nd_rows[] = {
      .help = "fixed-step integrators, comma-separated, each NAME or "
              "NAME:LINSOL (default: every implicit fixed-step one)"},
     {.type = CL_CLI_GROUP, .group = cl_cli_run_rows,
-     .hide = "dt rtol atol max-order t-end " CL_CLI_RUN_OUTPUTS,
+     .hide = "rtol atol max-order", .unread = "dt t-end " CL_CLI_RUN_OUTPUTS,
      .field = offsetof(nd_setup, run)},
     {.name = "wh", .arg = "LO:HI:N", .type = CL_CLI_STRING, .sec = "damping",
      .key = "wh", .sdef = "0.1:100:13", .field = offsetof(nd_setup, range),

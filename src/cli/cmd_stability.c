@@ -49,9 +49,10 @@ static const cl_cli_opt stab_rows[] = {
      .hi = CL_CLI_MAX_METHODS, .field = offsetof(stab_setup, integrators),
      .help = "fixed-step integrators, comma-separated, each NAME or "
              "NAME:LINSOL"},
-    /* [run] dt is read but not used: the search sets the step */
+    /* [run] dt is not read: the search sets the step */
     {.type = CL_CLI_GROUP, .group = cl_cli_run_rows,
-     .hide = "dt rtol atol max-order " CL_CLI_RUN_OUTPUTS, .field = offsetof(stab_setup, run)},
+     .hide = "rtol atol max-order", .unread = "dt " CL_CLI_RUN_OUTPUTS,
+     .field = offsetof(stab_setup, run)},
     {.name = "dt-max", .arg = "H", .type = CL_CLI_DOUBLE,
      .sec = "stability", .key = "dt_max", .lo = 1e-300,
      .bounds = dt_max_bounds, .field = offsetof(stab_setup, so.dt_max),

@@ -19,6 +19,7 @@ typedef struct {
     const cl_cli_opt *row;
     size_t at;    /* offset of its value in the settings */
     bool offered; /* an option of the command line */
+    bool unread;  /* a key the command does not read (cl_cli_opt unread) */
 } opt_flat;
 
 /* Whether `name` is a word of the space-separated list. */
@@ -32,16 +33,18 @@ static bool listed(const char *list, const char *name)
 }
 
 static int flatten(const cl_cli_opt *rows, size_t base, const char *hide,
-                   opt_flat *f, int n)
+                   const char *unread, opt_flat *f, int n)
 {
     for (const cl_cli_opt *r = rows; r->type != CL_CLI_END; r++) {
         if (r->type == CL_CLI_GROUP) {
-            n = flatten(r->group, base + r->field, r->hide, f, n);
+            n = flatten(r->group, base + r->field, r->hide, r->unread, f, n);
             continue;
         }
         assert(n < OPT_MAX_ROWS);
+        bool skip = listed(unread, r->name ? r->name : r->key);
         f[n++] = (opt_flat){r, base + r->field,
-                            r->name && !listed(hide, r->name)};
+                            r->name && !skip && !listed(hide, r->name),
+                            skip};
     }
     return n;
 }
@@ -140,7 +143,7 @@ int cl_cli_parse(int argc, char **argv, const cl_cli_table *t,
     opt_flat f[OPT_MAX_ROWS];
     struct option lo[OPT_MAX_ROWS + 1];
     bool given[OPT_MAX_ROWS] = {false};
-    int n = flatten(t->rows, 0, NULL, f, 0), m = 0, c;
+    int n = flatten(t->rows, 0, NULL, NULL, f, 0), m = 0, c;
     for (int k = 0; k < n; k++) {
         if (f[k].offered)
             lo[m++] = (struct option){f[k].row->name,
@@ -207,8 +210,8 @@ const char *cl_cli_join(const char *const *names, char *buf, size_t len)
     return buf;
 }
 
-/* A list of row->names separated by commas or spaces: bit k of *mask for
- * names[k]. */
+/* A list of row->names separated by commas or spaces, each at most once:
+ * bit k of *mask for names[k]. */
 static cl_status read_names(cl_config *cfg, const cl_cli_opt *r,
                             unsigned *mask, cl_error *err)
 {
@@ -224,6 +227,11 @@ static cl_status read_names(cl_config *cfg, const cl_cli_opt *r,
         if (!r->names[k]) {
             size_t at = strlen(why);
             cl_cli_join(r->names, why + at, sizeof why - at);
+            return cl_config_refuse(cfg, r->sec, r->key, CL_EINVAL, why,
+                                    err);
+        }
+        if (*mask & 1u << k) {
+            snprintf(why, sizeof why, "%s is listed twice", r->names[k]);
             return cl_config_refuse(cfg, r->sec, r->key, CL_EINVAL, why,
                                     err);
         }
@@ -271,14 +279,33 @@ static cl_status read_row(cl_config *cfg, const cl_cli_opt *r, char *s,
     }
 }
 
+/* A key the command does not read: ignored in a problem file (one file
+ * serves run and the studies), refused from the command line, where it
+ * would change nothing. */
+static cl_status skip_row(cl_config *cfg, const cl_cli_table *t,
+                          const cl_cli_opt *r, cl_error *err)
+{
+    char why[160];
+    if (!cl_config_set_by_command(cfg, r->sec, r->key)) {
+        cl_config_ignore(cfg, r->sec, r->key);
+        return CL_OK;
+    }
+    snprintf(why, sizeof why, "clothode %s does not read it (in a problem "
+             "file it is ignored, so that one file serves run and the "
+             "studies)", t->cmd);
+    return cl_config_refuse(cfg, r->sec, r->key, CL_EINVAL, why, err);
+}
+
 cl_status cl_cli_read(cl_config *cfg, const cl_cli_table *t, void *settings,
                       cl_error *err)
 {
     opt_flat f[OPT_MAX_ROWS];
-    int n = flatten(t->rows, 0, NULL, f, 0);
+    int n = flatten(t->rows, 0, NULL, NULL, f, 0);
     cl_status rc = CL_OK;
     for (int k = 0; !rc && k < n; k++)
-        if (f[k].row->key)
+        if (f[k].unread)
+            rc = skip_row(cfg, t, f[k].row, err);
+        else if (f[k].row->key)
             rc = read_row(cfg, f[k].row, settings, f[k].at, err);
     /* a required keyed string: given as the option, by --set or in the
      * problem file */
@@ -340,14 +367,14 @@ static void describe(const cl_cli_opt *r, bool with_key, char *buf,
 void cl_cli_help(const cl_cli_table *t, FILE *fp)
 {
     opt_flat f[OPT_MAX_ROWS];
-    int n = flatten(t->rows, 0, NULL, f, 0);
+    int n = flatten(t->rows, 0, NULL, NULL, f, 0);
     char lead[64], text[768];
     bool keys = false;
     fprintf(fp, "usage: clothode %s%s%s\n%s\n", t->cmd,
             *t->synopsis ? " " : "", t->synopsis, t->about);
     for (int k = 0; k < n; k++) {
         const cl_cli_opt *r = f[k].row;
-        keys |= r->key && !f[k].offered;
+        keys |= r->key && !f[k].offered && !f[k].unread;
         if (!f[k].offered)
             continue;
         snprintf(lead, sizeof lead, "  --%s%s%s", r->name, r->arg ? " " : "",
@@ -360,7 +387,7 @@ void cl_cli_help(const cl_cli_table *t, FILE *fp)
         fprintf(fp, "Keys without an option (problem file or --set "
                     "SEC.KEY=VAL):\n");
     for (int k = 0; keys && k < n; k++)
-        if (f[k].row->key && !f[k].offered) {
+        if (f[k].row->key && !f[k].offered && !f[k].unread) {
             snprintf(lead, sizeof lead, "  [%s] %s", f[k].row->sec,
                      f[k].row->key);
             describe(f[k].row, false, text, sizeof text);

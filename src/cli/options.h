@@ -58,6 +58,10 @@ struct cl_cli_opt {
     cl_cli_bounds_fn bounds;
     const cl_cli_opt *group; /* GROUP: the rows included */
     const char *hide;      /* GROUP: options of it not offered, "a b" */
+    const char *unread;    /* GROUP: options whose keys the command does
+                            * not read at all, "a b": not offered, not in
+                            * --help, ignored in a file, refused from
+                            * --set */
 };
 
 typedef struct {

@@ -90,8 +90,9 @@ const cl_cli_opt cl_cli_run_rows[] = {
     {.type = CL_CLI_DOUBLE, .key = "max_stretch", RUN_ROW(max_stretch),
      .def = 10.0, .lo = 1.0, .hi = INFINITY,
      .help = "a stretch d/L beyond this counts as a blow-up"},
-    /* run's own outputs: read by every command, so that a problem file
-     * written for run serves the studies too (which hide them) */
+    /* run's own outputs and budgets: the studies do not read them
+     * (CL_CLI_RUN_OUTPUTS, unread), so that a problem file written for run
+     * serves the studies too */
     {.name = "threads", .arg = "N", .type = CL_CLI_LONG, .key = "threads",
      RUN_ROW(threads), .def = 1, .lo = 1, .hi = CL_MODEL_MAX_THREADS,
      .help = "threads for the pair terms' forces and Jacobians, the "

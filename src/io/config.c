@@ -1050,6 +1050,11 @@ void cl_config_ignore_section(cl_config *cfg, const char *sec)
             cfg->ent[i].used = true;
 }
 
+void cl_config_ignore(cl_config *cfg, const char *sec, const char *key)
+{
+    (void)cl_lookup(cfg, sec, key);
+}
+
 static const cl_entry *cl_find_section(const cl_config *cfg,
                                        const char *sec);
 

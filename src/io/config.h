@@ -148,6 +148,10 @@ cl_status cl_config_path_of(cl_config *cfg, const char *sec, const char *key,
  * deliberately do not read that section. */
 void cl_config_ignore_section(cl_config *cfg, const char *sec);
 
+/* Count [sec] key as used and known without reading it, for a command
+ * that deliberately does not read that key. */
+void cl_config_ignore(cl_config *cfg, const char *sec, const char *key);
+
 /* The fully resolved configuration: visit(ctx, sec, key, value, given)
  * for every entry (given, in the order set), then for every key a getter
  * asked for that was absent, with the default it used (not given).  An
