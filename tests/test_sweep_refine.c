@@ -95,6 +95,24 @@ Test(sweep_refine, steps_inside_the_bracket)
     cr_assert(strstr(r.out, "refine     0 jobs inside 0 brackets"), "%s",
               r.out);
     cli_result_free(&r);
+    /* a table of another sweep (another problem, or other integrators)
+     * would plan an empty stage: refused, naming the sweep */
+    static const char *const other[][2] = {
+        {"particle-floor.ini", "particle-flood.ini"},
+        {"symplectic-euler", "symplectic-eulex"}};
+    for (int k = 0; k < 2; k++) {
+        tmp_slurp(t1, text, sizeof text);
+        for (char *p = text; (p = strstr(p, other[k][0])); p++)
+            memcpy(p, other[k][1], strlen(other[k][1]));
+        snprintf(out, sizeof out, "%s/other.csv", tmp);
+        tmp_put(out, text);
+        cli_run(&r, "sweep", "refine", dir, "--table", out, "--out", fine,
+                NULL);
+        cli_assert_error(&r, 0, "sweep refine: no run of", "is one of the "
+                         "sweep in", "give the tables of this sweep's "
+                         "stages", NULL);
+        cli_result_free(&r);
+    }
     /* a row without a result is named, not silently left out */
     tmp_slurp(t1, text, sizeof text);
     char *row = strstr(text, "complete,ok");

@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "io/input.h"
+
 static int axis_of(const cl_sweep *sw, const char *key)
 {
     for (int a = 0; a < sw->naxis; a++)
@@ -16,12 +18,13 @@ static int axis_of(const cl_sweep *sw, const char *key)
     return -1;
 }
 
-/* Whether table row r is a job of j's line: its integrator and every
- * axis but dt (NA where j has no value). */
-static bool same_line(const cl_sweep_table *t, int r, const cl_sweep *sw,
-                      const cl_sweep_job *j, int adt)
+/* Whether table row r is a job of j's line: a run of sw's problem
+ * (ours[r]), its integrator and every axis but dt (NA where j has no
+ * value). */
+static bool same_line(const cl_sweep_table *t, const bool *ours, int r,
+                      const cl_sweep *sw, const cl_sweep_job *j, int adt)
 {
-    if (strcmp(cl_sweep_table_text(t, r, "role"), "job") ||
+    if (!ours[r] || strcmp(cl_sweep_table_text(t, r, "role"), "job") ||
         strcmp(cl_sweep_table_text(t, r, "integrator"), j->integrator))
         return false;
     for (int a = 0; a < sw->naxis; a++)
@@ -34,21 +37,21 @@ static bool same_line(const cl_sweep_table *t, int r, const cl_sweep *sw,
 
 /* The bracket of j's line over every stage's rows: the smallest unstable
  * dt and the largest stable one below it (NaN: none). */
-static void line_bracket(const cl_sweep_table *t, const cl_sweep *sw,
-                         const cl_sweep_job *j, int adt, double *lo,
-                         double *hi)
+static void line_bracket(const cl_sweep_table *t, const bool *ours,
+                         const cl_sweep *sw, const cl_sweep_job *j, int adt,
+                         double *lo, double *hi)
 {
     cl_stab_trial tr;
     *lo = *hi = NAN;
     for (int r = 0; r < t->nrow; r++) {
         cl_sweep_row row = {r, cl_sweep_table_value(t, r, "run.dt")};
-        if (same_line(t, r, sw, j, adt) && cl_sweep_table_trial(t, row, &tr)
+        if (same_line(t, ours, r, sw, j, adt) && cl_sweep_table_trial(t, row, &tr)
             && tr.rc && !(tr.dt >= *hi))
             *hi = tr.dt;
     }
     for (int r = 0; r < t->nrow; r++) {
         cl_sweep_row row = {r, cl_sweep_table_value(t, r, "run.dt")};
-        if (same_line(t, r, sw, j, adt) && cl_sweep_table_trial(t, row, &tr)
+        if (same_line(t, ours, r, sw, j, adt) && cl_sweep_table_trial(t, row, &tr)
             && !tr.rc && !(tr.dt >= *hi) && !(tr.dt <= *lo))
             *lo = tr.dt;
     }
@@ -100,15 +103,13 @@ static cl_status refine_line(cl_sweep *next, const cl_sweep *sw,
     return CL_OK;
 }
 
-cl_status cl_sweep_refine(const cl_sweep *sw, const cl_sweep_table *t,
-                          int points, double rel, cl_sweep *next,
-                          int *brackets, cl_error *err)
+/* The jobs of next: sw's axes, then the points of every line whose
+ * bracket is wider than 1 + rel. */
+static cl_status refine_stages(const cl_sweep *sw, const cl_sweep_table *t,
+                               const bool *ours, int adt, int points,
+                               double rel, cl_sweep *next, int *brackets,
+                               cl_error *err)
 {
-    int adt = axis_of(sw, "run.dt");
-    *brackets = 0;
-    if (adt < 0)
-        return cl_error_set(err, CL_EINVAL, "sweep refine: the sweep in %s "
-                            "has no dt axis", sw->dir);
     for (int a = 0; a < sw->naxis; a++) { /* the same columns */
         next->axis[a] = (cl_sweep_axis){.key = strdup(sw->axis[a].key),
                                         .from = -1};
@@ -123,11 +124,71 @@ cl_status cl_sweep_refine(const cl_sweep *sw, const cl_sweep_table *t,
         int added = 0;
         if (j->reference || !j->value[adt] || line_seen(sw, k, adt))
             continue;
-        line_bracket(t, sw, j, adt, &lo, &hi);
+        line_bracket(t, ours, sw, j, adt, &lo, &hi);
         if (!(hi > lo * (1 + rel)))
             continue; /* no bracket, or narrow enough */
         rc = refine_line(next, sw, j, adt, lo, hi, points, &added, err);
         *brackets += added > 0;
     }
+    return rc;
+}
+
+/* Whether each row of t is a run of sw's problem (every row of a table
+ * without a problem column), into ours; rows naming one file are
+ * compared once. */
+static void rows_of_problem(const cl_sweep_table *t, const cl_sweep *sw,
+                            bool *ours)
+{
+    bool has = cl_sweep_table_has(t, "problem"), same = true;
+    const char *last = NULL;
+    for (int r = 0; r < t->nrow; r++) {
+        const char *p = cl_sweep_table_text(t, r, "problem");
+        if (has && (!last || strcmp(p, last)))
+            same = cl_same_input(p, sw->problem);
+        last = p;
+        ours[r] = same;
+    }
+}
+
+/* CL_EINVAL unless t has sw's axes as columns and a job row on one of
+ * sw's lines: a table of another sweep would plan nothing. */
+static cl_status table_of_sweep(const cl_sweep *sw, const cl_sweep_table *t,
+                                const bool *ours, int adt, cl_error *err)
+{
+    for (int a = 0; a < sw->naxis; a++)
+        if (!cl_sweep_table_has(t, sw->axis[a].key))
+            return cl_error_set(err, CL_EINVAL, "sweep refine: %s has no "
+                                "column %s, an axis of the sweep in %s: "
+                                "give the tables of this sweep's stages",
+                                t->path, sw->axis[a].key, sw->dir);
+    for (int k = 0; k < sw->njob; k++)
+        for (int r = 0; !sw->job[k].reference && r < t->nrow; r++)
+            if (same_line(t, ours, r, sw, &sw->job[k], adt))
+                return CL_OK;
+    return cl_error_set(err, CL_EINVAL, "sweep refine: no run of %s is "
+                        "one of the sweep in %s (its problem %s, its "
+                        "integrators and the values of its axes): give "
+                        "the tables of this sweep's stages", t->path,
+                        sw->dir, sw->problem);
+}
+
+cl_status cl_sweep_refine(const cl_sweep *sw, const cl_sweep_table *t,
+                          int points, double rel, cl_sweep *next,
+                          int *brackets, cl_error *err)
+{
+    int adt = axis_of(sw, "run.dt");
+    *brackets = 0;
+    if (adt < 0)
+        return cl_error_set(err, CL_EINVAL, "sweep refine: the sweep in %s "
+                            "has no dt axis", sw->dir);
+    bool *ours = malloc((size_t)t->nrow + 1);
+    if (!ours)
+        return cl_error_set(err, CL_ENOMEM, "out of memory");
+    rows_of_problem(t, sw, ours);
+    cl_status rc = table_of_sweep(sw, t, ours, adt, err);
+    if (!rc)
+        rc = refine_stages(sw, t, ours, adt, points, rel, next, brackets,
+                           err);
+    free(ours);
     return rc;
 }
