@@ -438,6 +438,7 @@ Test(cloth_mesh, bad_mesh_files_refused)
     static const double X[] = {0, 0, 0, 1, 0, 0, 1, 0, 1, 0, 0, 1, 5, 5, 5};
     static const int two[2][3] = {{0, 1, 2}, {0, 2, 3}};
     static const int fin[3][3] = {{0, 1, 2}, {0, 1, 3}, {0, 1, 4}};
+    static const int twice[3][3] = {{0, 1, 2}, {0, 2, 3}, {2, 1, 0}};
     char missing[720];
     snprintf(missing, sizeof missing, "cloth.mesh=%s/none.obj", dir);
     expect_refused(FD_SETS(missing), CL_OK, "[cloth] mesh", "none.obj");
@@ -449,6 +450,10 @@ Test(cloth_mesh, bad_mesh_files_refused)
     o = obj_write("fin.obj", 5, X, 3, fin, NULL);
     expect_refused(FD_SETS(o.key), CL_EINVAL, "[cloth] mesh",
                    "shared by 3 triangles");
+    o = obj_write("twice.obj", 4, X, 3, twice, NULL);
+    expect_refused(FD_SETS(o.key), CL_EINVAL, "[cloth] mesh",
+                   "mesh triangles 0 and 2 have the same vertices (0, 1, 2):"
+                   " a triangle given twice");
     o = obj_write("junk.obj", 4, X, 2, two, "bogus statement\n");
     expect_refused(FD_SETS(o.key), CL_OK, "[cloth] mesh", "junk.obj");
 }

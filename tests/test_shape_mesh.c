@@ -369,6 +369,10 @@ Test(shape_mesh, bad_meshes_refused)
                  "is not closed", NULL);
     cube_with(obj, 6, "f 6 7 3 2\n");
     mesh_refused(obj, "", CL_EINVAL, "not consistently oriented", NULL);
+    snprintf(obj, sizeof obj, "%sv 9 9 9\n", cube_obj);
+    mesh_refused(obj, "", CL_EINVAL, "p.ini:2: [obstacle.m] file: ",
+                 "vertex 8 (counted from 0) belongs to no triangle: it "
+                 "would move the pivot");
     snprintf(obj, sizeof obj, "%sv 2 2 2\nf 3 7 9\n", cube_obj);
     mesh_refused(obj, "", CL_EINVAL, "edge 2-6 is shared by 3 triangles",
                  NULL);

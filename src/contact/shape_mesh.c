@@ -3,7 +3,7 @@
  *   file       the OBJ file (io/obj.h), relative to the problem file
  *   scale      (> 0, default 1) and
  *   translate  (m, vector, default 0): vertices become scale v + translate
- * The pivot is the vertex centroid.
+ * The pivot is the vertex centroid (a vertex of no triangle is refused).
  *
  * The mesh must be closed (every edge shared by exactly two triangles),
  * consistently oriented (the two run their edge in opposite directions)
@@ -345,11 +345,34 @@ static cl_status geometry(mesh *m, const char *path, cl_error *err)
     return rc;
 }
 
+/* CL_EINVAL naming a vertex of no triangle, which would move the pivot
+ * (the vertex centroid) away from the solid's. */
+static cl_status every_vertex_used(const cl_obj *o, cl_error *err)
+{
+    bool *used = calloc(o->nvert + 1, sizeof *used);
+    if (!used)
+        return cl_error_set(err, CL_ENOMEM, "out of memory (mesh shape)");
+    for (size_t t = 0; t < o->ntri; t++)
+        for (int k = 0; k < 3; k++)
+            used[o->tri[t][k]] = true;
+    size_t v = 0;
+    while (v < o->nvert && used[v])
+        v++;
+    free(used);
+    return v < o->nvert
+               ? cl_error_set(err, CL_EINVAL, "vertex %zu (counted from 0) "
+                              "belongs to no triangle: it would move the "
+                              "pivot, the vertices' centroid; remove it", v)
+               : CL_OK;
+}
+
 /* Read, scale and move the mesh; its size for tiny. */
 static cl_status load(mesh *m, const char *path, double scale,
                       const double shift[3], cl_error *err)
 {
     cl_status rc = cl_obj_read(path, &m->m, err);
+    if (!rc)
+        rc = every_vertex_used(&m->m, err);
     if (rc)
         return rc;
     double lo[3] = {INFINITY, INFINITY, INFINITY};

@@ -82,6 +82,19 @@ static cl_mesh_edge make_edge(const cl_mesh *m, const half_edge *p,
         .tri = {(int)p->t, (int)q->t}};
 }
 
+/* The interior edge, unless its two triangles are one given twice (the
+ * corners opposite the edge coincide). */
+static cl_status add_edge(cl_mesh *m, cl_mesh_edge e, cl_error *err)
+{
+    if (e.v[2] == e.v[3])
+        return cl_error_set(err, CL_EINVAL, "mesh triangles %d and %d have "
+                            "the same vertices (%d, %d, %d): a triangle "
+                            "given twice", e.tri[0], e.tri[1], e.v[0],
+                            e.v[1], e.v[2]);
+    m->edge[m->nedge++] = e;
+    return CL_OK;
+}
+
 static cl_status find_edges(cl_mesh *m, cl_error *err)
 {
     half_edge *h = sorted_half_edges(m);
@@ -99,7 +112,7 @@ static cl_status find_edges(cl_mesh *m, cl_error *err)
         if (e - s == 1)
             m->nboundary++;
         else if (e - s == 2)
-            m->edge[m->nedge++] = make_edge(m, &h[s], &h[s + 1]);
+            rc = add_edge(m, make_edge(m, &h[s], &h[s + 1]), err);
         else
             rc = cl_error_set(err, CL_EINVAL,
                               "mesh edge %d-%d is shared by %zu triangles "
