@@ -3,6 +3,7 @@
 #include "analysis/spectrum.h"
 
 #include <complex.h>
+#include <float.h>
 #include <math.h>
 #include <stdbool.h>
 #include <stdlib.h>
@@ -103,6 +104,32 @@ static void modal_damping(const cl_bpattern *p, const spec_work *w,
     }
 }
 
+/* The dense dim x dim matrix a scaled by a power of two (exactly) to a
+ * largest entry in [1, 2), and its entries below DBL_EPSILON / dim of
+ * that set to zero: a change of at most eps ||a||_2, within the
+ * eigensolvers' own backward error, that keeps their iterations out of
+ * subnormal numbers (in which GSL's symmetric QR iteration does not end:
+ * a stiffness of 1e-300 beside 1).  The eigenvalues of the matrix given
+ * are those of the result times the scale returned; the eigenvectors are
+ * the same. */
+static double eigen_ready(double *a, size_t dim)
+{
+    double big = 0.0;
+    for (size_t k = 0; k < dim * dim; k++)
+        big = fmax(big, fabs(a[k]));
+    if (!(big > 0.0) || !isfinite(big))
+        return 1.0;
+    int e;
+    frexp(big, &e);
+    double scale = ldexp(1.0, e - 1), tiny = DBL_EPSILON / (double)dim;
+    for (size_t k = 0; k < dim * dim; k++) {
+        a[k] = ldexp(a[k], 1 - e);
+        if (fabs(a[k]) < tiny)
+            a[k] = 0.0;
+    }
+    return scale;
+}
+
 /* The stiffness eigenvalues mu (ascending) and, from their eigenvectors,
  * the modes' damping rates c. */
 static cl_status stiffness_spectrum(const cl_bpattern *p, spec_work *w,
@@ -110,6 +137,7 @@ static cl_status stiffness_spectrum(const cl_bpattern *p, spec_work *w,
 {
     size_t n = w->n;
     stiffness_matrix(p, w);
+    double scale = eigen_ready(w->A, n);
     gsl_matrix_view A = gsl_matrix_view_array(w->A, n, n);
     gsl_matrix_view Z = gsl_matrix_view_array(w->A + n * n, n, n);
     gsl_vector_view mu = gsl_vector_view_array(s->mu, n);
@@ -122,6 +150,8 @@ static cl_status stiffness_spectrum(const cl_bpattern *p, spec_work *w,
         return cl_error_set(err, CL_ESOLVER, "symmetric eigensolver failed "
                             "(GSL %d)", rc);
     gsl_eigen_symmv_sort(&mu.vector, &Z.matrix, GSL_EIGEN_SORT_VAL_ASC);
+    for (size_t i = 0; i < n; i++)
+        s->mu[i] *= scale;
     modal_damping(p, w, &Z.matrix, s->c);
     s->w_max = sqrt(fmax(s->mu[w->n - 1], 0.0));
     /* the first-order tolerance squared: |lambda| = sqrt(|mu|) */
@@ -145,12 +175,15 @@ static cl_status first_order_spectrum(const cl_bpattern *p, spec_work *w,
 {
     size_t dim = 2 * w->n;
     cl_firstorder_dense(p, w->inv_mass, w->dfdx, w->dfdv, w->A);
+    double scale = eigen_ready(w->A, dim);
     gsl_matrix_view J = gsl_matrix_view_array(w->A, dim, dim);
     gsl_vector_complex *ev = gsl_vector_complex_alloc(dim);
     gsl_eigen_nonsymm_workspace *ws = gsl_eigen_nonsymm_alloc(dim);
     int rc = ev && ws ? gsl_eigen_nonsymm(&J.matrix, ev, ws) : GSL_ENOMEM;
     if (!rc) {
         double complex *lam = (double complex *)ev->data; /* stride 1 */
+        for (size_t j = 0; j < dim; j++)
+            lam[j] *= scale;
         qsort(lam, dim, sizeof *lam, by_modulus_desc);
         s->lambda_max = cabs(lam[0]);
         double tol = EIG_TOL * s->lambda_max;
