@@ -472,6 +472,14 @@ Test(cli, max_order_only_for_cvode_and_ida)
                    LIST("max_order", "semi-be"));
     expect_refused(LIST("run", "hang", "--max-order", "13", "--t-end",
                         "0.01"), 0, LIST("max_order", "13"));
+    /* above the method's own highest order: an input refused (exit 2),
+     * not a solver failure (exit 3) */
+    static const char *const bdf[] = {"cvode-bdf", "ida"};
+    for (int k = 0; k < 2; k++)
+        expect_refused(LIST("run", "spring2", "--integrator", bdf[k],
+                            "--max-order", "6"), 0,
+                       LIST(bdf[k], "max_order = 6", "above the method's "
+                            "highest order (5 for BDF"));
 }
 
 Test(cli, substeps_and_iterations_only_for_xpbd_and_pd)

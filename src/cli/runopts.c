@@ -39,8 +39,9 @@ const cl_cli_opt cl_cli_run_rows[] = {
              "basic -pc_type gamg\"), over clothode's own choices"},
     {.name = "max-order", .arg = "K", .type = CL_CLI_INT, .key = "max_order",
      RUN_ROW(io.max_order), .lo = 0, .hi = 12,
-     .help = "highest order of CVODE / IDA, 0 for theirs (5 for BDF, 12 for "
-             "Adams; BDF beyond 2 is not A-stable)"},
+     .help = "highest order of CVODE / IDA, 0 for theirs (at most 5 for "
+             "BDF, 12 for Adams; BDF beyond 2 is not A-stable); petsc-bdf's "
+             "fixed order, 1 .. 6"},
     {.name = "t-end", .arg = "T", .type = CL_CLI_DOUBLE, .key = "t_end",
      RUN_ROW(t_end), .def = 2.0, .lo = 1e-300, .hi = INFINITY,
      .help = "final time (s)"},
@@ -224,8 +225,8 @@ static cl_status check_shared(cl_config *cfg, const cl_cli_methods *ms,
                                 "options", err);
     if (io->max_order && !SOME_TAKE(ms, takes_max_order))
         return refuse_number(cfg, "max_order", io->max_order, type,
-                             "has no choice of order (CVODE and IDA have)",
-                             err);
+                             "has no choice of order (CVODE, IDA and "
+                             "petsc-bdf have)", err);
     if (io->substeps && !SOME_TAKE(ms, takes_iterations))
         return refuse_number(cfg, "substeps", io->substeps, type,
                              "takes no substeps (xpbd and pd do)", err);

@@ -600,8 +600,12 @@ cl_status cl_sun_configure(cl_sun *s, const cl_integrator_opts *o,
     if (o->max_order > 0 && !s->api->set_max_ord)
         return cl_error_set(err, CL_EINVAL, "%s: max_order = %d: the method "
                             "has no choice of order", s->name, o->max_order);
-    if (o->max_order > 0)
-        CL_SUN_SET(s, err, set_max_ord, "SetMaxOrd", o->max_order);
+    /* SUNDIALS refuses an order above the method's own (CVODE: BDF 5,
+     * Adams 12; IDA 5): an input to refuse, not a solver failure */
+    if (o->max_order > 0 && s->api->set_max_ord(s->mem, o->max_order))
+        return cl_error_set(err, CL_EINVAL, "%s: max_order = %d: above the "
+                            "method's highest order (5 for BDF, 12 for "
+                            "Adams)", s->name, o->max_order);
     return CL_OK;
 }
 
