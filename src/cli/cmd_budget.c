@@ -22,8 +22,10 @@ static const cl_cli_opt budget_rows[] = {
      .sec = "run", .key = "integrator", .sdef = "xpbd",
      .hi = CL_CLI_MAX_METHODS, .field = offsetof(budget_setup, integrators),
      .help = "fixed-step integrators, comma-separated (xpbd,pd,kinsol-be)"},
+    /* budget sets substeps, iterations and newton_maxit for every split */
     {.type = CL_CLI_GROUP, .group = cl_cli_run_rows,
-     .unread = CL_CLI_RUN_OUTPUTS, .field = offsetof(budget_setup, run)},
+     .unread = "substeps iterations max-newton " CL_CLI_RUN_OUTPUTS,
+     .field = offsetof(budget_setup, run)},
     {.name = "budget", .arg = "B", .type = CL_CLI_LONG, .sec = "budget",
      .key = "budget", .def = 8, .lo = 1, .hi = 1000,
      .field = offsetof(budget_setup, bo.budget),
@@ -64,13 +66,6 @@ static const cl_cli_table budget_table = {
 static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
 {
     budget_setup *s = ctx;
-    static const char *const split_keys[] = {"substeps", "iterations",
-                                             "newton_maxit"};
-    for (int k = 0; k < 3; k++)
-        if (cl_config_set_by_command(cfg, "run", split_keys[k]))
-            return cl_config_refuse(cfg, "run", split_keys[k], CL_EINVAL,
-                                    "budget sets it for every split (S "
-                                    "substeps of K = B / S iterations)", err);
     cl_status rc = cl_cli_methods_check(cfg, &s->integrators, &s->run.io,
                                         CL_CLI_DT_FIXED, err);
     s->bo.t_end = s->run.t_end;

@@ -50,7 +50,8 @@ static const cl_cli_opt plan_rows[] = {
     {.type = CL_CLI_END}};
 
 static const cl_cli_table plan_table = {
-    .cmd = "sweep plan", .synopsis = "SWEEP.ini [--out DIR]", .npos = 1,
+    .cmd = "sweep plan", .synopsis = "SWEEP.ini [--out DIR] [--no-check]",
+    .npos = 1,
     .pos = "SWEEP.ini", .rows = plan_rows,
     .about =
     "Expand a sweep file ([sweep] problem, integrator, reference and the\n"
@@ -708,7 +709,8 @@ static const cl_cli_opt refine_rows[] = {
     {.type = CL_CLI_END}};
 
 static const cl_cli_table refine_table = {
-    .cmd = "sweep refine", .synopsis = "DIR [--table LIST] [--out DIR2]",
+    .cmd = "sweep refine",
+    .synopsis = "DIR [--table LIST] [--points K] [--rel R] [--out DIR2]",
     .npos = 1, .pos = "DIR", .rows = refine_rows,
     .about =
     "Plan the next stage of a sweep over dt: for every line of the sweep in\n"
@@ -804,12 +806,13 @@ int cl_cmd_sweep(int argc, char **argv)
                                 refine);
     }
     FILE *fp = strcmp(what, "--help") ? stderr : stdout;
-    fprintf(fp, "usage: clothode sweep plan SWEEP.ini [--out DIR]\n"
+    fprintf(fp, "usage: clothode sweep plan SWEEP.ini [--out DIR] "
+                "[--no-check]\n"
                 "       clothode sweep run DIR [--engine local|ssh|slurm] "
                 "[--jobs N] [--resume] ...\n"
                 "       clothode sweep collect DIR [--out TABLE.csv]\n"
                 "       clothode sweep refine DIR [--table LIST] [--points K] "
-                "[--out DIR2]\n"
+                "[--rel R] [--out DIR2]\n"
                 "(clothode sweep plan|run|collect|refine --help for more)\n");
     return fp == stdout ? 0 : 2;
 }

@@ -30,7 +30,8 @@ static const cl_command commands[] = {
     {"asinc", cl_cmd_asinc,
      "the exact inverse sinc beside Jiao's polynomial"},
     {"counts", cl_cmd_counts, "connection counts beside Jiao's formulas"},
-    {"list", cl_cmd_list, "problems, integrators and force terms"},
+    {"list", cl_cmd_list, "problems, integrators, linear solvers, force "
+                          "terms and obstacle shapes"},
     {"replay", cl_cmd_replay,
      "rerun a run from its run.json, check every output is identical"},
     {"sweep", cl_cmd_sweep,

@@ -16,9 +16,9 @@ static const char *const run_formats[] = {"csv", "vtk", "obj", NULL};
 const cl_cli_opt cl_cli_run_rows[] = {
     {.name = "dt", .arg = "H", .type = CL_CLI_DOUBLE, .key = "dt",
      RUN_ROW(io.dt), .lo = 0, .hi = INFINITY,
-     .help = "step of the fixed-step integrators; in run, also the first "
-             "step of the adaptive ones (the studies leave theirs to them) "
-             "(s)"},
+     .help = "step of the fixed-step integrators, and of petsc-* given "
+             "one; in run, also the first step of the other adaptive ones "
+             "(the studies leave theirs to them) (s)"},
     {.name = "rtol", .arg = "R", .type = CL_CLI_DOUBLE, .key = "rtol",
      RUN_ROW(io.rtol), .def = 1e-6, .lo = 1e-15, .hi = 1,
      .help = "relative tolerance of the adaptive integrators"},

@@ -2,7 +2,7 @@
  * Schneider, Langlois, Zorin, Panozzo, Jiang and Kaufman, "Incremental
  * Potential Contact: Intersection- and Inversion-free, Large-Deformation
  * Dynamics", 2020, eq. 6) as a scalar function of a distance d with its
- * two derivatives (docs/model.md 3.5, eq. 3.8):
+ * two derivatives (docs/model.md 3.5, eq. 3.7):
  *     b(d)   = -(d - dh)^2 ln(d / dh)                       (0 < d < dh)
  *     b'(d)  = -2 (d - dh) ln(d / dh) - (d - dh)^2 / d
  *     b''(d) = -2 ln(d / dh) - 4 (d - dh) / d + (d - dh)^2 / d^2

@@ -37,7 +37,7 @@ typedef struct {
 
 /* The scalar law at distance d < h_s: E(d), s(d) = E'(d) (the force on a
  * is s u) and s'(d): the penalty (3.4)-(3.5) or k_s times the barrier
- * (3.8). */
+ * (3.7). */
 static void pair_law(const sc_state *st, double d, double *e, double *s,
                      double *ds)
 {

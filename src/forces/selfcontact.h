@@ -12,7 +12,7 @@
  * side h_s (forces/sphash.h), never by trying all pairs, with no
  * allocation.
  *
- * The Jacobian is lumped (docs/model.md 3.5, eq. 3.7): the pairs change
+ * The Jacobian is lumped (docs/model.md 3.5, eq. 3.8): the pairs change
  * from one evaluation to the next while the system's block pattern is
  * built once, so the term writes only the diagonal blocks
  * df_a/dx_a = df_b/dx_b = -s'(d) u u^T of each pair, the normal part of -K
