@@ -166,7 +166,8 @@ static cl_status pbd_create(cl_config *cfg, const cl_cloth *cloth,
 const cl_term_type cl_term_pbd = {
     .name = "pbd",
     .doc = "position-based distance constraints on levels 1..k, Gauss-Seidel "
-           "projection (Verlet-and-PBD report; used by verlet-pbd only)",
+           "projection (Verlet-and-PBD report; verlet-pbd projects, xpbd "
+           "takes them as hard constraints, pd refuses them)",
     .conservative = false,
     .create = pbd_create,
     .couplings = pbd_couplings,

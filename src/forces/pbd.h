@@ -11,7 +11,9 @@
  * network of forces/springs.h); levels > 2 are refused there.  The
  * term has no force, no Jacobian and no potential: it acts only through
  * the system's `project` hook, which position-based integrators
- * (verlet-pbd) call after each step.  Every other integrator ignores it.
+ * (verlet-pbd) call after each step; xpbd takes its pairs as hard
+ * constraints (compliance 0) and pd refuses them.  Every other
+ * integrator ignores it.
  *
  * Projection (non-linear Gauss-Seidel, `iterations` sweeps over all
  * intact pairs in a fixed order), for a pair a-b with d = |x_a - x_b|,

@@ -23,7 +23,7 @@
  * With either, f_b is no longer the gradient of E_b; the energy is then
  * integrated numerically (GSL QAGS) from the force.
  *
- * INI section [type2]: enabled (true), kb (N m), cb (N/m), tension
+ * INI section [type2]: enabled (true), kb (N m^2), cb (N/m), tension
  * (spring|none), asinc (exact|seed-poly), fb_sinc (exact|normalised). */
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
