@@ -215,6 +215,92 @@ Test(petsc_ts, refuses_bad_options_and_orders)
     s2_free(&p);
 }
 
+/* Options that would leave clothode's steps are refused: with fixed steps
+ * a step or adaptivity of PETSc's own (the run ended 0.005 s before its
+ * output time, or after it, labelled with the output time), TSBDF above
+ * order 2 (its start holds fixed steps to order 2: orders 3 .. 6 measured
+ * 2.0), and in either mode an end of the output interval other than
+ * clothode's. */
+Test(petsc_ts, refuses_options_that_leave_the_steps)
+{
+    s2_problem p;
+    s2_load(&p);
+    static const struct {
+        double dt;
+        int order;
+        const char *petsc, *why;
+    } bad[] = {
+        {1e-2, 0, "-ts_adapt_type basic", "may not change the step"},
+        {1e-2, 0, "-ts_dt 0.03", "may not change the step"},
+        {1e-2, 3, "", "TSBDF order 3 at fixed steps"},
+        {1e-2, 0, "-ts_bdf_order 4", "TSBDF order 4 at fixed steps"},
+        {1e-2, 0, "-ts_exact_final_time interpolate", "-ts_exact_final_time"},
+        {0.0, 0, "-ts_exact_final_time stepover", "-ts_exact_final_time"}};
+    const cl_integrator_type *t = cl_integrator_find("petsc-bdf");
+    for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
+        cl_integrator_opts o = {.dt = bad[k].dt, .max_order = bad[k].order,
+                                .petsc = bad[k].petsc};
+        void *st = NULL;
+        cl_error err = {0};
+        cr_assert_eq(t->create(p.sys, &o, 0.0, p.x0, p.v0, &st, &err),
+                     CL_EINVAL, "%s", bad[k].petsc);
+        cr_assert(strstr(err.msg, bad[k].why), "%s", err.msg);
+    }
+    s2_free(&p);
+}
+
+/* Counters that do not change the work: PETSc's linearly implicit
+ * Rosenbrock method (4 stages) and TSBDF with SNESKSPONLY evaluate the
+ * residual once per stage (8 and 2 per step when a monitor counted the
+ * Newton iterations); TSALPHA2 with SNESKSPONLY keeps its one extra
+ * evaluation at the solution, where it sets the stage velocity (without
+ * it every velocity stayed 0), and ends where its Newton iteration does. */
+Test(petsc_ts, counting_does_not_change_the_work)
+{
+    pr_problem p;
+    pr_load(&p, "problems/hang-smooth.ini", "cloth.n=4", NULL);
+    const cl_system *sys = cl_model_system(p.m);
+    double x0[48], v0[48], x[48], v[48], xn[48], vn[48];
+    cr_assert_eq(sys->n, 42);
+    cl_model_initial_state(p.m, x0, v0);
+    static const struct {
+        const char *name, *petsc;
+        long rhs;
+    } c[] = {{"petsc-rosw", "", 400},
+             {"petsc-bdf", "-snes_type ksponly", 101},
+             {"petsc-alpha2", "-snes_type ksponly", 204},
+             {"petsc-alpha2", "", 0}};
+    for (int k = 0; k < 4; k++) {
+        const cl_integrator_type *t = cl_integrator_find(c[k].name);
+        cl_integrator_opts o = {.dt = 1e-3, .petsc = c[k].petsc};
+        void *st = NULL;
+        cl_error err = {0};
+        cl_stats s;
+        cr_assert_eq(t->create(sys, &o, 0.0, x0, v0, &st, &err), CL_OK,
+                     "%s", err.msg);
+        cr_assert_eq(t->advance(st, 0.1, k < 3 ? x : xn, k < 3 ? v : vn,
+                                &err), CL_OK, "%s", err.msg);
+        t->stats(st, &s);
+        t->free(st);
+        cr_log_info("%s %s: %ld steps, %ld rhs, %ld newton", c[k].name,
+                    c[k].petsc, s.steps, s.rhs_evals, s.nonlin_iters);
+        cr_assert_eq(s.steps, 100);
+        if (c[k].rhs)
+            cr_assert_eq(s.rhs_evals, c[k].rhs, "%s", c[k].name);
+    }
+    /* alpha2: one linearisation against Newton's iteration, 0.1 s in */
+    double dx = 0.0, vmax = 0.0;
+    for (int i = 0; i < 42; i++) {
+        dx = fmax(dx, fabs(x[i] - xn[i]));
+        vmax = fmax(vmax, fabs(vn[i]));
+    }
+    cr_log_info("alpha2 ksponly against newton: %.3e m (|v| up to %.3f)",
+                dx, vmax);
+    cr_assert_gt(vmax, 0.5);
+    cr_assert_lt(dx, 1e-4);
+    pr_free(&p);
+}
+
 /* A failed step says where and what to change, as the other integrators'
  * failures do: petsc-alpha2 at dt = 0.05 on hang (n = 8) loses its Newton
  * iteration in the first step. */
@@ -230,6 +316,29 @@ Test(petsc_ts, failed_step_says_where_and_what_to_change)
     cr_assert(strstr(r.err, "DIVERGED_NONLINEAR_SOLVE"), "%s", r.err);
     cr_assert(strstr(r.err, "(at t = 0); to change: reduce --dt"), "%s",
               r.err);
+    cli_result_free(&r);
+    tmp_rm_rf(dir);
+}
+
+/* The command line's studies take a petsc-* method given --dt at fixed
+ * steps too (they ran it adaptively at the problem's rtol before, 255k
+ * steps at convergence's last level), and a tolerance that a fixed-step
+ * petsc-* run would not read is refused. */
+Test(petsc_ts, studies_take_dt_as_fixed_steps)
+{
+    char dir[512];
+    tmp_mkdtemp(dir, sizeof dir, "petscdt");
+    cli_result r;
+    cli_run(&r, "convergence", "spring2", "--integrator", "petsc-bdf",
+            "--dt", "1e-2", "--levels", "2", "--out", dir, NULL);
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "petsc-bdf           1.000e-02  2.990e-03") &&
+              strstr(r.out, "    2.01       200 "), "%s", r.out);
+    cli_result_free(&r);
+    cli_run(&r, "run", "spring2", "--integrator", "petsc-bdf", "--dt",
+            "1e-2", "--rtol", "1e-3", "--out", dir, NULL);
+    cli_assert_error(&r, 0, "[run] rtol = \"1e-3\"", "integrator petsc-bdf "
+                     "reads no rtol", NULL);
     cli_result_free(&r);
     tmp_rm_rf(dir);
 }

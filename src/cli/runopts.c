@@ -41,7 +41,7 @@ const cl_cli_opt cl_cli_run_rows[] = {
      RUN_ROW(io.max_order), .lo = 0, .hi = 12,
      .help = "highest order of CVODE / IDA, 0 for theirs (at most 5 for "
              "BDF, 12 for Adams; BDF beyond 2 is not A-stable); petsc-bdf's "
-             "fixed order, 1 .. 6"},
+             "fixed order, 1 .. 6 (1 .. 2 at fixed steps)"},
     {.name = "t-end", .arg = "T", .type = CL_CLI_DOUBLE, .key = "t_end",
      RUN_ROW(t_end), .def = 2.0, .lo = 1e-300, .hi = INFINITY,
      .help = "final time (s)"},
@@ -309,7 +309,7 @@ static bool linsol_iterative(const cl_cli_method *m)
 
 static bool reads_tolerances(const cl_cli_method *m)
 {
-    return !m->type->fixed_step || m->type->takes_table;
+    return !cl_integrator_fixed(m->type, m->io.dt) || m->type->takes_table;
 }
 
 static bool reads_max_steps(const cl_cli_method *m)
@@ -357,8 +357,10 @@ static const struct {
     bool (*reads)(const cl_cli_method *m);
     const char *who;
 } method_keys[] = {
-    {"rtol", reads_tolerances, "the adaptive integrators and arkode-* do"},
-    {"atol", reads_tolerances, "the adaptive integrators and arkode-* do"},
+    {"rtol", reads_tolerances, "the adaptive integrators (petsc-* without "
+                               "a dt) and arkode-* do"},
+    {"atol", reads_tolerances, "the adaptive integrators (petsc-* without "
+                               "a dt) and arkode-* do"},
     {"max_steps", reads_max_steps, "the adaptive integrators do"},
     {"newton_tol", reads_newton, "kinsol-* and arkode-* do"},
     {"newton_maxit", reads_newton, "kinsol-* and arkode-* do"},
@@ -418,7 +420,8 @@ cl_status cl_cli_methods_check(cl_config *cfg, cl_cli_methods *ms,
         keep_what_it_takes(m);
         if (*m->linsol)
             m->io.linsol = m->linsol;
-        if (dt == CL_CLI_DT_FIXED && !m->type->fixed_step)
+        if (dt == CL_CLI_DT_FIXED && !m->type->fixed_step &&
+            !m->type->dt_fixes_step)
             m->io.dt = 0.0; /* not a first step: an adaptive one's own */
         rc = check_method(cfg, m, dt, err);
     }
