@@ -101,7 +101,8 @@ const cl_cli_opt cl_cli_run_rows[] = {
              "operations; results are the same for every N"},
     {.name = "samples", .arg = "S", .type = CL_CLI_LONG, .key = "samples",
      RUN_ROW(samples), .def = 200, .lo = 1, .hi = 100000000,
-     .help = "time-series rows after t = 0"},
+     .help = "time-series rows after t = 0; with fixed steps on the "
+             "nearest steps, so at most one a step"},
     {.name = "frames", .arg = "K", .type = CL_CLI_LONG, .key = "frames",
      RUN_ROW(frames), .def = 10, .lo = 0, .hi = 1000000,
      .help = "frames after t = 0, 0 for none"},
