@@ -61,6 +61,7 @@ Test(pd, converged_is_backward_euler)
         cl_integrator_opts o = {.dt = 0.01, .iterations = K[k]};
         pd_run("pd", &o, xp, &s);
         cr_assert_eq(s.lin_setups, 1);
+        cr_assert_eq(s.symbolic_facts, 1); /* CHOLMOD's analysis, once */
         cr_assert_eq(s.lin_solves, 10 * K[k]);
         double d = 0.0;
         for (size_t i = 0; i < 3 * 23; i++)
