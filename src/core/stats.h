@@ -20,7 +20,8 @@ typedef struct {
     long lin_setups;     /* matrix factorisations or preconditioner setups */
     long lin_solves;
     long lin_iters;      /* Krylov iterations */
-    long nonlin_iters;
+    long nonlin_iters;   /* iterations of a Newton solver, also one held
+                          * to one (semi-*, linear by construction: 0) */
     long nonlin_fails;   /* nonlinear convergence failures */
     long err_fails;      /* local error test failures */
     long symbolic_facts; /* symbolic factorisations (KLU analyse) */
