@@ -342,3 +342,29 @@ Test(petsc_ts, studies_take_dt_as_fixed_steps)
     cli_result_free(&r);
     tmp_rm_rf(dir);
 }
+
+/* An option no PETSc object has read once the first output interval is
+ * solved, which PETSc would ignore, ends the run as a bad input: a
+ * misspelt one (petsc-alpha2 ran "-ts_alpha_radius=0.5" at radius 1), one
+ * for another method, a global one. */
+Test(petsc_ts, unread_options_are_refused)
+{
+    char dir[512];
+    tmp_mkdtemp(dir, sizeof dir, "petscleft");
+    static const char *const bad[][3] = {
+        {"petsc-alpha2", "-ts_alpha_radius=0.5", "-ts_alpha_radius=0.5"},
+        {"petsc-rosw", "-ts_monitor -ts_bdf_order 3", "-ts_bdf_order"},
+        {"petsc-bdf", "-log_view", "-log_view"}};
+    for (int k = 0; k < 3; k++) {
+        cli_result r;
+        cli_run(&r, "run", "spring2", "--integrator", bad[k][0], "--dt",
+                "1e-2", "--petsc", bad[k][1], "--out", dir, "--quiet", NULL);
+        cr_assert(r.exited && r.status == 2, "%s: %s", r.cmd, r.err);
+        char want[160];
+        snprintf(want, sizeof want, "no PETSc object of %s read %s (1 in "
+                 "all)", bad[k][0], bad[k][2]);
+        cr_assert(strstr(r.err, want), "%s", r.err);
+        cli_result_free(&r);
+    }
+    tmp_rm_rf(dir);
+}

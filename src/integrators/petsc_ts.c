@@ -224,7 +224,9 @@ static cl_status pts_advance(cl_pts *s, double t_out, long nsteps, double *x,
         return cl_error_set(err, s->fail.code, "%s; %s", s->fail.msg,
                             msg.text);
     if (bad)
-        return cl_error_set(err, CL_ESOLVER, "%s", msg.text);
+        return cl_error_set(err, bad == CLP_TS_BAD_OPTION ? CL_EINVAL
+                                                          : CL_ESOLVER,
+                            "%s", msg.text);
     s->t = t_out;
     s->done += nsteps;
     if (!cl_all_finite(x, s->sys->n) || !cl_all_finite(v, s->sys->n))

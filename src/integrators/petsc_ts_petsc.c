@@ -24,6 +24,7 @@
  * writes its values straight into them.  Nothing is allocated per step on
  * this side. */
 #include <petscts.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -55,6 +56,7 @@ typedef struct {
     Mat J;
     Vec y, yv;            /* y = (x, v), or x and v (second order) */
     PetscOptions opts;    /* --petsc, this integrator's own */
+    bool options_checked; /* every_option_read, after the first advance */
     PetscScalar *dfdx, *dfdv;    /* 9 nnzb each */
     PetscInt *slot_x, *slot_v;   /* 9 nnzb: where -df/dx, -df/dv go */
     PetscInt *slot_m;            /* n: the diagonal the shift adds to */
@@ -623,6 +625,27 @@ static PetscErrorCode solve_to(clp_ts *p, double t_out)
     PetscFunctionReturn(0);
 }
 
+/* Once the first output interval is solved, every option of --petsc
+ * read by an object (the SNES, KSP and PC read some only when first set
+ * up): an option none of them read is misspelt, for another method or
+ * solver, or global, and PETSc itself would ignore it
+ * ("-ts_alpha_radius=0.5" ran at PETSc's radius 1). */
+static bool every_option_read(clp_ts *p, cl_plugin_msg *msg)
+{
+    PetscInt n;
+    char **names, **values;
+    if (PetscOptionsLeftGet(p->opts, &n, &names, &values))
+        return true; /* nothing to tell */
+    if (n > 0)
+        snprintf(msg->text, sizeof msg->text, "%s: --petsc: no PETSc object "
+                 "of %s read -%s%s (%ld in all): misspelt, for another "
+                 "method or solver, or a global option, which --petsc does "
+                 "not take", p->s.name, p->s.name, names[0],
+                 n > 1 ? " and others" : "", (long)n);
+    PetscOptionsLeftRestore(p->opts, &n, &names, &values);
+    return *msg->text == '\0';
+}
+
 int clp_ts_advance(void *ts, double t_out, double *x, double *v,
                    cl_plugin_msg *msg)
 {
@@ -660,6 +683,11 @@ int clp_ts_advance(void *ts, double t_out, double *x, double *v,
                                            "steps in one output interval)"
                                          : "");
         return 1;
+    }
+    if (!p->options_checked) {
+        p->options_checked = true;
+        if (!every_option_read(p, msg))
+            return CLP_TS_BAD_OPTION;
     }
     return 0;
 }
