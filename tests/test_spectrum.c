@@ -247,47 +247,44 @@ Test(spectrum, compressed_spring_has_growing_modes)
  * is a zero mode, which round-off puts on either side of 0 (about half of
  * the 62 came out below it, |mu| <= 7e-10 against mu_max 9.7e5): counted
  * as zero, none as negative. */
-Test(spectrum, flat_cloth_zero_modes_are_not_negative)
+/* The spectrum of the problem at `path` (with sets set1, set2) at its
+ * initial state, into s (the caller frees it). */
+static void initial_spectrum(const char *path, const char *set1,
+                             const char *set2, cl_spectrum *s)
 {
     pr_problem p;
-    pr_load(&p, "problems/hang-smooth.ini", "cloth.n=8", NULL);
+    pr_load(&p, path, set1, set2);
     const cl_system *sys = cl_model_system(p.m);
     double *x = malloc(sys->n * sizeof *x), *v = calloc(sys->n, sizeof *v);
     cr_assert(x && v);
     cr_assert_eq(cl_model_initial_state(p.m, x, v), CL_OK);
-    cl_spectrum s;
     cl_error err = {0};
-    cr_assert_eq(cl_spectrum_compute(p.m, 0.0, x, v, &s, &err), CL_OK, "%s",
+    cr_assert_eq(cl_spectrum_compute(p.m, 0.0, x, v, s, &err), CL_OK, "%s",
                  err.msg);
+    free(x);
+    free(v);
+    pr_free(&p);
+}
+
+Test(spectrum, flat_cloth_zero_modes_are_not_negative)
+{
+    cl_spectrum s;
+    initial_spectrum("problems/hang-smooth.ini", "cloth.n=8", NULL, &s);
     cr_assert_eq(s.n, 186);
     cr_assert_eq(s.n_negative, 0, "%zu", s.n_negative);
     cr_assert_eq(s.n_zero, 62, "%zu", s.n_zero);
     cl_spectrum_free(&s);
-    free(x);
-    free(v);
-    pr_free(&p);
 }
 
 /* hang (3 x 3) at its initial state with stiffness `ks`: w_max and
  * |lambda|_max. */
 static void hang_spectrum(const char *ks, double *w_max, double *lam_max)
 {
-    pr_problem p;
-    pr_load(&p, "problems/hang.ini", "cloth.n=3", ks);
-    const cl_system *sys = cl_model_system(p.m);
-    double *x = malloc(sys->n * sizeof *x), *v = calloc(sys->n, sizeof *v);
-    cr_assert(x && v);
-    cr_assert_eq(cl_model_initial_state(p.m, x, v), CL_OK);
     cl_spectrum s;
-    cl_error err = {0};
-    cr_assert_eq(cl_spectrum_compute(p.m, 0.0, x, v, &s, &err), CL_OK, "%s",
-                 err.msg);
+    initial_spectrum("problems/hang.ini", "cloth.n=3", ks, &s);
     *w_max = s.w_max;
     *lam_max = s.lambda_max;
     cl_spectrum_free(&s);
-    free(x);
-    free(v);
-    pr_free(&p);
 }
 
 /* A stiffness of 1e-300 beside bending stiffness of order one put GSL's
