@@ -335,6 +335,37 @@ Test(petsc_ts, studies_take_dt_as_fixed_steps)
     cr_assert(strstr(r.out, "petsc-bdf           1.000e-02  2.990e-03") &&
               strstr(r.out, "    2.01       200 "), "%s", r.out);
     cli_result_free(&r);
+    /* energy says so; convergence reads a sweep's petsc-* rows by dt */
+    cli_run(&r, "energy", "spring2", "--integrator", "petsc-alpha2", "--dt",
+            "1e-2", "--samples", "10", "--out", dir, NULL);
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "\nfixed      dt = 0.01 s\n") &&
+              !strstr(r.out, "adaptive"), "%s", r.out);
+    cli_result_free(&r);
+    char ini[600], sweep[600], table[600];
+    snprintf(ini, sizeof ini, "%s/s.ini", dir);
+    snprintf(sweep, sizeof sweep, "%s/s", dir);
+    snprintf(table, sizeof table, "%s/t.csv", dir);
+    tmp_put(ini, "[sweep]\nproblem = problems/spring2.ini\n"
+                 "integrator = petsc-bdf\ndt = 0.01, 0.005\nt_end = 1\n"
+                 "reference = 1e-11\n");
+    const char *const steps[][6] = {
+        {"sweep", "plan", ini, "--out", sweep, "--quiet"},
+        {"sweep", "run", sweep, "--jobs", "2", "--quiet"},
+        {"sweep", "collect", sweep, "--out", table, "--quiet"}};
+    for (int k = 0; k < 3; k++) {
+        cli_runv(&r, (const char *const[]){steps[k][0], steps[k][1],
+                                           steps[k][2], steps[k][3],
+                                           steps[k][4], steps[k][5], NULL});
+        cli_assert_ok(&r);
+        cli_result_free(&r);
+    }
+    cli_run(&r, "convergence", "spring2", "--integrator", "petsc-bdf",
+            "--from-sweep", table, "--out", dir, NULL);
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "petsc-bdf           1.000e-02  2.990e-03") &&
+              strstr(r.out, "    2.01       200 "), "%s", r.out);
+    cli_result_free(&r);
     cli_run(&r, "run", "spring2", "--integrator", "petsc-bdf", "--dt",
             "1e-2", "--rtol", "1e-3", "--out", dir, NULL);
     cli_assert_error(&r, 0, "[run] rtol = \"1e-3\"", "integrator petsc-bdf "

@@ -80,7 +80,8 @@ cl_status cl_ebal_run(cl_model *m, const cl_integrator_type *type,
     if (rc)
         return rc;
     /* a fixed-step method is sampled at most at every one of its steps */
-    double steps = type->fixed_step ? round(T / io->dt) : INFINITY;
+    double steps = cl_integrator_fixed(type, io->dt) ? round(T / io->dt)
+                                                     : INFINITY;
     long taken = (double)samples < steps ? samples : (long)steps;
     ebal_ctx c = {m, r, (size_t)taken + 1, 0.0};
     r->s = malloc(c.cap * sizeof *r->s);

@@ -114,7 +114,8 @@ cl_status cl_stab_limit(const cl_sweep_table *t, cl_model *m,
                         cl_stab_result *r, cl_error *err);
 
 /* The convergence levels of `label` from its rows: by dt for a fixed-step
- * method, by rtol otherwise, largest first; errors from the table (against
+ * method (and a petsc-* one whose rows have a dt), by rtol otherwise,
+ * largest first; errors from the table (against
  * the sweep's reference run), every complete level with an error fitted. */
 cl_status cl_conv_from_sweep(const cl_sweep_table *t, const char *label,
                              const cl_integrator_type *type,

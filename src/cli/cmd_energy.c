@@ -68,7 +68,9 @@ static void print_steps(const cl_cli_methods *ms, const cl_integrator_opts *io)
 {
     bool fixed = false, adaptive = false;
     for (int k = 0; k < ms->n; k++)
-        *(ms->m[k].type->fixed_step ? &fixed : &adaptive) = true;
+        *(cl_integrator_fixed(ms->m[k].type, ms->m[k].io.dt) ? &fixed
+                                                             : &adaptive) =
+            true;
     if (fixed)
         printf("fixed      dt = %g s\n", io->dt);
     if (adaptive)
@@ -133,7 +135,7 @@ static cl_status run_one(cl_model *m, void *ctx, int k, void *result,
     const eb_setup *s = ctx;
     cl_ebal_result *r = result;
     const cl_cli_method *mk = &s->integrators.m[k];
-    bool fixed = mk->type->fixed_step;
+    bool fixed = cl_integrator_fixed(mk->type, mk->io.dt);
     cl_status rc = s->from
         ? cl_ebal_from_sweep(&s->table, mk->label, mk->type,
                              fixed ? "run.dt" : "run.rtol",
