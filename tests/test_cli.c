@@ -2169,7 +2169,8 @@ Test(cli, help_on_every_subcommand)
         "[run] newton_tol", "[run] verlet_damping",
         "[run] max_stretch a stretch d/L beyond this counts as a blow-up; "
         "default 10",
-        "--samples S time-series rows after t = 0; [run] samples, 1 .. "
+        "--samples S time-series rows after t = 0; with fixed steps on the "
+        "nearest steps, so at most one a step; [run] samples, 1 .. "
         "100000000, default 200"};
     for (size_t k = 0; k < sizeof keys / sizeof *keys; k++)
         cr_assert(strstr(r.out, keys[k]), "run --help lacks %s:\n%s",
