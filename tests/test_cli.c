@@ -1731,6 +1731,23 @@ Test(cli, studies_take_run_output_keys)
     cli_assert_error(&r, 0, "[run] t_end", "clothode damping does not read",
                      NULL);
     cli_result_free(&r);
+    cli_run(&r, "damping", "spring2", "--set", "run.integrator=rk4", NULL);
+    cli_assert_error(&r, 0, "[run] integrator",
+                     "clothode damping does not read", NULL);
+    cli_result_free(&r);
+    /* spectrum and eval read no [run] key, misspelt or not */
+    static const char *const other[][2] = {{"spectrum", "run.samples=7"},
+                                           {"spectrum", "run.framez=3"},
+                                           {"eval", "run.rtol=1e-3"}};
+    for (int k = 0; k < 3; k++) {
+        char want[64];
+        snprintf(want, sizeof want, "clothode %s does not read it",
+                 other[k][0]);
+        cli_run(&r, other[k][0], "spring2", "--set", other[k][1], "--out",
+                in_tmp(out, "not-read"), "--state", "none.csv", NULL);
+        cli_assert_error(&r, 0, want, NULL);
+        cli_result_free(&r);
+    }
     cli_run(&r, "convergence", "spring2", "--set", "run.framez=3", NULL);
     cli_assert_error(&r, 0, "framez", "frames", NULL);
     cli_result_free(&r);

@@ -181,7 +181,7 @@ cl_status cl_sweep_refine(const cl_sweep *sw, const cl_sweep_table *t,
     if (adt < 0)
         return cl_error_set(err, CL_EINVAL, "sweep refine: the sweep in %s "
                             "has no dt axis", sw->dir);
-    bool *ours = malloc((size_t)t->nrow + 1);
+    bool *ours = calloc((size_t)t->nrow + 1, sizeof *ours);
     if (!ours)
         return cl_error_set(err, CL_ENOMEM, "out of memory");
     rows_of_problem(t, sw, ours);

@@ -169,10 +169,12 @@ int cl_cli_args_main(int argc, char **argv, const cl_cli_table *t,
     return status;
 }
 
-cl_status cl_cli_ignore_run(cl_config *cfg, void *settings, cl_error *err)
+cl_status cl_cli_ignore_run(cl_config *cfg, const char *cmd, cl_error *err)
 {
-    (void)settings;
-    (void)err;
+    const char *sec, *key;
+    for (size_t k = 0; (key = cl_config_set_key_at(cfg, k, &sec)); k++)
+        if (!strcmp(sec, "run"))
+            return cl_cli_not_read(cfg, cmd, sec, key, err);
     cl_config_ignore_section(cfg, "run");
     return CL_OK;
 }

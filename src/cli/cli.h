@@ -79,9 +79,10 @@ int cl_cli_problem_main(int argc, char **argv, const cl_cli_table *t,
                         void *settings, cl_cli_check_fn check,
                         cl_cli_work_fn work);
 
-/* The check of the commands that do not integrate (spectrum, eval): the
- * [run] keys of a problem file are theirs to ignore. */
-cl_status cl_cli_ignore_run(cl_config *cfg, void *settings, cl_error *err);
+/* For the commands that do not integrate (spectrum, eval, named by cmd):
+ * the [run] keys of a problem file are theirs to ignore; one set on the
+ * command line is refused (cl_cli_not_read). */
+cl_status cl_cli_ignore_run(cl_config *cfg, const char *cmd, cl_error *err);
 
 /* main() of a subcommand without a problem: parse argv by t, read the
  * keys of the command line alone into settings (a refused value is a usage

@@ -128,9 +128,10 @@ static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
                                          s->modes_t > 0, with, err);
     if (rc0)
         return rc0;
-    /* the problem's own [run] integrator is not this study's: read, unused */
-    (void)cl_config_string(cfg, "run", "integrator", "");
-    cl_status rc = cl_cli_methods_check(cfg, &s->integrators, &s->run.io,
+    /* the problem's own [run] integrator is not this study's */
+    cl_status rc = cl_cli_not_read(cfg, "damping", "run", "integrator", err);
+    if (!rc)
+        rc = cl_cli_methods_check(cfg, &s->integrators, &s->run.io,
                                         CL_CLI_DT_NONE, err);
     if (!rc)
         rc = cl_cli_methods_fixed(cfg, &s->integrators, "damping", err);

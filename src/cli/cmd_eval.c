@@ -196,7 +196,8 @@ static cl_status evaluate(cl_model *m, const cl_cli_job *job, void *ctx,
 static cl_status check_eval(cl_config *cfg, void *ctx, cl_error *err)
 {
     static const char *const key[2] = {"jacobian", "jacobian_v"};
-    cl_status rc = cl_cli_ignore_run(cfg, ctx, err);
+    (void)ctx;
+    cl_status rc = cl_cli_ignore_run(cfg, "eval", err);
     for (int k = 0; !rc && k < 2; k++) {
         const char *v = cl_config_peek(cfg, "eval", key[k]);
         if (v && !*v)

@@ -90,9 +90,15 @@ static cl_status spectrum(cl_model *m, const cl_cli_job *job, void *ctx,
     return rc;
 }
 
+static cl_status check_spectrum(cl_config *cfg, void *ctx, cl_error *err)
+{
+    (void)ctx;
+    return cl_cli_ignore_run(cfg, "spectrum", err);
+}
+
 int cl_cmd_spectrum(int argc, char **argv)
 {
     spec_setup s = {0};
-    return cl_cli_problem_main(argc, argv, &spec_table, &s, cl_cli_ignore_run,
+    return cl_cli_problem_main(argc, argv, &spec_table, &s, check_spectrum,
                                spectrum);
 }

@@ -279,21 +279,18 @@ static cl_status read_row(cl_config *cfg, const cl_cli_opt *r, char *s,
     }
 }
 
-/* A key the command does not read: ignored in a problem file (one file
- * serves run and the studies), refused from the command line, where it
- * would change nothing. */
-static cl_status skip_row(cl_config *cfg, const cl_cli_table *t,
-                          const cl_cli_opt *r, cl_error *err)
+cl_status cl_cli_not_read(cl_config *cfg, const char *cmd, const char *sec,
+                          const char *key, cl_error *err)
 {
     char why[160];
-    if (!cl_config_set_by_command(cfg, r->sec, r->key)) {
-        cl_config_ignore(cfg, r->sec, r->key);
+    if (!cl_config_set_by_command(cfg, sec, key)) {
+        cl_config_ignore(cfg, sec, key);
         return CL_OK;
     }
     snprintf(why, sizeof why, "clothode %s does not read it (in a problem "
              "file it is ignored, so that one file serves run and the "
-             "studies)", t->cmd);
-    return cl_config_refuse(cfg, r->sec, r->key, CL_EINVAL, why, err);
+             "studies)", cmd);
+    return cl_config_refuse(cfg, sec, key, CL_EINVAL, why, err);
 }
 
 cl_status cl_cli_read(cl_config *cfg, const cl_cli_table *t, void *settings,
@@ -304,7 +301,8 @@ cl_status cl_cli_read(cl_config *cfg, const cl_cli_table *t, void *settings,
     cl_status rc = CL_OK;
     for (int k = 0; !rc && k < n; k++)
         if (f[k].unread)
-            rc = skip_row(cfg, t, f[k].row, err);
+            rc = cl_cli_not_read(cfg, t->cmd, f[k].row->sec, f[k].row->key,
+                                 err);
         else if (f[k].row->key)
             rc = read_row(cfg, f[k].row, settings, f[k].at, err);
     /* a required keyed string: given as the option, by --set or in the

@@ -133,6 +133,13 @@ cl_status cl_cli_refuse_unless(const cl_config *cfg, const cl_cli_table *t,
                                const char *const *names, bool mode,
                                const char *with, cl_error *err);
 
+/* [sec] key, which command `cmd` does not read: ignored (counted as used)
+ * when a problem file gives it, so that one file serves run and the
+ * studies; CL_EINVAL when the command line set it, where it would change
+ * nothing ("clothode CMD does not read it"). */
+cl_status cl_cli_not_read(cl_config *cfg, const char *cmd, const char *sec,
+                          const char *key, cl_error *err);
+
 /* Read every keyed row from cfg into settings, in table order, each with
  * its default and range (a refused value: CL_EINVAL naming the option or
  * the file line, the key, the value and what is allowed). */
