@@ -179,6 +179,34 @@ static inline void cli_assert_ok(const cli_result *r)
               r->cmd, r->err);
 }
 
+/* Run a command given as a NULL-ended list; it must succeed quietly. */
+static inline void cli_run_ok(const char *const *args)
+{
+    cli_result r;
+    cli_runv(&r, args);
+    cli_assert_ok(&r);
+    cli_result_free(&r);
+}
+
+/* The sweep file `text` written to ROOT/s.ini, planned into ROOT/s (dir),
+ * run on two jobs and collected into ROOT/s.csv (table); dir and table
+ * hold len bytes. */
+static inline void cli_sweep_through(const char *root, const char *text,
+                                     char *dir, char *table, size_t len)
+{
+    char ini[4200];
+    snprintf(ini, sizeof ini, "%s/s.ini", root);
+    snprintf(dir, len, "%s/s", root);
+    snprintf(table, len, "%s/s.csv", root);
+    tmp_put(ini, text);
+    cli_run_ok((const char *const[]){"sweep", "plan", ini, "--out", dir,
+                                     "--quiet", NULL});
+    cli_run_ok((const char *const[]){"sweep", "run", dir, "--jobs", "2",
+                                     "--quiet", NULL});
+    cli_run_ok((const char *const[]){"sweep", "collect", dir, "--out",
+                                     table, "--quiet", NULL});
+}
+
 static inline size_t cli_count_lines(const char *s)
 {
     size_t n = 0;

@@ -6,6 +6,7 @@
 #include <criterion/criterion.h>
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -327,17 +328,28 @@ Test(petsc_ts, failed_step_says_where_and_what_to_change)
  * steps too (they ran it adaptively at the problem's rtol before, 255k
  * steps at convergence's last level), and a tolerance that a fixed-step
  * petsc-* run would not read is refused. */
+/* convergence of petsc-bdf on spring2 from --dt 1e-2 (two levels) or
+ * --from-sweep TABLE: the levels dt = 1e-2 and 5e-3 at fixed steps (100
+ * and 200, order 2.01). */
+static void bdf_fixed_levels(const char *option, const char *value,
+                             const char *dir)
+{
+    cli_result r;
+    bool dt = !strcmp(option, "--dt");
+    cli_run(&r, "convergence", "spring2", "--integrator", "petsc-bdf",
+            option, value, "--out", dir, dt ? "--levels" : NULL, "2", NULL);
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "petsc-bdf           1.000e-02  2.990e-03") &&
+              strstr(r.out, "    2.01       200 "), "%s", r.out);
+    cli_result_free(&r);
+}
+
 Test(petsc_ts, studies_take_dt_as_fixed_steps)
 {
     char dir[512];
     tmp_mkdtemp(dir, sizeof dir, "petscdt");
     cli_result r;
-    cli_run(&r, "convergence", "spring2", "--integrator", "petsc-bdf",
-            "--dt", "1e-2", "--levels", "2", "--out", dir, NULL);
-    cli_assert_ok(&r);
-    cr_assert(strstr(r.out, "petsc-bdf           1.000e-02  2.990e-03") &&
-              strstr(r.out, "    2.01       200 "), "%s", r.out);
-    cli_result_free(&r);
+    bdf_fixed_levels("--dt", "1e-2", dir);
     /* energy says so; convergence reads a sweep's petsc-* rows by dt */
     cli_run(&r, "energy", "spring2", "--integrator", "petsc-alpha2", "--dt",
             "1e-2", "--samples", "10", "--out", dir, NULL);
@@ -345,30 +357,12 @@ Test(petsc_ts, studies_take_dt_as_fixed_steps)
     cr_assert(strstr(r.out, "\nfixed      dt = 0.01 s\n") &&
               !strstr(r.out, "adaptive"), "%s", r.out);
     cli_result_free(&r);
-    char ini[600], sweep[600], table[600];
-    snprintf(ini, sizeof ini, "%s/s.ini", dir);
-    snprintf(sweep, sizeof sweep, "%s/s", dir);
-    snprintf(table, sizeof table, "%s/t.csv", dir);
-    tmp_put(ini, "[sweep]\nproblem = problems/spring2.ini\n"
-                 "integrator = petsc-bdf\ndt = 0.01, 0.005\nt_end = 1\n"
-                 "reference = 1e-11\n");
-    const char *const steps[][6] = {
-        {"sweep", "plan", ini, "--out", sweep, "--quiet"},
-        {"sweep", "run", sweep, "--jobs", "2", "--quiet"},
-        {"sweep", "collect", sweep, "--out", table, "--quiet"}};
-    for (int k = 0; k < 3; k++) {
-        cli_runv(&r, (const char *const[]){steps[k][0], steps[k][1],
-                                           steps[k][2], steps[k][3],
-                                           steps[k][4], steps[k][5], NULL});
-        cli_assert_ok(&r);
-        cli_result_free(&r);
-    }
-    cli_run(&r, "convergence", "spring2", "--integrator", "petsc-bdf",
-            "--from-sweep", table, "--out", dir, NULL);
-    cli_assert_ok(&r);
-    cr_assert(strstr(r.out, "petsc-bdf           1.000e-02  2.990e-03") &&
-              strstr(r.out, "    2.01       200 "), "%s", r.out);
-    cli_result_free(&r);
+    char sweep[600], table[600];
+    cli_sweep_through(dir, "[sweep]\nproblem = problems/spring2.ini\n"
+                           "integrator = petsc-bdf\ndt = 0.01, 0.005\n"
+                           "t_end = 1\nreference = 1e-11\n",
+                      sweep, table, sizeof table);
+    bdf_fixed_levels("--from-sweep", table, dir);
     cli_run(&r, "run", "spring2", "--integrator", "petsc-bdf", "--dt",
             "1e-2", "--rtol", "1e-3", "--out", dir, NULL);
     cli_assert_error(&r, 0, "[run] rtol = \"1e-3\"", "integrator petsc-bdf "

@@ -24,34 +24,19 @@ static void teardown(void)
 
 TestSuite(sweep_refine, .init = setup, .fini = teardown);
 
-static void ok(const char *a0, const char *a1, const char *a2,
-               const char *a3, const char *a4, const char *a5)
-{
-    cli_result r;
-    cli_runv(&r, (const char *const[]){a0, a1, a2, a3, a4, a5, "--quiet",
-                                       NULL});
-    cli_assert_ok(&r);
-    cli_result_free(&r);
-}
-
 /* A particle on a penalty floor, symplectic Euler over 0.2 s: the grid
  * 2, 4, 8, 16 ms brackets the limit between 8 and 16 ms; three points
  * 8 ms 2^(i/4) made 0.2/N: 0.2/21, 0.2/18, 0.2/15; with both stages the
  * bracket narrows to 9.52 .. 11.1 ms. */
 Test(sweep_refine, steps_inside_the_bracket)
 {
-    char ini[600], dir[600], fine[700], t1[700], t2[700], both[1500],
-        out[700], text[65536];
-    snprintf(ini, sizeof ini, "%s/s.ini", tmp);
-    snprintf(dir, sizeof dir, "%s/s", tmp);
+    char dir[700], fine[700], t1[700], t2[700], both[1500], out[700],
+        text[65536];
+    cli_sweep_through(tmp, "[sweep]\nproblem = problems/particle-floor.ini\n"
+                           "integrator = symplectic-euler\n"
+                           "dt = 0.002, 0.004, 0.008, 0.016\nt_end = 0.2\n",
+                      dir, t1, sizeof t1);
     snprintf(fine, sizeof fine, "%s/s-refine", tmp);
-    tmp_put(ini, "[sweep]\nproblem = problems/particle-floor.ini\n"
-                 "integrator = symplectic-euler\n"
-                 "dt = 0.002, 0.004, 0.008, 0.016\nt_end = 0.2\n");
-    ok("sweep", "plan", ini, "--out", dir, "--quiet");
-    ok("sweep", "run", dir, "--jobs", "2", "--quiet");
-    snprintf(t1, sizeof t1, "%s/coarse.csv", tmp);
-    ok("sweep", "collect", dir, "--out", t1, "--quiet");
     cli_result r;
     /* into the refined sweep's own directory: refused, its manifest kept */
     char manifest[800], before[65536];
@@ -75,9 +60,11 @@ Test(sweep_refine, steps_inside_the_bracket)
               strstr(text, "\"run.dt\": \"0.011111111111111112\"") &&
               strstr(text, "\"run.dt\": \"0.013333333333333334\""), "%s",
               text);
-    ok("sweep", "run", fine, "--jobs", "2", "--quiet");
     snprintf(t2, sizeof t2, "%s/fine.csv", tmp);
-    ok("sweep", "collect", fine, "--out", t2, "--quiet");
+    cli_run_ok((const char *const[]){"sweep", "run", fine, "--jobs", "2",
+                                     "--quiet", NULL});
+    cli_run_ok((const char *const[]){"sweep", "collect", fine, "--out", t2,
+                                     "--quiet", NULL});
     snprintf(both, sizeof both, "%s,%s", t1, t2);
     snprintf(out, sizeof out, "%s/st", tmp);
     cli_run(&r, "stability", "particle-floor", "--t-end", "0.2",
