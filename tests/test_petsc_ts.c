@@ -371,8 +371,8 @@ Test(petsc_ts, studies_take_dt_as_fixed_steps)
     tmp_rm_rf(dir);
 }
 
-/* An option no PETSc object has read once the first output interval is
- * solved, which PETSc would ignore, ends the run as a bad input: a
+/* An option no PETSc object has read after the first step, which PETSc
+ * would ignore, ends the run there as a bad input: a
  * misspelt one (petsc-alpha2 ran "-ts_alpha_radius=0.5" at radius 1), one
  * for another method, a global one. */
 Test(petsc_ts, unread_options_are_refused)

@@ -56,7 +56,7 @@ typedef int (*clp_ts_create_fn)(const clp_ts_setup *s, void **ts,
                                 cl_plugin_msg *msg);
 /* Advance to t_out (steps end on it exactly); x, v receive the state.
  * Nonzero on failure: CLP_TS_BAD_OPTION when the options given turn out
- * bad only once the first interval is solved (one no object read). */
+ * bad only once the first step is taken (one that no object read). */
 #define CLP_TS_BAD_OPTION 2
 typedef int (*clp_ts_advance_fn)(void *ts, double t_out, double *x,
                                  double *v, cl_plugin_msg *msg);

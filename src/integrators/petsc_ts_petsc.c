@@ -56,7 +56,7 @@ typedef struct {
     Mat J;
     Vec y, yv;            /* y = (x, v), or x and v (second order) */
     PetscOptions opts;    /* --petsc, this integrator's own */
-    bool options_checked; /* every_option_read, after the first advance */
+    char bad_option[400]; /* every_option_read's refusal, after step 1 */
     PetscScalar *dfdx, *dfdv;    /* 9 nnzb each */
     PetscInt *slot_x, *slot_v;   /* 9 nnzb: where -df/dx, -df/dv go */
     PetscInt *slot_m;            /* n: the diagonal the shift adds to */
@@ -311,11 +311,34 @@ static PetscErrorCode i2jacobian(TS ts, PetscReal t, Vec X, Vec V, Vec A,
 
 /* ---- counters ----------------------------------------------------------- */
 
+/* After the first step, every option of --petsc read by an object (the
+ * SNES, KSP, PC and line search read some only when first set up): an
+ * option none of them read is misspelt, for another method or solver, or
+ * global, and PETSc itself would ignore it ("-ts_alpha_radius=0.5" ran at
+ * PETSc's radius 1).  False with the message in p->bad_option. */
+static bool every_option_read(clp_ts *p)
+{
+    PetscInt n;
+    char **names, **values;
+    if (PetscOptionsLeftGet(p->opts, &n, &names, &values))
+        return true; /* nothing to tell */
+    if (n > 0)
+        snprintf(p->bad_option, sizeof p->bad_option, "%s: --petsc: no "
+                 "PETSc object of %s read -%s%s (%ld in all): misspelt, for "
+                 "another method or solver, or a global option, which "
+                 "--petsc does not take", p->s.name, p->s.name, names[0],
+                 n > 1 ? " and others" : "", (long)n);
+    PetscOptionsLeftRestore(p->opts, &n, &names, &values);
+    return *p->bad_option == '\0';
+}
+
 static PetscErrorCode count_step(TS ts)
 {
     clp_ts *p;
     PetscCall(TSGetApplicationContext(ts, &p));
     p->steps++;
+    if (p->steps == 1 && !every_option_read(p))
+        return PETSC_ERR_ARG_WRONG; /* ends TSSolve: clp_ts_advance says */
     return 0;
 }
 
@@ -630,27 +653,6 @@ static PetscErrorCode solve_to(clp_ts *p, double t_out)
     PetscFunctionReturn(0);
 }
 
-/* Once the first output interval is solved, every option of --petsc
- * read by an object (the SNES, KSP and PC read some only when first set
- * up): an option none of them read is misspelt, for another method or
- * solver, or global, and PETSc itself would ignore it
- * ("-ts_alpha_radius=0.5" ran at PETSc's radius 1). */
-static bool every_option_read(clp_ts *p, cl_plugin_msg *msg)
-{
-    PetscInt n;
-    char **names, **values;
-    if (PetscOptionsLeftGet(p->opts, &n, &names, &values))
-        return true; /* nothing to tell */
-    if (n > 0)
-        snprintf(msg->text, sizeof msg->text, "%s: --petsc: no PETSc object "
-                 "of %s read -%s%s (%ld in all): misspelt, for another "
-                 "method or solver, or a global option, which --petsc does "
-                 "not take", p->s.name, p->s.name, names[0],
-                 n > 1 ? " and others" : "", (long)n);
-    PetscOptionsLeftRestore(p->opts, &n, &names, &values);
-    return *msg->text == '\0';
-}
-
 int clp_ts_advance(void *ts, double t_out, double *x, double *v,
                    cl_plugin_msg *msg)
 {
@@ -660,6 +662,10 @@ int clp_ts_advance(void *ts, double t_out, double *x, double *v,
     p->cb = 0;
     PetscErrorCode ec = TSGetTime(p->ts, &t);
     if (ec == 0 && t < stop_time(p, t_out) && (ec = solve_to(p, t_out))) {
+        if (*p->bad_option) {
+            snprintf(msg->text, sizeof msg->text, "%s", p->bad_option);
+            return CLP_TS_BAD_OPTION;
+        }
         /* a step failed: where, and what to change, as the other
          * integrators' failures say */
         petsc_message(ec, "TSSolve", p->s.name, msg);
@@ -688,11 +694,6 @@ int clp_ts_advance(void *ts, double t_out, double *x, double *v,
                                            "steps in one output interval)"
                                          : "");
         return 1;
-    }
-    if (!p->options_checked) {
-        p->options_checked = true;
-        if (!every_option_read(p, msg))
-            return CLP_TS_BAD_OPTION;
     }
     return 0;
 }
