@@ -179,7 +179,8 @@ static inline void cli_assert_ok(const cli_result *r)
               r->cmd, r->err);
 }
 
-/* Run a command given as a NULL-ended list; it must succeed quietly. */
+/* Run a command given as a NULL-ended list; it must succeed with nothing
+ * on standard error. */
 static inline void cli_run_ok(const char *const *args)
 {
     cli_result r;

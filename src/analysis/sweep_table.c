@@ -500,9 +500,8 @@ cl_status cl_stab_limit(const cl_sweep_table *t, cl_model *m,
              : cl_stability(m, type, io, o, r, err);
 }
 
-/* Whether the table has a job row of `label` with a number for param. */
-static bool has_runs_at(const cl_sweep_table *t, const char *label,
-                        const char *param)
+bool cl_sweep_table_has_runs(const cl_sweep_table *t, const char *label,
+                             const char *param)
 {
     int cp = column(t, param), ci = column(t, "integrator");
     for (int r = 0; cp >= 0 && r < t->nrow; r++)
@@ -523,7 +522,8 @@ cl_status cl_conv_from_sweep(const cl_sweep_table *t, const char *label,
     r->label = label;
     /* petsc-*: fixed steps where the sweep gave them a dt */
     r->fixed = type->fixed_step ||
-               (type->dt_fixes_step && has_runs_at(t, label, "run.dt"));
+               (type->dt_fixes_step &&
+                cl_sweep_table_has_runs(t, label, "run.dt"));
     int n = cl_sweep_table_rows(t, label, r->fixed ? "run.dt" : "run.rtol", rows,
                         CL_CONV_MAX_LEVELS, err);
     for (int k = 0; k < n; k++) {

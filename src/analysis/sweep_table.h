@@ -71,6 +71,11 @@ cl_status cl_sweep_table_select(cl_sweep_table *t, cl_config *cfg,
 cl_status cl_sweep_table_same_inputs(const cl_sweep_table *t,
                                      const cl_config *cfg, cl_error *err);
 
+/* Whether the table has a job row of `label` with a number in column
+ * `param` ("run.dt": a petsc-* method the sweep gave fixed steps). */
+bool cl_sweep_table_has_runs(const cl_sweep_table *t, const char *label,
+                             const char *param);
+
 /* Whether the table has a column `name` (an axis: "run.dt",
  * "obstacle.ball.k", ...). */
 bool cl_sweep_table_has(const cl_sweep_table *t, const char *name);

@@ -85,6 +85,17 @@ static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
     if (!rc && s->from && !(rc = cl_sweep_table_read(s->from, &s->table,
                                                       err)))
         rc = cl_sweep_table_select(&s->table, cfg, "energy", err);
+    /* a petsc-* method the sweep ran at fixed steps: its run is picked by
+     * --dt, as a fixed-step method's */
+    for (int k = 0; !rc && s->from && k < s->integrators.n; k++) {
+        const cl_cli_method *mk = &s->integrators.m[k];
+        if (!cl_integrator_fixed(mk->type, mk->io.dt) &&
+            mk->type->dt_fixes_step &&
+            cl_sweep_table_has_runs(&s->table, mk->label, "run.dt"))
+            rc = cl_error_set(err, CL_EINVAL, "--from-sweep %s: the sweep "
+                              "ran %s at fixed steps (run.dt): give --dt to "
+                              "pick its run", s->from, mk->label);
+    }
     return rc;
 }
 

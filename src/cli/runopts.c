@@ -436,11 +436,15 @@ cl_status cl_cli_methods_fixed(cl_config *cfg, const cl_cli_methods *ms,
     for (int k = 0; k < ms->n; k++)
         if (!ms->m[k].type->fixed_step)
             return cl_error_set(err, CL_EINVAL, "%s: [run] integrator: %s "
-                                "chooses its own steps by error control; "
-                                "%s takes fixed-step integrators",
+                                "%s; %s takes fixed-step integrators",
                                 cl_config_origin(cfg, "run", "integrator",
                                                  where, sizeof where),
-                                ms->m[k].type->name, cmd);
+                                ms->m[k].type->name,
+                                ms->m[k].type->dt_fixes_step
+                                    ? "takes fixed steps only with its own "
+                                      "--dt, and is no fixed-step method"
+                                    : "chooses its own steps by error "
+                                      "control", cmd);
     return CL_OK;
 }
 

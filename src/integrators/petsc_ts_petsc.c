@@ -319,15 +319,18 @@ static PetscErrorCode i2jacobian(TS ts, PetscReal t, Vec X, Vec V, Vec A,
 static bool every_option_read(clp_ts *p)
 {
     PetscInt n;
-    char **names, **values;
+    char **names, **values, list[256] = "";
     if (PetscOptionsLeftGet(p->opts, &n, &names, &values))
         return true; /* nothing to tell */
+    for (PetscInt k = 0, used = 0; k < n && used < (PetscInt)sizeof list;
+         k++)
+        used += snprintf(list + used, sizeof list - (size_t)used, "%s-%s",
+                         k ? ", " : "", names[k]);
     if (n > 0)
-        snprintf(p->bad_option, sizeof p->bad_option, "%s: --petsc: no "
-                 "PETSc object of %s read -%s%s (%ld in all): misspelt, for "
-                 "another method or solver, or a global option, which "
-                 "--petsc does not take", p->s.name, p->s.name, names[0],
-                 n > 1 ? " and others" : "", (long)n);
+        snprintf(p->bad_option, sizeof p->bad_option, "--petsc: no PETSc "
+                 "object of %s read %s: misspelt, for another method or "
+                 "solver, or a global option, which --petsc does not take",
+                 p->s.name, list);
     PetscOptionsLeftRestore(p->opts, &n, &names, &values);
     return *p->bad_option == '\0';
 }
@@ -663,17 +666,23 @@ int clp_ts_advance(void *ts, double t_out, double *x, double *v,
     PetscErrorCode ec = TSGetTime(p->ts, &t);
     if (ec == 0 && t < stop_time(p, t_out) && (ec = solve_to(p, t_out))) {
         if (*p->bad_option) {
-            snprintf(msg->text, sizeof msg->text, "%s", p->bad_option);
+            snprintf(msg->text, sizeof msg->text, "%s: %s", p->s.name,
+                     p->bad_option);
             return CLP_TS_BAD_OPTION;
         }
         /* a step failed: where, and what to change, as the other
-         * integrators' failures say */
+         * integrators' failures say; before the first step, with the
+         * options no object read (one may have been meant to help) */
         petsc_message(ec, "TSSolve", p->s.name, msg);
         size_t len = strlen(msg->text);
         if (TSGetTime(p->ts, &t) == 0)
-            snprintf(msg->text + len, sizeof msg->text - len, " (at t = "
-                     "%.9g); to change: reduce --dt (fixed steps) or --rtol",
-                     (double)t);
+            len += (size_t)snprintf(msg->text + len, sizeof msg->text - len,
+                                    " (at t = %.9g); to change: reduce --dt "
+                                    "(fixed steps) or --rtol", (double)t);
+        if (p->steps == 0 && !every_option_read(p) &&
+            len < sizeof msg->text)
+            snprintf(msg->text + len, sizeof msg->text - len, "; and %s",
+                     p->bad_option);
         return 1;
     }
     if (ec == 0)
