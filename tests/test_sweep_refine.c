@@ -24,6 +24,32 @@ static void teardown(void)
 
 TestSuite(sweep_refine, .init = setup, .fini = teardown);
 
+/* The table `path` with one more row, a copy of its complete run at 8 ms
+ * made another problem's (particle-flood.ini) and moved to 12.5 ms, into
+ * out (in tmp). */
+static void mixed_table(const char *path, char *out, size_t len)
+{
+    char text[65536], row[4096];
+    tmp_slurp(path, text, sizeof text - sizeof row);
+    const char *at = strstr(text, ",0.008,");
+    cr_assert_not_null(at, "%s", text);
+    const char *start = at;
+    while (start > text && start[-1] != '\n')
+        start--;
+    size_t n = (size_t)(strchr(at, '\n') - start);
+    snprintf(row, sizeof row, "x%.*s", (int)n - 1, start + 1);
+    char *dt = strstr(row, ",0.008,"), *problem = strstr(row,
+                                                         "particle-floor");
+    cr_assert(dt && problem, "%s", row);
+    memcpy(problem, "particle-flood", 14);
+    memmove(dt + 7, dt + 6, strlen(dt + 6) + 1); /* ",0.008," -> ",0.0125," */
+    memcpy(dt, ",0.0125,", 8);
+    strcat(text, row);
+    strcat(text, "\n");
+    snprintf(out, len, "%s/mixed.csv", tmp);
+    tmp_put(out, text);
+}
+
 /* A particle on a penalty floor, symplectic Euler over 0.2 s: the grid
  * 2, 4, 8, 16 ms brackets the limit between 8 and 16 ms; three points
  * 8 ms 2^(i/4) made 0.2/N: 0.2/21, 0.2/18, 0.2/15; with both stages the
@@ -82,6 +108,19 @@ Test(sweep_refine, steps_inside_the_bracket)
     cr_assert(strstr(r.out, "refine     0 jobs inside 0 brackets"), "%s",
               r.out);
     cli_result_free(&r);
+    /* a row of another problem in the table, stable at 12.5 ms inside the
+     * bracket, is left out of it: the same three points as before */
+    mixed_table(t1, out, sizeof out);
+    cli_run(&r, "sweep", "refine", dir, "--table", out, "--points", "3",
+            "--out", fine, NULL);
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "refine     3 jobs inside 1 brackets"), "%s",
+              r.out);
+    cli_result_free(&r);
+    snprintf(manifest, sizeof manifest, "%s/sweep.json", fine);
+    tmp_slurp(manifest, text, sizeof text);
+    cr_assert(strstr(text, "\"run.dt\": \"0.009523809523809525\""), "%s",
+              text);
     /* a table of another sweep (another problem, or other integrators)
      * would plan an empty stage: refused, naming the sweep */
     static const char *const other[][2] = {
