@@ -24,6 +24,20 @@ static void teardown(void)
 
 TestSuite(sweep_refine, .init = setup, .fini = teardown);
 
+/* sweep refine DIR --table TABLE OPTION VALUE --out FINE succeeds and
+ * says `want`. */
+static void refine_plans(const char *dir, const char *table,
+                         const char *option, const char *value,
+                         const char *fine, const char *want)
+{
+    cli_result r;
+    cli_run(&r, "sweep", "refine", dir, "--table", table, option, value,
+            "--out", fine, NULL);
+    cli_assert_ok(&r);
+    cr_assert(strstr(r.out, want), "%s", r.out);
+    cli_result_free(&r);
+}
+
 /* The table `path` with one more row, a copy of its complete run at 8 ms
  * made another problem's (particle-flood.ini) and moved to 12.5 ms, into
  * out (in tmp). */
@@ -102,21 +116,13 @@ Test(sweep_refine, steps_inside_the_bracket)
               r.out);
     cli_result_free(&r);
     /* narrow enough: nothing left to plan */
-    cli_run(&r, "sweep", "refine", dir, "--table", both, "--rel", "0.2",
-            "--out", fine, NULL);
-    cli_assert_ok(&r);
-    cr_assert(strstr(r.out, "refine     0 jobs inside 0 brackets"), "%s",
-              r.out);
-    cli_result_free(&r);
+    refine_plans(dir, both, "--rel", "0.2", fine,
+                 "refine     0 jobs inside 0 brackets");
     /* a row of another problem in the table, stable at 12.5 ms inside the
      * bracket, is left out of it: the same three points as before */
     mixed_table(t1, out, sizeof out);
-    cli_run(&r, "sweep", "refine", dir, "--table", out, "--points", "3",
-            "--out", fine, NULL);
-    cli_assert_ok(&r);
-    cr_assert(strstr(r.out, "refine     3 jobs inside 1 brackets"), "%s",
-              r.out);
-    cli_result_free(&r);
+    refine_plans(dir, out, "--points", "3", fine,
+                 "refine     3 jobs inside 1 brackets");
     snprintf(manifest, sizeof manifest, "%s/sweep.json", fine);
     tmp_slurp(manifest, text, sizeof text);
     cr_assert(strstr(text, "\"run.dt\": \"0.009523809523809525\""), "%s",

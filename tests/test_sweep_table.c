@@ -253,18 +253,18 @@ Test(sweep_table, stability_cli_from_sweep)
     /* the search's own options, which the table does not use, are
      * refused (before: ignored, the output unchanged); so are
      * convergence's levels */
-    cli_run(&r, "stability", "hang", "--set", "cloth.n=6", "--t-end", "2",
-            "--integrator", "rk4", "--from-sweep", path, "--dt-max", "1e-3",
-            "--out", out, NULL);
-    cli_assert_error(&r, 0, "--dt-max ([stability] dt_max) goes with a "
-                     "search of its own (not --from-sweep)", NULL);
-    cli_result_free(&r);
-    cli_run(&r, "convergence", "hang", "--set", "cloth.n=6", "--t-end", "2",
-            "--integrator", "rk4", "--from-sweep", path, "--levels", "3",
-            "--out", out, NULL);
-    cli_assert_error(&r, 0, "--levels ([convergence] levels) goes with "
-                     "levels run here (not --from-sweep)", NULL);
-    cli_result_free(&r);
+    static const char *const own[][4] = {
+        {"stability", "--dt-max", "1e-3", "--dt-max ([stability] dt_max) "
+         "goes with a search of its own (not --from-sweep)"},
+        {"convergence", "--levels", "3", "--levels ([convergence] levels) "
+         "goes with levels run here (not --from-sweep)"}};
+    for (int k = 0; k < 2; k++) {
+        cli_run(&r, own[k][0], "hang", "--set", "cloth.n=6", "--t-end", "2",
+                "--integrator", "rk4", "--from-sweep", path, own[k][1],
+                own[k][2], "--out", out, NULL);
+        cli_assert_error(&r, 0, own[k][3], NULL);
+        cli_result_free(&r);
+    }
     /* the study's own keys are no model's; a sweep planned on another
      * machine names its problem by a path not here: its name decides */
     char moved[1200], out2[1200];
