@@ -1131,6 +1131,52 @@ Test(cli, run_config_ini_reproduces_the_run)
     assert_same_files(out, again, LIST("series.csv", "final.csv"));
 }
 
+/* A run from a state ([init] state = the final.csv of a run to T) of a
+ * problem whose pins and forces do not change with time continues that
+ * run: with a one-step method of fixed steps, run to T and then from its
+ * state for T more, it ends bit for bit where one run to 2T ends, and its
+ * series is the second half of that run's (t counted from the state). */
+Test(cli, run_from_a_state_continues_the_run)
+{
+    char whole[1024], first[1024], second[1024], state[1100], set[1200];
+    const char *common[] = {"run", "hang", "--set", "cloth.n=6",
+                            "--integrator", "semi-be", "--dt", "1e-3",
+                            "--frames", "0", "--quiet", "--t-end"};
+    enum { NC = sizeof common / sizeof *common };
+    const char *args[NC + 8];
+    memcpy(args, common, sizeof common);
+    const char *tail1[] = {"0.02", "--samples", "4", "--out",
+                           in_tmp(whole, "whole"), NULL};
+    memcpy(args + NC, tail1, sizeof tail1);
+    cli_run_ok(args);
+    const char *tail2[] = {"0.01", "--samples", "2", "--out",
+                           in_tmp(first, "first"), NULL};
+    memcpy(args + NC, tail2, sizeof tail2);
+    cli_run_ok(args);
+    snprintf(state, sizeof state, "%s/final.csv", first);
+    snprintf(set, sizeof set, "init.state=%s", state);
+    const char *tail3[] = {"0.01", "--samples", "2", "--set", set, "--out",
+                           in_tmp(second, "second"), NULL};
+    memcpy(args + NC, tail3, sizeof tail3);
+    cli_run_ok(args);
+    assert_same_files(whole, second, LIST("final.csv"));
+
+    char pa[1300], pb[1300];
+    cli_lines la, lb;
+    snprintf(pa, sizeof pa, "%s/series.csv", whole);
+    snprintf(pb, sizeof pb, "%s/series.csv", second);
+    cli_read_lines(pa, &la);
+    cli_read_lines(pb, &lb);
+    cr_assert_eq(la.n, 6, "header and 5 rows, %zu lines", la.n);
+    cr_assert_eq(lb.n, 4, "header and 3 rows, %zu lines", lb.n);
+    cr_assert_str_eq(la.line[0], lb.line[0]);
+    for (size_t k = 1; k < lb.n; k++) /* all but t */
+        cr_assert_str_eq(strchr(la.line[k + 2], ','), strchr(lb.line[k], ','),
+                         "row %zu of the second half differs", k);
+    cli_lines_free(&la);
+    cli_lines_free(&lb);
+}
+
 /* csv alone: the series without frames, and says so; --frames K asked
  * for with it would change nothing and is refused, as is an empty list */
 Test(cli, run_format_csv_writes_no_frames)

@@ -3,7 +3,7 @@
  * degree of freedom, system force = gathered full force, the system Jacobian
  * against finite differences of the system force on the hang defaults, the
  * free-particle pattern against the full-particle Jacobian, exact zeros at
- * rest, and configuration errors. */
+ * rest, configuration errors, and [init] state. */
 #include <criterion/criterion.h>
 
 #include <math.h>
@@ -12,6 +12,7 @@
 
 #include "fdcheck.h"
 #include "forces/term.h"
+#include "tmpdir.h"
 
 /* ---- numbering, scatter, gather, mass ---------------------------------- */
 
@@ -549,17 +550,25 @@ Test(model, default_terms)
 
 /* ---- configuration errors ---------------------------------------------- */
 
-static void expect_error(const char *const *sets, const char *needle)
+/* The model of `sets` is refused with status `want` and a message
+ * containing `needle`. */
+static void expect_status(const char *const *sets, cl_status want,
+                          const char *needle)
 {
     cl_model *m = NULL;
     cl_error err;
     memset(&err, 0, sizeof err);
     cl_status rc = fd_model_try(sets, &m, &err);
-    cr_assert_eq(rc, CL_EINVAL, "expected CL_EINVAL, got %d (%s)", rc,
+    cr_assert_eq(rc, want, "expected status %d, got %d (%s)", want, rc,
                  err.msg);
     cr_assert_null(m);
     cr_assert_not_null(strstr(err.msg, needle), "message \"%s\" lacks \"%s\"",
                        err.msg, needle);
+}
+
+static void expect_error(const char *const *sets, const char *needle)
+{
+    expect_status(sets, CL_EINVAL, needle);
 }
 
 Test(model, error_pin_outside_grid)
@@ -674,4 +683,139 @@ Test(model, term_masks_split_force_and_jacobian)
     cl_model_free(m);
     const char *const bad[] = {"cloth.n=4", "type1.imex=both", NULL};
     expect_error(bad, "imex");
+}
+
+/* ---- [init] state ------------------------------------------------------ */
+
+/* A state file for model m: every free particle at its rest position plus
+ * `shift` times a pseudo-random offset, the pinned ones `pin_shift` along
+ * x from theirs, the velocities pseudo-random; into x and v (3 np each). */
+static void write_state(const cl_model *m, const char *path, double shift,
+                        double pin_shift, double *x, double *v)
+{
+    const cl_cloth *c = cl_model_cloth(m);
+    fd_rng r = {91};
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f);
+    fprintf(f, "p,x,y,z,vx,vy,vz\n");
+    for (size_t p = 0; p < c->np; p++) {
+        bool free_p = c->dof[p] >= 0;
+        for (int i = 0; i < 3; i++) {
+            x[3 * p + i] = c->X0[3 * p + i] +
+                           (free_p ? shift * (2 * fd_rand(&r) - 1)
+                                   : i == 0 ? pin_shift : 0.0);
+            v[3 * p + i] = 2 * fd_rand(&r) - 1;
+        }
+        fprintf(f, "%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", p, x[3 * p],
+                x[3 * p + 1], x[3 * p + 2], v[3 * p], v[3 * p + 1],
+                v[3 * p + 2]);
+    }
+    cr_assert_eq(fclose(f), 0);
+}
+
+/* The free particles start where the file puts them, at its velocities,
+ * bit for bit; [init] perturb still moves them along y, by the same
+ * draws as without a state. */
+Test(model, init_state_is_the_initial_state)
+{
+    char dir[512], path[600], set[700];
+    tmp_mkdtemp(dir, sizeof dir, "state");
+    snprintf(path, sizeof path, "%s/s.csv", dir);
+    cl_model *plain = FD_MODEL("cloth.n=4", "pins.at=0,0 0,-1");
+    size_t n = fd_n(plain), nf = cl_model_system(plain)->n;
+    double *xs = fd_vec(n), *vs = fd_vec(n), *x = fd_vec(nf),
+           *v = fd_vec(nf), *want = fd_vec(nf), *x0 = fd_vec(nf),
+           *xp = fd_vec(nf);
+    write_state(plain, path, 0.05, 0.0, xs, vs);
+    snprintf(set, sizeof set, "init.state=%s", path);
+    cl_model *m = FD_MODEL("cloth.n=4", "pins.at=0,0 0,-1", set);
+    const cl_cloth *c = cl_model_cloth(plain);
+    cr_assert_eq(cl_model_initial_state(m, x, v), CL_OK);
+    cl_cloth_gather(c, xs, want);
+    cr_assert_eq(memcmp(x, want, nf * sizeof *x), 0);
+    cl_cloth_gather(c, vs, want);
+    cr_assert_eq(memcmp(v, want, nf * sizeof *v), 0);
+    cl_model_free(m);
+
+    /* perturb: the same displacement with and without the state */
+    cl_model *p0 = FD_MODEL("cloth.n=4", "pins.at=0,0 0,-1",
+                            "init.perturb=1e-3", "init.seed=7");
+    cl_model *ps = FD_MODEL("cloth.n=4", "pins.at=0,0 0,-1",
+                            "init.perturb=1e-3", "init.seed=7", set);
+    cr_assert_eq(cl_model_initial_state(plain, x0, v), CL_OK);
+    cr_assert_eq(cl_model_initial_state(p0, xp, v), CL_OK);
+    cr_assert_eq(cl_model_initial_state(ps, x, v), CL_OK);
+    cl_cloth_gather(c, xs, want);
+    size_t moved = 0;
+    for (size_t k = 0; k < nf; k++) {
+        double d0 = xp[k] - x0[k], ds = x[k] - want[k];
+        cr_assert_float_eq(ds, d0, 1e-15, "coordinate %zu: %g, %g", k, ds,
+                           d0);
+        moved += k % 3 == 1 && d0 != 0.0;
+        if (k % 3 != 1)
+            cr_assert_eq(ds, 0.0, "coordinate %zu moved off y", k);
+    }
+    cr_assert_eq(moved, nf / 3, "every free particle moves along y");
+    cl_model_free(p0);
+    cl_model_free(ps);
+    cl_model_free(plain);
+    free(xs), free(vs), free(x), free(v), free(want), free(x0), free(xp);
+    tmp_rm_rf(dir);
+}
+
+/* A relative [init] state is relative to the problem file, as a mesh. */
+Test(model, init_state_relative_to_the_problem_file)
+{
+    char dir[512], path[600];
+    tmp_mkdtemp(dir, sizeof dir, "staterel");
+    cl_model *plain = FD_MODEL("cloth.n=3");
+    size_t n = fd_n(plain), nf = cl_model_system(plain)->n;
+    double *xs = fd_vec(n), *vs = fd_vec(n), *x = fd_vec(nf),
+           *v = fd_vec(nf), *want = fd_vec(nf);
+    snprintf(path, sizeof path, "%s/s.csv", dir);
+    write_state(plain, path, 0.1, 0.0, xs, vs);
+    snprintf(path, sizeof path, "%s/p.ini", dir);
+    tmp_put(path, "[cloth]\nn = 3\n\n[init]\nstate = s.csv\n");
+    cl_config *cfg = cl_config_alloc();
+    cl_model *m = NULL;
+    cl_error err = {0};
+    cr_assert_eq(cl_config_load(cfg, path, &err), CL_OK, "%s", err.msg);
+    cr_assert_eq(cl_model_create(cfg, &m, &err), CL_OK, "%s", err.msg);
+    cr_assert_eq(cl_model_initial_state(m, x, v), CL_OK);
+    cl_cloth_gather(cl_model_cloth(m), xs, want);
+    cr_assert_eq(memcmp(x, want, nf * sizeof *x), 0);
+    cl_model_free(m);
+    cl_config_free(cfg);
+    cl_model_free(plain);
+    free(xs), free(vs), free(x), free(v), free(want);
+    tmp_rm_rf(dir);
+}
+
+/* Refused: a pinned row away from its pin at t = 0 (a state of a moving
+ * pin saved later), [init] velocity beside a state, a state of another
+ * cloth. */
+Test(model, init_state_refusals)
+{
+    char dir[512], path[600], set[700];
+    tmp_mkdtemp(dir, sizeof dir, "stateno");
+    snprintf(path, sizeof path, "%s/s.csv", dir);
+    snprintf(set, sizeof set, "init.state=%s", path);
+    cl_model *plain = FD_MODEL("cloth.n=4", "pins.at=0,0",
+                               "pins.velocity=1,0,0");
+    double *xs = fd_vec(fd_n(plain)), *vs = fd_vec(fd_n(plain));
+    write_state(plain, path, 0.05, 0.0, xs, vs);
+    /* the same state is good at t = 0; the pin moved 1 mm is not */
+    cl_model_free(FD_MODEL("cloth.n=4", "pins.at=0,0", "pins.velocity=1,0,0",
+                           set));
+    write_state(plain, path, 0.05, 1e-3, xs, vs);
+    expect_error(FD_SETS("cloth.n=4", "pins.at=0,0", "pins.velocity=1,0,0",
+                         set), "pinned particle 0");
+    write_state(plain, path, 0.05, 0.0, xs, vs);
+    expect_error(FD_SETS("cloth.n=4", "pins.at=0,0", "init.velocity=0,1,0",
+                         set), "[init] state");
+    expect_status(FD_SETS("cloth.n=3", set), CL_EPARSE, "out of range");
+    expect_status(FD_SETS("cloth.n=5", set), CL_EPARSE, "missing");
+    cl_model_free(plain);
+    free(xs), free(vs);
+    tmp_rm_rf(dir);
 }

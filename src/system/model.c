@@ -19,10 +19,13 @@
 
 #include "core/check.h"
 #include "core/stop.h"
+#include "io/state.h"
 
 struct cl_model {
     cl_cloth cloth;
     double v0[3];         /* initial velocity of the free particles */
+    double *xs, *vs;      /* [init] state: the free state at t = 0 (3 nfree
+                           * each), or NULL */
     double perturb;       /* amplitude of the initial out-of-plane noise */
     long seed;            /* its random seed */
     cl_term_opts opts;
@@ -67,6 +70,99 @@ static cl_status read_init(cl_config *cfg, cl_model *m, cl_error *err)
                              err)))
         return rc;
     return CL_OK;
+}
+
+/* The largest distance, over the pinned particles, between a state's
+ * position xs (3 np) and where the pin holds the particle at t = 0; the
+ * pin with it in *worst. */
+static double pin_mismatch(const cl_cloth *c, const double *xs,
+                           size_t *worst)
+{
+    double far = 0.0;
+    for (size_t k = 0; k < c->npin; k++) {
+        double at[3];
+        cl_cloth_pin_position(c, k, 0.0, at);
+        const double *x = xs + 3 * (size_t)c->pins[k].p;
+        double d = hypot(hypot(x[0] - at[0], x[1] - at[1]), x[2] - at[2]);
+        if (!(d <= far)) {
+            far = d;
+            *worst = k;
+        }
+    }
+    return far;
+}
+
+/* The side of the rest shape's bounding box, for a tolerance in metres. */
+static double rest_extent(const cl_cloth *c)
+{
+    double ext = 0.0;
+    for (int a = 0; a < 3; a++) {
+        double lo = INFINITY, hi = -INFINITY;
+        for (size_t p = 0; p < c->np; p++) {
+            lo = fmin(lo, c->X0[3 * p + a]);
+            hi = fmax(hi, c->X0[3 * p + a]);
+        }
+        ext = fmax(ext, hi - lo);
+    }
+    return ext;
+}
+
+/* A state file's pinned rows must be where the pins hold those particles
+ * at t = 0: a state saved at another time of a problem whose pins move
+ * would otherwise start with its pins jumping back. */
+static cl_status check_state_pins(cl_config *cfg, const cl_cloth *c,
+                                  const double *xs, cl_error *err)
+{
+    size_t k = 0;
+    double far = pin_mismatch(c, xs, &k);
+    if (far <= 1e-9 * rest_extent(c))
+        return CL_OK;
+    double at[3];
+    const double *x = xs + 3 * (size_t)c->pins[k].p;
+    cl_cloth_pin_position(c, k, 0.0, at);
+    char why[512];
+    snprintf(why, sizeof why, "pinned particle %d is at (%.9g, %.9g, %.9g), "
+             "%.3g m from where its pin holds it at t = 0, (%.9g, %.9g, "
+             "%.9g): the state is read as the state at t = 0, so its pinned "
+             "rows must be there (a state saved at another time of a "
+             "problem whose pins move is not one)",
+             c->pins[k].p, x[0], x[1], x[2], far, at[0], at[1], at[2]);
+    return cl_config_refuse(cfg, "init", "state", CL_EINVAL, why, err);
+}
+
+/* [init] state: a state file (final.csv) whose free particles' positions
+ * and velocities are the state at t = 0 (README "[init]"). */
+static cl_status read_state(cl_config *cfg, cl_model *m, cl_error *err)
+{
+    if (!*cl_config_string(cfg, "init", "state", ""))
+        return CL_OK;
+    const cl_cloth *c = &m->cloth;
+    char path[4096];
+    cl_status rc = cl_config_path_of(cfg, "init", "state", path, sizeof path,
+                                     err);
+    if (rc)
+        return rc;
+    if (cl_config_peek(cfg, "init", "velocity"))
+        return cl_config_refuse(cfg, "init", "velocity", CL_EINVAL,
+                                "given with [init] state, whose file gives "
+                                "the velocities", err);
+    double *xf = malloc(3 * c->np * sizeof *xf);
+    double *vf = malloc(3 * c->np * sizeof *vf);
+    m->xs = malloc((3 * c->nfree + 1) * sizeof *m->xs);
+    m->vs = malloc((3 * c->nfree + 1) * sizeof *m->vs);
+    if (!xf || !vf || !m->xs || !m->vs)
+        rc = cl_error_set(err, CL_ENOMEM, "out of memory ([init] state)");
+    else if ((rc = cl_state_read(path, c->np, xf, vf, err))) {
+        char why[sizeof err->msg];
+        snprintf(why, sizeof why, "%s", err->msg);
+        rc = cl_config_refuse(cfg, "init", "state", rc, why, err);
+    } else if (!(rc = check_state_pins(cfg, c, xf, err))) {
+        cl_cloth_gather(c, xf, m->xs);
+        cl_cloth_gather(c, vf, m->vs);
+    }
+    free(xf);
+    free(vf);
+    return rc;
 }
 
 static cl_status read_opts(cl_config *cfg, cl_term_opts *o, cl_error *err)
@@ -565,6 +661,7 @@ cl_status cl_model_create(cl_config *cfg, cl_model **model, cl_error *err)
         (rc = cl_pins_read(cfg, &m->cloth, err)) ||
         (rc = read_init(cfg, m, err)) ||
         (rc = cl_cloth_finalize(&m->cloth, err)) ||
+        (rc = read_state(cfg, m, err)) ||
         (rc = read_opts(cfg, &m->opts, err)) ||
         (rc = create_terms(cfg, m, err)) || (rc = name_terms(m, err)) ||
         (rc = read_imex(cfg, m, err)) ||
@@ -621,6 +718,8 @@ void cl_model_free(cl_model *m)
     cl_bpattern_free(&m->pattern);
     cl_cloth_free(&m->cloth);
     free(m->mass3);
+    free(m->xs);
+    free(m->vs);
     free(m->xf);
     free(m->vf);
     free(m->ff);
@@ -667,9 +766,15 @@ static cl_status perturb_positions(const cl_model *m, double *x)
 
 cl_status cl_model_initial_state(const cl_model *m, double *x, double *v)
 {
-    cl_cloth_gather(&m->cloth, m->cloth.X0, x);
-    for (size_t k = 0; k < 3 * m->cloth.nfree; k++)
-        v[k] = m->v0[k % 3];
+    size_t n = 3 * m->cloth.nfree;
+    if (m->xs) {
+        memcpy(x, m->xs, n * sizeof *x);
+        memcpy(v, m->vs, n * sizeof *v);
+    } else {
+        cl_cloth_gather(&m->cloth, m->cloth.X0, x);
+        for (size_t k = 0; k < n; k++)
+            v[k] = m->v0[k % 3];
+    }
     return m->perturb > 0 ? perturb_positions(m, x) : CL_OK;
 }
 
