@@ -213,6 +213,9 @@ INSTALLED   := bin/clothode lib/libclothode.a lib/clothode/clothode-petsc.so \
                lib/pkgconfig/clothode.pc
 
 install: $(BIN)
+	@case "$(PREFIX)" in /*) ;; *) echo "make install: PREFIX=$(PREFIX): \
+	expected an absolute path (the installed library and clothode.pc \
+	record it)" >&2; exit 2;; esac
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig \
 	    $(DESTDIR)$(PREFIX)/share/clothode $(DESTDIR)$(PREFIX)/share/man/man1
 	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/clothode

@@ -10,7 +10,11 @@
  *
  *   embed_cvode PROBLEM.ini T [section.key=value ...]
  *
- * prints the final time and energies.  Build against an installed
+ * prints CVODE's steps, the final time, and the kinetic and total
+ * energies.  It integrates the forces alone: a problem that needs the
+ * system's other hooks (position-based constraints, projection, barrier
+ * or constraint contact, tearing: see system/system.h) is refused, as
+ * this program would silently leave them out.  Build against an installed
  * clothode with
  *   cc embed_cvode.c $(pkg-config --cflags --libs clothode) -o embed_cvode
  */
@@ -84,6 +88,14 @@ static int check(int flag, const char *fn)
     return flag < 0;
 }
 
+/* Whether the system asks an integrator for more than its forces and
+ * Jacobian (system/system.h). */
+static int needs_hooks(const cl_system *sys)
+{
+    return sys->project || sys->projects || sys->step_done ||
+           sys->step_fraction || sys->constrain;
+}
+
 /* The problem file with the assignments applied, as a model (the
  * configuration is kept alive beside it).  A key the model did not read
  * (a misspelt name) is refused, as clothode refuses it; [run], the
@@ -102,6 +114,14 @@ static cl_model *load(const char *path, int nset, char **sets,
     if (!bad) {
         cl_config_ignore_section(*cfg, "run");
         bad = cl_config_check_unused(*cfg, &err) != CL_OK;
+    }
+    if (!bad && needs_hooks(cl_model_system(m))) {
+        fprintf(stderr, "embed_cvode: %s: the problem needs more than "
+                        "forces (projections, barriers, constraints or "
+                        "tearing), which this program does not apply; "
+                        "clothode's integrators do\n", path);
+        cl_model_free(m);
+        return NULL;
     }
     if (!bad)
         return m;

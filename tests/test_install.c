@@ -8,7 +8,8 @@
  * prefix, finds the installed PETSc plug-in; a C++ program that includes
  * every installed header integrates the same cloth through the library's
  * cvode-bdf and ends at the command's energy, and every installed header
- * gives its declarations C linkage in C++ (core/decls.h). */
+ * gives its declarations C linkage in C++ (core/decls.h); the example
+ * refuses a problem that needs more than forces (PBD's projections). */
 #include <criterion/criterion.h>
 
 #include <math.h>
@@ -32,7 +33,7 @@ Test(install, example_builds_with_pkg_config_and_agrees)
     cr_assert_not_null(p);
     char line[1024], out[8192] = "";
     double example = NAN, clothode = NAN, cxx = NAN;
-    long bench_objects = -1, unwrapped = -1;
+    long bench_objects = -1, unwrapped = -1, hooks = -1;
     bool plugin = false;
     while (fgets(line, sizeof line, p)) {
         plugin = plugin || !strcmp(line, "plugin found\n");
@@ -42,6 +43,7 @@ Test(install, example_builds_with_pkg_config_and_agrees)
         sscanf(line, "cxx %lf", &cxx);
         sscanf(line, "bench_objects %ld", &bench_objects);
         sscanf(line, "unwrapped %ld", &unwrapped);
+        sscanf(line, "hooks refused %ld", &hooks);
     }
     int status = pclose(p);
     cr_assert_eq(status, 0, "install-check failed:\n%s", out);
@@ -50,6 +52,7 @@ Test(install, example_builds_with_pkg_config_and_agrees)
     cr_expect_eq(bench_objects, 0, "%s", out);
     cr_expect_eq(unwrapped, 0, "%s", out);
     cr_expect(plugin, "%s", out);
+    cr_expect_eq(hooks, 1, "the example ran a PBD problem:\n%s", out);
     cr_expect_lt(fabs(example - clothode), 1e-6 * fabs(clothode),
                  "example %.12g, clothode %.12g", example, clothode);
     /* the same integrator and tolerances; clothode stops at its samples */

@@ -1,5 +1,6 @@
-/* Integrator registry, fixed-step bookkeeping (cl_fixed_steps_to) and the
- * statistics output (CSV rows parsed back, human block). */
+/* Integrator registry, creation without a type, fixed-step bookkeeping
+ * (cl_fixed_steps_to) and the statistics output (CSV rows parsed back,
+ * human block). */
 #include <criterion/criterion.h>
 
 #include <math.h>
@@ -21,6 +22,29 @@ Test(integrator, find_by_name)
     cr_assert_null(cl_integrator_find("no-such-method"));
     cr_assert_null(cl_integrator_find(""));
     cr_assert_null(cl_integrator_find(NULL));
+}
+
+/* cl_integrator_create with what cl_integrator_find gives for an
+ * unknown name, or without a system or options: CL_EINVAL, no state. */
+Test(integrator, create_without_type_system_or_options)
+{
+    const cl_integrator_type *rk4 = cl_integrator_find("rk4");
+    cl_integrator_opts o = {.dt = 1e-3};
+    double x[3] = {0}, v[3] = {0};
+    void *st = (void *)&o;
+    cl_error err = {0};
+    cr_assert_eq(cl_integrator_create(cl_integrator_find("nope"), NULL, &o,
+                                      0.0, x, v, &st, &err), CL_EINVAL);
+    cr_assert_null(st);
+    cr_assert(strstr(err.msg, "unknown name"), "%s", err.msg);
+    cr_assert_eq(cl_integrator_create(rk4, NULL, &o, 0.0, x, v, &st, &err),
+                 CL_EINVAL);
+    cr_assert(strstr(err.msg, "system"), "%s", err.msg);
+    cl_system sys = {0};
+    cr_assert_eq(cl_integrator_create(rk4, &sys, NULL, 0.0, x, v, &st, &err),
+                 CL_EINVAL);
+    cr_assert(strstr(err.msg, "options"), "%s", err.msg);
+    cr_assert_null(st);
 }
 
 Test(integrator, registry_rows_complete_and_unique)

@@ -4,7 +4,8 @@
  * into another shell; the counting shell counts one KLU analysis per
  * initialisation of the solver, so a klu-full run that restarts CVODE
  * after every tear counts one analysis more per restart; a stop that ends
- * a linear solve ends the advance with CL_EINTR. */
+ * a linear solve ends the advance with CL_EINTR; a negative max_order is
+ * refused. */
 #include <criterion/criterion.h>
 
 #include <signal.h>
@@ -212,4 +213,27 @@ Test(sun_adapter, cvode_stopped_in_a_linear_solve)
 Test(sun_adapter, ida_stopped_in_a_linear_solve)
 {
     stopped_in_a_solve("ida");
+}
+
+/* Options out of range are refused by every SUNDIALS integrator when it is
+ * created (before: a negative max_order ran at the solver's own). */
+Test(sun_adapter, negative_max_order_refused)
+{
+    static const char *const names[] = {"cvode-bdf", "cvode-adams", "ida",
+                                        "arkode-dirk", "arkode-imex"};
+    ts_sys ts;
+    cr_assert_eq(ts_oscillators(&ts, 3), 0);
+    double x[9], v[9], x0[9], v0[9];
+    ri_start(&ts, x0, v0, x, v);
+    for (size_t k = 0; k < sizeof names / sizeof *names; k++) {
+        const cl_integrator_type *it = cl_integrator_find(names[k]);
+        cl_integrator_opts o = {.rtol = 1e-6, .atol = 1e-8, .max_order = -3};
+        void *st = NULL;
+        cl_error err = {0};
+        cr_assert_eq(it->create(&ts.sys, &o, 0.0, x, v, &st, &err),
+                     CL_EINVAL, "%s: %s", names[k], err.msg);
+        cr_assert(strstr(err.msg, "max_order = -3"), "%s", err.msg);
+        cr_assert_null(st);
+    }
+    ts_free(&ts);
 }

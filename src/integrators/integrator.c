@@ -43,9 +43,12 @@ cl_status cl_integrator_create(const cl_integrator_type *type,
                                const double *x0, const double *v0,
                                void **state, cl_error *err)
 {
+    *state = NULL;
+    if (!type || !sys || !o) /* cl_integrator_find: NULL for an unknown name */
+        return cl_error_set(err, CL_EINVAL, "no integrator%s", type ? (sys ?
+                            " options" : " system") : " (an unknown name?)");
     cl_status rc = o->force ? CL_OK
                             : cl_memguard_check(type, sys, o->linsol, err);
-    *state = NULL;
     if (!rc)
         rc = check_feasible_start(sys, t0, x0, v0, err);
     if (!rc && !type->takes_rayleigh &&

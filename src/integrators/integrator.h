@@ -24,8 +24,11 @@ CL_BEGIN_DECLS
 
 typedef struct {
     double dt;        /* fixed step, or initial step hint (0: solver's own) */
-    double rtol;      /* relative tolerance (adaptive methods) */
-    double atol;      /* absolute tolerance (adaptive methods) */
+    double rtol;      /* relative tolerance (adaptive methods; >= 0, 0
+                       * for 1e-6, the command line's default: a pure
+                       * absolute control is not offered) */
+    double atol;      /* absolute tolerance (adaptive methods; >= 0, 0
+                       * for 1e-8) */
     long max_steps;   /* per advance call, 0 for the solver's default */
     const char *linsol;  /* linear solver name (--linsol); NULL or "" for
                           * the method's default */
@@ -124,7 +127,11 @@ static inline bool cl_integrator_fixed(const cl_integrator_type *type,
 /* type->create behind the memory guard (memguard.h): refused with the
  * estimate when it exceeds the available memory, unless o->force; and
  * refused (CL_EINVAL) when the system has barriers and the initial state
- * has a particle at d <= 0 of one. */
+ * has a particle at d <= 0 of one, or when type, sys or o is NULL (as
+ * cl_integrator_find gives for an unknown name).  An option the type does
+ * not take (its takes_* flag false: a linsol of rk4, a table of
+ * cvode-bdf, ...) is ignored, not refused: that check is the caller's, as
+ * the command line makes it. */
 cl_status cl_integrator_create(const cl_integrator_type *type,
                                const cl_system *sys,
                                const cl_integrator_opts *o, double t0,

@@ -494,11 +494,12 @@ static cl_status sun_check(const char *name, const cl_system *sys,
                             need_jac ? " and an analytic Jacobian" : "");
     if (!isfinite(t0) || !(o->rtol >= 0.0) || !(o->atol >= 0.0) ||
         !isfinite(o->rtol) || !isfinite(o->atol) || !(o->dt >= 0.0) ||
-        !isfinite(o->dt) || o->max_steps < 0)
+        !isfinite(o->dt) || o->max_steps < 0 || o->max_order < 0)
         return cl_error_set(err, CL_EINVAL,
                             "%s: bad options t0 = %g, rtol = %g, atol = %g, "
-                            "dt = %g, max_steps = %ld (need finite, >= 0)",
-                            name, t0, o->rtol, o->atol, o->dt, o->max_steps);
+                            "dt = %g, max_steps = %ld, max_order = %d (need "
+                            "finite, >= 0)", name, t0, o->rtol, o->atol,
+                            o->dt, o->max_steps, o->max_order);
     return CL_OK;
 }
 
