@@ -1177,6 +1177,85 @@ Test(cli, run_from_a_state_continues_the_run)
     cli_lines_free(&lb);
 }
 
+/* Moving pins: compress's ends pushed in at 0.1 m/s.  Continued from its
+ * state at t = 0.1 with [init] time = 0.1 to 0.2, a run ends where one
+ * run to 0.2 ends, to round-off (the pins' times t0 + k dt against
+ * k dt), its series starting at t = 0.1; spectrum linearises there as
+ * at --state FILE --t 0.1; the studies, which run from t = 0, refuse
+ * that start; a time the state was not saved at is refused by the
+ * pins. */
+Test(cli, run_from_a_state_at_its_time)
+{
+    char whole[1024], first[1024], second[1024], state[1100], set[1200];
+    const char *common[] = {"run", "compress", "--set", "cloth.nu=11",
+                            "--integrator", "semi-be", "--dt", "1e-3",
+                            "--frames", "0", "--quiet", "--samples", "2",
+                            "--t-end"};
+    enum { NC = sizeof common / sizeof *common };
+    const char *args[NC + 12];
+    memcpy(args, common, sizeof common);
+    const char *tail1[] = {"0.2", "--out", in_tmp(whole, "cwhole"), NULL};
+    memcpy(args + NC, tail1, sizeof tail1);
+    cli_run_ok(args);
+    const char *tail2[] = {"0.1", "--out", in_tmp(first, "cfirst"), NULL};
+    memcpy(args + NC, tail2, sizeof tail2);
+    cli_run_ok(args);
+    snprintf(state, sizeof state, "%s/final.csv", first);
+    snprintf(set, sizeof set, "init.state=%s", state);
+    const char *tail3[] = {"0.2", "--set", set, "--set", "init.time=0.1",
+                           "--set", "init.perturb=0", "--out",
+                           in_tmp(second, "csecond"), NULL};
+    memcpy(args + NC, tail3, sizeof tail3);
+    cli_run_ok(args);
+    char pa[1300], pb[1300];
+    cli_lines la, lb;
+    snprintf(pa, sizeof pa, "%s/final.csv", whole);
+    snprintf(pb, sizeof pb, "%s/final.csv", second);
+    cli_read_lines(pa, &la);
+    cli_read_lines(pb, &lb);
+    cr_assert_eq(la.n, lb.n);
+    double worst = 0.0;
+    for (size_t k = 1; k < la.n; k++) {
+        double a[7], b[7];
+        cli_parse_row(la.line[k], a, 7, "final.csv");
+        cli_parse_row(lb.line[k], b, 7, "final.csv");
+        for (int i = 1; i < 7; i++)
+            worst = fmax(worst, fabs(a[i] - b[i]));
+    }
+    cr_assert_lt(worst, 1e-12, "continued run %g from the whole run",
+                 worst);
+    cli_lines_free(&la);
+    cli_lines_free(&lb);
+    snprintf(pb, sizeof pb, "%s/series.csv", second);
+    cli_read_lines(pb, &lb);
+    cr_assert(!strncmp(lb.line[1], "0.1,", 4), "first row %s", lb.line[1]);
+    cli_lines_free(&lb);
+
+    /* spectrum linearises at [init] time unless --t says otherwise */
+    char sa[1024], sb[1024];
+    cli_run_ok(LIST("spectrum", "compress", "--set", "cloth.nu=11",
+                    "--state", state, "--t", "0.1", "--quiet", "--out",
+                    in_tmp(sa, "cspa")));
+    cli_run_ok(LIST("spectrum", "compress", "--set", "cloth.nu=11", "--set",
+                    set, "--set", "init.time=0.1", "--set", "init.perturb=0",
+                    "--quiet", "--out", in_tmp(sb, "cspb")));
+    assert_same_files(sa, sb, LIST("spectrum.csv"));
+
+    cli_result r;
+    cli_run(&r, "stability", "compress", "--set", "cloth.nu=11",
+            "--integrator", "semi-be", "--t-end", "0.2", "--set", set, "--set", "init.time=0.1",
+            "--set", "init.perturb=0", "--out", in_tmp(second, "cstab"),
+            NULL);
+    cli_assert_error(&r, 0, "[init] time = 0.1", "studies run from", NULL);
+    cli_result_free(&r);
+    cli_run(&r, "run", "compress", "--set", "cloth.nu=11", "--set", set,
+            "--set", "init.time=0.05",
+            "--set", "init.perturb=0", "--out", in_tmp(second, "cbad"),
+            NULL);
+    cli_assert_error(&r, 0, "pinned particle", "[init] time = 0.05", NULL);
+    cli_result_free(&r);
+}
+
 /* csv alone: the series without frames, and says so; --frames K asked
  * for with it would change nothing and is refused, as is an empty list */
 Test(cli, run_format_csv_writes_no_frames)

@@ -714,8 +714,7 @@ static void write_state(const cl_model *m, const char *path, double shift,
 }
 
 /* The free particles start where the file puts them, at its velocities,
- * bit for bit; [init] perturb still moves them along y, by the same
- * draws as without a state. */
+ * bit for bit, at t = 0 unless [init] time says otherwise. */
 Test(model, init_state_is_the_initial_state)
 {
     char dir[512], path[600], set[700];
@@ -724,8 +723,7 @@ Test(model, init_state_is_the_initial_state)
     cl_model *plain = FD_MODEL("cloth.n=4", "pins.at=0,0 0,-1");
     size_t n = fd_n(plain), nf = cl_model_system(plain)->n;
     double *xs = fd_vec(n), *vs = fd_vec(n), *x = fd_vec(nf),
-           *v = fd_vec(nf), *want = fd_vec(nf), *x0 = fd_vec(nf),
-           *xp = fd_vec(nf);
+           *v = fd_vec(nf), *want = fd_vec(nf);
     write_state(plain, path, 0.05, 0.0, xs, vs);
     snprintf(set, sizeof set, "init.state=%s", path);
     cl_model *m = FD_MODEL("cloth.n=4", "pins.at=0,0 0,-1", set);
@@ -735,31 +733,11 @@ Test(model, init_state_is_the_initial_state)
     cr_assert_eq(memcmp(x, want, nf * sizeof *x), 0);
     cl_cloth_gather(c, vs, want);
     cr_assert_eq(memcmp(v, want, nf * sizeof *v), 0);
+    cr_assert_eq(cl_model_start_time(m), 0.0);
     cl_model_free(m);
 
-    /* perturb: the same displacement with and without the state */
-    cl_model *p0 = FD_MODEL("cloth.n=4", "pins.at=0,0 0,-1",
-                            "init.perturb=1e-3", "init.seed=7");
-    cl_model *ps = FD_MODEL("cloth.n=4", "pins.at=0,0 0,-1",
-                            "init.perturb=1e-3", "init.seed=7", set);
-    cr_assert_eq(cl_model_initial_state(plain, x0, v), CL_OK);
-    cr_assert_eq(cl_model_initial_state(p0, xp, v), CL_OK);
-    cr_assert_eq(cl_model_initial_state(ps, x, v), CL_OK);
-    cl_cloth_gather(c, xs, want);
-    size_t moved = 0;
-    for (size_t k = 0; k < nf; k++) {
-        double d0 = xp[k] - x0[k], ds = x[k] - want[k];
-        cr_assert_float_eq(ds, d0, 1e-15, "coordinate %zu: %g, %g", k, ds,
-                           d0);
-        moved += k % 3 == 1 && d0 != 0.0;
-        if (k % 3 != 1)
-            cr_assert_eq(ds, 0.0, "coordinate %zu moved off y", k);
-    }
-    cr_assert_eq(moved, nf / 3, "every free particle moves along y");
-    cl_model_free(p0);
-    cl_model_free(ps);
     cl_model_free(plain);
-    free(xs), free(vs), free(x), free(v), free(want), free(x0), free(xp);
+    free(xs), free(vs), free(x), free(v), free(want);
     tmp_rm_rf(dir);
 }
 
@@ -791,9 +769,39 @@ Test(model, init_state_relative_to_the_problem_file)
     tmp_rm_rf(dir);
 }
 
+/* A state saved at t = 0.5 of a pin moving at 1 m/s until t = 0.25: its
+ * pinned row is 0.25 m on, so the state is good at [init] time 0.5 (or
+ * any time after the stop) and refused at 0 or 0.1. */
+Test(model, init_time_places_the_pins)
+{
+    char dir[512], path[600], set[700];
+    tmp_mkdtemp(dir, sizeof dir, "statetime");
+    snprintf(path, sizeof path, "%s/s.csv", dir);
+    snprintf(set, sizeof set, "init.state=%s", path);
+    cl_model *plain = FD_MODEL("cloth.n=4", "pins.at=0,0",
+                               "pins.velocity=1,0,0", "pins.stop=0.25");
+    double *xs = fd_vec(fd_n(plain)), *vs = fd_vec(fd_n(plain));
+    write_state(plain, path, 0.05, 0.25, xs, vs);
+    cl_model *m = FD_MODEL("cloth.n=4", "pins.at=0,0", "pins.velocity=1,0,0",
+                           "pins.stop=0.25", set, "init.time=0.5");
+    cr_assert_eq(cl_model_start_time(m), 0.5);
+    cl_model_free(m);
+    expect_error(FD_SETS("cloth.n=4", "pins.at=0,0", "pins.velocity=1,0,0",
+                         "pins.stop=0.25", set, "init.time=0.1"),
+                 "pinned particle 0");
+    expect_error(FD_SETS("cloth.n=4", "pins.at=0,0", "pins.velocity=1,0,0",
+                         "pins.stop=0.25", set), "[init] time = 0 s");
+    /* a time without a state: the problem's own state is at t = 0 */
+    expect_error(FD_SETS("cloth.n=4", "init.time=1"), "[init] time");
+    expect_error(FD_SETS("cloth.n=4", set, "init.time=-1"), "time");
+    cl_model_free(plain);
+    free(xs), free(vs);
+    tmp_rm_rf(dir);
+}
+
 /* Refused: a pinned row away from its pin at t = 0 (a state of a moving
- * pin saved later), [init] velocity beside a state, a state of another
- * cloth. */
+ * pin saved later), [init] velocity or perturb beside a state, a state
+ * of another cloth. */
 Test(model, init_state_refusals)
 {
     char dir[512], path[600], set[700];
@@ -813,6 +821,8 @@ Test(model, init_state_refusals)
     write_state(plain, path, 0.05, 0.0, xs, vs);
     expect_error(FD_SETS("cloth.n=4", "pins.at=0,0", "init.velocity=0,1,0",
                          set), "[init] state");
+    expect_error(FD_SETS("cloth.n=4", "pins.at=0,0", "init.perturb=1e-3",
+                         set), "init.perturb=0");
     expect_status(FD_SETS("cloth.n=3", set), CL_EPARSE, "out of range");
     expect_status(FD_SETS("cloth.n=5", set), CL_EPARSE, "missing");
     cl_model_free(plain);

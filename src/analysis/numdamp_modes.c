@@ -134,6 +134,8 @@ cl_status cl_numdamp_modes_init(cl_model *m, double speed, bool equilibrium,
     memset(b, 0, sizeof *b);
     cl_status rc = cl_trial_repeatable(m, err);
     if (!rc)
+        rc = cl_trial_from_zero(m, err);
+    if (!rc)
         rc = cl_numdamp_undamped(m, err);
     if (rc)
         return rc;

@@ -58,7 +58,8 @@ typedef struct {
 /* ---- output schedule -------------------------------------------------- */
 
 typedef struct {
-    long nticks;   /* output times are tick * dt_tick */
+    double t0;     /* the model's start time */
+    long nticks;   /* output times are t0 + tick * dt_tick */
     double dt_tick;
     bool fixed;    /* fixed steps of dt_tick: the last tick is a step's
                     * end, not t_end itself */
@@ -66,24 +67,29 @@ typedef struct {
 
 static cl_status make_schedule(const cl_integrator_type *type,
                                const cl_integrator_opts *o,
-                               const cl_sim_opts *so, schedule *s,
+                               const cl_sim_opts *so, double t0, schedule *s,
                                cl_error *err)
 {
+    double span = so->t_end - t0;
+    s->t0 = t0;
+    if (!(span > 0))
+        return cl_error_set(err, CL_EINVAL, "t_end = %g is not after the "
+                            "start, [init] time = %g", so->t_end, t0);
     s->fixed = cl_integrator_fixed(type, o->dt);
     if (!s->fixed) {
         s->nticks = so->samples * (so->frames > 0 ? so->frames : 1);
-        s->dt_tick = so->t_end / (double)s->nticks;
+        s->dt_tick = span / (double)s->nticks;
         return CL_OK;
     }
-    double steps = so->t_end / o->dt;
+    double steps = span / o->dt;
     s->nticks = (long)llround(steps);
     s->dt_tick = o->dt;
     if (s->nticks < 1 || fabs(steps - (double)s->nticks) > 1e-9 * steps)
         return cl_error_set(err, CL_EINVAL,
-                            "t_end = %g is not a whole number of steps "
-                            "dt = %g (t_end/dt = %.12g); choose t_end or dt "
-                            "so that it is",
-                            so->t_end, o->dt, steps);
+                            "t_end - [init] time = %g is not a whole number "
+                            "of steps dt = %g (%.12g steps); choose t_end or "
+                            "dt so that it is",
+                            span, o->dt, steps);
     return CL_OK;
 }
 
@@ -97,11 +103,11 @@ static long tick_of(long k, long count, long nticks)
 
 /* The series' columns: t, kinetic, the potential terms, and at most 14
  * more (the header of simulate.h). */
-static cl_status open_series(sim *s, cl_error *err)
+static cl_status open_series(sim *s, double t0, cl_error *err)
 {
     cl_energy e;
     size_t n = 0;
-    s->sys->energy(s->sys->data, 0.0, s->x, s->v, &e);
+    s->sys->energy(s->sys->data, t0, s->x, s->v, &e);
     const char **names = malloc((e.nterm + 14) * sizeof *names);
     if (!names)
         return cl_error_set(err, CL_ENOMEM, "out of memory (series names)");
@@ -342,7 +348,7 @@ static cl_status reach(sim *s, const cl_integrator_type *type, void *state,
                        cl_error *err)
 {
     double t = tick == sch->nticks && !sch->fixed
-                   ? s->so->t_end : (double)tick * sch->dt_tick;
+                   ? s->so->t_end : sch->t0 + (double)tick * sch->dt_tick;
     double w0 = cl_clock_wall();
     double c0 = cl_clock_cpu();
     cl_status rc = type->advance(state, t, s->x, s->v, err);
@@ -398,7 +404,8 @@ static cl_status integrate(sim *s, const cl_integrator_type *type,
         ks += tick == ts;
         kf += tick == tf;
         if (so->progress)
-            so->progress(so->progress_ctx, res->t_reached / so->t_end);
+            so->progress(so->progress_ctx, (res->t_reached - sch->t0) /
+                                               (so->t_end - sch->t0));
         if (!rc && ks <= so->samples)
             rc = check_stop(s, type, state, res, err);
     }
@@ -411,7 +418,8 @@ static cl_status check_opts(const cl_sim_opts *so, cl_error *err)
 {
     if (!(so->t_end > 0) || !isfinite(so->t_end))
         return cl_error_set(err, CL_EINVAL, "t_end = %g: expected a finite "
-                            "number > 0", so->t_end);
+                            "number > 0 (and after the model's start time)",
+                            so->t_end);
     if (so->samples < 1 || so->frames < 0 || so->max_steps < 0)
         return cl_error_set(err, CL_EINVAL, "samples = %ld, frames = %ld, "
                             "max_steps = %ld: expected samples >= 1, "
@@ -435,14 +443,15 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
 {
     sim s = {.m = m, .c = cl_model_cloth(m), .sys = cl_model_system(m),
              .so = so};
-    schedule sch;
+    schedule sch = {0};
     void *state = NULL;
     bool writing = false; /* outdir prepared: outputs may go there */
     memset(res, 0, sizeof *res);
     cl_status bad = check_opts(so, err);
     if (bad)
         return bad;
-    cl_model_contact_start(m, 0.0, false);
+    double t0 = cl_model_start_time(m);
+    cl_model_contact_start(m, t0, false);
     size_t n3 = 3 * s.c->np, npot = cl_model_potentials(m);
     res->xfinal = malloc((n3 + 2 * npot) * sizeof *res->xfinal);
     cl_status rc = res->xfinal ? CL_OK
@@ -457,18 +466,18 @@ cl_status cl_simulate(cl_model *m, const cl_integrator_type *type,
     }
     /* the integrator first: one that refuses the problem (a contact
      * response it cannot apply, ...) stops the run before any output */
-    if (!rc && !(rc = make_schedule(type, iopts, so, &sch, err)) &&
+    if (!rc && !(rc = make_schedule(type, iopts, so, t0, &sch, err)) &&
         !(rc = sim_alloc(&s, err)) &&
-        !(rc = cl_integrator_create(type, s.sys, iopts, 0.0, s.x, s.v,
+        !(rc = cl_integrator_create(type, s.sys, iopts, t0, s.x, s.v,
                                     &state, err)) &&
         !(rc = so->before_output
                    ? so->before_output(so->before_output_ctx, err)
                    : CL_OK) &&
         !(rc = cl_mkdir_p(so->outdir, err)) && (writing = true) &&
-        !(rc = open_series(&s, err)) && !(rc = sample(&s, 0.0, res, err))) {
+        !(rc = open_series(&s, t0, err)) && !(rc = sample(&s, t0, res, err))) {
         cl_energy_keep(&res->e0, &res->e1, s.e0_terms);
         if (so->frames > 0)
-            rc = write_frame(&s, 0.0, res, err);
+            rc = write_frame(&s, t0, res, err);
         if (!rc)
             rc = integrate(&s, type, state, &sch, res, err);
     }

@@ -17,8 +17,9 @@
  *   stats.csv    the integrator's counters (name,value); its wall and CPU
  *                time are in the result only, so that two identical runs
  *                write identical bytes
- * Fixed-step integrators are sampled on their own step grid; t_end must be a
- * multiple of dt. */
+ * A run starts at the model's start time t0 (cl_model_start_time: 0, or
+ * [init] time) from its initial state.  Fixed-step integrators are sampled
+ * on their own step grid; t_end - t0 must be a multiple of dt. */
 #ifndef CL_SIMULATE_H
 #define CL_SIMULATE_H
 
@@ -31,9 +32,9 @@
 CL_BEGIN_DECLS
 
 typedef struct {
-    double t_end;        /* > 0 */
-    long samples;        /* time-series rows after t = 0, >= 1 */
-    long frames;         /* frames after t = 0 (0: none) */
+    double t_end;        /* > 0, and > the model's start time t0 */
+    long samples;        /* time-series rows after t0, >= 1 */
+    long frames;         /* frames after t0 (0: none) */
     bool vtk, obj;       /* frame formats */
     const char *outdir;
     double max_stretch;  /* a larger max d/L counts as a blow-up; >= 1,
@@ -55,10 +56,10 @@ typedef struct {
 typedef struct {
     cl_stats stats;
     double t_reached;    /* last time with a good state */
-    cl_energy e0, e1;    /* energies at t = 0 and at t_reached */
+    cl_energy e0, e1;    /* energies at t0 and at t_reached */
     double max_stretch;  /* at t_reached */
     double max_offplane; /* at t_reached (NaN: does not apply) */
-    long rows;           /* time-series rows written (incl. t = 0) */
+    long rows;           /* time-series rows written (incl. t0) */
     long frames;         /* frames written */
     const char *state_file; /* the state file written, at t_reached:
                              * "final.csv", "last-good.csv" (a failed

@@ -30,11 +30,24 @@ cl_status cl_trial_whole_steps(const cl_integrator_type *type, double dt,
     return CL_OK;
 }
 
+cl_status cl_trial_from_zero(const cl_model *m, cl_error *err)
+{
+    double t0 = cl_model_start_time(m);
+    if (t0 != 0.0)
+        return cl_error_set(err, CL_EUNSUPPORTED, "[init] time = %g: the "
+                            "studies run from t = 0 (a state of another "
+                            "time is for run, spectrum and eval)", t0);
+    return CL_OK;
+}
+
 cl_status cl_trial_init(cl_trial *t, cl_model *m, cl_error *err)
 {
     const cl_cloth *c = cl_model_cloth(m);
     size_t n = cl_model_system(m)->n;
     memset(t, 0, sizeof *t);
+    cl_status rc = cl_trial_from_zero(m, err);
+    if (rc)
+        return rc;
     t->m = m;
     t->x = malloc(n * sizeof *t->x);
     t->v = malloc(n * sizeof *t->v);

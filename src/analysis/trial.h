@@ -43,6 +43,10 @@ cl_status cl_trial_repeatable(cl_model *m, cl_error *err);
 cl_status cl_trial_whole_steps(const cl_integrator_type *type, double dt,
                                double T, cl_error *err);
 
+/* CL_EUNSUPPORTED unless the model starts at t = 0 (cl_model_start_time):
+ * the studies' runs start there.  cl_trial_init checks it. */
+cl_status cl_trial_from_zero(const cl_model *m, cl_error *err);
+
 cl_status cl_trial_init(cl_trial *t, cl_model *m, cl_error *err);
 void cl_trial_free(cl_trial *t);
 

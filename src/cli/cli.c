@@ -271,6 +271,12 @@ void cl_cli_default_out(const char *problem, char *buf, size_t len)
     free(abs);
 }
 
+double cl_cli_state_time(const cl_config *cfg, const char *sec,
+                         const cl_model *m, double t)
+{
+    return cl_config_peek(cfg, sec, "t") ? t : cl_model_start_time(m);
+}
+
 cl_status cl_cli_free_state(cl_model *m, const char *path, double *x,
                             double *v, cl_error *err)
 {

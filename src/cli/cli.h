@@ -187,9 +187,15 @@ cl_status cl_cli_methods_fixed(cl_config *cfg, const cl_cli_methods *ms,
 
 /* Create and free every method on the model's initial state, so that an
  * option it refuses (an unknown linear solver, a cloth too large for a
- * dense method) stops a study before it starts. */
+ * dense method), or a model that does not start at t = 0
+ * (cl_trial_from_zero), stops a study before it starts. */
 cl_status cl_cli_methods_try(cl_model *model, const cl_cli_methods *ms,
                              cl_error *err);
+
+/* The time of the state a command linearises at: [sec] t (--t) when
+ * given, else the model's start time ([init] time, 0 by default). */
+double cl_cli_state_time(const cl_config *cfg, const char *sec,
+                         const cl_model *m, double t);
 
 /* The free state x, v of m read from a state file (final.csv's format),
  * or its initial state when path is "". */

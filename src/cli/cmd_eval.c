@@ -28,7 +28,8 @@ static const cl_cli_opt eval_rows[] = {
      .key = "t", .lo = -INFINITY, .hi = INFINITY,
      .field = offsetof(eval_args, t),
      .help = "time of the state, where moving obstacles are (the pinned "
-             "particles keep the state's positions; default 0)"},
+             "particles keep the state's positions; default [init] time, "
+             "0 unless given)"},
     {.name = "jacobian", .arg = "FILE", .type = CL_CLI_STRING, .sec = "eval",
      .key = "jacobian", .field = offsetof(eval_args, jac_x),
      .help = "also write df/dx over all particles (Matrix Market): the "
@@ -168,7 +169,8 @@ static cl_status check_outputs(const eval_args *a, const char *dir,
 static cl_status evaluate(cl_model *m, const cl_cli_job *job, void *ctx,
                          cl_error *err)
 {
-    const eval_args *a = ctx;
+    eval_args at = *(const eval_args *)ctx, *a = &at;
+    at.t = cl_cli_state_time(job->cfg, "eval", m, at.t);
     size_t np = cl_model_cloth(m)->np;
     double *x = malloc(3 * np * sizeof *x), *v = malloc(3 * np * sizeof *v);
     double *f = malloc(3 * np * sizeof *f);

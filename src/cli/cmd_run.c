@@ -45,7 +45,8 @@ static const cl_cli_table run_table = {
     "once, --max-steps at the first output time after its N steps; the\n"
     "outputs up to the last output time are written as after a finished\n"
     "run (the steps since it are not: more --samples keep more); a run\n"
-    "from that final.csv (--set init.state=FILE) goes on from there.  A run that\n"
+    "from that final.csv (--set init.state=FILE --set init.time=T, T the\n"
+    "time reached) goes on from there.  A run that\n"
     "fails (a blow-up, a solver failure, ...) after its first sample writes\n"
     "last-good.csv instead of final.csv: the state of its last good sample.\n",
     .notes =

@@ -22,7 +22,8 @@ static const cl_cli_opt spec_rows[] = {
      .key = "t", .lo = -INFINITY, .hi = INFINITY,
      .field = offsetof(spec_setup, t),
      .help = "time of that state, where moving obstacles are (the pinned "
-             "particles keep the state's positions; default 0)"},
+             "particles keep the state's positions; default [init] time, "
+             "0 unless given)"},
     CL_CLI_TAIL(spec_setup, "no summary on stdout"),
     {.type = CL_CLI_END}};
 
@@ -78,7 +79,9 @@ static cl_status spectrum(cl_model *m, const cl_cli_job *job, void *ctx,
     cl_status rc = x && v ? cl_cli_free_state(m, s->state, x, v, err)
                           : cl_error_set(err, CL_ENOMEM, "out of memory");
     if (!rc && !(rc = cl_cli_check_output(job->outdir, "spectrum.csv", err)) &&
-        !(rc = cl_spectrum_compute(m, s->t, x, v, &sp, err)) &&
+        !(rc = cl_spectrum_compute(m, cl_cli_state_time(job->cfg,
+                                                         "spectrum", m, s->t),
+                                   x, v, &sp, err)) &&
         !(rc = cl_cli_write_csv(job->outdir, "spectrum.csv", write_rows, &sp,
                                 1, err)) && !job->quiet) {
         print_summary(job, &sp);

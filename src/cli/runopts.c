@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "analysis/trial.h"
 #include "cli/cli.h"
 
 #define RUN_ROW(f) .sec = "run", .field = offsetof(cl_cli_run, f)
@@ -452,9 +453,12 @@ cl_status cl_cli_methods_try(cl_model *model, const cl_cli_methods *ms,
                              cl_error *err)
 {
     const cl_system *sys = cl_model_system(model);
+    cl_status rc = cl_trial_from_zero(model, err);
+    if (rc)
+        return rc;
     double *x = malloc(sys->n * sizeof *x), *v = malloc(sys->n * sizeof *v);
-    cl_status rc = x && v ? cl_model_initial_state(model, x, v)
-                          : cl_error_set(err, CL_ENOMEM, "out of memory");
+    rc = x && v ? cl_model_initial_state(model, x, v)
+                : cl_error_set(err, CL_ENOMEM, "out of memory");
     for (int k = 0; !rc && k < ms->n; k++) {
         const cl_cli_method *m = &ms->m[k];
         void *state = NULL;

@@ -24,8 +24,9 @@
 struct cl_model {
     cl_cloth cloth;
     double v0[3];         /* initial velocity of the free particles */
-    double *xs, *vs;      /* [init] state: the free state at t = 0 (3 nfree
+    double *xs, *vs;      /* [init] state: the free state at t0 (3 nfree
                            * each), or NULL */
+    double t0;            /* [init] time: the time of the initial state */
     double perturb;       /* amplitude of the initial out-of-plane noise */
     long seed;            /* its random seed */
     cl_term_opts opts;
@@ -73,15 +74,15 @@ static cl_status read_init(cl_config *cfg, cl_model *m, cl_error *err)
 }
 
 /* The largest distance, over the pinned particles, between a state's
- * position xs (3 np) and where the pin holds the particle at t = 0; the
- * pin with it in *worst. */
-static double pin_mismatch(const cl_cloth *c, const double *xs,
+ * position xs (3 np) and where the pin holds the particle at t0; the pin
+ * with it in *worst. */
+static double pin_mismatch(const cl_cloth *c, double t0, const double *xs,
                            size_t *worst)
 {
     double far = 0.0;
     for (size_t k = 0; k < c->npin; k++) {
         double at[3];
-        cl_cloth_pin_position(c, k, 0.0, at);
+        cl_cloth_pin_position(c, k, t0, at);
         const double *x = xs + 3 * (size_t)c->pins[k].p;
         double d = hypot(hypot(x[0] - at[0], x[1] - at[1]), x[2] - at[2]);
         if (!(d <= far)) {
@@ -108,44 +109,55 @@ static double rest_extent(const cl_cloth *c)
 }
 
 /* A state file's pinned rows must be where the pins hold those particles
- * at t = 0: a state saved at another time of a problem whose pins move
- * would otherwise start with its pins jumping back. */
+ * at [init] time: a state saved at another time of a problem whose pins
+ * move would otherwise start with its pins jumping. */
 static cl_status check_state_pins(cl_config *cfg, const cl_cloth *c,
-                                  const double *xs, cl_error *err)
+                                  double t0, const double *xs, cl_error *err)
 {
     size_t k = 0;
-    double far = pin_mismatch(c, xs, &k);
+    double far = pin_mismatch(c, t0, xs, &k);
     if (far <= 1e-9 * rest_extent(c))
         return CL_OK;
     double at[3];
     const double *x = xs + 3 * (size_t)c->pins[k].p;
-    cl_cloth_pin_position(c, k, 0.0, at);
+    cl_cloth_pin_position(c, k, t0, at);
     char why[512];
     snprintf(why, sizeof why, "pinned particle %d is at (%.9g, %.9g, %.9g), "
-             "%.3g m from where its pin holds it at t = 0, (%.9g, %.9g, "
-             "%.9g): the state is read as the state at t = 0, so its pinned "
-             "rows must be there (a state saved at another time of a "
-             "problem whose pins move is not one)",
-             c->pins[k].p, x[0], x[1], x[2], far, at[0], at[1], at[2]);
+             "%.3g m from where its pin holds it at [init] time = %g s, "
+             "(%.9g, %.9g, %.9g): give the time the state was saved at as "
+             "[init] time", c->pins[k].p, x[0], x[1], x[2], far, t0, at[0],
+             at[1], at[2]);
     return cl_config_refuse(cfg, "init", "state", CL_EINVAL, why, err);
 }
 
 /* [init] state: a state file (final.csv) whose free particles' positions
- * and velocities are the state at t = 0 (README "[init]"). */
+ * and velocities are the state at [init] time (README "[init]"). */
 static cl_status read_state(cl_config *cfg, cl_model *m, cl_error *err)
 {
+    cl_status rc = cl_config_double(cfg, "init", "time", 0.0, 0.0, 1e12,
+                                    &m->t0, err);
+    if (rc)
+        return rc;
     if (!*cl_config_string(cfg, "init", "state", ""))
-        return CL_OK;
+        return m->t0 == 0.0
+                   ? CL_OK
+                   : cl_config_refuse(cfg, "init", "time", CL_EINVAL,
+                                      "the time of [init] state, which is "
+                                      "not given (the problem's own "
+                                      "initial state is at t = 0)", err);
     const cl_cloth *c = &m->cloth;
     char path[4096];
-    cl_status rc = cl_config_path_of(cfg, "init", "state", path, sizeof path,
-                                     err);
-    if (rc)
+    if ((rc = cl_config_path_of(cfg, "init", "state", path, sizeof path,
+                                err)))
         return rc;
     if (cl_config_peek(cfg, "init", "velocity"))
         return cl_config_refuse(cfg, "init", "velocity", CL_EINVAL,
                                 "given with [init] state, whose file gives "
                                 "the velocities", err);
+    if (m->perturb > 0) /* a run continued from its state: not again */
+        return cl_config_refuse(cfg, "init", "perturb", CL_EINVAL,
+                                "given with [init] state, whose file gives "
+                                "the positions (set init.perturb=0)", err);
     double *xf = malloc(3 * c->np * sizeof *xf);
     double *vf = malloc(3 * c->np * sizeof *vf);
     m->xs = malloc((3 * c->nfree + 1) * sizeof *m->xs);
@@ -156,7 +168,7 @@ static cl_status read_state(cl_config *cfg, cl_model *m, cl_error *err)
         char why[sizeof err->msg];
         snprintf(why, sizeof why, "%s", err->msg);
         rc = cl_config_refuse(cfg, "init", "state", rc, why, err);
-    } else if (!(rc = check_state_pins(cfg, c, xf, err))) {
+    } else if (!(rc = check_state_pins(cfg, c, m->t0, xf, err))) {
         cl_cloth_gather(c, xf, m->xs);
         cl_cloth_gather(c, vf, m->vs);
     }
@@ -770,13 +782,15 @@ cl_status cl_model_initial_state(const cl_model *m, double *x, double *v)
     if (m->xs) {
         memcpy(x, m->xs, n * sizeof *x);
         memcpy(v, m->vs, n * sizeof *v);
-    } else {
-        cl_cloth_gather(&m->cloth, m->cloth.X0, x);
-        for (size_t k = 0; k < n; k++)
-            v[k] = m->v0[k % 3];
+        return CL_OK;
     }
+    cl_cloth_gather(&m->cloth, m->cloth.X0, x);
+    for (size_t k = 0; k < n; k++)
+        v[k] = m->v0[k % 3];
     return m->perturb > 0 ? perturb_positions(m, x) : CL_OK;
 }
+
+double cl_model_start_time(const cl_model *m) { return m->t0; }
 
 size_t cl_model_terms(const cl_model *m, const char *const **names)
 {

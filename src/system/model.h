@@ -48,9 +48,13 @@ const cl_system *cl_model_system(cl_model *m);
 const cl_cloth *cl_model_cloth(const cl_model *m);
 
 /* Initial state of the free particles (3*nfree each): rest positions plus
- * the [init] out-of-plane noise, and the [init] velocity.  CL_ENOMEM is the
- * only failure. */
+ * the [init] out-of-plane noise, and the [init] velocity; or those of the
+ * [init] state file.  CL_ENOMEM is the only failure. */
 cl_status cl_model_initial_state(const cl_model *m, double *x, double *v);
+
+/* The time of that initial state: [init] time (s, >= 0), 0 unless an
+ * [init] state gives another; runs start there. */
+double cl_model_start_time(const cl_model *m);
 
 /* Connections torn so far (docs/model.md, 3.4): distinct particle pairs,
  * however many terms (a spring and its damper, ...) had a force on the
