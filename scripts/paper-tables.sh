@@ -81,10 +81,13 @@ awk -F, 'NR > 1 && $NF == "ok" {
                 ($1 == last ? "" : $1), $2, $3, $4, $11, $9; last = $1 }' \
     "$res/workprecision/workprecision.csv" > "$tex/workprecision.tex"
 
-# Wrinkles of compress: method, step, time reached, amplitude, count.
-awk '{ split($2, kv, "="); printf "%s & %s %s & %s & %.4f & %d & %s \\\\\n",
-       $1, kv[1], kv[2], $3, $4, $5, $6 }' \
-    "$res/wrinkles/wrinkles.txt" > "$tex/wrinkles.tex"
+# Wrinkles of compress, forming (wrinkles) and formed (kept): method,
+# step, time reached, amplitude, count.
+for t in wrinkles kept; do
+    awk '{ split($2, kv, "="); printf "%s & %s %s & %s & %.4f & %d & %s \\\\\n",
+           $1, kv[1], kv[2], $3, $4, $5, $6 }' \
+        "$res/wrinkles/$t.txt" > "$tex/$t.tex"
+done
 
 # Predictability of hang: tables of rtol rows, one column per T (the
 # sensitivity and the mirror asymmetry), and the parameter variants.

@@ -269,26 +269,51 @@ echo "report: wrinkles under large steps (compress, T = 1 s)"
 # far it got before it blew up: "method dt t_reached amplitude wrinkles".
 wr=$res/wrinkles
 rm -rf "$wr" && mkdir -p "$wr"
-wrinkle_run() { # label dir args...
-    local label=$1 dir=$2
-    shift 2
+wrinkle_run() { # table label dir args...
+    local table=$1 label=$2 dir=$3
+    shift 3
     local status=ok
     "$bin" run compress --quiet --frames 0 --samples 100 --out "$dir" "$@" \
         2> "$dir.err" || status=blow-up
     awk -F, -v l="$label" -v s="$status" 'NR > 1 { t = $1; a = $(NF - 2); w = $(NF - 1) }
-        END { print l, t, a, w, s }' "$dir/series.csv" >> "$wr/wrinkles.txt"
+        END { print l, t, a, w, s }' "$dir/series.csv" >> "$table"
     awk -F, 'NR > 1 { print $1, $(NF - 2) }' "$dir/series.csv" > "$dir.dat"
 }
-wrinkle_run "cvode-bdf rtol=1e-6" "$wr/reference"
+wrinkle_run "$wr/wrinkles.txt" "cvode-bdf rtol=1e-6" "$wr/reference"
 names="reference"
 for m in semi-be semi-bdf2; do
     for dt in 1e-3 2e-3 5e-3 1e-2 2e-2; do
-        wrinkle_run "$m dt=$dt" "$wr/$m-$dt" --integrator "$m" --dt "$dt"
+        wrinkle_run "$wr/wrinkles.txt" "$m dt=$dt" "$wr/$m-$dt" \
+            --integrator "$m" --dt "$dt"
     done
     names="$names $m-1e-3 $m-5e-3 $m-1e-2"
 done
 cat "$wr/wrinkles.txt"
 draw wrinkles "dir='$wr'; names='$names'; title_text='compress: largest out-of-plane displacement'"
+
+echo "report: the formed wrinkle under large steps (compress from t = 1 s to 2 s)"
+# The reference's state at t = 1 s (the ends stopped at 0.4 s), continued
+# to 2 s ([init] state and time) by each method, as above.
+formed=(--set "init.state=$wr/reference/final.csv" --set init.time=1
+        --set init.perturb=0)
+wrinkle_run "$wr/kept.txt" "cvode-bdf rtol=1e-6" "$wr/kept-reference" \
+    --t-end 2 "${formed[@]}"
+for m in semi-be semi-bdf2; do
+    for dt in 1e-2 5e-2 1e-1 2e-1 5e-1 1; do
+        wrinkle_run "$wr/kept.txt" "$m dt=$dt" "$wr/kept-$m-$dt" \
+            --integrator "$m" --dt "$dt" --t-end 2 "${formed[@]}"
+    done
+done
+cat "$wr/kept.txt"
+# the stiffness of the formed state and of the strip being pushed (the
+# reference at t = 0.2 s): their negative eigenvalues
+echo "formed, t = 1 s:"
+"$bin" spectrum compress "${formed[@]}" --out "$wr/formed-spectrum" |
+    grep -E '^(stiffness|first order)'
+"$bin" run compress --t-end 0.2 --frames 0 --quiet --out "$wr/pushed"
+echo "pushed, t = 0.2 s:"
+"$bin" spectrum compress --state "$wr/pushed/final.csv" --t 0.2 \
+    --out "$wr/pushed-spectrum" | grep -E '^(stiffness|first order)'
 
 echo "report: predictability of hang (n = 10), cvode-bdf against rtol 1e-11"
 scripts/hang-sensitivity.sh 10 0.2 0.5 > "$res/sensitivity.txt"
