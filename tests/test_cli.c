@@ -1131,6 +1131,17 @@ Test(cli, run_config_ini_reproduces_the_run)
     assert_same_files(out, again, LIST("series.csv", "final.csv"));
 }
 
+/* The file `name` of two run directories, as lines. */
+static void read_pair(const char *a, const char *b, const char *name,
+                      cli_lines *la, cli_lines *lb)
+{
+    char pa[1300], pb[1300];
+    snprintf(pa, sizeof pa, "%s/%s", a, name);
+    snprintf(pb, sizeof pb, "%s/%s", b, name);
+    cli_read_lines(pa, la);
+    cli_read_lines(pb, lb);
+}
+
 /* A run from a state ([init] state = the final.csv of a run to T) of a
  * problem whose pins and forces do not change with time continues that
  * run: with a one-step method of fixed steps, run to T and then from its
@@ -1161,12 +1172,8 @@ Test(cli, run_from_a_state_continues_the_run)
     cli_run_ok(args);
     assert_same_files(whole, second, LIST("final.csv"));
 
-    char pa[1300], pb[1300];
     cli_lines la, lb;
-    snprintf(pa, sizeof pa, "%s/series.csv", whole);
-    snprintf(pb, sizeof pb, "%s/series.csv", second);
-    cli_read_lines(pa, &la);
-    cli_read_lines(pb, &lb);
+    read_pair(whole, second, "series.csv", &la, &lb);
     cr_assert_eq(la.n, 6, "header and 5 rows, %zu lines", la.n);
     cr_assert_eq(lb.n, 4, "header and 3 rows, %zu lines", lb.n);
     cr_assert_str_eq(la.line[0], lb.line[0]);
@@ -1207,12 +1214,8 @@ Test(cli, run_from_a_state_at_its_time)
                            in_tmp(second, "csecond"), NULL};
     memcpy(args + NC, tail3, sizeof tail3);
     cli_run_ok(args);
-    char pa[1300], pb[1300];
     cli_lines la, lb;
-    snprintf(pa, sizeof pa, "%s/final.csv", whole);
-    snprintf(pb, sizeof pb, "%s/final.csv", second);
-    cli_read_lines(pa, &la);
-    cli_read_lines(pb, &lb);
+    read_pair(whole, second, "final.csv", &la, &lb);
     cr_assert_eq(la.n, lb.n);
     double worst = 0.0;
     for (size_t k = 1; k < la.n; k++) {
@@ -1226,9 +1229,9 @@ Test(cli, run_from_a_state_at_its_time)
                  worst);
     cli_lines_free(&la);
     cli_lines_free(&lb);
-    snprintf(pb, sizeof pb, "%s/series.csv", second);
-    cli_read_lines(pb, &lb);
+    read_pair(whole, second, "series.csv", &la, &lb);
     cr_assert(!strncmp(lb.line[1], "0.1,", 4), "first row %s", lb.line[1]);
+    cli_lines_free(&la);
     cli_lines_free(&lb);
 
     /* spectrum linearises at [init] time unless --t says otherwise */

@@ -713,45 +713,68 @@ static void write_state(const cl_model *m, const char *path, double shift,
     cr_assert_eq(fclose(f), 0);
 }
 
-/* The free particles start where the file puts them, at its velocities,
- * bit for bit, at t = 0 unless [init] time says otherwise. */
-Test(model, init_state_is_the_initial_state)
+/* A state of `plain` (write_state, free particles 0.05 off, pinned ones
+ * pin_shift) in a fresh directory dir (512 bytes), named by "init.state=
+ * PATH" in set (700 bytes); its arrays into *xs, *vs (to free). */
+static void state_case(const cl_model *plain, const char *tag,
+                       double pin_shift, char *dir, char *set, double **xs,
+                       double **vs)
 {
-    char dir[512], path[600], set[700];
-    tmp_mkdtemp(dir, sizeof dir, "state");
+    char path[600];
+    tmp_mkdtemp(dir, 512, tag);
     snprintf(path, sizeof path, "%s/s.csv", dir);
-    cl_model *plain = FD_MODEL("cloth.n=4", "pins.at=0,0 0,-1");
-    size_t n = fd_n(plain), nf = cl_model_system(plain)->n;
-    double *xs = fd_vec(n), *vs = fd_vec(n), *x = fd_vec(nf),
-           *v = fd_vec(nf), *want = fd_vec(nf);
-    write_state(plain, path, 0.05, 0.0, xs, vs);
-    snprintf(set, sizeof set, "init.state=%s", path);
-    cl_model *m = FD_MODEL("cloth.n=4", "pins.at=0,0 0,-1", set);
-    const cl_cloth *c = cl_model_cloth(plain);
+    snprintf(set, 700, "init.state=%s", path);
+    *xs = fd_vec(fd_n(plain));
+    *vs = fd_vec(fd_n(plain));
+    write_state(plain, path, 0.05, pin_shift, *xs, *vs);
+}
+
+/* What state_case made, and the model it was made for. */
+static void state_case_free(cl_model *plain, double *xs, double *vs,
+                            const char *dir)
+{
+    cl_model_free(plain);
+    free(xs), free(vs);
+    tmp_rm_rf(dir);
+}
+
+/* m's initial state is the free part of xs, vs (3 np each), bit for bit. */
+static void assert_initial_state(const cl_model *m, const double *xs,
+                                 const double *vs)
+{
+    const cl_cloth *c = cl_model_cloth(m);
+    size_t nf = 3 * c->nfree;
+    double *x = fd_vec(nf), *v = fd_vec(nf), *want = fd_vec(nf);
     cr_assert_eq(cl_model_initial_state(m, x, v), CL_OK);
     cl_cloth_gather(c, xs, want);
     cr_assert_eq(memcmp(x, want, nf * sizeof *x), 0);
     cl_cloth_gather(c, vs, want);
     cr_assert_eq(memcmp(v, want, nf * sizeof *v), 0);
+    free(x), free(v), free(want);
+}
+
+/* The free particles start where the file puts them, at its velocities,
+ * bit for bit, at t = 0 unless [init] time says otherwise. */
+Test(model, init_state_is_the_initial_state)
+{
+    char dir[512], set[700];
+    double *xs, *vs;
+    cl_model *plain = FD_MODEL("cloth.n=4", "pins.at=0,0 0,-1");
+    state_case(plain, "state", 0.0, dir, set, &xs, &vs);
+    cl_model *m = FD_MODEL("cloth.n=4", "pins.at=0,0 0,-1", set);
+    assert_initial_state(m, xs, vs);
     cr_assert_eq(cl_model_start_time(m), 0.0);
     cl_model_free(m);
-
-    cl_model_free(plain);
-    free(xs), free(vs), free(x), free(v), free(want);
-    tmp_rm_rf(dir);
+    state_case_free(plain, xs, vs, dir);
 }
 
 /* A relative [init] state is relative to the problem file, as a mesh. */
 Test(model, init_state_relative_to_the_problem_file)
 {
-    char dir[512], path[600];
-    tmp_mkdtemp(dir, sizeof dir, "staterel");
+    char dir[512], set[700], path[600];
+    double *xs, *vs;
     cl_model *plain = FD_MODEL("cloth.n=3");
-    size_t n = fd_n(plain), nf = cl_model_system(plain)->n;
-    double *xs = fd_vec(n), *vs = fd_vec(n), *x = fd_vec(nf),
-           *v = fd_vec(nf), *want = fd_vec(nf);
-    snprintf(path, sizeof path, "%s/s.csv", dir);
-    write_state(plain, path, 0.1, 0.0, xs, vs);
+    state_case(plain, "staterel", 0.0, dir, set, &xs, &vs);
     snprintf(path, sizeof path, "%s/p.ini", dir);
     tmp_put(path, "[cloth]\nn = 3\n\n[init]\nstate = s.csv\n");
     cl_config *cfg = cl_config_alloc();
@@ -759,14 +782,10 @@ Test(model, init_state_relative_to_the_problem_file)
     cl_error err = {0};
     cr_assert_eq(cl_config_load(cfg, path, &err), CL_OK, "%s", err.msg);
     cr_assert_eq(cl_model_create(cfg, &m, &err), CL_OK, "%s", err.msg);
-    cr_assert_eq(cl_model_initial_state(m, x, v), CL_OK);
-    cl_cloth_gather(cl_model_cloth(m), xs, want);
-    cr_assert_eq(memcmp(x, want, nf * sizeof *x), 0);
+    assert_initial_state(m, xs, vs);
     cl_model_free(m);
     cl_config_free(cfg);
-    cl_model_free(plain);
-    free(xs), free(vs), free(x), free(v), free(want);
-    tmp_rm_rf(dir);
+    state_case_free(plain, xs, vs, dir);
 }
 
 /* A state saved at t = 0.5 of a pin moving at 1 m/s until t = 0.25: its
@@ -774,14 +793,11 @@ Test(model, init_state_relative_to_the_problem_file)
  * any time after the stop) and refused at 0 or 0.1. */
 Test(model, init_time_places_the_pins)
 {
-    char dir[512], path[600], set[700];
-    tmp_mkdtemp(dir, sizeof dir, "statetime");
-    snprintf(path, sizeof path, "%s/s.csv", dir);
-    snprintf(set, sizeof set, "init.state=%s", path);
+    char dir[512], set[700];
+    double *xs, *vs;
     cl_model *plain = FD_MODEL("cloth.n=4", "pins.at=0,0",
                                "pins.velocity=1,0,0", "pins.stop=0.25");
-    double *xs = fd_vec(fd_n(plain)), *vs = fd_vec(fd_n(plain));
-    write_state(plain, path, 0.05, 0.25, xs, vs);
+    state_case(plain, "statetime", 0.25, dir, set, &xs, &vs);
     cl_model *m = FD_MODEL("cloth.n=4", "pins.at=0,0", "pins.velocity=1,0,0",
                            "pins.stop=0.25", set, "init.time=0.5");
     cr_assert_eq(cl_model_start_time(m), 0.5);
@@ -794,9 +810,7 @@ Test(model, init_time_places_the_pins)
     /* a time without a state: the problem's own state is at t = 0 */
     expect_error(FD_SETS("cloth.n=4", "init.time=1"), "[init] time");
     expect_error(FD_SETS("cloth.n=4", set, "init.time=-1"), "time");
-    cl_model_free(plain);
-    free(xs), free(vs);
-    tmp_rm_rf(dir);
+    state_case_free(plain, xs, vs, dir);
 }
 
 /* Refused: a pinned row away from its pin at t = 0 (a state of a moving
@@ -804,14 +818,12 @@ Test(model, init_time_places_the_pins)
  * of another cloth. */
 Test(model, init_state_refusals)
 {
-    char dir[512], path[600], set[700];
-    tmp_mkdtemp(dir, sizeof dir, "stateno");
-    snprintf(path, sizeof path, "%s/s.csv", dir);
-    snprintf(set, sizeof set, "init.state=%s", path);
+    char dir[512], path[700], set[700];
+    double *xs, *vs;
     cl_model *plain = FD_MODEL("cloth.n=4", "pins.at=0,0",
                                "pins.velocity=1,0,0");
-    double *xs = fd_vec(fd_n(plain)), *vs = fd_vec(fd_n(plain));
-    write_state(plain, path, 0.05, 0.0, xs, vs);
+    state_case(plain, "stateno", 0.0, dir, set, &xs, &vs);
+    snprintf(path, sizeof path, "%s", set + strlen("init.state="));
     /* the same state is good at t = 0; the pin moved 1 mm is not */
     cl_model_free(FD_MODEL("cloth.n=4", "pins.at=0,0", "pins.velocity=1,0,0",
                            set));
@@ -825,7 +837,5 @@ Test(model, init_state_refusals)
                          set), "init.perturb=0");
     expect_status(FD_SETS("cloth.n=3", set), CL_EPARSE, "out of range");
     expect_status(FD_SETS("cloth.n=5", set), CL_EPARSE, "missing");
-    cl_model_free(plain);
-    free(xs), free(vs);
-    tmp_rm_rf(dir);
+    state_case_free(plain, xs, vs, dir);
 }
