@@ -130,6 +130,12 @@ static void ei_run_from(const ei_problem *p, const cl_integrator_type *it,
     if (o->dt > 0) /* a fixed-step method takes exactly T / h steps */
         cr_assert_eq(s.steps, lround(EI_T / o->dt), "%s: %ld steps",
                      it->name, (long)s.steps);
+    /* one that sets up linear systems names the solver (stats.csv's
+     * linsol; before, semi-*, kinsol-*, pd and the fixed solvers of
+     * cvode-bdf-dense and -gmres named none) */
+    if (s.lin_setups > 0)
+        cr_expect(s.linsol[0], "%s: %ld linear setups, no solver named",
+                  it->name, s.lin_setups);
     it->free(st);
 }
 

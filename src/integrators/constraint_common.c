@@ -2,6 +2,7 @@
  * constraint_common.h. */
 #include "integrators/constraint_common.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -146,4 +147,6 @@ void cl_cdyn_stats(const void *state, cl_stats *out)
     /* pd's one setup is CHOLMOD's analysis and factorisation */
     out->symbolic_facts = s->lin_setups;
     out->lin_solves = s->lin_solves;
+    if (s->lin_setups)
+        snprintf(out->linsol, sizeof out->linsol, "cholmod");
 }

@@ -23,6 +23,8 @@
  * symbolic_facts = 0. */
 #include "integrators/integrator.h"
 
+#include <stdio.h>
+
 #include <cvode/cvode.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
@@ -57,6 +59,12 @@ static cl_status dense_create(const cl_system *sys,
     return cl_sun_finish(s, st, cl_sun_free, state);
 }
 
+static void dense_stats(const void *state, cl_stats *out)
+{
+    cl_sun_stats(state, out);
+    snprintf(out->linsol, sizeof out->linsol, "lapack-dense");
+}
+
 const cl_integrator_type cl_integrator_cvode_bdf_dense = {
     .name = "cvode-bdf-dense",
     .region = &cl_region_bdf5,
@@ -68,6 +76,6 @@ const cl_integrator_type cl_integrator_cvode_bdf_dense = {
     .dense_jacobian = true,
     .create = dense_create,
     .advance = cl_sun_advance,
-    .stats = cl_sun_stats,
+    .stats = dense_stats,
     .free = cl_sun_free,
 };

@@ -44,6 +44,7 @@
 
 #include <limits.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -277,6 +278,7 @@ static void gm_stats(const void *state, cl_stats *out)
     if (CVodeGetNumJTSetupEvals(s->mem, &njt) >= 0)
         out->lin_solves = njt;
     out->jac_evals = s->njac;
+    snprintf(out->linsol, sizeof out->linsol, "spgmr+bjacobi");
 }
 
 const cl_integrator_type cl_integrator_cvode_bdf_gmres = {

@@ -732,5 +732,5 @@ void cl_kin_stats(const void *state, cl_stats *out)
     out->jac_evals = s->njac;
     out->nonlin_iters = s->nni;
     out->nonlin_fails = s->nfail;
-    s->lt->stats(s->lstate, out);
+    cl_linsol_report(s->lt, s->lstate, out);
 }

@@ -345,5 +345,5 @@ void cl_semi_stats(const cl_semi *s, cl_stats *out)
     out->steps = s->done;
     out->rhs_evals = s->nlin;
     out->jac_evals = s->nlin;
-    s->lst->stats(s->ls, out);
+    cl_linsol_report(s->lst, s->ls, out);
 }

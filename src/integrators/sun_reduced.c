@@ -254,14 +254,13 @@ static void red_stats(const void *data, cl_stats *out)
 {
     const cl_sunred *r = data;
     cl_stats ls = {0};
-    r->lt->stats(r->lstate, &ls);
+    cl_linsol_report(r->lt, r->lstate, &ls);
     out->lin_solves = ls.lin_solves;
     out->lin_iters = ls.lin_iters;
     out->symbolic_facts = ls.symbolic_facts;
     out->lin_fallbacks = ls.lin_fallbacks;
     out->lin_recoveries = ls.lin_recoveries;
-    snprintf(out->linsol, sizeof out->linsol, "%s",
-             ls.linsol[0] ? ls.linsol : r->lt->name);
+    memcpy(out->linsol, ls.linsol, sizeof out->linsol);
 }
 
 static const char *red_last_error(const void *data)

@@ -110,6 +110,13 @@ cl_status cl_linsol_new_state(const char *name, const cl_bpattern *pat,
     return CL_OK;
 }
 
+void cl_linsol_report(const cl_linsol_type *lt, const void *ls, cl_stats *s)
+{
+    lt->stats(ls, s);
+    if (!s->linsol[0])
+        snprintf(s->linsol, sizeof s->linsol, "%s", lt->name);
+}
+
 cl_status cl_linsol_check_weights(const char *name, const double *w,
                                   size_t n, double delta, cl_error *err)
 {

@@ -120,6 +120,11 @@ static inline void cl_linsol_jacobian(const cl_linsol_type *lt, void *ls,
         lt->jacobian(ls, dfdx, dfdv);
 }
 
+/* Add solver lt's counters (state ls) to s, with the names of the solvers
+ * that did the work in s->linsol: those the solver wrote (auto, cholmod),
+ * else its own name. */
+void cl_linsol_report(const cl_linsol_type *lt, const void *ls, cl_stats *s);
+
 /* The iterative solvers' start of create: CL_EINVAL naming `name` for an
  * empty pattern, or a lin_tol or lin_maxit that is not finite >= 0; else
  * a zeroed state of `size` bytes into *state (CL_ENOMEM if none). */
