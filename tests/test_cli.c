@@ -1146,7 +1146,8 @@ static void read_pair(const char *a, const char *b, const char *name,
  * problem whose pins and forces do not change with time continues that
  * run: with a one-step method of fixed steps, run to T and then from its
  * state for T more, it ends bit for bit where one run to 2T ends, and its
- * series is the second half of that run's (t counted from the state). */
+ * series is the second half of that run's (t counted from the state).
+ * The state in the output directory itself is refused. */
 Test(cli, run_from_a_state_continues_the_run)
 {
     char whole[1024], first[1024], second[1024], state[1100], set[1200];
@@ -1182,6 +1183,52 @@ Test(cli, run_from_a_state_continues_the_run)
                          "row %zu of the second half differs", k);
     cli_lines_free(&la);
     cli_lines_free(&lb);
+
+    /* continued into its own directory: refused before anything goes
+     * (before: the earlier run's files, final.csv among them, were
+     * removed, then the state could not be read) */
+    cli_result r;
+    cli_run(&r, "run", "hang", "--set", "cloth.n=6", "--set", set, "--out",
+            first, NULL);
+    cli_assert_error(&r, 0, "in the output directory", NULL);
+    cli_result_free(&r);
+    cr_assert(cli_exists(state), "%s was removed", state);
+}
+
+/* The command `common` (NULL-ended, without --t-end and --out) run to
+ * t_end into DIR/<tag>whole, to t_half into <tag>first, and from that
+ * run's final.csv at its time to t_end into <tag>second (1024 bytes
+ * each). */
+static void run_in_two(const char *const *common, const char *t_half,
+                       const char *t_end, const char *tag, char *whole,
+                       char *first, char *second)
+{
+    char name[64], state[1200], when[80];
+    char *dir[3] = {whole, first, second};
+    static const char *const part[3] = {"whole", "first", "second"};
+    const char *args[CLI_MAX_ARGS + 1];
+    size_t n = 0;
+    for (; common[n]; n++)
+        args[n] = common[n];
+    cr_assert_lt(n + 9, CLI_MAX_ARGS);
+    for (int k = 0; k < 3; k++) {
+        size_t at = n;
+        snprintf(name, sizeof name, "%s%s", tag, part[k]);
+        args[at++] = "--t-end";
+        args[at++] = k == 1 ? t_half : t_end;
+        args[at++] = "--out";
+        args[at++] = in_tmp(dir[k], name);
+        if (k == 2) {
+            snprintf(state, sizeof state, "init.state=%s/final.csv", first);
+            snprintf(when, sizeof when, "init.time=%s", t_half);
+            args[at++] = "--set";
+            args[at++] = state;
+            args[at++] = "--set";
+            args[at++] = when;
+        }
+        args[at] = NULL;
+        cli_run_ok(args);
+    }
 }
 
 /* Moving pins: compress's ends pushed in at 0.1 m/s.  Continued from its
@@ -1197,23 +1244,10 @@ Test(cli, run_from_a_state_at_its_time)
     const char *common[] = {"run", "compress", "--set", "cloth.nu=11",
                             "--integrator", "semi-be", "--dt", "1e-3",
                             "--frames", "0", "--quiet", "--samples", "2",
-                            "--t-end"};
-    enum { NC = sizeof common / sizeof *common };
-    const char *args[NC + 12];
-    memcpy(args, common, sizeof common);
-    const char *tail1[] = {"0.2", "--out", in_tmp(whole, "cwhole"), NULL};
-    memcpy(args + NC, tail1, sizeof tail1);
-    cli_run_ok(args);
-    const char *tail2[] = {"0.1", "--out", in_tmp(first, "cfirst"), NULL};
-    memcpy(args + NC, tail2, sizeof tail2);
-    cli_run_ok(args);
+                            NULL};
+    run_in_two(common, "0.1", "0.2", "c", whole, first, second);
     snprintf(state, sizeof state, "%s/final.csv", first);
     snprintf(set, sizeof set, "init.state=%s", state);
-    const char *tail3[] = {"0.2", "--set", set, "--set", "init.time=0.1",
-                           "--set", "init.perturb=0", "--out",
-                           in_tmp(second, "csecond"), NULL};
-    memcpy(args + NC, tail3, sizeof tail3);
-    cli_run_ok(args);
     cli_lines la, lb;
     read_pair(whole, second, "final.csv", &la, &lb);
     cr_assert_eq(la.n, lb.n);
@@ -1240,23 +1274,36 @@ Test(cli, run_from_a_state_at_its_time)
                     "--state", state, "--t", "0.1", "--quiet", "--out",
                     in_tmp(sa, "cspa")));
     cli_run_ok(LIST("spectrum", "compress", "--set", "cloth.nu=11", "--set",
-                    set, "--set", "init.time=0.1", "--set", "init.perturb=0",
-                    "--quiet", "--out", in_tmp(sb, "cspb")));
+                    set, "--set", "init.time=0.1", "--quiet", "--out",
+                    in_tmp(sb, "cspb")));
     assert_same_files(sa, sb, LIST("spectrum.csv"));
 
     cli_result r;
     cli_run(&r, "stability", "compress", "--set", "cloth.nu=11",
-            "--integrator", "semi-be", "--t-end", "0.2", "--set", set, "--set", "init.time=0.1",
-            "--set", "init.perturb=0", "--out", in_tmp(second, "cstab"),
-            NULL);
+            "--integrator", "semi-be", "--t-end", "0.2", "--set", set,
+            "--set", "init.time=0.1", "--out", in_tmp(second, "cstab"), NULL);
     cli_assert_error(&r, 0, "[init] time = 0.1", "studies run from", NULL);
     cli_result_free(&r);
     cli_run(&r, "run", "compress", "--set", "cloth.nu=11", "--set", set,
-            "--set", "init.time=0.05",
-            "--set", "init.perturb=0", "--out", in_tmp(second, "cbad"),
+            "--set", "init.time=0.05", "--out", in_tmp(second, "cbad"),
             NULL);
     cli_assert_error(&r, 0, "pinned particle", "[init] time = 0.05", NULL);
     cli_result_free(&r);
+}
+
+/* Barriers with friction carry a lag, the normal forces after the last
+ * step: a run continued from a saved state starts with that state's, as
+ * the run it continues had, so drape-sphere-barrier (8 x 8, kinsol-be,
+ * in contact by t = 0.3 s) continued at t = 1 ends bit for bit where
+ * one run ends (before: with no lag, 1.7 mm away on the full cloth). */
+Test(cli, run_from_a_state_keeps_the_friction_lag)
+{
+    char whole[1024], first[1024], second[1024];
+    run_in_two(LIST("run", "drape-sphere-barrier", "--set", "cloth.n=8",
+                    "--integrator", "kinsol-be", "--dt", "0.01", "--frames",
+                    "0", "--quiet", "--samples", "4"),
+               "1", "1.2", "b", whole, first, second);
+    assert_same_files(whole, second, LIST("final.csv"));
 }
 
 /* csv alone: the series without frames, and says so; --frames K asked

@@ -768,7 +768,8 @@ Test(model, init_state_is_the_initial_state)
     state_case_free(plain, xs, vs, dir);
 }
 
-/* A relative [init] state is relative to the problem file, as a mesh. */
+/* A relative [init] state is relative to the problem file, as a mesh;
+ * the file's own velocity and perturbation give way to the state. */
 Test(model, init_state_relative_to_the_problem_file)
 {
     char dir[512], set[700], path[600];
@@ -776,7 +777,8 @@ Test(model, init_state_relative_to_the_problem_file)
     cl_model *plain = FD_MODEL("cloth.n=3");
     state_case(plain, "staterel", 0.0, dir, set, &xs, &vs);
     snprintf(path, sizeof path, "%s/p.ini", dir);
-    tmp_put(path, "[cloth]\nn = 3\n\n[init]\nstate = s.csv\n");
+    tmp_put(path, "[cloth]\nn = 3\n\n[init]\nstate = s.csv\n"
+                  "velocity = 0, 1, 0\nperturb = 1e-3\n");
     cl_config *cfg = cl_config_alloc();
     cl_model *m = NULL;
     cl_error err = {0};
@@ -834,7 +836,7 @@ Test(model, init_state_refusals)
     expect_error(FD_SETS("cloth.n=4", "pins.at=0,0", "init.velocity=0,1,0",
                          set), "[init] state");
     expect_error(FD_SETS("cloth.n=4", "pins.at=0,0", "init.perturb=1e-3",
-                         set), "init.perturb=0");
+                         set), "gives the positions");
     expect_status(FD_SETS("cloth.n=3", set), CL_EPARSE, "out of range");
     expect_status(FD_SETS("cloth.n=5", set), CL_EPARSE, "missing");
     state_case_free(plain, xs, vs, dir);

@@ -366,7 +366,8 @@ Test(sweep_engine, a_mesh_changed_between_runs)
             "symplectic-euler-x", "--from-sweep", table, "--out", out,
             "--quiet", NULL);
     cli_assert_error(&r, 0, "its runs read other files than the problem "
-                     "names now", "a mesh changed after the sweep ran",
+                     "names now",
+                     "a mesh or [init] state changed after the sweep ran",
                      NULL);
     cli_result_free(&r);
     snprintf(path, sizeof path, "%s/jobs/%s/exit", dir, id);
@@ -387,7 +388,8 @@ Test(sweep_engine, a_mesh_changed_between_runs)
     cli_run(&r, "stability", ini, "--t-end", "0.002", "--integrator",
             "symplectic-euler-x", "--from-sweep", table, "--out", out, NULL);
     cli_assert_error(&r, 0, "read different files the problem names",
-                     "a mesh changed between the sweep's runs", NULL);
+                     "a mesh or [init] state changed between the sweep's "
+                     "runs", NULL);
     cli_result_free(&r);
 }
 

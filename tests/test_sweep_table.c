@@ -71,15 +71,18 @@ static void put_table(const char *path, const char *text,
     tmp_put(path, out);
 }
 
-static void load(cl_sweep_table *t, const char *const *sets, cl_status want,
-                 cl_error *err)
+/* The table `text` selected for a problem of no keys with the sets
+ * (the rows are selected by them alone); the configuration after the
+ * selection into *kept (NULL: freed). */
+static void load_text(cl_sweep_table *t, const char *text,
+                      const char *const *sets, cl_status want,
+                      cl_config **kept, cl_error *err)
 {
     char path[1024], problem[1024];
-    /* a problem file of no keys: the rows are selected by the sets alone */
     snprintf(problem, sizeof problem, "%s/p.ini", tmp);
     tmp_put(problem, "[x]\ny = 1\n");
     snprintf(path, sizeof path, "%s/t.csv", tmp);
-    put_table(path, table, problem);
+    put_table(path, text, problem);
     cl_config *cfg = cl_config_alloc();
     cr_assert_eq(cl_config_load(cfg, problem, err), CL_OK);
     for (int k = 0; sets[k]; k++)
@@ -87,7 +90,37 @@ static void load(cl_sweep_table *t, const char *const *sets, cl_status want,
     cr_assert_eq(cl_sweep_table_read(path, t, err), CL_OK, "%s", err->msg);
     cr_assert_eq(cl_sweep_table_select(t, cfg, NULL, err), want, "%s",
                  err->msg);
+    if (kept)
+        *kept = cfg;
+    else
+        cl_config_free(cfg);
+}
+
+static void load(cl_sweep_table *t, const char *const *sets, cl_status want,
+                 cl_error *err)
+{
+    load_text(t, table, sets, want, NULL, err);
+}
+
+/* An axis of one value that the command's configuration does not give
+ * becomes the command's (a problem key; [run]'s stay the command's), so
+ * that its model is the one the sweep's runs had: before, a constant
+ * init.time = 0.15 left a study at t = 0 with rows of runs from 0.15. */
+Test(sweep_table, a_constant_axis_is_the_commands_value)
+{
+    static const char *const one =
+        "id,role,integrator,type1.ks,init.time,run.t_end,status,exit,"
+        "t_reached,steps,rhs_evals,cpu,err_x,err_v,problem\n"
+        "a1,job,rk4,250,0.15,2,complete,ok,2,2000,8000,0.5,NA,NA,@P@\n";
+    cl_sweep_table t;
+    cl_error err = {0};
+    cl_config *cfg;
+    load_text(&t, one, (const char *const[]){NULL}, CL_OK, &cfg, &err);
+    cr_assert_str_eq(cl_config_string(cfg, "type1", "ks", "none"), "250");
+    cr_assert_str_eq(cl_config_string(cfg, "init", "time", "none"), "0.15");
+    cr_assert_str_eq(cl_config_string(cfg, "run", "t_end", "none"), "none");
     cl_config_free(cfg);
+    cl_sweep_table_free(&t);
 }
 
 Test(sweep_table, stability_bracket_from_rows)

@@ -339,7 +339,7 @@ static cl_status stop_error(const sim *s, const cl_sim_result *res,
         snprintf(during, sizeof during, " (during the advance to t = %g)",
                  t_to);
     return cl_error_set(err, CL_EBUDGET, "budget --max-wall %g s reached at "
-                        "t = %g%s", s->so->max_wall, res->t_reached, during);
+                        "t = %.10g%s", s->so->max_wall, res->t_reached, during);
 }
 
 /* Advance to tick `tick` (unless already there) and sample it. */
@@ -373,7 +373,7 @@ static cl_status check_stop(const sim *s, const cl_integrator_type *type,
         type->stats(state, &st);
         if (st.steps >= so->max_steps)
             return cl_error_set(err, CL_EBUDGET, "budget --max-steps %ld "
-                                "reached at t = %g (%ld steps)",
+                                "reached at t = %.10g (%ld steps)",
                                 so->max_steps, res->t_reached, st.steps);
     }
     return CL_OK;

@@ -184,6 +184,11 @@ static bool problem_axis(const char *key)
     return strncmp(key, "run.", 4) || !strcmp(key, "run.t_end");
 }
 
+/* Keep the rows whose value of axis c is the configuration's; an axis
+ * the configuration does not give must have one value, which a problem
+ * key (not [run]'s) then takes, so that the command's model is the one
+ * the sweep's runs had (before: at the key's default, a constant
+ * [init] time or type1.ks of the sweep was not the study's). */
 static cl_status select_axis(cl_sweep_table *t, cl_config *cfg, int c,
                              cl_error *err)
 {
@@ -205,7 +210,11 @@ static cl_status select_axis(cl_sweep_table *t, cl_config *cfg, int c,
                                 "give one with --set %s=VALUE", t->path, key,
                                 first, at(t, r, c), key);
     }
-    return CL_OK;
+    if (want || !first || !strcmp(sec, "run"))
+        return CL_OK;
+    char a[4200];
+    snprintf(a, sizeof a, "%s=%s", key, first);
+    return cl_config_set_as(cfg, a, "--from-sweep", err);
 }
 
 /* Whether a table's digest field holds one (not "", not "NA"). */
@@ -262,8 +271,9 @@ static cl_status same_inputs(const cl_sweep_table *t, cl_error *err)
             return cl_error_set(err, CL_EINVAL, "--from-sweep %s: the runs "
                                 "%s and %s read different files the "
                                 "problem names (inputs_sha256 %.12s... and "
-                                "%.12s...: a mesh changed between the "
-                                "sweep's runs); run the sweep again",
+                                "%.12s...: a mesh or [init] state changed "
+                                "between the sweep's runs); run the sweep "
+                                "again",
                                 t->path, at(t, r0, column(t, "id")),
                                 at(t, r, column(t, "id")), first, sha);
     }
@@ -308,7 +318,8 @@ cl_status cl_sweep_table_same_inputs(const cl_sweep_table *t,
                ? cl_error_set(err, CL_EINVAL, "--from-sweep %s: its runs "
                               "read other files than the problem names now "
                               "(inputs_sha256 %.12s..., now %.12s...: a "
-                              "mesh changed after the sweep ran); run the "
+                              "mesh or [init] state changed after the "
+                              "sweep ran, or is not the sweep's); run the "
                               "sweep again", t->path, rec, hex)
                : CL_OK;
 }

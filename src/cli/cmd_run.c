@@ -46,7 +46,7 @@ static const cl_cli_table run_table = {
     "outputs up to the last output time are written as after a finished\n"
     "run (the steps since it are not: more --samples keep more); a run\n"
     "from that final.csv (--set init.state=FILE --set init.time=T, T the\n"
-    "time reached) goes on from there.  A run that\n"
+    "time reached, into another --out) goes on from there.  A run that\n"
     "fails (a blow-up, a solver failure, ...) after its first sample writes\n"
     "last-good.csv instead of final.csv: the state of its last good sample.\n",
     .notes =
@@ -107,7 +107,7 @@ static void print_summary(const char *problem, const run_setup *r,
         printf(" (dt = %g)\n", im->io.dt);
     else
         printf(" (rtol = %g, atol = %g)\n", im->io.rtol, im->io.atol);
-    printf("time         %g of %g s\n", res->t_reached, r->so.t_end);
+    printf("time         %.10g of %g s\n", res->t_reached, r->so.t_end);
     printf("energy       %.10g -> %.10g J (kinetic %.6g)\n", res->e0.total,
            res->e1.total, res->e1.kinetic);
     for (size_t k = 0; k < res->e1.nterm; k++)
@@ -152,6 +152,46 @@ static cl_status begin_output(void *ctx, cl_error *err)
     return rc;
 }
 
+typedef struct {
+    const char *dir;     /* the output directory, resolved */
+    const char *key;     /* the first input found in it, or NULL */
+    char sec[64], path[4096];
+} input_in_dir;
+
+static void find_input_in_dir(void *ctx, const char *sec, const char *key,
+                              const char *path, bool given)
+{
+    input_in_dir *f = ctx;
+    const char *slash = strrchr(path, '/');
+    size_t len = strlen(f->dir);
+    (void)given;
+    if (!f->key && slash && (size_t)(slash - path) == len &&
+        !strncmp(path, f->dir, len)) {
+        f->key = key;
+        snprintf(f->sec, sizeof f->sec, "%s", sec);
+        snprintf(f->path, sizeof f->path, "%s", path);
+    }
+}
+
+/* A file the problem reads ([init] state, a mesh) inside the output
+ * directory is refused: the run removes the earlier run's files there
+ * (final.csv among them) before it reads them again for run.json. */
+static cl_status inputs_outside(const cl_config *cfg, const char *outdir,
+                                cl_error *err)
+{
+    char *dir = realpath(outdir, NULL);
+    input_in_dir f = {.dir = dir};
+    if (dir)
+        cl_config_input_files(cfg, find_input_in_dir, &f);
+    free(dir);
+    if (!f.key)
+        return CL_OK;
+    return cl_error_set(err, CL_EINVAL, "[%s] %s = %s: in the output "
+                        "directory %s, whose files this run removes and "
+                        "writes; copy it elsewhere or give --out another "
+                        "directory", f.sec, f.key, f.path, outdir);
+}
+
 static cl_status run_work(cl_model *m, const cl_cli_job *job, void *ctx,
                           cl_error *err)
 {
@@ -164,13 +204,16 @@ static cl_status run_work(cl_model *m, const cl_cli_job *job, void *ctx,
     cl_status rc = cl_model_set_threads(m, (int)r->run.threads, err);
     if (!rc) /* a directory refused before any work */
         rc = cl_cli_outdir_check(job->outdir, err);
+    if (!rc)
+        rc = inputs_outside(job->cfg, job->outdir, err);
     if (rc)
         return rc;
     r->so.outdir = job->outdir;
     r->so.progress = cl_cli_progress;
     r->so.before_output = begin_output;
     r->so.before_output_ctx = &out;
-    cl_cli_progress_start(&line, job->quiet, "t =", "s", r->so.t_end);
+    cl_cli_progress_start(&line, job->quiet, "t =", "s",
+                          cl_model_start_time(m), r->so.t_end);
     r->so.progress_ctx = &line;
     rc = cl_simulate(m, r->integrator.m[0].type, &r->integrator.m[0].io,
                      &r->so, &res, err);

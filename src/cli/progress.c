@@ -8,11 +8,12 @@
 #include "core/clock.h"
 
 void cl_cli_progress_start(cl_cli_progress_line *p, bool quiet,
-                           const char *what, const char *unit, double total)
+                           const char *what, const char *unit, double from,
+                           double total)
 {
     *p = (cl_cli_progress_line){.on = !quiet && isatty(STDERR_FILENO),
-                                .what = what, .unit = unit, .total = total,
-                                .t0 = cl_clock_wall()};
+                                .what = what, .unit = unit, .from = from,
+                                .total = total, .t0 = cl_clock_wall()};
     p->last = p->t0;
 }
 
@@ -22,9 +23,11 @@ void cl_cli_progress_show(cl_cli_progress_line *p, double done)
     if (!p->on || (now - p->last < 0.1 && done < p->total))
         return;
     p->last = now;
-    double rate = spent > 0 ? done / spent : NAN;
+    double span = p->total - p->from, rate = spent > 0
+                                                 ? (done - p->from) / spent
+                                                 : NAN;
     fprintf(stderr, "\r\033[K%s %.4g of %.4g %s  %3.0f%%", p->what, done,
-            p->total, p->unit, 100 * done / p->total);
+            p->total, p->unit, 100 * (done - p->from) / span);
     if (rate > 0)
         fprintf(stderr, "  %.3g %s/s  ETA %.2g s", rate, p->unit,
                 (p->total - done) / rate);
@@ -42,5 +45,5 @@ void cl_cli_progress_clear(cl_cli_progress_line *p)
 void cl_cli_progress(void *ctx, double fraction)
 {
     cl_cli_progress_line *p = ctx;
-    cl_cli_progress_show(p, fraction * p->total);
+    cl_cli_progress_show(p, p->from + fraction * (p->total - p->from));
 }

@@ -32,7 +32,8 @@ cl_status cl_cli_study_run(cl_model *m, const cl_cli_job *job,
         puts(st->columns);
     int done = 0, ok = 0; /* runs started, runs finished */
     cl_cli_progress_line line;
-    cl_cli_progress_start(&line, job->quiet, "integrators", "integrators", n);
+    cl_cli_progress_start(&line, job->quiet, "integrators", "integrators", 0,
+                          n);
     for (; !rc && done < n; done++) {
         if (cl_stop_requested()) {
             rc = cl_error_set(err, CL_EINTR, "interrupted by %s after %d "

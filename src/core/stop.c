@@ -169,8 +169,8 @@ cl_status cl_stop_error(cl_error *err, double t_reached, double t_to)
 {
     const char *name = cl_stop_signal_name(cl_stop_requested());
     if (isnan(t_to))
-        return cl_error_set(err, CL_EINTR, "interrupted by %s at t = %g",
+        return cl_error_set(err, CL_EINTR, "interrupted by %s at t = %.10g",
                             name, t_reached);
-    return cl_error_set(err, CL_EINTR, "interrupted by %s at t = %g (during "
+    return cl_error_set(err, CL_EINTR, "interrupted by %s at t = %.10g (during "
                         "the advance to t = %g)", name, t_reached, t_to);
 }

@@ -150,14 +150,17 @@ static cl_status read_state(cl_config *cfg, cl_model *m, cl_error *err)
     if ((rc = cl_config_path_of(cfg, "init", "state", path, sizeof path,
                                 err)))
         return rc;
-    if (cl_config_peek(cfg, "init", "velocity"))
+    /* the state replaces the problem's own initial state, its velocity
+     * and perturbation (a run continued from its state is not perturbed
+     * again); asked for beside it on the command line, they are refused */
+    if (cl_config_set_by_command(cfg, "init", "velocity"))
         return cl_config_refuse(cfg, "init", "velocity", CL_EINVAL,
                                 "given with [init] state, whose file gives "
                                 "the velocities", err);
-    if (m->perturb > 0) /* a run continued from its state: not again */
+    if (cl_config_set_by_command(cfg, "init", "perturb") && m->perturb > 0)
         return cl_config_refuse(cfg, "init", "perturb", CL_EINVAL,
                                 "given with [init] state, whose file gives "
-                                "the positions (set init.perturb=0)", err);
+                                "the positions", err);
     double *xf = malloc(3 * c->np * sizeof *xf);
     double *vf = malloc(3 * c->np * sizeof *vf);
     m->xs = malloc((3 * c->nfree + 1) * sizeof *m->xs);
@@ -930,6 +933,12 @@ void cl_model_contact_start(cl_model *m, double t0, bool track_work)
     m->contact_work = 0.0;
     if (m->contact)
         cl_contact_restart(m->contact, t0);
+    /* a saved state starts with the friction lag the run it continues had
+     * after its last step (sys_step_done); the problem's own start, 0 */
+    if (m->lags && m->xs) {
+        cl_cloth_scatter(&m->cloth, t0, m->xs, m->vs, m->xf, m->vf);
+        cl_contact_lag(m->contact, t0, m->xf);
+    }
 }
 
 void cl_model_contact_worst(const cl_model *m, double *pen, double *t)

@@ -109,7 +109,9 @@ const cl_contact *cl_model_contact(const cl_model *m);
  * and the studies' trials call it; a program of one's own calls it before
  * each run): the worst penetration and the contact layer's memory of the
  * last run (cl_contact_restart: its last projection, now at t0, the
- * barriers' lagged friction) are forgotten, and with track_work the
+ * barriers' lagged friction) are forgotten (from an [init] state, the lag
+ * is that state's, as after the step that ended there), and with
+ * track_work the
  * contact hook accounts the energy every projection changes
  * (cl_energy.contact_work; two energy evaluations per projecting step,
  * so only the energy study asks for it).  A model carries one run at a
