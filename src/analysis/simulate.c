@@ -86,10 +86,9 @@ static cl_status make_schedule(const cl_integrator_type *type,
     s->dt_tick = o->dt;
     if (s->nticks < 1 || fabs(steps - (double)s->nticks) > 1e-9 * steps)
         return cl_error_set(err, CL_EINVAL,
-                            "t_end - [init] time = %g is not a whole number "
-                            "of steps dt = %g (%.12g steps); choose t_end or "
-                            "dt so that it is",
-                            span, o->dt, steps);
+                            "t_end - [init] time = %.10g is not a whole "
+                            "number of steps dt = %g (%.12g steps); choose "
+                            "t_end or dt so that it is", span, o->dt, steps);
     return CL_OK;
 }
 
@@ -339,7 +338,8 @@ static cl_status stop_error(const sim *s, const cl_sim_result *res,
         snprintf(during, sizeof during, " (during the advance to t = %g)",
                  t_to);
     return cl_error_set(err, CL_EBUDGET, "budget --max-wall %g s reached at "
-                        "t = %.10g%s", s->so->max_wall, res->t_reached, during);
+                        "t = %.10g%s", s->so->max_wall, res->t_reached,
+                        during);
 }
 
 /* Advance to tick `tick` (unless already there) and sample it. */

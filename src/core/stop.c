@@ -171,6 +171,7 @@ cl_status cl_stop_error(cl_error *err, double t_reached, double t_to)
     if (isnan(t_to))
         return cl_error_set(err, CL_EINTR, "interrupted by %s at t = %.10g",
                             name, t_reached);
-    return cl_error_set(err, CL_EINTR, "interrupted by %s at t = %.10g (during "
-                        "the advance to t = %g)", name, t_reached, t_to);
+    return cl_error_set(err, CL_EINTR, "interrupted by %s at t = %.10g "
+                        "(during the advance to t = %g)", name, t_reached,
+                        t_to);
 }

@@ -121,12 +121,17 @@ static cl_status check_state_pins(cl_config *cfg, const cl_cloth *c,
     double at[3];
     const double *x = xs + 3 * (size_t)c->pins[k].p;
     cl_cloth_pin_position(c, k, t0, at);
+    const double *w = c->pins[k].w;
+    bool moves = (w[0] != 0.0 || w[1] != 0.0 || w[2] != 0.0) &&
+                 c->pins[k].t_stop > 0.0;
     char why[512];
     snprintf(why, sizeof why, "pinned particle %d is at (%.9g, %.9g, %.9g), "
              "%.3g m from where its pin holds it at [init] time = %g s, "
-             "(%.9g, %.9g, %.9g): give the time the state was saved at as "
-             "[init] time", c->pins[k].p, x[0], x[1], x[2], far, t0, at[0],
-             at[1], at[2]);
+             "(%.9g, %.9g, %.9g): %s", c->pins[k].p, x[0], x[1], x[2], far,
+             t0, at[0], at[1], at[2],
+             moves ? "give the time the state was saved at as [init] time"
+                   : "that pin does not move, so the state is of another "
+                     "problem or pinning");
     return cl_config_refuse(cfg, "init", "state", CL_EINVAL, why, err);
 }
 
