@@ -248,6 +248,9 @@ Test(sweep_engine, local_interrupted_and_resumed)
     run_resume(dir, "resume     1 of 10 jobs");
     collect(dir, summary, sizeof summary);
     cr_assert_str_eq(summary, "10 complete, 0 failed, 0 missing");
+    /* nothing left to run: the counts still (before: nothing printed) */
+    run_resume(dir, "resume     0 of 10 jobs failed or have no result\n"
+                    "10 complete, 0 failed, 0 missing");
 }
 
 

@@ -511,8 +511,8 @@ static int engine_run(cl_sweep *sw, cl_sweep_run_args *r, int *todo,
     if (r->resume && !r->a.quiet)
         printf("resume     %d of %d jobs failed or have no result\n", n,
                sw->njob);
-    if (n == 0)
-        return 0;
+    if (n == 0) /* nothing to run: the counts as they stand */
+        return summary(sw, r->a.quiet, err);
     if (slurm) {
         int ran = 0, status = cl_sweep_slurm(sw, r, todo, n, &ran);
         if (!r->resume)
