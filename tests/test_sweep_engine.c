@@ -931,6 +931,17 @@ Test(sweep_engine, plan_refuses_what_run_would)
                      "\"-1\": expected a number in [0, 1e+12]", NULL);
     cli_result_free(&r);
     cr_assert(!cli_exists(dir), "a refused plan left its directory");
+
+    /* a file an axis names by a relative path: each job would look for it
+     * where 'sweep run' starts (before: planned, then every job failed) */
+    tmp_put(in_tmp(path, "rel.ini"), "[sweep]\nproblem = problems/skirt.ini\n"
+            "integrator = rk4\ndt = 1e-4\nt_end = 0.05\n"
+            "obstacle.sphere.file = problems/meshes/sphere.obj\n");
+    cli_run(&r, "sweep", "plan", path, "--out", in_tmp(dir, "rel"), NULL);
+    cli_assert_error(&r, 0, "would be refused", "obstacle.sphere.file = "
+                     "problems/meshes/sphere.obj: a relative file name",
+                     NULL);
+    cli_result_free(&r);
 }
 
 /* ---- Slurm ----------------------------------------------------------- */

@@ -240,6 +240,40 @@ static cl_status run_work(cl_model *m, const cl_cli_job *job, void *ctx,
     return rc ? rc : rc2;
 }
 
+typedef struct {
+    const cl_config *cfg;
+    char sec[64], key[64], value[4096]; /* the first relative one, or "" */
+} relative_set;
+
+static void find_relative_set(void *ctx, const char *sec, const char *key,
+                              const char *path, bool given)
+{
+    relative_set *f = ctx;
+    const char *v = cl_config_peek(f->cfg, sec, key);
+    (void)path, (void)given;
+    if (!*f->key && v && v[0] != '/' &&
+        cl_config_set_by_command(f->cfg, sec, key)) {
+        snprintf(f->sec, sizeof f->sec, "%s", sec);
+        snprintf(f->key, sizeof f->key, "%s", key);
+        snprintf(f->value, sizeof f->value, "%s", v);
+    }
+}
+
+/* A file named by a set (not by the problem file, whose names are
+ * relative to it) must be absolute when the command runs elsewhere. */
+static cl_status sets_name_absolute_files(const cl_config *cfg,
+                                          cl_error *err)
+{
+    relative_set f = {.cfg = cfg};
+    cl_config_input_files(cfg, find_relative_set, &f);
+    if (!*f.key)
+        return CL_OK;
+    return cl_error_set(err, CL_EINVAL, "%s.%s = %s: a relative file name, "
+                        "which each job would look for in the directory "
+                        "'sweep run' starts in; give its absolute path",
+                        f.sec, f.key, f.value);
+}
+
 cl_status cl_cmd_run_check(const char *problem, const char *integrator,
                            const char *const *sets, int nset, cl_error *err)
 {
@@ -256,6 +290,8 @@ cl_status cl_cmd_run_check(const char *problem, const char *integrator,
         rc = cl_config_set_once(cfg, sets[k], NULL, err);
     if (!rc)
         rc = cl_cli_problem_ready(cfg, &run_table, &r, check_run, &m, err);
+    if (!rc)
+        rc = sets_name_absolute_files(cfg, err);
     cl_model_free(m);
     cl_config_free(cfg);
     return rc;

@@ -12,7 +12,9 @@ int cl_cmd_run(int argc, char **argv);
 /* The checks `clothode run PROBLEM --integrator INTEGRATOR --set S ...`
  * makes before any work (its options, the integrator's, the model built,
  * no key unused), without running: CL_OK, or the first refusal in err
- * (the plan of a sweep checks its jobs with it).  sets: "SECTION.KEY=V". */
+ * (the plan of a sweep checks its jobs with it).  sets: "SECTION.KEY=V";
+ * a file one of them names ([init] state, a mesh) must be given by its
+ * absolute path, since a sweep's jobs run wherever 'sweep run' starts. */
 cl_status cl_cmd_run_check(const char *problem, const char *integrator,
                            const char *const *sets, int nset, cl_error *err);
 int cl_cmd_eval(int argc, char **argv);
