@@ -212,10 +212,12 @@ INSTALLED   := bin/clothode lib/libclothode.a lib/clothode/clothode-petsc.so \
                include/clothode share/clothode share/man/man1/clothode.1 \
                lib/pkgconfig/clothode.pc
 
+# PREFIX must be absolute: the installed library and clothode.pc record it
+ABSOLUTE_PREFIX = @case "$(PREFIX)" in /*) ;; *) echo "make $@: \
+	PREFIX=$(PREFIX): expected an absolute path" >&2; exit 2;; esac
+
 install: $(BIN)
-	@case "$(PREFIX)" in /*) ;; *) echo "make install: PREFIX=$(PREFIX): \
-	expected an absolute path (the installed library and clothode.pc \
-	record it)" >&2; exit 2;; esac
+	$(ABSOLUTE_PREFIX)
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig \
 	    $(DESTDIR)$(PREFIX)/share/clothode $(DESTDIR)$(PREFIX)/share/man/man1
 	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/clothode
@@ -241,6 +243,7 @@ install: $(BIN)
 	    scripts/clothode.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/clothode.pc
 
 uninstall:
+	$(ABSOLUTE_PREFIX)
 	rm -rf $(INSTALLED:%=$(DESTDIR)$(PREFIX)/%)
 	-rmdir $(DESTDIR)$(PREFIX)/lib/clothode 2>/dev/null
 

@@ -103,23 +103,29 @@ static void load(cl_sweep_table *t, const char *const *sets, cl_status want,
 }
 
 /* An axis of one value that the command's configuration does not give
- * becomes the command's (a problem key; [run]'s stay the command's), so
- * that its model is the one the sweep's runs had: before, a constant
- * init.time = 0.15 left a study at t = 0 with rows of runs from 0.15. */
+ * becomes the command's (a problem key), so that its model is the one
+ * the sweep's runs had: before, a constant init.time = 0.15 left a study
+ * at t = 0 with rows of runs from 0.15.  NA (the runs had the file's
+ * value) is not taken; t_end, read before the table, must be given. */
 Test(sweep_table, a_constant_axis_is_the_commands_value)
 {
     static const char *const one =
-        "id,role,integrator,type1.ks,init.time,run.t_end,status,exit,"
-        "t_reached,steps,rhs_evals,cpu,err_x,err_v,problem\n"
-        "a1,job,rk4,250,0.15,2,complete,ok,2,2000,8000,0.5,NA,NA,@P@\n";
+        "id,role,integrator,type1.ks,init.time,init.seed,run.t_end,status,"
+        "exit,t_reached,steps,rhs_evals,cpu,err_x,err_v,problem\n"
+        "a1,job,rk4,250,0.15,NA,2,complete,ok,2,2000,8000,0.5,NA,NA,@P@\n";
     cl_sweep_table t;
     cl_error err = {0};
     cl_config *cfg;
-    load_text(&t, one, (const char *const[]){NULL}, CL_OK, &cfg, &err);
+    load_text(&t, one, (const char *const[]){"run.t_end=2", NULL}, CL_OK,
+              &cfg, &err);
     cr_assert_str_eq(cl_config_string(cfg, "type1", "ks", "none"), "250");
     cr_assert_str_eq(cl_config_string(cfg, "init", "time", "none"), "0.15");
-    cr_assert_str_eq(cl_config_string(cfg, "run", "t_end", "none"), "none");
+    cr_assert_str_eq(cl_config_string(cfg, "init", "seed", "none"), "none");
     cl_config_free(cfg);
+    cl_sweep_table_free(&t);
+    load_text(&t, one, (const char *const[]){NULL}, CL_EINVAL, NULL, &err);
+    cr_assert(strstr(err.msg, "run.t_end = 2, which neither the problem nor "
+                              "the command gives"), "%s", err.msg);
     cl_sweep_table_free(&t);
 }
 
@@ -161,7 +167,8 @@ Test(sweep_table, convergence_levels_from_rows)
     cl_sweep_table t;
     cl_error err = {0};
     cl_conv_result r;
-    load(&t, (const char *const[]){"cloth.n=6", NULL}, CL_OK, &err);
+    load(&t, (const char *const[]){"cloth.n=6", "run.t_end=2", NULL}, CL_OK,
+         &err);
     cr_assert_eq(cl_conv_from_sweep(&t, "rk4", cl_integrator_find("rk4"), &r,
                                     &err), CL_OK, "%s", err.msg);
     cr_assert_eq(r.nlev, 7);

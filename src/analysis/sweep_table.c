@@ -186,9 +186,10 @@ static bool problem_axis(const char *key)
 
 /* Keep the rows whose value of axis c is the configuration's; an axis
  * the configuration does not give must have one value, which a problem
- * key (not [run]'s) then takes, so that the command's model is the one
- * the sweep's runs had (before: at the key's default, a constant
- * [init] time or type1.ks of the sweep was not the study's). */
+ * key then takes, so that the command's model is the one the sweep's
+ * runs had (before: at the key's default, a constant [init] time or
+ * type1.ks of the sweep was not the study's); t_end, which the command
+ * read before the table, must be given. */
 static cl_status select_axis(cl_sweep_table *t, cl_config *cfg, int c,
                              cl_error *err)
 {
@@ -210,8 +211,15 @@ static cl_status select_axis(cl_sweep_table *t, cl_config *cfg, int c,
                                 "give one with --set %s=VALUE", t->path, key,
                                 first, at(t, r, c), key);
     }
-    if (want || !first || !strcmp(sec, "run"))
+    /* NA: the runs had the problem file's value (an axis of another
+     * part of the sweep) */
+    if (want || !first || !*first || !strcmp(first, "NA"))
         return CL_OK;
+    if (!strcmp(sec, "run")) /* t_end, read before the table */
+        return cl_error_set(err, CL_EINVAL, "--from-sweep %s: the sweep's "
+                            "runs have %s = %s, which neither the problem "
+                            "nor the command gives: give it (--t-end %s)",
+                            t->path, key, first, first);
     char a[4200];
     snprintf(a, sizeof a, "%s=%s", key, first);
     return cl_config_set_as(cfg, a, "--from-sweep", err);
