@@ -131,6 +131,22 @@ Test(state, wrong_header)
                 "expected header");
 }
 
+/* A line longer than 4096 bytes is refused as it is read, before the
+ * rest of it (a file of one huge line would fill the memory); one of
+ * 4095 bytes and its newline is read. */
+Test(state, overlong_line)
+{
+    static char text[3 * 4096];
+    size_t n = (size_t)sprintf(text, "p,x,y,z,vx,vy,vz\n0,1,2,3,4,5,6");
+    memset(text + n, ' ', 4200);
+    strcpy(text + n + 4200, "\n");
+    expect_read(text, 1, CL_EPARSE, ":2:", "a line longer than 4096 bytes");
+    n = (size_t)sprintf(text, "p,x,y,z,vx,vy,vz\n0,1,2,3,4,5,6");
+    memset(text + n, ' ', 4095 - 13); /* the row's 13 bytes and blanks */
+    strcpy(text + n + 4095 - 13, "\n");
+    expect_read(text, 1, CL_OK, "", "");
+}
+
 Test(state, wrong_field_count)
 {
     expect_read("p,x,y,z,vx,vy,vz\n0,1,2,3,4,5\n", 1, CL_EPARSE,

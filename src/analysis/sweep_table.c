@@ -12,6 +12,8 @@
 #include "io/input.h"
 #include "io/sha256.h"
 
+#define TABLE_LINE_MAX (1 << 20) /* bytes of a row: paths, a message */
+
 /* ---- reading ------------------------------------------------------------ */
 
 /* The fields of one CSV line (RFC 4180 quoting), appended to *cells. */
@@ -57,7 +59,8 @@ static cl_status read_one(const char *path, int src, cl_sweep_table *t,
     size_t cap = 0;
     int nf, nhead = 0;
     cl_status rc = CL_OK;
-    if (getline(&line, &cap, fp) > 0 &&
+    ssize_t len = cl_input_line(fp, &line, &cap, TABLE_LINE_MAX);
+    if (len > 0 &&
         split(line, src ? &head : &t->head, src ? &nhead : &t->ncol) < 0)
         rc = cl_error_set(err, CL_ENOMEM, "out of memory");
     for (int k = 0; !rc && src && k < t->ncol; k++)
@@ -68,7 +71,8 @@ static cl_status read_one(const char *path, int src, cl_sweep_table *t,
                               "earlier clothode lacks the newer columns: "
                               "collect it again)", path, t->paths[0]);
     cl_sweep_strings_free(head, nhead);
-    while (!rc && getline(&line, &cap, fp) > 0) {
+    while (!rc && len != -2 &&
+           (len = cl_input_line(fp, &line, &cap, TABLE_LINE_MAX)) > 0) {
         int *grown = realloc(t->src, (size_t)(t->nrow + 1) * sizeof *grown);
         nf = grown ? split(line, &t->cell, &t->ncell) : -1;
         if (grown)
@@ -81,6 +85,10 @@ static cl_status read_one(const char *path, int src, cl_sweep_table *t,
         else
             t->src[t->nrow++] = src;
     }
+    if (!rc && len == -2)
+        rc = cl_error_set(err, CL_EPARSE, "%s: a line longer than %d "
+                          "bytes (not a table of 'clothode sweep collect')",
+                          path, TABLE_LINE_MAX);
     free(line);
     fclose(fp);
     return rc;

@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -85,4 +86,32 @@ FILE *cl_input_open(const char *path, const char *mode, const char **why)
     if (!fp)
         (void)close(fd);
     return fp;
+}
+
+ssize_t cl_input_line(FILE *fp, char **line, size_t *cap, size_t max)
+{
+    size_t n = 0;
+    int ch = EOF;
+    while ((ch = getc(fp)) != EOF) {
+        if (n == max)
+            return -2;
+        if (n + 2 > *cap) {
+            size_t grown = *cap ? 2 * *cap : 128;
+            grown = grown < max + 1 ? grown : max + 1;
+            char *p = realloc(*line, grown);
+            if (!p) {
+                errno = ENOMEM;
+                return -1;
+            }
+            *line = p;
+            *cap = grown;
+        }
+        (*line)[n++] = (char)ch;
+        if (ch == '\n')
+            break;
+    }
+    if (n == 0)
+        return -1;
+    (*line)[n] = '\0';
+    return (ssize_t)n;
 }

@@ -18,6 +18,14 @@ CL_BEGIN_DECLS
  * (strerror's text, or "it is a FIFO, not a regular file", ...). */
 FILE *cl_input_open(const char *path, const char *mode, const char **why);
 
+/* getline(3) with a bound: the next line of fp (its newline kept) into
+ * *line (grown to max + 1 bytes at most, getline's contract otherwise);
+ * its length, which may count NUL bytes; -1 at the end of the file or on
+ * a read error (ferror), or when no memory is left (errno ENOMEM); -2
+ * when the line is longer than max bytes, the rest of it unread, so that
+ * a file of one huge line is refused before it fills the memory. */
+ssize_t cl_input_line(FILE *fp, char **line, size_t *cap, size_t max);
+
 /* Whether paths a and b name the same existing file (or directory), by
  * device and inode: through links and other spellings. */
 bool cl_same_file(const char *a, const char *b);

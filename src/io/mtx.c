@@ -12,6 +12,8 @@
 #include "io/atomic.h"
 #include "io/input.h"
 
+#define MTX_LINE_MAX 65536 /* bytes of a line, comments included */
+
 cl_status cl_mtx_write_blocks(const char *path, const cl_bpattern *pat,
                               const double *val, cl_error *err)
 {
@@ -152,8 +154,14 @@ cl_status cl_mtx_read(const char *path, cl_triplets *t, cl_error *err)
     int have_size = 0;
     ssize_t len;
     errno = 0;
-    while (st == CL_OK && (len = getline(&line, &cap, fp)) >= 0) {
+    while (st == CL_OK &&
+           (len = cl_input_line(fp, &line, &cap, MTX_LINE_MAX)) != -1) {
         lineno++;
+        if (len == -2) {
+            st = cl_error_set(err, CL_EPARSE, "%s:%zu: a line longer than "
+                              "%d bytes", path, lineno, MTX_LINE_MAX);
+            break;
+        }
         if (memchr(line, '\0', (size_t)len)) {
             st = cl_error_set(err, CL_EPARSE, "%s:%zu: NUL byte (a Matrix"
                               " Market file is text)", path, lineno);

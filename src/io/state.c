@@ -12,6 +12,7 @@
 
 #define STATE_HEADER "p,x,y,z,vx,vy,vz"
 #define STATE_NFIELD 7
+#define STATE_LINE_MAX 4096 /* bytes of a line: a row is far shorter */
 
 static const char *const field_name[STATE_NFIELD] = {
     "p", "x", "y", "z", "vx", "vy", "vz"
@@ -158,8 +159,15 @@ cl_status cl_state_read(const char *path, size_t np, double *x, double *v,
     ssize_t len;
     int header_ok = 0;
     errno = 0;
-    while (st == CL_OK && (len = getline(&line, &cap, fp)) >= 0) {
+    while (st == CL_OK &&
+           (len = cl_input_line(fp, &line, &cap, STATE_LINE_MAX)) != -1) {
         lineno++;
+        if (len == -2) {
+            st = cl_error_set(err, CL_EPARSE, "%s:%zu: a line longer than "
+                              "%d bytes (a row is p and six numbers)", path,
+                              lineno, STATE_LINE_MAX);
+            break;
+        }
         if (memchr(line, '\0', (size_t)len)) {
             st = cl_error_set(err, CL_EPARSE, "%s:%zu: NUL byte (a state"
                               " file is text)", path, lineno);
