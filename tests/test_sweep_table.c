@@ -203,6 +203,40 @@ Test(sweep_table, rows_must_name_one_value_of_an_axis)
 
 /* An empty name in the list of tables (--table '', --from-sweep A.csv,,B)
  * is refused: read as no table, it gave no rows and nothing to refine. */
+/* A line longer than 1 MB is refused as it is read, with its line: a row
+ * of the first table, the header of the second (before: its columns were
+ * said not to be the first's); the rows of a table count from its own
+ * line 2 (before: from the rows of the tables before it). */
+Test(sweep_table, overlong_line_refused)
+{
+    static char text[(1 << 20) + 4096];
+    char first[1100], second[1100], list[2300];
+    cl_sweep_table t;
+    cl_error err = {0};
+    snprintf(first, sizeof first, "%s/t.csv", tmp);
+    snprintf(second, sizeof second, "%s/u.csv", tmp);
+    snprintf(list, sizeof list, "%s,%s", first, second);
+    put_table(first, table, "problems/hang.ini");
+    size_t n = (size_t)sprintf(text, HEAD "a1,job,rk4,6,0.001,2,complete,");
+    memset(text + n, 'x', 1 << 20);
+    strcpy(text + n + (1 << 20), "\n");
+    tmp_put(second, text);
+    cr_assert_eq(cl_sweep_table_read(second, &t, &err), CL_EPARSE);
+    cr_assert(strstr(err.msg, "u.csv:2: a line longer than 1048576 bytes"),
+              "%s", err.msg);
+    cl_sweep_table_free(&t);
+    memset(text, 'x', (1 << 20) + 10);
+    strcpy(text + (1 << 20) + 10, "\n");
+    tmp_put(second, text);
+    cr_assert_eq(cl_sweep_table_read(list, &t, &err), CL_EPARSE);
+    cr_assert(strstr(err.msg, "u.csv:1: a line longer"), "%s", err.msg);
+    cl_sweep_table_free(&t);
+    tmp_put(second, HEAD "a1,job,rk4,6\n");
+    cr_assert_eq(cl_sweep_table_read(list, &t, &err), CL_EPARSE);
+    cr_assert(strstr(err.msg, "u.csv:2: 4 fields"), "%s", err.msg);
+    cl_sweep_table_free(&t);
+}
+
 Test(sweep_table, empty_table_names_are_refused)
 {
     char list[1200];

@@ -57,13 +57,14 @@ static cl_status read_one(const char *path, int src, cl_sweep_table *t,
                             path, why);
     char *line = NULL, **head = NULL;
     size_t cap = 0;
-    int nf, nhead = 0;
+    int nf, nhead = 0, lineno = 1;
     cl_status rc = CL_OK;
     ssize_t len = cl_input_line(fp, &line, &cap, TABLE_LINE_MAX);
+    bool long_header = len == -2;
     if (len > 0 &&
         split(line, src ? &head : &t->head, src ? &nhead : &t->ncol) < 0)
         rc = cl_error_set(err, CL_ENOMEM, "out of memory");
-    for (int k = 0; !rc && src && k < t->ncol; k++)
+    for (int k = 0; !rc && len != -2 && src && k < t->ncol; k++)
         if (nhead != t->ncol || strcmp(head[k], t->head[k]))
             rc = cl_error_set(err, CL_EPARSE, "--from-sweep %s: its columns "
                               "are not those of %s (tables of the stages "
@@ -73,6 +74,7 @@ static cl_status read_one(const char *path, int src, cl_sweep_table *t,
     cl_sweep_strings_free(head, nhead);
     while (!rc && len != -2 &&
            (len = cl_input_line(fp, &line, &cap, TABLE_LINE_MAX)) > 0) {
+        lineno++;
         int *grown = realloc(t->src, (size_t)(t->nrow + 1) * sizeof *grown);
         nf = grown ? split(line, &t->cell, &t->ncell) : -1;
         if (grown)
@@ -81,14 +83,18 @@ static cl_status read_one(const char *path, int src, cl_sweep_table *t,
             rc = cl_error_set(err, CL_ENOMEM, "out of memory");
         else if (nf != t->ncol)
             rc = cl_error_set(err, CL_EPARSE, "%s:%d: %d fields, the header "
-                              "has %d", path, t->nrow + 2, nf, t->ncol);
+                              "has %d", path, lineno, nf, t->ncol);
         else
             t->src[t->nrow++] = src;
     }
     if (!rc && len == -2)
-        rc = cl_error_set(err, CL_EPARSE, "%s: a line longer than %d "
+        rc = cl_error_set(err, CL_EPARSE, "%s:%d: a line longer than %d "
                           "bytes (not a table of 'clothode sweep collect')",
-                          path, TABLE_LINE_MAX);
+                          path, long_header ? 1 : lineno + 1,
+                          TABLE_LINE_MAX);
+    if (!rc && ferror(fp))
+        rc = cl_error_set(err, CL_EIO, "cannot read the sweep table %s",
+                          path);
     free(line);
     fclose(fp);
     return rc;
