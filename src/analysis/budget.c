@@ -61,14 +61,16 @@ cl_status cl_budget_check(const cl_integrator_type *type,
     return rc;
 }
 
-/* E(T) - E(0) of a run ending at x, v, from the initial state x0, v0. */
+/* E(t0 + T) - E(t0) of a run over T ending at x, v, from the initial
+ * state x0, v0 at the model's start time t0. */
 static double energy_change(cl_model *m, const double *x, const double *v,
                             double T, const double *x0, const double *v0)
 {
     const cl_system *sys = cl_model_system(m);
+    double t0 = cl_model_start_time(m);
     cl_energy e0, e1;
-    if (sys->energy(sys->data, 0.0, x0, v0, &e0) ||
-        sys->energy(sys->data, T, x, v, &e1))
+    if (sys->energy(sys->data, t0, x0, v0, &e0) ||
+        sys->energy(sys->data, t0 + T, x, v, &e1))
         return NAN;
     return e1.total - e0.total;
 }

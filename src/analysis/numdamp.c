@@ -36,7 +36,8 @@ cl_status cl_numdamp_undamped(cl_model *m, cl_error *err)
     cl_energy e = {0};
     cl_status rc = x ? cl_model_initial_state(m, x, x + sys->n)
                      : cl_error_set(err, CL_ENOMEM, "damping: out of memory");
-    if (!rc && (rc = sys->energy(sys->data, 0.0, x, x, &e)))
+    if (!rc && (rc = sys->energy(sys->data, cl_model_start_time(m), x, x,
+                                 &e)))
         cl_error_set(err, rc, "damping: the energy at the initial state "
                      "failed");
     free(x);
@@ -61,7 +62,7 @@ cl_status cl_numdamp_frequency(cl_model *m, double *w, cl_error *err)
     if (!rc && !(x && v))
         rc = cl_error_set(err, CL_ENOMEM, "damping: out of memory");
     if (!rc && !(rc = cl_model_initial_state(m, x, v)))
-        rc = cl_spectrum_compute(m, 0.0, x, v, &sp, err);
+        rc = cl_spectrum_compute(m, cl_model_start_time(m), x, v, &sp, err);
     *w = rc ? NAN : sp.w_max;
     if (!rc && !(*w > 0 && isfinite(*w)))
         rc = cl_error_set(err, CL_EINVAL, "damping: the problem has no "

@@ -28,14 +28,14 @@ void cl_numdamp_modes_free(cl_numdamp_modes *b)
     memset(b, 0, sizeof *b);
 }
 
-/* CL_EINVAL unless M^-1 f(0, x0, 0) vanishes; v0 = 0 after it (sqm is
+/* CL_EINVAL unless M^-1 f(t0, x0, 0) vanishes; v0 = 0 after it (sqm is
  * scratch for f). */
-static cl_status nd_at_rest(const cl_system *sys, cl_numdamp_modes *b,
-                            cl_error *err)
+static cl_status nd_at_rest(const cl_system *sys, double t0,
+                            cl_numdamp_modes *b, cl_error *err)
 {
     double *f = b->sqm, worst = 0.0;
     memset(b->v0, 0, b->n * sizeof *b->v0);
-    cl_status rc = sys->force(sys->data, 0.0, b->x0, b->v0, f);
+    cl_status rc = sys->force(sys->data, t0, b->x0, b->v0, f);
     if (rc)
         return cl_error_set(err, rc, "damping: force at the initial state "
                             "failed");
@@ -122,7 +122,8 @@ static cl_status nd_equilibrium(cl_model *m, bool equilibrium,
 {
     if (!equilibrium)
         return CL_OK;
-    return cl_equilibrium_find(m, 0.0, b->x0, ND_EQ_TOL, ND_EQ_STEPS,
+    return cl_equilibrium_find(m, cl_model_start_time(m), b->x0, ND_EQ_TOL,
+                               ND_EQ_STEPS,
                                &b->eq, err);
 }
 
@@ -133,8 +134,6 @@ cl_status cl_numdamp_modes_init(cl_model *m, double speed, bool equilibrium,
     size_t n = sys->n;
     memset(b, 0, sizeof *b);
     cl_status rc = cl_trial_repeatable(m, err);
-    if (!rc)
-        rc = cl_trial_from_zero(m, err);
     if (!rc)
         rc = cl_numdamp_undamped(m, err);
     if (rc)
@@ -158,9 +157,10 @@ cl_status cl_numdamp_modes_init(cl_model *m, double speed, bool equilibrium,
     if (!rc)
         rc = nd_equilibrium(m, equilibrium, b, err);
     if (!rc)
-        rc = nd_at_rest(sys, b, err);
+        rc = nd_at_rest(sys, cl_model_start_time(m), b, err);
     if (!rc)
-        rc = cl_spectrum_modes(m, 0.0, b->x0, b->v0, b->mu, b->phi, err);
+        rc = cl_spectrum_modes(m, cl_model_start_time(m), b->x0, b->v0,
+                               b->mu, b->phi, err);
     for (size_t k = 0; !rc && k < n; k++) {
         b->sqm[k] = sqrt(sys->mass[k]);
         b->nosc += b->mu[k] > ND_OSC_TOL * b->mu[n - 1];
@@ -206,17 +206,19 @@ static cl_status nd_modal_alloc(const cl_numdamp_modes *b,
     return CL_OK;
 }
 
-/* The run from (x0, v0) to T into x, v; its failure into r. */
+/* The run from (x0, v0) at the model's start time over T into x, v; its
+ * failure into r. */
 static void nd_modal_integrate(const cl_model *m, const cl_numdamp_modes *b,
                                const cl_integrator_opts *o, cl_numdamp_modal
                                *r, double *x, double *v)
 {
     const cl_system *sys = cl_model_system((cl_model *)m);
+    double t0 = cl_model_start_time(m);
     void *state = NULL;
-    r->rc = cl_integrator_create(r->type, sys, o, 0.0, b->x0, b->v0, &state,
+    r->rc = cl_integrator_create(r->type, sys, o, t0, b->x0, b->v0, &state,
                                  &r->why);
     if (!r->rc)
-        r->rc = r->type->advance(state, r->T, x, v, &r->why);
+        r->rc = r->type->advance(state, t0 + r->T, x, v, &r->why);
     if (state)
         r->type->free(state);
 }

@@ -30,24 +30,11 @@ cl_status cl_trial_whole_steps(const cl_integrator_type *type, double dt,
     return CL_OK;
 }
 
-cl_status cl_trial_from_zero(const cl_model *m, cl_error *err)
-{
-    double t0 = cl_model_start_time(m);
-    if (t0 != 0.0)
-        return cl_error_set(err, CL_EUNSUPPORTED, "[init] time = %g: the "
-                            "studies run from t = 0 (a state of another "
-                            "time is for run, spectrum and eval)", t0);
-    return CL_OK;
-}
-
 cl_status cl_trial_init(cl_trial *t, cl_model *m, cl_error *err)
 {
     const cl_cloth *c = cl_model_cloth(m);
     size_t n = cl_model_system(m)->n;
     memset(t, 0, sizeof *t);
-    cl_status rc = cl_trial_from_zero(m, err);
-    if (rc)
-        return rc;
     t->m = m;
     t->x = malloc(n * sizeof *t->x);
     t->v = malloc(n * sizeof *t->v);
@@ -82,14 +69,15 @@ static cl_status check_stretch(cl_trial *t, double time, double max_stretch,
     return CL_OK;
 }
 
-/* Check time k of `checks`: a whole number of steps for a fixed step. */
-static double check_time(const cl_integrator_type *type, double dt, double T,
-                         long k, long checks)
+/* Check time k of `checks` of a run from t0 over T: a whole number of
+ * steps for a fixed step. */
+static double check_time(const cl_integrator_type *type, double dt,
+                         double t0, double T, long k, long checks)
 {
     if (!cl_integrator_fixed(type, dt))
-        return k == checks ? T : T * (double)k / (double)checks;
+        return k == checks ? t0 + T : t0 + T * (double)k / (double)checks;
     double steps = nearbyint(T / dt);
-    return dt * nearbyint(steps * (double)k / (double)checks);
+    return t0 + dt * nearbyint(steps * (double)k / (double)checks);
 }
 
 cl_status cl_trial_run(cl_trial *t, const cl_integrator_type *type,
@@ -98,18 +86,19 @@ cl_status cl_trial_run(cl_trial *t, const cl_integrator_type *type,
 {
     const cl_system *sys = cl_model_system(t->m);
     void *state = NULL;
-    double c0 = cl_clock_cpu(), w0 = cl_clock_wall(), last = 0.0;
+    double t0 = cl_model_start_time(t->m);
+    double c0 = cl_clock_cpu(), w0 = cl_clock_wall(), last = t0;
     cl_status rc = cl_model_initial_state(t->m, t->x, t->v);
     memset(s, 0, sizeof *s);
     t->stretch_seen = NAN; /* until a check */
-    cl_model_contact_start(t->m, 0.0, t->contact_work);
+    cl_model_contact_start(t->m, t0, t->contact_work);
     if (!rc && t->hook)
-        rc = t->hook(t->hook_ctx, 0.0, t->x, t->v, err);
+        rc = t->hook(t->hook_ctx, t0, t->x, t->v, err);
     if (!rc)
-        rc = cl_integrator_create(type, sys, io, 0.0, t->x, t->v, &state,
+        rc = cl_integrator_create(type, sys, io, t0, t->x, t->v, &state,
                                   err);
     for (long k = 1; !rc && k <= checks; k++) {
-        double tk = check_time(type, io->dt, T, k, checks);
+        double tk = check_time(type, io->dt, t0, T, k, checks);
         if (tk <= last)
             continue;
         if (cl_stop_requested()) {

@@ -1,5 +1,6 @@
 /* A checked run, the unit of the convergence and stability studies: a fresh
- * integrator from the model's initial state to T, stopping at `checks`
+ * integrator from the model's initial state, at its start time t0
+ * (cl_model_start_time), over a span T to t0 + T, stopping at `checks`
  * evenly spread times (whole steps for fixed-step methods) where the
  * largest stretch d/L of the nearest neighbours (cl_pairs_neighbours:
  * Type1's pairs on a grid, the triangle edges on a mesh cloth) is tested
@@ -16,7 +17,7 @@
 
 CL_BEGIN_DECLS
 
-/* Called at t = 0 and after every passed check with the free state. */
+/* Called at t0 and after every passed check with the free state. */
 typedef cl_status (*cl_trial_hook)(void *ctx, double t, const double *x,
                                    const double *v, cl_error *err);
 
@@ -38,19 +39,16 @@ typedef struct {
  * CL_EUNSUPPORTED for a model that tears (a tear changes it for good). */
 cl_status cl_trial_repeatable(cl_model *m, cl_error *err);
 
-/* Whether a run of `type` with step dt can end exactly at T: CL_EINVAL if
- * it takes fixed steps and T is not a whole number of them (to 1e-9). */
+/* Whether a run of `type` with step dt can span exactly T: CL_EINVAL if it
+ * takes fixed steps and T is not a whole number of them (to 1e-9). */
 cl_status cl_trial_whole_steps(const cl_integrator_type *type, double dt,
                                double T, cl_error *err);
-
-/* CL_EUNSUPPORTED unless the model starts at t = 0 (cl_model_start_time):
- * the studies' runs start there.  cl_trial_init checks it. */
-cl_status cl_trial_from_zero(const cl_model *m, cl_error *err);
 
 cl_status cl_trial_init(cl_trial *t, cl_model *m, cl_error *err);
 void cl_trial_free(cl_trial *t);
 
-/* Run `type` with options io to T; statistics (with CPU and wall time)
+/* Run `type` with options io from t0 to t0 + T; statistics (with CPU and
+ * wall time)
  * into *s.  The final state is in t->x, t->v (up to the failure after
  * one). */
 cl_status cl_trial_run(cl_trial *t, const cl_integrator_type *type,

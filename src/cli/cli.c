@@ -1,6 +1,7 @@
 /* Shared pieces of the clothode subcommands. */
 #include "cli/cli.h"
 
+#include <math.h>
 #include <stdarg.h>
 #include <stdbool.h>
 #include <stdint.h>
@@ -269,6 +270,28 @@ void cl_cli_default_out(const char *problem, char *buf, size_t len)
     else
         snprintf(buf, len, "out/%.*s", (int)n, base);
     free(abs);
+}
+
+cl_status cl_cli_span(const cl_config *cfg, double t_end, double *span,
+                      cl_error *err)
+{
+    const char *v = cl_config_peek(cfg, "init", "time");
+    char *end = NULL;
+    double t0 = v ? strtod(v, &end) : 0.0;
+    if (!v || end == v || !isfinite(t0))
+        t0 = 0.0; /* a malformed one is the model's to refuse */
+    *span = t_end - t0;
+    if (t0 == 0.0 || *span > 0)
+        return CL_OK;
+    return cl_error_set(err, CL_EINVAL, "t_end = %g is not after [init] "
+                        "time = %g: the runs go from that time to t_end",
+                        t_end, t0);
+}
+
+double cl_cli_dt_max(const cl_config *cfg, const char *sec, double given,
+                     double span)
+{
+    return cl_config_peek(cfg, sec, "dt_max") ? given : span / 100;
 }
 
 double cl_cli_state_time(const cl_config *cfg, const char *sec,

@@ -187,10 +187,20 @@ cl_status cl_cli_methods_fixed(cl_config *cfg, const cl_cli_methods *ms,
 
 /* Create and free every method on the model's initial state, so that an
  * option it refuses (an unknown linear solver, a cloth too large for a
- * dense method), or a model that does not start at t = 0
- * (cl_trial_from_zero), stops a study before it starts. */
+ * dense method) stops a study before it starts. */
 cl_status cl_cli_methods_try(cl_model *model, const cl_cli_methods *ms,
                              cl_error *err);
+
+/* A study's span: its runs go from the model's start time ([init] time,
+ * read here from the configuration; the model checks it) to t_end, so
+ * the span is t_end - time; CL_EINVAL when that is not > 0. */
+cl_status cl_cli_span(const cl_config *cfg, double t_end, double *span,
+                      cl_error *err);
+
+/* A search's largest step: as given ([sec] dt_max), else the span / 100
+ * (the option's own default saw t_end before the span was known). */
+double cl_cli_dt_max(const cl_config *cfg, const char *sec, double given,
+                     double span);
 
 /* The time of the state a command linearises at: [sec] t (--t) when
  * given, else the model's start time ([init] time, 0 by default). */

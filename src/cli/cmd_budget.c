@@ -69,8 +69,9 @@ static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
     budget_setup *s = ctx;
     cl_status rc = cl_cli_methods_check(cfg, &s->integrators, &s->run.io,
                                         CL_CLI_DT_FIXED, err);
-    s->bo.t_end = s->run.t_end;
     s->bo.max_stretch = s->run.max_stretch;
+    if (!rc)
+        rc = cl_cli_span(cfg, s->run.t_end, &s->bo.t_end, err);
     if (!rc)
         rc = cl_cli_methods_fixed(cfg, &s->integrators, "budget", err);
     for (int k = 0; !rc && k < s->integrators.n; k++)

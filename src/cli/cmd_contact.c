@@ -99,7 +99,8 @@ static const cl_cli_opt ct_rows[] = {
     {.name = "t", .arg = "T", .type = CL_CLI_DOUBLE, .sec = "contact",
      .key = "t", .lo = -INFINITY, .hi = INFINITY,
      .field = offsetof(ct_setup, t),
-     .help = "--k: the time of that state (moving obstacles and pins)"},
+     .help = "--k: the time of that state (moving obstacles and pins; "
+             "default [init] time, 0 unless given)"},
     {.name = "dt-max", .arg = "H", .type = CL_CLI_DOUBLE, .sec = "contact",
      .key = "dt_max", .lo = 1e-300, .bounds = search_bounds,
      .field = offsetof(ct_setup, dt_max),
@@ -337,8 +338,11 @@ static cl_status build(ct_setup *s, int v, cl_error *err)
         snprintf(k, sizeof k, "%.17g", s->k[v - dt_variants(s)]);
         rc = set_all(s, "k", k, "--k", err);
     }
-    if (!rc && s->from) /* the sweep's rows of this variant */
+    if (!rc && s->from) /* the sweep's rows of this variant, and their
+                         * start time */
         rc = cl_sweep_table_select(&s->table, s->cfg, "contact", err);
+    if (!rc && s->from)
+        rc = cl_cli_span(s->cfg, s->run.t_end, &s->so.t_end, err);
     if (!rc && !(rc = cl_cli_model_create(s->cfg, &s->variant, err)))
         s->variant_of = v;
     return rc;
@@ -422,9 +426,12 @@ static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
         rc = cl_cli_methods_fixed(cfg, &s->integrators, "contact", err);
     if (rc)
         return rc;
-    s->so = (cl_stab_opts){.t_end = s->run.t_end, .checks = s->checks,
+    s->so = (cl_stab_opts){.checks = s->checks,
                            .max_stretch = s->run.max_stretch, .rel = s->rel,
-                           .dt_max = s->dt_max, .dt_min = s->dt_min};
+                           .dt_min = s->dt_min};
+    if ((rc = cl_cli_span(cfg, s->run.t_end, &s->so.t_end, err)))
+        return rc;
+    s->so.dt_max = cl_cli_dt_max(cfg, "contact", s->dt_max, s->so.t_end);
     if (s->from)
         rc = cl_sweep_table_read(s->from, &s->table, err);
     if (!rc && !(rc = read_lists(cfg, s, err)) &&
@@ -528,6 +535,7 @@ static cl_status begin_k(cl_model *m, const cl_cli_job *job, void *ctx,
                                                "out of memory");
     if (rc)
         return rc;
+    s->t = cl_cli_state_time(job->cfg, "contact", m, s->t);
     if (!job->quiet)
         printf("\nexplicit limit against the penalty stiffness k (every "
                "obstacle penalty), predicted at %s\n",

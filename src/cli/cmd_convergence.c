@@ -97,8 +97,9 @@ static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
                                   s->from ? CL_CLI_DT_NONE
                                           : CL_CLI_DT_FIXED, err);
     s->co.ref_linsol = "";
-    s->co.t_end = s->run.t_end;
     s->co.max_stretch = s->run.max_stretch;
+    if (!rc)
+        rc = cl_cli_span(cfg, s->run.t_end, &s->co.t_end, err);
     for (int k = 0; !rc && !s->from && k < s->integrators.n; k++)
         rc = cl_conv_check(s->integrators.m[k].type, &s->integrators.m[k].io,
                            (int)s->levels, &s->co, err);

@@ -85,6 +85,9 @@ static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
     if (!rc && s->from && !(rc = cl_sweep_table_read(s->from, &s->table,
                                                       err)))
         rc = cl_sweep_table_select(&s->table, cfg, "energy", err);
+    /* the span, from [init] time (the sweep's, once selected) to t_end */
+    if (!rc)
+        rc = cl_cli_span(cfg, s->run.t_end, &s->run.t_end, err);
     /* a petsc-* method the sweep ran at fixed steps: its run is picked by
      * --dt, as a fixed-step method's */
     for (int k = 0; !rc && s->from && k < s->integrators.n; k++) {

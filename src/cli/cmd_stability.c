@@ -322,13 +322,16 @@ static cl_status check_setup(cl_config *cfg, void *ctx, cl_error *err)
         rc = cl_cli_methods_fixed(cfg, &s->integrators, "stability", err);
     if (rc)
         return rc;
-    s->so.t_end = s->run.t_end;
     s->so.max_stretch = s->run.max_stretch;
     s->cfg = cfg;
     s->variant_of = -1;
     if (s->from && !(rc = cl_sweep_table_read(s->from, &s->table, err)) &&
         !*s->axis)
         rc = cl_sweep_table_select(&s->table, cfg, "stability", err);
+    /* from [init] time (the sweep's, once selected) to t_end */
+    if (!rc && !(rc = cl_cli_span(cfg, s->run.t_end, &s->so.t_end, err)))
+        s->so.dt_max = cl_cli_dt_max(cfg, "stability", s->so.dt_max,
+                                     s->so.t_end);
     if (!rc && *s->axis)
         rc = read_axis(cfg, s, err);
     return rc;

@@ -6,7 +6,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "analysis/trial.h"
 #include "cli/cli.h"
 
 #define RUN_ROW(f) .sec = "run", .field = offsetof(cl_cli_run, f)
@@ -453,12 +452,9 @@ cl_status cl_cli_methods_try(cl_model *model, const cl_cli_methods *ms,
                              cl_error *err)
 {
     const cl_system *sys = cl_model_system(model);
-    cl_status rc = cl_trial_from_zero(model, err);
-    if (rc)
-        return rc;
     double *x = malloc(sys->n * sizeof *x), *v = malloc(sys->n * sizeof *v);
-    rc = x && v ? cl_model_initial_state(model, x, v)
-                : cl_error_set(err, CL_ENOMEM, "out of memory");
+    cl_status rc = x && v ? cl_model_initial_state(model, x, v)
+                          : cl_error_set(err, CL_ENOMEM, "out of memory");
     for (int k = 0; !rc && k < ms->n; k++) {
         const cl_cli_method *m = &ms->m[k];
         void *state = NULL;
@@ -466,8 +462,9 @@ cl_status cl_cli_methods_try(cl_model *model, const cl_cli_methods *ms,
         if (m->type->fixed_step && !(io.dt > 0))
             io.dt = 1.0; /* a search (stability) sets the step later */
         cl_error why = {0};
-        if ((rc = cl_integrator_create(m->type, sys, &io, 0.0, x, v, &state,
-                                       &why)))
+        if ((rc = cl_integrator_create(m->type, sys, &io,
+                                       cl_model_start_time(model), x, v,
+                                       &state, &why)))
             cl_error_set(err, rc, "%s: %s", m->label, why.msg);
         if (state)
             m->type->free(state);
