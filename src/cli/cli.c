@@ -13,7 +13,6 @@
 #include "cli/outdir.h"
 #include "core/meminfo.h"
 #include "io/atomic.h"
-#include "io/state.h"
 
 int cl_cli_exit_status(cl_status code)
 {
@@ -303,18 +302,6 @@ double cl_cli_state_time(const cl_config *cfg, const char *sec,
 cl_status cl_cli_free_state(cl_model *m, const char *path, double *x,
                             double *v, cl_error *err)
 {
-    const cl_cloth *c = cl_model_cloth(m);
-    if (!*path)
-        return cl_model_initial_state(m, x, v);
-    double *xf = malloc(3 * c->np * sizeof *xf);
-    double *vf = malloc(3 * c->np * sizeof *vf);
-    cl_status rc = xf && vf ? cl_state_read(path, c->np, xf, vf, err)
-                            : cl_error_set(err, CL_ENOMEM, "out of memory");
-    if (!rc) {
-        cl_cloth_gather(c, xf, x);
-        cl_cloth_gather(c, vf, v);
-    }
-    free(xf);
-    free(vf);
-    return rc;
+    return *path ? cl_model_read_state(m, path, x, v, err)
+                 : cl_model_initial_state(m, x, v);
 }

@@ -152,25 +152,36 @@ static cl_status begin_output(void *ctx, cl_error *err)
     return rc;
 }
 
+/* The first file the configuration read (cl_config_input_files) that
+ * `match` accepts, into sec, key, path ("" when none). */
 typedef struct {
-    const char *dir;     /* the output directory, resolved */
-    const char *key;     /* the first input found in it, or NULL */
-    char sec[64], path[4096];
-} input_in_dir;
+    const cl_config *cfg;
+    bool (*match)(const void *arg, const cl_config *cfg, const char *sec,
+                  const char *key, const char *path);
+    const void *arg;
+    char sec[64], key[64], path[4096];
+} input_search;
 
-static void find_input_in_dir(void *ctx, const char *sec, const char *key,
-                              const char *path, bool given)
+static void input_visit(void *ctx, const char *sec, const char *key,
+                        const char *path, bool given)
 {
-    input_in_dir *f = ctx;
-    const char *slash = strrchr(path, '/');
-    size_t len = strlen(f->dir);
+    input_search *f = ctx;
     (void)given;
-    if (!f->key && slash && (size_t)(slash - path) == len &&
-        !strncmp(path, f->dir, len)) {
-        f->key = key;
+    if (!*f->key && f->match(f->arg, f->cfg, sec, key, path)) {
         snprintf(f->sec, sizeof f->sec, "%s", sec);
+        snprintf(f->key, sizeof f->key, "%s", key);
         snprintf(f->path, sizeof f->path, "%s", path);
     }
+}
+
+/* A file right in directory `arg` (resolved). */
+static bool in_dir(const void *arg, const cl_config *cfg, const char *sec,
+                   const char *key, const char *path)
+{
+    const char *dir = arg, *slash = strrchr(path, '/');
+    size_t len = strlen(dir);
+    (void)cfg, (void)sec, (void)key;
+    return slash && (size_t)(slash - path) == len && !strncmp(path, dir, len);
 }
 
 /* A file the problem reads ([init] state, a mesh) inside the output
@@ -180,11 +191,11 @@ static cl_status inputs_outside(const cl_config *cfg, const char *outdir,
                                 cl_error *err)
 {
     char *dir = realpath(outdir, NULL);
-    input_in_dir f = {.dir = dir};
+    input_search f = {.cfg = cfg, .match = in_dir, .arg = dir};
     if (dir)
-        cl_config_input_files(cfg, find_input_in_dir, &f);
+        cl_config_input_files(cfg, input_visit, &f);
     free(dir);
-    if (!f.key)
+    if (!*f.key)
         return CL_OK;
     return cl_error_set(err, CL_EINVAL, "[%s] %s = %s: in the output "
                         "directory %s, whose files this run removes and "
@@ -240,23 +251,13 @@ static cl_status run_work(cl_model *m, const cl_cli_job *job, void *ctx,
     return rc ? rc : rc2;
 }
 
-typedef struct {
-    const cl_config *cfg;
-    char sec[64], key[64], value[4096]; /* the first relative one, or "" */
-} relative_set;
-
-static void find_relative_set(void *ctx, const char *sec, const char *key,
-                              const char *path, bool given)
+/* A file a --set names by a relative path. */
+static bool relative_set(const void *arg, const cl_config *cfg,
+                         const char *sec, const char *key, const char *path)
 {
-    relative_set *f = ctx;
-    const char *v = cl_config_peek(f->cfg, sec, key);
-    (void)path, (void)given;
-    if (!*f->key && v && v[0] != '/' &&
-        cl_config_set_by_command(f->cfg, sec, key)) {
-        snprintf(f->sec, sizeof f->sec, "%s", sec);
-        snprintf(f->key, sizeof f->key, "%s", key);
-        snprintf(f->value, sizeof f->value, "%s", v);
-    }
+    const char *v = cl_config_peek(cfg, sec, key);
+    (void)arg, (void)path;
+    return v && v[0] != '/' && cl_config_set_by_command(cfg, sec, key);
 }
 
 /* A file named by a set (not by the problem file, whose names are
@@ -264,14 +265,14 @@ static void find_relative_set(void *ctx, const char *sec, const char *key,
 static cl_status sets_name_absolute_files(const cl_config *cfg,
                                           cl_error *err)
 {
-    relative_set f = {.cfg = cfg};
-    cl_config_input_files(cfg, find_relative_set, &f);
+    input_search f = {.cfg = cfg, .match = relative_set};
+    cl_config_input_files(cfg, input_visit, &f);
     if (!*f.key)
         return CL_OK;
     return cl_error_set(err, CL_EINVAL, "%s.%s = %s: a relative file name, "
                         "which each job would look for in the directory "
                         "'sweep run' starts in; give its absolute path",
-                        f.sec, f.key, f.value);
+                        f.sec, f.key, cl_config_peek(cfg, f.sec, f.key));
 }
 
 cl_status cl_cmd_run_check(const char *problem, const char *integrator,

@@ -110,29 +110,58 @@ static double rest_extent(const cl_cloth *c)
 
 /* A state file's pinned rows must be where the pins hold those particles
  * at [init] time: a state saved at another time of a problem whose pins
- * move would otherwise start with its pins jumping. */
-static cl_status check_state_pins(cl_config *cfg, const cl_cloth *c,
-                                  double t0, const double *xs, cl_error *err)
+ * move would otherwise start with its pins jumping.  The reason into
+ * why (len bytes) when they are not. */
+static bool state_pins_agree(const cl_cloth *c, double t0, const double *xs,
+                             char *why, size_t len)
 {
     size_t k = 0;
     double far = pin_mismatch(c, t0, xs, &k);
     if (far <= 1e-9 * rest_extent(c))
-        return CL_OK;
+        return true;
     double at[3];
     const double *x = xs + 3 * (size_t)c->pins[k].p;
     cl_cloth_pin_position(c, k, t0, at);
     const double *w = c->pins[k].w;
     bool moves = (w[0] != 0.0 || w[1] != 0.0 || w[2] != 0.0) &&
                  c->pins[k].t_stop > 0.0;
-    char why[512];
-    snprintf(why, sizeof why, "pinned particle %d is at (%.9g, %.9g, %.9g), "
+    snprintf(why, len, "pinned particle %d is at (%.9g, %.9g, %.9g), "
              "%.3g m from where its pin holds it at [init] time = %g s, "
              "(%.9g, %.9g, %.9g): %s", c->pins[k].p, x[0], x[1], x[2], far,
              t0, at[0], at[1], at[2],
              moves ? "give the time the state was saved at as [init] time"
                    : "that pin does not move, so the state is of another "
                      "problem or pinning");
-    return cl_config_refuse(cfg, "init", "state", CL_EINVAL, why, err);
+    return false;
+}
+
+/* The free part of a state file into x, v (3 nfree each); with t0 not
+ * NaN, its pinned rows checked first (state_pins_agree: CL_EINVAL). */
+static cl_status free_state_of(const cl_cloth *c, const char *path,
+                               double t0, double *x, double *v,
+                               cl_error *err)
+{
+    double *xf = malloc(3 * c->np * sizeof *xf);
+    double *vf = malloc(3 * c->np * sizeof *vf);
+    char why[512];
+    cl_status rc = xf && vf ? cl_state_read(path, c->np, xf, vf, err)
+                            : cl_error_set(err, CL_ENOMEM, "out of memory "
+                                           "(a state)");
+    if (!rc && !isnan(t0) && !state_pins_agree(c, t0, xf, why, sizeof why))
+        rc = cl_error_set(err, CL_EINVAL, "%s", why);
+    if (!rc) {
+        cl_cloth_gather(c, xf, x);
+        cl_cloth_gather(c, vf, v);
+    }
+    free(xf);
+    free(vf);
+    return rc;
+}
+
+cl_status cl_model_read_state(const cl_model *m, const char *path, double *x,
+                              double *v, cl_error *err)
+{
+    return free_state_of(&m->cloth, path, NAN, x, v, err);
 }
 
 /* [init] state: a state file (final.csv) whose free particles' positions
@@ -166,22 +195,15 @@ static cl_status read_state(cl_config *cfg, cl_model *m, cl_error *err)
         return cl_config_refuse(cfg, "init", "perturb", CL_EINVAL,
                                 "given with [init] state, whose file gives "
                                 "the positions", err);
-    double *xf = malloc(3 * c->np * sizeof *xf);
-    double *vf = malloc(3 * c->np * sizeof *vf);
     m->xs = malloc((3 * c->nfree + 1) * sizeof *m->xs);
     m->vs = malloc((3 * c->nfree + 1) * sizeof *m->vs);
-    if (!xf || !vf || !m->xs || !m->vs)
-        rc = cl_error_set(err, CL_ENOMEM, "out of memory ([init] state)");
-    else if ((rc = cl_state_read(path, c->np, xf, vf, err))) {
+    if (!m->xs || !m->vs)
+        return cl_error_set(err, CL_ENOMEM, "out of memory ([init] state)");
+    if ((rc = free_state_of(c, path, m->t0, m->xs, m->vs, err))) {
         char why[sizeof err->msg];
         snprintf(why, sizeof why, "%s", err->msg);
         rc = cl_config_refuse(cfg, "init", "state", rc, why, err);
-    } else if (!(rc = check_state_pins(cfg, c, m->t0, xf, err))) {
-        cl_cloth_gather(c, xf, m->xs);
-        cl_cloth_gather(c, vf, m->vs);
     }
-    free(xf);
-    free(vf);
     return rc;
 }
 

@@ -52,6 +52,11 @@ const cl_cloth *cl_model_cloth(const cl_model *m);
  * [init] state file.  CL_ENOMEM is the only failure. */
 cl_status cl_model_initial_state(const cl_model *m, double *x, double *v);
 
+/* The free state x, v (3*nfree each) of a state file (final.csv's
+ * format, io/state.h) of this cloth; cl_state_read's failures. */
+cl_status cl_model_read_state(const cl_model *m, const char *path, double *x,
+                              double *v, cl_error *err);
+
 /* The time of that initial state: [init] time (s, >= 0), 0 unless an
  * [init] state gives another; runs start there. */
 double cl_model_start_time(const cl_model *m);
