@@ -1,11 +1,15 @@
 /* Input files (io/input.c): a regular file (or a link to one) opens; a
  * FIFO with no writer, a directory and /dev/null are refused at once,
- * saying what they are, and a missing file with the system's reason. */
+ * saying what they are, and a missing file with the system's reason.
+ * Lines are read up to a bound, telling a line too long and a buffer that
+ * could not grow from the end of the file. */
 #include <criterion/criterion.h>
 
 #include <errno.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -71,3 +75,66 @@ Test(input, same_input_by_file_bytes_or_name)
     cr_assert(!cl_same_input(other, a));
     tmp_rm_rf(dir);
 }
+
+/* Lines up to the bound, the newline kept; a longer one is refused
+ * before the rest of it is read; the last line may lack its newline. */
+Test(input, lines_are_read_up_to_the_bound)
+{
+    char text[] = "ab\n\nlonger than eight\nend";
+    FILE *fp = fmemopen(text, strlen(text), "r");
+    cr_assert_not_null(fp);
+    char *line = NULL;
+    size_t cap = 0;
+    cr_assert_eq(cl_input_line(fp, &line, &cap, 8), 3);
+    cr_assert_str_eq(line, "ab\n");
+    cr_assert_eq(cl_input_line(fp, &line, &cap, 8), 1);
+    cr_assert_str_eq(line, "\n");
+    cr_assert_eq(cl_input_line(fp, &line, &cap, 8), CL_INPUT_LONG);
+    cr_assert_leq(cap, 9, "the buffer stays within the bound");
+    ssize_t len = cl_input_line(fp, &line, &cap, 64);
+    cr_assert(len > 0 && len < 12 && strstr(line, "eight\n"),
+              "the rest of the long line: %s", line);
+    cr_assert_eq(cl_input_line(fp, &line, &cap, 8), 3);
+    cr_assert_str_eq(line, "end");
+    cr_assert_eq(cl_input_line(fp, &line, &cap, 8), CL_INPUT_END);
+    free(line);
+    fclose(fp);
+}
+
+/* A buffer that cannot grow (under a data limit a little above what the
+ * process has) is told from the end of the file.  Not under
+ * AddressSanitizer, whose allocator takes its memory from space reserved
+ * at the start. */
+#if !defined(__SANITIZE_ADDRESS__)
+Test(input, a_buffer_that_cannot_grow_is_not_an_end)
+{
+    struct rlimit rl;
+    cr_assert_eq(getrlimit(RLIMIT_DATA, &rl), 0);
+    if (rl.rlim_cur != RLIM_INFINITY)
+        cr_skip_test("a data limit (ulimit -d) is set already");
+    size_t big = (size_t)64 << 20;
+    char *text = malloc(big);
+    cr_assert_not_null(text);
+    memset(text, 'x', big);
+    FILE *fp = fmemopen(text, big, "r");
+    cr_assert_not_null(fp);
+    long data_kb = 0;
+    char status[128];
+    FILE *st = fopen("/proc/self/status", "r");
+    cr_assert_not_null(st);
+    while (fgets(status, sizeof status, st))
+        if (sscanf(status, "VmData: %ld kB", &data_kb) == 1)
+            break;
+    fclose(st);
+    cr_assert_gt(data_kb, 0);
+    rl.rlim_cur = (rlim_t)data_kb * 1024 + ((rlim_t)8 << 20);
+    cr_assert_eq(setrlimit(RLIMIT_DATA, &rl), 0);
+    char *line = NULL;
+    size_t cap = 0;
+    cr_assert_eq(cl_input_line(fp, &line, &cap, 2 * big), CL_INPUT_NOMEM);
+    cr_assert_lt(cap, (size_t)16 << 20, "grown to %zu bytes", cap);
+    free(line);
+    fclose(fp);
+    free(text);
+}
+#endif

@@ -60,11 +60,11 @@ static cl_status read_one(const char *path, int src, cl_sweep_table *t,
     int nf, nhead = 0, lineno = 1;
     cl_status rc = CL_OK;
     ssize_t len = cl_input_line(fp, &line, &cap, TABLE_LINE_MAX);
-    bool long_header = len == -2;
+    bool header_unread = len < CL_INPUT_END; /* too long, or no memory */
     if (len > 0 &&
         split(line, src ? &head : &t->head, src ? &nhead : &t->ncol) < 0)
         rc = cl_error_set(err, CL_ENOMEM, "out of memory");
-    for (int k = 0; !rc && len != -2 && src && k < t->ncol; k++)
+    for (int k = 0; !rc && !header_unread && src && k < t->ncol; k++)
         if (nhead != t->ncol || strcmp(head[k], t->head[k]))
             rc = cl_error_set(err, CL_EPARSE, "--from-sweep %s: its columns "
                               "are not those of %s (tables of the stages "
@@ -72,7 +72,7 @@ static cl_status read_one(const char *path, int src, cl_sweep_table *t,
                               "earlier clothode lacks the newer columns: "
                               "collect it again)", path, t->paths[0]);
     cl_sweep_strings_free(head, nhead);
-    while (!rc && len != -2 &&
+    while (!rc && !header_unread &&
            (len = cl_input_line(fp, &line, &cap, TABLE_LINE_MAX)) > 0) {
         lineno++;
         int *grown = realloc(t->src, (size_t)(t->nrow + 1) * sizeof *grown);
@@ -87,10 +87,13 @@ static cl_status read_one(const char *path, int src, cl_sweep_table *t,
         else
             t->src[t->nrow++] = src;
     }
-    if (!rc && len == -2)
+    if (!rc && len == CL_INPUT_NOMEM)
+        rc = cl_error_set(err, CL_ENOMEM, "%s:%d: out of memory", path,
+                          header_unread ? 1 : lineno + 1);
+    if (!rc && len == CL_INPUT_LONG)
         rc = cl_error_set(err, CL_EPARSE, "%s:%d: a line longer than %d "
                           "bytes (not a table of 'clothode sweep collect')",
-                          path, long_header ? 1 : lineno + 1,
+                          path, header_unread ? 1 : lineno + 1,
                           TABLE_LINE_MAX);
     if (!rc && ferror(fp))
         rc = cl_error_set(err, CL_EIO, "cannot read the sweep table %s",

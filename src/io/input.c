@@ -94,15 +94,13 @@ ssize_t cl_input_line(FILE *fp, char **line, size_t *cap, size_t max)
     int ch = EOF;
     while ((ch = getc(fp)) != EOF) {
         if (n == max)
-            return -2;
+            return CL_INPUT_LONG;
         if (n + 2 > *cap) {
             size_t grown = *cap ? 2 * *cap : 128;
             grown = grown < max + 1 ? grown : max + 1;
             char *p = realloc(*line, grown);
-            if (!p) {
-                errno = ENOMEM;
-                return -1;
-            }
+            if (!p)
+                return CL_INPUT_NOMEM;
             *line = p;
             *cap = grown;
         }
@@ -111,7 +109,7 @@ ssize_t cl_input_line(FILE *fp, char **line, size_t *cap, size_t max)
             break;
     }
     if (n == 0)
-        return -1;
+        return CL_INPUT_END;
     (*line)[n] = '\0';
     return (ssize_t)n;
 }

@@ -20,10 +20,12 @@ FILE *cl_input_open(const char *path, const char *mode, const char **why);
 
 /* getline(3) with a bound: the next line of fp (its newline kept) into
  * *line (grown to max + 1 bytes at most, getline's contract otherwise);
- * its length, which may count NUL bytes; -1 at the end of the file or on
- * a read error (ferror), or when no memory is left (errno ENOMEM); -2
- * when the line is longer than max bytes, the rest of it unread, so that
- * a file of one huge line is refused before it fills the memory. */
+ * its length, which may count NUL bytes; CL_INPUT_END at the end of the
+ * file or on a read error (ferror); CL_INPUT_LONG when the line is longer
+ * than max bytes, the rest of it unread, so that a file of one huge line
+ * is refused before it fills the memory; CL_INPUT_NOMEM when the buffer
+ * could not grow. */
+enum { CL_INPUT_END = -1, CL_INPUT_LONG = -2, CL_INPUT_NOMEM = -3 };
 ssize_t cl_input_line(FILE *fp, char **line, size_t *cap, size_t max);
 
 /* Whether paths a and b name the same existing file (or directory), by

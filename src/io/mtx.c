@@ -154,10 +154,15 @@ cl_status cl_mtx_read(const char *path, cl_triplets *t, cl_error *err)
     int have_size = 0;
     ssize_t len;
     errno = 0;
-    while (st == CL_OK &&
-           (len = cl_input_line(fp, &line, &cap, MTX_LINE_MAX)) != -1) {
+    while (st == CL_OK && (len = cl_input_line(fp, &line, &cap, MTX_LINE_MAX))
+                              != CL_INPUT_END) {
         lineno++;
-        if (len == -2) {
+        if (len == CL_INPUT_NOMEM) {
+            st = cl_error_set(err, CL_ENOMEM, "%s:%zu: out of memory", path,
+                              lineno);
+            break;
+        }
+        if (len == CL_INPUT_LONG) {
             st = cl_error_set(err, CL_EPARSE, "%s:%zu: a line longer than "
                               "%d bytes", path, lineno, MTX_LINE_MAX);
             break;

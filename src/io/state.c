@@ -159,10 +159,15 @@ cl_status cl_state_read(const char *path, size_t np, double *x, double *v,
     ssize_t len;
     int header_ok = 0;
     errno = 0;
-    while (st == CL_OK &&
-           (len = cl_input_line(fp, &line, &cap, STATE_LINE_MAX)) != -1) {
+    while (st == CL_OK && (len = cl_input_line(fp, &line, &cap, STATE_LINE_MAX))
+                              != CL_INPUT_END) {
         lineno++;
-        if (len == -2) {
+        if (len == CL_INPUT_NOMEM) {
+            st = cl_error_set(err, CL_ENOMEM, "%s:%zu: out of memory", path,
+                              lineno);
+            break;
+        }
+        if (len == CL_INPUT_LONG) {
             st = cl_error_set(err, CL_EPARSE, "%s:%zu: a line longer than "
                               "%d bytes (a row is p and six numbers)", path,
                               lineno, STATE_LINE_MAX);
