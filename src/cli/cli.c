@@ -271,14 +271,13 @@ void cl_cli_default_out(const char *problem, char *buf, size_t len)
     free(abs);
 }
 
-cl_status cl_cli_span(const cl_config *cfg, double t_end, double *span,
+cl_status cl_cli_span(cl_config *cfg, double t_end, double *span,
                       cl_error *err)
 {
-    const char *v = cl_config_peek(cfg, "init", "time");
-    char *end = NULL;
-    double t0 = v ? strtod(v, &end) : 0.0;
-    if (!v || end == v || !isfinite(t0))
-        t0 = 0.0; /* a malformed one is the model's to refuse */
+    double t0 = 0.0;
+    cl_status rc = cl_model_config_start_time(cfg, &t0, err);
+    if (rc)
+        return rc;
     *span = t_end - t0;
     if (t0 == 0.0 || *span > 0)
         return CL_OK;

@@ -192,9 +192,9 @@ cl_status cl_cli_methods_try(cl_model *model, const cl_cli_methods *ms,
                              cl_error *err);
 
 /* A study's span: its runs go from the model's start time ([init] time,
- * read here from the configuration; the model checks it) to t_end, so
- * the span is t_end - time; CL_EINVAL when that is not > 0. */
-cl_status cl_cli_span(const cl_config *cfg, double t_end, double *span,
+ * read and checked as the model does) to t_end, so the span is t_end -
+ * time; CL_EINVAL when that time is malformed or the span not > 0. */
+cl_status cl_cli_span(cl_config *cfg, double t_end, double *span,
                       cl_error *err);
 
 /* A search's largest step: as given ([sec] dt_max), else the span / 100

@@ -61,6 +61,12 @@ cl_status cl_model_read_state(const cl_model *m, const char *path, double *x,
  * [init] state gives another; runs start there. */
 double cl_model_start_time(const cl_model *m);
 
+/* [init] time as the model reads it, before a model is made (a command
+ * that needs its runs' span first): 0 when absent, CL_EINVAL with the
+ * entry when it does not parse or lies outside [0, 1e12] s. */
+cl_status cl_model_config_start_time(cl_config *cfg, double *t0,
+                                     cl_error *err);
+
 /* Connections torn so far (docs/model.md, 3.4): distinct particle pairs,
  * however many terms (a spring and its damper, ...) had a force on the
  * pair. */
