@@ -71,13 +71,30 @@ Test(pins, motion_stops)
     cl_model_free(m);
 }
 
+/* stop = never lifts a stop time: the pins move on as without one. */
+Test(pins, stop_never_is_no_stop)
+{
+    static const char *const sets[] = {"cloth.n=3", "pins.at=0,0",
+                                       "pins.velocity=0.5, 0, -1",
+                                       "pins.stop=never", NULL};
+    cl_model *m = model_ok(sets);
+    const cl_cloth *c = cl_model_cloth(m);
+    double x[27] = {0}, v[27] = {0}, xf[27], vf[27] = {0};
+    cl_cloth_scatter(c, 5.0, x, v, xf, vf);
+    cr_assert_float_eq(xf[0], 2.5, 1e-15, "still moving at t = 5 s");
+    cr_assert_float_eq(vf[2], -1.0, 0.0);
+    cl_model_free(m);
+}
+
 Test(pins, errors_name_the_key)
 {
     static const char *const bad[][4] = {
         {"pins.at=0,0 x", NULL, NULL, "cannot read"},
         {"pins.at=i=70", NULL, NULL, "outside"},
         {"pins.at=0,0", "pins2.at=j=0", "pins2.velocity=1,0,0", "twice"},
-        {"pins.stop=-1", NULL, NULL, "stop"},
+        {"pins.stop=-1", NULL, NULL, "stop = \"-1\": expected a time in "
+                                     "[0, 1e+12] s, or never"},
+        {"pins.stop=nevermore", NULL, NULL, "or never"},
     };
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         const char *sets[4] = {bad[k][0], bad[k][1], bad[k][2], NULL};

@@ -172,6 +172,27 @@ static cl_status pin_box(cl_config *cfg, const char *sec, const double b[6],
     return CL_OK;
 }
 
+/* [pins] stop: a time (s) after which the group stays put, or "never"
+ * (the default), so that a problem's stop can be lifted by --set or a
+ * sweep's axis. */
+static cl_status read_stop(cl_config *cfg, const char *sec, double *stop,
+                           cl_error *err)
+{
+    const char *v = cl_config_peek(cfg, sec, "stop");
+    if (v && strcmp(v, "never") == 0) {
+        (void)cl_config_string(cfg, sec, "stop", NULL); /* read */
+        *stop = INFINITY;
+        return CL_OK;
+    }
+    cl_error why = {0};
+    if (cl_config_double(cfg, sec, "stop", INFINITY, 0.0, INFINITY, stop,
+                         &why) == CL_OK)
+        return CL_OK;
+    return cl_config_refuse(cfg, sec, "stop", CL_EINVAL,
+                            "expected a time in [0, 1e+12] s, or never",
+                            err);
+}
+
 static cl_status read_group(cl_config *cfg, const char *sec, bool first,
                             cl_cloth *c, cl_error *err)
 {
@@ -181,8 +202,7 @@ static cl_status read_group(cl_config *cfg, const char *sec, bool first,
     bool corners = first && !has_box && c->kind == CL_CLOTH_GRID;
     cl_status rc;
     if ((rc = cl_config_vector(cfg, sec, "velocity", 3, pm.w, err)) ||
-        (rc = cl_config_double(cfg, sec, "stop", INFINITY, 0.0, INFINITY,
-                               &pm.stop, err)) ||
+        (rc = read_stop(cfg, sec, &pm.stop, err)) ||
         (rc = cl_config_vector(cfg, sec, "box", 6, box, err)) ||
         (rc = pin_list(cfg, sec,
                        cl_config_string(cfg, sec, "at",
