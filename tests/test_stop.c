@@ -15,8 +15,12 @@ Test(stop, signal_sets_the_flag_and_names_it)
 {
     cl_stop_install();
     cr_assert_eq(cl_stop_requested(), 0);
+    cr_assert_eq(cl_stop_status(CL_ESOLVER), CL_ESOLVER);
     cr_assert_eq(raise(SIGTERM), 0);
     cr_assert_eq(cl_stop_requested(), SIGTERM);
+    /* a failure after the stop is the stop's; success stays success */
+    cr_assert_eq(cl_stop_status(CL_ESOLVER), CL_EINTR);
+    cr_assert_eq(cl_stop_status(CL_OK), CL_OK);
     cr_assert_str_eq(cl_stop_signal_name(SIGTERM), "SIGTERM");
     cr_assert_str_eq(cl_stop_signal_name(SIGINT), "SIGINT");
     cr_assert_str_eq(cl_stop_signal_name(SIGHUP), "signal 1");

@@ -84,6 +84,11 @@ int cl_stop_requested(void)
     return (int)stop_signal;
 }
 
+cl_status cl_stop_status(cl_status st)
+{
+    return st != CL_OK && stop_signal ? CL_EINTR : st;
+}
+
 bool cl_stop_interrupted(void)
 {
     return stop_signal && !budget_timer(stop_signal);

@@ -28,6 +28,11 @@ void cl_stop_install(void);
  * after a budget's timer replaces it. */
 int cl_stop_requested(void);
 
+/* A failure once a stop is requested is the stop's: CL_EINTR for st !=
+ * CL_OK then (an iterative linear solve ends at a stop, and what it left
+ * is no solver's failure), st otherwise. */
+cl_status cl_stop_status(cl_status st);
+
 /* Whether SIGINT or SIGTERM asked to stop (not a budget's timer). */
 bool cl_stop_interrupted(void);
 

@@ -522,8 +522,8 @@ static cl_status kin_stepfail(cl_kin *s, int flag, long nni, cl_error *err)
                             cl_status_name(s->sys_st),
                             s->sys_nonfinite ? ": values not finite" : "",
                             s->te, s->done + 1, t, t1, s->h, nni);
-    if (s->lin_st != CL_OK) /* after a stop, the stop's (semi_common.c) */
-        return cl_error_set(err, cl_stop_requested() ? CL_EINTR : s->lin_st,
+    if (s->lin_st != CL_OK)
+        return cl_error_set(err, cl_stop_status(s->lin_st),
                             "%s: linear solver failed in step %ld (t = "
                             "%.9g -> %.9g, dt = %g), Newton iteration %ld: "
                             "%s", name, s->done + 1, t, t1, s->h, nni,

@@ -142,9 +142,8 @@ cl_status cl_semi_linearise(cl_semi *s, double t, cl_error *err)
     return CL_OK;
 }
 
-/* Set up with dfdx, dfdv and solve for s->sol from rhs.  A failure once
- * a stop is requested is the stop's (CL_EINTR: an iterative solve ends
- * at it, linalg/linsol.h, and what it left is no solver's failure). */
+/* Set up with dfdx, dfdv and solve for s->sol from rhs; a failure once
+ * a stop is requested is the stop's (cl_stop_status). */
 static cl_status semi_linsolve(cl_semi *s, double a, double b,
                                const double *dfdx, const double *dfdv,
                                const double *rhs, cl_error *err)
@@ -153,8 +152,7 @@ static cl_status semi_linsolve(cl_semi *s, double a, double b,
     cl_status st = s->lst->setup(s->ls, a, b, dfdx, dfdv, &inner);
     if (st == CL_OK)
         st = s->lst->solve(s->ls, rhs, s->sol, &inner);
-    if (st != CL_OK && cl_stop_requested())
-        st = CL_EINTR;
+    st = cl_stop_status(st);
     if (st != CL_OK)
         return cl_error_set(err, st, "%s: linear solve failed at t = %.9g "
                             "(step %ld, dt = %g): %s", s->name,
