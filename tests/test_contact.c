@@ -238,7 +238,7 @@ Test(contact, block_on_a_slope_slides_with_coulomb_friction)
 /* Projection keeps a sticking particle's velocity at 0; what remains is
  * the position step's own tangential part, h^2 g sin theta a step, which
  * a projection along the normal does not undo: a creep at h g sin theta,
- * first order in h (docs/model.md, eq. C9). */
+ * first order in h (docs/model.md 4.5, after the fixed-step rule). */
 Test(contact, block_on_a_slope_sticks_when_mu_exceeds_tan_theta)
 {
     double th = M_PI / 6, mu = 1.2 * tan(th), h = 1e-4;

@@ -181,7 +181,7 @@ Test(selfcontact, dense_jacobian_against_differences)
     check_dense("barrier");
 }
 
-/* s'(d) of the law (3.5, 3.8). */
+/* s'(d) of the law ((3.6) penalty, (3.7) barrier). */
 static double law_ds(bool barrier, double d)
 {
     return barrier ? K_S * cl_logbarrier_eval(d, H_S).d2b : K_S;

@@ -6,7 +6,8 @@
  *     b(d)   = -(d - dh)^2 ln(d / dh)                       (0 < d < dh)
  *     b'(d)  = -2 (d - dh) ln(d / dh) - (d - dh)^2 / d
  *     b''(d) = -2 ln(d / dh) - 4 (d - dh) / d + (d - dh)^2 / d^2
- * and 0 for d >= dh: b, b', b'' all vanish at dh (C2), b grows without
+ * and 0 for d >= dh: b, b', b'' all vanish at dh (b is twice
+ * continuously differentiable there), b grows without
  * bound as d -> 0, and b'' > 0 below dh (convex). */
 #ifndef CL_LOGBARRIER_H
 #define CL_LOGBARRIER_H

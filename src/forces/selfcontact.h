@@ -7,7 +7,8 @@
  *     s(d) = -k_s (h_s - d),   E(d) = k_s (h_s - d)^2 / 2   (d < h_s),
  * or (law = barrier) IPC's clamped log barrier E(d) = k_s b(d),
  * s(d) = k_s b'(d) (forces/logbarrier.h), on the central-pair machinery of docs/model.md 3.1 (forces/pairterm.h:
- * f_a = s u, u = (x_b - x_a)/d, blocks K = k_s u u^T + (s/d)(I - u u^T)).
+ * f_a = s u, u = (x_b - x_a)/d, blocks K = s'(d) u u^T + (s/d)(I - u u^T),
+ * s' = k_s for the penalty, k_s b''(d) for the barrier).
  * The pairs are found at every evaluation by a spatial hash with cells of
  * side h_s (forces/sphash.h), never by trying all pairs, with no
  * allocation.
