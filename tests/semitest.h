@@ -139,8 +139,10 @@ static inline void st_hang_run(const char *name, const char *linsol,
 }
 
 /* problems/hang.ini with n = 8, 0.2 s in steps of 1e-3 by `name` with
- * `linsol`; statistics to *s; the cloth must have fallen (some y < 0) and
- * stay finite. */
+ * `linsol`; statistics to *s.  The lowest particle must be where CVODE
+ * puts it at rtol 1e-10 (y = -0.196171 m) to within the first-order lag
+ * of backward Euler, h g T / 2 = 9.8e-4 m (measured 9.3e-4 m), and
+ * semi-bdf2's to 1e-4 m (measured 3e-5 m). */
 static inline void st_hang(const char *name, const char *linsol, cl_stats *s)
 {
     double *x, *v;
@@ -156,7 +158,8 @@ static inline void st_hang(const char *name, const char *linsol, cl_stats *s)
                 "%ld setups, %ld solves, %ld Krylov iterations, %ld symbolic",
                 name, linsol, ymin, s->steps, s->lin_setups, s->lin_solves,
                 s->lin_iters, s->symbolic_facts);
-    cr_assert_lt(ymin, -0.05, "the cloth did not fall: %g", ymin);
+    double tol = strcmp(name, "semi-be") == 0 ? 1.2e-3 : 1e-4;
+    cr_assert_float_eq(ymin, -0.196171, tol, "lowest y %.6g m", ymin);
     free(x);
     free(v);
 }

@@ -186,12 +186,14 @@ Test(contact, penalty_rest_depth_is_m_g_over_k)
     double x[3];
     cl_integrator_opts cv = {.rtol = 1e-8, .atol = 1e-10};
     run_particle(&p, "cvode-bdf", &cv, x0, 3.0, 10, up, x);
-    cr_expect_lt(fabs((0.01 - x[1]) - depth), 0.01 * depth,
+    /* at rest the damping is idle: the depth is CVODE's to its tolerance
+     * (4e-11 relative measured), backward Euler's to round-off (1e-14) */
+    cr_expect_lt(fabs((0.01 - x[1]) - depth), 1e-8 * depth,
                  "rest at %.9g below the band's edge, m g / k = %.9g",
                  0.01 - x[1], depth);
     cl_integrator_opts se = {.dt = 1e-3};
     run_particle(&p, "semi-be", &se, x0, 3.0, 10, up, x);
-    cr_expect_lt(fabs((0.01 - x[1]) - depth), 0.01 * depth, "semi-be: %.9g",
+    cr_expect_lt(fabs((0.01 - x[1]) - depth), 1e-11 * depth, "semi-be: %.9g",
                  0.01 - x[1]);
     pr_free(&p);
     tmp_rm_rf(dir);
@@ -226,12 +228,14 @@ Test(contact, block_on_a_slope_slides_with_coulomb_friction)
     double s = 0.5 * 9.81 * (sin(th) - mu * cos(th)); /* 1/2 a T^2 */
     cl_integrator_opts se = {.dt = 1e-4};
     double got = slide("project", mu, "symplectic-euler", &se, 0.0);
-    cr_expect_lt(fabs(got - s), 0.01 * s, "project: %.6g m, expected %.6g",
+    /* first order in h: 3.2e-4 relative at h = 1e-4 */
+    cr_expect_lt(fabs(got - s), 1e-3 * s, "project: %.6g m, expected %.6g",
                  got, s);
     cl_integrator_opts cv = {.rtol = 1e-8, .atol = 1e-10};
     double eq = 0.01 - 0.1 * 9.81 * cos(th) / 10000; /* at rest depth */
     got = slide("penalty", mu, "cvode-bdf", &cv, eq);
-    cr_expect_lt(fabs(got - s), 0.01 * s, "penalty: %.6g m, expected %.6g",
+    /* the band's smoothing and damping: 6.6e-5 relative */
+    cr_expect_lt(fabs(got - s), 2e-4 * s, "penalty: %.6g m, expected %.6g",
                  got, s);
 }
 
@@ -257,8 +261,8 @@ Test(contact, block_on_a_slope_sticks_when_mu_exceeds_tan_theta)
     got = slide("penalty", mu, "cvode-bdf", &cv, eq);
     /* smoothed Coulomb: creeps at about v_s tan / sqrt(mu^2 - tan^2) */
     double creep = 1e-4 * tan(th) / sqrt(mu * mu - tan(th) * tan(th));
-    cr_expect_lt(fabs(got), 1.5 * creep, "penalty: slid %.3g m (creep "
-                 "%.3g m/s)", got, creep);
+    cr_expect_lt(fabs(got - creep), 1e-2 * creep, "penalty: slid %.4g m "
+                 "(creep %.4g m/s)", got, creep);
 }
 
 /* The projections' energy change enters W: velocity Verlet is exact for a
