@@ -504,16 +504,16 @@ Test(cloth_mesh, springs_jacobian_fd)
     fd_rng r = {.s = 5};
     mesh_state(m, &r, x, v);
     fd_check_jacobian(m, x, v, 1e-7, 1e-6, false, "mesh springs", &ex, &ev);
-    cr_assert_lt(ex, 1e-6, "df/dx vs FD: rel err %g", ex);
+    cr_assert_lt(ex, 1e-8, "df/dx vs FD: rel err %g", ex);
     cr_assert_eq(ev, 0.0);
     cr_assert_lt(fd_check_structure(m, x, v), 1e-13);
-    cr_assert_lt(fd_check_energy(m, x, v, 1e-7, "mesh springs"), 1e-6);
+    cr_assert_lt(fd_check_energy(m, x, v, 1e-7, "mesh springs"), 1e-8);
     cl_model_free(m);
     m = MESH_MODEL(o, "spring-damping.kd=0.4", "springs.k_bend=2");
     fd_check_jacobian(m, x, v, 1e-7, 1e-6, false, "mesh spring damping",
                       &ex, &ev);
-    cr_assert_lt(ex, 1e-6, "dd/dx vs FD: rel err %g", ex);
-    cr_assert_lt(ev, 1e-6, "dd/dv vs FD: rel err %g", ev);
+    cr_assert_lt(ex, 1e-8, "dd/dx vs FD: rel err %g", ex);
+    cr_assert_lt(ev, 1e-8, "dd/dv vs FD: rel err %g", ev);
     cl_model_free(m);
     free(x);
     free(v);

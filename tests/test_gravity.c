@@ -83,7 +83,7 @@ Test(gravity, energy_and_its_gradient)
               got, want);
     cr_assert_eq(e.potential, got);
     double err = fd_check_energy(m, x, v, 1e-6, "gravity");
-    cr_assert_lt(err, 1e-6, "gravity f vs -dE/dx: %g", err);
+    cr_assert_lt(err, 1e-8, "gravity f vs -dE/dx: %g", err);
     free(x);
     free(v);
     free(f);

@@ -225,8 +225,8 @@ static void check_system_jacobian(cl_model *m, double t, fd_rng *r,
     fd_report(buf, ex);
     snprintf(buf, sizeof buf, "%s system df/dv", label);
     fd_report(buf, ev);
-    cr_assert_lt(ex, 1e-6, "%s: system df/dx vs FD %g", label, ex);
-    cr_assert_lt(ev, 1e-6, "%s: system df/dv vs FD %g", label, ev);
+    cr_assert_lt(ex, 1e-8, "%s: system df/dx vs FD %g", label, ex);
+    cr_assert_lt(ev, 1e-8, "%s: system df/dv vs FD %g", label, ev);
     free(x);
     free(v);
     free(f);

@@ -129,7 +129,7 @@ static void check_gradient(const char *law)
     char label[64];
     snprintf(label, sizeof label, "selfcontact %s f vs -dE/dx", law);
     fd_report(label, rel);
-    cr_assert_lt(rel, 1e-7, "%s: f against -dE/dx: %g", law, rel);
+    cr_assert_lt(rel, 1e-8, "%s: f against -dE/dx: %g", law, rel);
     for (int i = 0; i < 3; i++)
         cr_assert_lt(fabs(sum[i]), 1e-12 * fd_maxabs(f, N3), "sum f = %g",
                      sum[i]);
@@ -164,7 +164,7 @@ static void check_dense(const char *law)
     char label[64];
     snprintf(label, sizeof label, "selfcontact %s dense df/dx", law);
     fd_report(label, rel);
-    cr_assert_lt(rel, 1e-6, "%s: df/dx against differences: %g", law, rel);
+    cr_assert_lt(rel, 1e-8, "%s: df/dx against differences: %g", law, rel);
     double big = fd_maxabs(J, N3 * N3);
     for (size_t r = 0; r < N3; r++) /* a Hessian: symmetric */
         for (size_t col = 0; col < r; col++)

@@ -145,7 +145,7 @@ Test(spring_damping, jacobian_fd)
                               what[ax], &ex, &ev);
             cr_assert_lt(ev, 1e-9, "df/dv vs FD: rel err %g", ev);
             if (ax)
-                cr_assert_lt(ex, 1e-6, "axial df/dx vs FD: rel err %g", ex);
+                cr_assert_lt(ex, 1e-8, "axial df/dx vs FD: rel err %g", ex);
             else
                 cr_assert_eq(ex, 0.0, "linear df/dx should vanish: %g", ex);
             worst[ax][0] = fmax(worst[ax][0], ex);
@@ -301,7 +301,7 @@ Test(spring_damping, choiko_damping_axial_option)
     double ex, ev;
     fd_check_jacobian(c.m, c.x, c.v, 1e-6 * c.h, 1e-3, false,
                       "damping model=axial", &ex, &ev);
-    cr_assert_lt(ex, 1e-6);
+    cr_assert_lt(ex, 1e-8);
     cr_assert_lt(ev, 1e-9);
     cl_model_free(sd);
     sc_close(&c);
@@ -323,7 +323,7 @@ Test(spring_damping, with_springs_gravity_pins)
     double ex, ev;
     fd_check_jacobian(m, x, v, 1e-6 * 0.25, 1e-3, false,
                       "springs + spring-damping", &ex, &ev);
-    cr_assert_lt(ex, 1e-6, "df/dx %g", ex);
+    cr_assert_lt(ex, 1e-8, "df/dx %g", ex);
     cr_assert_lt(ev, 1e-9, "df/dv %g", ev);
     free(x);
     free(v);

@@ -365,7 +365,7 @@ Test(springs, jacobian_fd)
             double ex, ev;
             fd_check_jacobian(c.m, c.x, c.v, 1e-6 * c.h, 1e-6, false,
                               "springs", &ex, &ev);
-            cr_assert_lt(ex, 1e-6, "case %zu: df/dx vs FD: rel err %g", k,
+            cr_assert_lt(ex, 1e-8, "case %zu: df/dx vs FD: rel err %g", k,
                          ex);
             cr_assert_eq(ev, 0.0, "springs do not depend on v");
             worst = fmax(worst, ex);
@@ -384,7 +384,7 @@ Test(springs, energy_gradient_and_balance)
     for (size_t k = 0; k < NFORCE_CASES; k++) {
         sc_case c = force_case(k, 110 + k);
         double e = fd_check_energy(c.m, c.x, c.v, 1e-6 * c.h, "springs");
-        cr_assert_lt(e, 1e-6, "case %zu: f vs -dE/dx: rel err %g", k, e);
+        cr_assert_lt(e, 1e-8, "case %zu: f vs -dE/dx: rel err %g", k, e);
         fd_eval(c.m, c.x, c.v, c.f);
         double torque, net = fd_net_force(c.x, c.f, c.n / 3, &torque);
         cr_assert_lt(net, 1e-14, "net force %g", net);

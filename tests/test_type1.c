@@ -86,7 +86,7 @@ Test(type1, jacobian_fd_stretched)
         double ex, ev;
         fd_check_jacobian(m, x, v, 1e-6 * 0.25, 1e-6, false,
                           "type1 stretched", &ex, &ev);
-        cr_assert_lt(ex, 1e-6, "type1 df/dx vs FD: rel err %g", ex);
+        cr_assert_lt(ex, 1e-8, "type1 df/dx vs FD: rel err %g", ex);
         /* Type1 does not depend on v: both must be exactly zero. */
         cr_assert_eq(ev, 0.0, "type1 df/dv should vanish, err %g", ev);
         worst = fmax(worst, ex);
@@ -113,7 +113,7 @@ Test(type1, jacobian_fd_half_slack)
         double ex, ev;
         fd_check_jacobian(m, x, v, 1e-6 * 0.3, 1e-6, false,
                           "type1 half-slack", &ex, &ev);
-        cr_assert_lt(ex, 1e-6, "type1 df/dx vs FD: rel err %g", ex);
+        cr_assert_lt(ex, 1e-8, "type1 df/dx vs FD: rel err %g", ex);
         cr_assert_eq(ev, 0.0);
         double st = fd_check_structure(m, x, v);
         cr_assert_lt(st, 1e-13, "df/dx not symmetric / row sums %g", st);
@@ -132,7 +132,7 @@ Test(type1, force_is_minus_energy_gradient)
     for (int trial = 0; trial < 4; trial++) {
         state_alternating(m, &r, trial, x);
         double e = fd_check_energy(m, x, v, 1e-6 * 0.25, "type1");
-        cr_assert_lt(e, 1e-6, "type1 f vs -dE/dx: rel err %g", e);
+        cr_assert_lt(e, 1e-8, "type1 f vs -dE/dx: rel err %g", e);
     }
     free(x);
     free(v);
@@ -307,11 +307,11 @@ Test(type1, compression_spring_jacobian_and_energy)
         double ex, ev;
         fd_check_jacobian(m, x, v, 1e-6 * 0.3, 1e-6, false,
                           "type1 compression=spring", &ex, &ev);
-        cr_assert_lt(ex, 1e-6, "df/dx vs FD: rel err %g", ex);
+        cr_assert_lt(ex, 1e-8, "df/dx vs FD: rel err %g", ex);
         cr_assert_eq(ev, 0.0);
         double ee = fd_check_energy(m, x, v, 1e-6 * 0.3,
                                     "type1 compression=spring");
-        cr_assert_lt(ee, 1e-6, "f vs -dE/dx: rel err %g", ee);
+        cr_assert_lt(ee, 1e-8, "f vs -dE/dx: rel err %g", ee);
     }
     /* Uniform compression: E = 0.5 ks (lambda - 1)^2 sum L^2 (3x3 grid of
      * side 1: 12 axis pairs of 0.5, 8 diagonals of 0.5 sqrt 2). */
