@@ -157,8 +157,10 @@ Test(convergence, adaptive_levels_are_tolerances)
     for (int k = 0; k < r.nlev; k++)
         cr_assert_eq(r.lev[k].param, printed[k], "level %d: %.17g", k,
                      r.lev[k].param);
-    cr_assert_lt(r.lev[3].err_x, r.lev[0].err_x / 10);
-    cr_assert_gt(r.slope_x, 0.3);
+    /* tolerance proportionality: the error falls about as the tolerance
+     * (measured: 478 times over three decades, slope 0.84) */
+    cr_assert_lt(r.lev[3].err_x, r.lev[0].err_x / 100);
+    cr_assert(r.slope_x > 0.6 && r.slope_x < 1.1, "slope %g", r.slope_x);
     cv_close(&c);
 }
 
@@ -178,7 +180,9 @@ Test(convergence, blown_up_level_is_recorded_and_skipped)
                        r.lev[1].why.msg);
     cr_assert(isnan(r.lev[1].order) && isnan(r.lev[2].order));
     cr_assert_eq(r.lev[2].rc, CL_OK, "%s", r.lev[2].why.msg);
-    cr_assert(isfinite(r.lev[2].err_x));
+    /* the surviving level's error, deterministic (3.165e-3 measured) */
+    cr_assert_float_eq(r.lev[2].err_x, 3.165e-3, 0.02 * 3.165e-3, "%g",
+                       r.lev[2].err_x);
     cv_close(&c);
 }
 

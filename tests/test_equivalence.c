@@ -90,11 +90,13 @@ Test(equivalence, choiko_hang_one_newton_iteration)
     const cl_system *sys = cl_model_system(m);
     double *x0 = malloc(sys->n * sizeof *x0), *v0 = malloc(sys->n * sizeof *v0);
     cl_model_initial_state(m, x0, v0);
+    /* the same linear system solved twice: round-off apart (8.5e-15 and
+     * 6.3e-14 measured over 30 steps) */
     cr_assert_lt(compare("semi-be", "kinsol-be", sys, NULL, x0, v0, 0.01, 30),
-                 1e-10);
+                 1e-12);
     cr_assert_lt(compare("semi-bdf2", "kinsol-bdf2", sys, NULL, x0, v0, 0.01,
                          30),
-                 1e-10);
+                 1e-12);
     free(x0);
     free(v0);
     cl_model_free(m);

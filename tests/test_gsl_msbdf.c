@@ -100,6 +100,7 @@ Test(gsl_msbdf, stiff_problem_few_steps)
     ts.k[0] = 1.0;
     ts.c[1] = ts.c[2] = 1e4;
     const char *names[2] = {"gsl-msbdf", "gsl-rk8pd"};
+    const double tol[2] = {2e-5, 1e-10}; /* measured 4.4e-6, 1.4e-13 */
     long steps[2];
     for (int i = 0; i < 2; i++) {
         double x0[6], v0[6], x[6], v[6], xe[6], ve[6]; /* 6: see ts_exact */
@@ -114,7 +115,7 @@ Test(gsl_msbdf, stiff_problem_few_steps)
         cr_log_info("%s stiff: %ld steps, %ld rhs, %ld jac, x err %.2e",
                     names[i], s.steps, s.rhs_evals, s.jac_evals,
                     ts_maxdiff(x, xe, 3));
-        cr_expect_lt(ts_maxdiff(x, xe, 3), 1e-4, "%s", names[i]);
+        cr_expect_lt(ts_maxdiff(x, xe, 3), tol[i], "%s", names[i]);
     }
     cr_expect_lt(5 * steps[0], steps[1], "msbdf %ld steps, rk8pd %ld",
                  steps[0], steps[1]);

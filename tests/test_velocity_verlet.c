@@ -36,11 +36,11 @@ Test(velocity_verlet, second_order_with_damping)
     ri_expect_orders_osc_pair("velocity-verlet", 2e-3, 2, 2, 2, 2);
 }
 
-/* omega = 1, h = 0.05: the energy error is O((h w)^2) and does not
- * drift over 1000 periods. */
+/* omega = 1, h = 0.05: the energy error is O((h w)^2) (6.3e-5 relative
+ * measured) and does not drift over 1000 periods. */
 Test(velocity_verlet, bounded_energy_no_drift)
 {
-    ri_expect_bounded_energy("velocity-verlet", 0.05, 0.05 * 0.05);
+    ri_expect_bounded_energy("velocity-verlet", 0.05, 1e-4);
 }
 
 Test(velocity_verlet, time_reversible)

@@ -41,9 +41,11 @@ Test(verlet, orders_conservative_and_damped)
     ri_expect_orders_osc_pair("verlet", 1e-3, 1, 1, 2, 1);
 }
 
+/* omega = 1, h = 0.01, 1000 periods: first order in h omega through the
+ * one-sided velocity (1.01e-3 relative measured). */
 Test(verlet, bounded_energy_no_drift)
 {
-    ri_expect_bounded_energy("verlet", 0.01, 0.01);
+    ri_expect_bounded_energy("verlet", 0.01, 1.5e-3);
 }
 
 /* No force: v_N = (1 - d)^N v0 exactly (to round-off). */
