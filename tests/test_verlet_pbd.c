@@ -87,11 +87,14 @@ Test(verlet_pbd, hanging_cloth_keeps_rest_lengths)
     cl_integrator_opts o = {.dt = 1e-3, .vdamp = 0.01};
     pb_integrate(&c, "verlet-pbd", &o, 0.5, 50, watch_violation, &w);
     cr_log_info("verlet-pbd: max |d/L - 1| = %.3e over 0.5 s", w.worst);
-    cr_assert_lt(w.worst, 0.01);
+    cr_assert_lt(w.worst, 5e-4); /* 2.2e-4 measured */
     double ymin = 0.0;
     for (size_t i = 1; i < c.n; i += 3)
         ymin = fmin(ymin, c.x[i]);
-    cr_assert_lt(ymin, -0.3, "the cloth hangs down: lowest y %g", ymin);
+    cr_log_info("verlet-pbd: lowest y %.6f m", ymin);
+    /* the cloth hangs down, its far corners swinging (deterministic:
+     * -0.39351 m measured) */
+    cr_assert_float_eq(ymin, -0.39351, 4e-3, "lowest y %g", ymin);
     free(w.xf);
     cl_pairs_free(&w.set);
     pb_close(&c);
@@ -105,7 +108,7 @@ Test(verlet_pbd, pulled_pbd_cloth_tears)
     cl_integrator_opts o = {.dt = 1e-3, .vdamp = 0.01};
     pb_integrate(&c, "verlet-pbd", &o, 0.5, 10, NULL, NULL);
     cr_log_info("verlet-pbd: %zu constraints torn", cl_model_broken(c.m));
-    cr_assert_gt(cl_model_broken(c.m), 0);
+    cr_assert_eq(cl_model_broken(c.m), 7);
     pb_close(&c);
 }
 
