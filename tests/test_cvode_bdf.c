@@ -114,8 +114,9 @@ Test(cvode_bdf, stiff_overdamped)
     cl_stats s;
     double e = run(&ts, &o, 10.0, 10, &s);
     cr_log_info("cvode-bdf stiff: max rel. error %.3e in %ld steps", e, s.steps);
-    cr_assert_lt(e, 100 * o.rtol);
-    cr_assert_lt(s.steps, 5000);
+    /* measured: 1.26 rtol in 289 steps */
+    cr_assert_lt(e, 10 * o.rtol);
+    cr_assert_lt(s.steps, 600);
     ts_free(&ts);
 }
 
