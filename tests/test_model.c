@@ -256,6 +256,53 @@ Test(model, system_jacobian_fd_hang_damped_moving_pins)
     cl_model_free(m);
 }
 
+/* With obstacles, through the system's assembly: every free particle of
+ * the 1 m cloth inside the penalty bands (eps = 0.3 m) of a plane 0.1 m
+ * below it and of a sphere of radius 2 m whose top is there too (clearances
+ * 0.1-0.23 m, away from the bands' edges), both moving and the sphere
+ * turning, with friction smoothed over 10 m/s on the plane (every
+ * particle in the smoothed regime) and 1e-4 m/s on the sphere (every
+ * particle sliding); the blocks of docs/model.md (C4)-(C8) land in their
+ * slots of the pattern beside the cloth's own. */
+Test(model, system_jacobian_fd_with_moving_obstacles)
+{
+    cl_model *m = HANG("damping.kd=0.05", "obstacle.floor.shape=plane",
+                       "obstacle.floor.point=0, -0.1, 0",
+                       "obstacle.floor.normal=0, 1, 0",
+                       "obstacle.floor.response=penalty",
+                       "obstacle.floor.k=50", "obstacle.floor.eps=0.3",
+                       "obstacle.floor.damping=0.5", "obstacle.floor.mu=0.4",
+                       "obstacle.floor.v_smooth=10",
+                       "obstacle.floor.path=0: 0, 0, 0; 1: 0.01, 0.02, 0",
+                       "obstacle.ball.shape=sphere",
+                       "obstacle.ball.center=0.5, -2.1, 0.5",
+                       "obstacle.ball.radius=2",
+                       "obstacle.ball.response=penalty",
+                       "obstacle.ball.k=30", "obstacle.ball.eps=0.3",
+                       "obstacle.ball.damping=0.2", "obstacle.ball.mu=0.3",
+                       "obstacle.ball.v_smooth=1e-4",
+                       "obstacle.ball.omega=0, 0.5, 0.2",
+                       "obstacle.ball.path=0: 0, 0, 0; 1: 0, 0.02, 0.01");
+    /* the state check_system_jacobian draws: every free particle deep in
+     * both bands, where the obstacles are at t = 0.5 */
+    const cl_system *sys = cl_model_system(m);
+    double *x = fd_vec(sys->n), *v = fd_vec(sys->n);
+    fd_rng r = {75};
+    hang_state(m, &r, x, v);
+    const double ball[3] = {0.5, -2.1 + 0.01, 0.5 + 0.005};
+    for (size_t i = 0; i < sys->n; i += 3) {
+        double d_floor = x[i + 1] - (-0.1 + 0.01);
+        double d_ball = cl_dist(x + i, ball) - 2.0;
+        cr_assert(d_floor > 0.05 && d_floor < 0.25, "floor: d = %g", d_floor);
+        cr_assert(d_ball > 0.05 && d_ball < 0.25, "ball: d = %g", d_ball);
+    }
+    free(x);
+    free(v);
+    r = (fd_rng){75};
+    check_system_jacobian(m, 0.5, &r, "hang with obstacles");
+    cl_model_free(m);
+}
+
 /* The system force is the full force gathered to the free particles, with
  * the pins at their prescribed place; energies agree too.  The energy
  * path evaluates term by term, scattering each pair's force; the force
