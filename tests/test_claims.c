@@ -469,7 +469,8 @@ Test(claims, verlet)
     char dir[1024];
     free_result(row_run("verlet-order",
                         "convergence spring2 --integrator verlet --dt 1e-2 "
-                        "--levels 2 --t-end 0.2 --quiet",
+                        "--levels 2 --t-end 0.2 --set gravity.g=-10,0,0 "
+                        "--set init.velocity=0,0,0 --quiet",
                         0, dir, sizeof dir));
     expect_near(convergence(dir, "verlet", "fit_x"), 2.0, 0.025,
                 "verlet order");
