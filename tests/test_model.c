@@ -290,11 +290,31 @@ Test(model, system_jacobian_fd_with_moving_obstacles)
     fd_rng r = {75};
     hang_state(m, &r, x, v);
     const double ball[3] = {0.5, -2.1 + 0.01, 0.5 + 0.005};
+    const double u_floor[3] = {0.01, 0.02, 0}, u_path[3] = {0, 0.02, 0.01},
+                 omega[3] = {0, 0.5, 0.2};
     for (size_t i = 0; i < sys->n; i += 3) {
         double d_floor = x[i + 1] - (-0.1 + 0.01);
         double d_ball = cl_dist(x + i, ball) - 2.0;
         cr_assert(d_floor > 0.05 && d_floor < 0.25, "floor: d = %g", d_floor);
         cr_assert(d_ball > 0.05 && d_ball < 0.25, "ball: d = %g", d_ball);
+        /* sliding speeds: within the floor's smoothing, beyond the ball's */
+        double r[3], w[3], n[3], wn = 0, floor_t = 0, ball_t = 0;
+        for (int k = 0; k < 3; k++)
+            r[k] = x[i + k] - ball[k];
+        for (int k = 0; k < 3; k++) {
+            int a = (k + 1) % 3, b = (k + 2) % 3;
+            w[k] = v[i + k] - u_path[k] - (omega[a] * r[b] - omega[b] * r[a]);
+            n[k] = r[k] / (d_ball + 2.0);
+            wn += w[k] * n[k];
+        }
+        for (int k = 0; k < 3; k++) {
+            double ft = k == 1 ? 0.0 : v[i + k] - u_floor[k];
+            floor_t += ft * ft;
+            ball_t += (w[k] - wn * n[k]) * (w[k] - wn * n[k]);
+        }
+        cr_assert(sqrt(floor_t) < 10.0 && sqrt(ball_t) > 1e-3,
+                  "tangential speeds %g (floor), %g (ball)", sqrt(floor_t),
+                  sqrt(ball_t));
     }
     free(x);
     free(v);

@@ -80,6 +80,29 @@ Test(pins, motion_stops)
     cl_model_free(m);
 }
 
+/* The default stop is recorded (run.json, config.ini) as the value that
+ * reads back as it: "never". */
+static void find_stop(void *ctx, const char *sec, const char *key,
+                      const char *value, bool given)
+{
+    if (!strcmp(sec, "pins") && !strcmp(key, "stop") && !given)
+        *(const char **)ctx = value;
+}
+
+Test(pins, default_stop_is_recorded_as_never)
+{
+    cl_config *cfg = cl_config_alloc();
+    cl_error err = {0};
+    cl_model *m = NULL;
+    cr_assert_eq(cl_config_set(cfg, "cloth.n=3", &err), CL_OK);
+    cr_assert_eq(cl_model_create(cfg, &m, &err), CL_OK, "%s", err.msg);
+    const char *stop = NULL;
+    cl_config_resolved(cfg, find_stop, &stop);
+    cr_assert_str_eq(stop, "never");
+    cl_model_free(m);
+    cl_config_free(cfg);
+}
+
 Test(pins, errors_name_the_key)
 {
     static const char *const bad[][4] = {

@@ -178,9 +178,8 @@ static cl_status pin_box(cl_config *cfg, const char *sec, const double b[6],
 static cl_status read_stop(cl_config *cfg, const char *sec, double *stop,
                            cl_error *err)
 {
-    const char *v = cl_config_peek(cfg, sec, "stop");
-    if (v && strcmp(v, "never") == 0) {
-        (void)cl_config_string(cfg, sec, "stop", NULL); /* read */
+    /* the default is recorded (run.json, config.ini) as "never" */
+    if (strcmp(cl_config_string(cfg, sec, "stop", "never"), "never") == 0) {
         *stop = INFINITY;
         return CL_OK;
     }

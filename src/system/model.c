@@ -164,14 +164,14 @@ cl_status cl_model_read_state(const cl_model *m, const char *path, double *x,
     return free_state_of(&m->cloth, path, NAN, x, v, err);
 }
 
-/* [init] state: a state file (final.csv) whose free particles' positions
- * and velocities are the state at [init] time (README "[init]"). */
 cl_status cl_model_config_start_time(cl_config *cfg, double *t0,
                                      cl_error *err)
 {
     return cl_config_double(cfg, "init", "time", 0.0, 0.0, 1e12, t0, err);
 }
 
+/* [init] state: a state file (final.csv) whose free particles' positions
+ * and velocities are the state at [init] time (README "[init]"). */
 static cl_status read_state(cl_config *cfg, cl_model *m, cl_error *err)
 {
     cl_status rc = cl_model_config_start_time(cfg, &m->t0, err);
