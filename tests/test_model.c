@@ -266,14 +266,14 @@ Test(model, system_jacobian_fd_hang_damped_moving_pins)
  * slots of the pattern beside the cloth's own. */
 Test(model, system_jacobian_fd_with_moving_obstacles)
 {
-    cl_model *m = HANG("damping.kd=0.05", "obstacle.floor.shape=plane",
-                       "obstacle.floor.point=0, -0.1, 0",
-                       "obstacle.floor.normal=0, 1, 0",
-                       "obstacle.floor.response=penalty",
-                       "obstacle.floor.k=50", "obstacle.floor.eps=0.3",
-                       "obstacle.floor.damping=0.5", "obstacle.floor.mu=0.4",
-                       "obstacle.floor.v_smooth=10",
-                       "obstacle.floor.path=0: 0, 0, 0; 1: 0.01, 0.02, 0",
+    cl_model *m = HANG("damping.kd=0.05", "obstacle.ground.shape=plane",
+                       "obstacle.ground.point=0, -0.1, 0",
+                       "obstacle.ground.normal=0, 1, 0",
+                       "obstacle.ground.response=penalty",
+                       "obstacle.ground.k=50", "obstacle.ground.eps=0.3",
+                       "obstacle.ground.damping=0.5", "obstacle.ground.mu=0.4",
+                       "obstacle.ground.v_smooth=10",
+                       "obstacle.ground.path=0: 0, 0, 0; 1: 0.01, 0.02, 0",
                        "obstacle.ball.shape=sphere",
                        "obstacle.ball.center=0.5, -2.1, 0.5",
                        "obstacle.ball.radius=2",
