@@ -2,8 +2,8 @@
  * (global error at T = 1 below 80, 600 and 2500 tol for tol = 1e-6, 1e-8
  * and 1e-10, shrinking at least 10-fold per 100-fold tighter tol; measured
  * 40, 300, 1300 tol, cvode-bdf 160 to 700 tol: the local error control
- * does not bound the
- * global error, which accumulates over the 100-300 steps), the dense
+ * does not bound the global error, which accumulates over the 100-300
+ * steps), the dense
  * first-order Jacobian against central differences of the RHS (coupled
  * pair with damping and distinct masses), dfdt = 0 for an autonomous
  * system, the size limit (CL_EUNSUPPORTED above 1728 unknowns), its
