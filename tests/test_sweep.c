@@ -500,5 +500,11 @@ Test(sweep, run_help_and_refusals)
     cli_result_free(&r);
     cli_run(&r, "sweep", "frobnicate", NULL);
     cr_assert_eq(r.status, 2);
+    cli_assert_error(&r, 5, "sweep: unknown subcommand 'frobnicate'",
+                     "plan, run, collect or refine", NULL);
+    cli_result_free(&r);
+    cli_run(&r, "sweep", NULL);
+    cr_assert_eq(r.status, 2);
+    cli_assert_error(&r, 5, "sweep: a subcommand is needed", NULL);
     cli_result_free(&r);
 }

@@ -806,6 +806,12 @@ int cl_cmd_sweep(int argc, char **argv)
                                 refine);
     }
     FILE *fp = strcmp(what, "--help") ? stderr : stdout;
+    if (fp == stderr && *what)
+        fprintf(stderr, "clothode: sweep: unknown subcommand '%s' (plan, "
+                "run, collect or refine)\n", what);
+    else if (fp == stderr)
+        fprintf(stderr, "clothode: sweep: a subcommand is needed (plan, "
+                "run, collect or refine)\n");
     fprintf(fp, "usage: clothode sweep plan SWEEP.ini [--out DIR] "
                 "[--no-check]\n"
                 "       clothode sweep run DIR [--engine local|ssh|slurm] "
