@@ -942,6 +942,15 @@ Test(sweep_engine, plan_refuses_what_run_would)
                      "problems/meshes/sphere.obj: a relative file name",
                      NULL);
     cli_result_free(&r);
+
+    /* two jobs that are one run: the sweep file and the values named */
+    tmp_put(in_tmp(path, "twin.ini"), "[sweep]\nproblem = problems/hang.ini\n"
+            "integrator = rk4\ndt = 1e-4, 0.0001\nt_end = 0.05\n");
+    cli_run(&r, "sweep", "plan", path, "--out", in_tmp(dir, "twin"), NULL);
+    cli_assert_error(&r, 0, "twin.ini: sweep: two jobs are the same run, "
+                     "integrator=rk4 run.dt=0.0001", NULL);
+    cli_result_free(&r);
+    cr_assert(!cli_exists(dir), "a refused plan left its directory");
 }
 
 /* ---- Slurm ----------------------------------------------------------- */

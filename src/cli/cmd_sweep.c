@@ -222,6 +222,19 @@ static cl_status check_jobs(const cl_sweep *sw, cl_error *err)
     return rc;
 }
 
+/* The jobs of the sweep file `path`; a refusal names the file (two jobs
+ * that are one run come from its values, on no one line). */
+static cl_status expand(const char *path, cl_sweep *sw, cl_error *err)
+{
+    cl_status rc = cl_sweep_expand(sw, err);
+    if (rc == CL_EINVAL) {
+        char why[sizeof err->msg];
+        snprintf(why, sizeof why, "%s", err->msg);
+        rc = cl_error_set(err, rc, "%s: %s", path, why);
+    }
+    return rc;
+}
+
 static int plan(void *settings)
 {
     const plan_args *p = settings;
@@ -236,7 +249,7 @@ static int plan(void *settings)
         !(rc = resolve_problem(cfg, a->arg, &sw, &err)) &&
         !(rc = plan_dirs(a, &sw, &made, &err)) &&
         !(rc = same_sweep(&sw, &err)) &&
-        !(rc = cl_sweep_expand(&sw, &err)) &&
+        !(rc = expand(a->arg, &sw, &err)) &&
         !(rc = p->no_check ? CL_OK : check_jobs(&sw, &err)))
         rc = cl_sweep_write(&sw, &err);
     if (rc && made && sw.dir) /* a refused plan leaves no directory */
