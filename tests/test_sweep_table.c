@@ -296,7 +296,7 @@ Test(sweep_table, two_runs_at_one_level_are_refused)
 /* The command line: the study's table from the sweep's rows of n = 6. */
 Test(sweep_table, stability_cli_from_sweep)
 {
-    char path[1024], out[1024], csv[1100], text[4096];
+    char path[1024], out[1024], csv[1300], text[4096];
     snprintf(path, sizeof path, "%s/t.csv", tmp);
     put_table(path, table, "problems/hang.ini");
     snprintf(out, sizeof out, "%s/stab", tmp);
@@ -363,10 +363,17 @@ Test(sweep_table, stability_cli_from_sweep)
             "stability.checks=20", "--t-end", "2", "--integrator", "rk4",
             "--from-sweep", moved, "--out", out2, NULL);
     cli_assert_ok(&r);
+    cr_assert(strstr(r.out, "rk4                      0.004      -       0.008"
+                            "     4  failed at t = 0.72 s (blow-up)\n"), "%s",
+              r.out);
     cli_result_free(&r);
     snprintf(csv, sizeof csv, "%s/stability.csv", out);
     tmp_slurp(csv, text, sizeof text);
     cr_assert_eq(cli_count_lines(text), 1 + 4 + 2);
+    /* the moved table's rows: rk4's four */
+    snprintf(csv, sizeof csv, "%s/stability.csv", out2);
+    tmp_slurp(csv, text, sizeof text);
+    cr_assert_eq(cli_count_lines(text), 1 + 4);
 }
 
 /* stability --axis on a small hang: symplectic Euler's limit falls as
