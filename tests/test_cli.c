@@ -908,7 +908,8 @@ Test(cli, eval_state_wrong_header)
     cli_result r;
     eval_text(&r, bad, state);
     snprintf(where, sizeof where, "%s:1", state);
-    cli_assert_error(&r, 0, where, NULL);
+    cli_assert_error(&r, 0, where, "expected header \"p,x,y,z,vx,vy,vz\", "
+                     "found \"p,x,y,z,vx,vy\"", NULL);
     cli_result_free(&r);
     free(bad);
     free(text);
@@ -2506,19 +2507,25 @@ Test(cli, projection_refused_by_an_integrator_that_cannot_apply_it)
 Test(cli, malformed_obstacle_meshes_are_refused)
 {
     static const struct {
-        const char *name, *text, *want;
+        const char *name, *text, *want, *why;
     } bad[] = {
-        {"empty.obj", "", "empty.obj"},
-        {"nofaces.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n", "face"},
-        {"zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "zero.obj:4"},
-        {"range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n", "range.obj:4"},
-        {"nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", "nan.obj:2"},
-        {"inf.obj", "v 0 0 0\nv 1 0 0\nv 0 inf 0\nf 1 2 3\n", "inf.obj:3"},
+        {"empty.obj", "", "empty.obj:1", "empty file"},
+        {"nofaces.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n", "nofaces.obj:3",
+         "end of file without faces"},
+        {"zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "zero.obj:4",
+         "vertex index 0 (indices start at 1"},
+        {"range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n", "range.obj:4",
+         "vertex index 7 out of range (3 vertices"},
+        {"nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", "nan.obj:2",
+         "\"nan\" is not a finite number"},
+        {"inf.obj", "v 0 0 0\nv 1 0 0\nv 0 inf 0\nf 1 2 3\n", "inf.obj:3",
+         "\"inf\" is not a finite number"},
         {"degenerate.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n",
-         "degenerate.obj:4"},
+         "degenerate.obj:4", "zero area"},
         {"repeated.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2\n",
-         "repeated.obj:4"},
-        {"token.obj", "v 0 0 0\nv 1 zero 0\nv 0 1 0\nf 1 2 3\n", "token.obj:2"},
+         "repeated.obj:4", "repeats a vertex"},
+        {"token.obj", "v 0 0 0\nv 1 zero 0\nv 0 1 0\nf 1 2 3\n", "token.obj:2",
+         "\"zero\" is not a number"},
     };
     char ini[1100], obj[1100], text[1400];
     for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
@@ -2529,7 +2536,8 @@ Test(cli, malformed_obstacle_meshes_are_refused)
                  "response = penalty\nk = 10\n", bad[k].name);
         tmp_put(ini, text);
         expect_refused(LIST("run", ini, "--t-end", "0.01"), 0,
-                       LIST(bad[k].want));
+                       LIST("mesh.ini:5: [obstacle.rock] file: ", bad[k].want,
+                            bad[k].why));
     }
     /* a 10 MB line */
     char *big = malloc(10u << 20);
