@@ -1932,14 +1932,17 @@ Test(cli, convergence_refusals)
                    LIST("--integrator", "no-such", "cvode-bdf", "semi-bdf2"));
     expect_refused(LIST("convergence", "spring2", "--integrator", "rk4",
                         "--dt", "1e-2", "--levels", "1"), 0,
-                   LIST("--levels", "levels"));
+                   LIST("--levels: [convergence] levels = \"1\": expected an "
+                        "integer in [2, 20]"));
     expect_refused(LIST("convergence", "spring2", "--integrator", "rk4"), 0,
-                   LIST("dt", "rk4"));
+                   LIST("[run] dt = 0: integrator rk4 takes fixed steps and "
+                        "needs dt > 0 (--dt H)"));
     expect_refused(LIST("convergence", "spring2", "--integrator", "rk4",
                         "--dt", "0.3", "--t-end", "1"), 0,
                    LIST("whole number", "0.3"));
     expect_refused(LIST("convergence", "spring2", "--ref-rtol", "1e-2"), 0,
-                   LIST("--ref-rtol", "ref_rtol"));
+                   LIST("--ref-rtol: [convergence] ref_rtol = \"1e-2\": "
+                        "expected a number in [1e-15, 0.0001]"));
 }
 
 /* A problem file written for run serves the studies: run's output keys
@@ -2056,7 +2059,8 @@ Test(cli, stability_refusals)
                    LIST("cvode-bdf", "error control"));
     expect_refused(LIST("stability", "spring2", "--integrator", "rk4",
                         "--t-end", "4", "--dt-max", "1"), 0,
-                   LIST("--dt-max", "dt_max"));
+                   LIST("--dt-max: [stability] dt_max = \"1\": expected a "
+                        "number in [1e-300, 0.4]"));
     expect_refused(LIST("stability", "verlet-scene3", "--integrator",
                         "verlet", "--t-end", "1"), 0,
                    LIST("tear"));
@@ -2285,7 +2289,8 @@ Test(cli, energy_refusals)
                         "0.3", "--t-end", "1"), 0,
                    LIST("whole number", "0.3"));
     expect_refused(LIST("energy", "spring2", "--samples", "0"), 0,
-                   LIST("--samples"));
+                   LIST("--samples: [energy] samples = \"0\": expected an "
+                        "integer in [1, 100000000]"));
 }
 
 /* workprecision: integrator:linsol entries label the CSV; a ranking line
@@ -2466,8 +2471,9 @@ Test(cli, bad_obstacle_parameters_are_refused)
         const char *problem, *set, *want[6];
     } bad[] = {
         {"drape-sphere", "obstacle.ball.radius=0",
-         {"[obstacle.ball] radius", "\"0\""}},
-        {"drape-sphere", "obstacle.ball.radius=-1", {"radius", "\"-1\""}},
+         {"--set: [obstacle.ball] radius = \"0\": expected a number > 0"}},
+        {"drape-sphere", "obstacle.ball.radius=-1",
+         {"radius = \"-1\": expected a number > 0"}},
         {"drape-sphere", "obstacle.floor.normal=0, 0, 0",
          {"[obstacle.floor] normal", "nonzero"}},
         {"drape-sphere", "obstacle.ball.shape=cone",
@@ -2478,13 +2484,17 @@ Test(cli, bad_obstacle_parameters_are_refused)
          {"[obstacle.ball] path", "keyframes"}},
         {"drape-sphere", "obstacle.ball.path=1: 0, 0, 0; 1: 1, 0, 0",
          {"path", "increasing"}},
-        {"drape-sphere", "obstacle.ball.k=0", {"[obstacle.ball] k", "\"0\""}},
+        {"drape-sphere", "obstacle.ball.k=0",
+         {"[obstacle.ball] k = \"0\": expected a number in [1e-300, 1e+12]"}},
         {"drape-box", "obstacle.table.size=1, 0, 1",
-         {"[obstacle.table] size", "> 0"}},
+         {"[obstacle.table] size = \"1, 0, 1\": expected three side lengths "
+          "> 0"}},
         {"drape-sphere-barrier", "obstacle.ball.kappa=0",
-         {"[obstacle.ball] kappa", "\"0\""}},
+         {"[obstacle.ball] kappa = \"0\": expected a number in [1e-300, "
+          "1e+12]"}},
         {"drape-box-barrier", "obstacle.table.dhat=-1",
-         {"[obstacle.table] dhat", "\"-1\""}},
+         {"[obstacle.table] dhat = \"-1\": expected a number in [1e-300, "
+          "1e+12]"}},
     };
     for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
         const char *const *w = bad[k].want;
@@ -2615,7 +2625,8 @@ Test(cli, each_failure_class_has_its_exit_status)
     tmp_mkdtemp(out, sizeof out, "exit");
     const char *bad[] = {"run", "hang", "--set", "cloth.n=1", "--out", out,
                          NULL};
-    assert_status(bad, 2, "cloth");
+    assert_status(bad, 2, "--set: [cloth] n = \"1\": expected an integer in "
+                          "[2, 4096]");
     const char *usage[] = {"run", "hang", "--no-such-option", NULL};
     assert_status(usage, 2, "no-such-option");
     const char *blowup[] = {"run", "hang", "--integrator", "fe", "--dt",
