@@ -709,11 +709,18 @@ Test(sweep_engine, collect_out_over_the_sweep_s_own_files)
     cli_result_free(&r);
     tmp_slurp(path, after, sizeof after);
     cr_assert_str_eq(after, before);
+    /* jobs.txt by another spelling of its path: named, left as it was */
+    snprintf(path, sizeof path, "%s/jobs.txt", dir);
+    tmp_slurp(path, before, sizeof before);
     snprintf(path, sizeof path, "%s/../%s/jobs.txt", dir,
              strrchr(dir, '/') + 1);
     cli_run(&r, "sweep", "collect", dir, "--out", path, NULL);
     cr_assert_eq(r.status, 2, "%s", r.err);
+    cli_assert_error(&r, 0, "jobs.txt: the sweep's own", "jobs.txt, which the "
+                     "table would replace; write it elsewhere", NULL);
     cli_result_free(&r);
+    tmp_slurp(path, after, sizeof after);
+    cr_assert_str_eq(after, before);
 }
 
 /* The Slurm submission's files are written atomically, onto regular files
