@@ -118,7 +118,10 @@ typedef struct {
     size_t npoints, ntri, npointdata, nvel, npinned, npinned_set;
     double t;
     int have_time;
-    double x_last[3], v_last[3];
+    /* the values of the first VTK_KEEP points and triangles */
+#define VTK_KEEP 64
+    double x[3 * VTK_KEEP], v[3 * VTK_KEEP];
+    int tri[VTK_KEEP][3], pinned[VTK_KEEP];
 } vtk_info;
 
 static vtk_info read_vtk(const char *path)
@@ -142,9 +145,10 @@ static vtk_info read_vtk(const char *path)
             info.have_time = 1;
         } else if (sscanf(line, "POINTS %zu double", &n) == 1) {
             info.npoints = n;
-            for (size_t p = 0; p < n; p++)
-                cr_assert_eq(fscanf(fp, "%lf %lf %lf ", &info.x_last[0],
-                                    &info.x_last[1], &info.x_last[2]), 3);
+            for (size_t p = 0; p < n; p++) {
+                double *q = info.x + 3 * (p < VTK_KEEP ? p : VTK_KEEP - 1);
+                cr_assert_eq(fscanf(fp, "%lf %lf %lf ", q, q + 1, q + 2), 3);
+            }
         } else if (sscanf(line, "POLYGONS %zu %zu", &n, &m) == 2) {
             cr_assert_eq(m, 4 * n);
             info.ntri = n;
@@ -152,6 +156,11 @@ static vtk_info read_vtk(const char *path)
                 int c, a, b, d;
                 cr_assert_eq(fscanf(fp, "%d %d %d %d ", &c, &a, &b, &d), 4);
                 cr_assert_eq(c, 3);
+                if (k < VTK_KEEP) {
+                    info.tri[k][0] = a;
+                    info.tri[k][1] = b;
+                    info.tri[k][2] = d;
+                }
                 cr_assert(a >= 0 && (size_t)a < info.npoints);
                 cr_assert(b >= 0 && (size_t)b < info.npoints);
                 cr_assert(d >= 0 && (size_t)d < info.npoints);
@@ -159,9 +168,10 @@ static vtk_info read_vtk(const char *path)
         } else if (sscanf(line, "POINT_DATA %zu", &n) == 1) {
             info.npointdata = n;
         } else if (!strcmp(line, "VECTORS velocity double\n")) {
-            for (size_t p = 0; p < info.npointdata; p++)
-                cr_assert_eq(fscanf(fp, "%lf %lf %lf ", &info.v_last[0],
-                                    &info.v_last[1], &info.v_last[2]), 3);
+            for (size_t p = 0; p < info.npointdata; p++) {
+                double *q = info.v + 3 * (p < VTK_KEEP ? p : VTK_KEEP - 1);
+                cr_assert_eq(fscanf(fp, "%lf %lf %lf ", q, q + 1, q + 2), 3);
+            }
             info.nvel = info.npointdata;
         } else if (!strcmp(line, "SCALARS pinned int 1\n")) {
             cr_assert_not_null(fgets(line, sizeof line, fp));
@@ -170,6 +180,8 @@ static vtk_info read_vtk(const char *path)
                 int f;
                 cr_assert_eq(fscanf(fp, "%d ", &f), 1);
                 cr_assert(f == 0 || f == 1);
+                if (p < VTK_KEEP)
+                    info.pinned[p] = f;
                 info.npinned_set += (size_t)f;
             }
             info.npinned = info.npointdata;
@@ -200,9 +212,18 @@ Test(frames, vtk_full)
     cr_assert_eq(info.nvel, 20);
     cr_assert_eq(info.npinned, 20);
     cr_assert_eq(info.npinned_set, 5);
-    cr_assert_eq(info.x_last[0], g.x[57]);
-    cr_assert_eq(info.x_last[2], g.x[59]);
-    cr_assert_eq(info.v_last[1], -19.0);
+    /* every point, velocity and flag as given, every triangle the grid's */
+    for (size_t k = 0; k < 3 * 20; k++) {
+        cr_assert_eq(info.x[k], g.x[k], "x[%zu]", k);
+        cr_assert_eq(info.v[k], g.v[k], "v[%zu]", k);
+    }
+    for (size_t p = 0; p < 20; p++)
+        cr_assert_eq(info.pinned[p], g.pinned[p], "pinned[%zu]", p);
+    int tri[24][3];
+    cr_assert_eq(cl_grid_triangles(nu, nv, tri), 24);
+    for (size_t k = 0; k < 24; k++)
+        for (int c = 0; c < 3; c++)
+            cr_assert_eq(info.tri[k][c], tri[k][c], "triangle %zu", k);
     free_grid(&g);
 }
 
