@@ -125,8 +125,8 @@ static void print_summary(const char *problem, const run_setup *r,
                res->min_distance, res->min_distance_t);
     print_selfcontact(m, res);
     cl_stats_print(&res->stats, stdout, true);
-    printf("output       %s (series.csv, %ld frames, %s%sstats.csv)\n",
-           r->so.outdir, res->frames,
+    printf("output       %s (series.csv, %ld frame%s, %s%sstats.csv)\n",
+           r->so.outdir, res->frames, res->frames == 1 ? "" : "s",
            res->state_file ? res->state_file : "",
            res->state_file ? ", " : "");
 }
