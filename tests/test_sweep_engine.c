@@ -924,8 +924,8 @@ Test(sweep_engine, ssh_gives_the_local_table)
     assert_same_table(local, remote);
 }
 
-/* A value `run` would refuse stops the plan, naming the job and the
- * refusal, and leaves no sweep directory. */
+/* A value `run` would refuse stops the plan, naming the sweep file, the
+ * job and the refusal, and leaves no sweep directory. */
 Test(sweep_engine, plan_refuses_what_run_would)
 {
     char dir[1024], path[1100];
@@ -933,9 +933,9 @@ Test(sweep_engine, plan_refuses_what_run_would)
             "integrator = rk4\ndt = 1e-4, -1\nt_end = 0.05\n");
     cli_result r;
     cli_run(&r, "sweep", "plan", path, "--out", in_tmp(dir, "bad"), NULL);
-    cli_assert_error(&r, 0, "sweep plan: the job integrator=rk4 run.dt=-1 "
-                     "run.t_end=0.05 would be refused: --set: [run] dt = "
-                     "\"-1\": expected a number in [0, 1e+12]", NULL);
+    cli_assert_error(&r, 0, "bad.ini: sweep plan: the job integrator=rk4 "
+                     "run.dt=-1 run.t_end=0.05 would be refused: --set: [run] "
+                     "dt = \"-1\": expected a number in [0, 1e+12]", NULL);
     cli_result_free(&r);
     cr_assert(!cli_exists(dir), "a refused plan left its directory");
 

@@ -222,11 +222,11 @@ static cl_status check_jobs(const cl_sweep *sw, cl_error *err)
     return rc;
 }
 
-/* The jobs of the sweep file `path`; a refusal names the file (two jobs
- * that are one run come from its values, on no one line). */
-static cl_status expand(const char *path, cl_sweep *sw, cl_error *err)
+/* A refusal of the sweep file `path`'s jobs, named with the file: two
+ * jobs that are one run, or a job run would refuse, come from its values
+ * in combination, on no one line of it. */
+static cl_status of_file(const char *path, cl_status rc, cl_error *err)
 {
-    cl_status rc = cl_sweep_expand(sw, err);
     if (rc == CL_EINVAL) {
         char why[sizeof err->msg];
         snprintf(why, sizeof why, "%s", err->msg);
@@ -249,8 +249,9 @@ static int plan(void *settings)
         !(rc = resolve_problem(cfg, a->arg, &sw, &err)) &&
         !(rc = plan_dirs(a, &sw, &made, &err)) &&
         !(rc = same_sweep(&sw, &err)) &&
-        !(rc = expand(a->arg, &sw, &err)) &&
-        !(rc = p->no_check ? CL_OK : check_jobs(&sw, &err)))
+        !(rc = of_file(a->arg, cl_sweep_expand(&sw, &err), &err)) &&
+        !(rc = p->no_check ? CL_OK
+                           : of_file(a->arg, check_jobs(&sw, &err), &err)))
         rc = cl_sweep_write(&sw, &err);
     if (rc && made && sw.dir) /* a refused plan leaves no directory */
         rmdir(sw.dir);
