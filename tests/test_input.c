@@ -138,3 +138,22 @@ Test(input, a_buffer_that_cannot_grow_is_not_an_end)
     free(text);
 }
 #endif
+
+/* What a text reader refuses of a line, with the file and line named. */
+Test(input, line_refusals_name_file_and_line)
+{
+    cl_error err = {0};
+    cr_assert_eq(cl_input_line_ok("1,2\n", 4, 64, "s.csv", 3, "a state file",
+                                  "", &err), CL_OK);
+    cr_assert_eq(cl_input_line_ok("a\0b\n", 4, 64, "s.csv", 3, "a state file",
+                                  "", &err), CL_EPARSE);
+    cr_assert_str_eq(err.msg, "s.csv:3: NUL byte (a state file is text)");
+    cr_assert_eq(cl_input_line_ok("", CL_INPUT_LONG, 64, "s.csv", 4, "a state "
+                                  "file", " (rows are short)", &err),
+                 CL_EPARSE);
+    cr_assert_str_eq(err.msg, "s.csv:4: a line longer than 64 bytes (rows "
+                              "are short)");
+    cr_assert_eq(cl_input_line_ok("", CL_INPUT_NOMEM, 64, "s.csv", 5, "a state "
+                                  "file", "", &err), CL_ENOMEM);
+    cr_assert_str_eq(err.msg, "s.csv:5: out of memory");
+}

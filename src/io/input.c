@@ -88,6 +88,22 @@ FILE *cl_input_open(const char *path, const char *mode, const char **why)
     return fp;
 }
 
+cl_status cl_input_line_ok(const char *line, ssize_t len, size_t max,
+                           const char *path, size_t lineno, const char *kind,
+                           const char *hint, cl_error *err)
+{
+    if (len == CL_INPUT_NOMEM)
+        return cl_error_set(err, CL_ENOMEM, "%s:%zu: out of memory", path,
+                            lineno);
+    if (len == CL_INPUT_LONG)
+        return cl_error_set(err, CL_EPARSE, "%s:%zu: a line longer than %zu "
+                            "bytes%s", path, lineno, max, hint);
+    if (memchr(line, '\0', (size_t)len))
+        return cl_error_set(err, CL_EPARSE, "%s:%zu: NUL byte (%s is text)",
+                            path, lineno, kind);
+    return CL_OK;
+}
+
 ssize_t cl_input_line(FILE *fp, char **line, size_t *cap, size_t max)
 {
     size_t n = 0;

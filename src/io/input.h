@@ -9,6 +9,7 @@
 #include <sys/types.h>
 
 #include "core/decls.h"
+#include "core/error.h"
 
 CL_BEGIN_DECLS
 
@@ -27,6 +28,15 @@ FILE *cl_input_open(const char *path, const char *mode, const char **why);
  * could not grow. */
 enum { CL_INPUT_END = -1, CL_INPUT_LONG = -2, CL_INPUT_NOMEM = -3 };
 ssize_t cl_input_line(FILE *fp, char **line, size_t *cap, size_t max);
+
+/* Whether a line cl_input_line returned (len, not CL_INPUT_END) is one a
+ * reader of text can parse: CL_OK; else, with "path:lineno: ...",
+ * CL_ENOMEM for no memory, CL_EPARSE for a line longer than max bytes
+ * (`hint` after the message: "" or " (why lines are short)") or for a
+ * NUL byte (`kind` names the file: "a state file"). */
+cl_status cl_input_line_ok(const char *line, ssize_t len, size_t max,
+                           const char *path, size_t lineno, const char *kind,
+                           const char *hint, cl_error *err);
 
 /* Whether paths a and b name the same existing file (or directory), by
  * device and inode: through links and other spellings. */

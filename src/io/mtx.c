@@ -156,22 +156,9 @@ cl_status cl_mtx_read(const char *path, cl_triplets *t, cl_error *err)
     errno = 0;
     while (st == CL_OK && (len = cl_input_line(fp, &line, &cap, MTX_LINE_MAX))
                               != CL_INPUT_END) {
-        lineno++;
-        if (len == CL_INPUT_NOMEM) {
-            st = cl_error_set(err, CL_ENOMEM, "%s:%zu: out of memory", path,
-                              lineno);
+        if ((st = cl_input_line_ok(line, len, MTX_LINE_MAX, path, ++lineno,
+                                   "a Matrix Market file", "", err)))
             break;
-        }
-        if (len == CL_INPUT_LONG) {
-            st = cl_error_set(err, CL_EPARSE, "%s:%zu: a line longer than "
-                              "%d bytes", path, lineno, MTX_LINE_MAX);
-            break;
-        }
-        if (memchr(line, '\0', (size_t)len)) {
-            st = cl_error_set(err, CL_EPARSE, "%s:%zu: NUL byte (a Matrix"
-                              " Market file is text)", path, lineno);
-            break;
-        }
         if (lineno == 1) {
             st = check_banner(path, line, err);
             continue;

@@ -161,23 +161,10 @@ cl_status cl_state_read(const char *path, size_t np, double *x, double *v,
     errno = 0;
     while (st == CL_OK && (len = cl_input_line(fp, &line, &cap, STATE_LINE_MAX))
                               != CL_INPUT_END) {
-        lineno++;
-        if (len == CL_INPUT_NOMEM) {
-            st = cl_error_set(err, CL_ENOMEM, "%s:%zu: out of memory", path,
-                              lineno);
+        if ((st = cl_input_line_ok(line, len, STATE_LINE_MAX, path, ++lineno,
+                                   "a state file",
+                                   " (a row is p and six numbers)", err)))
             break;
-        }
-        if (len == CL_INPUT_LONG) {
-            st = cl_error_set(err, CL_EPARSE, "%s:%zu: a line longer than "
-                              "%d bytes (a row is p and six numbers)", path,
-                              lineno, STATE_LINE_MAX);
-            break;
-        }
-        if (memchr(line, '\0', (size_t)len)) {
-            st = cl_error_set(err, CL_EPARSE, "%s:%zu: NUL byte (a state"
-                              " file is text)", path, lineno);
-            break;
-        }
         chomp(line, (size_t)len);
         if (!header_ok) {
             if (strcmp(line, STATE_HEADER) != 0) {
